@@ -1,0 +1,44 @@
+"""livemod.dlfl: the Doubly Linked Face List modeling library (numpy only).
+
+Two layers over one implementation:
+
+* the library API: :class:`Mesh` with the minimal operators, free functions per
+  family (:func:`from_polygons`, :func:`validate`, :func:`mesh_arrays`, ...);
+* the thesis commands (``createVertex``, ``insertEdge``, ``extrude``, ...), which
+  act on the current scene. ``from livemod.dlfl import *`` brings exactly the
+  thesis commands into a script.
+"""
+
+from __future__ import annotations
+
+from . import commands
+from .analysis import (
+    MeshSummary,
+    bounds,
+    component_genera,
+    euler_characteristic,
+    face_centroids,
+    face_normals,
+    face_size_histogram,
+    genus,
+    num_components,
+    summarize,
+    vertex_normals,
+)
+from .arrays import MeshArrays, mesh_arrays
+from .build import Polygons, from_corner_arrays, from_polygons
+from .commands import *  # noqa: F403
+from .errors import DLFLError, DLFLRepairWarning
+from .mesh import Mesh
+from .scene import Scene, Selection, current_scene, use_scene
+from .validate import validate
+
+__all__ = list(commands.__all__)
+
+LIBRARY_API = [
+    "Mesh", "MeshArrays", "MeshSummary", "Polygons", "Scene", "Selection", "DLFLError",
+    "DLFLRepairWarning", "bounds", "component_genera", "current_scene",
+    "euler_characteristic", "face_centroids", "face_normals", "face_size_histogram",
+    "from_corner_arrays", "from_polygons", "genus", "mesh_arrays", "num_components",
+    "summarize", "use_scene", "validate", "vertex_normals",
+]

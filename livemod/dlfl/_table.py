@@ -1,0 +1,243 @@
+"""Slot storage for one kind of mesh element (vertex, edge, face or corner).
+
+Each kind lives in a structure of numpy arrays indexed by *slot*. Users see
+*ids*: integers handed out by a per-mesh counter and never reused. A slot freed by
+a deletion is reused by the next creation, so memory follows the live element
+count, not the history of edits.
+
+Id -> slot lookup has a fast path: a bulk-built mesh (and every element appended
+after it without reuse) keeps ``slot == id - base``. Only elements that land in a
+reused slot are recorded in the ``moved`` dict, which never holds more entries
+than there are live elements.
+
+The scalar fields are exposed as ``memoryview`` objects (``views``), which read
+and write single entries at close to list speed; the numpy arrays (``arrays``)
+serve the vectorized bulk operations. Growing a table replaces both, so
+operators call :meth:`Table.reserve` *before* they fetch views.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from .errors import DLFLError
+
+# dtype and trailing shape of every field, per kind
+FieldSpec = dict[str, tuple[Any, tuple[int, ...]]]
+
+
+class Table:
+    """The arrays, id counter and free slots of one element kind.
+
+    Attributes:
+        kind: "vertex", "edge", "face" or "corner", used in error messages.
+        arrays: field name -> numpy array of shape ``(capacity, *tail)``.
+        views: field name -> memoryview of the 1-D fields (scalar access).
+        ids: ``(capacity,)`` int64 array, the id in each slot, -1 when free.
+        idv: memoryview of ``ids``.
+        n: slots ever used (the high-water mark); slots ``>= n`` are untouched.
+        free: freed slots below ``n``, reused last-in first-out.
+        base: ids of slots that were never reused are ``base + slot``.
+        moved: id -> slot for ids that do not follow ``base + slot``.
+        next_id: the id the next created element gets.
+        version: bumped on every create/delete; keys cached id lists.
+    """
+
+    # scalar views of the fields appear as attributes of the same name
+    # (``table.next``); see :meth:`_refresh_views`
+    def __getattr__(self, name: str) -> memoryview:
+        raise AttributeError(f"{type(self).__name__} has no field {name!r}")
+
+    def __init__(self, kind: str, spec: FieldSpec, capacity: int = 16) -> None:
+        self.kind = kind
+        self.spec = spec
+        self.n = 0
+        self.free: list[int] = []
+        self.base = 0
+        self.moved: dict[int, int] = {}
+        self.next_id = 0
+        self.version = 0
+        self._sorted_cache: tuple[int, np.ndarray] | None = None
+        self.arrays: dict[str, np.ndarray] = {}
+        self.views: dict[str, memoryview] = {}
+        self.ids = np.full(capacity, -1, dtype=np.int64)
+        self.idv = memoryview(self.ids)
+        for name, (dtype, tail) in spec.items():
+            self.arrays[name] = np.zeros((capacity, *tail), dtype=dtype)
+        self._refresh_views()
+
+    # -- capacity -------------------------------------------------------------
+
+    @property
+    def capacity(self) -> int:
+        return self.cap
+
+    def _refresh_views(self) -> None:
+        self.cap = len(self.ids)
+        self.idv = memoryview(self.ids)
+        self.views = {
+            name: memoryview(arr) for name, arr in self.arrays.items() if arr.ndim == 1
+        }
+        for name, view in self.views.items():
+            setattr(self, name, view)
+
+    def reserve(self, count: int) -> None:
+        """Make sure ``count`` more elements can be created without growing.
+
+        Growing replaces every array and view, so callers fetch ``views`` after
+        this call, never before.
+        """
+        if self.n + count <= self.cap or len(self.free) + self.cap - self.n >= count:
+            return
+        new_cap = max(self.capacity * 2, self.n + count, 16)
+        self._resize(new_cap)
+
+    def _resize(self, new_cap: int) -> None:
+        ids = np.full(new_cap, -1, dtype=np.int64)
+        ids[: self.n] = self.ids[: self.n]
+        self.ids = ids
+        for name, arr in self.arrays.items():
+            grown = np.zeros((new_cap, *arr.shape[1:]), dtype=arr.dtype)
+            grown[: self.n] = arr[: self.n]
+            self.arrays[name] = grown
+        self._refresh_views()
+
+    # -- create / delete ------------------------------------------------------
+
+    def alloc(self) -> int:
+        """Create one element and return its slot (capacity must be reserved)."""
+        eid = self.next_id
+        self.next_id = eid + 1
+        free = self.free
+        if free:
+            slot = free.pop()
+        else:
+            slot = self.n
+            self.n = slot + 1
+        if slot != eid - self.base:
+            self.moved[eid] = slot
+        self.idv[slot] = eid
+        self.version += 1
+        return slot
+
+    def release(self, slot: int) -> None:
+        """Delete the element in ``slot``; its id is never handed out again."""
+        eid = self.idv[slot]
+        self.idv[slot] = -1
+        if self.moved:
+            self.moved.pop(eid, None)
+        self.free.append(slot)
+        self.version += 1
+
+    # -- lookup ---------------------------------------------------------------
+
+    def slot(self, eid: Any) -> int:
+        """Return the slot of the live element ``eid``.
+
+        Raises:
+            DLFLError: ``eid`` is not an integer, or names no live element.
+        """
+        if type(eid) is not int:
+            eid = self._as_int(eid)
+        s = eid - self.base
+        if 0 <= s < self.n and self.idv[s] == eid:
+            return s
+        found = self.moved.get(eid)
+        if found is None:
+            raise DLFLError(self._missing_message(eid))
+        return found
+
+    def _as_int(self, eid: Any) -> int:
+        if isinstance(eid, (bool, np.bool_)) or not hasattr(eid, "__index__"):
+            raise DLFLError(f"expected a {self.kind} id (an integer), got {eid!r}")
+        return int(eid.__index__())
+
+    def _missing_message(self, eid: int) -> str:
+        if 0 <= eid < self.next_id:
+            return f"{self.kind} {eid} was deleted"
+        return f"{self.kind} {eid} does not exist"
+
+    def is_live(self, eid: int) -> bool:
+        """True when ``eid`` names a live element of this kind."""
+        s = eid - self.base
+        if 0 <= s < self.n and self.idv[s] == eid:
+            return True
+        return eid in self.moved
+
+    # -- bulk views -----------------------------------------------------------
+
+    @property
+    def count(self) -> int:
+        """Number of live elements."""
+        return self.n - len(self.free)
+
+    def live_slots(self) -> np.ndarray:
+        """``(count,)`` int64 slots of the live elements, in increasing id order."""
+        cached = self._sorted_cache
+        if cached is not None and cached[0] == self.version:
+            return cached[1]
+        ids = self.ids[: self.n]
+        slots = np.flatnonzero(ids >= 0)
+        if self.moved:
+            slots = slots[np.argsort(ids[slots], kind="stable")]
+        self._sorted_cache = (self.version, slots)
+        return slots
+
+    def live_ids(self) -> np.ndarray:
+        """``(count,)`` int64 ids of the live elements, increasing."""
+        return self.ids[self.live_slots()]
+
+    def copy(self) -> Table:
+        """A deep copy sized to the used slots."""
+        other = type(self).__new__(type(self))
+        other.kind = self.kind
+        other.spec = self.spec
+        cap = max(self.n, 16)
+        other.ids = np.full(cap, -1, dtype=np.int64)
+        other.ids[: self.n] = self.ids[: self.n]
+        other.arrays = {}
+        for name, arr in self.arrays.items():
+            dup = np.zeros((cap, *arr.shape[1:]), dtype=arr.dtype)
+            dup[: self.n] = arr[: self.n]
+            other.arrays[name] = dup
+        other.n = self.n
+        other.free = list(self.free)
+        other.base = self.base
+        other.moved = dict(self.moved)
+        other.next_id = self.next_id
+        other.version = 0
+        other._sorted_cache = None
+        other._refresh_views()
+        return other
+
+    @classmethod
+    def from_arrays(
+        cls, kind: str, spec: FieldSpec, first_id: int, arrays: dict[str, np.ndarray]
+    ) -> Table:
+        """A table whose slots ``0..n-1`` hold ids ``first_id..first_id+n-1``.
+
+        ``arrays`` gives every field of ``spec`` with ``n`` rows; they are
+        adopted (not copied) when their dtype already matches.
+        """
+        table = cls.__new__(cls)
+        table.kind = kind
+        table.spec = spec
+        count = len(next(iter(arrays.values()))) if arrays else 0
+        table.n = count
+        table.free = []
+        table.base = first_id
+        table.moved = {}
+        table.next_id = first_id + count
+        table.version = 0
+        table._sorted_cache = None
+        table.ids = np.arange(first_id, first_id + count, dtype=np.int64)
+        table.arrays = {
+            name: np.ascontiguousarray(arrays[name], dtype=dtype)
+            for name, (dtype, _tail) in spec.items()
+        }
+        if count == 0:
+            table._resize(16)
+        table._refresh_views()
+        return table

@@ -1,0 +1,199 @@
+"""Measurements of a whole mesh: normals, centroids, bounds, components, genus.
+
+Every function takes a :class:`Mesh` or the :class:`MeshArrays` of one (pass the
+arrays when calling several functions on the same mesh, to lay it out once).
+"""
+
+from __future__ import annotations
+
+from collections import Counter
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ._graph import component_labels
+from .arrays import MeshArrays, mesh_arrays
+from .mesh import Mesh
+
+
+def _arrays(mesh: Mesh | MeshArrays) -> MeshArrays:
+    return mesh if isinstance(mesh, MeshArrays) else mesh_arrays(mesh)
+
+
+def _normalize(vectors: np.ndarray) -> np.ndarray:
+    length = np.linalg.norm(vectors, axis=-1, keepdims=True)
+    return np.divide(vectors, length, out=np.zeros_like(vectors), where=length > 1e-300)
+
+
+def face_centroids(mesh: Mesh | MeshArrays) -> np.ndarray:
+    """``(F, 3)`` float64 mean of each face's corner positions (TopMod's centroid)."""
+    a = _arrays(mesh)
+    sums = np.zeros((len(a.face_ids), 3))
+    np.add.at(sums, a.corner_face, a.positions[a.corner_vertex])
+    return sums / np.maximum(a.face_sizes, 1)[:, None]
+
+
+def corner_normals(mesh: Mesh | MeshArrays) -> np.ndarray:
+    """``(C, 3)`` float64 unit normal of each corner, as TopMod computes it.
+
+    ``normalize((next - p) x (prev - p))``, flipped where it points against the
+    face's Newell normal (a concave corner). Straight ("winged") corners and
+    point-spheres get zero.
+    """
+    a = _arrays(mesh)
+    p = a.positions[a.corner_vertex]
+    cross = np.cross(a.positions[a.corner_vertex[a.corner_next]] - p,
+                     a.positions[a.corner_vertex[a.corner_prev]] - p)
+    newell = _newell(a)[a.corner_face]
+    flip = np.einsum("ij,ij->i", cross, newell) < 0
+    cross[flip] *= -1
+    return _normalize(cross)
+
+
+def _newell(a: MeshArrays) -> np.ndarray:
+    """``(F, 3)`` unnormalised Newell normal (twice the vector area) of each face."""
+    p = a.positions[a.corner_vertex]
+    q = a.positions[a.corner_vertex[a.corner_next]]
+    out = np.zeros((len(a.face_ids), 3))
+    np.add.at(out, a.corner_face, np.cross(p, q))
+    return out
+
+
+def face_normals(mesh: Mesh | MeshArrays) -> np.ndarray:
+    """``(F, 3)`` float64 unit face normals: the normalised sum of corner normals.
+
+    Faces are counter-clockwise seen from outside, so on a closed mesh the
+    normals point out. Degenerate faces (point-spheres, 2-gons) get zero.
+    """
+    a = _arrays(mesh)
+    sums = np.zeros((len(a.face_ids), 3))
+    np.add.at(sums, a.corner_face, corner_normals(a))
+    return _normalize(sums)
+
+
+def face_areas(mesh: Mesh | MeshArrays) -> np.ndarray:
+    """``(F,)`` float64 vector area of each face (exact for planar faces)."""
+    return np.linalg.norm(_newell(_arrays(mesh)), axis=1) * 0.5
+
+
+def vertex_normals(mesh: Mesh | MeshArrays) -> np.ndarray:
+    """``(V, 3)`` float64 unit normals: the normalised sum of the adjacent face normals."""
+    a = _arrays(mesh)
+    sums = np.zeros((len(a.vertex_ids), 3))
+    np.add.at(sums, a.corner_vertex, face_normals(a)[a.corner_face])
+    return _normalize(sums)
+
+
+def bounds(mesh: Mesh | MeshArrays) -> np.ndarray:
+    """``(2, 3)`` float64 ``[min, max]`` corners of the bounding box (zeros if empty)."""
+    a = _arrays(mesh)
+    if len(a.positions) == 0:
+        return np.zeros((2, 3))
+    return np.stack([a.positions.min(axis=0), a.positions.max(axis=0)])
+
+
+def component_of_vertices(mesh: Mesh | MeshArrays) -> tuple[np.ndarray, np.ndarray]:
+    """Connected components: ``(vertex_labels (V,), face_labels (F,))``.
+
+    Labels are ``0..k-1``, numbered in order of each component's first vertex.
+    """
+    a = _arrays(mesh)
+    nv = len(a.vertex_ids)
+    labels = component_labels(nv + len(a.face_ids), a.corner_vertex, nv + a.corner_face)
+    _, dense = np.unique(labels, return_inverse=True)
+    return dense[:nv], dense[nv:]
+
+
+def num_components(mesh: Mesh | MeshArrays) -> int:
+    """Number of connected components (each point-sphere is one)."""
+    vlabels, _ = component_of_vertices(mesh)
+    return int(vlabels.max()) + 1 if len(vlabels) else 0
+
+
+def component_genera(mesh: Mesh | MeshArrays) -> list[int]:
+    """Genus of each connected component, ``(2 - (V - E + F)) / 2`` per component."""
+    a = _arrays(mesh)
+    vlab, flab = component_of_vertices(a)
+    k = int(vlab.max()) + 1 if len(vlab) else 0
+    v = np.bincount(vlab, minlength=k)
+    f = np.bincount(flab, minlength=k)
+    e = np.bincount(vlab[a.corner_vertex[a.edge_corners[:, 0]]], minlength=k)
+    return [int(g) for g in (2 - (v - e + f)) // 2]
+
+
+def genus(mesh: Mesh | MeshArrays) -> int:
+    """Total genus: the sum over components (two spheres are genus 0, not -1)."""
+    return sum(component_genera(mesh))
+
+
+def euler_characteristic(mesh: Mesh | MeshArrays) -> int:
+    """``V - E + F`` (holes count as faces)."""
+    v, e, f = _arrays(mesh).counts
+    return v - e + f
+
+
+def face_size_histogram(mesh: Mesh | MeshArrays, *, holes: bool = False) -> dict[int, int]:
+    """Face size -> number of faces of that size, holes left out unless asked for."""
+    a = _arrays(mesh)
+    sizes = a.face_sizes if holes else a.face_sizes[~a.face_hole]
+    return dict(sorted(Counter(sizes.tolist()).items()))
+
+
+@dataclass
+class MeshSummary:
+    """What ``livemod info`` prints about a mesh."""
+
+    vertices: int
+    edges: int
+    faces: int
+    holes: int
+    point_spheres: int
+    genus: int
+    component_genera: list[int] = field(default_factory=list)
+    face_sizes: dict[int, int] = field(default_factory=dict)
+
+    @property
+    def components(self) -> int:
+        return len(self.component_genera)
+
+
+def summarize(mesh: Mesh | MeshArrays) -> MeshSummary:
+    """Counts, components, genus per component and the face-size histogram."""
+    a = _arrays(mesh)
+    genera = component_genera(a)
+    v, e, f = a.counts
+    return MeshSummary(
+        vertices=v, edges=e, faces=f,
+        holes=int(a.face_hole.sum()),
+        point_spheres=int((a.corner_edge < 0).sum()),
+        genus=sum(genera), component_genera=genera,
+        face_sizes=face_size_histogram(a),
+    )
+
+
+def polygon_normal(points: np.ndarray) -> np.ndarray:
+    """``(3,)`` unit normal of one polygon given as ``(k, 3)`` points, the rule of
+    :func:`face_normals` (zero for fewer than three distinct directions)."""
+    pts = np.asarray(points, dtype=np.float64)
+    if len(pts) < 3:
+        return np.zeros(3)
+    cross = np.cross(np.roll(pts, -1, axis=0) - pts, np.roll(pts, 1, axis=0) - pts)
+    newell = np.cross(pts, np.roll(pts, -1, axis=0)).sum(axis=0)
+    cross[cross @ newell < 0] *= -1
+    return _normalize(_normalize(cross).sum(axis=0))
+
+
+def face_normal(mesh: Mesh, face: int) -> np.ndarray:
+    """``(3,)`` unit normal of one face (see :func:`face_normals`)."""
+    return polygon_normal(face_points(mesh, face))
+
+
+def face_points(mesh: Mesh, face: int) -> np.ndarray:
+    """``(k, 3)`` positions of a face's corners in ring order."""
+    slots = [mesh._v.slot(v) for v in mesh.face_vertices(face)]
+    return mesh._v.arrays["position"][slots]
+
+
+def face_centroid(mesh: Mesh, face: int) -> np.ndarray:
+    """``(3,)`` mean of one face's corner positions."""
+    return face_points(mesh, face).mean(axis=0)

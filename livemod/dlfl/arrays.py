@@ -1,0 +1,192 @@
+"""The GL-free bridge from a DLFL mesh to flat numpy arrays.
+
+:func:`mesh_arrays` lays the live mesh out densely: vertices, faces and edges in
+id order, corners face after face in ring order from each face's head. Every
+bulk operation (subdivision, export, rendering, picking, analysis) reads this
+one layout. Dense indices are positions in these arrays; the ``*_ids`` arrays
+map them back to element ids.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+import numpy as np
+
+from .mesh import Mesh
+
+
+@dataclass(frozen=True)
+class MeshArrays:
+    """A dense, read-only snapshot of a mesh's topology and geometry.
+
+    Attributes:
+        positions: ``(V, 3)`` float64 vertex positions.
+        vertex_ids: ``(V,)`` int64 id of each vertex.
+        face_ids: ``(F,)`` int64 id of each face (holes included).
+        face_offsets: ``(F + 1,)`` int64; face ``i`` owns corners
+            ``face_offsets[i]:face_offsets[i + 1]``, in ring order from its head.
+        face_hole: ``(F,)`` bool, True for hole faces.
+        corner_ids: ``(C,)`` int64 id of each corner.
+        corner_vertex: ``(C,)`` int64 dense vertex index of each corner.
+        corner_face: ``(C,)`` int64 dense face index of each corner.
+        corner_edge: ``(C,)`` int64 dense index of the edge to the next corner, -1
+            for a point-sphere.
+        corner_mate: ``(C,)`` int64 dense index of the corner on the other side of
+            that edge, -1 for a point-sphere.
+        edge_ids: ``(E,)`` int64 id of each edge.
+        edge_corners: ``(E, 2)`` int64 dense indices of each edge's sides (c0, c1).
+    """
+
+    positions: np.ndarray
+    vertex_ids: np.ndarray
+    face_ids: np.ndarray
+    face_offsets: np.ndarray
+    face_hole: np.ndarray
+    corner_ids: np.ndarray
+    corner_vertex: np.ndarray
+    corner_face: np.ndarray
+    corner_edge: np.ndarray
+    corner_mate: np.ndarray
+    edge_ids: np.ndarray
+    edge_corners: np.ndarray
+
+    @property
+    def face_sizes(self) -> np.ndarray:
+        """``(F,)`` int64 number of corners of each face."""
+        return np.diff(self.face_offsets)
+
+    @property
+    def corner_next(self) -> np.ndarray:
+        """``(C,)`` int64 dense index of the next corner in the same face."""
+        nxt = np.arange(1, len(self.corner_vertex) + 1, dtype=np.int64)
+        nxt[self.face_offsets[1:] - 1] = self.face_offsets[:-1]
+        return nxt
+
+    @property
+    def corner_prev(self) -> np.ndarray:
+        """``(C,)`` int64 dense index of the previous corner in the same face."""
+        prv = np.arange(-1, len(self.corner_vertex) - 1, dtype=np.int64)
+        prv[self.face_offsets[:-1]] = self.face_offsets[1:] - 1
+        return prv
+
+    @property
+    def edge_vertices(self) -> np.ndarray:
+        """``(E, 2)`` int64 dense vertex indices of each edge's ends."""
+        return self.corner_vertex[self.edge_corners]
+
+    @property
+    def corner_vnext(self) -> np.ndarray:
+        """``(C,)`` int64: the next corner around the same vertex (TopMod's vnext)."""
+        out = np.arange(len(self.corner_vertex), dtype=np.int64)
+        has = self.corner_mate >= 0
+        out[has] = self.corner_next[self.corner_mate[has]]
+        return out
+
+    @property
+    def counts(self) -> tuple[int, int, int]:
+        """``(V, E, F)``."""
+        return len(self.vertex_ids), len(self.edge_ids), len(self.face_ids)
+
+
+def mesh_arrays(mesh: Mesh) -> MeshArrays:
+    """Lay ``mesh`` out as a :class:`MeshArrays` (vectorized, O(C log max face size))."""
+    C, E, F, V = mesh._c, mesh._e, mesh._f, mesh._v
+    vslots, eslots, fslots, cslots = (
+        V.live_slots(), E.live_slots(), F.live_slots(), C.live_slots(),
+    )
+    ca = C.arrays
+    vdense = _dense_map(vslots, V.n)
+    fdense = _dense_map(fslots, F.n)
+    edense = _dense_map(eslots, E.n)
+    order, offsets = _ring_order(mesh, cslots, fslots, fdense)
+    cdense = _dense_map(order, C.n)
+    corner_face = np.repeat(np.arange(len(fslots), dtype=np.int64), np.diff(offsets))
+    edge_slot = ca["edge"][order]
+    has = edge_slot >= 0
+    corner_edge = np.full(len(order), -1, dtype=np.int64)
+    corner_edge[has] = edense[edge_slot[has]]
+    ea = E.arrays
+    edge_corners = np.stack([cdense[ea["c0"][eslots]], cdense[ea["c1"][eslots]]], axis=1)
+    mate = np.full(len(order), -1, dtype=np.int64)
+    ends = edge_corners
+    mate[ends[:, 0]] = ends[:, 1]
+    mate[ends[:, 1]] = ends[:, 0]
+    return MeshArrays(
+        positions=V.arrays["position"][vslots],
+        vertex_ids=V.ids[vslots],
+        face_ids=F.ids[fslots],
+        face_offsets=offsets,
+        face_hole=F.arrays["hole"][fslots].astype(bool),
+        corner_ids=C.ids[order],
+        corner_vertex=vdense[ca["vertex"][order]],
+        corner_face=corner_face,
+        corner_edge=corner_edge,
+        corner_mate=mate,
+        edge_ids=E.ids[eslots],
+        edge_corners=edge_corners.astype(np.int64),
+    )
+
+
+def _dense_map(slots: np.ndarray, n: int) -> np.ndarray:
+    """``(n,)`` int64: the dense index of each slot, -1 for slots not listed."""
+    dense = np.full(max(n, 1), -1, dtype=np.int64)
+    dense[slots] = np.arange(len(slots), dtype=np.int64)
+    return dense
+
+
+def _ring_order(
+    mesh: Mesh, cslots: np.ndarray, fslots: np.ndarray, fdense: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """Corner slots face after face in ring order, and the face offsets."""
+    ca = mesh._c.arrays
+    face_of = fdense[ca["face"][cslots]]
+    sizes = np.bincount(face_of, minlength=len(fslots)).astype(np.int64)
+    offsets = np.zeros(len(fslots) + 1, dtype=np.int64)
+    np.cumsum(sizes, out=offsets[1:])
+    if _already_in_ring_order(mesh, cslots, offsets, fslots):
+        return cslots.astype(np.int64), offsets
+    rank = _rank_from_head(mesh, cslots, fslots, face_of, sizes)
+    order = np.empty(len(cslots), dtype=np.int64)
+    order[offsets[face_of] + rank] = cslots
+    return order, offsets
+
+
+def _already_in_ring_order(
+    mesh: Mesh, cslots: np.ndarray, offsets: np.ndarray, fslots: np.ndarray
+) -> bool:
+    """Cheap test for a freshly built mesh, whose slots are laid out face by face."""
+    ca = mesh._c.arrays
+    n = len(cslots)
+    if n == 0 or cslots[0] != 0 or cslots[-1] != n - 1:
+        return False
+    heads = mesh._f.arrays["corner"][fslots]
+    if not np.array_equal(heads, offsets[:-1]):
+        return False
+    expected = np.arange(1, n + 1, dtype=np.int64)
+    expected[offsets[1:] - 1] = offsets[:-1]
+    return bool(np.array_equal(ca["next"][:n], expected))
+
+
+def _rank_from_head(
+    mesh: Mesh, cslots: np.ndarray, fslots: np.ndarray, face_of: np.ndarray,
+    sizes: np.ndarray,
+) -> np.ndarray:
+    """``(C,)`` position of each corner in its face ring, the head at 0.
+
+    List ranking by pointer doubling: each corner learns its distance to the last
+    corner of its ring (the one before the head), in O(log max face size) passes.
+    """
+    ca = mesh._c.arrays
+    dense = _dense_map(cslots, mesh._c.n)
+    succ = dense[ca["next"][cslots]]
+    is_head = np.zeros(len(cslots), dtype=bool)
+    is_head[dense[mesh._f.arrays["corner"][fslots]]] = True
+    last = is_head[succ]
+    succ = np.where(last, np.arange(len(cslots), dtype=np.int64), succ)
+    dist = (~last).astype(np.int64)
+    while True:
+        dist += dist[succ]
+        jumped = succ[succ]
+        if np.array_equal(jumped, succ):
+            return sizes[face_of] - 1 - dist
+        succ = jumped

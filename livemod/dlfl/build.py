@@ -1,0 +1,483 @@
+"""Bulk construction of a DLFL mesh from polygons, vectorized with numpy.
+
+:func:`from_polygons` takes a polygon soup (positions plus vertex indices per
+face), pairs every directed side ``u -> w`` with its reverse ``w -> u``, closes
+every boundary loop with a hole face, turns unused vertices into point-spheres and
+refuses what is not an oriented 2-manifold, naming the element and, when given,
+the file and line it came from. :func:`from_corner_arrays` is the trusted fast
+path used by bulk operations that already know how corners pair up.
+"""
+
+from __future__ import annotations
+
+import itertools
+import warnings
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from ._graph import cycle_labels
+from ._table import Table
+from .errors import DLFLError, DLFLRepairWarning
+from .mesh import CORNER_SPEC, EDGE_SPEC, FACE_SPEC, VERTEX_SPEC, Mesh
+
+
+@dataclass
+class Polygons:
+    """A polygon soup in flat form.
+
+    Attributes:
+        positions: ``(V, 3)`` float64 vertex positions.
+        indices: ``(C,)`` int64 vertex index of every corner, face after face.
+        offsets: ``(F + 1,)`` int64; face ``i`` uses ``indices[offsets[i]:offsets[i+1]]``.
+    """
+
+    positions: np.ndarray
+    indices: np.ndarray
+    offsets: np.ndarray
+
+    @property
+    def sizes(self) -> np.ndarray:
+        """``(F,)`` int64 number of corners of each face."""
+        return np.diff(self.offsets)
+
+
+def as_polygons(positions: Any, faces: Any, offsets: Any = None) -> Polygons:
+    """Normalise a polygon soup to :class:`Polygons`.
+
+    Args:
+        positions: ``(V, 3)`` numbers.
+        faces: a sequence of vertex-index sequences, a ``(F, k)`` int array, or,
+            with ``offsets``, the flat ``(C,)`` index array.
+        offsets: ``(F + 1,)`` face start offsets into a flat ``faces``.
+    """
+    pos = np.asarray(positions, dtype=np.float64).reshape(-1, 3)
+    if offsets is not None:
+        idx = np.asarray(faces, dtype=np.int64).ravel()
+        off = np.asarray(offsets, dtype=np.int64).ravel()
+    elif isinstance(faces, np.ndarray) and faces.ndim == 2:
+        idx = faces.astype(np.int64).ravel()
+        off = np.arange(0, idx.size + 1, max(faces.shape[1], 1), dtype=np.int64)
+        if faces.shape[0] == 0:
+            off = np.zeros(1, dtype=np.int64)
+    else:
+        lists = [list(f) for f in faces]
+        sizes = np.array([len(f) for f in lists], dtype=np.int64)
+        off = np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64)
+        idx = np.fromiter(itertools.chain.from_iterable(lists), dtype=np.int64, count=int(off[-1]))
+    return Polygons(pos, idx, off)
+
+
+class _Where:
+    """Names faces in error messages: by OBJ/.dlfl line when known."""
+
+    def __init__(self, source: str | None, face_lines: np.ndarray | None) -> None:
+        self.source = source
+        self.lines = face_lines
+
+    def face(self, f: int) -> str:
+        if self.lines is not None:
+            return f"line {int(self.lines[f])}"
+        return f"face {f}"
+
+    def prefix(self, faces: Sequence[int] = ()) -> str:
+        src = self.source or "polygons"
+        if faces and self.lines is not None:
+            return f"{src}:{int(self.lines[faces[0]])}: "
+        return f"{src}: "
+
+
+def from_polygons(
+    positions: Any,
+    faces: Any,
+    offsets: Any = None,
+    *,
+    source: str | None = None,
+    face_lines: Any = None,
+    first_ids: tuple[int, int, int, int] = (0, 0, 0, 0),
+) -> Mesh:
+    """Build a DLFL mesh from a polygon soup.
+
+    Face ``i`` of the soup becomes the face with id ``first_ids[2] + i``; vertex
+    ``j`` gets id ``first_ids[0] + j``. Then come one hole face per boundary loop
+    (flagged, see :meth:`Mesh.is_hole`) and one point-sphere face per vertex no
+    face uses. A component whose faces are not consistently oriented is
+    re-oriented when that is unambiguous; the repair is reported in
+    ``mesh.notes`` and as a :class:`DLFLRepairWarning`.
+
+    Args:
+        positions: ``(V, 3)`` vertex positions.
+        faces: see :func:`as_polygons`.
+        offsets: see :func:`as_polygons`.
+        source: a file name for error messages.
+        face_lines: ``(F,)`` source line of each face, for error messages.
+        first_ids: first vertex, edge, face and corner id to hand out.
+
+    Raises:
+        DLFLError: an index out of range, a face with fewer than one corner or a
+            repeated consecutive vertex, an edge used by more than two faces, a
+            non-manifold vertex, or a non-orientable component.
+    """
+    soup = as_polygons(positions, faces, offsets)
+    where = _Where(source, None if face_lines is None else np.asarray(face_lines))
+    _check_soup(soup, where)
+    notes: list[str] = []
+    soup, mate = _pair_sides(soup, where, notes)
+    soup, mate, holes = _close_boundaries(soup, mate, where)
+    soup, mate, num_ps = _add_point_spheres(soup, mate)
+    _check_vertex_fans(soup, mate, where)
+    hole_flags = np.zeros(len(soup.offsets) - 1, dtype=bool)
+    real = len(hole_flags) - holes - num_ps
+    hole_flags[real : real + holes] = True
+    mesh = from_corner_arrays(
+        soup.positions, soup.offsets, soup.indices, mate, hole_flags, first_ids=first_ids
+    )
+    mesh.notes = notes
+    for note in notes:
+        warnings.warn(note, DLFLRepairWarning, stacklevel=2)
+    return mesh
+
+
+def _check_soup(soup: Polygons, where: _Where) -> None:
+    nv = len(soup.positions)
+    sizes = soup.sizes
+    if (sizes < 1).any():
+        f = int(np.flatnonzero(sizes < 1)[0])
+        raise DLFLError(f"{where.prefix([f])}{where.face(f)} has no vertices")
+    bad = (soup.indices < 0) | (soup.indices >= nv)
+    if bad.any():
+        c = int(np.flatnonzero(bad)[0])
+        f = int(np.searchsorted(soup.offsets, c, side="right") - 1)
+        raise DLFLError(
+            f"{where.prefix([f])}{where.face(f)} uses vertex index {int(soup.indices[c])}, "
+            f"but there are {nv} vertices"
+        )
+    if not np.isfinite(soup.positions).all():
+        v = int(np.flatnonzero(~np.isfinite(soup.positions).all(axis=1))[0])
+        raise DLFLError(f"{where.prefix()}vertex {v} has a position that is not finite")
+    nxt = _next_in_face(soup.offsets)
+    same = (soup.indices == soup.indices[nxt]) & (np.repeat(sizes, sizes) > 1)
+    if same.any():
+        c = int(np.flatnonzero(same)[0])
+        f = int(np.searchsorted(soup.offsets, c, side="right") - 1)
+        raise DLFLError(
+            f"{where.prefix([f])}{where.face(f)} visits vertex {int(soup.indices[c])} "
+            "twice in a row (a zero-length side)"
+        )
+
+
+def _next_in_face(offsets: np.ndarray) -> np.ndarray:
+    """``(C,)`` index of the next corner in the same face, wrapping around."""
+    count = int(offsets[-1])
+    nxt = np.arange(1, count + 1, dtype=np.int64)
+    sizes = np.diff(offsets)
+    ends = offsets[1:][sizes > 0] - 1
+    nxt[ends] = offsets[:-1][sizes > 0]
+    return nxt
+
+
+def _face_of_corner(offsets: np.ndarray) -> np.ndarray:
+    sizes = np.diff(offsets)
+    return np.repeat(np.arange(len(sizes), dtype=np.int64), sizes)
+
+
+def _pair_sides(
+    soup: Polygons, where: _Where, notes: list[str]
+) -> tuple[Polygons, np.ndarray]:
+    """Pair each side ``u -> w`` with a side ``w -> u``; -1 where none exists.
+
+    Returns the (possibly re-oriented) soup and the ``(C,)`` mate of each corner.
+    """
+    nv = max(len(soup.positions), 1)
+    nxt = _next_in_face(soup.offsets)
+    u = soup.indices
+    w = u[nxt]
+    single = np.repeat(soup.sizes, soup.sizes) == 1
+    lo, hi = np.minimum(u, w), np.maximum(u, w)
+    key = lo * nv + hi
+    key[single] = -1 - np.flatnonzero(single)  # point-sphere corners pair with nothing
+    order = np.argsort(key, kind="stable")
+    skey = key[order]
+    starts = np.flatnonzero(np.concatenate([[True], skey[1:] != skey[:-1]]))
+    counts = np.diff(np.concatenate([starts, [len(skey)]]))
+    forward = (u < w)[order]
+    fwd_count = np.add.reduceat(forward.astype(np.int64), starts) if len(starts) else starts
+    real = skey[starts] >= 0
+    _refuse_crowded_edges(soup, order, starts, counts, fwd_count, real, where)
+    same_dir = real & (counts == 2) & ((fwd_count == 2) | (fwd_count == 0))
+    if same_dir.any():
+        soup = _reorient(soup, where, notes)
+        return _pair_sides(soup, where, [])
+    mate = np.full(len(u), -1, dtype=np.int64)
+    pairs = real & (counts == 2)
+    a, b = order[starts[pairs]], order[starts[pairs] + 1]
+    mate[a], mate[b] = b, a
+    multi = np.flatnonzero(real & (counts > 2))
+    if len(multi):
+        _pair_multi_edges(soup, mate, order, starts[multi], counts[multi], u, w, nxt, where)
+    return soup, mate
+
+
+def _refuse_crowded_edges(
+    soup: Polygons, order: np.ndarray, starts: np.ndarray, counts: np.ndarray,
+    fwd_count: np.ndarray, real: np.ndarray, where: _Where,
+) -> None:
+    """Refuse an undirected edge whose sides cannot all be paired up."""
+    unbalanced = real & (counts > 2) & (2 * fwd_count != counts)
+    if not unbalanced.any():
+        return
+    g = int(np.flatnonzero(unbalanced)[0])
+    corners = order[starts[g] : starts[g] + counts[g]]
+    faces = sorted({int(f) for f in _face_of_corner(soup.offsets)[corners]})
+    u = int(soup.indices[corners[0]])
+    w = int(soup.indices[_next_in_face(soup.offsets)[corners[0]]])
+    used = ", ".join(where.face(f) for f in faces)
+    raise DLFLError(
+        f"{where.prefix(faces)}edge ({u}, {w}) is used by {int(counts[g])} face sides "
+        f"({used}); a manifold edge has two"
+    )
+
+
+def _pair_multi_edges(
+    soup: Polygons, mate: np.ndarray, order: np.ndarray, starts: np.ndarray,
+    counts: np.ndarray, u: np.ndarray, w: np.ndarray, nxt: np.ndarray, where: _Where,
+) -> None:
+    """Pair the sides of vertex pairs joined by several edges (2-gons).
+
+    Tries the pairings of each group until both end vertices keep one fan.
+    """
+    for start, count in zip(starts.tolist(), counts.tolist(), strict=True):
+        group = order[start : start + count]
+        ref = u[group[0]]
+        fwd = [int(c) for c in group if u[c] == ref]
+        back = [int(c) for c in group if u[c] != ref]
+        verts = (int(u[group[0]]), int(w[group[0]]))
+        for perm in itertools.islice(itertools.permutations(back), 720):
+            mate[fwd], mate[list(perm)] = list(perm), fwd
+            if all(_fan_count(v, soup, mate, nxt) == 1 for v in verts):
+                break
+        else:
+            raise DLFLError(
+                f"{where.prefix()}vertices {verts[0]} and {verts[1]} are joined by "
+                f"{count // 2} edges that cannot be arranged into a manifold"
+            )
+
+
+def _fan_count(vertex: int, soup: Polygons, mate: np.ndarray, nxt: np.ndarray) -> int:
+    """Number of separate corner fans at ``vertex`` under the current pairing."""
+    corners = np.flatnonzero(soup.indices == vertex)
+    seen: set[int] = set()
+    fans = 0
+    for c in corners.tolist():
+        if c in seen:
+            continue
+        fans += 1
+        x = c
+        while x not in seen:
+            seen.add(x)
+            m = mate[x]
+            if m < 0:
+                break
+            x = int(nxt[m])
+    return fans
+
+
+def _reorient(soup: Polygons, where: _Where, notes: list[str]) -> Polygons:
+    """Flip faces so that each component is consistently oriented.
+
+    The first face (in soup order) of each component keeps its orientation.
+
+    Raises:
+        DLFLError: a component is non-orientable (a Moebius band, say).
+    """
+    num_faces = len(soup.offsets) - 1
+    adjacency = _face_adjacency(soup)
+    flip = np.full(num_faces, -1, dtype=np.int8)
+    for seed in range(num_faces):
+        if flip[seed] >= 0:
+            continue
+        flip[seed] = 0
+        stack = [seed]
+        while stack:
+            f = stack.pop()
+            for g, same_direction in adjacency.get(f, ()):
+                want = flip[f] ^ int(same_direction)
+                if flip[g] < 0:
+                    flip[g] = want
+                    stack.append(g)
+                elif flip[g] != want:
+                    raise DLFLError(
+                        f"{where.prefix([g])}{where.face(g)} cannot be oriented "
+                        f"consistently with {where.face(f)}: the surface is not orientable"
+                    )
+    flipped = np.flatnonzero(flip == 1)
+    idx = soup.indices.copy()
+    for f in flipped.tolist():
+        a, b = soup.offsets[f], soup.offsets[f + 1]
+        idx[a + 1 : b] = idx[a + 1 : b][::-1]
+    shown = ", ".join(where.face(int(f)) for f in flipped[:10])
+    more = "" if len(flipped) <= 10 else f" and {len(flipped) - 10} more"
+    notes.append(
+        f"{where.prefix()}re-oriented {len(flipped)} faces ({shown}{more}) to match "
+        "their neighbours"
+    )
+    return Polygons(soup.positions, idx, soup.offsets)
+
+
+def _face_adjacency(soup: Polygons) -> dict[int, list[tuple[int, bool]]]:
+    """Face -> [(neighbour, traverses the shared edge in the same direction)]."""
+    nxt = _next_in_face(soup.offsets)
+    u, w = soup.indices, soup.indices[nxt]
+    face = _face_of_corner(soup.offsets)
+    by_edge: dict[tuple[int, int], list[tuple[int, bool]]] = {}
+    for f, a, b in zip(face.tolist(), u.tolist(), w.tolist(), strict=True):
+        if a != b:
+            by_edge.setdefault((min(a, b), max(a, b)), []).append((f, a < b))
+    adjacency: dict[int, list[tuple[int, bool]]] = {}
+    for sides in by_edge.values():
+        if len(sides) == 2:
+            (f, df), (g, dg) = sides
+            adjacency.setdefault(f, []).append((g, df == dg))
+            adjacency.setdefault(g, []).append((f, df == dg))
+    return adjacency
+
+
+def _close_boundaries(
+    soup: Polygons, mate: np.ndarray, where: _Where
+) -> tuple[Polygons, np.ndarray, int]:
+    """Add one hole face per boundary loop; returns soup, mate and hole count."""
+    single = np.repeat(soup.sizes, soup.sizes) == 1
+    open_sides = np.flatnonzero((mate < 0) & ~single)
+    if len(open_sides) == 0:
+        return soup, mate, 0
+    nxt = _next_in_face(soup.offsets)
+    start, end = soup.indices[open_sides], soup.indices[nxt[open_sides]]
+    incoming = np.bincount(end, minlength=len(soup.positions))
+    if (incoming > 1).any():
+        v = int(np.flatnonzero(incoming > 1)[0])
+        f = int(_face_of_corner(soup.offsets)[open_sides[end == v][0]])
+        raise DLFLError(
+            f"{where.prefix([f])}vertex {v} is non-manifold: {int(incoming[v])} boundary "
+            "loops pass through it"
+        )
+    side_ending_at = np.full(len(soup.positions), -1, dtype=np.int64)
+    side_ending_at[end] = np.arange(len(open_sides))
+    # the hole side reversing open side i is followed by the one reversing the side
+    # that ends where side i starts
+    follow = side_ending_at[start]
+    loops = _cycles(follow)
+    hole_idx = np.concatenate([end[loop] for loop in loops])
+    hole_corners = np.concatenate([loop for loop in loops]) 
+    base = len(soup.indices)
+    hole_sizes = np.array([len(loop) for loop in loops], dtype=np.int64)
+    new_mate = np.concatenate([mate, open_sides[hole_corners]])
+    new_mate[open_sides[hole_corners]] = base + np.arange(len(hole_corners))
+    offsets = np.concatenate([soup.offsets, soup.offsets[-1] + np.cumsum(hole_sizes)])
+    indices = np.concatenate([soup.indices, hole_idx])
+    return Polygons(soup.positions, indices, offsets), new_mate, len(loops)
+
+
+def _cycles(perm: np.ndarray) -> list[np.ndarray]:
+    """The cycles of a permutation, each as indices in cycle order."""
+    seen = np.zeros(len(perm), dtype=bool)
+    loops = []
+    for s in range(len(perm)):
+        if seen[s]:
+            continue
+        loop = []
+        x = s
+        while not seen[x]:
+            seen[x] = True
+            loop.append(x)
+            x = int(perm[x])
+        loops.append(np.array(loop, dtype=np.int64))
+    return loops
+
+
+def _add_point_spheres(
+    soup: Polygons, mate: np.ndarray
+) -> tuple[Polygons, np.ndarray, int]:
+    """Give every vertex no face uses a one-corner face of its own."""
+    used = np.zeros(len(soup.positions), dtype=bool)
+    used[soup.indices] = True
+    lonely = np.flatnonzero(~used)
+    if len(lonely) == 0:
+        return soup, mate, 0
+    offsets = np.concatenate([soup.offsets, soup.offsets[-1] + 1 + np.arange(len(lonely))])
+    indices = np.concatenate([soup.indices, lonely])
+    mate = np.concatenate([mate, np.full(len(lonely), -1, dtype=np.int64)])
+    return Polygons(soup.positions, indices, offsets), mate, len(lonely)
+
+
+def _check_vertex_fans(soup: Polygons, mate: np.ndarray, where: _Where) -> None:
+    """Refuse a vertex whose corners form several fans (a bow-tie)."""
+    nxt = _next_in_face(soup.offsets)
+    has = mate >= 0
+    vnext = np.arange(len(mate), dtype=np.int64)
+    vnext[has] = nxt[mate[has]]
+    labels = cycle_labels(vnext)
+    roots = labels == np.arange(len(labels))
+    fans = np.bincount(soup.indices[roots], minlength=len(soup.positions))
+    if (fans > 1).any():
+        v = int(np.flatnonzero(fans > 1)[0])
+        f = int(_face_of_corner(soup.offsets)[np.flatnonzero(soup.indices == v)[0]])
+        raise DLFLError(
+            f"{where.prefix([f])}vertex {v} is non-manifold: its faces form "
+            f"{int(fans[v])} separate fans (a bow-tie)"
+        )
+
+
+def from_corner_arrays(
+    positions: np.ndarray,
+    offsets: np.ndarray,
+    corner_vertex: np.ndarray,
+    corner_mate: np.ndarray,
+    face_hole: np.ndarray | None = None,
+    *,
+    first_ids: tuple[int, int, int, int] = (0, 0, 0, 0),
+) -> Mesh:
+    """Build a mesh from corners laid out face by face, with known pairing.
+
+    Trusted fast path for bulk operations; run :func:`validate` in tests.
+
+    Args:
+        positions: ``(V, 3)`` float64 positions; every vertex must have a corner.
+        offsets: ``(F + 1,)`` int face start offsets into the corner arrays.
+        corner_vertex: ``(C,)`` int vertex index of each corner.
+        corner_mate: ``(C,)`` int, the corner on the other side of each corner's
+            edge (the corner's edge runs to the next corner); -1 for a point-sphere.
+        face_hole: ``(F,)`` bool hole flags.
+        first_ids: first vertex, edge, face and corner id.
+
+    Returns:
+        The mesh; vertex ``i`` gets id ``first_ids[0] + i``, face ``i`` gets
+        ``first_ids[2] + i``, corner ``i`` gets ``first_ids[3] + i`` and edges are
+        numbered in order of their lower corner.
+    """
+    offsets = np.asarray(offsets, dtype=np.int64)
+    cvert = np.asarray(corner_vertex, dtype=np.int32)
+    mate = np.asarray(corner_mate, dtype=np.int64)
+    num_c, num_f = len(cvert), len(offsets) - 1
+    nxt = _next_in_face(offsets)
+    prv = np.empty_like(nxt)
+    prv[nxt] = np.arange(num_c)
+    face = np.repeat(np.arange(num_f, dtype=np.int32), np.diff(offsets))
+    lower = np.flatnonzero((mate > np.arange(num_c)))
+    edge = np.full(num_c, -1, dtype=np.int32)
+    edge[lower] = np.arange(len(lower), dtype=np.int32)
+    edge[mate[lower]] = edge[lower]
+    vcorner = np.zeros(len(positions), dtype=np.int32)
+    vcorner[cvert[::-1]] = np.arange(num_c - 1, -1, -1, dtype=np.int32)
+    hole = np.zeros(num_f, np.uint8) if face_hole is None else np.asarray(face_hole, np.uint8)
+    vid, eid, fid, cid = first_ids
+    mesh = Mesh.__new__(Mesh)
+    mesh.notes = []
+    mesh._c = Table.from_arrays("corner", CORNER_SPEC, cid, {
+        "next": nxt, "prev": prv, "face": face, "vertex": cvert, "edge": edge})
+    mesh._e = Table.from_arrays("edge", EDGE_SPEC, eid, {"c0": lower, "c1": mate[lower]})
+    mesh._f = Table.from_arrays("face", FACE_SPEC, fid, {"corner": offsets[:-1], "hole": hole})
+    mesh._v = Table.from_arrays("vertex", VERTEX_SPEC, vid, {
+        "corner": vcorner, "position": np.asarray(positions, dtype=np.float64)})
+    return mesh

@@ -1,0 +1,14 @@
+"""The thesis's command set (Tett 2007, appendix), acting on the current scene.
+
+``from livemod.dlfl import *`` brings exactly these names into a script.
+"""
+
+from __future__ import annotations
+
+from . import core, extrusion, sculpt, subdivision
+from .core import *  # noqa: F403
+from .extrusion import *  # noqa: F403
+from .sculpt import *  # noqa: F403
+from .subdivision import *  # noqa: F403
+
+__all__ = [*core.__all__, *subdivision.__all__, *extrusion.__all__, *sculpt.__all__]

@@ -1,0 +1,62 @@
+"""Shared machinery of the thesis commands: corner resolution and step recording."""
+
+from __future__ import annotations
+
+import functools
+from collections.abc import Callable
+from typing import Any, TypeVar, cast
+
+from ..errors import DLFLError
+from ..mesh import Mesh
+from ..scene import Scene, current_scene
+
+F = TypeVar("F", bound=Callable[..., Any])
+
+CornerRef = tuple[int, int] | int
+
+
+def scene() -> Scene:
+    """The current scene (see :func:`livemod.dlfl.scene.current_scene`)."""
+    return current_scene()
+
+
+def mesh() -> Mesh:
+    """The current object's mesh."""
+    return current_scene().mesh
+
+
+def modeling_command(func: F) -> F:
+    """Mark a thesis command that changes the mesh: it records one step when done.
+
+    Commands called from inside another command record no step of their own.
+    """
+
+    @functools.wraps(func)
+    def wrapper(*args: Any, **kwargs: Any) -> Any:
+        with current_scene().command(func.__name__):
+            return func(*args, **kwargs)
+
+    return cast(F, wrapper)
+
+
+def resolve_corner(m: Mesh, corner: Any, what: str = "corner") -> int:
+    """Turn a ``(faceid, vertexid)`` tuple or a corner id into a corner id.
+
+    Raises:
+        DLFLError: the face does not visit the vertex, visits it twice (the
+            message lists the corner ids), or the id is not a live corner.
+    """
+    if isinstance(corner, tuple | list) and len(corner) == 2:
+        face, vertex = corner
+        return m.corner_at(face, vertex)
+    if isinstance(corner, int) and not isinstance(corner, bool):
+        m.corner_face(corner)  # raises DLFLError when not live
+        return corner
+    raise DLFLError(
+        f"{what} must be a (faceid, vertexid) tuple or a corner id, got {corner!r}"
+    )
+
+
+def corner_tuple(m: Mesh, corner: int) -> tuple[int, int]:
+    """The ``(faceid, vertexid)`` form of corner id ``corner``."""
+    return m.corner_face(corner), m.corner_vertex(corner)

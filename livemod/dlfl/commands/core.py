@@ -1,0 +1,391 @@
+"""The core thesis commands: minimal operators, ids, walks, objects, info, transforms.
+
+Names and arguments follow the appendix of Tett (2007) so TopMod scripts run
+after the Python 3 changes alone. Corners are ``(faceid, vertexid)`` tuples (or
+corner ids). Every command checks its arguments and raises :class:`DLFLError`.
+"""
+
+from __future__ import annotations
+
+import builtins
+import os
+from collections.abc import Iterable, Sequence
+from typing import Any
+
+import numpy as np
+
+from ..analysis import face_centroid, face_normal
+from ..analysis import genus as _genus
+from ..errors import DLFLError
+from ..mesh import Mesh, _as_point
+from ._base import corner_tuple, mesh, modeling_command, resolve_corner, scene
+
+__all__ = [
+    "createVertex", "removeVertex", "insertEdge", "deleteEdge", "subdivideEdge",
+    "collapseEdge", "createFace", "faces", "edges", "verts", "corners", "walk",
+    "cornerWalk", "next", "prev", "getCorner", "saveCorner", "restoreCorner", "load",
+    "save", "kill", "switch", "printObject", "vertexInfo", "edgeInfo", "faceInfo",
+    "cornerInfo", "vertexEdges", "centroid", "translate", "scale", "move",
+    "freezeTrans", "step",
+]
+
+Point = Sequence[float]
+
+
+# -- minimal operators ----------------------------------------------------------
+
+@modeling_command
+def createVertex(position: Point = (0.0, 0.0, 0.0)) -> tuple[tuple[int, int], int]:
+    """Create a point-sphere at ``position``: ``((faceid, vertexid), objectid)``.
+
+    With no object in the scene, one is created.
+    """
+    sc = scene()
+    m = sc.mesh
+    v = m.create_vertex(position)
+    assert sc.current is not None
+    return (m.corner_face(m.vertex_corner(v)), v), sc.current
+
+
+@modeling_command
+def removeVertex(vertexid: int | tuple[int, int]) -> None:
+    """Remove a point-sphere vertex. TopMod's ``(vertexid, faceid)`` form works too.
+
+    Raises:
+        DLFLError: the vertex has edges.
+    """
+    if isinstance(vertexid, tuple):
+        vertexid = vertexid[0]
+    mesh().remove_vertex(vertexid)
+
+
+@modeling_command
+def insertEdge(c1: Any, c2: Any, check: bool = True) -> tuple[int, ...]:
+    """Insert an edge between two corners.
+
+    Returns:
+        ``(edgeid, cA, cB, cC, cD)``: the new edge and its four corners as
+        ``(faceid, vertexid)`` tuples, always in the order of :func:`edgeInfo`:
+        the two ends as they are now (``c1``'s, then ``c2``'s), then the corners
+        after them.
+    """
+    m = mesh()
+    a = resolve_corner(m, c1, "c1")
+    b = resolve_corner(m, c2, "c2")
+    e = m.insert_edge(a, b)
+    return (e, *_edge_corner_tuples(m, e))
+
+
+def _edge_corner_tuples(m: Mesh, e: int) -> list[tuple[int, int]]:
+    c0, c1 = m.edge_corners(e)
+    return [corner_tuple(m, c) for c in (c0, c1, m.corner_next(c0), m.corner_next(c1))]
+
+
+@modeling_command
+def deleteEdge(edgeid: int, cleanup: bool = True) -> list[int]:
+    """Delete an edge: ``[faceid]`` when two faces merged, ``[faceid, faceid]`` when
+    one face split (a side left with no edges is removed with ``cleanup``)."""
+    return mesh().delete_edge(edgeid, cleanup)
+
+
+@modeling_command
+def subdivideEdge(*args: int) -> list[int]:
+    """``subdivideEdge([divisions,] edgeid)``: split an edge, return the new vertex ids."""
+    if len(args) == 1:
+        return mesh().subdivide_edge(args[0])
+    if len(args) == 2:
+        return mesh().subdivide_edge(args[1], args[0])
+    raise DLFLError(f"subdivideEdge takes ([divisions,] edgeid), got {len(args)} arguments")
+
+
+@modeling_command
+def collapseEdge(edgeid: int) -> int:
+    """Collapse an edge to its midpoint; return the surviving vertex id."""
+    return mesh().collapse_edge(edgeid)
+
+
+@modeling_command
+def createFace(points: Sequence[Point], bothNew: bool = False) -> tuple[int, int]:
+    """Create a two-sided polygon on new vertices: ``(frontfaceid, backfaceid)``."""
+    del bothNew  # TopMod's face-type flag; livemod has no face types
+    return mesh().create_face(points)
+
+
+# -- ids and walks --------------------------------------------------------------
+
+def _ids(all_ids: np.ndarray, picked: tuple[int, ...], selected: bool) -> tuple[int, ...]:
+    if selected:
+        return picked
+    return tuple(all_ids.tolist())
+
+
+def faces(selected: bool = False) -> tuple[int, ...]:
+    """Ids of all faces (in creation order), or of the selected ones.
+
+    Hole faces (boundaries of open meshes) are left out.
+    """
+    m = mesh()
+    sel = scene().selection.faces
+    if selected:
+        return tuple(f for f in sel if m.has_face(f))
+    ids = m.face_ids()
+    holes = m._f.arrays["hole"][m._f.live_slots()].astype(bool)
+    return tuple(ids[~holes].tolist())
+
+
+def edges(selected: bool = False) -> tuple[int, ...]:
+    """Ids of all edges (in creation order), or of the selected ones."""
+    m = mesh()
+    sel = tuple(e for e in scene().selection.edges if m.has_edge(e))
+    return _ids(m.edge_ids(), sel, selected)
+
+
+def verts(selected: bool = False) -> tuple[int, ...]:
+    """Ids of all vertices (in creation order), or of the selected ones."""
+    m = mesh()
+    sel = tuple(v for v in scene().selection.vertices if m.has_vertex(v))
+    return _ids(m.vertex_ids(), sel, selected)
+
+
+def corners(selected: bool = False) -> tuple[tuple[int, int], ...]:
+    """``((faceid, vertexid), ...)`` of all corners, face by face, or the selected ones."""
+    m = mesh()
+    if selected:
+        picked = [c for c in scene().selection.corners if m.has_corner(c)]
+        return tuple(corner_tuple(m, c) for c in picked)
+    return tuple((f, v) for f in faces() for v in m.face_vertices(f))
+
+
+def walk(faceid: int) -> tuple[list[int], list[int]]:
+    """Walk a face's boundary: ``([vertexid, ...], [edgeid, ...])``."""
+    m = mesh()
+    return m.face_vertices(faceid), m.face_edges(faceid)
+
+
+def cornerWalk(faceid: int) -> list[tuple[int, int]]:
+    """The corners of a face in order: ``[(faceid, vertexid), ...]``."""
+    return [(faceid, v) for v in mesh().face_vertices(faceid)]
+
+
+def next(c: Any, *default: Any) -> Any:  # noqa: A001  (the thesis's name)
+    """The corner after ``c`` in its face, as ``(faceid, vertexid)``.
+
+    Called with an iterator (as Python's built-in ``next``), it behaves like the
+    built-in, so scripts that import ``*`` keep working.
+    """
+    if not isinstance(c, tuple | int) or isinstance(c, bool):
+        return builtins.next(c, *default)
+    m = mesh()
+    return corner_tuple(m, m.corner_next(resolve_corner(m, c)))
+
+
+def prev(c: Any) -> tuple[int, int]:
+    """The corner before ``c`` in its face, as ``(faceid, vertexid)``."""
+    m = mesh()
+    return corner_tuple(m, m.corner_prev(resolve_corner(m, c)))
+
+
+def getCorner(edgeid: int, faceid: int) -> tuple[int, int]:
+    """The side of edge ``edgeid`` that lies in face ``faceid``, as a corner tuple.
+
+    Raises:
+        DLFLError: the edge does not border that face.
+    """
+    m = mesh()
+    for c in m.edge_corners(edgeid):
+        if m.corner_face(c) == faceid:
+            return corner_tuple(m, c)
+    raise DLFLError(f"edge {edgeid} does not border face {faceid}")
+
+
+def saveCorner(c: Any) -> int:
+    """A corner id for ``c`` that stays valid while that corner exists."""
+    return resolve_corner(mesh(), c)
+
+
+def restoreCorner(cornerid: int) -> tuple[int, int]:
+    """The current ``(faceid, vertexid)`` of a corner saved with :func:`saveCorner`."""
+    return corner_tuple(mesh(), resolve_corner(mesh(), cornerid, "cornerid"))
+
+
+# -- objects --------------------------------------------------------------------
+
+def load(filename: str) -> int:
+    """Load ``.obj``/``.dlfl`` (by extension), or a built-in shape by name
+    (``load("soccerball")``); push it as the current object and return its id.
+
+    Raises:
+        DLFLError: the file cannot be read or names no built-in shape.
+    """
+    from ..io import load_mesh
+
+    path = os.fspath(filename)
+    if os.path.exists(path):
+        loaded = load_mesh(path)
+    else:
+        from ..shapes import load_shape
+
+        loaded = load_shape(path)
+    oid = scene().add(loaded, os.path.basename(path))
+    scene().record_step(f"load {path}")
+    return oid
+
+
+def save(filename: str) -> bool:
+    """Save the current object (``.obj``, ``.dlfl``, ``.stl``, ``.ply``); True on success."""
+    from ..io import save_mesh
+
+    save_mesh(mesh(), os.fspath(filename))
+    return True
+
+
+def kill(objectid: int) -> None:
+    """Remove an object from the scene."""
+    scene().kill(objectid)
+
+
+def switch(objectid: int) -> int:
+    """Make an object current; return its id."""
+    return scene().switch(objectid)
+
+
+# -- information ----------------------------------------------------------------
+
+def printObject() -> None:
+    """Print the current object's counts and genus (the thesis's format)."""
+    m = mesh()
+    print(f"Number of vertices : {m.num_vertices}")
+    print(f"Number of faces : {m.num_faces}")
+    print(f"Number of edges : {m.num_edges}")
+    print("Number of materials : 1")
+    print(f"Genus : {_genus(m)}")
+
+
+def _vec(v: np.ndarray) -> tuple[float, float, float]:
+    return float(v[0]), float(v[1]), float(v[2])
+
+
+def vertexInfo(vertexid: int) -> dict[str, Any]:
+    """``{'id', 'type', 'coords', 'valence'}`` of a vertex."""
+    m = mesh()
+    kind = "point-sphere" if m.is_point_sphere(vertexid) else "normal"
+    return {"id": vertexid, "type": kind, "coords": _vec(m.position(vertexid)),
+            "valence": m.valence(vertexid)}
+
+
+def edgeInfo(edgeid: int) -> dict[str, Any]:
+    """``{'id', 'type', 'midpoint', 'normal', 'cornerA'..'cornerD', 'length'}``.
+
+    cornerA and cornerB are the edge's two sides, cornerC and cornerD the
+    corners after them (the order :func:`insertEdge` returns). The normal is the
+    normalised sum of the normals of the two faces.
+    """
+    m = mesh()
+    va, vb = m.edge_vertices(edgeid)
+    pa, pb = m.position(va), m.position(vb)
+    ca, cb, cc, cd = _edge_corner_tuples(m, edgeid)
+    n = face_normal(m, ca[0]) + face_normal(m, cb[0])
+    n = n / max(float(np.linalg.norm(n)), 1e-300)
+    return {"id": edgeid, "type": "normal", "midpoint": _vec((pa + pb) / 2),
+            "normal": _vec(n), "cornerA": ca, "cornerB": cb, "cornerC": cc,
+            "cornerD": cd, "length": float(np.linalg.norm(pb - pa))}
+
+
+def faceInfo(faceid: int) -> dict[str, Any]:
+    """``{'id', 'type', 'centroid', 'normal', 'size'}`` of a face."""
+    m = mesh()
+    kind = "hole" if m.is_hole(faceid) else "normal"
+    return {"id": faceid, "type": kind, "centroid": _vec(face_centroid(m, faceid)),
+            "normal": _vec(face_normal(m, faceid)), "size": m.face_size(faceid)}
+
+
+def cornerInfo(c: Any) -> dict[str, Any]:
+    """``{'face', 'vertex', 'edge', 'type'}`` of a corner (``edge`` is -1 for a
+    point-sphere)."""
+    m = mesh()
+    cid = resolve_corner(m, c)
+    return {"face": m.corner_face(cid), "vertex": m.corner_vertex(cid),
+            "edge": m.corner_edge(cid), "type": "normal", "id": cid}
+
+
+def vertexEdges(vertexid: int) -> list[int]:
+    """Ids of the edges at a vertex, in rotation order."""
+    return mesh().vertex_edges(vertexid)
+
+
+def centroid(vertexids: Iterable[int] | None = None) -> tuple[float, float, float]:
+    """Mean position of the given vertices (all vertices when omitted)."""
+    m = mesh()
+    ids = m.vertex_ids().tolist() if vertexids is None else list(vertexids)
+    if not ids:
+        raise DLFLError("centroid needs at least one vertex id")
+    return _vec(np.mean([m.position(v) for v in ids], axis=0))
+
+
+# -- transforms -----------------------------------------------------------------
+
+def _xyz(args: tuple[Any, ...], name: str) -> tuple[np.ndarray, tuple[Any, ...]]:
+    """Accept both ``f(x, y, z, ...)`` and ``f((x, y, z), ...)``."""
+    if args and isinstance(args[0], Sequence | np.ndarray):
+        return np.array(_as_point(args[0])), args[1:]
+    if len(args) >= 3:
+        return np.array(_as_point(args[:3])), args[3:]
+    raise DLFLError(f"{name} takes (x, y, z) or ((x, y, z)), got {args!r}")
+
+
+@modeling_command
+def translate(*args: Any, relative: bool = True) -> None:
+    """``translate(x, y, z[, relative])``: move the current object.
+
+    livemod moves the vertices at once; with ``relative=False`` the object is
+    placed so that its origin lands at ``(x, y, z)``.
+    """
+    offset, rest = _xyz(args, "translate")
+    if rest:
+        relative = bool(rest[0])
+    obj = scene().current_object
+    delta = offset if relative else offset - obj.origin
+    m = obj.mesh
+    m._v.arrays["position"][m._v.live_slots()] += delta
+    obj.origin = obj.origin + delta
+
+
+@modeling_command
+def scale(*args: Any) -> None:
+    """``scale((x, y, z))``: scale the current object about its origin, per axis."""
+    factors, _ = _xyz(args, "scale")
+    obj = scene().current_object
+    m = obj.mesh
+    slots = m._v.live_slots()
+    pos = m._v.arrays["position"]
+    pos[slots] = (pos[slots] - obj.origin) * factors + obj.origin
+    obj.factor = obj.factor * factors
+
+
+@modeling_command
+def move(vertexids: Iterable[int], *args: Any, relative: bool = True) -> None:
+    """``move(vertexids, (x, y, z)[, relative])``: move vertices by (or to) a point."""
+    target, rest = _xyz(args, "move")
+    if rest:
+        relative = bool(rest[0])
+    m = mesh()
+    ids = list(vertexids)
+    slots = [m._v.slot(v) for v in ids]
+    pos = m._v.arrays["position"]
+    pos[slots] = pos[slots] + target if relative else target
+
+
+def freezeTrans() -> None:
+    """Make the current placement the object's new origin and unit scale.
+
+    livemod already applied translate/scale to the vertices, so this only resets
+    the transform record that absolute moves are measured from.
+    """
+    obj = scene().current_object
+    obj.origin = np.zeros(3)
+    obj.factor = np.ones(3)
+
+
+def step(label: str = "step") -> None:
+    """Mark a playback checkpoint with a label (a livemod addition)."""
+    scene().record_step(str(label))

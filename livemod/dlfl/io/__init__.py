@@ -1,0 +1,1 @@
+"""File formats: OBJ, TopMod's .dlfl, STL and PLY (placeholder until the io work lands)."""

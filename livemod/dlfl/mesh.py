@@ -1,0 +1,892 @@
+"""The DLFL mesh: vertices, edges, faces and corners, and the minimal operators.
+
+A *corner* is one visit of a face's boundary to a vertex (TopMod's face-vertex).
+The corners of a face form a circular doubly linked list (``next``/``prev``).
+A corner's edge runs from its vertex to the next corner's vertex, and every edge
+has exactly two corners, its two sides, possibly in the same face. An edge's
+sides ``(c0, c1)`` always sit at opposite ends: ``next(c0).vertex == c1.vertex``
+and ``next(c1).vertex == c0.vertex``. This makes every mesh a closed, oriented
+2-manifold by construction. Legal states include point-spheres (an isolated
+vertex with a one-corner face and no edge), one- and two-sided faces, faces that
+visit a vertex twice, multi-edges, self-loops and several components.
+
+Only the methods of :class:`Mesh` touch the linked structure. Every other
+operation is a free function in the module of its family.
+
+Elements are named by integer ids, handed out per kind and never reused within a
+mesh; using a deleted id raises :class:`DLFLError` naming it. Bulk operations that
+rebuild the mesh (subdivision, dual, loading) give all elements fresh ids; their
+docstrings say so.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Sequence
+from typing import Any
+
+import numpy as np
+
+from ._table import FieldSpec, Table
+from .errors import DLFLError
+
+CORNER_SPEC: FieldSpec = {
+    "next": (np.int32, ()),
+    "prev": (np.int32, ()),
+    "face": (np.int32, ()),
+    "vertex": (np.int32, ()),
+    "edge": (np.int32, ()),
+}
+EDGE_SPEC: FieldSpec = {"c0": (np.int32, ()), "c1": (np.int32, ())}
+FACE_SPEC: FieldSpec = {"corner": (np.int32, ()), "hole": (np.uint8, ())}
+VERTEX_SPEC: FieldSpec = {"corner": (np.int32, ()), "position": (np.float64, (3,))}
+
+NO_EDGE = -1
+
+
+def _as_point(position: Any) -> tuple[float, float, float]:
+    try:
+        x, y, z = (float(v) for v in position)
+    except (TypeError, ValueError):
+        raise DLFLError(
+            f"expected a position (x, y, z) of three numbers, got {position!r}"
+        ) from None
+    return x, y, z
+
+
+class Mesh:
+    """A DLFL mesh: an always-valid oriented 2-manifold with integer element ids.
+
+    Create one empty (``Mesh()``), from polygons (:func:`livemod.dlfl.from_polygons`)
+    or from a file (:func:`livemod.dlfl.load_mesh`). The minimal operators
+    (:meth:`create_vertex`, :meth:`remove_vertex`, :meth:`insert_edge`,
+    :meth:`delete_edge`, :meth:`subdivide_edge`, :meth:`collapse_edge`,
+    :meth:`create_face`) keep it valid; each checks its arguments first and
+    leaves the mesh unchanged when it raises.
+
+    Attributes:
+        notes: messages about repairs made while building the mesh.
+    """
+
+    def __init__(self) -> None:
+        self._c = Table("corner", CORNER_SPEC)
+        self._e = Table("edge", EDGE_SPEC)
+        self._f = Table("face", FACE_SPEC)
+        self._v = Table("vertex", VERTEX_SPEC)
+        self.notes: list[str] = []
+
+    # ------------------------------------------------------------------ counts
+
+    @property
+    def num_vertices(self) -> int:
+        """Number of live vertices."""
+        return self._v.count
+
+    @property
+    def num_edges(self) -> int:
+        """Number of live edges."""
+        return self._e.count
+
+    @property
+    def num_faces(self) -> int:
+        """Number of live faces, holes included."""
+        return self._f.count
+
+    @property
+    def num_corners(self) -> int:
+        """Number of live corners."""
+        return self._c.count
+
+    def counts(self) -> tuple[int, int, int]:
+        """``(V, E, F)``, holes counted as faces (the mesh is closed inside)."""
+        return self._v.count, self._e.count, self._f.count
+
+    def __repr__(self) -> str:
+        v, e, f = self.counts()
+        return f"<Mesh V={v} E={e} F={f}>"
+
+    # ------------------------------------------------------------- id listings
+
+    def vertex_ids(self) -> np.ndarray:
+        """``(V,)`` int64 ids of the live vertices, in creation order."""
+        return self._v.live_ids()
+
+    def edge_ids(self) -> np.ndarray:
+        """``(E,)`` int64 ids of the live edges, in creation order."""
+        return self._e.live_ids()
+
+    def face_ids(self) -> np.ndarray:
+        """``(F,)`` int64 ids of the live faces (holes included), in creation order."""
+        return self._f.live_ids()
+
+    def corner_ids(self) -> np.ndarray:
+        """``(C,)`` int64 ids of the live corners, in creation order."""
+        return self._c.live_ids()
+
+    def has_vertex(self, vertex: int) -> bool:
+        """True when ``vertex`` is a live vertex id."""
+        return self._v.is_live(vertex)
+
+    def has_edge(self, edge: int) -> bool:
+        """True when ``edge`` is a live edge id."""
+        return self._e.is_live(edge)
+
+    def has_face(self, face: int) -> bool:
+        """True when ``face`` is a live face id."""
+        return self._f.is_live(face)
+
+    def has_corner(self, corner: int) -> bool:
+        """True when ``corner`` is a live corner id."""
+        return self._c.is_live(corner)
+
+    # ------------------------------------------------------- element queries
+
+    def corner_next(self, corner: int) -> int:
+        """Id of the corner after ``corner`` in its face."""
+        c = self._c
+        return c.idv[c.next[c.slot(corner)]]
+
+    def corner_prev(self, corner: int) -> int:
+        """Id of the corner before ``corner`` in its face."""
+        c = self._c
+        return c.idv[c.prev[c.slot(corner)]]
+
+    def corner_face(self, corner: int) -> int:
+        """Id of the face ``corner`` belongs to."""
+        return self._f.idv[self._c.face[self._c.slot(corner)]]
+
+    def corner_vertex(self, corner: int) -> int:
+        """Id of the vertex ``corner`` sits at."""
+        return self._v.idv[self._c.vertex[self._c.slot(corner)]]
+
+    def corner_edge(self, corner: int) -> int:
+        """Id of the edge from ``corner`` to the next corner; -1 for a point-sphere."""
+        e = self._c.edge[self._c.slot(corner)]
+        return NO_EDGE if e < 0 else self._e.idv[e]
+
+    def corner_vnext(self, corner: int) -> int:
+        """The corner at the same vertex in the next face around it (TopMod's vnext).
+
+        Returns ``corner`` itself for a point-sphere.
+        """
+        c = self._c
+        s = c.slot(corner)
+        e = c.edge[s]
+        if e < 0:
+            return corner
+        other = self._other_side(e, s)
+        return c.idv[c.next[other]]
+
+    def edge_corners(self, edge: int) -> tuple[int, int]:
+        """The two sides ``(c0, c1)`` of ``edge``; ``c0`` runs from its vertex to ``c1``'s."""
+        e = self._e
+        s = e.slot(edge)
+        idv = self._c.idv
+        return idv[e.c0[s]], idv[e.c1[s]]
+
+    def edge_vertices(self, edge: int) -> tuple[int, int]:
+        """The end vertices of ``edge``: the vertices of its sides ``c0`` and ``c1``."""
+        c0, c1 = self.edge_corners(edge)
+        return self.corner_vertex(c0), self.corner_vertex(c1)
+
+    def edge_faces(self, edge: int) -> tuple[int, int]:
+        """The faces on the two sides of ``edge`` (equal when both sides are one face)."""
+        c0, c1 = self.edge_corners(edge)
+        return self.corner_face(c0), self.corner_face(c1)
+
+    def face_corner(self, face: int) -> int:
+        """Id of the head corner of ``face``, where its walks start."""
+        f = self._f
+        return self._c.idv[f.corner[f.slot(face)]]
+
+    def face_corners(self, face: int) -> list[int]:
+        """Corner ids of ``face`` in ring order from its head."""
+        idv = self._c.idv
+        return [idv[s] for s in self._ring_slots(self._f.slot(face))]
+
+    def face_vertices(self, face: int) -> list[int]:
+        """Vertex ids around ``face`` in ring order from its head."""
+        vert = self._c.vertex
+        vidv = self._v.idv
+        return [vidv[vert[s]] for s in self._ring_slots(self._f.slot(face))]
+
+    def face_edges(self, face: int) -> list[int]:
+        """Edge ids around ``face`` in ring order (empty for a point-sphere)."""
+        edge = self._c.edge
+        eidv = self._e.idv
+        return [eidv[edge[s]] for s in self._ring_slots(self._f.slot(face)) if edge[s] >= 0]
+
+    def face_size(self, face: int) -> int:
+        """Number of corners of ``face``."""
+        return len(self._ring_slots(self._f.slot(face)))
+
+    def is_hole(self, face: int) -> bool:
+        """True when ``face`` is a hole: a boundary loop of an open input mesh."""
+        return bool(self._f.hole[self._f.slot(face)])
+
+    def set_hole(self, face: int, hole: bool = True) -> None:
+        """Flag ``face`` as a hole (not drawn, written out as a boundary) or not."""
+        self._f.hole[self._f.slot(face)] = 1 if hole else 0
+
+    def vertex_corner(self, vertex: int) -> int:
+        """Id of one corner at ``vertex``."""
+        v = self._v
+        return self._c.idv[v.corner[v.slot(vertex)]]
+
+    def vertex_corners(self, vertex: int) -> list[int]:
+        """Corner ids at ``vertex`` in rotation order (``corner_vnext``)."""
+        idv = self._c.idv
+        return [idv[s] for s in self._rotation_slots(self._v.slot(vertex))]
+
+    def vertex_edges(self, vertex: int) -> list[int]:
+        """Ids of the edges leaving ``vertex``, one per corner, in rotation order.
+
+        A self-loop appears twice (it leaves the vertex twice).
+        """
+        edge = self._c.edge
+        eidv = self._e.idv
+        return [
+            eidv[edge[s]] for s in self._rotation_slots(self._v.slot(vertex)) if edge[s] >= 0
+        ]
+
+    def vertex_faces(self, vertex: int) -> list[int]:
+        """Face ids around ``vertex`` in rotation order, one per corner."""
+        face = self._c.face
+        fidv = self._f.idv
+        return [fidv[face[s]] for s in self._rotation_slots(self._v.slot(vertex))]
+
+    def valence(self, vertex: int) -> int:
+        """Number of edge ends at ``vertex`` (0 for a point-sphere; a loop counts twice)."""
+        edge = self._c.edge
+        return sum(1 for s in self._rotation_slots(self._v.slot(vertex)) if edge[s] >= 0)
+
+    def is_point_sphere(self, vertex: int) -> bool:
+        """True when ``vertex`` is isolated: a one-corner face with no edge."""
+        s = self._v.corner[self._v.slot(vertex)]
+        return self._c.edge[s] < 0
+
+    def position(self, vertex: int) -> np.ndarray:
+        """``(3,)`` float64 copy of the position of ``vertex``."""
+        return self._v.arrays["position"][self._v.slot(vertex)].copy()
+
+    def set_position(self, vertex: int, position: Any) -> None:
+        """Move ``vertex`` to ``position`` (three numbers)."""
+        xyz = _as_point(position)
+        self._v.arrays["position"][self._v.slot(vertex)] = xyz
+
+    def corner_at(self, face: int, vertex: int) -> int:
+        """The corner of ``face`` at ``vertex`` (the thesis's ``(faceid, vertexid)``).
+
+        Raises:
+            DLFLError: the face does not visit the vertex, or visits it more than
+                once (the message lists the corner ids to use instead).
+        """
+        fs = self._f.slot(face)
+        vs = self._v.slot(vertex)
+        vert = self._c.vertex
+        found = [s for s in self._ring_slots(fs) if vert[s] == vs]
+        if len(found) == 1:
+            return self._c.idv[found[0]]
+        if not found:
+            raise DLFLError(f"face {face} has no corner at vertex {vertex}")
+        ids = ", ".join(str(self._c.idv[s]) for s in found)
+        raise DLFLError(
+            f"corner ({face}, {vertex}) is ambiguous: face {face} visits vertex "
+            f"{vertex} {len(found)} times; use one of the corner ids {ids}"
+        )
+
+    # ---------------------------------------------------------- slot helpers
+
+    def _ring_slots(self, face_slot: int) -> list[int]:
+        nxt = self._c.next
+        start = self._f.corner[face_slot]
+        out = [start]
+        s = nxt[start]
+        while s != start:
+            out.append(s)
+            s = nxt[s]
+        return out
+
+    def _rotation_slots(self, vertex_slot: int) -> list[int]:
+        C = self._c
+        nxt, edge = C.next, C.edge
+        start = self._v.corner[vertex_slot]
+        out = [start]
+        if edge[start] < 0:
+            return out
+        s = nxt[self._other_side(edge[start], start)]
+        while s != start:
+            out.append(s)
+            s = nxt[self._other_side(edge[s], s)]
+        return out
+
+    def _other_side(self, edge_slot: int, corner_slot: int) -> int:
+        E = self._e
+        c0 = E.c0[edge_slot]
+        return E.c1[edge_slot] if c0 == corner_slot else c0
+
+    # ----------------------------------------------------- minimal operators
+
+    def create_vertex(self, position: Any = (0.0, 0.0, 0.0)) -> int:
+        """Create a point-sphere: a new vertex with a one-corner face and no edge.
+
+        Returns:
+            The new vertex id (its face is ``corner_face(vertex_corner(v))``).
+        """
+        xyz = _as_point(position)
+        C, F, V = self._c, self._f, self._v
+        C.reserve(1)
+        F.reserve(1)
+        V.reserve(1)
+        c, f, v = C.alloc(), F.alloc(), V.alloc()
+        C.next[c] = c
+        C.prev[c] = c
+        C.face[c] = f
+        C.vertex[c] = v
+        C.edge[c] = NO_EDGE
+        F.corner[f] = c
+        F.hole[f] = 0
+        V.corner[v] = c
+        V.arrays["position"][v] = xyz
+        return V.idv[v]
+
+    def remove_vertex(self, vertex: int) -> None:
+        """Remove a point-sphere vertex together with its face and corner.
+
+        Raises:
+            DLFLError: ``vertex`` still has edges (only point-spheres can go).
+        """
+        vs = self._v.slot(vertex)
+        c = self._v.corner[vs]
+        if self._c.edge[c] >= 0:
+            raise DLFLError(
+                f"vertex {vertex} has {self.valence(vertex)} edge end(s); only a "
+                "point-sphere (a vertex with no edges) can be removed"
+            )
+        self._f.release(self._c.face[c])
+        self._c.release(c)
+        self._v.release(vs)
+
+    def insert_edge(self, corner1: int, corner2: int) -> int:
+        """Insert an edge between two corners and return its id.
+
+        Co-facial corners split their face in two (E+1, F+1): the face keeps
+        ``corner1`` and the corners after ``corner2``; a new face takes the corners
+        from after ``corner1`` up to ``corner2``. Corners of different faces merge
+        the faces into one (E+1, F-1): a handle (genus+1) within one component,
+        or a join of two components. The new edge's sides are ``(corner1,
+        corner2)``: :meth:`edge_corners` returns them in that order, and their
+        ``corner_next`` are the two copies made at the far ends.
+
+        Raises:
+            DLFLError: a corner id is not live, or both are the same corner.
+        """
+        C = self._c
+        s1 = C.slot(corner1)
+        s2 = C.slot(corner2)
+        if s1 == s2:
+            raise DLFLError(
+                f"insert_edge needs two different corners, got corner {corner1} twice"
+            )
+        C.reserve(2)
+        self._e.reserve(1)
+        self._f.reserve(1)
+        if C.face[s1] == C.face[s2]:
+            return self._insert_cofacial(s1, s2)
+        return self._insert_merge(s1, s2)
+
+    def _copy_corner(self, src: int, face: int) -> int:
+        """A new corner at ``src``'s vertex in ``face`` that takes over ``src``'s edge."""
+        C = self._c
+        dup = C.alloc()
+        C.vertex[dup] = C.vertex[src]
+        C.face[dup] = face
+        e = C.edge[src]
+        C.edge[dup] = e
+        if e >= 0:
+            E = self._e
+            if E.c0[e] == src:
+                E.c0[e] = dup
+            else:
+                E.c1[e] = dup
+        return dup
+
+    def _insert_cofacial(self, s1: int, s2: int) -> int:
+        C, E, F = self._c, self._e, self._f
+        nxt, prv, face = C.next, C.prev, C.face
+        f = face[s1]
+        a1, b1 = nxt[s1], nxt[s2]
+        fn = F.alloc()
+        F.hole[fn] = F.hole[f]
+        head = F.corner[f]
+        c1p = self._copy_corner(s1, fn)
+        c2p = self._copy_corner(s2, f)
+        # the corners strictly between corner1 and corner2 move to the new face
+        moved_head = head == s2
+        x = a1
+        while x != s2:
+            face[x] = fn
+            if x == head:
+                moved_head = True
+            x = nxt[x]
+        face[s2] = fn
+        # new face: c1' -> a1 ... -> c2 -> c1'
+        nxt[c1p] = a1
+        prv[a1] = c1p
+        nxt[s2] = c1p
+        prv[c1p] = s2
+        # old face: c1 -> c2' -> b1 ...
+        nxt[s1] = c2p
+        prv[c2p] = s1
+        nxt[c2p] = b1
+        prv[b1] = c2p
+        e = E.alloc()
+        E.c0[e] = s1
+        E.c1[e] = s2
+        C.edge[s1] = e
+        C.edge[s2] = e
+        F.corner[fn] = c1p
+        if moved_head:
+            F.corner[f] = c2p if head == s2 else s1
+        return E.idv[e]
+
+    def _insert_merge(self, s1: int, s2: int) -> int:
+        C, E, F = self._c, self._e, self._f
+        nxt, prv, face = C.next, C.prev, C.face
+        f1, f2 = face[s1], face[s2]
+        a, b = nxt[s1], nxt[s2]
+        lone1, lone2 = a == s1, b == s2
+        # every corner of the second face joins the first
+        x = s2
+        while True:
+            face[x] = f1
+            x = nxt[x]
+            if x == s2:
+                break
+        after1 = s2 if lone2 else self._copy_corner(s2, f1)
+        after2 = s1 if lone1 else self._copy_corner(s1, f1)
+        nxt[s1] = after1
+        prv[after1] = s1
+        if not lone2:
+            nxt[after1] = b
+            prv[b] = after1
+        nxt[s2] = after2
+        prv[after2] = s2
+        if not lone1:
+            nxt[after2] = a
+            prv[a] = after2
+        e = E.alloc()
+        E.c0[e] = s1
+        E.c1[e] = s2
+        C.edge[s1] = e
+        C.edge[s2] = e
+        F.corner[f1] = a
+        F.release(f2)
+        return E.idv[e]
+
+    def delete_edge(self, edge: int, cleanup: bool = True) -> list[int]:
+        """Delete ``edge``, the inverse of :meth:`insert_edge`, and return the faces left.
+
+        Two different faces on its sides merge into the first (returns ``[face]``).
+        One face on both sides splits in two (returns ``[face, new_face]``); a side
+        with no corners left becomes a point-sphere, which ``cleanup`` (TopMod's
+        default) removes together with its vertex, leaving it out of the result.
+
+        Raises:
+            DLFLError: ``edge`` is not a live edge id.
+        """
+        E = self._e
+        es = E.slot(edge)
+        s1, s2 = E.c0[es], E.c1[es]
+        self._f.reserve(1)
+        face = self._c.face
+        if face[s1] != face[s2]:
+            result = self._delete_merge(s1, s2, cleanup)
+        else:
+            result = self._delete_split(s1, s2, cleanup)
+        E.release(es)
+        fidv = self._f.idv
+        return [fidv[f] for f in result]
+
+    def _delete_merge(self, s1: int, s2: int, cleanup: bool) -> list[int]:
+        C, F, V = self._c, self._f, self._v
+        nxt, prv, face, vert = C.next, C.prev, C.face, C.vertex
+        f1, f2 = face[s1], face[s2]
+        a, p1, b, p2 = nxt[s1], prv[s1], nxt[s2], prv[s2]
+        empty1, empty2 = a == s1, b == s2
+        if empty1 and empty2:
+            # two one-sided faces on a loop: the vertex is left alone
+            return self._merge_to_point_sphere(s1, s2, cleanup)
+        x = b
+        while x != s2:
+            face[x] = f1
+            x = nxt[x]
+        if not (empty1 or empty2):
+            face[s2] = f1
+            self._drop_after_sides(s1, s2)
+            F.release(f2)
+            return [f1]
+        if empty1:
+            nxt[p2], prv[b] = b, p2
+            head = b
+        elif empty2:
+            nxt[p1], prv[a] = a, p1
+            head = a
+        else:
+            nxt[p1], prv[b] = b, p1
+            nxt[p2], prv[a] = a, p2
+            head = a
+        # a vertex whose recorded corner is dropped takes the corner now after it
+        vc = V.corner
+        if vc[vert[s1]] == s1:
+            vc[vert[s1]] = a if empty2 else b
+        if vc[vert[s2]] == s2:
+            vc[vert[s2]] = b if empty1 else a
+        F.corner[f1] = head
+        C.release(s1)
+        C.release(s2)
+        F.release(f2)
+        return [f1]
+
+    def _merge_to_point_sphere(self, s1: int, s2: int, cleanup: bool) -> list[int]:
+        face = self._c.face
+        f1, f2 = face[s1], face[s2]
+        self._c.release(s2)
+        self._f.release(f2)
+        if cleanup:
+            self._remove_lone_corner(s1, f1)
+            return []
+        self._make_point_sphere(s1, f1)
+        return [f1]
+
+    def _drop_after_sides(self, s1: int, s2: int) -> None:
+        """Unlink the corners after the two sides of an edge being deleted.
+
+        The sides stay and take over the edges of the corners after them, so
+        that deleting an edge right after inserting it restores every corner id.
+        Callers have already moved the corners to their final faces.
+        """
+        C, E = self._c, self._e
+        nxt, prv, edge, vert = C.next, C.prev, C.edge, C.vertex
+        a, b = nxt[s1], nxt[s2]
+        for side, gone in ((s1, b), (s2, a)):
+            e = edge[gone]
+            edge[side] = e
+            if E.c0[e] == gone:
+                E.c0[e] = side
+            else:
+                E.c1[e] = side
+            after = nxt[gone]
+            nxt[side], prv[after] = after, side
+            if self._v.corner[vert[gone]] == gone:
+                self._v.corner[vert[gone]] = side
+        fc = self._f.corner
+        for side, gone in ((s2, a), (s1, b)):
+            if fc[C.face[side]] == gone:
+                fc[C.face[side]] = side
+        C.release(a)
+        C.release(b)
+
+    def _delete_split(self, s1: int, s2: int, cleanup: bool) -> list[int]:
+        C, F = self._c, self._f
+        nxt, prv, face, vert = C.next, C.prev, C.face, C.vertex
+        f = face[s1]
+        nx, px = nxt[s1], prv[s2]  # x: the corners strictly after corner1, before corner2
+        ny, py = nxt[s2], prv[s1]  # y: the corners strictly after corner2, before corner1
+        keeps_y, keeps_x = ny != s1, nx != s2
+        if keeps_x and keeps_y:
+            return self._split_keeping_sides(s1, s2)
+        vc = self._v.corner
+        result = [f]
+        if keeps_y:
+            nxt[py], prv[ny] = ny, py
+            F.corner[f] = ny
+            if vc[vert[s1]] == s1:
+                vc[vert[s1]] = ny
+        if keeps_x:
+            fn = F.alloc()
+            F.hole[fn] = F.hole[f]
+            x = nx
+            while x != s2:
+                face[x] = fn
+                x = nxt[x]
+            nxt[px], prv[nx] = nx, px
+            F.corner[fn] = nx
+            if vc[vert[s2]] == s2:
+                vc[vert[s2]] = nx
+            result.append(fn)
+        if keeps_y:
+            C.release(s1)
+        elif cleanup:
+            self._remove_lone_corner(s1, f)
+            result.remove(f)
+        else:
+            self._make_point_sphere(s1, f)
+        if keeps_x:
+            C.release(s2)
+        elif cleanup:
+            self._remove_lone_corner(s2, -1)
+        else:
+            fn = F.alloc()
+            F.hole[fn] = F.hole[f]
+            self._make_point_sphere(s2, fn)
+            result.append(fn)
+        return result
+
+    def _split_keeping_sides(self, s1: int, s2: int) -> list[int]:
+        """Split a face along a deleted edge whose both sides keep corners."""
+        C, F = self._c, self._f
+        nxt, face = C.next, C.face
+        f = face[s1]
+        fn = F.alloc()
+        F.hole[fn] = F.hole[f]
+        head = F.corner[f]
+        head_moves = head == s2
+        x = nxt[s1]
+        while x != s2:
+            face[x] = fn
+            head_moves = head_moves or x == head
+            x = nxt[x]
+        face[s2] = fn
+        F.corner[fn] = s2
+        if head_moves:
+            F.corner[f] = s1
+        self._drop_after_sides(s1, s2)
+        return [f, fn]
+
+    def _remove_lone_corner(self, s: int, face_slot: int) -> None:
+        """Remove corner ``s``, its now isolated vertex and, if given, its face."""
+        if face_slot >= 0:
+            self._f.release(face_slot)
+        self._v.release(self._c.vertex[s])
+        self._c.release(s)
+
+    def _make_point_sphere(self, s: int, face_slot: int) -> None:
+        """Make corner ``s`` the lone, edgeless corner of ``face_slot``."""
+        C = self._c
+        C.next[s] = s
+        C.prev[s] = s
+        C.edge[s] = NO_EDGE
+        C.face[s] = face_slot
+        self._f.corner[face_slot] = s
+        self._v.corner[C.vertex[s]] = s
+
+    def subdivide_edge(self, edge: int, divisions: int = 2) -> list[int]:
+        """Split ``edge`` into ``divisions`` equal parts; return the new vertex ids.
+
+        The new vertices sit at ``p0 + i (p1 - p0) / divisions`` from the vertex
+        ``p0`` of side ``c0``. The edge keeps its id as the first part (from
+        ``p0``); each further part is a new edge.
+
+        Raises:
+            DLFLError: ``edge`` is not live, or ``divisions`` is not an integer >= 1.
+        """
+        if isinstance(divisions, bool) or not isinstance(divisions, (int, np.integer)):
+            raise DLFLError(f"divisions must be an integer >= 1, got {divisions!r}")
+        if divisions < 1:
+            raise DLFLError(f"divisions must be an integer >= 1, got {divisions}")
+        es = self._e.slot(edge)
+        pos = self._v.arrays["position"]
+        C = self._c
+        p0 = pos[C.vertex[self._e.c0[es]]].copy()
+        p1 = pos[C.vertex[self._e.c1[es]]].copy()
+        new_vertices = []
+        last = es
+        for i in range(1, int(divisions)):
+            vs, last = self._split_edge_slot(last, p0 + (p1 - p0) * (i / divisions))
+            new_vertices.append(self._v.idv[vs])
+        return new_vertices
+
+    def _split_edge_slot(self, es: int, point: np.ndarray) -> tuple[int, int]:
+        """Split edge slot ``es`` at ``point``; return (new vertex slot, new edge slot)."""
+        C, E, V = self._c, self._e, self._v
+        C.reserve(2)
+        E.reserve(1)
+        V.reserve(1)
+        nxt, prv = C.next, C.prev
+        s1, s2 = E.c0[es], E.c1[es]
+        a, b = nxt[s1], nxt[s2]
+        m = V.alloc()
+        V.arrays["position"][m] = point
+        n1, n2 = C.alloc(), C.alloc()
+        for new, owner in ((n1, s1), (n2, s2)):
+            C.vertex[new] = m
+            C.face[new] = C.face[owner]
+        nxt[s1], prv[n1], nxt[n1], prv[a] = n1, s1, a, n1
+        nxt[s2], prv[n2], nxt[n2], prv[b] = n2, s2, b, n2
+        e2 = E.alloc()
+        E.c1[es] = n2
+        E.c0[e2], E.c1[e2] = n1, s2
+        C.edge[n2] = es
+        C.edge[n1] = e2
+        C.edge[s2] = e2
+        V.corner[m] = n1
+        return m, e2
+
+    def collapse_edge(self, edge: int, cleanup: bool = True) -> int:
+        """Collapse ``edge`` to its midpoint and return the surviving vertex id.
+
+        The vertex of side ``c0`` survives at the midpoint and takes over every
+        corner of the other end. A self-loop is deleted instead. With ``cleanup``
+        (TopMod's default) a face left with one or two sides loses one edge, so no
+        degenerate face remains.
+
+        Raises:
+            DLFLError: ``edge`` is not a live edge id.
+        """
+        E, C, V = self._e, self._c, self._v
+        es = E.slot(edge)
+        s1, s2 = E.c0[es], E.c1[es]
+        v1, v2 = C.vertex[s1], C.vertex[s2]
+        survivor = V.idv[v1]
+        pos = V.arrays["position"]
+        if v1 == v2:
+            self.delete_edge(edge, cleanup)
+            return survivor
+        midpoint = (pos[v1] + pos[v2]) * 0.5
+        nxt = C.next
+        leaf2, leaf1 = nxt[s1] == s2, nxt[s2] == s1
+        if leaf1 or leaf2:
+            # the edge dangles: deleting it leaves the other end (or one of two)
+            keep, drop = (v2, v1) if leaf1 and not leaf2 else (v1, v2)
+            self.delete_edge(edge, cleanup=not (leaf1 and leaf2))
+            if leaf1 and leaf2:
+                self.remove_vertex(V.idv[drop])
+            pos[keep] = midpoint
+            return V.idv[keep]
+        faces = self._collapse_link(es, s1, s2, v1, v2)
+        pos[v1] = midpoint
+        if cleanup:
+            self._cleanup_degenerate(faces)
+        return survivor
+
+    def _collapse_link(self, es: int, s1: int, s2: int, v1: int, v2: int) -> list[int]:
+        C, E, F, V = self._c, self._e, self._f, self._v
+        nxt, prv, vert, edge, face = (
+            C.next, C.prev, C.vertex, C.edge, C.face,
+        )
+        moving = self._rotation_slots(v2)
+        a = nxt[s1]  # at v2; removed, corner1 takes its edge
+        ea = edge[a]
+        edge[s1] = ea
+        if ea >= 0:
+            if E.c0[ea] == a:
+                E.c0[ea] = s1
+            else:
+                E.c1[ea] = s1
+        an = nxt[a]
+        nxt[s1], prv[an] = an, s1
+        p2, b = prv[s2], nxt[s2]
+        nxt[p2], prv[b] = b, p2
+        f1, f2 = face[s1], face[s2]
+        fc = F.corner
+        if fc[f1] == a:
+            fc[f1] = s1
+        if fc[f2] == s2:
+            fc[f2] = b
+        for s in moving:
+            vert[s] = v1
+        C.release(a)
+        C.release(s2)
+        E.release(es)
+        V.release(v2)
+        return [f1] if f1 == f2 else [f1, f2]
+
+    def _cleanup_degenerate(self, face_slots: list[int]) -> None:
+        """Delete one edge of each listed face that has one or two corners left."""
+        for fs in face_slots:
+            if self._f.idv[fs] < 0:
+                continue
+            ring = self._ring_slots(fs)
+            edge = self._c.edge[ring[0]]
+            if len(ring) <= 2 and edge >= 0:
+                self.delete_edge(self._e.idv[edge], cleanup=True)
+
+    def create_face(self, points: Sequence[Any]) -> tuple[int, int]:
+        """Create a two-sided polygon on new vertices: ``(front, back)`` face ids.
+
+        The front face visits the points in the given order, the back face in
+        reverse, starting at the first point; they share all their edges
+        (V+n, E+n, F+2).
+
+        Raises:
+            DLFLError: fewer than two points, or a point is not three numbers.
+        """
+        pts = [_as_point(p) for p in points]
+        n = len(pts)
+        if n < 2:
+            raise DLFLError(f"create_face needs at least 2 points, got {n}")
+        C, E, F, V = self._c, self._e, self._f, self._v
+        C.reserve(2 * n)
+        E.reserve(n)
+        F.reserve(2)
+        V.reserve(n)
+        verts = [V.alloc() for _ in range(n)]
+        V.arrays["position"][verts] = pts
+        front, back = F.alloc(), F.alloc()
+        fc = [C.alloc() for _ in range(n)]
+        bc = [C.alloc() for _ in range(n)]
+        self._link_ring(fc, front, verts)
+        # back ring visits the points reversed, starting at point 0
+        back_verts = [verts[0]] + verts[:0:-1]
+        self._link_ring(bc, back, back_verts)
+        for i in range(n):
+            # front corner i runs v_i -> v_{i+1}; its twin runs v_{i+1} -> v_i
+            twin = bc[(n - 1 - i) % n]
+            e = E.alloc()
+            E.c0[e], E.c1[e] = fc[i], twin
+            C.edge[fc[i]] = e
+            C.edge[twin] = e
+        for i, v in enumerate(verts):
+            V.corner[v] = fc[i]
+        return F.idv[front], F.idv[back]
+
+    def _link_ring(self, corners: list[int], face_slot: int, verts: list[int]) -> None:
+        C = self._c
+        n = len(corners)
+        for i, c in enumerate(corners):
+            C.next[c] = corners[(i + 1) % n]
+            C.prev[c] = corners[i - 1]
+            C.face[c] = face_slot
+            C.vertex[c] = verts[i]
+        self._f.corner[face_slot] = corners[0]
+        self._f.hole[face_slot] = 0
+
+    # ------------------------------------------------------------ whole mesh
+
+    def copy(self) -> Mesh:
+        """A deep copy with the same ids."""
+        other = Mesh.__new__(Mesh)
+        other._c = self._c.copy()
+        other._e = self._e.copy()
+        other._f = self._f.copy()
+        other._v = self._v.copy()
+        other.notes = list(self.notes)
+        return other
+
+    def replace_with(self, other: Mesh) -> None:
+        """Take over the contents of ``other`` (used by bulk operations in place)."""
+        self._c, self._e, self._f, self._v = other._c, other._e, other._f, other._v
+        self.notes = other.notes
+
+    def next_ids(self) -> tuple[int, int, int, int]:
+        """The ids the next vertex, edge, face and corner will get."""
+        return self._v.next_id, self._e.next_id, self._f.next_id, self._c.next_id
+
+    def positions_view(self) -> np.ndarray:
+        """``(V, 3)`` float64 copy of the live vertex positions, in id order."""
+        return self._v.arrays["position"][self._v.live_slots()]
+
+    def set_positions(self, vertices: Iterable[int] | np.ndarray, positions: Any) -> None:
+        """Set the positions of many vertices at once.
+
+        Args:
+            vertices: ``(k,)`` vertex ids.
+            positions: ``(k, 3)`` floats, or ``(3,)`` for all of them.
+        """
+        slots = [self._v.slot(v) for v in vertices]
+        values = np.asarray(positions, dtype=np.float64)
+        if values.shape not in ((3,), (len(slots), 3)):
+            raise DLFLError(
+                f"positions must have shape (3,) or ({len(slots)}, 3), got {values.shape}"
+            )
+        self._v.arrays["position"][slots] = values

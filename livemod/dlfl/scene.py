@@ -1,0 +1,179 @@
+"""The scene: the thesis's object stack, the current object and the selection.
+
+Thesis commands act on the *current scene*, held in a context variable so that
+each run of the runner binds its own copy (two runs never share meshes) while a
+plain ``python script.py`` uses one process-wide default scene.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import contextvars
+from collections.abc import Callable, Iterator
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+
+from .errors import DLFLError
+from .mesh import Mesh
+
+
+@dataclass(frozen=True)
+class Selection:
+    """Ids picked in the viewer; what ``faces(True)`` and friends return.
+
+    Corners are corner ids (see :meth:`Mesh.corner_at`).
+    """
+
+    faces: tuple[int, ...] = ()
+    edges: tuple[int, ...] = ()
+    vertices: tuple[int, ...] = ()
+    corners: tuple[int, ...] = ()
+
+    def is_empty(self) -> bool:
+        return not (self.faces or self.edges or self.vertices or self.corners)
+
+
+@dataclass
+class SceneObject:
+    """One mesh of the scene with the transform record of the thesis commands.
+
+    livemod applies ``translate``/``scale`` to the vertices at once; ``origin``
+    and ``factor`` remember the object's placement so that absolute
+    (``relative=False``) moves and scales can be computed.
+    """
+
+    mesh: Mesh
+    name: str = ""
+    origin: np.ndarray = field(default_factory=lambda: np.zeros(3))
+    factor: np.ndarray = field(default_factory=lambda: np.ones(3))
+
+
+StepHook = Callable[[str], None]
+
+
+class Scene:
+    """Several meshes (objects by integer id), the current one and the selection.
+
+    Attributes:
+        objects: object id -> :class:`SceneObject`, in creation order.
+        current: id of the current object, or None when the scene is empty.
+        selection: the viewer's selection, applied to the current object.
+        step_hook: called with a label after every modeling command (the runner
+            installs one to record steps and to pause or cancel a run).
+        parameters: values for ``param()`` declarations (set by the runner).
+    """
+
+    def __init__(self) -> None:
+        self.objects: dict[int, SceneObject] = {}
+        self.current: int | None = None
+        self.selection = Selection()
+        self.step_hook: StepHook | None = None
+        self.parameters: dict[str, object] = {}
+        self._next_object = 0
+        self._command_depth = 0
+
+    # -- objects -------------------------------------------------------------
+
+    def add(self, mesh: Mesh, name: str = "") -> int:
+        """Push ``mesh`` as a new object, make it current and return its id."""
+        oid = self._next_object
+        self._next_object += 1
+        self.objects[oid] = SceneObject(mesh, name)
+        self.current = oid
+        return oid
+
+    @property
+    def mesh(self) -> Mesh:
+        """The current object's mesh; an empty object is created when there is none."""
+        if self.current is None:
+            self.add(Mesh())
+        assert self.current is not None
+        return self.objects[self.current].mesh
+
+    @property
+    def current_object(self) -> SceneObject:
+        """The current :class:`SceneObject` (created empty when there is none)."""
+        self.mesh  # noqa: B018  (creates the object on demand)
+        assert self.current is not None
+        return self.objects[self.current]
+
+    def switch(self, oid: int) -> int:
+        """Make object ``oid`` current and return it."""
+        self._check_object(oid)
+        self.current = oid
+        return oid
+
+    def kill(self, oid: int) -> None:
+        """Remove object ``oid``; the most recent remaining object becomes current."""
+        self._check_object(oid)
+        del self.objects[oid]
+        if self.current == oid:
+            self.current = next(reversed(self.objects), None)
+
+    def _check_object(self, oid: object) -> None:
+        if not isinstance(oid, int) or oid not in self.objects:
+            have = ", ".join(str(k) for k in self.objects) or "none"
+            raise DLFLError(f"object {oid!r} does not exist (objects: {have})")
+
+    def copy(self) -> Scene:
+        """A deep copy: meshes copied with their ids, selection and objects kept."""
+        other = Scene()
+        for oid, obj in self.objects.items():
+            other.objects[oid] = SceneObject(
+                obj.mesh.copy(), obj.name, obj.origin.copy(), obj.factor.copy()
+            )
+        other.current = self.current
+        other.selection = replace(self.selection)
+        other.parameters = dict(self.parameters)
+        other._next_object = self._next_object
+        return other
+
+    # -- steps ---------------------------------------------------------------
+
+    def record_step(self, label: str) -> None:
+        """Report a finished modeling step to the hook (outermost commands only)."""
+        if self.step_hook is not None and self._command_depth == 0:
+            self.step_hook(label)
+
+    @contextlib.contextmanager
+    def command(self, label: str) -> Iterator[None]:
+        """Run a modeling command: nested commands record no steps of their own."""
+        self._command_depth += 1
+        try:
+            yield
+        finally:
+            self._command_depth -= 1
+        self.record_step(label)
+
+
+_default_scene = Scene()
+_scene_var: contextvars.ContextVar[Scene] = contextvars.ContextVar("livemod_scene")
+
+
+def current_scene() -> Scene:
+    """The scene thesis commands act on: the one bound by :func:`use_scene`, or the
+    process-wide default scene."""
+    return _scene_var.get(_default_scene)
+
+
+def default_scene() -> Scene:
+    """The process-wide scene used when no run has bound one."""
+    return _default_scene
+
+
+@contextlib.contextmanager
+def use_scene(scene: Scene) -> Iterator[Scene]:
+    """Bind ``scene`` as the current scene for the calling context (thread)."""
+    token = _scene_var.set(scene)
+    try:
+        yield scene
+    finally:
+        _scene_var.reset(token)
+
+
+def reset_default_scene() -> Scene:
+    """Replace the default scene with an empty one and return it."""
+    global _default_scene
+    _default_scene = Scene()
+    return _default_scene
