@@ -1,0 +1,120 @@
+"""The ``livemod`` command line: view | run | batch | render | info | convert.
+
+This module only parses arguments and dispatches. ``info`` and ``convert`` live
+here; the runner and the viewer add their own subcommands through an
+``add_commands(subparsers)`` function in ``livemod/runner/cli.py`` and
+``livemod/viewer/cli.py`` (which must not import GL at parse time).
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import os
+import sys
+from collections.abc import Sequence
+
+from livemod import __version__
+
+SUBCOMMAND_MODULES = ("livemod.runner.cli", "livemod.viewer.cli")
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The top-level parser with every subcommand registered."""
+    parser = argparse.ArgumentParser(
+        prog="livemod",
+        description="Procedural manifold mesh modeling: run, watch, view and render "
+        "DLFL scripts.",
+    )
+    parser.add_argument("--version", action="version", version=f"livemod {__version__}")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True)
+    _add_info(sub)
+    _add_convert(sub)
+    for name in SUBCOMMAND_MODULES:
+        try:
+            module = importlib.import_module(name)
+        except ModuleNotFoundError as exc:
+            if exc.name != name:
+                raise
+            continue
+        module.add_commands(sub)
+    return parser
+
+
+def _add_info(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser("info", help="print counts, genus per component and face sizes of a mesh")
+    p.add_argument("file", help="a .obj or .dlfl file, or a built-in shape name")
+    p.set_defaults(handler=_info)
+
+
+def _add_convert(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser("convert", help="convert between .obj, .dlfl, .stl and .ply")
+    p.add_argument("input", help="a .obj or .dlfl file")
+    p.add_argument("output", help="a .obj, .dlfl, .stl or .ply file (written atomically)")
+    p.set_defaults(handler=_convert)
+
+
+def _load(path: str):  # noqa: ANN202  (returns a Mesh; imported lazily)
+    from livemod.dlfl.io import load_mesh
+    from livemod.dlfl.shapes import load_shape
+
+    return load_mesh(path) if os.path.exists(path) else load_shape(path)
+
+
+def _info(args: argparse.Namespace) -> int:
+    from livemod.dlfl import DLFLError, summarize, validate
+
+    mesh = _load(args.file)
+    summary = summarize(mesh)
+    print(f"{args.file}")
+    print(f"Number of vertices : {summary.vertices}")
+    print(f"Number of faces : {summary.faces - summary.holes}")
+    print(f"Number of edges : {summary.edges}")
+    print(f"Genus : {summary.genus}")
+    genera = ", ".join(str(g) for g in summary.component_genera)
+    print(f"Components : {summary.components} (genus per component: {genera})")
+    sizes = ", ".join(f"{count}x{size}" for size, count in summary.face_sizes.items())
+    print(f"Face sizes : {sizes or 'none'}")
+    print(f"Holes : {summary.holes}   Point-spheres : {summary.point_spheres}")
+    for note in mesh.notes:
+        print(f"Note : {note}")
+    try:
+        validate(mesh)
+    except DLFLError as exc:
+        print(f"Valid : no ({exc})")
+        return 1
+    print("Valid : yes")
+    return 0
+
+
+def _convert(args: argparse.Namespace) -> int:
+    from livemod.dlfl.io import save_mesh
+
+    mesh = _load(args.input)
+    save_mesh(mesh, args.output)
+    v, e, f = mesh.counts()
+    print(f"wrote {args.output} ({v} vertices, {e} edges, {f} faces)")
+    return 0
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Run the ``livemod`` command line; returns the process exit code.
+
+    Bad input (a missing file, a malformed mesh, a script error) prints one line
+    ``livemod: error: ...`` and returns 2 or 1, never a Python traceback.
+    """
+    from livemod.dlfl.errors import DLFLError
+
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    try:
+        return int(args.handler(args) or 0)
+    except (DLFLError, OSError) as exc:
+        print(f"livemod: error: {exc}", file=sys.stderr)
+        return 1
+    except KeyboardInterrupt:
+        return 130
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
