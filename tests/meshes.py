@@ -1,0 +1,129 @@
+"""Small meshes and mesh comparisons shared by the DLFL test modules."""
+
+from __future__ import annotations
+
+from collections import Counter
+from typing import Any
+
+import numpy as np
+
+from livemod.dlfl import Mesh, from_polygons, mesh_arrays
+from livemod.dlfl.analysis import component_genera, num_components
+
+CUBE_POSITIONS = np.array(
+    [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0], [0, 0, 1], [1, 0, 1], [1, 1, 1], [0, 1, 1]],
+    dtype=np.float64,
+)
+# counter-clockwise seen from outside: bottom (-z), top (+z), -y, +x, +y, -x
+CUBE_FACES = [[0, 3, 2, 1], [4, 5, 6, 7], [0, 1, 5, 4], [1, 2, 6, 5], [2, 3, 7, 6], [3, 0, 4, 7]]
+CUBE_OUTWARD = [(0, 0, -1), (0, 0, 1), (0, -1, 0), (1, 0, 0), (0, 1, 0), (-1, 0, 0)]
+
+TETRA_POSITIONS = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], dtype=np.float64)
+TETRA_FACES = [[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]]
+
+
+def cube(offset: tuple[float, float, float] = (0.0, 0.0, 0.0)) -> Mesh:
+    """The unit cube, 8/12/6; face ``i`` has corners ``4i..4i+3`` at ``CUBE_FACES[i]``."""
+    return from_polygons(CUBE_POSITIONS + np.asarray(offset), CUBE_FACES)
+
+
+def two_cubes() -> Mesh:
+    """Two disjoint unit cubes, 16/24/12, the second shifted by 3 along x."""
+    pos = np.concatenate([CUBE_POSITIONS, CUBE_POSITIONS + [3.0, 0.0, 0.0]])
+    faces = CUBE_FACES + [[v + 8 for v in f] for f in CUBE_FACES]
+    return from_polygons(pos, faces)
+
+
+def tetrahedron() -> Mesh:
+    """A tetrahedron, 4/6/4."""
+    return from_polygons(TETRA_POSITIONS, TETRA_FACES)
+
+
+def triangle() -> Mesh:
+    """An open triangle: its face plus one hole face, 3/3/2."""
+    return from_polygons([[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 1, 2]])
+
+
+def point_sphere() -> Mesh:
+    """One isolated vertex, 1/0/1."""
+    m = Mesh()
+    m.create_vertex((0.0, 0.0, 0.0))
+    return m
+
+
+def path_face() -> Mesh:
+    """A path 0-1-2 as one face that visits vertex 1 twice, 3/2/1."""
+    return from_polygons([[0, 0, 0], [1, 0, 0], [2, 0, 0]], [[0, 1, 2, 1]])
+
+
+def torus_polygons(n: int, m: int, *, radii: tuple[float, float] = (3.0, 1.0)) -> tuple[np.ndarray, np.ndarray]:
+    """Positions ``(n*m, 3)`` and quads ``(n*m, 4)`` of an n x m quad torus."""
+    i, j = np.meshgrid(np.arange(n), np.arange(m), indexing="ij")
+    u, v = 2 * np.pi * i.ravel() / n, 2 * np.pi * j.ravel() / m
+    big, small = radii
+    ring = big + small * np.cos(v)
+    pos = np.stack([ring * np.cos(u), ring * np.sin(u), small * np.sin(v)], axis=1)
+    a = i * m + j
+    b = ((i + 1) % n) * m + j
+    c = ((i + 1) % n) * m + (j + 1) % m
+    d = i * m + (j + 1) % m
+    quads = np.stack([a.ravel(), b.ravel(), c.ravel(), d.ravel()], axis=1)
+    return pos, quads
+
+
+def torus(n: int = 4, m: int = 3) -> Mesh:
+    """An n x m quad torus, nm / 2nm / nm, genus 1."""
+    pos, quads = torus_polygons(n, m)
+    return from_polygons(pos, quads)
+
+
+def snapshot(mesh: Mesh) -> tuple[Any, ...]:
+    """Everything observable about ``mesh``: its dense arrays and id counters."""
+    a = mesh_arrays(mesh)
+    fields = [np.asarray(getattr(a, name)).tolist() for name in a.__dataclass_fields__]
+    return (*fields, mesh.next_ids())
+
+
+def same_up_to_ids(mesh: Mesh) -> tuple[Any, ...]:
+    """The dense arrays without the id counters (ids of live elements kept)."""
+    return snapshot(mesh)[:-1]
+
+
+def canonical(mesh: Mesh) -> tuple[Any, ...]:
+    """An isomorphism invariant: counts, face sizes, valences and positions."""
+    a = mesh_arrays(mesh)
+    valence = np.bincount(a.corner_vertex[a.corner_edge >= 0], minlength=len(a.vertex_ids))
+    positions = sorted(map(tuple, np.round(a.positions, 9).tolist()))
+    return (
+        a.counts,
+        sorted(a.face_sizes.tolist()),
+        sorted(Counter(valence.tolist()).items()),
+        positions,
+    )
+
+
+def euler_ok(mesh: Mesh) -> bool:
+    """``V - E + F == 2 (components - genus)``, genus summed per component."""
+    v, e, f = mesh.counts()
+    return v - e + f == 2 * (num_components(mesh) - sum(component_genera(mesh)))
+
+
+def corner_structure(mesh: Mesh) -> tuple[Any, ...]:
+    """The mesh keyed by corner, edge and vertex id, with faces as corner sets.
+
+    Equal for two meshes that differ only in face ids and face head corners
+    (what deleting an edge that merged two faces cannot restore: the second
+    face's id is gone for good).
+    """
+    a = mesh_arrays(mesh)
+    cid = a.corner_ids
+    nxt = cid[a.corner_next].tolist()
+    mate = np.where(a.corner_mate >= 0, cid[a.corner_mate], -1).tolist()
+    edge = np.where(a.corner_edge >= 0, a.edge_ids[a.corner_edge], -1).tolist()
+    vert = a.vertex_ids[a.corner_vertex].tolist()
+    corners = sorted(zip(cid.tolist(), nxt, mate, edge, vert, strict=True))
+    faces = sorted(
+        (tuple(sorted(cid[a.face_offsets[i]:a.face_offsets[i + 1]].tolist())), bool(a.face_hole[i]))
+        for i in range(len(a.face_ids))
+    )
+    return corners, faces, a.vertex_ids.tolist(), a.positions.tolist(), a.edge_ids.tolist()

@@ -1,0 +1,537 @@
+"""Tests of livemod.dlfl.mesh: the minimal operators with TopMod's exact counts."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from livemod.dlfl import DLFLError, Mesh, genus, num_components, validate
+from tests.meshes import corner_structure, cube, euler_ok, path_face, snapshot, tetrahedron, torus, triangle
+
+
+def checked(mesh: Mesh) -> tuple[int, int, int]:
+    """Validate ``mesh`` and its Euler relation; return its counts."""
+    validate(mesh)
+    assert euler_ok(mesh)
+    return mesh.counts()
+
+
+def three_point_spheres() -> tuple[Mesh, list[int]]:
+    m = Mesh()
+    return m, [m.create_vertex((float(i), 0.0, 0.0)) for i in range(3)]
+
+
+# -- insert_edge ---------------------------------------------------------------
+
+def test_cube_diagonal_insert_splits_the_face():
+    m = cube()
+    e = m.insert_edge(0, 2)
+    assert checked(m) == (8, 13, 7)
+    assert genus(m) == 0
+    assert m.edge_corners(e) == (0, 2)
+    assert sorted(m.face_size(f) for f in m.edge_faces(e)) == [3, 3]
+
+
+def test_cofacial_insert_keeps_corner1_and_corners_after_corner2():
+    m = cube()
+    face = m.corner_face(0)
+    m.insert_edge(0, 2)
+    assert m.corner_face(0) == face and m.corner_face(3) == face
+    new = m.corner_face(1)
+    assert new != face and m.corner_face(2) == new
+    assert m.face_vertices(new)[1:] == [1, 2] or sorted(m.face_vertices(new)) == [0, 2, 3]
+
+
+def test_insert_edge_far_corners_are_new_copies():
+    m = cube()
+    before = set(m.corner_ids().tolist())
+    e = m.insert_edge(0, 2)
+    c0, c1 = m.edge_corners(e)
+    after0, after1 = m.corner_next(c0), m.corner_next(c1)
+    assert {after0, after1}.isdisjoint(before)
+    assert m.corner_vertex(after0) == m.corner_vertex(c1)
+    assert m.corner_vertex(after1) == m.corner_vertex(c0)
+
+
+def test_top_to_bottom_corner_insert_adds_a_handle():
+    m = cube()
+    e = m.insert_edge(0, 4)  # bottom face at vertex 0, top face at vertex 4
+    assert checked(m) == (8, 13, 5)
+    assert genus(m) == 1
+    assert m.edge_faces(e)[0] == m.edge_faces(e)[1]
+    assert m.face_size(m.edge_faces(e)[0]) == 10
+
+
+def test_merged_face_visits_a_vertex_twice_and_corner_at_is_ambiguous():
+    m = cube()
+    e = m.insert_edge(0, 4)
+    face = m.edge_faces(e)[0]
+    assert m.face_vertices(face).count(0) == 2
+    at_zero = [c for c in m.face_corners(face) if m.corner_vertex(c) == 0]
+    with pytest.raises(DLFLError) as info:
+        m.corner_at(face, 0)
+    message = str(info.value)
+    assert "ambiguous" in message
+    assert all(str(c) in message for c in at_zero)
+
+
+def test_adjacent_corner_insert_gives_a_two_gon():
+    m = cube()
+    e = m.insert_edge(0, 1)
+    assert checked(m) == (8, 13, 7)
+    assert sorted(m.face_size(f) for f in m.edge_faces(e)) == [2, 4]
+
+
+def test_self_loop_inside_a_face():
+    m2 = path_face()
+    # face [0, 1, 2, 1] has two corners at vertex 1: joining them is a self-loop
+    c1, c3 = 1, 3
+    e2 = m2.insert_edge(c1, c3)
+    assert checked(m2) == (3, 3, 2)
+    v0, v1 = m2.edge_vertices(e2)
+    assert v0 == v1 == 1
+    assert m2.valence(1) == 4
+    assert m2.delete_edge(e2) and checked(m2) == (3, 2, 1)
+
+
+def test_three_point_spheres_make_a_triangle():
+    m, (p1, p2, p3) = three_point_spheres()
+    assert checked(m) == (3, 0, 3)
+    e1 = m.insert_edge(m.vertex_corner(p1), m.vertex_corner(p2))
+    assert checked(m) == (3, 1, 2)
+    assert m.face_size(m.edge_faces(e1)[0]) == 2
+    m.insert_edge(m.vertex_corner(p3), m.vertex_corner(p2))
+    assert checked(m) == (3, 2, 1)
+    (face,) = {m.corner_face(c) for c in m.vertex_corners(p2)}
+    assert sorted(m.face_vertices(face)) == sorted([p1, p2, p2, p3])
+    m.insert_edge(m.corner_at(face, p3), m.corner_at(face, p1))
+    assert checked(m) == (3, 3, 2)
+    assert sorted(m.face_size(f) for f in m.face_ids().tolist()) == [3, 3]
+
+
+def test_two_point_spheres_joined_then_deleted_with_cleanup():
+    m, (p1, p2, _) = three_point_spheres()
+    m.remove_vertex(_)
+    e = m.insert_edge(m.vertex_corner(p1), m.vertex_corner(p2))
+    assert checked(m) == (2, 1, 1)
+    assert m.delete_edge(e) == []
+    assert checked(m) == (0, 0, 0)
+
+
+def test_two_point_spheres_joined_then_deleted_without_cleanup():
+    m, (p1, p2, p3) = three_point_spheres()
+    m.remove_vertex(p3)
+    e = m.insert_edge(m.vertex_corner(p1), m.vertex_corner(p2))
+    faces = m.delete_edge(e, cleanup=False)
+    assert checked(m) == (2, 0, 2)
+    assert len(faces) == 2
+    assert m.is_point_sphere(p1) and m.is_point_sphere(p2)
+
+
+def test_insert_between_components_joins_them():
+    from tests.meshes import two_cubes
+
+    m = two_cubes()
+    assert num_components(m) == 2
+    m.insert_edge(0, 24)  # a corner of each cube
+    assert checked(m) == (16, 25, 11)
+    assert num_components(m) == 1 and genus(m) == 0
+
+
+def test_point_sphere_joined_to_a_cube_corner():
+    m = cube()
+    p = m.create_vertex((2.0, 2.0, 2.0))
+    assert checked(m) == (9, 12, 7)
+    e = m.insert_edge(m.vertex_corner(p), 0)
+    assert checked(m) == (9, 13, 6)
+    assert m.valence(p) == 1
+    assert m.face_size(m.edge_faces(e)[0]) == 6
+
+
+def test_insert_same_corner_twice_is_refused():
+    m = cube()
+    before = snapshot(m)
+    with pytest.raises(DLFLError, match="corner 3 twice"):
+        m.insert_edge(3, 3)
+    assert snapshot(m) == before
+
+
+# -- delete_edge ---------------------------------------------------------------
+
+def test_delete_a_cube_edge_merges_two_faces():
+    m = cube()
+    e = m.corner_edge(0)
+    faces = m.delete_edge(e)
+    assert checked(m) == (8, 11, 5)
+    assert len(faces) == 1 and m.face_size(faces[0]) == 6
+
+
+@pytest.mark.parametrize(("make", "c1", "c2"), [
+    (cube, 0, 2), (cube, 0, 1), (cube, 2, 0), (tetrahedron, 0, 2), (path_face, 1, 3),
+])
+def test_cofacial_insert_then_delete_restores_every_id(make, c1, c2):
+    m = make()
+    before = snapshot(m)[:-1]
+    m.delete_edge(m.insert_edge(c1, c2))
+    validate(m)
+    assert snapshot(m)[:-1] == before
+
+
+@pytest.mark.parametrize(("make", "c1", "c2"), [(cube, 0, 4), (tetrahedron, 0, 3), (torus, 0, 5)])
+def test_merging_insert_then_delete_restores_all_but_the_face_id(make, c1, c2):
+    m = make()
+    before = corner_structure(m)
+    faces = m.face_ids().tolist()
+    m.delete_edge(m.insert_edge(c1, c2))
+    validate(m)
+    assert corner_structure(m) == before
+    assert len(set(m.face_ids().tolist()) - set(faces)) == 1
+
+
+def test_delete_edge_splitting_a_face_gives_two_faces():
+    m = cube()
+    e = m.insert_edge(0, 4)
+    faces = m.delete_edge(e)
+    assert checked(m) == (8, 12, 6) and genus(m) == 0
+    assert sorted(m.face_size(f) for f in faces) == [4, 4]
+
+
+def test_delete_dangling_edge_with_and_without_cleanup():
+    for cleanup, expected in ((True, (8, 12, 6)), (False, (9, 12, 7))):
+        m = cube()
+        p = m.create_vertex((2.0, 2.0, 2.0))
+        e = m.insert_edge(m.vertex_corner(p), 0)
+        m.delete_edge(e, cleanup=cleanup)
+        assert checked(m) == expected
+        assert m.has_vertex(p) is not cleanup
+
+
+def test_delete_edge_of_a_two_gon():
+    m = cube()
+    e = m.insert_edge(0, 1)
+    faces = m.delete_edge(e)
+    assert checked(m) == (8, 12, 6) and len(faces) == 1
+
+
+def test_delete_cube_edges_until_a_tree_remains():
+    m = cube()
+    # keep deleting edges between different faces: the faces merge into one
+    while m.num_faces > 1:
+        e = next(e for e in m.edge_ids().tolist() if len(set(m.edge_faces(e))) == 2)
+        m.delete_edge(e)
+        checked(m)
+    assert m.counts() == (8, 7, 1)
+    # now every edge has the one face on both sides: deleting a leaf edge drops a vertex
+    while m.num_edges:
+        m.delete_edge(int(m.edge_ids()[0]))
+        checked(m)
+    assert m.counts() == (0, 0, 0)
+
+
+# -- subdivide_edge --------------------------------------------------------------
+
+def test_subdivide_cube_edge():
+    m = cube()
+    e = m.corner_edge(0)
+    (v,) = m.subdivide_edge(e)
+    assert checked(m) == (9, 13, 6)
+    a, b = m.edge_vertices(e)
+    assert a == 0 and b == v
+    np.testing.assert_allclose(m.position(v), [0.0, 0.5, 0.0])
+
+
+def test_subdivide_edge_in_n_divisions_places_points_evenly():
+    m = cube()
+    e = m.corner_edge(0)  # vertex 0 -> vertex 3
+    p0, p1 = m.position(0), m.position(3)
+    new = m.subdivide_edge(e, 4)
+    assert checked(m) == (11, 15, 6)
+    assert len(new) == 3
+    for i, v in enumerate(new, start=1):
+        np.testing.assert_allclose(m.position(v), p0 + (p1 - p0) * i / 4)
+    assert m.face_size(m.corner_face(0)) == 7
+
+
+def test_subdivide_edge_one_division_is_a_no_op():
+    m = cube()
+    before = snapshot(m)
+    assert m.subdivide_edge(m.corner_edge(0), 1) == []
+    assert snapshot(m) == before
+
+
+@pytest.mark.parametrize("bad", [0, -2, 2.5, "3", True])
+def test_subdivide_edge_refuses_bad_divisions(bad):
+    m = cube()
+    before = snapshot(m)
+    with pytest.raises(DLFLError, match="divisions"):
+        m.subdivide_edge(m.corner_edge(0), bad)
+    assert snapshot(m) == before
+
+
+def test_subdivide_a_self_loop():
+    m = path_face()
+    e = m.insert_edge(1, 3)
+    (v,) = m.subdivide_edge(e)
+    assert checked(m) == (4, 4, 2)
+    assert m.valence(v) == 2
+
+
+# -- collapse_edge ---------------------------------------------------------------
+
+def test_collapse_a_cube_edge():
+    m = cube()
+    e = m.corner_edge(0)  # vertex 0 -> vertex 3
+    survivor = m.collapse_edge(e)
+    assert checked(m) == (7, 11, 6)
+    assert survivor == 0 and not m.has_vertex(3)
+    np.testing.assert_allclose(m.position(0), [0.0, 0.5, 0.0])
+    assert sorted(m.face_size(f) for f in m.face_ids().tolist()) == [3, 3, 4, 4, 4, 4]
+
+
+def test_collapse_a_tetrahedron_edge_cleans_up_two_gons():
+    m = tetrahedron()
+    m.collapse_edge(m.corner_edge(0))
+    assert checked(m) == (3, 3, 2)
+    assert sorted(m.face_size(f) for f in m.face_ids().tolist()) == [3, 3]
+
+
+def test_collapse_without_cleanup_keeps_two_gons():
+    m = tetrahedron()
+    m.collapse_edge(m.corner_edge(0), cleanup=False)
+    assert checked(m) == (3, 5, 4)
+    assert sorted(m.face_size(f) for f in m.face_ids().tolist()) == [2, 2, 3, 3]
+
+
+def test_collapse_a_self_loop_deletes_it():
+    m = path_face()
+    e = m.insert_edge(1, 3)
+    assert m.collapse_edge(e) == 1
+    assert checked(m) == (3, 2, 1)
+
+
+def test_collapse_the_edge_of_two_joined_point_spheres():
+    m, (p1, p2, p3) = three_point_spheres()
+    e = m.insert_edge(m.vertex_corner(p1), m.vertex_corner(p2))
+    v = m.collapse_edge(e)
+    assert checked(m) == (2, 0, 2)
+    np.testing.assert_allclose(m.position(v), [0.5, 0.0, 0.0])
+    assert m.is_point_sphere(v) and m.has_vertex(p3)
+
+
+def test_collapse_a_dangling_edge():
+    m = cube()
+    p = m.create_vertex((0.0, 0.0, 2.0))
+    e = m.insert_edge(m.vertex_corner(p), 0)
+    v = m.collapse_edge(e)
+    assert checked(m) == (8, 12, 6)
+    assert v == 0 and not m.has_vertex(p)
+    np.testing.assert_allclose(m.position(0), [0.0, 0.0, 1.0])
+
+
+def test_collapse_all_edges_of_a_triangle():
+    m = triangle()
+    m.collapse_edge(m.corner_edge(0))
+    assert checked(m) == (2, 1, 1)
+    m.collapse_edge(int(m.edge_ids()[0]))
+    assert checked(m) == (1, 0, 1)
+
+
+# -- create_vertex / remove_vertex / create_face -------------------------------
+
+def test_create_and_remove_a_point_sphere():
+    m = cube()
+    v = m.create_vertex([1, 2, 3])
+    assert checked(m) == (9, 12, 7)
+    assert m.is_point_sphere(v) and m.valence(v) == 0
+    assert m.face_size(m.corner_face(m.vertex_corner(v))) == 1
+    m.remove_vertex(v)
+    assert checked(m) == (8, 12, 6)
+
+
+def test_remove_vertex_with_edges_is_refused():
+    m = cube()
+    before = snapshot(m)
+    with pytest.raises(DLFLError, match="vertex 0 has 3 edge end"):
+        m.remove_vertex(0)
+    assert snapshot(m) == before
+
+
+def test_create_face_makes_a_two_sided_polygon():
+    m = Mesh()
+    front, back = m.create_face([(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0)])
+    assert checked(m) == (4, 4, 2)
+    vs = m.face_vertices(front)
+    assert m.face_vertices(back) == [vs[0], *vs[:0:-1]]
+    assert m.create_face([(0, 0, 1), (1, 0, 1)]) and checked(m) == (6, 6, 4)
+
+
+@pytest.mark.parametrize("points", [[], [(0, 0, 0)], [(0, 0), (1, 1)], [(0, 0, 0), "abc"]])
+def test_create_face_refuses_bad_points(points):
+    m = cube()
+    before = snapshot(m)
+    with pytest.raises(DLFLError):
+        m.create_face(points)
+    assert snapshot(m) == before
+
+
+def test_one_gon_from_a_soup():
+    from livemod.dlfl import from_polygons
+
+    m = from_polygons([[0, 0, 0], [1, 0, 0]], [[0], [1]])
+    assert checked(m) == (2, 0, 2)
+    assert m.is_point_sphere(0) and m.is_point_sphere(1)
+
+
+# -- ids and bad input ---------------------------------------------------------
+
+def test_ids_are_never_reused():
+    m = cube()
+    seen = {kind: set(ids.tolist()) for kind, ids in (
+        ("e", m.edge_ids()), ("f", m.face_ids()), ("c", m.corner_ids()), ("v", m.vertex_ids()))}
+    for _ in range(20):
+        e = m.insert_edge(0, 2)
+        assert e not in seen["e"]
+        seen["e"].add(e)
+        for f in m.edge_faces(e):
+            seen["f"].add(f)
+        m.delete_edge(e)
+        v = m.create_vertex()
+        assert v not in seen["v"]
+        seen["v"].add(v)
+        m.remove_vertex(v)
+    validate(m)
+
+
+def test_deleted_ids_raise_naming_them():
+    m = cube()
+    e = m.corner_edge(0)
+    m.delete_edge(e)
+    with pytest.raises(DLFLError, match=f"edge {e} was deleted"):
+        m.delete_edge(e)
+    with pytest.raises(DLFLError, match="edge 99 does not exist"):
+        m.edge_corners(99)
+    v = m.create_vertex()
+    m.remove_vertex(v)
+    with pytest.raises(DLFLError, match=f"vertex {v} was deleted"):
+        m.position(v)
+    with pytest.raises(DLFLError, match="face 999 does not exist"):
+        m.face_corners(999)
+    with pytest.raises(DLFLError, match="corner -1 does not exist"):
+        m.corner_next(-1)
+
+
+@pytest.mark.parametrize("bad", [1.0, "2", None, (0, 1), True, [3]])
+def test_wrong_kind_of_argument_is_refused(bad):
+    m = cube()
+    before = snapshot(m)
+    with pytest.raises(DLFLError, match="expected a corner id"):
+        m.insert_edge(bad, 2)
+    with pytest.raises(DLFLError, match="expected a edge id|expected an edge id"):
+        m.delete_edge(bad)
+    with pytest.raises(DLFLError, match="expected a vertex id"):
+        m.remove_vertex(bad)
+    assert snapshot(m) == before
+
+
+def test_numpy_integers_are_accepted_as_ids():
+    m = cube()
+    e = m.insert_edge(np.int64(0), np.int32(2))
+    assert m.delete_edge(np.int64(e))
+    validate(m)
+
+
+def test_failing_operators_leave_the_mesh_unchanged():
+    m = torus()
+    e = m.insert_edge(0, 2)
+    dead = m.corner_edge(1)
+    m.delete_edge(dead)
+    before = snapshot(m)
+    attempts = [
+        lambda: m.insert_edge(0, 10_000),
+        lambda: m.insert_edge(1, 1),
+        lambda: m.delete_edge(dead),
+        lambda: m.collapse_edge(dead),
+        lambda: m.subdivide_edge(dead, 3),
+        lambda: m.subdivide_edge(e, 0),
+        lambda: m.remove_vertex(0),
+        lambda: m.create_vertex((1, 2)),
+        lambda: m.create_face([(0, 0, 0)]),
+        lambda: m.set_position(0, (1, 2, "x")),
+        lambda: m.corner_at(0, 11),
+    ]
+    for attempt in attempts:
+        with pytest.raises(DLFLError):
+            attempt()
+        assert snapshot(m) == before
+
+
+def test_memory_does_not_grow_with_history():
+    m = cube()
+    caps = [t.capacity for t in (m._c, m._e, m._f, m._v)]
+    for _ in range(100_000):
+        m.delete_edge(m.insert_edge(0, 2))
+    validate(m)
+    # a table grows at most once (doubling) to make room for the transient elements
+    tables = (m._c, m._e, m._f, m._v)
+    assert all(t.capacity <= max(2 * c, 16) for t, c in zip(tables, caps, strict=True))
+    assert [t.n for t in tables] == [26, 13, 7, 8]  # slots ever used: two more corners...
+    assert all(len(t.moved) <= t.count for t in (m._c, m._e, m._f, m._v))
+    assert m.next_ids()[1] == 12 + 100_000
+
+
+# -- queries -------------------------------------------------------------------
+
+def test_vertex_rotation_queries():
+    m = cube()
+    assert m.valence(0) == 3
+    assert sorted(m.vertex_faces(0)) == [0, 2, 5]
+    assert len(m.vertex_edges(0)) == 3
+    for c in m.vertex_corners(0):
+        assert m.corner_vertex(m.corner_vnext(c)) == 0
+    assert m.corner_at(0, 3) == 1
+
+
+def test_corner_walk_queries():
+    m = cube()
+    assert m.face_corners(0) == [0, 1, 2, 3]
+    assert m.face_vertices(1) == [4, 5, 6, 7]
+    assert [m.corner_next(c) for c in range(4)] == [1, 2, 3, 0]
+    assert [m.corner_prev(c) for c in range(4)] == [3, 0, 1, 2]
+    assert len(m.face_edges(0)) == 4
+    assert m.face_corner(2) == 8
+
+
+def test_hole_flags():
+    m = triangle()
+    holes = [f for f in m.face_ids().tolist() if m.is_hole(f)]
+    assert len(holes) == 1
+    m.set_hole(holes[0], False)
+    assert not m.is_hole(holes[0])
+    # splitting a hole gives two holes
+    hole = m.corner_face(m.edge_corners(m.corner_edge(0))[1])
+    m.set_hole(hole)
+    ring = m.face_corners(hole)
+    e = m.insert_edge(ring[0], ring[1])
+    assert all(m.is_hole(f) for f in m.edge_faces(e))
+
+
+def test_set_positions_checks_shape():
+    m = cube()
+    m.set_positions([0, 1], [[9, 9, 9], [8, 8, 8]])
+    np.testing.assert_allclose(m.position(1), [8, 8, 8])
+    m.set_positions([2, 3], (1, 1, 1))
+    np.testing.assert_allclose(m.position(3), [1, 1, 1])
+    with pytest.raises(DLFLError, match="shape"):
+        m.set_positions([0, 1], [[1, 2, 3]])
+
+
+def test_copy_is_deep_and_keeps_ids():
+    m = cube()
+    c = m.copy()
+    m.insert_edge(0, 2)
+    assert c.counts() == (8, 12, 6)
+    validate(c)
+    assert c.next_ids() == (8, 12, 6, 24)
+    e = c.insert_edge(0, 2)
+    assert e == 12
+    validate(c)
