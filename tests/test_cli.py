@@ -1,0 +1,52 @@
+"""The livemod command line: info and convert (run/batch/view/render are tested with
+their subsystems)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from livemod.cli import build_parser, main
+
+SAMPLES = Path(__file__).resolve().parents[2] / "shared" / "data" / "topmod-objs"
+
+
+def test_info_prints_counts_genus_and_sizes_of_a_shape(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["info", "cube"]) == 0
+    out = capsys.readouterr().out
+    assert "Number of vertices : 8" in out
+    assert "Number of faces : 6" in out
+    assert "Number of edges : 12" in out
+    assert "Genus : 0" in out
+    assert "Components : 1 (genus per component: 0)" in out
+    assert "Face sizes : 6x4" in out
+    assert "Valid : yes" in out
+
+
+def test_info_reports_genus_of_a_sample_torus(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["info", str(SAMPLES / "donuthexa1.obj")]) == 0
+    out = capsys.readouterr().out
+    assert "Number of vertices : 100" in out
+    assert "Genus : 1" in out
+
+
+def test_info_of_a_missing_file_is_one_clear_error(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["info", "no-such-mesh.obj"]) == 1
+    err = capsys.readouterr().err
+    assert err.startswith("livemod: error:")
+    assert "no-such-mesh.obj" in err
+
+
+def test_convert_round_trips_through_dlfl(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    out = tmp_path / "cube.dlfl"
+    assert main(["convert", str(SAMPLES / "cube.obj"), str(out)]) == 0
+    assert "8 vertices, 12 edges, 6 faces" in capsys.readouterr().out
+    assert main(["info", str(out)]) == 0
+    assert "Number of faces : 6" in capsys.readouterr().out
+
+
+def test_every_subcommand_is_registered() -> None:
+    parser = build_parser()
+    choices = parser._subparsers._group_actions[0].choices  # type: ignore[union-attr]
+    assert {"info", "convert", "run", "batch", "view", "render"} <= set(choices)
