@@ -1,0 +1,110 @@
+"""GL-free preparation of render buffers from :class:`MeshArrays` (numpy only).
+
+Everything the renderer uploads is computed here in one vectorized pass, so it can
+be tested and benchmarked without a GL context:
+
+* ``positions``: one float32 position per vertex, shared by faces, edges and points;
+* ``triangles``: the fans of every non-hole face, as vertex indices;
+* ``triangle_face``: the dense face index of each triangle; the fragment shader looks
+  it up with ``gl_PrimitiveID``, so there is no per-corner vertex duplication and
+  flat normals come from screen-space derivatives;
+* ``lines``: the two vertex indices of each edge (dense edge order).
+
+Pick ids pack an element kind in the top bits and ``dense index + 1`` below, so 0
+means background.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from livemod.dlfl.arrays import MeshArrays
+
+KIND_FACE, KIND_EDGE, KIND_VERTEX = 1, 2, 3
+KIND_SHIFT = 28
+INDEX_MASK = (1 << KIND_SHIFT) - 1
+
+
+@dataclass(frozen=True)
+class RenderGeometry:
+    """Buffers ready for upload.
+
+    Attributes:
+        positions: ``(V, 3)`` float32 vertex positions.
+        triangles: ``(T, 3)`` uint32 vertex indices of the face fans (holes left out).
+        triangle_face: ``(T,)`` uint32 dense face index of each triangle.
+        lines: ``(E, 2)`` uint32 vertex indices of each edge.
+        bounds: ``(2, 3)`` float64 min and max corner (zeros if empty).
+    """
+
+    positions: np.ndarray
+    triangles: np.ndarray
+    triangle_face: np.ndarray
+    lines: np.ndarray
+    bounds: np.ndarray
+
+    @property
+    def center(self) -> np.ndarray:
+        """``(3,)`` float64 centre of the bounding box."""
+        return np.asarray(self.bounds.mean(axis=0))
+
+    @property
+    def radius(self) -> float:
+        """Radius of the sphere around the bounding box (at least 1e-6)."""
+        return max(float(np.linalg.norm(self.bounds[1] - self.bounds[0])) / 2.0, 1e-6)
+
+
+def fan_triangles(arrays: MeshArrays) -> tuple[np.ndarray, np.ndarray]:
+    """Triangulate every non-hole face as a fan from its first corner.
+
+    Returns:
+        ``(triangles (T, 3) uint32 vertex indices, triangle_face (T,) uint32)``.
+        Faces with fewer than three corners give no triangle.
+    """
+    sizes = arrays.face_sizes
+    fan_counts = np.where(arrays.face_hole, 0, np.maximum(sizes - 2, 0))
+    face_of_tri = np.repeat(np.arange(len(sizes), dtype=np.int64), fan_counts)
+    first_tri = np.cumsum(fan_counts) - fan_counts
+    k = np.arange(len(face_of_tri), dtype=np.int64) - first_tri[face_of_tri]
+    base = arrays.face_offsets[:-1][face_of_tri]
+    cv = arrays.corner_vertex
+    tris = np.stack([cv[base], cv[base + k + 1], cv[base + k + 2]], axis=1)
+    return tris.astype(np.uint32), face_of_tri.astype(np.uint32)
+
+
+def build_geometry(arrays: MeshArrays) -> RenderGeometry:
+    """Prepare all buffers of ``arrays`` (see the module docstring)."""
+    positions = np.ascontiguousarray(arrays.positions, dtype=np.float32)
+    triangles, triangle_face = fan_triangles(arrays)
+    lines = arrays.edge_vertices.astype(np.uint32)
+    if len(arrays.positions):
+        bounds = np.stack([arrays.positions.min(axis=0), arrays.positions.max(axis=0)])
+    else:
+        bounds = np.zeros((2, 3))
+    return RenderGeometry(positions, triangles, triangle_face, lines, bounds)
+
+
+def decode_pick(pick_id: int) -> tuple[int, int] | None:
+    """``(kind, dense index)`` of a pick id, or None for background."""
+    if pick_id == 0:
+        return None
+    return pick_id >> KIND_SHIFT, (pick_id & INDEX_MASK) - 1
+
+
+def corner_points(arrays: MeshArrays, corners: np.ndarray, inset: float = 0.2) -> np.ndarray:
+    """``(k, 3)`` float32 marker positions of dense ``corners``: each vertex pulled
+    ``inset`` of the way toward its face's centroid, so a corner shows inside its face."""
+    from livemod.dlfl.analysis import face_centroids
+
+    if len(corners) == 0:
+        return np.zeros((0, 3), dtype=np.float32)
+    centroids = face_centroids(arrays)[arrays.corner_face[corners]]
+    at = arrays.positions[arrays.corner_vertex[corners]]
+    return (at + inset * (centroids - at)).astype(np.float32)
+
+
+def dense_flags(all_ids: np.ndarray, picked: tuple[int, ...]) -> np.ndarray:
+    """``(n,)`` uint8: 1 where ``all_ids`` is one of ``picked`` (ids, not indices)."""
+    return np.isin(all_ids, np.asarray(picked, dtype=np.int64)).astype(np.uint8)

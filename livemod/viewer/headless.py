@@ -1,0 +1,164 @@
+"""Offscreen rendering over a standalone EGL context: frames, turntables, files.
+
+Uses the same :class:`Renderer` as the window. On a machine with no GPU, EGL gives
+Mesa's llvmpipe; its output is bit-identical across runs.
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+from collections.abc import Callable, Iterator
+from pathlib import Path
+from typing import TextIO
+
+import moderngl
+import numpy as np
+
+from livemod.dlfl.arrays import MeshArrays
+from livemod.dlfl.scene import Selection
+
+from .camera import Camera
+from .renderer import Renderer, Style
+
+
+def create_context() -> moderngl.Context:
+    """A standalone GL 3.3+ context over EGL (no display needed)."""
+    options: dict = {"backend": "egl", "require": 330}
+    return moderngl.create_standalone_context(**options)
+
+
+class Offscreen:
+    """An offscreen target of ``size`` with its own context and renderer.
+
+    Colour is rendered with ``samples``-fold MSAA and resolved into a plain
+    framebuffer that :meth:`read` returns as an image.
+    """
+
+    def __init__(self, size: tuple[int, int], samples: int = 4,
+                 ctx: moderngl.Context | None = None) -> None:
+        self.ctx = ctx if ctx is not None else create_context()
+        self.size = (int(size[0]), int(size[1]))
+        self.renderer = Renderer(self.ctx)
+        self.resolved = self.ctx.framebuffer([self.ctx.renderbuffer(self.size, 4)],
+                                             self.ctx.depth_renderbuffer(self.size))
+        self.samples = samples
+        self.target = self.resolved
+        if samples > 0:
+            self.target = self.ctx.framebuffer(
+                [self.ctx.renderbuffer(self.size, 4, samples=samples)],
+                self.ctx.depth_renderbuffer(self.size, samples=samples))
+
+    def render(self, camera: Camera, style: Style, overlay: np.ndarray | None = None,
+               ) -> np.ndarray:
+        """Draw one frame; returns ``(H, W, 3)`` uint8 RGB, row 0 at the top."""
+        self.renderer.draw(self.target, camera, style)
+        if self.samples > 0:
+            self.ctx.copy_framebuffer(self.resolved, self.target)
+        if overlay is not None:
+            self.renderer.draw_overlay(self.resolved, overlay)
+        raw = self.resolved.read(components=3, alignment=1)
+        width, height = self.size
+        return np.frombuffer(raw, dtype=np.uint8).reshape(height, width, 3)[::-1].copy()
+
+    def release(self) -> None:
+        """Free the context and everything in it."""
+        self.ctx.release()
+
+
+def framed_camera(arrays: MeshArrays | None, elevation: float = 25.0, yaw: float = 30.0,
+                  ortho: bool = False) -> Camera:
+    """A camera at ``yaw``/``elevation`` whose bounding-sphere fit holds at every yaw."""
+    camera = Camera(yaw=yaw, pitch=elevation, ortho=ortho)
+    if arrays is not None and len(arrays.positions):
+        camera.fit(np.stack([arrays.positions.min(axis=0), arrays.positions.max(axis=0)]))
+    return camera
+
+
+def turntable_cameras(camera: Camera, frames: int) -> Iterator[Camera]:
+    """``frames`` copies of ``camera`` evenly spaced around the up axis (no repeat of 360)."""
+    for index in range(frames):
+        turned = camera.copy()
+        turned.yaw = (camera.yaw + 360.0 * index / frames) % 360.0
+        yield turned
+
+
+def render_turntable(offscreen: Offscreen, camera: Camera, style: Style, frames: int,
+                     progress: Callable[[int, int], None] | None = None) -> list[np.ndarray]:
+    """Render ``frames`` turntable images (each ``(H, W, 3)`` uint8)."""
+    images = []
+    for index, turned in enumerate(turntable_cameras(camera, frames)):
+        images.append(offscreen.render(turned, style))
+        if progress is not None:
+            progress(index + 1, frames)
+    return images
+
+
+def frame_paths(out: str, frames: int) -> list[Path]:
+    """File names of a PNG sequence: ``out`` with ``{frame}`` or ``%03d``, or a folder."""
+    width = max(3, len(str(frames - 1)))
+    if "{frame" in out:
+        return [Path(out.format(frame=index)) for index in range(frames)]
+    if "%" in out:
+        return [Path(out % index) for index in range(frames)]
+    folder = Path(out)
+    return [folder / f"frame_{index:0{width}d}.png" for index in range(frames)]
+
+
+def write_images(out: str, images: list[np.ndarray], fps: float = 25.0) -> list[Path]:
+    """Write ``images``: a GIF if ``out`` ends in .gif, one PNG, or a PNG sequence.
+
+    Returns the paths written. GIF frame delays are whole centiseconds, so 25 fps
+    (40 ms) is exact.
+    """
+    from PIL import Image
+
+    target = Path(out)
+    if target.suffix.lower() == ".gif":
+        target.parent.mkdir(parents=True, exist_ok=True)
+        pictures = [Image.fromarray(image) for image in images]
+        pictures[0].save(target, save_all=True, append_images=pictures[1:],
+                         duration=round(1000.0 / fps), loop=0, optimize=False)
+        return [target]
+    if len(images) == 1 and "{frame" not in out and "%" not in out and target.suffix:
+        target.parent.mkdir(parents=True, exist_ok=True)
+        Image.fromarray(images[0]).save(target)
+        return [target]
+    paths = frame_paths(out, len(images))
+    for path, image in zip(paths, images, strict=True):
+        path.parent.mkdir(parents=True, exist_ok=True)
+        Image.fromarray(image).save(path)
+    return paths
+
+
+def progress_bar(stream: TextIO | None = None) -> Callable[[int, int], None]:
+    """A callback drawing ``[#####.....] k/N`` on ``stream`` (stderr by default)."""
+    out = stream if stream is not None else sys.stderr
+
+    def show(done: int, total: int) -> None:
+        filled = math.floor(30 * done / max(total, 1))
+        out.write(f"\rrendering [{'#' * filled}{'.' * (30 - filled)}] {done}/{total}")
+        if done >= total:
+            out.write("\n")
+        out.flush()
+
+    return show
+
+
+def render_arrays(arrays: MeshArrays | None, out: str, *, size: tuple[int, int] = (800, 600),
+                  turntable: int = 0, elevation: float = 25.0, style: Style | None = None,
+                  preview: MeshArrays | None = None, selection: Selection | None = None,
+                  progress: Callable[[int, int], None] | None = None) -> list[Path]:
+    """Render ``arrays`` to ``out`` (one frame, or a ``turntable`` of that many frames)."""
+    offscreen = Offscreen(size)
+    try:
+        offscreen.renderer.set_mesh(arrays, preview)
+        if selection is not None:
+            offscreen.renderer.set_selection(selection)
+        camera = framed_camera(arrays, elevation)
+        style = style if style is not None else Style()
+        frames = max(turntable, 1)
+        images = render_turntable(offscreen, camera, style, frames, progress)
+    finally:
+        offscreen.release()
+    return write_images(out, images)

@@ -1,0 +1,470 @@
+"""The renderer shared by the live window and headless rendering.
+
+:class:`Renderer` owns the GL programs and the uploaded mesh; it draws into any
+framebuffer (the window's, or an offscreen one) and answers picks through an
+integer id framebuffer. Every method must be called on the thread that owns ``ctx``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import moderngl
+import numpy as np
+
+from livemod.dlfl.arrays import MeshArrays
+from livemod.dlfl.scene import Selection
+
+from . import shaders
+from .camera import Camera
+from .geometry import RenderGeometry, build_geometry, corner_points, decode_pick, dense_flags
+from .text import QUAD_FLOATS, glyph_atlas, layout_labels
+
+TABLE_WIDTH = 4096
+_NUMPY_DTYPES = {"u1": np.uint8, "u4": np.uint32}
+MAX_LABELS = 20000
+LABEL_KINDS = ("faces", "edges", "vertices")
+
+PALETTE = np.array([
+    (0.93, 0.93, 0.93, 1.0),   # 0 HUD text
+    (1.00, 0.86, 0.45, 1.0),   # 1 face label text
+    (0.55, 0.90, 1.00, 1.0),   # 2 edge label text
+    (1.00, 0.62, 0.85, 1.0),   # 3 vertex label text
+    (1.00, 0.45, 0.40, 1.0),   # 4 error text
+    (0.62, 0.64, 0.68, 1.0),   # 5 dim text
+    (0.55, 0.95, 0.55, 1.0),   # 6 ok text
+    (1.00, 0.80, 0.30, 1.0),   # 7 warning text
+    (0.05, 0.05, 0.07, 0.72),  # 8 HUD panel
+    (0.20, 0.14, 0.02, 0.78),  # 9 face label box
+    (0.02, 0.14, 0.20, 0.78),  # 10 edge label box
+    (0.20, 0.03, 0.14, 0.78),  # 11 vertex label box
+    (0.30, 0.03, 0.03, 0.85),  # 12 error panel
+    (0.0, 0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 0.0),
+], dtype=np.float32)
+
+BASE_COLOR = (1.0, 0.59, 0.36)      # TopMod's render colour (255, 151, 92)
+PREVIEW_COLOR = (0.62, 0.78, 0.95)
+BACK_COLOR = (0.45, 0.45, 0.62)
+SELECTED_COLOR = (0.35, 0.95, 0.35)
+EDGE_COLOR = (0.08, 0.08, 0.09)
+POINT_COLOR = (0.95, 0.95, 0.2)
+CORNER_COLOR = (0.1, 1.0, 1.0)
+
+
+@dataclass(frozen=True)
+class Style:
+    """What to draw.
+
+    Attributes:
+        faces, edges, vertices: show these elements.
+        preview: draw the patch-smoothed preview instead of the faces (when present).
+        labels: which id labels to draw, a subset of ``LABEL_KINDS``.
+        labels_selected_only: label only the selected elements.
+        point_size: vertex point size in pixels.
+        background: RGBA clear colour.
+    """
+
+    faces: bool = True
+    edges: bool = True
+    vertices: bool = False
+    preview: bool = False
+    labels: frozenset[str] = field(default_factory=frozenset)
+    labels_selected_only: bool = False
+    point_size: float = 6.0
+    background: tuple[float, float, float, float] = (0.16, 0.17, 0.19, 1.0)
+
+
+@dataclass(frozen=True)
+class Pick:
+    """A picked element: ``kind`` is "face", "edge", "vertex" or "corner"."""
+
+    kind: str
+    dense_index: int
+    element_id: int
+
+
+def _uint_table(ctx: moderngl.Context, values: np.ndarray, dtype: str) -> moderngl.Texture:
+    """Upload ``(n,)`` integers as a 2D integer texture read by ``fetch`` in GLSL."""
+    n = max(len(values), 1)
+    width = min(n, TABLE_WIDTH)
+    height = (n + width - 1) // width
+    padded = np.zeros(width * height, dtype=_NUMPY_DTYPES[dtype])
+    padded[: len(values)] = values
+    texture = ctx.texture((width, height), 1, padded.tobytes(), dtype=dtype)
+    texture.filter = (moderngl.NEAREST, moderngl.NEAREST)
+    return texture
+
+
+class _MeshGPU:
+    """The GL objects of one uploaded mesh; ``release`` frees them."""
+
+    def __init__(self, ctx: moderngl.Context, programs: dict[str, moderngl.Program],
+                 geometry: RenderGeometry) -> None:
+        self.geometry = geometry
+        self.positions = ctx.buffer(geometry.positions.tobytes())
+        self.triangles = ctx.buffer(geometry.triangles.tobytes())
+        self.lines = ctx.buffer(geometry.lines.tobytes())
+        self.triangle_face = _uint_table(ctx, geometry.triangle_face, "u4")
+        n_faces = int(geometry.triangle_face.max()) + 1 if len(geometry.triangle_face) else 0
+        self.face_flags = _uint_table(ctx, np.zeros(n_faces, np.uint8), "u1")
+        self.edge_flags = _uint_table(ctx, np.zeros(len(geometry.lines), np.uint8), "u1")
+        self.vertex_flags = _uint_table(ctx, np.zeros(len(geometry.positions), np.uint8), "u1")
+        content = [(self.positions, "3f", "in_position")]
+        self.face_vao = ctx.vertex_array(programs["face"], content, self.triangles, 4)
+        self.edge_vao = ctx.vertex_array(programs["edge"], content, self.lines, 4)
+        self.point_vao = ctx.vertex_array(programs["point"], content)
+
+    def set_flags(self, face: np.ndarray, edge: np.ndarray, vertex: np.ndarray) -> None:
+        """Replace the selection flags; each ``(n,)`` uint8 in dense order."""
+        for texture, flags in ((self.face_flags, face), (self.edge_flags, edge),
+                               (self.vertex_flags, vertex)):
+            padded = np.zeros(texture.width * texture.height, dtype=np.uint8)
+            padded[: len(flags)] = flags
+            texture.write(padded.tobytes())
+
+    def release(self) -> None:
+        for obj in (self.face_vao, self.edge_vao, self.point_vao, self.positions,
+                    self.triangles, self.lines, self.triangle_face, self.face_flags,
+                    self.edge_flags, self.vertex_flags):
+            obj.release()
+
+
+def _matrix_bytes(matrix: np.ndarray) -> bytes:
+    """A row-major numpy ``(4, 4)`` as the column-major float32 GL expects."""
+    return np.ascontiguousarray(matrix.T, dtype=np.float32).tobytes()
+
+
+class Renderer:
+    """Draws meshes, selections, labels and screen text with one set of programs."""
+
+    def __init__(self, ctx: moderngl.Context) -> None:
+        self.ctx = ctx
+        self.programs = {
+            "face": ctx.program(vertex_shader=shaders.MESH_VERTEX,
+                                fragment_shader=shaders.FACE_FRAGMENT),
+            "edge": ctx.program(vertex_shader=shaders.MESH_VERTEX,
+                                fragment_shader=shaders.EDGE_FRAGMENT),
+            "point": ctx.program(vertex_shader=shaders.MESH_VERTEX,
+                                 fragment_shader=shaders.POINT_FRAGMENT),
+            "text": ctx.program(vertex_shader=shaders.TEXT_VERTEX,
+                                fragment_shader=shaders.TEXT_FRAGMENT),
+        }
+        self._bind_samplers()
+        self.atlas = glyph_atlas()
+        height, width = self.atlas.image.shape
+        self.atlas_texture = ctx.texture((width, height), 1, self.atlas.image.tobytes())
+        self.atlas_texture.filter = (moderngl.NEAREST, moderngl.NEAREST)
+        corners = np.array([0, 0, 1, 0, 0, 1, 1, 1], dtype=np.float32)
+        self.quad = ctx.buffer(corners.tobytes())
+        self.arrays: MeshArrays | None = None
+        self.preview: MeshArrays | None = None
+        self.selection = Selection()
+        self._mesh: _MeshGPU | None = None
+        self._preview: _MeshGPU | None = None
+        self._label_cache: tuple[object, np.ndarray] | None = None
+        self._pick_fbo: moderngl.Framebuffer | None = None
+
+    def _bind_samplers(self) -> None:
+        """Fix each program's texture units: 0 atlas/triangle_face, 1..3 flags."""
+        units = {"triangle_face": 0, "face_flags": 1, "edge_flags": 2, "vertex_flags": 3,
+                 "atlas": 0}
+        for program in self.programs.values():
+            for name, unit in units.items():
+                if name in program:
+                    program[name].value = unit  # type: ignore[union-attr]
+        self.programs["text"]["palette"].write(PALETTE.tobytes())  # type: ignore[union-attr]
+        self.programs["text"]["highlight"].value = (0.15, 0.55, 0.15, 0.9)  # type: ignore[union-attr]
+
+    # -- content ---------------------------------------------------------------
+
+    def set_mesh(self, arrays: MeshArrays | None, preview: MeshArrays | None = None) -> None:
+        """Upload ``arrays`` (and its patch ``preview``) in one step, replacing the old."""
+        if self._mesh is not None:
+            self._mesh.release()
+        self._mesh = None
+        self.arrays = arrays
+        if arrays is not None:
+            self._mesh = _MeshGPU(self.ctx, self.programs, build_geometry(arrays))
+        self.set_preview(preview)
+        self.set_selection(self.selection)
+
+    def set_preview(self, preview: MeshArrays | None) -> None:
+        """Upload (or drop, with None) the patch-smoothed preview mesh."""
+        if self._preview is not None:
+            self._preview.release()
+        self._preview = None
+        self.preview = preview
+        if preview is not None:
+            self._preview = _MeshGPU(self.ctx, self.programs, build_geometry(preview))
+
+    def set_selection(self, selection: Selection) -> None:
+        """Highlight ``selection`` (ids; ids missing from the mesh are ignored)."""
+        self.selection = selection
+        self._label_cache = None
+        arrays = self.arrays
+        if arrays is None or self._mesh is None:
+            return
+        self._mesh.set_flags(dense_flags(arrays.face_ids, selection.faces),
+                             dense_flags(arrays.edge_ids, selection.edges),
+                             dense_flags(arrays.vertex_ids, selection.vertices))
+
+    @property
+    def bounds(self) -> np.ndarray | None:
+        """``(2, 3)`` bounds of the current mesh, or None without one."""
+        return None if self._mesh is None else self._mesh.geometry.bounds
+
+    # -- drawing ---------------------------------------------------------------
+
+    def draw(self, fbo: moderngl.Framebuffer, camera: Camera, style: Style) -> None:
+        """Clear ``fbo`` and draw the scene seen by ``camera`` in ``style``."""
+        fbo.use()
+        width, height = fbo.size
+        self.ctx.viewport = (0, 0, width, height)
+        fbo.clear(*style.background)
+        if self._mesh is None:
+            return
+        self._set_view(camera, width / max(height, 1))
+        self.ctx.enable(moderngl.DEPTH_TEST | moderngl.PROGRAM_POINT_SIZE)
+        self.ctx.disable(moderngl.CULL_FACE | moderngl.BLEND)
+        show_preview = style.preview and self._preview is not None
+        if style.faces or show_preview:
+            surface = self._preview if show_preview else self._mesh
+            assert surface is not None
+            color = PREVIEW_COLOR if show_preview else BASE_COLOR
+            self._draw_faces(surface, color)
+        if style.edges:
+            self._draw_edges(self._mesh)
+        if style.vertices or self.selection.vertices:
+            self._draw_points(self._mesh, style.point_size, only_selected=not style.vertices)
+        self._draw_corners(style.point_size)
+        if style.labels:
+            self._draw_labels(camera, style, (width, height))
+
+    def _set_view(self, camera: Camera, aspect: float) -> None:
+        if self._mesh is not None:
+            camera.scene_radius = max(camera.scene_radius, self._mesh.geometry.radius)
+        mvp = _matrix_bytes(camera.view_projection(aspect))
+        view = _matrix_bytes(camera.view_matrix())
+        for program in self.programs.values():
+            program["mvp"].write(mvp)  # type: ignore[union-attr]
+            if "view" in program:
+                program["view"].write(view)  # type: ignore[union-attr]
+
+    def _draw_faces(self, mesh: _MeshGPU, color: tuple[float, float, float],
+                    ) -> None:
+        program = self.programs["face"]
+        program["base_color"].value = color  # type: ignore[union-attr]
+        program["back_color"].value = BACK_COLOR  # type: ignore[union-attr]
+        program["selected_color"].value = SELECTED_COLOR  # type: ignore[union-attr]
+        mesh.triangle_face.use(0)
+        mesh.face_flags.use(1)
+        # push faces back so edges and points drawn at the same depth win
+        self.ctx.polygon_offset = (1.0, 1.0)
+        mesh.face_vao.render(moderngl.TRIANGLES)
+        self.ctx.polygon_offset = (0.0, 0.0)
+
+    def _draw_edges(self, mesh: _MeshGPU) -> None:
+        program = self.programs["edge"]
+        program["edge_color"].value = EDGE_COLOR  # type: ignore[union-attr]
+        program["selected_color"].value = SELECTED_COLOR  # type: ignore[union-attr]
+        mesh.edge_flags.use(2)
+        mesh.edge_vao.render(moderngl.LINES)
+
+    def _draw_points(self, mesh: _MeshGPU, size: float, only_selected: bool = False) -> None:
+        program = self.programs["point"]
+        program["point_size"].value = size  # type: ignore[union-attr]
+        program["point_color"].value = POINT_COLOR  # type: ignore[union-attr]
+        program["selected_color"].value = SELECTED_COLOR  # type: ignore[union-attr]
+        program["use_flags"].value = 1  # type: ignore[union-attr]
+        mesh.vertex_flags.use(3)
+        if only_selected:
+            # draw every point, but discard unselected ones by depth: cheaper to
+            # just draw the selected positions as their own small batch
+            arrays = self.arrays
+            assert arrays is not None
+            picked = np.flatnonzero(dense_flags(arrays.vertex_ids, self.selection.vertices))
+            self._draw_marker_points(arrays.positions[picked].astype(np.float32), size,
+                                     SELECTED_COLOR)
+            return
+        mesh.point_vao.render(moderngl.POINTS)
+
+    def _draw_marker_points(self, points: np.ndarray, size: float,
+                            color: tuple[float, float, float]) -> None:
+        """Draw ``(k, 3)`` float32 ``points`` in one flat colour (no pick ids)."""
+        if len(points) == 0:
+            return
+        program = self.programs["point"]
+        program["point_size"].value = size  # type: ignore[union-attr]
+        program["point_color"].value = color  # type: ignore[union-attr]
+        program["use_flags"].value = 0  # type: ignore[union-attr]
+        buffer = self.ctx.buffer(np.ascontiguousarray(points, dtype=np.float32).tobytes())
+        vao = self.ctx.vertex_array(program, [(buffer, "3f", "in_position")])
+        vao.render(moderngl.POINTS)
+        vao.release()
+        buffer.release()
+
+    def _draw_corners(self, size: float) -> None:
+        arrays = self.arrays
+        if arrays is None or not self.selection.corners:
+            return
+        picked = np.flatnonzero(dense_flags(arrays.corner_ids, self.selection.corners))
+        self._draw_marker_points(corner_points(arrays, picked), size, CORNER_COLOR)
+
+    # -- text ------------------------------------------------------------------
+
+    def _label_quads(self, style: Style) -> np.ndarray:
+        """``(n, QUAD_FLOATS)`` label quads for ``style``, cached until content changes."""
+        key = (style.labels, style.labels_selected_only, id(self.arrays))
+        if self._label_cache is not None and self._label_cache[0] == key:
+            return self._label_cache[1]
+        arrays = self.arrays
+        assert arrays is not None
+        from livemod.dlfl.analysis import face_centroids
+
+        sources = {
+            "faces": (1, lambda: face_centroids(arrays), arrays.face_ids, ~arrays.face_hole,
+                      self.selection.faces),
+            "edges": (2, lambda: arrays.positions[arrays.edge_vertices].mean(axis=1),
+                      arrays.edge_ids, None, self.selection.edges),
+            "vertices": (3, lambda: arrays.positions, arrays.vertex_ids, None,
+                         self.selection.vertices),
+        }
+        parts = [np.zeros((0, QUAD_FLOATS), dtype=np.float32)]
+        for name in LABEL_KINDS:
+            if name not in style.labels:
+                continue
+            kind, anchors_of, ids, keep, picked = sources[name]
+            selected = dense_flags(ids, picked).astype(bool)
+            show = selected.copy() if style.labels_selected_only else np.ones(len(ids), bool)
+            if keep is not None:
+                show &= keep
+            index = np.flatnonzero(show)[:MAX_LABELS]
+            anchors = np.asarray(anchors_of())[index]
+            parts.append(layout_labels(self.atlas, anchors, ids[index], kind, selected[index]))
+        quads = np.concatenate(parts)
+        self._label_cache = (key, quads)
+        return quads
+
+    def _draw_labels(self, camera: Camera, style: Style, size: tuple[int, int]) -> None:
+        quads = self._label_quads(style)
+        eye_to_center = float(np.linalg.norm(camera.eye() - self._scene_center()))
+        radius = self._mesh.geometry.radius if self._mesh is not None else 1.0
+        self.programs["text"]["fade_range"].value = (  # type: ignore[union-attr]
+            eye_to_center - radius, eye_to_center + radius)
+        self._draw_quads(quads, size, screen_space=False)
+
+    def _scene_center(self) -> np.ndarray:
+        return np.zeros(3) if self._mesh is None else self._mesh.geometry.center
+
+    def draw_overlay(self, fbo: moderngl.Framebuffer, quads: np.ndarray) -> None:
+        """Draw screen-space text/box ``quads`` (see :mod:`livemod.viewer.text`) on top."""
+        fbo.use()
+        self._draw_quads(quads, fbo.size, screen_space=True)
+
+    def _draw_quads(self, quads: np.ndarray, size: tuple[int, int], screen_space: bool) -> None:
+        if len(quads) == 0:
+            return
+        program = self.programs["text"]
+        program["viewport"].value = (float(size[0]), float(size[1]))  # type: ignore[union-attr]
+        program["screen_space"].value = int(screen_space)  # type: ignore[union-attr]
+        self.ctx.disable(moderngl.DEPTH_TEST)
+        self.ctx.enable(moderngl.BLEND)
+        self.ctx.blend_func = moderngl.SRC_ALPHA, moderngl.ONE_MINUS_SRC_ALPHA
+        instances = self.ctx.buffer(np.ascontiguousarray(quads, dtype=np.float32).tobytes())
+        vao = self.ctx.vertex_array(program, [
+            (self.quad, "2f", "in_corner"),
+            (instances, "3f 2f 2f 4f 1f 1f/i", "in_anchor", "in_offset", "in_size", "in_uv",
+             "in_kind", "in_selected"),
+        ])
+        self.atlas_texture.use(0)
+        vao.render(moderngl.TRIANGLE_STRIP, vertices=4, instances=len(quads))
+        vao.release()
+        instances.release()
+        self.ctx.disable(moderngl.BLEND)
+
+    # -- picking ---------------------------------------------------------------
+
+    def pick(self, camera: Camera, size: tuple[int, int], x: int, y: int, kind: str,
+             radius: int = 6) -> Pick | None:
+        """The element of ``kind`` under pixel ``(x, y)`` (from the top left), or None.
+
+        Renders an integer id pass at ``size``. Faces and corners are picked at the
+        pixel itself; edges and vertices at the nearest id within ``radius`` pixels.
+        A corner is its face's corner whose vertex is nearest the click (TopMod).
+        """
+        arrays = self.arrays
+        if self._mesh is None or arrays is None:
+            return None
+        fbo = self._pick_target(size)
+        self._render_ids(fbo, camera, kind)
+        reach = 0 if kind in ("face", "corner") else radius
+        hit = _nearest_id(fbo, x, size[1] - 1 - y, reach, _KIND_CODES[kind])
+        if hit is None:
+            return None
+        if kind == "corner":
+            dense = nearest_corner(arrays, hit, camera, size, (x, y))
+            return Pick("corner", dense, int(arrays.corner_ids[dense]))
+        ids = {"face": arrays.face_ids, "edge": arrays.edge_ids, "vertex": arrays.vertex_ids}
+        return Pick(kind, hit, int(ids[kind][hit]))
+
+    def _pick_target(self, size: tuple[int, int]) -> moderngl.Framebuffer:
+        if self._pick_fbo is not None and self._pick_fbo.size == tuple(size):
+            return self._pick_fbo
+        if self._pick_fbo is not None:
+            for attachment in (*self._pick_fbo.color_attachments,
+                               self._pick_fbo.depth_attachment):
+                if attachment is not None:
+                    attachment.release()
+            self._pick_fbo.release()
+        self._pick_fbo = self.ctx.framebuffer(
+            [self.ctx.texture(size, 4), self.ctx.texture(size, 1, dtype="u4")],
+            self.ctx.depth_renderbuffer(size))
+        return self._pick_fbo
+
+    def _render_ids(self, fbo: moderngl.Framebuffer, camera: Camera, kind: str) -> None:
+        """Draw faces (always, they occlude) and the edges or points of ``kind``."""
+        assert self._mesh is not None
+        fbo.use()
+        self.ctx.viewport = (0, 0, *fbo.size)
+        fbo.clear(0.0, 0.0, 0.0, 0.0)  # 0 bits in the id attachment: background
+        self._set_view(camera, fbo.size[0] / max(fbo.size[1], 1))
+        self.ctx.enable(moderngl.DEPTH_TEST | moderngl.PROGRAM_POINT_SIZE)
+        self.ctx.disable(moderngl.BLEND | moderngl.CULL_FACE)
+        self._draw_faces(self._mesh, BASE_COLOR)
+        if kind == "edge":
+            self._draw_edges(self._mesh)
+        elif kind == "vertex":
+            self._draw_points(self._mesh, 9.0)
+
+
+_KIND_CODES = {"face": 1, "corner": 1, "edge": 2, "vertex": 3}
+
+
+def _nearest_id(fbo: moderngl.Framebuffer, x: int, y: int, reach: int, code: int) -> int | None:
+    """Dense index of the ``code`` id nearest ``(x, y)`` (GL pixels) within ``reach``."""
+    width, height = fbo.size
+    x0, y0 = max(x - reach, 0), max(y - reach, 0)
+    x1, y1 = min(x + reach + 1, width), min(y + reach + 1, height)
+    if x0 >= x1 or y0 >= y1:
+        return None
+    raw = fbo.read(viewport=(x0, y0, x1 - x0, y1 - y0), components=1, attachment=1,
+                   dtype="u4")
+    ids = np.frombuffer(raw, dtype=np.uint32).reshape(y1 - y0, x1 - x0)
+    rows, cols = np.nonzero((ids >> 28) == code)
+    if len(rows) == 0:
+        return None
+    dist = (rows + y0 - y) ** 2 + (cols + x0 - x) ** 2
+    best = int(np.argmin(dist))
+    decoded = decode_pick(int(ids[rows[best], cols[best]]))
+    return None if decoded is None else decoded[1]
+
+
+def nearest_corner(arrays: MeshArrays, face: int, camera: Camera, size: tuple[int, int],
+                   point: tuple[int, int]) -> int:
+    """Dense index of the corner of dense ``face`` whose vertex projects nearest ``point``."""
+    start, stop = int(arrays.face_offsets[face]), int(arrays.face_offsets[face + 1])
+    at = arrays.positions[arrays.corner_vertex[start:stop]]
+    clip = np.c_[at, np.ones(len(at))] @ camera.view_projection(size[0] / max(size[1], 1)).T
+    ndc = clip[:, :2] / clip[:, 3:4]
+    pixels = np.c_[(ndc[:, 0] + 1) * 0.5 * size[0], (1 - ndc[:, 1]) * 0.5 * size[1]]
+    return start + int(np.argmin(((pixels - np.asarray(point)) ** 2).sum(axis=1)))

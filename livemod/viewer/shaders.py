@@ -1,0 +1,151 @@
+"""GLSL sources of the renderer's passes (GL 3.3 core).
+
+Faces, edges and points write two outputs: the colour, and at location 1 a pick id
+(kind << 28 | dense index + 1, see :mod:`livemod.viewer.geometry`). Element indices
+come from ``gl_PrimitiveID`` / ``gl_VertexID``; per-element data (the face of each
+triangle, selection flags) is read from integer textures with ``texelFetch``.
+"""
+
+FETCH = """
+uint fetch(usampler2D table, int i) {
+    int w = textureSize(table, 0).x;
+    return texelFetch(table, ivec2(i % w, i / w), 0).r;
+}
+"""
+
+MESH_VERTEX = """
+#version 330
+uniform mat4 mvp;
+uniform mat4 view;
+in vec3 in_position;
+out vec3 v_view;
+flat out int v_vertex;
+uniform float point_size;
+void main() {
+    v_view = (view * vec4(in_position, 1.0)).xyz;
+    v_vertex = gl_VertexID;
+    gl_PointSize = point_size;
+    gl_Position = mvp * vec4(in_position, 1.0);
+}
+"""
+
+FACE_FRAGMENT = """
+#version 330
+uniform usampler2D triangle_face;
+uniform usampler2D face_flags;
+uniform vec3 base_color;
+uniform vec3 selected_color;
+uniform vec3 back_color;
+in vec3 v_view;
+layout(location = 0) out vec4 color;
+layout(location = 1) out uint pick;
+""" + FETCH + """
+vec3 shade(vec3 n, vec3 base) {
+    // TopMod's warm/cool model with a key light fixed to the camera (up left),
+    // plus a weak fill from the lower right so no side goes flat black.
+    vec3 key = normalize(vec3(-0.45, 0.55, 0.7));
+    vec3 fill = normalize(vec3(0.6, -0.3, 0.75));
+    float cf = pow((1.0 + dot(key, n)) * 0.5, 2.0);
+    vec3 lit = mix(vec3(0.11, 0.10, 0.09), vec3(1.0, 0.98, 0.89), cf);
+    lit += 0.18 * max(dot(fill, n), 0.0);
+    return clamp(0.75 * lit * base + 0.25 * base * 0.55, 0.0, 1.0);
+}
+void main() {
+    uint face = fetch(triangle_face, gl_PrimitiveID);
+    vec3 n = normalize(cross(dFdx(v_view), dFdy(v_view)));
+    bool selected = fetch(face_flags, int(face)) != 0u;
+    vec3 base = selected ? selected_color : (gl_FrontFacing ? base_color : back_color);
+    color = vec4(shade(n, base), 1.0);
+    pick = (1u << 28) | (face + 1u);
+}
+"""
+
+EDGE_FRAGMENT = """
+#version 330
+uniform usampler2D edge_flags;
+uniform vec3 edge_color;
+uniform vec3 selected_color;
+layout(location = 0) out vec4 color;
+layout(location = 1) out uint pick;
+""" + FETCH + """
+void main() {
+    bool selected = fetch(edge_flags, gl_PrimitiveID) != 0u;
+    color = vec4(selected ? selected_color : edge_color, 1.0);
+    pick = (2u << 28) | uint(gl_PrimitiveID + 1);
+}
+"""
+
+POINT_FRAGMENT = """
+#version 330
+uniform usampler2D vertex_flags;
+uniform vec3 point_color;
+uniform vec3 selected_color;
+uniform int use_flags;
+flat in int v_vertex;
+layout(location = 0) out vec4 color;
+layout(location = 1) out uint pick;
+""" + FETCH + """
+void main() {
+    bool selected = use_flags != 0 && fetch(vertex_flags, v_vertex) != 0u;
+    color = vec4(selected ? selected_color : point_color, 1.0);
+    pick = (3u << 28) | uint(v_vertex + 1);
+}
+"""
+
+TEXT_VERTEX = """
+#version 330
+uniform mat4 mvp;
+uniform mat4 view;
+uniform vec2 viewport;
+uniform int screen_space;
+uniform vec2 fade_range;
+in vec2 in_corner;
+in vec3 in_anchor;
+in vec2 in_offset;
+in vec2 in_size;
+in vec4 in_uv;
+in float in_kind;
+in float in_selected;
+out vec2 v_uv;
+out float v_fade;
+flat out int v_kind;
+flat out int v_selected;
+void main() {
+    vec2 px = in_offset + in_corner * in_size;      // pixels, y down
+    vec2 at = in_anchor.xy;
+    v_fade = 1.0;
+    if (screen_space == 0) {
+        vec4 clip = mvp * vec4(in_anchor, 1.0);
+        if (clip.w <= 0.0) { gl_Position = vec4(2.0, 2.0, 2.0, 1.0); return; }
+        vec2 ndc = clip.xy / clip.w;
+        // snap the anchor to a pixel so glyphs stay crisp and output is stable
+        at = floor(vec2(ndc.x + 1.0, 1.0 - ndc.y) * 0.5 * viewport + 0.5);
+        float depth = -(view * vec4(in_anchor, 1.0)).z;
+        float t = clamp((depth - fade_range.x) / max(fade_range.y - fade_range.x, 1e-9),
+                        0.0, 1.0);
+        v_fade = 1.0 - 0.7 * t;
+    }
+    vec2 p = floor(at + px);
+    gl_Position = vec4(p.x / viewport.x * 2.0 - 1.0, 1.0 - p.y / viewport.y * 2.0, 0.0, 1.0);
+    v_uv = vec2(mix(in_uv.x, in_uv.z, in_corner.x), mix(in_uv.y, in_uv.w, in_corner.y));
+    v_kind = int(in_kind + 0.5);
+    v_selected = int(in_selected + 0.5);
+}
+"""
+
+TEXT_FRAGMENT = """
+#version 330
+uniform sampler2D atlas;
+uniform vec4 palette[16];
+uniform vec4 highlight;
+in vec2 v_uv;
+in float v_fade;
+flat in int v_kind;
+flat in int v_selected;
+out vec4 color;
+void main() {
+    vec4 tint = (v_selected != 0 && v_kind >= 8) ? highlight : palette[v_kind];
+    float coverage = texture(atlas, v_uv).r;
+    color = vec4(tint.rgb, tint.a * coverage * v_fade);
+}
+"""
