@@ -1,0 +1,71 @@
+"""Turn what a script raised into a :class:`ScriptError` a person can act on."""
+
+from __future__ import annotations
+
+import os
+import traceback
+from types import TracebackType
+
+import livemod
+
+from .results import ScriptError
+
+_LIBRARY_DIR = os.path.dirname(os.path.abspath(livemod.__file__)) + os.sep
+
+
+class Cancelled(BaseException):  # noqa: N818  (a signal, not an error)
+    """Raised inside a run to stop it (a BaseException so ``except Exception``
+    in a script does not swallow it)."""
+
+
+def syntax_error(exc: SyntaxError, path: str) -> ScriptError:
+    """A ``"syntax"`` error for a script that did not compile."""
+    lines = traceback.format_exception_only(type(exc), exc)
+    return ScriptError(
+        kind="syntax",
+        file=exc.filename or path,
+        line=exc.lineno,
+        message=f"SyntaxError: {exc.msg}",
+        traceback="".join(lines),
+    )
+
+
+def cancelled_error(path: str, line: int | None = None) -> ScriptError:
+    """A ``"cancelled"`` error (the run was superseded or stopped)."""
+    return ScriptError("cancelled", path, line, "cancelled", "")
+
+
+def exception_error(exc: BaseException, path: str) -> ScriptError:
+    """An ``"exception"`` error pointing at the deepest frame of the user's code.
+
+    Frames of the livemod package (the library and the runner) and of code outside
+    the script's folder are trimmed; the script's and its local modules' remain.
+    """
+    frames = _user_frames(exc.__traceback__, path)
+    file, line = (frames[-1].filename, frames[-1].lineno) if frames else (path, None)
+    message = _one_line(exc)
+    text = "Traceback (most recent call last):\n"
+    text += "".join(traceback.format_list(frames)) + message + "\n"
+    return ScriptError("exception", file, line, message, text)
+
+
+def _one_line(exc: BaseException) -> str:
+    text = str(exc).strip().splitlines()
+    return f"{type(exc).__name__}: {text[0]}" if text else type(exc).__name__
+
+
+def is_user_file(filename: str, script: str) -> bool:
+    """True for the script and for files in its folder that are not livemod itself."""
+    if filename == script:
+        return True
+    folder = os.path.dirname(script) + os.sep
+    return filename.startswith(folder) and not filename.startswith(_LIBRARY_DIR)
+
+
+def _user_frames(tb: TracebackType | None, script: str) -> traceback.StackSummary:
+    kept = [
+        (frame, lineno)
+        for frame, lineno in traceback.walk_tb(tb)
+        if is_user_file(frame.f_code.co_filename, script)
+    ]
+    return traceback.StackSummary.extract(iter(kept), lookup_lines=True)

@@ -1,0 +1,281 @@
+"""Run one user script against a fresh copy of the base scene.
+
+:func:`execute` is the whole life of one run: read, compile (syntax errors
+stop here), bind a copy of the base scene, seed the random generators, ``exec``
+the script in a fresh namespace with the thesis commands in it, record a
+:class:`StepRecord` after every modeling command, and report what happened. It
+runs in whatever thread calls it; the session calls it from a worker thread.
+"""
+
+from __future__ import annotations
+
+import builtins
+import contextlib
+import importlib
+import os
+import random
+import sys
+import threading
+import time
+from collections.abc import Callable, Iterator
+from dataclasses import dataclass, field
+from types import CodeType
+
+import numpy as np
+
+import livemod.dlfl as dlfl
+from livemod.dlfl.scene import Scene, Selection, use_scene
+
+from .errors import Cancelled, cancelled_error, exception_error, is_user_file, syntax_error
+from .instrument import CANCEL_FLAG, STOP_FUNCTION, compile_script
+from .playback import Playback
+from .results import ScriptError, StepRecord, current_mesh
+
+PauseCallback = Callable[[int, tuple[StepRecord, ...], Scene], None]
+
+
+class RunControl:
+    """Steers one run from other threads: cancel it, and pause it in playback.
+
+    Args:
+        playback: the session's playback state, or None for runs that never pause.
+        on_pause: called in the worker with ``(step index, steps, scene)`` just
+            before the run blocks at a step.
+    """
+
+    def __init__(self, playback: Playback | None = None,
+                 on_pause: PauseCallback | None = None) -> None:
+        self.playback = playback
+        self.on_pause = on_pause
+        self.paused_at: int | None = None
+        self.step_count = 0
+        self.finished = False
+        self._cancelled = threading.Event()
+        self._namespace: dict | None = None
+
+    @property
+    def cancelled(self) -> bool:
+        return self._cancelled.is_set()
+
+    def cancel(self) -> None:
+        """Ask the run to stop at its next step or next loop iteration of the script."""
+        self._cancelled.set()
+        if self._namespace is not None:
+            self._namespace[CANCEL_FLAG] = True  # read by the checks compile_script adds
+        if self.playback is not None:
+            self.playback.wake()
+
+    def attach(self, namespace: dict) -> None:
+        """Give the control the run's globals (so :meth:`cancel` can flag them)."""
+        self._namespace = namespace
+        namespace[CANCEL_FLAG] = self.cancelled
+
+
+@dataclass
+class RunOutcome:
+    """What :func:`execute` returns (mutable, worker-side; see RunResult for snapshots).
+
+    Attributes:
+        status: ``"ok"``, ``"error"`` or ``"cancelled"``.
+        scene: the run's scene as the script left it.
+        steps: the steps that finished.
+        error: the error for ``"error"``/``"cancelled"``.
+        elapsed: seconds from the start of compilation to the end.
+        modules: files of local modules the script imported (to be watched).
+        source: the text that ran.
+    """
+
+    status: str
+    scene: Scene
+    steps: tuple[StepRecord, ...]
+    error: ScriptError | None
+    elapsed: float
+    modules: tuple[str, ...] = ()
+    source: str = ""
+    extra: dict = field(default_factory=dict)
+
+
+class StepRecorder:
+    """The scene's ``step_hook`` during a run: records steps, pauses, cancels."""
+
+    def __init__(self, script: str, scene: Scene, control: RunControl | None) -> None:
+        self.script = script
+        self.scene = scene
+        self.control = control
+        self.steps: list[StepRecord] = []
+        self.started = time.perf_counter()
+
+    def __call__(self, label: str) -> None:
+        control = self.control
+        if control is not None and control.cancelled:
+            raise Cancelled
+        mesh = current_mesh(self.scene)
+        counts = mesh.counts() if mesh is not None else (0, 0, 0)
+        index = len(self.steps)
+        elapsed = time.perf_counter() - self.started
+        self.steps.append(StepRecord(index, label, self._line(), counts, elapsed))
+        if control is None:
+            return
+        control.step_count = index + 1
+        playback = control.playback
+        if playback is not None and playback.should_pause(index):
+            self._pause(control, playback, index)
+
+    def _line(self) -> int | None:
+        """Line of the innermost frame of the script itself on the worker's stack."""
+        frame = sys._getframe(2)
+        script = self.script
+        while frame is not None:
+            if frame.f_code.co_filename == script:
+                return frame.f_lineno
+            frame = frame.f_back  # type: ignore[assignment]
+        return None
+
+    def _pause(self, control: RunControl, playback: Playback, index: int) -> None:
+        control.paused_at = index
+        if control.on_pause is not None:
+            control.on_pause(index, tuple(self.steps), self.scene)
+        playback.wait(index, lambda: control.cancelled)
+        control.paused_at = None
+        if control.cancelled:
+            raise Cancelled
+
+
+def _raise_cancelled() -> None:
+    raise Cancelled
+
+
+def script_namespace(path: str, parameters: dict | None) -> dict:
+    """Fresh globals: the thesis commands, ``__file__``, and the parameters."""
+    namespace: dict = {name: getattr(dlfl, name) for name in dlfl.__all__}
+    namespace.update(
+        __name__="__main__", __file__=path, __builtins__=builtins, __doc__=None,
+        __package__=None,
+    )
+    namespace[STOP_FUNCTION] = _raise_cancelled
+    namespace[CANCEL_FLAG] = False
+    namespace.update(parameters or {})
+    return namespace
+
+
+def seed_generators(seed: int | None) -> None:
+    """Seed ``random`` and ``numpy.random`` (None leaves them alone)."""
+    if seed is not None:
+        random.seed(seed)
+        np.random.seed(seed % 2**32)
+
+
+@contextlib.contextmanager
+def script_folder_on_path(path: str) -> Iterator[None]:
+    """Put the script's folder first on ``sys.path`` for the duration of the run."""
+    folder = os.path.dirname(path)
+    added = folder not in sys.path
+    if added:
+        sys.path.insert(0, folder)
+    try:
+        yield
+    finally:
+        if added and folder in sys.path:
+            sys.path.remove(folder)
+
+
+@contextlib.contextmanager
+def local_modules(path: str, found: list[str]) -> Iterator[None]:
+    """Collect (into ``found``) and purge the local modules a run imports.
+
+    Modules first imported during the run whose file lies in the script's folder
+    are removed from ``sys.modules`` afterwards, so the next run imports them
+    again from disk (that is how edited helpers take effect).
+    """
+    before = set(sys.modules)
+    try:
+        yield
+    finally:
+        for name in set(sys.modules) - before:
+            file = getattr(sys.modules.get(name), "__file__", None)
+            if file and is_user_file(os.path.abspath(file), path):
+                found.append(os.path.abspath(file))
+                sys.modules.pop(name, None)
+
+
+def base_scene(mesh_path: str | None) -> Scene:
+    """An empty scene, or one holding the mesh read from ``mesh_path``."""
+    scene = Scene()
+    if mesh_path is not None:
+        io = importlib.import_module("livemod.dlfl.io")  # written in parallel: late import
+        scene.add(io.load_mesh(os.fspath(mesh_path)), os.path.basename(mesh_path))
+    return scene
+
+
+def prepare_scene(base: Scene | None, selection: Selection | None,
+                  parameters: dict | None) -> Scene:
+    """A private copy of ``base`` with the caller's selection and parameters."""
+    scene = base.copy() if base is not None else Scene()
+    if selection is not None:
+        scene.selection = selection
+    scene.parameters = dict(parameters or {})
+    return scene
+
+
+def execute(
+    path: str | os.PathLike[str], *, source: str | None = None, base: Scene | None = None,
+    seed: int | None = 0, parameters: dict | None = None,
+    selection: Selection | None = None, control: RunControl | None = None,
+) -> RunOutcome:
+    """Run the script at ``path`` once, in the calling thread.
+
+    Args:
+        path: the script (its folder goes on ``sys.path`` during the run).
+        source: the text to run; read from ``path`` when None.
+        base: the scene the run starts from (copied, never changed); empty if None.
+        seed: seeds ``random`` and ``numpy.random`` first; None leaves them alone.
+        parameters: globals for the script, also put in ``scene.parameters``.
+        selection: what ``faces(True)`` and friends return.
+        control: lets other threads cancel or pause the run.
+
+    Returns:
+        A :class:`RunOutcome`; script errors are reported in it, never raised.
+
+    Raises:
+        OSError: ``path`` cannot be read (only when ``source`` is None).
+    """
+    script = os.path.abspath(os.fspath(path))
+    if source is None:
+        with open(script, encoding="utf-8") as handle:
+            source = handle.read()
+    started = time.perf_counter()
+    scene = prepare_scene(base, selection, parameters)
+    try:
+        code = compile_script(source, script)
+    except SyntaxError as exc:
+        return RunOutcome("error", scene, (), syntax_error(exc, script), time.perf_counter() - started,
+                          source=source)
+    recorder = StepRecorder(script, scene, control)
+    scene.step_hook = recorder
+    namespace = script_namespace(script, parameters)
+    if control is not None:
+        control.attach(namespace)
+    status, error, modules = _exec(code, namespace, script, scene, recorder, seed)
+    scene.step_hook = None
+    return RunOutcome(status, scene, tuple(recorder.steps), error,
+                      time.perf_counter() - started, tuple(modules), source)
+
+
+def _exec(code: CodeType, namespace: dict, script: str, scene: Scene,
+          recorder: StepRecorder, seed: int | None,
+          ) -> tuple[str, ScriptError | None, list[str]]:
+    """``exec`` with the scene bound; returns ``(status, error, local module files)``."""
+    modules: list[str] = []
+    try:
+        with use_scene(scene), script_folder_on_path(script), local_modules(script, modules):
+            seed_generators(seed)
+            exec(code, namespace)  # noqa: S102  (running the user's script is the point)
+    except Cancelled:
+        line = recorder.steps[-1].line if recorder.steps else None
+        return "cancelled", cancelled_error(script, line), modules
+    except SystemExit as exc:
+        if exc.code not in (None, 0):
+            return "error", exception_error(exc, script), modules
+    except Exception as exc:
+        return "error", exception_error(exc, script), modules
+    return "ok", None, modules

@@ -1,0 +1,52 @@
+"""Synchronous, headless runs (``livemod run``, batch variants, tests)."""
+
+from __future__ import annotations
+
+import os
+
+from livemod.dlfl.scene import Selection
+
+from .execute import RunOutcome, base_scene, execute
+from .results import RunResult, parameter_items, snapshot_scene
+
+
+def run_outcome(path: str | os.PathLike[str], *, mesh_path: str | None = None,
+                seed: int | None = 0, parameters: dict | None = None,
+                selection: Selection | None = None) -> RunOutcome:
+    """Run the script once in the calling thread and return the live outcome
+    (its scene holds the real mesh, e.g. to save it).
+
+    Raises:
+        OSError: the script or ``mesh_path`` cannot be read.
+    """
+    base = base_scene(mesh_path) if mesh_path is not None else None
+    return execute(path, base=base, seed=seed, parameters=parameters, selection=selection)
+
+
+def result_of(outcome: RunOutcome, script: str, parameters: dict | None,
+              run_id: int = 1) -> RunResult:
+    """The immutable :class:`RunResult` of a headless outcome."""
+    ok = outcome.status == "ok"
+    arrays = snapshot_scene(outcome.scene)
+    return RunResult(
+        run_id=run_id, script=os.path.abspath(script), status=outcome.status,
+        steps=outcome.steps, step_index=None, arrays=arrays if ok else None, preview=None,
+        error=outcome.error, elapsed=outcome.elapsed, stale=False,
+        parameters=parameter_items(parameters), partial=None if ok else arrays,
+    )
+
+
+def run_script(path: str | os.PathLike[str], *, mesh_path: str | None = None,
+               seed: int | None = 0, parameters: dict | None = None,
+               selection: Selection | None = None) -> RunResult:
+    """Run the script once, synchronously, and return its :class:`RunResult`.
+
+    Script errors are in ``result.error`` (status ``"error"``), never raised;
+    ``arrays`` is None then and ``partial`` holds the mesh as the script left it.
+
+    Raises:
+        OSError: the script or ``mesh_path`` cannot be read.
+    """
+    outcome = run_outcome(path, mesh_path=mesh_path, seed=seed, parameters=parameters,
+                          selection=selection)
+    return result_of(outcome, os.fspath(path), parameters)

@@ -1,0 +1,106 @@
+"""The patch-smoothed preview, computed in a background thread.
+
+TopMod draws a smoothed "patch" version of the control mesh; livemod
+approximates it with two levels of Catmull-Clark (or Doo-Sabin) subdivision
+from :mod:`livemod.dlfl.subdivision`, imported late because it is written in
+parallel with the runner. Without it, or above the face budget, there is no
+preview (None) and nothing fails.
+"""
+
+from __future__ import annotations
+
+import importlib
+import queue
+import threading
+from collections.abc import Callable
+
+from livemod.dlfl.arrays import MeshArrays
+from livemod.dlfl.mesh import Mesh
+
+from .results import RunResult, snapshot_mesh
+
+DEFAULT_SCHEME = "catmull-clark"
+DEFAULT_LEVELS = 2
+DEFAULT_FACE_BUDGET = 2_000_000  # faces of the *preview*; bigger meshes get none
+
+
+def preview_arrays(mesh: Mesh, *, scheme: str = DEFAULT_SCHEME, levels: int = DEFAULT_LEVELS,
+                   face_budget: int = DEFAULT_FACE_BUDGET) -> MeshArrays | None:
+    """Read-only arrays of ``mesh`` subdivided ``levels`` times, or None.
+
+    ``mesh`` is not changed. None when the subdivision module is missing, the
+    mesh is empty, or the preview would exceed ``face_budget`` faces (each level
+    multiplies the face count by about four).
+    """
+    subdivide = _subdivide_function()
+    faces = mesh.counts()[2]
+    if subdivide is None or faces == 0 or faces * 4**levels > face_budget:
+        return None
+    current = mesh.copy()
+    for _ in range(levels):
+        returned = subdivide(current, scheme)
+        current = returned if isinstance(returned, Mesh) else current  # in place or new
+    return snapshot_mesh(current)
+
+
+def _subdivide_function() -> Callable | None:
+    try:
+        module = importlib.import_module("livemod.dlfl.subdivision")
+    except ImportError:
+        return None
+    return getattr(module, "subdivide", None)
+
+
+class PreviewWorker:
+    """One daemon thread computing previews for results, newest first.
+
+    Args:
+        post: receives ``(result, preview)``; it decides whether to publish.
+        is_current: tells whether a result is still worth a preview (a newer
+            run makes older requests pointless; they are dropped).
+        compute: the preview function (injectable for tests).
+    """
+
+    def __init__(self, post: Callable[[RunResult, MeshArrays], None],
+                 is_current: Callable[[RunResult], bool],
+                 compute: Callable[[Mesh], MeshArrays | None] = preview_arrays) -> None:
+        self._post = post
+        self._is_current = is_current
+        self._compute = compute
+        self._requests: queue.Queue[tuple[RunResult, Mesh] | None] = queue.Queue()
+        self._thread = threading.Thread(target=self._loop, name="livemod-preview", daemon=True)
+        self._thread.start()
+
+    def request(self, result: RunResult, mesh: Mesh) -> None:
+        """Compute a preview of ``mesh`` (which must no longer change) for ``result``."""
+        self._requests.put((result, mesh))
+
+    def close(self) -> None:
+        """Stop the thread after the request in progress."""
+        self._requests.put(None)
+
+    def _loop(self) -> None:
+        while True:
+            item = self._latest()
+            if item is None:
+                return
+            result, mesh = item
+            if not self._is_current(result):
+                continue
+            try:
+                preview = self._compute(mesh)
+            except Exception:  # a failing preview must never take the session down
+                preview = None
+            if preview is not None:
+                self._post(result, preview)
+
+    def _latest(self) -> tuple[RunResult, Mesh] | None:
+        """The newest pending request (older ones are skipped), None to stop."""
+        item = self._requests.get()
+        while item is not None:
+            try:
+                newer = self._requests.get_nowait()
+            except queue.Empty:
+                return item
+            item = newer
+        return None

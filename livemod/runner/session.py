@@ -1,0 +1,460 @@
+"""LiveSession: watch a script, re-run it in a worker thread, step through it.
+
+Threads (none of them the caller's):
+
+* the watcher's debounce thread calls :meth:`LiveSession._files_changed`;
+* the supervisor thread takes run requests, cancels the running run, waits for
+  it to stop and starts the next one (latest wins: queued requests coalesce);
+* one worker thread per run executes the script and posts results;
+* the preview thread smooths finished meshes.
+
+The caller only sets state and enqueues requests, so no public method blocks.
+Results go to :attr:`LiveSession.results`; only the newest run's results are
+posted (a superseded run's are dropped).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import hashlib
+import importlib
+import os
+import queue
+import threading
+import time
+from dataclasses import dataclass
+
+from livemod.dlfl.arrays import MeshArrays
+from livemod.dlfl.scene import Scene, Selection
+
+from .errors import exception_error
+from .execute import RunControl, RunOutcome, base_scene, execute
+from .playback import Playback
+from .preview import PreviewWorker
+from .results import (
+    RunResult,
+    ScriptError,
+    StepRecord,
+    current_mesh,
+    parameter_items,
+    snapshot_scene,
+)
+from .watch import FileWatcher, Notifier
+
+_JOIN_POLL = 0.02  # seconds between checks while waiting for a cancelled run
+
+
+@dataclass
+class _Request:
+    """A run to start: the script and the text to run (None: read it)."""
+
+    script: str
+    source: str | None
+
+
+@dataclass
+class _Run:
+    run_id: int
+    script: str
+    control: RunControl
+    thread: threading.Thread | None = None
+    cancel_reason: str = ""
+
+
+class LiveSession:
+    """Runs a script on every save and lets the caller step through its runs.
+
+    Args:
+        script: path of the user script.
+        mesh_path: mesh every run starts from (``--mesh``); empty scene if None.
+        seed: seed of ``random``/``numpy.random`` at each run start (None: unseeded).
+        debounce: seconds of quiet after the last file event before a run.
+        poll: poll the file system instead of waiting for events.
+        preview: compute the patch-smoothed preview of finished meshes.
+        notifier: the file-event source (tests inject a ManualNotifier).
+        output: save the mesh here after every successful run (``run --watch -o``).
+        parameters: initial script parameters (globals and ``scene.parameters``).
+
+    Attributes:
+        results: :class:`RunResult` snapshots; drain with ``get_nowait()``.
+    """
+
+    def __init__(self, script: str | os.PathLike[str], *, mesh_path: str | None = None,
+                 seed: int | None = 0, debounce: float = 0.15, poll: bool = False,
+                 preview: bool = True, notifier: Notifier | None = None,
+                 output: str | None = None, parameters: dict | None = None) -> None:
+        self.script = os.path.abspath(os.fspath(script))
+        self.results: queue.Queue[RunResult] = queue.Queue()
+        self.mesh_path = mesh_path
+        self.seed = seed
+        self.output = output
+        self._parameters = dict(parameters or {})
+        self._selection: Selection | None = None
+        self._playback = Playback()
+        self._rate: float | None = None
+        self._lock = threading.RLock()
+        self._requests: queue.Queue[_Request | None] = queue.Queue()
+        self._run_id = 0
+        self._current: _Run | None = None
+        self._last_good: RunResult | None = None
+        self._last_posted: RunResult | None = None
+        self._last_steps: tuple[StepRecord, ...] = ()
+        self._source: str | None = None
+        self._seen: dict[str, bytes] = {}
+        self._base: Scene | None = None
+        self._closed = False
+        self._watcher = FileWatcher(self._files_changed, debounce=debounce,
+                                    notifier=notifier, poll=poll)
+        self._previews = PreviewWorker(self._post_preview, self._is_latest) if preview else None
+        self._supervisor = threading.Thread(target=self._supervise, name="livemod-session",
+                                            daemon=True)
+
+    # -- life cycle ------------------------------------------------------------
+
+    def start(self) -> None:
+        """Start watching and run the script once."""
+        self._watcher.start()
+        self._watcher.set_files([self.script])
+        self._supervisor.start()
+        self.reload()
+
+    def close(self) -> None:
+        """Stop watching, cancel the run; threads wind down in the background."""
+        with self._lock:
+            self._closed = True
+        self._requests.put(None)
+
+    def join(self, timeout: float = 10.0) -> bool:
+        """Wait (up to ``timeout`` s) for the session's threads after :meth:`close`."""
+        self._supervisor.join(timeout)
+        return not self._supervisor.is_alive()
+
+    def reload(self) -> None:
+        """Re-run the script now, even if its content did not change."""
+        self._request(None)
+
+    def open(self, script: str | os.PathLike[str]) -> None:
+        """Switch to another script: its first run starts at once; stale state is dropped."""
+        with self._lock:
+            self.script = os.path.abspath(os.fspath(script))
+            self._last_good, self._last_steps, self._seen = None, (), {}
+            self._watcher.set_files([self.script])
+        self.reload()
+
+    # -- inputs of the next run ---------------------------------------------------
+
+    def set_selection(self, selection: Selection | None) -> None:
+        """What ``faces(True)`` and friends return from the next run on (no re-run)."""
+        with self._lock:
+            self._selection = selection
+
+    def set_parameters(self, values: dict) -> None:
+        """Update script parameters (globals and ``scene.parameters``) and re-run."""
+        with self._lock:
+            self._parameters.update(values)
+        self._request(self._source)
+
+    @property
+    def parameters(self) -> dict:
+        with self._lock:
+            return dict(self._parameters)
+
+    # -- playback -------------------------------------------------------------------
+
+    def pause(self) -> None:
+        """Pause the running run at its next step (later runs pause at the same place)."""
+        with self._lock:
+            self._rate = None
+            run = self._live_run()
+            if run is not None and run.control.paused_at is not None:
+                self._playback.pause_at(run.control.paused_at)
+            elif run is not None:
+                self._playback.pause_at(0)
+            else:
+                self._playback.pause_at(max(0, len(self._last_steps) - 1))
+
+    def resume(self) -> None:
+        """Go on: playing again at the last rate if playing was paused, else to the end."""
+        with self._lock:
+            rate = self._rate
+        if rate is not None:
+            self.play(rate)
+        else:
+            self.run_to_end()
+
+    def run_to_end(self) -> None:
+        """Let the current and later runs go to the end without pausing."""
+        with self._lock:
+            self._rate = None
+            self._playback.run_to_end()
+
+    def step_forward(self) -> None:
+        """Show the next step (the paused run goes on by one step)."""
+        with self._lock:
+            run = self._live_run()
+            if run is None:
+                return
+            paused = run.control.paused_at
+            self._playback.pause_at(0 if paused is None else paused + 1)
+
+    def step_back(self) -> None:
+        """Show the previous step (by replaying the script to it)."""
+        with self._lock:
+            position = self._position()
+        if position is not None and position > 0:
+            self.goto_step(position - 1)
+
+    def goto_step(self, k: int) -> None:
+        """Show the mesh right after step ``k`` (0-based), replaying when it lies behind."""
+        k = max(0, int(k))
+        with self._lock:
+            run = self._live_run()
+            if run is not None and run.control.paused_at == k:
+                return
+            if run is not None and k >= run.control.step_count:
+                self._playback.pause_at(k, self._rate)  # still ahead: run on to it
+                return
+            self._playback.pause_at(k, self._rate)
+        self._request(self._source)
+
+    def play(self, rate: float) -> None:
+        """Advance ``rate`` steps per second (from the start when the run has ended)."""
+        if rate <= 0:
+            raise ValueError(f"play rate must be positive, got {rate!r}")
+        with self._lock:
+            self._rate = float(rate)
+            run = self._live_run()
+            if run is not None:
+                paused = run.control.paused_at
+                self._playback.pause_at(0 if paused is None else paused, self._rate)
+                return
+            self._playback.pause_at(0, self._rate)
+        self._request(self._source)
+
+    def cancel(self) -> None:
+        """Stop the running run; a ``"cancelled"`` result keeps the last good mesh."""
+        with self._lock:
+            run = self._live_run()
+            if run is not None:
+                run.cancel_reason = "user"
+                run.control.cancel()
+
+    def _live_run(self) -> _Run | None:
+        """The newest run while its thread has not finished the script."""
+        run = self._current
+        if run is None or run.control.finished or run.control.cancelled:
+            return None
+        return run
+
+    def _position(self) -> int | None:
+        """The step shown now: the paused step, or the last step of a finished run."""
+        run = self._live_run()
+        if run is not None:
+            return run.control.paused_at
+        return len(self._last_steps) - 1 if self._last_steps else None
+
+    # -- triggering runs ---------------------------------------------------------------
+
+    def _request(self, source: str | None) -> None:
+        """Queue a run of the current script (``source`` None: read it from disk)."""
+        with self._lock:
+            if not self._closed:
+                self._requests.put(_Request(self.script, source))
+
+    def _files_changed(self) -> None:
+        """Watcher callback: queue a run when a watched file's content changed."""
+        with self._lock:
+            files, script = sorted(self._watcher.files), self.script
+        digests = {path: _digest(path) for path in files}
+        if digests.get(script) is None:
+            return  # the script vanished (or is being replaced): wait for it to return
+        with self._lock:
+            changed = [p for p, d in digests.items() if p in self._seen and self._seen[p] != d]
+            self._seen.update({p: d for p, d in digests.items() if d is not None})
+        if changed:
+            self._request(None)
+
+    def _supervise(self) -> None:
+        """Supervisor thread: start each requested run after stopping the previous one."""
+        while True:
+            request = self._next_request()
+            self._stop_current("superseded")
+            if request is None:
+                break
+            self._start_run(request)
+        self._watcher.close()
+        if self._previews is not None:
+            self._previews.close()
+
+    def _next_request(self) -> _Request | None:
+        """The newest queued request (older ones coalesce); None means close."""
+        request = self._requests.get()
+        while request is not None:
+            try:
+                request = self._requests.get_nowait()
+            except queue.Empty:
+                return request
+        return None
+
+    def _stop_current(self, reason: str) -> None:
+        """Cancel the running run and wait until its thread is done with the script."""
+        run = self._current
+        if run is None:
+            return
+        if not run.control.finished:
+            run.cancel_reason = run.cancel_reason or reason
+            run.control.cancel()
+        while run.thread is not None and run.thread.is_alive():
+            run.thread.join(_JOIN_POLL)
+
+    def _start_run(self, request: _Request) -> None:
+        with self._lock:
+            if request.script != self.script:
+                return  # queued before open() switched scripts
+            self._run_id += 1
+            run = _Run(self._run_id, request.script, RunControl(self._playback))
+            run.control.on_pause = lambda index, steps, scene: self._post_paused(
+                run, index, steps, scene)
+            run.thread = threading.Thread(target=self._run_body, args=(run, request.source),
+                                          name=f"livemod-run-{run.run_id}", daemon=True)
+            self._current = run
+        run.thread.start()
+
+    # -- the worker ------------------------------------------------------------------
+
+    def _run_body(self, run: _Run, source: str | None) -> None:
+        """Worker thread: run the script once and publish what came out."""
+        started = time.perf_counter()
+        with self._lock:
+            parameters, selection = dict(self._parameters), self._selection
+        try:
+            if source is None:
+                source = _read(run.script)
+            base = self._base_scene()
+        except Exception as exc:
+            run.control.finished = True
+            self._publish_failure(run, exc, time.perf_counter() - started)
+            return
+        with self._lock:
+            self._source = source
+            self._seen[run.script] = _hash(source.encode("utf-8"))
+        outcome = execute(run.script, source=source, base=base, seed=self.seed,
+                          parameters=parameters, selection=selection, control=run.control)
+        run.control.finished = True
+        self._watch_modules(run.script, outcome.modules)
+        self._publish(run, outcome, parameter_items(parameters))
+
+    def _base_scene(self) -> Scene | None:
+        """The ``--mesh`` scene, loaded once, in the worker (never on the caller's thread)."""
+        if self.mesh_path is not None and self._base is None:
+            self._base = base_scene(self.mesh_path)
+        return self._base
+
+    def _watch_modules(self, script: str, modules: tuple[str, ...]) -> None:
+        """Watch the local modules a run imported, remembering their content now."""
+        with self._lock:
+            if script != self.script:
+                return
+            for path in modules:
+                digest = _digest(path)
+                if path not in self._seen and digest is not None:
+                    self._seen[path] = digest
+            self._watcher.set_files(self._watcher.files | set(modules))
+
+    def _publish(self, run: _Run, outcome: RunOutcome, parameters: tuple) -> None:
+        if outcome.status == "cancelled" and run.cancel_reason != "user":
+            return  # superseded: the newer run's result is what matters
+        save_error = self._save_output(outcome) if outcome.status == "ok" else None
+        if outcome.status == "ok" and save_error is None:
+            self._publish_ok(run, outcome, parameters)
+            return
+        error = save_error or outcome.error
+        status = "error" if save_error is not None else outcome.status
+        with self._lock:
+            last = self._last_good
+            self._last_steps = outcome.steps
+        self._post(RunResult(
+            run.run_id, run.script, status, outcome.steps, None,
+            last.arrays if last else None, last.preview if last else None, error,
+            outcome.elapsed, last is not None, parameters, snapshot_scene(outcome.scene)))
+
+    def _publish_ok(self, run: _Run, outcome: RunOutcome, parameters: tuple) -> None:
+        result = RunResult(run.run_id, run.script, "ok", outcome.steps, None,
+                           snapshot_scene(outcome.scene), None, None, outcome.elapsed,
+                           False, parameters)
+        with self._lock:
+            if run.run_id == self._run_id:
+                self._last_good, self._last_steps = result, outcome.steps
+        self._post(result)
+        mesh = current_mesh(outcome.scene)
+        if self._previews is not None and mesh is not None:
+            self._previews.request(result, mesh)
+
+    def _publish_failure(self, run: _Run, exc: Exception, elapsed: float) -> None:
+        """A run that could not start (script unreadable, ``--mesh`` unloadable)."""
+        with self._lock:
+            last = self._last_good
+        error = dataclasses.replace(exception_error(exc, run.script), file=run.script)
+        self._post(RunResult(run.run_id, run.script, "error", (), None,
+                             last.arrays if last else None, None, error, elapsed,
+                             last is not None))
+
+    def _save_output(self, outcome: RunOutcome) -> ScriptError | None:
+        """Write the mesh to ``output`` (``run --watch -o``); an error if that fails."""
+        mesh = current_mesh(outcome.scene)
+        if self.output is None or mesh is None:
+            return None
+        try:
+            importlib.import_module("livemod.dlfl.io").save_mesh(mesh, self.output)
+        except Exception as exc:
+            error = exception_error(exc, self.script)
+            return dataclasses.replace(error, file=self.output)
+        return None
+
+    def _post_paused(self, run: _Run, index: int, steps: tuple[StepRecord, ...],
+                     scene: Scene) -> None:
+        """Worker, at a pause: post the mesh as it is after step ``index``."""
+        result = RunResult(run.run_id, run.script, "paused", steps, index,
+                           snapshot_scene(scene), None, None,
+                           steps[-1].elapsed if steps else 0.0, False,
+                           parameter_items(scene.parameters))
+        self._post(result)
+        mesh = current_mesh(scene)
+        if self._previews is not None and mesh is not None:
+            self._previews.request(result, mesh.copy())  # the live mesh changes on resume
+
+    # -- posting ---------------------------------------------------------------------
+
+    def _post(self, result: RunResult) -> None:
+        """Publish ``result`` unless a newer run exists or the session is closed."""
+        with self._lock:
+            if result.run_id == self._run_id and not self._closed:
+                self._last_posted = result
+                self.results.put(result)
+
+    def _is_latest(self, result: RunResult) -> bool:
+        with self._lock:
+            return self._last_posted is result
+
+    def _post_preview(self, result: RunResult, preview: MeshArrays) -> None:
+        with self._lock:
+            if self._last_posted is result and not self._closed:
+                self.results.put(dataclasses.replace(result, preview=preview))
+
+
+def _read(path: str) -> str:
+    with open(path, encoding="utf-8") as handle:
+        return handle.read()
+
+
+def _hash(data: bytes) -> bytes:
+    return hashlib.blake2b(data, digest_size=16).digest()
+
+
+def _digest(path: str) -> bytes | None:
+    """Hash of the file's bytes, None when it cannot be read (e.g. mid-rename)."""
+    try:
+        with open(path, "rb") as handle:
+            return _hash(handle.read())
+    except OSError:
+        return None
