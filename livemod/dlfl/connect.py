@@ -1,18 +1,112 @@
-"""Connecting faces and edges: the operations that add handles and tubes."""
+"""Connecting faces, edges and corners: the operations that add handles and tubes.
+
+TopMod's ``DLFLConnect.cc`` family (TOPMOD.md §5), built on :meth:`Mesh.insert_edge`
+and :meth:`Mesh.create_face` only:
+
+* :func:`connect_faces`: a ring of quads between two faces, optionally through
+  ``segments - 1`` intermediate rings (linear interpolation, pinch and bubble);
+* :func:`connect_faces_closest`: the same from two face ids, matching their
+  closest corners;
+* :func:`dual_connect_faces` / :func:`connect_corners` with ``dual=True``: a
+  zig-zag band of triangles;
+* :func:`connect_edges`: join two half-edges with a quad;
+* :func:`hermite_handle` and :func:`bezier_handle`: curved handles;
+* :func:`multi_face_handle`: a convex-hull hub joining several faces.
+
+Every function checks all of its input before touching the mesh, so a
+:class:`DLFLError` leaves the mesh unchanged. Each returns the ids of the edges
+it created, in creation order.
+"""
 
 from __future__ import annotations
 
+import math
+from collections.abc import Callable
+
+import numpy as np
+
+from .analysis import face_points, polygon_normal
 from .errors import DLFLError
 from .mesh import Mesh
 
+# ``connector(mesh, corner1, corner2)`` joins the faces of two corners
+Connector = Callable[[Mesh, int, int], object]
 
-def connect_faces(mesh: Mesh, corner1: int, corner2: int) -> list[int]:
-    """Join two faces with a ring of quads, matching ``corner1``'s vertex to ``corner2``'s.
 
-    TopMod's ``connectFaces``: one edge merges the faces, then quads are cut off
-    the merged face while it has more than four sides. Faces of equal size ``n``
-    give ``n`` quads (genus +1 within one component, or two components joined);
-    unequal sizes end in a triangle or a larger polygon.
+# -- checks ----------------------------------------------------------------------
+
+def _live_corner(mesh: Mesh, corner: int, what: str) -> int:
+    if isinstance(corner, bool) or not isinstance(corner, int | np.integer):
+        raise DLFLError(f"{what} must be a corner id (int), got {corner!r}")
+    if not mesh.has_corner(int(corner)):
+        raise DLFLError(f"{what}: corner {corner} does not exist (deleted or never made)")
+    return int(corner)
+
+
+def _two_faces(mesh: Mesh, corner1: int, corner2: int, op: str) -> tuple[int, int]:
+    """The faces of two live corners, which must differ."""
+    c1 = _live_corner(mesh, corner1, "corner1")
+    c2 = _live_corner(mesh, corner2, "corner2")
+    face1, face2 = mesh.corner_face(c1), mesh.corner_face(c2)
+    if face1 == face2:
+        raise DLFLError(f"{op} needs corners of two different faces, both are in face {face1}")
+    return face1, face2
+
+
+def _check_segments(segments: int, max_connections: int = -1) -> None:
+    if isinstance(segments, bool) or not isinstance(segments, int | np.integer) or segments < 1:
+        raise DLFLError(f"segments must be an integer >= 1, got {segments!r}")
+    if isinstance(max_connections, bool) or not isinstance(max_connections, int | np.integer):
+        raise DLFLError(f"max_connections must be an integer, got {max_connections!r}")
+
+
+def _same_size(mesh: Mesh, face1: int, face2: int, op: str) -> None:
+    n1, n2 = mesh.face_size(face1), mesh.face_size(face2)
+    if n1 != n2:
+        raise DLFLError(
+            f"{op} with segments needs faces of equal size; face {face1} has {n1} "
+            f"corners and face {face2} has {n2} (connect them with segments=1, "
+            "which ends in a triangle or larger polygon)"
+        )
+
+
+def _new_edges(mesh: Mesh, first_id: int) -> list[int]:
+    """Live edges created since the edge counter stood at ``first_id`` (ids never reuse)."""
+    return [e for e in range(first_id, mesh.next_ids()[1]) if mesh.has_edge(e)]
+
+
+# -- single connections ------------------------------------------------------------
+
+def _quad_band(mesh: Mesh, corner1: int, corner2: int) -> None:
+    """TopMod's ``connectFaces``: one merging edge, then quads cut off while > 4 sides."""
+    mesh.insert_edge(corner1, corner2)
+    side = corner1
+    while mesh.face_size(mesh.corner_face(side)) > 4:
+        before = mesh.corner_prev(side)
+        mesh.insert_edge(before, mesh.corner_next(mesh.corner_next(side)))
+        side = before
+
+
+def _triangle_band(mesh: Mesh, corner1: int, corner2: int) -> None:
+    """TopMod's ``dualConnectFaces``: one merging edge, then triangles, alternating sides."""
+    mesh.insert_edge(corner1, corner2)
+    side, parity = corner1, True
+    while mesh.face_size(mesh.corner_face(side)) > 3:
+        if parity:
+            mesh.insert_edge(side, mesh.corner_next(mesh.corner_next(side)))
+        else:
+            before = mesh.corner_prev(side)
+            mesh.insert_edge(before, mesh.corner_next(side))
+            side = before
+        parity = not parity
+
+
+def dual_connect_faces(mesh: Mesh, corner1: int, corner2: int) -> list[int]:
+    """Join two faces with a zig-zag band of triangles (TopMod's ``dualConnectFaces``).
+
+    Every vertex of one face is joined to two adjacent vertices of the other;
+    faces of sizes ``n`` and ``m`` give ``n + m`` triangles (cube top to bottom:
+    8/20/12, genus 1).
 
     Returns:
         The ids of the new edges, the first one joining the two corners.
@@ -20,16 +114,386 @@ def connect_faces(mesh: Mesh, corner1: int, corner2: int) -> list[int]:
     Raises:
         DLFLError: a corner is not live, or both corners are in the same face.
     """
-    face1, face2 = mesh.corner_face(corner1), mesh.corner_face(corner2)
+    _two_faces(mesh, corner1, corner2, "dual_connect_faces")
+    first = mesh.next_ids()[1]
+    _triangle_band(mesh, corner1, corner2)
+    return _new_edges(mesh, first)
+
+
+# -- multi-segment connections -------------------------------------------------------
+
+def _pinch_scale(t: float, pinch: float, center: float, bubble: float) -> float:
+    """TopMod's pinch profile: a quadratic Bezier (1, pinch, pinch) in ``t2``, mirrored
+    at ``center``, with ``t2 = (t / center) ** (1 / bubble)`` (1 at both ends)."""
+    t2 = t / center if t <= center else 1.0 - (t - center) / (1.0 - center)
+    t2 = t2 ** (1.0 / bubble)
+    return (1 - t2) ** 2 + 2 * (1 - t2) * t2 * pinch + t2 * t2 * pinch
+
+
+def _check_pinch(pinch: float, center: float, bubble: float) -> None:
+    if not 0.0 < center < 1.0:
+        raise DLFLError(f"pinch_center must lie strictly between 0 and 1, got {center!r}")
+    if not bubble > 0.0:
+        raise DLFLError(f"bubble must be > 0, got {bubble!r}")
+    if not math.isfinite(pinch):
+        raise DLFLError(f"pinch must be a finite number, got {pinch!r}")
+
+
+def _end_rings(mesh: Mesh, corner1: int, corner2: int) -> tuple[np.ndarray, np.ndarray]:
+    """``(n, 3)`` points of face 1 from ``corner1`` forwards and of face 2 from
+    ``corner2`` backwards (face 2 reversed, so vertex ``i`` faces vertex ``i``)."""
+    ring1 = [mesh.corner_vertex(c) for c in _ring_from(mesh, corner1, mesh.corner_next)]
+    ring2 = [mesh.corner_vertex(c) for c in _ring_from(mesh, corner2, mesh.corner_prev)]
+    return _positions(mesh, ring1), _positions(mesh, ring2)
+
+
+def _ring_from(mesh: Mesh, corner: int, step: Callable[[int], int]) -> list[int]:
+    out, c = [corner], step(corner)
+    while c != corner:
+        out.append(c)
+        c = step(c)
+    return out
+
+
+def _positions(mesh: Mesh, vertices: list[int]) -> np.ndarray:
+    slot = mesh._v.slot
+    return mesh._v.arrays["position"][[slot(v) for v in vertices]]
+
+
+def _scale_about_centroid(points: np.ndarray, factor: float) -> np.ndarray:
+    centre = points.mean(axis=0)
+    return centre + (points - centre) * factor
+
+
+def _chain_rings(
+    mesh: Mesh, corner1: int, corner2: int, rings: list[np.ndarray],
+    connector: Connector, max_connections: int,
+) -> None:
+    """Make each ring a two-sided polygon and join face 1, the rings and face 2 in turn.
+
+    At most ``max_connections`` joins are made (-1: all), as TopMod does, so a
+    limited chain leaves loose two-sided rings.
+    """
+    limit = len(rings) + 1 if max_connections < 0 else max_connections
+    made, current = 0, corner1
+    for points in rings:
+        front, back = mesh.create_face(points.tolist())
+        if made < limit:
+            connector(mesh, current, mesh.face_corner(back))
+            made += 1
+        current = mesh.face_corner(front)
+    if made < limit:
+        connector(mesh, current, corner2)
+
+
+def connect_faces(
+    mesh: Mesh, corner1: int, corner2: int, segments: int = 1, *,
+    max_connections: int = -1, pinch: float = 1.0, pinch_center: float = 0.5,
+    bubble: float = 1.0,
+) -> list[int]:
+    """Join two faces with a tube, matching ``corner1``'s vertex to ``corner2``'s.
+
+    TopMod's ``connectFaces``. With one segment: one edge merges the faces, then
+    quads are cut off the merged face while it has more than four sides; faces
+    of equal size ``n`` give ``n`` quads (genus +1 within one component, or two
+    components joined), a quad to a pentagon gives 4 quads and a triangle.
+    With ``segments`` > 1 the faces must have equal size: ring ``i`` is the
+    linear interpolation at ``t = i / segments`` between face 1 (from
+    ``corner1``) and face 2 reversed (from ``corner2``), scaled about its
+    centroid by the pinch profile (1 at both ends, ``pinch`` at
+    ``pinch_center``, sharpened by ``bubble``); consecutive rings are joined.
+    Cube top to bottom: 8/16/8 genus 1; 3 segments 16/32/16.
+
+    Args:
+        max_connections: at most this many joins (-1, the default: all).
+
+    Returns:
+        The ids of the new edges, in creation order (the first joins the corners
+        when ``segments`` is 1).
+
+    Raises:
+        DLFLError: a corner is not live, both are in one face, ``segments`` < 1,
+            faces of different sizes with ``segments`` > 1, or a bad pinch value.
+        TopMod silently did nothing for faces of different sizes.
+    """
+    face1, face2 = _two_faces(mesh, corner1, corner2, "connect_faces")
+    _check_segments(segments, max_connections)
+    _check_pinch(pinch, pinch_center, bubble)
+    first = mesh.next_ids()[1]
+    if segments == 1:
+        if max_connections != 0:
+            _quad_band(mesh, corner1, corner2)
+        return _new_edges(mesh, first)
+    _same_size(mesh, face1, face2, "connect_faces")
+    start, end = _end_rings(mesh, corner1, corner2)
+    rings = []
+    for i in range(1, segments):
+        t = i / segments
+        ring = start + (end - start) * t
+        rings.append(_scale_about_centroid(ring, _pinch_scale(t, pinch, pinch_center, bubble)))
+    _chain_rings(mesh, corner1, corner2, rings, _quad_band, max_connections)
+    return _new_edges(mesh, first)
+
+
+def closest_corners(mesh: Mesh, face1: int, face2: int) -> tuple[int, int]:
+    """The corners of two faces whose vertices are closest (TopMod's ``findClosestCorners``).
+
+    Ties go to the first pair in ring order from the heads.
+
+    Raises:
+        DLFLError: a face id is not live.
+    """
+    for face in (face1, face2):
+        if not mesh.has_face(face):
+            raise DLFLError(f"face {face} does not exist (deleted or never made)")
+    p1, p2 = face_points(mesh, face1), face_points(mesh, face2)
+    dist = np.linalg.norm(p1[:, None, :] - p2[None, :, :], axis=2)
+    i, j = np.unravel_index(int(np.argmin(dist)), dist.shape)
+    return mesh.face_corners(face1)[int(i)], mesh.face_corners(face2)[int(j)]
+
+
+def connect_faces_closest(
+    mesh: Mesh, face1: int, face2: int, segments: int = 1, *, max_connections: int = -1,
+) -> list[int]:
+    """:func:`connect_faces` from two face ids, joining their closest corners.
+
+    TopMod's ``connectFaces(f1, f2, numsegs)`` ("Add Hole/Handle CV"); livemod
+    also honours ``max_connections``, which TopMod's Python binding ignored.
+
+    Raises:
+        DLFLError: as :func:`connect_faces`, or a face id is not live.
+    """
     if face1 == face2:
-        raise DLFLError(
-            f"connect_faces needs corners of two different faces, both are in face {face1}"
-        )
-    new_edges = [mesh.insert_edge(corner1, corner2)]
-    side = corner1
-    while mesh.face_size(mesh.corner_face(side)) > 4:
-        before = mesh.corner_prev(side)
-        across = mesh.corner_next(mesh.corner_next(side))
-        new_edges.append(mesh.insert_edge(before, across))
-        side = before
-    return new_edges
+        raise DLFLError(f"connect_faces_closest needs two different faces, got face {face1} twice")
+    c1, c2 = closest_corners(mesh, face1, face2)
+    return connect_faces(mesh, c1, c2, segments, max_connections=max_connections)
+
+
+def connect_corners(
+    mesh: Mesh, corner1: int, corner2: int, segments: int = 1, *,
+    max_connections: int = -1, dual: bool = False,
+) -> list[int]:
+    """Join the faces of two corners: :func:`connect_faces`, or with ``dual`` a band of
+    triangles (:func:`dual_connect_faces`) between every pair of consecutive rings.
+
+    TopMod's ``connectCorners(c1, c2, numsegs, maxconn, 'dual')``.
+
+    Raises:
+        DLFLError: as :func:`connect_faces`.
+    """
+    if not dual:
+        return connect_faces(mesh, corner1, corner2, segments, max_connections=max_connections)
+    face1, face2 = _two_faces(mesh, corner1, corner2, "connect_corners")
+    _check_segments(segments, max_connections)
+    first = mesh.next_ids()[1]
+    if segments > 1:
+        _same_size(mesh, face1, face2, "connect_corners")
+    start, end = _end_rings(mesh, corner1, corner2)
+    rings = [start + (end - start) * (i / segments) for i in range(1, segments)]
+    _chain_rings(mesh, corner1, corner2, rings, _triangle_band, max_connections)
+    return _new_edges(mesh, first)
+
+
+def connect_edges(
+    mesh: Mesh, edge1: int, face1: int, edge2: int, face2: int, check: bool = True,
+) -> list[int]:
+    """Join two half-edges with a quad (TopMod's ``connectEdges``).
+
+    With ``c1`` the side of ``edge1`` in ``face1`` and ``c2`` that of ``edge2`` in
+    ``face2``, inserts the edges ``(c1, next(c2))`` and ``(next(c1), c2)``. With
+    ``check`` a pair of corners that are already adjacent gets no edge.
+
+    Returns:
+        The ids of the (zero to two) new edges.
+
+    Raises:
+        DLFLError: an edge or face is not live, an edge is not on its face, or
+            both half-edges are the same.
+    """
+    c1 = _side_in_face(mesh, edge1, face1, "edge1")
+    c2 = _side_in_face(mesh, edge2, face2, "edge2")
+    if c1 == c2:
+        raise DLFLError(f"connect_edges needs two different half-edges, got edge {edge1} twice")
+    c1n, c2n = mesh.corner_next(c1), mesh.corner_next(c2)
+    made = []
+    for a, b in ((c1, c2n), (c1n, c2)):
+        adjacent = mesh.corner_next(a) == b or mesh.corner_prev(a) == b
+        if not (check and adjacent) and a != b:
+            made.append(mesh.insert_edge(a, b))
+    return made
+
+
+def _side_in_face(mesh: Mesh, edge: int, face: int, what: str) -> int:
+    if not mesh.has_edge(edge):
+        raise DLFLError(f"{what}: edge {edge} does not exist (deleted or never made)")
+    if not mesh.has_face(face):
+        raise DLFLError(f"{what}: face {face} does not exist (deleted or never made)")
+    for side in mesh.edge_corners(edge):
+        if mesh.corner_face(side) == face:
+            return side
+    raise DLFLError(f"{what}: edge {edge} is not on face {face} (its faces: {mesh.edge_faces(edge)})")
+
+
+# -- curved handles --------------------------------------------------------------------
+
+def hermite_point(p1: np.ndarray, m1: np.ndarray, p2: np.ndarray, m2: np.ndarray,
+                  t: float) -> tuple[np.ndarray, np.ndarray]:
+    """Cubic Hermite curve from ``p1`` (tangent ``m1``) to ``p2`` (tangent ``m2``).
+
+    Returns:
+        ``(point, tangent)`` at ``t``, each ``(..., 3)`` like the inputs.
+    """
+    t2, t3 = t * t, t * t * t
+    point = ((2 * t3 - 3 * t2 + 1) * p1 + (t3 - 2 * t2 + t) * m1
+             + (-2 * t3 + 3 * t2) * p2 + (t3 - t2) * m2)
+    tangent = ((6 * t2 - 6 * t) * p1 + (3 * t2 - 4 * t + 1) * m1
+               + (-6 * t2 + 6 * t) * p2 + (3 * t2 - 2 * t) * m2)
+    return point, tangent
+
+
+def rotation_between(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """``(3, 3)`` the smallest rotation taking unit vector ``a`` to unit vector ``b``.
+
+    Opposite vectors get a half turn about an axis perpendicular to ``a``.
+    """
+    v = np.cross(a, b)
+    c = float(np.dot(a, b))
+    if c < -1.0 + 1e-12:
+        axis = np.cross(a, [1.0, 0.0, 0.0])
+        if np.linalg.norm(axis) < 1e-6:
+            axis = np.cross(a, [0.0, 1.0, 0.0])
+        axis /= np.linalg.norm(axis)
+        return 2.0 * np.outer(axis, axis) - np.eye(3)
+    k = np.array([[0.0, -v[2], v[1]], [v[2], 0.0, -v[0]], [-v[1], v[0], 0.0]])
+    return np.eye(3) + k + k @ k / (1.0 + c)
+
+
+def _handle_ends(mesh: Mesh, corner1: int, corner2: int, segments: int, op: str
+                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Checks shared by the handles; returns the end rings and their normals
+    (the second face's normal reversed, as it is seen from the first)."""
+    face1, face2 = _two_faces(mesh, corner1, corner2, op)
+    _check_segments(segments)
+    _same_size(mesh, face1, face2, op)
+    start, end = _end_rings(mesh, corner1, corner2)
+    n1, n2 = polygon_normal(start), polygon_normal(end)
+    if not (np.any(n1) and np.any(n2)):
+        raise DLFLError(f"{op} needs faces with a normal (not 2-gons or degenerate faces)")
+    return start, end, n1, n2
+
+
+def hermite_rings(
+    start: np.ndarray, end: np.ndarray, n1: np.ndarray, n2: np.ndarray, segments: int,
+    weight1: float, weight2: float, twists: int = 0,
+    pinch: tuple[float, float, float] = (1.0, 0.5, 1.0),
+) -> list[np.ndarray]:
+    """The intermediate rings of a Hermite handle (TopMod's ``hermiteConnectFaces``).
+
+    The centroids follow the Hermite curve from centroid 1 (tangent
+    ``weight1 * n1``) to centroid 2 (tangent ``weight2 * n2``). Each end polygon is
+    rotated about its centroid into the plane perpendicular to ``axis =
+    normalize(c2 - c1)`` and resolved into (angle, distance) pairs against
+    ``x = normalize(q_0 + q_{n-1})`` (q: ring 1 rotated) and ``y = axis x x``;
+    angles are unwrapped, face 2's shifted by a multiple of 2π to within π of
+    face 1's, plus ``2π twists``. Ring ``i`` at ``t = i / segments`` interpolates
+    both linearly, is scaled by the pinch profile ``(pinch, center, bubble)``,
+    rotated from ``axis`` to the curve tangent and moved to the curve point.
+
+    Args:
+        start, end: ``(n, 3)`` end polygons, vertex ``i`` facing vertex ``i``.
+        n1, n2: ``(3,)`` unit normals of the end polygons, both along the handle.
+
+    Returns:
+        ``segments - 1`` arrays of shape ``(n, 3)``.
+
+    Raises:
+        DLFLError: the centroids coincide, or a normal points exactly against the
+            centroid-to-centroid axis (TopMod refused these too).
+    """
+    c1, c2 = start.mean(axis=0), end.mean(axis=0)
+    axis = c2 - c1
+    if np.linalg.norm(axis) < 1e-12:
+        raise DLFLError("a Hermite handle needs faces with different centroids")
+    axis = axis / np.linalg.norm(axis)
+    if min(float(n1 @ axis), float(n2 @ axis)) < -1.0 + 1e-9:
+        raise DLFLError("a face normal points exactly against the handle's axis; "
+                        "TopMod cannot build this handle either (use a bezier handle)")
+    q1 = (start - c1) @ rotation_between(n1, axis).T
+    q2 = (end - c2) @ rotation_between(n2, axis).T
+    x = q1[0] + q1[-1]
+    x = x / np.linalg.norm(x)
+    y = np.cross(axis, x)
+    a1, a2 = (np.unwrap(np.arctan2(q @ y, q @ x)) for q in (q1, q2))
+    a2 = a2 - 2 * np.pi * np.round((a2[0] - a1[0]) / (2 * np.pi)) + 2 * np.pi * twists
+    d1, d2 = np.linalg.norm(q1, axis=1), np.linalg.norm(q2, axis=1)
+    rings = []
+    for i in range(1, segments):
+        t = i / segments
+        angle, dist = a1 + (a2 - a1) * t, d1 + (d2 - d1) * t
+        flat = dist[:, None] * (np.cos(angle)[:, None] * x + np.sin(angle)[:, None] * y)
+        point, tangent = hermite_point(c1, weight1 * n1, c2, weight2 * n2, t)
+        turn = rotation_between(axis, tangent / np.linalg.norm(tangent))
+        rings.append(point + (flat * _pinch_scale(t, *pinch)) @ turn.T)
+    return rings
+
+
+def hermite_handle(
+    mesh: Mesh, corner1: int, corner2: int, segments: int = 10, weight1: float = 25.0,
+    weight2: float = 25.0, *, max_connections: int = -1, twists: int = 0,
+    pinch: float = 1.0, pinch_center: float = 0.5, bubble: float = 1.0,
+) -> list[int]:
+    """A handle whose centroid path is a Hermite curve (TopMod's ``hermiteConnectFaces``).
+
+    Rings as in :func:`hermite_rings`, joined in turn with quads like
+    :func:`connect_faces` (at most ``max_connections`` joins, -1 for all). Defaults
+    are TopMod's GUI ("Add Handle SI": 10 segments, weights 25 and 25). Cube
+    faces 0 and 1 with 10 segments: 44/88/44. One segment is :func:`connect_faces`.
+
+    Returns:
+        The ids of the new edges.
+
+    Raises:
+        DLFLError: a corner is not live, both are in one face, faces of different
+            sizes (TopMod silently did nothing), ``segments`` < 1, or see
+            :func:`hermite_rings`.
+    """
+    start, end, n1, n2 = _handle_ends(mesh, corner1, corner2, segments, "hermite_handle")
+    _check_segments(segments, max_connections)
+    _check_pinch(pinch, pinch_center, bubble)
+    rings = hermite_rings(start, end, n1, n2, segments, weight1, weight2, int(twists),
+                          (pinch, pinch_center, bubble))
+    first = mesh.next_ids()[1]
+    _chain_rings(mesh, corner1, corner2, rings, _quad_band, max_connections)
+    return _new_edges(mesh, first)
+
+
+def bezier_rings(start: np.ndarray, end: np.ndarray, n1: np.ndarray, n2: np.ndarray,
+                 segments: int, weight1: float, weight2: float) -> list[np.ndarray]:
+    """Rings of a Bezier handle: vertex ``j`` of ring ``i`` is the Hermite curve from
+    ``start[j]`` (tangent ``weight1 * n1``) to ``end[j]`` (``weight2 * n2``) at ``i / segments``.
+
+    Returns:
+        ``segments - 1`` arrays of shape ``(n, 3)``.
+    """
+    return [hermite_point(start, weight1 * n1, end, weight2 * n2, i / segments)[0]
+            for i in range(1, segments)]
+
+
+def bezier_handle(
+    mesh: Mesh, corner1: int, corner2: int, segments: int = 10,
+    weight1: float = 25.0, weight2: float = 25.0,
+) -> list[int]:
+    """A handle whose every vertex follows its own Hermite curve (TopMod's
+    ``bezierConnectFaces``); see :func:`bezier_rings`. Rings are joined with quads.
+
+    Returns:
+        The ids of the new edges.
+
+    Raises:
+        DLFLError: as :func:`hermite_handle` (faces of different sizes included).
+    """
+    start, end, n1, n2 = _handle_ends(mesh, corner1, corner2, segments, "bezier_handle")
+    rings = bezier_rings(start, end, n1, n2, segments, weight1, weight2)
+    first = mesh.next_ids()[1]
+    _chain_rings(mesh, corner1, corner2, rings, _quad_band, -1)
+    return _new_edges(mesh, first)

@@ -1,0 +1,425 @@
+"""Extrusions: grow a face into a tube, a cone or a polyhedral cap (TOPMOD.md §4).
+
+One registry, :data:`KINDS`, names every kind. Most kinds end in a new *end
+face*, which :func:`extrude` returns, so repeated extrusion on the returned face
+builds the thesis's towers::
+
+    face = extrude(mesh, face, "doo-sabin", distance=0.5, scale=0.9)
+
+The kinds that end in a fan of triangles around an apex (stellate,
+double-stellate, dome) have no end face; :func:`extrude_fan` runs them and
+returns the triangles' ids. Every extrusion reads only the face it extrudes
+and touches only the elements next to it, so a chain of extrusions costs the
+same per step however large the mesh is.
+
+The direction of every extrusion is TopMod's face normal (the normalised sum of
+the corner normals, :func:`livemod.dlfl.analysis.polygon_normal`). Rotations are
+in degrees, right-handed about that normal, about the new polygon's centroid;
+scales are about the new polygon's centroid, by ``|scale|``, skipped for 0 and 1
+as TopMod does.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass, replace
+from functools import lru_cache
+
+import numpy as np
+
+from .analysis import polygon_normal
+from .connect import _quad_band, _triangle_band
+from .errors import DLFLError
+from .mesh import Mesh
+
+TINY = 1e-12
+
+
+@dataclass(frozen=True)
+class Options:
+    """The parameters of one extrusion step (see :func:`extrude` for their meaning)."""
+
+    distance: float = 2.0
+    rotation: float = 0.0
+    scale: float = 1.0
+    twist: float = 0.0
+    dual_mesh: bool = False
+    hexagonalize: bool = False
+    thickness: float = 0.25
+    fractional: bool = True
+
+
+# -- local geometry ------------------------------------------------------------------
+
+def _face_geometry(mesh: Mesh, face: int) -> tuple[np.ndarray, np.ndarray]:
+    """``(k, 3)`` points of ``face`` from its head and its ``(3,)`` unit normal."""
+    slot = mesh._v.slot
+    points = mesh._v.arrays["position"][[slot(v) for v in mesh.face_vertices(face)]]
+    return points, polygon_normal(points)
+
+
+def _scaled(points: np.ndarray, factor: float) -> np.ndarray:
+    """Scale about the centroid by ``|factor|``, unless it is 0 or 1 (TopMod's rule)."""
+    factor = abs(factor)
+    if factor < TINY or abs(factor - 1.0) < TINY:
+        return points
+    centre = points.mean(axis=0)
+    return centre + (points - centre) * factor
+
+
+def _rotated(points: np.ndarray, axis: np.ndarray, degrees: float) -> np.ndarray:
+    """Rotate right-handed by ``degrees`` about ``axis`` (unit) through the centroid."""
+    if abs(degrees) < TINY:
+        return points
+    theta = math.radians(degrees)
+    centre = points.mean(axis=0)
+    rel = points - centre
+    cos, sin = math.cos(theta), math.sin(theta)
+    along = np.outer(rel @ axis, axis)
+    return centre + along + (rel - along) * cos + np.cross(axis, rel) * sin
+
+
+@lru_cache(maxsize=64)
+def doo_sabin_weights(n: int) -> np.ndarray:
+    """``(n, n)`` Doo-Sabin weights: ``1/4 + 5/(4n)`` on the diagonal, else
+    ``(3 + 2 cos(2π(i - j)/n)) / (4n)``; quads get (9, 3, 1, 3)/16."""
+    i, j = np.meshgrid(np.arange(n), np.arange(n), indexing="ij")
+    weights = (3.0 + 2.0 * np.cos(2.0 * np.pi * (i - j) / n)) / (4.0 * n)
+    np.fill_diagonal(weights, 0.25 + 5.0 / (4.0 * n))
+    weights.flags.writeable = False
+    return weights
+
+
+# -- building blocks: one new polygon joined to the face --------------------------------
+
+def _bridge(mesh: Mesh, face: int, points: np.ndarray, dual: bool = False) -> int:
+    """Create ``points`` as a two-sided polygon and join its back to ``face``, head to
+    head (quads, or with ``dual`` a band of triangles). Returns the front, the end face."""
+    front, back = mesh.create_face(points.tolist())
+    join = _triangle_band if dual else _quad_band
+    join(mesh, mesh.face_corner(face), mesh.face_corner(back))
+    return front
+
+
+def cubical_step(mesh: Mesh, face: int, o: Options) -> int:
+    """TopMod's ``extrudeFace``: the face's points scaled, rotated, then moved
+    ``distance`` along the normal; ``n`` side quads. Returns the end face."""
+    points, normal = _face_geometry(mesh, face)
+    points = _rotated(_scaled(points, o.scale), normal, o.rotation)
+    return _bridge(mesh, face, points + o.distance * normal)
+
+
+def doo_sabin_step(mesh: Mesh, face: int, o: Options) -> int:
+    """TopMod's ``extrudeFaceDS``: ``q_i = d n + (1 - twist) p_i + twist p_{i+1}``,
+    then the Doo-Sabin weights, then the scale (and livemod's rotation)."""
+    points, normal = _face_geometry(mesh, face)
+    twisted = (1.0 - o.twist) * points + o.twist * np.roll(points, -1, axis=0)
+    inner = doo_sabin_weights(len(points)) @ (twisted + o.distance * normal)
+    inner = _rotated(_scaled(inner, o.scale), normal, o.rotation)
+    return _bridge(mesh, face, inner)
+
+
+def dual_step(mesh: Mesh, face: int, o: Options) -> int:
+    """TopMod's ``extrudeDualFace``: edge midpoints moved ``distance`` along the normal,
+    scaled, rotated, joined by ``2n`` triangles; ``dual_mesh`` then deletes the
+    face's old edges (cube: 12/24/14, with ``dual_mesh`` 12/20/10)."""
+    points, normal = _face_geometry(mesh, face)
+    old_edges = mesh.face_edges(face) if o.dual_mesh else []
+    mids = (points + np.roll(points, -1, axis=0)) * 0.5 + o.distance * normal
+    end = _bridge(mesh, face, _rotated(_scaled(mids, o.scale), normal, o.rotation), dual=True)
+    _delete_edges(mesh, old_edges)
+    return end
+
+
+def _delete_edges(mesh: Mesh, edges: list[int]) -> None:
+    for edge in edges:
+        if mesh.has_edge(edge):
+            mesh.delete_edge(edge, cleanup=True)
+
+
+def planar_offset_step(mesh: Mesh, face: int, o: Options) -> int:
+    """TopMod's ``extrudeFacePlanarOffset`` (an inset): corner ``p`` moves by
+    ``thickness (pvec + nvec)`` in the face plane (``pvec``, ``nvec``: the edge
+    vectors to its neighbours, unit unless ``fractional``), flipped at concave
+    corners; straight corners move ``thickness`` along ``n x nvec``. Then rotation
+    and ``distance`` along the normal."""
+    points, normal = _face_geometry(mesh, face)
+    pvec = np.roll(points, 1, axis=0) - points
+    nvec = np.roll(points, -1, axis=0) - points
+    if not o.fractional:
+        pvec, nvec = _unit_rows(pvec), _unit_rows(nvec)
+    cross = np.cross(nvec, pvec)
+    offset = o.thickness * (pvec + nvec)
+    offset[cross @ normal < 0] *= -1.0
+    straight = np.linalg.norm(cross, axis=1) < 1e-9 * (1 + np.linalg.norm(nvec, axis=1) ** 2)
+    offset[straight] = o.thickness * _unit_rows(np.cross(normal, nvec[straight]))
+    inset = _rotated(points + offset, normal, o.rotation)
+    return _bridge(mesh, face, inset + o.distance * normal)
+
+
+def _unit_rows(vectors: np.ndarray) -> np.ndarray:
+    length = np.linalg.norm(vectors, axis=1, keepdims=True)
+    return np.divide(vectors, length, out=np.zeros_like(vectors), where=length > TINY)
+
+
+# -- compound kinds ----------------------------------------------------------------
+
+def dodeca_step(mesh: Mesh, face: int, o: Options) -> int:
+    """One dodecahedral step (TopMod's Python overload of ``extrudeFaceDodeca``):
+    cubical, dual with ``dual_mesh``, cubical, each ``distance / 3`` with scale
+    ``scale^(1/3)``, the dual one rotated; then the dual face's edges are deleted,
+    leaving pentagons (cube: 20/32/14)."""
+    third = replace(o, distance=o.distance / 3.0, scale=abs(o.scale) ** (1.0 / 3.0))
+    face = cubical_step(mesh, face, replace(third, rotation=0.0))
+    face = dual_step(mesh, face, replace(third, dual_mesh=True))
+    dual_edges = mesh.face_edges(face)
+    face = cubical_step(mesh, face, replace(third, rotation=0.0))
+    _delete_edges(mesh, dual_edges)
+    return face
+
+
+def hex_tile_step(mesh: Mesh, face: int, o: Options) -> int:
+    """TopMod's ``extrudeHexTileFace``: dual with ``dual_mesh`` then cubical, each
+    ``distance / 3`` with scale ``sqrt(scale)``, then the dual face's edges deleted."""
+    third = replace(o, distance=o.distance / 3.0, scale=math.sqrt(abs(o.scale)))
+    face = dual_step(mesh, face, replace(third, dual_mesh=True))
+    dual_edges = mesh.face_edges(face)
+    face = cubical_step(mesh, face, replace(third, rotation=0.0))
+    _delete_edges(mesh, dual_edges)
+    return face
+
+
+def icosa_step(mesh: Mesh, face: int, o: Options) -> int:
+    """TopMod's ``extrudeFaceIcosa`` topology: dual ``distance / 3`` (rotated, scaled),
+    cubical ``2 distance / 3``, the dual face's edges deleted, then each side face
+    next to the end face stellated at 0 (cube: 20/48/30).
+
+    Differs from TopMod: the positions are those of these steps; TopMod then
+    re-placed three rings by angle rules, which its Python binding fed with
+    misbound parameters (angle = distance, ...)."""
+    face = dual_step(mesh, face, replace(o, distance=o.distance / 3.0, dual_mesh=False))
+    dual_edges = mesh.face_edges(face)
+    face = cubical_step(mesh, face, Options(distance=2.0 * o.distance / 3.0))
+    _delete_edges(mesh, dual_edges)
+    sides = []
+    for edge in mesh.face_edges(face):
+        f0, f1 = mesh.edge_faces(edge)
+        sides.append(f1 if f0 == face else f0)
+    for side in sides:
+        stellate_fan(mesh, side, 0.0)
+    return face
+
+
+def cuboctahedral_step(mesh: Mesh, face: int, o: Options) -> int:
+    """TopMod's ``extrudeFaceCubOcta`` topology: two dual extrusions of ``distance / 3``
+    (rotated, scaled), then the first dual face's edges deleted (cube: 16/32/18).
+
+    Differs from TopMod: the positions are those of the two dual steps; TopMod
+    re-placed both rings by angle rules (the kind is not in its GUI or Python)."""
+    third = replace(o, distance=o.distance / 3.0, dual_mesh=False)
+    face = dual_step(mesh, face, third)
+    first_edges = mesh.face_edges(face)
+    face = dual_step(mesh, face, third)
+    _delete_edges(mesh, first_edges)
+    return face
+
+
+def stellate_fan(mesh: Mesh, face: int, distance: float) -> list[int]:
+    """TopMod's ``stellateFace``: a point at centroid + ``distance`` n joined to every
+    corner (a cone of triangles). Returns the triangles' ids around the apex."""
+    points, normal = _face_geometry(mesh, face)
+    apex = mesh.create_vertex(points.mean(axis=0) + distance * normal)
+    tip = mesh.vertex_corner(apex)
+    mesh.insert_edge(tip, mesh.face_corner(face))
+    while mesh.face_size(mesh.corner_face(tip)) > 3:
+        mesh.insert_edge(tip, mesh.corner_next(mesh.corner_next(tip)))
+    return mesh.vertex_faces(apex)
+
+
+def double_stellate_fan(mesh: Mesh, face: int, distance: float) -> list[int]:
+    """TopMod's ``doubleStellateFace``: stellate at 0, stellate each new triangle at 0,
+    then move the first apex ``distance`` along the face's normal (cube: 13/28/17).
+    Returns the ``3n`` triangles that replace the face."""
+    _, normal = _face_geometry(mesh, face)
+    first = stellate_fan(mesh, face, 0.0)
+    apex = mesh.corner_vertex(_shared_corner(mesh, first))
+    triangles = []
+    for triangle in first:
+        triangles.extend(stellate_fan(mesh, triangle, 0.0))
+    mesh.set_position(apex, mesh.position(apex) + distance * normal)
+    return triangles
+
+
+def _shared_corner(mesh: Mesh, faces: list[int]) -> int:
+    """A corner of ``faces[0]`` at the vertex all of ``faces`` share (a fan's apex)."""
+    common = set(mesh.face_vertices(faces[0]))
+    for f in faces[1:]:
+        common &= set(mesh.face_vertices(f))
+    vertex = common.pop()
+    return mesh.corner_at(faces[0], vertex)
+
+
+DOME_DISTANCES = (0.3, 0.18, 0.1, 0.05, 0.025)
+DOME_SCALES = (1.7, 1.6, 1.4, 1.2, 1.1)
+
+
+def dome_fan(mesh: Mesh, face: int, o: Options) -> list[int]:
+    """TopMod's ``extrudeFaceDome``: five Doo-Sabin steps with distances
+    (.3, .18, .1, .05, .025) x ``distance``, twist ``rotation / 5`` and scales
+    (1.7, 1.6, 1.4, 1.2, 1.1) x ``scale``, then a stellation at .01 x ``distance``
+    (cube: 29/56/29). Returns the apex triangles."""
+    for d, s in zip(DOME_DISTANCES, DOME_SCALES, strict=True):
+        step = Options(distance=d * o.distance, twist=o.rotation / 5.0, scale=s * o.scale)
+        face = doo_sabin_step(mesh, face, step)
+    return stellate_fan(mesh, face, 0.01 * o.distance)
+
+
+# -- the registry -------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class Kind:
+    """One extrusion kind: its step, whether it ends in a fan, TopMod's name."""
+
+    step: Callable[[Mesh, int, Options], int] | None
+    fan: Callable[[Mesh, int, Options], list[int]] | None
+    topmod: str
+
+
+KINDS: dict[str, Kind] = {
+    "cubical": Kind(cubical_step, None, "extrudeFace"),
+    "doo-sabin": Kind(doo_sabin_step, None, "extrudeFaceDS"),
+    "octa": Kind(dual_step, None, "extrudeDualFace"),
+    "dodeca": Kind(dodeca_step, None, "extrudeFaceDodeca"),
+    "icosa": Kind(icosa_step, None, "extrudeFaceIcosa"),
+    "cuboctahedral": Kind(cuboctahedral_step, None, "extrudeFaceCubOcta"),
+    "hex-tile": Kind(hex_tile_step, None, "extrudeHexTileFace"),
+    "planar-offset": Kind(planar_offset_step, None, "extrudeFacePlanarOffset"),
+    "stellate": Kind(None, lambda m, f, o: stellate_fan(m, f, o.distance), "stellateFace"),
+    "double-stellate": Kind(
+        None, lambda m, f, o: double_stellate_fan(m, f, o.distance), "doubleStellateFace"),
+    "dome": Kind(None, dome_fan, "extrudeFaceDome"),
+}
+ALIASES = {"dual": "octa", "inset": "planar-offset", "cubocta": "cuboctahedral",
+           "hextile": "hex-tile", "ds": "doo-sabin"}
+
+
+def kind_names() -> list[str]:
+    """The extrusion kinds, in registry order."""
+    return list(KINDS)
+
+
+def resolve_kind(name: str) -> str:
+    """The registry name for ``name``: exact names and aliases first, then a unique
+    prefix (``"doo"``, ``"double"``, ``"cub"`` is ambiguous).
+
+    Raises:
+        DLFLError: unknown or ambiguous, listing the valid kinds.
+    """
+    if not isinstance(name, str):
+        raise DLFLError(f"extrusion kind must be a string, got {name!r}; kinds: {', '.join(KINDS)}")
+    key = name.strip().lower().replace("_", "-")
+    if key in KINDS:
+        return key
+    if key in ALIASES:
+        return ALIASES[key]
+    matches = [k for k in KINDS if key and k.startswith(key)]
+    if len(matches) == 1:
+        return matches[0]
+    what = "ambiguous" if matches else "unknown"
+    raise DLFLError(f"{what} extrusion kind {name!r}; valid kinds: {', '.join(KINDS)}")
+
+
+def _check_face(mesh: Mesh, face: int) -> None:
+    if isinstance(face, bool) or not isinstance(face, int | np.integer):
+        raise DLFLError(f"face must be a face id (int), got {face!r}")
+    if not mesh.has_face(int(face)):
+        raise DLFLError(f"face {face} does not exist (deleted or never made)")
+    if mesh.face_size(int(face)) < 3:
+        raise DLFLError(f"face {face} has {mesh.face_size(int(face))} corner(s); "
+                        "only faces of 3 or more corners can be extruded")
+    if not np.any(_face_geometry(mesh, int(face))[1]):
+        raise DLFLError(f"face {face} is degenerate (no normal); it cannot be extruded")
+
+
+def _check_numbers(segments: int, o: Options) -> None:
+    if isinstance(segments, bool) or not isinstance(segments, int | np.integer) or segments < 1:
+        raise DLFLError(f"segments must be an integer >= 1, got {segments!r}")
+    for name in ("distance", "rotation", "scale", "twist", "thickness"):
+        value = getattr(o, name)
+        if isinstance(value, bool) or not isinstance(value, int | float | np.floating | np.integer) \
+                or not math.isfinite(value):
+            raise DLFLError(f"{name} must be a finite number, got {value!r}")
+
+
+def _prepare(mesh: Mesh, face: int, kind: str, segments: int, o: Options) -> Kind:
+    spec = KINDS[resolve_kind(kind)]
+    _check_face(mesh, face)
+    _check_numbers(segments, o)
+    return spec
+
+
+def extrude(
+    mesh: Mesh, face: int, kind: str = "cubical", distance: float = 2.0, segments: int = 1,
+    rotation: float = 0.0, scale: float = 1.0, *, twist: float = 0.0,
+    dual_mesh: bool = False, hexagonalize: bool = False, thickness: float = 0.25,
+    fractional: bool = True,
+) -> int:
+    """Extrude ``face`` and return the new end face (TopMod's extrusions, TOPMOD.md §4).
+
+    ``segments`` repeats the step on the returned face, each moving the full
+    ``distance`` again (3 cubical segments of 2 from cube face 0 end at y = 3, 5, 7).
+    Counts on cube face 0: cubical 12/20/10, doo-sabin 12/20/10, octa 12/24/14
+    (``dual_mesh`` 12/20/10), dodeca 20/32/14 (2 segments with ``hexagonalize``
+    32/48/18), icosa 20/48/30, cuboctahedral 16/32/18.
+
+    Args:
+        kind: a name of :data:`KINDS` (or alias, or unique prefix).
+        distance: along the face normal (TopMod default 2).
+        rotation: degrees about the normal (dodeca: the dual step's twist angle).
+        scale: factor about the new polygon's centroid (dodeca: over the whole step).
+        twist: doo-sabin only, TopMod's fraction ``t`` of ``(1 - t) p_i + t p_{i+1}``.
+        dual_mesh: octa only, delete the face's old edges (TopMod's ``mesh``).
+        hexagonalize: dodeca only, delete the previous end face's edges between
+            segments so adjacent pentagons merge into octagons (TopMod's GUI rule).
+        thickness, fractional: planar-offset only, the inset (fractional: of the
+            edge vectors; else absolute along unit edge vectors).
+
+    Raises:
+        DLFLError: unknown kind (lists the valid ones), a kind that ends in a fan
+            (use :func:`extrude_fan`), a face that is gone or has < 3 corners,
+            ``segments`` < 1, a non-finite number. The mesh is unchanged.
+    """
+    o = Options(float(distance), float(rotation), float(scale), float(twist), bool(dual_mesh),
+                bool(hexagonalize), float(thickness), bool(fractional))
+    spec = _prepare(mesh, face, kind, segments, o)
+    if spec.step is None:
+        raise DLFLError(f"extrusion kind {resolve_kind(kind)!r} ends in a fan of triangles, "
+                        "not an end face; use extrude_fan()")
+    face = int(face)
+    for i in range(int(segments)):
+        previous = mesh.face_edges(face) if (hexagonalize and i > 0) else []
+        face = spec.step(mesh, face, o)
+        _delete_edges(mesh, previous)
+    return face
+
+
+def extrude_fan(
+    mesh: Mesh, face: int, kind: str = "stellate", distance: float = 2.0,
+    rotation: float = 0.0, scale: float = 1.0,
+) -> list[int]:
+    """Run an extrusion that ends in a fan of triangles; return the triangles' ids.
+
+    Kinds: stellate (apex at centroid + ``distance`` n; cube face: 9/16/9),
+    double-stellate (13/28/17, returns all ``3n`` triangles), dome (``distance`` is
+    TopMod's length, ``rotation`` its twist x 5; 29/56/29). TopMod returned -1.
+
+    Raises:
+        DLFLError: unknown kind, a kind with an end face (use :func:`extrude`), a
+            face that is gone or has < 3 corners. The mesh is unchanged.
+    """
+    o = Options(distance=float(distance), rotation=float(rotation), scale=float(scale))
+    spec = _prepare(mesh, face, kind, 1, o)
+    if spec.fan is None:
+        raise DLFLError(f"extrusion kind {resolve_kind(kind)!r} ends in a face; use extrude()")
+    return spec.fan(mesh, int(face), o)
