@@ -1,0 +1,214 @@
+"""Parameter sweeps: independent variants of one script in a pool of processes.
+
+The pool hides behind :class:`VariantExecutor` (one method, ``map_unordered``),
+so a Dask or Ray client can replace the local process pool without touching
+the rest: variants and their results are small picklable dataclasses, and the
+meshes never travel (each variant writes its own output file).
+"""
+
+from __future__ import annotations
+
+import concurrent.futures
+import importlib
+import itertools
+import multiprocessing
+import os
+import sys
+import time
+from collections.abc import Callable, Iterable, Iterator
+from dataclasses import dataclass
+from typing import Any, Protocol, TextIO
+
+import numpy as np
+
+
+@dataclass(frozen=True)
+class Variant:
+    """One run of a sweep: the script, its parameters and where its mesh goes."""
+
+    index: int
+    script: str
+    parameters: tuple[tuple[str, Any], ...]
+    output: str | None = None
+    mesh_path: str | None = None
+    seed: int | None = 0
+
+
+@dataclass(frozen=True)
+class VariantResult:
+    """What a variant reports back (no mesh: it was written to ``output``)."""
+
+    index: int
+    parameters: tuple[tuple[str, Any], ...]
+    status: str
+    counts: tuple[int, int, int] | None
+    error: str | None
+    output: str | None
+    elapsed: float
+
+
+def parse_param(text: str) -> tuple[str, list[Any]]:
+    """``"name=start:stop:count"`` (inclusive, evenly spaced) or ``"name=value"``.
+
+    Values are ints when start and stop are ints and the spacing is whole,
+    floats otherwise.
+
+    Raises:
+        ValueError: the text does not have that form, or count < 1.
+    """
+    name, sep, spec = text.partition("=")
+    if not sep or not name.isidentifier():
+        raise ValueError(f"--param expects name=start:stop:count, got {text!r}")
+    parts = spec.split(":")
+    if len(parts) == 1:
+        return name, [_number(parts[0], text)]
+    if len(parts) != 3:
+        raise ValueError(f"--param expects name=start:stop:count, got {text!r}")
+    start, stop, count = _number(parts[0], text), _number(parts[1], text), parts[2]
+    if not count.isdigit() or int(count) < 1:
+        raise ValueError(f"--param count must be a positive integer, got {text!r}")
+    return name, _spaced(start, stop, int(count))
+
+
+def _number(text: str, whole: str) -> int | float:
+    try:
+        return int(text)
+    except ValueError:
+        pass
+    try:
+        return float(text)
+    except ValueError:
+        raise ValueError(f"--param value {text!r} is not a number in {whole!r}") from None
+
+
+def _spaced(start: float, stop: float, count: int) -> list[Any]:
+    values = np.linspace(start, stop, count)
+    whole = isinstance(start, int) and isinstance(stop, int)
+    if whole and np.allclose(values, np.round(values)):
+        return [int(v) for v in np.round(values)]
+    return [float(v) for v in values]
+
+
+def sweep(ranges: Iterable[tuple[str, list[Any]]]) -> list[dict[str, Any]]:
+    """Every combination of the ranges (the last one varying fastest)."""
+    ranges = list(ranges)
+    names = [name for name, _ in ranges]
+    return [dict(zip(names, combo, strict=True))
+            for combo in itertools.product(*(values for _, values in ranges))]
+
+
+def output_name(pattern: str, parameters: dict[str, Any], index: int) -> str:
+    """``pattern`` formatted with the parameters and ``index`` (e.g. ``out/{r:.2f}.obj``).
+
+    Raises:
+        ValueError: the pattern names a field that is neither a parameter nor ``index``.
+    """
+    try:
+        return pattern.format(index=index, **parameters)
+    except (KeyError, IndexError) as exc:
+        raise ValueError(f"output pattern {pattern!r} names an unknown field {exc}") from None
+
+
+def run_variant(variant: Variant) -> VariantResult:
+    """Run one variant in this process and write its mesh (a top-level function,
+    so process pools can pickle it)."""
+    from .headless import run_outcome
+    from .results import current_mesh
+
+    started = time.perf_counter()
+    parameters = dict(variant.parameters)
+    try:
+        outcome = run_outcome(variant.script, mesh_path=variant.mesh_path,
+                              seed=variant.seed, parameters=parameters)
+    except OSError as exc:
+        return _failed(variant, str(exc), started)
+    if outcome.error is not None:
+        return _failed(variant, str(outcome.error), started)
+    mesh = current_mesh(outcome.scene)
+    counts = mesh.counts() if mesh is not None else (0, 0, 0)
+    if variant.output is not None and mesh is not None:
+        try:
+            os.makedirs(os.path.dirname(os.path.abspath(variant.output)), exist_ok=True)
+            importlib.import_module("livemod.dlfl.io").save_mesh(mesh, variant.output)
+        except Exception as exc:
+            return _failed(variant, f"{variant.output}: {type(exc).__name__}: {exc}", started)
+    return VariantResult(variant.index, variant.parameters, "ok", counts, None,
+                         variant.output, time.perf_counter() - started)
+
+
+def _failed(variant: Variant, message: str, started: float) -> VariantResult:
+    return VariantResult(variant.index, variant.parameters, "error", None, message,
+                         variant.output, time.perf_counter() - started)
+
+
+class VariantExecutor(Protocol):
+    """Where variants run. A Dask or Ray client fits behind the same method."""
+
+    def map_unordered(self, fn: Callable[[Variant], VariantResult],
+                      variants: list[Variant]) -> Iterator[VariantResult]:
+        """Results of ``fn`` over ``variants``, in the order they finish."""
+        ...
+
+
+class SerialExecutor:
+    """Runs variants one after another in this process (``-j 1``)."""
+
+    def map_unordered(self, fn: Callable[[Variant], VariantResult],
+                      variants: list[Variant]) -> Iterator[VariantResult]:
+        return (fn(v) for v in variants)
+
+
+class ProcessPoolVariantExecutor:
+    """A local pool of ``jobs`` processes.
+
+    Workers come from a forkserver that has imported ``livemod.dlfl`` already,
+    so each starts fast without inheriting the parent's threads (a watching
+    session, say), which plain ``fork`` would copy in an unknown state.
+    """
+
+    def __init__(self, jobs: int) -> None:
+        self.jobs = max(1, jobs)
+
+    def map_unordered(self, fn: Callable[[Variant], VariantResult],
+                      variants: list[Variant]) -> Iterator[VariantResult]:
+        context = multiprocessing.get_context("forkserver")
+        context.set_forkserver_preload(["livemod.dlfl", "livemod.runner.batch"])
+        with concurrent.futures.ProcessPoolExecutor(self.jobs, mp_context=context) as pool:
+            futures = [pool.submit(fn, v) for v in variants]
+            for future in concurrent.futures.as_completed(futures):
+                yield future.result()
+
+
+def make_variants(script: str, parameter_sets: list[dict[str, Any]], pattern: str | None,
+                  *, mesh_path: str | None = None, seed: int | None = 0) -> list[Variant]:
+    """One :class:`Variant` per parameter set, outputs named from ``pattern``."""
+    script = os.path.abspath(script)
+    return [
+        Variant(i, script, tuple(params.items()),
+                output_name(pattern, params, i) if pattern else None, mesh_path, seed)
+        for i, params in enumerate(parameter_sets)
+    ]
+
+
+def run_batch(variants: list[Variant], executor: VariantExecutor | None = None, *,
+              jobs: int = 1, progress: TextIO | None = sys.stderr) -> list[VariantResult]:
+    """Run ``variants`` (on ``executor``, default a pool of ``jobs`` processes) with a
+    progress bar on ``progress``; results come back sorted by variant index."""
+    if executor is None:
+        executor = ProcessPoolVariantExecutor(jobs) if jobs > 1 else SerialExecutor()
+    results = []
+    for done, result in enumerate(executor.map_unordered(run_variant, variants), start=1):
+        results.append(result)
+        if progress is not None:
+            _draw_progress(progress, done, len(variants), result)
+    if progress is not None:
+        progress.write("\n")
+    return sorted(results, key=lambda r: r.index)
+
+
+def _draw_progress(out: TextIO, done: int, total: int, last: VariantResult) -> None:
+    width = 30
+    filled = width * done // max(total, 1)
+    mark = "" if last.status == "ok" else f"  (variant {last.index} failed)"
+    out.write(f"\rbatch [{'#' * filled}{'.' * (width - filled)}] {done}/{total}{mark}")
+    out.flush()

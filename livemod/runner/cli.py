@@ -1,0 +1,206 @@
+"""``livemod run`` and ``livemod batch``: the runner's subcommands.
+
+The top-level ``livemod`` parser calls :func:`add_commands`; each subcommand
+stores its handler in ``func``, which takes the parsed arguments and returns the
+exit code. :func:`main` is a stand-alone entry point over the same parsers.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import os
+import queue
+import sys
+from collections.abc import Sequence
+from typing import Any, TextIO
+
+from livemod.dlfl.analysis import summarize
+
+from .batch import make_variants, parse_param, run_batch, sweep
+from .headless import run_outcome
+from .results import RunResult, StepRecord, current_mesh
+
+OUTPUT_SUFFIXES = (".obj", ".dlfl", ".stl", ".ply")
+
+
+def add_commands(subparsers: Any) -> None:
+    """Add ``run`` and ``batch`` to an ``argparse`` subparsers object."""
+    _add_run(subparsers)
+    _add_batch(subparsers)
+
+
+def _seed(text: str) -> int | None:
+    return None if text.lower() == "none" else int(text)
+
+
+def _add_run(subparsers: Any) -> None:
+    run = subparsers.add_parser("run", help="run a modeling script headless (or on every save)")
+    run.add_argument("script", help="the Python script")
+    run.add_argument("--mesh", metavar="IN", help="mesh the script starts from (.obj, .dlfl)")
+    run.add_argument("-o", "--output", metavar="OUT", help="write the result (.obj .dlfl .stl .ply)")
+    run.add_argument("--steps", action="store_true", help="print the step list")
+    run.add_argument("--seed", type=_seed, default=0, help="seed of random/numpy (or 'none')")
+    run.add_argument("--param", action="append", default=[], metavar="NAME=VALUE",
+                     help="a script parameter (global), repeatable")
+    run.add_argument("--watch", action="store_true", help="re-run (and rewrite OUT) on every save")
+    run.add_argument("--poll", action="store_true", help="poll for changes (no fs events)")
+    run.add_argument("--max-runs", type=int, default=None, help=argparse.SUPPRESS)
+    run.set_defaults(func=cmd_run)
+
+
+def _add_batch(subparsers: Any) -> None:
+    batch = subparsers.add_parser("batch", help="run parameter variants of a script in parallel")
+    batch.add_argument("script", help="the Python script")
+    batch.add_argument("--param", action="append", required=True,
+                       metavar="NAME=START:STOP:COUNT", help="a swept parameter, repeatable")
+    batch.add_argument("-o", "--output", metavar="PATTERN",
+                       help="output file pattern, e.g. 'out/{name}_{index}.obj'")
+    batch.add_argument("-j", "--jobs", type=int, default=os.cpu_count() or 1)
+    batch.add_argument("--mesh", metavar="IN", help="mesh every variant starts from")
+    batch.add_argument("--seed", type=_seed, default=0)
+    batch.set_defaults(func=cmd_batch)
+
+
+def _check_output(path: str | None) -> None:
+    if path is not None and not path.lower().endswith(OUTPUT_SUFFIXES):
+        raise ValueError(f"output {path!r} must end with one of {', '.join(OUTPUT_SUFFIXES)}")
+
+
+def _parameters(texts: list[str]) -> dict[str, Any]:
+    params = {}
+    for text in texts:
+        name, values = parse_param(text)
+        params[name] = values[0]
+    return params
+
+
+def cmd_run(args: argparse.Namespace) -> int:
+    """``livemod run``: 0 on success, 1 on a script error, 2 on bad arguments or files."""
+    try:
+        _check_output(args.output)
+        params = _parameters(args.param)
+    except ValueError as exc:
+        print(f"livemod run: {exc}", file=sys.stderr)
+        return 2
+    if args.watch:
+        return _watch(args, params)
+    try:
+        outcome = run_outcome(args.script, mesh_path=args.mesh, seed=args.seed,
+                              parameters=params)
+    except OSError as exc:
+        print(f"livemod run: {exc}", file=sys.stderr)
+        return 2
+    if args.steps:
+        print_steps(outcome.steps)
+    if outcome.error is not None:
+        print(outcome.error.traceback.rstrip(), file=sys.stderr)
+        print(str(outcome.error), file=sys.stderr)
+        return 1
+    mesh = current_mesh(outcome.scene)
+    print_summary(args.script, mesh, len(outcome.steps), outcome.elapsed)
+    return _save(mesh, args.output)
+
+
+def _save(mesh: Any, output: str | None) -> int:
+    if output is None or mesh is None:
+        return 0
+    try:
+        importlib.import_module("livemod.dlfl.io").save_mesh(mesh, output)
+    except Exception as exc:
+        print(f"livemod run: cannot write {output}: {type(exc).__name__}: {exc}",
+              file=sys.stderr)
+        return 2
+    print(f"wrote {output}")
+    return 0
+
+
+def print_summary(script: str, mesh: Any, steps: int, elapsed: float,
+                  out: TextIO | None = None) -> None:
+    """Counts, holes, components and genus of the result, as ``livemod run`` prints them."""
+    out = out or sys.stdout
+    print(f"{script}: ok, {steps} steps, {elapsed:.3f} s", file=out)
+    if mesh is None:
+        print("empty scene", file=out)
+        return
+    s = summarize(mesh)
+    genera = ", ".join(str(g) for g in s.component_genera)
+    print(f"V={s.vertices} E={s.edges} F={s.faces} holes={s.holes} "
+          f"components={s.components} genus={s.genus} ({genera})", file=out)
+    sizes = " ".join(f"{k}:{v}" for k, v in sorted(s.face_sizes.items()))
+    print(f"face sizes: {sizes}", file=out)
+
+
+def print_steps(steps: Sequence[StepRecord], out: TextIO | None = None) -> None:
+    """One line per step: index, line, label, counts, time since the run started."""
+    out = out or sys.stdout
+    for s in steps:
+        line = "?" if s.line is None else str(s.line)
+        v, e, f = s.counts
+        print(f"{s.index:5d}  line {line:>4}  {s.label:<20} V={v} E={e} F={f}  "
+              f"{s.elapsed:.4f} s", file=out)
+
+
+def _watch(args: argparse.Namespace, params: dict[str, Any]) -> int:
+    """Re-run on every save until interrupted (or ``--max-runs`` results)."""
+    from .session import LiveSession
+
+    session = LiveSession(args.script, mesh_path=args.mesh, seed=args.seed, poll=args.poll,
+                          preview=False, output=args.output, parameters=params)
+    session.start()
+    print(f"watching {session.script} (Ctrl-C to stop)", file=sys.stderr)
+    seen = 0
+    try:
+        while args.max_runs is None or seen < args.max_runs:
+            try:
+                result = session.results.get(timeout=0.2)
+            except queue.Empty:
+                continue
+            seen += 1
+            _report(result, args.output)
+    except KeyboardInterrupt:
+        pass
+    finally:
+        session.close()
+        session.join(5.0)
+    return 0
+
+
+def _report(result: RunResult, output: str | None) -> None:
+    if result.error is not None:
+        print(f"run {result.run_id}: {result.error}", file=sys.stderr, flush=True)
+        return
+    v, e, f = result.arrays.counts if result.arrays is not None else (0, 0, 0)
+    wrote = f", wrote {output}" if output else ""
+    print(f"run {result.run_id}: {result.status}, {len(result.steps)} steps, "
+          f"V={v} E={e} F={f}, {result.elapsed:.3f} s{wrote}", flush=True)
+
+
+def cmd_batch(args: argparse.Namespace) -> int:
+    """``livemod batch``: 0 when every variant succeeded, 1 otherwise, 2 on bad arguments."""
+    try:
+        _check_output(args.output)
+        sets = sweep(parse_param(text) for text in args.param)
+        variants = make_variants(args.script, sets, args.output, mesh_path=args.mesh,
+                                 seed=args.seed)
+    except ValueError as exc:
+        print(f"livemod batch: {exc}", file=sys.stderr)
+        return 2
+    results = run_batch(variants, jobs=args.jobs)
+    failed = [r for r in results if r.status != "ok"]
+    for r in failed:
+        print(f"variant {r.index} {dict(r.parameters)}: {r.error}", file=sys.stderr)
+    print(f"{len(results) - len(failed)}/{len(results)} variants ok")
+    return 1 if failed else 0
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Stand-alone ``livemod``-style entry point with just ``run`` and ``batch``."""
+    parser = argparse.ArgumentParser(prog="livemod")
+    add_commands(parser.add_subparsers(dest="command", required=True))
+    args = parser.parse_args(argv)
+    return int(args.func(args))
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

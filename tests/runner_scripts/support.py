@@ -1,0 +1,106 @@
+"""Helpers shared by the runner tests (not a test module)."""
+
+from __future__ import annotations
+
+import os
+import queue
+import time
+from collections.abc import Callable
+
+import numpy as np
+
+from livemod.dlfl.arrays import MeshArrays
+from livemod.runner import LiveSession, Playback, RunControl, RunResult, execute
+from livemod.runner.results import snapshot_scene
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+WAIT = 10.0  # generous: CI machines are slow and shared
+
+
+def script_path(name: str) -> str:
+    return os.path.join(HERE, name)
+
+
+def next_result(session: LiveSession, where: Callable[[RunResult], bool] = lambda r: True,
+                timeout: float = WAIT) -> RunResult:
+    """The next result matching ``where`` (others are skipped)."""
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        try:
+            result = session.results.get(timeout=0.02)
+        except queue.Empty:
+            continue
+        if where(result):
+            return result
+    raise AssertionError(f"no matching result within {timeout} s")
+
+
+def drain(session: LiveSession, quiet: float = 0.6, limit: float = WAIT) -> list[RunResult]:
+    """All results until none has come for ``quiet`` seconds."""
+    got: list[RunResult] = []
+    deadline = time.monotonic() + limit
+    last = time.monotonic()
+    while time.monotonic() - last < quiet and time.monotonic() < deadline:
+        try:
+            got.append(session.results.get(timeout=0.02))
+            last = time.monotonic()
+        except queue.Empty:
+            pass
+    return got
+
+
+def main_results(results: list[RunResult]) -> list[RunResult]:
+    """Results without the second, preview-carrying copies."""
+    return [r for r in results if r.preview is None]
+
+
+def write_by_rename(path: str, text: str) -> None:
+    """Atomic save: write a temp file, then ``os.replace`` it over the script."""
+    tmp = path + ".tmp~save"
+    with open(tmp, "w", encoding="utf-8") as handle:
+        handle.write(text)
+    os.replace(tmp, path)
+
+
+def write_in_place(path: str, text: str) -> None:
+    """Truncate-and-write save (VS Code, nano)."""
+    with open(path, "w", encoding="utf-8") as handle:
+        handle.write(text)
+
+
+def write_vim_style(path: str, text: str) -> None:
+    """Vim's move-away save: rename old to ``path~``, write new, delete the backup."""
+    backup = path + "~"
+    os.replace(path, backup)
+    with open(path, "w", encoding="utf-8") as handle:
+        handle.write(text)
+    os.remove(backup)
+
+
+def straight_snapshots(path: str, seed: int = 0) -> tuple[list[MeshArrays | None], MeshArrays]:
+    """Snapshots after every step of one uninterrupted run, and the final outcome's arrays.
+
+    The run pauses at every step only long enough to take the snapshot (it plays at
+    a huge rate), all in this thread.
+    """
+    playback = Playback()
+    playback.pause_at(0, rate=1e9)
+    snaps: list[MeshArrays | None] = []
+    control = RunControl(playback, lambda index, steps, scene: snaps.append(
+        snapshot_scene(scene)))
+    outcome = execute(path, seed=seed, control=control)
+    assert outcome.status == "ok", outcome.error
+    final = snapshot_scene(outcome.scene)
+    assert final is not None
+    return snaps, final
+
+
+def same_mesh(a: MeshArrays | None, b: MeshArrays | None) -> bool:
+    """Equal topology and positions."""
+    assert a is not None and b is not None
+    return (
+        np.array_equal(a.face_offsets, b.face_offsets)
+        and np.array_equal(a.corner_vertex, b.corner_vertex)
+        and np.array_equal(a.face_ids, b.face_ids)
+        and np.allclose(a.positions, b.positions)
+    )

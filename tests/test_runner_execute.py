@@ -1,0 +1,197 @@
+"""execute / run_script: namespace, steps, errors, determinism, cancellation."""
+
+from __future__ import annotations
+
+import os
+import sys
+import threading
+import time
+
+import numpy as np
+import pytest
+
+from livemod.dlfl.scene import Selection, current_scene, default_scene
+from livemod.runner import Cancelled, RunControl, execute, run_script
+from livemod.runner.instrument import compile_script
+
+from .runner_scripts.support import same_mesh, script_path
+
+
+def write(tmp_path, name: str, text: str) -> str:
+    path = tmp_path / name
+    path.write_text(text, encoding="utf-8")
+    return str(path)
+
+
+def test_steps_record_label_line_and_counts():
+    result = run_script(script_path("cube_steps.py"))
+    assert result.status == "ok", result.error
+    labels = [s.label for s in result.steps]
+    assert labels[0] == "cube" and labels[-1] == "done"
+    assert labels[1:3] == ["subdivideEdge", "move"]
+    assert [s.line for s in result.steps[:3]] == [11, 14, 15]
+    assert result.steps[0].counts == (8, 12, 6)
+    assert [s.index for s in result.steps] == list(range(len(result.steps)))
+    elapsed = [s.elapsed for s in result.steps]
+    assert elapsed == sorted(elapsed)
+    assert result.arrays is not None and result.arrays.counts == result.steps[-1].counts
+
+
+def test_result_arrays_are_read_only_copies():
+    result = run_script(script_path("cube_steps.py"))
+    assert result.arrays is not None
+    assert not result.arrays.positions.flags.writeable
+    with pytest.raises(ValueError):
+        result.arrays.positions[0, 0] = 5.0
+
+
+def test_namespace_has_commands_file_and_name(tmp_path):
+    path = write(tmp_path, "ns.py", (
+        "from livemod.dlfl import current_scene\n"
+        "current_scene().parameters['seen'] = (__name__, __file__, callable(createFace))\n"
+        "import sys, os\n"
+        "current_scene().parameters['on_path'] = os.path.dirname(__file__) in sys.path\n"))
+    outcome = execute(path)
+    assert outcome.status == "ok", outcome.error
+    assert outcome.scene.parameters["seen"] == ("__main__", path, True)
+    assert outcome.scene.parameters["on_path"] is True
+    assert str(tmp_path) not in sys.path
+
+
+def test_each_run_has_its_own_scene(tmp_path):
+    path = write(tmp_path, "one.py", "createVertex((0, 0, 0))\n")
+    before = default_scene().objects.copy()
+    first, second = execute(path), execute(path)
+    assert first.scene is not second.scene
+    assert first.scene.mesh.counts() == second.scene.mesh.counts() == (1, 0, 1)
+    assert default_scene().objects == before and current_scene() is default_scene()
+
+
+def test_seeded_runs_are_identical_and_seed_matters():
+    a = run_script(script_path("cube_steps.py"), seed=7)
+    b = run_script(script_path("cube_steps.py"), seed=7)
+    c = run_script(script_path("cube_steps.py"), seed=8)
+    assert same_mesh(a.arrays, b.arrays)
+    assert a.arrays is not None and c.arrays is not None
+    assert not np.allclose(a.arrays.positions, c.arrays.positions)
+
+
+def test_numpy_random_is_seeded(tmp_path):
+    path = write(tmp_path, "np_rand.py", (
+        "import numpy as np\ncreateVertex(tuple(np.random.random(3)))\n"))
+    a, b = run_script(path, seed=3), run_script(path, seed=3)
+    assert same_mesh(a.arrays, b.arrays)
+
+
+def test_parameters_are_globals_and_scene_parameters():
+    result = run_script(script_path("uses_params.py"), parameters={"count": 5, "height": 2.0})
+    assert result.arrays is not None and result.arrays.counts == (5, 0, 5)
+    assert np.allclose(result.arrays.positions[:, 1], 2.0)
+    assert result.parameters == (("count", 5), ("height", 2.0))
+
+
+def test_selection_is_what_faces_true_returns():
+    outcome = execute(script_path("selected_faces.py"), selection=Selection(faces=(3, 5)))
+    assert outcome.status == "ok", outcome.error
+    assert outcome.scene.parameters["picked"] == (3, 5)
+
+
+def test_errors_carry_the_script_line_and_trim_library_frames():
+    result = run_script(script_path("error_at_line_7.py"))
+    error = result.error
+    assert result.status == "error" and error is not None
+    assert error.kind == "exception"
+    assert error.file == script_path("error_at_line_7.py") and error.line == 7
+    assert error.message.startswith("DLFLError")
+    assert "livemod" + os.sep not in error.traceback.replace(script_path(""), "")
+    assert 'line 10, in <module>' in error.traceback
+    assert str(error).startswith(f"{script_path('error_at_line_7.py')}:7: DLFLError")
+    assert [s.label for s in result.steps] == ["createVertex", "createVertex"]
+    assert result.partial is not None and result.partial.counts == (2, 0, 2)
+
+
+def test_syntax_error_reports_line_and_runs_nothing(tmp_path):
+    path = write(tmp_path, "syntax.py", "createVertex((0, 0, 0))\nx = 1\ny = (2 +\n")
+    result = run_script(path)
+    assert result.status == "error" and result.error is not None
+    assert result.error.kind == "syntax" and result.error.line == 3
+    assert result.steps == ()
+
+
+def test_error_in_a_local_module_points_into_it(tmp_path):
+    write(tmp_path, "helper_bad.py", "def boom():\n    x = 1\n    raise RuntimeError('bad helper')\n")
+    path = write(tmp_path, "main_bad.py", "import helper_bad\n\nhelper_bad.boom()\n")
+    result = run_script(path)
+    assert result.error is not None
+    assert result.error.file == str(tmp_path / "helper_bad.py") and result.error.line == 3
+    assert "main_bad.py\", line 3" in result.error.traceback
+    assert "helper_bad" not in sys.modules
+
+
+def test_local_modules_are_reported_and_purged(tmp_path):
+    write(tmp_path, "helper_mod.py", "VALUE = 4\n")
+    path = write(tmp_path, "main_mod.py", (
+        "import helper_mod\nfor i in range(helper_mod.VALUE):\n    createVertex((i, 0, 0))\n"))
+    first = execute(path)
+    assert first.modules == (str(tmp_path / "helper_mod.py"),)
+    assert "helper_mod" not in sys.modules
+    write(tmp_path, "helper_mod.py", "VALUE = 6\n")
+    assert execute(path).scene.mesh.counts() == (6, 0, 6)
+
+
+def test_system_exit_zero_ends_the_script_normally(tmp_path):
+    path = write(tmp_path, "exits.py", "import sys\ncreateVertex((0, 0, 0))\nsys.exit(0)\n")
+    assert run_script(path).status == "ok"
+
+
+def test_except_exception_in_script_does_not_swallow_cancellation(tmp_path):
+    path = write(tmp_path, "swallow.py", (
+        "while True:\n    try:\n        createVertex((0, 0, 0))\n"
+        "    except Exception:\n        pass\n"))
+    control = RunControl()
+    timer = threading.Timer(0.2, control.cancel)
+    timer.start()
+    outcome = execute(path, control=control)
+    timer.join()
+    assert outcome.status == "cancelled"
+    assert outcome.error is not None and outcome.error.kind == "cancelled"
+
+
+@pytest.mark.timeout(60)
+def test_infinite_loop_without_steps_is_cancelled_promptly():
+    control = RunControl()
+    outcome_box = []
+    worker = threading.Thread(target=lambda: outcome_box.append(
+        execute(script_path("infinite_loop.py"), control=control)))
+    worker.start()
+    time.sleep(0.2)
+    asked = time.monotonic()
+    control.cancel()
+    worker.join(10)
+    assert not worker.is_alive()
+    assert time.monotonic() - asked < 1.0
+    assert outcome_box[0].status == "cancelled"
+    assert [s.label for s in outcome_box[0].steps] == ["createVertex"]
+
+
+@pytest.mark.timeout(60)
+def test_recursion_and_helper_functions_are_cancellable(tmp_path):
+    path = write(tmp_path, "spin.py", "def spin(n):\n    return spin(n + 1) if n < 500 else spin(0)\n"
+                 "while True:\n    try:\n        spin(0)\n    except RecursionError:\n        pass\n")
+    control = RunControl()
+    threading.Timer(0.2, control.cancel).start()
+    assert execute(path, control=control).status == "cancelled"
+
+
+def test_instrumented_code_keeps_docstrings_and_lines():
+    source = 'def f():\n    """doc"""\n    return 1\n\nfor i in range(2):\n    x = 1 / 0\n'
+    namespace = {"__livemod_cancel__": False, "__livemod_stop__": None}
+    code = compile_script(source, "/virtual/s.py")
+    with pytest.raises(ZeroDivisionError) as info:
+        exec(code, namespace)
+    assert namespace["f"].__doc__ == "doc"
+    assert info.traceback[-1].lineno + 1 == 6
+
+
+def test_cancelled_is_a_base_exception():
+    assert not issubclass(Cancelled, Exception)
