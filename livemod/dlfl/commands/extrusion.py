@@ -1,5 +1,170 @@
-"""Thesis commands of the extrusion and connection family: extrude, connect*, addHandle."""
+"""Thesis commands of the extrusion and connection family: extrude, connect*, addHandle.
+
+Thin wrappers over :mod:`livemod.dlfl.extrusion` and :mod:`livemod.dlfl.connect`
+acting on the current object. Options follow the thesis appendix (Tett 2007),
+positionally in its order per extrusion type, or by keyword.
+"""
 
 from __future__ import annotations
 
-__all__: list[str] = []
+from typing import Any
+
+from .. import connect as _connect
+from .. import extrusion as _extrusion
+from ..errors import DLFLError
+from ._base import mesh, modeling_command, resolve_corner
+
+__all__ = ["extrude", "connectEdges", "connectCorners", "connectFaces", "addHandle"]
+
+# positional options after the face id, per kind (the thesis's order; the kinds the
+# thesis does not list follow TopMod's C++ parameter order)
+OPTION_ORDER: dict[str, tuple[str, ...]] = {
+    "doo-sabin": ("distance", "segments", "rotation", "scale"),
+    "dodeca": ("distance", "segments", "twist", "scale", "hexagonalize"),
+    "icosa": ("distance", "segments", "rotation", "scale"),
+    "octa": ("distance", "rotation", "scale", "mesh"),
+    "stellate": ("distance",),
+    "double-stellate": ("distance",),
+    "cubical": ("distance", "segments", "rotation", "scale"),
+    "dome": ("distance", "rotation", "scale"),
+    "cuboctahedral": ("distance", "segments", "rotation", "scale"),
+    "hex-tile": ("distance", "segments", "rotation", "scale"),
+    "planar-offset": ("distance", "rotation", "thickness", "fractional"),
+}
+# TopMod's prefix order for its seven Python types, then livemod's additions
+PREFIX_ORDER = ("doo-sabin", "dodeca", "icosa", "octa", "stellate", "double-stellate",
+                "cubical", "dome", "cuboctahedral", "hex-tile", "planar-offset")
+
+
+def _kind(name: Any) -> str:
+    """Exact names and aliases first, then TopMod's first prefix match in its order."""
+    if isinstance(name, str):
+        key = name.strip().lower().replace("_", "-")
+        if key in OPTION_ORDER or key in _extrusion.ALIASES:
+            return _extrusion.resolve_kind(key)
+        for kind in PREFIX_ORDER:
+            if key and kind.startswith(key):
+                return kind
+    raise DLFLError(f"unknown extrusion type {name!r}; valid types: {', '.join(PREFIX_ORDER)}")
+
+
+def _options(kind: str, options: tuple[Any, ...], keywords: dict[str, Any]) -> dict[str, Any]:
+    order = OPTION_ORDER[kind]
+    if len(options) > len(order):
+        raise DLFLError(f"extrude('{kind}', faceid, ...) takes at most {len(order)} options "
+                        f"({', '.join(order)}), got {len(options)}")
+    given = dict(zip(order, options, strict=False))
+    for name, value in keywords.items():
+        if name not in order:
+            raise DLFLError(f"extrude('{kind}') has no option {name!r}; options: {', '.join(order)}")
+        if name in given:
+            raise DLFLError(f"extrude('{kind}'): option {name!r} given twice")
+        given[name] = value
+    return given
+
+
+def _library_arguments(kind: str, given: dict[str, Any]) -> dict[str, Any]:
+    """Map the thesis's option names to :func:`livemod.dlfl.extrusion.extrude`'s."""
+    out = dict(given)
+    if kind == "doo-sabin" and "rotation" in out:
+        out["twist"] = out.pop("rotation")  # TopMod passes rot as the Doo-Sabin twist
+    if kind == "dodeca" and "twist" in out:
+        out["rotation"] = out.pop("twist")  # the dual step's rotation angle
+    if "mesh" in out:
+        out["dual_mesh"] = bool(out.pop("mesh"))
+    if "hexagonalize" in out:
+        out["hexagonalize"] = bool(out["hexagonalize"])
+    return out
+
+
+@modeling_command
+def extrude(type: str, faceid: int, *options: Any, **keywords: Any) -> int | list[int]:  # noqa: A002
+    """``extrude(type, faceid[, ...])``: extrude a face; return the new end face id.
+
+    Types and their options (positional in this order, or by keyword):
+    doo-sabin [distance, segments, rotation, scale] (rotation is TopMod's twist
+    fraction), dodeca [distance, segments, twist, scale, hexagonalize], icosa,
+    cubical, cuboctahedral and hex-tile [distance, segments, rotation, scale],
+    octa [distance, rotation, scale, mesh], stellate and double-stellate
+    [distance], dome [distance, rotation, scale], planar-offset [distance,
+    rotation, thickness, fractional]. Defaults: distance 2, segments 1,
+    rotation 0, scale 1. A type may be abbreviated (TopMod's prefix order).
+
+    Returns:
+        The end face id; for stellate, double-stellate and dome, which end in a
+        fan of triangles, the list of those triangles' ids (TopMod returned -1).
+
+    Raises:
+        DLFLError: unknown type (lists the valid ones), unknown option, too many
+            options, or see :func:`livemod.dlfl.extrusion.extrude`.
+    """
+    kind = _kind(type)
+    arguments = _library_arguments(kind, _options(kind, options, keywords))
+    m = mesh()
+    if _extrusion.KINDS[kind].fan is not None:
+        return _extrusion.extrude_fan(m, faceid, kind, **arguments)
+    return _extrusion.extrude(m, faceid, kind, **arguments)
+
+
+def _half_edge(value: Any, what: str) -> tuple[int, int]:
+    if not (isinstance(value, tuple | list) and len(value) == 2):
+        raise DLFLError(f"{what} must be an (edgeid, faceid) pair, got {value!r}")
+    return int(value[0]), int(value[1])
+
+
+@modeling_command
+def connectEdges(e1: Any, e2: Any, loopCheck: bool = False) -> None:
+    """``connectEdges((edgeid, faceid), (edgeid, faceid)[, loopCheck])``: join two
+    half-edges with a face; with ``loopCheck`` corners already adjacent get no edge."""
+    edge1, face1 = _half_edge(e1, "e1")
+    edge2, face2 = _half_edge(e2, "e2")
+    _connect.connect_edges(mesh(), edge1, face1, edge2, face2, check=bool(loopCheck))
+
+
+def _is_dual(flag: Any) -> bool:
+    if isinstance(flag, str):
+        if flag.lower() != "dual":
+            raise DLFLError(f"connectCorners' last option must be 'dual', got {flag!r}")
+        return True
+    return bool(flag)
+
+
+@modeling_command
+def connectCorners(c1: Any, c2: Any, numsegs: int = 1, maxconn: int = -1,
+                   dual: Any = False) -> None:
+    """``connectCorners(c1, c2[, numsegs, maxconn, 'dual'])``: join the faces of two
+    corners with ``numsegs`` segments (at most ``maxconn`` joins, -1 for all);
+    ``'dual'`` makes bands of triangles instead of quads."""
+    m = mesh()
+    a, b = resolve_corner(m, c1, "c1"), resolve_corner(m, c2, "c2")
+    _connect.connect_corners(m, a, b, numsegs, max_connections=maxconn, dual=_is_dual(dual))
+
+
+@modeling_command
+def connectFaces(f1: int, f2: int, numsegs: int = 1, maxconn: int = -1) -> None:
+    """``connectFaces(faceid, faceid[, numsegs, maxconn])``: join two faces at their
+    closest corners; intermediate rings by linear interpolation. ``maxconn`` is
+    honoured (TopMod ignored it)."""
+    _connect.connect_faces_closest(mesh(), f1, f2, numsegs, max_connections=maxconn)
+
+
+@modeling_command
+def addHandle(interp: str, c1: Any, c2: Any, numsegs: int, w1: float = 25.0,
+              w2: float = 25.0, maxconn: int = -1, twists: int = 0) -> None:
+    """``addHandle(interp, c1, c2, numsegs[, w1, w2, maxconn, twists])``: a curved
+    handle, ``interp`` ``"hermite"`` (centroid on a Hermite curve, rings twisted
+    ``twists`` extra turns) or ``"bezier"`` (every vertex on its own curve; takes
+    no ``maxconn`` or ``twists``). Weights default to TopMod's GUI values (25)."""
+    m = mesh()
+    a, b = resolve_corner(m, c1, "c1"), resolve_corner(m, c2, "c2")
+    kind = interp.lower() if isinstance(interp, str) else interp
+    if kind == "hermite":
+        _connect.hermite_handle(m, a, b, numsegs, w1, w2, max_connections=maxconn,
+                                twists=twists)
+    elif kind == "bezier":
+        if maxconn != -1 or twists != 0:
+            raise DLFLError("a bezier handle takes no maxconn or twists (TopMod's has none); "
+                            "use 'hermite'")
+        _connect.bezier_handle(m, a, b, numsegs, w1, w2)
+    else:
+        raise DLFLError(f"addHandle interp must be 'hermite' or 'bezier', got {interp!r}")
