@@ -122,10 +122,15 @@ class LiveSession:
         """Stop watching, cancel the run; threads wind down in the background."""
         with self._lock:
             self._closed = True
+            started = self._supervisor.is_alive() or self._supervisor.ident is not None
         self._requests.put(None)
+        if not started and self._previews is not None:
+            self._previews.close()  # the supervisor would have closed it
 
     def join(self, timeout: float = 10.0) -> bool:
         """Wait (up to ``timeout`` s) for the session's threads after :meth:`close`."""
+        if self._supervisor.ident is None:
+            return True
         self._supervisor.join(timeout)
         return not self._supervisor.is_alive()
 

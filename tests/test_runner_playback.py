@@ -1,0 +1,168 @@
+"""LiveSession playback: pause, step forward and back, goto, play, run to end."""
+
+from __future__ import annotations
+
+import time
+
+import pytest
+
+from livemod.runner import LiveSession, ManualNotifier, RunResult
+
+from .runner_scripts.support import (
+    drain,
+    next_result,
+    same_mesh,
+    script_path,
+    straight_snapshots,
+)
+
+CUBE = script_path("cube_steps.py")
+
+
+@pytest.fixture
+def session():
+    live = LiveSession(CUBE, notifier=ManualNotifier(), preview=False)
+    yield live
+    live.close()
+    assert live.join(10)
+
+
+def paused_at(k: int):
+    return lambda r: r.status == "paused" and r.step_index == k
+
+
+def is_ok(r: RunResult) -> bool:
+    return r.status == "ok"
+
+
+@pytest.mark.timeout(60)
+def test_stepping_forward_and_back_matches_a_straight_run(session):
+    snaps, final = straight_snapshots(CUBE)
+    session.start()
+    first = next_result(session, is_ok)
+    assert same_mesh(first.arrays, final)
+    session.goto_step(2)
+    shown = next_result(session, paused_at(2))
+    assert same_mesh(shown.arrays, snaps[2]) and len(shown.steps) == 3
+    for k in (3, 4, 5):
+        session.step_forward()
+        assert same_mesh(next_result(session, paused_at(k)).arrays, snaps[k])
+    for k in (4, 3):
+        session.step_back()
+        assert same_mesh(next_result(session, paused_at(k)).arrays, snaps[k])
+    session.goto_step(9)
+    assert same_mesh(next_result(session, paused_at(9)).arrays, snaps[9])
+    session.goto_step(1)
+    assert same_mesh(next_result(session, paused_at(1)).arrays, snaps[1])
+    session.run_to_end()
+    end = next_result(session, is_ok)
+    assert same_mesh(end.arrays, final) and len(end.steps) == len(snaps)
+
+
+@pytest.mark.timeout(60)
+def test_step_back_from_the_end_shows_the_step_before_last(session):
+    snaps, _ = straight_snapshots(CUBE)
+    session.start()
+    ended = next_result(session, is_ok)
+    session.step_back()
+    shown = next_result(session, paused_at(len(ended.steps) - 2))
+    assert same_mesh(shown.arrays, snaps[len(ended.steps) - 2])
+
+
+@pytest.mark.timeout(60)
+def test_play_advances_through_every_step_then_ends(session):
+    session.start()
+    ended = next_result(session, is_ok)
+    session.play(200.0)
+    shown = []
+    result = next_result(session)
+    while result.status == "paused":
+        shown.append(result.step_index)
+        result = next_result(session)
+    assert result.status == "ok"
+    assert shown == list(range(len(ended.steps)))
+
+
+@pytest.mark.timeout(60)
+def test_pause_holds_a_run_and_resume_finishes_it(session):
+    session.pause()
+    session.start()
+    held = next_result(session, lambda r: r.status == "paused")
+    time.sleep(0.3)
+    assert drain(session, quiet=0.2) == []  # nothing moves while paused
+    session.resume()
+    assert next_result(session, is_ok).run_id == held.run_id
+
+
+@pytest.mark.timeout(60)
+def test_a_reload_while_paused_keeps_the_place(session):
+    session.start()
+    next_result(session, is_ok)
+    session.goto_step(4)
+    next_result(session, paused_at(4))
+    session.reload()
+    again = next_result(session)
+    assert again.status == "paused" and again.step_index == 4
+
+
+@pytest.mark.timeout(60)
+def test_goto_after_an_error_shows_the_steps_that_finished(tmp_path):
+    path = tmp_path / "fails.py"
+    path.write_text("createVertex((0, 0, 0))\ncreateVertex((1, 0, 0))\nraise ValueError('late')\n")
+    live = LiveSession(str(path), notifier=ManualNotifier(), preview=False)
+    try:
+        live.start()
+        failed = next_result(live, lambda r: r.status == "error")
+        assert len(failed.steps) == 2 and failed.arrays is None and not failed.stale
+        assert failed.error is not None and failed.error.line == 3
+        live.goto_step(0)
+        shown = next_result(live, paused_at(0))
+        assert shown.arrays is not None and shown.arrays.counts == (1, 0, 1)
+    finally:
+        live.close()
+        assert live.join(10)
+
+
+@pytest.mark.timeout(60)
+def test_user_cancel_posts_a_cancelled_result_with_last_good_mesh(tmp_path):
+    path = tmp_path / "slow.py"
+    path.write_text("createVertex((0, 0, 0))\n")
+    live = LiveSession(str(path), notifier=ManualNotifier(), preview=False)
+    try:
+        live.start()
+        good = next_result(live, is_ok)
+        path.write_text("createVertex((0, 0, 0))\nwhile True:\n    pass\n")
+        live.reload()
+        time.sleep(0.3)
+        live.cancel()
+        cancelled = next_result(live, lambda r: r.status == "cancelled")
+        assert cancelled.stale and same_mesh(cancelled.arrays, good.arrays)
+        assert cancelled.error is not None and cancelled.error.kind == "cancelled"
+    finally:
+        live.close()
+        assert live.join(10)
+
+
+@pytest.mark.timeout(60)
+def test_controls_return_at_once_even_mid_run(tmp_path):
+    path = tmp_path / "busy.py"
+    path.write_text("while True:\n    createVertex((0, 0, 0))\n")
+    live = LiveSession(str(path), notifier=ManualNotifier(), preview=False)
+    try:
+        live.start()
+        time.sleep(0.2)
+        controls = [live.pause, live.step_forward, live.step_back, lambda: live.goto_step(3),
+                    lambda: live.play(5.0), live.resume, live.run_to_end, live.reload,
+                    lambda: live.set_parameters({"a": 1}), lambda: live.set_selection(None)]
+        for control in controls:
+            started = time.perf_counter()
+            control()
+            assert time.perf_counter() - started < 0.05
+    finally:
+        live.close()
+        assert live.join(10)
+
+
+def test_play_rejects_a_non_positive_rate(session):
+    with pytest.raises(ValueError):
+        session.play(0)
