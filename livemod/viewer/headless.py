@@ -148,14 +148,18 @@ def progress_bar(stream: TextIO | None = None) -> Callable[[int, int], None]:
 def render_arrays(arrays: MeshArrays | None, out: str, *, size: tuple[int, int] = (800, 600),
                   turntable: int = 0, elevation: float = 25.0, style: Style | None = None,
                   preview: MeshArrays | None = None, selection: Selection | None = None,
-                  progress: Callable[[int, int], None] | None = None) -> list[Path]:
-    """Render ``arrays`` to ``out`` (one frame, or a ``turntable`` of that many frames)."""
+                  progress: Callable[[int, int], None] | None = None,
+                  ortho: bool = False) -> list[Path]:
+    """Render ``arrays`` to ``out`` (one frame, or a ``turntable`` of that many frames).
+
+    The framing is computed once from the bounding sphere, so it holds at every angle.
+    """
     offscreen = Offscreen(size)
     try:
         offscreen.renderer.set_mesh(arrays, preview)
         if selection is not None:
             offscreen.renderer.set_selection(selection)
-        camera = framed_camera(arrays, elevation)
+        camera = framed_camera(arrays, elevation, ortho=ortho)
         style = style if style is not None else Style()
         frames = max(turntable, 1)
         images = render_turntable(offscreen, camera, style, frames, progress)

@@ -1,0 +1,129 @@
+"""The ``view`` and ``render`` subcommands (no GL is imported at parse time).
+
+``livemod.cli`` calls :func:`add_commands`; :func:`main` parses only these two
+subcommands, for tests and ``python -m``-free use.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import sys
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
+
+SCRIPT_SUFFIXES = (".py",)
+
+
+def parse_size(text: str) -> tuple[int, int]:
+    """``"800x600"`` -> ``(800, 600)``; raises ArgumentTypeError otherwise."""
+    try:
+        width, height = (int(part) for part in text.lower().split("x"))
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"size must look like 800x600, not {text!r}") from None
+    if width <= 0 or height <= 0:
+        raise argparse.ArgumentTypeError(f"size must be positive, not {text!r}")
+    return width, height
+
+
+def add_commands(subparsers: Any) -> None:
+    """Register ``view`` and ``render`` on the ``livemod`` subparsers."""
+    view = subparsers.add_parser("view", help="open the live window on a script")
+    view.add_argument("script", help="the Python script to watch and run")
+    view.add_argument("--mesh", help="mesh every run starts from (.obj, .dlfl)")
+    view.add_argument("--size", type=parse_size, default=(1280, 800), help="WxH window size")
+    view.set_defaults(handler=_view)
+    render = subparsers.add_parser(
+        "render", help="render a script's result or a mesh to PNG, a PNG sequence or a GIF")
+    render.add_argument("input", help="a script (.py) or a mesh file or shape name")
+    render.add_argument("-o", "--output", required=True,
+                        help="out.png, out.gif, a folder, or a pattern with {frame} / %%03d")
+    render.add_argument("--mesh", help="mesh a script starts from")
+    render.add_argument("--size", type=parse_size, default=(800, 600), help="WxH pixels")
+    render.add_argument("--turntable", type=int, default=0, metavar="N",
+                        help="N frames evenly spaced around the up axis")
+    render.add_argument("--elevation", type=float, default=25.0, metavar="DEG",
+                        help="camera height above the horizon in degrees")
+    render.add_argument("--preview", action="store_true", help="draw the patch preview")
+    render.add_argument("--labels", nargs="?", const="faces,edges,vertices", default="",
+                        help="id labels: comma list of faces, edges, vertices (all if bare)")
+    render.add_argument("--ortho", action="store_true", help="orthographic projection")
+    render.add_argument("--vertices", action="store_true", help="draw vertices")
+    render.add_argument("--no-edges", action="store_true", help="hide the edges")
+    render.set_defaults(handler=_render)
+
+
+def _view(args: argparse.Namespace) -> int:
+    from .window import ViewOptions, view
+
+    if not Path(args.script).exists():
+        raise OSError(f"no such script: {args.script}")
+    return view(ViewOptions(args.script, mesh_path=args.mesh, size=args.size))
+
+
+def _render(args: argparse.Namespace) -> int:
+    from livemod.dlfl.errors import DLFLError
+
+    from .headless import progress_bar, render_arrays
+    from .renderer import LABEL_KINDS, Style
+
+    labels = frozenset(k.strip() for k in args.labels.split(",") if k.strip())
+    if labels - set(LABEL_KINDS):
+        raise DLFLError(f"unknown label kinds: {sorted(labels - set(LABEL_KINDS))}")
+    arrays, preview = _load_input(args.input, args.mesh, args.preview)
+    if args.preview and preview is None:
+        print("livemod: warning: no patch preview available; drawing the mesh",
+              file=sys.stderr)
+    style = Style(edges=not args.no_edges, vertices=args.vertices, preview=args.preview,
+                  labels=labels)
+    progress = progress_bar() if args.turntable > 1 else None
+    paths = render_arrays(arrays, args.output, size=args.size, turntable=args.turntable,
+                          elevation=args.elevation, style=style, preview=preview,
+                          progress=progress, ortho=args.ortho)
+    print(f"wrote {paths[0]}" if len(paths) == 1 else f"wrote {len(paths)} frames: "
+          f"{paths[0]} .. {paths[-1]}")
+    return 0
+
+
+def _load_input(path: str, mesh_path: str | None, want_preview: bool) -> tuple[Any, Any]:
+    """``(arrays, preview or None)`` of a script's result or of a mesh file."""
+    from livemod.dlfl.errors import DLFLError
+
+    if Path(path).suffix.lower() in SCRIPT_SUFFIXES:
+        from livemod.runner import run_script
+
+        result = run_script(path, mesh_path=mesh_path)
+        if result.error is not None:
+            raise DLFLError(f"{result.error.file}:{result.error.line}: {result.error.message}")
+        return result.arrays, result.preview
+    from livemod.dlfl import mesh_arrays
+
+    load_mesh = importlib.import_module("livemod.dlfl.io").load_mesh
+
+    if Path(path).exists():
+        mesh = load_mesh(path)
+    else:
+        from livemod.dlfl.shapes import load_shape
+
+        mesh = load_shape(path)
+    preview = None
+    if want_preview:
+        from livemod.runner.preview import preview_arrays
+
+        preview = preview_arrays(mesh)
+    return mesh_arrays(mesh), preview
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Parse and run ``view`` or ``render`` alone; returns the exit code."""
+    from livemod.dlfl.errors import DLFLError
+
+    parser = argparse.ArgumentParser(prog="livemod")
+    add_commands(parser.add_subparsers(dest="command", required=True))
+    args = parser.parse_args(argv)
+    try:
+        return int(args.handler(args) or 0)
+    except (DLFLError, OSError) as exc:
+        print(f"livemod: error: {exc}", file=sys.stderr)
+        return 1

@@ -1,0 +1,144 @@
+"""Key bindings, selection editing and the Python echo of a selection (GL-free).
+
+Keys are named as moderngl-window names them (``"W"``, ``"SPACE"``, ``"NUMBER_1"``,
+``"F12"``), so the bindings are independent of the window backend; the help
+overlay and docs/viewer.md are generated from :data:`KEY_BINDINGS`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from livemod.dlfl.arrays import MeshArrays
+from livemod.dlfl.scene import Selection
+
+PICK_MODES = ("face", "edge", "vertex", "corner")
+_SELECTION_FIELD = {"face": "faces", "edge": "edges", "vertex": "vertices",
+                    "corner": "corners"}
+
+
+@dataclass(frozen=True)
+class Binding:
+    """One key: ``key`` name, required ``modifiers`` ("", "shift", "ctrl"), action."""
+
+    key: str
+    modifiers: str
+    action: str
+    help: str
+
+    def label(self) -> str:
+        """How the help overlay names the key, e.g. ``Ctrl+F``."""
+        name = {"NUMBER_1": "1", "NUMBER_2": "2", "NUMBER_3": "3", "NUMBER_4": "4",
+                "SPACE": "Space", "RIGHT": "Right", "LEFT": "Left", "PERIOD": ".",
+                "COMMA": ",", "END": "End", "ESCAPE": "Esc"}.get(self.key, self.key)
+        prefix = {"": "", "shift": "Shift+", "ctrl": "Ctrl+"}[self.modifiers]
+        return prefix + name
+
+
+KEY_BINDINGS: tuple[Binding, ...] = (
+    Binding("H", "", "help", "show or hide this help"),
+    Binding("F1", "", "help", "show or hide this help"),
+    Binding("U", "", "toggle_hud", "show or hide the HUD"),
+    Binding("S", "", "toggle_faces", "solid faces on/off"),
+    Binding("W", "", "toggle_edges", "wireframe (edges) on/off"),
+    Binding("V", "", "toggle_vertices", "vertices on/off"),
+    Binding("P", "", "toggle_preview", "patch-smoothed preview on/off"),
+    Binding("F", "ctrl", "labels_faces", "face id labels on/off"),
+    Binding("E", "ctrl", "labels_edges", "edge id labels on/off"),
+    Binding("V", "ctrl", "labels_vertices", "vertex id labels on/off"),
+    Binding("D", "", "labels_selected", "labels: all / selected only"),
+    Binding("O", "", "toggle_ortho", "orthographic / perspective"),
+    Binding("F", "", "fit", "fit the mesh in the view"),
+    Binding("NUMBER_1", "", "view_front", "front view"),
+    Binding("NUMBER_2", "", "view_top", "top view"),
+    Binding("NUMBER_3", "", "view_side", "side view"),
+    Binding("NUMBER_4", "", "view_iso", "iso view"),
+    Binding("SPACE", "", "play_pause", "play the steps / pause"),
+    Binding("RIGHT", "", "step_forward", "next step"),
+    Binding("PERIOD", "", "step_forward", "next step"),
+    Binding("LEFT", "", "step_back", "previous step"),
+    Binding("COMMA", "", "step_back", "previous step"),
+    Binding("END", "", "run_to_end", "run to the end"),
+    Binding("G", "", "run_to_end", "run to the end"),
+    Binding("R", "", "reload", "re-run the script now"),
+    Binding("F12", "", "screenshot", "save a screenshot (PNG, no HUD)"),
+    Binding("M", "", "next_pick_mode", "pick mode: face > edge > vertex > corner"),
+    Binding("F", "shift", "pick_face", "pick faces"),
+    Binding("E", "shift", "pick_edge", "pick edges"),
+    Binding("V", "shift", "pick_vertex", "pick vertices"),
+    Binding("C", "shift", "pick_corner", "pick corners"),
+    Binding("ESCAPE", "", "clear_selection", "clear the selection"),
+    Binding("Q", "", "quit", "close the window"),
+)
+
+MOUSE_HELP: tuple[tuple[str, str], ...] = (
+    ("Left drag", "orbit"),
+    ("Right / middle drag, Shift+left drag", "pan"),
+    ("Wheel", "zoom"),
+    ("Click", "select (in the pick mode)"),
+    ("Shift+click", "add to / remove from the selection"),
+    ("Drop a file", "open a script (.py) or a mesh"),
+)
+
+
+def action_for(key: str, shift: bool, ctrl: bool) -> str | None:
+    """The action bound to ``key`` with these modifiers, or None."""
+    modifiers = "ctrl" if ctrl else ("shift" if shift else "")
+    for binding in KEY_BINDINGS:
+        if binding.key == key and binding.modifiers == modifiers:
+            return binding.action
+    return None
+
+
+def help_lines() -> list[str]:
+    """The help overlay: one line per key binding, then the mouse."""
+    lines = ["Keys"]
+    lines += [f"  {b.label():<10} {b.help}" for b in KEY_BINDINGS]
+    lines.append("Mouse")
+    lines += [f"  {what:<38} {does}" for what, does in MOUSE_HELP]
+    return lines
+
+
+def toggle_pick(selection: Selection, mode: str, element_id: int, add: bool) -> Selection:
+    """The selection after clicking ``element_id`` in pick ``mode``.
+
+    A plain click selects only that element (clicking it again keeps it); with
+    ``add`` (shift) the element is added, or removed if it was selected.
+    """
+    name = _SELECTION_FIELD[mode]
+    current: tuple[int, ...] = getattr(selection, name)
+    if not add:
+        return replace(Selection(), **{name: (element_id,)})
+    if element_id in current:
+        return replace(selection, **{name: tuple(i for i in current if i != element_id)})
+    return replace(selection, **{name: (*current, element_id)})
+
+
+def selection_python(selection: Selection, arrays: MeshArrays | None) -> list[str]:
+    """The selection as the Python a script would see, e.g. ``faces(True) == (12, 31)``.
+
+    Corners are shown as ``(faceid, vertexid)`` pairs, as ``corners(True)`` returns.
+    """
+    lines = []
+    for call, ids in (("faces", selection.faces), ("edges", selection.edges),
+                      ("verts", selection.vertices)):
+        if ids:
+            lines.append(f"{call}(True) == {tuple(ids)!r}")
+    if selection.corners:
+        pairs = tuple(_corner_pair(arrays, c) for c in selection.corners)
+        lines.append(f"corners(True) == {pairs!r}")
+    return lines or ["faces(True) == ()"]
+
+
+def _corner_pair(arrays: MeshArrays | None, corner_id: int) -> tuple[int, int]:
+    """``(faceid, vertexid)`` of a corner id (``(-1, -1)`` if it is not in ``arrays``)."""
+    if arrays is None:
+        return (-1, -1)
+    where = np.flatnonzero(arrays.corner_ids == corner_id)
+    if len(where) == 0:
+        return (-1, -1)
+    dense = int(where[0])
+    return (int(arrays.face_ids[arrays.corner_face[dense]]),
+            int(arrays.vertex_ids[arrays.corner_vertex[dense]]))

@@ -1,0 +1,100 @@
+"""HUD, error overlay and help overlay as screen-text quads (GL-free).
+
+:func:`hud_lines` says what the HUD shows; :func:`hud_quads` lays out the HUD
+panel (top left), the error panel (bottom) and the help panel (top right).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from .controls import help_lines
+from .text import QUAD_FLOATS, GlyphAtlas, box_quad, glyph_atlas, layout_text, text_width
+
+TEXT, LABEL_DIM, ERROR_TEXT, OK_TEXT, WARN_TEXT = 0, 5, 4, 6, 7
+PANEL, ERROR_PANEL = 8, 12
+MARGIN, PADDING = 8, 6
+
+
+def run_state(result: Any, waiting: bool) -> str:
+    """``running``, or the result's status, with ``stale`` appended when it is stale."""
+    if waiting or result is None:
+        return "running"
+    return f"{result.status}, stale" if result.stale else str(result.status)
+
+
+def step_line(result: Any) -> str:
+    """``step k/N: label (line L)`` of the shown step, or ``no steps``."""
+    if result is None or not result.steps:
+        return "no steps"
+    steps = result.steps
+    shown = len(steps) - 1 if result.step_index is None else min(result.step_index,
+                                                                 len(steps) - 1)
+    step = steps[shown]
+    where = f" (line {step.line})" if step.line is not None else ""
+    return f"step {shown + 1}/{len(steps)}: {step.label}{where}"
+
+
+def hud_lines(info: dict[str, Any]) -> list[tuple[str, int]]:
+    """The HUD's ``(text, colour kind)`` lines from the window's ``info`` dict."""
+    result = info["result"]
+    state = run_state(result, info["waiting"])
+    colour = ERROR_TEXT if "error" in state else (WARN_TEXT if state != "ok" else OK_TEXT)
+    elapsed = f"  {result.elapsed:.3f} s" if result is not None else ""
+    lines = [(Path(info["script"]).name, TEXT), (f"{state}{elapsed}", colour)]
+    arrays = None if result is None else result.arrays
+    if arrays is not None:
+        v, e, f = arrays.counts
+        lines.append((f"V {v}  E {e}  F {f}  genus {info['genus']}", TEXT))
+    lines.append((step_line(result), TEXT))
+    style = info["style"]
+    view = "ortho" if info["ortho"] else "persp"
+    mode = "preview" if style.preview else "mesh"
+    lines.append((f"pick {info['pick_mode']}  {view}  {mode}"
+                  f"{'  playing' if info['playing'] else ''}", LABEL_DIM))
+    lines += [(line, LABEL_DIM) for line in info["selection"][:4]]
+    lines.append((f"{info['fps']:.0f} fps   H: help", LABEL_DIM))
+    return lines
+
+
+def _panel(atlas: GlyphAtlas, lines: list[tuple[str, int]], x: float, y: float,
+           panel_kind: int) -> np.ndarray:
+    """A boxed block of coloured lines with its top left at ``(x, y)``."""
+    width = max((text_width(atlas, text) for text, _ in lines), default=0.0)
+    height = len(lines) * atlas.line_height
+    parts = [box_quad(atlas, x, y, width + 2 * PADDING, height + 2 * PADDING, panel_kind)]
+    for row, (text, kind) in enumerate(lines):
+        parts.append(layout_text(atlas, [text], (x + PADDING, y + PADDING
+                                                 + row * atlas.line_height), kind))
+    return np.concatenate(parts)
+
+
+def error_lines(error: Any, max_lines: int = 8) -> list[tuple[str, int]]:
+    """The error overlay: ``file:line``, the message and the traceback's last lines."""
+    where = f"{Path(error.file).name}:{error.line}" if error.line is not None else error.file
+    lines = [(f"{error.kind} error in {where}", ERROR_TEXT), (error.message, TEXT)]
+    trace = [line for line in str(error.traceback).splitlines() if line.strip()]
+    lines += [(line, LABEL_DIM) for line in trace[-max_lines:]]
+    return lines
+
+
+def hud_quads(info: dict[str, Any], size: tuple[int, int]) -> np.ndarray:
+    """All overlay quads for a ``size`` (width, height) framebuffer."""
+    atlas = glyph_atlas()
+    parts = [np.zeros((0, QUAD_FLOATS), dtype=np.float32)]
+    if info["hud"]:
+        parts.append(_panel(atlas, hud_lines(info), MARGIN, MARGIN, PANEL))
+        result = info["result"]
+        if result is not None and result.error is not None:
+            lines = error_lines(result.error)
+            top = size[1] - MARGIN - 2 * PADDING - len(lines) * atlas.line_height
+            parts.append(_panel(atlas, lines, MARGIN, top, ERROR_PANEL))
+    if info["help"]:
+        lines = [(line, TEXT) for line in help_lines()]
+        width = max(text_width(atlas, text) for text, _ in lines) + 2 * PADDING
+        parts.append(_panel(atlas, lines, max(size[0] - MARGIN - width, MARGIN), MARGIN,
+                            PANEL))
+    return np.concatenate(parts)

@@ -1,0 +1,457 @@
+"""The live window: a moderngl-window ``WindowConfig`` over a runner ``LiveSession``.
+
+The session runs the script in its own threads and posts immutable results to a
+queue; :meth:`LiveViewer.on_render` drains that queue without blocking and does
+all GL work on the main thread. :func:`create_viewer` builds the window with
+explicit arguments (moderngl-window would otherwise parse ``sys.argv``), and
+:func:`run_frames` is the main loop, also used by tests on the headless backend.
+"""
+
+from __future__ import annotations
+
+import logging
+import queue
+import sys
+import time
+from collections import deque
+from collections.abc import Callable
+from dataclasses import dataclass, replace
+from pathlib import Path
+from typing import Any, ClassVar
+
+import moderngl_window as mglw
+import numpy as np
+
+from livemod.dlfl.scene import Selection
+
+from .camera import Camera, bounds_changed_a_lot
+from .controls import PICK_MODES, action_for, selection_python, toggle_pick
+from .hud import hud_quads
+from .renderer import Renderer, Style
+
+SCRIPT_SUFFIXES = (".py",)
+
+
+@dataclass
+class ViewOptions:
+    """How to open the window.
+
+    Attributes:
+        script: the script to watch and run.
+        mesh_path: mesh every run starts from (``--mesh``), or None.
+        backend: moderngl-window window class: "glfw" (default) or "headless".
+        size: window size in pixels.
+        samples: MSAA samples of the window framebuffer.
+        vsync: wait for the display between frames.
+        session_factory: ``(script, mesh_path) -> session``; the runner's
+            ``LiveSession`` when None.
+        echo: where selections and errors are echoed (stdout when None).
+    """
+
+    script: str
+    mesh_path: str | None = None
+    backend: str = "glfw"
+    size: tuple[int, int] = (1280, 800)
+    samples: int = 4
+    vsync: bool = True
+    session_factory: Callable[[str, str | None], Any] | None = None
+    echo: Any = None
+
+
+def _default_session(script: str, mesh_path: str | None) -> Any:
+    from livemod.runner import LiveSession
+
+    return LiveSession(script, mesh_path=mesh_path)
+
+
+def _key_names(keys: Any) -> dict[Any, str]:
+    """Map a backend's key codes to moderngl-window key names."""
+    names: dict[Any, str] = {}
+    for name in dir(keys):
+        if name.isupper() and not name.startswith("ACTION"):
+            code = getattr(keys, name)
+            if code != "undefined":
+                names.setdefault(code, name)
+    return names
+
+
+class LiveViewer(mglw.WindowConfig):
+    """The live viewer window; configure through :func:`create_viewer`."""
+
+    gl_version = (3, 3)
+    title = "livemod"
+    aspect_ratio = None  # type: ignore[assignment]  # follow the window's shape
+    resizable = True
+    clear_color = None  # type: ignore[assignment]  # the renderer clears
+    log_level = logging.WARNING
+    options: ClassVar[ViewOptions]
+
+    def __init__(self, **kwargs: Any) -> None:
+        super().__init__(**kwargs)
+        self.wnd.exit_key = None  # Esc clears the selection instead
+        self.renderer = Renderer(self.ctx)
+        self.camera = Camera()
+        self.style = Style()
+        self.pick_mode = "face"
+        self.selection = Selection()
+        self.show_help = False
+        self.show_hud = True
+        self.playing = False
+        self.waiting = True
+        self.result: Any = None
+        self.genus: int | None = None
+        self.frame_times: deque[float] = deque(maxlen=120)
+        self.screenshots: list[Path] = []
+        self._fit_bounds: np.ndarray | None = None
+        self._press: tuple[int, int, bool] | None = None
+        self._moved = False
+        self._key_names = _key_names(self.wnd.keys)
+        self._last_frame = time.perf_counter()
+        self.script = str(Path(self.options.script).resolve())
+        self.mesh_path = self.options.mesh_path
+        self.session = self._start_session()
+        self._install_drop_callback()
+
+    # -- session ---------------------------------------------------------------
+
+    def _start_session(self) -> Any:
+        factory = self.options.session_factory or _default_session
+        session = factory(self.script, self.mesh_path)
+        session.start()
+        self.waiting = True
+        self.wnd.title = f"livemod - {Path(self.script).name}"
+        return session
+
+    def _drain_results(self) -> None:
+        """Apply the newest result in the session's queue (never blocks)."""
+        latest = None
+        while True:
+            try:
+                latest = self.session.results.get_nowait()
+            except queue.Empty:
+                break
+        if latest is not None:
+            self._apply(latest)
+
+    def _apply(self, result: Any) -> None:
+        first_error = result.error is not None and (
+            self.result is None or self.result.error != result.error)
+        self.result = result
+        self.waiting = False
+        if result.arrays is not None and result.arrays is not self.renderer.arrays:
+            self._upload(result.arrays, result.preview)
+        elif result.preview is not None and result.preview is not self.renderer.preview:
+            self.renderer.set_preview(result.preview)
+        if first_error:
+            self._echo(f"error: {result.error.file}:{result.error.line}: "
+                       f"{result.error.message}")
+
+    def _upload(self, arrays: Any, preview: Any) -> None:
+        from livemod.dlfl.analysis import genus
+
+        self.renderer.set_mesh(arrays, preview)
+        self.renderer.set_selection(self.selection)
+        self.genus = genus(arrays) if len(arrays.positions) else 0
+        bounds = self.renderer.bounds
+        if bounds is not None and len(arrays.positions) and bounds_changed_a_lot(
+                self._fit_bounds, bounds):
+            self.camera.fit(bounds)
+            self._fit_bounds = bounds
+
+    def _echo(self, line: str) -> None:
+        stream = self.options.echo if self.options.echo is not None else sys.stdout
+        print(line, file=stream, flush=True)
+
+    # -- frames ----------------------------------------------------------------
+
+    def on_render(self, time_now: float, frame_time: float) -> None:
+        now = time.perf_counter()
+        self.frame_times.append(now - self._last_frame)
+        self._last_frame = now
+        self._drain_results()
+        fbo = self.wnd.fbo
+        self.renderer.draw(fbo, self.camera, self.style)
+        if self.show_hud or self.show_help:
+            self.renderer.draw_overlay(fbo, hud_quads(self._hud_info(), fbo.size))
+
+    def _hud_info(self) -> dict[str, Any]:
+        fps = 0.0
+        if self.frame_times:
+            fps = len(self.frame_times) / max(sum(self.frame_times), 1e-9)
+        return {"script": self.script, "result": self.result, "waiting": self.waiting,
+                "genus": self.genus, "fps": fps, "pick_mode": self.pick_mode,
+                "selection": selection_python(self.selection, self.renderer.arrays)
+                if not self.selection.is_empty() else [],
+                "style": self.style, "ortho": self.camera.ortho, "playing": self.playing,
+                "hud": self.show_hud, "help": self.show_help}
+
+    def capture(self) -> np.ndarray:
+        """Render the scene (no HUD) offscreen at the window's size: ``(H, W, 3)`` uint8."""
+        size = self.wnd.fbo.size
+        fbo = self.ctx.framebuffer([self.ctx.renderbuffer(size, 4)],
+                                   self.ctx.depth_renderbuffer(size))
+        try:
+            self.renderer.draw(fbo, self.camera, self.style)
+            raw = fbo.read(components=3, alignment=1)
+        finally:
+            for attachment in (*fbo.color_attachments, fbo.depth_attachment):
+                if attachment is not None:
+                    attachment.release()
+            fbo.release()
+            self.wnd.use()
+        return np.frombuffer(raw, dtype=np.uint8).reshape(size[1], size[0], 3)[::-1].copy()
+
+    def save_screenshot(self) -> Path:
+        """Write :meth:`capture` to ``<script>_NNN.png`` in the working directory."""
+        from PIL import Image
+
+        stem = Path(self.script).stem
+        index = len(self.screenshots)
+        path = Path(f"{stem}_{index:03d}.png")
+        while path.exists():
+            index += 1
+            path = Path(f"{stem}_{index:03d}.png")
+        Image.fromarray(self.capture()).save(path)
+        self.screenshots.append(path)
+        self._echo(f"screenshot: {path}")
+        return path
+
+    def on_close(self) -> None:
+        self._close_session()
+
+    # -- keys ------------------------------------------------------------------
+
+    def on_key_event(self, key: Any, action: Any, modifiers: Any) -> None:
+        if action != self.wnd.keys.ACTION_PRESS:
+            return
+        name = self._key_names.get(key)
+        if name is not None:
+            self.handle_key(name, shift=bool(modifiers.shift), ctrl=bool(modifiers.ctrl))
+
+    def handle_key(self, name: str, shift: bool = False, ctrl: bool = False) -> str | None:
+        """Run the action bound to key ``name``; returns the action (None if unbound)."""
+        action = action_for(name, shift, ctrl)
+        if action is None:
+            return None
+        handler = getattr(self, f"_do_{action}", None)
+        if handler is not None:
+            handler()
+        elif action.startswith("pick_"):
+            self.pick_mode = action.removeprefix("pick_")
+        elif action.startswith("view_"):
+            self.camera.preset(action.removeprefix("view_"))
+        elif action.startswith("labels_"):
+            self._toggle_labels(action.removeprefix("labels_"))
+        else:
+            self._toggle_style(action.removeprefix("toggle_"))
+        return action
+
+    def _toggle_style(self, field_name: str) -> None:
+        flipped: dict[str, Any] = {field_name: not getattr(self.style, field_name)}
+        self.style = replace(self.style, **flipped)
+
+    def _toggle_labels(self, kind: str) -> None:
+        if kind == "selected":
+            self.style = replace(self.style,
+                                 labels_selected_only=not self.style.labels_selected_only)
+            return
+        self.style = replace(self.style, labels=self.style.labels ^ {kind})
+
+    def _do_help(self) -> None:
+        self.show_help = not self.show_help
+
+    def _do_toggle_hud(self) -> None:
+        self.show_hud = not self.show_hud
+
+    def _do_toggle_ortho(self) -> None:
+        self.camera.ortho = not self.camera.ortho
+
+    def _do_fit(self) -> None:
+        if self.renderer.bounds is not None:
+            self.camera.fit(self.renderer.bounds)
+
+    def _do_play_pause(self) -> None:
+        self.playing = not self.playing
+        if self.playing:
+            self.session.play(2.0)
+        else:
+            self.session.pause()
+        self.waiting = self.playing
+
+    def _do_step_forward(self) -> None:
+        self.playing = False
+        self.session.step_forward()
+        self.waiting = True
+
+    def _do_step_back(self) -> None:
+        self.playing = False
+        self.session.step_back()
+        self.waiting = True
+
+    def _do_run_to_end(self) -> None:
+        self.playing = False
+        self.session.run_to_end()
+        self.waiting = True
+
+    def _do_reload(self) -> None:
+        self.session.reload()
+        self.waiting = True
+
+    def _do_screenshot(self) -> None:
+        self.save_screenshot()
+
+    def _do_next_pick_mode(self) -> None:
+        self.pick_mode = PICK_MODES[(PICK_MODES.index(self.pick_mode) + 1) % len(PICK_MODES)]
+
+    def _do_clear_selection(self) -> None:
+        self.set_selection(Selection())
+
+    def _do_quit(self) -> None:
+        self.wnd.close()
+
+    # -- mouse -----------------------------------------------------------------
+
+    def on_mouse_press_event(self, x: int, y: int, button: int) -> None:
+        self._press = (x, y, button)  # type: ignore[assignment]
+        self._moved = False
+
+    def on_mouse_drag_event(self, x: int, y: int, dx: int, dy: int) -> None:
+        if self._press is not None and abs(x - self._press[0]) + abs(y - self._press[1]) > 3:
+            self._moved = True
+        states = self.wnd.mouse_states
+        if states.left and not self.wnd.modifiers.shift:
+            self.camera.orbit(dx * 0.4, dy * 0.4)
+        elif states.left or states.right or states.middle:
+            self.camera.pan(dx * self._pixel_ratio(), dy * self._pixel_ratio(),
+                            self.wnd.fbo.size[1])
+
+    def on_mouse_release_event(self, x: int, y: int, button: int) -> None:
+        clicked = self._press is not None and not self._moved
+        self._press = None
+        if clicked and button == self.wnd.mouse.left:
+            self.click(x, y, add=bool(self.wnd.modifiers.shift))
+
+    def on_mouse_scroll_event(self, x_offset: float, y_offset: float) -> None:
+        self.camera.zoom(y_offset)
+
+    def _pixel_ratio(self) -> float:
+        return self.wnd.fbo.size[0] / max(self.wnd.size[0], 1)
+
+    def click(self, x: float, y: float, add: bool = False) -> None:
+        """Pick at window point ``(x, y)`` in the current mode and update the selection.
+
+        A click on the background without ``add`` clears the selection.
+        """
+        ratio = self._pixel_ratio()
+        px, py = int(x * ratio), int(y * ratio)
+        hit = self.renderer.pick(self.camera, self.wnd.fbo.size, px, py, self.pick_mode,
+                                 radius=int(6 * ratio))
+        self.wnd.use()
+        if hit is None:
+            if not add:
+                self.set_selection(Selection())
+            return
+        self.set_selection(toggle_pick(self.selection, self.pick_mode, hit.element_id, add))
+
+    def set_selection(self, selection: Selection) -> None:
+        """Show ``selection``, send it to the session and echo it as Python."""
+        self.selection = selection
+        self.renderer.set_selection(selection)
+        self.session.set_selection(selection)
+        for line in selection_python(selection, self.renderer.arrays):
+            self._echo(line)
+
+    # -- files -----------------------------------------------------------------
+
+    def _install_drop_callback(self) -> None:
+        """moderngl-window's glfw backend does not forward drops; hook glfw directly."""
+        handle = getattr(self.wnd, "_window", None)
+        if self.options.backend != "glfw" or handle is None:
+            return
+        import glfw
+
+        def dropped(_window: Any, paths: list[str]) -> None:
+            if paths:
+                self.open_path(paths[0])
+
+        callback: Any = dropped
+        glfw.set_drop_callback(handle, callback)
+
+    def on_files_dropped_event(self, x: int, y: int, paths: list[Any]) -> None:
+        if paths:
+            self.open_path(str(paths[0]))
+
+    def open_path(self, path: str) -> None:
+        """Open a script (``.py``: it replaces the watched one) or a mesh (the new base)."""
+        resolved = str(Path(path).resolve())
+        if Path(path).suffix.lower() in SCRIPT_SUFFIXES:
+            self.script = resolved
+        else:
+            self.mesh_path = resolved
+        self._close_session()
+        self.selection = Selection()
+        self.renderer.set_selection(self.selection)
+        self._fit_bounds = None
+        self.result = None
+        self.session = self._start_session()
+        self._echo(f"opened {resolved}")
+
+    def _close_session(self) -> None:
+        session, self.session = self.session, None
+        if session is not None:
+            session.close()
+
+
+def create_viewer(options: ViewOptions) -> LiveViewer:
+    """Open the window described by ``options`` (on the calling, main thread)."""
+    attributes = {"options": options, "samples": options.samples, "vsync": options.vsync,
+                  "window_size": options.size}
+    config_cls = type("LiveViewerWindow", (LiveViewer,), attributes)
+    args = ["--window", options.backend, "--size", f"{options.size[0]}x{options.size[1]}",
+            "--samples", str(options.samples)]
+    if options.backend == "headless":
+        args += ["--backend", "egl"]
+    viewer = mglw.create_window_config_instance(config_cls, args=args)
+    assert isinstance(viewer, LiveViewer)
+    return viewer
+
+
+def run_frames(viewer: LiveViewer, max_frames: int | None = None,
+               until: Callable[[LiveViewer], bool] | None = None) -> int:
+    """The main loop: render until the window closes, ``max_frames`` or ``until``.
+
+    Returns the number of frames drawn. The caller closes with :func:`close_viewer`.
+    """
+    window = viewer.wnd
+    frames = 0
+    while not window.is_closing and (max_frames is None or frames < max_frames):
+        if until is not None and until(viewer):
+            break
+        current, delta = viewer.timer.next_frame()
+        window.use()
+        window.render(current, delta)
+        if not window.is_closing:
+            window.swap_buffers()
+        frames += 1
+    return frames
+
+
+def close_viewer(viewer: LiveViewer) -> None:
+    """Stop the session and destroy the window."""
+    viewer._close_session()
+    viewer.wnd.destroy()
+
+
+def view(options: ViewOptions) -> int:
+    """``livemod view``: open the window and run until it is closed."""
+    viewer = create_viewer(options)
+    viewer.timer.start()
+    try:
+        run_frames(viewer)
+    except KeyboardInterrupt:
+        pass
+    finally:
+        close_viewer(viewer)
+    return 0
+
+
