@@ -1,0 +1,263 @@
+"""Extrusions: TopMod's counts on the cube (TOPMOD.md §4), positions against the
+rules, chained towers, and bad input that leaves the mesh unchanged."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from livemod.dlfl import DLFLError, Mesh, face_size_histogram, genus, validate
+from livemod.dlfl.analysis import face_centroid, face_normal, face_points
+from livemod.dlfl.extrusion import (
+    KINDS,
+    doo_sabin_weights,
+    extrude,
+    extrude_fan,
+    resolve_kind,
+    small_polygon_normal,
+)
+from livemod.dlfl.shapes import cube, dodecahedron, tetrahedron
+from tests.meshes import euler_ok, snapshot
+
+TOP = 0  # cube face 0: vertices 0..3 at y = +1, normal +y
+
+
+def checked(mesh: Mesh) -> tuple[int, int, int]:
+    validate(mesh)
+    assert euler_ok(mesh)
+    return mesh.counts()
+
+
+# kind, options, counts, face sizes (TOPMOD.md §4, one extrusion of cube face 0)
+CUBE_TABLE = [
+    ("cubical", {}, (12, 20, 10), {4: 10}),
+    ("cubical", {"segments": 3}, (20, 36, 18), {4: 18}),
+    ("doo-sabin", {}, (12, 20, 10), {4: 10}),
+    ("octa", {}, (12, 24, 14), {3: 8, 4: 6}),
+    ("octa", {"dual_mesh": True}, (12, 20, 10), {3: 4, 4: 2, 5: 4}),
+    ("dodeca", {}, (20, 32, 14), {4: 6, 5: 8}),
+    ("dodeca", {"segments": 2, "hexagonalize": True}, (32, 48, 18), {4: 6, 5: 8, 8: 4}),
+    ("icosa", {}, (20, 48, 30), {3: 24, 4: 6}),
+    ("cuboctahedral", {}, (16, 32, 18), {3: 8, 4: 10}),
+    ("hex-tile", {}, (16, 24, 10), {4: 2, 5: 8}),
+    ("planar-offset", {}, (12, 20, 10), {4: 10}),
+]
+FAN_TABLE = [
+    ("stellate", (9, 16, 9), {3: 4, 4: 5}, 4),
+    ("double-stellate", (13, 28, 17), {3: 12, 4: 5}, 12),
+    ("dome", (29, 56, 29), {3: 4, 4: 25}, 4),
+]
+
+
+@pytest.mark.parametrize(("kind", "options", "counts", "sizes"), CUBE_TABLE)
+def test_cube_counts_match_topmod(kind, options, counts, sizes):
+    m = cube()
+    end = extrude(m, TOP, kind, **options)
+    assert checked(m) == counts
+    assert face_size_histogram(m) == sizes
+    assert genus(m) == 0
+    assert m.has_face(end) and m.face_size(end) == 4
+
+
+@pytest.mark.parametrize(("kind", "counts", "sizes", "fan_size"), FAN_TABLE)
+def test_fan_counts_match_topmod(kind, counts, sizes, fan_size):
+    m = cube()
+    fan = extrude_fan(m, TOP, kind, 1.0)
+    assert checked(m) == counts
+    assert face_size_histogram(m) == sizes
+    assert len(fan) == fan_size and all(m.face_size(f) == 3 for f in fan)
+
+
+def test_every_kind_is_in_one_of_the_tables():
+    tabled = {row[0] for row in CUBE_TABLE} | {row[0] for row in FAN_TABLE}
+    assert tabled == set(KINDS)
+
+
+@pytest.mark.parametrize(("face", "axis", "sign"), [(0, 1, 1.0), (3, 0, -1.0)])
+def test_three_cubical_segments_step_the_full_distance_each(face, axis, sign):
+    m = cube()
+    ends = []
+    current = face
+    for _ in range(3):
+        current = extrude(m, current, "cubical", 2.0)
+        ends.append(face_points(m, current)[:, axis])
+    assert np.allclose(ends, sign * np.array([[3.0] * 4, [5.0] * 4, [7.0] * 4]), atol=1e-12)
+    fresh = cube()
+    end = extrude(fresh, face, "cubical", 2.0, segments=3)
+    assert np.allclose(face_points(fresh, end), face_points(m, current), atol=1e-12)
+
+
+def rotate_about(points: np.ndarray, axis: np.ndarray, degrees: float) -> np.ndarray:
+    """Right-handed rotation about ``axis`` through the points' centroid (Rodrigues)."""
+    c = points.mean(axis=0)
+    t = math.radians(degrees)
+    r = points - c
+    return c + r * math.cos(t) + np.cross(axis, r) * math.sin(t) + np.outer(r @ axis, axis) * (1 - math.cos(t))
+
+
+def test_cubical_positions_follow_the_rule():
+    m = cube()
+    p, n = face_points(m, TOP), face_normal(m, TOP)
+    end = extrude(m, TOP, "cubical", 1.5, rotation=30.0, scale=-0.5)
+    c = p.mean(axis=0)
+    expected = rotate_about(c + 0.5 * (p - c), n, 30.0) + 1.5 * n
+    assert np.allclose(face_points(m, end), expected, atol=1e-9)
+    assert checked(m) == (12, 20, 10)
+
+
+def test_doo_sabin_positions_follow_the_rule():
+    m = cube()
+    p, n = face_points(m, TOP), face_normal(m, TOP)
+    end = extrude(m, TOP, "doo-sabin", 0.5, twist=0.25, scale=0.8)
+    q = 0.75 * p + 0.25 * np.roll(p, -1, axis=0) + 0.5 * n
+    w = np.array([[9, 3, 1, 3], [3, 9, 3, 1], [1, 3, 9, 3], [3, 1, 3, 9]]) / 16
+    inner = w @ q
+    c = inner.mean(axis=0)
+    assert np.allclose(face_points(m, end), c + 0.8 * (inner - c), atol=1e-9)
+    assert np.allclose(doo_sabin_weights(4), w, atol=1e-15)
+
+
+def test_octa_end_face_is_the_moved_edge_midpoints():
+    m = cube()
+    p, n = face_points(m, TOP), face_normal(m, TOP)
+    end = extrude(m, TOP, "octa", 1.0)
+    mids = (p + np.roll(p, -1, axis=0)) / 2 + n
+    assert np.allclose(face_points(m, end), mids, atol=1e-9)
+
+
+def test_stellate_apex_is_centroid_plus_distance_along_normal():
+    m = cube()
+    c, n = face_centroid(m, TOP), face_normal(m, TOP)
+    fan = extrude_fan(m, TOP, "stellate", 1.25)
+    apex = set.intersection(*(set(m.face_vertices(f)) for f in fan)).pop()
+    assert np.allclose(m.position(apex), c + 1.25 * n, atol=1e-12)
+
+
+def test_double_stellate_positions():
+    m = cube()
+    p, n = face_points(m, TOP), face_normal(m, TOP)
+    c = p.mean(axis=0)
+    extrude_fan(m, TOP, "double-stellate", 0.7)
+    new = [m.position(v) for v in m.vertex_ids() if v >= 8]
+    expected = [c + 0.7 * n] + [(c + p[i] + p[(i + 1) % 4]) / 3 for i in range(4)]
+    assert sorted(map(tuple, np.round(new, 9))) == sorted(map(tuple, np.round(expected, 9)))
+
+
+def test_planar_offset_insets_along_the_edge_vectors():
+    m = cube()
+    p, n = face_points(m, TOP), face_normal(m, TOP)
+    end = extrude(m, TOP, "planar-offset", 0.5, thickness=0.25)
+    offset = 0.25 * ((np.roll(p, 1, axis=0) - p) + (np.roll(p, -1, axis=0) - p))
+    assert np.allclose(face_points(m, end), p + offset + 0.5 * n, atol=1e-12)
+
+
+@pytest.mark.parametrize("kind", ["dodeca", "icosa"])
+def test_compound_kinds_end_a_full_distance_away(kind):
+    m = cube()
+    c, n = face_centroid(m, TOP), face_normal(m, TOP)
+    end = extrude(m, TOP, kind, 3.0)
+    assert np.allclose(face_centroid(m, end), c + 3.0 * n, atol=1e-9)
+
+
+def test_dome_ends_in_a_low_apex():
+    m = cube()
+    fan = extrude_fan(m, TOP, "dome", 2.0)
+    tops = [m.position(v)[1] for f in fan for v in m.face_vertices(f)]
+    assert max(tops) == pytest.approx(1.0 + 2.0 * (0.3 + 0.18 + 0.1 + 0.05 + 0.025 + 0.01))
+
+
+def test_thesis_tower_of_chained_doo_sabin_extrusions():
+    m = cube()
+    face = TOP
+    for i in range(36):
+        t = 2 * math.pi * i / 36
+        face = extrude(m, face, "doo-sabin", 0.5 + 0.3 * math.sin(t), 1, 0.0, 0.9 + 0.1 * math.sin(t))
+    assert checked(m) == (8 + 4 * 36, 12 + 8 * 36, 6 + 4 * 36)
+    assert face_size_histogram(m) == {4: 6 + 4 * 36}
+
+
+@pytest.mark.parametrize(("shape", "face_size"), [(tetrahedron, 3), (dodecahedron, 5)])
+def test_other_polygons(shape, face_size):
+    for kind in ("cubical", "doo-sabin", "octa", "dodeca", "icosa", "cuboctahedral"):
+        m = shape()
+        face = int(m.face_ids()[0])
+        assert m.face_size(face) == face_size
+        end = extrude(m, face, kind, 0.5)
+        checked(m)
+        assert m.face_size(end) == face_size and genus(m) == 0
+    m = shape()
+    v, e, f = m.counts()
+    extrude(m, int(m.face_ids()[0]), "cubical", 0.5)
+    assert checked(m) == (v + face_size, e + 2 * face_size, f + face_size)
+
+
+def test_extrusions_touch_only_new_elements_and_the_face():
+    m = cube()
+    before = {v: m.position(v) for v in m.vertex_ids()}
+    extrude(m, TOP, "cubical", 1.0)
+    for v, p in before.items():
+        assert np.array_equal(m.position(v), p)
+
+
+def test_small_polygon_normal_matches_the_analysis_rule():
+    rng = np.random.default_rng(4)
+    from livemod.dlfl.analysis import polygon_normal
+
+    for k in (3, 4, 5, 8):
+        for _ in range(20):
+            pts = rng.normal(size=(k, 3))
+            assert np.allclose(small_polygon_normal(pts.tolist()), polygon_normal(pts), atol=1e-12)
+
+
+def test_kind_names_resolve_exactly_then_by_prefix():
+    assert resolve_kind("Doo-Sabin") == "doo-sabin"
+    assert resolve_kind("dual") == "octa"
+    assert resolve_kind("double") == "double-stellate"
+    assert resolve_kind("ico") == "icosa"
+    with pytest.raises(DLFLError, match="ambiguous.*cubical"):
+        resolve_kind("cub")
+
+
+# -- bad input ---------------------------------------------------------------------
+
+def bad_cases(m: Mesh):
+    gone_face = int(m.next_ids()[2]) + 5
+    return [
+        (lambda: extrude(m, gone_face, "cubical"), "does not exist"),
+        (lambda: extrude(m, TOP, "twirl"), "valid kinds: cubical, doo-sabin"),
+        (lambda: extrude(m, TOP, "cubical", segments=0), "segments"),
+        (lambda: extrude(m, TOP, "cubical", segments=1.5), "segments"),
+        (lambda: extrude(m, TOP, "cubical", distance=math.nan), "finite"),
+        (lambda: extrude(m, TOP, "stellate"), "extrude_fan"),
+        (lambda: extrude_fan(m, TOP, "cubical"), "use extrude"),
+        (lambda: extrude(m, "0", "cubical"), "face id"),
+    ]
+
+
+@pytest.mark.parametrize("case", range(8))
+def test_bad_input_raises_and_leaves_the_mesh_unchanged(case):
+    m = cube()
+    call, message = bad_cases(m)[case]
+    before = snapshot(m)
+    with pytest.raises(DLFLError, match=message):
+        call()
+    assert snapshot(m) == before
+
+
+def test_deleted_face_and_point_sphere_are_refused():
+    m = cube()
+    end = extrude(m, TOP, "cubical")
+    edge = m.face_edges(end)[0]
+    both = set(m.edge_faces(edge))
+    (kept,) = m.delete_edge(edge)  # the two faces merge; one id is gone for good
+    (gone,) = both - {kept}
+    before = snapshot(m)
+    with pytest.raises(DLFLError, match=f"face {gone} does not exist"):
+        extrude(m, gone, "doo-sabin")
+    assert snapshot(m) == before
+    p = Mesh()
+    v = p.create_vertex((0, 0, 0))
+    with pytest.raises(DLFLError, match="corner"):
+        extrude(p, p.corner_face(p.vertex_corner(v)), "cubical")
