@@ -1,0 +1,226 @@
+"""Watching: debounce with an injected notifier, then editor saves on the real file system."""
+
+from __future__ import annotations
+
+import os
+import threading
+import time
+
+import pytest
+
+from livemod.runner import FileWatcher, LiveSession, ManualNotifier, RunResult
+
+from .runner_scripts.support import (
+    drain,
+    main_results,
+    next_result,
+    write_by_rename,
+    write_in_place,
+    write_vim_style,
+)
+
+
+def vertices_script(n: int) -> str:
+    return f"for i in range({n}):\n    createVertex((i, 0, 0))\n"
+
+
+def vertex_count(result: RunResult) -> int:
+    assert result.arrays is not None, result.error
+    return result.arrays.counts[0]
+
+
+# -- FileWatcher with an injected notifier (no timing on the file system) ----------
+
+
+@pytest.mark.timeout(60)
+def test_events_in_a_burst_give_one_callback(tmp_path):
+    notifier, calls = ManualNotifier(), []
+    watched = str(tmp_path / "a.py")
+    watcher = FileWatcher(lambda: calls.append(time.monotonic()), debounce=0.3,
+                          notifier=notifier)
+    watcher.start()
+    watcher.set_files([watched])
+    try:
+        assert notifier.folders == {str(tmp_path)}
+        for _ in range(5):
+            notifier.fire(watched)
+        notifier.fire(str(tmp_path / "unrelated.py"))
+        deadline = time.monotonic() + 10
+        while not calls and time.monotonic() < deadline:
+            time.sleep(0.01)
+        time.sleep(0.6)
+        assert len(calls) == 1
+    finally:
+        watcher.close()
+
+
+@pytest.mark.timeout(60)
+def test_unchanged_content_is_skipped_and_changes_run(tmp_path):
+    script = tmp_path / "m.py"
+    script.write_text(vertices_script(2))
+    notifier = ManualNotifier()
+    live = LiveSession(str(script), notifier=notifier, debounce=0.05, preview=False)
+    try:
+        live.start()
+        assert vertex_count(next_result(live)) == 2
+        notifier.fire(str(script))  # touched, not changed
+        assert drain(live, quiet=0.5) == []
+        script.write_text(vertices_script(3))
+        notifier.fire(str(script))
+        assert vertex_count(next_result(live)) == 3
+    finally:
+        live.close()
+        assert live.join(10)
+
+
+@pytest.mark.timeout(60)
+def test_vanished_script_waits_for_its_return(tmp_path):
+    script = tmp_path / "gone.py"
+    script.write_text(vertices_script(2))
+    notifier = ManualNotifier()
+    live = LiveSession(str(script), notifier=notifier, debounce=0.05, preview=False)
+    try:
+        live.start()
+        next_result(live)
+        script.unlink()
+        notifier.fire(str(script))
+        assert drain(live, quiet=0.4) == []
+        script.write_text(vertices_script(4))
+        notifier.fire(str(script))
+        assert vertex_count(next_result(live)) == 4
+    finally:
+        live.close()
+        assert live.join(10)
+
+
+# -- real file system (watchdog) ----------------------------------------------------
+
+
+def start_session(tmp_path, text: str, **options) -> tuple[LiveSession, str]:
+    script = tmp_path / "model.py"
+    script.write_text(text)
+    live = LiveSession(str(script), preview=False, **options)
+    live.start()
+    first = next_result(live)
+    assert first.status == "ok", first.error
+    time.sleep(0.3)  # let the observer settle before the saves under test
+    return live, str(script)
+
+
+@pytest.mark.timeout(60)
+@pytest.mark.parametrize("save", [write_by_rename, write_in_place, write_vim_style])
+def test_each_editor_save_style_triggers_exactly_one_run(tmp_path, save):
+    live, script = start_session(tmp_path, vertices_script(2))
+    try:
+        save(script, vertices_script(5))
+        results = main_results(drain(live, quiet=1.0))
+        assert [vertex_count(r) for r in results] == [5]
+        save(script, vertices_script(6))
+        assert [vertex_count(r) for r in main_results(drain(live, quiet=1.0))] == [6]
+    finally:
+        live.close()
+        assert live.join(10)
+
+
+@pytest.mark.timeout(60)
+def test_a_burst_of_saves_ends_with_the_last_content(tmp_path):
+    live, script = start_session(tmp_path, vertices_script(1))
+    try:
+        for n in range(2, 22):
+            write_by_rename(script, vertices_script(n))
+            time.sleep(0.05)
+        results = main_results(drain(live, quiet=1.0))
+        assert results and vertex_count(results[-1]) == 21
+        assert len(results) < 20  # debounced
+        run_ids = [r.run_id for r in results]
+        assert run_ids == sorted(run_ids)
+    finally:
+        live.close()
+        assert live.join(10)
+
+
+@pytest.mark.timeout(60)
+def test_an_infinite_loop_is_cancelled_by_the_next_save(tmp_path):
+    live, script = start_session(tmp_path, vertices_script(1))
+    try:
+        write_in_place(script, "createVertex((0, 0, 0))\nwhile True:\n    pass\n")
+        time.sleep(0.6)  # the looping run is under way
+        saved = time.monotonic()
+        write_by_rename(script, vertices_script(3))
+        result = next_result(live)
+        assert vertex_count(result) == 3
+        assert time.monotonic() - saved < 1.0
+    finally:
+        live.close()
+        assert live.join(10)
+
+
+@pytest.mark.timeout(60)
+def test_imported_helper_modules_are_watched_and_reloaded(tmp_path):
+    (tmp_path / "helper.py").write_text("COUNT = 2\n")
+    live, script = start_session(
+        tmp_path, "import helper\nfor i in range(helper.COUNT):\n    createVertex((i, 0, 0))\n")
+    try:
+        write_by_rename(str(tmp_path / "helper.py"), "COUNT = 7\n")
+        assert [vertex_count(r) for r in main_results(drain(live, quiet=1.0))] == [7]
+        write_in_place(script, "import helper\ncreateVertex((0, 0, helper.COUNT))\n")
+        assert [vertex_count(r) for r in main_results(drain(live, quiet=1.0))] == [1]
+    finally:
+        live.close()
+        assert live.join(10)
+
+
+@pytest.mark.timeout(60)
+def test_a_syntax_error_keeps_the_last_good_mesh_marked_stale(tmp_path):
+    live, script = start_session(tmp_path, vertices_script(3))
+    try:
+        write_by_rename(script, "createVertex((0, 0, 0)\n")
+        broken = next_result(live)
+        assert broken.status == "error" and broken.stale and vertex_count(broken) == 3
+        assert broken.error is not None and broken.error.kind == "syntax"
+        write_by_rename(script, vertices_script(4))
+        fixed = next_result(live)
+        assert fixed.status == "ok" and not fixed.stale and vertex_count(fixed) == 4
+    finally:
+        live.close()
+        assert live.join(10)
+
+
+@pytest.mark.timeout(60)
+def test_polling_fallback_sees_saves(tmp_path):
+    live, script = start_session(tmp_path, vertices_script(2), poll=True)
+    try:
+        write_vim_style(script, vertices_script(3))
+        assert vertex_count(next_result(live)) == 3
+    finally:
+        live.close()
+        assert live.join(10)
+
+
+@pytest.mark.timeout(60)
+def test_open_switches_scripts(tmp_path):
+    live, _ = start_session(tmp_path, vertices_script(2))
+    other = tmp_path / "other.py"
+    other.write_text(vertices_script(9))
+    try:
+        live.open(str(other))
+        result = next_result(live)
+        assert result.script == str(other) and vertex_count(result) == 9
+        write_in_place(str(other), vertices_script(8))
+        assert vertex_count(next_result(live)) == 8
+    finally:
+        live.close()
+        assert live.join(10)
+
+
+@pytest.mark.timeout(60)
+def test_close_stops_the_threads(tmp_path):
+    before = threading.active_count()
+    live, _ = start_session(tmp_path, vertices_script(1))
+    live.close()
+    assert live.join(10)
+    deadline = time.monotonic() + 10
+    while threading.active_count() > before and time.monotonic() < deadline:
+        time.sleep(0.05)
+    assert threading.active_count() <= before
+    assert os.path.exists(tmp_path / "model.py")
