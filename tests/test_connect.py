@@ -1,0 +1,255 @@
+"""Connections and handles: TopMod's counts (TOPMOD.md §5), ring positions against
+the rules, and bad input that leaves the mesh unchanged."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from livemod.dlfl import DLFLError, Mesh, face_size_histogram, genus, validate
+from livemod.dlfl.analysis import face_points
+from livemod.dlfl.connect import (
+    bezier_handle,
+    closest_corners,
+    connect_corners,
+    connect_edges,
+    connect_faces,
+    connect_faces_closest,
+    dual_connect_faces,
+    hermite_handle,
+    hermite_point,
+    rotation_between,
+)
+from livemod.dlfl.shapes import cube
+from tests.meshes import euler_ok, snapshot
+
+TOP, RIGHT, BOTTOM = 0, 1, 5  # cube faces: 0 = (v0..v3) at y = 1, 1 at x = 1, 5 at y = -1
+
+
+def checked(mesh: Mesh) -> tuple[int, int, int]:
+    validate(mesh)
+    assert euler_ok(mesh)
+    return mesh.counts()
+
+
+def head(m: Mesh, face: int) -> int:
+    return m.face_corner(face)
+
+
+def above(m: Mesh) -> tuple[int, int]:
+    """Corner of the top face at v0 = (1, 1, 1) and of the bottom at v4 = (1, -1, 1)."""
+    return m.corner_at(TOP, 0), m.corner_at(BOTTOM, 4)
+
+
+def new_positions(m: Mesh, first_vertex: int = 8) -> np.ndarray:
+    return np.array([m.position(v) for v in m.vertex_ids() if v >= first_vertex])
+
+
+def as_set(points: np.ndarray) -> list[tuple[float, ...]]:
+    return sorted(map(tuple, np.round(np.asarray(points).reshape(-1, 3), 9).tolist()))
+
+
+# -- connect_faces -----------------------------------------------------------------
+
+def test_top_to_bottom_gives_a_genus_one_ring_of_quads():
+    m = cube()
+    edges = connect_faces(m, *above(m))
+    assert checked(m) == (8, 16, 8)
+    assert genus(m) == 1 and face_size_histogram(m) == {4: 8}
+    assert len(edges) == 4
+    assert all(np.isclose(np.linalg.norm(np.subtract(*map(m.position, m.edge_vertices(e)))), 2.0)
+               for e in edges)
+
+
+def test_three_segments_interpolate_linearly():
+    m = cube()
+    c1, c2 = above(m)
+    top, bottom = face_points(m, TOP), face_points(m, BOTTOM)
+    connect_faces(m, c1, c2, 3)
+    assert checked(m) == (16, 32, 16)
+    assert genus(m) == 1 and face_size_histogram(m) == {4: 16}
+    expected = [top + (bottom[[3, 2, 1, 0]] - top) * t for t in (1 / 3, 2 / 3)]
+    assert as_set(new_positions(m)) == as_set(expected)
+
+
+def test_pinch_scales_the_rings_about_their_centroids():
+    m = cube()
+    top = face_points(m, TOP)
+    connect_faces(m, *above(m), 2, pinch=0.5)
+    mid = top - [0.0, 1.0, 0.0]
+    c = mid.mean(axis=0)
+    assert as_set(new_positions(m)) == as_set(c + 0.5 * (mid - c))
+    m = cube()
+    connect_faces(m, *above(m), 4, pinch=0.5, pinch_center=0.5, bubble=2.0)
+    checked(m)
+    t2 = 0.5 ** 0.5  # ring 1: t = 1/4, t2 = (t / center) ** (1 / bubble)
+    scale = (1 - t2) ** 2 + 2 * (1 - t2) * t2 * 0.5 + t2 * t2 * 0.5
+    ring1 = [p for p in new_positions(m) if np.isclose(p[1], 0.5)]
+    assert np.allclose(np.abs(np.array(ring1)[:, [0, 2]]), scale, atol=1e-12)
+
+
+def test_max_connections_leaves_loose_rings():
+    m = cube()
+    connect_faces(m, *above(m), 3, max_connections=1)
+    assert checked(m) == (16, 24, 12)  # 2 two-sided rings, only the first joined
+    assert genus(m) == 0
+
+
+def test_quad_to_pentagon_ends_in_a_triangle():
+    m = cube()
+    m.subdivide_edge(m.face_edges(BOTTOM)[0])
+    assert m.face_size(BOTTOM) == 5
+    connect_faces(m, *above(m))
+    assert checked(m) == (9, 18, 9)
+    assert face_size_histogram(m) == {3: 1, 4: 7, 5: 1}
+    assert genus(m) == 1
+
+
+def test_closest_corners_pair_the_vertically_aligned_vertices():
+    m = cube()
+    c1, c2 = closest_corners(m, TOP, BOTTOM)
+    assert np.linalg.norm(m.position(m.corner_vertex(c1)) - m.position(m.corner_vertex(c2))) == 2.0
+    connect_faces_closest(m, TOP, BOTTOM, 3)
+    assert checked(m) == (16, 32, 16)
+
+
+# -- dual connections, corners, edges ---------------------------------------------
+
+def test_dual_connect_faces_makes_a_triangle_band():
+    m = cube()
+    edges = dual_connect_faces(m, *above(m))
+    assert checked(m) == (8, 20, 12)
+    assert face_size_histogram(m) == {3: 8, 4: 4} and genus(m) == 1
+    assert len(edges) == 8
+
+
+def test_connect_corners_dual_with_segments():
+    m = cube()
+    connect_corners(m, *above(m), 3, dual=True)
+    assert checked(m) == (16, 44, 28)
+    assert face_size_histogram(m) == {3: 24, 4: 4} and genus(m) == 1
+    m = cube()
+    connect_corners(m, *above(m), 2)
+    assert checked(m) == (12, 24, 12)
+
+
+def test_connect_edges_joins_two_half_edges_with_a_quad():
+    m = cube()
+    e1, e2 = m.face_edges(TOP)[0], m.face_edges(BOTTOM)[0]
+    made = connect_edges(m, e1, TOP, e2, BOTTOM)
+    assert len(made) == 2
+    assert checked(m) == (8, 14, 6) and genus(m) == 1
+    quad = [f for f in m.face_ids() if set(m.face_edges(f)) >= {e1, e2} or
+            (set(made) <= set(m.face_edges(f)) and m.face_size(f) == 4)]
+    assert quad
+
+
+def test_connect_edges_check_skips_adjacent_corners():
+    m = cube()
+    c = m.face_corner(TOP)
+    e1, e2 = m.corner_edge(c), m.corner_edge(m.corner_next(m.corner_next(c)))
+    assert connect_edges(m, e1, TOP, e2, TOP, check=True) == []  # (a, d) and (b, c) adjacent
+    assert len(connect_edges(m, e1, TOP, e2, TOP, check=False)) == 2
+    assert checked(m) == (8, 14, 8)
+    assert face_size_histogram(m) == {2: 2, 4: 6}
+    m = cube()
+    c = m.face_corner(TOP)
+    e1, e2 = m.corner_edge(c), m.corner_edge(m.corner_next(c))
+    made = connect_edges(m, e1, TOP, e2, TOP, check=True)  # (a, c): a diagonal; (b, b): none
+    assert len(made) == 1 and checked(m) == (8, 13, 7)
+
+
+# -- handles -----------------------------------------------------------------------
+
+def test_hermite_handle_ten_segments_matches_topmod():
+    m = cube()
+    hermite_handle(m, m.corner_at(TOP, 0), m.corner_at(RIGHT, 0), 10)
+    assert checked(m) == (44, 88, 44)
+    assert genus(m) == 1 and face_size_histogram(m) == {4: 44}
+
+
+def test_hermite_ring_centroids_follow_the_curve():
+    m = cube()
+    c1, c2 = m.corner_at(TOP, 0), m.corner_at(RIGHT, 0)
+    hermite_handle(m, c1, c2, 5, 3.0, 2.0)
+    cen1, cen2 = np.array([0.0, 1.0, 0.0]), np.array([1.0, 0.0, 0.0])
+    n1, n2 = np.array([0.0, 1.0, 0.0]), np.array([-1.0, 0.0, 0.0])
+    rings = new_positions(m).reshape(4, 4, 3)
+    for i, ring in enumerate(rings, start=1):
+        point, _ = hermite_point(cen1, 3.0 * n1, cen2, 2.0 * n2, i / 5)
+        assert np.allclose(ring.mean(axis=0), point, atol=1e-9)
+        sides = np.linalg.norm(ring - np.roll(ring, 1, axis=0), axis=1)
+        assert np.allclose(sides, 2.0, atol=1e-9)  # congruent ends: every ring a 2x2 square
+
+
+def test_hermite_twists_keep_counts():
+    m = cube()
+    hermite_handle(m, m.corner_at(TOP, 0), m.corner_at(RIGHT, 0), 6, twists=1)
+    assert checked(m) == (28, 56, 28) and genus(m) == 1
+
+
+def test_bezier_handle_vertices_follow_their_own_curves():
+    m = cube()
+    c1, c2 = m.corner_at(TOP, 0), m.corner_at(RIGHT, 0)
+    start = face_points(m, TOP)
+    end_face = m.face_vertices(RIGHT)
+    k = end_face.index(0)
+    end = np.array([m.position(end_face[(k - j) % 4]) for j in range(4)])
+    bezier_handle(m, c1, c2, 10, 4.0, 4.0)
+    assert checked(m) == (44, 88, 44) and genus(m) == 1
+    n1, n2 = np.array([0.0, 1.0, 0.0]), np.array([-1.0, 0.0, 0.0])
+    expected = [hermite_point(start, 4.0 * n1, end, 4.0 * n2, i / 10)[0] for i in range(1, 10)]
+    assert np.allclose(new_positions(m), np.concatenate(expected), atol=1e-9)
+
+
+def test_rotation_between_handles_opposite_vectors():
+    a = np.array([0.0, 1.0, 0.0])
+    assert np.allclose(rotation_between(a, -a) @ a, -a)
+    b = np.array([0.6, 0.0, 0.8])
+    assert np.allclose(rotation_between(a, b) @ a, b)
+
+
+# -- bad input ----------------------------------------------------------------------
+
+def pentagon_cube() -> Mesh:
+    m = cube()
+    m.subdivide_edge(m.face_edges(BOTTOM)[0])
+    return m
+
+
+BAD = [
+    (lambda m: connect_faces(m, head(m, TOP), m.corner_next(head(m, TOP))), "two different faces"),
+    (lambda m: connect_faces(m, 999, head(m, BOTTOM)), "corner 999 does not exist"),
+    (lambda m: connect_faces(m, *above(m), 0), "segments"),
+    (lambda m: connect_faces(m, *above(m), 2, pinch_center=1.0), "pinch_center"),
+    (lambda m: dual_connect_faces(m, head(m, TOP), head(m, TOP)), "two different faces"),
+    (lambda m: connect_faces_closest(m, TOP, 77), "face 77 does not exist"),
+    (lambda m: connect_edges(m, m.face_edges(TOP)[0], BOTTOM, 0, TOP), "is not on face"),
+    (lambda m: connect_edges(m, 500, TOP, 0, TOP), "edge 500 does not exist"),
+    (lambda m: hermite_handle(m, head(m, TOP), head(m, BOTTOM), 4), "against the handle's axis"),
+    (lambda m: bezier_handle(m, head(m, TOP), head(m, BOTTOM), 0), "segments"),
+]
+
+
+@pytest.mark.parametrize("case", range(len(BAD)))
+def test_bad_input_raises_and_leaves_the_mesh_unchanged(case):
+    m = cube()
+    call, message = BAD[case]
+    before = snapshot(m)
+    with pytest.raises(DLFLError, match=message):
+        call(m)
+    assert snapshot(m) == before
+
+
+@pytest.mark.parametrize("op", [
+    lambda m: connect_faces(m, *above(m), 3),
+    lambda m: connect_corners(m, *above(m), 2, dual=True),
+    lambda m: hermite_handle(m, m.corner_at(TOP, 0), m.corner_at(BOTTOM, 4), 5),
+    lambda m: bezier_handle(m, m.corner_at(TOP, 0), m.corner_at(BOTTOM, 4), 5),
+])
+def test_faces_of_different_sizes_are_refused_with_segments(op):
+    m = pentagon_cube()
+    before = snapshot(m)
+    with pytest.raises(DLFLError, match="equal size; face 0 has 4 corners and face 5 has 5"):
+        op(m)
+    assert snapshot(m) == before
