@@ -12,8 +12,8 @@ from livemod.runner import FileWatcher, LiveSession, ManualNotifier, RunResult
 
 from .runner_scripts.support import (
     drain,
-    main_results,
     next_result,
+    settle,
     write_by_rename,
     write_in_place,
     write_vim_style,
@@ -103,7 +103,7 @@ def start_session(tmp_path, text: str, **options) -> tuple[LiveSession, str]:
     live.start()
     first = next_result(live)
     assert first.status == "ok", first.error
-    time.sleep(0.3)  # let the observer settle before the saves under test
+    time.sleep(0.2)  # let the observer settle before the saves under test
     return live, str(script)
 
 
@@ -113,10 +113,10 @@ def test_each_editor_save_style_triggers_exactly_one_run(tmp_path, save):
     live, script = start_session(tmp_path, vertices_script(2))
     try:
         save(script, vertices_script(5))
-        results = main_results(drain(live, quiet=1.0))
+        results = settle(live)
         assert [vertex_count(r) for r in results] == [5]
         save(script, vertices_script(6))
-        assert [vertex_count(r) for r in main_results(drain(live, quiet=1.0))] == [6]
+        assert [vertex_count(r) for r in settle(live)] == [6]
     finally:
         live.close()
         assert live.join(10)
@@ -129,7 +129,7 @@ def test_a_burst_of_saves_ends_with_the_last_content(tmp_path):
         for n in range(2, 22):
             write_by_rename(script, vertices_script(n))
             time.sleep(0.05)
-        results = main_results(drain(live, quiet=1.0))
+        results = settle(live)
         assert results and vertex_count(results[-1]) == 21
         assert len(results) < 20  # debounced
         run_ids = [r.run_id for r in results]
@@ -162,9 +162,9 @@ def test_imported_helper_modules_are_watched_and_reloaded(tmp_path):
         tmp_path, "import helper\nfor i in range(helper.COUNT):\n    createVertex((i, 0, 0))\n")
     try:
         write_by_rename(str(tmp_path / "helper.py"), "COUNT = 7\n")
-        assert [vertex_count(r) for r in main_results(drain(live, quiet=1.0))] == [7]
+        assert [vertex_count(r) for r in settle(live)] == [7]
         write_in_place(script, "import helper\ncreateVertex((0, 0, helper.COUNT))\n")
-        assert [vertex_count(r) for r in main_results(drain(live, quiet=1.0))] == [1]
+        assert [vertex_count(r) for r in settle(live)] == [1]
     finally:
         live.close()
         assert live.join(10)

@@ -49,6 +49,13 @@ def drain(session: LiveSession, quiet: float = 0.6, limit: float = WAIT) -> list
     return got
 
 
+def settle(session: LiveSession, quiet: float = 0.7) -> list[RunResult]:
+    """The first result (waiting up to WAIT s), then all others until ``quiet`` s pass
+    without one; preview copies left out."""
+    first = next_result(session, lambda r: r.preview is None)
+    return [first, *main_results(drain(session, quiet=quiet))]
+
+
 def main_results(results: list[RunResult]) -> list[RunResult]:
     """Results without the second, preview-carrying copies."""
     return [r for r in results if r.preview is None]
