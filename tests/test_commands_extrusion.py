@@ -1,0 +1,155 @@
+"""Thesis commands extrude, connectEdges, connectCorners, connectFaces, addHandle."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterator
+
+import pytest
+
+import livemod.dlfl as dlfl
+from livemod.dlfl import DLFLError, Scene, face_size_histogram, genus, use_scene, validate
+from livemod.dlfl.commands import addHandle, connectCorners, connectEdges, connectFaces, extrude
+from livemod.dlfl.shapes import cube
+from tests.meshes import snapshot
+
+
+@pytest.fixture
+def scene() -> Iterator[Scene]:
+    sc = Scene()
+    sc.add(cube())
+    with use_scene(sc):
+        yield sc
+
+
+def counts(sc: Scene) -> tuple[int, int, int]:
+    validate(sc.mesh)
+    return sc.mesh.counts()
+
+
+def test_star_import_gives_the_commands():
+    for name in ("extrude", "connectEdges", "connectCorners", "connectFaces", "addHandle"):
+        assert name in dlfl.__all__
+
+
+def test_thesis_tower(scene):
+    face = 0
+    for i in range(36):
+        t = 2 * math.pi * i / 36
+        face = extrude("doo-sabin", face, 0.5 + 0.3 * math.sin(t), 1, 0, 0.9 + 0.1 * math.sin(t))
+        assert isinstance(face, int)
+    assert counts(scene) == (8 + 4 * 36, 12 + 8 * 36, 6 + 4 * 36)
+
+
+@pytest.mark.parametrize(("call", "expected"), [
+    (lambda: extrude("cubical", 0), (12, 20, 10)),
+    (lambda: extrude("cubical", 0, 2, 3), (20, 36, 18)),
+    (lambda: extrude("octa", 0, 2, 0, 1, True), (12, 20, 10)),
+    (lambda: extrude("octa", 0, mesh=False), (12, 24, 14)),
+    (lambda: extrude("dodeca", 0, 2, 2, 0, 1, True), (32, 48, 18)),
+    (lambda: extrude("icosa", 0), (20, 48, 30)),
+    (lambda: extrude("cuboctahedral", 0), (16, 32, 18)),
+    (lambda: extrude("planar-offset", 0, 0.5, 0, 0.2), (12, 20, 10)),
+])
+def test_extrude_types_and_option_orders(scene, call, expected):
+    end = call()
+    assert isinstance(end, int) and scene.mesh.has_face(end)
+    assert counts(scene) == expected
+
+
+@pytest.mark.parametrize(("kind", "expected", "fan"), [
+    ("stellate", (9, 16, 9), 4), ("double-stellate", (13, 28, 17), 12), ("dome", (29, 56, 29), 4),
+])
+def test_fan_types_return_the_triangles(scene, kind, expected, fan):
+    triangles = extrude(kind, 0, 1.0)
+    assert counts(scene) == expected
+    assert len(triangles) == fan and all(scene.mesh.face_size(t) == 3 for t in triangles)
+
+
+def test_doo_sabin_rotation_is_topmods_twist(scene):
+    twisted = extrude("doo-sabin", 0, 1.0, 1, 0.5)
+    keyword = Scene()
+    keyword.add(cube())
+    with use_scene(keyword):
+        same = extrude("doo-sabin", 0, distance=1.0, rotation=0.5)
+    assert [scene.mesh.position(v).tolist() for v in scene.mesh.face_vertices(twisted)] == \
+        [keyword.mesh.position(v).tolist() for v in keyword.mesh.face_vertices(same)]
+
+
+@pytest.mark.parametrize(("name", "expected"), [
+    ("d", (12, 20, 10)),  # TopMod's prefix order: doo-sabin first
+    ("doub", (13, 28, 17)),
+    ("cub", (12, 20, 10)),  # cubical before cuboctahedral
+    ("Octa", (12, 24, 14)),
+])
+def test_type_prefixes(scene, name, expected):
+    extrude(name, 0)
+    assert counts(scene) == expected
+
+
+@pytest.mark.parametrize(("call", "message"), [
+    (lambda: extrude("twirl", 0), "valid types: doo-sabin, dodeca, icosa, octa"),
+    (lambda: extrude("stellate", 0, 1, 2), "at most 1 options"),
+    (lambda: extrude("cubical", 0, spin=3), "no option 'spin'"),
+    (lambda: extrude("cubical", 0, 2, distance=3), "given twice"),
+    (lambda: extrude("cubical", 42), "face 42 does not exist"),
+    (lambda: extrude("cubical", 0, 2, 0), "segments"),
+    (lambda: connectFaces(0, 0), "two different faces"),
+    (lambda: connectCorners((0, 0), (5, 0)), "no corner at vertex 0"),
+    (lambda: connectCorners((0, 0), (5, 4), 1, -1, "duel"), "'dual'"),
+    (lambda: addHandle("spline", (0, 0), (1, 0), 4), "'hermite' or 'bezier'"),
+    (lambda: addHandle("bezier", (0, 0), (1, 0), 4, 1, 1, -1, 2), "no maxconn or twists"),
+    (lambda: connectEdges((0, 5), (1, 0)), "is not on face"),
+    (lambda: connectEdges(3, (1, 0)), "edgeid, faceid"),
+])
+def test_bad_arguments_raise_and_change_nothing(scene, call, message):
+    before = snapshot(scene.mesh)
+    with pytest.raises(DLFLError, match=message):
+        call()
+    assert snapshot(scene.mesh) == before
+
+
+def test_connect_faces_picks_closest_corners(scene):
+    assert connectFaces(0, 5) is None
+    assert counts(scene) == (8, 16, 8) and genus(scene.mesh) == 1
+
+
+def test_connect_faces_segments_and_maxconn(scene):
+    connectFaces(0, 5, 3)
+    assert counts(scene) == (16, 32, 16)
+    other = Scene()
+    other.add(cube())
+    with use_scene(other):
+        connectFaces(0, 5, 3, 1)
+    assert counts(other) == (16, 24, 12)
+
+
+def test_connect_corners_dual(scene):
+    connectCorners((0, 0), (5, 4), 1, -1, "dual")
+    assert counts(scene) == (8, 20, 12)
+    assert face_size_histogram(scene.mesh) == {3: 8, 4: 4}
+
+
+def test_add_handle_hermite_and_bezier(scene):
+    addHandle("hermite", (0, 0), (1, 0), 10)
+    assert counts(scene) == (44, 88, 44) and genus(scene.mesh) == 1
+    other = Scene()
+    other.add(cube())
+    with use_scene(other):
+        addHandle("bezier", (0, 0), (1, 0), 10, 5, 5)
+    assert counts(other) == (44, 88, 44)
+
+
+def test_connect_edges(scene):
+    m = scene.mesh
+    e1, e2 = m.face_edges(0)[0], m.face_edges(5)[0]
+    connectEdges((e1, 0), (e2, 5))
+    assert counts(scene) == (8, 14, 6)
+
+
+def test_each_command_is_one_step(scene):
+    labels: list[str] = []
+    scene.step_hook = labels.append
+    extrude("dodeca", 0)
+    connectFaces(1, 3)
+    assert labels == ["extrude", "connectFaces"]
