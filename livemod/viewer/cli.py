@@ -91,12 +91,7 @@ def _load_input(path: str, mesh_path: str | None, want_preview: bool) -> tuple[A
     from livemod.dlfl.errors import DLFLError
 
     if Path(path).suffix.lower() in SCRIPT_SUFFIXES:
-        from livemod.runner import run_script
-
-        result = run_script(path, mesh_path=mesh_path)
-        if result.error is not None:
-            raise DLFLError(f"{result.error.file}:{result.error.line}: {result.error.message}")
-        return result.arrays, result.preview
+        return _run_for_render(path, mesh_path, want_preview)
     from livemod.dlfl import mesh_arrays
 
     load_mesh = importlib.import_module("livemod.dlfl.io").load_mesh
@@ -113,6 +108,28 @@ def _load_input(path: str, mesh_path: str | None, want_preview: bool) -> tuple[A
 
         preview = preview_arrays(mesh)
     return mesh_arrays(mesh), preview
+
+
+def _run_for_render(path: str, mesh_path: str | None, want_preview: bool) -> tuple[Any, Any]:
+    """Run a script headless; ``(arrays, preview)`` of the mesh it leaves.
+
+    Raises:
+        DLFLError: the script failed (the message names file and line).
+    """
+    from livemod.dlfl import mesh_arrays
+    from livemod.dlfl.errors import DLFLError
+    from livemod.runner import run_outcome
+    from livemod.runner.preview import preview_arrays
+    from livemod.runner.results import current_mesh
+
+    outcome = run_outcome(path, mesh_path=mesh_path)
+    if outcome.error is not None:
+        error = outcome.error
+        raise DLFLError(f"{error.file}:{error.line}: {error.message}")
+    mesh = current_mesh(outcome.scene)
+    if mesh is None:
+        return None, None
+    return mesh_arrays(mesh), preview_arrays(mesh) if want_preview else None
 
 
 def main(argv: Sequence[str] | None = None) -> int:

@@ -37,6 +37,7 @@ class RenderGeometry:
         triangle_face: ``(T,)`` uint32 dense face index of each triangle.
         lines: ``(E, 2)`` uint32 vertex indices of each edge.
         bounds: ``(2, 3)`` float64 min and max corner (zeros if empty).
+        face_count: number of faces, holes included (the length of face tables).
     """
 
     positions: np.ndarray
@@ -44,6 +45,7 @@ class RenderGeometry:
     triangle_face: np.ndarray
     lines: np.ndarray
     bounds: np.ndarray
+    face_count: int
 
     @property
     def center(self) -> np.ndarray:
@@ -83,7 +85,8 @@ def build_geometry(arrays: MeshArrays) -> RenderGeometry:
         bounds = np.stack([arrays.positions.min(axis=0), arrays.positions.max(axis=0)])
     else:
         bounds = np.zeros((2, 3))
-    return RenderGeometry(positions, triangles, triangle_face, lines, bounds)
+    return RenderGeometry(positions, triangles, triangle_face, lines, bounds,
+                          len(arrays.face_ids))
 
 
 def decode_pick(pick_id: int) -> tuple[int, int] | None:

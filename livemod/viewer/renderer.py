@@ -105,8 +105,7 @@ class _MeshGPU:
         self.triangles = ctx.buffer(geometry.triangles.tobytes())
         self.lines = ctx.buffer(geometry.lines.tobytes())
         self.triangle_face = _uint_table(ctx, geometry.triangle_face, "u4")
-        n_faces = int(geometry.triangle_face.max()) + 1 if len(geometry.triangle_face) else 0
-        self.face_flags = _uint_table(ctx, np.zeros(n_faces, np.uint8), "u1")
+        self.face_flags = _uint_table(ctx, np.zeros(geometry.face_count, np.uint8), "u1")
         self.edge_flags = _uint_table(ctx, np.zeros(len(geometry.lines), np.uint8), "u1")
         self.vertex_flags = _uint_table(ctx, np.zeros(len(geometry.positions), np.uint8), "u1")
         content = [(self.positions, "3f", "in_position")]

@@ -1,0 +1,166 @@
+"""GL-free parts of the viewer: buffers, camera, text layout, keys, selection echo, HUD."""
+
+from __future__ import annotations
+
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+
+from livemod.dlfl import from_polygons, mesh_arrays
+from livemod.dlfl.scene import Selection
+from livemod.dlfl.shapes import cube, grid
+from livemod.viewer.camera import Camera, bounds_changed_a_lot
+from livemod.viewer.controls import (
+    KEY_BINDINGS,
+    action_for,
+    help_lines,
+    selection_python,
+    toggle_pick,
+)
+from livemod.viewer.geometry import build_geometry, decode_pick, fan_triangles
+from livemod.viewer.headless import frame_paths
+from livemod.viewer.hud import hud_lines, run_state, step_line
+from livemod.viewer.renderer import Style
+from livemod.viewer.text import QUAD_FLOATS, glyph_atlas, layout_labels
+
+
+def test_fans_cover_every_face_and_skip_holes() -> None:
+    arrays = mesh_arrays(grid(3, 2))
+    triangles, tri_face = fan_triangles(arrays)
+    solid = ~arrays.face_hole
+    assert arrays.face_hole.any()
+    assert len(triangles) == int((arrays.face_sizes[solid] - 2).sum())
+    assert set(tri_face.tolist()) == set(np.flatnonzero(solid).tolist())
+    # every triangle's vertices belong to its face
+    for (a, b, c), face in zip(triangles.tolist(), tri_face.tolist(), strict=True):
+        ring = arrays.corner_vertex[arrays.face_offsets[face]:arrays.face_offsets[face + 1]]
+        assert {a, b, c} <= set(ring.tolist())
+
+
+def test_geometry_of_a_pentagon_and_a_triangle() -> None:
+    mesh = from_polygons([(0, 0, 0), (1, 0, 0), (1.5, 1, 0), (0.5, 1.6, 0), (-0.5, 1, 0)],
+                         [(0, 1, 2, 3, 4)])
+    geometry = build_geometry(mesh_arrays(mesh))
+    assert geometry.positions.dtype == np.float32
+    assert geometry.triangles.tolist() == [[0, 1, 2], [0, 2, 3], [0, 3, 4]]
+    assert geometry.lines.shape == (5, 2)
+    np.testing.assert_allclose(geometry.bounds, [[-0.5, 0, 0], [1.5, 1.6, 0]])
+
+
+def test_pick_ids_decode() -> None:
+    assert decode_pick(0) is None
+    assert decode_pick((2 << 28) | 13) == (2, 12)
+
+
+def test_camera_fit_holds_the_bounding_sphere_in_view() -> None:
+    camera = Camera(yaw=10, pitch=20)
+    bounds = np.array([[-1.0, -2.0, -3.0], [3.0, 2.0, 1.0]])
+    camera.fit(bounds)
+    corners = np.array([[x, y, z] for x in bounds[:, 0] for y in bounds[:, 1]
+                        for z in bounds[:, 2]])
+    for yaw in range(0, 360, 30):
+        camera.yaw = yaw
+        clip = np.c_[corners, np.ones(8)] @ camera.view_projection(1.0).T
+        ndc = clip[:, :3] / clip[:, 3:]
+        assert np.all(np.abs(ndc) <= 1.0)
+
+
+def test_camera_orbit_pan_zoom_ortho_presets() -> None:
+    camera = Camera()
+    camera.fit(np.array([[-1.0, -1, -1], [1, 1, 1]]))
+    distance = camera.distance
+    camera.zoom(1)
+    assert camera.distance == pytest.approx(0.9 * distance)
+    camera.orbit(0, 500)
+    assert camera.pitch < 90
+    camera.preset("top")
+    assert camera.eye()[1] > 0.99 * camera.distance
+    before = camera.target.copy()
+    camera.pan(10, 0, 100)
+    assert not np.allclose(before, camera.target)
+    camera.ortho = True
+    assert camera.projection_matrix(1.5)[3, 3] == 1.0
+
+
+def test_refit_only_on_big_bounds_changes() -> None:
+    unit = np.array([[-1.0, -1, -1], [1, 1, 1]])
+    assert bounds_changed_a_lot(None, unit)
+    assert not bounds_changed_a_lot(unit, unit * 1.5)
+    assert bounds_changed_a_lot(unit, unit * 2.5)
+    assert bounds_changed_a_lot(unit, unit * 0.3)
+    assert bounds_changed_a_lot(unit, unit + 10)
+
+
+def test_label_layout_has_one_box_and_one_glyph_per_digit() -> None:
+    atlas = glyph_atlas()
+    quads = layout_labels(atlas, np.zeros((3, 3)), np.array([0, 7, 1234]), 1,
+                          np.array([False, True, False]))
+    assert quads.shape == (3 + 1 + 1 + 4, QUAD_FLOATS)
+    digits_of_1234 = quads[5:, 7]
+    expected = atlas.uv[[ord(c) for c in "1234"], 0]
+    np.testing.assert_allclose(digits_of_1234, expected)
+    assert quads[1, 12] == 1.0 and quads[0, 12] == 0.0
+
+
+def test_keys_cover_the_issue_and_are_unique() -> None:
+    actions = {b.action for b in KEY_BINDINGS}
+    needed = {"toggle_edges", "toggle_vertices", "labels_faces", "labels_edges",
+              "labels_vertices", "labels_selected", "toggle_preview", "toggle_ortho",
+              "play_pause", "step_forward", "step_back", "run_to_end", "reload",
+              "screenshot", "help", "fit", "view_front", "view_top", "view_side", "view_iso",
+              "next_pick_mode"}
+    assert needed <= actions
+    keys = [(b.key, b.modifiers) for b in KEY_BINDINGS]
+    assert len(keys) == len(set(keys))
+    assert action_for("F", shift=False, ctrl=True) == "labels_faces"
+    assert action_for("F", shift=True, ctrl=False) == "pick_face"
+    assert action_for("F", shift=False, ctrl=False) == "fit"
+    assert len(help_lines()) > len(KEY_BINDINGS)
+
+
+def test_click_and_shift_click_edit_the_selection() -> None:
+    sel = toggle_pick(Selection(edges=(4,)), "face", 12, add=False)
+    assert sel == Selection(faces=(12,))
+    sel = toggle_pick(sel, "face", 31, add=True)
+    assert sel.faces == (12, 31)
+    assert toggle_pick(sel, "face", 12, add=True).faces == (31,)
+
+
+def test_selection_echo_is_python() -> None:
+    arrays = mesh_arrays(cube())
+    corner = int(arrays.corner_ids[5])
+    lines = selection_python(Selection(faces=(12, 31), vertices=(2,), corners=(corner,)),
+                             arrays)
+    assert lines[0] == "faces(True) == (12, 31)"
+    assert lines[1] == "verts(True) == (2,)"
+    face = int(arrays.face_ids[arrays.corner_face[5]])
+    vertex = int(arrays.vertex_ids[arrays.corner_vertex[5]])
+    assert lines[2] == f"corners(True) == (({face}, {vertex}),)"
+
+
+def _result(status: str = "ok", stale: bool = False, step_index: int | None = None):
+    steps = tuple(SimpleNamespace(index=i, label=f"op{i}", line=10 + i, counts=(1, 1, 1),
+                                  elapsed=0.0) for i in range(3))
+    return SimpleNamespace(status=status, stale=stale, steps=steps, step_index=step_index,
+                           arrays=mesh_arrays(cube()), elapsed=0.25, error=None)
+
+
+def test_hud_shows_state_counts_genus_and_step() -> None:
+    assert run_state(None, True) == "running"
+    assert run_state(_result("error", stale=True), False) == "error, stale"
+    assert step_line(_result(step_index=1)) == "step 2/3: op1 (line 11)"
+    assert step_line(_result()) == "step 3/3: op2 (line 12)"
+    info = {"script": "/x/tower.py", "result": _result(), "waiting": False, "genus": 0,
+            "fps": 59.6, "pick_mode": "face", "selection": ["faces(True) == (1,)"],
+            "style": Style(), "ortho": False, "playing": False, "hud": True, "help": False}
+    text = "\n".join(line for line, _ in hud_lines(info))
+    for part in ("tower.py", "ok", "0.250 s", "V 8  E 12  F 6  genus 0", "step 3/3", "60 fps",
+                 "faces(True) == (1,)"):
+        assert part in text
+
+
+def test_frame_paths_patterns() -> None:
+    assert [p.name for p in frame_paths("out/t_{frame:02d}.png", 2)] == ["t_00.png", "t_01.png"]
+    assert [p.name for p in frame_paths("t_%03d.png", 2)] == ["t_000.png", "t_001.png"]
+    assert frame_paths("folder", 2)[1].as_posix() == "folder/frame_001.png"

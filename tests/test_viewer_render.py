@@ -1,0 +1,180 @@
+"""Headless EGL renders (Mesa llvmpipe on CI) with pixel assertions, and ``livemod render``."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from pathlib import Path
+
+import numpy as np
+import pytest
+from PIL import Image
+
+from livemod.dlfl import from_polygons, mesh_arrays
+from livemod.dlfl.scene import Selection
+from livemod.dlfl.shapes import cube
+from livemod.viewer.cli import main
+from livemod.viewer.headless import Offscreen, framed_camera, render_turntable
+from livemod.viewer.renderer import Style
+
+SIZE = (160, 120)
+BACKGROUND = np.array([round(0.16 * 255), round(0.17 * 255), round(0.19 * 255)])
+
+CUBE_POSITIONS = [(1, 1, 1), (1, 1, -1), (-1, 1, -1), (-1, 1, 1),
+                  (1, -1, 1), (1, -1, -1), (-1, -1, -1), (-1, -1, 1)]
+CUBE_FACES = [(0, 1, 2, 3), (4, 5, 1, 0), (5, 6, 2, 1), (6, 7, 3, 2), (7, 4, 0, 3), (7, 6, 5, 4)]
+
+CUBE_SCRIPT = """
+from livemod.dlfl import from_polygons, current_scene
+P = [(1, 1, 1), (1, 1, -1), (-1, 1, -1), (-1, 1, 1),
+     (1, -1, 1), (1, -1, -1), (-1, -1, -1), (-1, -1, 1)]
+F = [(0, 1, 2, 3), (4, 5, 1, 0), (5, 6, 2, 1), (6, 7, 3, 2), (7, 4, 0, 3), (7, 6, 5, 4)]
+current_scene().add(from_polygons(P, F))
+"""
+
+
+@pytest.fixture(scope="module")
+def offscreen() -> Iterator[Offscreen]:
+    target = Offscreen(SIZE, samples=0)
+    yield target
+    target.release()
+
+
+def _mask(image: np.ndarray) -> np.ndarray:
+    """``(H, W)`` bool: pixels that are not background."""
+    return np.abs(image.astype(int) - BACKGROUND).sum(axis=2) > 6
+
+
+def test_cube_covers_the_middle_of_the_frame(offscreen: Offscreen) -> None:
+    arrays = mesh_arrays(cube())
+    offscreen.renderer.set_mesh(arrays)
+    image = offscreen.render(framed_camera(arrays), Style())
+    mask = _mask(image)
+    assert image.shape == (SIZE[1], SIZE[0], 3)
+    assert 0.2 < mask.mean() < 0.8
+    assert mask[SIZE[1] // 2, SIZE[0] // 2]
+    assert not mask[0, 0] and not mask[-1, -1]
+    rows, cols = np.nonzero(mask)
+    assert rows.min() > 0 and rows.max() < SIZE[1] - 1  # framed, not clipped
+
+
+def test_front_view_ortho_cube_is_a_centred_square(offscreen: Offscreen) -> None:
+    arrays = mesh_arrays(cube())
+    offscreen.renderer.set_mesh(arrays)
+    camera = framed_camera(arrays, elevation=0.0, yaw=0.0, ortho=True)
+    mask = _mask(offscreen.render(camera, Style(edges=False)))
+    rows, cols = np.nonzero(mask)
+    height, width = np.ptp(rows) + 1, np.ptp(cols) + 1
+    assert abs(height - width) <= 2
+    assert abs((rows.min() + rows.max()) / 2 - SIZE[1] / 2) <= 2
+    assert mask[rows.min():rows.max() + 1, cols.min():cols.max() + 1].mean() > 0.98
+
+
+def test_hole_faces_are_not_drawn(offscreen: Offscreen) -> None:
+    """An open box seen from above shows the inside of its bottom through the hole."""
+    box = from_polygons(CUBE_POSITIONS, CUBE_FACES[1:])  # no top face: it becomes a hole
+    arrays = mesh_arrays(box)
+    assert arrays.face_hole.sum() == 1
+    offscreen.renderer.set_mesh(arrays)
+    camera = framed_camera(arrays, elevation=89.0, yaw=0.0)
+    hit = offscreen.renderer.pick(camera, SIZE, SIZE[0] // 2, SIZE[1] // 2, "face")
+    assert hit is not None and not arrays.face_hole[hit.dense_index]
+    bottom = arrays.positions[arrays.corner_vertex[
+        arrays.face_offsets[hit.dense_index]:arrays.face_offsets[hit.dense_index + 1]]]
+    np.testing.assert_allclose(bottom[:, 1], -1.0)
+    inside = offscreen.render(camera, Style(edges=False))[SIZE[1] // 2, SIZE[0] // 2]
+    assert inside[2] > inside[0]  # the bluish back side, not the orange front
+
+
+def test_pick_reads_back_the_face_under_the_pixel(offscreen: Offscreen) -> None:
+    arrays = mesh_arrays(cube())
+    offscreen.renderer.set_mesh(arrays)
+    camera = framed_camera(arrays, elevation=0.0, yaw=0.0)
+    hit = offscreen.renderer.pick(camera, SIZE, SIZE[0] // 2, SIZE[1] // 2, "face")
+    assert hit is not None and hit.kind == "face"
+    normal_z = [arrays.positions[arrays.corner_vertex[arrays.face_offsets[f]:
+                                                     arrays.face_offsets[f + 1]], 2]
+                for f in range(len(arrays.face_ids))]
+    front = [f for f, z in enumerate(normal_z) if np.allclose(z, 1.0)]
+    assert hit.dense_index == front[0]
+    assert hit.element_id == int(arrays.face_ids[front[0]])
+    assert offscreen.renderer.pick(camera, SIZE, 1, 1, "face") is None
+
+
+def test_pick_edges_vertices_and_corners(offscreen: Offscreen) -> None:
+    arrays = mesh_arrays(cube())
+    offscreen.renderer.set_mesh(arrays)
+    camera = framed_camera(arrays, elevation=0.0, yaw=0.0, ortho=True)
+    mask = _mask(offscreen.render(camera, Style(edges=False)))
+    rows, cols = np.nonzero(mask)
+    top, left = int(rows.min()), int(cols.min())
+    vertex = offscreen.renderer.pick(camera, SIZE, left + 2, top + 2, "vertex")
+    assert vertex is not None
+    np.testing.assert_allclose(arrays.positions[vertex.dense_index][:2], [-1, 1])
+    edge = offscreen.renderer.pick(camera, SIZE, SIZE[0] // 2, top + 1, "edge")
+    assert edge is not None
+    ends = arrays.positions[arrays.edge_vertices[edge.dense_index]]
+    np.testing.assert_allclose(ends[:, 1], [1, 1])
+    corner = offscreen.renderer.pick(camera, SIZE, left + 5, top + 5, "corner")
+    assert corner is not None
+    np.testing.assert_allclose(
+        arrays.positions[arrays.corner_vertex[corner.dense_index]], [-1, 1, 1])
+
+
+def test_selection_and_labels_change_the_image(offscreen: Offscreen) -> None:
+    arrays = mesh_arrays(cube())
+    offscreen.renderer.set_mesh(arrays)
+    camera = framed_camera(arrays)
+    plain = offscreen.render(camera, Style())
+    front = offscreen.renderer.pick(camera, SIZE, SIZE[0] // 2, SIZE[1] // 2, "face")
+    assert front is not None
+    offscreen.renderer.set_selection(Selection(faces=(front.element_id,)))
+    selected = offscreen.render(camera, Style())
+    assert (selected != plain).any(axis=2).mean() > 0.05
+    green = selected[SIZE[1] // 2, SIZE[0] // 2]
+    assert green[1] > green[0] and green[1] > green[2]
+    labelled = offscreen.render(camera, Style(labels=frozenset({"faces"})))
+    assert (labelled != selected).any()
+    only_selected = offscreen.render(camera, Style(labels=frozenset({"faces"}),
+                                                   labels_selected_only=True))
+    assert (only_selected != labelled).any() and (only_selected != selected).any()
+    offscreen.renderer.set_selection(Selection())
+
+
+def test_turntable_frames_differ_and_frame_zero_is_stable(offscreen: Offscreen) -> None:
+    arrays = mesh_arrays(cube())
+    offscreen.renderer.set_mesh(arrays)
+    camera = framed_camera(arrays, elevation=20.0)
+    frames = render_turntable(offscreen, camera, Style(), 3)  # 120 degrees apart
+    assert all((frames[i] != frames[i + 1]).any() for i in range(2))
+    again = Offscreen(SIZE, samples=4)
+    try:
+        again.renderer.set_mesh(arrays)
+        first = [render_turntable(again, camera, Style(), 4)[0] for _ in range(2)]
+    finally:
+        again.release()
+    assert np.array_equal(first[0], first[1])
+
+
+def test_render_command_writes_png_gif_and_sequence(tmp_path: Path, capsys) -> None:
+    script = tmp_path / "cube.py"
+    script.write_text(CUBE_SCRIPT)
+    png = tmp_path / "one.png"
+    assert main(["render", str(script), "-o", str(png), "--size", "96x64", "--labels"]) == 0
+    assert Image.open(png).size == (96, 64)
+    gif = tmp_path / "turn.gif"
+    assert main(["render", str(script), "-o", str(gif), "--size", "64x64",
+                 "--turntable", "3", "--elevation", "30"]) == 0
+    assert Image.open(gif).n_frames == 3
+    assert "3/3" in capsys.readouterr().err
+    assert main(["render", str(script), "-o", str(tmp_path / "seq"), "--size", "32x32",
+                 "--turntable", "2"]) == 0
+    assert sorted(p.name for p in (tmp_path / "seq").iterdir()) == [
+        "frame_000.png", "frame_001.png"]
+
+
+def test_render_command_reports_script_errors(tmp_path: Path, capsys) -> None:
+    script = tmp_path / "bad.py"
+    script.write_text("x = 1\nraise ValueError('no mesh today')\n")
+    assert main(["render", str(script), "-o", str(tmp_path / "x.png")]) == 1
+    err = capsys.readouterr().err
+    assert "bad.py:2" in err and "no mesh today" in err
