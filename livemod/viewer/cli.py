@@ -88,7 +88,6 @@ def _render(args: argparse.Namespace) -> int:
 
 def _load_input(path: str, mesh_path: str | None, want_preview: bool) -> tuple[Any, Any]:
     """``(arrays, preview or None)`` of a script's result or of a mesh file."""
-    from livemod.dlfl.errors import DLFLError
 
     if Path(path).suffix.lower() in SCRIPT_SUFFIXES:
         return _run_for_render(path, mesh_path, want_preview)
