@@ -1,7 +1,7 @@
 """``livemod run`` and ``livemod batch``: the runner's subcommands.
 
 The top-level ``livemod`` parser calls :func:`add_commands`; each subcommand
-stores its handler in ``func``, which takes the parsed arguments and returns the
+stores its function in ``handler``, which takes the parsed arguments and returns the
 exit code. :func:`main` is a stand-alone entry point over the same parsers.
 """
 
@@ -46,7 +46,7 @@ def _add_run(subparsers: Any) -> None:
     run.add_argument("--watch", action="store_true", help="re-run (and rewrite OUT) on every save")
     run.add_argument("--poll", action="store_true", help="poll for changes (no fs events)")
     run.add_argument("--max-runs", type=int, default=None, help=argparse.SUPPRESS)
-    run.set_defaults(func=cmd_run)
+    run.set_defaults(handler=cmd_run)
 
 
 def _add_batch(subparsers: Any) -> None:
@@ -59,7 +59,7 @@ def _add_batch(subparsers: Any) -> None:
     batch.add_argument("-j", "--jobs", type=int, default=os.cpu_count() or 1)
     batch.add_argument("--mesh", metavar="IN", help="mesh every variant starts from")
     batch.add_argument("--seed", type=_seed, default=0)
-    batch.set_defaults(func=cmd_batch)
+    batch.set_defaults(handler=cmd_batch)
 
 
 def _check_output(path: str | None) -> None:
@@ -199,7 +199,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="livemod")
     add_commands(parser.add_subparsers(dest="command", required=True))
     args = parser.parse_args(argv)
-    return int(args.func(args))
+    return int(args.handler(args))
 
 
 if __name__ == "__main__":

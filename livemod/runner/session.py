@@ -22,15 +22,17 @@ import os
 import queue
 import threading
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
 
 from livemod.dlfl.arrays import MeshArrays
+from livemod.dlfl.mesh import Mesh
 from livemod.dlfl.scene import Scene, Selection
 
 from .errors import exception_error
 from .execute import RunControl, RunOutcome, base_scene, execute
 from .playback import Playback
-from .preview import PreviewWorker
+from .preview import PreviewWorker, preview_arrays
 from .results import (
     RunResult,
     ScriptError,
@@ -70,7 +72,8 @@ class LiveSession:
         seed: seed of ``random``/``numpy.random`` at each run start (None: unseeded).
         debounce: seconds of quiet after the last file event before a run.
         poll: poll the file system instead of waiting for events.
-        preview: compute the patch-smoothed preview of finished meshes.
+        preview: compute the patch-smoothed preview of finished and paused meshes
+            (True: :func:`preview_arrays`; or a function ``Mesh -> MeshArrays | None``).
         notifier: the file-event source (tests inject a ManualNotifier).
         output: save the mesh here after every successful run (``run --watch -o``).
         parameters: initial script parameters (globals and ``scene.parameters``).
@@ -81,7 +84,7 @@ class LiveSession:
 
     def __init__(self, script: str | os.PathLike[str], *, mesh_path: str | None = None,
                  seed: int | None = 0, debounce: float = 0.15, poll: bool = False,
-                 preview: bool = True, notifier: Notifier | None = None,
+                 preview: bool | Callable[[Mesh], MeshArrays | None] = True, notifier: Notifier | None = None,
                  output: str | None = None, parameters: dict | None = None) -> None:
         self.script = os.path.abspath(os.fspath(script))
         self.results: queue.Queue[RunResult] = queue.Queue()
@@ -105,7 +108,7 @@ class LiveSession:
         self._closed = False
         self._watcher = FileWatcher(self._files_changed, debounce=debounce,
                                     notifier=notifier, poll=poll)
-        self._previews = PreviewWorker(self._post_preview, self._is_latest) if preview else None
+        self._previews = _preview_worker(preview, self._post_preview, self._is_latest)
         self._supervisor = threading.Thread(target=self._supervise, name="livemod-session",
                                             daemon=True)
 
@@ -445,6 +448,15 @@ class LiveSession:
         with self._lock:
             if self._last_posted is result and not self._closed:
                 self.results.put(dataclasses.replace(result, preview=preview))
+
+
+def _preview_worker(preview: bool | Callable[[Mesh], MeshArrays | None],
+                    post: Callable[[RunResult, MeshArrays], None],
+                    is_current: Callable[[RunResult], bool]) -> PreviewWorker | None:
+    if preview is False:
+        return None
+    compute = preview_arrays if preview is True else preview
+    return PreviewWorker(post, is_current, compute)
 
 
 def _read(path: str) -> str:
