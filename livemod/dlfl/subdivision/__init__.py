@@ -1,0 +1,192 @@
+"""Remeshing: every TopMod subdivision scheme and the dual, vectorized.
+
+``subdivide(mesh, scheme, **options)`` runs a scheme by its thesis name;
+:data:`SCHEMES` maps every name to its function; one function per scheme is
+exported too (``catmull_clark(mesh)``, ``doo_sabin(mesh)``, ...). Every scheme
+rebuilds the mesh in one step (see :mod:`._layout`): every element of the
+result gets a fresh id (ids are never reused). Defaults are TopMod's GUI ones
+(TOPMOD.md section 3) and every option is honoured.
+
+The GUI's composite schemes are available by name:
+
+========================== ===========================================
+name                       steps
+========================== ===========================================
+root3, root-3              dual, honeycomb, dual
+cubic-pentagonalization    pentagon, dual, dual (options go to pentagon)
+dual-pentagonalization     dual, pentagon, dual
+dual-pentagon-preserving   dual, pentagon-preserve, dual
+six-preserving-loop-style  dual, root4, dual (GUI six-preservation "Loop Style")
+dual-loop                  dual, loop, dual
+12.6.4                     dual, dual-12.6.4, dual
+dual-checkerboard          dual, checker, dual
+========================== ===========================================
+
+Otherwise a composite's options go to its middle step. A composite that fails leaves the
+mesh unchanged (it works on a copy). ``sierpinsky`` is not provided here (it is
+a sculpting operation, TOPMOD.md section 5).
+"""
+
+from __future__ import annotations
+
+import inspect
+from collections.abc import Callable
+from typing import Any
+
+from ..errors import DLFLError
+from ..mesh import Mesh
+from ._layout import settings
+from .convert import (
+    double_stellate,
+    dual,
+    dual_1264,
+    fractal,
+    honeycomb,
+    linear_vertex,
+    pentagon,
+    pentagon_preserve,
+    root4,
+    simplest,
+    sqrt3,
+    star,
+    stellate,
+    subdivide_all_edges,
+    subdivide_faces,
+    triangulate,
+    vertex_cut,
+)
+from .extra import checker, dome, doo_sabin_bc_new
+from .smooth import catmull_clark, corner_cut, doo_sabin, doo_sabin_bc, loop, loop_style
+
+Scheme = Callable[..., None]
+
+
+def modified_corner_cut(mesh: Mesh, *, thickness: float = 0.25,
+                        max_faces: int | None = None) -> None:
+    """Modified corner cutting (TopMod ``modifiedCornerCuttingSubdivide``,
+    "modified-corner-cut"): delegates to :func:`livemod.dlfl.wireframe.modified_corner_cut`
+    (the sculpting family owns it). GUI default 0.25. Cube: 24/48/26.
+
+    Raises:
+        DLFLError: a bad ``thickness`` or the face budget.
+    """
+    from ..wireframe import modified_corner_cut as cut
+    from ._layout import check_budget, read_topology
+
+    t = read_topology(mesh)
+    check_budget(t, t.nf + t.ne + t.nv, "modified-corner-cut", max_faces)
+    cut(mesh, thickness)
+
+
+def _composite(name: str, steps: tuple[Scheme, Scheme, Scheme], main: int) -> Scheme:
+    """A scheme running three ``steps``; its options go to ``steps[main]``."""
+
+    def run(mesh: Mesh, *, max_faces: int | None = None, **options: Any) -> None:
+        work = mesh.copy()
+        for index, step in enumerate(steps):
+            step(work, max_faces=max_faces, **(options if index == main else {}))
+        mesh.replace_with(work)
+
+    names = ", ".join(step.__name__ for step in steps)
+    run.__name__ = name.replace("-", "_").replace(".", "_")
+    run.__doc__ = f"GUI composite scheme {name!r}: {names}; options go to {steps[main].__name__}."
+    run.__signature__ = inspect.signature(steps[main])  # type: ignore[attr-defined]
+    return run
+
+
+SCHEMES: dict[str, Scheme] = {
+    "loop": loop,
+    "checker": checker,
+    "simplest": simplest,
+    "vertex-cut": vertex_cut,
+    "pentagon": pentagon,
+    "dual-pentagon": pentagon_preserve,
+    "pentagon-preserve": pentagon_preserve,
+    "honeycomb": honeycomb,
+    "doo-sabin": doo_sabin,
+    "doo-sabin-bc": doo_sabin_bc,
+    "doo-sabin-bc-new": doo_sabin_bc_new,
+    "corner-cut": corner_cut,
+    "modified-corner-cut": modified_corner_cut,
+    "root4": root4,
+    "catmull-clark": catmull_clark,
+    "star": star,
+    "sqrt3": sqrt3,
+    "fractal": fractal,
+    "stellate": stellate,
+    "double-stellate": double_stellate,
+    "dome": dome,
+    "dual-12.6.4": dual_1264,
+    "loop-style": loop_style,
+    "linear-vertex": linear_vertex,
+    "allfaces": linear_vertex,
+    "triangulate": triangulate,
+    "dual": dual,
+    "subdivide-all-edges": subdivide_all_edges,
+}
+SCHEMES.update({
+    "root3": _composite("root3", (dual, honeycomb, dual), 1),
+    "root-3": _composite("root-3", (dual, honeycomb, dual), 1),
+    "cubic-pentagonalization": _composite("cubic-pentagonalization", (pentagon, dual, dual), 0),
+    "dual-pentagonalization": _composite("dual-pentagonalization", (dual, pentagon, dual), 1),
+    "dual-pentagon-preserving": _composite(
+        "dual-pentagon-preserving", (dual, pentagon_preserve, dual), 1),
+    "six-preserving-loop-style": _composite(
+        "six-preserving-loop-style", (dual, root4, dual), 1),
+    "dual-loop": _composite("dual-loop", (dual, loop, dual), 1),
+    "12.6.4": _composite("12.6.4", (dual, dual_1264, dual), 1),
+    "dual-checkerboard": _composite("dual-checkerboard", (dual, checker, dual), 1),
+})
+
+
+def scheme_options(scheme: str) -> list[str]:
+    """The option names of ``scheme`` in TopMod's argument order (no ``max_faces``).
+
+    Raises:
+        DLFLError: an unknown scheme, listing the valid names.
+    """
+    func = _lookup(scheme)
+    params = inspect.signature(func).parameters.values()
+    return [p.name for p in params
+            if p.kind is inspect.Parameter.KEYWORD_ONLY and p.name != "max_faces"]
+
+
+def _lookup(scheme: object) -> Scheme:
+    if not isinstance(scheme, str) or scheme not in SCHEMES:
+        names = ", ".join(sorted(SCHEMES))
+        raise DLFLError(f"unknown subdivision scheme {scheme!r}; valid schemes: {names}")
+    return SCHEMES[scheme]
+
+
+def subdivide(mesh: Mesh, scheme: str, **options: Any) -> None:
+    """Remesh ``mesh`` in place with the named scheme.
+
+    Args:
+        mesh: the mesh; rebuilt with fresh ids.
+        scheme: a name of :data:`SCHEMES`.
+        **options: the scheme's options (see its function) and ``max_faces``.
+
+    Raises:
+        DLFLError: an unknown scheme (listing the valid names), an unknown option
+            (listing the scheme's), a bad option value, or a result over the face
+            budget. The mesh is unchanged.
+    """
+    func = _lookup(scheme)
+    allowed = scheme_options(scheme)
+    for name in options:
+        if name not in allowed and name != "max_faces":
+            valid = ", ".join(allowed) or "none"
+            raise DLFLError(
+                f"scheme {scheme!r} has no option {name!r}; its options: {valid} (and max_faces)"
+            )
+    func(mesh, **options)
+
+
+__all__ = [
+    "SCHEMES", "catmull_clark", "checker", "corner_cut", "dome", "doo_sabin", "doo_sabin_bc",
+    "doo_sabin_bc_new", "double_stellate", "dual", "dual_1264", "fractal", "honeycomb",
+    "linear_vertex", "loop", "loop_style", "modified_corner_cut", "pentagon",
+    "pentagon_preserve", "root4", "scheme_options", "settings", "simplest", "sqrt3", "star",
+    "stellate", "subdivide", "subdivide_all_edges", "subdivide_faces", "triangulate",
+    "vertex_cut",
+]

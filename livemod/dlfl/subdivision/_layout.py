@@ -1,0 +1,369 @@
+"""Shared machinery of the vectorized remeshing schemes.
+
+Every scheme follows one pattern:
+
+1. :func:`read_topology` lays the mesh out as dense arrays (point-spheres set
+   aside: they survive every scheme unchanged);
+2. the scheme computes the new positions with numpy and describes the new faces as
+   blocks of corners, each corner carrying the dense index of its new vertex and
+   the *label* of its outgoing edge: the two sides of one new edge carry the same
+   label, every label exactly twice;
+3. :func:`build` pairs the sides by label (O(C), no sort), appends the
+   point-spheres, builds the mesh in one step with ``from_corner_arrays`` and
+   swaps it in. Ids are never reused: every element of the result gets a fresh id.
+
+A scheme checks the face budget (:data:`settings`) before it allocates.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .._graph import cycle_labels
+from ..arrays import mesh_arrays
+from ..build import from_corner_arrays
+from ..errors import DLFLError
+from ..mesh import Mesh
+
+
+@dataclass
+class Settings:
+    """Module-level remeshing settings.
+
+    Attributes:
+        max_faces: the face budget: a scheme that would produce more faces raises
+            :class:`DLFLError` before allocating. Override per call with
+            ``max_faces=``.
+    """
+
+    max_faces: int = 20_000_000
+
+
+settings = Settings()
+
+
+@dataclass
+class Topology:
+    """Dense arrays of a mesh without its point-spheres.
+
+    Attributes (``C`` corners, ``F`` faces, ``E`` edges, ``V`` vertices, all dense):
+        pos: ``(V, 3)`` positions. cv: ``(C,)`` vertex of each corner.
+        nxt, prv, mate: ``(C,)`` corner links; ``mate`` is the corner on the other
+            side of the corner's edge (at the other end).
+        face: ``(C,)`` face of each corner. edge: ``(C,)`` edge of each corner.
+        offsets: ``(F + 1,)`` face starts. hole: ``(F,)`` hole flags.
+        edge_corners: ``(E, 2)`` the two sides of each edge.
+        spheres: ``(S, 3)`` positions of the point-spheres set aside.
+        face_ids: ``(F,)`` id of each (kept) face.
+    """
+
+    pos: np.ndarray
+    cv: np.ndarray
+    nxt: np.ndarray
+    prv: np.ndarray
+    mate: np.ndarray
+    face: np.ndarray
+    edge: np.ndarray
+    offsets: np.ndarray
+    hole: np.ndarray
+    edge_corners: np.ndarray
+    spheres: np.ndarray
+    face_ids: np.ndarray
+    _cache: dict[str, np.ndarray] = field(default_factory=dict, repr=False)
+
+    @property
+    def nv(self) -> int:
+        return len(self.pos)
+
+    @property
+    def nc(self) -> int:
+        return len(self.cv)
+
+    @property
+    def nf(self) -> int:
+        return len(self.offsets) - 1
+
+    @property
+    def ne(self) -> int:
+        return len(self.edge_corners)
+
+    @property
+    def sizes(self) -> np.ndarray:
+        """``(F,)`` face sizes."""
+        return np.diff(self.offsets)
+
+    @property
+    def valence(self) -> np.ndarray:
+        """``(V,)`` number of corners (= edges, counting a self-loop twice) per vertex."""
+        return np.bincount(self.cv, minlength=self.nv)
+
+    @property
+    def vprev(self) -> np.ndarray:
+        """``(C,)`` the next corner around the same vertex, counter-clockwise seen
+        from outside: ``mate(prev(c))`` (TopMod's vprev)."""
+        return self.mate[self.prv]
+
+    def centroids(self) -> np.ndarray:
+        """``(F, 3)`` mean of each face's corner positions (TopMod's centroid)."""
+        if "centroids" not in self._cache:
+            sums = np.zeros((self.nf, 3))
+            np.add.at(sums, self.face, self.pos[self.cv])
+            self._cache["centroids"] = sums / np.maximum(self.sizes, 1)[:, None]
+        return self._cache["centroids"]
+
+    def midpoints(self) -> np.ndarray:
+        """``(E, 3)`` midpoint of each edge."""
+        ends = self.cv[self.edge_corners]
+        return 0.5 * (self.pos[ends[:, 0]] + self.pos[ends[:, 1]])
+
+    def neighbour_mean(self) -> np.ndarray:
+        """``(V, 3)`` mean position of each vertex's neighbours (one per corner)."""
+        sums = vertex_sum(self, self.pos[self.cv[self.nxt]])
+        return sums / np.maximum(self.valence, 1)[:, None]
+
+    def face_normals(self) -> np.ndarray:
+        """``(F, 3)`` unit Newell normal of each face (zero when degenerate)."""
+        p = self.pos[self.cv]
+        q = self.pos[self.cv[self.nxt]]
+        sums = np.zeros((self.nf, 3))
+        np.add.at(sums, self.face, np.cross(p, q))
+        return normalize(sums)
+
+    def vertex_rings(self) -> tuple[np.ndarray, np.ndarray]:
+        """Corners grouped by vertex, counter-clockwise (``vprev`` order).
+
+        Returns:
+            ``(order, offsets)``: ``order`` ``(C,)`` lists the corners ring after
+            ring; ring ``k`` is ``order[offsets[k]:offsets[k + 1]]``. Rings come in
+            order of their smallest corner. A vertex visited by one fan has one ring.
+        """
+        return cycle_layout(self.vprev)
+
+
+def normalize(vectors: np.ndarray) -> np.ndarray:
+    """Unit vectors along the rows of ``vectors`` (zero rows stay zero)."""
+    length = np.linalg.norm(vectors, axis=-1, keepdims=True)
+    return np.divide(vectors, length, out=np.zeros_like(vectors), where=length > 1e-300)
+
+
+def vertex_sum(t: Topology, per_corner: np.ndarray) -> np.ndarray:
+    """``(V, 3)`` sum of a ``(C, 3)`` per-corner quantity over each vertex's corners."""
+    out = np.empty((t.nv, 3))
+    for axis in range(3):
+        out[:, axis] = np.bincount(t.cv, weights=per_corner[:, axis], minlength=t.nv)
+    return out
+
+
+def cycle_layout(perm: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The cycles of a permutation laid out contiguously, each in cycle order.
+
+    Returns ``(order, offsets)``; each cycle starts at its smallest element.
+    """
+    n = len(perm)
+    root = cycle_labels(perm)
+    is_root = root == np.arange(n)
+    pred = np.empty(n, dtype=np.int64)
+    pred[perm] = np.arange(n)
+    pred[is_root] = np.flatnonzero(is_root)
+    rank = (~is_root).astype(np.int64)
+    while True:
+        rank += rank[pred]
+        jumped = pred[pred]
+        if np.array_equal(jumped, pred):
+            break
+        pred = jumped
+    roots = np.flatnonzero(is_root)
+    sizes = np.bincount(root, minlength=n)[roots]
+    offsets = np.zeros(len(roots) + 1, dtype=np.int64)
+    np.cumsum(sizes, out=offsets[1:])
+    start = np.zeros(n, dtype=np.int64)
+    start[roots] = offsets[:-1]
+    order = np.empty(n, dtype=np.int64)
+    order[start[root] + rank] = np.arange(n)
+    return order, offsets
+
+
+def read_topology(mesh: Mesh) -> Topology:
+    """Lay ``mesh`` out for a scheme, setting its point-spheres aside."""
+    a = mesh_arrays(mesh)
+    mate, offsets, cv = a.corner_mate, a.face_offsets, a.corner_vertex
+    positions, hole, edge_corners = a.positions, a.face_hole, a.edge_corners
+    spheres = np.zeros((0, 3))
+    face_ids = a.face_ids
+    sphere_corner = mate < 0
+    if sphere_corner.any():
+        keep_face = np.ones(len(hole), dtype=bool)
+        keep_face[a.corner_face[sphere_corner]] = False
+        keep_vertex = np.ones(len(positions), dtype=bool)
+        keep_vertex[cv[sphere_corner]] = False
+        spheres = positions[~keep_vertex]
+        cmap = np.cumsum(~sphere_corner) - 1
+        vmap = np.cumsum(keep_vertex) - 1
+        sizes = np.diff(offsets)[keep_face]
+        offsets = np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64)
+        mate = cmap[mate[~sphere_corner]]
+        cv = vmap[cv[~sphere_corner]]
+        positions, hole = positions[keep_vertex], hole[keep_face]
+        face_ids = face_ids[keep_face]
+        edge_corners = cmap[edge_corners]
+    return _topology(positions, cv, mate, offsets, hole, edge_corners, spheres, face_ids)
+
+
+def _topology(
+    positions: np.ndarray, cv: np.ndarray, mate: np.ndarray, offsets: np.ndarray,
+    hole: np.ndarray, edge_corners: np.ndarray, spheres: np.ndarray, face_ids: np.ndarray,
+) -> Topology:
+    n = len(cv)
+    sizes = np.diff(offsets)
+    nxt = np.arange(1, n + 1, dtype=np.int64)
+    nxt[offsets[1:] - 1] = offsets[:-1]
+    prv = np.arange(-1, n - 1, dtype=np.int64)
+    prv[offsets[:-1]] = offsets[1:] - 1
+    face = np.repeat(np.arange(len(sizes), dtype=np.int64), sizes)
+    edge = np.empty(n, dtype=np.int64)
+    edge[edge_corners[:, 0]] = np.arange(len(edge_corners))
+    edge[edge_corners[:, 1]] = np.arange(len(edge_corners))
+    return Topology(positions, cv, nxt, prv, mate, face, edge, offsets, hole,
+                    edge_corners, spheres, face_ids)
+
+
+def check_budget(t: Topology, new_faces: int, scheme: str, max_faces: int | None) -> None:
+    """Refuse a result with more faces than the budget, before allocating it.
+
+    Raises:
+        DLFLError: naming the count and the budget.
+    """
+    budget = settings.max_faces if max_faces is None else max_faces
+    total = int(new_faces) + len(t.spheres)
+    if total > budget:
+        raise DLFLError(
+            f"{scheme} would produce {total:,} faces, more than the budget of "
+            f"{budget:,} (pass max_faces= or set livemod.dlfl.subdivision.settings.max_faces)"
+        )
+
+
+class Faces:
+    """New faces, accumulated block by block.
+
+    A block is either ``k`` faces of ``m`` corners (``(k, m)`` arrays) or faces of
+    varying size (flat arrays plus sizes). Each corner holds its new vertex and the
+    label of its outgoing edge.
+    """
+
+    def __init__(self) -> None:
+        self.verts: list[np.ndarray] = []
+        self.labels: list[np.ndarray] = []
+        self.sizes: list[np.ndarray] = []
+        self.holes: list[np.ndarray] = []
+
+    def add(self, verts: np.ndarray, labels: np.ndarray, hole: np.ndarray | np.bool_,
+            sizes: np.ndarray | None = None) -> None:
+        """Add faces: ``(k, m)`` ``verts``/``labels`` or flat ones with ``sizes``."""
+        if sizes is None:
+            k, m = verts.shape
+            sizes = np.full(k, m, dtype=np.int64)
+        self.verts.append(np.asarray(verts, dtype=np.int64).ravel())
+        self.labels.append(np.asarray(labels, dtype=np.int64).ravel())
+        self.sizes.append(np.asarray(sizes, dtype=np.int64))
+        self.holes.append(np.broadcast_to(np.asarray(hole, dtype=bool), sizes.shape))
+
+
+def pair_by_label(labels: np.ndarray, num_labels: int) -> np.ndarray:
+    """``(C,)`` mate of each corner: the other corner carrying the same label.
+
+    Precondition: every label in use occurs exactly twice.
+    """
+    idx = np.arange(len(labels), dtype=np.int64)
+    first = np.full(num_labels, -1, dtype=np.int64)
+    first[labels] = idx
+    other = first[labels]
+    loser = other != idx  # exactly one per label: the side that lost the write
+    mate = np.empty(len(labels), dtype=np.int64)
+    mate[idx[loser]] = other[loser]
+    mate[other[loser]] = idx[loser]
+    return mate
+
+
+def build(mesh: Mesh, t: Topology, positions: np.ndarray, faces: Faces) -> None:
+    """Pair the new faces' sides, append the point-spheres and swap the result in."""
+    cv = np.concatenate(faces.verts)
+    labels = np.concatenate(faces.labels)
+    sizes = np.concatenate(faces.sizes)
+    hole = np.concatenate(faces.holes)
+    num_labels = int(labels.max()) + 1 if len(labels) else 0
+    mate = pair_by_label(labels, num_labels)
+    s = len(t.spheres)
+    if s:
+        base_v = len(positions)
+        positions = np.concatenate([positions, t.spheres])
+        cv = np.concatenate([cv, base_v + np.arange(s)])
+        mate = np.concatenate([mate, np.full(s, -1, dtype=np.int64)])
+        sizes = np.concatenate([sizes, np.ones(s, dtype=np.int64)])
+        hole = np.concatenate([hole, np.zeros(s, dtype=bool)])
+    offsets = np.zeros(len(sizes) + 1, dtype=np.int64)
+    np.cumsum(sizes, out=offsets[1:])
+    new = from_corner_arrays(positions, offsets, cv, mate, hole, first_ids=mesh.next_ids())
+    mesh.replace_with(new)
+
+
+def face_weighted(
+    t: Topology, values: np.ndarray, weight: Callable[[int], np.ndarray]
+) -> np.ndarray:
+    """``(C, 3)``: per face of size n, ``out[c_i] = sum_j W[i, j] values[c_j]``.
+
+    ``weight(n)`` gives the ``(n, n)`` matrix; faces are processed by size.
+    """
+    return ring_weighted(t.offsets, values, weight)
+
+
+def ring_weighted(
+    offsets: np.ndarray, values: np.ndarray, weight: Callable[[int], np.ndarray]
+) -> np.ndarray:
+    """:func:`face_weighted` over any ring layout given by ``offsets``."""
+    out = np.empty_like(values)
+    sizes = np.diff(offsets)
+    for n in np.unique(sizes).tolist():
+        rings = np.flatnonzero(sizes == n)
+        corners = offsets[rings][:, None] + np.arange(n)
+        out[corners] = np.einsum("ij,kjd->kid", weight(n), values[corners])
+    return out
+
+
+def circulant(n: int, row: Callable[[np.ndarray], np.ndarray]) -> np.ndarray:
+    """``(n, n)`` matrix ``W[i, j] = row((i - j) mod n)``."""
+    k = (np.arange(n)[:, None] - np.arange(n)[None, :]) % n
+    return row(k)
+
+
+def cos_weights(n: int, alpha: float) -> np.ndarray:
+    """The Doo-Sabin family's weights: ``w_ii = alpha``,
+    ``w_ij = (1 - alpha)(3 + 2cos(2pi(i - j)/n)) / (3n - 5)``."""
+    if n < 2:
+        return np.ones((n, n))
+
+    def row(k: np.ndarray) -> np.ndarray:
+        w = (1 - alpha) * (3 + 2 * np.cos(2 * math.pi * k / n)) / (3 * n - 5)
+        return np.where(k == 0, alpha, w)
+
+    return circulant(n, row)
+
+
+def check_number(name: str, value: object, low: float | None = None,
+                 high: float | None = None) -> float:
+    """``value`` as a finite float within ``[low, high]``.
+
+    Raises:
+        DLFLError: not a number, not finite, or out of range (naming the option).
+    """
+    if isinstance(value, bool) or not isinstance(value, int | float | np.floating | np.integer):
+        raise DLFLError(f"option {name} must be a number, got {value!r}")
+    number = float(value)
+    if not math.isfinite(number):
+        raise DLFLError(f"option {name} must be finite, got {value!r}")
+    if (low is not None and number < low) or (high is not None and number > high):
+        raise DLFLError(f"option {name} must be in [{low}, {high}], got {value!r}")
+    return number
