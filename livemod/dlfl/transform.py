@@ -1,0 +1,102 @@
+"""Rigid and affine transforms of a mesh's vertices, vectorized (topology untouched).
+
+TopMod kept an object transform (position, scale, quaternion) that reached the
+vertices only through ``freezeTransformations``; livemod moves the vertices at
+once. Every function acts on all vertices, or on the ``vertices`` listed.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from typing import Any
+
+import numpy as np
+
+from .errors import DLFLError
+from .mesh import Mesh
+
+__all__ = ["move_vertices", "rotate", "rotation_matrix", "scale", "transform", "translate"]
+
+
+def _vector(value: Any, name: str) -> np.ndarray:
+    """``(3,)`` float64 from three numbers, or one number repeated."""
+    arr = np.asarray(value, dtype=np.float64)
+    if arr.shape == ():
+        arr = np.full(3, float(arr))
+    if arr.shape != (3,) or not np.isfinite(arr).all():
+        raise DLFLError(f"{name} must be three finite numbers, got {value!r}")
+    return arr
+
+
+def _selected(mesh: Mesh, vertices: Iterable[int] | None) -> tuple[np.ndarray, np.ndarray]:
+    """``(ids (k,), positions (k, 3))`` of the chosen vertices (all by default).
+
+    Raises:
+        DLFLError: an id that is not a vertex of the mesh.
+    """
+    if vertices is None:
+        return mesh.vertex_ids(), mesh.positions_view()
+    ids = np.asarray(list(vertices), dtype=np.int64)
+    return ids, np.array([mesh.position(int(v)) for v in ids]).reshape(-1, 3)
+
+
+def transform(
+    mesh: Mesh, matrix: Any, *, center: Any = (0.0, 0.0, 0.0),
+    vertices: Iterable[int] | None = None,
+) -> None:
+    """Apply the ``(3, 3)`` linear map ``matrix`` about ``center``: ``p' = M (p - c) + c``."""
+    m = np.asarray(matrix, dtype=np.float64)
+    if m.shape != (3, 3) or not np.isfinite(m).all():
+        raise DLFLError(f"matrix must be a finite 3x3 array, got shape {m.shape}")
+    c = _vector(center, "center")
+    ids, p = _selected(mesh, vertices)
+    mesh.set_positions(ids, (p - c) @ m.T + c)
+
+
+def translate(mesh: Mesh, offset: Any, *, vertices: Iterable[int] | None = None) -> None:
+    """Move vertices by ``offset`` ``(x, y, z)``."""
+    d = _vector(offset, "offset")
+    ids, p = _selected(mesh, vertices)
+    mesh.set_positions(ids, p + d)
+
+
+def scale(
+    mesh: Mesh, factors: Any, *, center: Any = (0.0, 0.0, 0.0),
+    vertices: Iterable[int] | None = None,
+) -> None:
+    """Scale about ``center`` by ``factors``: one number, or one per axis."""
+    transform(mesh, np.diag(_vector(factors, "factors")), center=center, vertices=vertices)
+
+
+def rotation_matrix(axis: Any, degrees: float) -> np.ndarray:
+    """``(3, 3)`` rotation by ``degrees`` about ``axis`` (right-handed, Rodrigues).
+
+    Raises:
+        DLFLError: a zero or non-finite axis.
+    """
+    k = _vector(axis, "axis")
+    length = float(np.linalg.norm(k))
+    if length == 0.0:
+        raise DLFLError("rotation axis must not be zero")
+    k = k / length
+    theta = np.radians(float(degrees))
+    cross = np.array([[0, -k[2], k[1]], [k[2], 0, -k[0]], [-k[1], k[0], 0]])
+    return np.eye(3) + np.sin(theta) * cross + (1 - np.cos(theta)) * cross @ cross
+
+
+def rotate(
+    mesh: Mesh, axis: Any, degrees: float, *, center: Any = (0.0, 0.0, 0.0),
+    vertices: Iterable[int] | None = None,
+) -> None:
+    """Rotate by ``degrees`` about the line through ``center`` along ``axis``."""
+    transform(mesh, rotation_matrix(axis, degrees), center=center, vertices=vertices)
+
+
+def move_vertices(
+    mesh: Mesh, vertices: Iterable[int], offset: Any, *, relative: bool = True
+) -> None:
+    """Move the listed vertices by ``offset`` or, with ``relative=False``, to it
+    (the thesis's ``move(vertexids, (x, y, z)[, relative])``)."""
+    d = _vector(offset, "offset")
+    ids, p = _selected(mesh, vertices)
+    mesh.set_positions(ids, p + d if relative else np.broadcast_to(d, p.shape))
