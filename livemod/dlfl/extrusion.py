@@ -121,10 +121,12 @@ def _rotated(points: np.ndarray, axis: np.ndarray, degrees: float) -> np.ndarray
         return points
     theta = math.radians(degrees)
     centre = points.mean(axis=0)
-    rel = points - centre
-    cos, sin = math.cos(theta), math.sin(theta)
-    along = np.outer(rel @ axis, axis)
-    return centre + along + (rel - along) * cos + np.cross(axis, rel) * sin
+    x, y, z = axis
+    skew = np.array([[0.0, -z, y], [z, 0.0, -x], [-y, x, 0.0]])
+    # Rodrigues' matrix, applied as one product (np.cross is slow on a few points)
+    turn = math.cos(theta) * np.eye(3) + math.sin(theta) * skew \
+        + (1.0 - math.cos(theta)) * np.outer(axis, axis)
+    return centre + (points - centre) @ turn.T
 
 
 @lru_cache(maxsize=64)
