@@ -413,6 +413,7 @@ def create_viewer(options: ViewOptions) -> LiveViewer:
         args += ["--backend", "egl"]
     viewer = mglw.create_window_config_instance(config_cls, args=args)
     assert isinstance(viewer, LiveViewer)
+    viewer.timer.start()
     return viewer
 
 
@@ -445,7 +446,6 @@ def close_viewer(viewer: LiveViewer) -> None:
 def view(options: ViewOptions) -> int:
     """``livemod view``: open the window and run until it is closed."""
     viewer = create_viewer(options)
-    viewer.timer.start()
     try:
         run_frames(viewer)
     except KeyboardInterrupt:

@@ -1,0 +1,200 @@
+"""The live window over the real runner: headless (EGL) and a real glfw window under Xvfb."""
+
+from __future__ import annotations
+
+import io
+import os
+import select
+import shutil
+import subprocess
+import sys
+import time
+from collections.abc import Callable, Iterator
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from livemod.viewer.hud import hud_lines
+from livemod.viewer.window import (
+    LiveViewer,
+    ViewOptions,
+    close_viewer,
+    create_viewer,
+    run_frames,
+)
+
+CUBE = """
+from livemod.dlfl import from_polygons, current_scene, faces, translate
+P = [(1, 1, 1), (1, 1, -1), (-1, 1, -1), (-1, 1, 1),
+     (1, -1, 1), (1, -1, -1), (-1, -1, -1), (-1, -1, 1)]
+F = [(0, 1, 2, 3), (4, 5, 1, 0), (5, 6, 2, 1), (6, 7, 3, 2), (7, 4, 0, 3), (7, 6, 5, 4)]
+current_scene().add(from_polygons([(x * {scale}, y * {scale}, z) for x, y, z in P], F))
+if faces(True):   # a picked face moves the cube: the selection reached the run
+    translate(2.0, 0.0, 0.0)
+"""
+
+BUSY = """
+import time
+start = time.perf_counter()
+while time.perf_counter() - start < 5.0:    # five seconds of pure Python on the GIL
+    total = sum(i * i for i in range(2000))
+"""
+
+
+def _wait(viewer: LiveViewer, done: Callable[[LiveViewer], bool], timeout: float = 20.0,
+          nap: float = 0.005) -> None:
+    """Draw frames until ``done`` (napping between frames so the worker gets a core)."""
+    deadline = time.monotonic() + timeout
+
+    def until(v: LiveViewer) -> bool:
+        time.sleep(nap)
+        return done(v) or time.monotonic() > deadline
+
+    run_frames(viewer, until=until)
+    assert done(viewer), "timed out waiting for the viewer"
+
+
+def _has_run(run_id: int) -> Callable[[LiveViewer], bool]:
+    return lambda v: v.result is not None and v.result.run_id >= run_id and not v.waiting
+
+
+def _hud_text(viewer: LiveViewer) -> str:
+    return "\n".join(line for line, _ in hud_lines(viewer._hud_info()))
+
+
+@pytest.fixture
+def headless(tmp_path: Path) -> Iterator[tuple[LiveViewer, Path, io.StringIO]]:
+    script = tmp_path / "model.py"
+    script.write_text(CUBE.format(scale=1.0))
+    echo = io.StringIO()
+    viewer = create_viewer(ViewOptions(str(script), backend="headless", size=(320, 240),
+                                       samples=0, vsync=False, echo=echo))
+    yield viewer, script, echo
+    close_viewer(viewer)
+
+
+def test_pick_select_rerun_and_error_keeps_the_stale_mesh(headless) -> None:
+    viewer, script, echo = headless
+    _wait(viewer, _has_run(1))
+    assert viewer.result.status == "ok"
+    assert "V 8  E 12  F 6  genus 0" in _hud_text(viewer)
+    fitted = viewer.camera.distance
+    viewer.click(160, 120)
+    face = viewer.selection.faces
+    assert len(face) == 1
+    assert f"faces(True) == ({face[0]},)" in echo.getvalue()
+    viewer.handle_key("R")
+    _wait(viewer, _has_run(2))
+    assert viewer.result.arrays.positions[:, 0].max() == pytest.approx(3.0)  # saw faces(True)
+    assert viewer.camera.distance == fitted               # kept across the reload
+    before = viewer.capture()
+    script.write_text("x = (\n")                          # a syntax error
+    viewer.handle_key("R")
+    _wait(viewer, _has_run(3))
+    assert viewer.result.status == "error" and viewer.result.stale
+    assert "error, stale" in _hud_text(viewer)
+    assert "model.py:1" in echo.getvalue()
+    assert np.array_equal(viewer.capture(), before)        # the last good mesh stays
+
+
+def test_keys_change_style_camera_and_pick_mode(headless) -> None:
+    viewer, _, _ = headless
+    _wait(viewer, _has_run(1))
+    first = viewer.capture()
+    viewer.handle_key("W")
+    assert not viewer.style.edges
+    viewer.handle_key("F", ctrl=True)
+    assert viewer.style.labels == {"faces"}
+    viewer.handle_key("O")
+    assert viewer.camera.ortho
+    viewer.handle_key("NUMBER_2")
+    assert viewer.camera.pitch > 89
+    assert not np.array_equal(viewer.capture(), first)
+    viewer.handle_key("M")
+    assert viewer.pick_mode == "edge"
+    viewer.handle_key("C", shift=True)
+    assert viewer.pick_mode == "corner"
+    viewer.handle_key("H")
+    run_frames(viewer, 2)
+    assert viewer.show_help
+
+
+def test_frames_stay_fast_while_a_five_second_script_runs(headless) -> None:
+    viewer, script, _ = headless
+    _wait(viewer, _has_run(1))
+    script.write_text(BUSY + CUBE.format(scale=1.0))
+    viewer.handle_key("R")
+    started = time.perf_counter()
+    times = []
+    while time.perf_counter() - started < 2.5:
+        frame_start = time.perf_counter()
+        run_frames(viewer, 1)
+        times.append(time.perf_counter() - frame_start)
+    assert viewer.waiting and viewer.result.run_id == 1     # the run was still going
+    times.sort()
+    assert len(times) > 25
+    assert times[len(times) // 2] < 0.05
+    assert times[int(0.9 * len(times))] < 0.05
+
+
+# -- a real glfw window under Xvfb --------------------------------------------------
+
+
+@pytest.fixture
+def xvfb_display(monkeypatch: pytest.MonkeyPatch) -> Iterator[str]:
+    """Start Xvfb on a display it picks itself (-displayfd) and point DISPLAY at it."""
+    assert shutil.which("Xvfb"), "Xvfb is needed (apt-get install xvfb)"
+    read_end, write_end = os.pipe()
+    server = subprocess.Popen(["Xvfb", "-displayfd", str(write_end), "-screen", "0",
+                               "1024x768x24", "-nolisten", "tcp"], pass_fds=(write_end,),
+                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    os.close(write_end)
+    try:
+        ready, _, _ = select.select([read_end], [], [], 20.0)
+        assert ready, "Xvfb did not start"
+        display = ":" + os.read(read_end, 64).decode().strip()
+        monkeypatch.setenv("DISPLAY", display)
+        monkeypatch.delenv("WAYLAND_DISPLAY", raising=False)
+        yield display
+    finally:
+        os.close(read_end)
+        server.terminate()
+        server.wait(timeout=10)
+
+
+def _glfw_probe(script_path: str) -> None:
+    """Run in a fresh process (GLX and EGL contexts do not mix in one process, and an
+    X error ends the process): open, reload on save, close. Raises on failure."""
+    script = Path(script_path)
+    viewer = create_viewer(ViewOptions(str(script), backend="glfw", size=(320, 240),
+                                       samples=0, vsync=False, echo=io.StringIO()))
+    session = viewer.session
+    try:
+        assert viewer.wnd.name == "glfw"
+        _wait(viewer, _has_run(1))
+        first = viewer.capture()
+        assert first.shape == (240, 320, 3) and first.std() > 5
+        time.sleep(0.05)
+        script.write_text(CUBE.format(scale=1.6))   # saved in the editor: no key pressed
+        _wait(viewer, _has_run(2))
+        assert viewer.result.arrays.positions[:, 0].max() == pytest.approx(1.6)
+        assert not np.array_equal(viewer.capture(), first)
+        viewer.handle_key("Q")
+        assert run_frames(viewer, 5) == 0
+    finally:
+        close_viewer(viewer)
+    assert session.join(10.0)
+    print("glfw window ok")
+
+
+def test_glfw_window_reloads_on_save_and_closes(xvfb_display: str, tmp_path: Path) -> None:
+    script = tmp_path / "model.py"
+    script.write_text(CUBE.format(scale=1.0))
+    root = Path(__file__).resolve().parent.parent
+    code = (f"import sys; sys.path.insert(0, {str(root)!r}); "
+            f"from tests.test_viewer_window import _glfw_probe; _glfw_probe({str(script)!r})")
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                          timeout=90, cwd=root)
+    assert done.returncode == 0, done.stdout + done.stderr
+    assert "glfw window ok" in done.stdout
