@@ -253,3 +253,65 @@ def test_faces_of_different_sizes_are_refused_with_segments(op):
     with pytest.raises(DLFLError, match="equal size; face 0 has 4 corners and face 5 has 5"):
         op(m)
     assert snapshot(m) == before
+
+
+# -- multi-face handle ----------------------------------------------------------------
+
+def test_multi_face_handle_on_three_cube_faces_matches_topmod():
+    from livemod.dlfl.connect import multi_face_handle
+
+    m = cube()
+    multi_face_handle(m, [0, 2, 4])
+    assert checked(m) == (20, 42, 20)
+    assert genus(m) == 2 and face_size_histogram(m) == {4: 18, 6: 2}
+
+
+def test_multi_face_handle_on_all_six_faces():
+    from livemod.dlfl.connect import multi_face_handle
+
+    m = cube()
+    multi_face_handle(m, [0, 1, 2, 3, 4, 5], scale=1.0, extrude=1.0)
+    assert checked(m) == (32, 84, 44) and genus(m) == 5
+
+
+def test_convex_hull_of_a_cube_with_extra_points_merges_facets():
+    from livemod.dlfl.connect import add_polyhedron, convex_hull_polygons
+
+    corners = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)], float)
+    extra = np.array([[0, 0, 0], [1, 0, 0], [0.5, 1, 1]], float)  # inside, face centre, edge
+    pts = np.concatenate([corners, extra])
+    polygons = convex_hull_polygons(pts)
+    assert sorted(len(p) for p in polygons) == [4] * 6
+    m = Mesh()
+    faces = add_polyhedron(m, pts, polygons)
+    assert checked(m) == (8, 12, 6) and len(set(faces)) == 6
+    for face in faces:
+        centre = face_points(m, face).mean(axis=0)
+        normal = np.cross(*(face_points(m, face)[1:3] - face_points(m, face)[0]))
+        assert centre @ normal > 0  # outward
+
+
+@pytest.mark.parametrize(("faces", "message"), [
+    ([0], "two or more different faces"),
+    ([0, 0], "two or more different faces"),
+    ([0, 99], "face 99 does not exist"),
+])
+def test_multi_face_handle_bad_input(faces, message):
+    from livemod.dlfl.connect import multi_face_handle
+
+    m = cube()
+    before = snapshot(m)
+    with pytest.raises(DLFLError, match=message):
+        multi_face_handle(m, faces)
+    assert snapshot(m) == before
+
+
+def test_multi_face_handle_refuses_coplanar_points():
+    from livemod.dlfl.connect import multi_face_handle
+
+    m = Mesh()
+    front, back = m.create_face([(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0)])
+    before = snapshot(m)
+    with pytest.raises(DLFLError, match="not all in one plane"):
+        multi_face_handle(m, [front, back], extrude=0.0)
+    assert snapshot(m) == before

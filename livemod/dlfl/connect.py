@@ -497,3 +497,222 @@ def bezier_handle(
     first = mesh.next_ids()[1]
     _chain_rings(mesh, corner1, corner2, rings, _quad_band, -1)
     return _new_edges(mesh, first)
+
+
+# -- multi-face handle -------------------------------------------------------------------
+
+def convex_hull_polygons(points: np.ndarray, tolerance: float = 1e-9) -> list[list[int]]:
+    """Faces of the convex hull of ``(k, 3)`` points, coplanar facets merged.
+
+    Every supporting plane through three of the points is a face; its points
+    are ordered counter-clockwise seen from outside and points on its edges or
+    inside it are dropped (so a point on a hull edge is dropped from both faces).
+    Brute force over all triples: meant for the few dozen points of a handle.
+
+    Returns:
+        One list of point indices per face, outward counter-clockwise.
+
+    Raises:
+        DLFLError: fewer than 4 points, or all of them in one plane.
+    """
+    pts = np.asarray(points, dtype=np.float64)
+    if len(pts) < 4 or np.linalg.matrix_rank(pts[1:] - pts[0], tol=1e-9) < 3:
+        raise DLFLError("a convex hull needs at least 4 points not all in one plane")
+    eps = tolerance * max(1.0, float(np.abs(pts).max()))
+    i, j, k = _triples(len(pts))
+    normals = np.cross(pts[j] - pts[i], pts[k] - pts[i])
+    lengths = np.linalg.norm(normals, axis=1)
+    keep = lengths > eps
+    normals = normals[keep] / lengths[keep, None]
+    heights = (pts @ normals.T) - np.einsum("ij,ij->i", pts[i[keep]], normals)
+    faces: dict[frozenset[int], np.ndarray] = {}
+    for col, normal in enumerate(normals):
+        h = heights[:, col]
+        for sign in (1.0, -1.0):
+            if np.all(sign * h <= eps):
+                on_plane = frozenset(np.flatnonzero(np.abs(h) <= eps).tolist())
+                faces.setdefault(on_plane, sign * normal)
+    return [_convex_polygon(pts, sorted(idx), normal, eps) for idx, normal in faces.items()]
+
+
+def _triples(n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """All index triples ``i < j < k`` below ``n``, as three ``(C(n, 3),)`` arrays."""
+    grid = np.array(np.meshgrid(np.arange(n), np.arange(n), np.arange(n), indexing="ij"))
+    i, j, k = grid.reshape(3, -1)
+    keep = (i < j) & (j < k)
+    return i[keep], j[keep], k[keep]
+
+
+def _convex_polygon(pts: np.ndarray, idx: list[int], normal: np.ndarray, eps: float) -> list[int]:
+    """The corners of the convex polygon of ``pts[idx]`` (a plane with ``normal``),
+    counter-clockwise about ``normal``, collinear points dropped (monotone chain)."""
+    u = np.cross(normal, [1.0, 0.0, 0.0])
+    if np.linalg.norm(u) < 0.5:
+        u = np.cross(normal, [0.0, 1.0, 0.0])
+    u /= np.linalg.norm(u)
+    v = np.cross(normal, u)
+    flat = sorted((float(pts[p] @ u), float(pts[p] @ v), p) for p in idx)
+
+    def half(order: list[tuple[float, float, int]]) -> list[tuple[float, float, int]]:
+        chain: list[tuple[float, float, int]] = []
+        for q in order:
+            while len(chain) >= 2 and _turn(chain[-2], chain[-1], q) <= eps:
+                chain.pop()
+            chain.append(q)
+        return chain[:-1]
+
+    return [p for _, _, p in half(flat) + half(flat[::-1])]
+
+
+def _turn(a: tuple[float, float, int], b: tuple[float, float, int],
+          c: tuple[float, float, int]) -> float:
+    return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
+
+
+def add_polyhedron(mesh: Mesh, points: np.ndarray, polygons: list[list[int]]) -> list[int]:
+    """Add a closed genus-0 polyhedron to ``mesh`` with the minimal operators only.
+
+    One point-sphere per point, then one :meth:`Mesh.insert_edge` per edge. Each
+    edge goes into the corner whose angular sector, in the rotation the polygons
+    give each vertex, holds the new neighbour, so the partial graph always stays
+    planar and the last edges close exactly the given faces.
+
+    Args:
+        points: ``(k, 3)`` positions; every point must be used by a polygon.
+        polygons: point indices per face, counter-clockwise seen from outside,
+            forming a closed sphere-like surface (as :func:`convex_hull_polygons`).
+
+    Returns:
+        The new face id of each polygon, in order.
+    """
+    rotation = _rotations(polygons)
+    vertex = {p: mesh.create_vertex(points[p]) for p in sorted(rotation)}
+    done: set[tuple[int, int]] = set()
+    for poly in polygons:
+        for a, b in zip(poly, poly[1:] + poly[:1], strict=True):
+            if (b, a) in done:
+                continue
+            done.add((a, b))
+            mesh.insert_edge(_sector_corner(mesh, vertex, rotation, a, b),
+                             _sector_corner(mesh, vertex, rotation, b, a))
+    return [mesh.corner_face(_corner_towards(mesh, vertex[poly[0]], vertex[poly[1]]))
+            for poly in polygons]
+
+
+def _rotations(polygons: list[list[int]]) -> dict[int, list[int]]:
+    """Each point's neighbours counter-clockwise around it, seen from outside."""
+    after: dict[int, dict[int, int]] = {}
+    for poly in polygons:
+        n = len(poly)
+        for i, p in enumerate(poly):
+            after.setdefault(p, {})[poly[(i + 1) % n]] = poly[i - 1]
+    rotation = {}
+    for p, step in after.items():
+        first = next(iter(step))
+        ring, q = [first], step[first]
+        while q != first:
+            ring.append(q)
+            q = step[q]
+        rotation[p] = ring
+    return rotation
+
+
+def _sector_corner(mesh: Mesh, vertex: dict[int, int], rotation: dict[int, list[int]],
+                   a: int, b: int) -> int:
+    """The corner at point ``a`` whose sector (from its next vertex counter-clockwise
+    to its previous one) holds the new neighbour ``b``."""
+    corners = mesh.vertex_corners(vertex[a])
+    if len(corners) == 1:
+        return corners[0]
+    point_of = {v: p for p, v in vertex.items()}
+    ring = rotation[a]
+    place = {q: i for i, q in enumerate(ring)}
+    for c in corners:
+        start = place[point_of[mesh.corner_vertex(mesh.corner_next(c))]]
+        end = place[point_of[mesh.corner_vertex(mesh.corner_prev(c))]]
+        span = (end - start) % len(ring) or len(ring)
+        if 0 < (place[b] - start) % len(ring) < span:
+            return c
+    raise DLFLError(f"internal: no corner of point {a} can take an edge to point {b}")
+
+
+def _corner_towards(mesh: Mesh, u: int, w: int) -> int:
+    for c in mesh.vertex_corners(u):
+        if mesh.corner_vertex(mesh.corner_next(c)) == w:
+            return c
+    raise DLFLError(f"internal: vertex {u} has no edge to vertex {w}")
+
+
+def multi_face_handle(mesh: Mesh, faces: list[int], scale: float = 1.0,
+                      extrude: float = 0.5) -> list[int]:
+    """Join several faces through one hub, the convex hull of their vertices
+    (TopMod's ``multiConnectFaces(faces, scale, extrude)``).
+
+    Each face's vertices are pushed ``extrude`` along its normal (coincident
+    points kept once), scaled by ``|scale|`` about their centroid (unless 0 or
+    1), and their convex hull (coplanar facets merged) is added, reversed when
+    the first face's normal points away from the hull's centroid. Each selected
+    face is joined (closest corners, :func:`connect_faces`) to the hull face
+    parallel to it and facing it. Cube faces 0, 2, 4: 20/42/20, genus 2.
+
+    Returns:
+        The ids of the new edges (the hull's and the tubes').
+
+    Raises:
+        DLFLError: fewer than two faces, a repeated or gone face, a face of
+            fewer than 3 corners, points all in one plane, or a face with no
+            hull face facing it (TopMod skipped it silently). The mesh is unchanged.
+    """
+    faces = [int(f) for f in faces]
+    _check_handle_faces(mesh, faces)
+    normals = [polygon_normal(face_points(mesh, f)) for f in faces]
+    points = _hub_points(mesh, faces, normals, extrude, scale)
+    polygons = convex_hull_polygons(points)
+    if float(normals[0] @ (face_points(mesh, faces[0]).mean(axis=0) - points.mean(axis=0))) > 0:
+        polygons = [poly[::-1] for poly in polygons]
+    partner = _facing_polygons(points, polygons, faces, normals)
+    first = mesh.next_ids()[1]
+    hull_faces = add_polyhedron(mesh, points, polygons)
+    for face, poly in zip(faces, partner, strict=True):
+        c1, c2 = closest_corners(mesh, face, hull_faces[poly])
+        _quad_band(mesh, c1, c2)
+    return _new_edges(mesh, first)
+
+
+def _check_handle_faces(mesh: Mesh, faces: list[int]) -> None:
+    if len(faces) < 2 or len(set(faces)) != len(faces):
+        raise DLFLError(f"multi_face_handle needs two or more different faces, got {faces}")
+    for f in faces:
+        if not mesh.has_face(f):
+            raise DLFLError(f"face {f} does not exist (deleted or never made)")
+        if mesh.face_size(f) < 3 or not np.any(polygon_normal(face_points(mesh, f))):
+            raise DLFLError(f"face {f} has no normal (fewer than 3 corners or degenerate)")
+
+
+def _hub_points(mesh: Mesh, faces: list[int], normals: list[np.ndarray], extrude: float,
+                scale: float) -> np.ndarray:
+    """``(k, 3)`` the pushed face points, coincident ones (within 1e-2) kept once."""
+    kept: list[np.ndarray] = []
+    for f, normal in zip(faces, normals, strict=True):
+        for p in face_points(mesh, f) + extrude * normal:
+            if all(float((p - q) @ (p - q)) >= 1e-4 for q in kept):
+                kept.append(p)
+    points = np.array(kept)
+    factor = abs(scale)
+    if factor > 1e-12 and abs(factor - 1.0) > 1e-12:
+        points = _scale_about_centroid(points, factor)
+    return points
+
+
+def _facing_polygons(points: np.ndarray, polygons: list[list[int]], faces: list[int],
+                     normals: list[np.ndarray]) -> list[int]:
+    """For each selected face, the hull polygon whose normal is opposite to its own."""
+    hull_normals = [polygon_normal(points[poly]) for poly in polygons]
+    partner = []
+    for f, normal in zip(faces, normals, strict=True):
+        match = [i for i, n in enumerate(hull_normals) if abs(1.0 + float(n @ normal)) < 1e-6]
+        free = [i for i in match if i not in partner]
+        if not free:
+            raise DLFLError(f"face {f} has no hull face facing it; try another extrude or scale")
+        partner.append(free[0])
+    return partner
