@@ -11,6 +11,7 @@ import contextlib
 import contextvars
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field, replace
+from typing import Any
 
 import numpy as np
 
@@ -62,6 +63,8 @@ class Scene:
         step_hook: called with a label after every modeling command (the runner
             installs one to record steps and to pause or cancel a run).
         parameters: values for ``param()`` declarations (set by the runner).
+        declarations: the :class:`~livemod.dlfl.params.ParamSpec` of every
+            ``param()`` call of the current run, by name, in call order.
     """
 
     def __init__(self) -> None:
@@ -70,6 +73,8 @@ class Scene:
         self.selection = Selection()
         self.step_hook: StepHook | None = None
         self.parameters: dict[str, object] = {}
+        # name -> ParamSpec of the param() calls of the current run, in order
+        self.declarations: dict[str, Any] = {}
         self._next_object = 0
         self._command_depth = 0
 
