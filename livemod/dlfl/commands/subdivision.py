@@ -1,5 +1,84 @@
-"""Thesis commands of the remeshing family: subdivide, subdivideFace(s), dual."""
+"""Thesis commands of the remeshing family: subdivide, subdivideFace(s), dual.
+
+Thin wrappers over :mod:`livemod.dlfl.subdivision` acting on the current object.
+Differences from TopMod's Python module (TOPMOD.md section 8): every option is
+honoured (TopMod ignored most of them), and ``subdivideFaces`` with one face
+honours ``usequads``.
+"""
 
 from __future__ import annotations
 
-__all__: list[str] = []
+from collections.abc import Iterable
+from typing import Any
+
+from .. import subdivision as _subdivision
+from ..errors import DLFLError
+from ._base import mesh, modeling_command, scene
+
+__all__ = ["subdivide", "subdivideFace", "subdivideFaces", "dual"]
+
+
+@modeling_command
+def subdivide(scheme: str, *options: Any, **keywords: Any) -> None:
+    """Remesh the current object with ``scheme`` (TOPMOD.md section 3 names).
+
+    Options may be positional, in TopMod's argument order
+    (``subdivide("checker", 0.25)``, ``subdivide("double-stellate", 0.1, 0.2)``),
+    or by keyword; ``max_faces=`` overrides the face budget.
+
+    Raises:
+        DLFLError: an unknown scheme (listing the valid names), too many options,
+            an unknown option, a bad value or the face budget; the mesh is unchanged.
+    """
+    order = _subdivision.scheme_options(scheme)
+    if len(options) > len(order):
+        names = ", ".join(order) or "none"
+        raise DLFLError(f"subdivide({scheme!r}, ...) takes at most {len(order)} options "
+                        f"({names}), got {len(options)}")
+    given = dict(zip(order, options, strict=False))
+    for name in keywords:
+        if name in given:
+            raise DLFLError(f"subdivide({scheme!r}): option {name!r} given twice")
+    _subdivision.subdivide(mesh(), scheme, **given, **keywords)
+
+
+def _face_list(faceids: Any) -> list[int]:
+    if faceids is None:
+        return list(scene().selection.faces)
+    if isinstance(faceids, int) and not isinstance(faceids, bool):
+        return [faceids]
+    if isinstance(faceids, Iterable) and not isinstance(faceids, str | bytes):
+        ids = list(faceids)
+        if all(isinstance(f, int) and not isinstance(f, bool) for f in ids):
+            return ids
+    raise DLFLError(f"faceids must be a face id or a list of face ids, got {faceids!r}")
+
+
+@modeling_command
+def subdivideFace(faceid: int, usequads: bool = True) -> None:
+    """Split one face about its centroid: quads (edges split) or a triangle fan.
+
+    Raises:
+        DLFLError: ``faceid`` is not a face.
+    """
+    if isinstance(faceid, bool) or not isinstance(faceid, int):
+        raise DLFLError(f"faceid must be a face id, got {faceid!r}")
+    _subdivision.subdivide_faces(mesh(), [faceid], usequads=bool(usequads))
+
+
+@modeling_command
+def subdivideFaces(faceids: Iterable[int] | None = None, usequads: bool = True) -> None:
+    """Split several faces (default: the selected ones) about their centroids.
+
+    Edges shared by two of the faces are split once.
+
+    Raises:
+        DLFLError: an id that is not a face.
+    """
+    _subdivision.subdivide_faces(mesh(), _face_list(faceids), usequads=bool(usequads))
+
+
+@modeling_command
+def dual(accurate: bool = False) -> None:
+    """Replace the current object by its dual (vertices at the face centroids)."""
+    _subdivision.dual(mesh(), accurate=bool(accurate))

@@ -23,8 +23,9 @@ dual-checkerboard          dual, checker, dual
 ========================== ===========================================
 
 Otherwise a composite's options go to its middle step. A composite that fails leaves the
-mesh unchanged (it works on a copy). ``sierpinsky`` is not provided here (it is
-a sculpting operation, TOPMOD.md section 5).
+mesh unchanged (it works on a copy). ``sierpinsky`` (TopMod's
+``multiConnectMidpoints``, TOPMOD.md section 5) and ``modified-corner-cut`` are
+implemented by the sculpting family and registered here by delegation.
 """
 
 from __future__ import annotations
@@ -78,6 +79,21 @@ def modified_corner_cut(mesh: Mesh, *, thickness: float = 0.25,
     cut(mesh, thickness)
 
 
+def sierpinsky(mesh: Mesh, *, max_faces: int | None = None) -> None:
+    """Sierpinsky (TopMod ``multiConnectMidpoints``, "sierpinsky"): delegates to
+    :func:`livemod.dlfl.sierpinsky.sierpinsky`. Cube: 20/60/32, genus 5.
+
+    Raises:
+        DLFLError: the face budget, or input that scheme refuses.
+    """
+    from ..sierpinsky import sierpinsky as run
+    from ._layout import check_budget, read_topology
+
+    t = read_topology(mesh)
+    check_budget(t, t.nf + t.nv, "sierpinsky", max_faces)
+    run(mesh)
+
+
 def _composite(name: str, steps: tuple[Scheme, Scheme, Scheme], main: int) -> Scheme:
     """A scheme running three ``steps``; its options go to ``steps[main]``."""
 
@@ -123,6 +139,7 @@ SCHEMES: dict[str, Scheme] = {
     "triangulate": triangulate,
     "dual": dual,
     "subdivide-all-edges": subdivide_all_edges,
+    "sierpinsky": sierpinsky,
 }
 SCHEMES.update({
     "root3": _composite("root3", (dual, honeycomb, dual), 1),
@@ -186,7 +203,7 @@ __all__ = [
     "SCHEMES", "catmull_clark", "checker", "corner_cut", "dome", "doo_sabin", "doo_sabin_bc",
     "doo_sabin_bc_new", "double_stellate", "dual", "dual_1264", "fractal", "honeycomb",
     "linear_vertex", "loop", "loop_style", "modified_corner_cut", "pentagon",
-    "pentagon_preserve", "root4", "scheme_options", "settings", "simplest", "sqrt3", "star",
+    "pentagon_preserve", "root4", "scheme_options", "settings", "sierpinsky", "simplest", "sqrt3", "star",
     "stellate", "subdivide", "subdivide_all_edges", "subdivide_faces", "triangulate",
     "vertex_cut",
 ]

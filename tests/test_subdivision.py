@@ -1,0 +1,360 @@
+"""Remeshing schemes: TopMod's cube table, counts on other meshes, genus, odd inputs."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from livemod.dlfl import DLFLError, Mesh, mesh_arrays, validate
+from livemod.dlfl.analysis import face_size_histogram, genus, num_components
+from livemod.dlfl.io.obj import read_obj
+from livemod.dlfl.shapes import cube, grid, torus
+from livemod.dlfl.subdivision import SCHEMES, settings, subdivide, subdivide_faces
+from tests.meshes import euler_ok, path_face, snapshot, two_cubes
+
+OBJS = Path(__file__).resolve().parents[2] / "shared" / "data" / "topmod-objs"
+
+# TOPMOD.md section 3, row by row: scheme -> (V, E, F, {face size: count})
+CUBE_TABLE = {
+    "loop": (20, 48, 30, {3: 24, 4: 6}),
+    "checker": (56, 108, 54, {4: 54}),
+    "simplest": (12, 24, 14, {3: 8, 4: 6}),
+    "vertex-cut": (24, 36, 14, {3: 8, 8: 6}),
+    "pentagon": (38, 60, 24, {5: 24}),
+    "pentagon-preserve": (44, 72, 30, {4: 6, 5: 24}),
+    "dual-pentagon": (44, 72, 30, {4: 6, 5: 24}),
+    "honeycomb": (24, 36, 14, {4: 6, 6: 8}),
+    "doo-sabin": (24, 48, 26, {3: 8, 4: 18}),
+    "doo-sabin-bc": (48, 84, 38, {3: 8, 4: 24, 8: 6}),
+    "doo-sabin-bc-new": (56, 84, 30, {5: 24, 8: 6}),
+    "corner-cut": (24, 48, 26, {3: 8, 4: 18}),
+    "modified-corner-cut": (24, 48, 26, {3: 8, 4: 18}),
+    "root4": (32, 48, 18, {4: 6, 6: 12}),
+    "catmull-clark": (26, 48, 24, {4: 24}),
+    "star": (38, 108, 72, {3: 72}),
+    "sqrt3": (14, 36, 24, {3: 24}),
+    "fractal": (26, 72, 48, {3: 48}),
+    "stellate": (14, 24, 12, {4: 12}),
+    "double-stellate": (38, 72, 36, {4: 36}),
+    "dome": (716, 1392, 678, {4: 672, 16: 6}),
+    "dual-12.6.4": (48, 72, 26, {4: 12, 6: 8, 8: 6}),
+    "loop-style": (20, 48, 30, {3: 24, 4: 6}),
+    "linear-vertex": (26, 48, 24, {4: 24}),
+    "allfaces": (26, 48, 24, {4: 24}),
+    "triangulate": (14, 36, 24, {3: 24}),
+    "dual": (6, 12, 8, {3: 8}),
+    "root3": (14, 36, 24, {3: 24}),
+    "root-3": (14, 36, 24, {3: 24}),
+    "cubic-pentagonalization": (38, 60, 24, {5: 24}),
+    "dual-pentagonalization": (24, 60, 38, {3: 32, 4: 6}),
+    "dual-pentagon-preserving": (32, 72, 42, {3: 24, 4: 18}),
+    "six-preserving-loop-style": (20, 48, 30, {3: 24, 4: 6}),
+    "dual-loop": (32, 48, 18, {4: 6, 6: 12}),
+    "12.6.4": (26, 72, 48, {3: 48}),
+    "dual-checkerboard": (56, 108, 54, {4: 54}),
+    "sierpinsky": (20, 60, 32, {3: 24, 6: 8}),
+}
+# schemes whose results TOPMOD.md gives with options
+CUBE_OPTIONS = {"linear-vertex": {"usequads": False}}
+
+ALL_SCHEMES = sorted(set(SCHEMES) - {"subdivide-all-edges"})
+# implemented by the sculpting family (wireframe.py, sierpinsky.py), registered here
+DELEGATED = {"modified-corner-cut", "sierpinsky"}
+OWN_SCHEMES = sorted(set(ALL_SCHEMES) - DELEGATED)
+
+
+def checked(mesh: Mesh) -> tuple[int, int, int]:
+    validate(mesh)
+    assert euler_ok(mesh)
+    return mesh.counts()
+
+
+@pytest.mark.parametrize("scheme", sorted(CUBE_TABLE))
+def test_cube_table_row(scheme):
+    v, e, f, sizes = CUBE_TABLE[scheme]
+    m = cube()
+    subdivide(m, scheme)
+    assert checked(m) == (v, e, f)
+    assert dict(face_size_histogram(m)) == sizes
+    assert genus(m) == (5 if scheme == "sierpinsky" else 0)
+
+
+def test_every_registered_scheme_has_a_cube_row():
+    assert set(ALL_SCHEMES) <= set(CUBE_TABLE)
+
+
+def test_gui_stellate_is_linear_vertex_with_triangles():
+    m = cube()
+    subdivide(m, "linear-vertex", usequads=False)
+    assert checked(m) == (14, 36, 24)
+    assert dict(face_size_histogram(m)) == {3: 24}
+
+
+def _counts(mesh: Mesh) -> dict[str, int]:
+    a = mesh_arrays(mesh)
+    v, e, f = a.counts
+    return {"V": v, "E": e, "F": f, "C": len(a.corner_vertex)}
+
+
+# new (V, E, F) from old V, E, F, C on closed meshes whose vertices have valence >= 3
+FORMULAS = {
+    "loop": lambda V, E, F, C: (V + E, 2 * E + C, F + C),
+    "loop-style": lambda V, E, F, C: (V + E, 2 * E + C, F + C),
+    "checker": lambda V, E, F, C: (V + 2 * C, E + 4 * C, F + 2 * C),
+    "simplest": lambda V, E, F, C: (E, C, F + V),
+    "vertex-cut": lambda V, E, F, C: (C, E + C, F + V),
+    "pentagon": lambda V, E, F, C: (V + C + F, 2 * C + E, C),
+    "pentagon-preserve": lambda V, E, F, C: (V + E + C, 3 * C, F + C),
+    "honeycomb": lambda V, E, F, C: (C, C + E, F + V),
+    "doo-sabin": lambda V, E, F, C: (C, 2 * C, F + E + V),
+    "corner-cut": lambda V, E, F, C: (C, 2 * C, F + E + V),
+    "modified-corner-cut": lambda V, E, F, C: (C, 2 * C, F + E + V),
+    "root4": lambda V, E, F, C: (V + C, 2 * C, F + E),
+    "catmull-clark": lambda V, E, F, C: (V + E + F, 2 * E + C, C),
+    "linear-vertex": lambda V, E, F, C: (V + E + F, 2 * E + C, C),
+    "star": lambda V, E, F, C: (V + F + C, E + 4 * C, 3 * C),
+    "sqrt3": lambda V, E, F, C: (V + F, 3 * E, 2 * E),
+    "fractal": lambda V, E, F, C: (V + E + F, 3 * C, 2 * C),
+    "stellate": lambda V, E, F, C: (V + F, C, E),
+    "double-stellate": lambda V, E, F, C: (V + F + C, 3 * C, E + C),
+    "dual": lambda V, E, F, C: (F, E, V),
+    "dual-12.6.4": lambda V, E, F, C: (2 * C, 3 * C, F + E + V),
+    "doo-sabin-bc-new": lambda V, E, F, C: (V + 2 * C, 3 * C + E, F + C),
+    "dome": lambda V, E, F, C: (V + 3 * E + 28 * C, 4 * E + 56 * C, F + 28 * C),
+}
+
+
+def topmod_mesh(name: str) -> Mesh:
+    return read_obj(OBJS / f"{name}.obj")
+
+
+TEST_MESHES = {
+    "tetrahedron": lambda: topmod_mesh("tetrahedron"),
+    "octahedron": lambda: topmod_mesh("octahedron"),
+    "dodecahedron": lambda: topmod_mesh("dodecahedron"),
+    "icosahedron": lambda: topmod_mesh("icosahedron"),
+    "torus": lambda: torus(8, 6),
+    "genus3": lambda: topmod_mesh("genus3hexa1"),
+}
+
+
+@pytest.mark.parametrize("name", sorted(TEST_MESHES))
+@pytest.mark.parametrize("scheme", sorted(FORMULAS))
+def test_counts_follow_the_rule_and_genus_is_kept(scheme, name):
+    m = TEST_MESHES[name]()
+    before, old_genus = _counts(m), genus(m)
+    subdivide(m, scheme)
+    assert checked(m) == FORMULAS[scheme](**before)
+    assert genus(m) == old_genus
+
+
+GENUS_KEEPING = sorted(set(ALL_SCHEMES) - {"sierpinsky"})
+
+
+@pytest.mark.parametrize("scheme", GENUS_KEEPING)
+def test_genus_three_is_kept_by_every_scheme(scheme):
+    m = topmod_mesh("genus3hexa1")
+    subdivide(m, scheme)
+    checked(m)
+    assert genus(m) == 3
+
+
+@pytest.mark.parametrize("scheme", GENUS_KEEPING)
+def test_torus_genus_is_kept(scheme):
+    m = torus(6, 4)
+    subdivide(m, scheme)
+    checked(m)
+    assert genus(m) == 1
+
+
+@pytest.mark.parametrize("scheme", OWN_SCHEMES)
+def test_several_components_and_point_spheres_survive(scheme):
+    m = two_cubes()
+    m.create_vertex((9.0, 9.0, 9.0))
+    subdivide(m, scheme)
+    checked(m)
+    assert num_components(m) == 3
+    a = mesh_arrays(m)
+    assert np.isclose(a.positions, [9.0, 9.0, 9.0]).all(axis=1).sum() == 1
+
+
+def pyramid(n: int) -> Mesh:
+    """An n-sided pyramid: apex of valence n, an n-gon base, n triangles."""
+    from livemod.dlfl import from_polygons
+
+    angles = 2 * np.pi * np.arange(n) / n
+    base = np.stack([np.cos(angles), np.sin(angles), np.zeros(n)], axis=1)
+    positions = np.concatenate([base, [[0.0, 0.0, 1.0]]])
+    faces = [list(range(n - 1, -1, -1))] + [[i, (i + 1) % n, n] for i in range(n)]
+    return from_polygons(positions, faces)
+
+
+@pytest.mark.parametrize("n", range(3, 9))
+@pytest.mark.parametrize("scheme", ["catmull-clark", "doo-sabin", "loop"])
+def test_ngons_and_valence_3_to_8(scheme, n):
+    m = pyramid(n)
+    before = _counts(m)
+    subdivide(m, scheme)
+    assert checked(m) == FORMULAS[scheme](**before)
+    assert genus(m) == 0
+    # symmetric input, symmetric output: the n-fold rotation maps the points onto themselves
+    angle = 2 * np.pi / n
+    rotation = np.array([[np.cos(angle), -np.sin(angle), 0], [np.sin(angle), np.cos(angle), 0],
+                         [0, 0, 1]])
+    assert invariant_under(mesh_arrays(m).positions, rotation)
+
+
+def invariant_under(points: np.ndarray, matrix: np.ndarray) -> bool:
+    """Whether ``matrix`` maps the point set onto itself (to 1e-9)."""
+    moved = points @ matrix.T
+    gaps = np.linalg.norm(moved[:, None, :] - points[None, :, :], axis=2).min(axis=1)
+    return bool((gaps < 1e-9).all())
+
+
+def face_visiting_vertices_twice() -> Mesh:
+    """The cube with an edge from a top corner to a bottom corner: 8/13/5, genus 1;
+    the merged face visits both end vertices twice."""
+    m = cube()
+    top = next(f for f in m.face_ids() if np.allclose(
+        [m.position(v)[1] for v in m.face_vertices(f)], 1.0))
+    bottom = next(f for f in m.face_ids() if np.allclose(
+        [m.position(v)[1] for v in m.face_vertices(f)], -1.0))
+    m.insert_edge(m.face_corners(top)[0], m.face_corners(bottom)[0])
+    assert m.counts() == (8, 13, 5) and genus(m) == 1
+    return m
+
+
+@pytest.mark.parametrize("scheme", OWN_SCHEMES)
+def test_faces_visiting_a_vertex_twice(scheme):
+    m = face_visiting_vertices_twice()
+    before = _counts(m)
+    subdivide(m, scheme)
+    checked(m)
+    assert genus(m) == 1
+    if scheme in FORMULAS:
+        assert m.counts() == FORMULAS[scheme](**before)
+
+
+PER_FACE = ["catmull-clark", "loop", "doo-sabin", "linear-vertex", "pentagon", "fractal",
+            "star", "checker", "dome", "honeycomb", "vertex-cut", "simplest"]
+
+
+@pytest.mark.parametrize("scheme", OWN_SCHEMES)
+def test_open_grid_gives_a_valid_mesh(scheme):
+    m = grid(3, 2)
+    subdivide(m, scheme)
+    checked(m)
+
+
+@pytest.mark.parametrize("scheme", PER_FACE)
+def test_faces_made_from_a_hole_stay_holes(scheme):
+    m = grid(3, 2)
+    subdivide(m, scheme)
+    assert any(m.is_hole(f) for f in m.face_ids())
+
+
+def test_doo_sabin_joins_a_valence_two_vertex_by_one_edge():
+    m = cube()
+    subdivide(m, "subdivide-all-edges")
+    assert checked(m) == (20, 24, 6)
+    subdivide(m, "doo-sabin")
+    assert checked(m) == (48, 84, 38)
+
+
+def test_path_face_does_not_crash_catmull_clark():
+    m = path_face()
+    subdivide(m, "catmull-clark")
+    checked(m)
+
+
+# -- selected faces -------------------------------------------------------------
+
+def test_one_face_without_quads_gives_triangles():
+    m = cube()
+    f = m.face_ids()[0]
+    subdivide_faces(m, [f], usequads=False)
+    assert checked(m) == (9, 16, 9)
+    assert dict(face_size_histogram(m)) == {3: 4, 4: 5}
+
+
+def test_one_face_with_quads_splits_its_edges():
+    m = cube()
+    subdivide_faces(m, [m.face_ids()[0]])
+    assert checked(m) == (13, 20, 9)
+    assert dict(face_size_histogram(m)) == {4: 5, 5: 4}
+
+
+def test_shared_edge_is_split_once():
+    m = cube()
+    f0 = m.face_ids()[0]
+    e = m.face_edges(f0)[0]
+    f1 = next(f for f in m.edge_faces(e) if f != f0)
+    subdivide_faces(m, [f0, f1])
+    assert checked(m) == (17, 27, 12)
+
+
+def test_subdivide_faces_refuses_unknown_face_and_keeps_the_mesh():
+    m = cube()
+    before = snapshot(m)
+    with pytest.raises(DLFLError, match="face id 999"):
+        subdivide_faces(m, [999])
+    assert snapshot(m) == before
+
+
+# -- errors and the budget ----------------------------------------------------
+
+def test_unknown_scheme_lists_the_valid_names():
+    m = cube()
+    before = snapshot(m)
+    with pytest.raises(DLFLError, match="unknown subdivision scheme 'catmul'.*catmull-clark"):
+        subdivide(m, "catmul")
+    assert snapshot(m) == before
+
+
+@pytest.mark.parametrize(("scheme", "options", "message"), [
+    ("catmull-clark", {"levels": 2}, "no option 'levels'"),
+    ("checker", {"thickness": 0.7}, "thickness must be in"),
+    ("checker", {"thickness": "thin"}, "thickness must be a number"),
+    ("corner-cut", {"alpha": 0.1}, "alpha must be in"),
+    ("vertex-cut", {"offset": float("nan")}, "offset must be finite"),
+    ("root-3", {"scale": 2}, "no option 'scale'"),
+    ("dual-loop", {"max_faces": 20}, "would produce"),
+    ("star", {"offset": True}, "offset must be a number"),
+])
+def test_bad_options_raise_and_keep_the_mesh(scheme, options, message):
+    m = cube()
+    before = snapshot(m)
+    with pytest.raises(DLFLError, match=message):
+        subdivide(m, scheme, **options)
+    assert snapshot(m) == before
+
+
+def test_face_budget_names_the_count_before_building():
+    m = cube()
+    before = snapshot(m)
+    with pytest.raises(DLFLError, match="would produce 24 faces, more than the budget of 10"):
+        subdivide(m, "catmull-clark", max_faces=10)
+    assert snapshot(m) == before
+
+
+def test_module_budget_setting(monkeypatch):
+    monkeypatch.setattr(settings, "max_faces", 100)
+    m = cube()
+    subdivide(m, "catmull-clark")
+    subdivide(m, "catmull-clark")
+    with pytest.raises(DLFLError, match="would produce 384 faces"):
+        subdivide(m, "catmull-clark")
+    assert m.counts() == (98, 192, 96)
+
+
+def test_default_budget_is_twenty_million():
+    assert settings.max_faces == 20_000_000
+
+
+def test_fresh_ids_after_remeshing():
+    m = cube()
+    old = set(m.face_ids().tolist())
+    subdivide(m, "catmull-clark")
+    assert not old & set(m.face_ids().tolist())
