@@ -122,7 +122,7 @@ def _article(kind: str) -> str:
 
 
 def make_spec(
-    name: str, default: Any, min: float | None = None, max: float | None = None,
+    name: str, default: Any, min: float | None = None, max: float | None = None,  # noqa: A002  (param's own names)
     step: float | None = None, choices: Sequence[Any] | None = None, doc: str = "",
 ) -> ParamSpec:
     """Build and check a :class:`ParamSpec` from the arguments of ``param()``.
