@@ -1,1 +1,72 @@
-"""File formats: OBJ, TopMod's .dlfl, STL and PLY (placeholder until the io work lands)."""
+"""File formats: OBJ and TopMod's .dlfl (read and write), STL and PLY (write).
+
+:func:`load_mesh` and :func:`save_mesh` choose the format from the file
+extension (or ``format=``). Every writer replaces its target atomically (see
+:func:`atomic_write`), and no reader executes anything it reads. docs/formats.md
+describes what each format accepts and writes.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Callable, Mapping
+
+from ..errors import DLFLError
+from ..mesh import Mesh
+from .atomic import atomic_write
+from .dlflfile import read_dlfl, write_dlfl
+from .obj import read_obj, write_obj
+from .ply import write_ply
+from .stl import write_stl
+
+__all__ = [
+    "atomic_write", "load_mesh", "read_dlfl", "read_obj", "save_mesh", "write_dlfl",
+    "write_obj", "write_ply", "write_stl",
+]
+
+READERS: dict[str, Callable[[str], Mesh]] = {"obj": read_obj, "dlfl": read_dlfl}
+WRITERS: dict[str, Callable[[Mesh, str], None]] = {
+    "obj": write_obj, "dlfl": write_dlfl, "stl": write_stl, "ply": write_ply,
+}
+
+
+def _format_of(path: str, format: str | None, table: Mapping[str, object], verb: str) -> str:  # noqa: A002
+    """The format key for ``path`` (its extension unless ``format`` is given)."""
+    key = (format or os.path.splitext(path)[1]).lower().lstrip(".")
+    if key not in table:
+        valid = ", ".join(f".{k}" for k in table)
+        what = f"format {format!r}" if format else f"the extension of {path!r}"
+        raise DLFLError(f"cannot {verb} {what}: use one of {valid}")
+    return key
+
+
+def load_mesh(path: str | os.PathLike[str], *, format: str | None = None) -> Mesh:  # noqa: A002
+    """Read a mesh from an ``.obj`` or ``.dlfl`` file.
+
+    Args:
+        path: the file.
+        format: ``"obj"`` or ``"dlfl"`` to override the extension.
+
+    Raises:
+        DLFLError: an unknown format, or a malformed file (``file:line: ...``).
+        OSError: the file cannot be read.
+    """
+    name = os.fspath(path)
+    return READERS[_format_of(name, format, READERS, "read")](name)
+
+
+def save_mesh(mesh: Mesh, path: str | os.PathLike[str], *, format: str | None = None) -> None:  # noqa: A002
+    """Write a mesh as ``.obj``, ``.dlfl``, ``.stl`` or ``.ply``, atomically.
+
+    Args:
+        mesh: the mesh.
+        path: the target file; an existing file is replaced only on success.
+        format: ``"obj"``, ``"dlfl"``, ``"stl"`` or ``"ply"`` to override the
+            extension.
+
+    Raises:
+        DLFLError: an unknown format.
+        OSError: the file cannot be written.
+    """
+    name = os.fspath(path)
+    WRITERS[_format_of(name, format, WRITERS, "write")](mesh, name)

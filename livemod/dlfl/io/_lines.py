@@ -1,0 +1,247 @@
+"""Vectorized tokenizing of text lines held in one uint8 buffer.
+
+The readers split a file into lines once, copy the lines of one kind (``v``,
+``f``, ...) into a buffer and parse all of them with whole-array numpy steps.
+These fast paths only accept plain input (digits, ``.``, ``-``, separators; for
+indices also ``/``); every line they do not accept is reported back, and the
+reader parses it with plain Python, which is the reference behaviour and the
+one that raises errors. So the fast path never needs to explain an error.
+
+Buffers follow one convention: byte 0 is a separator (the blanked keyword of the
+first line) and the last byte is ``\\n``, so every token has a separator on
+both sides.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ._numtext import decimal_to_float
+
+SEP, DIGIT, DOT, MINUS, SLASH, ODD = range(6)
+_INT_POW10 = np.array([10**k for k in range(19)], dtype=np.int64)
+
+
+def _classes(separators: bytes, extra: dict[int, int]) -> np.ndarray:
+    table = np.full(256, ODD, dtype=np.uint8)
+    table[list(separators)] = SEP
+    table[ord("0") : ord("9") + 1] = DIGIT
+    table[ord("-")] = MINUS
+    for byte, cls in extra.items():
+        table[byte] = cls
+    return table
+
+
+_NUMBER_CLASSES = _classes(b" \t\r\n\v\f,", {ord("."): DOT})
+_INDEX_CLASSES = _classes(b" \t\r\n\v\f", {ord("/"): SLASH})
+
+
+def split_lines(data: bytes) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Split text into lines without copying.
+
+    Args:
+        data: the file contents; must end with ``b"\\n"``.
+
+    Returns:
+        ``(buf, starts, ends)``: ``(B,)`` uint8 read-only view of ``data``, and
+        ``(L,)`` int64 start offsets and offsets of the closing ``\\n``.
+    """
+    buf = np.frombuffer(data, dtype=np.uint8)
+    ends = np.flatnonzero(buf == 10)
+    starts = np.empty_like(ends)
+    if len(ends):
+        starts[0] = 0
+        starts[1:] = ends[:-1] + 1
+    return buf, starts, ends
+
+
+def gather_lines(
+    buf: np.ndarray, starts: np.ndarray, ends: np.ndarray, lines: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """Copy the chosen lines into one writable buffer.
+
+    Args:
+        buf: ``(B,)`` uint8 file bytes.
+        starts, ends: ``(L,)`` line start and newline offsets.
+        lines: ``(K,)`` sorted indices of the lines to take.
+
+    Returns:
+        ``(block, block_starts)``: ``(S,)`` uint8 copy of those lines (newlines
+        included) and ``(K,)`` int64 start of each line in it.
+    """
+    if len(lines) == 0:
+        return np.zeros(0, dtype=np.uint8), np.zeros(0, dtype=np.int64)
+    lengths = ends[lines] + 1 - starts[lines]
+    block_starts = np.zeros(len(lines), dtype=np.int64)
+    np.cumsum(lengths[:-1], out=block_starts[1:])
+    # consecutive lines are contiguous in the file: copy them as one slice
+    breaks = np.flatnonzero(np.diff(lines) != 1) + 1
+    first = np.concatenate([[0], breaks])
+    last = np.concatenate([breaks - 1, [len(lines) - 1]])
+    pieces = [
+        buf[a : b + 1]
+        for a, b in zip(starts[lines[first]].tolist(), ends[lines[last]].tolist(), strict=True)
+    ]
+    return np.concatenate(pieces), block_starts
+
+
+def _runs(mask: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Start and end (exclusive) of each run of True; ``mask[0]``/``mask[-1]`` False."""
+    edges = np.flatnonzero(mask[1:] != mask[:-1]) + 1
+    return edges[0::2], edges[1::2]
+
+
+def _owner(starts: np.ndarray, positions: np.ndarray) -> np.ndarray:
+    """Index of the segment (line or token) each position falls in."""
+    return np.searchsorted(starts, positions, side="right") - 1
+
+
+def _run_values(buf: np.ndarray, is_digit: np.ndarray, run_starts: np.ndarray,
+                run_ends: np.ndarray) -> np.ndarray:
+    """``(R,)`` int64 value of each digit run (saturating at 2**63 - 1)."""
+    if len(run_starts) == 0:
+        return np.zeros(0, dtype=np.int64)
+    # every non-digit byte becomes a space, without a branchy np.where
+    digits_only = is_digit.view(np.uint8) * (buf - np.uint8(32)) + np.uint8(32)
+    values = np.fromstring(digits_only.tobytes(), dtype=np.int64, sep=" ")
+    if len(values) == len(run_starts):
+        return values
+    # never expected; stay correct if numpy's parser ever disagrees on run count
+    text = buf.tobytes()
+    return np.array(
+        [min(int(text[a:b]), 2**63 - 1)
+         for a, b in zip(run_starts.tolist(), run_ends.tolist(), strict=True)],
+        dtype=np.int64,
+    )
+
+
+class _Scan:
+    """Digit runs and the classes of the non-digit bytes of a line buffer."""
+
+    def __init__(self, buf: np.ndarray, classes: np.ndarray) -> None:
+        self.buf = buf
+        self.is_digit = (buf - np.uint8(48)) < 10
+        self.other = np.flatnonzero(~self.is_digit)  # (N,) positions of non-digits
+        self.other_cls = classes[buf[self.other]]
+        self.classes = classes
+        self.run_starts, self.run_ends = _runs(self.is_digit)
+
+    def cls(self, positions: np.ndarray) -> np.ndarray:
+        """Class of the bytes at ``positions`` (any positions)."""
+        return self.classes[self.buf[positions]]
+
+    def positions(self, cls: int) -> np.ndarray:
+        return self.other[self.other_cls == cls]
+
+    def values(self) -> np.ndarray:
+        return _run_values(self.buf, self.is_digit, self.run_starts, self.run_ends)
+
+
+def _lines_of(starts: np.ndarray, positions: np.ndarray) -> np.ndarray:
+    """``(L,)`` bool: lines containing any of ``positions``."""
+    flagged = np.zeros(len(starts), dtype=bool)
+    flagged[_owner(starts, positions)] = True
+    return flagged
+
+
+def _per_line(starts: np.ndarray, token_starts: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """``(first token index, token count)`` of each line, both ``(L,)`` int64."""
+    first = np.searchsorted(token_starts, starts)
+    counts = np.diff(np.append(first, len(token_starts)))
+    return first, counts
+
+
+def parse_number_lines(buf: np.ndarray, starts: np.ndarray, want: int) -> tuple[np.ndarray, np.ndarray]:
+    """The first ``want`` decimal numbers of every line.
+
+    The fast path takes numbers of the form ``[-]digits[.digits]`` separated by
+    blanks or commas.
+
+    Args:
+        buf: ``(S,)`` uint8 lines with their keyword blanked (see module doc).
+        starts: ``(L,)`` int64 line starts.
+        want: how many numbers to take per line; later ones are ignored.
+
+    Returns:
+        ``(values, accepted)``: ``(L, want)`` float64 and ``(L,)`` bool; lines
+        not accepted (other characters, too few or malformed numbers) hold
+        garbage and must be parsed by the caller.
+    """
+    num_lines = len(starts)
+    scan = _Scan(buf, _NUMBER_CLASSES)
+    rs, re = scan.run_starts, scan.run_ends
+    if num_lines == 0 or len(rs) == 0:
+        return np.zeros((num_lines, want)), np.zeros(num_lines, dtype=bool)
+    bad = [scan.positions(ODD)]
+    minus, dot = scan.positions(MINUS), scan.positions(DOT)
+    bad.append(minus[(scan.cls(minus - 1) != SEP) | (scan.cls(minus + 1) != DIGIT)])
+    bad.append(dot[(scan.cls(dot - 1) != DIGIT) | (scan.cls(dot + 1) != DIGIT)])
+    is_frac = scan.cls(rs - 1) == DOT
+    after = scan.cls(re)
+    bad.append(rs[(after != SEP) & ((after != DOT) | is_frac) | (re - rs > 18)])
+    rejected = _lines_of(starts, np.concatenate(bad))
+    lead = np.flatnonzero(~is_frac)  # every number starts with its integer run
+    first, counts = _per_line(starts, rs[lead])
+    rejected |= counts < want
+    values = _numbers(scan, lead, is_frac)
+    pick = np.minimum(first[:, None] + np.arange(want), len(lead) - 1)
+    return values[pick], ~rejected
+
+
+def _numbers(scan: _Scan, lead: np.ndarray, is_frac: np.ndarray) -> np.ndarray:
+    """``(T,)`` float64 value of each number ``[-]int[.frac]`` led by run ``lead``."""
+    rs, re = scan.run_starts, scan.run_ends
+    run_values = scan.values()
+    int_val, int_len = run_values[lead], (re - rs)[lead]
+    has_frac = np.zeros(len(lead), dtype=bool)
+    nxt = np.minimum(lead + 1, len(rs) - 1)
+    has_frac = is_frac[nxt] & (nxt != lead)
+    frac_val = np.where(has_frac, run_values[nxt], 0)
+    frac_len = np.where(has_frac, np.minimum((re - rs)[nxt], 18), 0)
+    fits = (int_val == 0) | (int_len + frac_len <= 18)
+    mantissa = np.where(fits, int_val * _INT_POW10[frac_len] + frac_val, 0)
+    values, decided = decimal_to_float(mantissa, frac_len)
+    values = np.where(scan.buf[rs[lead] - 1] == ord("-"), -values, values)
+    for i in np.flatnonzero(~(fits & decided)).tolist():
+        start = rs[lead[i]] - int(scan.buf[rs[lead[i]] - 1] == ord("-"))
+        end = re[lead[i] + 1] if has_frac[i] else re[lead[i]]
+        values[i] = float(scan.buf[start:end].tobytes())
+    return values
+
+
+def parse_index_lines(buf: np.ndarray, starts: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The leading integer of every token (``7``, ``-2``, ``7/1/3``, ``7//3``).
+
+    Args:
+        buf: ``(S,)`` uint8 lines with their keyword blanked (see module doc).
+        starts: ``(L,)`` int64 line starts.
+
+    Returns:
+        ``(values, counts, accepted)``: ``(T,)`` int64 leading integer of every
+        token in order, ``(L,)`` tokens per line and ``(L,)`` bool; lines not
+        accepted (no tokens, other characters, malformed tokens, more than 18
+        digits) must be parsed by the caller.
+    """
+    num_lines = len(starts)
+    scan = _Scan(buf, _INDEX_CLASSES)
+    rs, re = scan.run_starts, scan.run_ends
+    if num_lines == 0 or len(rs) == 0:
+        return np.zeros(0, np.int64), np.zeros(num_lines, np.int64), np.zeros(num_lines, bool)
+    bad = [scan.positions(ODD)]
+    minus, slash = scan.positions(MINUS), scan.positions(SLASH)
+    before_minus = scan.cls(minus - 1)
+    bad.append(minus[((before_minus != SEP) & (before_minus != SLASH))
+                     | (scan.cls(minus + 1) != DIGIT)])
+    before_slash = scan.cls(slash - 1)
+    bad.append(slash[(before_slash != DIGIT) & (before_slash != SLASH)])
+    before = scan.cls(rs - 1)
+    negative = before == MINUS
+    lead = (before == SEP) | negative & (scan.cls(np.maximum(rs - 2, 0)) == SEP)
+    after = scan.cls(re)
+    bad.append(rs[lead & (((after != SEP) & (after != SLASH)) | (re - rs > 18))])
+    rejected = _lines_of(starts, np.concatenate(bad))
+    lead_runs = np.flatnonzero(lead)
+    _, counts = _per_line(starts, rs[lead_runs])
+    rejected |= counts == 0
+    values = scan.values()[lead_runs]
+    return np.where(negative[lead_runs], -values, values), counts, ~rejected

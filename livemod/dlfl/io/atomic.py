@@ -1,0 +1,73 @@
+"""Atomic file replacement: a failed save never leaves a truncated file.
+
+Every writer in :mod:`livemod.dlfl.io` writes through :func:`atomic_write`: the
+bytes go to a temporary file in the target's folder, which is flushed, synced
+to disk and then renamed over the target with :func:`os.replace` (atomic on
+POSIX and Windows). If anything raises before the rename, the temporary file is
+removed and the old target, if any, is untouched.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import tempfile
+from collections.abc import Iterator
+from typing import BinaryIO
+
+
+@contextlib.contextmanager
+def atomic_write(path: str | os.PathLike[str]) -> Iterator[BinaryIO]:
+    """Open a binary file that replaces ``path`` only when the block succeeds.
+
+    Args:
+        path: the file to create or replace; its folder must exist.
+
+    Yields:
+        A binary file object open for writing (a temporary file beside ``path``).
+
+    Raises:
+        OSError: the folder cannot hold the temporary file, or the rename fails.
+            Whatever the block raises is re-raised after the temporary file is
+            removed.
+    """
+    target = os.path.abspath(os.fspath(path))
+    folder, name = os.path.split(target)
+    fd, tmp_path = tempfile.mkstemp(prefix=f".{name}.", suffix=".tmp", dir=folder)
+    try:
+        with os.fdopen(fd, "wb") as handle:
+            yield handle
+            handle.flush()
+            os.fsync(handle.fileno())
+        os.chmod(tmp_path, _mode_for(target))
+        os.replace(tmp_path, target)
+    except BaseException:
+        with contextlib.suppress(OSError):
+            os.unlink(tmp_path)
+        raise
+    _sync_folder(folder)
+
+
+def _mode_for(target: str) -> int:
+    """Permission bits for the new file: the old file's, else 0o644.
+
+    ``mkstemp`` creates 0o600 files; a saved mesh should be readable like any
+    other file. (Reading the umask would mean setting it, which is not
+    thread-safe, and scripts save from a worker thread.)
+    """
+    try:
+        return os.stat(target).st_mode & 0o777
+    except OSError:
+        return 0o644
+
+
+def _sync_folder(folder: str) -> None:
+    """Make the rename itself durable where the platform allows syncing a folder."""
+    if not hasattr(os, "O_DIRECTORY"):
+        return
+    with contextlib.suppress(OSError):
+        fd = os.open(folder, os.O_RDONLY | os.O_DIRECTORY)
+        try:
+            os.fsync(fd)
+        finally:
+            os.close(fd)

@@ -1,0 +1,353 @@
+"""Wavefront OBJ: vectorized reader and writer.
+
+Reading keeps ``v`` positions and ``f`` polygons and ignores everything else
+(``vn``, ``vt``, ``usemtl``, ``mtllib``, ``o``, ``g``, ``s``, ``l``, comments,
+unknown keywords). Faces take the leading index of each ``v``, ``v/t``,
+``v//n`` or ``v/t/n`` token; negative indices count back from the last vertex
+read so far. Coordinates may be separated by spaces, tabs or commas (TopMod's
+own files write ``v 1.0, 1.0, 1.0``); numbers after the third are ignored.
+Line endings ``\\n`` or ``\\r\\n``. The first ``f`` line becomes face id 0.
+
+Plain lines are parsed for the whole file at once with numpy (see
+:mod:`._lines`); any other line goes through :func:`_parse_line`, the reference
+parser, which also produces the ``file:line: what is wrong`` errors.
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..arrays import mesh_arrays
+from ..build import from_polygons
+from ..errors import DLFLError
+from ..mesh import Mesh
+from ._lines import gather_lines, parse_index_lines, parse_number_lines, split_lines
+from ._numtext import format_floats, format_uints, join_columns
+from .atomic import atomic_write
+from .source import read_source
+
+
+@dataclass
+class ObjSoup:
+    """What an OBJ file holds.
+
+    Attributes:
+        positions: ``(V, 3)`` float64, one row per ``v`` line.
+        indices: ``(C,)`` int64 0-based vertex index of every face corner.
+        offsets: ``(F + 1,)`` int64 face start offsets into ``indices``.
+        face_lines: ``(F,)`` int64 1-based line number of every ``f`` line.
+    """
+
+    positions: np.ndarray
+    indices: np.ndarray
+    offsets: np.ndarray
+    face_lines: np.ndarray
+
+
+def read_obj(source: str | os.PathLike[str] | bytes, *, name: str | None = None) -> Mesh:
+    """Load an OBJ file into a mesh.
+
+    Args:
+        source: a path, or the file contents as bytes.
+        name: the file name to use in messages (default: the path, or ``<obj>``).
+
+    Returns:
+        The mesh; face ``i`` is the ``i``-th ``f`` line, vertex ``j`` the ``j``-th
+        ``v`` line. Open boundaries get hole faces, unused vertices become
+        point-spheres, inconsistently oriented components are re-oriented (see
+        :func:`livemod.dlfl.from_polygons`).
+
+    Raises:
+        DLFLError: ``file:line: ...`` for a malformed number, an empty face, an
+            index out of range, or a mesh that is not an orientable 2-manifold.
+        OSError: the file cannot be read.
+    """
+    data, label = read_source(source, name, "<obj>")
+    soup = parse_obj(data, label)
+    return from_polygons(
+        soup.positions, soup.indices, soup.offsets, source=label, face_lines=soup.face_lines
+    )
+
+
+def parse_obj(data: bytes, label: str = "<obj>", *, fast: bool = True) -> ObjSoup:
+    """Parse OBJ text into a polygon soup.
+
+    Args:
+        data: the file contents.
+        label: the file name used in error messages.
+        fast: use the vectorized paths (False parses every line in Python; the
+            tests use it as the reference).
+
+    Raises:
+        DLFLError: ``label:line: ...`` for malformed ``v`` or ``f`` lines and
+            face indices out of range.
+    """
+    data = data.removeprefix(b"\xef\xbb\xbf")  # a UTF-8 byte order mark
+    if not data.endswith(b"\n"):
+        data += b"\n"
+    buf, starts, ends = split_lines(data)
+    kinds = _classify(buf, starts, fast)
+    parsed = _Parsed()
+    for line in np.flatnonzero(kinds == _OTHER_SUSPECT).tolist():
+        parsed.add(line, _parse_line(_line_bytes(buf, starts, ends, line), line + 1, label))
+    _parse_vertices(buf, starts, ends, np.flatnonzero(kinds == _VERTEX), parsed, label)
+    _parse_faces(buf, starts, ends, np.flatnonzero(kinds == _FACE), parsed, label)
+    return parsed.soup(label)
+
+
+_IGNORED, _VERTEX, _FACE, _OTHER_SUSPECT = range(4)
+
+
+def _classify(buf: np.ndarray, starts: np.ndarray, fast: bool) -> np.ndarray:
+    """``(L,)`` int8 kind of each line from its first two bytes.
+
+    ``v``/``f`` followed by a blank are plain vertex/face lines; lines that
+    start with a blank, or ``v``/``f`` followed by anything but a blank or a
+    letter or digit (``v\\r``, ``f#``), need the Python parser to decide.
+    """
+    if len(starts) == 0:
+        return np.zeros(0, dtype=np.int8)
+    b0 = buf[starts]
+    b1 = buf[np.minimum(starts + 1, len(buf) - 1)]
+    blank1 = (b1 == 32) | (b1 == 9)
+    word1 = (b1 == 95) | ((b1 | 32) >= 97) & ((b1 | 32) <= 122) | (b1 >= 48) & (b1 <= 57)
+    keyword = (b0 == ord("v")) | (b0 == ord("f"))
+    kinds = np.full(len(starts), _IGNORED, dtype=np.int8)
+    kinds[(b0 == ord("v")) & blank1] = _VERTEX
+    kinds[(b0 == ord("f")) & blank1] = _FACE
+    suspect = (b0 == 32) | (b0 == 9) | (b0 == 11) | (b0 == 12) | keyword & ~blank1 & ~word1
+    kinds[suspect] = _OTHER_SUSPECT
+    if not fast:
+        kinds[(kinds == _VERTEX) | (kinds == _FACE)] = _OTHER_SUSPECT
+    return kinds
+
+
+def _line_bytes(buf: np.ndarray, starts: np.ndarray, ends: np.ndarray, line: int) -> bytes:
+    return buf[starts[line] : ends[line]].tobytes()
+
+
+class _Parsed:
+    """Vertex and face lines collected from the fast and the Python paths."""
+
+    def __init__(self) -> None:
+        self.vertex_blocks: list[tuple[np.ndarray, np.ndarray]] = []  # (lines, (n,3))
+        self.face_blocks: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = []  # lines, counts, raw
+        self.py_vertices: dict[int, tuple[float, float, float]] = {}
+        self.py_faces: dict[int, list[int]] = {}
+
+    def add(self, line: int, item: tuple[str, list[float] | list[int]] | None) -> None:
+        if item is None:
+            return
+        kind, values = item
+        if kind == "v":
+            self.py_vertices[line] = (values[0], values[1], values[2])
+        else:
+            self.py_faces[line] = [int(v) for v in values]
+
+    def soup(self, label: str) -> ObjSoup:
+        v_lines, positions = self._vertices()
+        f_lines, counts, raw = self._faces()
+        offsets = np.zeros(len(f_lines) + 1, dtype=np.int64)
+        np.cumsum(counts, out=offsets[1:])
+        before = np.repeat(np.searchsorted(v_lines, f_lines), counts)
+        indices = _resolve_indices(raw, before, len(v_lines), offsets, f_lines, label)
+        return ObjSoup(positions, indices, offsets, f_lines + 1)
+
+    def _vertices(self) -> tuple[np.ndarray, np.ndarray]:
+        py_lines = np.array(sorted(self.py_vertices), dtype=np.int64)
+        py_pos = np.array([self.py_vertices[i] for i in py_lines.tolist()], dtype=np.float64)
+        blocks = [*self.vertex_blocks, (py_lines, py_pos.reshape(-1, 3))]
+        lines = np.concatenate([b[0] for b in blocks])
+        order = np.argsort(lines, kind="stable")
+        return lines[order], np.concatenate([b[1] for b in blocks])[order]
+
+    def _faces(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        py_lines = np.array(sorted(self.py_faces), dtype=np.int64)
+        py_lists = [self.py_faces[i] for i in py_lines.tolist()]
+        py_counts = np.array([len(f) for f in py_lists], dtype=np.int64)
+        py_raw = np.array([i for f in py_lists for i in f], dtype=np.int64)
+        blocks = [*self.face_blocks, (py_lines, py_counts, py_raw)]
+        if len(blocks) == 2 and len(py_lines) == 0:
+            return blocks[0]
+        return _merge_face_blocks(blocks)
+
+
+def _merge_face_blocks(
+    blocks: list[tuple[np.ndarray, np.ndarray, np.ndarray]],
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Interleave face blocks by line number: ``(lines, counts, raw indices)``."""
+    lines = np.concatenate([b[0] for b in blocks])
+    counts = np.concatenate([b[1] for b in blocks])
+    raw = np.concatenate([b[2] for b in blocks])
+    order = np.argsort(lines, kind="stable")
+    src_start = np.concatenate([[0], np.cumsum(counts)[:-1]]).astype(np.int64)
+    sorted_counts = counts[order]
+    # corner k of sorted face j comes from src_start[order[j]] + k
+    local = np.arange(int(sorted_counts.sum())) - np.repeat(
+        np.cumsum(sorted_counts) - sorted_counts, sorted_counts
+    )
+    gather = np.repeat(src_start[order], sorted_counts) + local
+    return lines[order], sorted_counts, raw[gather]
+
+
+def _resolve_indices(
+    raw: np.ndarray, before: np.ndarray, num_vertices: int, offsets: np.ndarray,
+    f_lines: np.ndarray, label: str,
+) -> np.ndarray:
+    """0-based vertex indices from OBJ's 1-based and negative (relative) ones."""
+    indices = np.where(raw > 0, raw - 1, before + raw)
+    bad = (raw == 0) | (indices < 0) | (indices >= num_vertices)
+    if bad.any():
+        c = int(np.flatnonzero(bad)[0])
+        line = int(f_lines[np.searchsorted(offsets, c, side="right") - 1]) + 1
+        value = int(raw[c])
+        if value == 0:
+            raise DLFLError(f"{label}:{line}: vertex index 0 (OBJ indices start at 1)")
+        raise DLFLError(
+            f"{label}:{line}: vertex index {value} is out of range: "
+            f"{int(before[c])} vertices are defined before this line, {num_vertices} in all"
+        )
+    return indices
+
+
+def _parse_vertices(buf: np.ndarray, starts: np.ndarray, ends: np.ndarray, lines: np.ndarray,
+                    parsed: _Parsed, label: str) -> None:
+    """Parse the plain ``v`` lines at once; hand the others to the Python parser."""
+    block, block_starts = gather_lines(buf, starts, ends, lines)
+    block[block_starts] = 32  # blank the keyword
+    values, accepted = parse_number_lines(block, block_starts, 3)
+    parsed.vertex_blocks.append((lines[accepted], values[accepted]))
+    for line in lines[~accepted].tolist():
+        parsed.add(line, _parse_line(_line_bytes(buf, starts, ends, line), line + 1, label))
+
+
+def _parse_faces(buf: np.ndarray, starts: np.ndarray, ends: np.ndarray, lines: np.ndarray,
+                 parsed: _Parsed, label: str) -> None:
+    """Parse the plain ``f`` lines at once; hand the others to the Python parser."""
+    block, block_starts = gather_lines(buf, starts, ends, lines)
+    block[block_starts] = 32
+    values, counts, accepted = parse_index_lines(block, block_starts)
+    keep = np.repeat(accepted, counts)
+    parsed.face_blocks.append((lines[accepted], counts[accepted], values[keep]))
+    for line in lines[~accepted].tolist():
+        parsed.add(line, _parse_line(_line_bytes(buf, starts, ends, line), line + 1, label))
+
+
+def _parse_line(raw: bytes, line: int, label: str) -> tuple[str, list[float] | list[int]] | None:
+    """Reference parser for one line: ``("v", xyz)``, ``("f", raw indices)`` or None.
+
+    Raises:
+        DLFLError: ``label:line: ...`` for a malformed ``v`` or ``f`` line.
+    """
+    tokens = raw.split(b"#", 1)[0].split()
+    if not tokens or tokens[0] not in (b"v", b"f"):
+        return None
+    if tokens[0] == b"v":
+        numbers = b" ".join(tokens[1:]).replace(b",", b" ").split()
+        if len(numbers) < 3:
+            raise DLFLError(f"{label}:{line}: a v line needs 3 coordinates, got {len(numbers)}")
+        return "v", [_float(t, line, label) for t in numbers[:3]]
+    if len(tokens) == 1:
+        raise DLFLError(f"{label}:{line}: empty face (an f line with no vertex indices)")
+    return "f", [_index(t, line, label) for t in tokens[1:]]
+
+
+def _float(token: bytes, line: int, label: str) -> float:
+    try:
+        if b"_" in token:
+            raise ValueError(token)
+        value = float(token)
+    except ValueError:
+        raise DLFLError(f"{label}:{line}: bad number {_show(token)}") from None
+    if not np.isfinite(value):
+        raise DLFLError(f"{label}:{line}: coordinate {_show(token)} is not finite")
+    return value
+
+
+def _index(token: bytes, line: int, label: str) -> int:
+    head = token.split(b"/", 1)[0]
+    try:
+        if b"_" in head or b"+" in head:
+            raise ValueError(head)
+        return int(head)
+    except ValueError:
+        raise DLFLError(f"{label}:{line}: bad vertex index {_show(token)}") from None
+
+
+def _show(token: bytes) -> str:
+    text = token.decode("utf-8", "replace")
+    return repr(text if len(text) <= 40 else text[:40] + "...")
+
+
+# ---------------------------------------------------------------------- writer
+
+
+def write_obj(mesh: Mesh, path: str | os.PathLike[str]) -> None:
+    """Write ``mesh`` as OBJ, atomically.
+
+    ``v`` lines in vertex id order with coordinates that parse back to the same
+    bits; one ``f`` line per face in face id order, 1-based, from each face's
+    head corner. Hole faces are left out (they come back as boundaries) and so
+    are point-sphere faces (their vertices come back as point-spheres).
+
+    Raises:
+        OSError: the file cannot be written; an existing file is left intact.
+    """
+    text = obj_bytes(mesh)
+    with atomic_write(path) as handle:
+        handle.write(text)
+
+
+def obj_bytes(mesh: Mesh) -> bytes:
+    """The OBJ text of ``mesh`` (see :func:`write_obj`)."""
+    a = mesh_arrays(mesh)
+    sizes = a.face_sizes
+    point_sphere = (sizes == 1) & (a.corner_edge[a.face_offsets[:-1]] < 0)
+    written = ~a.face_hole & ~point_sphere
+    corners = np.repeat(written, sizes)
+    header = b"# livemod OBJ: %d vertices, %d faces\n" % (len(a.positions), int(written.sum()))
+    return header + _vertex_text(a.positions) + _face_text(a.corner_vertex[corners] + 1,
+                                                           sizes[written])
+
+
+def _vertex_text(positions: np.ndarray) -> bytes:
+    """``v x y z`` lines for ``(V, 3)`` float64 positions."""
+    return vertex_lines(positions, b"v")
+
+
+def vertex_lines(positions: np.ndarray, keyword: bytes) -> bytes:
+    """Lines ``keyword x y z`` with coordinates that parse back to the same bits."""
+    fields = format_floats(positions.ravel()).reshape(len(positions), 3, -1)
+    return join_columns(len(positions), [
+        keyword + b" ", fields[:, 0], b" ", fields[:, 1], b" ", fields[:, 2], b"\n",
+    ])
+
+
+def _face_text(one_based: np.ndarray, sizes: np.ndarray, keyword: bytes = b"f") -> bytes:
+    """``f i j k ...`` lines: ``(C,)`` 1-based indices grouped by ``(F,)`` sizes."""
+    return index_lines(one_based, sizes, keyword)
+
+
+def index_lines(values: np.ndarray, sizes: np.ndarray, keyword: bytes) -> bytes:
+    """Lines ``keyword v0 v1 ...`` of non-negative integers, ``sizes[i]`` per line.
+
+    Args:
+        values: ``(C,)`` non-negative int64.
+        sizes: ``(L,)`` int64 values per line (each >= 1), summing to ``C``.
+        keyword: the line's first word.
+    """
+    if len(values) == 0:
+        return b""
+    digits = format_uints(values)
+    kw = np.frombuffer(keyword, dtype=np.uint8)
+    cells = np.zeros((len(values), len(kw) + 2 + digits.shape[1]), dtype=np.uint8)
+    firsts = np.cumsum(sizes) - sizes
+    cells[firsts, : len(kw)] = kw
+    cells[:, len(kw)] = ord(" ")
+    cells[:, len(kw) + 1 : -1] = digits
+    cells[firsts + sizes - 1, -1] = ord("\n")
+    flat = cells.ravel()
+    return flat[flat != 0].tobytes()
