@@ -1,0 +1,119 @@
+"""Find the parameters a script declares with ``param()``, and check values against them.
+
+Most declarations are literal (``param("t", 0.1, min=0.0, max=1.0)``), so they are
+read from the script's syntax tree without running it. A script whose ``param()``
+calls compute their arguments is run once, headless, with the defaults.
+"""
+
+from __future__ import annotations
+
+import ast
+from collections.abc import Iterable
+from pathlib import Path
+from typing import Any
+
+from livemod.dlfl.errors import DLFLError
+from livemod.dlfl.params import ParamSpec, make_spec
+
+_PARAM_ARGS = ("name", "default", "min", "max", "step", "choices", "doc")
+
+
+def declared_parameters(script: str | Path) -> dict[str, ParamSpec]:
+    """The parameters ``script`` declares, by name, in the order of the script.
+
+    Raises:
+        DLFLError: a declaration is malformed, or the script fails when it has to
+            be run to find its declarations.
+        OSError: the script cannot be read.
+    """
+    path = Path(script)
+    source = path.read_text(encoding="utf-8")
+    try:
+        tree = ast.parse(source, filename=str(path))
+    except SyntaxError as exc:
+        raise DLFLError(f"{path}:{exc.lineno}: syntax error: {exc.msg}") from None
+    calls = [node for node in ast.walk(tree) if _is_param_call(node)]
+    calls.sort(key=lambda node: (node.lineno, node.col_offset))
+    literal = [_literal_arguments(call) for call in calls]
+    if all(args is not None for args in literal):
+        return _specs(path, calls, literal)
+    return _run_for_declarations(path)
+
+
+def _is_param_call(node: ast.AST) -> bool:
+    if not isinstance(node, ast.Call):
+        return False
+    func = node.func
+    return (isinstance(func, ast.Name) and func.id == "param") or (
+        isinstance(func, ast.Attribute) and func.attr == "param"
+    )
+
+
+def _literal_arguments(call: ast.Call) -> dict[str, Any] | None:
+    """The call's arguments by name when every one is a literal, else None."""
+    try:
+        values = {_PARAM_ARGS[i]: ast.literal_eval(arg) for i, arg in enumerate(call.args)}
+        for keyword in call.keywords:
+            if keyword.arg is None:
+                return None
+            values[keyword.arg] = ast.literal_eval(keyword.value)
+    except (ValueError, TypeError, SyntaxError, IndexError):
+        return None
+    return values
+
+
+def _specs(path: Path, calls: list[ast.Call], literal: list[Any]) -> dict[str, ParamSpec]:
+    specs: dict[str, ParamSpec] = {}
+    for call, args in zip(calls, literal, strict=True):
+        try:
+            spec = make_spec(**args)
+        except (DLFLError, TypeError) as exc:
+            raise DLFLError(f"{path}:{call.lineno}: {exc}") from None
+        if spec.name in specs and specs[spec.name] != spec:
+            raise DLFLError(f"{path}:{call.lineno}: parameter {spec.name!r} is declared "
+                            "twice with different settings")
+        specs[spec.name] = spec
+    return specs
+
+
+def _run_for_declarations(path: Path) -> dict[str, ParamSpec]:
+    from .headless import run_outcome
+
+    outcome = run_outcome(str(path))
+    if outcome.error is not None:
+        raise DLFLError(f"running {path} to find its parameters failed: {outcome.error}")
+    return dict(outcome.scene.declarations)
+
+
+def check_values(specs: dict[str, ParamSpec], values: dict[str, Any]) -> dict[str, Any]:
+    """``values`` checked and converted against the declarations.
+
+    Raises:
+        DLFLError: a name the script does not declare (listing those it does) or a
+            value that does not fit its declaration.
+    """
+    checked = {}
+    for name, value in values.items():
+        if name not in specs:
+            known = ", ".join(specs) or "none"
+            raise DLFLError(f"the script declares no parameter {name!r} (it declares: {known})")
+        checked[name] = specs[name].check(value)
+    return checked
+
+
+def describe(specs: Iterable[ParamSpec]) -> list[str]:
+    """One line per parameter, as ``livemod params`` prints them."""
+    lines = []
+    for spec in specs:
+        extra = []
+        if spec.min is not None or spec.max is not None:
+            extra.append(f"range {spec.min if spec.min is not None else '-inf'}.."
+                         f"{spec.max if spec.max is not None else 'inf'}")
+        if spec.step is not None:
+            extra.append(f"step {spec.step}")
+        if spec.choices is not None:
+            extra.append("choices " + ", ".join(repr(c) for c in spec.choices))
+        detail = f" ({'; '.join(extra)})" if extra else ""
+        doc = f"  {spec.doc}" if spec.doc else ""
+        lines.append(f"{spec.name} = {spec.default!r}  [{spec.kind}]{detail}{doc}")
+    return lines
