@@ -15,11 +15,10 @@ import importlib
 import os
 import random
 import sys
-import threading
 import time
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
-from types import CodeType
+from types import CodeType, FrameType
 
 import numpy as np
 
@@ -29,7 +28,7 @@ from livemod.dlfl.scene import Scene, Selection, use_scene
 from .errors import Cancelled, cancelled_error, exception_error, is_user_file, syntax_error
 from .instrument import CANCEL_FLAG, STOP_FUNCTION, compile_script
 from .playback import Playback
-from .results import ScriptError, StepRecord, current_mesh
+from .results import ScriptError, StepRecord
 
 PauseCallback = Callable[[int, tuple[StepRecord, ...], Scene], None]
 
@@ -48,27 +47,34 @@ class RunControl:
         self.playback = playback
         self.on_pause = on_pause
         self.paused_at: int | None = None
-        self.step_count = 0
         self.finished = False
-        self._cancelled = threading.Event()
+        self.cancel_requested = False  # a plain bool: the step hook reads it every step
         self._namespace: dict | None = None
+        self._steps: Callable[[], int] = lambda: 0
 
     @property
     def cancelled(self) -> bool:
-        return self._cancelled.is_set()
+        return self.cancel_requested
+
+    @property
+    def step_count(self) -> int:
+        """Steps the run has finished so far."""
+        return self._steps()
 
     def cancel(self) -> None:
         """Ask the run to stop at its next step or next loop iteration of the script."""
-        self._cancelled.set()
+        self.cancel_requested = True
         if self._namespace is not None:
             self._namespace[CANCEL_FLAG] = True  # read by the checks compile_script adds
         if self.playback is not None:
             self.playback.wake()
 
-    def attach(self, namespace: dict) -> None:
-        """Give the control the run's globals (so :meth:`cancel` can flag them)."""
+    def attach(self, namespace: dict, recorder: StepRecorder) -> None:
+        """Give the control the run's globals (so :meth:`cancel` can flag them) and
+        its recorder (to count steps)."""
         self._namespace = namespace
-        namespace[CANCEL_FLAG] = self.cancelled
+        self._steps = recorder.step_count
+        namespace[CANCEL_FLAG] = self.cancel_requested
 
 
 @dataclass
@@ -96,49 +102,73 @@ class RunOutcome:
 
 
 class StepRecorder:
-    """The scene's ``step_hook`` during a run: records steps, pauses, cancels."""
+    """Records steps, pauses and cancels a run; :attr:`hook` is the scene's ``step_hook``.
+
+    The hook runs after every modeling command, so it is a closure over local
+    names that appends a plain tuple; :class:`StepRecord` objects are built only
+    when :attr:`steps` is read (at a pause and at the end).
+    """
 
     def __init__(self, script: str, scene: Scene, control: RunControl | None) -> None:
         self.script = script
         self.scene = scene
         self.control = control
-        self.steps: list[StepRecord] = []
         self.started = time.perf_counter()
+        self._raw: list[tuple[str, int | None, tuple[int, int, int], float]] = []
+        self.hook = self._make_hook()
 
-    def __call__(self, label: str) -> None:
-        control = self.control
-        if control is not None and control.cancelled:
-            raise Cancelled
-        mesh = current_mesh(self.scene)
-        counts = mesh.counts() if mesh is not None else (0, 0, 0)
-        index = len(self.steps)
-        elapsed = time.perf_counter() - self.started
-        self.steps.append(StepRecord(index, label, self._line(), counts, elapsed))
-        if control is None:
-            return
-        control.step_count = index + 1
-        playback = control.playback
-        if playback is not None and playback.should_pause(index):
-            self._pause(control, playback, index)
+    def step_count(self) -> int:
+        return len(self._raw)
 
-    def _line(self) -> int | None:
-        """Line of the innermost frame of the script itself on the worker's stack."""
-        frame = sys._getframe(2)
-        script = self.script
-        while frame is not None:
-            if frame.f_code.co_filename == script:
-                return frame.f_lineno
-            frame = frame.f_back  # type: ignore[assignment]
-        return None
+    @property
+    def steps(self) -> tuple[StepRecord, ...]:
+        """The steps recorded so far."""
+        return tuple(StepRecord(i, *raw) for i, raw in enumerate(self._raw))
+
+    def _make_hook(self) -> Callable[[str], None]:
+        raw, scene, script, control = self._raw, self.scene, self.script, self.control
+        started, clock, getframe = self.started, time.perf_counter, sys._getframe
+        playback = control.playback if control is not None else None
+
+        depth = [1]  # where the script's frame was last found: usually the same again
+
+        def hook(label: str) -> None:
+            if control is not None and control.cancel_requested:
+                raise Cancelled
+            try:
+                frame: FrameType | None = getframe(depth[0])
+            except ValueError:
+                frame = None
+            if frame is None or frame.f_code.co_filename != script:
+                frame, depth[0] = _find_script_frame(getframe(1), script)
+            oid = scene.current
+            counts = scene.objects[oid].mesh.counts() if oid in scene.objects else (0, 0, 0)
+            raw.append((label, None if frame is None else frame.f_lineno, counts,
+                        clock() - started))
+            if playback is not None and playback.mode == "step":
+                index = len(raw) - 1
+                if index >= playback.target:
+                    self._pause(control, playback, index)  # type: ignore[arg-type]
+
+        return hook
 
     def _pause(self, control: RunControl, playback: Playback, index: int) -> None:
         control.paused_at = index
         if control.on_pause is not None:
-            control.on_pause(index, tuple(self.steps), self.scene)
-        playback.wait(index, lambda: control.cancelled)
+            control.on_pause(index, self.steps, self.scene)
+        playback.wait(index, lambda: control.cancel_requested)
         control.paused_at = None
-        if control.cancelled:
+        if control.cancel_requested:
             raise Cancelled
+
+
+def _find_script_frame(frame: FrameType | None, script: str) -> tuple[FrameType | None, int]:
+    """The innermost frame running ``script`` at or above ``frame``, and its depth
+    counted from the hook (1 = the hook's caller); ``(None, 1)`` when there is none."""
+    depth = 1
+    while frame is not None and frame.f_code.co_filename != script:
+        frame, depth = frame.f_back, depth + 1
+    return (frame, depth) if frame is not None else (None, 1)
 
 
 def _raise_cancelled() -> None:
@@ -251,10 +281,10 @@ def execute(
         return RunOutcome("error", scene, (), syntax_error(exc, script), time.perf_counter() - started,
                           source=source)
     recorder = StepRecorder(script, scene, control)
-    scene.step_hook = recorder
+    scene.step_hook = recorder.hook
     namespace = script_namespace(script, parameters)
     if control is not None:
-        control.attach(namespace)
+        control.attach(namespace, recorder)
     status, error, modules = _exec(code, namespace, script, scene, recorder, seed)
     scene.step_hook = None
     return RunOutcome(status, scene, tuple(recorder.steps), error,
@@ -271,7 +301,8 @@ def _exec(code: CodeType, namespace: dict, script: str, scene: Scene,
             seed_generators(seed)
             exec(code, namespace)  # noqa: S102  (running the user's script is the point)
     except Cancelled:
-        line = recorder.steps[-1].line if recorder.steps else None
+        steps = recorder.steps
+        line = steps[-1].line if steps else None
         return "cancelled", cancelled_error(script, line), modules
     except SystemExit as exc:
         if exc.code not in (None, 0):

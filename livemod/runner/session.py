@@ -77,6 +77,7 @@ class LiveSession:
         notifier: the file-event source (tests inject a ManualNotifier).
         output: save the mesh here after every successful run (``run --watch -o``).
         parameters: initial script parameters (globals and ``scene.parameters``).
+        base: a scene every run starts from (copied per run), instead of ``mesh_path``.
 
     Attributes:
         results: :class:`RunResult` snapshots; drain with ``get_nowait()``.
@@ -85,7 +86,8 @@ class LiveSession:
     def __init__(self, script: str | os.PathLike[str], *, mesh_path: str | None = None,
                  seed: int | None = 0, debounce: float = 0.15, poll: bool = False,
                  preview: bool | Callable[[Mesh], MeshArrays | None] = True, notifier: Notifier | None = None,
-                 output: str | None = None, parameters: dict | None = None) -> None:
+                 output: str | None = None, parameters: dict | None = None,
+                 base: Scene | None = None) -> None:
         self.script = os.path.abspath(os.fspath(script))
         self.results: queue.Queue[RunResult] = queue.Queue()
         self.mesh_path = mesh_path
@@ -104,7 +106,7 @@ class LiveSession:
         self._last_steps: tuple[StepRecord, ...] = ()
         self._source: str | None = None
         self._seen: dict[str, bytes] = {}
-        self._base: Scene | None = None
+        self._base: Scene | None = base.copy() if base is not None else None
         self._closed = False
         self._watcher = FileWatcher(self._files_changed, debounce=debounce,
                                     notifier=notifier, poll=poll)

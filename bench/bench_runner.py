@@ -1,0 +1,211 @@
+"""Runner benchmarks (plain python; prints medians of several runs).
+
+    python bench/bench_runner.py [--quick]
+
+1. Overhead of step recording (and of the cancellation checks compiled into the
+   script) on a straight run of 10,000 small commands, against the same code
+   exec'd with no step hook and no checks. Target: at most 10 %.
+2. Save-to-result latency for a 20-command script on a 10,000-face mesh, through
+   a real LiveSession and watchdog: time from ``os.replace`` to the result in the
+   queue, minus the debounce. Target: at most 100 ms plus the debounce.
+3. Cancel latency of ``while True: pass`` after the next save (minus debounce).
+4. A batch of 32 variants on 2 processes against one after another. Target: 1.7x.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import queue
+import statistics
+import sys
+import tempfile
+import time
+
+from livemod.dlfl import from_polygons
+from livemod.dlfl.scene import Scene, use_scene
+from livemod.runner import LiveSession, execute
+from livemod.runner.batch import (
+    ProcessPoolVariantExecutor,
+    SerialExecutor,
+    make_variants,
+    run_batch,
+)
+
+SMALL_COMMANDS = (
+    "from livemod.dlfl import *\n"
+    "for i in range(10000):\n"
+    "    createVertex((i * 0.1, 0.0, 0.0))\n"
+)
+
+TWENTY_COMMANDS = (
+    "{marker}\n"
+    "es = edges()\n"
+    "for i in range(10):\n"
+    "    subdivideEdge(es[i])\n"
+    "    move(verts()[-1:], (0.0, 0.0, 0.01 * i))\n"
+)
+
+VARIANT = (
+    "from livemod.dlfl import *\n"
+    "from livemod.dlfl import current_scene, from_polygons\n"
+    "n = int(size)\n"
+    "pts = [(x, y, 0.0) for y in range(n + 1) for x in range(n + 1)]\n"
+    "quads = [(y * (n + 1) + x, y * (n + 1) + x + 1, (y + 1) * (n + 1) + x + 1,"
+    " (y + 1) * (n + 1) + x) for y in range(n) for x in range(n)]\n"
+    "current_scene().add(from_polygons(pts, quads))\n"
+    "for e in edges()[:300]:\n"
+    "    subdivideEdge(e)\n"
+)
+
+
+def grid_mesh(n: int):
+    """An ``n`` x ``n`` grid of quads (``n * n`` faces plus the hole)."""
+    pts = [(x, y, 0.0) for y in range(n + 1) for x in range(n + 1)]
+    quads = [(y * (n + 1) + x, y * (n + 1) + x + 1, (y + 1) * (n + 1) + x + 1,
+              (y + 1) * (n + 1) + x) for y in range(n) for x in range(n)]
+    return from_polygons(pts, quads)
+
+
+def median_of(fn, repeats: int) -> float:
+    return statistics.median(fn() for _ in range(repeats))
+
+
+def bench_step_overhead(folder: str, repeats: int) -> tuple[float, float]:
+    """(runner seconds, bare seconds) for 10,000 createVertex commands."""
+    path = os.path.join(folder, "small.py")
+    with open(path, "w") as handle:
+        handle.write(SMALL_COMMANDS)
+
+    def runner() -> float:
+        started = time.perf_counter()
+        outcome = execute(path, source=SMALL_COMMANDS)
+        assert outcome.status == "ok" and len(outcome.steps) == 10000
+        return time.perf_counter() - started
+
+    def bare() -> float:
+        started = time.perf_counter()
+        code = compile(SMALL_COMMANDS, path, "exec")
+        with use_scene(Scene()):
+            exec(code, {"__name__": "__main__"})
+        return time.perf_counter() - started
+
+    runner(), bare()  # warm up imports and caches
+    pairs = [(runner(), bare()) for _ in range(repeats)]
+    return statistics.median(p[0] for p in pairs), statistics.median(p[1] for p in pairs)
+
+
+def _wait_ok(session: LiveSession, timeout: float = 30.0):
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        try:
+            result = session.results.get(timeout=0.001)
+        except queue.Empty:
+            continue
+        if result.preview is None:
+            return result
+    raise RuntimeError("no result")
+
+
+def _save(path: str, text: str) -> float:
+    tmp = path + ".tmp"
+    with open(tmp, "w") as handle:
+        handle.write(text)
+    saved = time.perf_counter()
+    os.replace(tmp, path)
+    return saved
+
+
+def bench_save_latency(folder: str, saves: int, debounce: float) -> tuple[float, float]:
+    """(median save-to-result seconds minus debounce, median run seconds)."""
+    path = os.path.join(folder, "twenty.py")
+    with open(path, "w") as handle:
+        handle.write(TWENTY_COMMANDS.format(marker="# 0"))
+    base = Scene()
+    base.add(grid_mesh(100))
+    session = LiveSession(path, debounce=debounce, preview=False, base=base)
+    session.start()
+    try:
+        first = _wait_ok(session)
+        assert first.status == "ok", first.error
+        assert len(first.steps) == 20 and first.steps[0].counts[2] >= 10000
+        latencies, runs = [], []
+        for i in range(1, saves + 1):
+            time.sleep(0.4)
+            saved = _save(path, TWENTY_COMMANDS.format(marker=f"# {i}"))
+            result = _wait_ok(session)
+            latencies.append(time.perf_counter() - saved - debounce)
+            runs.append(result.elapsed)
+        return statistics.median(latencies), statistics.median(runs)
+    finally:
+        session.close()
+        session.join()
+
+
+def bench_cancel_latency(folder: str, saves: int, debounce: float) -> float:
+    """Median seconds from a save to the new result while ``while True: pass`` runs,
+    minus the debounce."""
+    path = os.path.join(folder, "spin.py")
+    with open(path, "w") as handle:
+        handle.write("createVertex((0, 0, 0))\n")
+    session = LiveSession(path, debounce=debounce, preview=False)
+    session.start()
+    try:
+        _wait_ok(session)
+        latencies = []
+        for i in range(saves):
+            _save(path, f"# {i}\nwhile True:\n    pass\n")
+            time.sleep(0.5)  # the loop is running now
+            saved = _save(path, f"# {i}\ncreateVertex((0, 0, 0))\n")
+            result = _wait_ok(session)
+            assert result.status == "ok", result
+            latencies.append(time.perf_counter() - saved - debounce)
+        return statistics.median(latencies)
+    finally:
+        session.close()
+        session.join()
+
+
+def bench_batch(folder: str, variants: int, jobs: int) -> tuple[float, float]:
+    """(sequential seconds, pooled seconds) for ``variants`` runs of the grid script."""
+    path = os.path.join(folder, "variant.py")
+    with open(path, "w") as handle:
+        handle.write(VARIANT)
+    work = make_variants(path, [{"size": 40 + i % 4} for i in range(variants)], None)
+    started = time.perf_counter()
+    serial = run_batch(work, SerialExecutor(), progress=None)
+    sequential = time.perf_counter() - started
+    started = time.perf_counter()
+    pooled = run_batch(work, ProcessPoolVariantExecutor(jobs), progress=None)
+    parallel = time.perf_counter() - started
+    assert all(r.status == "ok" for r in serial + pooled), [r.error for r in serial + pooled]
+    return sequential, parallel
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--quick", action="store_true", help="fewer repeats")
+    args = parser.parse_args(argv)
+    repeats = 3 if args.quick else 7
+    debounce = 0.15
+    print(f"python {sys.version.split()[0]}, {os.cpu_count()} cpus")
+    with tempfile.TemporaryDirectory() as folder:
+        with_steps, bare = bench_step_overhead(folder, repeats)
+        print(f"10,000 createVertex: runner {with_steps * 1e3:.0f} ms, bare exec "
+              f"{bare * 1e3:.0f} ms, overhead {100 * (with_steps / bare - 1):+.1f} % "
+              f"(median of {repeats})")
+        latency, run = bench_save_latency(folder, 3 * repeats, debounce)
+        print(f"save -> result, 20 commands on 10,000 faces: {latency * 1e3:.0f} ms + "
+              f"{debounce * 1e3:.0f} ms debounce (run itself {run * 1e3:.0f} ms; "
+              f"median of {3 * repeats})")
+        cancel = bench_cancel_latency(folder, repeats, debounce)
+        print(f"save -> result while `while True: pass` runs: {cancel * 1e3:.0f} ms + "
+              f"{debounce * 1e3:.0f} ms debounce (median of {repeats})")
+        sequential, parallel = bench_batch(folder, 32, 2)
+        print(f"batch of 32 variants: sequential {sequential:.2f} s, 2 processes "
+              f"{parallel:.2f} s, speed-up {sequential / parallel:.2f}x")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
