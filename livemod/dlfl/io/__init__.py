@@ -35,8 +35,8 @@ def _format_of(path: str, format: str | None, table: Mapping[str, object], verb:
     key = (format or os.path.splitext(path)[1]).lower().lstrip(".")
     if key not in table:
         valid = ", ".join(f".{k}" for k in table)
-        what = f"format {format!r}" if format else f"the extension of {path!r}"
-        raise DLFLError(f"cannot {verb} {what}: use one of {valid}")
+        what = f"format {format!r}" if format else f"extension {os.path.splitext(path)[1]!r}"
+        raise DLFLError(f"cannot {verb} {path!r}: unknown {what}; use one of {valid}")
     return key
 
 

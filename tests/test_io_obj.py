@@ -1,0 +1,301 @@
+"""OBJ reading and writing (livemod.dlfl.io.obj) and its exact number text."""
+
+from __future__ import annotations
+
+import warnings
+from pathlib import Path
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from livemod.dlfl import DLFLError, DLFLRepairWarning, Mesh, from_polygons, genus, validate
+from livemod.dlfl.io import load_mesh, read_obj, save_mesh, write_obj
+from livemod.dlfl.io._numtext import decimal_to_float, format_floats, format_uints
+from livemod.dlfl.io.obj import obj_bytes, parse_obj
+
+SAMPLES = Path(__file__).resolve().parents[2] / "shared" / "data" / "topmod-objs"
+
+# name -> (V, E, F, genus)
+SAMPLE_COUNTS = {
+    "cube.obj": (8, 12, 6, 0),
+    "tetrahedron.obj": (4, 6, 4, 0),
+    "octahedron.obj": (6, 12, 8, 0),
+    "dodecahedron.obj": (20, 30, 12, 0),
+    "icosahedron.obj": (12, 30, 20, 0),
+    "soccerball.obj": (60, 90, 32, 0),
+    "geodesicdome.obj": (272, 810, 540, 0),
+    "buckminister.obj": (540, 810, 272, 0),
+    "sphericalcube.obj": (98, 192, 96, 0),
+    "donuthexa1.obj": (100, 150, 50, 1),
+    "donuthexa3.obj": (1600, 2400, 800, 1),
+    "genus3hexa1.obj": (161, 247, 82, 3),
+    "genus3hexa3.obj": (2631, 3952, 1317, 3),
+    "beveledcube.obj": (24, 48, 26, 0),
+    "soccerballdual.obj": (309, 500, 193, 0),
+}
+
+CUBE = b"""# a unit cube
+v 1.0, 1.0, 1.0
+v 1.0, 1.0, -1.0
+v -1.0, 1.0, -1.0
+v -1.0, 1.0, 1.0
+v 1.0, -1.0, 1.0
+v 1.0, -1.0, -1.0
+v -1.0, -1.0, -1.0
+v -1.0, -1.0, 1.0
+f 1 2 3 4
+f 5 6 2 1
+f 6 7 3 2
+f 7 8 4 3
+f 8 5 1 4
+f 8 7 6 5
+"""
+
+
+def load_quietly(source: Path | bytes) -> Mesh:
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", DLFLRepairWarning)
+        return read_obj(source)
+
+
+# ------------------------------------------------------------------ samples
+
+
+@pytest.mark.parametrize("name", sorted(SAMPLE_COUNTS))
+def test_every_topmod_sample_loads_with_its_counts(name: str) -> None:
+    mesh = load_quietly(SAMPLES / name)
+    validate(mesh)
+    v, e, f, g = SAMPLE_COUNTS[name]
+    assert mesh.counts() == (v, e, f)
+    assert genus(mesh) == g
+    assert not any(mesh.is_hole(face) for face in mesh.face_ids())
+
+
+@pytest.mark.parametrize("name", sorted(SAMPLE_COUNTS))
+def test_fast_parser_agrees_with_reference_parser_on_samples(name: str) -> None:
+    data = (SAMPLES / name).read_bytes()
+    fast, slow = parse_obj(data, name), parse_obj(data, name, fast=False)
+    assert np.array_equal(fast.positions, slow.positions)
+    assert np.array_equal(fast.indices, slow.indices)
+    assert np.array_equal(fast.offsets, slow.offsets)
+    assert np.array_equal(fast.face_lines, slow.face_lines)
+
+
+def test_beveledcube_is_reoriented_with_a_note() -> None:
+    with pytest.warns(DLFLRepairWarning, match="re-oriented"):
+        mesh = read_obj(SAMPLES / "beveledcube.obj")
+    assert any("re-oriented" in note and "beveledcube.obj" in note for note in mesh.notes)
+    sizes = sorted(mesh.face_size(f) for f in mesh.face_ids())
+    assert sizes == [3] * 8 + [4] * 18
+
+
+def test_soccerballdual_crlf_and_two_2gons() -> None:
+    data = (SAMPLES / "soccerballdual.obj").read_bytes()
+    assert b"\r\n" in data
+    mesh = read_obj(SAMPLES / "soccerballdual.obj")
+    validate(mesh)
+    assert [mesh.face_size(f) for f in mesh.face_ids()].count(2) == 2
+    assert genus(mesh) == 0
+
+
+def test_topmod_cube_with_commas() -> None:
+    mesh = read_obj(SAMPLES / "cube.obj")
+    assert mesh.counts() == (8, 12, 6)
+    assert np.array_equal(mesh.position(mesh.vertex_ids()[2]), [-1.0, 1.0, -1.0])
+
+
+# ------------------------------------------------------------- edge cases
+
+
+def test_ids_follow_file_order() -> None:
+    mesh = read_obj(CUBE)
+    assert list(mesh.face_ids()) == list(range(6))
+    assert mesh.face_vertices(mesh.face_ids()[0]) == [0, 1, 2, 3]
+    assert mesh.face_vertices(mesh.face_ids()[5]) == [7, 6, 5, 4]
+
+
+@pytest.mark.parametrize("form", ["{}", "{}/{}", "{}//{}", "{}/{}/{}"])
+def test_vertex_texture_normal_forms(form: str) -> None:
+    faces = []
+    for line in CUBE.decode().splitlines():
+        if line.startswith("f "):
+            idx = line.split()[1:]
+            faces.append("f " + " ".join(form.format(i, 1, 1) for i in idx))
+    text = [ln for ln in CUBE.decode().splitlines() if not ln.startswith("f ")]
+    text += ["vt 0 0", "vn 0 0 1"] + faces
+    mesh = read_obj("\n".join(text).encode())
+    assert mesh.counts() == (8, 12, 6)
+    assert mesh.face_vertices(0) == [0, 1, 2, 3]
+
+
+def test_negative_indices_count_back_from_the_last_vertex() -> None:
+    text = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\nv 0 0 1\nf 1 -1 2\n"
+    mesh = read_obj(text)
+    assert mesh.face_vertices(0) == [0, 1, 2]
+    assert mesh.face_vertices(1) == [0, 3, 1]
+
+
+def test_ignored_statements_comments_and_whitespace() -> None:
+    text = (
+        b"\xef\xbb\xbf# header\r\nmtllib x.mtl\r\no thing\r\ng group\r\ns off\r\n"
+        b"usemtl red\r\nvn 0 0 1\r\nvt 0 0\r\nvp 1\r\nl 1 2\r\ncstype bezier\r\n"
+        b"v\t0 0 0   \r\n  v 1 0 0 # indented, with a comment\r\nv 1,1,0 1.0 0.5 0.5 0.5\r\n"
+        b"\r\n\r\nf 1 2 3   \r\nf\t3\t2\t1 # back\r\nunknown words here"
+    )
+    mesh = read_obj(text)
+    validate(mesh)
+    assert mesh.counts() == (3, 3, 2)
+    assert np.array_equal(mesh.position(2), [1.0, 1.0, 0.0])
+    assert mesh.face_vertices(1) == [2, 1, 0]
+
+
+def test_number_forms() -> None:
+    text = b"v -0.5 .25 5.\nv 1e-3 -2E+2 +3\nv 12345678901234567890.5 0.1 -0\nf 1 2 3\n"
+    soup = parse_obj(text)
+    assert soup.positions.tolist() == [[-0.5, 0.25, 5.0], [0.001, -200.0, 3.0],
+                                       [12345678901234567890.5, 0.1, 0.0]]
+
+
+def test_open_mesh_gets_a_hole_and_unused_vertices_become_point_spheres() -> None:
+    text = b"v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 5 5 5\nf 1 2 3 4\n"
+    mesh = read_obj(text)
+    validate(mesh)
+    assert mesh.counts() == (5, 4, 3)
+    assert [mesh.is_hole(f) for f in mesh.face_ids()] == [False, True, False]
+    assert mesh.is_point_sphere(4)
+
+
+@pytest.mark.parametrize(
+    ("text", "message"),
+    [
+        (b"v 0 0 0\nv 1 x 0\n", r"<obj>:2: bad number 'x'"),
+        (b"v 0 0\n", r"<obj>:1: a v line needs 3 coordinates, got 2"),
+        (b"v 0 0 nan\n", r"<obj>:1: coordinate 'nan' is not finite"),
+        (b"v 0 0 0\nf\n", r"<obj>:2: empty face"),
+        (b"v 0 0 0\nf \r\n", r"<obj>:2: empty face"),
+        (b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n", r"<obj>:4: vertex index 4 is out of range"),
+        (b"v 0 0 0\nv 1 0 0\nv 0 1 0\n\nf 1 2 0\n", r"<obj>:5: vertex index 0"),
+        (b"v 0 0 0\nf 1 -2 1\n", r"<obj>:2: vertex index -2 is out of range"),
+        (b"v 0 0 0\nf 1 a 1\n", r"<obj>:2: bad vertex index 'a'"),
+        (b"v 0 0 0\nf 1 /2 1\n", r"<obj>:2: bad vertex index '/2'"),
+        (b"v 0 0 0\nf 1 1.5 1\n", r"<obj>:2: bad vertex index '1.5'"),
+    ],
+)
+def test_errors_name_file_and_line(text: bytes, message: str) -> None:
+    with pytest.raises(DLFLError, match=message):
+        read_obj(text)
+
+
+def test_error_names_the_path(tmp_path: Path) -> None:
+    path = tmp_path / "broken.obj"
+    path.write_bytes(b"v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 4\nf 1 2 3\n")
+    with pytest.raises(DLFLError, match=r"broken\.obj:\d+: .*edge"):
+        read_obj(path)
+
+
+def test_non_manifold_error_names_the_line(tmp_path: Path) -> None:
+    path = tmp_path / "fin.obj"
+    path.write_bytes(b"v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\n"
+                     b"f 1 2 3\nf 2 1 4\nf 1 2 5\n")
+    with pytest.raises(DLFLError, match=r"fin\.obj:6: edge \(0, 1\) is used by 3"):
+        read_obj(path)
+
+
+# ------------------------------------------------------------ round trips
+
+
+def round_trip(mesh: Mesh, tmp_path: Path) -> Mesh:
+    path = tmp_path / "m.obj"
+    write_obj(mesh, path)
+    again = load_quietly(path)
+    validate(again)
+    return again
+
+
+def assert_same_mesh(a: Mesh, b: Mesh) -> None:
+    assert a.counts() == b.counts()
+    assert genus(a) == genus(b)
+    assert np.array_equal(a.positions_view(), b.positions_view())
+    assert [a.face_vertices(f) for f in a.face_ids()] == [b.face_vertices(f) for f in b.face_ids()]
+    assert [a.is_hole(f) for f in a.face_ids()] == [b.is_hole(f) for f in b.face_ids()]
+
+
+@pytest.mark.parametrize("name", ["cube.obj", "soccerballdual.obj", "genus3hexa1.obj",
+                                  "beveledcube.obj", "donuthexa1.obj"])
+def test_sample_round_trip(name: str, tmp_path: Path) -> None:
+    mesh = load_quietly(SAMPLES / name)
+    assert_same_mesh(mesh, round_trip(mesh, tmp_path))
+
+
+def test_round_trip_keeps_holes_as_boundaries_and_point_spheres(tmp_path: Path) -> None:
+    mesh = read_obj(b"v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0.1 0.2 0.3\nf 1 2 3 4\n")
+    text = obj_bytes(mesh).decode()
+    assert text.count("\nf ") == 1
+    assert_same_mesh(mesh, round_trip(mesh, tmp_path))
+
+
+def test_round_trip_of_random_positions_is_exact(tmp_path: Path) -> None:
+    rng = np.random.default_rng(7)
+    positions = rng.standard_normal((40, 3)) * 10.0 ** rng.integers(-9, 17, (40, 3))
+    positions[0] = [0.0, -0.0, 1e-300]
+    positions[1] = [np.pi, -1e15, 5e-324]
+    mesh = from_polygons(positions, [[0, 1, 2], [0, 2, 1]])
+    again = round_trip(mesh, tmp_path)
+    assert np.array_equal(again.positions_view(), positions)
+    assert np.array_equal(np.signbit(again.positions_view()), np.signbit(positions))
+
+
+def test_load_and_save_dispatch_by_extension(tmp_path: Path) -> None:
+    mesh = read_obj(CUBE)
+    for ext in ("obj", "dlfl"):
+        save_mesh(mesh, tmp_path / f"c.{ext}")
+        assert load_mesh(tmp_path / f"c.{ext}").counts() == (8, 12, 6)
+    save_mesh(mesh, tmp_path / "c.txt", format="obj")
+    assert load_mesh(tmp_path / "c.txt", format="OBJ").counts() == (8, 12, 6)
+    with pytest.raises(DLFLError, match=r"cannot write .*c\.off': unknown extension '\.off'; use one of \.obj, \.dlfl, \.stl, \.ply"):
+        save_mesh(mesh, tmp_path / "c.off")
+    with pytest.raises(DLFLError, match=r"cannot read .*\.obj, \.dlfl"):
+        load_mesh(tmp_path / "c.stl")
+
+
+def test_thesis_load_and_save_commands_use_io(tmp_path: Path) -> None:
+    from livemod.dlfl import commands
+    from livemod.dlfl.scene import Scene, use_scene
+
+    path = tmp_path / "cube.obj"
+    path.write_bytes(CUBE)
+    with use_scene(Scene()):
+        commands.load(str(path))
+        assert commands.save(str(tmp_path / "out.dlfl"))
+    assert load_mesh(tmp_path / "out.dlfl").counts() == (8, 12, 6)
+
+
+# -------------------------------------------------------------- numbers
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.lists(st.floats(allow_nan=False, allow_infinity=False), min_size=1, max_size=50))
+def test_float_text_parses_back_to_the_same_bits(values: list[float]) -> None:
+    x = np.array(values, dtype=np.float64)
+    cells = format_floats(x)
+    texts = [bytes(row[row != 0]) for row in cells]
+    back = np.array([float(t) for t in texts])
+    assert np.array_equal(back.view(np.int64), x.view(np.int64))
+    assert all(b"e" not in t for t, v in zip(texts, x, strict=True) if 1e-6 <= abs(v) < 1e15)
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.lists(st.tuples(st.integers(0, 2**62 - 1), st.integers(0, 18)), min_size=1, max_size=50))
+def test_decimal_to_float_is_correctly_rounded(pairs: list[tuple[int, int]]) -> None:
+    mantissa = np.array([m for m, _ in pairs], dtype=np.int64)
+    frac = np.array([k for _, k in pairs], dtype=np.int64)
+    values, decided = decimal_to_float(mantissa, frac)
+    expected = np.array([float(f"{m}e-{k}") for m, k in pairs])
+    assert np.array_equal(values[decided], expected[decided])
+
+
+def test_uint_text() -> None:
+    cells = format_uints(np.array([0, 7, 10, 99999, 1234567890123]))
+    assert [bytes(r[r != 0]) for r in cells] == [b"0", b"7", b"10", b"99999", b"1234567890123"]
