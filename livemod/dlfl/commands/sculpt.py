@@ -1,5 +1,119 @@
-"""Thesis commands of the sculpting family: rind, wireframe, column and extras."""
+"""Thesis commands of the sculpting family: rind, wireframe, column and extras.
+
+``rind``, ``wireframe`` and ``column`` are the thesis appendix's commands.
+The extras are livemod additions, named after TopMod's menu entries (its
+Python module had ``sierpinsky`` and ``menger`` commented out): ``sierpinsky()``,
+``menger([thickness])``, ``meshsmooth()``, ``planarize()``, ``spheralize()`` and
+``crust(thickness[, uniform])``. Every one rebuilds or reshapes the current
+object; those that rebuild it give all its elements fresh ids.
+"""
 
 from __future__ import annotations
 
-__all__: list[str] = []
+from collections.abc import Iterable
+from typing import Any
+
+from .. import geometry, sponge
+from .. import rind as _rind
+from .. import sierpinsky as _sierpinsky
+from .. import wireframe as _wire
+from ..errors import DLFLError
+from ._base import mesh, modeling_command
+
+__all__ = [
+    "rind", "wireframe", "column", "crust", "sierpinsky", "menger", "meshsmooth",
+    "planarize", "spheralize",
+]
+
+
+def _face_list(facelist: Any) -> list[int]:
+    if isinstance(facelist, int) and not isinstance(facelist, bool):
+        return [facelist]
+    if not isinstance(facelist, Iterable):
+        raise DLFLError(f"facelist must be a list of face ids, got {facelist!r}")
+    faces = list(facelist)
+    for f in faces:
+        if not isinstance(f, int) or isinstance(f, bool):
+            raise DLFLError(f"facelist must hold face ids (integers), got {f!r}")
+    return faces
+
+
+@modeling_command
+def rind(facelist: Any, useScaling: bool, percent: float, uniform: bool = True) -> None:
+    """``rind(facelist, useScaling, percent[, uniform])``: crust, then punch the faces.
+
+    ``percent`` is the thickness when ``useScaling`` is false, otherwise the
+    scale of the inner copy (TopMod clamps it to [-1, 1]). ``uniform`` keeps the
+    thickness exact at corners (TopMod parsed this bool as a double; livemod
+    takes a bool). Punching ``k`` faces of a closed genus-0 object gives genus
+    ``k - 1``; faces that share an edge open into one hole.
+
+    Raises:
+        DLFLError: a face id that is gone, a zero or inverting thickness/scale.
+    """
+    faces = _face_list(facelist)
+    value = float(percent)
+    if useScaling:
+        _rind.rind(mesh(), faces, use_scaling=True, scale=value)
+    else:
+        _rind.rind(mesh(), faces, value, uniform=bool(uniform))
+
+
+@modeling_command
+def crust(thickness: float = 0.5, uniform: bool = True) -> None:
+    """``crust([thickness, uniform])``: TopMod's createCrust; two shells (livemod extra)."""
+    _rind.crust(mesh(), float(thickness), uniform=bool(uniform))
+
+
+@modeling_command
+def wireframe(thickness: float = 0.1, split: bool = True) -> None:
+    """``wireframe([thickness, split])``: a solid wire of ``thickness`` along every edge.
+
+    Cube: 48/120/64, genus 5.
+    """
+    _wire.wireframe(mesh(), float(thickness), bool(split))
+
+
+@modeling_command
+def column(thickness: float, segments: Any) -> None:
+    """``column(thickness, segments)``: a tube of ``segments`` sides around every edge,
+    joined by convex hulls at the vertices. Cube, 4 segments: 96/216/112.
+
+    Raises:
+        DLFLError: ``segments`` below 3 or not whole, ``thickness`` not positive.
+    """
+    if isinstance(segments, float) and segments.is_integer():
+        segments = int(segments)
+    if not isinstance(segments, int) or isinstance(segments, bool):
+        raise DLFLError(f"segments must be a whole number, got {segments!r}")
+    _wire.columns(mesh(), float(thickness), segments)
+
+
+@modeling_command
+def sierpinsky() -> None:
+    """``sierpinsky()``: TopMod's multiConnectMidpoints (cube 20/60/32, genus 5)."""
+    _sierpinsky.sierpinsky(mesh())
+
+
+@modeling_command
+def menger(thickness: float = 0.67) -> None:
+    """``menger([thickness])``: TopMod's Menger sponge remeshing (cube 64/156/84)."""
+    sponge.sponge(mesh(), float(thickness))
+
+
+@modeling_command
+def meshsmooth() -> None:
+    """``meshsmooth()``: one step of TopMod's tangential smoothing."""
+    geometry.mesh_smooth(mesh())
+
+
+@modeling_command
+def planarize() -> None:
+    """``planarize()``: TopMod's 100-step pull of vertices onto their face planes."""
+    geometry.planarize(mesh())
+
+
+@modeling_command
+def spheralize() -> None:
+    """``spheralize()``: move every vertex to the unit sphere about the centroid."""
+    geometry.spheralize(mesh())
