@@ -1,0 +1,110 @@
+"""Thesis commands subdivide, subdivideFace(s) and dual on the current object."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+import pytest
+
+from livemod.dlfl import DLFLError, Scene, face_size_histogram, use_scene, validate
+from livemod.dlfl.commands import dual, subdivide, subdivideFace, subdivideFaces
+from livemod.dlfl.scene import Selection
+from livemod.dlfl.shapes import cube
+from livemod.dlfl.subdivision import scheme_options
+from tests.meshes import snapshot
+
+
+@pytest.fixture
+def scene() -> Iterator[Scene]:
+    sc = Scene()
+    sc.add(cube())
+    with use_scene(sc):
+        yield sc
+
+
+def counts(sc: Scene) -> tuple[int, int, int]:
+    validate(sc.mesh)
+    return sc.mesh.counts()
+
+
+def test_star_import_gives_the_remeshing_commands():
+    namespace: dict[str, object] = {}
+    exec("from livemod.dlfl import *", namespace)
+    for name in ("subdivide", "subdivideFace", "subdivideFaces", "dual"):
+        assert callable(namespace[name])
+
+
+def test_subdivide_by_thesis_name(scene):
+    subdivide("catmull-clark")
+    assert counts(scene) == (26, 48, 24)
+
+
+def test_positional_options_in_topmod_order(scene):
+    assert scheme_options("double-stellate") == ["offset", "curve"]
+    assert scheme_options("doo-sabin-bc-new") == ["scale", "length"]
+    assert scheme_options("dome") == ["length", "scale"]
+    subdivide("checker", 0.25)
+    assert counts(scene) == (56, 108, 54)
+    assert abs(scene.mesh.positions_view()).min() == 0.5
+
+
+def test_positional_option_honoured_where_topmod_ignored_it(scene):
+    subdivide("vertex-cut", 0.1)
+    assert sorted(set(abs(scene.mesh.positions_view()).ravel().round(9))) == [0.8, 1.0]
+
+
+def test_keyword_options(scene):
+    subdivide("double-stellate", offset=0.5, curve=0.0)
+    assert counts(scene) == (38, 72, 36)
+
+
+def test_too_many_options_is_an_error(scene):
+    before = snapshot(scene.mesh)
+    with pytest.raises(DLFLError, match="at most 0 options"):
+        subdivide("catmull-clark", 1)
+    with pytest.raises(DLFLError, match="given twice"):
+        subdivide("checker", 0.2, thickness=0.3)
+    with pytest.raises(DLFLError, match="unknown subdivision scheme"):
+        subdivide("catmull")
+    assert snapshot(scene.mesh) == before
+
+
+def test_composite_by_name(scene):
+    subdivide("root3")
+    assert counts(scene) == (14, 36, 24)
+
+
+def test_subdivide_face_triangles_and_quads(scene):
+    face = scene.mesh.face_ids()[0]
+    subdivideFace(int(face), False)
+    assert counts(scene) == (9, 16, 9)
+    assert dict(face_size_histogram(scene.mesh)) == {3: 4, 4: 5}
+    face = int(scene.mesh.face_ids()[0])
+    n = scene.mesh.face_size(face)
+    subdivideFace(face)
+    assert counts(scene) == (9 + n + 1, 16 + 2 * n, 9 + n - 1)
+
+
+def test_subdivide_faces_uses_the_selection(scene):
+    ids = [int(f) for f in scene.mesh.face_ids()[:2]]
+    scene.selection = Selection(faces=tuple(ids))
+    subdivideFaces()
+    m = scene.mesh
+    validate(m)
+    assert m.counts()[2] == 6 - 2 + 8
+
+
+def test_subdivide_faces_refuses_bad_ids(scene):
+    with pytest.raises(DLFLError, match="face id"):
+        subdivideFaces([12345])
+    with pytest.raises(DLFLError, match="faceids must be"):
+        subdivideFaces("0")
+    with pytest.raises(DLFLError, match="faceid must be"):
+        subdivideFace(1.5)  # type: ignore[arg-type]
+
+
+def test_dual_both_methods(scene):
+    dual()
+    assert counts(scene) == (6, 12, 8)
+    dual(True)
+    assert counts(scene) == (8, 12, 6)

@@ -1,0 +1,249 @@
+"""Remeshing positions against hand-derived formulas on TopMod's cube (+-1) and octahedron."""
+
+from __future__ import annotations
+
+import itertools
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from livemod.dlfl import Mesh, mesh_arrays, validate
+from livemod.dlfl.io.obj import read_obj
+from livemod.dlfl.shapes import cube, grid
+from livemod.dlfl.subdivision import subdivide
+
+OBJS = Path(__file__).resolve().parents[2] / "shared" / "data" / "topmod-objs"
+
+
+def positions(mesh: Mesh) -> np.ndarray:
+    validate(mesh)
+    return mesh_arrays(mesh).positions
+
+
+def orbit(*point: float) -> np.ndarray:
+    """Every signed permutation of ``point`` (the cube's symmetry orbit), unique."""
+    out = set()
+    for perm in itertools.permutations(point):
+        for signs in itertools.product((1, -1), repeat=3):
+            out.add(tuple(round(s * x, 12) + 0.0 for s, x in zip(signs, perm, strict=True)))
+    return np.array(sorted(out))
+
+
+def same_points(got: np.ndarray, *expected: np.ndarray) -> bool:
+    """Equal as point sets to 1e-9 relative (multiplicities ignored)."""
+    want = np.concatenate(expected)
+    scale = max(1.0, float(np.abs(want).max()))
+
+    def covered(a: np.ndarray, b: np.ndarray) -> bool:
+        gaps = np.linalg.norm(a[:, None, :] - b[None, :, :], axis=2).min(axis=1)
+        return bool((gaps < 1e-9 * scale).all())
+
+    return covered(got, want) and covered(want, got)
+
+
+CORNERS = orbit(1, 1, 1)
+CENTRES = orbit(1, 0, 0)
+MIDPOINTS = orbit(1, 1, 0)
+
+
+def run(scheme: str, mesh: Mesh | None = None, **options: object) -> np.ndarray:
+    m = cube() if mesh is None else mesh
+    subdivide(m, scheme, **options)
+    return positions(m)
+
+
+def test_catmull_clark_puts_old_corners_at_five_ninths():
+    got = run("catmull-clark")
+    assert same_points(got, orbit(5 / 9, 5 / 9, 5 / 9), orbit(0.75, 0.75, 0), CENTRES)
+
+
+def test_catmull_clark_twice_stays_symmetric():
+    m = cube()
+    subdivide(m, "catmull-clark")
+    subdivide(m, "catmull-clark")
+    pos = positions(m)
+    for matrix in SYMMETRIES:
+        assert same_points(pos @ matrix.T, pos)
+
+
+SYMMETRIES = [np.diag([-1.0, 1, 1]), np.array([[0.0, 1, 0], [1, 0, 0], [0, 0, 1]]),
+              np.array([[0.0, 0, 1], [1, 0, 0], [0, 1, 0]])]
+
+
+@pytest.mark.parametrize("scheme", ["catmull-clark", "doo-sabin", "loop", "honeycomb",
+                                    "root4", "checker", "fractal", "star", "dual-12.6.4",
+                                    "doo-sabin-bc-new", "dome", "pentagon-preserve"])
+def test_symmetric_input_gives_symmetric_output(scheme):
+    pos = run(scheme)
+    for matrix in SYMMETRIES:
+        assert same_points(pos @ matrix.T, pos)
+
+
+def test_doo_sabin_quad_weights():
+    # (9 p_i + 3 p_prev + 3 p_next + p_opposite) / 16 on a face of the +-1 cube
+    assert same_points(run("doo-sabin"), orbit(0.5, 0.5, 1))
+
+
+def test_corner_cut_with_alpha_nine_sixteenths_is_doo_sabin_on_quads():
+    assert same_points(run("corner-cut", alpha=9 / 16), orbit(0.5, 0.5, 1))
+
+
+def test_corner_cut_alpha_moves_points():
+    # quads: w_ii = a, w_adjacent = (1 - a) 3/7, w_opposite = (1 - a)/7
+    a = 0.75
+    s = a - (1 - a) / 7
+    assert same_points(run("corner-cut", alpha=a), orbit(s, s, 1))
+
+
+def test_doo_sabin_keeps_a_regular_grid_planar():
+    m = grid(5, 4)  # in the plane y = 0
+    subdivide(m, "doo-sabin")
+    pos = positions(m)
+    assert np.allclose(pos[:, 1], 0.0, atol=1e-12)
+    assert np.ptp(pos[:, 0]) > 4 and np.ptp(pos[:, 2]) > 3
+
+
+def test_loop_on_the_octahedron():
+    m = read_obj(OBJS / "octahedron.obj")
+    # valence 4: beta = (5/8 - (3/8)^2)/4 = 31/256, neighbours sum to 0: v' = (1 - 4 beta) v
+    # edge point: 3/8 of both ends + 1/8 of both opposite vertices (which cancel)
+    assert same_points(run("loop", m), orbit(33 / 64, 0, 0), orbit(0.375, 0.375, 0))
+
+
+def test_loop_style_length():
+    # v' = 0.5 v + 0.5 mean(neighbours); at (1,1,1) the mean is (1/3, 1/3, 1/3)
+    assert same_points(run("loop-style", length=0.5), orbit(2 / 3, 2 / 3, 2 / 3), MIDPOINTS)
+
+
+def test_linear_vertex_and_simplest_do_not_smooth():
+    assert same_points(run("linear-vertex"), CORNERS, MIDPOINTS, CENTRES)
+    assert same_points(run("simplest"), MIDPOINTS)
+
+
+def test_vertex_cut_offset():
+    assert same_points(run("vertex-cut", offset=0.25), orbit(1, 1, 0.5))
+    assert same_points(run("vertex-cut", offset=0.1), orbit(1, 1, 0.8))
+
+
+def test_pentagon_trisects_and_moves_every_joined_point():
+    assert same_points(run("pentagon"), CORNERS, orbit(1, 1, 1 / 3), CENTRES)
+    pos = run("pentagon", offset=0.5)
+    # every trisection point is joined in one face and moves half way to that face's
+    # centroid: (1/3, 1, 1) -> (1/6, 1/2, 1). TopMod left the last joined point of
+    # each face in place (QUIRK); livemod moves all 24.
+    moved = pos[~_in(pos, np.concatenate([CORNERS, CENTRES]))]
+    assert len(moved) == 24
+    assert np.allclose(np.sort(np.abs(moved), axis=1), [1 / 6, 0.5, 1.0], rtol=1e-9)
+
+
+def _in(points: np.ndarray, candidates: np.ndarray) -> np.ndarray:
+    gaps = np.linalg.norm(points[:, None, :] - candidates[None, :, :], axis=2).min(axis=1)
+    return gaps < 1e-9
+
+
+def test_pentagon_preserve_scales_the_midpoint_polygon():
+    assert same_points(run("pentagon-preserve"), CORNERS, MIDPOINTS, orbit(0.75, 0, 1))
+    assert same_points(run("pentagon-preserve", scale=0.5), CORNERS, MIDPOINTS, orbit(0.5, 0, 1))
+
+
+HONEYCOMB_ALPHA = 1 / math.sqrt(2) - 0.25 + 5 / 16
+HONEYCOMB_S = HONEYCOMB_ALPHA - (1 - HONEYCOMB_ALPHA) / 7
+
+
+def test_honeycomb_weights_on_the_midpoints():
+    assert same_points(run("honeycomb"), orbit(HONEYCOMB_S, 0, 1))
+
+
+def test_root4_inner_points_and_weight():
+    s = HONEYCOMB_S
+    assert same_points(run("root4"), CORNERS, orbit(s, s, 1))
+    moved = (2 * s + 1) / 3
+    assert same_points(run("root4", weight=1.0), orbit(moved, moved, moved), orbit(s, s, 1))
+
+
+def test_root4_twist_rotates_the_inner_polygon():
+    pos = run("root4", twist=0.5)
+    # twist 0.5 takes the weights over the midpoints: honeycomb's points
+    assert same_points(pos, CORNERS, orbit(HONEYCOMB_S, 0, 1))
+
+
+def test_checker_inset_and_trisection():
+    assert same_points(run("checker"), CORNERS, orbit(0.34, 0.34, 1), orbit(1, 1, 0.34))
+    assert same_points(run("checker", thickness=0.25), CORNERS, orbit(0.5, 0.5, 1),
+                       orbit(1, 1, 0.5))
+
+
+def test_fractal_centre_height():
+    # square of side 2: L2 = sqrt(2), L1 = 1, d = offset * 1 above the face centre
+    assert same_points(run("fractal"), CORNERS, MIDPOINTS, orbit(2, 0, 0))
+    assert same_points(run("fractal", offset=0.5), CORNERS, MIDPOINTS, orbit(1.5, 0, 0))
+
+
+def test_star_offset_moves_only_the_first_centres():
+    assert same_points(run("star", offset=0.5), CORNERS, orbit(1.5, 0, 0),
+                       orbit(0, 2 / 3, 1))
+
+
+def test_double_stellate_offset_and_curve():
+    assert same_points(run("double-stellate", offset=0.5), CORNERS, orbit(1.5, 0, 0),
+                       orbit(0, 2 / 3, 3.5 / 3))
+    pos = run("double-stellate", curve=1.0)
+    # the second centre of triangle (1,1,1), (-1,1,1), (0,0,1) rises by its unit normal
+    assert same_points(pos, CORNERS, CENTRES, orbit(0, 2 / 3, 2))
+
+
+def test_stellate_sqrt3_dual_use_centroids():
+    assert same_points(run("stellate"), CORNERS, CENTRES)
+    assert same_points(run("sqrt3"), CORNERS, CENTRES)
+    assert same_points(run("dual"), CENTRES)
+    assert same_points(run("dual", accurate=True), CENTRES)
+
+
+def test_dual_12_6_4_scale():
+    assert same_points(run("dual-12.6.4"), orbit(0.7, 0.7 / 3, 1))
+    assert same_points(run("dual-12.6.4", scale=1.0), orbit(1, 1 / 3, 1))
+
+
+def _ds_weights(n: int) -> np.ndarray:
+    k = (np.arange(n)[:, None] - np.arange(n)[None, :]) % n
+    w = (3 + 2 * np.cos(2 * np.pi * k / n)) / (4 * n)
+    return np.where(k == 0, 0.25 + 5 / (4 * n), w)
+
+
+def test_doo_sabin_bc_new_ring_and_length():
+    # the 8-gon (corners and midpoints of the face z = 1) through Doo-Sabin weights
+    ring = np.array([[1, 1], [0, 1], [-1, 1], [-1, 0], [-1, -1], [0, -1], [1, -1], [1, 0]],
+                    dtype=float)
+    inner = _ds_weights(8) @ ring
+    at_corner, at_mid = np.abs(inner[0]), np.abs(inner[1])
+    expected = (orbit(at_corner[0], at_corner[1], 1), orbit(at_mid[0], at_mid[1], 1))
+    assert same_points(run("doo-sabin-bc-new"), CORNERS, *expected)
+    half = (1 + at_corner[0] * 2 / 3 + 1 / 3) / 2
+    assert same_points(run("doo-sabin-bc-new", length=0.5), orbit(half, half, half), *expected)
+
+
+def test_dome_end_faces_rise_by_the_summed_distances():
+    pos = run("dome")
+    assert math.isclose(pos.max(), 1 + 0.665, rel_tol=1e-12)
+    pos = run("dome", length=2.0)
+    assert math.isclose(pos.max(), 1 + 1.33, rel_tol=1e-12)
+
+
+def test_catmull_clark_on_an_ngon_is_the_rule():
+    # a lone pentagon prism check: every face point is its centroid, every old
+    # vertex follows (Q + 2R + (n - 3) v) / n with n = 3
+    m = read_obj(OBJS / "dodecahedron.obj")
+    a = mesh_arrays(m)
+    subdivide(m, "catmull-clark")
+    pos = positions(m)
+    centroids = np.array([a.positions[a.corner_vertex[a.face_offsets[f]:a.face_offsets[f + 1]]]
+                          .mean(axis=0) for f in range(len(a.face_ids))])
+    assert same_points(pos[-len(centroids):], centroids)
+    v = 0
+    corners = np.flatnonzero(a.corner_vertex == v)
+    q = centroids[a.corner_face[corners]].mean(axis=0)
+    nxt = a.corner_next
+    r = (0.5 * (a.positions[v] + a.positions[a.corner_vertex[nxt[corners]]])).mean(axis=0)
+    assert np.allclose(pos[0], (q + 2 * r) / 3, rtol=1e-9, atol=1e-12)
