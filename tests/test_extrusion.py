@@ -261,3 +261,14 @@ def test_deleted_face_and_point_sphere_are_refused():
     v = p.create_vertex((0, 0, 0))
     with pytest.raises(DLFLError, match="corner"):
         extrude(p, p.corner_face(p.vertex_corner(v)), "cubical")
+
+
+@pytest.mark.parametrize("kind", sorted(KINDS))
+def test_degenerate_face_is_refused_by_every_kind(kind):
+    m = Mesh()
+    front, _ = m.create_face([(0, 0, 0), (1, 0, 0), (2, 0, 0)])  # collinear: no normal
+    before = snapshot(m)
+    run = extrude_fan if KINDS[kind].fan is not None else extrude
+    with pytest.raises(DLFLError, match="degenerate"):
+        run(m, front, kind)
+    assert snapshot(m) == before

@@ -81,17 +81,23 @@ def _quad_band(mesh: Mesh, corner1: int, corner2: int) -> None:
     """TopMod's ``connectFaces``: one merging edge, then quads cut off while > 4 sides."""
     mesh.insert_edge(corner1, corner2)
     side = corner1
-    while mesh.face_size(mesh.corner_face(side)) > 4:
+    # each cut moves two corners of the merged face into a quad; counting them
+    # saves a walk around the merged face per cut
+    size = mesh.face_size(mesh.corner_face(side))
+    while size > 4:
         before = mesh.corner_prev(side)
         mesh.insert_edge(before, mesh.corner_next(mesh.corner_next(side)))
         side = before
+        size -= 2
 
 
 def _triangle_band(mesh: Mesh, corner1: int, corner2: int) -> None:
     """TopMod's ``dualConnectFaces``: one merging edge, then triangles, alternating sides."""
     mesh.insert_edge(corner1, corner2)
     side, parity = corner1, True
-    while mesh.face_size(mesh.corner_face(side)) > 3:
+    size = mesh.face_size(mesh.corner_face(side))  # each cut takes one corner away
+    while size > 3:
+        size -= 1
         if parity:
             mesh.insert_edge(side, mesh.corner_next(mesh.corner_next(side)))
         else:
@@ -213,8 +219,8 @@ def connect_faces(
 
     Raises:
         DLFLError: a corner is not live, both are in one face, ``segments`` < 1,
-            faces of different sizes with ``segments`` > 1, or a bad pinch value.
-        TopMod silently did nothing for faces of different sizes.
+            faces of different sizes with ``segments`` > 1 (TopMod silently did
+            nothing), or a bad pinch value.
     """
     face1, face2 = _two_faces(mesh, corner1, corner2, "connect_faces")
     _check_segments(segments, max_connections)

@@ -52,10 +52,21 @@ class Options:
 # -- local geometry ------------------------------------------------------------------
 
 def _face_geometry(mesh: Mesh, face: int) -> tuple[np.ndarray, np.ndarray]:
-    """``(k, 3)`` points of ``face`` from its head and its ``(3,)`` unit normal."""
+    """``(k, 3)`` points of ``face`` from its head and its ``(3,)`` unit normal.
+
+    Every step reads its face through here before it changes anything, so this
+    is where a degenerate face is refused (checking it earlier would compute the
+    geometry twice per extrusion, a sixth of a chained step's time).
+
+    Raises:
+        DLFLError: the face has no normal (collinear or coincident points).
+    """
     slot = mesh._v.slot
     points = mesh._v.arrays["position"][[slot(v) for v in mesh.face_vertices(face)]]
-    return points, np.array(small_polygon_normal(points.tolist()))
+    normal = small_polygon_normal(points.tolist())
+    if normal == (0.0, 0.0, 0.0):
+        raise DLFLError(f"face {face} is degenerate (no normal); it cannot be extruded")
+    return points, np.array(normal)
 
 
 def small_polygon_normal(points: list[list[float]]) -> tuple[float, float, float]:
@@ -121,11 +132,16 @@ def _rotated(points: np.ndarray, axis: np.ndarray, degrees: float) -> np.ndarray
         return points
     theta = math.radians(degrees)
     centre = points.mean(axis=0)
-    x, y, z = axis
-    skew = np.array([[0.0, -z, y], [z, 0.0, -x], [-y, x, 0.0]])
-    # Rodrigues' matrix, applied as one product (np.cross is slow on a few points)
-    turn = math.cos(theta) * np.eye(3) + math.sin(theta) * skew \
-        + (1.0 - math.cos(theta)) * np.outer(axis, axis)
+    x, y, z = axis.tolist()
+    c, s = math.cos(theta), math.sin(theta)
+    k = 1.0 - c
+    # Rodrigues' matrix built in plain floats and applied as one product: numpy's
+    # cross, eye and outer cost more than the arithmetic on a handful of points
+    turn = np.array([
+        [c + k * x * x, k * x * y - s * z, k * x * z + s * y],
+        [k * y * x + s * z, c + k * y * y, k * y * z - s * x],
+        [k * z * x - s * y, k * z * y + s * x, c + k * z * z],
+    ])
     return centre + (points - centre) @ turn.T
 
 
@@ -387,8 +403,6 @@ def _check_face(mesh: Mesh, face: int) -> None:
     if mesh.face_size(int(face)) < 3:
         raise DLFLError(f"face {face} has {mesh.face_size(int(face))} corner(s); "
                         "only faces of 3 or more corners can be extruded")
-    if not np.any(_face_geometry(mesh, int(face))[1]):
-        raise DLFLError(f"face {face} is degenerate (no normal); it cannot be extruded")
 
 
 def _check_numbers(segments: int, o: Options) -> None:
@@ -429,8 +443,11 @@ def extrude(
         scale: factor about the new polygon's centroid (dodeca: over the whole step).
         twist: doo-sabin only, TopMod's fraction ``t`` of ``(1 - t) p_i + t p_{i+1}``.
         dual_mesh: octa only, delete the face's old edges (TopMod's ``mesh``).
-        hexagonalize: dodeca only, delete the previous end face's edges between
-            segments so adjacent pentagons merge into octagons (TopMod's GUI rule).
+        hexagonalize: for dodeca, delete the previous end face's edges between
+            segments so adjacent pentagons merge into octagons. This is TopMod's
+            GUI rule, whose counts TOPMOD.md lists; its Python binding ran
+            hex-tile steps instead (cube, 2 segments: 28/44/18), which
+            ``kind="hex-tile"`` gives.
         thickness, fractional: planar-offset only, the inset (fractional: of the
             edge vectors; else absolute along unit edge vectors).
 
