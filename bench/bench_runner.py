@@ -54,7 +54,7 @@ VARIANT = (
     "quads = [(y * (n + 1) + x, y * (n + 1) + x + 1, (y + 1) * (n + 1) + x + 1,"
     " (y + 1) * (n + 1) + x) for y in range(n) for x in range(n)]\n"
     "current_scene().add(from_polygons(pts, quads))\n"
-    "for e in edges()[:300]:\n"
+    "for e in edges()[:3000]:\n"
     "    subdivideEdge(e)\n"
 )
 
@@ -171,14 +171,17 @@ def bench_batch(folder: str, variants: int, jobs: int) -> tuple[float, float]:
     path = os.path.join(folder, "variant.py")
     with open(path, "w") as handle:
         handle.write(VARIANT)
-    work = make_variants(path, [{"size": 40 + i % 4} for i in range(variants)], None)
+    work = make_variants(path, [{"size": 60 + i % 4} for i in range(variants)], None)
     started = time.perf_counter()
-    serial = run_batch(work, SerialExecutor(), progress=None)
+    serial = run_batch(work, SerialExecutor(), quiet=True)
     sequential = time.perf_counter() - started
     started = time.perf_counter()
-    pooled = run_batch(work, ProcessPoolVariantExecutor(jobs), progress=None)
+    pooled = run_batch(work, ProcessPoolVariantExecutor(jobs), quiet=True)
     parallel = time.perf_counter() - started
     assert all(r.status == "ok" for r in serial + pooled), [r.error for r in serial + pooled]
+    busy = sum(r.elapsed for r in pooled) / sum(r.elapsed for r in serial)
+    print(f"  (variant run time in the pool / alone: {busy:.2f}; above 1 means the "
+          f"cores were shared with other work)")
     return sequential, parallel
 
 

@@ -14,6 +14,7 @@ import itertools
 import multiprocessing
 import os
 import sys
+import threading
 import time
 from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass
@@ -161,9 +162,10 @@ class SerialExecutor:
 class ProcessPoolVariantExecutor:
     """A local pool of ``jobs`` processes.
 
-    Workers come from a forkserver that has imported ``livemod.dlfl`` already,
-    so each starts fast without inheriting the parent's threads (a watching
-    session, say), which plain ``fork`` would copy in an unknown state.
+    Workers are forked directly when this process runs a single thread (the
+    ``livemod batch`` case: no start-up cost). With other threads alive (a
+    watching session, say) plain ``fork`` could copy a lock in a held state, so
+    the workers come from a forkserver that has imported ``livemod.dlfl`` instead.
     """
 
     def __init__(self, jobs: int) -> None:
@@ -171,12 +173,22 @@ class ProcessPoolVariantExecutor:
 
     def map_unordered(self, fn: Callable[[Variant], VariantResult],
                       variants: list[Variant]) -> Iterator[VariantResult]:
-        context = multiprocessing.get_context("forkserver")
-        context.set_forkserver_preload(["livemod.dlfl", "livemod.runner.batch"])
+        context = _process_context()
         with concurrent.futures.ProcessPoolExecutor(self.jobs, mp_context=context) as pool:
             futures = [pool.submit(fn, v) for v in variants]
             for future in concurrent.futures.as_completed(futures):
                 yield future.result()
+
+
+def _process_context() -> multiprocessing.context.BaseContext:
+    methods = multiprocessing.get_all_start_methods()
+    if "fork" in methods and threading.active_count() == 1:
+        return multiprocessing.get_context("fork")
+    if "forkserver" in methods:
+        context = multiprocessing.get_context("forkserver")
+        context.set_forkserver_preload(["livemod.dlfl", "livemod.runner.batch"])
+        return context
+    return multiprocessing.get_context("spawn")
 
 
 def make_variants(script: str, parameter_sets: list[dict[str, Any]], pattern: str | None,
@@ -191,9 +203,12 @@ def make_variants(script: str, parameter_sets: list[dict[str, Any]], pattern: st
 
 
 def run_batch(variants: list[Variant], executor: VariantExecutor | None = None, *,
-              jobs: int = 1, progress: TextIO | None = sys.stderr) -> list[VariantResult]:
+              jobs: int = 1, progress: TextIO | None = None,
+              quiet: bool = False) -> list[VariantResult]:
     """Run ``variants`` (on ``executor``, default a pool of ``jobs`` processes) with a
-    progress bar on ``progress``; results come back sorted by variant index."""
+    progress bar on ``progress`` (default: the current ``sys.stderr``; none if
+    ``quiet``); results come back sorted by variant index."""
+    progress = None if quiet else (progress or sys.stderr)
     if executor is None:
         executor = ProcessPoolVariantExecutor(jobs) if jobs > 1 else SerialExecutor()
     results = []

@@ -1,0 +1,144 @@
+"""``livemod run`` and ``livemod batch`` end to end, plus the sweep helpers."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+import threading
+import time
+
+import pytest
+
+from livemod.runner import cli
+from livemod.runner.batch import (
+    SerialExecutor,
+    make_variants,
+    output_name,
+    parse_param,
+    run_batch,
+    sweep,
+)
+
+from .runner_scripts.support import script_path, write_by_rename
+
+RING = script_path("ring.py")
+
+
+def test_run_prints_summary_and_steps(capsys):
+    assert cli.main(["run", script_path("cube_steps.py"), "--steps"]) == 0
+    out = capsys.readouterr().out
+    assert "V=14 E=18 F=6" in out and "genus=0" in out
+    assert "line   11  cube" in out and "done" in out
+
+
+def test_run_failure_exits_non_zero_with_file_and_line(capsys):
+    assert cli.main(["run", script_path("error_at_line_7.py")]) == 1
+    err = capsys.readouterr().err
+    assert f"{script_path('error_at_line_7.py')}:7: DLFLError" in err
+
+
+def test_run_missing_script_and_bad_output_exit_2(capsys, tmp_path):
+    assert cli.main(["run", str(tmp_path / "nope.py")]) == 2
+    assert cli.main(["run", RING, "-o", str(tmp_path / "x.txt")]) == 2
+    assert "must end with" in capsys.readouterr().err
+
+
+def test_run_with_params_seed_and_output(tmp_path, capsys):
+    out = tmp_path / "ring.obj"
+    code = cli.main(["run", RING, "--param", "count=5", "--param", "radius=2",
+                     "--seed", "3", "-o", str(out)])
+    assert code == 0, capsys.readouterr().err
+    assert "V=5 E=5 F=2" in capsys.readouterr().out
+    assert out.exists() and out.read_text().count("\nv ") + out.read_text().startswith("v ") == 5
+
+
+def test_livemod_entry_point_runs_a_script():
+    done = subprocess.run([sys.executable, "-m", "livemod.runner.cli", "run", RING,
+                           "--param", "count=4", "--param", "radius=1"],
+                          capture_output=True, text=True, timeout=60)
+    assert done.returncode == 0, done.stderr
+    assert "V=4 E=4 F=2" in done.stdout
+
+
+def test_parse_param_sweep_and_output_names():
+    assert parse_param("n=3:6:4") == ("n", [3, 4, 5, 6])
+    assert parse_param("r=0:1:3") == ("r", [0.0, 0.5, 1.0])
+    assert parse_param("r=2.5") == ("r", [2.5])
+    for bad in ("n", "n=1:2", "n=1:2:0", "n=a:2:3", "1n=1:2:3"):
+        with pytest.raises(ValueError):
+            parse_param(bad)
+    combos = sweep([("a", [1, 2]), ("b", [0.5])])
+    assert combos == [{"a": 1, "b": 0.5}, {"a": 2, "b": 0.5}]
+    assert output_name("out/{a}_{b:.2f}_{index:03d}.obj", combos[1], 1) == "out/2_0.50_001.obj"
+    with pytest.raises(ValueError):
+        output_name("{missing}.obj", combos[0], 0)
+
+
+def test_serial_batch_writes_each_variant(tmp_path):
+    variants = make_variants(RING, sweep([parse_param("count=3:5:3"), parse_param("radius=1")]),
+                             str(tmp_path / "ring_{count}.obj"))
+    results = run_batch(variants, SerialExecutor(), quiet=True)
+    assert [r.counts for r in results] == [(3, 3, 2), (4, 4, 2), (5, 5, 2)]
+    assert sorted(os.listdir(tmp_path)) == ["ring_3.obj", "ring_4.obj", "ring_5.obj"]
+
+
+@pytest.mark.timeout(120)
+def test_batch_in_two_processes_end_to_end(tmp_path, capsys):
+    pattern = str(tmp_path / "out" / "ring_{count}_{radius}_{index}.obj")
+    code = cli.main(["batch", RING, "--param", "count=3:6:4", "--param", "radius=1:2:2",
+                     "-o", pattern, "-j", "2"])
+    captured = capsys.readouterr()
+    assert code == 0, captured.err
+    assert "8/8 variants ok" in captured.out and "8/8" in captured.err  # progress bar
+    names = sorted(os.listdir(tmp_path / "out"))
+    assert len(names) == 8 and "ring_6_2_7.obj" in names
+
+
+def test_batch_reports_failing_variants(tmp_path, capsys):
+    code = cli.main(["batch", RING, "--param", "count=1:3:3", "--param", "radius=1", "-j", "1"])
+    assert code == 1
+    assert "variant 0" in capsys.readouterr().err
+
+
+@pytest.mark.timeout(60)
+def test_run_watch_rewrites_the_output_on_save(tmp_path, capsys):
+    script, out = tmp_path / "w.py", tmp_path / "w.obj"
+    script.write_text("createVertex((0, 0, 0))\n")
+
+    def save_later() -> None:
+        deadline = time.monotonic() + 10
+        while not out.exists() and time.monotonic() < deadline:
+            time.sleep(0.02)
+        time.sleep(0.3)
+        write_by_rename(str(script), "createFace([(0, 0, 0), (1, 0, 0), (0, 1, 0)])\n")
+
+    saver = threading.Thread(target=save_later)
+    saver.start()
+    code = cli.main(["run", "--watch", str(script), "-o", str(out), "--max-runs", "2"])
+    saver.join()
+    assert code == 0
+    lines = [line for line in capsys.readouterr().out.splitlines() if line.startswith("run ")]
+    assert len(lines) == 2 and "V=3 E=3 F=2" in lines[1]
+    assert out.read_text().count("f ") == 2
+
+
+def test_run_starts_from_the_mesh_given_with_mesh(tmp_path, capsys):
+    from livemod.dlfl import from_polygons
+    from livemod.dlfl.io import save_mesh
+
+    base = tmp_path / "quad.obj"
+    save_mesh(from_polygons([(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0)], [(0, 1, 2, 3)]),
+              str(base))
+    script = tmp_path / "grow.py"
+    script.write_text("subdivideEdge(edges()[0])\n")
+    assert cli.main(["run", str(script), "--mesh", str(base), "--steps"]) == 0
+    out = capsys.readouterr().out
+    assert "V=5 E=5 F=2" in out and "subdivideEdge" in out
+
+
+def test_the_top_level_livemod_command_has_run_and_batch(capsys):
+    from livemod import cli as top
+
+    assert top.main(["run", RING, "--param", "count=3", "--param", "radius=1"]) == 0
+    assert "V=3 E=3 F=2" in capsys.readouterr().out
