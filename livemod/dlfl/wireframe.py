@@ -380,7 +380,7 @@ def convex_hull_faces(points: np.ndarray, tolerance: float = 1e-9) -> list[list[
         normal = normals[f] if outward[f] else -normals[f]
         on_plane = frozenset(np.flatnonzero(np.abs(dist[f]) <= eps).tolist())
         faces.setdefault(on_plane, normal)
-    if not faces:
+    if not faces or any(len(s) == n for s in faces):
         raise DLFLError("the points are all coplanar; they have no convex hull")
     return [_ccw(points, sorted(s), normal) for s, normal in faces.items()]
 

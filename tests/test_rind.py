@@ -1,0 +1,165 @@
+"""Rind modeling: crust by thickness or scaling, punched faces, cleanup, bad input."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from livemod.dlfl import DLFLError, face_size_histogram, genus, num_components, validate
+from livemod.dlfl.arrays import mesh_arrays
+from livemod.dlfl.rind import crust, crust_offsets, rind
+from livemod.dlfl.selection import faces_by_size
+from livemod.dlfl.shapes import cube, icosahedron, soccer_ball, torus
+from tests.meshes import point_sphere, snapshot
+
+# TopMod's cube.obj faces: 0 top (+y), 1 +x, 2 -z, 3 -x, 4 +z, 5 bottom (-y)
+TOP, BOTTOM, PLUS_X = 0, 5, 1
+
+
+def summary(mesh):
+    validate(mesh)
+    return mesh.counts(), face_size_histogram(mesh), genus(mesh), num_components(mesh)
+
+
+def test_crust_of_the_cube_is_two_shells():
+    m = cube()
+    crust(m, 0.5)
+    assert summary(m) == ((16, 24, 12), {4: 12}, 0, 2)
+
+
+def test_crust_inner_copy_is_offset_exactly_by_the_thickness():
+    m = cube()
+    rind(m, (), 0.3)
+    pos = m.positions_view()
+    np.testing.assert_allclose(pos[:8], cube().positions_view(), atol=1e-12)
+    np.testing.assert_allclose(pos[8:], cube().positions_view() * 0.7, atol=1e-12)
+
+
+def test_one_hole_matches_topmod():
+    m = cube()
+    rind(m, [TOP], 0.5)
+    assert summary(m) == ((16, 28, 14), {4: 14}, 0, 1)
+
+
+def test_two_opposite_holes_make_a_torus():
+    m = cube()
+    rind(m, [TOP, BOTTOM], 0.5)
+    assert summary(m) == ((16, 32, 16), {4: 16}, 1, 1)
+
+
+def test_tube_quads_join_each_side_to_its_inner_twin():
+    m = cube()
+    rind(m, [TOP], 0.5)
+    a = mesh_arrays(m)
+    pos = a.positions
+    tubes = [a.corner_vertex[a.face_offsets[f]:a.face_offsets[f + 1]] for f in range(10, 14)]
+    for quad in tubes:
+        outer, inner = pos[quad[:2]], pos[quad[2:]]
+        assert np.allclose(outer[:, 1], 1.0) and np.allclose(inner[:, 1], 0.5)
+        np.testing.assert_allclose(inner[::-1] / 0.5, outer, atol=1e-12)
+
+
+@pytest.mark.parametrize("k", [1, 2, 3, 6, 12])
+def test_genus_after_punching_k_faces_is_k_minus_1(k):
+    m = soccer_ball()
+    pentagons = faces_by_size(m, 5)  # no two pentagons share an edge
+    rind(m, pentagons[:k], 0.2)
+    assert genus(m) == k - 1 and num_components(m) == 1
+    validate(m)
+
+
+def test_adjacent_holes_merge_with_cleanup():
+    m = cube()
+    rind(m, [TOP, PLUS_X], 0.5)
+    assert summary(m) == ((16, 28, 14), {4: 14}, 0, 1)
+
+
+def test_adjacent_holes_keep_the_double_wall_without_cleanup():
+    m = cube()
+    rind(m, [TOP, PLUS_X], 0.5, cleanup=False)
+    assert summary(m) == ((16, 32, 16), {4: 16}, 1, 1)
+
+
+def test_scaling_crust_scales_the_copy_about_the_centroid():
+    m = cube()
+    rind(m, [TOP], use_scaling=True, scale=0.6)
+    pos = m.positions_view()
+    np.testing.assert_allclose(pos[8:], cube().positions_view() * 0.6, atol=1e-12)
+    assert m.counts() == (16, 28, 14)
+
+
+def test_negative_scale_grows_the_outer_shell():
+    m = cube()
+    rind(m, [], use_scaling=True, scale=-0.5)
+    pos = m.positions_view()
+    np.testing.assert_allclose(pos[:8], cube().positions_view() * 2, atol=1e-12)
+    np.testing.assert_allclose(pos[8:], cube().positions_view(), atol=1e-12)
+
+
+def test_scale_is_clamped_to_one():
+    m = cube()
+    rind(m, [], use_scaling=True, scale=3.0)
+    np.testing.assert_allclose(m.positions_view()[8:], cube().positions_view())
+
+
+def test_negative_thickness_moves_the_original_outward():
+    m = cube()
+    rind(m, [], -0.25)
+    pos = m.positions_view()
+    np.testing.assert_allclose(pos[:8], cube().positions_view() * 1.25, atol=1e-12)
+    np.testing.assert_allclose(pos[8:], cube().positions_view(), atol=1e-12)
+
+
+def test_uniform_and_plain_offsets():
+    a = mesh_arrays(cube())
+    np.testing.assert_allclose(crust_offsets(a, 0.5), a.positions * 0.5, atol=1e-12)
+    plain = crust_offsets(a, 0.5, uniform=False)
+    np.testing.assert_allclose(np.linalg.norm(plain, axis=1), 0.5)
+
+
+def test_rind_of_a_torus_and_an_icosahedron():
+    for shape, g in ((torus(), 1), (icosahedron(), 0)):
+        f = int(shape.face_ids()[0])
+        rind(shape, [f], 0.05)
+        validate(shape)
+        assert genus(shape) == 2 * g
+
+
+def test_ids_are_fresh_after_the_rebuild():
+    m = cube()
+    before = m.next_ids()
+    rind(m, [TOP], 0.5)
+    assert int(m.face_ids().min()) >= before[2]
+
+
+@pytest.mark.parametrize(
+    "faces, thickness",
+    [([99], 0.5), ([TOP, 42], 0.5), ([TOP], 0.0), ([TOP], 1.0), ([TOP], 1.5), ([TOP], 7.0)],
+)
+def test_bad_input_leaves_the_mesh_unchanged(faces, thickness):
+    m = cube()
+    before = snapshot(m)
+    with pytest.raises(DLFLError):
+        rind(m, faces, thickness)
+    assert snapshot(m) == before
+
+
+def test_zero_scale_is_refused():
+    m = cube()
+    with pytest.raises(DLFLError, match="scale 0"):
+        rind(m, [TOP], use_scaling=True, scale=0.0)
+
+
+def test_every_face_around_a_vertex_punched_is_refused_with_cleanup():
+    m = cube()
+    before = snapshot(m)
+    with pytest.raises(DLFLError, match="every face around vertex"):
+        rind(m, [0, 1, 2], 0.5)
+    assert snapshot(m) == before
+    rind(m, [0, 1, 2], 0.5, cleanup=False)
+    validate(m)
+
+
+def test_point_spheres_are_refused():
+    with pytest.raises(DLFLError, match="point-sphere"):
+        rind(point_sphere(), [], 0.5)

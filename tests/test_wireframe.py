@@ -1,0 +1,168 @@
+"""Modified corner cutting, wireframe and columns: counts, genus, TopMod's geometry."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from livemod.dlfl import DLFLError, face_size_histogram, genus, num_components, validate
+from livemod.dlfl.arrays import mesh_arrays
+from livemod.dlfl.shapes import cube, dodecahedron, icosahedron, tetrahedron, torus
+from livemod.dlfl.wireframe import (
+    columns,
+    convex_hull_faces,
+    modified_corner_cut,
+    vertex_rings,
+    wireframe,
+)
+from tests.meshes import point_sphere, snapshot
+
+
+def summary(mesh):
+    validate(mesh)
+    return mesh.counts(), face_size_histogram(mesh), genus(mesh)
+
+
+def as_set(points):
+    return sorted(map(tuple, np.round(points, 9).tolist()))
+
+
+def test_modified_corner_cut_of_the_cube():
+    m = cube()
+    front = modified_corner_cut(m, 0.25)
+    assert summary(m) == ((24, 48, 26), {3: 8, 4: 18}, 0)
+    assert len(front) == 6 and all(m.face_size(f) == 4 for f in front)
+
+
+def test_corner_cut_points_sit_half_the_thickness_from_both_edges():
+    m = cube()
+    modified_corner_cut(m, 0.25)
+    expected = [(sx * 0.875, sy * 0.875, sz) for sz in (1, -1) for sx in (1, -1)
+                for sy in (1, -1)]
+    points = m.positions_view()
+    on_z = points[np.isclose(np.abs(points[:, 2]), 1.0)]
+    assert as_set(on_z) == as_set(np.array(expected)[:, [0, 1, 2]])
+
+
+def test_corner_cut_counts_on_other_meshes():
+    for shape in (tetrahedron(), icosahedron(), dodecahedron(), torus()):
+        v, e, f = shape.counts()
+        modified_corner_cut(shape, 0.1)
+        validate(shape)
+        assert shape.counts() == (2 * e, 4 * e, f + e + v)
+
+
+def test_wireframe_of_the_cube_matches_topmod():
+    m = cube()
+    wireframe(m, 0.1)
+    assert summary(m) == ((48, 120, 64), {3: 16, 4: 48}, 5)
+    assert num_components(m) == 1
+
+
+@pytest.mark.parametrize("t", [0.05, 0.25, 0.5])
+def test_wireframe_counts_do_not_depend_on_thickness(t):
+    m = cube()
+    wireframe(m, t)
+    assert summary(m) == ((48, 120, 64), {3: 16, 4: 48}, 5)
+
+
+def test_wireframe_geometry_matches_topmods_rule():
+    t = 0.1
+    m = cube()
+    wireframe(m, t)
+    outer = np.array([(sx * (1 - t / 2), sy * (1 - t / 2), sz) for sx in (1, -1)
+                      for sy in (1, -1) for sz in (1, -1)])
+    outer = np.concatenate([np.roll(outer, k, axis=1) for k in range(3)])
+    # each inner copy sits t along the inward cube diagonal from its outer point
+    inner = outer - t * np.sign(outer) / np.sqrt(3)
+    assert as_set(m.positions_view()) == as_set(np.concatenate([outer, inner]))
+
+
+def test_wireframe_genus_is_the_cycle_rank_of_the_edge_graph():
+    for shape in (icosahedron(), torus(6, 4), tetrahedron()):
+        v, e, _ = shape.counts()
+        wireframe(shape, 0.05)
+        validate(shape)
+        assert genus(shape) == e - v + 1
+
+
+@pytest.mark.parametrize("t", [0.0, -0.1, float("nan")])
+def test_wireframe_bad_thickness_leaves_the_mesh_unchanged(t):
+    m = cube()
+    before = snapshot(m)
+    with pytest.raises(DLFLError):
+        wireframe(m, t)
+    assert snapshot(m) == before
+
+
+def test_wireframe_refuses_point_spheres():
+    with pytest.raises(DLFLError, match="point-sphere"):
+        wireframe(point_sphere(), 0.1)
+
+
+def test_columns_four_segments_match_topmod():
+    m = cube()
+    columns(m, 0.25, 4)
+    assert summary(m) == ((96, 216, 112), {3: 16, 4: 96}, 5)
+
+
+def test_columns_six_segments_match_topmod():
+    m = cube()
+    columns(m, 0.25, 6)
+    assert summary(m) == ((144, 312, 160), {3: 16, 4: 144}, 5)
+
+
+def test_column_rings_have_the_thickness_as_radius():
+    m = cube()
+    columns(m, 0.2, 4)
+    pos = m.positions_view()
+    # every point is 0.2 from the cube edge it follows: two coordinates at 1 +- 0.2/sqrt(2)
+    off = np.abs(np.abs(pos) - 1)
+    close = np.isclose(off, 0.2 / np.sqrt(2))
+    assert (close.sum(axis=1) == 2).all()
+    radial = np.sqrt(np.sort(np.where(close, off, 0.0), axis=1)[:, 1:] ** 2 @ np.ones(2))
+    np.testing.assert_allclose(radial, 0.2)
+
+
+def test_columns_on_other_meshes():
+    for shape in (tetrahedron(), icosahedron(), torus(6, 4)):
+        v, e, _ = shape.counts()
+        columns(shape, 0.05, 5)
+        validate(shape)
+        assert genus(shape) == e - v + 1
+
+
+@pytest.mark.parametrize("segments", [-1, 0, 1, 2, 2.5])
+def test_columns_refuse_too_few_segments(segments):
+    m = cube()
+    before = snapshot(m)
+    with pytest.raises(DLFLError, match="segments"):
+        columns(m, 0.25, segments)
+    assert snapshot(m) == before
+
+
+def test_columns_refuse_a_bad_thickness():
+    m = cube()
+    with pytest.raises(DLFLError, match="thickness"):
+        columns(m, 0.0, 4)
+
+
+def test_convex_hull_of_the_cube_corners_is_six_quads():
+    faces = convex_hull_faces(cube().positions_view())
+    assert sorted(len(f) for f in faces) == [4] * 6
+
+
+def test_convex_hull_refuses_flat_input():
+    with pytest.raises(DLFLError):
+        convex_hull_faces(np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0.0]]))
+
+
+def test_vertex_rings_walk_against_vnext():
+    a = mesh_arrays(cube())
+    order, offsets = vertex_rings(a)
+    assert np.diff(offsets).tolist() == [3] * 8
+    vnext = a.corner_vnext
+    for v in range(8):
+        ring = order[offsets[v]:offsets[v + 1]]
+        for i in range(3):
+            assert vnext[ring[(i + 1) % 3]] == ring[i]
