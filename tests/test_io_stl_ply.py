@@ -1,0 +1,156 @@
+"""STL and PLY export (livemod.dlfl.io.stl, .ply) and atomic writes (.atomic)."""
+
+from __future__ import annotations
+
+import os
+import struct
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from livemod.dlfl import Mesh, from_polygons
+from livemod.dlfl.io import atomic_write, read_obj, save_mesh, write_ply, write_stl
+from livemod.dlfl.io import obj as obj_module
+
+SAMPLES = Path(__file__).resolve().parents[2] / "shared" / "data" / "topmod-objs"
+
+
+def open_box() -> Mesh:
+    """A cube without its top: 5 quads, one hole, plus a point-sphere."""
+    mesh = read_obj(SAMPLES / "cube.obj")
+    top = mesh.face_ids()[0]
+    mesh.set_hole(top)
+    mesh.create_vertex((4.0, 5.0, 6.0))
+    return mesh
+
+
+def read_stl(path: Path) -> tuple[bytes, np.ndarray]:
+    data = path.read_bytes()
+    (count,) = struct.unpack_from("<I", data, 80)
+    dtype = np.dtype([("normal", "<f4", 3), ("corners", "<f4", (3, 3)), ("attribute", "<u2")])
+    assert len(data) == 84 + 50 * count
+    return data[:80], np.frombuffer(data, dtype=dtype, offset=84)
+
+
+def test_stl_has_fans_of_the_drawn_faces_with_face_normals(tmp_path: Path) -> None:
+    path = tmp_path / "box.stl"
+    write_stl(open_box(), path)
+    header, triangles = read_stl(path)
+    assert header.startswith(b"livemod")
+    assert len(triangles) == 5 * 2  # five quads, the hole and the point-sphere skipped
+    corners = triangles["corners"].astype(np.float64)
+    cross = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
+    assert np.allclose(cross / np.linalg.norm(cross, axis=1)[:, None], triangles["normal"])
+    assert not np.any(np.all(triangles["normal"] == [0, 1, 0], axis=1))  # the top is a hole
+
+
+def test_stl_of_pentagons_and_hexagons(tmp_path: Path) -> None:
+    path = tmp_path / "ball.stl"
+    save_mesh(read_obj(SAMPLES / "soccerball.obj"), path)
+    _, triangles = read_stl(path)
+    assert len(triangles) == 12 * 3 + 20 * 4
+
+
+def read_ply(path: Path) -> tuple[list[str], np.ndarray, list[list[int]]]:
+    data = path.read_bytes()
+    end = data.index(b"end_header\n") + len(b"end_header\n")
+    header = data[:end].decode().splitlines()
+    num_v = int(next(h for h in header if h.startswith("element vertex")).split()[2])
+    num_f = int(next(h for h in header if h.startswith("element face")).split()[2])
+    positions = np.frombuffer(data, dtype="<f8", count=3 * num_v, offset=end).reshape(-1, 3)
+    pos = end + 24 * num_v
+    faces = []
+    for _ in range(num_f):
+        size = data[pos]
+        faces.append(list(struct.unpack_from(f"<{size}i", data, pos + 1)))
+        pos += 1 + 4 * size
+    assert pos == len(data)
+    return header, positions, faces
+
+
+def test_ply_binary_polygons_without_holes(tmp_path: Path) -> None:
+    mesh = open_box()
+    path = tmp_path / "box.ply"
+    write_ply(mesh, path)
+    header, positions, faces = read_ply(path)
+    assert header[:2] == ["ply", "format binary_little_endian 1.0"]
+    assert "property list uchar int vertex_indices" in header
+    assert np.array_equal(positions, mesh.positions_view())
+    assert faces == [mesh.face_vertices(f) for f in mesh.face_ids()[1:6]]
+
+
+def test_ply_with_a_huge_face_uses_uint_counts(tmp_path: Path) -> None:
+    angles = np.linspace(0, 2 * np.pi, 300, endpoint=False)
+    ring = np.stack([np.cos(angles), np.sin(angles), 0 * angles], axis=1)
+    mesh = from_polygons(ring, [list(range(300)), list(range(299, -1, -1))])
+    path = tmp_path / "disk.ply"
+    write_ply(mesh, path)
+    data = path.read_bytes()
+    assert b"property list uint int vertex_indices" in data
+    end = data.index(b"end_header\n") + len(b"end_header\n") + 24 * 300
+    assert struct.unpack_from("<I", data, end)[0] == 300
+    assert len(data) == end + 2 * (4 + 4 * 300)
+
+
+# ------------------------------------------------------------ atomic writes
+
+
+def test_atomic_write_replaces_only_on_success(tmp_path: Path) -> None:
+    path = tmp_path / "a.bin"
+    path.write_bytes(b"old")
+    with pytest.raises(RuntimeError), atomic_write(path) as handle:
+        handle.write(b"half")
+        raise RuntimeError("disk on fire")
+    assert path.read_bytes() == b"old"
+    assert os.listdir(tmp_path) == ["a.bin"]
+    with atomic_write(path) as handle:
+        handle.write(b"new")
+    assert path.read_bytes() == b"new"
+    assert os.listdir(tmp_path) == ["a.bin"]
+
+
+def test_new_files_get_ordinary_permissions(tmp_path: Path) -> None:
+    path = tmp_path / "fresh.obj"
+    save_mesh(open_box(), path)
+    assert path.stat().st_mode & 0o777 == 0o644
+
+
+@pytest.mark.parametrize("ext", ["obj", "dlfl", "stl", "ply"])
+def test_a_save_that_fails_midway_leaves_the_old_file(
+    ext: str, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    path = tmp_path / f"mesh.{ext}"
+    save_mesh(open_box(), path)
+    before = path.read_bytes()
+
+    class Exploding:
+        def __init__(self, real: object) -> None:
+            self.real = real
+
+        def write(self, data: bytes) -> int:
+            self.real.write(data[: len(data) // 2])  # type: ignore[attr-defined]
+            raise OSError("no space left on device")
+
+        def __getattr__(self, name: str) -> object:
+            return getattr(self.real, name)
+
+    real_atomic = atomic_write
+
+    def failing(target: str):  # type: ignore[no-untyped-def]
+        import contextlib
+
+        @contextlib.contextmanager
+        def wrapped():  # type: ignore[no-untyped-def]
+            with real_atomic(target) as handle:
+                yield Exploding(handle)
+
+        return wrapped()
+
+    for module in ("obj", "dlflfile", "stl", "ply"):
+        monkeypatch.setattr(f"livemod.dlfl.io.{module}.atomic_write", failing)
+    with pytest.raises(OSError, match="no space"):
+        save_mesh(read_obj(SAMPLES / "soccerball.obj"), path)
+    assert path.read_bytes() == before
+    assert os.listdir(tmp_path) == [path.name]
+    assert obj_module.atomic_write is failing
