@@ -202,9 +202,9 @@ def test_bezier_handle_vertices_follow_their_own_curves():
     assert np.allclose(new_positions(m), np.concatenate(expected), atol=1e-9)
 
 
-def test_rotation_between_handles_opposite_vectors():
+def test_rotation_between_is_the_identity_for_opposite_vectors_as_in_topmod():
     a = np.array([0.0, 1.0, 0.0])
-    assert np.allclose(rotation_between(a, -a) @ a, -a)
+    assert np.array_equal(rotation_between(a, -a), np.eye(3))
     b = np.array([0.6, 0.0, 0.8])
     assert np.allclose(rotation_between(a, b) @ a, b)
 
@@ -315,3 +315,14 @@ def test_multi_face_handle_refuses_coplanar_points():
     with pytest.raises(DLFLError, match="not all in one plane"):
         multi_face_handle(m, [front, back], extrude=0.0)
     assert snapshot(m) == before
+
+
+def test_resolve_polygon_angles_ascend_from_the_first():
+    from livemod.dlfl.connect import resolve_polygon
+
+    x, y = np.array([1.0, 0.0, 0.0]), np.array([0.0, 1.0, 0.0])
+    square = np.array([[1, 0, 0], [0, 1, 0], [-1, 0, 0], [0, -1, 0]], float) + 5.0
+    angles, dist = resolve_polygon(square, x, y)
+    assert np.allclose(angles, [0, np.pi / 2, np.pi, 3 * np.pi / 2]) and np.allclose(dist, 1)
+    angles, _ = resolve_polygon(square[::-1], x, y)  # clockwise: steps of 3π/2
+    assert np.allclose(np.diff(angles), 3 * np.pi / 2) and 0 <= angles[0] < 2 * np.pi

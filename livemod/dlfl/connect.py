@@ -360,16 +360,13 @@ def hermite_point(p1: np.ndarray, m1: np.ndarray, p2: np.ndarray, m2: np.ndarray
 def rotation_between(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """``(3, 3)`` the smallest rotation taking unit vector ``a`` to unit vector ``b``.
 
-    Opposite vectors get a half turn about an axis perpendicular to ``a``.
+    Parallel or opposite vectors give the identity, as TopMod's ``rotate``
+    (an axis cannot be chosen for them).
     """
     v = np.cross(a, b)
     c = float(np.dot(a, b))
-    if c < -1.0 + 1e-12:
-        axis = np.cross(a, [1.0, 0.0, 0.0])
-        if np.linalg.norm(axis) < 1e-6:
-            axis = np.cross(a, [0.0, 1.0, 0.0])
-        axis /= np.linalg.norm(axis)
-        return 2.0 * np.outer(axis, axis) - np.eye(3)
+    if float(v @ v) < 1e-18:
+        return np.eye(3)
     k = np.array([[0.0, -v[2], v[1]], [v[2], 0.0, -v[0]], [-v[1], v[0], 0.0]])
     return np.eye(3) + k + k @ k / (1.0 + c)
 
@@ -395,15 +392,16 @@ def hermite_rings(
 ) -> list[np.ndarray]:
     """The intermediate rings of a Hermite handle (TopMod's ``hermiteConnectFaces``).
 
-    The centroids follow the Hermite curve from centroid 1 (tangent
-    ``weight1 * n1``) to centroid 2 (tangent ``weight2 * n2``). Each end polygon is
-    rotated about its centroid into the plane perpendicular to ``axis =
-    normalize(c2 - c1)`` and resolved into (angle, distance) pairs against
-    ``x = normalize(q_0 + q_{n-1})`` (q: ring 1 rotated) and ``y = axis x x``;
-    angles are unwrapped, face 2's shifted by a multiple of 2π to within π of
-    face 1's, plus ``2π twists``. Ring ``i`` at ``t = i / segments`` interpolates
-    both linearly, is scaled by the pinch profile ``(pinch, center, bubble)``,
-    rotated from ``axis`` to the curve tangent and moved to the curve point.
+    Each end polygon, centred at the origin, is turned (smallest rotation) from
+    its normal to ``axis = normalize(c2 - c1)`` and resolved into (angle,
+    distance) pairs about its centroid against ``x = normalize(q_0 + q_{n-1})``
+    (q: ring 1 turned) and ``y = axis x x`` (:func:`resolve_polygon`). Face 2's
+    angles lose 2π when they start more than π past face 1's, then gain
+    ``2π twists``. Ring ``i`` at ``t = i / segments`` interpolates angles and
+    distances linearly, is scaled about its centroid by the pinch profile
+    ``(pinch, center, bubble)``, turned from ``axis`` to the Hermite tangent,
+    and its centroid put on the Hermite curve from ``c1`` (tangent
+    ``weight1 n1``) to ``c2`` (tangent ``weight2 n2``).
 
     Args:
         start, end: ``(n, 3)`` end polygons, vertex ``i`` facing vertex ``i``.
@@ -417,6 +415,29 @@ def hermite_rings(
             centroid-to-centroid axis (TopMod refused these too).
     """
     c1, c2 = start.mean(axis=0), end.mean(axis=0)
+    axis = _handle_axis(c1, c2, n1, n2)
+    q1 = (start - c1) @ rotation_between(n1, axis).T
+    q2 = (end - c2) @ rotation_between(n2, axis).T
+    x = (q1[0] + q1[-1]) / np.linalg.norm(q1[0] + q1[-1])
+    y = np.cross(axis, x)
+    a1, d1 = resolve_polygon(q1, x, y)
+    a2, d2 = resolve_polygon(q2, x, y)
+    if a2[0] - a1[0] > np.pi:
+        a2 = a2 - 2 * np.pi
+    a2 = a2 + 2 * np.pi * twists
+    rings = []
+    for i in range(1, segments):
+        t = i / segments
+        angle, dist = a1 + (a2 - a1) * t, d1 + (d2 - d1) * t
+        flat = dist[:, None] * (np.cos(angle)[:, None] * x + np.sin(angle)[:, None] * y)
+        flat = (flat - flat.mean(axis=0)) * _pinch_scale(t, *pinch)
+        point, tangent = hermite_point(c1, weight1 * n1, c2, weight2 * n2, t)
+        turn = rotation_between(axis, tangent / np.linalg.norm(tangent))
+        rings.append(point + flat @ turn.T)
+    return rings
+
+
+def _handle_axis(c1: np.ndarray, c2: np.ndarray, n1: np.ndarray, n2: np.ndarray) -> np.ndarray:
     axis = c2 - c1
     if np.linalg.norm(axis) < 1e-12:
         raise DLFLError("a Hermite handle needs faces with different centroids")
@@ -424,23 +445,19 @@ def hermite_rings(
     if min(float(n1 @ axis), float(n2 @ axis)) < -1.0 + 1e-9:
         raise DLFLError("a face normal points exactly against the handle's axis; "
                         "TopMod cannot build this handle either (use a bezier handle)")
-    q1 = (start - c1) @ rotation_between(n1, axis).T
-    q2 = (end - c2) @ rotation_between(n2, axis).T
-    x = q1[0] + q1[-1]
-    x = x / np.linalg.norm(x)
-    y = np.cross(axis, x)
-    a1, a2 = (np.unwrap(np.arctan2(q @ y, q @ x)) for q in (q1, q2))
-    a2 = a2 - 2 * np.pi * np.round((a2[0] - a1[0]) / (2 * np.pi)) + 2 * np.pi * twists
-    d1, d2 = np.linalg.norm(q1, axis=1), np.linalg.norm(q2, axis=1)
-    rings = []
-    for i in range(1, segments):
-        t = i / segments
-        angle, dist = a1 + (a2 - a1) * t, d1 + (d2 - d1) * t
-        flat = dist[:, None] * (np.cos(angle)[:, None] * x + np.sin(angle)[:, None] * y)
-        point, tangent = hermite_point(c1, weight1 * n1, c2, weight2 * n2, t)
-        turn = rotation_between(axis, tangent / np.linalg.norm(tangent))
-        rings.append(point + (flat * _pinch_scale(t, *pinch)) @ turn.T)
-    return rings
+    return axis
+
+
+def resolve_polygon(points: np.ndarray, x: np.ndarray, y: np.ndarray
+                    ) -> tuple[np.ndarray, np.ndarray]:
+    """``(n,)`` angles and ``(n,)`` distances of ``(n, 3)`` points about their centroid,
+    against the axes ``x`` and ``y`` (TopMod's ``resolvePolygon``): the first angle
+    in ``[0, 2π)``, each next one the first value at or above the previous one."""
+    rel = points - points.mean(axis=0)
+    raw = np.arctan2(rel @ y, rel @ x)
+    steps = np.mod(np.diff(raw), 2 * np.pi)
+    angles = np.mod(raw[0], 2 * np.pi) + np.concatenate([[0.0], np.cumsum(steps)])
+    return angles, np.linalg.norm(rel, axis=1)
 
 
 def hermite_handle(
@@ -454,6 +471,7 @@ def hermite_handle(
     :func:`connect_faces` (at most ``max_connections`` joins, -1 for all). Defaults
     are TopMod's GUI ("Add Handle SI": 10 segments, weights 25 and 25). Cube
     faces 0 and 1 with 10 segments: 44/88/44. One segment is :func:`connect_faces`.
+    Negative ``twists`` turn the other way (TopMod ignored them).
 
     Returns:
         The ids of the new edges.
