@@ -164,3 +164,11 @@ def test_frame_paths_patterns() -> None:
     assert [p.name for p in frame_paths("out/t_{frame:02d}.png", 2)] == ["t_00.png", "t_01.png"]
     assert [p.name for p in frame_paths("t_%03d.png", 2)] == ["t_000.png", "t_001.png"]
     assert frame_paths("folder", 2)[1].as_posix() == "folder/frame_001.png"
+
+
+def test_docs_list_every_key() -> None:
+    from pathlib import Path
+
+    doc = (Path(__file__).resolve().parent.parent / "docs" / "viewer.md").read_text()
+    for binding in KEY_BINDINGS:
+        assert f"`{binding.label()}`" in doc, binding

@@ -51,6 +51,7 @@ def add_commands(subparsers: Any) -> None:
     render.add_argument("--ortho", action="store_true", help="orthographic projection")
     render.add_argument("--vertices", action="store_true", help="draw vertices")
     render.add_argument("--no-edges", action="store_true", help="hide the edges")
+    render.add_argument("--samples", type=int, default=4, help="MSAA samples (0 is fastest)")
     render.set_defaults(handler=_render)
 
 
@@ -80,7 +81,8 @@ def _render(args: argparse.Namespace) -> int:
     progress = progress_bar() if args.turntable > 1 else None
     paths = render_arrays(arrays, args.output, size=args.size, turntable=args.turntable,
                           elevation=args.elevation, style=style, preview=preview,
-                          progress=progress, ortho=args.ortho)
+                          progress=progress, ortho=args.ortho,
+                          samples=args.samples)
     print(f"wrote {paths[0]}" if len(paths) == 1 else f"wrote {len(paths)} frames: "
           f"{paths[0]} .. {paths[-1]}")
     return 0

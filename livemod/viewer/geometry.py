@@ -38,6 +38,7 @@ class RenderGeometry:
         lines: ``(E, 2)`` uint32 vertex indices of each edge.
         bounds: ``(2, 3)`` float64 min and max corner (zeros if empty).
         face_count: number of faces, holes included (the length of face tables).
+        holes: number of hole faces.
     """
 
     positions: np.ndarray
@@ -46,6 +47,13 @@ class RenderGeometry:
     lines: np.ndarray
     bounds: np.ndarray
     face_count: int
+    holes: int = 0
+
+    @property
+    def closed(self) -> bool:
+        """True for a mesh with faces and no holes: its back faces are never seen
+        from outside, so they can be culled."""
+        return self.face_count > 0 and len(self.triangles) > 0 and self.holes == 0
 
     @property
     def center(self) -> np.ndarray:
@@ -86,7 +94,7 @@ def build_geometry(arrays: MeshArrays) -> RenderGeometry:
     else:
         bounds = np.zeros((2, 3))
     return RenderGeometry(positions, triangles, triangle_face, lines, bounds,
-                          len(arrays.face_ids))
+                          len(arrays.face_ids), int(arrays.face_hole.sum()))
 
 
 def decode_pick(pick_id: int) -> tuple[int, int] | None:

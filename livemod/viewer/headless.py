@@ -149,12 +149,12 @@ def render_arrays(arrays: MeshArrays | None, out: str, *, size: tuple[int, int] 
                   turntable: int = 0, elevation: float = 25.0, style: Style | None = None,
                   preview: MeshArrays | None = None, selection: Selection | None = None,
                   progress: Callable[[int, int], None] | None = None,
-                  ortho: bool = False) -> list[Path]:
+                  ortho: bool = False, samples: int = 4) -> list[Path]:
     """Render ``arrays`` to ``out`` (one frame, or a ``turntable`` of that many frames).
 
     The framing is computed once from the bounding sphere, so it holds at every angle.
     """
-    offscreen = Offscreen(size)
+    offscreen = Offscreen(size, samples=samples)
     try:
         offscreen.renderer.set_mesh(arrays, preview)
         if selection is not None:

@@ -1,0 +1,121 @@
+"""Viewer and rendering benchmarks (plain python; prints medians of several runs).
+
+    python bench/bench_viewer.py [--quick]
+
+1. Upload of a 1,000,000-face mesh (a 1000x1000 quad torus) to GPU buffers over
+   EGL: the numpy part (:func:`build_geometry`) and the whole ``set_mesh``
+   (numpy + buffer and table uploads, ``ctx.finish()``). Targets: 0.3 s and 0.5 s.
+2. A 36-frame 512x512 turntable of a 100,000-face mesh (316x316 torus) on the
+   software renderer, 4x MSAA, with read-back; plus writing it as a GIF.
+   Target: at most 20 s for the frames.
+3. Frame times of the live window (headless backend, 640x480) while a 5-second
+   pure-Python script runs in the runner: median and 90th percentile.
+   Target: under 50 ms.
+"""
+
+from __future__ import annotations
+
+import argparse
+import statistics
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+from livemod.dlfl import mesh_arrays
+from livemod.dlfl.shapes import torus
+from livemod.viewer.geometry import build_geometry
+from livemod.viewer.headless import Offscreen, framed_camera, render_turntable, write_images
+from livemod.viewer.renderer import Style
+
+
+def _median(times: list[float]) -> str:
+    return f"median {statistics.median(times):.3f} s  (runs: {', '.join(f'{t:.3f}' for t in times)})"
+
+
+def bench_upload(runs: int, size: int) -> None:
+    arrays = mesh_arrays(torus(size, size))
+    faces = arrays.counts[2]
+    numpy_times, total_times = [], []
+    offscreen = Offscreen((64, 64), samples=0)
+    for _ in range(runs):
+        start = time.perf_counter()
+        build_geometry(arrays)
+        numpy_times.append(time.perf_counter() - start)
+        start = time.perf_counter()
+        offscreen.renderer.set_mesh(arrays)
+        offscreen.ctx.finish()
+        total_times.append(time.perf_counter() - start)
+    offscreen.release()
+    print(f"upload {faces:,} faces, numpy part: {_median(numpy_times)}  target 0.3 s")
+    print(f"upload {faces:,} faces, total:      {_median(total_times)}  target 0.5 s")
+
+
+def bench_turntable(runs: int, size: int, frames: int) -> None:
+    arrays = mesh_arrays(torus(size, size))
+    faces = arrays.counts[2]
+    times, gif_times = [], []
+    for _ in range(runs):
+        offscreen = Offscreen((512, 512), samples=4)
+        offscreen.renderer.set_mesh(arrays)
+        camera = framed_camera(arrays, elevation=25.0)
+        start = time.perf_counter()
+        images = render_turntable(offscreen, camera, Style(), frames)
+        times.append(time.perf_counter() - start)
+        offscreen.release()
+        with tempfile.TemporaryDirectory() as folder:
+            start = time.perf_counter()
+            write_images(str(Path(folder) / "turn.gif"), images)
+            gif_times.append(time.perf_counter() - start)
+    print(f"turntable {frames} frames 512x512, {faces:,} faces: {_median(times)}  target 20 s")
+    print(f"  writing the GIF: {_median(gif_times)}")
+
+
+BUSY = (
+    "import time\n"
+    "start = time.perf_counter()\n"
+    "while time.perf_counter() - start < 5.0:\n"
+    "    total = sum(i * i for i in range(2000))\n"
+)
+
+
+def bench_frames_during_run(seconds: float) -> None:
+    from livemod.viewer.window import ViewOptions, close_viewer, create_viewer, run_frames
+
+    with tempfile.TemporaryDirectory() as folder:
+        script = Path(folder) / "busy.py"
+        script.write_text(BUSY)
+        viewer = create_viewer(ViewOptions(str(script), backend="headless", size=(640, 480),
+                                           samples=0, vsync=False))
+        times = []
+        started = time.perf_counter()
+        while time.perf_counter() - started < seconds:
+            frame_start = time.perf_counter()
+            run_frames(viewer, 1)
+            times.append(time.perf_counter() - frame_start)
+        still_running = viewer.waiting
+        close_viewer(viewer)
+    times.sort()
+    print(f"window frames during a 5 s script ({len(times)} frames, run still going: "
+          f"{still_running}): median {1000 * times[len(times) // 2]:.1f} ms, "
+          f"p90 {1000 * times[int(0.9 * len(times))]:.1f} ms, max {1000 * times[-1]:.1f} ms"
+          "  target < 50 ms")
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--quick", action="store_true", help="small sizes, one run")
+    args = parser.parse_args(argv)
+    if args.quick:
+        bench_upload(1, 100)
+        bench_turntable(1, 60, 4)
+        bench_frames_during_run(1.0)
+    else:
+        bench_upload(5, 1000)
+        bench_turntable(3, 316, 36)
+        bench_frames_during_run(4.0)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
