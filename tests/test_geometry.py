@@ -1,0 +1,134 @@
+"""Geometry-only operations and TopMod's cleanup helpers."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from livemod.dlfl import DLFLError, face_size_histogram, validate
+from livemod.dlfl.analysis import face_normals
+from livemod.dlfl.arrays import mesh_arrays
+from livemod.dlfl.geometry import (
+    cleanup_2gons,
+    cleanup_winged_vertices,
+    edge_cleanup,
+    mesh_smooth,
+    planarize,
+    spheralize,
+    split_valence2_vertices,
+)
+from livemod.dlfl.shapes import cube, spherical_cube, torus
+from tests.meshes import snapshot
+
+
+def bumped_cube():
+    m = cube()
+    m.set_position(0, (1.3, 1.2, 1.1))
+    return m
+
+
+def non_planarity(mesh):
+    """Largest distance of a corner from its face's centroid plane."""
+    a = mesh_arrays(mesh)
+    normals = face_normals(a)[a.corner_face]
+    sums = np.zeros((len(a.face_ids), 3))
+    np.add.at(sums, a.corner_face, a.positions[a.corner_vertex])
+    centres = (sums / a.face_sizes[:, None])[a.corner_face]
+    return np.abs(np.einsum("ij,ij->i", a.positions[a.corner_vertex] - centres, normals)).max()
+
+
+def test_smoothing_keeps_the_cube_and_its_topology():
+    m = cube()
+    mesh_smooth(m, 3)
+    validate(m)
+    assert m.counts() == (8, 12, 6)
+    np.testing.assert_allclose(m.positions_view(), cube().positions_view(), atol=1e-12)
+
+
+def test_smoothing_moves_only_tangentially():
+    m = spherical_cube(4)
+    before = m.positions_view()
+    mesh_smooth(m)
+    after = m.positions_view()
+    assert not np.allclose(before, after)
+    # a round mesh stays nearly round: tangential moves barely change the radius
+    assert np.abs(np.linalg.norm(after, axis=1) - 1).max() < 0.1
+
+
+def test_smoothing_rejects_negative_iterations():
+    with pytest.raises(DLFLError):
+        mesh_smooth(cube(), -1)
+
+
+def test_planarize_flattens_faces():
+    m = bumped_cube()
+    before = non_planarity(m)
+    planarize(m)
+    validate(m)
+    assert m.counts() == (8, 12, 6)
+    assert non_planarity(m) < before / 5
+
+
+def test_planarize_rejects_negative_steps():
+    with pytest.raises(DLFLError):
+        planarize(cube(), -3)
+
+
+def test_spheralize_puts_vertices_on_the_unit_sphere_about_the_centroid():
+    m = cube()
+    m.set_positions(m.vertex_ids(), m.positions_view() * 3 + 5)
+    spheralize(m)
+    np.testing.assert_allclose(np.linalg.norm(m.positions_view(), axis=1), 1.0)
+    np.testing.assert_allclose(m.positions_view(), cube().positions_view() / np.sqrt(3))
+
+
+def test_edge_cleanup_removes_a_face_diagonal():
+    m = cube()
+    c = m.face_corners(0)
+    m.insert_edge(c[0], c[2])
+    assert m.counts() == (8, 13, 7)
+    assert edge_cleanup(m) == 1
+    validate(m)
+    assert m.counts() == (8, 12, 6)
+    assert edge_cleanup(cube()) == 0
+
+
+def test_cleanup_2gons():
+    m = cube()
+    c = m.face_corners(0)
+    m.insert_edge(c[0], c[1])  # adjacent corners: a 2-gon
+    assert face_size_histogram(m)[2] == 1
+    assert cleanup_2gons(m) == 1
+    validate(m)
+    assert m.counts() == (8, 12, 6)
+
+
+def test_cleanup_winged_vertices_undoes_an_edge_split():
+    m = cube()
+    m.subdivide_edge(0)
+    assert cleanup_winged_vertices(m) == 1
+    validate(m)
+    assert m.counts() == (8, 12, 6)
+
+
+def test_split_valence2_vertices_pushes_the_pair_apart():
+    m = cube()
+    (v,) = m.subdivide_edge(0)
+    origin = m.position(v)
+    new = split_valence2_vertices(m, 0.2)
+    validate(m)
+    assert len(new) == 1 and m.counts() == (10, 14, 6)
+    d = m.position(v) - m.position(new[0])
+    assert np.isclose(np.linalg.norm(d), 0.4)
+    np.testing.assert_allclose((m.position(v) + m.position(new[0])) / 2, origin)
+
+
+def test_geometry_ops_keep_torus_topology():
+    m = torus()
+    before = snapshot(m)
+    for op in (mesh_smooth, planarize, spheralize):
+        op(m)
+        validate(m)
+    after = snapshot(m)
+    assert after[2:] != () and m.counts() == (48, 96, 48)
+    assert before[0] != after[0]
