@@ -166,3 +166,42 @@ def test_controls_return_at_once_even_mid_run(tmp_path):
 def test_play_rejects_a_non_positive_rate(session):
     with pytest.raises(ValueError):
         session.play(0)
+
+
+@pytest.mark.timeout(60)
+def test_stepping_back_uses_the_snapshot_cache_without_a_replay(session):
+    snaps, final = straight_snapshots(CUBE)
+    session.pause()
+    session.start()
+    first = next_result(session, paused_at(0))
+    for k in (1, 2, 3):
+        session.step_forward()
+        assert next_result(session, paused_at(k)).run_id == first.run_id
+    for k in (2, 1, 0):
+        session.step_back()
+        back = next_result(session, paused_at(k))
+        assert back.run_id == first.run_id and same_mesh(back.arrays, snaps[k])
+    for k in (1, 2, 3, 4):  # through the cache, then the live run goes on
+        session.step_forward()
+        shown = next_result(session, paused_at(k))
+        assert shown.run_id == first.run_id and same_mesh(shown.arrays, snaps[k])
+    session.run_to_end()
+    assert same_mesh(next_result(session, is_ok).arrays, final)
+
+
+@pytest.mark.timeout(60)
+def test_without_a_snapshot_budget_stepping_back_replays():
+    snaps, _ = straight_snapshots(CUBE)
+    live = LiveSession(CUBE, notifier=ManualNotifier(), preview=False, snapshot_budget=0)
+    try:
+        live.pause()
+        live.start()
+        first = next_result(live, paused_at(0))
+        live.step_forward()
+        next_result(live, paused_at(1))
+        live.step_back()
+        back = next_result(live, paused_at(0))
+        assert back.run_id > first.run_id and same_mesh(back.arrays, snaps[0])
+    finally:
+        live.close()
+        assert live.join(10)

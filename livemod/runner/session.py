@@ -41,6 +41,7 @@ from .results import (
     parameter_items,
     snapshot_scene,
 )
+from .snapshots import DEFAULT_BUDGET, SnapshotCache
 from .watch import FileWatcher, Notifier
 
 _JOIN_POLL = 0.02  # seconds between checks while waiting for a cancelled run
@@ -78,6 +79,8 @@ class LiveSession:
         output: save the mesh here after every successful run (``run --watch -o``).
         parameters: initial script parameters (globals and ``scene.parameters``).
         base: a scene every run starts from (copied per run), instead of ``mesh_path``.
+        snapshot_budget: bytes of paused snapshots kept for stepping back without a
+            replay.
 
     Attributes:
         results: :class:`RunResult` snapshots; drain with ``get_nowait()``.
@@ -87,7 +90,7 @@ class LiveSession:
                  seed: int | None = 0, debounce: float = 0.15, poll: bool = False,
                  preview: bool | Callable[[Mesh], MeshArrays | None] = True, notifier: Notifier | None = None,
                  output: str | None = None, parameters: dict | None = None,
-                 base: Scene | None = None) -> None:
+                 base: Scene | None = None, snapshot_budget: int = DEFAULT_BUDGET) -> None:
         self.script = os.path.abspath(os.fspath(script))
         self.results: queue.Queue[RunResult] = queue.Queue()
         self.mesh_path = mesh_path
@@ -97,6 +100,8 @@ class LiveSession:
         self._selection: Selection | None = None
         self._playback = Playback()
         self._rate: float | None = None
+        self._snapshots = SnapshotCache(snapshot_budget)
+        self._shown: int | None = None  # a cached step shown behind the live run
         self._lock = threading.RLock()
         self._requests: queue.Queue[_Request | None] = queue.Queue()
         self._run_id = 0
@@ -176,7 +181,9 @@ class LiveSession:
         with self._lock:
             self._rate = None
             run = self._live_run()
-            if run is not None and run.control.paused_at is not None:
+            if self._shown is not None:
+                self._playback.pause_at(self._shown)
+            elif run is not None and run.control.paused_at is not None:
                 self._playback.pause_at(run.control.paused_at)
             elif run is not None:
                 self._playback.pause_at(0)
@@ -195,50 +202,67 @@ class LiveSession:
     def run_to_end(self) -> None:
         """Let the current and later runs go to the end without pausing."""
         with self._lock:
-            self._rate = None
+            self._rate, self._shown = None, None
             self._playback.run_to_end()
 
     def step_forward(self) -> None:
         """Show the next step (the paused run goes on by one step)."""
         with self._lock:
-            run = self._live_run()
-            if run is None:
-                return
-            paused = run.control.paused_at
-            self._playback.pause_at(0 if paused is None else paused + 1)
+            if self._shown is not None:
+                target = self._shown + 1
+            else:
+                run = self._live_run()
+                paused = run.control.paused_at if run is not None else None
+                if run is not None and paused is None:
+                    self._playback.pause_at(0)  # running: stop at the next step
+                if paused is None:
+                    return
+                target = paused + 1
+        self.goto_step(target)
 
     def step_back(self) -> None:
-        """Show the previous step (by replaying the script to it)."""
+        """Show the previous step (from the snapshot cache, or by replaying to it)."""
         with self._lock:
-            position = self._position()
+            position = self._shown if self._shown is not None else self._position()
         if position is not None and position > 0:
             self.goto_step(position - 1)
 
     def goto_step(self, k: int) -> None:
-        """Show the mesh right after step ``k`` (0-based), replaying when it lies behind."""
+        """Show the mesh right after step ``k`` (0-based).
+
+        A step the live run has not reached yet is run to; one behind it is shown
+        from the snapshot cache, or else the script is replayed to it (same seed,
+        same text, so the same mesh).
+        """
         k = max(0, int(k))
         with self._lock:
             run = self._live_run()
-            if run is not None and run.control.paused_at == k:
-                return
-            if run is not None and k >= run.control.step_count:
-                self._playback.pause_at(k, self._rate)  # still ahead: run on to it
-                return
+            paused = run.control.paused_at if run is not None else None
             self._playback.pause_at(k, self._rate)
+            if run is not None and k >= run.control.step_count and (paused is None or k > paused):
+                self._shown = None  # still ahead: the run goes on to it
+                return
+            cached = self._snapshots.get(k)
+            self._shown = k if cached is not None and k != paused else None
+            if cached is not None:
+                self._post_cached(cached)
+                return
         self._request(self._source)
 
     def play(self, rate: float) -> None:
-        """Advance ``rate`` steps per second (from the start when the run has ended)."""
+        """Advance ``rate`` steps per second (replaying from the shown step, or from
+        the start, when the run has ended)."""
         if rate <= 0:
             raise ValueError(f"play rate must be positive, got {rate!r}")
         with self._lock:
             self._rate = float(rate)
             run = self._live_run()
-            if run is not None:
+            if run is not None and self._shown is None:
                 paused = run.control.paused_at
                 self._playback.pause_at(0 if paused is None else paused, self._rate)
                 return
-            self._playback.pause_at(0, self._rate)
+            start, self._shown = self._shown or 0, None
+            self._playback.pause_at(start, self._rate)
         self._request(self._source)
 
     def cancel(self) -> None:
@@ -328,6 +352,8 @@ class LiveSession:
             run.thread = threading.Thread(target=self._run_body, args=(run, request.source),
                                           name=f"livemod-run-{run.run_id}", daemon=True)
             self._current = run
+            self._snapshots.reset(run.run_id)
+            self._shown = None
         run.thread.start()
 
     # -- the worker ------------------------------------------------------------------
@@ -428,7 +454,11 @@ class LiveSession:
                            snapshot_scene(scene), None, None,
                            steps[-1].elapsed if steps else 0.0, False,
                            parameter_items(scene.parameters))
-        self._post(result)
+        with self._lock:
+            self._snapshots.put(result)
+            if self._shown is not None:
+                return  # the caller is looking at an earlier, cached step
+            self._post(result)
         mesh = current_mesh(scene)
         if self._previews is not None and mesh is not None:
             self._previews.request(result, mesh.copy())  # the live mesh changes on resume
@@ -449,7 +479,16 @@ class LiveSession:
     def _post_preview(self, result: RunResult, preview: MeshArrays) -> None:
         with self._lock:
             if self._last_posted is result and not self._closed:
-                self.results.put(dataclasses.replace(result, preview=preview))
+                with_preview = dataclasses.replace(result, preview=preview)
+                self._snapshots.put(with_preview)
+                self._last_posted = with_preview
+                self.results.put(with_preview)
+
+    def _post_cached(self, result: RunResult) -> None:
+        """Publish a result from the snapshot cache again (caller holds the lock)."""
+        if result.run_id == self._run_id and not self._closed:
+            self._last_posted = result
+            self.results.put(result)
 
 
 def _preview_worker(preview: bool | Callable[[Mesh], MeshArrays | None],
