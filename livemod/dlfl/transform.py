@@ -20,7 +20,10 @@ __all__ = ["move_vertices", "rotate", "rotation_matrix", "scale", "transform", "
 
 def _vector(value: Any, name: str) -> np.ndarray:
     """``(3,)`` float64 from three numbers, or one number repeated."""
-    arr = np.asarray(value, dtype=np.float64)
+    try:
+        arr = np.asarray(value, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise DLFLError(f"{name} must be three finite numbers, got {value!r}") from None
     if arr.shape == ():
         arr = np.full(3, float(arr))
     if arr.shape != (3,) or not np.isfinite(arr).all():

@@ -1,0 +1,90 @@
+"""Vectorized transforms: translate, scale, rotate, move_vertices, bad input."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from livemod.dlfl import DLFLError, validate
+from livemod.dlfl.shapes import cube
+from livemod.dlfl.transform import (
+    move_vertices,
+    rotate,
+    rotation_matrix,
+    scale,
+    transform,
+    translate,
+)
+from tests.meshes import snapshot
+
+BASE = cube().positions_view()
+
+
+def test_translate_all_and_some():
+    m = cube()
+    translate(m, (1, 2, 3))
+    np.testing.assert_allclose(m.positions_view(), BASE + [1, 2, 3])
+    translate(m, (-1, -2, -3), vertices=[0])
+    np.testing.assert_allclose(m.position(0), BASE[0])
+    np.testing.assert_allclose(m.positions_view()[1:], BASE[1:] + [1, 2, 3])
+
+
+def test_scale_per_axis_and_uniform_about_a_centre():
+    m = cube()
+    scale(m, (2, 1, 0.5))
+    np.testing.assert_allclose(m.positions_view(), BASE * [2, 1, 0.5])
+    m = cube()
+    scale(m, 3, center=(1, 1, 1))
+    np.testing.assert_allclose(m.positions_view(), (BASE - 1) * 3 + 1)
+
+
+def test_rotate_a_quarter_turn_about_z():
+    m = cube()
+    rotate(m, (0, 0, 1), 90)
+    expected = np.stack([-BASE[:, 1], BASE[:, 0], BASE[:, 2]], 1)
+    np.testing.assert_allclose(m.positions_view(), expected, atol=1e-12)
+    validate(m)
+
+
+def test_rotation_matrix_is_orthonormal_and_right_handed():
+    r = rotation_matrix((1, 2, 3), 37)
+    np.testing.assert_allclose(r @ r.T, np.eye(3), atol=1e-12)
+    assert np.isclose(np.linalg.det(r), 1.0)
+    np.testing.assert_allclose(rotation_matrix((0, 0, 5), 90) @ [1, 0, 0], [0, 1, 0], atol=1e-12)
+
+
+def test_rotate_about_a_centre_keeps_it_fixed():
+    m = cube()
+    rotate(m, (1, 0, 0), 180, center=(1, 1, 1))
+    np.testing.assert_allclose(m.position(0), (1, 1, 1))
+
+
+def test_move_vertices_relative_and_absolute():
+    m = cube()
+    move_vertices(m, [0, 1], (0, 1, 0))
+    np.testing.assert_allclose(m.positions_view()[:2], BASE[:2] + [0, 1, 0])
+    move_vertices(m, [2, 3], (5, 5, 5), relative=False)
+    np.testing.assert_allclose(m.positions_view()[2:4], [[5, 5, 5]] * 2)
+
+
+def test_transform_with_a_matrix():
+    m = cube()
+    transform(m, np.diag([1, -1, 1]))
+    np.testing.assert_allclose(m.positions_view(), BASE * [1, -1, 1])
+
+
+@pytest.mark.parametrize("call", [
+    lambda m: translate(m, (1, 2)),
+    lambda m: translate(m, (1, 2, float("nan"))),
+    lambda m: scale(m, "big"),
+    lambda m: rotate(m, (0, 0, 0), 30),
+    lambda m: transform(m, np.eye(2)),
+    lambda m: move_vertices(m, [0, 99], (1, 1, 1)),
+    lambda m: translate(m, (1, 1, 1), vertices=[99]),
+])
+def test_bad_input_raises_and_leaves_the_mesh_unchanged(call):
+    m = cube()
+    before = snapshot(m)
+    with pytest.raises(DLFLError):
+        call(m)
+    assert snapshot(m) == before
