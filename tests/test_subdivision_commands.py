@@ -98,7 +98,7 @@ def test_subdivide_faces_refuses_bad_ids(scene):
     with pytest.raises(DLFLError, match="face id"):
         subdivideFaces([12345])
     with pytest.raises(DLFLError, match="faceids must be"):
-        subdivideFaces("0")
+        subdivideFaces("0")  # type: ignore[arg-type]
     with pytest.raises(DLFLError, match="faceid must be"):
         subdivideFace(1.5)  # type: ignore[arg-type]
 

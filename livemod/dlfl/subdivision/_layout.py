@@ -110,8 +110,7 @@ class Topology:
     def centroids(self) -> np.ndarray:
         """``(F, 3)`` mean of each face's corner positions (TopMod's centroid)."""
         if "centroids" not in self._cache:
-            sums = np.zeros((self.nf, 3))
-            np.add.at(sums, self.face, self.pos[self.cv])
+            sums = group_sum(self.face, self.pos[self.cv], self.nf)
             self._cache["centroids"] = sums / np.maximum(self.sizes, 1)[:, None]
         return self._cache["centroids"]
 
@@ -129,9 +128,7 @@ class Topology:
         """``(F, 3)`` unit Newell normal of each face (zero when degenerate)."""
         p = self.pos[self.cv]
         q = self.pos[self.cv[self.nxt]]
-        sums = np.zeros((self.nf, 3))
-        np.add.at(sums, self.face, np.cross(p, q))
-        return normalize(sums)
+        return normalize(group_sum(self.face, np.cross(p, q), self.nf))
 
     def vertex_rings(self) -> tuple[np.ndarray, np.ndarray]:
         """Corners grouped by vertex, counter-clockwise (``vprev`` order).
@@ -141,7 +138,10 @@ class Topology:
             ring; ring ``k`` is ``order[offsets[k]:offsets[k + 1]]``. Rings come in
             order of their smallest corner. A vertex visited by one fan has one ring.
         """
-        return cycle_layout(self.vprev)
+        if "rings" not in self._cache:
+            order, offsets = cycle_layout(self.vprev)
+            self._cache["rings"], self._cache["ring_offsets"] = order, offsets
+        return self._cache["rings"], self._cache["ring_offsets"]
 
 
 def normalize(vectors: np.ndarray) -> np.ndarray:
@@ -152,9 +152,15 @@ def normalize(vectors: np.ndarray) -> np.ndarray:
 
 def vertex_sum(t: Topology, per_corner: np.ndarray) -> np.ndarray:
     """``(V, 3)`` sum of a ``(C, 3)`` per-corner quantity over each vertex's corners."""
-    out = np.empty((t.nv, 3))
+    return group_sum(t.cv, per_corner, t.nv)
+
+
+def group_sum(index: np.ndarray, values: np.ndarray, count: int) -> np.ndarray:
+    """``(count, 3)``: ``values`` ``(N, 3)`` summed by ``index`` (bincount, not add.at:
+    several times faster)."""
+    out = np.empty((count, 3))
     for axis in range(3):
-        out[:, axis] = np.bincount(t.cv, weights=per_corner[:, axis], minlength=t.nv)
+        out[:, axis] = np.bincount(index, weights=values[:, axis], minlength=count)
     return out
 
 
@@ -277,8 +283,10 @@ def pair_by_label(labels: np.ndarray, num_labels: int) -> np.ndarray:
 
     Precondition: every label in use occurs exactly twice.
     """
-    idx = np.arange(len(labels), dtype=np.int64)
-    first = np.full(num_labels, -1, dtype=np.int64)
+    # int32 halves the memory traffic of the scatters (corner counts stay < 2**31)
+    idx = np.arange(len(labels), dtype=np.int32)
+    labels = labels.astype(np.int32)
+    first = np.full(num_labels, -1, dtype=np.int32)
     first[labels] = idx
     other = first[labels]
     loser = other != idx  # exactly one per label: the side that lost the write
@@ -289,19 +297,29 @@ def pair_by_label(labels: np.ndarray, num_labels: int) -> np.ndarray:
 
 
 def build(mesh: Mesh, t: Topology, positions: np.ndarray, faces: Faces) -> None:
-    """Pair the new faces' sides, append the point-spheres and swap the result in."""
+    """Pair the new faces' sides by label, then :func:`build_paired`."""
     cv = np.concatenate(faces.verts)
     labels = np.concatenate(faces.labels)
-    sizes = np.concatenate(faces.sizes)
-    hole = np.concatenate(faces.holes)
     num_labels = int(labels.max()) + 1 if len(labels) else 0
     mate = pair_by_label(labels, num_labels)
+    build_paired(mesh, t, positions, cv, mate, np.concatenate(faces.sizes),
+                 np.concatenate(faces.holes))
+
+
+def build_paired(mesh: Mesh, t: Topology, positions: np.ndarray, cv: np.ndarray,
+                 mate: np.ndarray, sizes: np.ndarray, hole: np.ndarray) -> None:
+    """Append the point-spheres, build the new mesh in one step and swap it in.
+
+    Args:
+        cv, mate: ``(C',)`` new vertex and mate of every new corner, face by face.
+        sizes, hole: ``(F',)`` size and hole flag of every new face.
+    """
     s = len(t.spheres)
     if s:
         base_v = len(positions)
         positions = np.concatenate([positions, t.spheres])
         cv = np.concatenate([cv, base_v + np.arange(s)])
-        mate = np.concatenate([mate, np.full(s, -1, dtype=np.int64)])
+        mate = np.concatenate([mate, np.full(s, -1, dtype=mate.dtype)])
         sizes = np.concatenate([sizes, np.ones(s, dtype=np.int64)])
         hole = np.concatenate([hole, np.zeros(s, dtype=bool)])
     offsets = np.zeros(len(sizes) + 1, dtype=np.int64)
@@ -328,8 +346,10 @@ def ring_weighted(
     sizes = np.diff(offsets)
     for n in np.unique(sizes).tolist():
         rings = np.flatnonzero(sizes == n)
-        corners = offsets[rings][:, None] + np.arange(n)
-        out[corners] = np.einsum("ij,kjd->kid", weight(n), values[corners])
+        # (n, K): corner j of every ring of size n; one BLAS product for all rings
+        corners = offsets[rings][None, :] + np.arange(n)[:, None]
+        gathered = values[corners].reshape(n, -1)
+        out[corners] = (weight(n) @ gathered).reshape(n, len(rings), 3)
     return out
 
 

@@ -34,6 +34,7 @@ from ._layout import (
     face_weighted,
     normalize,
     read_topology,
+    vertex_sum,
 )
 
 HONEYCOMB_ALPHA = 2 ** -0.5 - 0.25
@@ -268,9 +269,7 @@ def root4(mesh: Mesh, *, weight: float = 0.0, twist: float = 0.0,
     p = t.pos[t.cv]
     m = (1 - twist) * p + twist * t.pos[t.cv[t.nxt]]
     inner = face_weighted(t, m, lambda n: cos_weights(n, HONEYCOMB_ALPHA + 1.25 / n))
-    around = np.zeros((t.nv, 3))
-    np.add.at(around, t.cv, inner)
-    around /= np.maximum(t.valence, 1)[:, None]
+    around = vertex_sum(t, inner) / np.maximum(t.valence, 1)[:, None]
     vertices = (1 - weight) * t.pos + weight * around
     faces = Faces()
     face_rings(t, t.nv, 0, faces)

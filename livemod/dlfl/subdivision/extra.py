@@ -18,8 +18,10 @@ from ._layout import (
     check_budget,
     check_number,
     cos_weights,
+    group_sum,
     read_topology,
     ring_weighted,
+    vertex_sum,
 )
 
 
@@ -82,8 +84,7 @@ def _ring_centroids(values: np.ndarray, offsets: np.ndarray) -> np.ndarray:
     """``(R, 3)`` mean of each ring, repeated per ring corner -> ``(N, 3)``."""
     sizes = np.diff(offsets)
     ring = np.repeat(np.arange(len(sizes)), sizes)
-    sums = np.zeros((len(sizes), 3))
-    np.add.at(sums, ring, values)
+    sums = group_sum(ring, values, len(sizes))
     return (sums / np.maximum(sizes, 1)[:, None])[ring]
 
 
@@ -119,9 +120,7 @@ def doo_sabin_bc_new(mesh: Mesh, *, scale: float = 1.0, length: float = 1.0,
     values, offsets = _split_face_values(t)
     ring = _ds_ring(values, offsets, np.zeros(1), scale)
     at_vertex, at_mid = ring[0::2], ring[1::2]
-    around = np.zeros((t.nv, 3))
-    np.add.at(around, t.cv, at_vertex)
-    around /= np.maximum(t.valence, 1)[:, None]
+    around = vertex_sum(t, at_vertex) / np.maximum(t.valence, 1)[:, None]
     vertices = length * t.pos + (1 - length) * around
     positions = np.concatenate([vertices, at_vertex, at_mid])
     _bc_new_faces(mesh, t, positions)

@@ -14,11 +14,12 @@ import math
 import numpy as np
 
 from ..mesh import Mesh
-from ._blocks import corner_triangles, doo_sabin_faces, inner_polygons, split_quads
+from ._blocks import doo_sabin_faces
 from ._layout import (
     Faces,
     Topology,
     build,
+    build_paired,
     check_budget,
     check_number,
     cos_weights,
@@ -46,9 +47,25 @@ def catmull_clark(mesh: Mesh, *, max_faces: int | None = None) -> None:
     edge_points = 0.25 * (t.pos[t.cv[a]] + t.pos[t.cv[b]]
                           + centroids[t.face[a]] + centroids[t.face[b]])
     positions = np.concatenate([_cc_vertices(t, centroids), edge_points, centroids])
-    faces = Faces()
-    split_quads(t, np.arange(t.nc), t.nv + np.arange(t.ne), t.nv + t.ne + np.arange(t.nf), faces)
-    build(mesh, t, positions, faces)
+    _cc_faces(mesh, t, positions)
+
+
+def _cc_faces(mesh: Mesh, t: Topology, positions: np.ndarray) -> None:
+    """One quad per old corner c (corners 4c..4c+3), mates computed directly:
+    the half at c's vertex meets quad next(mate c), the spokes quads next/prev c."""
+    nxt, prv, mate = t.nxt, t.prv, t.mate
+    verts = np.empty((t.nc, 4), dtype=np.int32)
+    verts[:, 0] = t.cv
+    verts[:, 1] = t.nv + t.edge
+    verts[:, 2] = t.nv + t.ne + t.face
+    verts[:, 3] = t.nv + t.edge[prv]
+    mates = np.empty((t.nc, 4), dtype=np.int64)
+    mates[:, 0] = 4 * nxt[mate] + 3
+    mates[:, 1] = 4 * nxt + 2
+    mates[:, 2] = 4 * prv + 1
+    mates[:, 3] = 4 * mate[prv]
+    build_paired(mesh, t, positions, verts.ravel(), mates.ravel(),
+                 np.full(t.nc, 4, dtype=np.int64), np.repeat(t.hole, t.sizes))
 
 
 def _cc_vertices(t: Topology, centroids: np.ndarray) -> np.ndarray:
@@ -78,10 +95,22 @@ def loop(mesh: Mesh, *, max_faces: int | None = None) -> None:
 
 
 def _corner_cut_faces(mesh: Mesh, t: Topology, positions: np.ndarray) -> None:
-    faces = Faces()
-    corner_triangles(t, t.nv, faces)
-    inner_polygons(t, t.nv, faces)
-    build(mesh, t, positions, faces)
+    """Loop's topology, mates computed directly: corner triangle of c at 3c..3c+2,
+    then the inner polygons in the old corner layout (corner 3C + c)."""
+    nxt, prv, mate, nc = t.nxt, t.prv, t.mate, t.nc
+    tri = np.empty((nc, 3), dtype=np.int32)
+    tri[:, 0] = t.cv
+    tri[:, 1] = t.nv + t.edge
+    tri[:, 2] = t.nv + t.edge[prv]
+    tri_mate = np.empty((nc, 3), dtype=np.int64)
+    tri_mate[:, 0] = 3 * nxt[mate] + 2
+    tri_mate[:, 1] = 3 * nc + prv
+    tri_mate[:, 2] = 3 * mate[prv]
+    verts = np.concatenate([tri.ravel(), t.nv + t.edge])
+    mates = np.concatenate([tri_mate.ravel(), 3 * nxt + 1])
+    sizes = np.concatenate([np.full(nc, 3, dtype=np.int64), t.sizes])
+    hole = np.concatenate([np.repeat(t.hole, t.sizes), t.hole])
+    build_paired(mesh, t, positions, verts, mates, sizes, hole)
 
 
 def _loop_edge_points(t: Topology) -> np.ndarray:
