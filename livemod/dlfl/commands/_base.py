@@ -39,13 +39,36 @@ def modeling_command(func: F) -> F:
     return cast(F, wrapper)
 
 
+class Corner(tuple):  # type: ignore[type-arg]
+    """A ``(faceid, vertexid)`` corner that also carries its corner id.
+
+    Commands return corners in this form. It compares, prints and unpacks as the
+    thesis's plain tuple, but when passed back to a command it names exactly one
+    corner even where a face visits the vertex twice (where the tuple alone is
+    ambiguous), as long as that corner is still at that face and vertex.
+    """
+
+    cid: int
+
+    def __new__(cls, face: int, vertex: int, cid: int) -> Corner:
+        self = super().__new__(cls, (face, vertex))
+        self.cid = cid
+        return self
+
+    def __getnewargs__(self) -> tuple[int, int, int]:  # keeps pickling (batch) working
+        return self[0], self[1], self.cid
+
+
 def resolve_corner(m: Mesh, corner: Any, what: str = "corner") -> int:
-    """Turn a ``(faceid, vertexid)`` tuple or a corner id into a corner id.
+    """Turn a ``(faceid, vertexid)`` tuple, a :class:`Corner` or a corner id into a
+    corner id.
 
     Raises:
         DLFLError: the face does not visit the vertex, visits it twice (the
             message lists the corner ids), or the id is not a live corner.
     """
+    if isinstance(corner, Corner) and _still_there(m, corner):
+        return corner.cid
     if isinstance(corner, tuple | list) and len(corner) == 2:
         face, vertex = corner
         return m.corner_at(face, vertex)
@@ -57,6 +80,11 @@ def resolve_corner(m: Mesh, corner: Any, what: str = "corner") -> int:
     )
 
 
-def corner_tuple(m: Mesh, corner: int) -> tuple[int, int]:
-    """The ``(faceid, vertexid)`` form of corner id ``corner``."""
-    return m.corner_face(corner), m.corner_vertex(corner)
+def _still_there(m: Mesh, corner: Corner) -> bool:
+    return (m.has_corner(corner.cid) and m.corner_face(corner.cid) == corner[0]
+            and m.corner_vertex(corner.cid) == corner[1])
+
+
+def corner_tuple(m: Mesh, corner: int) -> Corner:
+    """The ``(faceid, vertexid)`` form of corner id ``corner``, carrying the id."""
+    return Corner(m.corner_face(corner), m.corner_vertex(corner), corner)

@@ -153,7 +153,7 @@ def corners(selected: bool = False) -> tuple[tuple[int, int], ...]:
     if selected:
         picked = [c for c in scene().selection.corners if m.has_corner(c)]
         return tuple(corner_tuple(m, c) for c in picked)
-    return tuple((f, v) for f in faces() for v in m.face_vertices(f))
+    return tuple(corner_tuple(m, c) for f in faces() for c in m.face_corners(f))
 
 
 def walk(faceid: int) -> tuple[list[int], list[int]]:
@@ -164,7 +164,8 @@ def walk(faceid: int) -> tuple[list[int], list[int]]:
 
 def cornerWalk(faceid: int) -> list[tuple[int, int]]:
     """The corners of a face in order: ``[(faceid, vertexid), ...]``."""
-    return [(faceid, v) for v in mesh().face_vertices(faceid)]
+    m = mesh()
+    return [corner_tuple(m, c) for c in m.face_corners(faceid)]
 
 
 def next(c: Any, *default: Any) -> Any:  # noqa: A001  (the thesis's name)
