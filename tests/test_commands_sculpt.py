@@ -1,0 +1,110 @@
+"""Thesis commands rind, wireframe, column and the sculpting extras on the current scene."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+import pytest
+
+import livemod.dlfl as dlfl
+from livemod.dlfl import DLFLError, Scene, face_size_histogram, genus, use_scene, validate
+from livemod.dlfl.commands import (
+    column,
+    crust,
+    faces,
+    load,
+    menger,
+    meshsmooth,
+    planarize,
+    rind,
+    sierpinsky,
+    spheralize,
+    wireframe,
+)
+from livemod.dlfl.shapes import cube
+from tests.meshes import snapshot
+
+
+@pytest.fixture
+def scene() -> Iterator[Scene]:
+    sc = Scene()
+    sc.add(cube())
+    with use_scene(sc):
+        yield sc
+
+
+def counts(sc: Scene) -> tuple[int, int, int]:
+    validate(sc.mesh)
+    return sc.mesh.counts()
+
+
+def test_star_import_gives_the_commands():
+    for name in ("rind", "wireframe", "column", "sierpinsky", "menger", "meshsmooth",
+                 "planarize", "spheralize", "crust"):
+        assert name in dlfl.__all__
+        assert callable(getattr(dlfl, name))
+
+
+def test_rind_by_thickness(scene):
+    rind([faces()[0]], False, 0.5)
+    assert counts(scene) == (16, 28, 14)
+
+
+def test_rind_by_scaling_two_holes(scene):
+    rind([0, 5], True, 0.8)
+    assert counts(scene) == (16, 32, 16) and genus(scene.mesh) == 1
+
+
+def test_rind_accepts_one_face_id(scene):
+    rind(0, False, 0.25, False)
+    assert counts(scene) == (16, 28, 14)
+
+
+def test_wireframe_defaults(scene):
+    wireframe()
+    assert counts(scene) == (48, 120, 64)
+    assert face_size_histogram(scene.mesh) == {3: 16, 4: 48}
+
+
+def test_column(scene):
+    column(0.25, 4)
+    assert counts(scene) == (96, 216, 112) and genus(scene.mesh) == 5
+
+
+def test_extras(scene):
+    sierpinsky()
+    assert counts(scene) == (20, 60, 32)
+    load("cube")
+    menger()
+    assert counts(scene) == (64, 156, 84)
+    load("cube")
+    crust(0.5)
+    assert counts(scene) == (16, 24, 12)
+    for op in (meshsmooth, planarize, spheralize):
+        op()
+        assert counts(scene) == (16, 24, 12)
+
+
+def test_load_a_sample_by_name_then_wireframe(scene):
+    load("soccerball")
+    wireframe(0.05)
+    assert genus(scene.mesh) == 90 - 60 + 1
+
+
+@pytest.mark.parametrize("call", [
+    lambda: rind([99], False, 0.5),
+    lambda: rind(["a"], False, 0.5),
+    lambda: rind(None, False, 0.5),
+    lambda: rind([0], False, 5.0),
+    lambda: rind([0], True, 0.0),
+    lambda: wireframe(-1.0),
+    lambda: column(0.25, 0),
+    lambda: column(0.25, "four"),
+    lambda: column(0.0, 4),
+    lambda: menger(0.0),
+])
+def test_bad_arguments_raise_and_leave_the_object_unchanged(scene, call):
+    before = snapshot(scene.mesh)
+    with pytest.raises(DLFLError):
+        call()
+    assert snapshot(scene.mesh) == before
