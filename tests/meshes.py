@@ -108,22 +108,30 @@ def euler_ok(mesh: Mesh) -> bool:
     return v - e + f == 2 * (num_components(mesh) - sum(component_genera(mesh)))
 
 
-def corner_structure(mesh: Mesh) -> tuple[Any, ...]:
+def corner_structure(mesh: Mesh, *, face_ids: bool = False) -> tuple[Any, ...]:
     """The mesh keyed by corner, edge and vertex id, with faces as corner sets.
 
-    Equal for two meshes that differ only in face ids and face head corners
-    (what deleting an edge that merged two faces cannot restore: the second
-    face's id is gone for good).
+    Equal for two meshes that differ only in face ids, face head corners and
+    hole flags: what deleting an edge that merged two faces cannot restore (the
+    second face's id is gone for good, and the merged face kept one flag).
+    With ``face_ids`` the face ids and hole flags are compared too, so only the
+    head corners (where face walks start) may differ.
     """
     a = mesh_arrays(mesh)
     cid = a.corner_ids
+    has = a.corner_edge >= 0
     nxt = cid[a.corner_next].tolist()
-    mate = np.where(a.corner_mate >= 0, cid[a.corner_mate], -1).tolist()
-    edge = np.where(a.corner_edge >= 0, a.edge_ids[a.corner_edge], -1).tolist()
+    mate = np.full(len(cid), -1, dtype=np.int64)
+    mate[has] = cid[a.corner_mate[has]]
+    edge = np.full(len(cid), -1, dtype=np.int64)
+    edge[has] = a.edge_ids[a.corner_edge[has]]
     vert = a.vertex_ids[a.corner_vertex].tolist()
-    corners = sorted(zip(cid.tolist(), nxt, mate, edge, vert, strict=True))
+    corners = sorted(zip(cid.tolist(), nxt, mate.tolist(), edge.tolist(), vert, strict=True))
     faces = sorted(
-        (tuple(sorted(cid[a.face_offsets[i]:a.face_offsets[i + 1]].tolist())), bool(a.face_hole[i]))
+        (
+            tuple(sorted(cid[a.face_offsets[i]:a.face_offsets[i + 1]].tolist())),
+            (int(a.face_ids[i]), bool(a.face_hole[i])) if face_ids else None,
+        )
         for i in range(len(a.face_ids))
     )
     return corners, faces, a.vertex_ids.tolist(), a.positions.tolist(), a.edge_ids.tolist()

@@ -454,7 +454,8 @@ class Mesh:
         nxt, prv, face = C.next, C.prev, C.face
         f1, f2 = face[s1], face[s2]
         a, b = nxt[s1], nxt[s2]
-        lone1, lone2 = a == s1, b == s2
+        # a point-sphere side is never copied; a one-corner face with a loop is
+        lone1, lone2 = C.edge[s1] < 0, C.edge[s2] < 0
         # every corner of the second face joins the first
         x = s2
         while True:
@@ -565,83 +566,54 @@ class Mesh:
         that deleting an edge right after inserting it restores every corner id.
         Callers have already moved the corners to their final faces.
         """
+        a, b = self._c.next[s1], self._c.next[s2]
+        self._take_place(s1, b)
+        self._take_place(s2, a)
+
+    def _take_place(self, side: int, gone: int) -> None:
+        """Corner ``side`` replaces ``gone``, the corner after the other side.
+
+        Both sit at the same vertex; ``side`` takes ``gone``'s edge and its link
+        to the next corner (its own ``prev`` already is right) and ``gone`` is
+        released. ``side`` must already be in its final face.
+        """
         C, E = self._c, self._e
-        nxt, prv, edge, vert = C.next, C.prev, C.edge, C.vertex
-        a, b = nxt[s1], nxt[s2]
-        for side, gone in ((s1, b), (s2, a)):
-            e = edge[gone]
-            edge[side] = e
-            if E.c0[e] == gone:
-                E.c0[e] = side
-            else:
-                E.c1[e] = side
-            after = nxt[gone]
-            nxt[side], prv[after] = after, side
-            if self._v.corner[vert[gone]] == gone:
-                self._v.corner[vert[gone]] = side
+        nxt, edge = C.next, C.edge
+        e = edge[gone]
+        edge[side] = e
+        if E.c0[e] == gone:
+            E.c0[e] = side
+        else:
+            E.c1[e] = side
+        after = nxt[gone]
+        nxt[side] = after
+        C.prev[after] = side
+        vc = self._v.corner
+        if vc[C.vertex[gone]] == gone:
+            vc[C.vertex[gone]] = side
         fc = self._f.corner
-        for side, gone in ((s2, a), (s1, b)):
-            if fc[C.face[side]] == gone:
-                fc[C.face[side]] = side
-        C.release(a)
-        C.release(b)
+        if fc[C.face[side]] == gone:
+            fc[C.face[side]] = side
+        C.release(gone)
 
     def _delete_split(self, s1: int, s2: int, cleanup: bool) -> list[int]:
-        C, F = self._c, self._f
-        nxt, prv, face, vert = C.next, C.prev, C.face, C.vertex
-        f = face[s1]
-        nx, px = nxt[s1], prv[s2]  # x: the corners strictly after corner1, before corner2
-        ny, py = nxt[s2], prv[s1]  # y: the corners strictly after corner2, before corner1
-        keeps_y, keeps_x = ny != s1, nx != s2
-        if keeps_x and keeps_y:
-            return self._split_keeping_sides(s1, s2)
-        vc = self._v.corner
-        result = [f]
-        if keeps_y:
-            nxt[py], prv[ny] = ny, py
-            F.corner[f] = ny
-            if vc[vert[s1]] == s1:
-                vc[vert[s1]] = ny
-        if keeps_x:
-            fn = F.alloc()
-            F.hole[fn] = F.hole[f]
-            x = nx
-            while x != s2:
-                face[x] = fn
-                x = nxt[x]
-            nxt[px], prv[nx] = nx, px
-            F.corner[fn] = nx
-            if vc[vert[s2]] == s2:
-                vc[vert[s2]] = nx
-            result.append(fn)
-        if keeps_y:
-            C.release(s1)
-        elif cleanup:
-            self._remove_lone_corner(s1, f)
-            result.remove(f)
-        else:
-            self._make_point_sphere(s1, f)
-        if keeps_x:
-            C.release(s2)
-        elif cleanup:
-            self._remove_lone_corner(s2, -1)
-        else:
-            fn = F.alloc()
-            F.hole[fn] = F.hole[f]
-            self._make_point_sphere(s2, fn)
-            result.append(fn)
-        return result
+        """Delete an edge with one face on both sides, splitting the face in two.
 
-    def _split_keeping_sides(self, s1: int, s2: int) -> list[int]:
-        """Split a face along a deleted edge whose both sides keep corners."""
+        The ring reads ``s1, a, x.., s2, b, y..``. The face keeps ``s1`` in place
+        of ``b`` with the ``y`` corners; a new face takes ``s2`` in place of ``a``
+        with the ``x`` corners (the inverse of a merging insert, restoring its
+        corner ids). A side with no corners besides its own becomes a
+        point-sphere, removed with its vertex under ``cleanup``.
+        """
         C, F = self._c, self._f
         nxt, face = C.next, C.face
         f = face[s1]
+        a, b = nxt[s1], nxt[s2]
         fn = F.alloc()
         F.hole[fn] = F.hole[f]
         head = F.corner[f]
-        head_moves = head == s2
-        x = nxt[s1]
+        head_moves = head in (s2, b)
+        x = a
         while x != s2:
             face[x] = fn
             head_moves = head_moves or x == head
@@ -650,8 +622,17 @@ class Mesh:
         F.corner[fn] = s2
         if head_moves:
             F.corner[f] = s1
-        self._drop_after_sides(s1, s2)
-        return [f, fn]
+        result = []
+        for side, gone, fs in ((s2, a, fn), (s1, b, f)):
+            if gone != side:
+                self._take_place(side, gone)
+            elif cleanup:
+                self._remove_lone_corner(side, fs)
+                continue
+            else:
+                self._make_point_sphere(side, fs)
+            result.append(fs)
+        return result[::-1]
 
     def _remove_lone_corner(self, s: int, face_slot: int) -> None:
         """Remove corner ``s``, its now isolated vertex and, if given, its face."""
@@ -726,7 +707,8 @@ class Mesh:
         """Collapse ``edge`` to its midpoint and return the surviving vertex id.
 
         The vertex of side ``c0`` survives at the midpoint and takes over every
-        corner of the other end. A self-loop is deleted instead. With ``cleanup``
+        corner of the other end. A self-loop is deleted instead (its vertex
+        survives, as a point-sphere when nothing else is left). With ``cleanup``
         (TopMod's default) a face left with one or two sides loses one edge, so no
         degenerate face remains.
 
@@ -740,7 +722,10 @@ class Mesh:
         survivor = V.idv[v1]
         pos = V.arrays["position"]
         if v1 == v2:
-            self.delete_edge(edge, cleanup)
+            # a loop between two one-corner faces is all that is left of its
+            # vertex: the vertex survives as a point-sphere even with cleanup
+            lone = C.next[s1] == s1 and C.next[s2] == s2
+            self.delete_edge(edge, cleanup and not lone)
             return survivor
         midpoint = (pos[v1] + pos[v2]) * 0.5
         nxt = C.next
@@ -792,14 +777,19 @@ class Mesh:
         return [f1] if f1 == f2 else [f1, f2]
 
     def _cleanup_degenerate(self, face_slots: list[int]) -> None:
-        """Delete one edge of each listed face that has one or two corners left."""
-        for fs in face_slots:
-            if self._f.idv[fs] < 0:
+        """Delete one edge of each listed face that has one or two corners left.
+
+        The deletions keep point-spheres, so that the surviving vertex of a
+        collapse is never removed.
+        """
+        F = self._f
+        for face in [F.idv[fs] for fs in face_slots]:
+            if not F.is_live(face):
                 continue
-            ring = self._ring_slots(fs)
+            ring = self._ring_slots(F.slot(face))
             edge = self._c.edge[ring[0]]
             if len(ring) <= 2 and edge >= 0:
-                self.delete_edge(self._e.idv[edge], cleanup=True)
+                self.delete_edge(self._e.idv[edge], cleanup=False)
 
     def create_face(self, points: Sequence[Any]) -> tuple[int, int]:
         """Create a two-sided polygon on new vertices: ``(front, back)`` face ids.
