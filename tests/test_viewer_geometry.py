@@ -172,3 +172,20 @@ def test_docs_list_every_key() -> None:
     doc = (Path(__file__).resolve().parent.parent / "docs" / "viewer.md").read_text()
     for binding in KEY_BINDINGS:
         assert f"`{binding.label()}`" in doc, binding
+
+
+def test_fit_points_frames_a_whole_turntable_tightly() -> None:
+    rng = np.random.default_rng(3)
+    points = rng.normal(size=(500, 3)) * [0.3, 3.0, 0.3]   # tall and thin
+    yaws = np.arange(0, 360, 30.0)
+    for ortho in (False, True):
+        camera = Camera(pitch=20, ortho=ortho)
+        camera.fit_points(points, 1.5, yaws)
+        widest = 0.0
+        for yaw in yaws:
+            camera.yaw = yaw
+            clip = np.c_[points, np.ones(len(points))] @ camera.view_projection(1.5).T
+            ndc = np.abs(clip[:, :2] / clip[:, 3:])
+            assert ndc.max() <= 1.0
+            widest = max(widest, float(ndc.max()))
+        assert widest > 0.9   # tight: no loose bounding-sphere margin

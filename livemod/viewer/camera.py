@@ -127,6 +127,31 @@ class Camera:
         self.scene_radius = radius
         self.distance = margin * radius / math.sin(math.radians(self.fov) / 2.0)
 
+    def fit_points(self, points: np.ndarray, aspect: float, yaws: np.ndarray | None = None,
+                   margin: float = 1.06) -> None:
+        """Frame ``(n, 3)`` ``points`` tightly, from every yaw in ``yaws`` at once.
+
+        The target is the centre of the points' bounding box; the distance is the
+        smallest that keeps every point inside the view (width/height ``aspect``)
+        at each yaw (the current yaw when None), times ``margin``. A turntable
+        passes all its yaws, so one distance frames the whole orbit.
+        """
+        points = np.asarray(points, dtype=np.float64)
+        if len(points) == 0:
+            return
+        self.fit(np.stack([points.min(axis=0), points.max(axis=0)]))
+        tan_y = math.tan(math.radians(self.fov) / 2.0)
+        needed = 0.0
+        for yaw in [self.yaw] if yaws is None else list(yaws):
+            turned = replace(self, yaw=float(yaw))
+            right, up, back = turned.basis()
+            rel = points - self.target
+            x, y, z = rel @ right, rel @ up, rel @ back
+            depth = 0.0 if self.ortho else z  # perspective: nearer points spread more
+            needed = max(needed, float(np.max(depth + np.abs(y) / tan_y)),
+                         float(np.max(depth + np.abs(x) / (tan_y * aspect))))
+        self.distance = max(margin * needed, 1e-6)
+
     def preset(self, name: str) -> None:
         """Look from one of :data:`PRESET_VIEWS` (raises KeyError if unknown)."""
         self.yaw, self.pitch = PRESET_VIEWS[name]

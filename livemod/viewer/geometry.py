@@ -119,3 +119,9 @@ def corner_points(arrays: MeshArrays, corners: np.ndarray, inset: float = 0.2) -
 def dense_flags(all_ids: np.ndarray, picked: tuple[int, ...]) -> np.ndarray:
     """``(n,)`` uint8: 1 where ``all_ids`` is one of ``picked`` (ids, not indices)."""
     return np.isin(all_ids, np.asarray(picked, dtype=np.int64)).astype(np.uint8)
+
+
+def sample_points(positions: np.ndarray, limit: int = 200_000) -> np.ndarray:
+    """At most about ``limit`` of ``(n, 3)`` ``positions`` (an even stride), for fitting."""
+    stride = max(len(positions) // limit, 1)
+    return np.asarray(positions[::stride])

@@ -19,6 +19,7 @@ from livemod.dlfl.arrays import MeshArrays
 from livemod.dlfl.scene import Selection
 
 from .camera import Camera
+from .geometry import sample_points
 from .renderer import Renderer, Style
 
 
@@ -67,11 +68,13 @@ class Offscreen:
 
 
 def framed_camera(arrays: MeshArrays | None, elevation: float = 25.0, yaw: float = 30.0,
-                  ortho: bool = False) -> Camera:
-    """A camera at ``yaw``/``elevation`` whose bounding-sphere fit holds at every yaw."""
+                  ortho: bool = False, aspect: float = 1.0, frames: int = 1) -> Camera:
+    """A camera at ``yaw``/``elevation`` framing ``arrays`` tightly at every one of the
+    ``frames`` turntable yaws (so the framing holds over the whole orbit)."""
     camera = Camera(yaw=yaw, pitch=elevation, ortho=ortho)
     if arrays is not None and len(arrays.positions):
-        camera.fit(np.stack([arrays.positions.min(axis=0), arrays.positions.max(axis=0)]))
+        yaws = yaw + 360.0 * np.arange(max(frames, 1)) / max(frames, 1)
+        camera.fit_points(sample_points(arrays.positions), aspect, yaws)
     return camera
 
 
@@ -159,7 +162,8 @@ def render_arrays(arrays: MeshArrays | None, out: str, *, size: tuple[int, int] 
         offscreen.renderer.set_mesh(arrays, preview)
         if selection is not None:
             offscreen.renderer.set_selection(selection)
-        camera = framed_camera(arrays, elevation, ortho=ortho)
+        camera = framed_camera(arrays, elevation, ortho=ortho, aspect=size[0] / size[1],
+                               frames=max(turntable, 1))
         style = style if style is not None else Style()
         frames = max(turntable, 1)
         images = render_turntable(offscreen, camera, style, frames, progress)

@@ -26,6 +26,7 @@ from livemod.dlfl.scene import Selection
 
 from .camera import Camera, bounds_changed_a_lot
 from .controls import PICK_MODES, action_for, selection_python, toggle_pick
+from .geometry import sample_points
 from .hud import hud_quads
 from .renderer import Renderer, Style
 
@@ -155,7 +156,7 @@ class LiveViewer(mglw.WindowConfig):
         bounds = self.renderer.bounds
         if bounds is not None and len(arrays.positions) and bounds_changed_a_lot(
                 self._fit_bounds, bounds):
-            self.camera.fit(bounds)
+            self._do_fit()
             self._fit_bounds = bounds
 
     def _echo(self, line: str) -> None:
@@ -267,8 +268,10 @@ class LiveViewer(mglw.WindowConfig):
         self.camera.ortho = not self.camera.ortho
 
     def _do_fit(self) -> None:
-        if self.renderer.bounds is not None:
-            self.camera.fit(self.renderer.bounds)
+        arrays = self.renderer.arrays
+        if arrays is not None and len(arrays.positions):
+            width, height = self.wnd.fbo.size
+            self.camera.fit_points(sample_points(arrays.positions), width / max(height, 1))
 
     def _do_play_pause(self) -> None:
         self.playing = not self.playing
