@@ -224,3 +224,23 @@ def test_close_stops_the_threads(tmp_path):
         time.sleep(0.05)
     assert threading.active_count() <= before
     assert os.path.exists(tmp_path / "model.py")
+
+
+@pytest.mark.timeout(60)
+def test_an_endless_loop_in_a_helper_module_is_interrupted(tmp_path):
+    (tmp_path / "spinner.py").write_text("def spin():\n    while True:\n        pass\n")
+    script = tmp_path / "uses_spinner.py"
+    script.write_text("import spinner\ncreateVertex((0, 0, 0))\nspinner.spin()\n")
+    live = LiveSession(str(script), notifier=ManualNotifier(), preview=False)
+    try:
+        live.start()
+        time.sleep(0.3)
+        script.write_text("createVertex((0, 0, 0))\ncreateVertex((1, 0, 0))\n")
+        asked = time.monotonic()
+        live.reload()
+        result = next_result(live)
+        assert result.status == "ok" and vertex_count(result) == 2
+        assert time.monotonic() - asked < 2.0
+    finally:
+        live.close()
+        assert live.join(10)

@@ -11,10 +11,12 @@ from __future__ import annotations
 
 import builtins
 import contextlib
+import ctypes
 import importlib
 import os
 import random
 import sys
+import threading
 import time
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
@@ -310,3 +312,26 @@ def _exec(code: CodeType, namespace: dict, script: str, scene: Scene,
     except Exception as exc:
         return "error", exception_error(exc, script), modules
     return "ok", None, modules
+
+
+def interrupt_user_code(thread: threading.Thread, script: str) -> bool:
+    """Last resort for a cancelled run that does not stop: raise :class:`Cancelled`
+    in ``thread`` if it is executing the user's own code right now.
+
+    The compiled-in checks cover the script itself; this covers loops in the
+    script's local modules. Library frames are never interrupted (a library
+    operation ends at its next step instead), so the exception is only sent when
+    the innermost frame belongs to the script or a file in its folder.
+
+    Returns:
+        True when the exception was sent.
+    """
+    ident = thread.ident
+    if ident is None:
+        return False
+    frame = sys._current_frames().get(ident)
+    if frame is None or not is_user_file(frame.f_code.co_filename, script):
+        return False
+    sent = ctypes.pythonapi.PyThreadState_SetAsyncExc(
+        ctypes.c_ulong(ident), ctypes.py_object(Cancelled))
+    return bool(sent == 1)

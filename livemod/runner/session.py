@@ -29,8 +29,8 @@ from livemod.dlfl.arrays import MeshArrays
 from livemod.dlfl.mesh import Mesh
 from livemod.dlfl.scene import Scene, Selection
 
-from .errors import exception_error
-from .execute import RunControl, RunOutcome, base_scene, execute
+from .errors import Cancelled, exception_error
+from .execute import RunControl, RunOutcome, base_scene, execute, interrupt_user_code
 from .playback import Playback
 from .preview import PreviewWorker, preview_arrays
 from .results import (
@@ -45,6 +45,7 @@ from .snapshots import DEFAULT_BUDGET, SnapshotCache
 from .watch import FileWatcher, Notifier
 
 _JOIN_POLL = 0.02  # seconds between checks while waiting for a cancelled run
+_FORCE_AFTER = 0.3  # seconds a cancelled run may ignore its checks before it is interrupted
 
 
 @dataclass
@@ -338,8 +339,13 @@ class LiveSession:
         if not run.control.finished:
             run.cancel_reason = run.cancel_reason or reason
             run.control.cancel()
+        waited = 0.0
         while run.thread is not None and run.thread.is_alive():
             run.thread.join(_JOIN_POLL)
+            waited += _JOIN_POLL
+            if waited >= _FORCE_AFTER and run.control.cancelled:
+                interrupt_user_code(run.thread, run.script)  # e.g. a loop in a helper module
+                waited = 0.0
 
     def _start_run(self, request: _Request) -> None:
         with self._lock:
@@ -374,8 +380,12 @@ class LiveSession:
         with self._lock:
             self._source = source
             self._seen[run.script] = _hash(source.encode("utf-8"))
-        outcome = execute(run.script, source=source, base=base, seed=self.seed,
-                          parameters=parameters, selection=selection, control=run.control)
+        try:
+            outcome = execute(run.script, source=source, base=base, seed=self.seed,
+                              parameters=parameters, selection=selection, control=run.control)
+        except Cancelled:  # a forced interrupt that arrived after the script ended
+            run.control.finished = True
+            return
         run.control.finished = True
         self._watch_modules(run.script, outcome.modules)
         self._publish(run, outcome, parameter_items(parameters))
