@@ -10,6 +10,8 @@
    queue, minus the debounce. Target: at most 100 ms plus the debounce.
 3. Cancel latency of ``while True: pass`` after the next save (minus debounce).
 4. A batch of 32 variants on 2 processes against one after another. Target: 1.7x.
+5. Stepping back from step 999 of a 1,000-step script on a 100,000-face mesh:
+   seconds per step back (cache hit, and replay) and the growth of peak memory.
 """
 
 from __future__ import annotations
@@ -17,6 +19,7 @@ from __future__ import annotations
 import argparse
 import os
 import queue
+import resource
 import statistics
 import sys
 import tempfile
@@ -185,6 +188,58 @@ def bench_batch(folder: str, variants: int, jobs: int) -> tuple[float, float]:
     return sequential, parallel
 
 
+LONG_SCRIPT = (
+    "es = edges()\n"
+    "for i in range(1000):\n"
+    "    subdivideEdge(es[i])\n"
+)
+
+
+def _wait_paused(session: LiveSession, k: int, timeout: float = 120.0):
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        try:
+            result = session.results.get(timeout=0.001)
+        except queue.Empty:
+            continue
+        if result.status == "paused" and result.step_index == k:
+            return result
+    raise RuntimeError(f"step {k} not shown")
+
+
+def bench_step_back(folder: str) -> tuple[float, float, float, int]:
+    """(seconds for a cached step back, seconds for a replayed one, peak MB growth,
+    faces) on 1,000 steps of a 100,000-face mesh."""
+    path = os.path.join(folder, "long.py")
+    with open(path, "w") as handle:
+        handle.write(LONG_SCRIPT)
+    base = Scene()
+    base.add(grid_mesh(316))
+    faces = base.mesh.counts()[2]
+    peak_before = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+    session = LiveSession(path, preview=False, base=base, snapshot_budget=64 * 2**20)
+    session.pause()
+    session.start()
+    try:
+        _wait_paused(session, 0)
+        for k in (997, 998, 999):
+            session.goto_step(k)
+            _wait_paused(session, k)
+        started = time.perf_counter()
+        session.step_back()
+        _wait_paused(session, 998)
+        cached = time.perf_counter() - started
+        started = time.perf_counter()
+        session.goto_step(500)
+        _wait_paused(session, 500)
+        replayed = time.perf_counter() - started
+    finally:
+        session.close()
+        session.join()
+    grown = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024 - peak_before
+    return cached, replayed, grown, faces
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="fewer repeats")
@@ -204,6 +259,10 @@ def main(argv: list[str] | None = None) -> int:
         cancel = bench_cancel_latency(folder, repeats, debounce)
         print(f"save -> result while `while True: pass` runs: {cancel * 1e3:.0f} ms + "
               f"{debounce * 1e3:.0f} ms debounce (median of {repeats})")
+        cached, replayed, grown, faces = bench_step_back(folder)
+        print(f"step back at step 999 of 1,000 on {faces:,} faces: {cached * 1e3:.0f} ms "
+              f"from the snapshot cache, {replayed:.2f} s by replay; peak memory "
+              f"+{grown:.0f} MB (64 MB snapshot budget)")
         sequential, parallel = bench_batch(folder, 32, 2)
         print(f"batch of 32 variants: sequential {sequential:.2f} s, 2 processes "
               f"{parallel:.2f} s, speed-up {sequential / parallel:.2f}x")
