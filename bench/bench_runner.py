@@ -74,28 +74,36 @@ def median_of(fn, repeats: int) -> float:
     return statistics.median(fn() for _ in range(repeats))
 
 
-def bench_step_overhead(folder: str, repeats: int) -> tuple[float, float]:
-    """(runner seconds, bare seconds) for 10,000 createVertex commands."""
+def bench_step_overhead(folder: str, repeats: int) -> dict[str, tuple[float, float]]:
+    """Median (wall, CPU) seconds of 10,000 createVertex commands three ways: the
+    runner's execute, a bare exec, and a bare exec with a no-op step hook (the
+    core's own cost of calling a hook)."""
     path = os.path.join(folder, "small.py")
     with open(path, "w") as handle:
         handle.write(SMALL_COMMANDS)
 
-    def runner() -> float:
-        started = time.perf_counter()
+    def runner() -> None:
         outcome = execute(path, source=SMALL_COMMANDS)
         assert outcome.status == "ok" and len(outcome.steps) == 10000
-        return time.perf_counter() - started
 
-    def bare() -> float:
-        started = time.perf_counter()
+    def bare(hook=None) -> None:
         code = compile(SMALL_COMMANDS, path, "exec")
-        with use_scene(Scene()):
+        scene = Scene()
+        scene.step_hook = hook
+        with use_scene(scene):
             exec(code, {"__name__": "__main__"})
-        return time.perf_counter() - started
 
-    runner(), bare()  # warm up imports and caches
-    pairs = [(runner(), bare()) for _ in range(repeats)]
-    return statistics.median(p[0] for p in pairs), statistics.median(p[1] for p in pairs)
+    ways = {"runner": runner, "bare": bare, "noop hook": lambda: bare(lambda label: None)}
+    times: dict[str, list[tuple[float, float]]] = {name: [] for name in ways}
+    for fn in ways.values():
+        fn()  # warm up imports and caches
+    for _ in range(repeats):
+        for name, fn in ways.items():  # interleaved, so load changes hit all alike
+            wall, cpu = time.perf_counter(), time.process_time()
+            fn()
+            times[name].append((time.perf_counter() - wall, time.process_time() - cpu))
+    return {name: (statistics.median(t[0] for t in runs), statistics.median(t[1] for t in runs))
+            for name, runs in times.items()}
 
 
 def _wait_ok(session: LiveSession, timeout: float = 30.0):
@@ -248,10 +256,12 @@ def main(argv: list[str] | None = None) -> int:
     debounce = 0.15
     print(f"python {sys.version.split()[0]}, {os.cpu_count()} cpus")
     with tempfile.TemporaryDirectory() as folder:
-        with_steps, bare = bench_step_overhead(folder, repeats)
-        print(f"10,000 createVertex: runner {with_steps * 1e3:.0f} ms, bare exec "
-              f"{bare * 1e3:.0f} ms, overhead {100 * (with_steps / bare - 1):+.1f} % "
-              f"(median of {repeats})")
+        ways = bench_step_overhead(folder, repeats)
+        (rw, rc), (bw, bc), (nw, nc) = ways["runner"], ways["bare"], ways["noop hook"]
+        print(f"10,000 createVertex (median of {repeats}, wall/CPU ms): runner {rw * 1e3:.0f}/"
+              f"{rc * 1e3:.0f}, bare exec {bw * 1e3:.0f}/{bc * 1e3:.0f}, bare + no-op hook "
+              f"{nw * 1e3:.0f}/{nc * 1e3:.0f}; overhead {100 * (rc / bc - 1):+.1f} % CPU "
+              f"({100 * (nc / bc - 1):+.1f} % of it is the core calling a hook)")
         latency, run = bench_save_latency(folder, 3 * repeats, debounce)
         print(f"save -> result, 20 commands on 10,000 faces: {latency * 1e3:.0f} ms + "
               f"{debounce * 1e3:.0f} ms debounce (run itself {run * 1e3:.0f} ms; "

@@ -314,7 +314,9 @@ def test_unknown_scheme_lists_the_valid_names():
 
 
 @pytest.mark.parametrize(("scheme", "options", "message"), [
-    ("catmull-clark", {"levels": 2}, "no option 'levels'"),
+    ("catmull-clark", {"depth": 2}, "no option 'depth'"),
+    ("catmull-clark", {"levels": 0}, "levels must be a positive integer"),
+    ("catmull-clark", {"levels": 1.5}, "levels must be a positive integer"),
     ("checker", {"thickness": 0.7}, "thickness must be in"),
     ("checker", {"thickness": "thin"}, "thickness must be a number"),
     ("corner-cut", {"alpha": 0.1}, "alpha must be in"),
@@ -358,3 +360,19 @@ def test_fresh_ids_after_remeshing():
     old = set(m.face_ids().tolist())
     subdivide(m, "catmull-clark")
     assert not old & set(m.face_ids().tolist())
+
+
+def test_catmull_clark_levels_equal_repeated_steps():
+    once = cube()
+    subdivide(once, "catmull-clark", levels=3)
+    repeated = cube()
+    for _ in range(3):
+        subdivide(repeated, "catmull-clark")
+    assert checked(once) == checked(repeated) == (386, 768, 384)
+    assert np.array_equal(mesh_arrays(once).positions, mesh_arrays(repeated).positions)
+
+
+def test_catmull_clark_levels_budget_counts_the_last_level():
+    m = cube()
+    with pytest.raises(DLFLError, match="would produce 1,536 faces"):
+        subdivide(m, "catmull-clark", levels=4, max_faces=1000)

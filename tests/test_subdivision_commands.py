@@ -61,7 +61,9 @@ def test_keyword_options(scene):
 def test_too_many_options_is_an_error(scene):
     before = snapshot(scene.mesh)
     with pytest.raises(DLFLError, match="at most 0 options"):
-        subdivide("catmull-clark", 1)
+        subdivide("loop", 1)
+    with pytest.raises(DLFLError, match=r"at most 1 options \(levels\)"):
+        subdivide("catmull-clark", 1, 2)
     with pytest.raises(DLFLError, match="given twice"):
         subdivide("checker", 0.2, thickness=0.3)
     with pytest.raises(DLFLError, match="unknown subdivision scheme"):

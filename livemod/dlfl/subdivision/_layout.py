@@ -219,6 +219,28 @@ def read_topology(mesh: Mesh) -> Topology:
     return _topology(positions, cv, mate, offsets, hole, edge_corners, spheres, face_ids)
 
 
+def topology_of(positions: np.ndarray, cv: np.ndarray, mate: np.ndarray, sizes: np.ndarray,
+                hole: np.ndarray, spheres: np.ndarray) -> Topology:
+    """The :class:`Topology` of a scheme's output arrays (for repeated levels)."""
+    offsets = np.zeros(len(sizes) + 1, dtype=np.int64)
+    np.cumsum(sizes, out=offsets[1:])
+    lower = np.flatnonzero(mate > np.arange(len(mate)))
+    edge_corners = np.stack([lower, mate[lower]], axis=1)
+    return _topology(positions, cv, mate, offsets, hole, edge_corners, spheres,
+                     np.zeros(len(sizes), dtype=np.int64))
+
+
+def check_levels(levels: object) -> int:
+    """``levels`` as a positive int.
+
+    Raises:
+        DLFLError: anything else.
+    """
+    if isinstance(levels, bool) or not isinstance(levels, int | np.integer) or levels < 1:
+        raise DLFLError(f"option levels must be a positive integer, got {levels!r}")
+    return int(levels)
+
+
 def _topology(
     positions: np.ndarray, cv: np.ndarray, mate: np.ndarray, offsets: np.ndarray,
     hole: np.ndarray, edge_corners: np.ndarray, spheres: np.ndarray, face_ids: np.ndarray,

@@ -21,40 +21,56 @@ from ._layout import (
     build,
     build_paired,
     check_budget,
+    check_levels,
     check_number,
     cos_weights,
     face_weighted,
     read_topology,
+    topology_of,
     vertex_sum,
 )
 
 
-def catmull_clark(mesh: Mesh, *, max_faces: int | None = None) -> None:
+def catmull_clark(mesh: Mesh, *, levels: int = 1, max_faces: int | None = None) -> None:
     """Catmull-Clark subdivision (TopMod ``catmullClarkSubdivide``, "catmull-clark").
 
     Rule: face point = centroid; edge point = (sum of both ends and both face
     points) / 4; vertex = (Q + 2R + (n - 3)v) / n with Q the mean adjacent face
     point, R the mean incident edge midpoint, n the valence. Every n-gon becomes n
     quads (vertex, edge point, face point, edge point). Cube: 26/48/24, 24 quads.
+    ``levels`` (a livemod addition, default 1) repeats the step on the arrays and
+    builds the mesh once.
 
     Raises:
-        DLFLError: the result would exceed the face budget.
+        DLFLError: ``levels`` not a positive integer, or the result would exceed
+            the face budget.
     """
+    levels = check_levels(levels)
     t = read_topology(mesh)
-    check_budget(t, t.nc, "catmull-clark", max_faces)
-    centroids = t.centroids()
-    a, b = t.edge_corners[:, 0], t.edge_corners[:, 1]
-    edge_points = 0.25 * (t.pos[t.cv[a]] + t.pos[t.cv[b]]
-                          + centroids[t.face[a]] + centroids[t.face[b]])
-    positions = np.concatenate([_cc_vertices(t, centroids), edge_points, centroids])
-    _cc_faces(mesh, t, positions)
+    check_budget(t, t.nc * 4 ** (levels - 1), "catmull-clark", max_faces)
+    for level in range(levels):
+        centroids = t.centroids()
+        a, b = t.edge_corners[:, 0], t.edge_corners[:, 1]
+        edge_points = 0.25 * (t.pos[t.cv[a]] + t.pos[t.cv[b]]
+                              + centroids[t.face[a]] + centroids[t.face[b]])
+        positions = np.concatenate([_cc_vertices(t, centroids), edge_points, centroids])
+        verts, mates = _cc_faces(t)
+        sizes = np.full(t.nc, 4, dtype=np.int64)
+        hole = np.repeat(t.hole, t.sizes)
+        if level == levels - 1:
+            build_paired(mesh, t, positions, verts, mates, sizes, hole)
+        else:
+            t = topology_of(positions, verts, mates, sizes, hole, t.spheres)
 
 
-def _cc_faces(mesh: Mesh, t: Topology, positions: np.ndarray) -> None:
+def _cc_faces(t: Topology) -> tuple[np.ndarray, np.ndarray]:
     """One quad per old corner c (corners 4c..4c+3), mates computed directly:
-    the half at c's vertex meets quad next(mate c), the spokes quads next/prev c."""
+    the half at c's vertex meets quad next(mate c), the spokes quads next/prev c.
+
+    Returns the ``(4C,)`` vertex and mate of every new corner.
+    """
     nxt, prv, mate = t.nxt, t.prv, t.mate
-    verts = np.empty((t.nc, 4), dtype=np.int32)
+    verts = np.empty((t.nc, 4), dtype=np.int64)
     verts[:, 0] = t.cv
     verts[:, 1] = t.nv + t.edge
     verts[:, 2] = t.nv + t.ne + t.face
@@ -64,8 +80,7 @@ def _cc_faces(mesh: Mesh, t: Topology, positions: np.ndarray) -> None:
     mates[:, 1] = 4 * nxt + 2
     mates[:, 2] = 4 * prv + 1
     mates[:, 3] = 4 * mate[prv]
-    build_paired(mesh, t, positions, verts.ravel(), mates.ravel(),
-                 np.full(t.nc, 4, dtype=np.int64), np.repeat(t.hole, t.sizes))
+    return verts.ravel(), mates.ravel()
 
 
 def _cc_vertices(t: Topology, centroids: np.ndarray) -> np.ndarray:

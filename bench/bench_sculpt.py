@@ -1,0 +1,84 @@
+"""Benchmarks of rind, wireframe, columns and the other sculpting operations (medians).
+
+Run: ``python bench/bench_sculpt.py [--repeat N]``. Targets (issue 4): wireframe of a
+100,000-face mesh in at most 2 s; rind of a 100,000-face mesh in at most 2 s. The
+input is a 400 x 250 quad torus (100,000 faces); building it is not timed. Prints a
+Markdown table for docs/performance.md.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import statistics
+import time
+from collections.abc import Callable
+
+from livemod.dlfl.geometry import mesh_smooth
+from livemod.dlfl.mesh import Mesh
+from livemod.dlfl.rind import rind
+from livemod.dlfl.selection import checkerboard
+from livemod.dlfl.shapes import cube, torus
+from livemod.dlfl.sierpinsky import sierpinsky
+from livemod.dlfl.sponge import sponge
+from livemod.dlfl.wireframe import columns, modified_corner_cut, wireframe
+
+BIG = (400, 250)  # 100,000 quads
+
+
+def big_torus() -> Mesh:
+    return torus(*BIG, major=4.0, minor=1.0)
+
+
+def every_tenth_face(mesh: Mesh) -> list[int]:
+    """Every tenth face in rows of the torus, so no two punched faces share an edge."""
+    ids = mesh.face_ids().tolist()
+    return ids[::10]
+
+
+CASES: list[tuple[str, Callable[[], Mesh], Callable[[Mesh], object], str]] = [
+    ("wireframe, 100,000-face torus", big_torus, lambda m: wireframe(m, 0.01), "2 s"),
+    ("rind, 100,000-face torus, 10,000 faces punched", big_torus,
+     lambda m: rind(m, every_tenth_face(m), 0.05), "2 s"),
+    ("crust only, 100,000-face torus", big_torus, lambda m: rind(m, (), 0.05), ""),
+    ("modified corner cut, 100,000-face torus", big_torus,
+     lambda m: modified_corner_cut(m, 0.01), ""),
+    ("Menger sponge, 100,000-face torus", big_torus, lambda m: sponge(m, 0.05), ""),
+    ("mesh smooth, 100,000-face torus", big_torus, mesh_smooth, ""),
+    ("columns (4 segments), 2,500-face torus", lambda: torus(50, 50, 4.0, 1.0),
+     lambda m: columns(m, 0.02, 4), ""),
+    ("sierpinsky, 2,500-face torus", lambda: torus(50, 50, 4.0, 1.0), sierpinsky, ""),
+    ("checkerboard selection, 2,500-face torus", lambda: torus(50, 50, 4.0, 1.0),
+     lambda m: checkerboard(m, 0), ""),
+    ("wireframe, cube", cube, lambda m: wireframe(m, 0.1), ""),
+]
+
+
+def median_time(make: Callable[[], Mesh], run: Callable[[Mesh], object], repeat: int) -> float:
+    times = []
+    for _ in range(repeat):
+        mesh = make()
+        start = time.perf_counter()
+        run(mesh)
+        times.append(time.perf_counter() - start)
+    return statistics.median(times)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__)
+    parser.add_argument("--repeat", type=int, default=5)
+    args = parser.parse_args()
+    print(f"cpus: {os.cpu_count()}, repeat: {args.repeat} (median)\n")
+    print("| operation | median | target |")
+    print("|---|---|---|")
+    for label, make, run, target in CASES:
+        seconds = median_time(make, run, args.repeat)
+        verdict = ""
+        if target:
+            limit = float(target.split()[0])
+            verdict = f"{target} ({'met' if seconds <= limit else 'MISSED'})"
+        print(f"| {label} | {seconds * 1000:.0f} ms | {verdict} |", flush=True)
+
+
+if __name__ == "__main__":
+    main()
