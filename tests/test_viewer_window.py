@@ -120,6 +120,25 @@ def test_keys_change_style_camera_and_pick_mode(headless) -> None:
     assert viewer.show_help
 
 
+def test_dropping_a_script_or_a_mesh_opens_it(headless, tmp_path: Path) -> None:
+    from livemod.dlfl.io import save_mesh
+    from livemod.dlfl.shapes import tetrahedron
+
+    viewer, _, echo = headless
+    _wait(viewer, _has_run(1))
+    other = tmp_path / "empty.py"
+    other.write_text("x = 1\n")
+    viewer.on_files_dropped_event(0, 0, [str(other)])
+    assert "empty.py" in viewer.wnd.title
+    _wait(viewer, lambda v: v.result is not None and v.result.script == str(other))
+    mesh_file = tmp_path / "tet.obj"
+    save_mesh(tetrahedron(), str(mesh_file))
+    viewer.on_files_dropped_event(0, 0, [str(mesh_file)])
+    _wait(viewer, lambda v: v.result is not None and v.result.arrays is not None)
+    assert viewer.result.arrays.counts == (4, 6, 4)   # the script ran on the dropped mesh
+    assert "opened" in echo.getvalue()
+
+
 def test_frames_stay_fast_while_a_five_second_script_runs(headless) -> None:
     viewer, script, _ = headless
     _wait(viewer, _has_run(1))
