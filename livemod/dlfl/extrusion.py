@@ -61,8 +61,10 @@ def _face_geometry(mesh: Mesh, face: int) -> tuple[np.ndarray, np.ndarray]:
     Raises:
         DLFLError: the face has no normal (collinear or coincident points).
     """
-    slot = mesh._v.slot
-    points = mesh._v.arrays["position"][[slot(v) for v in mesh.face_vertices(face)]]
+    # vertex slots straight from the ring: no id round trip on the hot path
+    vertex_slot = mesh._c.vertex
+    ring = mesh._ring_slots(mesh._f.slot(face))
+    points = mesh._v.arrays["position"][[vertex_slot[c] for c in ring]]
     normal = small_polygon_normal(points.tolist())
     if normal == (0.0, 0.0, 0.0):
         raise DLFLError(f"face {face} is degenerate (no normal); it cannot be extruded")
@@ -117,32 +119,31 @@ def _before(k: int) -> np.ndarray:
     return np.r_[k - 1, 0:k - 1]
 
 
-def _scaled(points: np.ndarray, factor: float) -> np.ndarray:
-    """Scale about the centroid by ``|factor|``, unless it is 0 or 1 (TopMod's rule)."""
-    factor = abs(factor)
+def _transformed(points: np.ndarray, axis: np.ndarray, scale: float,
+                 degrees: float) -> np.ndarray:
+    """Scale by ``|scale|`` (skipped for 0 and 1, TopMod's rule) and rotate
+    right-handed by ``degrees`` about ``axis`` (unit), both about the centroid.
+
+    Uniform scaling and rotation about one point commute, so TopMod's order
+    (scale, then rotate) is one matrix: Rodrigues' times the factor, built in
+    plain floats since numpy's per-call cost dominates on a handful of points.
+    """
+    factor = abs(scale)
     if factor < TINY or abs(factor - 1.0) < TINY:
-        return points
-    centre = points.mean(axis=0)
-    return centre + (points - centre) * factor
-
-
-def _rotated(points: np.ndarray, axis: np.ndarray, degrees: float) -> np.ndarray:
-    """Rotate right-handed by ``degrees`` about ``axis`` (unit) through the centroid."""
-    if abs(degrees) < TINY:
+        factor = 1.0
+    if abs(degrees) < TINY and factor == 1.0:
         return points
     theta = math.radians(degrees)
-    centre = points.mean(axis=0)
     x, y, z = axis.tolist()
     c, s = math.cos(theta), math.sin(theta)
     k = 1.0 - c
-    # Rodrigues' matrix built in plain floats and applied as one product: numpy's
-    # cross, eye and outer cost more than the arithmetic on a handful of points
-    turn = np.array([
+    matrix = np.array([
         [c + k * x * x, k * x * y - s * z, k * x * z + s * y],
         [k * y * x + s * z, c + k * y * y, k * y * z - s * x],
         [k * z * x - s * y, k * z * y + s * x, c + k * z * z],
-    ])
-    return centre + (points - centre) @ turn.T
+    ]) * factor
+    centre = points.sum(axis=0) / len(points)
+    return centre + (points - centre) @ matrix.T
 
 
 @lru_cache(maxsize=64)
@@ -171,7 +172,7 @@ def cubical_step(mesh: Mesh, face: int, o: Options) -> int:
     """TopMod's ``extrudeFace``: the face's points scaled, rotated, then moved
     ``distance`` along the normal; ``n`` side quads. Returns the end face."""
     points, normal = _face_geometry(mesh, face)
-    points = _rotated(_scaled(points, o.scale), normal, o.rotation)
+    points = _transformed(points, normal, o.scale, o.rotation)
     return _bridge(mesh, face, points + o.distance * normal)
 
 
@@ -180,8 +181,9 @@ def doo_sabin_step(mesh: Mesh, face: int, o: Options) -> int:
     then the Doo-Sabin weights, then the scale (and livemod's rotation)."""
     points, normal = _face_geometry(mesh, face)
     twisted = (1.0 - o.twist) * points + o.twist * points[_after(len(points))]
-    inner = doo_sabin_weights(len(points)) @ (twisted + o.distance * normal)
-    inner = _rotated(_scaled(inner, o.scale), normal, o.rotation)
+    # each row of the weights sums to 1, so moving before or after them is the same
+    inner = doo_sabin_weights(len(points)) @ twisted + o.distance * normal
+    inner = _transformed(inner, normal, o.scale, o.rotation)
     return _bridge(mesh, face, inner)
 
 
@@ -192,7 +194,7 @@ def dual_step(mesh: Mesh, face: int, o: Options) -> int:
     points, normal = _face_geometry(mesh, face)
     old_edges = mesh.face_edges(face) if o.dual_mesh else []
     mids = (points + points[_after(len(points))]) * 0.5 + o.distance * normal
-    end = _bridge(mesh, face, _rotated(_scaled(mids, o.scale), normal, o.rotation), dual=True)
+    end = _bridge(mesh, face, _transformed(mids, normal, o.scale, o.rotation), dual=True)
     _delete_edges(mesh, old_edges)
     return end
 
@@ -219,7 +221,7 @@ def planar_offset_step(mesh: Mesh, face: int, o: Options) -> int:
     offset[cross @ normal < 0] *= -1.0
     straight = np.linalg.norm(cross, axis=1) < 1e-9 * (1 + np.linalg.norm(nvec, axis=1) ** 2)
     offset[straight] = o.thickness * _unit_rows(np.cross(normal, nvec[straight]))
-    inset = _rotated(points + offset, normal, o.rotation)
+    inset = _transformed(points + offset, normal, 1.0, o.rotation)
     return _bridge(mesh, face, inset + o.distance * normal)
 
 
