@@ -326,3 +326,9 @@ def test_resolve_polygon_angles_ascend_from_the_first():
     assert np.allclose(angles, [0, np.pi / 2, np.pi, 3 * np.pi / 2]) and np.allclose(dist, 1)
     angles, _ = resolve_polygon(square[::-1], x, y)  # clockwise: steps of 3π/2
     assert np.allclose(np.diff(angles), 3 * np.pi / 2) and 0 <= angles[0] < 2 * np.pi
+
+
+def test_one_segment_hermite_handle_is_connect_faces_even_for_unequal_faces():
+    m = pentagon_cube()
+    hermite_handle(m, *above(m), 1)
+    assert checked(m) == (9, 18, 9) and genus(m) == 1

@@ -478,11 +478,13 @@ def hermite_handle(
 
     Raises:
         DLFLError: a corner is not live, both are in one face, faces of different
-            sizes (TopMod silently did nothing), ``segments`` < 1, or see
-            :func:`hermite_rings`.
+            sizes with ``segments`` > 1 (TopMod silently did nothing),
+            ``segments`` < 1, or see :func:`hermite_rings`.
     """
-    start, end, n1, n2 = _handle_ends(mesh, corner1, corner2, segments, "hermite_handle")
     _check_segments(segments, max_connections)
+    if segments == 1:  # TopMod: a plain connectFaces, whatever the sizes and normals
+        return connect_faces(mesh, corner1, corner2, max_connections=max_connections)
+    start, end, n1, n2 = _handle_ends(mesh, corner1, corner2, segments, "hermite_handle")
     _check_pinch(pinch, pinch_center, bubble)
     rings = hermite_rings(start, end, n1, n2, segments, weight1, weight2, int(twists),
                           (pinch, pinch_center, bubble))
