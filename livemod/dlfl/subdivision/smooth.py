@@ -162,9 +162,38 @@ def loop_style(mesh: Mesh, *, length: float = 1.0, max_faces: int | None = None)
 
 
 def _doo_sabin_like(mesh: Mesh, t: Topology, points: np.ndarray) -> None:
-    faces = Faces()
-    doo_sabin_faces(t, faces)
-    build(mesh, t, points, faces)
+    order, offsets = t.vertex_rings()
+    ring_sizes = np.diff(offsets)
+    if len(ring_sizes) and ring_sizes.min() < 3:
+        faces = Faces()  # valence 1 or 2: the general path merges 2-gons away
+        doo_sabin_faces(t, faces)
+        build(mesh, t, points, faces)
+        return
+    verts, mates = _doo_sabin_paired(t, order)
+    sizes = np.concatenate([t.sizes, np.full(t.ne, 4, dtype=np.int64), ring_sizes])
+    hole = np.concatenate([t.hole, np.zeros(t.ne + len(ring_sizes), dtype=bool)])
+    build_paired(mesh, t, points, verts, mates, sizes, hole)
+
+
+def _doo_sabin_paired(t: Topology, order: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Doo-Sabin's corners with mates computed directly (every valence >= 3).
+
+    Layout: F-faces (corner c at c), edge quads (edge k at C + 4k:
+    next(a), a, next(b), b for its sides a, b), V-faces (ring position q at C + 4E + q).
+    """
+    nc, c = t.nc, np.arange(t.nc)
+    a, b = t.edge_corners[:, 0], t.edge_corners[:, 1]
+    na, nb = t.nxt[a], t.nxt[b]
+    position = np.empty(nc, dtype=np.int64)
+    position[order] = c
+    is_a = a[t.edge] == c
+    face_mate = nc + 4 * t.edge + np.where(is_a, 0, 2)
+    ring_base = nc + 4 * t.ne
+    quad_mate = np.stack([a, ring_base + position[nb], b, ring_base + position[na]], axis=1)
+    prev = t.prv[order]
+    ring_mate = nc + 4 * t.edge[prev] + np.where(is_a[prev], 3, 1)
+    verts = np.concatenate([c, np.stack([na, a, nb, b], axis=1).ravel(), order])
+    return verts, np.concatenate([face_mate, quad_mate.ravel(), ring_mate])
 
 
 def _doo_sabin_count(t: Topology) -> int:
