@@ -193,9 +193,9 @@ def _numbers(scan: _Scan, lead: np.ndarray, is_frac: np.ndarray) -> np.ndarray:
     rs, re = scan.run_starts, scan.run_ends
     run_values = scan.values()
     int_val, int_len = run_values[lead], (re - rs)[lead]
-    has_frac = np.zeros(len(lead), dtype=bool)
     nxt = np.minimum(lead + 1, len(rs) - 1)
-    has_frac = is_frac[nxt] & (nxt != lead)
+    # the fraction belongs to this number only if just one '.' separates them
+    has_frac = is_frac[nxt] & (nxt != lead) & (rs[nxt] == re[lead] + 1)
     frac_val = np.where(has_frac, run_values[nxt], 0)
     frac_len = np.where(has_frac, np.minimum((re - rs)[nxt], 18), 0)
     fits = (int_val == 0) | (int_len + frac_len <= 18)
@@ -205,8 +205,16 @@ def _numbers(scan: _Scan, lead: np.ndarray, is_frac: np.ndarray) -> np.ndarray:
     for i in np.flatnonzero(~(fits & decided)).tolist():
         start = rs[lead[i]] - int(scan.buf[rs[lead[i]] - 1] == ord("-"))
         end = re[lead[i] + 1] if has_frac[i] else re[lead[i]]
-        values[i] = float(scan.buf[start:end].tobytes())
+        values[i] = _python_float(scan.buf[start:end].tobytes())
     return values
+
+
+def _python_float(text: bytes) -> float:
+    """``float(text)``; NaN for text that is not a number (its line is rejected)."""
+    try:
+        return float(text)
+    except ValueError:
+        return float("nan")
 
 
 def parse_index_lines(buf: np.ndarray, starts: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

@@ -1,0 +1,158 @@
+"""Fuzzing the OBJ and .dlfl readers: bad input raises DLFLError and nothing else.
+
+Random bytes, truncated and mutated valid files must give a clean DLFLError (or
+a mesh that validates), never another exception type or a hang. Random valid
+OBJ text must parse the same on the vectorized and the reference path.
+"""
+
+from __future__ import annotations
+
+import warnings
+from pathlib import Path
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from livemod.dlfl import DLFLError, DLFLRepairWarning, validate
+from livemod.dlfl.io import read_dlfl, read_obj
+from livemod.dlfl.io.dlflfile import dlfl_bytes
+from livemod.dlfl.io.obj import parse_obj
+
+SAMPLES = Path(__file__).resolve().parents[2] / "shared" / "data" / "topmod-objs"
+CUBE_OBJ = (SAMPLES / "cube.obj").read_bytes()
+DUAL_OBJ = (SAMPLES / "soccerballdual.obj").read_bytes()[:3000]
+with warnings.catch_warnings():
+    warnings.simplefilter("ignore", DLFLRepairWarning)
+    CUBE_DLFL = dlfl_bytes(read_obj(CUBE_OBJ), "cube")
+    BEVEL_DLFL = dlfl_bytes(read_obj(SAMPLES / "beveledcube.obj"), "bevel")
+
+FUZZ = settings(max_examples=150, deadline=None,
+                suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
+OBJ_ALPHABET = b"vf0123456789 .-/\t\r\n#,e+x"
+DLFL_ALPHABET = b"DLFvfeus 0123456789.-[]\n#"
+
+
+def only_dlfl_errors(reader, data: bytes) -> None:  # type: ignore[no-untyped-def]
+    """Run ``reader``; a result must validate, a failure must be a DLFLError."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", DLFLRepairWarning)
+        try:
+            mesh = reader(data)
+        except DLFLError:
+            return
+    validate(mesh)
+
+
+def mutate(data: bytes, edits: list[tuple[int, int, int]]) -> bytes:
+    """Apply (kind, position, byte) edits: 0 replace, 1 insert, 2 delete."""
+    buf = bytearray(data)
+    for kind, pos, byte in edits:
+        if not buf:
+            break
+        i = pos % len(buf)
+        if kind == 0:
+            buf[i] = byte
+        elif kind == 1:
+            buf.insert(i, byte)
+        else:
+            del buf[i]
+    return bytes(buf)
+
+
+edit_lists = st.lists(st.tuples(st.integers(0, 2), st.integers(0, 10**6), st.integers(0, 255)),
+                      max_size=8)
+
+
+@pytest.mark.timeout(60)
+@FUZZ
+@given(st.binary(max_size=400))
+def test_obj_random_bytes(data: bytes) -> None:
+    only_dlfl_errors(read_obj, data)
+
+
+@pytest.mark.timeout(60)
+@FUZZ
+@given(st.lists(st.sampled_from(list(OBJ_ALPHABET)), max_size=300).map(bytes))
+def test_obj_random_obj_like_text(data: bytes) -> None:
+    only_dlfl_errors(read_obj, data)
+
+
+@pytest.mark.timeout(60)
+@FUZZ
+@given(st.sampled_from([CUBE_OBJ, DUAL_OBJ]), st.integers(0, 3000), edit_lists)
+def test_obj_truncated_and_mutated(base: bytes, cut: int, edits: list[tuple[int, int, int]]) -> None:
+    only_dlfl_errors(read_obj, mutate(base[: max(cut, 1)], edits))
+    only_dlfl_errors(read_obj, mutate(base, edits))
+
+
+@pytest.mark.timeout(60)
+@FUZZ
+@given(st.binary(max_size=400))
+def test_dlfl_random_bytes(data: bytes) -> None:
+    only_dlfl_errors(read_dlfl, b"DLFL\n#\n" + data)
+    only_dlfl_errors(read_dlfl, data)
+
+
+@pytest.mark.timeout(60)
+@FUZZ
+@given(st.lists(st.sampled_from(list(DLFL_ALPHABET)), max_size=300).map(bytes))
+def test_dlfl_random_dlfl_like_text(data: bytes) -> None:
+    only_dlfl_errors(read_dlfl, b"DLFL\n#\n" + data)
+
+
+@pytest.mark.timeout(60)
+@FUZZ
+@given(st.sampled_from([CUBE_DLFL, BEVEL_DLFL]), st.integers(0, 6000), edit_lists)
+def test_dlfl_truncated_and_mutated(base: bytes, cut: int, edits: list[tuple[int, int, int]]) -> None:
+    only_dlfl_errors(read_dlfl, mutate(base[: max(cut, 4)], edits))
+    only_dlfl_errors(read_dlfl, mutate(base, edits))
+
+
+# the vectorized OBJ parser must agree with the reference parser wherever it
+# accepts a line, and fall back to it everywhere else
+number = st.one_of(
+    st.floats(allow_nan=False, allow_infinity=False).map(repr),
+    st.integers(-10**20, 10**20).map(str),
+    st.from_regex(r"-?[0-9]{0,20}\.?[0-9]{0,20}", fullmatch=True),
+)
+separator = st.sampled_from([" ", "  ", "\t", ", ", ",", " \t "])
+vertex_line = st.tuples(st.lists(number, min_size=3, max_size=5), separator).map(
+    lambda t: "v " + t[1].join(t[0]))
+index = st.integers(-5, 12).map(str)
+corner = st.one_of(index, st.tuples(index, index).map("/".join),
+                   st.tuples(index, index).map("//".join),
+                   st.tuples(index, index, index).map("/".join))
+face_line = st.lists(corner, min_size=0, max_size=6).map(lambda c: "f " + " ".join(c))
+other_line = st.sampled_from(["# c", "vn 0 0 1", "usemtl x", "", " ", "g a", "vt 1 2"])
+line_end = st.sampled_from(["\n", "\r\n", " \n", "\t\r\n"])
+obj_text = st.lists(st.tuples(st.one_of(vertex_line, face_line, other_line), line_end)
+                    .map("".join), max_size=25).map("".join)
+
+
+def parse_or_error(data: bytes, fast: bool) -> object:
+    try:
+        soup = parse_obj(data, fast=fast)
+    except DLFLError as error:
+        return str(error)
+    return (soup.positions.tobytes(), soup.indices.tolist(), soup.offsets.tolist(),
+            soup.face_lines.tolist())
+
+
+@pytest.mark.timeout(60)
+@settings(max_examples=100, deadline=None)
+@given(obj_text)
+def test_fast_obj_parser_agrees_with_reference(text: str) -> None:
+    data = text.encode()
+    assert parse_or_error(data, True) == parse_or_error(data, False)
+
+
+def test_fast_parser_on_a_big_regular_block_matches_reference() -> None:
+    rng = np.random.default_rng(3)
+    values = rng.standard_normal((500, 3)) * 10.0 ** rng.integers(-10, 20, (500, 3))
+    lines = [f"v {x!r} {y:.6f} {z}" for x, y, z in values.tolist()]
+    lines += [f"f {i} {i + 1}/{i}/1 -{j}//2" for i, j in zip(range(1, 400), range(1, 400),
+                                                          strict=True)]
+    data = "\n".join(lines).encode()
+    assert parse_or_error(data, True) == parse_or_error(data, False)
