@@ -131,7 +131,7 @@ class StepRecorder:
         raw, scene, script, control = self._raw, self.scene, self.script, self.control
         started, clock, getframe = self.started, time.perf_counter, sys._getframe
         playback = control.playback if control is not None else None
-
+        objects = scene.objects  # the dict itself never changes identity
         depth = [1]  # where the script's frame was last found: usually the same again
 
         def hook(label: str) -> None:
@@ -143,8 +143,8 @@ class StepRecorder:
                 frame = None
             if frame is None or frame.f_code.co_filename != script:
                 frame, depth[0] = _find_script_frame(getframe(1), script)
-            oid = scene.current
-            counts = scene.objects[oid].mesh.counts() if oid in scene.objects else (0, 0, 0)
+            obj = objects.get(scene.current)  # type: ignore[arg-type]
+            counts = obj.mesh.counts() if obj is not None else (0, 0, 0)
             raw.append((label, None if frame is None else frame.f_lineno, counts,
                         clock() - started))
             if playback is not None and playback.mode == "step":
