@@ -364,14 +364,16 @@ def ring_weighted(
     offsets: np.ndarray, values: np.ndarray, weight: Callable[[int], np.ndarray]
 ) -> np.ndarray:
     """:func:`face_weighted` over any ring layout given by ``offsets``."""
-    out = np.empty_like(values)
     sizes = np.diff(offsets)
+    if len(sizes) and sizes[0] == sizes.min() == sizes.max():
+        # one face size (all quads, all triangles): reshape instead of gathering
+        n = int(sizes[0])
+        return np.matmul(weight(n), values.reshape(-1, n, 3)).reshape(-1, 3)
+    out = np.empty_like(values)
     for n in np.unique(sizes).tolist():
         rings = np.flatnonzero(sizes == n)
-        # (n, K): corner j of every ring of size n; one BLAS product for all rings
-        corners = offsets[rings][None, :] + np.arange(n)[:, None]
-        gathered = values[corners].reshape(n, -1)
-        out[corners] = (weight(n) @ gathered).reshape(n, len(rings), 3)
+        corners = offsets[rings][:, None] + np.arange(n)  # (K, n)
+        out[corners] = np.matmul(weight(n), values[corners])
     return out
 
 

@@ -1,0 +1,93 @@
+"""OBJ I/O benchmark: a 1,000,000-quad torus, livemod against trimesh.
+
+Plain script (not a test). Prints the median of several runs of each step,
+side by side with trimesh in the same run:
+
+    python bench/bench_io.py [--runs 3] [--grid 1000]
+
+Targets (issue 2): load <= 2.0 s and >= 2x faster than
+``trimesh.load(path, process=False)``; write <= 1.8 s.
+"""
+
+from __future__ import annotations
+
+import argparse
+import statistics
+import sys
+import tempfile
+import time
+from collections.abc import Callable
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+
+from livemod.dlfl import Mesh, from_polygons  # noqa: E402
+from livemod.dlfl.io import load_mesh, write_obj  # noqa: E402
+
+
+def torus(grid: int) -> Mesh:
+    """A ``grid`` x ``grid`` quad torus (radii 2 and 0.5)."""
+    i, j = np.meshgrid(np.arange(grid), np.arange(grid), indexing="ij")
+    u, v = 2 * np.pi * i / grid, 2 * np.pi * j / grid
+    ring = 2.0 + 0.5 * np.cos(v)
+    positions = np.stack([ring * np.cos(u), ring * np.sin(u), 0.5 * np.sin(v)], -1)
+    i1, j1 = (i + 1) % grid, (j + 1) % grid
+    quads = np.stack([i * grid + j, i1 * grid + j, i1 * grid + j1, i * grid + j1], -1)
+    return from_polygons(positions.reshape(-1, 3), quads.reshape(-1, 4))
+
+
+def median_time(step: Callable[[], object], runs: int) -> float:
+    """Median wall time of ``runs`` calls of ``step``."""
+    times = []
+    for _ in range(runs):
+        start = time.perf_counter()
+        step()
+        times.append(time.perf_counter() - start)
+    return statistics.median(times)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--runs", type=int, default=3)
+    parser.add_argument("--grid", type=int, default=1000)
+    args = parser.parse_args()
+    mesh = torus(args.grid)
+    try:
+        import trimesh
+    except ImportError:
+        trimesh = None
+    with tempfile.TemporaryDirectory() as folder:
+        ours = Path(folder) / "torus.obj"
+        rows = [("livemod write_obj", median_time(lambda: write_obj(mesh, ours), args.runs))]
+        size_mb = ours.stat().st_size / 1e6
+        rows.append(("livemod load_mesh", median_time(lambda: load_mesh(ours), args.runs)))
+        if trimesh is not None:
+            peer = trimesh.load(ours, process=False)
+            rows.append(("trimesh.load(process=False)",
+                         median_time(lambda: trimesh.load(ours, process=False), args.runs)))
+            theirs = Path(folder) / "trimesh.obj"
+            rows.append(("trimesh export", median_time(lambda: peer.export(theirs), args.runs)))
+    report(rows, mesh, size_mb, args.runs)
+
+
+def report(rows: list[tuple[str, float]], mesh: Mesh, size_mb: float, runs: int) -> None:
+    v, e, f = mesh.counts()
+    print(f"torus: V={v} E={e} F={f} quads, OBJ {size_mb:.1f} MB, median of {runs} runs")
+    print(f"| {'step':30s} | {'seconds':>8s} |")
+    print(f"|{'-' * 32}|{'-' * 10}|")
+    for name, seconds in rows:
+        print(f"| {name:30s} | {seconds:8.2f} |")
+    times = dict(rows)
+    if "trimesh.load(process=False)" in times:
+        ratio = times["trimesh.load(process=False)"] / times["livemod load_mesh"]
+        print(f"load speed-up over trimesh: {ratio:.1f}x (target >= 2x)")
+        ratio = times["trimesh export"] / times["livemod write_obj"]
+        print(f"write speed-up over trimesh: {ratio:.1f}x")
+    print(f"targets: load <= 2.0 s ({times['livemod load_mesh']:.2f}), "
+          f"write <= 1.8 s ({times['livemod write_obj']:.2f})")
+
+
+if __name__ == "__main__":
+    main()
