@@ -94,10 +94,15 @@ def action_for(key: str, shift: bool, ctrl: bool) -> str | None:
 
 def help_lines() -> list[str]:
     """The help overlay: one line per key binding, then the mouse."""
+    keys_of: dict[str, list[str]] = {}
+    help_of: dict[str, str] = {}
+    for binding in KEY_BINDINGS:  # keys sharing an action share a line
+        keys_of.setdefault(binding.action, []).append(binding.label())
+        help_of.setdefault(binding.action, binding.help)
     lines = ["Keys"]
-    lines += [f"  {b.label():<10} {b.help}" for b in KEY_BINDINGS]
+    lines += [f"  {', '.join(keys)}\t{help_of[action]}" for action, keys in keys_of.items()]
     lines.append("Mouse")
-    lines += [f"  {what:<38} {does}" for what, does in MOUSE_HELP]
+    lines += [f"  {what}: {does}" for what, does in MOUSE_HELP]
     return lines
 
 

@@ -17,6 +17,7 @@ from PIL import Image, ImageDraw, ImageFont
 
 FIRST_CHAR, LAST_CHAR = 32, 126
 QUAD_FLOATS = 13
+TAB_STOP = 96  # pixels between tab stops, for aligned columns (the font is proportional)
 
 
 @dataclass(frozen=True)
@@ -78,14 +79,27 @@ def layout_text(atlas: GlyphAtlas, lines: list[str], origin: tuple[float, float]
     """
     quads = []
     for row, line in enumerate(lines):
-        x = origin[0]
         y = origin[1] + row * atlas.line_height
-        for char in line:
-            code = ord(char) if FIRST_CHAR <= ord(char) <= LAST_CHAR else ord("?")
-            if char != " ":
-                quads.append([x, y, 0, 0, 0, *atlas.cell, *atlas.uv[code], kind, 0])
-            x += float(atlas.advance[code])
+        for x, code in _glyph_positions(atlas, line)[:-1]:
+            quads.append([origin[0] + x, y, 0, 0, 0, *atlas.cell, *atlas.uv[code], kind, 0])
     return np.asarray(quads, dtype=np.float32).reshape(-1, QUAD_FLOATS)
+
+
+def _glyph_positions(atlas: GlyphAtlas, line: str) -> list[tuple[float, int]]:
+    """``(x offset, code)`` of each visible glyph of ``line``; a tab jumps to the next
+    multiple of :data:`TAB_STOP`. The end of the line is ``(width, 32)``."""
+    placed: list[tuple[float, int]] = []
+    x = 0.0
+    for char in line:
+        if char == "\t":
+            x = (x // TAB_STOP + 1) * TAB_STOP
+            continue
+        code = ord(char) if FIRST_CHAR <= ord(char) <= LAST_CHAR else ord("?")
+        if char != " ":
+            placed.append((x, code))
+        x += float(atlas.advance[code])
+    placed.append((x, ord(" ")))
+    return placed
 
 
 def box_quad(atlas: GlyphAtlas, x: float, y: float, w: float, h: float,
@@ -96,8 +110,7 @@ def box_quad(atlas: GlyphAtlas, x: float, y: float, w: float, h: float,
 
 def text_width(atlas: GlyphAtlas, line: str) -> float:
     """Pixel width of one line."""
-    codes = [ord(c) if FIRST_CHAR <= ord(c) <= LAST_CHAR else ord("?") for c in line]
-    return float(atlas.advance[codes].sum()) if codes else 0.0
+    return _glyph_positions(atlas, line)[-1][0]
 
 
 def layout_labels(atlas: GlyphAtlas, anchors: np.ndarray, ids: np.ndarray, kind: int,
