@@ -154,6 +154,8 @@ class LiveSession:
         with self._lock:
             self.script = os.path.abspath(os.fspath(script))
             self._last_good, self._last_steps, self._seen = None, (), {}
+            self._rate, self._shown = None, None
+            self._playback.run_to_end()  # a new script starts unpaused
             self._watcher.set_files([self.script])
         self.reload()
 
