@@ -220,14 +220,14 @@ def wireframe_inner_positions(a: MeshArrays, front: np.ndarray, thickness: float
     if (c0 < 0).any():
         raise DLFLError("every vertex must lie on a front face (run modified_corner_cut first)")
     p = a.positions
-    v0, v1, v2 = p[cv[c0]], p[cv[nxt[c0]]], p[cv[prv[c0]]]
-    v3 = p[cv[nxt[nxt[mate[c0]]]]]
-    v4 = p[cv[prv[mate[prv[c0]]]]]
-    n1 = _unit(np.cross(v1 - v0, v3 - v0))
-    n2 = _unit(np.cross(n1, v1 - v0))
-    n3 = _unit(np.cross(v2 - v0, v4 - v0))
-    n4 = _unit(np.cross(v2 - v0, n3))
-    return v0 - thickness * _unit(np.cross(n2, n4))
+    v0 = p[cv[c0]]
+    e1, e2 = p[cv[nxt[c0]]] - v0, p[cv[prv[c0]]] - v0
+    e3 = p[cv[nxt[nxt[mate[c0]]]]] - v0
+    e4 = p[cv[prv[mate[prv[c0]]]]] - v0
+    # TopMod normalises n1..n4 on the way; only their directions reach the result
+    n2 = np.cross(np.cross(e1, e3), e1)
+    n4 = np.cross(e2, np.cross(e2, e4))
+    return v0 - thickness * _unit(np.cross(_unit(n2), _unit(n4)))
 
 
 def wireframe(mesh: Mesh, thickness: float = 0.1, split: bool = True) -> None:
@@ -243,17 +243,36 @@ def wireframe(mesh: Mesh, thickness: float = 0.1, split: bool = True) -> None:
             mesh is unchanged.
     """
     cut = corner_cut_arrays(mesh_arrays(mesh), thickness)
-    work = from_corner_arrays(cut.positions, cut.offsets, cut.corner_vertex, cut.corner_mate,
-                              cut.face_hole)
-    a = mesh_arrays(work)
+    a = _arrays_of(cut)
     front = np.zeros(len(a.face_ids), bool)
     front[: cut.num_front] = True
-    if split:
+    if split and (np.bincount(a.corner_vertex) == 2).any():
+        work = from_corner_arrays(cut.positions, cut.offsets, cut.corner_vertex,
+                                  cut.corner_mate, cut.face_hole)
         front = _split_valence2(work, a, front)
         a = mesh_arrays(work)
     inner = wireframe_inner_positions(a, front, thickness)
     shell = shell_arrays(a, a.positions, inner, front, cleanup=False)
     mesh.replace_with(shell.build(mesh))
+
+
+def _arrays_of(cut: CornerCut) -> MeshArrays:
+    """The :class:`MeshArrays` of the mesh ``cut`` describes, without building it
+    (ids are dense indices; edges numbered by their lower corner)."""
+    nc = len(cut.corner_vertex)
+    lower = np.flatnonzero(cut.corner_mate > np.arange(nc))
+    corner_edge = np.empty(nc, np.int64)
+    corner_edge[lower] = np.arange(len(lower))
+    corner_edge[cut.corner_mate[lower]] = np.arange(len(lower))
+    sizes = np.diff(cut.offsets)
+    return MeshArrays(
+        positions=cut.positions, vertex_ids=np.arange(len(cut.positions)),
+        face_ids=np.arange(len(sizes)), face_offsets=cut.offsets, face_hole=cut.face_hole,
+        corner_ids=np.arange(nc), corner_vertex=cut.corner_vertex,
+        corner_face=np.repeat(np.arange(len(sizes)), sizes), corner_edge=corner_edge,
+        corner_mate=cut.corner_mate, edge_ids=np.arange(len(lower)),
+        edge_corners=np.stack([lower, cut.corner_mate[lower]], axis=1),
+    )
 
 
 def _split_valence2(work: Mesh, a: MeshArrays, front: np.ndarray) -> np.ndarray:
