@@ -445,8 +445,8 @@ def extrude(
         scale: factor about the new polygon's centroid (dodeca: over the whole step).
         twist: doo-sabin only, TopMod's fraction ``t`` of ``(1 - t) p_i + t p_{i+1}``.
         dual_mesh: octa only, delete the face's old edges (TopMod's ``mesh``).
-        hexagonalize: for dodeca, delete the previous end face's edges between
-            segments so adjacent pentagons merge into octagons. This is TopMod's
+        hexagonalize: delete the previous end face's edges between segments;
+            meant for dodeca, where adjacent pentagons merge into octagons. This is TopMod's
             GUI rule, whose counts TOPMOD.md lists; its Python binding ran
             hex-tile steps instead (cube, 2 segments: 28/44/18), which
             ``kind="hex-tile"`` gives.
