@@ -45,7 +45,7 @@ CASES: list[tuple[str, Callable[[], Mesh], Callable[[Mesh], object], str]] = [
      lambda m: modified_corner_cut(m, 0.01), ""),
     ("Menger sponge, 100,000-face torus", big_torus, lambda m: sponge(m, 0.05), ""),
     ("mesh smooth, 100,000-face torus", big_torus, mesh_smooth, ""),
-    ("columns (4 segments), 2,500-face torus", lambda: torus(50, 50, 4.0, 1.0),
+    ("columns (4 segments), 900-face torus", lambda: torus(30, 30, 4.0, 1.0),
      lambda m: columns(m, 0.02, 4), ""),
     ("sierpinsky, 2,500-face torus", lambda: torus(50, 50, 4.0, 1.0), sierpinsky, ""),
     ("checkerboard selection, 2,500-face torus", lambda: torus(50, 50, 4.0, 1.0),
