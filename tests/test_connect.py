@@ -175,11 +175,21 @@ def test_hermite_ring_centroids_follow_the_curve():
     cen1, cen2 = np.array([0.0, 1.0, 0.0]), np.array([1.0, 0.0, 0.0])
     n1, n2 = np.array([0.0, 1.0, 0.0]), np.array([-1.0, 0.0, 0.0])
     rings = new_positions(m).reshape(4, 4, 3)
+    m1, m2 = 3.0 * n1, 2.0 * n2
     for i, ring in enumerate(rings, start=1):
-        point, _ = hermite_point(cen1, 3.0 * n1, cen2, 2.0 * n2, i / 5)
+        t = i / 5
+        # the Hermite basis written out, independent of the library's helper
+        point = ((2 * t**3 - 3 * t**2 + 1) * cen1 + (t**3 - 2 * t**2 + t) * m1
+                 + (-2 * t**3 + 3 * t**2) * cen2 + (t**3 - t**2) * m2)
+        tangent = ((6 * t**2 - 6 * t) * cen1 + (3 * t**2 - 4 * t + 1) * m1
+                   + (-6 * t**2 + 6 * t) * cen2 + (3 * t**2 - 2 * t) * m2)
+        assert np.allclose(hermite_point(cen1, m1, cen2, m2, t)[0], point, atol=1e-12)
         assert np.allclose(ring.mean(axis=0), point, atol=1e-9)
         sides = np.linalg.norm(ring - np.roll(ring, 1, axis=0), axis=1)
         assert np.allclose(sides, 2.0, atol=1e-9)  # congruent ends: every ring a 2x2 square
+        normal = np.cross(ring[1] - ring[0], ring[2] - ring[1])
+        assert np.allclose(normal / np.linalg.norm(normal), tangent / np.linalg.norm(tangent),
+                           atol=1e-9)  # each ring faces along the curve
 
 
 def test_hermite_twists_keep_counts():
