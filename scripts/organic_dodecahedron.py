@@ -10,7 +10,7 @@ from math import cos, sin
 from livemod.dlfl import *
 
 length = param("length", 0.6, min=0.1, max=2.0, doc="first extrusion length")
-twist = param("twist", 20.0, min=-90.0, max=90.0, doc="twist of each extrusion, degrees")
+twist = param("twist", 0.2, min=-1.0, max=1.0, doc="Doo-Sabin twist, a fraction of an edge")
 
 load("dodecahedron")
 for face in faces():
