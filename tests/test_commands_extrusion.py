@@ -50,6 +50,9 @@ def test_thesis_tower(scene):
     (lambda: extrude("icosa", 0), (20, 48, 30)),
     (lambda: extrude("cuboctahedral", 0), (16, 32, 18)),
     (lambda: extrude("planar-offset", 0, 0.5, 0, 0.2), (12, 20, 10)),
+    (lambda: extrude("cubical", 0, dist=2, num=3, rot=10, sf=0.9), (20, 36, 18)),
+    (lambda: extrude("octa", 0, flag=True), (12, 20, 10)),
+    (lambda: extrude("dodeca", 0, num=2, flag=True), (32, 48, 18)),
 ])
 def test_extrude_types_and_option_orders(scene, call, expected):
     end = call()

@@ -48,8 +48,14 @@ def _kind(name: Any) -> str:
     raise DLFLError(f"unknown extrusion type {name!r}; valid types: {', '.join(PREFIX_ORDER)}")
 
 
+# TopMod's own argument names (TOPMOD.md §8) accepted as keywords too
+KEYWORD_ALIASES = {"dist": "distance", "num": "segments", "numsegs": "segments",
+                   "rot": "rotation", "sf": "scale"}
+
+
 def _options(kind: str, options: tuple[Any, ...], keywords: dict[str, Any]) -> dict[str, Any]:
     order = OPTION_ORDER[kind]
+    keywords = {_keyword(kind, name): value for name, value in keywords.items()}
     if len(options) > len(order):
         raise DLFLError(f"extrude('{kind}', faceid, ...) takes at most {len(order)} options "
                         f"({', '.join(order)}), got {len(options)}")
@@ -61,6 +67,12 @@ def _options(kind: str, options: tuple[Any, ...], keywords: dict[str, Any]) -> d
             raise DLFLError(f"extrude('{kind}'): option {name!r} given twice")
         given[name] = value
     return given
+
+
+def _keyword(kind: str, name: str) -> str:
+    if name == "flag":  # TopMod's one boolean: octa's mesh, dodeca's hexagonalize
+        return "mesh" if kind == "octa" else "hexagonalize"
+    return KEYWORD_ALIASES.get(name, name)
 
 
 def _library_arguments(kind: str, given: dict[str, Any]) -> dict[str, Any]:
@@ -88,7 +100,10 @@ def extrude(type: str, faceid: int, *options: Any, **keywords: Any) -> int | lis
     octa [distance, rotation, scale, mesh], stellate and double-stellate
     [distance], dome [distance, rotation, scale], planar-offset [distance,
     rotation, thickness, fractional]. Defaults: distance 2, segments 1,
-    rotation 0, scale 1. A type may be abbreviated (TopMod's prefix order).
+    rotation 0, scale 1. A type may be abbreviated (TopMod's prefix order);
+    TopMod's names ``dist``, ``num``, ``rot``, ``sf`` and ``flag`` work as keywords.
+    TopMod's binding read every type's options in one order (dist, num, rot, sf,
+    flag); livemod follows the thesis's per-type lists, which differ for octa.
 
     Returns:
         The end face id; for stellate, double-stellate and dome, which end in a
