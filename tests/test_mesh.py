@@ -6,7 +6,16 @@ import numpy as np
 import pytest
 
 from livemod.dlfl import DLFLError, Mesh, genus, num_components, validate
-from tests.meshes import corner_structure, cube, euler_ok, path_face, snapshot, tetrahedron, torus, triangle
+from tests.meshes import (
+    corner_structure,
+    cube,
+    euler_ok,
+    path_face,
+    snapshot,
+    tetrahedron,
+    torus,
+    triangle,
+)
 
 
 def checked(mesh: Mesh) -> tuple[int, int, int]:

@@ -204,11 +204,13 @@ class MeshOperators(RuleBasedStateMachine):
             assert euler_ok(self.mesh)
 
 
+# NOSHRINK=1 skips shrinking when hunting bugs with many examples
+PHASES = [Phase.explicit, Phase.reuse, Phase.generate]
 MeshOperators.TestCase.settings = settings(
-    phases=[Phase.explicit, Phase.reuse, Phase.generate] if os.environ.get("NOSHRINK") else None,
     max_examples=int(os.environ.get("LIVEMOD_PROPERTY_EXAMPLES", "40")),
     stateful_step_count=25,
     deadline=None,
     suppress_health_check=[HealthCheck.too_slow, HealthCheck.filter_too_much],
+    phases=PHASES if os.environ.get("NOSHRINK") else [*PHASES, Phase.shrink],
 )
 TestMeshOperators = MeshOperators.TestCase

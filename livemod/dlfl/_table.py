@@ -42,7 +42,6 @@ class Table:
         base: ids of slots that were never reused are ``base + slot``.
         moved: id -> slot for ids that do not follow ``base + slot``.
         next_id: the id the next created element gets.
-        version: bumped on every create/delete; keys cached id lists.
     """
 
     # scalar views of the fields appear as attributes of the same name
@@ -58,8 +57,8 @@ class Table:
         self.base = 0
         self.moved: dict[int, int] = {}
         self.next_id = 0
-        self.version = 0
-        self._sorted_cache: tuple[int, np.ndarray] | None = None
+        # live slots in id order, dropped on every create/delete
+        self._sorted_cache: np.ndarray | None = None
         self.arrays: dict[str, np.ndarray] = {}
         self.views: dict[str, memoryview] = {}
         self.ids = np.full(capacity, -1, dtype=np.int64)
@@ -113,23 +112,46 @@ class Table:
         free = self.free
         if free:
             slot = free.pop()
+            # a reused slot never matches base + slot for a fresh id
+            self.moved[eid] = slot
         else:
             slot = self.n
             self.n = slot + 1
-        if slot != eid - self.base:
-            self.moved[eid] = slot
+            if slot != eid - self.base:
+                self.moved[eid] = slot
         self.idv[slot] = eid
-        self.version += 1
+        self._sorted_cache = None
         return slot
+
+    def alloc_pair(self) -> tuple[int, int]:
+        """Create two elements and return their slots (capacity must be reserved)."""
+        free, moved = self.free, self.moved
+        eid = self.next_id
+        self.next_id = eid + 2
+        slots = []
+        for new_id in (eid, eid + 1):
+            if free:
+                slot = free.pop()
+                moved[new_id] = slot
+            else:
+                slot = self.n
+                self.n = slot + 1
+                if slot != new_id - self.base:
+                    moved[new_id] = slot
+            self.idv[slot] = new_id
+            slots.append(slot)
+        self._sorted_cache = None
+        return slots[0], slots[1]
 
     def release(self, slot: int) -> None:
         """Delete the element in ``slot``; its id is never handed out again."""
-        eid = self.idv[slot]
-        self.idv[slot] = -1
+        idv = self.idv
+        eid = idv[slot]
+        idv[slot] = -1
         if self.moved:
             self.moved.pop(eid, None)
         self.free.append(slot)
-        self.version += 1
+        self._sorted_cache = None
 
     # -- lookup ---------------------------------------------------------------
 
@@ -176,13 +198,13 @@ class Table:
     def live_slots(self) -> np.ndarray:
         """``(count,)`` int64 slots of the live elements, in increasing id order."""
         cached = self._sorted_cache
-        if cached is not None and cached[0] == self.version:
-            return cached[1]
+        if cached is not None:
+            return cached
         ids = self.ids[: self.n]
         slots = np.flatnonzero(ids >= 0)
         if self.moved:
             slots = slots[np.argsort(ids[slots], kind="stable")]
-        self._sorted_cache = (self.version, slots)
+        self._sorted_cache = slots
         return slots
 
     def live_ids(self) -> np.ndarray:
@@ -207,7 +229,6 @@ class Table:
         other.base = self.base
         other.moved = dict(self.moved)
         other.next_id = self.next_id
-        other.version = 0
         other._sorted_cache = None
         other._refresh_views()
         return other
@@ -230,7 +251,6 @@ class Table:
         table.base = first_id
         table.moved = {}
         table.next_id = first_id + count
-        table.version = 0
         table._sorted_cache = None
         table.ids = np.arange(first_id, first_id + count, dtype=np.int64)
         table.arrays = {

@@ -10,6 +10,7 @@ map them back to element ids.
 from __future__ import annotations
 
 from dataclasses import dataclass
+
 import numpy as np
 
 from .mesh import Mesh
@@ -157,7 +158,8 @@ def _already_in_ring_order(
     """Cheap test for a freshly built mesh, whose slots are laid out face by face."""
     ca = mesh._c.arrays
     n = len(cslots)
-    if n == 0 or cslots[0] != 0 or cslots[-1] != n - 1:
+    # without moved ids and free slots, id order is slot order: cslots == 0..n-1
+    if n == 0 or n != mesh._c.n or mesh._c.moved:
         return False
     heads = mesh._f.arrays["corner"][fslots]
     if not np.array_equal(heads, offsets[:-1]):

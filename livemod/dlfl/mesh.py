@@ -43,6 +43,15 @@ VERTEX_SPEC: FieldSpec = {"corner": (np.int32, ()), "position": (np.float64, (3,
 NO_EDGE = -1
 
 
+def _live_slot(table: Table, eid: Any) -> int:
+    """``table.slot(eid)`` with the common case (an int at its home slot) inline."""
+    if type(eid) is int:
+        s = eid - table.base
+        if 0 <= s < table.n and table.idv[s] == eid:
+            return s
+    return table.slot(eid)
+
+
 def _as_point(position: Any) -> tuple[float, float, float]:
     try:
         x, y, z = (float(v) for v in position)
@@ -381,15 +390,26 @@ class Mesh:
             DLFLError: a corner id is not live, or both are the same corner.
         """
         C = self._c
-        s1 = C.slot(corner1)
-        s2 = C.slot(corner2)
+        # Table.slot inlined for ids at their home slot (the common case)
+        base, n, idv = C.base, C.n, C.idv
+        s1 = corner1 - base if type(corner1) is int else -1
+        if not (0 <= s1 < n and idv[s1] == corner1):
+            s1 = C.slot(corner1)
+        s2 = corner2 - base if type(corner2) is int else -1
+        if not (0 <= s2 < n and idv[s2] == corner2):
+            s2 = C.slot(corner2)
         if s1 == s2:
             raise DLFLError(
                 f"insert_edge needs two different corners, got corner {corner1} twice"
             )
-        C.reserve(2)
-        self._e.reserve(1)
-        self._f.reserve(1)
+        E, F = self._e, self._f
+        # most calls find room without growing; reserve() would say the same
+        if C.n + 2 > C.cap:
+            C.reserve(2)
+        if E.n >= E.cap:
+            E.reserve(1)
+        if F.n >= F.cap:
+            F.reserve(1)
         if C.face[s1] == C.face[s2]:
             return self._insert_cofacial(s1, s2)
         return self._insert_merge(s1, s2)
@@ -411,39 +431,42 @@ class Mesh:
         return dup
 
     def _insert_cofacial(self, s1: int, s2: int) -> int:
+        """Split the face of ``s1`` and ``s2``: ``F = [s1, s2', b..]``, ``F' = [s1', a.., s2]``.
+
+        The hot path of interactive modeling, so the copies are made inline.
+        """
         C, E, F = self._c, self._e, self._f
-        nxt, prv, face = C.next, C.prev, C.face
+        nxt, prv, face, cedge = C.next, C.prev, C.face, C.edge
         f = face[s1]
         a1, b1 = nxt[s1], nxt[s2]
         fn = F.alloc()
         F.hole[fn] = F.hole[f]
+        e = E.alloc()
+        c1p, c2p = C.alloc_pair()
+        ec0, ec1, vert = E.c0, E.c1, C.vertex
+        # the copies take over the old edges of corner1 and corner2
+        for src, dup, dup_face in ((s1, c1p, fn), (s2, c2p, f)):
+            vert[dup] = vert[src]
+            face[dup] = dup_face
+            old = cedge[src]
+            cedge[dup] = old
+            if ec0[old] == src:
+                ec0[old] = dup
+            else:
+                ec1[old] = dup
         head = F.corner[f]
-        c1p = self._copy_corner(s1, fn)
-        c2p = self._copy_corner(s2, f)
-        # the corners strictly between corner1 and corner2 move to the new face
         moved_head = head == s2
+        # the corners strictly between corner1 and corner2 move to the new face
         x = a1
         while x != s2:
             face[x] = fn
-            if x == head:
-                moved_head = True
+            moved_head = moved_head or x == head
             x = nxt[x]
         face[s2] = fn
-        # new face: c1' -> a1 ... -> c2 -> c1'
-        nxt[c1p] = a1
-        prv[a1] = c1p
-        nxt[s2] = c1p
-        prv[c1p] = s2
-        # old face: c1 -> c2' -> b1 ...
-        nxt[s1] = c2p
-        prv[c2p] = s1
-        nxt[c2p] = b1
-        prv[b1] = c2p
-        e = E.alloc()
-        E.c0[e] = s1
-        E.c1[e] = s2
-        C.edge[s1] = e
-        C.edge[s2] = e
+        # new face: c1' -> a1 ... -> c2 -> c1'; old face: c1 -> c2' -> b1 ...
+        nxt[c1p], prv[a1], nxt[s2], prv[c1p] = a1, c1p, c1p, s2
+        nxt[s1], prv[c2p], nxt[c2p], prv[b1] = c2p, s1, b1, c2p
+        ec0[e], ec1[e], cedge[s1], cedge[s2] = s1, s2, e, e
         F.corner[fn] = c1p
         if moved_head:
             F.corner[f] = c2p if head == s2 else s1
@@ -495,17 +518,20 @@ class Mesh:
         Raises:
             DLFLError: ``edge`` is not a live edge id.
         """
-        E = self._e
-        es = E.slot(edge)
+        E, F = self._e, self._f
+        es = edge - E.base if type(edge) is int else -1
+        if not (0 <= es < E.n and E.idv[es] == edge):
+            es = E.slot(edge)
         s1, s2 = E.c0[es], E.c1[es]
-        self._f.reserve(1)
+        if F.n >= F.cap:
+            F.reserve(1)
         face = self._c.face
         if face[s1] != face[s2]:
             result = self._delete_merge(s1, s2, cleanup)
         else:
             result = self._delete_split(s1, s2, cleanup)
         E.release(es)
-        fidv = self._f.idv
+        fidv = F.idv
         return [fidv[f] for f in result]
 
     def _delete_merge(self, s1: int, s2: int, cleanup: bool) -> list[int]:
@@ -564,11 +590,31 @@ class Mesh:
 
         The sides stay and take over the edges of the corners after them, so
         that deleting an edge right after inserting it restores every corner id.
-        Callers have already moved the corners to their final faces.
+        Callers have already moved the corners to their final faces. This is
+        :meth:`_take_place` for both sides, inlined for the interactive hot path.
         """
-        a, b = self._c.next[s1], self._c.next[s2]
-        self._take_place(s1, b)
-        self._take_place(s2, a)
+        C, E = self._c, self._e
+        nxt, prv, cedge, vert, face = C.next, C.prev, C.edge, C.vertex, C.face
+        ec0, ec1, vc, fc = E.c0, E.c1, self._v.corner, self._f.corner
+        cidv, moved, free = C.idv, C.moved, C.free
+        for side, gone in ((s1, nxt[s2]), (s2, nxt[s1])):
+            e = cedge[gone]
+            cedge[side] = e
+            if ec0[e] == gone:
+                ec0[e] = side
+            else:
+                ec1[e] = side
+            after = nxt[gone]
+            nxt[side] = after
+            prv[after] = side
+            if vc[vert[gone]] == gone:
+                vc[vert[gone]] = side
+            if fc[face[side]] == gone:
+                fc[face[side]] = side
+            moved.pop(cidv[gone], None)
+            cidv[gone] = -1
+            free.append(gone)
+        C._sorted_cache = None
 
     def _take_place(self, side: int, gone: int) -> None:
         """Corner ``side`` replaces ``gone``, the corner after the other side.
