@@ -272,3 +272,15 @@ def test_degenerate_face_is_refused_by_every_kind(kind):
     with pytest.raises(DLFLError, match="degenerate"):
         run(m, front, kind)
     assert snapshot(m) == before
+
+
+def test_dodeca_scales_each_sub_step_by_the_sixth_root():
+    m = cube()
+    p = face_points(m, TOP)
+    end = extrude(m, TOP, "dodeca", 3.0, scale=0.64)
+    q = face_points(m, end)
+    # the end square: the first cubical copy, scaled three times by 0.64^(1/6), with
+    # the dual step's midpoint square in between (a 45 degree turn, half the area)
+    size = np.linalg.norm(q - q.mean(axis=0), axis=1)
+    start = np.linalg.norm(p - p.mean(axis=0), axis=1)
+    assert np.allclose(size, start * 0.64 ** 0.5 * math.sqrt(0.5), atol=1e-9)

@@ -235,9 +235,11 @@ def _unit_rows(vectors: np.ndarray) -> np.ndarray:
 def dodeca_step(mesh: Mesh, face: int, o: Options) -> int:
     """One dodecahedral step (TopMod's Python overload of ``extrudeFaceDodeca``):
     cubical, dual with ``dual_mesh``, cubical, each ``distance / 3`` with scale
-    ``scale^(1/3)``, the dual one rotated; then the dual face's edges are deleted,
-    leaving pentagons (cube: 20/32/14)."""
-    third = replace(o, distance=o.distance / 3.0, scale=abs(o.scale) ** (1.0 / 3.0))
+    ``scale^(1/6)``, the dual one rotated; then the dual face's edges are deleted,
+    leaving pentagons (cube: 20/32/14). (TopMod takes the square root of the
+    scale per step, then the cube root per sub-step, so a step scales by
+    ``sqrt(scale)``.)"""
+    third = replace(o, distance=o.distance / 3.0, scale=abs(o.scale) ** (1.0 / 6.0))
     face = cubical_step(mesh, face, replace(third, rotation=0.0))
     face = dual_step(mesh, face, replace(third, dual_mesh=True))
     dual_edges = mesh.face_edges(face)
