@@ -41,6 +41,14 @@ SMALL_COMMANDS = (
     "    createVertex((i * 0.1, 0.0, 0.0))\n"
 )
 
+MIXED_COMMANDS = (
+    "from livemod.dlfl import *\n"
+    "es = edges()\n"
+    "for i in range(5000):\n"
+    "    v = subdivideEdge(es[i])[0]\n"
+    "    move([v], (0.0, 0.0, 0.001))\n"
+)
+
 TWENTY_COMMANDS = (
     "{marker}\n"
     "es = edges()\n"
@@ -74,21 +82,22 @@ def median_of(fn, repeats: int) -> float:
     return statistics.median(fn() for _ in range(repeats))
 
 
-def bench_step_overhead(folder: str, repeats: int) -> dict[str, tuple[float, float]]:
-    """Median (wall, CPU) seconds of 10,000 createVertex commands three ways: the
-    runner's execute, a bare exec, and a bare exec with a no-op step hook (the
-    core's own cost of calling a hook)."""
+def bench_step_overhead(folder: str, repeats: int, source: str = SMALL_COMMANDS,
+                        base: Scene | None = None) -> dict[str, tuple[float, float]]:
+    """Median (wall, CPU) seconds of ``source`` run three ways: the runner's
+    execute, a bare exec, and a bare exec with a no-op step hook (the core's own
+    cost of calling a hook). Each starts from a copy of ``base`` (or empty)."""
     path = os.path.join(folder, "small.py")
     with open(path, "w") as handle:
-        handle.write(SMALL_COMMANDS)
+        handle.write(source)
 
     def runner() -> None:
-        outcome = execute(path, source=SMALL_COMMANDS)
-        assert outcome.status == "ok" and len(outcome.steps) == 10000
+        outcome = execute(path, source=source, base=base)
+        assert outcome.status == "ok" and len(outcome.steps) == 10000, outcome.error
 
     def bare(hook=None) -> None:
-        code = compile(SMALL_COMMANDS, path, "exec")
-        scene = Scene()
+        code = compile(source, path, "exec")
+        scene = base.copy() if base is not None else Scene()
         scene.step_hook = hook
         with use_scene(scene):
             exec(code, {"__name__": "__main__"})
@@ -104,6 +113,14 @@ def bench_step_overhead(folder: str, repeats: int) -> dict[str, tuple[float, flo
             times[name].append((time.perf_counter() - wall, time.process_time() - cpu))
     return {name: (statistics.median(t[0] for t in runs), statistics.median(t[1] for t in runs))
             for name, runs in times.items()}
+
+
+def print_overhead(title: str, ways: dict[str, tuple[float, float]], repeats: int) -> None:
+    (rw, rc), (bw, bc), (nw, nc) = ways["runner"], ways["bare"], ways["noop hook"]
+    print(f"{title} (median of {repeats}, wall/CPU ms): runner {rw * 1e3:.0f}/{rc * 1e3:.0f}, "
+          f"bare exec {bw * 1e3:.0f}/{bc * 1e3:.0f}, bare + no-op hook {nw * 1e3:.0f}/"
+          f"{nc * 1e3:.0f}; overhead {100 * (rc / bc - 1):+.1f} % CPU, "
+          f"{100 * (rw / bw - 1):+.1f} % wall")
 
 
 def _wait_ok(session: LiveSession, timeout: float = 30.0):
@@ -256,12 +273,11 @@ def main(argv: list[str] | None = None) -> int:
     debounce = 0.15
     print(f"python {sys.version.split()[0]}, {os.cpu_count()} cpus")
     with tempfile.TemporaryDirectory() as folder:
-        ways = bench_step_overhead(folder, repeats)
-        (rw, rc), (bw, bc), (nw, nc) = ways["runner"], ways["bare"], ways["noop hook"]
-        print(f"10,000 createVertex (median of {repeats}, wall/CPU ms): runner {rw * 1e3:.0f}/"
-              f"{rc * 1e3:.0f}, bare exec {bw * 1e3:.0f}/{bc * 1e3:.0f}, bare + no-op hook "
-              f"{nw * 1e3:.0f}/{nc * 1e3:.0f}; overhead {100 * (rc / bc - 1):+.1f} % CPU "
-              f"({100 * (nc / bc - 1):+.1f} % of it is the core calling a hook)")
+        print_overhead("10,000 createVertex", bench_step_overhead(folder, repeats), repeats)
+        base = Scene()
+        base.add(grid_mesh(100))
+        mixed = bench_step_overhead(folder, repeats, MIXED_COMMANDS, base)
+        print_overhead("10,000 subdivideEdge/move on 10,000 faces", mixed, repeats)
         latency, run = bench_save_latency(folder, 3 * repeats, debounce)
         print(f"save -> result, 20 commands on 10,000 faces: {latency * 1e3:.0f} ms + "
               f"{debounce * 1e3:.0f} ms debounce (run itself {run * 1e3:.0f} ms; "

@@ -29,7 +29,7 @@ from livemod.dlfl import Mesh, from_corner_arrays, mesh_arrays
 from livemod.dlfl.shapes import cube, icosahedron, torus
 from livemod.dlfl.subdivision import SCHEMES, subdivide
 
-Row = tuple[str, ...]
+Row = tuple[str, ...]  # case, library, time[, ratio]
 
 
 class Timing(float):
@@ -90,6 +90,7 @@ def triangles_of(mesh: Mesh) -> tuple[np.ndarray, np.ndarray]:
 
 
 def bench_cube_levels(repeats: int) -> list[Row]:
+    rows: list[Row]
     holder: list[Mesh] = []
 
     def setup() -> None:
@@ -103,10 +104,9 @@ def bench_cube_levels(repeats: int) -> list[Row]:
 
     one = median_time(one_call, repeats, setup)
     five = median_time(five_calls, repeats, setup)
-    return [("Catmull-Clark, cube 5 levels (6,144 quads), levels=5", "livemod",
-             fmt(one, "ms")),
-            ("Catmull-Clark, cube 5 levels, five separate calls", "livemod",
-             fmt(five, "ms"))]
+    rows = [("Catmull-Clark, cube 5 levels (6,144 quads), levels=5", "livemod", fmt(one, "ms")),
+            ("Catmull-Clark, cube 5 levels, five separate calls", "livemod", fmt(five, "ms"))]
+    return rows
 
 
 def pymeshlab_step(filter_name: str, vertices: np.ndarray, faces: np.ndarray,
@@ -134,7 +134,7 @@ def pymeshlab_step(filter_name: str, vertices: np.ndarray, faces: np.ndarray,
 
 def bench_catmull_clark(repeats: int) -> list[Row]:
     mesh = levels(cube(), "catmull-clark", 7)  # 98,304 quads
-    rows = [("Catmull-Clark 98,304 -> 393,216 quads (DLFL in and out)", "livemod",
+    rows: list[Row] = [("Catmull-Clark 98,304 -> 393,216 quads (DLFL in and out)", "livemod",
              fmt(time_scheme(mesh, 'catmull-clark', repeats)))]
     vertices, faces = quads_of(mesh)
     rows.append(("", "pymeshlab", pymeshlab_step(
@@ -146,7 +146,7 @@ def bench_catmull_clark(repeats: int) -> list[Row]:
 
 def bench_loop(repeats: int) -> list[Row]:
     mesh = levels(icosahedron(), "loop", 6)  # 81,920 triangles
-    rows = [("Loop 81,920 -> 327,680 triangles", "livemod",
+    rows: list[Row] = [("Loop 81,920 -> 327,680 triangles", "livemod",
              fmt(time_scheme(mesh, 'loop', repeats)))]
     vertices, faces = triangles_of(mesh)
     rows.append(("", "pymeshlab", pymeshlab_step(
@@ -168,8 +168,10 @@ def bench_core_costs(repeats: int) -> list[Row]:
     a = mesh_arrays(out)
     build_s = median_time(lambda: from_corner_arrays(
         a.positions, a.face_offsets, a.corner_vertex, a.corner_mate, a.face_hole), repeats)
-    return [("mesh_arrays of 98,304 quads (inside one CC step)", "livemod", fmt(arrays_s)),
-            ("from_corner_arrays of 393,216 quads", "livemod", fmt(build_s))]
+    rows: list[Row] = [
+        ("mesh_arrays of 98,304 quads (inside one CC step)", "livemod", fmt(arrays_s)),
+        ("from_corner_arrays of 393,216 quads", "livemod", fmt(build_s))]
+    return rows
 
 
 SIZES = {"10k": (100, 100), "100k": (316, 316), "1M": (1000, 1000)}
@@ -213,8 +215,9 @@ def bench_peak_memory() -> list[Row]:
     out = subprocess.run([sys.executable, "-c", PEAK_SNIPPET], capture_output=True, text=True,
                          check=True).stdout.split()
     faces, base, peak = (int(x) for x in out)
-    return [(f"peak RSS, CC 393,216 -> {faces:,} quads (process total)", "livemod",
-             f"{peak / 1024:.0f} MB (before the step: {base / 1024:.0f} MB)")]
+    rows: list[Row] = [(f"peak RSS, CC 393,216 -> {faces:,} quads (process total)", "livemod",
+                        f"{peak / 1024:.0f} MB (before the step: {base / 1024:.0f} MB)")]
+    return rows
 
 
 def main() -> None:

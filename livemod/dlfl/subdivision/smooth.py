@@ -29,6 +29,7 @@ from ._layout import (
     topology_of,
     vertex_sum,
 )
+from .convert import subdivide_all_edges
 
 
 def catmull_clark(mesh: Mesh, *, levels: int = 1, max_faces: int | None = None) -> None:
@@ -250,7 +251,7 @@ def doo_sabin_bc(mesh: Mesh, *, check: bool = True, max_faces: int | None = None
     t = read_topology(mesh)
     check_budget(t, t.nf + t.nc + int(np.count_nonzero(t.valence >= 3)), "doo-sabin-bc",
                  max_faces)
-    from .convert import subdivide_all_edges
-
-    subdivide_all_edges(mesh)
-    doo_sabin(mesh, check=check, max_faces=max_faces)
+    work = mesh.copy()  # two steps: the mesh changes only when both succeed
+    subdivide_all_edges(work)
+    doo_sabin(work, check=check, max_faces=max_faces)
+    mesh.replace_with(work)
