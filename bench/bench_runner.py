@@ -83,8 +83,8 @@ def median_of(fn, repeats: int) -> float:
 
 
 def bench_step_overhead(folder: str, repeats: int, source: str = SMALL_COMMANDS,
-                        base: Scene | None = None) -> dict[str, tuple[float, float]]:
-    """Median (wall, CPU) seconds of ``source`` run three ways: the runner's
+                        base: Scene | None = None) -> dict[str, tuple[float, float, float]]:
+    """(median wall, median CPU, least CPU) seconds of ``source`` run three ways: the runner's
     execute, a bare exec, and a bare exec with a no-op step hook (the core's own
     cost of calling a hook). Each starts from a copy of ``base`` (or empty)."""
     path = os.path.join(folder, "small.py")
@@ -111,16 +111,52 @@ def bench_step_overhead(folder: str, repeats: int, source: str = SMALL_COMMANDS,
             wall, cpu = time.perf_counter(), time.process_time()
             fn()
             times[name].append((time.perf_counter() - wall, time.process_time() - cpu))
-    return {name: (statistics.median(t[0] for t in runs), statistics.median(t[1] for t in runs))
+    return {name: (statistics.median(t[0] for t in runs), statistics.median(t[1] for t in runs),
+                   min(t[1] for t in runs))
             for name, runs in times.items()}
 
 
-def print_overhead(title: str, ways: dict[str, tuple[float, float]], repeats: int) -> None:
-    (rw, rc), (bw, bc), (nw, nc) = ways["runner"], ways["bare"], ways["noop hook"]
+def print_overhead(title: str, ways: dict[str, tuple[float, float, float]],
+                   repeats: int) -> None:
+    """Medians (wall and CPU), and the overhead from the least CPU times, which load
+    from other processes inflates least."""
+    (rw, rc, rm), (bw, bc, bm), (nw, nc, nm) = (
+        ways["runner"], ways["bare"], ways["noop hook"])
     print(f"{title} (median of {repeats}, wall/CPU ms): runner {rw * 1e3:.0f}/{rc * 1e3:.0f}, "
           f"bare exec {bw * 1e3:.0f}/{bc * 1e3:.0f}, bare + no-op hook {nw * 1e3:.0f}/"
-          f"{nc * 1e3:.0f}; overhead {100 * (rc / bc - 1):+.1f} % CPU, "
-          f"{100 * (rw / bw - 1):+.1f} % wall")
+          f"{nc * 1e3:.0f}; overhead {100 * (rc / bc - 1):+.1f} % (median CPU), "
+          f"{100 * (rm / bm - 1):+.1f} % (least CPU; no-op hook alone "
+          f"{100 * (nm / bm - 1):+.1f} %)")
+
+
+def bench_hook_cost(repeats: int) -> tuple[float, float, float]:
+    """Least seconds per call over ``repeats`` timings (load inflates the least
+    least): (the runner's step hook plus building its record, a no-op hook, one
+    createVertex command with no hook)."""
+    import timeit
+
+    from livemod.dlfl import createVertex
+    from livemod.runner.execute import StepRecorder
+
+    script = "/bench/fake_script.py"
+    scene = Scene()
+    scene.add(grid_mesh(10))
+    recorder = StepRecorder(script, scene, None)
+    caller = compile("def call(hook):\n    hook('step')\n", script, "exec")
+    namespace: dict = {}
+    exec(caller, namespace)
+    call, hook, n = namespace["call"], recorder.hook, 20000
+
+    def record_and_build() -> None:
+        call(hook)
+
+    hook_s = min(timeit.repeat(record_and_build, number=n, repeat=repeats)) / n
+    build_s = min(timeit.repeat(lambda: recorder.steps[-1:], number=1, repeat=1))
+    noop_s = min(timeit.repeat(lambda: call(lambda label: None), number=n, repeat=repeats)) / n
+    with use_scene(Scene()):
+        command_s = min(timeit.repeat(lambda: createVertex((0.0, 0.0, 0.0)), number=n,
+                                      repeat=repeats)) / n
+    return hook_s + build_s / len(recorder._raw), noop_s, command_s
 
 
 def _wait_ok(session: LiveSession, timeout: float = 30.0):
@@ -273,6 +309,10 @@ def main(argv: list[str] | None = None) -> int:
     debounce = 0.15
     print(f"python {sys.version.split()[0]}, {os.cpu_count()} cpus")
     with tempfile.TemporaryDirectory() as folder:
+        hook_s, noop_s, command_s = bench_hook_cost(repeats)
+        print(f"per step (least of {repeats}): recording {hook_s * 1e6:.2f} us, a no-op hook "
+              f"{noop_s * 1e6:.2f} us, one createVertex {command_s * 1e6:.2f} us -> recording "
+              f"adds {100 * hook_s / command_s:.0f} % to the smallest command")
         print_overhead("10,000 createVertex", bench_step_overhead(folder, repeats), repeats)
         base = Scene()
         base.add(grid_mesh(100))

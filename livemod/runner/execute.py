@@ -117,6 +117,7 @@ class StepRecorder:
         self.control = control
         self.started = time.perf_counter()
         self._raw: list[tuple[str, int | None, tuple[int, int, int], float]] = []
+        self._records: list[StepRecord] = []
         self.hook = self._make_hook()
 
     def step_count(self) -> int:
@@ -124,8 +125,10 @@ class StepRecorder:
 
     @property
     def steps(self) -> tuple[StepRecord, ...]:
-        """The steps recorded so far."""
-        return tuple(StepRecord(i, *raw) for i, raw in enumerate(self._raw))
+        """The steps recorded so far (records are built once, on first request)."""
+        records, raw = self._records, self._raw
+        records.extend(_step_record(i, *raw[i]) for i in range(len(records), len(raw)))
+        return tuple(records)
 
     def _make_hook(self) -> Callable[[str], None]:
         raw, scene, script, control = self._raw, self.scene, self.script, self.control
@@ -162,6 +165,15 @@ class StepRecorder:
         control.paused_at = None
         if control.cancel_requested:
             raise Cancelled
+
+
+def _step_record(index: int, label: str, line: int | None, counts: tuple[int, int, int],
+                 elapsed: float) -> StepRecord:
+    """A :class:`StepRecord` built without the frozen dataclass's per-field
+    ``object.__setattr__`` calls (runs make thousands of them)."""
+    record = object.__new__(StepRecord)
+    record.__dict__.update(index=index, label=label, line=line, counts=counts, elapsed=elapsed)
+    return record
 
 
 def _find_script_frame(frame: FrameType | None, script: str) -> tuple[FrameType | None, int]:
