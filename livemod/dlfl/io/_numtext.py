@@ -237,6 +237,7 @@ def decimal_to_float(mantissa: np.ndarray, frac_len: np.ndarray) -> tuple[np.nda
     return values, decided
 
 
+
 def _big_mantissa(m: np.ndarray, k: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Divide a mantissa above 2**53 by ``10**k`` in double-double arithmetic.
 
