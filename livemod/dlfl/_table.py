@@ -62,7 +62,7 @@ class Table:
         self.arrays: dict[str, np.ndarray] = {}
         self.views: dict[str, memoryview] = {}
         self.ids = np.full(capacity, -1, dtype=np.int64)
-        self.idv = memoryview(self.ids)
+        self.idv = self.ids.data
         for name, (dtype, tail) in spec.items():
             self.arrays[name] = np.zeros((capacity, *tail), dtype=dtype)
         self._refresh_views()
@@ -75,9 +75,9 @@ class Table:
 
     def _refresh_views(self) -> None:
         self.cap = len(self.ids)
-        self.idv = memoryview(self.ids)
+        self.idv = self.ids.data
         self.views = {
-            name: memoryview(arr) for name, arr in self.arrays.items() if arr.ndim == 1
+            name: arr.data for name, arr in self.arrays.items() if arr.ndim == 1
         }
         for name, view in self.views.items():
             setattr(self, name, view)

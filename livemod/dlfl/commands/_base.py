@@ -39,7 +39,7 @@ def modeling_command(func: F) -> F:
     return cast(F, wrapper)
 
 
-class Corner(tuple):  # type: ignore[type-arg]
+class Corner(tuple):
     """A ``(faceid, vertexid)`` corner that also carries its corner id.
 
     Commands return corners in this form. It compares, prints and unpacks as the

@@ -60,7 +60,7 @@ def removeVertex(vertexid: int | tuple[int, int]) -> None:
 
 
 @modeling_command
-def insertEdge(c1: Any, c2: Any, check: bool = True) -> tuple[int, ...]:
+def insertEdge(c1: Any, c2: Any, check: bool = True) -> tuple[Any, ...]:
     """Insert an edge between two corners.
 
     Returns:
@@ -175,7 +175,8 @@ def next(c: Any, *default: Any) -> Any:  # noqa: A001  (the thesis's name)
     built-in, so scripts that import ``*`` keep working.
     """
     if not isinstance(c, tuple | int) or isinstance(c, bool):
-        return builtins.next(c, *default)
+        iterator: Any = c
+        return builtins.next(iterator, *default)
     m = mesh()
     return corner_tuple(m, m.corner_next(resolve_corner(m, c)))
 
