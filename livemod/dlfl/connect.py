@@ -29,6 +29,13 @@ from .analysis import face_points, polygon_normal
 from .errors import DLFLError
 from .mesh import Mesh
 
+__all__ = [
+    "connect_faces", "connect_faces_closest", "closest_corners", "connect_corners",
+    "dual_connect_faces", "connect_edges", "hermite_handle", "hermite_rings",
+    "hermite_point", "bezier_handle", "bezier_rings", "resolve_polygon",
+    "rotation_between", "multi_face_handle", "convex_hull_polygons", "add_polyhedron",
+]
+
 # ``connector(mesh, corner1, corner2)`` joins the faces of two corners
 Connector = Callable[[Mesh, int, int], object]
 

@@ -32,6 +32,13 @@ from .connect import _quad_band, _triangle_band
 from .errors import DLFLError
 from .mesh import Mesh
 
+__all__ = [
+    "KINDS", "Kind", "Options", "extrude", "extrude_fan", "kind_names", "resolve_kind",
+    "cubical_step", "doo_sabin_step", "dual_step", "planar_offset_step", "dodeca_step",
+    "hex_tile_step", "icosa_step", "cuboctahedral_step", "stellate_fan",
+    "double_stellate_fan", "dome_fan", "doo_sabin_weights", "small_polygon_normal",
+]
+
 TINY = 1e-12
 
 
