@@ -284,3 +284,40 @@ def test_dodeca_scales_each_sub_step_by_the_sixth_root():
     size = np.linalg.norm(q - q.mean(axis=0), axis=1)
     start = np.linalg.norm(p - p.mean(axis=0), axis=1)
     assert np.allclose(size, start * 0.64 ** 0.5 * math.sqrt(0.5), atol=1e-9)
+
+
+def test_random_sequences_stay_valid_and_refusals_change_nothing():
+    import random
+
+    from livemod.dlfl.connect import connect_faces, hermite_handle, multi_face_handle
+
+    rng = random.Random(11)
+    for _ in range(25):
+        m = rng.choice([cube, dodecahedron, tetrahedron])()
+        for _ in range(4):
+            face = rng.choice(m.face_ids().tolist())
+            kind = rng.choice(sorted(KINDS))
+            before = snapshot(m)
+            try:
+                if KINDS[kind].fan is not None:
+                    extrude_fan(m, face, kind, rng.uniform(-1, 1))
+                else:
+                    extrude(m, face, kind, rng.uniform(-1, 2), rng.randint(1, 2),
+                            rng.uniform(-40, 40), rng.uniform(0.5, 1.5))
+            except DLFLError:
+                assert snapshot(m) == before
+            validate(m)
+        f1, f2 = rng.sample(m.face_ids().tolist(), 2)
+        c1, c2 = m.face_corner(f1), m.face_corner(f2)
+        before = snapshot(m)
+        join = rng.choice(["connect", "hermite", "multi"])
+        try:
+            if join == "connect":
+                connect_faces(m, c1, c2, rng.randint(1, 3))
+            elif join == "hermite":
+                hermite_handle(m, c1, c2, rng.randint(1, 3), 2.0, 2.0)
+            else:
+                multi_face_handle(m, [f1, f2])
+        except DLFLError:
+            assert snapshot(m) == before
+        checked(m)
