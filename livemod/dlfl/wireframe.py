@@ -410,11 +410,11 @@ def _triples(n: int) -> list[tuple[int, int, int]]:
 
 def _ccw(points: np.ndarray, members: list[int], normal: np.ndarray) -> list[int]:
     """``members`` ordered counter-clockwise about ``normal`` around their centroid."""
-    p = points[members]
-    centre = p.mean(axis=0)
-    u = _unit(p[0] - centre)
-    w = np.cross(normal, u)
-    angle = np.arctan2((p - centre) @ w, (p - centre) @ u)
+    rel = points[members] - points[members].mean(axis=0)
+    u = rel[0]
+    w = (normal[1] * u[2] - normal[2] * u[1], normal[2] * u[0] - normal[0] * u[2],
+         normal[0] * u[1] - normal[1] * u[0])  # normal x u, without np.cross's overhead
+    angle = np.arctan2(rel @ w, rel @ u)
     return [members[m] for m in np.argsort(angle)]
 
 
