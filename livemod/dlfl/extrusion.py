@@ -175,33 +175,33 @@ def _bridge(mesh: Mesh, face: int, points: np.ndarray, dual: bool = False) -> in
     return front
 
 
-def cubical_step(mesh: Mesh, face: int, o: Options) -> int:
+def cubical_step(mesh: Mesh, face: int, opts: Options) -> int:
     """TopMod's ``extrudeFace``: the face's points scaled, rotated, then moved
     ``distance`` along the normal; ``n`` side quads. Returns the end face."""
     points, normal = _face_geometry(mesh, face)
-    points = _transformed(points, normal, o.scale, o.rotation)
-    return _bridge(mesh, face, points + o.distance * normal)
+    points = _transformed(points, normal, opts.scale, opts.rotation)
+    return _bridge(mesh, face, points + opts.distance * normal)
 
 
-def doo_sabin_step(mesh: Mesh, face: int, o: Options) -> int:
+def doo_sabin_step(mesh: Mesh, face: int, opts: Options) -> int:
     """TopMod's ``extrudeFaceDS``: ``q_i = d n + (1 - twist) p_i + twist p_{i+1}``,
     then the Doo-Sabin weights, then the scale (and livemod's rotation)."""
     points, normal = _face_geometry(mesh, face)
-    twisted = (1.0 - o.twist) * points + o.twist * points[_after(len(points))]
+    twisted = (1.0 - opts.twist) * points + opts.twist * points[_after(len(points))]
     # each row of the weights sums to 1, so moving before or after them is the same
-    inner = doo_sabin_weights(len(points)) @ twisted + o.distance * normal
-    inner = _transformed(inner, normal, o.scale, o.rotation)
+    inner = doo_sabin_weights(len(points)) @ twisted + opts.distance * normal
+    inner = _transformed(inner, normal, opts.scale, opts.rotation)
     return _bridge(mesh, face, inner)
 
 
-def dual_step(mesh: Mesh, face: int, o: Options) -> int:
+def dual_step(mesh: Mesh, face: int, opts: Options) -> int:
     """TopMod's ``extrudeDualFace``: edge midpoints moved ``distance`` along the normal,
     scaled, rotated, joined by ``2n`` triangles; ``dual_mesh`` then deletes the
     face's old edges (cube: 12/24/14, with ``dual_mesh`` 12/20/10)."""
     points, normal = _face_geometry(mesh, face)
-    old_edges = mesh.face_edges(face) if o.dual_mesh else []
-    mids = (points + points[_after(len(points))]) * 0.5 + o.distance * normal
-    end = _bridge(mesh, face, _transformed(mids, normal, o.scale, o.rotation), dual=True)
+    old_edges = mesh.face_edges(face) if opts.dual_mesh else []
+    mids = (points + points[_after(len(points))]) * 0.5 + opts.distance * normal
+    end = _bridge(mesh, face, _transformed(mids, normal, opts.scale, opts.rotation), dual=True)
     _delete_edges(mesh, old_edges)
     return end
 
@@ -212,7 +212,7 @@ def _delete_edges(mesh: Mesh, edges: list[int]) -> None:
             mesh.delete_edge(edge, cleanup=True)
 
 
-def planar_offset_step(mesh: Mesh, face: int, o: Options) -> int:
+def planar_offset_step(mesh: Mesh, face: int, opts: Options) -> int:
     """TopMod's ``extrudeFacePlanarOffset`` (an inset): corner ``p`` moves by
     ``thickness (pvec + nvec)`` in the face plane (``pvec``, ``nvec``: the edge
     vectors to its neighbours, unit unless ``fractional``), flipped at concave
@@ -221,15 +221,15 @@ def planar_offset_step(mesh: Mesh, face: int, o: Options) -> int:
     points, normal = _face_geometry(mesh, face)
     pvec = points[_before(len(points))] - points
     nvec = points[_after(len(points))] - points
-    if not o.fractional:
+    if not opts.fractional:
         pvec, nvec = _unit_rows(pvec), _unit_rows(nvec)
     cross = np.cross(nvec, pvec)
-    offset = o.thickness * (pvec + nvec)
+    offset = opts.thickness * (pvec + nvec)
     offset[cross @ normal < 0] *= -1.0
     straight = np.linalg.norm(cross, axis=1) < 1e-9 * (1 + np.linalg.norm(nvec, axis=1) ** 2)
-    offset[straight] = o.thickness * _unit_rows(np.cross(normal, nvec[straight]))
-    inset = _transformed(points + offset, normal, 1.0, o.rotation)
-    return _bridge(mesh, face, inset + o.distance * normal)
+    offset[straight] = opts.thickness * _unit_rows(np.cross(normal, nvec[straight]))
+    inset = _transformed(points + offset, normal, 1.0, opts.rotation)
+    return _bridge(mesh, face, inset + opts.distance * normal)
 
 
 def _unit_rows(vectors: np.ndarray) -> np.ndarray:
@@ -239,14 +239,14 @@ def _unit_rows(vectors: np.ndarray) -> np.ndarray:
 
 # -- compound kinds ----------------------------------------------------------------
 
-def dodeca_step(mesh: Mesh, face: int, o: Options) -> int:
+def dodeca_step(mesh: Mesh, face: int, opts: Options) -> int:
     """One dodecahedral step (TopMod's Python overload of ``extrudeFaceDodeca``):
     cubical, dual with ``dual_mesh``, cubical, each ``distance / 3`` with scale
     ``scale^(1/6)``, the dual one rotated; then the dual face's edges are deleted,
     leaving pentagons (cube: 20/32/14). (TopMod takes the square root of the
     scale per step, then the cube root per sub-step, so a step scales by
     ``sqrt(scale)``.)"""
-    third = replace(o, distance=o.distance / 3.0, scale=abs(o.scale) ** (1.0 / 6.0))
+    third = replace(opts, distance=opts.distance / 3.0, scale=abs(opts.scale) ** (1.0 / 6.0))
     face = cubical_step(mesh, face, replace(third, rotation=0.0))
     face = dual_step(mesh, face, replace(third, dual_mesh=True))
     dual_edges = mesh.face_edges(face)
@@ -255,10 +255,10 @@ def dodeca_step(mesh: Mesh, face: int, o: Options) -> int:
     return face
 
 
-def hex_tile_step(mesh: Mesh, face: int, o: Options) -> int:
+def hex_tile_step(mesh: Mesh, face: int, opts: Options) -> int:
     """TopMod's ``extrudeHexTileFace``: dual with ``dual_mesh`` then cubical, each
     ``distance / 3`` with scale ``sqrt(scale)``, then the dual face's edges deleted."""
-    third = replace(o, distance=o.distance / 3.0, scale=math.sqrt(abs(o.scale)))
+    third = replace(opts, distance=opts.distance / 3.0, scale=math.sqrt(abs(opts.scale)))
     face = dual_step(mesh, face, replace(third, dual_mesh=True))
     dual_edges = mesh.face_edges(face)
     face = cubical_step(mesh, face, replace(third, rotation=0.0))
@@ -266,7 +266,7 @@ def hex_tile_step(mesh: Mesh, face: int, o: Options) -> int:
     return face
 
 
-def icosa_step(mesh: Mesh, face: int, o: Options) -> int:
+def icosa_step(mesh: Mesh, face: int, opts: Options) -> int:
     """TopMod's ``extrudeFaceIcosa`` topology: dual ``distance / 3`` (rotated, scaled),
     cubical ``2 distance / 3``, the dual face's edges deleted, then each side face
     next to the end face stellated at 0 (cube: 20/48/30).
@@ -274,9 +274,9 @@ def icosa_step(mesh: Mesh, face: int, o: Options) -> int:
     Differs from TopMod: the positions are those of these steps; TopMod then
     re-placed three rings by angle rules, which its Python binding fed with
     misbound parameters (angle = distance, ...)."""
-    face = dual_step(mesh, face, replace(o, distance=o.distance / 3.0, dual_mesh=False))
+    face = dual_step(mesh, face, replace(opts, distance=opts.distance / 3.0, dual_mesh=False))
     dual_edges = mesh.face_edges(face)
-    face = cubical_step(mesh, face, Options(distance=2.0 * o.distance / 3.0))
+    face = cubical_step(mesh, face, Options(distance=2.0 * opts.distance / 3.0))
     _delete_edges(mesh, dual_edges)
     sides = []
     for edge in mesh.face_edges(face):
@@ -287,13 +287,13 @@ def icosa_step(mesh: Mesh, face: int, o: Options) -> int:
     return face
 
 
-def cuboctahedral_step(mesh: Mesh, face: int, o: Options) -> int:
+def cuboctahedral_step(mesh: Mesh, face: int, opts: Options) -> int:
     """TopMod's ``extrudeFaceCubOcta`` topology: two dual extrusions of ``distance / 3``
     (rotated, scaled), then the first dual face's edges deleted (cube: 16/32/18).
 
     Differs from TopMod: the positions are those of the two dual steps; TopMod
     re-placed both rings by angle rules (the kind is not in its GUI or Python)."""
-    third = replace(o, distance=o.distance / 3.0, dual_mesh=False)
+    third = replace(opts, distance=opts.distance / 3.0, dual_mesh=False)
     face = dual_step(mesh, face, third)
     first_edges = mesh.face_edges(face)
     face = dual_step(mesh, face, third)
@@ -340,15 +340,15 @@ DOME_DISTANCES = (0.3, 0.18, 0.1, 0.05, 0.025)
 DOME_SCALES = (1.7, 1.6, 1.4, 1.2, 1.1)
 
 
-def dome_fan(mesh: Mesh, face: int, o: Options) -> list[int]:
+def dome_fan(mesh: Mesh, face: int, opts: Options) -> list[int]:
     """TopMod's ``extrudeFaceDome``: five Doo-Sabin steps with distances
     (.3, .18, .1, .05, .025) x ``distance``, twist ``rotation / 5`` and scales
     (1.7, 1.6, 1.4, 1.2, 1.1) x ``scale``, then a stellation at .01 x ``distance``
     (cube: 29/56/29). Returns the apex triangles."""
     for d, s in zip(DOME_DISTANCES, DOME_SCALES, strict=True):
-        step = Options(distance=d * o.distance, twist=o.rotation / 5.0, scale=s * o.scale)
+        step = Options(distance=d * opts.distance, twist=opts.rotation / 5.0, scale=s * opts.scale)
         face = doo_sabin_step(mesh, face, step)
-    return stellate_fan(mesh, face, 0.01 * o.distance)
+    return stellate_fan(mesh, face, 0.01 * opts.distance)
 
 
 # -- the registry -------------------------------------------------------------------
@@ -371,9 +371,9 @@ KINDS: dict[str, Kind] = {
     "cuboctahedral": Kind(cuboctahedral_step, None, "extrudeFaceCubOcta"),
     "hex-tile": Kind(hex_tile_step, None, "extrudeHexTileFace"),
     "planar-offset": Kind(planar_offset_step, None, "extrudeFacePlanarOffset"),
-    "stellate": Kind(None, lambda m, f, o: stellate_fan(m, f, o.distance), "stellateFace"),
+    "stellate": Kind(None, lambda m, f, opts: stellate_fan(m, f, opts.distance), "stellateFace"),
     "double-stellate": Kind(
-        None, lambda m, f, o: double_stellate_fan(m, f, o.distance), "doubleStellateFace"),
+        None, lambda m, f, opts: double_stellate_fan(m, f, opts.distance), "doubleStellateFace"),
     "dome": Kind(None, dome_fan, "extrudeFaceDome"),
 }
 ALIASES = {"dual": "octa", "inset": "planar-offset", "cubocta": "cuboctahedral",
@@ -416,20 +416,20 @@ def _check_face(mesh: Mesh, face: int) -> None:
                         "only faces of 3 or more corners can be extruded")
 
 
-def _check_numbers(segments: int, o: Options) -> None:
+def _check_numbers(segments: int, opts: Options) -> None:
     if isinstance(segments, bool) or not isinstance(segments, int | np.integer) or segments < 1:
         raise DLFLError(f"segments must be an integer >= 1, got {segments!r}")
     for name in ("distance", "rotation", "scale", "twist", "thickness"):
-        value = getattr(o, name)
+        value = getattr(opts, name)
         if isinstance(value, bool) or not isinstance(value, int | float | np.floating | np.integer) \
                 or not math.isfinite(value):
             raise DLFLError(f"{name} must be a finite number, got {value!r}")
 
 
-def _prepare(mesh: Mesh, face: int, kind: str, segments: int, o: Options) -> Kind:
+def _prepare(mesh: Mesh, face: int, kind: str, segments: int, opts: Options) -> Kind:
     spec = KINDS[resolve_kind(kind)]
     _check_face(mesh, face)
-    _check_numbers(segments, o)
+    _check_numbers(segments, opts)
     return spec
 
 
@@ -467,16 +467,16 @@ def extrude(
             (use :func:`extrude_fan`), a face that is gone or has < 3 corners,
             ``segments`` < 1, a non-finite number. The mesh is unchanged.
     """
-    o = Options(float(distance), float(rotation), float(scale), float(twist), bool(dual_mesh),
+    opts = Options(float(distance), float(rotation), float(scale), float(twist), bool(dual_mesh),
                 bool(hexagonalize), float(thickness), bool(fractional))
-    spec = _prepare(mesh, face, kind, segments, o)
+    spec = _prepare(mesh, face, kind, segments, opts)
     if spec.step is None:
         raise DLFLError(f"extrusion kind {resolve_kind(kind)!r} ends in a fan of triangles, "
                         "not an end face; use extrude_fan()")
     face = int(face)
     for i in range(int(segments)):
         previous = mesh.face_edges(face) if (hexagonalize and i > 0) else []
-        face = spec.step(mesh, face, o)
+        face = spec.step(mesh, face, opts)
         _delete_edges(mesh, previous)
     return face
 
@@ -495,8 +495,8 @@ def extrude_fan(
         DLFLError: unknown kind, a kind with an end face (use :func:`extrude`), a
             face that is gone or has < 3 corners. The mesh is unchanged.
     """
-    o = Options(distance=float(distance), rotation=float(rotation), scale=float(scale))
-    spec = _prepare(mesh, face, kind, 1, o)
+    opts = Options(distance=float(distance), rotation=float(rotation), scale=float(scale))
+    spec = _prepare(mesh, face, kind, 1, opts)
     if spec.fan is None:
         raise DLFLError(f"extrusion kind {resolve_kind(kind)!r} ends in a face; use extrude()")
-    return spec.fan(mesh, int(face), o)
+    return spec.fan(mesh, int(face), opts)
