@@ -24,7 +24,8 @@ _POW10 = np.array([10.0**k for k in range(23)])  # exact in float64 up to 1e22
 _DIGITS4 = np.array(
     [list(f"{i:04d}".encode()) for i in range(10000)], dtype=np.uint8
 )  # (10000, 4) ASCII digits of every 4-digit chunk
-FLOAT_WIDTH = 25  # sign + "0." + 5 zeros + 17 digits, and the longest repr (24)
+_DIGITS4_PACKED = _DIGITS4.view(np.uint32).ravel()  # the same, 4 bytes per uint32
+_INT_POW10 = np.array([10**k for k in range(19)], dtype=np.int64)
 
 
 # ----------------------------------------------------------------- formatting
@@ -42,16 +43,22 @@ def format_uints(values: np.ndarray) -> np.ndarray:
     """
     v = np.asarray(values, dtype=np.int64)
     width = len(str(int(v.max()))) if len(v) else 1
-    chunks = -(-width // 4)
-    digits = np.empty((len(v), 4 * chunks), dtype=np.uint8)
-    rest = v
-    for i in range(chunks - 1, -1, -1):
-        rest, chunk = np.divmod(rest, 10000)
-        digits[:, 4 * i : 4 * i + 4] = _DIGITS4[chunk]
-    digits = digits[:, 4 * chunks - width :]
+    digits = _fixed_digits(v, width)
     length = _num_digits(v)
     digits[np.arange(width)[None, :] < (width - length)[:, None]] = 0
     return digits
+
+
+def _fixed_digits(v: np.ndarray, width: int) -> np.ndarray:
+    """``(N, width)`` uint8 ASCII digits of ``v``, zero-filled on the left."""
+    chunks = -(-width // 4)
+    # gathering 4 ASCII bytes as one uint32 is ~8x faster than a (4,) row
+    packed = np.empty((len(v), chunks), dtype=np.uint32)
+    rest = v
+    for i in range(chunks - 1, -1, -1):
+        rest, chunk = np.divmod(rest, 10000)
+        packed[:, i] = _DIGITS4_PACKED[chunk]
+    return packed.view(np.uint8)[:, 4 * chunks - width :]
 
 
 def _num_digits(v: np.ndarray) -> np.ndarray:
@@ -67,19 +74,20 @@ def format_floats(values: np.ndarray) -> np.ndarray:
         values: ``(N,)`` float64.
 
     Returns:
-        ``(N, FLOAT_WIDTH)`` uint8 ASCII, left-aligned, padded with 0 bytes.
-        ``0.0`` is written ``0``; integral values have no decimal point.
+        ``(N, W)`` uint8 ASCII with 0 bytes as padding (remove them to get the
+        text). ``0.0`` is written ``0``; integral values have no decimal point.
     """
     x = np.asarray(values, dtype=np.float64).ravel()
-    out = np.zeros((len(x), FLOAT_WIDTH), dtype=np.uint8)
     digits, exp10, fast = _shortest_digits(np.abs(x))
-    zero = x == 0.0
     rows = np.flatnonzero(fast)
-    _layout(out, rows, digits[rows], exp10[rows])
+    body = _positional(digits[rows], exp10[rows])
+    plain_zero = (x == 0.0) & ~np.signbit(x)  # -0.0 goes through repr to keep its sign
+    slow = np.flatnonzero(~fast & ~plain_zero)
+    out = np.zeros((len(x), max(1 + body.shape[1], 24 if len(slow) else 1)), dtype=np.uint8)
     out[rows, 0] = np.where(x[rows] < 0, ord("-"), 0)
-    plain_zero = zero & ~np.signbit(x)  # -0.0 goes through repr to keep its sign
-    out[plain_zero, 1] = ord("0")
-    for i in np.flatnonzero(~fast & ~plain_zero).tolist():
+    out[rows, 1 : 1 + body.shape[1]] = body
+    out[plain_zero, 0] = ord("0")
+    for i in slow.tolist():
         text = repr(float(x[i])).encode()
         out[i, : len(text)] = np.frombuffer(text, dtype=np.uint8)
     return out
@@ -145,44 +153,45 @@ def _as_float(mantissa: np.ndarray, k: np.ndarray) -> np.ndarray:
     return np.where(k >= 0, m / _POW10[kk], m * _POW10[kk])
 
 
-def _layout(out: np.ndarray, rows: np.ndarray, d: np.ndarray, exp10: np.ndarray) -> None:
-    """Write ``D`` (17 digits) with decimal exponent into ``out[rows, 1:]``.
+def _positional(d: np.ndarray, exp10: np.ndarray) -> np.ndarray:
+    """``d * 10**(exp10 - 16)`` in positional notation, one fixed column layout.
 
-    Positional notation: ``123.45``, ``0.00012``, ``1200``; trailing zeros of
-    the fraction and a bare trailing point are dropped.
+    Args:
+        d: ``(N,)`` int64 17-digit significands, ``10**16 <= d < 10**17``.
+        exp10: ``(N,)`` int64 decimal exponent of the first digit, in ``[-6, 15]``.
+
+    Returns:
+        ``(N, W)`` uint8: integer digits right-aligned, ``.``, fraction digits;
+        leading zeros (but the units digit), trailing fraction zeros and a bare
+        point are 0 bytes. Every row shares the column of the point, so no row
+        needs shifting.
     """
-    digits = np.empty((len(d), 17), dtype=np.uint8)
-    rest = d
-    for i in range(4, 0, -1):
-        rest, chunk = np.divmod(rest, 10000)
-        digits[:, 1 + 4 * (i - 1) : 1 + 4 * i] = _DIGITS4[chunk]
-    digits[:, 0] = ord("0") + rest
-    significant = 17 - _trailing_zeros(digits)
-    last = np.empty(len(d), dtype=np.int64)
-    for e in np.unique(exp10).tolist():
-        group = np.flatnonzero(exp10 == e)
-        target = rows[group]
-        if e >= 0:
-            out[target, 1 : 2 + e] = digits[group, : e + 1]
-            out[target, 2 + e] = ord(".")
-            out[target, 3 + e : 19] = digits[group, e + 1 :]
-            sig = significant[group]
-            last[group] = np.where(sig - 1 > e, sig + 1, 1 + e)
-        else:
-            out[target, 1:3] = (ord("0"), ord("."))
-            out[target, 3 : 2 - e] = ord("0")
-            out[target, 2 - e : 19 - e] = digits[group]
-            last[group] = 1 - e + significant[group]
-    cols = np.arange(out.shape[1])
-    block = out[rows]
-    block[cols[None, :] > last[:, None]] = 0
-    out[rows] = block
-
-
-def _trailing_zeros(digits: np.ndarray) -> np.ndarray:
-    """``(N,)`` count of trailing ``'0'`` characters in each row (at most 16)."""
-    nonzero = digits[:, ::-1] != ord("0")
-    return np.argmax(nonzero, axis=1)
+    if len(d) == 0:
+        return np.zeros((0, 0), dtype=np.uint8)
+    frac_len = 16 - exp10  # fraction digits of the 17-digit form, 1..22
+    p = _INT_POW10[np.minimum(frac_len, 16)]
+    whole = np.where(frac_len <= 16, d // p, 0)
+    frac = d - whole * p
+    # the fraction as 22 digits, in two 11-digit halves that fit int64
+    shift = 22 - frac_len
+    wide = shift >= 11
+    hi = np.where(wide, frac * _INT_POW10[np.maximum(shift - 11, 0)],
+                  frac // _INT_POW10[np.maximum(11 - shift, 0)])
+    lo = np.where(wide, 0, (frac % _INT_POW10[np.maximum(11 - shift, 0)])
+                  * _INT_POW10[np.minimum(shift, 11)])
+    whole_width = len(str(int(whole.max())))
+    whole_digits = _fixed_digits(whole, whole_width)
+    length = _num_digits(whole)
+    whole_digits[np.arange(whole_width)[None, :] < (whole_width - length)[:, None]] = 0
+    frac_width = int(frac_len.max())
+    frac_digits = np.concatenate([_fixed_digits(hi, 11), _fixed_digits(lo, 11)], axis=1)
+    frac_digits = frac_digits[:, :frac_width]
+    significant = frac_digits != ord("0")
+    kept = frac_width - np.argmax(significant[:, ::-1], axis=1)
+    kept[~significant.any(axis=1)] = 0
+    frac_digits[np.arange(frac_width)[None, :] >= kept[:, None]] = 0
+    point = np.where(kept > 0, ord("."), 0).astype(np.uint8)[:, None]
+    return np.concatenate([whole_digits, point, frac_digits], axis=1)
 
 
 def join_columns(rows: int, parts: list[bytes | np.ndarray]) -> bytes:
