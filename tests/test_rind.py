@@ -150,14 +150,21 @@ def test_zero_scale_is_refused():
         rind(m, [TOP], use_scaling=True, scale=0.0)
 
 
-def test_every_face_around_a_vertex_punched_is_refused_with_cleanup():
+def test_a_vertex_whose_faces_are_all_punched_goes_with_cleanup():
+    m = cube()
+    rind(m, [0, 1, 2], 0.5)
+    assert summary(m) == ((14, 24, 12), {4: 12}, 0, 1)
+    m = cube()
+    rind(m, [0, 1, 2], 0.5, cleanup=False)
+    assert summary(m) == ((16, 36, 18), {4: 18}, 2, 1)
+
+
+def test_punching_every_face_with_cleanup_is_refused():
     m = cube()
     before = snapshot(m)
-    with pytest.raises(DLFLError, match="every face around vertex"):
-        rind(m, [0, 1, 2], 0.5)
+    with pytest.raises(DLFLError, match="leaves nothing"):
+        rind(m, range(6), 0.5)
     assert snapshot(m) == before
-    rind(m, [0, 1, 2], 0.5, cleanup=False)
-    validate(m)
 
 
 def test_point_spheres_are_refused():

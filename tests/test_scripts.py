@@ -97,8 +97,9 @@ def test_rind_soccerball_punches_faces_into_a_crust() -> None:
     label = next(s.label for s in outcome.steps if s.label.endswith("faces to punch"))
     punched = int(label.split()[0])
     assert punched > 0
-    # a crust is two shells; each punched face joins them with a tube
-    assert component_genera(mesh) == [punched - 1]
+    # the punched quads come in threes around each 3-valent vertex; rind's cleanup
+    # (TopMod's default) merges each three into one triangular hole (thesis fig. 30)
+    assert component_genera(mesh) == [punched // 3 - 1]
 
 
 def test_wireframe_soccerball_genus_is_its_cycle_rank() -> None:

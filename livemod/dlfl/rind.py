@@ -138,15 +138,13 @@ def shell_arrays(
         Outer vertices ``0..V-1`` then inner ``V..2V-1``; faces: kept outer faces,
         kept inner faces, then the tube quads, all in the order of ``a``.
 
-    Raises:
-        DLFLError: with ``cleanup``, every face around some vertex is punched.
+    With ``cleanup``, a vertex whose faces are all punched disappears with its
+    inner copy (the walls around it are all removed).
     """
     nc, nv = len(a.corner_vertex), len(a.vertex_ids)
     keep = ~punched
     corner_punched = punched[a.corner_face]
     wall = corner_punched & corner_punched[a.corner_mate] if cleanup else np.zeros(nc, bool)
-    if cleanup and wall.any():
-        _refuse_fully_punched_vertices(a, corner_punched)
     kept_c = np.flatnonzero(~corner_punched)
     tube_c = np.flatnonzero(corner_punched & ~wall)
     nk = len(kept_c)
@@ -168,17 +166,21 @@ def shell_arrays(
     offsets = np.zeros(len(all_sizes) + 1, np.int64)
     np.cumsum(all_sizes, out=offsets[1:])
     hole = np.concatenate([a.face_hole[keep], a.face_hole[keep], np.zeros(len(tube_c), bool)])
-    return Shell(np.concatenate([outer, inner]), offsets, corner_vertex, mate, hole)
+    shell = Shell(np.concatenate([outer, inner]), offsets, corner_vertex, mate, hole)
+    return _drop_unused_vertices(shell) if cleanup else shell
 
 
-def _refuse_fully_punched_vertices(a: MeshArrays, corner_punched: np.ndarray) -> None:
-    kept = np.bincount(a.corner_vertex[~corner_punched], minlength=len(a.vertex_ids))
-    if (kept == 0).any():
-        v = int(a.vertex_ids[np.flatnonzero(kept == 0)[0]])
-        raise DLFLError(
-            f"every face around vertex {v} is punched: removing the zero-thickness "
-            "walls would leave nothing there; punch fewer faces or pass cleanup=False"
-        )
+def _drop_unused_vertices(shell: Shell) -> Shell:
+    """Remove vertices no corner uses: with cleanup, a vertex whose faces were all
+    punched loses every face and edge (TopMod's edge deletions remove it as a
+    point-sphere), and so does its inner copy."""
+    used = np.zeros(len(shell.positions), bool)
+    used[shell.corner_vertex] = True
+    if used.all():
+        return shell
+    renumber = np.cumsum(used) - 1
+    return Shell(shell.positions[used], shell.offsets, renumber[shell.corner_vertex],
+                 shell.corner_mate, shell.face_hole)
 
 
 @dataclass(frozen=True)
@@ -317,14 +319,16 @@ def rind(
     centroid (``scale`` clamped to [-1, 1]; negative scales the outer shell by
     ``-1/scale`` instead). Punching ``k`` faces of a genus-0 shell gives genus
     ``k - 1``. With ``cleanup``, the zero-thickness double wall left between two
-    punched faces that share an edge is removed (TopMod's cleanup).
+    punched faces that share an edge is removed (TopMod's cleanup), and a vertex
+    whose faces are all punched goes with it.
 
     Cube: crust 16/24/12 (two components); one hole 16/28/14; two opposite holes
     16/32/16, genus 1. The mesh is rebuilt (fresh ids).
 
     Raises:
         DLFLError: a face id that is not in the mesh, a zero thickness or scale,
-            an inner copy whose faces would collapse or turn over, point-spheres.
+            an inner copy whose faces would collapse or turn over, point-spheres,
+            every face punched with cleanup (nothing would be left).
             The mesh is unchanged.
     """
     a = mesh_arrays(mesh)
@@ -334,6 +338,8 @@ def rind(
         a, None if use_scaling else thickness, scale if use_scaling else None, uniform
     )
     shell = shell_arrays(a, outer, inner, punched, cleanup)
+    if len(shell.corner_vertex) == 0:
+        raise DLFLError("punching every face with cleanup leaves nothing of the mesh")
     mesh.replace_with(shell.build(mesh))
 
 
