@@ -1,0 +1,145 @@
+"""Benchmarks of the DLFL core (issue 2, "Performance"); figures go to docs/performance.md.
+
+Run ``python bench/bench_core.py [--quick]``. Each figure is the median of
+several runs, as wall-clock time and as process CPU time (on a shared machine
+the CPU time is the steadier of the two). Peers are measured in the same run
+when they are installed.
+"""
+
+from __future__ import annotations
+
+import argparse
+import statistics
+import subprocess
+import sys
+import time
+from collections.abc import Callable
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+
+from livemod.dlfl import from_polygons, mesh_arrays  # noqa: E402
+
+CUBE_POSITIONS = [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0],
+                  [0, 0, 1], [1, 0, 1], [1, 1, 1], [0, 1, 1]]
+CUBE_FACES = [[0, 3, 2, 1], [4, 5, 6, 7], [0, 1, 5, 4], [1, 2, 6, 5], [2, 3, 7, 6], [3, 0, 4, 7]]
+
+
+def torus_quads(n: int, m: int) -> tuple[np.ndarray, np.ndarray]:
+    """``(n*m, 3)`` positions and ``(n*m, 4)`` int64 quads of an n x m torus."""
+    i, j = np.meshgrid(np.arange(n), np.arange(m), indexing="ij")
+    u, v = 2 * np.pi * i.ravel() / n, 2 * np.pi * j.ravel() / m
+    ring = 3.0 + np.cos(v)
+    pos = np.stack([ring * np.cos(u), ring * np.sin(u), np.sin(v)], axis=1)
+    a, b = i * m + j, ((i + 1) % n) * m + j
+    c, d = ((i + 1) % n) * m + (j + 1) % m, i * m + (j + 1) % m
+    return pos, np.stack([a.ravel(), b.ravel(), c.ravel(), d.ravel()], axis=1)
+
+
+def timed(run: Callable[[], object], repeats: int) -> tuple[float, float]:
+    """Median (wall seconds, CPU seconds) of ``repeats`` calls of ``run``."""
+    walls, cpus = [], []
+    for _ in range(repeats):
+        w, c = time.perf_counter(), time.process_time()
+        run()
+        cpus.append(time.process_time() - c)
+        walls.append(time.perf_counter() - w)
+    return statistics.median(walls), statistics.median(cpus)
+
+
+def bench_pair(pairs: int, repeats: int) -> None:
+    mesh = from_polygons(CUBE_POSITIONS, CUBE_FACES)
+    insert, delete = mesh.insert_edge, mesh.delete_edge
+
+    def run() -> None:
+        for _ in range(pairs):
+            delete(insert(0, 2))
+
+    wall, cpu = timed(run, repeats)
+    print(f"livemod insert_edge+delete_edge pair on a cube face: "
+          f"{wall / pairs * 1e6:.2f} us wall, {cpu / pairs * 1e6:.2f} us CPU")
+    bench_openmesh_pair(pairs, repeats)
+
+
+def bench_openmesh_pair(pairs: int, repeats: int) -> None:
+    """OpenMesh's Python binding: split a cube face by a diagonal and merge it back."""
+    try:
+        import openmesh  # type: ignore[import-not-found]
+    except ImportError:
+        print("openmesh: not installed (pip install openmesh did not build here)")
+        return
+    mesh = openmesh.PolyMesh()
+    vh = [mesh.add_vertex(np.array(p, dtype=float)) for p in CUBE_POSITIONS]
+    faces = [mesh.add_face([vh[i] for i in f]) for f in CUBE_FACES]
+    face = faces[0]
+
+    def run() -> None:
+        for _ in range(pairs):
+            heh = mesh.insert_edge(mesh.halfedge_handle(face), mesh.next_halfedge_handle(
+                mesh.next_halfedge_handle(mesh.halfedge_handle(face))))
+            mesh.remove_edge(mesh.edge_handle(heh))
+
+    try:
+        wall, cpu = timed(run, repeats)
+    except Exception as exc:  # a peer's API drift must not stop our own figures
+        print(f"openmesh: pair not measured ({exc})")
+        return
+    print(f"openmesh pair: {wall / pairs * 1e6:.2f} us wall, {cpu / pairs * 1e6:.2f} us CPU")
+
+
+def bench_bulk(n: int, repeats: int) -> None:
+    pos, quads = torus_quads(n, n)
+    corners = quads.size
+    wall, cpu = timed(lambda: from_polygons(pos, quads), repeats)
+    print(f"build {n * n:,}-quad torus (from_polygons on an (F, 4) array): "
+          f"{wall:.3f} s wall, {cpu:.3f} s CPU")
+    mesh = from_polygons(pos, quads)
+    wall, cpu = timed(lambda: mesh_arrays(mesh), repeats)
+    print(f"export it (mesh_arrays): {wall:.3f} s wall, {cpu:.3f} s CPU")
+    peak = peak_build_bytes(n)
+    print(f"peak memory of the build: {peak / 2**20:.0f} MiB = {peak / corners:.0f} bytes per corner")
+    bench_openmesh_bulk(pos, quads, repeats)
+
+
+PEAK_SCRIPT = """
+import sys, tracemalloc
+sys.path.insert(0, {root!r}); sys.path.insert(0, {bench!r})
+from bench_core import torus_quads
+from livemod.dlfl import from_polygons
+pos, quads = torus_quads({n}, {n})
+tracemalloc.start()
+mesh = from_polygons(pos, quads)
+print(tracemalloc.get_traced_memory()[1])
+"""
+
+
+def peak_build_bytes(n: int) -> int:
+    """Peak bytes numpy and Python allocate while building (fresh process, input excluded)."""
+    script = PEAK_SCRIPT.format(root=str(ROOT), bench=str(ROOT / "bench"), n=n)
+    out = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                         check=True)
+    return int(out.stdout.split()[-1])
+
+
+def bench_openmesh_bulk(pos: np.ndarray, quads: np.ndarray, repeats: int) -> None:
+    try:
+        import openmesh
+    except ImportError:
+        return
+    wall, cpu = timed(lambda: openmesh.PolyMesh(pos, quads), repeats)
+    print(f"openmesh PolyMesh(points, faces): {wall:.3f} s wall, {cpu:.3f} s CPU")
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__)
+    parser.add_argument("--quick", action="store_true", help="small sizes, for a smoke run")
+    args = parser.parse_args()
+    bench_pair(2_000 if args.quick else 20_000, 3 if args.quick else 7)
+    bench_bulk(100 if args.quick else 1000, 3 if args.quick else 5)
+
+
+if __name__ == "__main__":
+    main()
