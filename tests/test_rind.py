@@ -170,3 +170,16 @@ def test_punching_every_face_with_cleanup_is_refused():
 def test_point_spheres_are_refused():
     with pytest.raises(DLFLError, match="point-sphere"):
         rind(point_sphere(), [], 0.5)
+
+
+def test_rind_of_an_open_grid_is_a_closed_slab():
+    from livemod.dlfl.shapes import grid
+
+    m = grid(3, 3)
+    rind(m, [], 0.1)
+    assert summary(m) == ((32, 60, 30), {4: 30}, 0, 1)
+    assert face_size_histogram(m, holes=True) == {4: 30}
+    np.testing.assert_allclose(sorted(set(np.round(m.positions_view()[:, 1], 12))), [-0.1, 0.0])
+    g = grid(3, 3)
+    rind(g, [int(g.face_ids()[4])], 0.1)
+    assert summary(g)[2] == 1

@@ -63,7 +63,8 @@ def crust_offsets(a: MeshArrays, thickness: float, uniform: bool = True) -> np.n
     left out of the means (TopMod copied a neighbour's normal into them).
     """
     normals = corner_normals(a)
-    has = np.linalg.norm(normals, axis=1) > 0.5
+    # hole faces (boundaries of open meshes) face the other way: leave them out
+    has = (np.linalg.norm(normals, axis=1) > 0.5) & ~a.face_hole[a.corner_face]
     nv = len(a.vertex_ids)
     count = np.bincount(a.corner_vertex[has], minlength=nv).astype(np.float64)
     mean = np.zeros((nv, 3))
@@ -322,8 +323,10 @@ def rind(
     punched faces that share an edge is removed (TopMod's cleanup), and a vertex
     whose faces are all punched goes with it.
 
-    Cube: crust 16/24/12 (two components); one hole 16/28/14; two opposite holes
-    16/32/16, genus 1. The mesh is rebuilt (fresh ids).
+    An open mesh's hole faces (its boundary loops) are always punched, so the
+    rind of an open sheet is a closed slab. Cube: crust 16/24/12 (two
+    components); one hole 16/28/14; two opposite holes 16/32/16, genus 1. The
+    mesh is rebuilt (fresh ids).
 
     Raises:
         DLFLError: a face id that is not in the mesh, a zero thickness or scale,
@@ -333,7 +336,8 @@ def rind(
     """
     a = mesh_arrays(mesh)
     _check_shell_input(a)
-    punched = _dense_faces(a, faces)
+    # an open mesh's boundary loops are always opened: the rind of a sheet is a slab
+    punched = _dense_faces(a, faces) | a.face_hole
     outer, inner = _shell_positions(
         a, None if use_scaling else thickness, scale if use_scaling else None, uniform
     )
