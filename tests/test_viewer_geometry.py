@@ -27,7 +27,7 @@ from livemod.viewer.text import QUAD_FLOATS, glyph_atlas, layout_labels
 
 def test_fans_cover_every_face_and_skip_holes() -> None:
     arrays = mesh_arrays(grid(3, 2))
-    triangles, tri_face = fan_triangles(arrays)
+    triangles, tri_face, _ = fan_triangles(arrays)
     solid = ~arrays.face_hole
     assert arrays.face_hole.any()
     assert len(triangles) == int((arrays.face_sizes[solid] - 2).sum())

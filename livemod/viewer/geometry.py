@@ -5,9 +5,11 @@ be tested and benchmarked without a GL context:
 
 * ``positions``: one float32 position per vertex, shared by faces, edges and points;
 * ``triangles``: the fans of every non-hole face, as vertex indices;
-* ``triangle_face``: the dense face index of each triangle; the fragment shader looks
-  it up with ``gl_PrimitiveID``, so there is no per-corner vertex duplication and
-  flat normals come from screen-space derivatives;
+* ``triangle_table``: the dense face index of each triangle, with three bits on top
+  saying which of its sides are real edges (not fan diagonals); the fragment shader
+  looks it up with ``gl_PrimitiveID``, so there is no per-corner vertex duplication,
+  flat normals come from screen-space derivatives, and the wireframe is drawn in
+  the same pass (distance to the real sides) instead of as line primitives;
 * ``lines``: the two vertex indices of each edge (dense edge order).
 
 Pick ids pack an element kind in the top bits and ``dense index + 1`` below, so 0
@@ -25,6 +27,7 @@ from livemod.dlfl.arrays import MeshArrays
 KIND_FACE, KIND_EDGE, KIND_VERTEX = 1, 2, 3
 KIND_SHIFT = 28
 INDEX_MASK = (1 << KIND_SHIFT) - 1
+SIDE_SHIFT = 29  # triangle_table: face index below, real-side bits (v0v1, v1v2, v2v0) above
 
 
 @dataclass(frozen=True)
@@ -34,7 +37,8 @@ class RenderGeometry:
     Attributes:
         positions: ``(V, 3)`` float32 vertex positions.
         triangles: ``(T, 3)`` uint32 vertex indices of the face fans (holes left out).
-        triangle_face: ``(T,)`` uint32 dense face index of each triangle.
+        triangle_table: ``(T,)`` uint32 dense face index of each triangle, ORed with
+            its real-side bits shifted by ``SIDE_SHIFT``.
         lines: ``(E, 2)`` uint32 vertex indices of each edge.
         bounds: ``(2, 3)`` float64 min and max corner (zeros if empty).
         face_count: number of faces, holes included (the length of face tables).
@@ -43,11 +47,16 @@ class RenderGeometry:
 
     positions: np.ndarray
     triangles: np.ndarray
-    triangle_face: np.ndarray
+    triangle_table: np.ndarray
     lines: np.ndarray
     bounds: np.ndarray
     face_count: int
     holes: int = 0
+
+    @property
+    def triangle_face(self) -> np.ndarray:
+        """``(T,)`` uint32 dense face index of each triangle."""
+        return self.triangle_table & np.uint32((1 << SIDE_SHIFT) - 1)
 
     @property
     def closed(self) -> bool:
@@ -66,12 +75,14 @@ class RenderGeometry:
         return max(float(np.linalg.norm(self.bounds[1] - self.bounds[0])) / 2.0, 1e-6)
 
 
-def fan_triangles(arrays: MeshArrays) -> tuple[np.ndarray, np.ndarray]:
+def fan_triangles(arrays: MeshArrays) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Triangulate every non-hole face as a fan from its first corner.
 
     Returns:
-        ``(triangles (T, 3) uint32 vertex indices, triangle_face (T,) uint32)``.
-        Faces with fewer than three corners give no triangle.
+        ``(triangles (T, 3) uint32 vertex indices, triangle_face (T,) uint32,
+        sides (T,) uint32)``: bit 0, 1, 2 of ``sides`` is set when side v0-v1, v1-v2,
+        v2-v0 is an edge of the face rather than a diagonal of the fan. Faces with
+        fewer than three corners give no triangle.
     """
     sizes = arrays.face_sizes
     fan_counts = np.where(arrays.face_hole, 0, np.maximum(sizes - 2, 0))
@@ -81,19 +92,21 @@ def fan_triangles(arrays: MeshArrays) -> tuple[np.ndarray, np.ndarray]:
     base = arrays.face_offsets[:-1][face_of_tri]
     cv = arrays.corner_vertex
     tris = np.stack([cv[base], cv[base + k + 1], cv[base + k + 2]], axis=1)
-    return tris.astype(np.uint32), face_of_tri.astype(np.uint32)
+    sides = (2 | (k == 0) | ((k == fan_counts[face_of_tri] - 1) << 2)).astype(np.uint32)
+    return tris.astype(np.uint32), face_of_tri.astype(np.uint32), sides
 
 
 def build_geometry(arrays: MeshArrays) -> RenderGeometry:
     """Prepare all buffers of ``arrays`` (see the module docstring)."""
     positions = np.ascontiguousarray(arrays.positions, dtype=np.float32)
-    triangles, triangle_face = fan_triangles(arrays)
+    triangles, triangle_face, sides = fan_triangles(arrays)
+    triangle_table = triangle_face | (sides << np.uint32(SIDE_SHIFT))
     lines = arrays.edge_vertices.astype(np.uint32)
     if len(arrays.positions):
         bounds = np.stack([arrays.positions.min(axis=0), arrays.positions.max(axis=0)])
     else:
         bounds = np.zeros((2, 3))
-    return RenderGeometry(positions, triangles, triangle_face, lines, bounds,
+    return RenderGeometry(positions, triangles, triangle_table, lines, bounds,
                           len(arrays.face_ids), int(arrays.face_hole.sum()))
 
 

@@ -95,6 +95,18 @@ def _uint_table(ctx: moderngl.Context, values: np.ndarray, dtype: str) -> modern
     return texture
 
 
+def _float3_table(ctx: moderngl.Context, points: np.ndarray) -> moderngl.Texture:
+    """Upload ``(n, 3)`` float32 points as an RGB32F texture read with ``texelFetch``."""
+    n = max(len(points), 1)
+    width = min(n, TABLE_WIDTH)
+    height = (n + width - 1) // width
+    padded = np.zeros((width * height, 3), dtype=np.float32)
+    padded[: len(points)] = points
+    texture = ctx.texture((width, height), 3, padded.tobytes(), dtype="f4")
+    texture.filter = (moderngl.NEAREST, moderngl.NEAREST)
+    return texture
+
+
 class _MeshGPU:
     """The GL objects of one uploaded mesh; ``release`` frees them."""
 
@@ -104,7 +116,9 @@ class _MeshGPU:
         self.positions = ctx.buffer(geometry.positions.tobytes())
         self.triangles = ctx.buffer(geometry.triangles.tobytes())
         self.lines = ctx.buffer(geometry.lines.tobytes())
-        self.triangle_face = _uint_table(ctx, geometry.triangle_face, "u4")
+        self.triangle_face = _uint_table(ctx, geometry.triangle_table, "u4")
+        self.triangle_index = _uint_table(ctx, geometry.triangles.reshape(-1), "u4")
+        self.position_table = _float3_table(ctx, geometry.positions)
         self.face_flags = _uint_table(ctx, np.zeros(geometry.face_count, np.uint8), "u1")
         self.edge_flags = _uint_table(ctx, np.zeros(len(geometry.lines), np.uint8), "u1")
         self.vertex_flags = _uint_table(ctx, np.zeros(len(geometry.positions), np.uint8), "u1")
@@ -112,6 +126,8 @@ class _MeshGPU:
         self.face_vao = ctx.vertex_array(programs["face"], content, self.triangles, 4)
         self.edge_vao = ctx.vertex_array(programs["edge"], content, self.lines, 4)
         self.point_vao = ctx.vertex_array(programs["point"], content)
+        self.ctx, self.edge_program = ctx, programs["edge"]
+        self.selected_lines: tuple[moderngl.Buffer, moderngl.VertexArray] | None = None
 
     def set_flags(self, face: np.ndarray, edge: np.ndarray, vertex: np.ndarray) -> None:
         """Replace the selection flags; each ``(n,)`` uint8 in dense order."""
@@ -120,11 +136,26 @@ class _MeshGPU:
             padded = np.zeros(texture.width * texture.height, dtype=np.uint8)
             padded[: len(flags)] = flags
             texture.write(padded.tobytes())
+        self._release_selected_lines()
+        picked = self.geometry.lines[np.flatnonzero(edge)]
+        if len(picked):
+            buffer = self.ctx.buffer(np.ascontiguousarray(picked).tobytes())
+            vao = self.ctx.vertex_array(self.edge_program, [(self.positions, "3f", "in_position")],
+                                        buffer, 4)
+            self.selected_lines = (buffer, vao)
+
+    def _release_selected_lines(self) -> None:
+        if self.selected_lines is not None:
+            self.selected_lines[1].release()
+            self.selected_lines[0].release()
+            self.selected_lines = None
 
     def release(self) -> None:
+        self._release_selected_lines()
         for obj in (self.face_vao, self.edge_vao, self.point_vao, self.positions,
                     self.triangles, self.lines, self.triangle_face, self.face_flags,
-                    self.edge_flags, self.vertex_flags):
+                    self.edge_flags, self.vertex_flags, self.triangle_index,
+                    self.position_table):
             obj.release()
 
 
@@ -166,7 +197,7 @@ class Renderer:
     def _bind_samplers(self) -> None:
         """Fix each program's texture units: 0 atlas/triangle_face, 1..3 flags."""
         units = {"triangle_face": 0, "face_flags": 1, "edge_flags": 2, "vertex_flags": 3,
-                 "atlas": 0}
+                 "triangle_index": 4, "position_table": 5, "atlas": 0}
         for program in self.programs.values():
             for name, unit in units.items():
                 if name in program:
@@ -226,13 +257,17 @@ class Renderer:
         self.ctx.enable(moderngl.DEPTH_TEST | moderngl.PROGRAM_POINT_SIZE)
         self.ctx.disable(moderngl.CULL_FACE | moderngl.BLEND)
         show_preview = style.preview and self._preview is not None
+        # the wireframe over the mesh's own faces is drawn inside the face pass
+        wire_in_faces = style.edges and style.faces and not show_preview
         if style.faces or show_preview:
             surface = self._preview if show_preview else self._mesh
             assert surface is not None
             color = PREVIEW_COLOR if show_preview else BASE_COLOR
-            self._draw_faces(surface, color)
-        if style.edges:
+            self._draw_faces(surface, color, wire=wire_in_faces)
+        if style.edges and not wire_in_faces:
             self._draw_edges(self._mesh)
+        elif self._mesh.selected_lines is not None:
+            self._draw_edges(self._mesh, selected_only=True)
         if style.vertices or self.selection.vertices:
             self._draw_points(self._mesh, style.point_size, only_selected=not style.vertices)
         self._draw_corners(style.point_size)
@@ -242,16 +277,22 @@ class Renderer:
     def _set_view(self, camera: Camera, aspect: float) -> None:
         if self._mesh is not None:
             camera.scene_radius = max(camera.scene_radius, self._mesh.geometry.radius)
-        mvp = _matrix_bytes(camera.view_projection(aspect))
-        view = _matrix_bytes(camera.view_matrix())
+        view_matrix = camera.view_matrix()
+        mvp = _matrix_bytes(camera.projection_matrix(aspect) @ view_matrix)
+        view = _matrix_bytes(view_matrix)
         for program in self.programs.values():
             program["mvp"].write(mvp)  # type: ignore[union-attr]
             if "view" in program:
                 program["view"].write(view)  # type: ignore[union-attr]
 
     def _draw_faces(self, mesh: _MeshGPU, color: tuple[float, float, float],
-                    ) -> None:
+                    wire: bool = False) -> None:
         program = self.programs["face"]
+        program["wire"].value = int(wire)  # type: ignore[union-attr]
+        program["viewport"].value = tuple(float(v) for v in self.ctx.viewport[2:])  # type: ignore[union-attr]
+        program["edge_color"].value = EDGE_COLOR  # type: ignore[union-attr]
+        mesh.triangle_index.use(4)
+        mesh.position_table.use(5)
         program["base_color"].value = color  # type: ignore[union-attr]
         program["back_color"].value = BACK_COLOR  # type: ignore[union-attr]
         program["selected_color"].value = SELECTED_COLOR  # type: ignore[union-attr]
@@ -267,12 +308,16 @@ class Renderer:
         self.ctx.disable(moderngl.CULL_FACE)
         self.ctx.polygon_offset = (0.0, 0.0)
 
-    def _draw_edges(self, mesh: _MeshGPU) -> None:
+    def _draw_edges(self, mesh: _MeshGPU, selected_only: bool = False) -> None:
         program = self.programs["edge"]
         program["edge_color"].value = EDGE_COLOR  # type: ignore[union-attr]
         program["selected_color"].value = SELECTED_COLOR  # type: ignore[union-attr]
+        program["all_selected"].value = int(selected_only)  # type: ignore[union-attr]
         mesh.edge_flags.use(2)
-        mesh.edge_vao.render(moderngl.LINES)
+        if selected_only and mesh.selected_lines is not None:
+            mesh.selected_lines[1].render(moderngl.LINES)
+        else:
+            mesh.edge_vao.render(moderngl.LINES)
 
     def _draw_points(self, mesh: _MeshGPU, size: float, only_selected: bool = False) -> None:
         program = self.programs["point"]

@@ -33,9 +33,15 @@ FACE_FRAGMENT = """
 #version 330
 uniform usampler2D triangle_face;
 uniform usampler2D face_flags;
+uniform usampler2D triangle_index;
+uniform sampler2D position_table;
+uniform mat4 mvp;
+uniform vec2 viewport;
+uniform int wire;
 uniform vec3 base_color;
 uniform vec3 selected_color;
 uniform vec3 back_color;
+uniform vec3 edge_color;
 in vec3 v_view;
 layout(location = 0) out vec4 color;
 layout(location = 1) out uint pick;
@@ -50,12 +56,38 @@ vec3 shade(vec3 n, vec3 base) {
     lit += 0.18 * max(dot(fill, n), 0.0);
     return clamp(0.75 * lit * base + 0.25 * base * 0.55, 0.0, 1.0);
 }
+vec2 screen_of_vertex(int i) {
+    uint v = fetch(triangle_index, i);
+    int w = textureSize(position_table, 0).x;
+    vec3 p = texelFetch(position_table, ivec2(int(v) % w, int(v) / w), 0).xyz;
+    vec4 clip = mvp * vec4(p, 1.0);
+    return (clip.xy / max(clip.w, 1e-9) * 0.5 + 0.5) * viewport;
+}
+float segment_distance(vec2 p, vec2 a, vec2 b) {
+    vec2 ab = b - a;
+    float t = clamp(dot(p - a, ab) / max(dot(ab, ab), 1e-12), 0.0, 1.0);
+    return length(p - a - t * ab);
+}
+float wire_coverage(uint sides) {
+    // distance in pixels to the triangle's real sides (fan diagonals are skipped)
+    vec2 s0 = screen_of_vertex(3 * gl_PrimitiveID);
+    vec2 s1 = screen_of_vertex(3 * gl_PrimitiveID + 1);
+    vec2 s2 = screen_of_vertex(3 * gl_PrimitiveID + 2);
+    float d = 1e9;
+    if ((sides & 1u) != 0u) d = min(d, segment_distance(gl_FragCoord.xy, s0, s1));
+    if ((sides & 2u) != 0u) d = min(d, segment_distance(gl_FragCoord.xy, s1, s2));
+    if ((sides & 4u) != 0u) d = min(d, segment_distance(gl_FragCoord.xy, s2, s0));
+    return 1.0 - smoothstep(0.35, 0.95, d);
+}
 void main() {
-    uint face = fetch(triangle_face, gl_PrimitiveID);
+    uint entry = fetch(triangle_face, gl_PrimitiveID);
+    uint face = entry & 0x1FFFFFFFu;
     vec3 n = normalize(cross(dFdx(v_view), dFdy(v_view)));
     bool selected = fetch(face_flags, int(face)) != 0u;
     vec3 base = selected ? selected_color : (gl_FrontFacing ? base_color : back_color);
-    color = vec4(shade(n, base), 1.0);
+    vec3 rgb = shade(n, base);
+    if (wire != 0) rgb = mix(rgb, edge_color, wire_coverage(entry >> 29));
+    color = vec4(rgb, 1.0);
     pick = (1u << 28) | (face + 1u);
 }
 """
@@ -63,13 +95,14 @@ void main() {
 EDGE_FRAGMENT = """
 #version 330
 uniform usampler2D edge_flags;
+uniform int all_selected;
 uniform vec3 edge_color;
 uniform vec3 selected_color;
 layout(location = 0) out vec4 color;
 layout(location = 1) out uint pick;
 """ + FETCH + """
 void main() {
-    bool selected = fetch(edge_flags, gl_PrimitiveID) != 0u;
+    bool selected = all_selected != 0 || fetch(edge_flags, gl_PrimitiveID) != 0u;
     color = vec4(selected ? selected_color : edge_color, 1.0);
     pick = (2u << 28) | uint(gl_PrimitiveID + 1);
 }

@@ -108,6 +108,8 @@ class LiveViewer(mglw.WindowConfig):
         self._moved = False
         self._key_names = _key_names(self.wnd.keys)
         self._last_frame = time.perf_counter()
+        self._fps_shown, self._fps_time = 0.0, 0.0
+        self._overlay_cache: tuple[tuple, np.ndarray] | None = None
         self.script = str(Path(self.options.script).resolve())
         self.mesh_path = self.options.mesh_path
         self.session = self._start_session()
@@ -173,14 +175,25 @@ class LiveViewer(mglw.WindowConfig):
         fbo = self.wnd.fbo
         self.renderer.draw(fbo, self.camera, self.style)
         if self.show_hud or self.show_help:
-            self.renderer.draw_overlay(fbo, hud_quads(self._hud_info(), fbo.size))
+            self.renderer.draw_overlay(fbo, self._overlay_quads(fbo.size))
+
+    def _overlay_quads(self, size: tuple[int, int]) -> np.ndarray:
+        """HUD quads, laid out again only when something shown changed (the FPS
+        figure changes twice a second), to keep frames cheap while a script runs."""
+        now = time.perf_counter()
+        if now - self._fps_time > 0.5 and self.frame_times:
+            self._fps_shown = round(len(self.frame_times) / max(sum(self.frame_times), 1e-9))
+            self._fps_time = now
+        key = (id(self.result), self.waiting, self.genus, self._fps_shown, self.pick_mode,
+               self.selection, self.style, self.camera.ortho, self.playing, self.show_hud,
+               self.show_help, size)
+        if self._overlay_cache is None or self._overlay_cache[0] != key:
+            self._overlay_cache = (key, hud_quads(self._hud_info(), size))
+        return self._overlay_cache[1]
 
     def _hud_info(self) -> dict[str, Any]:
-        fps = 0.0
-        if self.frame_times:
-            fps = len(self.frame_times) / max(sum(self.frame_times), 1e-9)
         return {"script": self.script, "result": self.result, "waiting": self.waiting,
-                "genus": self.genus, "fps": fps, "pick_mode": self.pick_mode,
+                "genus": self.genus, "fps": self._fps_shown, "pick_mode": self.pick_mode,
                 "selection": selection_python(self.selection, self.renderer.arrays)
                 if not self.selection.is_empty() else [],
                 "style": self.style, "ortho": self.camera.ortho, "playing": self.playing,
