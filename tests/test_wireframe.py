@@ -166,3 +166,13 @@ def test_vertex_rings_walk_against_vnext():
         ring = order[offsets[v]:offsets[v + 1]]
         for i in range(3):
             assert vnext[ring[(i + 1) % 3]] == ring[i]
+
+
+def test_open_grids_become_wire_grids():
+    from livemod.dlfl.shapes import grid
+
+    for op in (lambda m: wireframe(m, 0.05), lambda m: columns(m, 0.05, 4)):
+        m = grid(3, 3)
+        op(m)
+        validate(m)
+        assert genus(m) == 24 - 16 + 1

@@ -338,16 +338,21 @@ def _joint_length(axes: list[np.ndarray], t: float) -> float:
 
 
 def _ring_start(mesh: Mesh, corner: int, axis: np.ndarray, valence: int) -> np.ndarray:
-    """Direction of a ring's first point: the faces on both sides of the edge."""
-    if valence == 1:
-        helper = np.array([1.0, 0.0, 0.0])
-        if abs(abs(float(axis @ helper)) - 1.0) < 1e-12:
-            helper = np.array([0.0, 1.0, 0.0])
-        return np.asarray(np.cross(axis, helper))
-    side0, side1 = mesh.edge_corners(mesh.corner_edge(corner))
-    # the same vertex's corner in the face on the other side of the edge
-    other = mesh.corner_next(side1 if side0 == corner else side0)
-    return _corner_normal(mesh, corner) + _corner_normal(mesh, other)
+    """Direction of a ring's first point: the mean of the corner normals of the
+    faces on both sides of the edge (TopMod); across a boundary, where a hole
+    face faces the other way, the real face's alone; else any perpendicular."""
+    if valence > 1:
+        side0, side1 = mesh.edge_corners(mesh.corner_edge(corner))
+        # the same vertex's corner in the face on the other side of the edge
+        other = mesh.corner_next(side1 if side0 == corner else side0)
+        candidates = [c for c in (corner, other) if not mesh.is_hole(mesh.corner_face(c))]
+        start = sum((_corner_normal(mesh, c) for c in candidates), np.zeros(3))
+        if np.linalg.norm(start - (start @ axis) * axis) > 1e-9:
+            return start
+    helper = np.array([1.0, 0.0, 0.0])
+    if abs(abs(float(axis @ helper)) - 1.0) < 1e-12:
+        helper = np.array([0.0, 1.0, 0.0])
+    return np.asarray(np.cross(axis, helper))
 
 
 def _corner_normal(mesh: Mesh, corner: int) -> np.ndarray:
