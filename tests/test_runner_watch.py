@@ -244,3 +244,16 @@ def test_an_endless_loop_in_a_helper_module_is_interrupted(tmp_path):
     finally:
         live.close()
         assert live.join(10)
+
+
+@pytest.mark.timeout(60)
+def test_a_deleted_script_runs_again_when_it_comes_back(tmp_path):
+    live, script = start_session(tmp_path, vertices_script(2))
+    try:
+        os.remove(script)
+        assert drain(live, quiet=0.6) == []  # nothing to run while it is gone
+        write_in_place(script, vertices_script(5))
+        assert [vertex_count(r) for r in settle(live)] == [5]
+    finally:
+        live.close()
+        assert live.join(10)
