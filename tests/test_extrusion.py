@@ -127,6 +127,15 @@ def test_octa_end_face_is_the_moved_edge_midpoints():
     assert np.allclose(face_points(m, end), mids, atol=1e-9)
 
 
+def test_octa_scales_and_rotates_the_midpoints():
+    m = cube()
+    p, n = face_points(m, TOP), face_normal(m, TOP)
+    end = extrude(m, TOP, "octa", 0.75, rotation=-20.0, scale=1.5)
+    mids = (p + np.roll(p, -1, axis=0)) / 2 + 0.75 * n
+    c = mids.mean(axis=0)
+    assert np.allclose(face_points(m, end), rotate_about(c + 1.5 * (mids - c), n, -20.0), atol=1e-9)
+
+
 def test_stellate_apex_is_centroid_plus_distance_along_normal():
     m = cube()
     c, n = face_centroid(m, TOP), face_normal(m, TOP)
