@@ -330,3 +330,10 @@ def test_random_sequences_stay_valid_and_refusals_change_nothing():
         except DLFLError:
             assert snapshot(m) == before
         checked(m)
+
+
+def test_rotation_is_right_handed_about_the_normal():
+    m = cube()
+    end = extrude(m, TOP, "cubical", 1.0, rotation=90.0)
+    # about +y, a right-handed quarter turn takes (x, z) to (z, -x): v0 (1, 1, 1) -> (1, 2, -1)
+    assert np.allclose(m.position(m.face_vertices(end)[0]), [1.0, 2.0, -1.0], atol=1e-12)
