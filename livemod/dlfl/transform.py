@@ -37,10 +37,17 @@ def _selected(mesh: Mesh, vertices: Iterable[int] | None) -> tuple[np.ndarray, n
     Raises:
         DLFLError: an id that is not a vertex of the mesh.
     """
+    all_ids, all_positions = mesh.vertex_ids(), mesh.positions_view()
     if vertices is None:
-        return mesh.vertex_ids(), mesh.positions_view()
-    ids = np.asarray(list(vertices), dtype=np.int64)
-    return ids, np.array([mesh.position(int(v)) for v in ids]).reshape(-1, 3)
+        return all_ids, all_positions
+    ids = np.asarray(list(vertices), dtype=np.int64).reshape(-1)
+    order = np.argsort(all_ids)
+    where = np.minimum(np.searchsorted(all_ids[order], ids), max(len(all_ids) - 1, 0))
+    found = order[where] if len(all_ids) else where
+    missing = (all_ids[found] != ids) if len(all_ids) else np.ones(len(ids), bool)
+    if missing.any():
+        raise DLFLError(f"vertex {int(ids[missing][0])} does not exist")
+    return ids, all_positions[found]
 
 
 def transform(
