@@ -18,7 +18,7 @@ import numpy as np
 
 from ._numtext import decimal_to_float
 
-SEP, DIGIT, DOT, MINUS, SLASH, ODD = range(6)
+SEP, DIGIT, DOT, MINUS, SLASH, ODD, EXP, PLUS = range(8)
 _INT_POW10 = np.array([10**k for k in range(19)], dtype=np.int64)
 
 
@@ -32,7 +32,8 @@ def _classes(separators: bytes, extra: dict[int, int]) -> np.ndarray:
     return table
 
 
-_NUMBER_CLASSES = _classes(b" \t\r\n\v\f,", {ord("."): DOT})
+_NUMBER_CLASSES = _classes(
+    b" \t\r\n\v\f,", {ord("."): DOT, ord("e"): EXP, ord("E"): EXP, ord("+"): PLUS})
 _INDEX_CLASSES = _classes(b" \t\r\n\v\f", {ord("/"): SLASH})
 
 
@@ -154,8 +155,9 @@ def _per_line(starts: np.ndarray, token_starts: np.ndarray) -> tuple[np.ndarray,
 def parse_number_lines(buf: np.ndarray, starts: np.ndarray, want: int) -> tuple[np.ndarray, np.ndarray]:
     """The first ``want`` decimal numbers of every line.
 
-    The fast path takes numbers of the form ``[-]digits[.digits]`` separated by
-    blanks or commas.
+    The fast path takes numbers of the form ``[-]digits[.digits][e[+-]digits]``
+    separated by blanks or commas (numbers with an exponent go through
+    ``float()`` one by one).
 
     Args:
         buf: ``(S,)`` uint8 lines with their keyword blanked (see module doc).
@@ -172,20 +174,39 @@ def parse_number_lines(buf: np.ndarray, starts: np.ndarray, want: int) -> tuple[
     rs, re = scan.run_starts, scan.run_ends
     if num_lines == 0 or len(rs) == 0:
         return np.zeros((num_lines, want)), np.zeros(num_lines, dtype=bool)
-    bad = [scan.positions(ODD)]
-    minus, dot = scan.positions(MINUS), scan.positions(DOT)
-    bad.append(minus[(scan.cls(minus - 1) != SEP) | (scan.cls(minus + 1) != DIGIT)])
-    bad.append(dot[(scan.cls(dot - 1) != DIGIT) | (scan.cls(dot + 1) != DIGIT)])
-    is_frac = scan.cls(rs - 1) == DOT
+    bad = [scan.positions(ODD), *_misplaced_signs(scan)]
+    before = scan.cls(rs - 1)
+    is_frac = before == DOT
+    is_exp = (before == EXP) | ((before == MINUS) | (before == PLUS)) & (
+        scan.cls(np.maximum(rs - 2, 0)) == EXP)
     after = scan.cls(re)
-    bad.append(rs[(after != SEP) & ((after != DOT) | is_frac) | (re - rs > 18)])
+    is_int = ~is_frac & ~is_exp
+    allowed = np.where(is_int, (after == SEP) | (after == DOT) | (after == EXP),
+                       np.where(is_frac, (after == SEP) | (after == EXP), after == SEP))
+    bad.append(rs[~allowed | ~is_exp & (re - rs > 18)])
     rejected = _lines_of(starts, np.concatenate(bad))
-    lead = np.flatnonzero(~is_frac)  # every number starts with its integer run
+    lead = np.flatnonzero(is_int)  # every number starts with its integer run
     first, counts = _per_line(starts, rs[lead])
     rejected |= counts < want
     values = _numbers(scan, lead, is_frac)
     pick = np.minimum(first[:, None] + np.arange(want), len(lead) - 1)
     return values[pick], ~rejected
+
+
+def _misplaced_signs(scan: _Scan) -> list[np.ndarray]:
+    """Positions of ``-``, ``+``, ``.``, ``e`` not inside ``[-]d+[.d+][e[+-]d+]``."""
+    minus, plus = scan.positions(MINUS), scan.positions(PLUS)
+    dot, exp = scan.positions(DOT), scan.positions(EXP)
+    before_minus = scan.cls(minus - 1)
+    after_exp = scan.cls(exp + 1)
+    signed = (after_exp == MINUS) | (after_exp == PLUS)
+    return [
+        minus[((before_minus != SEP) & (before_minus != EXP)) | (scan.cls(minus + 1) != DIGIT)],
+        plus[(scan.cls(plus - 1) != EXP) | (scan.cls(plus + 1) != DIGIT)],
+        dot[(scan.cls(dot - 1) != DIGIT) | (scan.cls(dot + 1) != DIGIT)],
+        exp[(scan.cls(exp - 1) != DIGIT)
+            | ~((after_exp == DIGIT) | signed & (scan.cls(exp + 2) == DIGIT))],
+    ]
 
 
 def _numbers(scan: _Scan, lead: np.ndarray, is_frac: np.ndarray) -> np.ndarray:
@@ -202,10 +223,13 @@ def _numbers(scan: _Scan, lead: np.ndarray, is_frac: np.ndarray) -> np.ndarray:
     mantissa = np.where(fits, int_val * _INT_POW10[frac_len] + frac_val, 0)
     values, decided = decimal_to_float(mantissa, frac_len)
     values = np.where(scan.buf[rs[lead] - 1] == ord("-"), -values, values)
-    for i in np.flatnonzero(~(fits & decided)).tolist():
+    mantissa_end = np.where(has_frac, re[nxt], re[lead])
+    has_exp = scan.cls(mantissa_end) == EXP  # rare: Python parses these numbers
+    exp_run = np.minimum(lead + 1 + has_frac, len(rs) - 1)
+    end = np.where(has_exp, re[exp_run], mantissa_end)
+    for i in np.flatnonzero(~(fits & decided) | has_exp).tolist():
         start = rs[lead[i]] - int(scan.buf[rs[lead[i]] - 1] == ord("-"))
-        end = re[lead[i] + 1] if has_frac[i] else re[lead[i]]
-        values[i] = _python_float(scan.buf[start:end].tobytes())
+        values[i] = _python_float(scan.buf[start : end[i]].tobytes())
     return values
 
 

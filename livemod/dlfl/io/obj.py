@@ -102,9 +102,11 @@ def parse_obj(data: bytes, label: str = "<obj>", *, fast: bool = True) -> ObjSou
     kinds = _classify(buf, starts, fast)
     parsed = _Parsed()
     for line in np.flatnonzero(kinds == _OTHER_SUSPECT).tolist():
-        parsed.add(line, _parse_line(_line_bytes(buf, starts, ends, line), line + 1, label))
+        parsed.parse_line(_line_bytes(buf, starts, ends, line), line, label)
     _parse_vertices(buf, starts, ends, np.flatnonzero(kinds == _VERTEX), parsed, label)
     _parse_faces(buf, starts, ends, np.flatnonzero(kinds == _FACE), parsed, label)
+    if parsed.errors:
+        raise min(parsed.errors)[1]  # the first bad line of the file, as a reader would
     return parsed.soup(label)
 
 
@@ -147,6 +149,14 @@ class _Parsed:
         self.face_blocks: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = []  # lines, counts, raw
         self.py_vertices: dict[int, tuple[float, float, float]] = {}
         self.py_faces: dict[int, list[int]] = {}
+        self.errors: list[tuple[int, DLFLError]] = []
+
+    def parse_line(self, raw: bytes, line: int, label: str) -> None:
+        """Parse line ``line`` (0-based) in Python; keep its error for later."""
+        try:
+            self.add(line, _parse_line(raw, line + 1, label))
+        except DLFLError as error:
+            self.errors.append((line, error))
 
     def add(self, line: int, item: tuple[str, list[float] | list[int]] | None) -> None:
         if item is None:
@@ -231,7 +241,7 @@ def _parse_vertices(buf: np.ndarray, starts: np.ndarray, ends: np.ndarray, lines
     values, accepted = parse_number_lines(block, block_starts, 3)
     parsed.vertex_blocks.append((lines[accepted], values[accepted]))
     for line in lines[~accepted].tolist():
-        parsed.add(line, _parse_line(_line_bytes(buf, starts, ends, line), line + 1, label))
+        parsed.parse_line(_line_bytes(buf, starts, ends, line), line, label)
 
 
 def _parse_faces(buf: np.ndarray, starts: np.ndarray, ends: np.ndarray, lines: np.ndarray,
@@ -243,7 +253,7 @@ def _parse_faces(buf: np.ndarray, starts: np.ndarray, ends: np.ndarray, lines: n
     keep = np.repeat(accepted, counts)
     parsed.face_blocks.append((lines[accepted], counts[accepted], values[keep]))
     for line in lines[~accepted].tolist():
-        parsed.add(line, _parse_line(_line_bytes(buf, starts, ends, line), line + 1, label))
+        parsed.parse_line(_line_bytes(buf, starts, ends, line), line, label)
 
 
 def _parse_line(raw: bytes, line: int, label: str) -> tuple[str, list[float] | list[int]] | None:
