@@ -142,3 +142,15 @@ def test_the_top_level_livemod_command_has_run_and_batch(capsys):
 
     assert top.main(["run", RING, "--param", "count=3", "--param", "radius=1"]) == 0
     assert "V=3 E=3 F=2" in capsys.readouterr().out
+
+
+def test_any_futures_executor_can_run_a_batch(tmp_path):
+    from concurrent.futures import ThreadPoolExecutor
+
+    from livemod.runner.batch import FuturesVariantExecutor
+
+    variants = make_variants(RING, sweep([parse_param("count=3:4:2"), parse_param("radius=1")]),
+                             None)
+    with ThreadPoolExecutor(1) as pool:  # stands in for a Dask client's executor
+        results = run_batch(variants, FuturesVariantExecutor(pool), quiet=True)
+    assert [r.counts for r in results] == [(3, 3, 2), (4, 4, 2)]

@@ -159,6 +159,20 @@ class SerialExecutor:
         return (fn(v) for v in variants)
 
 
+class FuturesVariantExecutor:
+    """Any ``concurrent.futures.Executor``: a local pool, or a cluster's, e.g. Dask's
+    ``Client(...).get_executor()``. The executor is not shut down here."""
+
+    def __init__(self, executor: concurrent.futures.Executor) -> None:
+        self.executor = executor
+
+    def map_unordered(self, fn: Callable[[Variant], VariantResult],
+                      variants: list[Variant]) -> Iterator[VariantResult]:
+        futures = [self.executor.submit(fn, v) for v in variants]
+        for future in concurrent.futures.as_completed(futures):
+            yield future.result()
+
+
 class ProcessPoolVariantExecutor:
     """A local pool of ``jobs`` processes.
 
@@ -175,9 +189,7 @@ class ProcessPoolVariantExecutor:
                       variants: list[Variant]) -> Iterator[VariantResult]:
         context = _process_context()
         with concurrent.futures.ProcessPoolExecutor(self.jobs, mp_context=context) as pool:
-            futures = [pool.submit(fn, v) for v in variants]
-            for future in concurrent.futures.as_completed(futures):
-                yield future.result()
+            yield from FuturesVariantExecutor(pool).map_unordered(fn, variants)
 
 
 def _process_context() -> multiprocessing.context.BaseContext:
