@@ -204,6 +204,8 @@ def _pair_sides(
     single = np.repeat(soup.sizes, soup.sizes) == 1
     key = np.minimum(u, w) * nv + np.maximum(u, w)
     key[single] = -1 - np.flatnonzero(single)  # point-sphere corners pair with nothing
+    if len(key) == 0:
+        return soup, np.zeros(0, dtype=np.int64)
     order, skey = _sort_keys(key)
     mate = _pair_simple(u, w, order, skey)
     if mate is not None:
@@ -423,7 +425,7 @@ def _close_boundaries(
     follow = side_ending_at[start]
     loops = _cycles(follow)
     hole_idx = np.concatenate([end[loop] for loop in loops])
-    hole_corners = np.concatenate([loop for loop in loops]) 
+    hole_corners = np.concatenate([loop for loop in loops])
     base = len(soup.indices)
     hole_sizes = np.array([len(loop) for loop in loops], dtype=np.int64)
     new_mate = np.concatenate([mate, open_sides[hole_corners]])
@@ -521,7 +523,7 @@ def from_corner_arrays(
     prv = np.empty_like(nxt)
     prv[nxt] = np.arange(num_c)
     face = np.repeat(np.arange(num_f, dtype=np.int32), np.diff(offsets))
-    lower = np.flatnonzero((mate > np.arange(num_c)))
+    lower = np.flatnonzero(mate > np.arange(num_c))
     edge = np.full(num_c, -1, dtype=np.int32)
     edge[lower] = np.arange(len(lower), dtype=np.int32)
     edge[mate[lower]] = edge[lower]

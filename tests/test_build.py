@@ -1,0 +1,192 @@
+"""Tests of livemod.dlfl.build: the polygon-soup builder and the trusted fast path."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from livemod.dlfl import (
+    DLFLError,
+    DLFLRepairWarning,
+    from_corner_arrays,
+    from_polygons,
+    genus,
+    mesh_arrays,
+    num_components,
+    validate,
+)
+from livemod.dlfl.analysis import component_genera
+from tests.meshes import CUBE_FACES, CUBE_POSITIONS, euler_ok, torus_polygons
+
+SQUARE = [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]]
+
+
+def built(positions, faces, **kwargs):
+    mesh = from_polygons(positions, faces, **kwargs)
+    validate(mesh)
+    assert euler_ok(mesh)
+    return mesh
+
+
+def test_closed_cube_keeps_soup_order_for_ids():
+    m = built(CUBE_POSITIONS, CUBE_FACES)
+    assert m.counts() == (8, 12, 6)
+    assert [m.face_vertices(f) for f in range(6)] == CUBE_FACES
+    assert m.face_corners(2) == [8, 9, 10, 11]
+    assert not any(m.is_hole(f) for f in range(6))
+    np.testing.assert_allclose(m.position(6), [1, 1, 1])
+
+
+@pytest.mark.parametrize(("n", "m"), [(3, 3), (4, 7), (40, 25)])
+def test_quad_torus_from_an_array(n, m):
+    pos, quads = torus_polygons(n, m)
+    mesh = built(pos, quads)
+    assert mesh.counts() == (n * m, 2 * n * m, n * m)
+    assert genus(mesh) == 1
+
+
+def test_flat_indices_with_offsets():
+    m = built(SQUARE + [[0.5, 0.5, 1]], [0, 1, 2, 3, 1, 0, 4], offsets=[0, 4, 7])
+    assert [m.face_size(f) for f in m.face_ids().tolist() if not m.is_hole(f)] == [4, 3]
+
+
+def test_first_ids_offset_every_kind():
+    m = built(CUBE_POSITIONS, CUBE_FACES, first_ids=(10, 20, 30, 40))
+    assert m.vertex_ids()[0] == 10 and m.edge_ids()[0] == 20
+    assert m.face_ids()[0] == 30 and m.corner_ids()[0] == 40
+    assert m.next_ids() == (18, 32, 36, 64)
+
+
+def test_open_square_gets_one_flagged_hole():
+    m = built(SQUARE, [[0, 1, 2, 3]])
+    assert m.counts() == (4, 4, 2)
+    assert [m.is_hole(f) for f in m.face_ids().tolist()] == [False, True]
+    assert m.face_vertices(int(m.face_ids()[1])) == [1, 0, 3, 2]
+
+
+def test_open_cylinder_gets_two_holes():
+    faces = CUBE_FACES[2:]  # the four sides of the cube
+    m = built(CUBE_POSITIONS, faces)
+    holes = [f for f in m.face_ids().tolist() if m.is_hole(f)]
+    assert len(holes) == 2 and all(m.face_size(f) == 4 for f in holes)
+    assert m.counts() == (8, 12, 6)
+
+
+def test_unused_vertices_become_point_spheres():
+    m = built(SQUARE + [[5, 5, 5], [6, 6, 6]], [[0, 1, 2, 3]])
+    assert m.counts() == (6, 4, 4)
+    assert m.is_point_sphere(4) and m.is_point_sphere(5)
+    assert num_components(m) == 3
+
+
+def test_one_corner_faces_are_point_spheres():
+    m = built([[0, 0, 0]], [[0]])
+    assert m.counts() == (1, 0, 1) and m.is_point_sphere(0)
+
+
+def test_two_gons_pair_with_one_fan_per_vertex():
+    # two triangles with two 2-gons between them: four sides use the pair {0, 1}
+    # in each direction, and the pairing must leave one fan at every vertex
+    m = built([[0, 0, 1], [0, 0, -1], [1, 0, 0]], [[0, 1, 2], [1, 0], [0, 1], [1, 0, 2]])
+    assert m.counts() == (3, 5, 4)
+    assert component_genera(m) == [0]
+    assert sorted(m.valence(v) for v in range(3)) == [2, 4, 4]
+
+
+def test_three_two_gons_make_a_beach_ball():
+    m = built([[0, 0, 1], [0, 0, -1]], [[0, 1], [0, 1], [0, 1]])
+    assert m.counts() == (2, 3, 3)
+    assert m.valence(0) == 3 and m.valence(1) == 3
+
+
+def test_two_gon_pair_is_a_sphere():
+    m = built([[0, 0, 1], [0, 0, -1]], [[0, 1], [1, 0]])
+    assert m.counts() == (2, 2, 2) and genus(m) == 0
+
+
+def test_edge_used_by_three_faces_is_refused_naming_them():
+    pos = SQUARE + [[0.5, 0.5, 1], [0.5, 0.5, -1]]
+    faces = [[0, 1, 4], [1, 0, 5], [0, 1, 2]]
+    with pytest.raises(DLFLError) as info:
+        from_polygons(pos, faces)
+    message = str(info.value)
+    assert "edge (0, 1)" in message and "3 face sides" in message
+    assert "face 0" in message and "face 1" in message and "face 2" in message
+
+
+def test_error_names_source_and_lines():
+    pos = SQUARE + [[0.5, 0.5, 1], [0.5, 0.5, -1]]
+    faces = [[0, 1, 4], [1, 0, 5], [0, 1, 2]]
+    with pytest.raises(DLFLError, match=r"^model\.obj:12: .*line 12, line 13, line 15"):
+        from_polygons(pos, faces, source="model.obj", face_lines=[12, 13, 15])
+
+
+def test_bow_tie_vertex_is_refused():
+    pos = [[0, 0, 0], [1, 0, 0], [1, 1, 0], [-1, 0, 0], [-1, -1, 0]]
+    with pytest.raises(DLFLError, match="vertex 0 is non-manifold"):
+        from_polygons(pos, [[0, 1, 2], [0, 3, 4]])
+
+
+def test_closed_bow_tie_of_two_tetrahedra_is_refused():
+    tet = [[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]]
+    other = [[v if v == 0 else v + 3 for v in f] for f in tet]
+    pos = np.random.default_rng(1).normal(size=(7, 3))
+    with pytest.raises(DLFLError, match="vertex 0 is non-manifold.*2 separate fans"):
+        from_polygons(pos, tet + other)
+
+
+def test_inconsistent_orientation_is_repaired_with_a_note():
+    faces = [list(f) for f in CUBE_FACES]
+    faces[3] = faces[3][::-1]
+    with pytest.warns(DLFLRepairWarning, match="re-oriented 1 faces"):
+        m = from_polygons(CUBE_POSITIONS, faces)
+    validate(m)
+    assert m.counts() == (8, 12, 6)
+    assert len(m.notes) == 1 and "face 3" in m.notes[0]
+    assert m.face_vertices(0) == CUBE_FACES[0]
+
+
+def test_moebius_band_is_refused():
+    n = 5
+    angles = np.linspace(0, 2 * np.pi, n, endpoint=False)
+    inner = np.stack([np.cos(angles), np.sin(angles), np.zeros(n)], axis=1) * 2
+    pos = np.concatenate([inner, inner * 1.5])
+    quads = [[i, (i + 1) % n, n + (i + 1) % n, n + i] for i in range(n - 1)]
+    quads.append([n - 1, n, 0, 2 * n - 1])  # the half twist
+    with pytest.raises(DLFLError, match="not orientable"):
+        from_polygons(pos, quads)
+
+
+@pytest.mark.parametrize(("faces", "pattern"), [
+    ([[0, 1, 7]], "uses vertex index 7, but there are 4 vertices"),
+    ([[0, 1, -1]], "uses vertex index -1"),
+    ([[0, 1, 1, 2]], "visits vertex 1 twice in a row"),
+])
+def test_bad_indices_are_refused(faces, pattern):
+    with pytest.raises(DLFLError, match=pattern):
+        from_polygons(SQUARE, faces)
+
+
+def test_empty_face_and_bad_positions_are_refused():
+    with pytest.raises(DLFLError, match="face 0 has no vertices"):
+        from_polygons(SQUARE, [0, 1, 2], offsets=[0, 0, 3])
+    with pytest.raises(DLFLError, match="vertex 2 has a position that is not finite"):
+        from_polygons([[0, 0, 0], [1, 0, 0], [0, np.nan, 0]], [[0, 1, 2]])
+
+
+def test_empty_soup_gives_an_empty_mesh():
+    m = from_polygons(np.zeros((0, 3)), [])
+    validate(m)
+    assert m.counts() == (0, 0, 0)
+
+
+def test_from_corner_arrays_round_trips_mesh_arrays():
+    pos, quads = torus_polygons(5, 4)
+    a = mesh_arrays(from_polygons(pos, quads))
+    m = from_corner_arrays(a.positions, a.face_offsets, a.corner_vertex, a.corner_mate,
+                           a.face_hole)
+    validate(m)
+    b = mesh_arrays(m)
+    assert np.array_equal(a.corner_vertex, b.corner_vertex)
+    assert np.array_equal(a.corner_mate, b.corner_mate)
+    assert component_genera(m) == [1]
