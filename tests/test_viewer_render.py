@@ -140,6 +140,21 @@ def test_selection_and_labels_change_the_image(offscreen: Offscreen) -> None:
     offscreen.renderer.set_selection(Selection())
 
 
+def test_patch_preview_replaces_the_faces(offscreen: Offscreen) -> None:
+    from livemod.runner.preview import preview_arrays
+
+    mesh = cube()
+    arrays, preview = mesh_arrays(mesh), preview_arrays(mesh)
+    assert preview is not None
+    offscreen.renderer.set_mesh(arrays, preview)
+    camera = framed_camera(arrays)
+    plain = offscreen.render(camera, Style())
+    smooth = offscreen.render(camera, Style(preview=True))
+    centre = smooth[SIZE[1] // 2, SIZE[0] // 2].astype(int)
+    assert centre[2] > centre[0]                       # the preview's blue, not orange
+    assert _mask(smooth).mean() < _mask(plain).mean()  # smoothed inside the cage
+
+
 def test_turntable_frames_differ_and_frame_zero_is_stable(offscreen: Offscreen) -> None:
     arrays = mesh_arrays(cube())
     offscreen.renderer.set_mesh(arrays)
