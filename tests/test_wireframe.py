@@ -176,3 +176,13 @@ def test_open_grids_become_wire_grids():
         op(m)
         validate(m)
         assert genus(m) == 24 - 16 + 1
+
+
+def test_wireframe_with_a_separate_width():
+    m = cube()
+    wireframe(m, 0.1, width=0.3)
+    assert summary(m) == ((48, 120, 64), {3: 16, 4: 48}, 5)
+    outer = m.positions_view()[:24]
+    assert np.isclose(np.abs(outer).min(), 0.85)
+    with pytest.raises(DLFLError):
+        wireframe(cube(), 0.1, width=0.0)

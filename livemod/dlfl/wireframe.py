@@ -230,8 +230,13 @@ def wireframe_inner_positions(a: MeshArrays, front: np.ndarray, thickness: float
     return v0 - thickness * _unit(np.cross(_unit(n2), _unit(n4)))
 
 
-def wireframe(mesh: Mesh, thickness: float = 0.1, split: bool = True) -> None:
+def wireframe(
+    mesh: Mesh, thickness: float = 0.1, split: bool = True, *, width: float | None = None
+) -> None:
     """TopMod's ``makeWireframe(t, split)`` (API default 0.1, GUI 0.25).
+
+    With ``width``, TopMod's ``makeWireframe2(t, width, split)``: the corners are
+    cut by ``width`` and the crust is ``thickness`` deep.
 
     Modified corner cutting at ``thickness``, then (with ``split``) TopMod's
     ``splitValence2Vertices(-1)`` where the cut left valence-2 vertices, then
@@ -242,7 +247,9 @@ def wireframe(mesh: Mesh, thickness: float = 0.1, split: bool = True) -> None:
         DLFLError: ``thickness`` not positive, point-spheres, self-loops; the
             mesh is unchanged.
     """
-    cut = corner_cut_arrays(mesh_arrays(mesh), thickness)
+    if not np.isfinite(thickness) or thickness <= 0:
+        raise DLFLError(f"thickness must be a positive number, got {thickness}")
+    cut = corner_cut_arrays(mesh_arrays(mesh), thickness if width is None else width)
     a = _arrays_of(cut)
     front = np.zeros(len(a.face_ids), bool)
     front[: cut.num_front] = True
