@@ -131,10 +131,13 @@ def _corner_cut_faces(mesh: Mesh, t: Topology, positions: np.ndarray) -> None:
 
 def _loop_edge_points(t: Topology) -> np.ndarray:
     a, b = t.edge_corners[:, 0], t.edge_corners[:, 1]
-    p, cv = t.pos, t.cv
+    p, cv, prv = t.pos, t.cv, t.prv
     ends = p[cv[a]] + p[cv[b]]
-    wings = (p[cv[t.prv[a]]] + p[cv[t.nxt[t.nxt[a]]]]
-             + p[cv[t.prv[b]]] + p[cv[t.nxt[t.nxt[b]]]])
+    if len(t.sizes) and t.sizes.min() == t.sizes.max() == 3:
+        # triangles: prev and next-next are the same opposite corner
+        return 0.375 * ends + 0.125 * (p[cv[prv[a]]] + p[cv[prv[b]]])
+    nxt2 = t.nxt[t.nxt]
+    wings = p[cv[prv[a]]] + p[cv[nxt2[a]]] + p[cv[prv[b]]] + p[cv[nxt2[b]]]
     return 0.375 * ends + 0.0625 * wings
 
 
