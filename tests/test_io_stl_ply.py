@@ -154,3 +154,24 @@ def test_a_save_that_fails_midway_leaves_the_old_file(
     assert path.read_bytes() == before
     assert os.listdir(tmp_path) == [path.name]
     assert obj_module.atomic_write is failing
+
+
+@pytest.mark.parametrize("points", [0, 1, 3])
+def test_every_format_writes_point_clouds_and_empty_meshes(points: int, tmp_path: Path) -> None:
+    from livemod.dlfl import validate
+    from livemod.dlfl.io import load_mesh
+
+    mesh = Mesh()
+    for i in range(points):
+        mesh.create_vertex((i, 0.5, -i))
+    for ext in ("obj", "dlfl", "stl", "ply"):
+        save_mesh(mesh, tmp_path / f"cloud.{ext}")
+    for ext in ("obj", "dlfl"):
+        again = load_mesh(tmp_path / f"cloud.{ext}")
+        validate(again)
+        assert again.counts() == (points, 0, points)
+        assert np.array_equal(again.positions_view(), mesh.positions_view())
+    _, triangles = read_stl(tmp_path / "cloud.stl")
+    assert len(triangles) == 0
+    header, positions, faces = read_ply(tmp_path / "cloud.ply")
+    assert len(positions) == points and faces == []

@@ -295,6 +295,8 @@ def dlfl_bytes(mesh: Mesh, mtl_name: str = "mesh", *, reverse: bool = False) -> 
 
 def _corner_lines(a: MeshArrays) -> bytes:
     """``fv <v> [nx ny nz] [0 0] `` per corner, with its face's normal (6 decimals)."""
+    if len(a.corner_vertex) == 0:
+        return b""
     normals = np.round(face_normals(a), 6)[a.corner_face] + 0.0  # + 0.0 drops -0.0
     fields = format_floats(normals.ravel()).reshape(len(normals), 3, -1)
     return join_columns(len(normals), [

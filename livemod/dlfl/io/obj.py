@@ -340,6 +340,8 @@ def _vertex_text(positions: np.ndarray) -> bytes:
 
 def vertex_lines(positions: np.ndarray, keyword: bytes) -> bytes:
     """Lines ``keyword x y z`` with coordinates that parse back to the same bits."""
+    if len(positions) == 0:
+        return b""
     fields = format_floats(positions.ravel()).reshape(len(positions), 3, -1)
     return join_columns(len(positions), [
         keyword + b" ", fields[:, 0], b" ", fields[:, 1], b" ", fields[:, 2], b"\n",
