@@ -72,24 +72,28 @@ def vertex_rings(a: MeshArrays) -> tuple[np.ndarray, np.ndarray]:
     np.minimum.at(first, a.corner_vertex, np.arange(n))
     is_root = np.zeros(n, bool)
     is_root[first[counts > 0]] = True
-    # distance along vnext to the corner just before the root
-    last = is_root[vnext]
-    succ = np.where(last, np.arange(n), vnext)
+    dist, last = _distance_to_cycle_end(vnext, is_root)
+    size = counts[a.corner_vertex]
+    cycles = np.bincount(a.corner_vertex[last], minlength=len(counts))
+    if (dist >= size).any() or not np.array_equal(cycles, (counts > 0).astype(np.int64)):
+        raise DLFLError("a vertex's corners form several fans; the mesh is not manifold there")
+    order = np.empty(n, np.int64)
+    order[offsets[a.corner_vertex] + (dist + 1) % size] = np.arange(n)
+    return order, offsets
+
+
+def _distance_to_cycle_end(succ: np.ndarray, is_root: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Steps along ``succ`` from each element to the one just before a root, and
+    which elements are those (pointer doubling, O(n log cycle length))."""
+    last = is_root[succ]
+    succ = np.where(last, np.arange(len(succ)), succ)
     dist = (~last).astype(np.int64)
     while True:
         dist += dist[succ]
         jumped = succ[succ]
         if np.array_equal(jumped, succ):
-            break
+            return dist, last
         succ = jumped
-    size = counts[a.corner_vertex]
-    if (dist >= size).any() or not np.array_equal(np.bincount(a.corner_vertex[last],
-                                                              minlength=len(counts)),
-                                                  (counts > 0).astype(np.int64)):
-        raise DLFLError("a vertex's corners form several fans; the mesh is not manifold there")
-    order = np.empty(n, np.int64)
-    order[offsets[a.corner_vertex] + (dist + 1) % size] = np.arange(n)
-    return order, offsets
 
 
 def _cut_points(a: MeshArrays, thickness: float) -> np.ndarray:
