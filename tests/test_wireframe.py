@@ -186,3 +186,19 @@ def test_wireframe_with_a_separate_width():
     assert np.isclose(np.abs(outer).min(), 0.85)
     with pytest.raises(DLFLError):
         wireframe(cube(), 0.1, width=0.0)
+
+
+def test_corner_cut_points_are_half_the_thickness_from_both_edge_lines():
+    from livemod.dlfl.wireframe import corner_cut_arrays
+
+    for shape in (dodecahedron(), icosahedron(), torus(7, 5)):
+        a = mesh_arrays(shape)
+        points = corner_cut_arrays(a, 0.2).positions
+        p = a.positions
+        v0 = p[a.corner_vertex]
+        for nb in (a.corner_next, a.corner_prev):
+            d = p[a.corner_vertex[nb]] - v0
+            d /= np.linalg.norm(d, axis=1, keepdims=True)
+            rel = points - v0
+            dist = np.linalg.norm(rel - np.einsum("ij,ij->i", rel, d)[:, None] * d, axis=1)
+            np.testing.assert_allclose(dist, 0.1, atol=1e-12)
