@@ -247,3 +247,95 @@ def test_catmull_clark_on_an_ngon_is_the_rule():
     nxt = a.corner_next
     r = (0.5 * (a.positions[v] + a.positions[a.corner_vertex[nxt[corners]]])).mean(axis=0)
     assert np.allclose(pos[0], (q + 2 * r) / 3, rtol=1e-9, atol=1e-12)
+
+
+# -- the rules on TopMod's solids, by an independent per-face loop ---------------
+
+SOLIDS = ["tetrahedron", "octahedron", "dodecahedron", "icosahedron"]
+
+
+def _faces_and_points(name: str) -> tuple[Mesh, list[list[int]], np.ndarray]:
+    m = read_obj(OBJS / f"{name}.obj")
+    a = mesh_arrays(m)
+    faces = [a.corner_vertex[a.face_offsets[f]:a.face_offsets[f + 1]].tolist()
+             for f in range(len(a.face_ids))]
+    return m, faces, a.positions
+
+
+def _neighbours(faces: list[list[int]], count: int) -> list[set[int]]:
+    out: list[set[int]] = [set() for _ in range(count)]
+    for face in faces:
+        for i, v in enumerate(face):
+            out[v].add(face[(i + 1) % len(face)])
+            out[v].add(face[i - 1])
+    return out
+
+
+@pytest.mark.parametrize("name", SOLIDS)
+def test_doo_sabin_rule_on_topmod_solids(name):
+    m, faces, p = _faces_and_points(name)
+    expected = []
+    for face in faces:
+        n = len(face)
+        for i in range(n):
+            w = [(3 + 2 * math.cos(2 * math.pi * (i - j) / n)) / (4 * n) for j in range(n)]
+            w[i] = 0.25 + 5 / (4 * n)
+            expected.append(sum(wj * p[v] for wj, v in zip(w, face, strict=True)))
+    assert same_points(run("doo-sabin", m), np.array(expected))
+
+
+@pytest.mark.parametrize("name", SOLIDS)
+def test_catmull_clark_rule_on_topmod_solids(name):
+    m, faces, p = _faces_and_points(name)
+    centroid = [p[face].mean(axis=0) for face in faces]
+    edge_faces: dict[tuple[int, int], list[int]] = {}
+    for f, face in enumerate(faces):
+        for i, v in enumerate(face):
+            edge_faces.setdefault(tuple(sorted((v, face[(i + 1) % len(face)]))), []).append(f)
+    edge_points = [(p[u] + p[w] + centroid[f] + centroid[g]) / 4
+                   for (u, w), (f, g) in edge_faces.items()]
+    vertices = []
+    for v, around in enumerate(_neighbours(faces, len(p))):
+        n = len(around)
+        q = np.mean([centroid[f] for f, face in enumerate(faces) if v in face], axis=0)
+        r = np.mean([(p[v] + p[w]) / 2 for w in around], axis=0)
+        vertices.append((q + 2 * r + (n - 3) * p[v]) / n)
+    assert same_points(run("catmull-clark", m), np.array(vertices), np.array(edge_points),
+                       np.array(centroid))
+
+
+@pytest.mark.parametrize("name", ["tetrahedron", "octahedron", "icosahedron"])
+def test_loop_rule_on_topmod_triangle_solids(name):
+    m, faces, p = _faces_and_points(name)
+    vertices = []
+    for v, around in enumerate(_neighbours(faces, len(p))):
+        n = len(around)
+        beta = (5 / 8 - (3 / 8 + math.cos(2 * math.pi / n) / 4) ** 2) / n
+        vertices.append((1 - n * beta) * p[v] + beta * sum(p[w] for w in around))
+    opposite: dict[tuple[int, int], list[int]] = {}
+    for face in faces:
+        for i in range(3):
+            u, w, o = face[i], face[(i + 1) % 3], face[(i + 2) % 3]
+            opposite.setdefault(tuple(sorted((u, w))), []).append(o)
+    edge_points = [3 / 8 * (p[u] + p[w]) + 1 / 8 * (p[o1] + p[o2])
+                   for (u, w), (o1, o2) in opposite.items()]
+    assert same_points(run("loop", m), np.array(vertices), np.array(edge_points))
+
+
+def test_catmull_clark_rule_on_the_torus():
+    from livemod.dlfl.shapes import torus
+
+    m = torus(8, 6)
+    before = mesh_arrays(m)
+    subdivide(m, "catmull-clark")
+    pos = positions(m)
+    # regular valence-4 quad grid: every new point is an affine combination with
+    # weights summing to 1, and the 8-fold rotation about the axis is kept
+    assert len(pos) == len(before.positions) + 2 * len(before.face_ids) + len(before.face_ids)
+    angle = 2 * math.pi / 8
+    rotation = np.array([[math.cos(angle), -math.sin(angle), 0],
+                         [math.sin(angle), math.cos(angle), 0], [0, 0, 1]])
+    axis_is_z = np.ptp(before.positions[:, 2]) < np.ptp(before.positions[:, 0])
+    if not axis_is_z:
+        rotation = rotation[[0, 2, 1]][:, [0, 2, 1]]
+    assert same_points(pos @ rotation.T, pos)
