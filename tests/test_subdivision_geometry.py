@@ -288,7 +288,7 @@ def test_doo_sabin_rule_on_topmod_solids(name):
 def test_catmull_clark_rule_on_topmod_solids(name):
     m, faces, p = _faces_and_points(name)
     centroid = [p[face].mean(axis=0) for face in faces]
-    edge_faces: dict[tuple[int, int], list[int]] = {}
+    edge_faces: dict[tuple[int, ...], list[int]] = {}
     for f, face in enumerate(faces):
         for i, v in enumerate(face):
             edge_faces.setdefault(tuple(sorted((v, face[(i + 1) % len(face)]))), []).append(f)
@@ -312,7 +312,7 @@ def test_loop_rule_on_topmod_triangle_solids(name):
         n = len(around)
         beta = (5 / 8 - (3 / 8 + math.cos(2 * math.pi / n) / 4) ** 2) / n
         vertices.append((1 - n * beta) * p[v] + beta * sum(p[w] for w in around))
-    opposite: dict[tuple[int, int], list[int]] = {}
+    opposite: dict[tuple[int, ...], list[int]] = {}
     for face in faces:
         for i in range(3):
             u, w, o = face[i], face[(i + 1) % 3], face[(i + 2) % 3]
