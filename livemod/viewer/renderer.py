@@ -151,6 +151,7 @@ class _MeshGPU:
             self.selected_lines = None
 
     def release(self) -> None:
+        """Free every GL object of this mesh."""
         self._release_selected_lines()
         for obj in (self.face_vao, self.edge_vao, self.point_vao, self.positions,
                     self.triangles, self.lines, self.triangle_face, self.face_flags,
