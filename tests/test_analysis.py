@@ -1,0 +1,99 @@
+"""Tests of livemod.dlfl.analysis: normals, centroids, bounds, components, genus."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from livemod.dlfl import (
+    Mesh,
+    bounds,
+    component_genera,
+    euler_characteristic,
+    face_centroids,
+    face_normals,
+    face_size_histogram,
+    genus,
+    num_components,
+    summarize,
+    vertex_normals,
+)
+from livemod.dlfl.analysis import (
+    component_of_vertices,
+    corner_normals,
+    face_areas,
+    face_centroid,
+    face_normal,
+    polygon_normal,
+)
+from tests.meshes import CUBE_OUTWARD, cube, path_face, tetrahedron, torus, triangle, two_cubes
+
+
+def test_two_cubes_are_genus_zero_each():
+    m = two_cubes()
+    assert num_components(m) == 2
+    assert component_genera(m) == [0, 0]
+    assert genus(m) == 0  # not TopMod's 1 - (V - E + F) / 2 = -1
+    assert euler_characteristic(m) == 4
+
+
+def test_torus_and_handles():
+    assert component_genera(torus(6, 4)) == [1]
+    m = cube()
+    m.insert_edge(0, 4)
+    assert genus(m) == 1
+    m2 = two_cubes()
+    m2.insert_edge(0, 4)  # a handle on the first cube only
+    assert component_genera(m2) == [1, 0]
+
+
+def test_point_spheres_are_components():
+    m = cube()
+    m.create_vertex((9.0, 9.0, 9.0))
+    vlab, flab = component_of_vertices(m)
+    assert vlab.tolist() == [0] * 8 + [1]
+    assert flab.tolist() == [0] * 6 + [1]
+    assert component_genera(m) == [0, 0]
+    assert num_components(Mesh()) == 0 and component_genera(Mesh()) == []
+
+
+def test_cube_normals_point_outward():
+    normals = face_normals(cube())
+    np.testing.assert_allclose(normals, CUBE_OUTWARD, atol=1e-12)
+    vn = vertex_normals(cube())
+    np.testing.assert_allclose(vn[6], np.ones(3) / np.sqrt(3))
+    cn = corner_normals(cube())
+    np.testing.assert_allclose(cn[:4], [CUBE_OUTWARD[0]] * 4, atol=1e-12)
+
+
+def test_concave_corner_normal_is_flipped_to_the_face_side():
+    l_shape = np.array([[0, 0, 0], [2, 0, 0], [2, 1, 0], [1, 1, 0], [1, 2, 0], [0, 2, 0]], float)
+    np.testing.assert_allclose(polygon_normal(l_shape), [0, 0, 1], atol=1e-12)
+
+
+def test_degenerate_faces_have_zero_normals():
+    normals = face_normals(path_face())
+    np.testing.assert_allclose(normals, np.zeros((1, 3)))
+    assert polygon_normal(np.zeros((2, 3))).tolist() == [0, 0, 0]
+
+
+def test_centroids_areas_and_bounds():
+    m = cube()
+    np.testing.assert_allclose(face_centroids(m)[1], [0.5, 0.5, 1.0])
+    np.testing.assert_allclose(face_centroid(m, 3), [1.0, 0.5, 0.5])
+    np.testing.assert_allclose(face_areas(m), np.ones(6))
+    np.testing.assert_allclose(face_normal(m, 4), [0, 1, 0])
+    np.testing.assert_allclose(bounds(m), [[0, 0, 0], [1, 1, 1]])
+    np.testing.assert_allclose(bounds(two_cubes()), [[0, 0, 0], [4, 1, 1]])
+    assert bounds(Mesh()).tolist() == [[0, 0, 0], [0, 0, 0]]
+
+
+def test_histogram_and_summary():
+    m = triangle()
+    assert face_size_histogram(m) == {3: 1}
+    assert face_size_histogram(m, holes=True) == {3: 2}
+    s = summarize(tetrahedron())
+    assert (s.vertices, s.edges, s.faces, s.holes, s.genus) == (4, 6, 4, 0, 0)
+    assert s.components == 1 and s.face_sizes == {3: 4}
+    m = cube()
+    m.create_vertex()
+    assert summarize(m).point_spheres == 1 and summarize(m).component_genera == [0, 0]

@@ -1,0 +1,97 @@
+"""Tests of livemod.dlfl.arrays: the dense layout of a mesh."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from livemod.dlfl import Mesh, from_corner_arrays, from_polygons, mesh_arrays, validate
+from tests.meshes import CUBE_FACES, CUBE_POSITIONS, corner_structure, cube, path_face, torus
+
+
+def test_fresh_cube_layout():
+    a = mesh_arrays(cube())
+    assert a.counts == (8, 12, 6)
+    assert a.face_offsets.tolist() == [0, 4, 8, 12, 16, 20, 24]
+    assert a.corner_vertex.reshape(6, 4).tolist() == CUBE_FACES
+    assert a.corner_ids.tolist() == list(range(24))
+    np.testing.assert_array_equal(a.positions, CUBE_POSITIONS)
+    assert a.face_sizes.tolist() == [4] * 6
+    assert not a.face_hole.any()
+
+
+def test_mates_and_edges_are_consistent():
+    a = mesh_arrays(torus(5, 3))
+    has = a.corner_mate >= 0
+    assert has.all()
+    assert np.array_equal(a.corner_mate[a.corner_mate], np.arange(len(a.corner_ids)))
+    assert np.array_equal(a.corner_edge[a.corner_mate], a.corner_edge)
+    # a corner's mate starts where the corner's edge ends
+    assert np.array_equal(a.corner_vertex[a.corner_mate], a.corner_vertex[a.corner_next])
+    ends = a.edge_vertices
+    assert np.array_equal(ends[:, 0], a.corner_vertex[a.edge_corners[:, 0]])
+    assert np.array_equal(a.corner_prev[a.corner_next], np.arange(len(a.corner_ids)))
+
+
+def test_vnext_walks_around_the_vertex():
+    a = mesh_arrays(cube())
+    vn = a.corner_vnext
+    assert np.array_equal(a.corner_vertex[vn], a.corner_vertex)
+    assert np.array_equal(vn[vn[vn]], np.arange(24))  # valence 3 everywhere
+
+
+def test_layout_after_edits_follows_rings_from_heads():
+    m = cube()
+    m.insert_edge(0, 2)
+    m.delete_edge(m.corner_edge(5))
+    m.create_vertex((5.0, 5.0, 5.0))
+    a = mesh_arrays(m)
+    for i, f in enumerate(a.face_ids.tolist()):
+        ring = a.corner_ids[a.face_offsets[i]:a.face_offsets[i + 1]].tolist()
+        assert ring == m.face_corners(f)
+    assert a.vertex_ids.tolist() == m.vertex_ids().tolist()
+    assert (a.corner_edge < 0).sum() == 1  # the point-sphere
+
+
+def test_permuted_ids_in_a_full_table_are_laid_out_by_ring():
+    # regression: every slot live and no free slot, but ids no longer in slot order
+    m = path_face()
+    # a sequence found by the property tests: corners 16 and 17 end up in slots 1, 3
+    m.delete_edge(0, cleanup=False)
+    m.insert_edge(0, 3)
+    m.delete_edge(1, cleanup=False)
+    m.insert_edge(m.corner_next(0), 2)
+    assert m._c.moved and m._c.n - len(m._c.free) == 4
+    a = mesh_arrays(m)
+    for i, f in enumerate(a.face_ids.tolist()):
+        assert a.corner_ids[a.face_offsets[i]:a.face_offsets[i + 1]].tolist() == m.face_corners(f)
+
+
+def test_round_trip_through_from_corner_arrays():
+    m = torus(4, 4)
+    m.insert_edge(0, 2)
+    m.subdivide_edge(3, 3)
+    a = mesh_arrays(m)
+    rebuilt = from_corner_arrays(a.positions, a.face_offsets, a.corner_vertex, a.corner_mate,
+                                 a.face_hole)
+    validate(rebuilt)
+    b = mesh_arrays(rebuilt)
+    for name in ("positions", "face_offsets", "corner_vertex", "corner_mate", "face_hole"):
+        assert np.array_equal(getattr(a, name), getattr(b, name)), name
+
+
+def test_round_trip_through_the_soup_builder():
+    m = cube()
+    m.insert_edge(0, 2)
+    a = mesh_arrays(m)
+    faces = [a.corner_vertex[a.face_offsets[i]:a.face_offsets[i + 1]].tolist()
+             for i in range(len(a.face_ids))]
+    again = from_polygons(a.positions, faces)
+    assert corner_structure(again)[1:] == corner_structure(from_polygons(a.positions, faces))[1:]
+    assert mesh_arrays(again).counts == (8, 13, 7)
+
+
+def test_empty_mesh():
+    a = mesh_arrays(Mesh())
+    assert a.counts == (0, 0, 0)
+    assert a.face_offsets.tolist() == [0]
+    assert a.edge_corners.shape == (0, 2)
