@@ -32,7 +32,8 @@ def declared_parameters(script: str | Path) -> dict[str, ParamSpec]:
         tree = ast.parse(source, filename=str(path))
     except SyntaxError as exc:
         raise DLFLError(f"{path}:{exc.lineno}: syntax error: {exc.msg}") from None
-    calls = [node for node in ast.walk(tree) if _is_param_call(node)]
+    calls = [node for node in ast.walk(tree)
+             if isinstance(node, ast.Call) and _is_param_call(node)]
     calls.sort(key=lambda node: (node.lineno, node.col_offset))
     literal = [_literal_arguments(call) for call in calls]
     if all(args is not None for args in literal):
