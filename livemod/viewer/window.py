@@ -143,6 +143,9 @@ class LiveViewer(mglw.WindowConfig):
         self.waiting = False
         if result.arrays is not None and result.arrays is not self.renderer.arrays:
             self._upload(result.arrays, result.preview)
+        elif result.arrays is None and result.error is None:
+            self.renderer.set_mesh(None)  # the script ended with no mesh: show none
+            self.genus = None
         elif result.preview is not None and result.preview is not self.renderer.preview:
             self.renderer.set_preview(result.preview)
         if first_error:
