@@ -11,6 +11,7 @@ each stage in one vectorized pass over corner arrays (see :mod:`.rind`).
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 import numpy as np
@@ -303,88 +304,66 @@ def _split_valence2(work: Mesh, a: MeshArrays, front: np.ndarray) -> np.ndarray:
 # -- columns ------------------------------------------------------------------
 
 
-def column_rings(mesh: Mesh, thickness: float, segments: int) -> dict[tuple[int, int], np.ndarray]:
-    """``(vertex, edge) -> (segments, 3)`` ring of points around each edge end.
+def column_rings(a: MeshArrays, thickness: float, segments: int) -> np.ndarray:
+    """``(C, segments, 3)`` the ring of points around each corner's edge, at its vertex.
 
     TopMod's ``createWireframeWithSegments`` placement: at a vertex the rings sit
     at one axial distance ``L`` beyond every ``t / tan(theta/2) + |cos theta| t``
     (``theta`` the angle between two of its edges, plus ``0.001 t``), radius
-    ``t``; the first point lies toward the mean of the normals of the two faces
-    beside the edge, the others follow at steps of ``2 pi / segments`` about the
-    edge (TopMod stepped by ``2 * 3.15 / segments``, a QUIRK livemod fixes).
+    ``t``; the first point lies toward the sum of the two corner normals at the
+    vertex in the faces beside the edge (a hole face's left out; any
+    perpendicular when nothing is left), the others follow at steps of
+    ``2 pi / segments`` about the edge (TopMod stepped by ``2 * 3.15 / segments``,
+    a QUIRK livemod fixes).
+
+    Raises:
+        DLFLError: two edges at a vertex point the same way.
     """
-    rings: dict[tuple[int, int], np.ndarray] = {}
-    for v in mesh.vertex_ids().tolist():
-        corners = mesh.vertex_corners(v)
-        origin = mesh.position(v)
-        axes = [_edge_axis(mesh, c) for c in corners]
-        length = _joint_length(axes, thickness) + 1e-4
-        for c, axis in zip(corners, axes, strict=True):
-            start = _ring_start(mesh, c, axis, len(corners))
-            rings[(v, mesh.corner_edge(c))] = _ring(origin, axis, start, length, thickness,
-                                                    segments)
-    return rings
-
-
-def _edge_axis(mesh: Mesh, corner: int) -> np.ndarray:
-    """Unit vector along ``corner``'s edge, away from its vertex."""
-    here = mesh.position(mesh.corner_vertex(corner))
-    there = mesh.position(mesh.corner_vertex(mesh.corner_next(corner)))
-    return np.asarray(_unit(there - here))
-
-
-def _joint_length(axes: list[np.ndarray], t: float) -> float:
-    """How far along its edges a vertex's rings must sit to stay clear of each other."""
-    if len(axes) < 2:
-        return 0.0
-    length = 0.0
-    for i, a1 in enumerate(axes):
-        for a2 in axes[i + 1:]:
-            cos = float(np.clip(a1 @ a2, -1.0, 1.0))
-            half = np.arccos(cos) / 2
-            if half < 1e-9:
-                raise DLFLError("two edges at one vertex point the same way; no column fits")
-            length = max(length, t / np.tan(half) + abs(cos) * t + 0.001 * t)
-    return length
-
-
-def _ring_start(mesh: Mesh, corner: int, axis: np.ndarray, valence: int) -> np.ndarray:
-    """Direction of a ring's first point: the mean of the corner normals of the
-    faces on both sides of the edge (TopMod); across a boundary, where a hole
-    face faces the other way, the real face's alone; else any perpendicular."""
-    if valence > 1:
-        side0, side1 = mesh.edge_corners(mesh.corner_edge(corner))
-        # the same vertex's corner in the face on the other side of the edge
-        other = mesh.corner_next(side1 if side0 == corner else side0)
-        candidates = [c for c in (corner, other) if not mesh.is_hole(mesh.corner_face(c))]
-        start = sum((_corner_normal(mesh, c) for c in candidates), np.zeros(3))
-        if np.linalg.norm(start - (start @ axis) * axis) > 1e-9:
-            return start
-    helper = np.array([1.0, 0.0, 0.0])
-    if abs(abs(float(axis @ helper)) - 1.0) < 1e-12:
-        helper = np.array([0.0, 1.0, 0.0])
-    return np.asarray(np.cross(axis, helper))
-
-
-def _corner_normal(mesh: Mesh, corner: int) -> np.ndarray:
-    here = mesh.position(mesh.corner_vertex(corner))
-    nxt = mesh.position(mesh.corner_vertex(mesh.corner_next(corner)))
-    prv = mesh.position(mesh.corner_vertex(mesh.corner_prev(corner)))
-    return np.asarray(_unit(np.cross(nxt - here, prv - here)))
-
-
-def _ring(origin: np.ndarray, axis: np.ndarray, start: np.ndarray, length: float,
-          radius: float, segments: int) -> np.ndarray:
-    """``(segments, 3)`` points at ``length`` along ``axis``, radius ``radius``,
-    the first toward ``start``, turning right-handed about ``axis``."""
-    u = start - (start @ axis) * axis
-    if np.linalg.norm(u) < 1e-12:
-        raise DLFLError("a column ring has no direction to start from (flat, folded faces)")
-    u = _unit(u)
+    p, cv = a.positions, a.corner_vertex
+    axis = _unit(p[cv[a.corner_next]] - p[cv])
+    length = _joint_lengths(a, axis, thickness)[cv] + 1e-4
+    u = _ring_starts(a, axis)
     w = np.cross(axis, u)
     angle = 2 * np.pi * np.arange(segments) / segments
-    return origin + length * axis + radius * (np.cos(angle)[:, None] * u
-                                              + np.sin(angle)[:, None] * w)
+    centre = p[cv] + length[:, None] * axis
+    return centre[:, None, :] + thickness * (np.cos(angle)[None, :, None] * u[:, None, :]
+                                             + np.sin(angle)[None, :, None] * w[:, None, :])
+
+
+def _joint_lengths(a: MeshArrays, axis: np.ndarray, t: float) -> np.ndarray:
+    """``(V,)`` how far along its edges each vertex's rings must sit to clear each other."""
+    order, offsets = vertex_rings(a)
+    valence = np.diff(offsets)
+    width = int(valence.max())
+    slot = np.arange(width)
+    valid = slot[None, :] < valence[:, None]
+    idx = np.where(valid, offsets[:-1, None] + slot[None, :], 0)
+    axes = axis[order[idx]]
+    cos = np.clip(np.einsum("vid,vjd->vij", axes, axes), -1.0, 1.0)
+    pair = valid[:, :, None] & valid[:, None, :] & ~np.eye(width, dtype=bool)[None]
+    half = np.arccos(cos) / 2
+    if (pair & (half < 1e-9)).any():
+        raise DLFLError("two edges at one vertex point the same way; no column fits")
+    with np.errstate(divide="ignore", invalid="ignore"):
+        need = t / np.tan(np.where(pair, half, 1.0)) + np.abs(cos) * t + 0.001 * t
+    return np.where(pair, need, 0.0).max(axis=(1, 2), initial=0.0)
+
+
+def _ring_starts(a: MeshArrays, axis: np.ndarray) -> np.ndarray:
+    """``(C, 3)`` unit direction of each ring's first point, perpendicular to ``axis``."""
+    p, cv, nxt, prv = a.positions, a.corner_vertex, a.corner_next, a.corner_prev
+    raw = _unit(np.cross(p[cv[nxt]] - p[cv], p[cv[prv]] - p[cv]))
+    raw[a.face_hole[a.corner_face]] = 0.0
+    other = nxt[a.corner_mate]  # the same vertex's corner across the edge
+    start = raw + raw[other]
+    start -= np.einsum("ij,ij->i", start, axis)[:, None] * axis
+    weak = np.linalg.norm(start, axis=1) <= 1e-9
+    helper = np.zeros((int(weak.sum()), 3))
+    along_x = np.abs(np.abs(axis[weak, 0]) - 1.0) < 1e-12
+    helper[~along_x, 0] = 1.0
+    helper[along_x, 1] = 1.0
+    start[weak] = np.cross(axis[weak], helper)
+    return _unit(start)
 
 
 def convex_hull_faces(points: np.ndarray, tolerance: float = 1e-9) -> list[list[int]]:
@@ -401,23 +380,30 @@ def convex_hull_faces(points: np.ndarray, tolerance: float = 1e-9) -> list[list[
     if n < 4:
         raise DLFLError(f"a convex hull needs at least four points, got {n}")
     scale = float(np.ptp(points, axis=0).max()) or 1.0
-    i, j, k = (np.array(x) for x in zip(*_triples(n), strict=True))
+    i, j, k = _triple_indices(n)
     normals = np.cross(points[j] - points[i], points[k] - points[i])
     good = np.linalg.norm(normals, axis=1) > 1e-12 * scale * scale
     normals = _unit(normals[good])
-    base = points[i[good]]
-    dist = np.einsum("fpk,fk->fp", points[None, :, :] - base[:, None, :], normals)
+    dist = points @ normals.T - np.einsum("fk,fk->f", points[i[good]], normals)
     eps = tolerance * scale
-    outward = (dist <= eps).all(axis=1)
-    inward = (dist >= -eps).all(axis=1)
-    faces: dict[frozenset[int], np.ndarray] = {}
-    for f in np.flatnonzero(outward | inward):
-        normal = normals[f] if outward[f] else -normals[f]
-        on_plane = frozenset(np.flatnonzero(np.abs(dist[f]) <= eps).tolist())
-        faces.setdefault(on_plane, normal)
-    if not faces or any(len(s) == n for s in faces):
+    outward = (dist <= eps).all(axis=0)
+    support = outward | (dist >= -eps).all(axis=0)
+    # one face per distinct set of points on a supporting plane
+    on_plane = (np.abs(dist[:, support]) <= eps).T
+    _, first = np.unique(np.packbits(on_plane, axis=1), axis=0, return_index=True)
+    sign = np.where(outward[support], 1.0, -1.0)[:, None]
+    face_normals = (normals[support] * sign)[first]
+    members = [np.flatnonzero(row).tolist() for row in on_plane[first]]
+    if not members or any(len(m) == n for m in members):
         raise DLFLError("the points are all coplanar; they have no convex hull")
-    return [_ccw(points, sorted(s), normal) for s, normal in faces.items()]
+    return [_ccw(points, m, nrm) for m, nrm in zip(members, face_normals, strict=True)]
+
+
+@functools.lru_cache(maxsize=64)
+def _triple_indices(n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Every ``i < j < k`` below ``n``, as three index arrays."""
+    i, j, k = np.array(_triples(n)).T
+    return i, j, k
 
 
 def _triples(n: int) -> list[tuple[int, int, int]]:
@@ -452,17 +438,14 @@ def columns(mesh: Mesh, thickness: float = 0.25, segments: int = 4) -> None:
             self-loops, or rings that do not clear each other; the mesh is unchanged.
     """
     _check_columns_input(mesh, thickness, segments)
-    rings = column_rings(mesh, thickness, segments)
-    index = {key: k for k, key in enumerate(rings)}
-    points = np.concatenate(list(rings.values()))
+    a = mesh_arrays(mesh)
+    points = column_rings(a, thickness, segments).reshape(-1, 3)
+    order, offsets = vertex_rings(a)
     polygons: list[list[int]] = []
-    for v in mesh.vertex_ids().tolist():
-        keys = [(v, e) for e in mesh.vertex_edges(v)]
-        polygons.extend(_joint(points, [index[k] * segments for k in keys], segments))
-    for e in mesh.edge_ids().tolist():
-        u, w = mesh.edge_vertices(e)
-        polygons.extend(_tube(points, index[(u, e)] * segments, index[(w, e)] * segments,
-                              segments))
+    for v in range(len(a.vertex_ids)):
+        ring = order[offsets[v]:offsets[v + 1]]
+        polygons.extend(_joint(points, (ring * segments).tolist(), segments))
+    polygons.extend(_tubes(points, a.edge_corners * segments, segments).tolist())
     from .build import from_polygons
 
     mesh.replace_with(from_polygons(points, polygons, first_ids=mesh.next_ids()))
@@ -496,12 +479,18 @@ def _joint(points: np.ndarray, starts: list[int], segments: int) -> list[list[in
     return joint
 
 
-def _tube(points: np.ndarray, a: int, b: int, segments: int) -> list[list[int]]:
-    """Quads joining ring ``a`` (turning one way) to ring ``b`` (the other way),
-    at the rotation that pairs the closest points."""
-    i = np.arange(segments)
-    costs = [np.linalg.norm(points[a + i] - points[b + (k - i) % segments], axis=1).sum()
-             for k in range(segments)]
-    k = int(np.argmin(costs))
-    return [[a + j, a + (j + 1) % segments, b + (k - j - 1) % segments, b + (k - j) % segments]
-            for j in range(segments)]
+def _tubes(points: np.ndarray, starts: np.ndarray, segments: int) -> np.ndarray:
+    """``(E * segments, 4)`` quads joining, per edge, ring ``starts[:, 0]`` (turning
+    one way) to ring ``starts[:, 1]`` (the other way) at the rotation that pairs
+    the closest points (TopMod's ``connectFaces`` with closest corners)."""
+    j = np.arange(segments)
+    k = np.arange(segments)
+    a0, b0 = starts[:, :1, None], starts[:, 1:, None]
+    # cost[e, k] = sum_j |A[j] - B[(k - j) % s]|
+    pa = points[a0 + j[None, None, :]]
+    pb = points[b0 + (k[None, :, None] - j[None, None, :]) % segments]
+    best = np.linalg.norm(pa - pb, axis=-1).sum(axis=-1).argmin(axis=1)[:, None]
+    a, b = starts[:, :1], starts[:, 1:]
+    quads = np.stack([a + j, a + (j + 1) % segments, b + (best - j - 1) % segments,
+                      b + (best - j) % segments], axis=-1)
+    return quads.reshape(-1, 4)
