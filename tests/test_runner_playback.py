@@ -205,3 +205,23 @@ def test_without_a_snapshot_budget_stepping_back_replays():
     finally:
         live.close()
         assert live.join(10)
+
+
+@pytest.mark.timeout(60)
+def test_resume_after_pausing_a_play_plays_on(session):
+    session.start()
+    ended = next_result(session, is_ok)
+    session.play(5.0)
+    held = next_result(session, paused_at(1))
+    session.pause()
+    late = drain(session, quiet=0.6)  # at most the step that was already due
+    assert len(late) <= 1
+    held = late[-1] if late else held
+    assert drain(session, quiet=0.5) == []  # paused: the play does not go on
+    session.resume()
+    result = next_result(session, lambda r: r.status == "paused" and r.step_index > held.step_index)
+    assert result.run_id == held.run_id
+    session.run_to_end()
+    finished = next_result(session, is_ok)
+    assert [(s.label, s.counts) for s in finished.steps] == [
+        (s.label, s.counts) for s in ended.steps]

@@ -100,7 +100,8 @@ class LiveSession:
         self._parameters = dict(parameters or {})
         self._selection: Selection | None = None
         self._playback = Playback()
-        self._rate: float | None = None
+        self._rate: float | None = None  # steps per second while playing
+        self._paused_rate: float | None = None  # the rate to resume after pause()
         self._snapshots = SnapshotCache(snapshot_budget)
         self._shown: int | None = None  # a cached step shown behind the live run
         self._lock = threading.RLock()
@@ -182,7 +183,7 @@ class LiveSession:
     def pause(self) -> None:
         """Pause the running run at its next step (later runs pause at the same place)."""
         with self._lock:
-            self._rate = None
+            self._paused_rate, self._rate = self._rate or self._paused_rate, None
             run = self._live_run()
             if self._shown is not None:
                 self._playback.pause_at(self._shown)
@@ -196,7 +197,7 @@ class LiveSession:
     def resume(self) -> None:
         """Go on: playing again at the last rate if playing was paused, else to the end."""
         with self._lock:
-            rate = self._rate
+            rate = self._rate or self._paused_rate
         if rate is not None:
             self.play(rate)
         else:
@@ -205,7 +206,7 @@ class LiveSession:
     def run_to_end(self) -> None:
         """Let the current and later runs go to the end without pausing."""
         with self._lock:
-            self._rate, self._shown = None, None
+            self._rate, self._paused_rate, self._shown = None, None, None
             self._playback.run_to_end()
 
     def step_forward(self) -> None:
