@@ -444,8 +444,10 @@ def test_wrong_kind_of_argument_is_refused(bad):
 
 def test_numpy_integers_are_accepted_as_ids():
     m = cube()
-    e = m.insert_edge(np.int64(0), np.int32(2))
-    assert m.delete_edge(np.int64(e))
+    first, second, third = np.array([0, 2, 12])  # numpy scalars, as from id arrays
+    e = m.insert_edge(first, second)
+    assert e == third
+    assert m.delete_edge(third) == [0]
     validate(m)
 
 

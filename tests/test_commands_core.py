@@ -1,0 +1,265 @@
+"""Tests of livemod.dlfl.commands.core: the thesis's core commands on a scene."""
+
+from __future__ import annotations
+
+import builtins
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import livemod.dlfl as dlfl
+from livemod.dlfl import DLFLError, Scene, use_scene, validate
+from livemod.dlfl.commands.core import (
+    centroid,
+    collapseEdge,
+    cornerInfo,
+    corners,
+    cornerWalk,
+    createFace,
+    createVertex,
+    deleteEdge,
+    edgeInfo,
+    edges,
+    faceInfo,
+    faces,
+    freezeTrans,
+    getCorner,
+    insertEdge,
+    kill,
+    load,
+    move,
+    next,  # noqa: A004  (the thesis's name shadows the built-in on purpose)
+    prev,
+    printObject,
+    removeVertex,
+    restoreCorner,
+    save,
+    saveCorner,
+    scale,
+    step,
+    subdivideEdge,
+    switch,
+    translate,
+    vertexEdges,
+    vertexInfo,
+    verts,
+    walk,
+)
+from tests.meshes import cube
+
+OBJS = Path(__file__).resolve().parents[2] / "shared" / "data" / "topmod-objs"
+
+
+@pytest.fixture()
+def scene():
+    with use_scene(Scene()) as bound:
+        yield bound
+
+
+@pytest.fixture()
+def cube_scene(scene):
+    scene.add(cube(), "cube")
+    return scene
+
+
+def counts(scene: Scene) -> tuple[int, int, int]:
+    validate(scene.mesh)
+    return scene.mesh.counts()
+
+
+def test_thesis_figure_24_triangle(scene):
+    (c1, obj), (c2, _), (c3, _) = (createVertex(p) for p in ((0, 0, 0), (1, 0, 0), (0, 1, 0)))
+    assert obj == 0 and counts(scene) == (3, 0, 3)
+    _, a, b, _, _ = insertEdge(c1, c2)
+    assert counts(scene) == (3, 1, 2)
+    _, p3, _, _, _ = insertEdge(c3, b)
+    assert counts(scene) == (3, 2, 1)
+    insertEdge(p3, (p3[0], c1[1]))
+    assert counts(scene) == (3, 3, 2)
+    assert sorted(len(walk(f)[0]) for f in faces()) == [3, 3]
+
+
+def test_thesis_figure_20_face_loop(cube_scene, capsys):
+    for f in faces():
+        print(f)
+    assert capsys.readouterr().out.split() == [str(f) for f in range(6)]
+
+
+def test_star_import_gives_the_commands():
+    names: dict[str, object] = {}
+    exec("from livemod.dlfl import *", names)
+    for name in ("createVertex", "insertEdge", "faces", "walk", "next", "printObject", "step"):
+        assert name in names
+    assert "Mesh" not in names and "np" not in names
+    assert set(dlfl.commands.core.__all__) <= set(names)
+
+
+def test_insert_edge_returns_its_corners_in_edge_info_order(cube_scene):
+    e, ca, cb, cc, cd = insertEdge((0, 0), (0, 2))
+    assert counts(cube_scene) == (8, 13, 7)
+    assert ca[1] == 0 and cb[1] == 2
+    assert cc == next(ca) and cd == next(cb)
+    assert cc[1] == 2 and cd[1] == 0
+    info = edgeInfo(e)
+    assert [info[k] for k in ("cornerA", "cornerB", "cornerC", "cornerD")] == [ca, cb, cc, cd]
+    assert info["length"] == pytest.approx(np.sqrt(2))
+    np.testing.assert_allclose(info["midpoint"], [0.5, 0.5, 0.0])
+
+
+def test_ambiguous_corner_names_the_corner_ids(cube_scene):
+    insertEdge((0, 0), (1, 4))  # top to bottom: the merged face visits 0 and 4 twice
+    (face,) = {f for f in faces() if 0 in walk(f)[0] and walk(f)[0].count(0) == 2}
+    ids = [c for c in cube_scene.mesh.face_corners(face) if cube_scene.mesh.corner_vertex(c) == 0]
+    with pytest.raises(DLFLError, match=f"ambiguous.*{ids[0]}, {ids[1]}"):
+        insertEdge((face, 0), (2, 1))
+    # a corner a command returned carries its id and stays usable
+    first = [c for c in cornerWalk(face) if c[1] == 0][0]
+    assert next(first)[0] == face
+
+
+def test_remove_vertex(scene):
+    (corner, _) = createVertex((1, 2, 3))
+    removeVertex(corner[1])
+    assert counts(scene) == (0, 0, 0)
+    (corner, _) = createVertex((1, 2, 3))
+    removeVertex((corner[1], corner[0]))  # TopMod's (vertexid, faceid) form
+    assert counts(scene) == (0, 0, 0)
+
+
+def test_remove_vertex_with_edges_is_refused(cube_scene):
+    with pytest.raises(DLFLError, match="only a point-sphere"):
+        removeVertex(0)
+    assert counts(cube_scene) == (8, 12, 6)
+
+
+def test_delete_subdivide_collapse(cube_scene):
+    e = cube_scene.mesh.corner_edge(0)
+    assert len(subdivideEdge(e)) == 1 and counts(cube_scene) == (9, 13, 6)
+    assert len(subdivideEdge(3, e)) == 2 and counts(cube_scene) == (11, 15, 6)
+    survivor = collapseEdge(e)
+    assert survivor == 0 and counts(cube_scene) == (10, 14, 6)
+    assert len(deleteEdge(int(edges()[-1]))) == 1 and counts(cube_scene) == (10, 13, 5)
+    with pytest.raises(DLFLError, match="subdivideEdge takes"):
+        subdivideEdge(1, 2, 3)
+
+
+def test_create_face(scene):
+    front, back = createFace([(0, 0, 0), (1, 0, 0), (0, 1, 0)])
+    assert counts(scene) == (3, 3, 2)
+    assert walk(front)[0] == [walk(back)[0][0], *walk(back)[0][:0:-1]]
+    np.testing.assert_allclose(faceInfo(front)["normal"], [0, 0, 1])
+    np.testing.assert_allclose(faceInfo(back)["normal"], [0, 0, -1])
+
+
+def test_listings_and_walks(cube_scene):
+    assert faces() == tuple(range(6))
+    assert edges() == tuple(range(12)) and verts() == tuple(range(8))
+    assert len(corners()) == 24 and corners()[:4] == ((0, 0), (0, 3), (0, 2), (0, 1))
+    vs, es = walk(1)
+    assert vs == [4, 5, 6, 7] and len(es) == 4
+    assert cornerWalk(1) == [(1, 4), (1, 5), (1, 6), (1, 7)]
+    assert next((1, 7)) == (1, 4) and prev((1, 4)) == (1, 7)
+    assert builtins.next(iter([1, 2])) == next(iter([1, 2]))
+    assert next(iter([]), "done") == "done"
+
+
+def test_holes_are_not_listed_as_faces(scene):
+    scene.add(dlfl.from_polygons([[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 1, 2]]))
+    assert faces() == (0,)
+    assert faceInfo(1)["type"] == "hole"
+
+
+def test_selection(cube_scene):
+    cube_scene.selection = dlfl.Selection(faces=(2, 99), edges=(1,), vertices=(3,),
+                                          corners=(5,))
+    assert faces(True) == (2,) and edges(True) == (1,) and verts(True) == (3,)
+    assert corners(True) == ((1, 5),)
+    cube_scene.selection = dlfl.Selection()
+    assert faces(True) == () and corners(True) == ()
+
+
+def test_get_save_restore_corner(cube_scene):
+    e = cube_scene.mesh.corner_edge(0)
+    assert getCorner(e, 0) == (0, 0)
+    with pytest.raises(DLFLError, match=f"edge {e} does not border face 3"):
+        getCorner(e, 3)
+    cid = saveCorner((0, 3))
+    insertEdge((0, 0), (0, 2))  # face 0 splits; the corner moves on with its id
+    assert restoreCorner(cid)[1] == 3
+    with pytest.raises(DLFLError, match="does not exist"):
+        restoreCorner(10_000)
+
+
+def test_info_commands(cube_scene, capsys):
+    printObject()
+    out = capsys.readouterr().out
+    assert "Number of vertices : 8" in out and "Number of edges : 12" in out
+    assert "Genus : 0" in out
+    info = vertexInfo(6)
+    assert info["valence"] == 3 and info["coords"] == (1, 1, 1) and info["type"] == "normal"
+    assert faceInfo(1)["size"] == 4 and faceInfo(1)["centroid"] == (0.5, 0.5, 1.0)
+    ci = cornerInfo((0, 3))
+    assert (ci["face"], ci["vertex"], ci["id"]) == (0, 3, 1)
+    assert len(vertexEdges(0)) == 3
+    assert centroid() == (0.5, 0.5, 0.5)
+    assert centroid([0, 1]) == (0.5, 0.0, 0.0)
+    with pytest.raises(DLFLError, match="at least one vertex"):
+        centroid([])
+
+
+def test_bad_corner_arguments(cube_scene):
+    with pytest.raises(DLFLError, match="c1 must be a \\(faceid, vertexid\\) tuple"):
+        insertEdge("x", (0, 2))
+    with pytest.raises(DLFLError, match="face 0 has no corner at vertex 6"):
+        insertEdge((0, 6), (0, 2))
+    with pytest.raises(DLFLError, match="face 42 does not exist"):
+        next((42, 0))
+    assert counts(cube_scene) == (8, 12, 6)
+
+
+def test_transforms(cube_scene):
+    translate(1, 2, 3)
+    np.testing.assert_allclose(vertexInfo(0)["coords"], [1, 2, 3])
+    scale((2, 2, 2))  # about the object's origin, now (1, 2, 3)
+    np.testing.assert_allclose(vertexInfo(6)["coords"], [3, 4, 5])
+    translate((0, 0, 0), False)  # absolute: the origin goes back to 0
+    np.testing.assert_allclose(vertexInfo(0)["coords"], [0, 0, 0])
+    move([6], (1, 0, 0))
+    np.testing.assert_allclose(vertexInfo(6)["coords"], [3, 2, 2])
+    move([6], (0, 0, 0), False)
+    np.testing.assert_allclose(vertexInfo(6)["coords"], [0, 0, 0])
+    translate(5, 0, 0)
+    freezeTrans()
+    translate((0, 0, 0), relative=False)  # the frozen placement is the new origin
+    np.testing.assert_allclose(vertexInfo(0)["coords"], [5, 0, 0])
+    with pytest.raises(DLFLError, match="translate takes"):
+        translate(1, 2)
+
+
+def test_step_hook_called_once_per_outermost_command(cube_scene):
+    labels: list[str] = []
+    cube_scene.step_hook = labels.append
+    insertEdge((0, 0), (0, 2))
+    collapseEdge(int(edges()[-1]))  # collapse deletes edges internally: still one step
+    step("checkpoint")
+    faces()
+    assert labels == ["insertEdge", "collapseEdge", "checkpoint"]
+
+
+def test_objects_load_switch_kill(scene, tmp_path):
+    first = load(str(OBJS / "cube.obj"))
+    assert counts(scene) == (8, 12, 6)
+    (_, second) = createVertex((0, 0, 0))
+    assert second == first
+    other = load(str(OBJS / "cube.obj"))
+    assert other != first and scene.current == other
+    deleteEdge(0)
+    assert switch(first) == first and counts(scene) == (9, 12, 7)
+    kill(first)
+    assert scene.current == other and counts(scene) == (8, 11, 5)
+    with pytest.raises(DLFLError, match=f"object {first} does not exist"):
+        switch(first)
+    path = tmp_path / "out.obj"
+    assert save(str(path)) is True
+    assert load(str(path)) != other and counts(scene) == (8, 11, 5)

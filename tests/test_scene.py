@@ -1,0 +1,100 @@
+"""Tests of livemod.dlfl.scene: objects, the current object, steps and binding."""
+
+from __future__ import annotations
+
+import threading
+
+import pytest
+
+from livemod.dlfl import DLFLError, Mesh, Scene, Selection, current_scene, use_scene
+from livemod.dlfl.scene import default_scene, reset_default_scene
+from tests.meshes import cube
+
+
+def test_objects_and_current():
+    s = Scene()
+    assert s.current is None
+    a = s.add(cube(), "a")
+    b = s.add(Mesh(), "b")
+    assert (a, b) == (0, 1) and s.current == b
+    assert s.mesh.counts() == (0, 0, 0)
+    assert s.switch(a) == a and s.mesh.counts() == (8, 12, 6)
+    s.kill(a)
+    assert s.current == b and list(s.objects) == [b]
+    s.kill(b)
+    assert s.current is None
+    assert s.mesh.counts() == (0, 0, 0) and s.current == 2  # created on demand
+
+
+def test_unknown_objects_are_refused():
+    s = Scene()
+    s.add(cube())
+    with pytest.raises(DLFLError, match=r"object 5 does not exist \(objects: 0\)"):
+        s.switch(5)
+    with pytest.raises(DLFLError, match="object '0' does not exist"):
+        s.kill("0")  # type: ignore[arg-type]
+    assert Scene().current_object.mesh.counts() == (0, 0, 0)
+
+
+def test_copy_is_deep():
+    s = Scene()
+    s.add(cube(), "c")
+    s.selection = Selection(faces=(1,))
+    dup = s.copy()
+    s.mesh.insert_edge(0, 2)
+    s.current_object.origin[0] = 4.0
+    assert dup.mesh.counts() == (8, 12, 6)
+    assert dup.current_object.origin[0] == 0.0
+    assert dup.selection.faces == (1,) and dup.objects[0].name == "c"
+    assert dup.add(Mesh()) == 1
+
+
+def test_steps_are_recorded_for_outermost_commands_only():
+    s = Scene()
+    seen: list[str] = []
+    s.step_hook = seen.append
+    with s.command("outer"):
+        with s.command("inner"):
+            pass
+        s.record_step("nested record")
+    s.record_step("plain")
+    assert seen == ["outer", "plain"]
+
+
+def test_failed_command_records_no_step_and_unwinds():
+    s = Scene()
+    seen: list[str] = []
+    s.step_hook = seen.append
+    with pytest.raises(DLFLError), s.command("broken"):
+        raise DLFLError("boom")
+    assert seen == [] and s._command_depth == 0
+    with s.command("after"):
+        pass
+    assert seen == ["after"]
+
+
+def test_selection_is_empty():
+    assert Selection().is_empty()
+    assert not Selection(corners=(3,)).is_empty()
+
+
+def test_use_scene_binds_per_thread():
+    mine = Scene()
+    seen: dict[str, Scene] = {}
+
+    def other_thread() -> None:
+        seen["other"] = current_scene()
+
+    with use_scene(mine):
+        assert current_scene() is mine
+        t = threading.Thread(target=other_thread)
+        t.start()
+        t.join()
+    assert seen["other"] is default_scene()
+    assert current_scene() is default_scene()
+
+
+def test_reset_default_scene():
+    old = default_scene()
+    new = reset_default_scene()
+    assert new is not old and default_scene() is new and new.objects == {}
