@@ -194,7 +194,7 @@ def parse_number_lines(buf: np.ndarray, starts: np.ndarray, want: int) -> tuple[
     is_int = ~is_frac & ~is_exp
     allowed = np.where(is_int, (after == SEP) | (after == DOT) | (after == EXP),
                        np.where(is_frac, (after == SEP) | (after == EXP), after == SEP))
-    bad.append(rs[~allowed | ~is_exp & (re - rs > 18)])
+    bad.append(rs[~allowed])
     rejected = _lines_of(starts, np.concatenate(bad))
     lead = np.flatnonzero(is_int)  # every number starts with its integer run
     first, counts = _per_line(starts, rs[lead])
@@ -229,10 +229,13 @@ def _numbers(scan: _Scan, lead: np.ndarray, is_frac: np.ndarray) -> np.ndarray:
     # the fraction belongs to this number only if just one '.' separates them
     has_frac = is_frac[nxt] & (nxt != lead) & (rs[nxt] == re[lead] + 1)
     frac_val = np.where(has_frac, run_values[nxt], 0)
-    frac_len = np.where(has_frac, np.minimum((re - rs)[nxt], 18), 0)
-    fits = (int_val == 0) | (int_len + frac_len <= 18)
-    mantissa = np.where(fits, int_val * _INT_POW10[frac_len] + frac_val, 0)
-    values, decided = decimal_to_float(mantissa, frac_len)
+    frac_len = np.where(has_frac, (re - rs)[nxt], 0)
+    # below 10**18 a run value is exact (fromstring saturates at 2**63 - 1)
+    fits = (int_val < 10**18) & (frac_val < 10**18) & (frac_len <= 22)
+    fits &= (int_val == 0) | (int_len + frac_len <= 18)
+    scale = _INT_POW10[np.minimum(frac_len, 18)]
+    mantissa = np.where(fits, np.where(int_val == 0, 0, int_val * scale) + frac_val, 0)
+    values, decided = decimal_to_float(mantissa, np.minimum(frac_len, 22))
     values = np.where(scan.buf[rs[lead] - 1] == ord("-"), -values, values)
     mantissa_end = np.where(has_frac, re[nxt], re[lead])
     has_exp = scan.cls(mantissa_end) == EXP  # rare: Python parses these numbers
