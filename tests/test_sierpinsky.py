@@ -62,3 +62,17 @@ def test_bad_input_leaves_the_mesh_unchanged(make):
     with pytest.raises(DLFLError):
         sierpinsky(m)
     assert snapshot(m) == before
+
+
+def test_sculpting_a_mesh_with_self_loops():
+    from livemod.dlfl.rind import rind
+    from livemod.dlfl.sponge import sponge
+    from livemod.dlfl.wireframe import wireframe
+
+    for op, g in ((lambda m: rind(m, [], 0.05), 10), (lambda m: wireframe(m, 0.05), 60 - 20 + 1),
+                  (lambda m: sponge(m, 0.05), 2 * 5 + 32 - 1)):
+        m = cube()
+        sierpinsky(m)
+        op(m)
+        validate(m)
+        assert genus(m) == g

@@ -110,7 +110,8 @@ def check_not_inverted(a: MeshArrays, moved: np.ndarray, what: str) -> None:
     ends = a.corner_vertex[a.edge_corners]
     side_before = a.positions[ends[:, 1]] - a.positions[ends[:, 0]]
     side_after = moved[ends[:, 1]] - moved[ends[:, 0]]
-    flipped = np.einsum("ij,ij->i", side_before, side_after) <= 0
+    length = np.einsum("ij,ij->i", side_before, side_before)
+    flipped = (np.einsum("ij,ij->i", side_before, side_after) <= 1e-9 * length) & (length > 1e-24)
     bad[a.corner_face[a.edge_corners[flipped, 0]]] = True
     if bad.any():
         f = int(a.face_ids[np.flatnonzero(bad)[0]])

@@ -173,10 +173,6 @@ def _check_cut_input(a: MeshArrays, thickness: float) -> None:
     if (a.corner_edge < 0).any():
         v = int(a.vertex_ids[a.corner_vertex[np.flatnonzero(a.corner_edge < 0)[0]]])
         raise DLFLError(f"corner cutting needs a mesh without point-spheres; vertex {v} is one")
-    if (a.edge_corners[:, 0] == a.corner_next[a.edge_corners[:, 1]]).any() and (
-        a.corner_vertex[a.edge_corners[:, 0]] == a.corner_vertex[a.edge_corners[:, 1]]
-    ).any():
-        raise DLFLError("corner cutting cannot cut a self-loop edge")
 
 
 def modified_corner_cut(mesh: Mesh, thickness: float = 0.25) -> list[int]:
@@ -192,8 +188,7 @@ def modified_corner_cut(mesh: Mesh, thickness: float = 0.25) -> list[int]:
         the order of the original faces: the faces :func:`wireframe` punches.
 
     Raises:
-        DLFLError: ``thickness`` not positive, point-spheres, self-loops; the
-            mesh is unchanged.
+        DLFLError: ``thickness`` not positive, point-spheres; the mesh is unchanged.
     """
     cut = corner_cut_arrays(mesh_arrays(mesh), thickness)
     first = mesh.next_ids()
@@ -249,8 +244,7 @@ def wireframe(
     thickness: 48/120/64 (16x3, 48x4), genus 5. The mesh is rebuilt (fresh ids).
 
     Raises:
-        DLFLError: ``thickness`` not positive, point-spheres, self-loops; the
-            mesh is unchanged.
+        DLFLError: ``thickness`` not positive, point-spheres; the mesh is unchanged.
     """
     if not np.isfinite(thickness) or thickness <= 0:
         raise DLFLError(f"thickness must be a positive number, got {thickness}")
