@@ -207,8 +207,8 @@ class MeshOperators(RuleBasedStateMachine):
 # NOSHRINK=1 skips shrinking when hunting bugs with many examples
 PHASES = [Phase.explicit, Phase.reuse, Phase.generate]
 MeshOperators.TestCase.settings = settings(
-    max_examples=int(os.environ.get("LIVEMOD_PROPERTY_EXAMPLES", "40")),
-    stateful_step_count=25,
+    max_examples=int(os.environ.get("LIVEMOD_PROPERTY_EXAMPLES", "800")),
+    stateful_step_count=10,
     deadline=None,
     suppress_health_check=[HealthCheck.too_slow, HealthCheck.filter_too_much],
     phases=PHASES if os.environ.get("NOSHRINK") else [*PHASES, Phase.shrink],
