@@ -183,3 +183,32 @@ def test_rind_of_an_open_grid_is_a_closed_slab():
     g = grid(3, 3)
     rind(g, [int(g.face_ids()[4])], 0.1)
     assert summary(g)[2] == 1
+
+
+def enclosed_volume(mesh):
+    """Signed volume by the divergence theorem (faces fanned from their centroids)."""
+    a = mesh_arrays(mesh)
+    p = a.positions
+    centres = np.zeros((len(a.face_ids), 3))
+    np.add.at(centres, a.corner_face, p[a.corner_vertex])
+    centres /= a.face_sizes[:, None]
+    cross = np.cross(p[a.corner_vertex], p[a.corner_vertex[a.corner_next]])
+    return np.einsum("ij,ij->i", centres[a.corner_face], cross).sum() / 6
+
+
+def test_sculpted_solids_face_outward():
+    from livemod.dlfl.sponge import sponge
+    from livemod.dlfl.wireframe import columns, wireframe
+
+    m = cube()
+    rind(m, [], 0.5)
+    assert np.isclose(enclosed_volume(m), 8 - 1)  # the cube minus its unit hollow
+    ops = [lambda m: rind(m, [TOP], 0.3), lambda m: wireframe(m, 0.1),
+           lambda m: columns(m, 0.1, 6), lambda m: sponge(m, 2 / 3, keep_2gons=False)]
+    for op in ops:
+        m = cube()
+        op(m)
+        assert 0 < enclosed_volume(m) < 8
+    m = cube()
+    sponge(m, 2 / 3, keep_2gons=False)
+    assert np.isclose(enclosed_volume(m), 8 * 20 / 27)  # 20 of the 27 sub-cubes
