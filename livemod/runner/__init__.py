@@ -2,6 +2,22 @@
 
 Never imports moderngl (or anything GL): the viewer drives a
 :class:`LiveSession` and drains its ``results`` queue on its own thread.
+
+What the queue carries (all frozen, numpy arrays read-only and private):
+
+* ``status="ok"``: the script ended; ``arrays`` is its current object,
+  ``step_index`` None. A second result with the same ``run_id`` follows with
+  ``preview`` filled once the smoothed preview is computed.
+* ``status="paused"``: playback stopped after step ``step_index`` (0-based);
+  ``steps`` holds the steps so far.
+* ``status="error"`` / ``"cancelled"`` (the latter only for
+  :meth:`LiveSession.cancel`): ``error`` says where; ``arrays`` is the last good
+  mesh with ``stale=True`` (None if there was none), ``partial`` the mesh as the
+  failed run left it, ``steps`` the steps that finished.
+
+Only the newest run posts; a run superseded by a save posts nothing. Going back
+shows a cached snapshot when one is in the budget, else the script is replayed
+to that step (same text, same seed).
 """
 
 from __future__ import annotations
