@@ -225,3 +225,21 @@ def test_resume_after_pausing_a_play_plays_on(session):
     finished = next_result(session, is_ok)
     assert [(s.label, s.counts) for s in finished.steps] == [
         (s.label, s.counts) for s in ended.steps]
+
+
+@pytest.mark.timeout(60)
+def test_a_storm_of_controls_ends_in_the_straight_result(session):
+    import random as rnd
+
+    _, final = straight_snapshots(CUBE)
+    session.start()
+    chooser = rnd.Random(5)
+    controls = [session.pause, session.resume, session.step_forward, session.step_back,
+                session.reload, lambda: session.goto_step(chooser.randrange(14)),
+                lambda: session.play(50.0), session.cancel]
+    for _ in range(200):
+        chooser.choice(controls)()
+        time.sleep(0.005)
+    session.run_to_end()
+    session.reload()
+    assert same_mesh(next_result(session, lambda r: r.status == "ok").arrays, final)
