@@ -11,9 +11,12 @@ from collections.abc import Callable
 
 import numpy as np
 
+from .analysis import face_centroids
+from .arrays import MeshArrays, mesh_arrays
 from .build import from_polygons
 from .errors import DLFLError
 from .mesh import Mesh
+from .wireframe import vertex_rings
 
 GOLDEN = (1 + 5**0.5) / 2
 
@@ -64,10 +67,7 @@ def icosahedron() -> Mesh:
 
 def dodecahedron() -> Mesh:
     """A regular dodecahedron (20/30/12): the dual of :func:`icosahedron`, on the unit sphere."""
-    ico = icosahedron()
-    from .arrays import mesh_arrays
-
-    a = mesh_arrays(ico)
+    a = mesh_arrays(icosahedron())
     centres = np.zeros((len(a.face_ids), 3))
     np.add.at(centres, a.corner_face, a.positions[a.corner_vertex])
     centres /= np.linalg.norm(centres, axis=1, keepdims=True)
@@ -125,9 +125,6 @@ def _truncated(mesh: Mesh, fraction: float) -> Mesh:
     Each face keeps its place with twice the corners; each vertex becomes a
     polygon of its valence, walked against ``vnext`` so it faces outward.
     """
-    from .arrays import mesh_arrays
-    from .wireframe import vertex_rings
-
     a = mesh_arrays(mesh)
     p = a.positions
     cv, mate = a.corner_vertex, a.corner_mate
@@ -157,25 +154,15 @@ def _on_sphere(positions: np.ndarray) -> np.ndarray:
 
 def _centroid_fan(mesh: Mesh) -> tuple[np.ndarray, list[list[int]]]:
     """Positions and triangles of ``mesh`` with every face fanned from its centroid."""
-    from .arrays import mesh_arrays
-
     a = mesh_arrays(mesh)
     nv = len(a.vertex_ids)
-    centres = face_centroids_of(a)
+    centres = face_centroids(a)
     tris = np.stack([a.corner_vertex, a.corner_vertex[a.corner_next], nv + a.corner_face], 1)
     return np.concatenate([a.positions, centres]), tris.tolist()
 
 
-def face_centroids_of(a: object) -> np.ndarray:
-    """``(F, 3)`` face centroids of a :class:`MeshArrays` (kept local to avoid a cycle)."""
-    from .analysis import face_centroids
-
-    return face_centroids(a)  # type: ignore[arg-type]
-
-
 def _sqrt3_flip(positions: np.ndarray, triangles: list[list[int]]) -> Mesh:
     """Sqrt(3) refinement without smoothing: a centre per triangle, old edges flipped."""
-    from .arrays import mesh_arrays
 
     base = from_polygons(positions, triangles)
     a = mesh_arrays(base)
@@ -187,7 +174,7 @@ def _sqrt3_flip(positions: np.ndarray, triangles: list[list[int]]) -> Mesh:
         np.stack([ends[:, 0], centres[:, 1], centres[:, 0]], 1),
         np.stack([ends[:, 1], centres[:, 0], centres[:, 1]], 1),
     ])
-    return from_polygons(np.concatenate([a.positions, face_centroids_of(a)]), tris)
+    return from_polygons(np.concatenate([a.positions, face_centroids(a)]), tris)
 
 
 def geodesic_dome() -> Mesh:
@@ -209,12 +196,10 @@ def buckminster() -> Mesh:
 
 
 def _dual_on_sphere(mesh: Mesh) -> Mesh:
-    from .arrays import mesh_arrays
-    from .wireframe import vertex_rings
 
     a = mesh_arrays(mesh)
     ring, offsets = vertex_rings(a)
-    return from_polygons(_on_sphere(face_centroids_of(a)), a.corner_face[ring], offsets)
+    return from_polygons(_on_sphere(face_centroids(a)), a.corner_face[ring], offsets)
 
 
 def spherical_cube(divisions: int = 4) -> Mesh:
@@ -255,10 +240,7 @@ def hex_torus(rings: int = 10, sides: int = 5, major: float = 0.87, minor: float
     Raises:
         DLFLError: ``rings`` or ``sides`` below 3.
     """
-    tri = torus(rings, sides, major, minor)
-    from .arrays import mesh_arrays
-
-    a = mesh_arrays(tri)
+    a = mesh_arrays(torus(rings, sides, major, minor))
     # split every quad [a, b, c, d] along a-c
     quads = a.corner_vertex.reshape(-1, 4)
     triangles = np.concatenate([quads[:, [0, 1, 2]], quads[:, [0, 2, 3]]])
@@ -267,12 +249,9 @@ def hex_torus(rings: int = 10, sides: int = 5, major: float = 0.87, minor: float
 
 def _dual(mesh: Mesh) -> Mesh:
     """Dual with vertices at face centroids (not projected)."""
-    from .arrays import mesh_arrays
-    from .wireframe import vertex_rings
-
     a = mesh_arrays(mesh)
     ring, offsets = vertex_rings(a)
-    return from_polygons(face_centroids_of(a), a.corner_face[ring], offsets)
+    return from_polygons(face_centroids(a), a.corner_face[ring], offsets)
 
 
 def hex_refine(mesh: Mesh) -> Mesh:
@@ -283,8 +262,6 @@ def hex_refine(mesh: Mesh) -> Mesh:
     points beside it. F -> F + E, E -> 4E, V -> V + 2E; hexagons stay
     hexagons, so ``donuthexa1`` refines to ``donuthexa3`` in two steps.
     """
-    from .arrays import mesh_arrays
-
     a = mesh_arrays(mesh)
     nv = len(a.vertex_ids)
     inner = _honeycomb_points(a)
@@ -298,13 +275,10 @@ def hex_refine(mesh: Mesh) -> Mesh:
                          np.concatenate([[0], np.cumsum(sizes)]))
 
 
-def _honeycomb_points(a: object) -> np.ndarray:
+def _honeycomb_points(a: MeshArrays) -> np.ndarray:
     """``(C, 3)`` root-4 inner point of every corner: sum_j w_ij m_j over the face's
     edge midpoints, w_ii = 1/sqrt(2) - 1/4 + 5/(4n),
     w_ij = (1 - w_ii)(3 + 2 cos(2 pi (i - j) / n)) / (3n - 5)."""
-    from .arrays import MeshArrays
-
-    assert isinstance(a, MeshArrays)
     p = a.positions
     mid = (p[a.corner_vertex] + p[a.corner_vertex[a.corner_next]]) / 2
     out = np.empty_like(mid)
@@ -320,9 +294,13 @@ def _honeycomb_points(a: object) -> np.ndarray:
 
 
 def donut_hexa(level: int = 1) -> Mesh:
-    """``donuthexa1`` (level 1, 100/150/50) and ``donuthexa3`` (level 3, 1600/2400/800):
-    a hexagon torus, refined by :func:`hex_refine` once per level above 1... in
-    TopMod's numbering, level 3 is two refinements."""
+    """The hexagon torus ``donuthexa1`` (level 1, 100/150/50), refined by
+    :func:`hex_refine` ``level - 1`` times: level 3 has ``donuthexa3``'s counts,
+    1600/2400/800.
+
+    Raises:
+        DLFLError: ``level`` not 1, 2 or 3.
+    """
     if level not in (1, 2, 3):
         raise DLFLError(f"donut_hexa level must be 1, 2 or 3, got {level}")
     mesh = hex_torus()
@@ -352,7 +330,6 @@ def genus3_hexa(level: int = 1) -> Mesh:
 def _glued_tori(sizes: list[tuple[int, int]], major: float = 0.3, minor: float = 0.13) -> Mesh:
     """Hexagon tori side by side along x, each glued to the next across the
     hexagons that face each other."""
-    from .arrays import mesh_arrays
 
     positions: list[np.ndarray] = []
     faces: list[list[int]] = []
