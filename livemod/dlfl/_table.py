@@ -125,23 +125,20 @@ class Table:
 
     def alloc_pair(self) -> tuple[int, int]:
         """Create two elements and return their slots (capacity must be reserved)."""
-        free, moved = self.free, self.moved
+        free = self.free
+        if len(free) < 2:
+            return self.alloc(), self.alloc()
+        # both slots reused: neither is home to its fresh id (see alloc)
+        first, second = free.pop(), free.pop()
         eid = self.next_id
         self.next_id = eid + 2
-        slots = []
-        for new_id in (eid, eid + 1):
-            if free:
-                slot = free.pop()
-                moved[new_id] = slot
-            else:
-                slot = self.n
-                self.n = slot + 1
-                if slot != new_id - self.base:
-                    moved[new_id] = slot
-            self.idv[slot] = new_id
-            slots.append(slot)
+        moved, idv = self.moved, self.idv
+        moved[eid] = first
+        moved[eid + 1] = second
+        idv[first] = eid
+        idv[second] = eid + 1
         self._sorted_cache = None
-        return slots[0], slots[1]
+        return first, second
 
     def release(self, slot: int) -> None:
         """Delete the element in ``slot``; its id is never handed out again."""

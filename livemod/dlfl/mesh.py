@@ -445,15 +445,17 @@ class Mesh:
         c1p, c2p = C.alloc_pair()
         ec0, ec1, vert = E.c0, E.c1, C.vertex
         # the copies take over the old edges of corner1 and corner2
-        for src, dup, dup_face in ((s1, c1p, fn), (s2, c2p, f)):
-            vert[dup] = vert[src]
-            face[dup] = dup_face
-            old = cedge[src]
-            cedge[dup] = old
-            if ec0[old] == src:
-                ec0[old] = dup
-            else:
-                ec1[old] = dup
+        vert[c1p], face[c1p], vert[c2p], face[c2p] = vert[s1], fn, vert[s2], f
+        old1, old2 = cedge[s1], cedge[s2]
+        cedge[c1p], cedge[c2p] = old1, old2
+        if ec0[old1] == s1:
+            ec0[old1] = c1p
+        else:
+            ec1[old1] = c1p
+        if ec0[old2] == s2:
+            ec0[old2] = c2p
+        else:
+            ec1[old2] = c2p
         head = F.corner[f]
         moved_head = head == s2
         # the corners strictly between corner1 and corner2 move to the new face
@@ -535,6 +537,23 @@ class Mesh:
         return [fidv[f] for f in result]
 
     def _delete_merge(self, s1: int, s2: int, cleanup: bool) -> list[int]:
+        """Two faces on the sides: the second joins the first (undoes a co-facial insert)."""
+        C = self._c
+        nxt, face = C.next, C.face
+        if nxt[s1] == s1 or nxt[s2] == s2:
+            return self._delete_merge_one_gon(s1, s2, cleanup)
+        f1, f2 = face[s1], face[s2]
+        x = nxt[s2]
+        while x != s2:
+            face[x] = f1
+            x = nxt[x]
+        face[s2] = f1
+        self._drop_after_sides(s1, s2)
+        self._f.release(f2)
+        return [f1]
+
+    def _delete_merge_one_gon(self, s1: int, s2: int, cleanup: bool) -> list[int]:
+        """Delete a loop that closes a one-corner face; both side corners go."""
         C, F, V = self._c, self._f, self._v
         nxt, prv, face, vert = C.next, C.prev, C.face, C.vertex
         f1, f2 = face[s1], face[s2]
@@ -547,20 +566,11 @@ class Mesh:
         while x != s2:
             face[x] = f1
             x = nxt[x]
-        if not (empty1 or empty2):
-            face[s2] = f1
-            self._drop_after_sides(s1, s2)
-            F.release(f2)
-            return [f1]
         if empty1:
             nxt[p2], prv[b] = b, p2
             head = b
-        elif empty2:
-            nxt[p1], prv[a] = a, p1
-            head = a
         else:
-            nxt[p1], prv[b] = b, p1
-            nxt[p2], prv[a] = a, p2
+            nxt[p1], prv[a] = a, p1
             head = a
         # a vertex whose recorded corner is dropped takes the corner now after it
         vc = V.corner
