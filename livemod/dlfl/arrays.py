@@ -13,6 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ._table import Table
 from .mesh import Mesh
 
 
@@ -95,23 +96,21 @@ def mesh_arrays(mesh: Mesh) -> MeshArrays:
     vslots, eslots, fslots, cslots = (
         V.live_slots(), E.live_slots(), F.live_slots(), C.live_slots(),
     )
-    ca = C.arrays
-    vdense = _dense_map(vslots, V.n)
+    ca, ea = C.arrays, E.arrays
     fdense = _dense_map(fslots, F.n)
-    edense = _dense_map(eslots, E.n)
     order, offsets = _ring_order(mesh, cslots, fslots, fdense)
-    cdense = _dense_map(order, C.n)
-    corner_face = np.repeat(np.arange(len(fslots), dtype=np.int64), np.diff(offsets))
+    in_slot_order = len(order) == C.n and not C.moved and order is cslots
+    cdense = None if in_slot_order else _dense_map(order, C.n)
     edge_slot = ca["edge"][order]
     has = edge_slot >= 0
-    corner_edge = np.full(len(order), -1, dtype=np.int64)
-    corner_edge[has] = edense[edge_slot[has]]
-    ea = E.arrays
-    edge_corners = np.stack([cdense[ea["c0"][eslots]], cdense[ea["c1"][eslots]]], axis=1)
+    corner_edge = _remap(edge_slot, _dense_or_none(E, eslots))
+    corner_edge[~has] = -1
+    edge_corners = np.empty((len(eslots), 2), dtype=np.int64)
+    edge_corners[:, 0] = _remap(ea["c0"][eslots], cdense)
+    edge_corners[:, 1] = _remap(ea["c1"][eslots], cdense)
     mate = np.full(len(order), -1, dtype=np.int64)
-    ends = edge_corners
-    mate[ends[:, 0]] = ends[:, 1]
-    mate[ends[:, 1]] = ends[:, 0]
+    mate[edge_corners[:, 0]] = edge_corners[:, 1]
+    mate[edge_corners[:, 1]] = edge_corners[:, 0]
     return MeshArrays(
         positions=V.arrays["position"][vslots],
         vertex_ids=V.ids[vslots],
@@ -119,13 +118,28 @@ def mesh_arrays(mesh: Mesh) -> MeshArrays:
         face_offsets=offsets,
         face_hole=F.arrays["hole"][fslots].astype(bool),
         corner_ids=C.ids[order],
-        corner_vertex=vdense[ca["vertex"][order]],
-        corner_face=corner_face,
+        corner_vertex=_remap(ca["vertex"][order], _dense_or_none(V, vslots)),
+        corner_face=np.repeat(np.arange(len(fslots), dtype=np.int64), np.diff(offsets)),
         corner_edge=corner_edge,
         corner_mate=mate,
         edge_ids=E.ids[eslots],
-        edge_corners=edge_corners.astype(np.int64),
+        edge_corners=edge_corners,
     )
+
+
+def _dense_or_none(table: Table, slots: np.ndarray) -> np.ndarray | None:
+    """:func:`_dense_map` of ``slots``, or None when every slot ``0..n-1`` is live
+    in id order (a freshly built table), where the map is the identity."""
+    if len(slots) == table.n and not table.moved:
+        return None
+    return _dense_map(slots, table.n)
+
+
+def _remap(slots: np.ndarray, dense: np.ndarray | None) -> np.ndarray:
+    """``(k,)`` int64 dense indices of ``slots`` (``dense`` None: the identity)."""
+    if dense is None:
+        return slots.astype(np.int64)
+    return dense[slots]
 
 
 def _dense_map(slots: np.ndarray, n: int) -> np.ndarray:
@@ -145,7 +159,7 @@ def _ring_order(
     offsets = np.zeros(len(fslots) + 1, dtype=np.int64)
     np.cumsum(sizes, out=offsets[1:])
     if _already_in_ring_order(mesh, cslots, offsets, fslots):
-        return cslots.astype(np.int64), offsets
+        return cslots, offsets
     rank = _rank_from_head(mesh, cslots, fslots, face_of, sizes)
     order = np.empty(len(cslots), dtype=np.int64)
     order[offsets[face_of] + rank] = cslots

@@ -45,6 +45,14 @@ class Polygons:
         return np.diff(self.offsets)
 
     @functools.cached_property
+    def single_corners(self) -> np.ndarray:
+        """``(C,)`` bool, True for the corner of a one-corner face (a point-sphere)."""
+        sizes = self.sizes
+        if len(sizes) == 0 or sizes.min() > 1:
+            return np.zeros(len(self.indices), dtype=bool)
+        return np.repeat(sizes, sizes) == 1
+
+    @functools.cached_property
     def next_corner(self) -> np.ndarray:
         """``(C,)`` int64 index of the next corner in the same face (computed once)."""
         return _next_in_face(self.offsets)
@@ -165,7 +173,9 @@ def _check_soup(soup: Polygons, where: _Where) -> None:
         v = int(np.flatnonzero(~np.isfinite(soup.positions).all(axis=1))[0])
         raise DLFLError(f"{where.prefix()}vertex {v} has a position that is not finite")
     nxt = soup.next_corner
-    same = (soup.indices == soup.indices[nxt]) & (np.repeat(sizes, sizes) > 1)
+    same = soup.indices == soup.indices[nxt]
+    if len(sizes) and sizes.min() == 1:
+        same &= np.repeat(sizes, sizes) > 1
     if same.any():
         c = int(np.flatnonzero(same)[0])
         f = int(np.searchsorted(soup.offsets, c, side="right") - 1)
@@ -185,6 +195,16 @@ def _next_in_face(offsets: np.ndarray) -> np.ndarray:
     return nxt
 
 
+def _prev_in_face(offsets: np.ndarray) -> np.ndarray:
+    """``(C,)`` index of the previous corner in the same face, wrapping around."""
+    count = int(offsets[-1])
+    prv = np.arange(-1, count - 1, dtype=np.int64)
+    sizes = np.diff(offsets)
+    starts = offsets[:-1][sizes > 0]
+    prv[starts] = offsets[1:][sizes > 0] - 1
+    return prv
+
+
 def _face_of_corner(offsets: np.ndarray) -> np.ndarray:
     sizes = np.diff(offsets)
     return np.repeat(np.arange(len(sizes), dtype=np.int64), sizes)
@@ -201,7 +221,7 @@ def _pair_sides(
     nxt = soup.next_corner
     u = soup.indices
     w = u[nxt]
-    single = np.repeat(soup.sizes, soup.sizes) == 1
+    single = soup.single_corners
     key = np.minimum(u, w) * nv + np.maximum(u, w)
     key[single] = -1 - np.flatnonzero(single)  # point-sphere corners pair with nothing
     if len(key) == 0:
@@ -404,7 +424,7 @@ def _close_boundaries(
     soup: Polygons, mate: np.ndarray, where: _Where
 ) -> tuple[Polygons, np.ndarray, int]:
     """Add one hole face per boundary loop; returns soup, mate and hole count."""
-    single = np.repeat(soup.sizes, soup.sizes) == 1
+    single = soup.single_corners
     open_sides = np.flatnonzero((mate < 0) & ~single)
     if len(open_sides) == 0:
         return soup, mate, 0
@@ -520,8 +540,7 @@ def from_corner_arrays(
     mate = np.asarray(corner_mate, dtype=np.int64)
     num_c, num_f = len(cvert), len(offsets) - 1
     nxt = _next_in_face(offsets) if corner_next is None else corner_next
-    prv = np.empty_like(nxt)
-    prv[nxt] = np.arange(num_c)
+    prv = _prev_in_face(offsets)
     face = np.repeat(np.arange(num_f, dtype=np.int32), np.diff(offsets))
     lower = np.flatnonzero(mate > np.arange(num_c))
     edge = np.full(num_c, -1, dtype=np.int32)
