@@ -49,6 +49,17 @@ MIXED_COMMANDS = (
     "    move([v], (0.0, 0.0, 0.001))\n"
 )
 
+EXTRUSIONS = (
+    "from livemod.dlfl import *\n"
+    "from livemod.dlfl import current_scene, from_polygons\n"
+    "P = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1)]\n"
+    "Q = [(0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7)]\n"
+    "current_scene().add(from_polygons(P, Q))\n"
+    "face = faces()[1]\n"
+    "for i in range(2000):\n"
+    "    face = extrude('cubical', face, 0.1)\n"
+)
+
 TWENTY_COMMANDS = (
     "{marker}\n"
     "es = edges()\n"
@@ -83,7 +94,8 @@ def median_of(fn, repeats: int) -> float:
 
 
 def bench_step_overhead(folder: str, repeats: int, source: str = SMALL_COMMANDS,
-                        base: Scene | None = None) -> dict[str, tuple[float, float, float]]:
+                        base: Scene | None = None, steps: int = 10000,
+                        ) -> dict[str, tuple[float, float, float]]:
     """(median wall, median CPU, least CPU) seconds of ``source`` run three ways: the runner's
     execute, a bare exec, and a bare exec with a no-op step hook (the core's own
     cost of calling a hook). Each starts from a copy of ``base`` (or empty)."""
@@ -93,7 +105,7 @@ def bench_step_overhead(folder: str, repeats: int, source: str = SMALL_COMMANDS,
 
     def runner() -> None:
         outcome = execute(path, source=source, base=base)
-        assert outcome.status == "ok" and len(outcome.steps) == 10000, outcome.error
+        assert outcome.status == "ok" and len(outcome.steps) == steps, outcome.error
 
     def bare(hook=None) -> None:
         code = compile(source, path, "exec")
@@ -318,6 +330,8 @@ def main(argv: list[str] | None = None) -> int:
         base.add(grid_mesh(100))
         mixed = bench_step_overhead(folder, repeats, MIXED_COMMANDS, base)
         print_overhead("10,000 subdivideEdge/move on 10,000 faces", mixed, repeats)
+        extrusions = bench_step_overhead(folder, repeats, EXTRUSIONS, steps=2000)
+        print_overhead("2,000 chained cubical extrusions", extrusions, repeats)
         latency, run = bench_save_latency(folder, 3 * repeats, debounce)
         print(f"save -> result, 20 commands on 10,000 faces: {latency * 1e3:.0f} ms + "
               f"{debounce * 1e3:.0f} ms debounce (run itself {run * 1e3:.0f} ms; "
