@@ -120,6 +120,30 @@ def test_keys_change_style_camera_and_pick_mode(headless) -> None:
     assert viewer.show_help
 
 
+def test_shift_click_adds_and_escape_clears(headless) -> None:
+    viewer, _, echo = headless
+    _wait(viewer, _has_run(1))
+    viewer.click(160, 120)
+    first = viewer.selection.faces
+    y, other = _row_with_another_face(viewer, first)
+    viewer.click(160, y, add=True)
+    assert viewer.selection.faces == (*first, other)
+    assert f"faces(True) == {(*first, other)!r}" in echo.getvalue()
+    viewer.handle_key("ESCAPE")
+    assert viewer.selection.is_empty()
+    assert echo.getvalue().rstrip().endswith("faces(True) == ()")
+
+
+def _row_with_another_face(viewer: LiveViewer, taken: tuple[int, ...]) -> tuple[int, int]:
+    """``(window row, face id)`` of a face at x=160, other than ``taken``, scanning down."""
+    size = viewer.wnd.fbo.size
+    for y in range(5, 120, 4):
+        hit = viewer.renderer.pick(viewer.camera, size, 160, y, "face")
+        if hit is not None and hit.element_id not in taken:
+            return y, hit.element_id
+    raise AssertionError("no second face found")
+
+
 def test_dropping_a_script_or_a_mesh_opens_it(headless, tmp_path: Path) -> None:
     from livemod.dlfl.io import save_mesh
     from livemod.dlfl.shapes import tetrahedron

@@ -104,7 +104,7 @@ class LiveViewer(mglw.WindowConfig):
         self.frame_times: deque[float] = deque(maxlen=120)
         self.screenshots: list[Path] = []
         self._fit_bounds: np.ndarray | None = None
-        self._press: tuple[int, int, bool] | None = None
+        self._press: tuple[int, int, int] | None = None
         self._moved = False
         self._key_names = _key_names(self.wnd.keys)
         self._last_frame = time.perf_counter()
@@ -331,7 +331,7 @@ class LiveViewer(mglw.WindowConfig):
     # -- mouse -----------------------------------------------------------------
 
     def on_mouse_press_event(self, x: int, y: int, button: int) -> None:
-        self._press = (x, y, button)  # type: ignore[assignment]
+        self._press = (x, y, button)
         self._moved = False
 
     def on_mouse_drag_event(self, x: int, y: int, dx: int, dy: int) -> None:
