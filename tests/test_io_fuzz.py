@@ -141,7 +141,7 @@ def parse_or_error(data: bytes, fast: bool) -> object:
 
 
 @pytest.mark.timeout(60)
-@settings(max_examples=100, deadline=None)
+@settings(max_examples=60, deadline=None)
 @given(obj_text)
 def test_fast_obj_parser_agrees_with_reference(text: str) -> None:
     data = text.encode()
