@@ -43,6 +43,21 @@ VERTEX_SPEC: FieldSpec = {"corner": (np.int32, ()), "position": (np.float64, (3,
 NO_EDGE = -1
 
 
+def _alloc(table: Table) -> int:
+    """:meth:`Table.alloc` for a table with a free slot, the steady state of
+    interactive editing; the general method otherwise."""
+    free = table.free
+    if not free:
+        return table.alloc()
+    slot = free.pop()
+    eid = table.next_id
+    table.next_id = eid + 1
+    table.moved[eid] = slot  # a reused slot is never home to a fresh id
+    table.idv[slot] = eid
+    table._sorted_cache = None
+    return slot
+
+
 def _live_slot(table: Table, eid: Any) -> int:
     """``table.slot(eid)`` with the common case (an int at its home slot) inline."""
     if type(eid) is int:
@@ -404,11 +419,9 @@ class Mesh:
             )
         E, F = self._e, self._f
         # most calls find room without growing; reserve() would say the same
-        if C.n + 2 > C.cap:
+        if C.n + 2 > C.cap or E.n >= E.cap or F.n >= F.cap:
             C.reserve(2)
-        if E.n >= E.cap:
             E.reserve(1)
-        if F.n >= F.cap:
             F.reserve(1)
         if C.face[s1] == C.face[s2]:
             return self._insert_cofacial(s1, s2)
@@ -439,9 +452,8 @@ class Mesh:
         nxt, prv, face, cedge = C.next, C.prev, C.face, C.edge
         f = face[s1]
         a1, b1 = nxt[s1], nxt[s2]
-        fn = F.alloc()
+        fn, e = _alloc(F), _alloc(E)
         F.hole[fn] = F.hole[f]
-        e = E.alloc()
         c1p, c2p = C.alloc_pair()
         ec0, ec1, vert = E.c0, E.c1, C.vertex
         # the copies take over the old edges of corner1 and corner2
@@ -521,9 +533,12 @@ class Mesh:
             DLFLError: ``edge`` is not a live edge id.
         """
         E, F = self._e, self._f
+        # Table.slot inlined: an id at its home slot, else one in a reused slot
         es = edge - E.base if type(edge) is int else -1
         if not (0 <= es < E.n and E.idv[es] == edge):
-            es = E.slot(edge)
+            es = E.moved.get(edge, -1) if type(edge) is int else -1
+            if es < 0:
+                es = E.slot(edge)
         s1, s2 = E.c0[es], E.c1[es]
         if F.n >= F.cap:
             F.reserve(1)
@@ -532,7 +547,13 @@ class Mesh:
             result = self._delete_merge(s1, s2, cleanup)
         else:
             result = self._delete_split(s1, s2, cleanup)
-        E.release(es)
+        # E.release(es), inlined for the interactive hot path
+        eidv = E.idv
+        if E.moved:
+            E.moved.pop(eidv[es], None)
+        eidv[es] = -1
+        E.free.append(es)
+        E._sorted_cache = None
         fidv = F.idv
         return [fidv[f] for f in result]
 
@@ -600,13 +621,15 @@ class Mesh:
 
         The sides stay and take over the edges of the corners after them, so
         that deleting an edge right after inserting it restores every corner id.
-        Callers have already moved the corners to their final faces. This is
+        Callers have already moved all corners into one face. This is
         :meth:`_take_place` for both sides, inlined for the interactive hot path.
         """
         C, E = self._c, self._e
         nxt, prv, cedge, vert, face = C.next, C.prev, C.edge, C.vertex, C.face
         ec0, ec1, vc, fc = E.c0, E.c1, self._v.corner, self._f.corner
         cidv, moved, free = C.idv, C.moved, C.free
+        merged = face[s1]  # both sides are in this face by now
+        head = fc[merged]
         for side, gone in ((s1, nxt[s2]), (s2, nxt[s1])):
             e = cedge[gone]
             cedge[side] = e
@@ -619,8 +642,8 @@ class Mesh:
             prv[after] = side
             if vc[vert[gone]] == gone:
                 vc[vert[gone]] = side
-            if fc[face[side]] == gone:
-                fc[face[side]] = side
+            if head == gone:
+                fc[merged] = side
             moved.pop(cidv[gone], None)
             cidv[gone] = -1
             free.append(gone)
