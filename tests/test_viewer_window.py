@@ -144,6 +144,39 @@ def _row_with_another_face(viewer: LiveViewer, taken: tuple[int, ...]) -> tuple[
     raise AssertionError("no second face found")
 
 
+STEPS = """
+from livemod.dlfl import from_polygons, current_scene, edges, subdivideEdge, step
+P = [(1, 1, 1), (1, 1, -1), (-1, 1, -1), (-1, 1, 1),
+     (1, -1, 1), (1, -1, -1), (-1, -1, -1), (-1, -1, 1)]
+F = [(0, 1, 2, 3), (4, 5, 1, 0), (5, 6, 2, 1), (6, 7, 3, 2), (7, 4, 0, 3), (7, 6, 5, 4)]
+current_scene().add(from_polygons(P, F))
+step("cube")
+subdivideEdge(edges()[0])
+step("split")
+"""
+
+
+def test_step_keys_show_earlier_steps_in_the_hud(headless) -> None:
+    viewer, script, _ = headless
+    _wait(viewer, _has_run(1))
+    script.write_text(STEPS)
+    viewer.handle_key("R")
+    _wait(viewer, lambda v: v.result.run_id >= 2 and v.result.status == "ok")
+    total = len(viewer.result.steps)
+    assert viewer.result.arrays.counts[0] == 9
+    assert f"step {total}/{total}: split" in _hud_text(viewer)
+    viewer.handle_key("LEFT")
+    _wait(viewer, lambda v: v.result.status == "paused" and v.result.step_index == total - 2)
+    viewer.handle_key("COMMA")
+    _wait(viewer, lambda v: v.result.status == "paused" and v.result.step_index == total - 3)
+    assert viewer.result.arrays.counts[0] == 8          # before the split
+    assert f"step {total - 2}/{total}: cube" in _hud_text(viewer)
+    assert "paused" in _hud_text(viewer)
+    viewer.handle_key("RIGHT")
+    _wait(viewer, lambda v: v.result.status == "paused" and v.result.step_index == total - 2)
+    assert viewer.result.arrays.counts[0] == 9
+
+
 def test_dropping_a_script_or_a_mesh_opens_it(headless, tmp_path: Path) -> None:
     from livemod.dlfl.io import save_mesh
     from livemod.dlfl.shapes import tetrahedron

@@ -26,8 +26,12 @@ def run_state(result: Any, waiting: bool) -> str:
     return f"{result.status}, stale" if result.stale else str(result.status)
 
 
-def step_line(result: Any) -> str:
-    """``step k/N: label (line L)`` of the shown step, or ``no steps``."""
+def step_line(result: Any, total: int = 0) -> str:
+    """``step k/N: label (line L)`` of the shown step, or ``no steps``.
+
+    A paused run has only finished the steps up to the shown one, so N is the
+    larger of that and ``total``, the step count of the last complete run.
+    """
     if result is None or not result.steps:
         return "no steps"
     steps = result.steps
@@ -35,7 +39,7 @@ def step_line(result: Any) -> str:
                                                                  len(steps) - 1)
     step = steps[shown]
     where = f" (line {step.line})" if step.line is not None else ""
-    return f"step {shown + 1}/{len(steps)}: {step.label}{where}"
+    return f"step {shown + 1}/{max(len(steps), total)}: {step.label}{where}"
 
 
 def hud_lines(info: dict[str, Any]) -> list[tuple[str, int]]:
@@ -49,7 +53,7 @@ def hud_lines(info: dict[str, Any]) -> list[tuple[str, int]]:
     if arrays is not None:
         v, e, f = arrays.counts
         lines.append((f"V {v}  E {e}  F {f}  genus {info['genus']}", TEXT))
-    lines.append((step_line(result), TEXT))
+    lines.append((step_line(result, info.get("total_steps", 0)), TEXT))
     style = info["style"]
     view = "ortho" if info["ortho"] else "persp"
     mode = "preview" if style.preview else "mesh"

@@ -101,6 +101,7 @@ class LiveViewer(mglw.WindowConfig):
         self.waiting = True
         self.result: Any = None
         self.genus: int | None = None
+        self.total_steps = 0
         self.frame_times: deque[float] = deque(maxlen=120)
         self.screenshots: list[Path] = []
         self._fit_bounds: np.ndarray | None = None
@@ -141,6 +142,8 @@ class LiveViewer(mglw.WindowConfig):
             self.result is None or self.result.error != result.error)
         self.result = result
         self.waiting = False
+        if result.status == "ok":
+            self.total_steps = len(result.steps)
         if result.arrays is not None and result.arrays is not self.renderer.arrays:
             self._upload(result.arrays, result.preview)
         elif result.arrays is None and result.error is None:
@@ -187,7 +190,7 @@ class LiveViewer(mglw.WindowConfig):
         if now - self._fps_time > 0.5 and self.frame_times:
             self._fps_shown = round(len(self.frame_times) / max(sum(self.frame_times), 1e-9))
             self._fps_time = now
-        key = (id(self.result), self.waiting, self.genus, self._fps_shown, self.pick_mode,
+        key = (id(self.result), self.waiting, self.total_steps, self.genus, self._fps_shown, self.pick_mode,
                self.selection, self.style, self.camera.ortho, self.playing, self.show_hud,
                self.show_help, size)
         if self._overlay_cache is None or self._overlay_cache[0] != key:
@@ -196,6 +199,7 @@ class LiveViewer(mglw.WindowConfig):
 
     def _hud_info(self) -> dict[str, Any]:
         return {"script": self.script, "result": self.result, "waiting": self.waiting,
+                "total_steps": self.total_steps,
                 "genus": self.genus, "fps": self._fps_shown, "pick_mode": self.pick_mode,
                 "selection": selection_python(self.selection, self.renderer.arrays)
                 if not self.selection.is_empty() else [],
@@ -412,6 +416,7 @@ class LiveViewer(mglw.WindowConfig):
         self.renderer.set_selection(self.selection)
         self._fit_bounds = None
         self.result = None
+        self.total_steps = 0
         self.session = self._start_session()
         self._echo(f"opened {resolved}")
 
