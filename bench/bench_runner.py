@@ -256,8 +256,10 @@ def bench_batch(folder: str, variants: int, jobs: int) -> tuple[float, float]:
     parallel = time.perf_counter() - started
     assert all(r.status == "ok" for r in serial + pooled), [r.error for r in serial + pooled]
     busy = sum(r.elapsed for r in pooled) / sum(r.elapsed for r in serial)
-    print(f"  (variant run time in the pool / alone: {busy:.2f}; above 1 means the "
-          f"cores were shared with other work)")
+    in_flight = sum(r.elapsed for r in pooled) / parallel
+    print(f"  (variant run time in the pool / alone: {busy:.2f}, above 1 when the cores "
+          f"are shared with other work; variants in flight on average: {in_flight:.2f} "
+          f"of {jobs})")
     return sequential, parallel
 
 
