@@ -542,11 +542,23 @@ class Mesh:
         s1, s2 = E.c0[es], E.c1[es]
         if F.n >= F.cap:
             F.reserve(1)
-        face = self._c.face
-        if face[s1] != face[s2]:
-            result = self._delete_merge(s1, s2, cleanup)
-        else:
+        C = self._c
+        nxt, face = C.next, C.face
+        f1, f2 = face[s1], face[s2]
+        if f1 == f2:
             result = self._delete_split(s1, s2, cleanup)
+        elif nxt[s1] == s1 or nxt[s2] == s2:
+            result = self._delete_merge_one_gon(s1, s2, cleanup)
+        else:
+            # two faces merge: the second joins the first (undoes a co-facial insert)
+            x = nxt[s2]
+            while x != s2:
+                face[x] = f1
+                x = nxt[x]
+            face[s2] = f1
+            self._drop_after_sides(s1, s2)
+            F.release(f2)
+            result = [f1]
         # E.release(es), inlined for the interactive hot path
         eidv = E.idv
         if E.moved:
@@ -556,22 +568,6 @@ class Mesh:
         E._sorted_cache = None
         fidv = F.idv
         return [fidv[f] for f in result]
-
-    def _delete_merge(self, s1: int, s2: int, cleanup: bool) -> list[int]:
-        """Two faces on the sides: the second joins the first (undoes a co-facial insert)."""
-        C = self._c
-        nxt, face = C.next, C.face
-        if nxt[s1] == s1 or nxt[s2] == s2:
-            return self._delete_merge_one_gon(s1, s2, cleanup)
-        f1, f2 = face[s1], face[s2]
-        x = nxt[s2]
-        while x != s2:
-            face[x] = f1
-            x = nxt[x]
-        face[s2] = f1
-        self._drop_after_sides(s1, s2)
-        self._f.release(f2)
-        return [f1]
 
     def _delete_merge_one_gon(self, s1: int, s2: int, cleanup: bool) -> list[int]:
         """Delete a loop that closes a one-corner face; both side corners go."""
