@@ -33,6 +33,8 @@ def add_commands(subparsers: Any) -> None:
     view.add_argument("script", help="the Python script to watch and run")
     view.add_argument("--mesh", help="mesh every run starts from (.obj, .dlfl)")
     view.add_argument("--size", type=parse_size, default=(1280, 800), help="WxH window size")
+    view.add_argument("--poll", action="store_true",
+                      help="poll for changes (for file systems that send no events)")
     view.set_defaults(handler=_view)
     render = subparsers.add_parser(
         "render", help="render a script's result or a mesh to PNG, a PNG sequence or a GIF")
@@ -63,7 +65,7 @@ def _view(args: argparse.Namespace) -> int:
 
     if not Path(args.script).exists():
         raise OSError(f"no such script: {args.script}")
-    return view(ViewOptions(args.script, mesh_path=args.mesh, size=args.size))
+    return view(ViewOptions(args.script, mesh_path=args.mesh, size=args.size, poll=args.poll))
 
 
 def _render(args: argparse.Namespace) -> int:

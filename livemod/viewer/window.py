@@ -47,6 +47,8 @@ class ViewOptions:
         session_factory: ``(script, mesh_path) -> session``; the runner's
             ``LiveSession`` when None.
         echo: where selections and errors are echoed (stdout when None).
+        poll: poll the file system instead of waiting for change events (network
+            drives, WSL, containers).
     """
 
     script: str
@@ -57,12 +59,17 @@ class ViewOptions:
     vsync: bool = True
     session_factory: Callable[[str, str | None], Any] | None = None
     echo: Any = None
+    poll: bool = False
 
 
-def _default_session(script: str, mesh_path: str | None) -> Any:
+def _default_factory(poll: bool) -> Callable[[str, str | None], Any]:
+    """The runner's ``LiveSession`` (imported only when a window opens)."""
     from livemod.runner import LiveSession
 
-    return LiveSession(script, mesh_path=mesh_path)
+    def create(script: str, mesh_path: str | None) -> Any:
+        return LiveSession(script, mesh_path=mesh_path, poll=poll)
+
+    return create
 
 
 def _key_names(keys: Any) -> dict[Any, str]:
@@ -119,7 +126,7 @@ class LiveViewer(mglw.WindowConfig):
     # -- session ---------------------------------------------------------------
 
     def _start_session(self) -> Any:
-        factory = self.options.session_factory or _default_session
+        factory = self.options.session_factory or _default_factory(self.options.poll)
         session = factory(self.script, self.mesh_path)
         session.start()
         self.waiting = True
