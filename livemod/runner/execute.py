@@ -19,7 +19,7 @@ import sys
 import threading
 import time
 from collections.abc import Callable, Iterator
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from types import CodeType, FrameType
 
 import numpy as np
@@ -100,7 +100,6 @@ class RunOutcome:
     elapsed: float
     modules: tuple[str, ...] = ()
     source: str = ""
-    extra: dict = field(default_factory=dict)
 
 
 class StepRecorder:
