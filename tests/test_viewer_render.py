@@ -199,3 +199,8 @@ def test_render_command_reports_script_errors(tmp_path: Path, capsys) -> None:
     assert main(["render", str(script), "-o", str(tmp_path / "x.png")]) == 1
     err = capsys.readouterr().err
     assert "bad.py:2" in err and "no mesh today" in err
+
+
+def test_view_command_refuses_a_missing_script(tmp_path: Path, capsys) -> None:
+    assert main(["view", str(tmp_path / "missing.py")]) == 1
+    assert "missing.py" in capsys.readouterr().err

@@ -52,7 +52,9 @@ def hud_lines(info: dict[str, Any]) -> list[tuple[str, int]]:
     arrays = None if result is None else result.arrays
     if arrays is not None:
         v, e, f = arrays.counts
-        lines.append((f"V {v}  E {e}  F {f}  genus {info['genus']}", TEXT))
+        holes = int(arrays.face_hole.sum())  # counted apart, as TopMod does
+        extra = f"  holes {holes}" if holes else ""
+        lines.append((f"V {v}  E {e}  F {f - holes}{extra}  genus {info['genus']}", TEXT))
     lines.append((step_line(result, info.get("total_steps", 0)), TEXT))
     style = info["style"]
     view = "ortho" if info["ortho"] else "persp"
