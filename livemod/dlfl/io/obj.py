@@ -181,8 +181,11 @@ class _Parsed:
         py_pos = np.array([self.py_vertices[i] for i in py_lines.tolist()], dtype=np.float64)
         blocks = [*self.vertex_blocks, (py_lines, py_pos.reshape(-1, 3))]
         lines = np.concatenate([b[0] for b in blocks])
+        positions = np.concatenate([b[1] for b in blocks])
+        if len(py_lines) == 0:  # the fast blocks come in file order
+            return lines, positions
         order = np.argsort(lines, kind="stable")
-        return lines[order], np.concatenate([b[1] for b in blocks])[order]
+        return lines[order], positions[order]
 
     def _faces(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         py_lines = np.array(sorted(self.py_faces), dtype=np.int64)
@@ -190,8 +193,8 @@ class _Parsed:
         py_counts = np.array([len(f) for f in py_lists], dtype=np.int64)
         py_raw = np.array([i for f in py_lists for i in f], dtype=np.int64)
         blocks = [*self.face_blocks, (py_lines, py_counts, py_raw)]
-        if len(blocks) == 2 and len(py_lines) == 0:
-            return blocks[0]
+        if len(py_lines) == 0:  # the fast blocks come in file order
+            return tuple(np.concatenate([b[i] for b in blocks]) for i in range(3))  # type: ignore[return-value]
         return _merge_face_blocks(blocks)
 
 
@@ -233,27 +236,39 @@ def _resolve_indices(
     return indices
 
 
+# lines parsed per numpy pass: big enough to amortise the calls, small enough
+# that temporaries stay in the cache and reuse freed memory instead of mapping
+# fresh pages (which is what dominated on a million-vertex file)
+_LINES_PER_PASS = 1 << 16
+
+
+def _passes(lines: np.ndarray) -> list[np.ndarray]:
+    return [lines[i : i + _LINES_PER_PASS] for i in range(0, len(lines), _LINES_PER_PASS)]
+
+
 def _parse_vertices(buf: np.ndarray, starts: np.ndarray, ends: np.ndarray, lines: np.ndarray,
                     parsed: _Parsed, label: str) -> None:
-    """Parse the plain ``v`` lines at once; hand the others to the Python parser."""
-    block, block_starts = gather_lines(buf, starts, ends, lines)
-    block[block_starts] = 32  # blank the keyword
-    values, accepted = parse_number_lines(block, block_starts, 3)
-    parsed.vertex_blocks.append((lines[accepted], values[accepted]))
-    for line in lines[~accepted].tolist():
-        parsed.parse_line(_line_bytes(buf, starts, ends, line), line, label)
+    """Parse the plain ``v`` lines with numpy; hand the others to the Python parser."""
+    for part in _passes(lines):
+        block, block_starts = gather_lines(buf, starts, ends, part)
+        block[block_starts] = 32  # blank the keyword
+        values, accepted = parse_number_lines(block, block_starts, 3)
+        parsed.vertex_blocks.append((part[accepted], values[accepted]))
+        for line in part[~accepted].tolist():
+            parsed.parse_line(_line_bytes(buf, starts, ends, line), line, label)
 
 
 def _parse_faces(buf: np.ndarray, starts: np.ndarray, ends: np.ndarray, lines: np.ndarray,
                  parsed: _Parsed, label: str) -> None:
-    """Parse the plain ``f`` lines at once; hand the others to the Python parser."""
-    block, block_starts = gather_lines(buf, starts, ends, lines)
-    block[block_starts] = 32
-    values, counts, accepted = parse_index_lines(block, block_starts)
-    keep = np.repeat(accepted, counts)
-    parsed.face_blocks.append((lines[accepted], counts[accepted], values[keep]))
-    for line in lines[~accepted].tolist():
-        parsed.parse_line(_line_bytes(buf, starts, ends, line), line, label)
+    """Parse the plain ``f`` lines with numpy; hand the others to the Python parser."""
+    for part in _passes(lines):
+        block, block_starts = gather_lines(buf, starts, ends, part)
+        block[block_starts] = 32
+        values, counts, accepted = parse_index_lines(block, block_starts)
+        keep = np.repeat(accepted, counts)
+        parsed.face_blocks.append((part[accepted], counts[accepted], values[keep]))
+        for line in part[~accepted].tolist():
+            parsed.parse_line(_line_bytes(buf, starts, ends, line), line, label)
 
 
 def _parse_line(raw: bytes, line: int, label: str) -> tuple[str, list[float] | list[int]] | None:
