@@ -525,9 +525,15 @@ class Mesh:
         """Delete ``edge``, the inverse of :meth:`insert_edge`, and return the faces left.
 
         Two different faces on its sides merge into the first (returns ``[face]``).
-        One face on both sides splits in two (returns ``[face, new_face]``); a side
-        with no corners left becomes a point-sphere, which ``cleanup`` (TopMod's
-        default) removes together with its vertex, leaving it out of the result.
+        One face on both sides splits in two (returns ``[face, new_face]``: the
+        face keeps side ``c0``, the new face gets ``c1``); a side with no corners
+        left becomes a point-sphere, which ``cleanup`` (TopMod's default) removes
+        together with its vertex, leaving it out of the result.
+
+        Both side corners survive (only a loop closing a one-corner face takes
+        them along): the corners after them are the ones dropped, so deleting an
+        edge right after :meth:`insert_edge` restores every corner id, and
+        inserting between the old sides again undoes the deletion.
 
         Raises:
             DLFLError: ``edge`` is not a live edge id.
