@@ -355,8 +355,13 @@ def _vertex_text(positions: np.ndarray) -> bytes:
 
 def vertex_lines(positions: np.ndarray, keyword: bytes) -> bytes:
     """Lines ``keyword x y z`` with coordinates that parse back to the same bits."""
-    if len(positions) == 0:
-        return b""
+    return b"".join(
+        _vertex_pass(positions[i : i + _LINES_PER_PASS], keyword)
+        for i in range(0, len(positions), _LINES_PER_PASS)
+    )
+
+
+def _vertex_pass(positions: np.ndarray, keyword: bytes) -> bytes:
     fields = format_floats(positions.ravel()).reshape(len(positions), 3, -1)
     return join_columns(len(positions), [
         keyword + b" ", fields[:, 0], b" ", fields[:, 1], b" ", fields[:, 2], b"\n",
@@ -376,8 +381,15 @@ def index_lines(values: np.ndarray, sizes: np.ndarray, keyword: bytes) -> bytes:
         sizes: ``(L,)`` int64 values per line (each >= 1), summing to ``C``.
         keyword: the line's first word.
     """
-    if len(values) == 0:
-        return b""
+    offsets = np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64)
+    parts = []
+    for i in range(0, len(sizes), _LINES_PER_PASS):
+        j = min(i + _LINES_PER_PASS, len(sizes))
+        parts.append(_index_pass(values[offsets[i] : offsets[j]], sizes[i:j], keyword))
+    return b"".join(parts)
+
+
+def _index_pass(values: np.ndarray, sizes: np.ndarray, keyword: bytes) -> bytes:
     digits = format_uints(values)
     kw = np.frombuffer(keyword, dtype=np.uint8)
     cells = np.zeros((len(values), len(kw) + 2 + digits.shape[1]), dtype=np.uint8)
