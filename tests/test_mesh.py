@@ -546,3 +546,57 @@ def test_copy_is_deep_and_keeps_ids():
     e = c.insert_edge(0, 2)
     assert e == 12
     validate(c)
+
+
+# -- one-corner faces (regressions found by the property tests) ------------------
+
+def two_one_gons_on_a_loop() -> Mesh:
+    """A triangle collapsed twice without cleanup: one vertex, one loop, two 1-gons."""
+    m = triangle()
+    m.collapse_edge(m.corner_edge(0), cleanup=False)
+    m.collapse_edge(int(m.edge_ids()[0]), cleanup=False)
+    return m
+
+
+def test_collapse_without_cleanup_leaves_one_gons_on_a_loop():
+    m = two_one_gons_on_a_loop()
+    assert checked(m) == (1, 1, 2)
+    assert [m.face_size(f) for f in m.face_ids().tolist()] == [1, 1]
+    v = int(m.vertex_ids()[0])
+    assert m.valence(v) == 2 and not m.is_point_sphere(v)
+
+
+def test_merging_insert_copies_a_one_gon_corner_that_has_a_loop():
+    m = two_one_gons_on_a_loop()
+    c1, c2 = (m.face_corners(f)[0] for f in m.face_ids().tolist())
+    e = m.insert_edge(c1, c2)
+    assert checked(m) == (1, 2, 1)
+    assert m.face_size(m.edge_faces(e)[0]) == 4
+    m.delete_edge(e)
+    assert checked(m) == (1, 1, 2)
+
+
+def test_collapsing_the_last_loop_keeps_its_vertex():
+    m = two_one_gons_on_a_loop()
+    v = m.collapse_edge(int(m.edge_ids()[0]))  # cleanup on: the vertex still survives
+    assert checked(m) == (1, 0, 1) and m.is_point_sphere(v)
+    m2 = triangle()
+    m2.collapse_edge(m2.corner_edge(0), cleanup=False)
+    v2 = m2.collapse_edge(int(m2.edge_ids()[0]), cleanup=True)
+    assert checked(m2) == (1, 0, 1) and m2.has_vertex(v2)
+
+
+def test_deleting_the_loop_between_two_one_gons():
+    for cleanup, expected in ((False, (1, 0, 1)), (True, (0, 0, 0))):
+        m = two_one_gons_on_a_loop()
+        m.delete_edge(int(m.edge_ids()[0]), cleanup)
+        assert checked(m) == expected
+
+
+def test_split_delete_keeps_both_side_corners():
+    m = cube()
+    e = m.insert_edge(0, 4)  # merges two faces; the copies sit after the sides
+    c0, c1 = m.edge_corners(e)
+    faces = m.delete_edge(e)
+    assert m.corner_face(c0) == faces[0] and m.corner_face(c1) == faces[1]
+    assert sorted(m.corner_ids().tolist()) == list(range(24))
