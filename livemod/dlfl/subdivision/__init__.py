@@ -23,7 +23,7 @@ dual-checkerboard          dual, checker, dual
 ========================== ===========================================
 
 Otherwise a composite's options go to its middle step. A composite that fails leaves the
-mesh unchanged (it works on a copy). ``sierpinsky`` (TopMod's
+mesh unchanged (its steps pass arrays along and the mesh is built once, at the end). ``sierpinsky`` (TopMod's
 ``multiConnectMidpoints``, TOPMOD.md section 5) and ``modified-corner-cut`` are
 implemented by the sculpting family and registered here by delegation.
 """
@@ -36,7 +36,7 @@ from typing import Any
 
 from ..errors import DLFLError
 from ..mesh import Mesh
-from ._layout import settings
+from ._layout import Pending, build_pending, read_topology, settings
 from .convert import (
     double_stellate,
     dual,
@@ -72,7 +72,7 @@ def modified_corner_cut(mesh: Mesh, *, thickness: float = 0.25,
         DLFLError: a bad ``thickness`` or the face budget.
     """
     from ..wireframe import modified_corner_cut as cut
-    from ._layout import check_budget, read_topology
+    from ._layout import check_budget
 
     t = read_topology(mesh)
     check_budget(t, t.nf + t.ne + t.nv, "modified-corner-cut", max_faces)
@@ -87,7 +87,7 @@ def sierpinsky(mesh: Mesh, *, max_faces: int | None = None) -> None:
         DLFLError: the face budget, or input that scheme refuses.
     """
     from ..sierpinsky import sierpinsky as run
-    from ._layout import check_budget, read_topology
+    from ._layout import check_budget
 
     t = read_topology(mesh)
     check_budget(t, t.nf + t.nv, "sierpinsky", max_faces)
@@ -98,10 +98,11 @@ def _composite(name: str, steps: tuple[Scheme, Scheme, Scheme], main: int) -> Sc
     """A scheme running three ``steps``; its options go to ``steps[main]``."""
 
     def run(mesh: Mesh, *, max_faces: int | None = None, **options: Any) -> None:
-        work = mesh.copy()
+        # the steps pass arrays along; the mesh is built once, after the last step
+        work = Pending(read_topology(mesh))
         for index, step in enumerate(steps):
             step(work, max_faces=max_faces, **(options if index == main else {}))
-        mesh.replace_with(work)
+        build_pending(mesh, work)
 
     names = ", ".join(step.__name__ for step in steps)
     run.__name__ = name.replace("-", "_").replace(".", "_")

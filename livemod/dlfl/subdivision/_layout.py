@@ -193,8 +193,28 @@ def cycle_layout(perm: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return order, offsets
 
 
+class Pending(Mesh):
+    """A stand-in mesh that holds a scheme's result as a :class:`Topology`.
+
+    Chained schemes (the GUI composites) pass one of these between their steps:
+    each step reads the previous step's arrays and leaves its own, and only the
+    last result is built into a real mesh (:func:`build_pending`).
+    """
+
+    def __init__(self, topology: Topology) -> None:  # no tables: never used as a mesh
+        self.topology = topology
+
+
+def build_pending(mesh: Mesh, pending: Pending) -> None:
+    """Build ``pending``'s arrays into ``mesh`` (fresh ids)."""
+    t = pending.topology
+    build_paired(mesh, t, t.pos, t.cv, t.mate, t.sizes, t.hole)
+
+
 def read_topology(mesh: Mesh) -> Topology:
     """Lay ``mesh`` out for a scheme, setting its point-spheres aside."""
+    if isinstance(mesh, Pending):
+        return mesh.topology
     a = mesh_arrays(mesh)
     mate, offsets, cv = a.corner_mate, a.face_offsets, a.corner_vertex
     positions, hole, edge_corners = a.positions, a.face_hole, a.edge_corners
@@ -336,6 +356,9 @@ def build_paired(mesh: Mesh, t: Topology, positions: np.ndarray, cv: np.ndarray,
         cv, mate: ``(C',)`` new vertex and mate of every new corner, face by face.
         sizes, hole: ``(F',)`` size and hole flag of every new face.
     """
+    if isinstance(mesh, Pending):
+        mesh.topology = topology_of(positions, cv, mate, sizes, hole, t.spheres)
+        return
     s = len(t.spheres)
     if s:
         base_v = len(positions)

@@ -28,6 +28,7 @@ from ._layout import (
     Faces,
     Topology,
     build,
+    build_paired,
     check_budget,
     check_number,
     cos_weights,
@@ -543,6 +544,11 @@ def dual(mesh: Mesh, *, accurate: bool = False, max_faces: int | None = None) ->
     del accurate
     t = read_topology(mesh)
     check_budget(t, t.nv, "dual", max_faces)
-    faces = Faces()
-    vertex_rings(t, t.face, t.edge[t.prv], faces)
-    build(mesh, t, t.centroids(), faces)
+    order, offsets = t.vertex_rings()
+    position = np.empty(t.nc, dtype=np.int64)
+    position[order] = np.arange(t.nc)
+    # the side across edge(prev r) is in the ring of the edge's other end, at the
+    # corner after that edge's other side
+    mates = position[t.nxt[t.mate[t.prv[order]]]]
+    build_paired(mesh, t, t.centroids(), t.face[order], mates, np.diff(offsets),
+                 np.zeros(len(offsets) - 1, dtype=bool))
