@@ -1,0 +1,65 @@
+"""Render the README's pictures with livemod itself.
+
+    python docs/make_gallery.py
+
+writes docs/images/tower.gif (a turntable of scripts/tower.py) and
+docs/images/gallery.png (one thumbnail per script in scripts/, labelled), through
+the same headless renderer as ``livemod render``.
+"""
+
+from __future__ import annotations
+
+import sys
+import tempfile
+from pathlib import Path
+
+from PIL import Image, ImageDraw
+
+from livemod.dlfl import mesh_arrays
+from livemod.runner.execute import execute
+from livemod.viewer.headless import render_arrays
+
+ROOT = Path(__file__).resolve().parents[1]
+IMAGES = ROOT / "docs" / "images"
+THUMB = 200
+COLUMNS = 4
+# a few scripts read better with smaller settings at thumbnail size
+PARAMETERS = {"wireframe_soccerballs.py": {"count": 1}}
+
+
+def script_arrays(path: Path):  # noqa: ANN201  (MeshArrays)
+    outcome = execute(path, parameters=PARAMETERS.get(path.name))
+    if outcome.error is not None:
+        raise SystemExit(f"{path.name}: {outcome.error}")
+    return mesh_arrays(outcome.scene.mesh)
+
+
+def thumbnail(path: Path, folder: Path) -> Image.Image:
+    out = folder / f"{path.stem}.png"
+    render_arrays(script_arrays(path), str(out), size=(THUMB, THUMB), elevation=25.0)
+    image = Image.open(out).convert("RGB")
+    ImageDraw.Draw(image).text((6, THUMB - 16), path.stem, fill=(230, 230, 230))
+    return image
+
+
+def gallery(scripts: list[Path]) -> Image.Image:
+    rows = (len(scripts) + COLUMNS - 1) // COLUMNS
+    sheet = Image.new("RGB", (COLUMNS * THUMB, rows * THUMB), (40, 40, 44))
+    with tempfile.TemporaryDirectory() as tmp:
+        for i, path in enumerate(scripts):
+            sheet.paste(thumbnail(path, Path(tmp)), ((i % COLUMNS) * THUMB, (i // COLUMNS) * THUMB))
+    return sheet
+
+
+def main() -> int:
+    IMAGES.mkdir(parents=True, exist_ok=True)
+    scripts = sorted((ROOT / "scripts").glob("*.py"))
+    gallery(scripts).save(IMAGES / "gallery.png", optimize=True)
+    render_arrays(script_arrays(ROOT / "scripts" / "tower.py"), str(IMAGES / "tower.gif"),
+                  size=(360, 360), turntable=36, elevation=20.0, samples=0)
+    print(f"wrote {IMAGES / 'gallery.png'} and {IMAGES / 'tower.gif'}", file=sys.stderr)
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
