@@ -374,7 +374,9 @@ def test_create_face_makes_a_two_sided_polygon():
     assert m.create_face([(0, 0, 1), (1, 0, 1)]) and checked(m) == (6, 6, 4)
 
 
-@pytest.mark.parametrize("points", [[], [(0, 0, 0)], [(0, 0), (1, 1)], [(0, 0, 0), "abc"]])
+@pytest.mark.parametrize("points", [
+    [], [(0, 0, 0)], [(0, 0), (1, 1)], [(0, 0, 0), "abc"], 5, "abc", None,
+])
 def test_create_face_refuses_bad_points(points):
     m = cube()
     before = snapshot(m)
@@ -534,6 +536,10 @@ def test_set_positions_checks_shape():
     np.testing.assert_allclose(m.position(3), [1, 1, 1])
     with pytest.raises(DLFLError, match="shape"):
         m.set_positions([0, 1], [[1, 2, 3]])
+    with pytest.raises(DLFLError, match="positions must be numbers"):
+        m.set_positions([0], ["a", "b", "c"])
+    with pytest.raises(DLFLError, match="sequence of vertex ids"):
+        m.set_positions(3, (1, 1, 1))
 
 
 def test_copy_is_deep_and_keeps_ids():

@@ -882,6 +882,8 @@ class Mesh:
         Raises:
             DLFLError: fewer than two points, or a point is not three numbers.
         """
+        if isinstance(points, (str, bytes)) or not hasattr(points, "__iter__"):
+            raise DLFLError(f"create_face needs a sequence of (x, y, z) points, got {points!r}")
         pts = [_as_point(p) for p in points]
         n = len(pts)
         if n < 2:
@@ -954,8 +956,13 @@ class Mesh:
             vertices: ``(k,)`` vertex ids.
             positions: ``(k, 3)`` floats, or ``(3,)`` for all of them.
         """
+        if not hasattr(vertices, "__iter__"):
+            raise DLFLError(f"set_positions needs a sequence of vertex ids, got {vertices!r}")
         slots = [self._v.slot(v) for v in vertices]
-        values = np.asarray(positions, dtype=np.float64)
+        try:
+            values = np.asarray(positions, dtype=np.float64)
+        except (TypeError, ValueError):
+            raise DLFLError(f"positions must be numbers, got {positions!r}") from None
         if values.shape not in ((3,), (len(slots), 3)):
             raise DLFLError(
                 f"positions must have shape (3,) or ({len(slots)}, 3), got {values.shape}"
