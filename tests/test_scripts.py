@@ -128,7 +128,10 @@ def test_handle_adds_a_genus() -> None:
 
 def test_connect_faces_makes_a_torus_of_the_cube() -> None:
     _, mesh = run("connect_faces.py", segments=3)
-    assert mesh.counts() == doo_sabin(16, 32, 16)
+    # two insets (+4 V, +8 E, +4 F each); a 3-segment tube adds two rings of 4
+    # vertices, 8 ring edges and 12 side edges, and 12 quads for the 2 faces it opens
+    v, e, f = extrude_quads((8, 12, 6), 2)
+    assert mesh.counts() == doo_sabin(v + 8, e + 20, f + 10)
     assert genus(mesh) == 1
 
 
