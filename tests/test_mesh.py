@@ -444,6 +444,14 @@ def test_wrong_kind_of_argument_is_refused(bad):
     assert snapshot(m) == before
 
 
+def test_has_queries_answer_false_for_junk():
+    m = cube()
+    assert m.has_face(0) and m.has_corner(np.int64(23)) and m.has_vertex(7) and m.has_edge(11)
+    for junk in (None, "x", 1.5, (1, 2), [1], -5, 10**9, True, object()):
+        assert not (m.has_face(junk) or m.has_edge(junk) or m.has_vertex(junk)
+                    or m.has_corner(junk))
+
+
 def test_numpy_integers_are_accepted_as_ids():
     m = cube()
     first, second, third = np.array([0, 2, 12])  # numpy scalars, as from id arrays

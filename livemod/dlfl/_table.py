@@ -178,8 +178,12 @@ class Table:
             return f"{self.kind} {eid} was deleted"
         return f"{self.kind} {eid} does not exist"
 
-    def is_live(self, eid: int) -> bool:
-        """True when ``eid`` names a live element of this kind."""
+    def is_live(self, eid: Any) -> bool:
+        """True when ``eid`` names a live element of this kind (False for non-integers)."""
+        if type(eid) is not int:
+            if isinstance(eid, (bool, np.bool_)) or not hasattr(eid, "__index__"):
+                return False
+            eid = int(eid.__index__())
         s = eid - self.base
         if 0 <= s < self.n and self.idv[s] == eid:
             return True
