@@ -263,3 +263,20 @@ def test_objects_load_switch_kill(scene, tmp_path):
     path = tmp_path / "out.obj"
     assert save(str(path)) is True
     assert load(str(path)) != other and counts(scene) == (8, 11, 5)
+
+
+@pytest.mark.parametrize(("command", "args", "message"), [
+    (load, (None,), "load takes a file name"),
+    (load, (5,), "load takes a file name"),
+    (save, (None,), "save takes a file name"),
+    (save, ("/nonexistent-dir/x.obj",), "cannot save '/nonexistent-dir/x.obj'"),
+    (move, (None, (1, 2, 3)), "move takes a list of vertex ids"),
+    (centroid, (5,), "centroid takes a list of vertex ids"),
+    (next, (None,), "next takes a corner or an iterator"),
+    (vertexInfo, ("x",), "expected a vertex id"),
+    (kill, ("x",), "object 'x' does not exist"),
+])
+def test_junk_arguments_raise_dlfl_errors(cube_scene, command, args, message):
+    with pytest.raises(DLFLError, match=message):
+        command(*args)
+    assert counts(cube_scene) == (8, 12, 6)

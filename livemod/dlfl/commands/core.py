@@ -175,6 +175,8 @@ def next(c: Any, *default: Any) -> Any:  # noqa: A001  (the thesis's name)
     built-in, so scripts that import ``*`` keep working.
     """
     if not isinstance(c, tuple | int) or isinstance(c, bool):
+        if not hasattr(c, "__next__"):
+            raise DLFLError(f"next takes a corner or an iterator, got {c!r}")
         iterator: Any = c
         return builtins.next(iterator, *default)
     m = mesh()
@@ -221,7 +223,7 @@ def load(filename: str) -> int:
     """
     from ..io import load_mesh
 
-    path = os.fspath(filename)
+    path = _path(filename, "load")
     if os.path.exists(path):
         loaded = load_mesh(path)
     else:
@@ -237,8 +239,19 @@ def save(filename: str) -> bool:
     """Save the current object (``.obj``, ``.dlfl``, ``.stl``, ``.ply``); True on success."""
     from ..io import save_mesh
 
-    save_mesh(mesh(), os.fspath(filename))
+    path = _path(filename, "save")
+    try:
+        save_mesh(mesh(), path)
+    except OSError as exc:
+        raise DLFLError(f"cannot save {path!r}: {exc.strerror or exc}") from None
     return True
+
+
+def _path(filename: Any, command: str) -> str:
+    """``filename`` as a string path, or a DLFLError naming the command."""
+    if not isinstance(filename, str | os.PathLike):
+        raise DLFLError(f"{command} takes a file name, got {filename!r}")
+    return os.fspath(filename)
 
 
 def kill(objectid: int) -> None:
@@ -318,10 +331,17 @@ def vertexEdges(vertexid: int) -> list[int]:
 def centroid(vertexids: Iterable[int] | None = None) -> tuple[float, float, float]:
     """Mean position of the given vertices (all vertices when omitted)."""
     m = mesh()
-    ids = m.vertex_ids().tolist() if vertexids is None else list(vertexids)
+    ids = m.vertex_ids().tolist() if vertexids is None else _id_list(vertexids, "centroid")
     if not ids:
         raise DLFLError("centroid needs at least one vertex id")
     return _vec(np.mean([m.position(v) for v in ids], axis=0))
+
+
+def _id_list(ids: Any, command: str) -> list[Any]:
+    """``ids`` as a list, or a DLFLError when it is not a sequence of ids."""
+    if isinstance(ids, str | bytes) or not hasattr(ids, "__iter__"):
+        raise DLFLError(f"{command} takes a list of vertex ids, got {ids!r}")
+    return list(ids)
 
 
 # -- transforms -----------------------------------------------------------------
@@ -371,7 +391,7 @@ def move(vertexids: Iterable[int], *args: Any, relative: bool = True) -> None:
     if rest:
         relative = bool(rest[0])
     m = mesh()
-    ids = list(vertexids)
+    ids = _id_list(vertexids, "move")
     slots = [m._v.slot(v) for v in ids]
     pos = m._v.arrays["position"]
     pos[slots] = pos[slots] + target if relative else target
