@@ -204,11 +204,12 @@ class MeshOperators(RuleBasedStateMachine):
             assert euler_ok(self.mesh)
 
 
-# NOSHRINK=1 skips shrinking when hunting bugs with many examples
+# LIVEMOD_PROPERTY_EXAMPLES and LIVEMOD_PROPERTY_STEPS scale the hunt; NOSHRINK=1 skips
+# shrinking when hunting bugs with many examples
 PHASES = [Phase.explicit, Phase.reuse, Phase.generate]
 MeshOperators.TestCase.settings = settings(
     max_examples=int(os.environ.get("LIVEMOD_PROPERTY_EXAMPLES", "800")),
-    stateful_step_count=10,
+    stateful_step_count=int(os.environ.get("LIVEMOD_PROPERTY_STEPS", "10")),
     deadline=None,
     suppress_health_check=[HealthCheck.too_slow, HealthCheck.filter_too_much],
     phases=PHASES if os.environ.get("NOSHRINK") else [*PHASES, Phase.shrink],
