@@ -87,7 +87,7 @@ def test_parameters_are_globals_and_scene_parameters():
     result = run_script(script_path("uses_params.py"), parameters={"count": 5, "height": 2.0})
     assert result.arrays is not None and result.arrays.counts == (5, 0, 5)
     assert np.allclose(result.arrays.positions[:, 1], 2.0)
-    assert result.parameters == (("count", 5), ("height", 2.0))
+    assert result.values == (("count", 5), ("height", 2.0))
 
 
 def test_selection_is_what_faces_true_returns():

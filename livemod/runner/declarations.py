@@ -27,7 +27,19 @@ def declared_parameters(script: str | Path) -> dict[str, ParamSpec]:
         OSError: the script cannot be read.
     """
     path = Path(script)
-    source = path.read_text(encoding="utf-8")
+    specs = literal_declarations(path.read_text(encoding="utf-8"), path)
+    return specs if specs is not None else _run_for_declarations(path)
+
+
+def literal_declarations(source: str, path: str | Path) -> dict[str, ParamSpec] | None:
+    """The declarations of ``source`` read from its syntax tree, without running it.
+
+    Returns None when a ``param()`` call computes an argument (the script must
+    be run to know its declarations).
+
+    Raises:
+        DLFLError: a syntax error, or a malformed literal declaration.
+    """
     try:
         tree = ast.parse(source, filename=str(path))
     except SyntaxError as exc:
@@ -37,8 +49,8 @@ def declared_parameters(script: str | Path) -> dict[str, ParamSpec]:
     calls.sort(key=lambda node: (node.lineno, node.col_offset))
     literal = [_literal_arguments(call) for call in calls]
     if all(args is not None for args in literal):
-        return _specs(path, calls, literal)
-    return _run_for_declarations(path)
+        return _specs(Path(path), calls, literal)
+    return None
 
 
 def _is_param_call(node: ast.AST) -> bool:
@@ -93,11 +105,11 @@ def check_values(specs: dict[str, ParamSpec], values: dict[str, Any]) -> dict[st
         DLFLError: a name the script does not declare (listing those it does) or a
             value that does not fit its declaration.
     """
+    problem = undeclared(specs, values)
+    if problem is not None:
+        raise DLFLError(problem)
     checked = {}
     for name, value in values.items():
-        if name not in specs:
-            known = ", ".join(specs) or "none"
-            raise DLFLError(f"the script declares no parameter {name!r} (it declares: {known})")
         checked[name] = specs[name].check(value)
     return checked
 
@@ -118,3 +130,35 @@ def describe(specs: Iterable[ParamSpec]) -> list[str]:
         doc = f"  {spec.doc}" if spec.doc else ""
         lines.append(f"{spec.name} = {spec.default!r}  [{spec.kind}]{detail}{doc}")
     return lines
+
+
+def fitting_values(specs: dict[str, ParamSpec], values: dict[str, Any],
+                   previous: dict[str, ParamSpec]) -> dict[str, Any]:
+    """The ``values`` that still fit ``specs`` (converted), for a script that was edited.
+
+    A value whose declaration changed so that it no longer fits (another kind,
+    a narrower range, a lost choice) is dropped, and so is one whose declaration
+    was in ``previous`` but is gone now; names never declared pass through (they
+    are plain globals of the script).
+    """
+    kept = {}
+    for name, value in values.items():
+        spec = specs.get(name)
+        if spec is None:
+            if name not in previous:
+                kept[name] = value
+            continue
+        try:
+            kept[name] = spec.check(value)
+        except DLFLError:
+            continue
+    return kept
+
+
+def undeclared(specs: dict[str, ParamSpec], values: dict[str, Any]) -> str | None:
+    """The error line for the first name in ``values`` that ``specs`` lacks, else None."""
+    for name in values:
+        if name not in specs:
+            known = ", ".join(specs) or "none"
+            return f"the script declares no parameter {name!r} (it declares: {known})"
+    return None

@@ -101,6 +101,11 @@ class RunOutcome:
     modules: tuple[str, ...] = ()
     source: str = ""
 
+    @property
+    def declarations(self) -> dict:
+        """``name -> ParamSpec`` the script declared with ``param()``, in order."""
+        return dict(self.scene.declarations)
+
 
 class StepRecorder:
     """Records steps, pauses and cancels a run; :attr:`hook` is the scene's ``step_hook``.

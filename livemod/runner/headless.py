@@ -32,7 +32,8 @@ def result_of(outcome: RunOutcome, script: str, parameters: dict | None,
         run_id=run_id, script=os.path.abspath(script), status=outcome.status,
         steps=outcome.steps, step_index=None, arrays=arrays if ok else None, preview=None,
         error=outcome.error, elapsed=outcome.elapsed, stale=False,
-        parameters=parameter_items(parameters), partial=None if ok else arrays,
+        parameters=tuple(outcome.scene.declarations.values()),
+        partial=None if ok else arrays, values=parameter_items(parameters),
     )
 
 

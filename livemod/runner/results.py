@@ -79,8 +79,11 @@ class RunResult:
         error: set for ``"error"`` and ``"cancelled"``.
         elapsed: seconds the run took until this snapshot.
         stale: True when ``arrays`` come from an earlier run.
-        parameters: the run's parameters as sorted ``(name, value)`` pairs.
+        parameters: the parameters the script declared with ``param()``, as
+            ``ParamSpec`` objects in the order of the script (for the viewer's
+            controls); empty when the script declares none.
         partial: for errors, the mesh as the failed run left it (None otherwise).
+        values: the values the run was given, as sorted ``(name, value)`` pairs.
     """
 
     run_id: int
@@ -95,6 +98,7 @@ class RunResult:
     stale: bool
     parameters: tuple = ()
     partial: MeshArrays | None = None
+    values: tuple = ()
 
 
 def freeze_arrays(arrays: MeshArrays) -> MeshArrays:

@@ -26,9 +26,12 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 from livemod.dlfl.arrays import MeshArrays
+from livemod.dlfl.errors import DLFLError
 from livemod.dlfl.mesh import Mesh
+from livemod.dlfl.params import ParamSpec
 from livemod.dlfl.scene import Scene, Selection
 
+from .declarations import check_values, fitting_values, literal_declarations
 from .errors import Cancelled, exception_error
 from .execute import RunControl, RunOutcome, base_scene, execute, interrupt_user_code
 from .playback import Playback
@@ -98,6 +101,7 @@ class LiveSession:
         self.seed = seed
         self.output = output
         self._parameters = dict(parameters or {})
+        self._declarations: dict[str, ParamSpec] = {}  # of the newest script text
         self._selection: Selection | None = None
         self._playback = Playback()
         self._rate: float | None = None  # steps per second while playing
@@ -168,15 +172,39 @@ class LiveSession:
             self._selection = selection
 
     def set_parameters(self, values: dict) -> None:
-        """Update script parameters (globals and ``scene.parameters``) and re-run."""
+        """Update script parameters (globals and ``scene.parameters``) and re-run.
+
+        The values are kept for later runs (saves of the script included) while
+        their declarations still fit them.
+
+        Raises:
+            DLFLError: once the script's declarations are known, a name it does
+                not declare or a value that does not fit (nothing is changed).
+        """
         with self._lock:
+            if self._declarations:
+                values = check_values(self._declarations, values)
             self._parameters.update(values)
+        self._request(self._source)
+
+    def reset_parameters(self, names: list[str] | None = None) -> None:
+        """Forget the given values (all when ``names`` is None) and re-run with defaults."""
+        with self._lock:
+            for name in list(self._parameters) if names is None else names:
+                self._parameters.pop(name, None)
         self._request(self._source)
 
     @property
     def parameters(self) -> dict:
+        """The values the next run gets, by name."""
         with self._lock:
             return dict(self._parameters)
+
+    @property
+    def declarations(self) -> dict[str, ParamSpec]:
+        """``name -> ParamSpec`` of the script as last run (empty before the first run)."""
+        with self._lock:
+            return dict(self._declarations)
 
     # -- playback -------------------------------------------------------------------
 
@@ -383,6 +411,7 @@ class LiveSession:
         with self._lock:
             self._source = source
             self._seen[run.script] = _hash(source.encode("utf-8"))
+            parameters = self._fit_parameters(run.script, source, parameters)
         try:
             outcome = execute(run.script, source=source, base=base, seed=self.seed,
                               parameters=parameters, selection=selection, control=run.control)
@@ -391,7 +420,33 @@ class LiveSession:
             return
         run.control.finished = True
         self._watch_modules(run.script, outcome.modules)
+        if outcome.status == "ok":
+            with self._lock:
+                self._declarations = dict(outcome.scene.declarations)
         self._publish(run, outcome, parameter_items(parameters))
+
+    def _specs(self, scene: Scene) -> tuple[ParamSpec, ...]:
+        """The declarations to show with a result: the script's, as known in full
+        (a failed or paused run may not have reached every ``param()``)."""
+        with self._lock:
+            known = tuple(self._declarations.values())
+        return known or tuple(scene.declarations.values())
+
+    def _fit_parameters(self, script: str, source: str, parameters: dict) -> dict:
+        """The values that still fit the declarations of ``source`` (caller holds the
+        lock); the ones that no longer fit are forgotten for good."""
+        try:
+            specs = literal_declarations(source, script)
+        except DLFLError:
+            specs = None  # the run reports the syntax or declaration error
+        if specs is None:
+            return parameters
+        kept = fitting_values(specs, parameters, self._declarations)
+        for name in set(parameters) - set(kept):
+            if self._parameters.get(name) == parameters[name]:
+                del self._parameters[name]
+        self._declarations = specs
+        return kept
 
     def _base_scene(self) -> Scene | None:
         """The ``--mesh`` scene, loaded once, in the worker (never on the caller's thread)."""
@@ -410,12 +465,12 @@ class LiveSession:
                     self._seen[path] = digest
             self._watcher.set_files(self._watcher.files | set(modules))
 
-    def _publish(self, run: _Run, outcome: RunOutcome, parameters: tuple) -> None:
+    def _publish(self, run: _Run, outcome: RunOutcome, values: tuple) -> None:
         if outcome.status == "cancelled" and run.cancel_reason != "user":
             return  # superseded: the newer run's result is what matters
         save_error = self._save_output(outcome) if outcome.status == "ok" else None
         if outcome.status == "ok" and save_error is None:
-            self._publish_ok(run, outcome, parameters)
+            self._publish_ok(run, outcome, values)
             return
         error = save_error or outcome.error
         status = "error" if save_error is not None else outcome.status
@@ -425,12 +480,13 @@ class LiveSession:
         self._post(RunResult(
             run.run_id, run.script, status, outcome.steps, None,
             last.arrays if last else None, last.preview if last else None, error,
-            outcome.elapsed, last is not None, parameters, snapshot_scene(outcome.scene)))
+            outcome.elapsed, last is not None, self._specs(outcome.scene),
+            snapshot_scene(outcome.scene), values))
 
-    def _publish_ok(self, run: _Run, outcome: RunOutcome, parameters: tuple) -> None:
+    def _publish_ok(self, run: _Run, outcome: RunOutcome, values: tuple) -> None:
         result = RunResult(run.run_id, run.script, "ok", outcome.steps, None,
                            snapshot_scene(outcome.scene), None, None, outcome.elapsed,
-                           False, parameters)
+                           False, self._specs(outcome.scene), values=values)
         with self._lock:
             if run.run_id == self._run_id:
                 self._last_good, self._last_steps = result, outcome.steps
@@ -446,7 +502,7 @@ class LiveSession:
         error = dataclasses.replace(exception_error(exc, run.script), file=run.script)
         self._post(RunResult(run.run_id, run.script, "error", (), None,
                              last.arrays if last else None, None, error, elapsed,
-                             last is not None))
+                             last is not None, last.parameters if last else ()))
 
     def _save_output(self, outcome: RunOutcome) -> ScriptError | None:
         """Write the mesh to ``output`` (``run --watch -o``); an error if that fails."""
@@ -466,7 +522,7 @@ class LiveSession:
         result = RunResult(run.run_id, run.script, "paused", steps, index,
                            snapshot_scene(scene), None, None,
                            steps[-1].elapsed if steps else 0.0, False,
-                           parameter_items(scene.parameters))
+                           self._specs(scene), values=parameter_items(scene.parameters))
         with self._lock:
             self._snapshots.put(result)
             if self._shown is not None:
