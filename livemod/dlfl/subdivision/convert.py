@@ -363,19 +363,38 @@ def dual_1264(mesh: Mesh, *, scale: float = 0.7, max_faces: int | None = None) -
     if scale not in (0.0, 1.0):
         cen = t.centroids()[t.face]
         first, second = cen + scale * (first - cen), cen + scale * (second - cen)
+    build_paired(mesh, t, np.concatenate([first, second]), *_dual_1264_layout(t))
+
+
+def _dual_1264_layout(t: Topology) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Dual 12.6.4's corners with mates computed directly.
+
+    Points: first(c) = c, second(c) = C + c. Layout: 2n-gons (2c, 2c + 1: first(c),
+    second(c)), edge quads (2C + 4k: second(a), first(a), second(b), first(b)),
+    vertex 2k-gons (2C + 4E + 2q, + 1: first(r), second(prev r) for ring corner r).
+    Returns the new corners' vertices and mates, the face sizes and hole flags.
+    """
     nc, c = t.nc, np.arange(t.nc)
-    faces = Faces()
-    faces.add(np.stack([c, nc + c], axis=1), np.stack([c, nc + c], axis=1), t.hole, 2 * t.sizes)
     a, b = t.edge_corners[:, 0], t.edge_corners[:, 1]
-    verts = np.stack([nc + a, a, nc + b, b], axis=1)
-    labels = np.stack([a, 2 * nc + b, b, 2 * nc + a], axis=1)
-    faces.add(verts, labels, np.zeros(len(a), dtype=bool))
     order, offsets = t.vertex_rings()
+    position = np.empty(nc, dtype=np.int64)
+    position[order] = c
+    ring = 2 * nc + 4 * t.ne
+    is_a = a[t.edge] == c
+    face_mate = np.stack([2 * nc + 4 * t.edge + np.where(is_a, 0, 2),
+                          ring + 2 * position[t.nxt]], axis=1)
+    quad_mate = np.stack([2 * a, ring + 2 * position[t.nxt[b]] + 1, 2 * b,
+                          ring + 2 * position[t.nxt[a]] + 1], axis=1)
     prev = t.prv[order]
-    faces.add(np.stack([order, nc + prev], axis=1),
-              np.stack([nc + prev, 2 * nc + prev], axis=1),
-              np.False_, 2 * np.diff(offsets))
-    build(mesh, t, np.concatenate([first, second]), faces)
+    ring_mate = np.stack([2 * prev + 1, 2 * nc + 4 * t.edge[prev] + np.where(is_a[prev], 3, 1)],
+                         axis=1)
+    verts = np.concatenate([np.stack([c, nc + c], axis=1).ravel(),
+                            np.stack([nc + a, a, nc + b, b], axis=1).ravel(),
+                            np.stack([order, nc + prev], axis=1).ravel()])
+    mates = np.concatenate([face_mate.ravel(), quad_mate.ravel(), ring_mate.ravel()])
+    sizes = np.concatenate([2 * t.sizes, np.full(t.ne, 4, dtype=np.int64), 2 * np.diff(offsets)])
+    hole = np.concatenate([t.hole, np.zeros(t.ne + len(offsets) - 1, dtype=bool)])
+    return verts, mates, sizes, hole
 
 
 def _stellate_centres(t: Topology, offset: float) -> np.ndarray:

@@ -15,6 +15,7 @@ from ._layout import (
     Faces,
     Topology,
     build,
+    build_paired,
     check_budget,
     check_number,
     cos_weights,
@@ -55,19 +56,22 @@ def checker(mesh: Mesh, *, thickness: float = 0.33, max_faces: int | None = None
 
 
 def _checker_faces(mesh: Mesh, t: Topology, positions: np.ndarray) -> None:
+    """Inset faces (corner c at c), side quads (at C + 4c: near(c), near(mate c),
+    inset(next c), inset(c)) and corner quads (at 5C + 4c: vertex, near(c),
+    inset(c), near(mate(prev c)))), their mates computed directly."""
     v, nc, c = t.nv, t.nc, np.arange(t.nc)
+    nxt, prv, mate = t.nxt, t.prv, t.mate
     near, inset = v + c, v + nc + c
-    prev, nxt, mate = t.prv, t.nxt, t.mate
-    # labels: inset sides c, middle thirds nc + edge, spokes to near 2nc + c,
-    # spokes to far 3nc + c, end thirds 4nc + c
-    faces = Faces()
-    faces.add(inset, c, t.hole, t.sizes)
-    faces.add(np.stack([near, v + mate, v + nc + nxt, inset], axis=1),
-              np.stack([nc + t.edge, 3 * nc + nxt, c, 2 * nc + c], axis=1), t.hole[t.face])
-    faces.add(np.stack([t.cv, near, inset, v + mate[prev]], axis=1),
-              np.stack([4 * nc + c, 2 * nc + c, 3 * nc + c, 4 * nc + mate[prev]], axis=1),
-              np.zeros(nc, dtype=bool))
-    build(mesh, t, positions, faces)
+    side = np.stack([near, v + mate, v + nc + nxt, inset], axis=1)
+    side_mate = np.stack([nc + 4 * mate, 5 * nc + 4 * nxt + 2, c, 5 * nc + 4 * c + 1], axis=1)
+    corner = np.stack([t.cv, near, inset, v + mate[prv]], axis=1)
+    corner_mate = np.stack([5 * nc + 4 * nxt[mate] + 3, nc + 4 * c + 3, nc + 4 * prv + 1,
+                            5 * nc + 4 * mate[prv]], axis=1)
+    verts = np.concatenate([inset, side.ravel(), corner.ravel()])
+    mates = np.concatenate([nc + 4 * c + 2, side_mate.ravel(), corner_mate.ravel()])
+    sizes = np.concatenate([t.sizes, np.full(2 * nc, 4, dtype=np.int64)])
+    hole = np.concatenate([t.hole, t.hole[t.face], np.zeros(nc, dtype=bool)])
+    build_paired(mesh, t, positions, verts, mates, sizes, hole)
 
 
 def _split_face_values(t: Topology) -> tuple[np.ndarray, np.ndarray]:
