@@ -551,10 +551,11 @@ class Mesh:
         C = self._c
         nxt, face = C.next, C.face
         f1, f2 = face[s1], face[s2]
+        fidv = F.idv  # F does not grow below: its room is reserved
         if f1 == f2:
-            result = self._delete_split(s1, s2, cleanup)
+            result = [fidv[f] for f in self._delete_split(s1, s2, cleanup)]
         elif nxt[s1] == s1 or nxt[s2] == s2:
-            result = self._delete_merge_one_gon(s1, s2, cleanup)
+            result = [fidv[f] for f in self._delete_merge_one_gon(s1, s2, cleanup)]
         else:
             # two faces merge: the second joins the first (undoes a co-facial insert)
             x = nxt[s2]
@@ -564,7 +565,7 @@ class Mesh:
             face[s2] = f1
             self._drop_after_sides(s1, s2)
             F.release(f2)
-            result = [f1]
+            result = [fidv[f1]]
         # E.release(es), inlined for the interactive hot path
         eidv = E.idv
         if E.moved:
@@ -572,8 +573,7 @@ class Mesh:
         eidv[es] = -1
         E.free.append(es)
         E._sorted_cache = None
-        fidv = F.idv
-        return [fidv[f] for f in result]
+        return result
 
     def _delete_merge_one_gon(self, s1: int, s2: int, cleanup: bool) -> list[int]:
         """Delete a loop that closes a one-corner face; both side corners go."""
