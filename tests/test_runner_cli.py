@@ -92,7 +92,7 @@ def test_batch_in_two_processes_end_to_end(tmp_path, capsys):
     assert code == 0, captured.err
     assert "8/8 variants ok" in captured.out and "8/8" in captured.err  # progress bar
     names = sorted(os.listdir(tmp_path / "out"))
-    assert len(names) == 8 and "ring_6_2_7.obj" in names
+    assert len(names) == 9 and "ring_6_2.0_7.obj" in names and "index.json" in names
 
 
 def test_batch_reports_failing_variants(tmp_path, capsys):

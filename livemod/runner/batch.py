@@ -22,6 +22,11 @@ from typing import Any, Protocol, TextIO
 
 import numpy as np
 
+from livemod.dlfl.errors import DLFLError
+from livemod.dlfl.params import ParamSpec
+
+from .declarations import undeclared
+
 
 @dataclass(frozen=True)
 class Variant:
@@ -46,6 +51,7 @@ class VariantResult:
     error: str | None
     output: str | None
     elapsed: float
+    genus: int | None = None
 
 
 def parse_param(text: str) -> tuple[str, list[Any]]:
@@ -69,6 +75,33 @@ def parse_param(text: str) -> tuple[str, list[Any]]:
     if not count.isdigit() or int(count) < 1:
         raise ValueError(f"--param count must be a positive integer, got {text!r}")
     return name, _spaced(start, stop, int(count))
+
+
+def declared_sweep(text: str, specs: dict[str, ParamSpec]) -> tuple[str, list[Any]]:
+    """A ``--param`` of ``livemod batch`` parsed and checked against the declarations.
+
+    Forms: ``name=value``, ``name=start:stop:count`` (numbers; an int parameter
+    gets whole values, repeats removed) and ``name=a,b,c`` (any kind, e.g. a
+    choice or ``true,false``). Every value is converted and range-checked.
+
+    Raises:
+        ValueError: a malformed text.
+        DLFLError: a name the script does not declare, or a value that does not fit.
+    """
+    name, sep, body = text.partition("=")
+    if not sep or not name.isidentifier():
+        raise ValueError(f"--param expects name=start:stop:count or name=a,b,..., got {text!r}")
+    problem = undeclared(specs, {name: None})
+    if problem is not None:
+        raise DLFLError(problem)
+    spec = specs[name]
+    if spec.kind in ("int", "float") and body.count(":") == 2:
+        _, values = parse_param(text)
+        if spec.kind == "int":
+            values = list(dict.fromkeys(int(round(v)) for v in values))
+    else:
+        values = body.split(",") if spec.kind != "str" or "," in body else [body]
+    return name, [spec.check(value) for value in values]
 
 
 def _number(text: str, whole: str) -> int | float:
@@ -113,6 +146,8 @@ def output_name(pattern: str, parameters: dict[str, Any], index: int) -> str:
 def run_variant(variant: Variant) -> VariantResult:
     """Run one variant in this process and write its mesh (a top-level function,
     so process pools can pickle it)."""
+    from livemod.dlfl.analysis import genus
+
     from .headless import run_outcome
     from .results import current_mesh
 
@@ -127,6 +162,7 @@ def run_variant(variant: Variant) -> VariantResult:
         return _failed(variant, str(outcome.error), started)
     mesh = current_mesh(outcome.scene)
     counts = mesh.counts() if mesh is not None else (0, 0, 0)
+    shape_genus = genus(mesh) if mesh is not None else None
     if variant.output is not None and mesh is not None:
         try:
             os.makedirs(os.path.dirname(os.path.abspath(variant.output)), exist_ok=True)
@@ -134,7 +170,7 @@ def run_variant(variant: Variant) -> VariantResult:
         except Exception as exc:
             return _failed(variant, f"{variant.output}: {type(exc).__name__}: {exc}", started)
     return VariantResult(variant.index, variant.parameters, "ok", counts, None,
-                         variant.output, time.perf_counter() - started)
+                         variant.output, time.perf_counter() - started, shape_genus)
 
 
 def _failed(variant: Variant, message: str, started: float) -> VariantResult:
@@ -239,3 +275,47 @@ def _draw_progress(out: TextIO, done: int, total: int, last: VariantResult) -> N
     mark = "" if last.status == "ok" else f"  (variant {last.index} failed)"
     out.write(f"\rbatch [{'#' * filled}{'.' * (width - filled)}] {done}/{total}{mark}")
     out.flush()
+
+
+def index_rows(results: list[VariantResult]) -> list[dict[str, Any]]:
+    """One JSON-ready record per variant: values, output, status, counts, genus."""
+    rows = []
+    for r in results:
+        v, e, f = r.counts if r.counts is not None else (None, None, None)
+        rows.append({"index": r.index, "values": dict(r.parameters), "output": r.output,
+                     "status": r.status, "V": v, "E": e, "F": f, "genus": r.genus,
+                     "error": r.error, "elapsed": round(r.elapsed, 4)})
+    return rows
+
+
+def index_path(variants: list[Variant], given: str | None) -> str | None:
+    """Where the sweep's ``index.json`` goes: ``given``, else next to the first
+    output, else nowhere (None)."""
+    if given is not None:
+        return given
+    outputs = [v.output for v in variants if v.output is not None]
+    if not outputs:
+        return None
+    return os.path.join(os.path.dirname(os.path.abspath(outputs[0])), "index.json")
+
+
+def write_index(path: str, script: str, specs: dict[str, ParamSpec],
+                results: list[VariantResult]) -> None:
+    """Write the sweep's index: the script, its declarations and every variant.
+
+    Raises:
+        OSError: the file cannot be written.
+    """
+    import json
+
+    document = {
+        "script": os.path.abspath(script),
+        "parameters": [{"name": s.name, "kind": s.kind, "default": s.default, "min": s.min,
+                        "max": s.max, "choices": list(s.choices) if s.choices else None,
+                        "doc": s.doc} for s in specs.values()],
+        "variants": index_rows(results),
+    }
+    os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
+    with open(path, "w", encoding="utf-8") as handle:
+        json.dump(document, handle, indent=2, default=str)
+        handle.write("\n")

@@ -1,4 +1,4 @@
-"""``livemod run`` and ``livemod batch``: the runner's subcommands.
+"""``livemod run``, ``livemod batch`` and ``livemod params``: the runner's subcommands.
 
 The top-level ``livemod`` parser calls :func:`add_commands`; each subcommand
 stores its function in ``handler``, which takes the parsed arguments and returns the
@@ -16,8 +16,10 @@ from collections.abc import Sequence
 from typing import Any, TextIO
 
 from livemod.dlfl.analysis import summarize
+from livemod.dlfl.errors import DLFLError
 
-from .batch import make_variants, parse_param, run_batch, sweep
+from .batch import declared_sweep, index_path, make_variants, run_batch, sweep, write_index
+from .declarations import declared_parameters, describe, given_values
 from .headless import run_outcome
 from .results import RunResult, StepRecord, current_mesh
 
@@ -25,9 +27,31 @@ OUTPUT_SUFFIXES = (".obj", ".dlfl", ".stl", ".ply")
 
 
 def add_commands(subparsers: Any) -> None:
-    """Add ``run`` and ``batch`` to an ``argparse`` subparsers object."""
+    """Add ``run``, ``batch`` and ``params`` to an ``argparse`` subparsers object."""
     _add_run(subparsers)
     _add_batch(subparsers)
+    _add_params(subparsers)
+
+
+def _add_params(subparsers: Any) -> None:
+    params = subparsers.add_parser(
+        "params", help="list the parameters a script declares with param()")
+    params.add_argument("script", help="the Python script")
+    params.set_defaults(handler=cmd_params)
+
+
+def cmd_params(args: argparse.Namespace) -> int:
+    """``livemod params``: print one line per declared parameter (2 if unreadable)."""
+    try:
+        specs = declared_parameters(args.script)
+    except (DLFLError, OSError) as exc:
+        print(f"livemod params: {exc}", file=sys.stderr)
+        return 2
+    if not specs:
+        print(f"{args.script} declares no parameters")
+    for line in describe(specs.values()):
+        print(line)
+    return 0
 
 
 def _seed(text: str) -> int | None:
@@ -41,8 +65,8 @@ def _add_run(subparsers: Any) -> None:
     run.add_argument("-o", "--output", metavar="OUT", help="write the result (.obj .dlfl .stl .ply)")
     run.add_argument("--steps", action="store_true", help="print the step list")
     run.add_argument("--seed", type=_seed, default=0, help="seed of random/numpy (or 'none')")
-    run.add_argument("--param", action="append", default=[], metavar="NAME=VALUE",
-                     help="a script parameter (global), repeatable")
+    run.add_argument("--set", "--param", dest="set", action="append", default=[],
+                     metavar="NAME=VALUE", help="a declared script parameter, repeatable")
     run.add_argument("--watch", action="store_true", help="re-run (and rewrite OUT) on every save")
     run.add_argument("--poll", action="store_true", help="poll for changes (no fs events)")
     run.add_argument("--max-runs", type=int, default=None, help=argparse.SUPPRESS)
@@ -53,7 +77,10 @@ def _add_batch(subparsers: Any) -> None:
     batch = subparsers.add_parser("batch", help="run parameter variants of a script in parallel")
     batch.add_argument("script", help="the Python script")
     batch.add_argument("--param", action="append", required=True,
-                       metavar="NAME=START:STOP:COUNT", help="a swept parameter, repeatable")
+                       metavar="NAME=START:STOP:COUNT",
+                       help="a swept parameter (or NAME=a,b,c, or NAME=value), repeatable")
+    batch.add_argument("--index", metavar="FILE",
+                       help="the sweep's JSON index (default: index.json next to the outputs)")
     batch.add_argument("-o", "--output", metavar="PATTERN",
                        help="output file pattern, e.g. 'out/{name}_{index}.obj'")
     batch.add_argument("-j", "--jobs", type=int, default=os.cpu_count() or 1)
@@ -67,20 +94,13 @@ def _check_output(path: str | None) -> None:
         raise ValueError(f"output {path!r} must end with one of {', '.join(OUTPUT_SUFFIXES)}")
 
 
-def _parameters(texts: list[str]) -> dict[str, Any]:
-    params = {}
-    for text in texts:
-        name, values = parse_param(text)
-        params[name] = values[0]
-    return params
-
-
 def cmd_run(args: argparse.Namespace) -> int:
-    """``livemod run``: 0 on success, 1 on a script error, 2 on bad arguments or files."""
+    """``livemod run``: 0 on success, 1 on a script error, 2 on bad arguments or files
+    (a parameter the script does not declare, or a value that does not fit)."""
     try:
         _check_output(args.output)
-        params = _parameters(args.param)
-    except ValueError as exc:
+        params = given_values(args.script, args.set)
+    except (ValueError, DLFLError, OSError) as exc:
         print(f"livemod run: {exc}", file=sys.stderr)
         return 2
     if args.watch:
@@ -180,10 +200,11 @@ def cmd_batch(args: argparse.Namespace) -> int:
     """``livemod batch``: 0 when every variant succeeded, 1 otherwise, 2 on bad arguments."""
     try:
         _check_output(args.output)
-        sets = sweep(parse_param(text) for text in args.param)
+        specs = declared_parameters(args.script)
+        sets = sweep(declared_sweep(text, specs) for text in args.param)
         variants = make_variants(args.script, sets, args.output, mesh_path=args.mesh,
                                  seed=args.seed)
-    except ValueError as exc:
+    except (ValueError, DLFLError, OSError) as exc:
         print(f"livemod batch: {exc}", file=sys.stderr)
         return 2
     results = run_batch(variants, jobs=args.jobs)
@@ -191,11 +212,19 @@ def cmd_batch(args: argparse.Namespace) -> int:
     for r in failed:
         print(f"variant {r.index} {dict(r.parameters)}: {r.error}", file=sys.stderr)
     print(f"{len(results) - len(failed)}/{len(results)} variants ok")
+    index = index_path(variants, args.index)
+    if index is not None:
+        try:
+            write_index(index, args.script, specs, results)
+        except OSError as exc:
+            print(f"livemod batch: cannot write the index: {exc}", file=sys.stderr)
+            return 2
+        print(f"wrote {index}")
     return 1 if failed else 0
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """Stand-alone ``livemod``-style entry point with just ``run`` and ``batch``."""
+    """Stand-alone ``livemod``-style entry point with just ``run``, ``batch`` and ``params``."""
     parser = argparse.ArgumentParser(prog="livemod")
     add_commands(parser.add_subparsers(dest="command", required=True))
     args = parser.parse_args(argv)

@@ -162,3 +162,26 @@ def undeclared(specs: dict[str, ParamSpec], values: dict[str, Any]) -> str | Non
             known = ", ".join(specs) or "none"
             return f"the script declares no parameter {name!r} (it declares: {known})"
     return None
+
+
+def given_values(script: str | Path, texts: list[str]) -> dict[str, Any]:
+    """``--set name=value`` texts checked against the script's declarations.
+
+    The declarations are read without running the script when they are literal
+    (otherwise it runs once with its defaults); nothing is read when ``texts``
+    is empty.
+
+    Raises:
+        ValueError: a text without ``=`` or with a bad name.
+        DLFLError: a name the script does not declare, or a value that does not fit.
+        OSError: the script cannot be read.
+    """
+    raw = {}
+    for text in texts:
+        name, sep, value = text.partition("=")
+        if not sep or not name.isidentifier():
+            raise ValueError(f"--set expects name=value, got {text!r}")
+        raw[name] = value
+    if not raw:
+        return {}
+    return check_values(declared_parameters(script), raw)

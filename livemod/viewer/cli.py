@@ -35,6 +35,8 @@ def add_commands(subparsers: Any) -> None:
     view.add_argument("--size", type=parse_size, default=(1280, 800), help="WxH window size")
     view.add_argument("--poll", action="store_true",
                       help="poll for changes (for file systems that send no events)")
+    view.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
+                      help="a declared script parameter to start with, repeatable")
     view.set_defaults(handler=_view)
     render = subparsers.add_parser(
         "render", help="render a script's result or a mesh to PNG, a PNG sequence or a GIF")
@@ -42,6 +44,8 @@ def add_commands(subparsers: Any) -> None:
     render.add_argument("-o", "--output", required=True,
                         help="out.png, out.gif, a folder, or a pattern with {frame} / %%03d")
     render.add_argument("--mesh", help="mesh a script starts from")
+    render.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
+                        help="a declared script parameter, repeatable")
     render.add_argument("--size", type=parse_size, default=(800, 600), help="WxH pixels")
     render.add_argument("--turntable", type=int, default=0, metavar="N",
                         help="N frames evenly spaced around the up axis")
@@ -65,7 +69,29 @@ def _view(args: argparse.Namespace) -> int:
 
     if not Path(args.script).exists():
         raise OSError(f"no such script: {args.script}")
-    return view(ViewOptions(args.script, mesh_path=args.mesh, size=args.size, poll=args.poll))
+    values = _given_values("view", args.script, args.set)
+    if values is None:
+        return 2
+    return view(ViewOptions(args.script, mesh_path=args.mesh, size=args.size, poll=args.poll,
+                            parameters=values))
+
+
+def _given_values(command: str, script: str, texts: list[str]) -> dict[str, Any] | None:
+    """The ``--set`` values checked against the script's declarations; None (after
+    printing one line) when a name or value is bad."""
+    from livemod.dlfl.errors import DLFLError
+    from livemod.runner.declarations import given_values
+
+    if not texts:
+        return {}
+    if Path(script).suffix.lower() not in SCRIPT_SUFFIXES:
+        print(f"livemod {command}: --set needs a script, not {script!r}", file=sys.stderr)
+        return None
+    try:
+        return given_values(script, texts)
+    except (ValueError, DLFLError) as exc:
+        print(f"livemod {command}: {exc}", file=sys.stderr)
+        return None
 
 
 def _render(args: argparse.Namespace) -> int:
@@ -74,10 +100,13 @@ def _render(args: argparse.Namespace) -> int:
     from .headless import progress_bar, render_arrays
     from .renderer import LABEL_KINDS, Style
 
+    values = _given_values("render", args.input, args.set)
+    if values is None:
+        return 2
     labels = frozenset(k.strip() for k in args.labels.split(",") if k.strip())
     if labels - set(LABEL_KINDS):
         raise DLFLError(f"unknown label kinds: {sorted(labels - set(LABEL_KINDS))}")
-    arrays, preview = _load_input(args.input, args.mesh, args.preview)
+    arrays, preview = _load_input(args.input, args.mesh, args.preview, values)
     if args.preview and preview is None:
         print("livemod: warning: no patch preview available; drawing the mesh",
               file=sys.stderr)
@@ -100,11 +129,13 @@ def _samples(args: argparse.Namespace) -> int:
     return 0 if args.turntable > 1 else 4
 
 
-def _load_input(path: str, mesh_path: str | None, want_preview: bool) -> tuple[Any, Any]:
-    """``(arrays, preview or None)`` of a script's result or of a mesh file."""
+def _load_input(path: str, mesh_path: str | None, want_preview: bool,
+                values: dict[str, Any] | None = None) -> tuple[Any, Any]:
+    """``(arrays, preview or None)`` of a script's result (run with the parameter
+    ``values``) or of a mesh file."""
 
     if Path(path).suffix.lower() in SCRIPT_SUFFIXES:
-        return _run_for_render(path, mesh_path, want_preview)
+        return _run_for_render(path, mesh_path, want_preview, values)
     from livemod.dlfl import mesh_arrays
 
     load_mesh = importlib.import_module("livemod.dlfl.io").load_mesh
@@ -123,7 +154,8 @@ def _load_input(path: str, mesh_path: str | None, want_preview: bool) -> tuple[A
     return mesh_arrays(mesh), preview
 
 
-def _run_for_render(path: str, mesh_path: str | None, want_preview: bool) -> tuple[Any, Any]:
+def _run_for_render(path: str, mesh_path: str | None, want_preview: bool,
+                    values: dict[str, Any] | None = None) -> tuple[Any, Any]:
     """Run a script headless; ``(arrays, preview)`` of the mesh it leaves.
 
     Raises:
@@ -135,7 +167,7 @@ def _run_for_render(path: str, mesh_path: str | None, want_preview: bool) -> tup
     from livemod.runner.preview import preview_arrays
     from livemod.runner.results import current_mesh
 
-    outcome = run_outcome(path, mesh_path=mesh_path)
+    outcome = run_outcome(path, mesh_path=mesh_path, parameters=values)
     if outcome.error is not None:
         error = outcome.error
         raise DLFLError(f"{error.file}:{error.line}: {error.message}")

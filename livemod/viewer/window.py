@@ -49,6 +49,7 @@ class ViewOptions:
         echo: where selections and errors are echoed (stdout when None).
         poll: poll the file system instead of waiting for change events (network
             drives, WSL, containers).
+        parameters: script parameter values the first run starts with (``--set``).
     """
 
     script: str
@@ -60,14 +61,16 @@ class ViewOptions:
     session_factory: Callable[[str, str | None], Any] | None = None
     echo: Any = None
     poll: bool = False
+    parameters: dict[str, Any] | None = None
 
 
-def _default_factory(poll: bool) -> Callable[[str, str | None], Any]:
+def _default_factory(poll: bool, parameters: dict[str, Any] | None = None,
+                     ) -> Callable[[str, str | None], Any]:
     """The runner's ``LiveSession`` (imported only when a window opens)."""
     from livemod.runner import LiveSession
 
     def create(script: str, mesh_path: str | None) -> Any:
-        return LiveSession(script, mesh_path=mesh_path, poll=poll)
+        return LiveSession(script, mesh_path=mesh_path, poll=poll, parameters=parameters)
 
     return create
 
@@ -126,7 +129,8 @@ class LiveViewer(mglw.WindowConfig):
     # -- session ---------------------------------------------------------------
 
     def _start_session(self) -> Any:
-        factory = self.options.session_factory or _default_factory(self.options.poll)
+        factory = self.options.session_factory or _default_factory(
+            self.options.poll, self.options.parameters)
         session = factory(self.script, self.mesh_path)
         session.start()
         self.waiting = True
