@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import os
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -130,7 +131,7 @@ def test_batch_variants_match_single_runs_and_the_index_lists_them(tmp_path, cap
 
 def test_the_session_keeps_values_across_saves_while_they_fit(tmp_path):
     script = tmp_path / "ring.py"
-    script.write_text(open(RING).read())
+    script.write_text(Path(RING).read_text())
     live = LiveSession(str(script), notifier=ManualNotifier(), preview=False)
     try:
         live.start()
@@ -139,7 +140,7 @@ def test_the_session_keeps_values_across_saves_while_they_fit(tmp_path):
         assert next_result(live, lambda r: r.values == (("count", 9), ("radius", 5.0)))
         with pytest.raises(DLFLError, match="declares no parameter"):
             live.set_parameters({"size": 3})
-        edited = open(RING).read().replace("max=10.0", "max=4.0") + "# saved\n"
+        edited = Path(RING).read_text().replace("max=10.0", "max=4.0") + "# saved\n"
         script.write_text(edited)  # radius 5 no longer fits: dropped, count kept
         live.reload()
         result = next_result(live, lambda r: r.status == "ok" and r.values == (("count", 9),))
