@@ -223,6 +223,8 @@ def test_empty_file_body() -> None:
         (b"f 4 5 6 7\n", b"f 4 5 6\n", r"<dlfl>:\d+: corner 7 belongs to no face"),
         (b"f 4 5 6 7\n", b"f\n", r"<dlfl>:\d+: empty face"),
         (b"f 4 5 6 7\n", b"f 4 5 six 7\n", r"<dlfl>:\d+: bad index 'six'"),
+        (b"fv 6 [0 0 -1]", b"fv 99999999999999999999999 [0 0 -1]",
+         r"<dlfl>:\d+: index '9+' is out of range"),
     ],
 )
 def test_errors_name_file_and_line(old: bytes, new: bytes, message: str) -> None:

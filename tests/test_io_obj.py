@@ -181,6 +181,10 @@ def test_open_mesh_gets_a_hole_and_unused_vertices_become_point_spheres() -> Non
         (b"v 0 0 0\nf 1 a 1\n", r"<obj>:2: bad vertex index 'a'"),
         (b"v 0 0 0\nf 1 /2 1\n", r"<obj>:2: bad vertex index '/2'"),
         (b"v 0 0 0\nf 1 1.5 1\n", r"<obj>:2: bad vertex index '1.5'"),
+        (b"v 0 0 0\nf 1 99999999999999999999999 1\n", r"<obj>:2: vertex index '9+' is out"),
+        (b"v 0 0 0\nf 1 -99999999999999999999999\n", r"<obj>:2: vertex index '-9+' is out"),
+        (b"v 0 0 0\nf 1 9999999999999999999 1\n", r"<obj>:2: vertex index '9+' is out"),
+        (b"v 0 0 0\nf 1 999999999999999999 1\n", r"<obj>:2: vertex index 9+ is out of range"),
     ],
 )
 def test_errors_name_file_and_line(text: bytes, message: str) -> None:

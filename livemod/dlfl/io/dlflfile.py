@@ -140,9 +140,12 @@ def _integer(word: bytes, where: str) -> int:
     try:
         if b"_" in word:
             raise ValueError(word)
-        return int(word)
+        value = int(word)
     except ValueError:
         raise DLFLError(f"{where}: bad index {_show(word)}") from None
+    if abs(value) >= 2**62:
+        raise DLFLError(f"{where}: index {_show(word)} is out of range")
+    return value
 
 
 def _show(word: bytes) -> str:

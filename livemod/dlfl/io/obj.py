@@ -307,9 +307,12 @@ def _index(token: bytes, line: int, label: str) -> int:
     try:
         if b"_" in head or b"+" in head:
             raise ValueError(head)
-        return int(head)
+        value = int(head)
     except ValueError:
         raise DLFLError(f"{label}:{line}: bad vertex index {_show(token)}") from None
+    if abs(value) >= 2**62:
+        raise DLFLError(f"{label}:{line}: vertex index {_show(head)} is out of range")
+    return value
 
 
 def _show(token: bytes) -> str:
