@@ -190,3 +190,12 @@ def test_from_corner_arrays_round_trips_mesh_arrays():
     assert np.array_equal(a.corner_vertex, b.corner_vertex)
     assert np.array_equal(a.corner_mate, b.corner_mate)
     assert component_genera(m) == [1]
+
+
+def test_two_multi_edge_groups_sharing_a_vertex():
+    # regression (found by the property tests): a tetrahedron with one edge
+    # collapsed, no cleanup; two vertex pairs are each joined by two edges and
+    # pairing one group must not be judged before the other is paired
+    m = built([[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 2, 1], [0, 1], [1, 2], [0, 1, 2]])
+    assert m.counts() == (3, 5, 4)
+    assert [m.valence(v) for v in range(3)] == [3, 4, 3]

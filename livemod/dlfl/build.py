@@ -322,42 +322,79 @@ def _pair_multi_edges(
 ) -> None:
     """Pair the sides of vertex pairs joined by several edges (2-gons).
 
-    Tries the pairings of each group until both end vertices keep one fan.
+    Searches the pairings group by group, backtracking, so that no vertex's
+    corners close into a fan that leaves some of its corners out. Groups are
+    rare and small; past ``MAX_BACKTRACK_GROUPS`` the search stays greedy.
     """
+    groups = []
     for start, count in zip(starts.tolist(), counts.tolist(), strict=True):
         group = order[start : start + count]
         ref = u[group[0]]
         fwd = [int(c) for c in group if u[c] == ref]
         back = [int(c) for c in group if u[c] != ref]
-        verts = (int(u[group[0]]), int(w[group[0]]))
-        for perm in itertools.islice(itertools.permutations(back), 720):
-            mate[fwd], mate[list(perm)] = list(perm), fwd
-            if all(_fan_count(v, soup, mate, nxt) == 1 for v in verts):
-                break
-        else:
-            raise DLFLError(
-                f"{where.prefix()}vertices {verts[0]} and {verts[1]} are joined by "
-                f"{count // 2} edges that cannot be arranged into a manifold"
-            )
+        groups.append((fwd, back, (int(u[group[0]]), int(w[group[0]]))))
+    backtrack = len(groups) <= MAX_BACKTRACK_GROUPS
+    failed = _assign_groups(groups, 0, soup, mate, nxt, backtrack)
+    if failed is not None:
+        verts, edges = groups[failed][2], len(groups[failed][0])
+        raise DLFLError(
+            f"{where.prefix()}vertices {verts[0]} and {verts[1]} are joined by "
+            f"{edges} edges that cannot be arranged into a manifold"
+        )
 
 
-def _fan_count(vertex: int, soup: Polygons, mate: np.ndarray, nxt: np.ndarray) -> int:
-    """Number of separate corner fans at ``vertex`` under the current pairing."""
-    corners = np.flatnonzero(soup.indices == vertex)
+MAX_BACKTRACK_GROUPS = 200
+
+
+def _assign_groups(
+    groups: list[tuple[list[int], list[int], tuple[int, int]]], k: int, soup: Polygons,
+    mate: np.ndarray, nxt: np.ndarray, backtrack: bool,
+) -> int | None:
+    """Pair groups ``k..`` in place; None on success, else the group that failed."""
+    if k == len(groups):
+        return None
+    fwd, back, verts = groups[k]
+    failed = k
+    for perm in itertools.islice(itertools.permutations(back), 720):
+        mate[fwd], mate[list(perm)] = list(perm), fwd
+        if any(_closes_early(v, soup, mate, nxt) for v in verts):
+            continue
+        failed_later = _assign_groups(groups, k + 1, soup, mate, nxt, backtrack)
+        if failed_later is None:
+            return None
+        failed = failed_later
+        if not backtrack:
+            break
+    mate[fwd], mate[back] = -1, -1
+    return failed
+
+
+def _closes_early(vertex: int, soup: Polygons, mate: np.ndarray, nxt: np.ndarray) -> bool:
+    """True when some of ``vertex``'s corners already close into a fan without the rest.
+
+    Sides not paired yet (mate -1) leave open chains, which later pairings may
+    still join into the one fan a manifold vertex has.
+    """
+    corners = np.flatnonzero(soup.indices == vertex).tolist()
     seen: set[int] = set()
-    fans = 0
-    for c in corners.tolist():
+    for c in corners:
         if c in seen:
             continue
-        fans += 1
-        x = c
-        while x not in seen:
+        x, length = c, 0
+        while True:
             seen.add(x)
-            m = mate[x]
+            length += 1
+            m = int(mate[x])
             if m < 0:
                 break
             x = int(nxt[m])
-    return fans
+            if x == c:
+                if length < len(corners):
+                    return True
+                break
+            if x in seen:
+                break
+    return False
 
 
 def _reorient(soup: Polygons, where: _Where, notes: list[str]) -> Polygons:
