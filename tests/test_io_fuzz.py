@@ -120,7 +120,7 @@ number = st.one_of(
 separator = st.sampled_from([" ", "  ", "\t", ", ", ",", " \t "])
 vertex_line = st.tuples(st.lists(number, min_size=3, max_size=5), separator).map(
     lambda t: "v " + t[1].join(t[0]))
-index = st.integers(-5, 12).map(str)
+index = st.one_of(st.integers(-5, 12), st.integers(-10**25, 10**25)).map(str)
 corner = st.one_of(index, st.tuples(index, index).map("/".join),
                    st.tuples(index, index).map("//".join),
                    st.tuples(index, index, index).map("/".join))

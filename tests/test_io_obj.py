@@ -173,6 +173,7 @@ def test_open_mesh_gets_a_hole_and_unused_vertices_become_point_spheres() -> Non
         (b"v 0 0 0\nv 1 x 0\n", r"<obj>:2: bad number 'x'"),
         (b"v 0 0\n", r"<obj>:1: a v line needs 3 coordinates, got 2"),
         (b"v 0 0 nan\n", r"<obj>:1: coordinate 'nan' is not finite"),
+        (b"v 0 0 0\nv 0 1e999 0\n", r"<obj>:2: coordinate '1e999' is not finite"),
         (b"v 0 0 0\nf\n", r"<obj>:2: empty face"),
         (b"v 0 0 0\nf \r\n", r"<obj>:2: empty face"),
         (b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n", r"<obj>:4: vertex index 4 is out of range"),

@@ -224,7 +224,9 @@ def parse_number_lines(buf: np.ndarray, starts: np.ndarray, want: int) -> tuple[
     rejected |= counts < want
     values = _numbers(scan, lead, is_frac)
     pick = np.minimum(first[:, None] + np.arange(want), len(lead) - 1)
-    return values[pick], ~rejected
+    picked = values[pick]
+    rejected |= ~np.isfinite(picked).all(axis=1)  # "1e999": let the caller name the line
+    return picked, ~rejected
 
 
 def _misplaced_signs(scan: _Scan) -> list[np.ndarray]:
