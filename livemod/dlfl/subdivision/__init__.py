@@ -22,10 +22,18 @@ dual-loop                  dual, loop, dual
 dual-checkerboard          dual, checker, dual
 ========================== ===========================================
 
-Otherwise a composite's options go to its middle step. A composite that fails leaves the
-mesh unchanged (its steps pass arrays along and the mesh is built once, at the end). ``sierpinsky`` (TopMod's
+Otherwise a composite's options go to its middle step. A composite that fails
+leaves the mesh unchanged (its steps pass arrays along and the mesh is built once,
+at the end). Aliases: "dual-pentagon" = "pentagon-preserve" (TopMod's Python
+name), "allfaces" = "linear-vertex" (Python's ``subdivideAllFaces``); GUI
+"Stellate" is ``linear-vertex`` with ``usequads=False``. ``sierpinsky`` (TopMod's
 ``multiConnectMidpoints``, TOPMOD.md section 5) and ``modified-corner-cut`` are
 implemented by the sculpting family and registered here by delegation.
+
+Holes and point-spheres: every scheme treats a hole face as a face (as TopMod
+does) and flags the faces made inside it as holes; faces made around old
+vertices or edges are ordinary faces (so a dual turns a hole into a vertex).
+Point-spheres are set aside and come through unchanged.
 """
 
 from __future__ import annotations
