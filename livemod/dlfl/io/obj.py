@@ -106,7 +106,7 @@ def parse_obj(data: bytes, label: str = "<obj>", *, fast: bool = True) -> ObjSou
     _parse_vertices(buf, starts, ends, np.flatnonzero(kinds == _VERTEX), parsed, label)
     _parse_faces(buf, starts, ends, np.flatnonzero(kinds == _FACE), parsed, label)
     if parsed.errors:
-        raise min(parsed.errors)[1]  # the first bad line of the file, as a reader would
+        raise parsed.errors[0][1]  # the first bad line of the file, as a reader would
     return parsed.soup(label)
 
 
@@ -152,11 +152,17 @@ class _Parsed:
         self.errors: list[tuple[int, DLFLError]] = []
 
     def parse_line(self, raw: bytes, line: int, label: str) -> None:
-        """Parse line ``line`` (0-based) in Python; keep its error for later."""
+        """Parse line ``line`` (0-based) in Python; keep its error for later.
+
+        Lines after the first bad one found so far are skipped: only an earlier
+        error could still be reported (this keeps a garbage file quick to refuse).
+        """
+        if self.errors and line > self.errors[0][0]:
+            return
         try:
             self.add(line, _parse_line(raw, line + 1, label))
         except DLFLError as error:
-            self.errors.append((line, error))
+            self.errors = [min(self.errors + [(line, error)], key=lambda item: item[0])]
 
     def add(self, line: int, item: tuple[str, list[float] | list[int]] | None) -> None:
         if item is None:
