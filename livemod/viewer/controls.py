@@ -70,6 +70,7 @@ KEY_BINDINGS: tuple[Binding, ...] = (
     Binding("V", "shift", "pick_vertex", "pick vertices"),
     Binding("C", "shift", "pick_corner", "pick corners"),
     Binding("ESCAPE", "", "clear_selection", "clear the selection"),
+    Binding("C", "ctrl", "copy_parameters", "copy the parameter values as param(...) lines"),
     Binding("Q", "", "quit", "close the window"),
 )
 

@@ -39,7 +39,9 @@ PALETTE = np.array([
     (0.02, 0.14, 0.20, 0.78),  # 10 edge label box
     (0.20, 0.03, 0.14, 0.78),  # 11 vertex label box
     (0.30, 0.03, 0.03, 0.85),  # 12 error panel
-    (0.0, 0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 0.0),
+    (0.22, 0.23, 0.28, 0.95),  # 13 parameter slider track / off checkbox
+    (0.30, 0.48, 0.80, 0.95),  # 14 parameter slider fill / on checkbox
+    (0.32, 0.32, 0.38, 0.95),  # 15 parameter reset button
 ], dtype=np.float32)
 
 BASE_COLOR = (1.0, 0.59, 0.36)      # TopMod's render colour (255, 151, 92)

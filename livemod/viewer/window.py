@@ -28,9 +28,11 @@ from .camera import Camera, bounds_changed_a_lot
 from .controls import PICK_MODES, action_for, selection_python, toggle_pick
 from .geometry import sample_points
 from .hud import hud_quads
+from .params_panel import Hit, ParameterPanel
 from .renderer import Renderer, Style
 
 SCRIPT_SUFFIXES = (".py",)
+PARAMETER_DEBOUNCE = 0.15  # seconds a dragged slider rests before the script re-runs
 
 
 @dataclass
@@ -121,6 +123,11 @@ class LiveViewer(mglw.WindowConfig):
         self._last_frame = time.perf_counter()
         self._fps_shown, self._fps_time = 0.0, 0.0
         self._overlay_cache: tuple[tuple, np.ndarray] | None = None
+        self.params = ParameterPanel()
+        self.parameter_runs = 0  # how often the panel re-ran the script (for tests)
+        self._param_drag: Hit | None = None
+        self._pending: dict[str, Any] = {}  # slider values not yet sent to the session
+        self._pending_at = 0.0
         self.script = str(Path(self.options.script).resolve())
         self.mesh_path = self.options.mesh_path
         self.session = self._start_session()
@@ -153,6 +160,7 @@ class LiveViewer(mglw.WindowConfig):
             self.result is None or self.result.error != result.error)
         self.result = result
         self.waiting = False
+        self._sync_parameters(result)
         if result.status == "ok":
             self.total_steps = len(result.steps)
         if result.arrays is not None and result.arrays is not self.renderer.arrays:
@@ -188,11 +196,15 @@ class LiveViewer(mglw.WindowConfig):
         now = time.perf_counter()
         self.frame_times.append(now - self._last_frame)
         self._last_frame = now
+        self._flush_parameters()
         self._drain_results()
         fbo = self.wnd.fbo
         self.renderer.draw(fbo, self.camera, self.style)
         if self.show_hud or self.show_help:
             self.renderer.draw_overlay(fbo, self._overlay_quads(fbo.size))
+
+    def _panel_shown(self) -> bool:
+        return self.show_hud and not self.show_help
 
     def _overlay_quads(self, size: tuple[int, int]) -> np.ndarray:
         """HUD quads, laid out again only when something shown changed (the FPS
@@ -203,9 +215,11 @@ class LiveViewer(mglw.WindowConfig):
             self._fps_time = now
         key = (id(self.result), self.waiting, self.total_steps, self.genus, self._fps_shown, self.pick_mode,
                self.selection, self.style, self.camera.ortho, self.playing, self.show_hud,
-               self.show_help, size)
+               self.show_help, size, self.params.state())
         if self._overlay_cache is None or self._overlay_cache[0] != key:
-            self._overlay_cache = (key, hud_quads(self._hud_info(), size))
+            panel = self.params.quads(size) if self._panel_shown() else None
+            quads = hud_quads(self._hud_info(), size)
+            self._overlay_cache = (key, quads if panel is None else np.concatenate([panel, quads]))
         return self._overlay_cache[1]
 
     def _hud_info(self) -> dict[str, Any]:
@@ -340,16 +354,40 @@ class LiveViewer(mglw.WindowConfig):
     def _do_clear_selection(self) -> None:
         self.set_selection(Selection())
 
+    def _do_copy_parameters(self) -> None:
+        lines = self.params.python_lines()
+        if not lines:
+            self._echo("the script declares no parameters")
+            return
+        handle = getattr(self.wnd, "_window", None)
+        if self.options.backend == "glfw" and handle is not None:
+            import glfw
+
+            glfw.set_clipboard_string(handle, "\n".join(lines) + "\n")
+        for line in lines:
+            self._echo(line)
+
     def _do_quit(self) -> None:
         self.wnd.close()
 
     # -- mouse -----------------------------------------------------------------
 
     def on_mouse_press_event(self, x: int, y: int, button: int) -> None:
+        hit = self._panel_hit(x, y)
+        if hit is not None:
+            self._press_panel(hit, x * self._pixel_ratio())
+            return
         self._press = (x, y, button)
         self._moved = False
 
+    def on_mouse_position_event(self, x: int, y: int, dx: int, dy: int) -> None:
+        hit = self._panel_hit(x, y)
+        self.params.hover = hit.row if hit is not None and hit.row >= 0 else None
+
     def on_mouse_drag_event(self, x: int, y: int, dx: int, dy: int) -> None:
+        if self._param_drag is not None:
+            self._drag_slider(x * self._pixel_ratio())
+            return
         if self._press is not None and abs(x - self._press[0]) + abs(y - self._press[1]) > 3:
             self._moved = True
         states = self.wnd.mouse_states
@@ -360,6 +398,10 @@ class LiveViewer(mglw.WindowConfig):
                             self.wnd.fbo.size[1])
 
     def on_mouse_release_event(self, x: int, y: int, button: int) -> None:
+        if self._param_drag is not None:
+            self._param_drag = None
+            self._flush_parameters(force=True)  # the value has settled
+            return
         clicked = self._press is not None and not self._moved
         self._press = None
         if clicked and button == self.wnd.mouse.left:
@@ -395,6 +437,77 @@ class LiveViewer(mglw.WindowConfig):
         for line in selection_python(selection, self.renderer.arrays):
             self._echo(line)
 
+    # -- parameters --------------------------------------------------------------
+
+    def _sync_parameters(self, result: Any) -> None:
+        """Show the result's declarations with the session's values and any edit in flight."""
+        specs = tuple(getattr(result, "parameters", ()) or ())
+        if not specs and result.error is not None:
+            return  # a run that failed early: keep the controls the user was using
+        values = dict(getattr(self.session, "parameters", {}) or {})
+        values.update(self._pending)
+        self.params.sync(specs, values)
+
+    def _panel_hit(self, x: float, y: float) -> Hit | None:
+        if not self._panel_shown():
+            return None
+        ratio = self._pixel_ratio()
+        return self.params.hit(x * ratio, y * ratio, self.wnd.fbo.size)
+
+    def _press_panel(self, hit: Hit, px: float) -> None:
+        """A click on the panel: reset, start a slider drag, toggle or cycle a choice."""
+        if hit.part == "reset_all":
+            self._reset_parameters(None)
+        elif hit.part == "reset":
+            self._reset_parameters([self.params.specs[hit.row].name])
+        elif hit.part == "slider":
+            self._param_drag = hit
+            self._drag_slider(px)
+        elif hit.part in ("toggle", "prev", "next"):
+            self.set_parameter(self.params.specs[hit.row].name,
+                               self.params.value_after(hit, px, self.wnd.fbo.size))
+            self._flush_parameters(force=True)
+
+    def _drag_slider(self, px: float) -> None:
+        hit = self._param_drag
+        if hit is not None and hit.row < len(self.params.specs):
+            self.set_parameter(self.params.specs[hit.row].name,
+                               self.params.value_after(hit, px, self.wnd.fbo.size))
+
+    def set_parameter(self, name: str, value: Any) -> None:
+        """Show ``value`` for parameter ``name`` now; the script re-runs with it once
+        the value has rested :data:`PARAMETER_DEBOUNCE` seconds (latest wins)."""
+        if self.params.values.get(name) == value and name not in self._pending:
+            return
+        self.params.values[name] = value
+        self._pending[name] = value
+        self._pending_at = time.perf_counter()
+
+    def _flush_parameters(self, force: bool = False) -> None:
+        """Send settled slider values to the session (never blocks: it only queues a run)."""
+        if not self._pending or self.session is None:
+            return
+        if not force and time.perf_counter() - self._pending_at < PARAMETER_DEBOUNCE:
+            return
+        values, self._pending = self._pending, {}
+        try:
+            self.session.set_parameters(values)
+        except Exception as exc:  # e.g. the declaration changed under the slider
+            self._echo(f"parameters: {exc}")
+            return
+        self.parameter_runs += 1
+        self.waiting = True
+
+    def _reset_parameters(self, names: list[str] | None) -> None:
+        """Back to the defaults: one parameter, or all of them (None)."""
+        for spec in self.params.specs:
+            if names is None or spec.name in names:
+                self.params.values[spec.name] = spec.default
+                self._pending.pop(spec.name, None)
+        self.session.reset_parameters(names)
+        self.parameter_runs += 1
+        self.waiting = True
+
     # -- files -----------------------------------------------------------------
 
     def _install_drop_callback(self) -> None:
@@ -428,6 +541,8 @@ class LiveViewer(mglw.WindowConfig):
         self._fit_bounds = None
         self.result = None
         self.total_steps = 0
+        self.params.sync((), {})
+        self._pending, self._param_drag = {}, None
         self.session = self._start_session()
         self._echo(f"opened {resolved}")
 
