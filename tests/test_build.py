@@ -199,3 +199,12 @@ def test_two_multi_edge_groups_sharing_a_vertex():
     m = built([[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 2, 1], [0, 1], [1, 2], [0, 1, 2]])
     assert m.counts() == (3, 5, 4)
     assert [m.valence(v) for v in range(3)] == [3, 4, 3]
+
+
+def test_mesh_does_not_alias_the_input_positions():
+    positions = np.array(SQUARE, dtype=np.float64)
+    m = built(positions, [[0, 1, 2, 3]])
+    m.set_position(0, (5.0, 5.0, 5.0))
+    positions[1] = (9.0, 9.0, 9.0)
+    assert positions[0].tolist() == [0, 0, 0]
+    assert m.position(1).tolist() == [1, 0, 0]

@@ -67,7 +67,8 @@ def as_polygons(positions: Any, faces: Any, offsets: Any = None) -> Polygons:
             with ``offsets``, the flat ``(C,)`` index array.
         offsets: ``(F + 1,)`` face start offsets into a flat ``faces``.
     """
-    pos = np.asarray(positions, dtype=np.float64).reshape(-1, 3)
+    # a copy: the mesh owns its positions and must not alias the caller's array
+    pos = np.array(positions, dtype=np.float64).reshape(-1, 3)
     if offsets is not None:
         idx = np.asarray(faces, dtype=np.int64).ravel()
         off = np.asarray(offsets, dtype=np.int64).ravel()
