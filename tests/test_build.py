@@ -208,3 +208,21 @@ def test_mesh_does_not_alias_the_input_positions():
     positions[1] = (9.0, 9.0, 9.0)
     assert positions[0].tolist() == [0, 0, 0]
     assert m.position(1).tolist() == [1, 0, 0]
+
+
+def test_bow_tie_error_names_the_file_line():
+    pos = [[0, 0, 0], [1, 0, 0], [1, 1, 0], [-1, 0, 0], [-1, -1, 0]]
+    with pytest.raises(DLFLError, match=r"^shape\.obj:7: vertex 0 is non-manifold"):
+        from_polygons(pos, [[0, 1, 2], [0, 3, 4]], source="shape.obj", face_lines=[7, 9])
+
+
+def test_moebius_error_names_the_file_line():
+    n = 5
+    angles = np.linspace(0, 2 * np.pi, n, endpoint=False)
+    inner = np.stack([np.cos(angles), np.sin(angles), np.zeros(n)], axis=1) * 2
+    quads = [[i, (i + 1) % n, n + (i + 1) % n, n + i] for i in range(n - 1)]
+    quads.append([n - 1, n, 0, 2 * n - 1])
+    lines = [20 + i for i in range(n)]
+    with pytest.raises(DLFLError, match=r"^band\.obj:2\d: line 2\d cannot be oriented"):
+        from_polygons(np.concatenate([inner, inner * 1.5]), quads, source="band.obj",
+                      face_lines=lines)
