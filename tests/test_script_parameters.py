@@ -152,3 +152,23 @@ def test_the_session_keeps_values_across_saves_while_they_fit(tmp_path):
     finally:
         live.close()
         assert live.join(10)
+
+
+COMPUTED = '''
+LIMIT = 9
+n = param("n", 3, min=3, max=LIMIT)      # a computed max: found only by running
+createFace([(float(i), float(i * i % 5), 0.0) for i in range(n)])
+'''
+
+
+def test_computed_declarations_are_checked_by_the_run(tmp_path, capsys):
+    script = tmp_path / "computed.py"
+    script.write_text(COMPUTED)
+    assert cli.main(["run", str(script), "--set", "n=5"]) == 0
+    assert "V=5 E=5 F=2" in capsys.readouterr().out
+    assert cli.main(["run", str(script), "--set", "m=5"]) == 2
+    assert "declares no parameter 'm' (it declares: n)" in capsys.readouterr().err
+    assert cli.main(["run", str(script), "--set", "n=12"]) == 1   # the run's error
+    assert "above its maximum 9" in capsys.readouterr().err
+    assert cli.main(["params", str(script)]) == 0
+    assert capsys.readouterr().out.startswith("n = 3  [int] (range 3..9)")

@@ -19,7 +19,7 @@ from livemod.dlfl.analysis import summarize
 from livemod.dlfl.errors import DLFLError
 
 from .batch import declared_sweep, index_path, make_variants, run_batch, sweep, write_index
-from .declarations import declared_parameters, describe, given_values
+from .declarations import declared_parameters, describe, given_values, undeclared
 from .headless import run_outcome
 from .results import RunResult, StepRecord, current_mesh
 
@@ -113,6 +113,10 @@ def cmd_run(args: argparse.Namespace) -> int:
         return 2
     if args.steps:
         print_steps(outcome.steps)
+    problem = undeclared(outcome.declarations, params) if outcome.error is None else None
+    if problem is not None:  # only for scripts whose declarations are computed
+        print(f"livemod run: {problem}", file=sys.stderr)
+        return 2
     if outcome.error is not None:
         print(outcome.error.traceback.rstrip(), file=sys.stderr)
         print(str(outcome.error), file=sys.stderr)

@@ -165,15 +165,17 @@ def undeclared(specs: dict[str, ParamSpec], values: dict[str, Any]) -> str | Non
 
 
 def given_values(script: str | Path, texts: list[str]) -> dict[str, Any]:
-    """``--set name=value`` texts checked against the script's declarations.
+    """``--set name=value`` texts, checked against the script's declarations when
+    those are literal (read without running the script).
 
-    The declarations are read without running the script when they are literal
-    (otherwise it runs once with its defaults); nothing is read when ``texts``
-    is empty.
+    When a ``param()`` call computes its arguments the texts are returned as they
+    are: ``param()`` parses and checks each value during the run, and
+    :func:`undeclared` says afterwards whether a name was never declared.
 
     Raises:
         ValueError: a text without ``=`` or with a bad name.
-        DLFLError: a name the script does not declare, or a value that does not fit.
+        DLFLError: a name the script does not declare, a value that does not fit,
+            or a syntax error in the script.
         OSError: the script cannot be read.
     """
     raw = {}
@@ -184,4 +186,6 @@ def given_values(script: str | Path, texts: list[str]) -> dict[str, Any]:
         raw[name] = value
     if not raw:
         return {}
-    return check_values(declared_parameters(script), raw)
+    path = Path(script)
+    specs = literal_declarations(path.read_text(encoding="utf-8"), path)
+    return raw if specs is None else check_values(specs, raw)

@@ -164,6 +164,7 @@ def _run_for_render(path: str, mesh_path: str | None, want_preview: bool,
     from livemod.dlfl import mesh_arrays
     from livemod.dlfl.errors import DLFLError
     from livemod.runner import run_outcome
+    from livemod.runner.declarations import undeclared
     from livemod.runner.preview import preview_arrays
     from livemod.runner.results import current_mesh
 
@@ -171,6 +172,9 @@ def _run_for_render(path: str, mesh_path: str | None, want_preview: bool,
     if outcome.error is not None:
         error = outcome.error
         raise DLFLError(f"{error.file}:{error.line}: {error.message}")
+    problem = undeclared(outcome.declarations, values or {})
+    if problem is not None:  # a script whose declarations are computed
+        raise DLFLError(problem)
     mesh = current_mesh(outcome.scene)
     if mesh is None:
         return None, None
