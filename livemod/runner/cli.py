@@ -111,6 +111,11 @@ def cmd_run(args: argparse.Namespace) -> int:
     except OSError as exc:
         print(f"livemod run: {exc}", file=sys.stderr)
         return 2
+    return _finish_run(args, outcome, params)
+
+
+def _finish_run(args: argparse.Namespace, outcome: Any, params: dict[str, Any]) -> int:
+    """Report a headless run (steps, error or summary) and save its mesh; the exit code."""
     if args.steps:
         print_steps(outcome.steps)
     problem = undeclared(outcome.declarations, params) if outcome.error is None else None

@@ -38,6 +38,10 @@ def add_commands(subparsers: Any) -> None:
     view.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
                       help="a declared script parameter to start with, repeatable")
     view.set_defaults(handler=_view)
+    _add_render(subparsers)
+
+
+def _add_render(subparsers: Any) -> None:
     render = subparsers.add_parser(
         "render", help="render a script's result or a mesh to PNG, a PNG sequence or a GIF")
     render.add_argument("input", help="a script (.py) or a mesh file or shape name")

@@ -123,11 +123,7 @@ class LiveViewer(mglw.WindowConfig):
         self._last_frame = time.perf_counter()
         self._fps_shown, self._fps_time = 0.0, 0.0
         self._overlay_cache: tuple[tuple, np.ndarray] | None = None
-        self.params = ParameterPanel()
-        self.parameter_runs = 0  # how often the panel re-ran the script (for tests)
-        self._param_drag: Hit | None = None
-        self._pending: dict[str, Any] = {}  # slider values not yet sent to the session
-        self._pending_at = 0.0
+        self._init_parameters()
         self.script = str(Path(self.options.script).resolve())
         self.mesh_path = self.options.mesh_path
         self.session = self._start_session()
@@ -439,6 +435,13 @@ class LiveViewer(mglw.WindowConfig):
 
     # -- parameters --------------------------------------------------------------
 
+    def _init_parameters(self) -> None:
+        self.params = ParameterPanel()
+        self.parameter_runs = 0  # how often the panel re-ran the script (for tests)
+        self._param_drag: Hit | None = None
+        self._pending: dict[str, Any] = {}  # slider values not yet sent to the session
+        self._pending_at = 0.0
+
     def _sync_parameters(self, result: Any) -> None:
         """Show the result's declarations with the session's values and any edit in flight."""
         specs = tuple(getattr(result, "parameters", ()) or ())
@@ -541,8 +544,7 @@ class LiveViewer(mglw.WindowConfig):
         self._fit_bounds = None
         self.result = None
         self.total_steps = 0
-        self.params.sync((), {})
-        self._pending, self._param_drag = {}, None
+        self._init_parameters()  # the new script declares its own
         self.session = self._start_session()
         self._echo(f"opened {resolved}")
 
