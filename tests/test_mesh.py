@@ -495,7 +495,8 @@ def test_memory_does_not_grow_with_history():
     # a table grows at most once (doubling) to make room for the transient elements
     tables = (m._c, m._e, m._f, m._v)
     assert all(t.capacity <= max(2 * c, 16) for t, c in zip(tables, caps, strict=True))
-    assert [t.n for t in tables] == [26, 13, 7, 8]  # slots ever used: two more corners...
+    # slots ever used: the two corner copies, the edge and the face of one insert
+    assert [t.n for t in tables] == [26, 13, 7, 8]
     assert all(len(t.moved) <= t.count for t in (m._c, m._e, m._f, m._v))
     assert m.next_ids()[1] == 12 + 100_000
 
