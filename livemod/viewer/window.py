@@ -98,6 +98,8 @@ class LiveViewer(mglw.WindowConfig):
     clear_color = None  # type: ignore[assignment]  # the renderer clears
     log_level = logging.WARNING
     options: ClassVar[ViewOptions]
+    _param_drag: Hit | None  # the slider being dragged on the parameters panel
+    _pending: dict[str, Any]
 
     def __init__(self, **kwargs: Any) -> None:
         super().__init__(**kwargs)
@@ -438,8 +440,8 @@ class LiveViewer(mglw.WindowConfig):
     def _init_parameters(self) -> None:
         self.params = ParameterPanel()
         self.parameter_runs = 0  # how often the panel re-ran the script (for tests)
-        self._param_drag: Hit | None = None
-        self._pending: dict[str, Any] = {}  # slider values not yet sent to the session
+        self._param_drag = None
+        self._pending = {}  # slider values not yet sent to the session
         self._pending_at = 0.0
 
     def _sync_parameters(self, result: Any) -> None:
