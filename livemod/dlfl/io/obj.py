@@ -178,8 +178,11 @@ class _Parsed:
         f_lines, counts, raw = self._faces()
         offsets = np.zeros(len(f_lines) + 1, dtype=np.int64)
         np.cumsum(counts, out=offsets[1:])
-        before = np.repeat(np.searchsorted(v_lines, f_lines), counts)
-        indices = _resolve_indices(raw, before, len(v_lines), offsets, f_lines, label)
+        if len(raw) == 0 or (raw.min() > 0 and raw.max() <= len(v_lines)):
+            indices = raw - 1  # the usual case: no relative or bad indices
+        else:
+            before = np.repeat(np.searchsorted(v_lines, f_lines), counts)
+            indices = _resolve_indices(raw, before, len(v_lines), offsets, f_lines, label)
         return ObjSoup(positions, indices, offsets, f_lines + 1)
 
     def _vertices(self) -> tuple[np.ndarray, np.ndarray]:
