@@ -226,3 +226,28 @@ def test_moebius_error_names_the_file_line():
     with pytest.raises(DLFLError, match=r"^band\.obj:2\d: line 2\d cannot be oriented"):
         from_polygons(np.concatenate([inner, inner * 1.5]), quads, source="band.obj",
                       face_lines=lines)
+
+
+def test_many_flipped_faces_are_all_restored():
+    pos, quads = torus_polygons(12, 9)
+    rng = np.random.default_rng(7)
+    flipped = rng.random(len(quads)) < 0.5
+    flipped[0] = False  # the first face of the component keeps its orientation
+    soup = quads.copy()
+    soup[flipped] = np.concatenate([soup[flipped][:, :1], soup[flipped][:, :0:-1]], axis=1)
+    with pytest.warns(DLFLRepairWarning, match=f"re-oriented {int(flipped.sum())} faces"):
+        repaired = from_polygons(pos, soup)
+    validate(repaired)
+    expected = mesh_arrays(from_polygons(pos, quads))
+    assert np.array_equal(mesh_arrays(repaired).corner_vertex, expected.corner_vertex)
+    assert np.array_equal(mesh_arrays(repaired).corner_mate, expected.corner_mate)
+
+
+def test_each_component_is_oriented_from_its_first_face():
+    faces = [list(f) for f in CUBE_FACES] + [[v + 8 for v in f[::-1]] for f in CUBE_FACES]
+    faces[7] = [v + 8 for v in CUBE_FACES[1]]  # one face of the second cube disagrees
+    pos = np.concatenate([CUBE_POSITIONS, CUBE_POSITIONS + 3])
+    with pytest.warns(DLFLRepairWarning, match="re-oriented 1 faces \\(face 7\\)"):
+        m = from_polygons(pos, faces)
+    validate(m)
+    assert m.face_vertices(6) == [v + 8 for v in CUBE_FACES[0][::-1]]

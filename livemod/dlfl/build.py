@@ -406,56 +406,93 @@ def _reorient(soup: Polygons, where: _Where, notes: list[str]) -> Polygons:
     Raises:
         DLFLError: a component is non-orientable (a Moebius band, say).
     """
-    num_faces = len(soup.offsets) - 1
-    adjacency = _face_adjacency(soup)
-    flip = np.full(num_faces, -1, dtype=np.int8)
-    for seed in range(num_faces):
-        if flip[seed] >= 0:
-            continue
-        flip[seed] = 0
-        stack = [seed]
-        while stack:
-            f = stack.pop()
-            for g, same_direction in adjacency.get(f, ()):
-                want = flip[f] ^ int(same_direction)
-                if flip[g] < 0:
-                    flip[g] = want
-                    stack.append(g)
-                elif flip[g] != want:
-                    raise DLFLError(
-                        f"{where.prefix([g])}{where.face(g)} cannot be oriented "
-                        f"consistently with {where.face(f)}: the surface is not orientable"
-                    )
+    flip = _orientation_flips(soup, where)
     flipped = np.flatnonzero(flip == 1)
-    idx = soup.indices.copy()
-    for f in flipped.tolist():
-        a, b = soup.offsets[f], soup.offsets[f + 1]
-        idx[a + 1 : b] = idx[a + 1 : b][::-1]
     shown = ", ".join(where.face(int(f)) for f in flipped[:10])
     more = "" if len(flipped) <= 10 else f" and {len(flipped) - 10} more"
     notes.append(
         f"{where.prefix()}re-oriented {len(flipped)} faces ({shown}{more}) to match "
         "their neighbours"
     )
-    return Polygons(soup.positions, idx, soup.offsets)
+    return Polygons(soup.positions, soup.indices[_flip_order(soup, flip)], soup.offsets)
 
 
-def _face_adjacency(soup: Polygons) -> dict[int, list[tuple[int, bool]]]:
-    """Face -> [(neighbour, traverses the shared edge in the same direction)]."""
-    nxt = soup.next_corner
-    u, w = soup.indices, soup.indices[nxt]
+def _flip_order(soup: Polygons, flip: np.ndarray) -> np.ndarray:
+    """``(C,)`` corner order that reverses the flagged faces, keeping their first corner."""
     face = _face_of_corner(soup.offsets)
-    by_edge: dict[tuple[int, int], list[tuple[int, bool]]] = {}
-    for f, a, b in zip(face.tolist(), u.tolist(), w.tolist(), strict=True):
-        if a != b:
-            by_edge.setdefault((min(a, b), max(a, b)), []).append((f, a < b))
-    adjacency: dict[int, list[tuple[int, bool]]] = {}
-    for sides in by_edge.values():
-        if len(sides) == 2:
-            (f, df), (g, dg) = sides
-            adjacency.setdefault(f, []).append((g, df == dg))
-            adjacency.setdefault(g, []).append((f, df == dg))
-    return adjacency
+    start = soup.offsets[:-1][face]
+    local = np.arange(len(face), dtype=np.int64) - start
+    size = np.diff(soup.offsets)[face]
+    reverse = (flip[face] == 1) & (local > 0)
+    return np.where(reverse, start + size - local, start + local)
+
+
+def _orientation_flips(soup: Polygons, where: _Where) -> np.ndarray:
+    """``(F,)`` int8: 1 for the faces to reverse, by breadth-first search per component.
+
+    Each search level is one vectorized step over the faces of the frontier.
+    """
+    num_faces = len(soup.offsets) - 1
+    src, dst, same = _face_adjacency(soup)
+    order = np.argsort(src, kind="stable")
+    src, dst, same = src[order], dst[order], same[order]
+    first = np.searchsorted(src, np.arange(num_faces + 1))
+    flip = np.full(num_faces, -1, dtype=np.int8)
+    flip[first[1:] == first[:-1]] = 0  # faces with no neighbour stay as they are
+    while (unset := np.flatnonzero(flip < 0)).size:
+        flip[unset[0]] = 0
+        frontier = unset[:1]
+        while frontier.size:
+            frontier = _search_level(frontier, first, dst, same, flip, where)
+    return flip
+
+
+def _search_level(
+    frontier: np.ndarray, first: np.ndarray, dst: np.ndarray, same: np.ndarray,
+    flip: np.ndarray, where: _Where,
+) -> np.ndarray:
+    """Orient the neighbours of ``frontier``; return the faces reached for the first time."""
+    counts = first[frontier + 1] - first[frontier]
+    origin = np.repeat(frontier, counts)
+    slot = np.repeat(first[frontier] - np.cumsum(counts) + counts, counts)
+    slot += np.arange(len(origin), dtype=np.int64)
+    neighbour = dst[slot]
+    want = flip[origin] ^ same[slot].astype(np.int8)
+    new = flip[neighbour] < 0
+    flip[neighbour[new]] = want[new]
+    clash = flip[neighbour] != want
+    if clash.any():
+        f, g = int(origin[clash][0]), int(neighbour[clash][0])
+        raise DLFLError(
+            f"{where.prefix([g])}{where.face(g)} cannot be oriented "
+            f"consistently with {where.face(f)}: the surface is not orientable"
+        )
+    return np.unique(neighbour[new])
+
+
+def _face_adjacency(soup: Polygons) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Faces sharing an edge used by exactly two sides, both ways round.
+
+    Returns ``(src, dst, same)``: ``(2k,)`` face pairs and whether the two faces
+    traverse the shared edge in the same direction (one of them must flip).
+    """
+    u = soup.indices
+    w = u[soup.next_corner]
+    sides = np.flatnonzero(u != w)  # one-corner faces have no side
+    key = np.minimum(u[sides], w[sides]) * max(len(soup.positions), 1)
+    key += np.maximum(u[sides], w[sides])
+    order, skey = _sort_keys(key)
+    if len(skey) == 0:
+        empty = np.zeros(0, dtype=np.int64)
+        return empty, empty, np.zeros(0, dtype=bool)
+    starts = np.flatnonzero(np.concatenate([[True], skey[1:] != skey[:-1]]))
+    counts = np.diff(np.concatenate([starts, [len(skey)]]))
+    a = sides[order[starts[counts == 2]]]
+    b = sides[order[starts[counts == 2] + 1]]
+    face = _face_of_corner(soup.offsets)
+    same = (u[a] < w[a]) == (u[b] < w[b])
+    return (np.concatenate([face[a], face[b]]), np.concatenate([face[b], face[a]]),
+            np.concatenate([same, same]))
 
 
 def _close_boundaries(
