@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import io
+import subprocess
+import sys
 import time
 from collections.abc import Iterator
 from pathlib import Path
@@ -12,7 +14,7 @@ import pytest
 from livemod.viewer.params_panel import ParameterPanel, slider_range, snap
 from livemod.viewer.window import LiveViewer, ViewOptions, close_viewer, create_viewer
 
-from .test_viewer_window import _has_run, _wait
+from .test_viewer_window import _has_run, _wait, xvfb_display  # noqa: F401  (a fixture)
 
 POLYGON = """
 import math
@@ -130,3 +132,35 @@ def test_frames_keep_coming_while_the_panel_reruns(window) -> None:
     _wait(viewer, lambda v: not v.waiting and v.result.values == (("radius", 3.0),))
     assert viewer.parameter_runs <= 20 and time.perf_counter() - started < 30
     assert max(viewer.frame_times) < 1.0
+
+
+def _glfw_clipboard_probe(script_path: str) -> None:
+    """In a fresh process with a real glfw window: Ctrl+C puts the param() lines on
+    the clipboard. Raises on failure."""
+    import glfw
+
+    viewer = create_viewer(ViewOptions(script_path, backend="glfw", size=(320, 240),
+                                       samples=0, vsync=False, echo=io.StringIO()))
+    try:
+        _wait(viewer, _has_run(1))
+        viewer.set_parameter("sides", 6)
+        viewer.handle_key("C", ctrl=True)
+        copied = glfw.get_clipboard_string(viewer.wnd._window)
+        text = copied.decode() if isinstance(copied, bytes) else str(copied)
+        assert "sides = param('sides', 6, min=3, max=12, doc='corners of the polygon')" in text
+    finally:
+        close_viewer(viewer)
+    print("clipboard ok")
+
+
+@pytest.mark.usefixtures("xvfb_display")
+def test_copy_key_fills_the_glfw_clipboard(tmp_path: Path) -> None:
+    script = tmp_path / "polygon.py"
+    script.write_text(POLYGON)
+    root = Path(__file__).resolve().parent.parent
+    code = (f"import sys; sys.path.insert(0, {str(root)!r}); from tests.test_viewer_params "
+            f"import _glfw_clipboard_probe; _glfw_clipboard_probe({str(script)!r})")
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                          timeout=90, cwd=root)
+    assert done.returncode == 0, done.stdout + done.stderr
+    assert "clipboard ok" in done.stdout
