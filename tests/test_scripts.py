@@ -161,3 +161,23 @@ def test_every_script_renders_a_thumbnail(name: str, tmp_path: Path) -> None:
     background = image[0, 0]
     covered = np.any(np.abs(image - background) > 12, axis=2).mean()
     assert 0.02 < covered < 0.95
+
+
+def test_relative_file_names_are_read_and_written_next_to_the_script(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    folder = tmp_path / "project"
+    folder.mkdir()
+    (folder / "model.py").write_text(
+        "from livemod.dlfl import *\n"
+        "load('cube')\n"
+        "save('out/cube.obj')\n"
+        "load('out/cube.obj')\n"
+    )
+    (folder / "out").mkdir()
+    monkeypatch.chdir(tmp_path)  # the working directory is elsewhere
+    outcome = execute(folder / "model.py")
+    assert outcome.error is None, outcome.error
+    assert (folder / "out" / "cube.obj").exists()
+    assert outcome.scene.mesh.counts() == (8, 12, 6)
+    assert [s.label for s in outcome.steps] == ["load cube", "load out/cube.obj"]

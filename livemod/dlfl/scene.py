@@ -65,6 +65,8 @@ class Scene:
         parameters: values for ``param()`` declarations (set by the runner).
         declarations: the :class:`~livemod.dlfl.params.ParamSpec` of every
             ``param()`` call of the current run, by name, in call order.
+        directory: the folder relative file names in ``load``/``save`` refer to
+            (the runner sets the script's folder); None for the working directory.
     """
 
     def __init__(self) -> None:
@@ -75,6 +77,9 @@ class Scene:
         self.parameters: dict[str, object] = {}
         # name -> ParamSpec of the param() calls of the current run, in order
         self.declarations: dict[str, Any] = {}
+        # folder that relative file names in load()/save() are read from (the
+        # script's folder in a runner run; None: the working directory)
+        self.directory: str | None = None
         self._next_object = 0
         self._command_depth = 0
 
@@ -131,6 +136,7 @@ class Scene:
         other.current = self.current
         other.selection = replace(self.selection)
         other.parameters = dict(self.parameters)
+        other.directory = self.directory
         other._next_object = self._next_object
         return other
 

@@ -293,6 +293,7 @@ def execute(
             source = handle.read()
     started = time.perf_counter()
     scene = prepare_scene(base, selection, parameters)
+    scene.directory = os.path.dirname(script)
     try:
         code = compile_script(source, script)
     except SyntaxError as exc:

@@ -224,14 +224,15 @@ def load(filename: str) -> int:
     from ..io import load_mesh
 
     path = _path(filename, "load")
+    name = os.fspath(filename)
     if os.path.exists(path):
         loaded = load_mesh(path)
     else:
         from ..shapes import load_shape
 
-        loaded = load_shape(path)
-    oid = scene().add(loaded, os.path.basename(path))
-    scene().record_step(f"load {path}")
+        loaded = load_shape(name)
+    oid = scene().add(loaded, os.path.basename(name))
+    scene().record_step(f"load {name}")
     return oid
 
 
@@ -248,10 +249,18 @@ def save(filename: str) -> bool:
 
 
 def _path(filename: Any, command: str) -> str:
-    """``filename`` as a string path, or a DLFLError naming the command."""
+    """``filename`` as a string path, or a DLFLError naming the command.
+
+    A relative name is taken relative to the scene's folder (the script's folder
+    when the runner runs it), as if the script ran from where it lives.
+    """
     if not isinstance(filename, str | os.PathLike):
         raise DLFLError(f"{command} takes a file name, got {filename!r}")
-    return os.fspath(filename)
+    path = os.fspath(filename)
+    folder = scene().directory
+    if folder is not None and not os.path.isabs(path):
+        return os.path.join(folder, path)
+    return path
 
 
 def kill(objectid: int) -> None:
