@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import argparse
 import importlib
-import os
 import sys
 from collections.abc import Sequence
 
@@ -54,17 +53,11 @@ def _add_convert(sub: argparse._SubParsersAction) -> None:
     p.set_defaults(handler=_convert)
 
 
-def _load(path: str):  # noqa: ANN202  (returns a Mesh; imported lazily)
-    from livemod.dlfl.io import load_mesh
-    from livemod.dlfl.shapes import load_shape
-
-    return load_mesh(path) if os.path.exists(path) else load_shape(path)
-
-
 def _info(args: argparse.Namespace) -> int:
     from livemod.dlfl import DLFLError, summarize, validate
+    from livemod.dlfl.io import open_mesh
 
-    mesh = _load(args.file)
+    mesh = open_mesh(args.file)
     summary = summarize(mesh)
     print(f"{args.file}")
     print(f"Number of vertices : {summary.vertices}")
@@ -88,9 +81,9 @@ def _info(args: argparse.Namespace) -> int:
 
 
 def _convert(args: argparse.Namespace) -> int:
-    from livemod.dlfl.io import save_mesh
+    from livemod.dlfl.io import open_mesh, save_mesh
 
-    mesh = _load(args.input)
+    mesh = open_mesh(args.input)
     save_mesh(mesh, args.output)
     v, e, f = mesh.counts()
     print(f"wrote {args.output} ({v} vertices, {e} edges, {f} faces)")

@@ -142,14 +142,7 @@ def _load_input(path: str, mesh_path: str | None, want_preview: bool,
         return _run_for_render(path, mesh_path, want_preview, values)
     from livemod.dlfl import mesh_arrays
 
-    load_mesh = importlib.import_module("livemod.dlfl.io").load_mesh
-
-    if Path(path).exists():
-        mesh = load_mesh(path)
-    else:
-        from livemod.dlfl.shapes import load_shape
-
-        mesh = load_shape(path)
+    mesh = importlib.import_module("livemod.dlfl.io").open_mesh(path)
     preview = None
     if want_preview:
         from livemod.runner.preview import preview_arrays

@@ -221,16 +221,11 @@ def load(filename: str) -> int:
     Raises:
         DLFLError: the file cannot be read or names no built-in shape.
     """
-    from ..io import load_mesh
+    from ..io import open_mesh
 
     path = _path(filename, "load")
     name = os.fspath(filename)
-    if os.path.exists(path):
-        loaded = load_mesh(path)
-    else:
-        from ..shapes import load_shape
-
-        loaded = load_shape(name)
+    loaded = open_mesh(path, shape_name=name)
     oid = scene().add(loaded, os.path.basename(name))
     scene().record_step(f"load {name}")
     return oid

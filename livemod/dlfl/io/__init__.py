@@ -20,7 +20,7 @@ from .ply import write_ply
 from .stl import write_stl
 
 __all__ = [
-    "atomic_write", "load_mesh", "read_dlfl", "read_obj", "save_mesh", "write_dlfl",
+    "atomic_write", "load_mesh", "open_mesh", "read_dlfl", "read_obj", "save_mesh", "write_dlfl",
     "write_obj", "write_ply", "write_stl",
 ]
 
@@ -70,3 +70,25 @@ def save_mesh(mesh: Mesh, path: str | os.PathLike[str], *, format: str | None = 
     """
     name = os.fspath(path)
     WRITERS[_format_of(name, format, WRITERS, "write")](mesh, name)
+
+
+def open_mesh(name: str | os.PathLike[str], *, shape_name: str | None = None) -> Mesh:
+    """Read the mesh file ``name``, or build the built-in shape of that name
+    (``"soccerball"``, ``"cube.obj"``, ...) when no such file exists.
+
+    Args:
+        name: a file path or a shape name.
+        shape_name: the name to look up among the shapes, when it differs from
+            ``name`` (e.g. ``name`` was resolved against a script's folder).
+
+    Raises:
+        DLFLError: a malformed file, or neither a file nor a shape of that name
+            (the message lists the shapes).
+        OSError: the file exists but cannot be read.
+    """
+    path = os.fspath(name)
+    if os.path.exists(path):
+        return load_mesh(path)
+    from ..shapes import load_shape
+
+    return load_shape(shape_name if shape_name is not None else path)
