@@ -7,7 +7,7 @@ from typing import Any
 
 import numpy as np
 
-from livemod.dlfl import Mesh, from_polygons, mesh_arrays
+from livemod.dlfl import Mesh, Scene, from_polygons, mesh_arrays, validate
 from livemod.dlfl.analysis import component_genera
 
 CUBE_POSITIONS = np.array(
@@ -137,3 +137,9 @@ def corner_structure(mesh: Mesh, *, face_ids: bool = False) -> tuple[Any, ...]:
         for i in range(len(a.face_ids))
     )
     return corners, faces, a.vertex_ids.tolist(), a.positions.tolist(), a.edge_ids.tolist()
+
+
+def counts(scene: Scene) -> tuple[int, int, int]:
+    """``(V, E, F)`` of the scene's current mesh, after checking it is valid."""
+    validate(scene.mesh)
+    return scene.mesh.counts()

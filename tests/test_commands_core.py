@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import livemod.dlfl as dlfl
-from livemod.dlfl import DLFLError, Scene, use_scene, validate
+from livemod.dlfl import DLFLError, Scene, use_scene
 from livemod.dlfl.commands.core import (
     centroid,
     collapseEdge,
@@ -46,7 +46,7 @@ from livemod.dlfl.commands.core import (
     verts,
     walk,
 )
-from tests.meshes import cube
+from tests.meshes import counts, cube
 
 OBJS = Path(__file__).resolve().parents[2] / "shared" / "data" / "topmod-objs"
 
@@ -61,11 +61,6 @@ def scene():
 def cube_scene(scene):
     scene.add(cube(), "cube")
     return scene
-
-
-def counts(scene: Scene) -> tuple[int, int, int]:
-    validate(scene.mesh)
-    return scene.mesh.counts()
 
 
 def test_thesis_figure_24_triangle(scene):

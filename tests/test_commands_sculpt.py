@@ -2,12 +2,10 @@
 
 from __future__ import annotations
 
-from collections.abc import Iterator
-
 import pytest
 
 import livemod.dlfl as dlfl
-from livemod.dlfl import DLFLError, Scene, face_size_histogram, genus, use_scene, validate
+from livemod.dlfl import DLFLError, face_size_histogram, genus
 from livemod.dlfl.commands import (
     column,
     crust,
@@ -21,21 +19,7 @@ from livemod.dlfl.commands import (
     spheralize,
     wireframe,
 )
-from livemod.dlfl.shapes import cube
-from tests.meshes import snapshot
-
-
-@pytest.fixture
-def scene() -> Iterator[Scene]:
-    sc = Scene()
-    sc.add(cube())
-    with use_scene(sc):
-        yield sc
-
-
-def counts(sc: Scene) -> tuple[int, int, int]:
-    validate(sc.mesh)
-    return sc.mesh.counts()
+from tests.meshes import counts, snapshot
 
 
 def test_star_import_gives_the_commands():

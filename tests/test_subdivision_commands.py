@@ -2,29 +2,13 @@
 
 from __future__ import annotations
 
-from collections.abc import Iterator
-
 import pytest
 
-from livemod.dlfl import DLFLError, Scene, face_size_histogram, use_scene, validate
+from livemod.dlfl import DLFLError, face_size_histogram, validate
 from livemod.dlfl.commands import dual, subdivide, subdivideFace, subdivideFaces
 from livemod.dlfl.scene import Selection
-from livemod.dlfl.shapes import cube
 from livemod.dlfl.subdivision import scheme_options
-from tests.meshes import snapshot
-
-
-@pytest.fixture
-def scene() -> Iterator[Scene]:
-    sc = Scene()
-    sc.add(cube())
-    with use_scene(sc):
-        yield sc
-
-
-def counts(sc: Scene) -> tuple[int, int, int]:
-    validate(sc.mesh)
-    return sc.mesh.counts()
+from tests.meshes import counts, snapshot
 
 
 def test_star_import_gives_the_remeshing_commands():
