@@ -9,14 +9,12 @@ when they are installed.
 from __future__ import annotations
 
 import argparse
-import statistics
 import subprocess
 import sys
-import time
-from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
+from timing import median_times
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
@@ -39,17 +37,6 @@ def torus_quads(n: int, m: int) -> tuple[np.ndarray, np.ndarray]:
     return pos, np.stack([a.ravel(), b.ravel(), c.ravel(), d.ravel()], axis=1)
 
 
-def timed(run: Callable[[], object], repeats: int) -> tuple[float, float]:
-    """Median (wall seconds, CPU seconds) of ``repeats`` calls of ``run``."""
-    walls, cpus = [], []
-    for _ in range(repeats):
-        w, c = time.perf_counter(), time.process_time()
-        run()
-        cpus.append(time.process_time() - c)
-        walls.append(time.perf_counter() - w)
-    return statistics.median(walls), statistics.median(cpus)
-
-
 def bench_pair(pairs: int, repeats: int) -> None:
     mesh = from_polygons(CUBE_POSITIONS, CUBE_FACES)
     insert, delete = mesh.insert_edge, mesh.delete_edge
@@ -58,7 +45,7 @@ def bench_pair(pairs: int, repeats: int) -> None:
         for _ in range(pairs):
             delete(insert(0, 2))
 
-    wall, cpu = timed(run, repeats)
+    wall, cpu = median_times(run, repeats)
     print(f"livemod insert_edge+delete_edge pair on a cube face: "
           f"{wall / pairs * 1e6:.2f} us wall, {cpu / pairs * 1e6:.2f} us CPU")
     bench_openmesh_pair(pairs, repeats)
@@ -88,7 +75,7 @@ def bench_openmesh_pair(pairs: int, repeats: int) -> None:
                     mesh.garbage_collection()
                     boundary = mesh.halfedge_handle(mesh.face_handle(0))
 
-        wall, cpu = timed(run, repeats)
+        wall, cpu = median_times(run, repeats)
         how = "with garbage_collection() per pair" if collect else "deleted elements kept"
         print(f"openmesh pair ({how}): {wall / pairs * 1e6:.2f} us wall, "
               f"{cpu / pairs * 1e6:.2f} us CPU")
@@ -97,11 +84,11 @@ def bench_openmesh_pair(pairs: int, repeats: int) -> None:
 def bench_bulk(n: int, repeats: int) -> None:
     pos, quads = torus_quads(n, n)
     corners = quads.size
-    wall, cpu = timed(lambda: from_polygons(pos, quads), repeats)
+    wall, cpu = median_times(lambda: from_polygons(pos, quads), repeats)
     print(f"build {n * n:,}-quad torus (from_polygons on an (F, 4) array): "
           f"{wall:.3f} s wall, {cpu:.3f} s CPU")
     mesh = from_polygons(pos, quads)
-    wall, cpu = timed(lambda: mesh_arrays(mesh), repeats)
+    wall, cpu = median_times(lambda: mesh_arrays(mesh), repeats)
     print(f"export it (mesh_arrays): {wall:.3f} s wall, {cpu:.3f} s CPU")
     peak = peak_build_bytes(n)
     print(f"peak memory of the build: {peak / 2**20:.0f} MiB = {peak / corners:.0f} bytes per corner")
@@ -133,7 +120,7 @@ def bench_openmesh_bulk(pos: np.ndarray, quads: np.ndarray, repeats: int) -> Non
         import openmesh
     except ImportError:
         return
-    wall, cpu = timed(lambda: openmesh.PolyMesh(pos, quads), repeats)
+    wall, cpu = median_times(lambda: openmesh.PolyMesh(pos, quads), repeats)
     print(f"openmesh PolyMesh(points, faces): {wall:.3f} s wall, {cpu:.3f} s CPU")
 
 

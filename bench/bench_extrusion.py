@@ -10,9 +10,9 @@ from __future__ import annotations
 import argparse
 import math
 import os
-import statistics
-import time
 from collections.abc import Callable
+
+from timing import median_times
 
 from livemod.dlfl.connect import connect_faces, hermite_handle
 from livemod.dlfl.extrusion import extrude
@@ -67,21 +67,6 @@ CASES: list[tuple[str, Callable[[], Mesh], float | None]] = [
 ]
 
 
-def median_seconds(func: Callable[[], Mesh], repeat: int) -> tuple[float, float]:
-    """Median wall time and median CPU time of this process over ``repeat`` runs.
-
-    The CPU time is reported too because the development machines are shared:
-    when other jobs compete for the cores, wall time grows and CPU time does not.
-    """
-    wall, cpu = [], []
-    for _ in range(repeat):
-        start, start_cpu = time.perf_counter(), time.process_time()
-        func()
-        wall.append(time.perf_counter() - start)
-        cpu.append(time.process_time() - start_cpu)
-    return statistics.median(wall), statistics.median(cpu)
-
-
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--repeat", type=int, default=7)
@@ -90,7 +75,7 @@ def main() -> None:
     print("| operation | median wall (s) | median CPU (s) | target (s) |")
     print("|---|---|---|---|")
     for label, func, target in CASES:
-        wall, cpu = median_seconds(func, args.repeat)
+        wall, cpu = median_times(func, args.repeat)
         verdict = "" if target is None else f"{target} ({'met' if wall <= target else 'MISSED'})"
         print(f"| {label} | {wall:.3f} | {cpu:.3f} | {verdict} |", flush=True)
     print(f"load average after: {os.getloadavg()[0]:.1f}")

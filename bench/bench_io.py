@@ -13,16 +13,15 @@ from __future__ import annotations
 
 import argparse
 import os
-import statistics
 import sys
 import tempfile
-import time
-from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+
+from timing import median_times  # noqa: E402
 
 from livemod.dlfl import Mesh, from_polygons  # noqa: E402
 from livemod.dlfl.io import load_mesh, write_obj  # noqa: E402
@@ -38,21 +37,6 @@ def torus(grid: int) -> Mesh:
     i1, j1 = (i + 1) % grid, (j + 1) % grid
     quads = np.stack([i * grid + j, i1 * grid + j, i1 * grid + j1, i * grid + j1], -1)
     return from_polygons(positions.reshape(-1, 3), quads.reshape(-1, 4))
-
-
-def median_time(step: Callable[[], object], runs: int) -> tuple[float, float]:
-    """Median wall time and median CPU time of this process over ``runs`` calls.
-
-    On a shared machine the wall time includes waiting for the CPU; the process
-    CPU time is close to what the step costs on a quiet machine.
-    """
-    walls, cpus = [], []
-    for _ in range(runs):
-        wall, cpu = time.perf_counter(), time.process_time()
-        step()
-        walls.append(time.perf_counter() - wall)
-        cpus.append(time.process_time() - cpu)
-    return statistics.median(walls), statistics.median(cpus)
 
 
 def export_synced(peer: object, path: Path) -> None:
@@ -74,18 +58,18 @@ def main() -> None:
         trimesh = None
     with tempfile.TemporaryDirectory() as folder:
         ours = Path(folder) / "torus.obj"
-        rows = [("livemod OBJ text (obj_bytes)", median_time(lambda: obj_bytes(mesh), args.runs)),
-                ("livemod write_obj", median_time(lambda: write_obj(mesh, ours), args.runs))]
+        rows = [("livemod OBJ text (obj_bytes)", median_times(lambda: obj_bytes(mesh), args.runs)),
+                ("livemod write_obj", median_times(lambda: write_obj(mesh, ours), args.runs))]
         size_mb = ours.stat().st_size / 1e6
-        rows.append(("livemod load_mesh", median_time(lambda: load_mesh(ours), args.runs)))
+        rows.append(("livemod load_mesh", median_times(lambda: load_mesh(ours), args.runs)))
         if trimesh is not None:
             peer = trimesh.load(ours, process=False)
             rows.append(("trimesh.load(process=False)",
-                         median_time(lambda: trimesh.load(ours, process=False), args.runs)))
+                         median_times(lambda: trimesh.load(ours, process=False), args.runs)))
             theirs = Path(folder) / "trimesh.obj"
-            rows.append(("trimesh export", median_time(lambda: peer.export(theirs), args.runs)))
+            rows.append(("trimesh export", median_times(lambda: peer.export(theirs), args.runs)))
             rows.append(("trimesh export + fsync",
-                         median_time(lambda: export_synced(peer, theirs), args.runs)))
+                         median_times(lambda: export_synced(peer, theirs), args.runs)))
     report(rows, mesh, size_mb, args.runs)
 
 

@@ -10,9 +10,9 @@ from __future__ import annotations
 
 import argparse
 import os
-import statistics
-import time
 from collections.abc import Callable
+
+from timing import median_times
 
 from livemod.dlfl.geometry import mesh_smooth
 from livemod.dlfl.mesh import Mesh
@@ -54,20 +54,6 @@ CASES: list[tuple[str, Callable[[], Mesh], Callable[[Mesh], object], str]] = [
 ]
 
 
-def median_time(
-    make: Callable[[], Mesh], run: Callable[[Mesh], object], repeat: int
-) -> tuple[float, float]:
-    """Median wall and CPU seconds of ``run`` on a fresh ``make()`` (not timed)."""
-    wall, cpu = [], []
-    for _ in range(repeat):
-        mesh = make()
-        start, start_cpu = time.perf_counter(), time.process_time()
-        run(mesh)
-        wall.append(time.perf_counter() - start)
-        cpu.append(time.process_time() - start_cpu)
-    return statistics.median(wall), statistics.median(cpu)
-
-
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--repeat", type=int, default=5)
@@ -80,7 +66,7 @@ def main() -> None:
     for label, make, run, target in CASES:
         if args.only not in label:
             continue
-        wall, cpu = median_time(make, run, args.repeat)
+        wall, cpu = median_times(run, args.repeat, setup=make)
         verdict = ""
         if target:
             limit = float(target.split()[0])
