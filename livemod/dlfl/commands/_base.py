@@ -31,10 +31,20 @@ def modeling_command(func: F) -> F:
     Commands called from inside another command record no step of their own.
     """
 
+    label = func.__name__
+
     @functools.wraps(func)
     def wrapper(*args: Any, **kwargs: Any) -> Any:
-        with current_scene().command(func.__name__):
-            return func(*args, **kwargs)
+        # Scene.command inlined: this wraps every modeling command of every run
+        sc = current_scene()
+        sc._command_depth += 1
+        try:
+            result = func(*args, **kwargs)
+        finally:
+            sc._command_depth -= 1
+        if sc._command_depth == 0 and sc.step_hook is not None:
+            sc.step_hook(label)
+        return result
 
     return cast(F, wrapper)
 
