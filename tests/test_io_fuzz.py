@@ -156,3 +156,13 @@ def test_fast_parser_on_a_big_regular_block_matches_reference() -> None:
                                                           strict=True)]
     data = "\n".join(lines).encode()
     assert parse_or_error(data, True) == parse_or_error(data, False)
+
+
+def test_every_truncation_of_a_crlf_file_is_refused_cleanly() -> None:
+    # regression: a number cut right after its exponent mark at the very end of
+    # the buffer made the vectorized scanner read past it (IndexError)
+    for cut in range(960, 1010):
+        try:
+            read_obj(DUAL_OBJ[:cut])
+        except DLFLError:
+            pass

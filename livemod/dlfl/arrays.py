@@ -58,6 +58,16 @@ class MeshArrays:
         return np.diff(self.face_offsets)
 
     @property
+    def face_is_surface(self) -> np.ndarray:
+        """``(F,)`` bool: faces of the surface, neither holes nor point-spheres.
+
+        These are the faces exporters write and renderers draw.
+        """
+        sizes = self.face_sizes
+        point_sphere = (sizes == 1) & (self.corner_edge[self.face_offsets[:-1]] < 0)
+        return ~self.face_hole & ~point_sphere
+
+    @property
     def corner_next(self) -> np.ndarray:
         """``(C,)`` int64 dense index of the next corner in the same face."""
         nxt = np.arange(1, len(self.corner_vertex) + 1, dtype=np.int64)

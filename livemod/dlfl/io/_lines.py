@@ -162,8 +162,11 @@ class _Scan:
         self.other_cls = classes[buf[self.other]]
 
     def cls(self, positions: np.ndarray) -> np.ndarray:
-        """Class of the bytes at ``positions`` (any positions)."""
-        return self.classes[self.buf[positions]]
+        """Class of the bytes at ``positions``; positions past either end read as
+        the separator that ends the buffer there (``e`` two bytes before the end
+        of a truncated file looks two bytes ahead)."""
+        inside = np.clip(positions, 0, len(self.buf) - 1)
+        return self.classes[self.buf[inside]]
 
     def positions(self, cls: int) -> np.ndarray:
         return self.other[self.other_cls == cls]

@@ -48,6 +48,16 @@ def atomic_write(path: str | os.PathLike[str]) -> Iterator[BinaryIO]:
     _sync_folder(folder)
 
 
+def write_atomically(path: str | os.PathLike[str], data: bytes) -> None:
+    """Replace ``path`` with ``data`` through :func:`atomic_write`.
+
+    Raises:
+        OSError: the file cannot be written; an existing file is left intact.
+    """
+    with atomic_write(path) as handle:
+        handle.write(data)
+
+
 def _mode_for(target: str) -> int:
     """Permission bits for the new file: the old file's, else 0o644.
 

@@ -34,9 +34,9 @@ from ..errors import DLFLError
 from ..mesh import Mesh
 from ..validate import validate
 from ._numtext import format_floats, format_uints, join_columns
-from .atomic import atomic_write
+from .atomic import write_atomically
 from .obj import index_lines, vertex_lines
-from .source import read_source
+from .source import read_source, show_token
 
 HOLE_MATERIAL = "hole"
 
@@ -130,9 +130,9 @@ def _number(word: bytes, where: str) -> float:
     try:
         value = float(word) if b"_" not in word else float("nan")
     except ValueError:
-        raise DLFLError(f"{where}: bad number {_show(word)}") from None
+        raise DLFLError(f"{where}: bad number {show_token(word)}") from None
     if not np.isfinite(value):
-        raise DLFLError(f"{where}: {_show(word)} is not a finite number")
+        raise DLFLError(f"{where}: {show_token(word)} is not a finite number")
     return value
 
 
@@ -142,15 +142,11 @@ def _integer(word: bytes, where: str) -> int:
             raise ValueError(word)
         value = int(word)
     except ValueError:
-        raise DLFLError(f"{where}: bad index {_show(word)}") from None
+        raise DLFLError(f"{where}: bad index {show_token(word)}") from None
     if abs(value) >= 2**62:
-        raise DLFLError(f"{where}: index {_show(word)} is out of range")
+        raise DLFLError(f"{where}: index {show_token(word)} is out of range")
     return value
 
-
-def _show(word: bytes) -> str:
-    text = word.decode("utf-8", "replace")
-    return repr(text if len(text) <= 40 else text[:40] + "...")
 
 
 # ------------------------------------------------------------------- building
@@ -282,8 +278,7 @@ def write_dlfl(mesh: Mesh, path: str | os.PathLike[str], *, reverse: bool = Fals
     """
     stem = os.path.splitext(os.path.basename(os.fspath(path)))[0] or "mesh"
     text = dlfl_bytes(mesh, stem, reverse=reverse)
-    with atomic_write(path) as handle:
-        handle.write(text)
+    write_atomically(path, text)
 
 
 def dlfl_bytes(mesh: Mesh, mtl_name: str = "mesh", *, reverse: bool = False) -> bytes:

@@ -26,8 +26,8 @@ from ..errors import DLFLError
 from ..mesh import Mesh
 from ._lines import gather_lines, parse_index_lines, parse_number_lines, split_lines
 from ._numtext import format_floats, format_uints, join_columns
-from .atomic import atomic_write
-from .source import read_source
+from .atomic import write_atomically
+from .source import read_source, show_token
 
 
 @dataclass
@@ -305,9 +305,9 @@ def _float(token: bytes, line: int, label: str) -> float:
             raise ValueError(token)
         value = float(token)
     except ValueError:
-        raise DLFLError(f"{label}:{line}: bad number {_show(token)}") from None
+        raise DLFLError(f"{label}:{line}: bad number {show_token(token)}") from None
     if not np.isfinite(value):
-        raise DLFLError(f"{label}:{line}: coordinate {_show(token)} is not finite")
+        raise DLFLError(f"{label}:{line}: coordinate {show_token(token)} is not finite")
     return value
 
 
@@ -318,15 +318,11 @@ def _index(token: bytes, line: int, label: str) -> int:
             raise ValueError(head)
         value = int(head)
     except ValueError:
-        raise DLFLError(f"{label}:{line}: bad vertex index {_show(token)}") from None
+        raise DLFLError(f"{label}:{line}: bad vertex index {show_token(token)}") from None
     if abs(value) >= 2**62:
-        raise DLFLError(f"{label}:{line}: vertex index {_show(head)} is out of range")
+        raise DLFLError(f"{label}:{line}: vertex index {show_token(head)} is out of range")
     return value
 
-
-def _show(token: bytes) -> str:
-    text = token.decode("utf-8", "replace")
-    return repr(text if len(text) <= 40 else text[:40] + "...")
 
 
 # ---------------------------------------------------------------------- writer
@@ -344,16 +340,14 @@ def write_obj(mesh: Mesh, path: str | os.PathLike[str]) -> None:
         OSError: the file cannot be written; an existing file is left intact.
     """
     text = obj_bytes(mesh)
-    with atomic_write(path) as handle:
-        handle.write(text)
+    write_atomically(path, text)
 
 
 def obj_bytes(mesh: Mesh) -> bytes:
     """The OBJ text of ``mesh`` (see :func:`write_obj`)."""
     a = mesh_arrays(mesh)
     sizes = a.face_sizes
-    point_sphere = (sizes == 1) & (a.corner_edge[a.face_offsets[:-1]] < 0)
-    written = ~a.face_hole & ~point_sphere
+    written = a.face_is_surface
     corners = np.repeat(written, sizes)
     header = b"# livemod OBJ: %d vertices, %d faces\n" % (len(a.positions), int(written.sum()))
     return header + _vertex_text(a.positions) + _face_text(a.corner_vertex[corners] + 1,

@@ -8,7 +8,7 @@ import numpy as np
 
 from ..arrays import mesh_arrays
 from ..mesh import Mesh
-from .atomic import atomic_write
+from .atomic import write_atomically
 
 
 def write_ply(mesh: Mesh, path: str | os.PathLike[str]) -> None:
@@ -23,16 +23,14 @@ def write_ply(mesh: Mesh, path: str | os.PathLike[str]) -> None:
         OSError: the file cannot be written; an existing file is left intact.
     """
     data = ply_bytes(mesh)
-    with atomic_write(path) as handle:
-        handle.write(data)
+    write_atomically(path, data)
 
 
 def ply_bytes(mesh: Mesh) -> bytes:
     """The binary PLY of ``mesh`` (see :func:`write_ply`)."""
     a = mesh_arrays(mesh)
     sizes = a.face_sizes
-    point_sphere = (sizes == 1) & (a.corner_edge[a.face_offsets[:-1]] < 0)
-    written = ~a.face_hole & ~point_sphere
+    written = a.face_is_surface
     sizes = sizes[written]
     indices = a.corner_vertex[np.repeat(written, a.face_sizes)]
     count_type = "uchar" if len(sizes) == 0 or sizes.max() <= 255 else "uint"

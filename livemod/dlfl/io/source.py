@@ -24,3 +24,9 @@ def read_source(
     with open(path, "rb") as handle:
         data = handle.read()
     return data, name or path
+
+
+def show_token(token: bytes) -> str:
+    """A token from a file as it should appear in an error message (quoted, cut at 40)."""
+    text = token.decode("utf-8", "replace")
+    return repr(text if len(text) <= 40 else text[:40] + "...")

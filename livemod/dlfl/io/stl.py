@@ -9,7 +9,7 @@ import numpy as np
 from ..analysis import face_normals
 from ..arrays import MeshArrays, mesh_arrays
 from ..mesh import Mesh
-from .atomic import atomic_write
+from .atomic import write_atomically
 
 _TRIANGLE = np.dtype([("normal", "<f4", 3), ("corners", "<f4", (3, 3)), ("attribute", "<u2")])
 
@@ -25,8 +25,7 @@ def write_stl(mesh: Mesh, path: str | os.PathLike[str]) -> None:
         OSError: the file cannot be written; an existing file is left intact.
     """
     data = stl_bytes(mesh)
-    with atomic_write(path) as handle:
-        handle.write(data)
+    write_atomically(path, data)
 
 
 def stl_bytes(mesh: Mesh) -> bytes:
