@@ -233,11 +233,10 @@ def cmd_batch(args: argparse.Namespace) -> int:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """Stand-alone ``livemod``-style entry point with just ``run``, ``batch`` and ``params``."""
-    parser = argparse.ArgumentParser(prog="livemod")
-    add_commands(parser.add_subparsers(dest="command", required=True))
-    args = parser.parse_args(argv)
-    return int(args.handler(args))
+    """Run ``livemod run``, ``batch`` or ``params`` (the ``livemod`` command line)."""
+    from livemod.cli import main as livemod_main
+
+    return livemod_main(argv)
 
 
 if __name__ == "__main__":

@@ -179,14 +179,7 @@ def _run_for_render(path: str, mesh_path: str | None, want_preview: bool,
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """Parse and run ``view`` or ``render`` alone; returns the exit code."""
-    from livemod.dlfl.errors import DLFLError
+    """Run ``livemod view`` or ``livemod render`` (the ``livemod`` command line)."""
+    from livemod.cli import main as livemod_main
 
-    parser = argparse.ArgumentParser(prog="livemod")
-    add_commands(parser.add_subparsers(dest="command", required=True))
-    args = parser.parse_args(argv)
-    try:
-        return int(args.handler(args) or 0)
-    except (DLFLError, OSError) as exc:
-        print(f"livemod: error: {exc}", file=sys.stderr)
-        return 1
+    return livemod_main(argv)
