@@ -23,8 +23,8 @@ ROOT = Path(__file__).resolve().parents[1]
 IMAGES = ROOT / "docs" / "images"
 THUMB = 200
 COLUMNS = 4
-# a few scripts read better with smaller settings at thumbnail size
-PARAMETERS = {"wireframe_soccerballs.py": {"count": 1}}
+# the current (last) of twelve balls reads well at thumbnail size
+PARAMETERS = {"wireframe_soccerballs.py": {"count": 12}}
 
 
 def script_arrays(path: Path):  # noqa: ANN201  (MeshArrays)
