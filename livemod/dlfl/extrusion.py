@@ -248,20 +248,22 @@ def dodeca_step(mesh: Mesh, face: int, opts: Options) -> int:
     ``sqrt(scale)``.)"""
     third = replace(opts, distance=opts.distance / 3.0, scale=abs(opts.scale) ** (1.0 / 6.0))
     face = cubical_step(mesh, face, replace(third, rotation=0.0))
-    face = dual_step(mesh, face, replace(third, dual_mesh=True))
-    dual_edges = mesh.face_edges(face)
-    face = cubical_step(mesh, face, replace(third, rotation=0.0))
-    _delete_edges(mesh, dual_edges)
-    return face
+    return _dual_then_cubical(mesh, face, third)
 
 
 def hex_tile_step(mesh: Mesh, face: int, opts: Options) -> int:
     """TopMod's ``extrudeHexTileFace``: dual with ``dual_mesh`` then cubical, each
     ``distance / 3`` with scale ``sqrt(scale)``, then the dual face's edges deleted."""
     third = replace(opts, distance=opts.distance / 3.0, scale=math.sqrt(abs(opts.scale)))
-    face = dual_step(mesh, face, replace(third, dual_mesh=True))
+    return _dual_then_cubical(mesh, face, third)
+
+
+def _dual_then_cubical(mesh: Mesh, face: int, step: Options) -> int:
+    """A dual step with ``dual_mesh``, a cubical step, then the dual face's edges
+    deleted (the shared tail of dodeca and hex-tile); returns the end face."""
+    face = dual_step(mesh, face, replace(step, dual_mesh=True))
     dual_edges = mesh.face_edges(face)
-    face = cubical_step(mesh, face, replace(third, rotation=0.0))
+    face = cubical_step(mesh, face, replace(step, rotation=0.0))
     _delete_edges(mesh, dual_edges)
     return face
 
