@@ -9,6 +9,7 @@ import pytest
 from livemod.runner import LiveSession, ManualNotifier, RunResult
 
 from .runner_scripts.support import (
+    closing_session,
     drain,
     next_result,
     same_mesh,
@@ -21,10 +22,8 @@ CUBE = script_path("cube_steps.py")
 
 @pytest.fixture
 def session():
-    live = LiveSession(CUBE, notifier=ManualNotifier(), preview=False)
-    yield live
-    live.close()
-    assert live.join(10)
+    with closing_session(LiveSession(CUBE, notifier=ManualNotifier(), preview=False)) as live:
+        yield live
 
 
 def paused_at(k: int):
@@ -110,7 +109,7 @@ def test_goto_after_an_error_shows_the_steps_that_finished(tmp_path):
     path = tmp_path / "fails.py"
     path.write_text("createVertex((0, 0, 0))\ncreateVertex((1, 0, 0))\nraise ValueError('late')\n")
     live = LiveSession(str(path), notifier=ManualNotifier(), preview=False)
-    try:
+    with closing_session(live):
         live.start()
         failed = next_result(live, lambda r: r.status == "error")
         assert len(failed.steps) == 2 and failed.arrays is None and not failed.stale
@@ -118,9 +117,6 @@ def test_goto_after_an_error_shows_the_steps_that_finished(tmp_path):
         live.goto_step(0)
         shown = next_result(live, paused_at(0))
         assert shown.arrays is not None and shown.arrays.counts == (1, 0, 1)
-    finally:
-        live.close()
-        assert live.join(10)
 
 
 @pytest.mark.timeout(60)
@@ -128,7 +124,7 @@ def test_user_cancel_posts_a_cancelled_result_with_last_good_mesh(tmp_path):
     path = tmp_path / "slow.py"
     path.write_text("createVertex((0, 0, 0))\n")
     live = LiveSession(str(path), notifier=ManualNotifier(), preview=False)
-    try:
+    with closing_session(live):
         live.start()
         good = next_result(live, is_ok)
         path.write_text("createVertex((0, 0, 0))\nwhile True:\n    pass\n")
@@ -138,9 +134,6 @@ def test_user_cancel_posts_a_cancelled_result_with_last_good_mesh(tmp_path):
         cancelled = next_result(live, lambda r: r.status == "cancelled")
         assert cancelled.stale and same_mesh(cancelled.arrays, good.arrays)
         assert cancelled.error is not None and cancelled.error.kind == "cancelled"
-    finally:
-        live.close()
-        assert live.join(10)
 
 
 @pytest.mark.timeout(60)
@@ -148,7 +141,7 @@ def test_controls_return_at_once_even_mid_run(tmp_path):
     path = tmp_path / "busy.py"
     path.write_text("while True:\n    createVertex((0, 0, 0))\n")
     live = LiveSession(str(path), notifier=ManualNotifier(), preview=False)
-    try:
+    with closing_session(live):
         live.start()
         time.sleep(0.2)
         controls = [live.pause, live.step_forward, live.step_back, lambda: live.goto_step(3),
@@ -158,9 +151,6 @@ def test_controls_return_at_once_even_mid_run(tmp_path):
             started = time.perf_counter()
             control()
             assert time.perf_counter() - started < 0.5  # generous for a loaded CI machine
-    finally:
-        live.close()
-        assert live.join(10)
 
 
 def test_play_rejects_a_non_positive_rate(session):
@@ -193,7 +183,7 @@ def test_stepping_back_uses_the_snapshot_cache_without_a_replay(session):
 def test_without_a_snapshot_budget_stepping_back_replays():
     snaps, _ = straight_snapshots(CUBE)
     live = LiveSession(CUBE, notifier=ManualNotifier(), preview=False, snapshot_budget=0)
-    try:
+    with closing_session(live):
         live.pause()
         live.start()
         first = next_result(live, paused_at(0))
@@ -202,9 +192,6 @@ def test_without_a_snapshot_budget_stepping_back_replays():
         live.step_back()
         back = next_result(live, paused_at(0))
         assert back.run_id > first.run_id and same_mesh(back.arrays, snaps[0])
-    finally:
-        live.close()
-        assert live.join(10)
 
 
 @pytest.mark.timeout(60)

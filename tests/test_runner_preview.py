@@ -11,7 +11,7 @@ from livemod.dlfl.mesh import Mesh
 from livemod.runner import LiveSession, ManualNotifier, preview
 from livemod.runner.results import snapshot_mesh
 
-from .runner_scripts.support import next_result, script_path
+from .runner_scripts.support import closing_session, next_result, script_path
 
 QUAD = ([(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0)], [(0, 1, 2, 3)])
 
@@ -51,7 +51,7 @@ def test_session_posts_the_preview_in_a_second_result_off_the_caller_thread():
         return snapshot_mesh(mesh)
 
     live = LiveSession(script_path("cube_steps.py"), notifier=ManualNotifier(), preview=compute)
-    try:
+    with closing_session(live):
         live.start()
         first = next_result(live)
         assert first.status == "ok" and first.preview is None
@@ -59,6 +59,3 @@ def test_session_posts_the_preview_in_a_second_result_off_the_caller_thread():
         assert second.run_id == first.run_id and second.preview is not None
         assert second.preview.counts == first.arrays.counts  # type: ignore[union-attr]
         assert threads and threading.main_thread() not in threads
-    finally:
-        live.close()
-        assert live.join(10)

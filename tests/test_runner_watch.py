@@ -11,6 +11,7 @@ import pytest
 from livemod.runner import FileWatcher, LiveSession, ManualNotifier, RunResult
 
 from .runner_scripts.support import (
+    closing_session,
     drain,
     next_result,
     settle,
@@ -60,7 +61,7 @@ def test_unchanged_content_is_skipped_and_changes_run(tmp_path):
     script.write_text(vertices_script(2))
     notifier = ManualNotifier()
     live = LiveSession(str(script), notifier=notifier, debounce=0.05, preview=False)
-    try:
+    with closing_session(live):
         live.start()
         assert vertex_count(next_result(live)) == 2
         notifier.fire(str(script))  # touched, not changed
@@ -68,9 +69,6 @@ def test_unchanged_content_is_skipped_and_changes_run(tmp_path):
         script.write_text(vertices_script(3))
         notifier.fire(str(script))
         assert vertex_count(next_result(live)) == 3
-    finally:
-        live.close()
-        assert live.join(10)
 
 
 @pytest.mark.timeout(60)
@@ -79,7 +77,7 @@ def test_vanished_script_waits_for_its_return(tmp_path):
     script.write_text(vertices_script(2))
     notifier = ManualNotifier()
     live = LiveSession(str(script), notifier=notifier, debounce=0.05, preview=False)
-    try:
+    with closing_session(live):
         live.start()
         next_result(live)
         script.unlink()
@@ -88,9 +86,6 @@ def test_vanished_script_waits_for_its_return(tmp_path):
         script.write_text(vertices_script(4))
         notifier.fire(str(script))
         assert vertex_count(next_result(live)) == 4
-    finally:
-        live.close()
-        assert live.join(10)
 
 
 # -- real file system (watchdog) ----------------------------------------------------
@@ -111,21 +106,18 @@ def start_session(tmp_path, text: str, **options) -> tuple[LiveSession, str]:
 @pytest.mark.parametrize("save", [write_by_rename, write_in_place, write_vim_style])
 def test_each_editor_save_style_triggers_exactly_one_run(tmp_path, save):
     live, script = start_session(tmp_path, vertices_script(2))
-    try:
+    with closing_session(live):
         save(script, vertices_script(5))
         results = settle(live)
         assert [vertex_count(r) for r in results] == [5]
         save(script, vertices_script(6))
         assert [vertex_count(r) for r in settle(live)] == [6]
-    finally:
-        live.close()
-        assert live.join(10)
 
 
 @pytest.mark.timeout(60)
 def test_a_burst_of_saves_ends_with_the_last_content(tmp_path):
     live, script = start_session(tmp_path, vertices_script(1))
-    try:
+    with closing_session(live):
         for n in range(2, 22):
             write_by_rename(script, vertices_script(n))
             time.sleep(0.05)
@@ -134,15 +126,12 @@ def test_a_burst_of_saves_ends_with_the_last_content(tmp_path):
         assert len(results) < 20  # debounced
         run_ids = [r.run_id for r in results]
         assert run_ids == sorted(run_ids)
-    finally:
-        live.close()
-        assert live.join(10)
 
 
 @pytest.mark.timeout(60)
 def test_an_infinite_loop_is_cancelled_by_the_next_save(tmp_path):
     live, script = start_session(tmp_path, vertices_script(1))
-    try:
+    with closing_session(live):
         write_in_place(script, "createVertex((0, 0, 0))\nwhile True:\n    pass\n")
         time.sleep(0.6)  # the looping run is under way
         saved = time.monotonic()
@@ -150,9 +139,6 @@ def test_an_infinite_loop_is_cancelled_by_the_next_save(tmp_path):
         result = next_result(live)
         assert vertex_count(result) == 3
         assert time.monotonic() - saved < 1.0
-    finally:
-        live.close()
-        assert live.join(10)
 
 
 @pytest.mark.timeout(60)
@@ -160,20 +146,17 @@ def test_imported_helper_modules_are_watched_and_reloaded(tmp_path):
     (tmp_path / "helper.py").write_text("COUNT = 2\n")
     live, script = start_session(
         tmp_path, "import helper\nfor i in range(helper.COUNT):\n    createVertex((i, 0, 0))\n")
-    try:
+    with closing_session(live):
         write_by_rename(str(tmp_path / "helper.py"), "COUNT = 7\n")
         assert [vertex_count(r) for r in settle(live)] == [7]
         write_in_place(script, "import helper\ncreateVertex((0, 0, helper.COUNT))\n")
         assert [vertex_count(r) for r in settle(live)] == [1]
-    finally:
-        live.close()
-        assert live.join(10)
 
 
 @pytest.mark.timeout(60)
 def test_a_syntax_error_keeps_the_last_good_mesh_marked_stale(tmp_path):
     live, script = start_session(tmp_path, vertices_script(3))
-    try:
+    with closing_session(live):
         write_by_rename(script, "createVertex((0, 0, 0)\n")
         broken = next_result(live)
         assert broken.status == "error" and broken.stale and vertex_count(broken) == 3
@@ -181,20 +164,14 @@ def test_a_syntax_error_keeps_the_last_good_mesh_marked_stale(tmp_path):
         write_by_rename(script, vertices_script(4))
         fixed = next_result(live)
         assert fixed.status == "ok" and not fixed.stale and vertex_count(fixed) == 4
-    finally:
-        live.close()
-        assert live.join(10)
 
 
 @pytest.mark.timeout(60)
 def test_polling_fallback_sees_saves(tmp_path):
     live, script = start_session(tmp_path, vertices_script(2), poll=True)
-    try:
+    with closing_session(live):
         write_vim_style(script, vertices_script(3))
         assert vertex_count(next_result(live)) == 3
-    finally:
-        live.close()
-        assert live.join(10)
 
 
 @pytest.mark.timeout(60)
@@ -202,15 +179,12 @@ def test_open_switches_scripts(tmp_path):
     live, _ = start_session(tmp_path, vertices_script(2))
     other = tmp_path / "other.py"
     other.write_text(vertices_script(9))
-    try:
+    with closing_session(live):
         live.open(str(other))
         result = next_result(live)
         assert result.script == str(other) and vertex_count(result) == 9
         write_in_place(str(other), vertices_script(8))
         assert vertex_count(next_result(live)) == 8
-    finally:
-        live.close()
-        assert live.join(10)
 
 
 @pytest.mark.timeout(60)
@@ -232,7 +206,7 @@ def test_an_endless_loop_in_a_helper_module_is_interrupted(tmp_path):
     script = tmp_path / "uses_spinner.py"
     script.write_text("import spinner\ncreateVertex((0, 0, 0))\nspinner.spin()\n")
     live = LiveSession(str(script), notifier=ManualNotifier(), preview=False)
-    try:
+    with closing_session(live):
         live.start()
         time.sleep(0.3)
         script.write_text("createVertex((0, 0, 0))\ncreateVertex((1, 0, 0))\n")
@@ -241,19 +215,13 @@ def test_an_endless_loop_in_a_helper_module_is_interrupted(tmp_path):
         result = next_result(live)
         assert result.status == "ok" and vertex_count(result) == 2
         assert time.monotonic() - asked < 2.0
-    finally:
-        live.close()
-        assert live.join(10)
 
 
 @pytest.mark.timeout(60)
 def test_a_deleted_script_runs_again_when_it_comes_back(tmp_path):
     live, script = start_session(tmp_path, vertices_script(2))
-    try:
+    with closing_session(live):
         os.remove(script)
         assert drain(live, quiet=0.6) == []  # nothing to run while it is gone
         write_in_place(script, vertices_script(5))
         assert [vertex_count(r) for r in settle(live)] == [5]
-    finally:
-        live.close()
-        assert live.join(10)

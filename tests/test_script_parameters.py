@@ -18,7 +18,7 @@ from livemod.runner.declarations import declared_parameters
 from livemod.runner.results import current_mesh
 from livemod.viewer import cli as viewer_cli
 
-from .runner_scripts.support import next_result, script_path
+from .runner_scripts.support import closing_session, next_result, script_path
 
 RING = script_path("ring.py")
 
@@ -133,7 +133,7 @@ def test_the_session_keeps_values_across_saves_while_they_fit(tmp_path):
     script = tmp_path / "ring.py"
     script.write_text(Path(RING).read_text())
     live = LiveSession(str(script), notifier=ManualNotifier(), preview=False)
-    try:
+    with closing_session(live):
         live.start()
         assert next_result(live).arrays.counts == (4, 4, 2)
         live.set_parameters({"count": 9, "radius": 5.0})
@@ -149,9 +149,6 @@ def test_the_session_keeps_values_across_saves_while_they_fit(tmp_path):
         assert live.parameters == {"count": 9}
         live.reset_parameters()
         assert next_result(live, lambda r: r.values == ()).arrays.counts == (4, 4, 2)
-    finally:
-        live.close()
-        assert live.join(10)
 
 
 COMPUTED = '''

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import contextlib
 import os
 import queue
 import time
@@ -111,3 +112,13 @@ def same_mesh(a: MeshArrays | None, b: MeshArrays | None) -> bool:
         and np.array_equal(a.face_ids, b.face_ids)
         and np.allclose(a.positions, b.positions)
     )
+
+
+@contextlib.contextmanager
+def closing_session(live):  # noqa: ANN001, ANN201  (a LiveSession)
+    """Yield ``live``; close it afterwards and check its threads have ended."""
+    try:
+        yield live
+    finally:
+        live.close()
+        assert live.join(10)
