@@ -153,9 +153,17 @@ class Scene:
         self._command_depth += 1
         try:
             yield
-        finally:
-            self._command_depth -= 1
-        self.record_step(label)
+        except BaseException:
+            self.leave_command(None)
+            raise
+        self.leave_command(label)
+
+    def leave_command(self, label: str | None) -> None:
+        """End a command begun by raising ``_command_depth``: record its step
+        (``label``) when it was outermost, or nothing when it failed (None)."""
+        self._command_depth -= 1
+        if label is not None:
+            self.record_step(label)
 
 
 _default_scene = Scene()

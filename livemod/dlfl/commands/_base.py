@@ -35,15 +35,15 @@ def modeling_command(func: F) -> F:
 
     @functools.wraps(func)
     def wrapper(*args: Any, **kwargs: Any) -> Any:
-        # Scene.command inlined: this wraps every modeling command of every run
+        # Scene.command without its generator: this wraps every modeling command
         sc = current_scene()
         sc._command_depth += 1
         try:
             result = func(*args, **kwargs)
-        finally:
-            sc._command_depth -= 1
-        if sc._command_depth == 0 and sc.step_hook is not None:
-            sc.step_hook(label)
+        except BaseException:
+            sc.leave_command(None)
+            raise
+        sc.leave_command(label)
         return result
 
     return cast(F, wrapper)
