@@ -101,112 +101,138 @@ class MeshArrays:
 
 
 def mesh_arrays(mesh: Mesh) -> MeshArrays:
-    """Lay ``mesh`` out as a :class:`MeshArrays` (vectorized, O(C log max face size))."""
+    """Lay ``mesh`` out as a :class:`MeshArrays` (vectorized, O(C log max face size)).
+
+    A freshly built mesh (tables without free slots or moved ids, corners laid
+    out face by face: the result of every bulk operation) is copied slice by
+    slice, without index arrays.
+    """
     C, E, F, V = mesh._c, mesh._e, mesh._f, mesh._v
-    vslots, eslots, fslots, cslots = (
-        V.live_slots(), E.live_slots(), F.live_slots(), C.live_slots(),
-    )
-    ca, ea = C.arrays, E.arrays
-    fdense = _dense_map(fslots, F.n)
-    order, offsets = _ring_order(mesh, cslots, fslots, fdense)
-    in_slot_order = len(order) == C.n and not C.moved and order is cslots
-    cdense = None if in_slot_order else _dense_map(order, C.n)
-    edge_slot = ca["edge"][order]
-    has = edge_slot >= 0
-    corner_edge = _remap(edge_slot, _dense_or_none(E, eslots))
-    corner_edge[~has] = -1
-    edge_corners = np.empty((len(eslots), 2), dtype=np.int64)
-    edge_corners[:, 0] = _remap(ea["c0"][eslots], cdense)
-    edge_corners[:, 1] = _remap(ea["c1"][eslots], cdense)
-    mate = np.full(len(order), -1, dtype=np.int64)
-    mate[edge_corners[:, 0]] = edge_corners[:, 1]
-    mate[edge_corners[:, 1]] = edge_corners[:, 0]
+    vslots, eslots, fslots = _slots(V), _slots(E), _slots(F)
+    order, offsets = _ring_order(mesh, fslots)
+    num_c = int(offsets[-1])
+    cdense = None if order is None else _dense_map(order, C.n)
+    edge_corners = np.empty((E.count, 2), dtype=np.int64)
+    edge_corners[:, 0] = _remap(_at(E.arrays["c0"], eslots, E.count), cdense)
+    edge_corners[:, 1] = _remap(_at(E.arrays["c1"], eslots, E.count), cdense)
     return MeshArrays(
-        positions=V.arrays["position"][vslots],
-        vertex_ids=V.ids[vslots],
-        face_ids=F.ids[fslots],
+        positions=_rows(V.arrays["position"], vslots, V.count),
+        vertex_ids=_rows(V.ids, vslots, V.count),
+        face_ids=_rows(F.ids, fslots, F.count),
         face_offsets=offsets,
-        face_hole=F.arrays["hole"][fslots].astype(bool),
-        corner_ids=C.ids[order],
-        corner_vertex=_remap(ca["vertex"][order], _dense_or_none(V, vslots)),
-        corner_face=np.repeat(np.arange(len(fslots), dtype=np.int64), np.diff(offsets)),
-        corner_edge=corner_edge,
-        corner_mate=mate,
-        edge_ids=E.ids[eslots],
+        face_hole=_rows(F.arrays["hole"], fslots, F.count, bool),
+        corner_ids=_rows(C.ids, order, num_c),
+        corner_vertex=_remap(_at(C.arrays["vertex"], order, num_c), _dense(V, vslots)),
+        corner_face=np.repeat(np.arange(F.count, dtype=np.int64), np.diff(offsets)),
+        corner_edge=_remap(_at(C.arrays["edge"], order, num_c), _dense(E, eslots)),
+        corner_mate=_mates(edge_corners, num_c),
+        edge_ids=_rows(E.ids, eslots, E.count),
         edge_corners=edge_corners,
     )
 
 
-def _dense_or_none(table: Table, slots: np.ndarray) -> np.ndarray | None:
-    """:func:`_dense_map` of ``slots``, or None when every slot ``0..n-1`` is live
-    in id order (a freshly built table), where the map is the identity."""
-    if len(slots) == table.n and not table.moved:
+def _slots(table: Table) -> np.ndarray | None:
+    """The live slots of ``table`` in id order, or None when they are ``0..n-1``
+    (no free slot and no moved id: a freshly built table)."""
+    if not table.free and not table.moved:
         return None
-    return _dense_map(slots, table.n)
+    return table.live_slots()
+
+
+def _at(array: np.ndarray, slots: np.ndarray | None, count: int) -> np.ndarray:
+    """``array``'s rows at ``slots``: a view of the first ``count`` rows for None."""
+    if slots is None:
+        return array[:count]
+    return np.take(array, slots, axis=0)  # several times faster than array[slots] on 2-D
+
+
+def _rows(array: np.ndarray, slots: np.ndarray | None, count: int,
+          dtype: type | None = None) -> np.ndarray:
+    """:func:`_at` as a fresh array (never a view of the table), of ``dtype``."""
+    return _at(array, slots, count).astype(dtype or array.dtype, copy=slots is None)
+
+
+def _dense(table: Table, slots: np.ndarray | None) -> np.ndarray | None:
+    """:func:`_dense_map` of ``slots``, None for the identity."""
+    return None if slots is None else _dense_map(slots, table.n)
 
 
 def _remap(slots: np.ndarray, dense: np.ndarray | None) -> np.ndarray:
-    """``(k,)`` int64 dense indices of ``slots`` (``dense`` None: the identity)."""
+    """``(k,)`` int64 dense indices of ``slots`` (``dense`` None: the identity);
+    slot -1 (no element) stays -1."""
     if dense is None:
         return slots.astype(np.int64)
     return dense[slots]
 
 
 def _dense_map(slots: np.ndarray, n: int) -> np.ndarray:
-    """``(n,)`` int64: the dense index of each slot, -1 for slots not listed."""
-    dense = np.full(max(n, 1), -1, dtype=np.int64)
+    """``(n + 1,)`` int64: the dense index of each slot, -1 for slots not listed.
+
+    The extra last entry is -1, so that slot -1 (no element) maps to -1.
+    """
+    dense = np.full(n + 1, -1, dtype=np.int64)
     dense[slots] = np.arange(len(slots), dtype=np.int64)
     return dense
 
 
-def _ring_order(
-    mesh: Mesh, cslots: np.ndarray, fslots: np.ndarray, fdense: np.ndarray
-) -> tuple[np.ndarray, np.ndarray]:
-    """Corner slots face after face in ring order, and the face offsets."""
-    ca = mesh._c.arrays
-    face_of = fdense[ca["face"][cslots]]
-    sizes = np.bincount(face_of, minlength=len(fslots)).astype(np.int64)
-    offsets = np.zeros(len(fslots) + 1, dtype=np.int64)
+def _mates(edge_corners: np.ndarray, num_c: int) -> np.ndarray:
+    """``(C,)`` int64 the corner across each corner's edge, -1 for none."""
+    mate = np.full(num_c, -1, dtype=np.int64)
+    c0, c1 = edge_corners[:, 0], edge_corners[:, 1]
+    mate[c0] = c1
+    mate[c1] = c0
+    return mate
+
+
+def _ring_order(mesh: Mesh, fslots: np.ndarray | None) -> tuple[np.ndarray | None, np.ndarray]:
+    """Corner slots face after face in ring order, and the ``(F + 1,)`` face offsets.
+
+    The order is None when slots ``0..n-1`` already are in ring order (a freshly
+    built mesh); ``fslots`` None stands for faces in slots ``0..n-1``.
+    """
+    C, F = mesh._c, mesh._f
+    heads = _at(F.arrays["corner"], fslots, F.count)
+    if not C.free and not C.moved:
+        # laid out face by face, the faces start at their heads
+        offsets = np.append(heads, C.n).astype(np.int64)
+        if _in_ring_order(C.arrays["next"][: C.n], offsets):
+            return None, offsets
+    cslots = C.live_slots()
+    face_of = _remap(C.arrays["face"][cslots], _dense(F, fslots))
+    sizes = np.bincount(face_of, minlength=F.count)
+    offsets = np.zeros(F.count + 1, dtype=np.int64)
     np.cumsum(sizes, out=offsets[1:])
-    if _already_in_ring_order(mesh, cslots, offsets, fslots):
-        return cslots, offsets
-    rank = _rank_from_head(mesh, cslots, fslots, face_of, sizes)
+    rank = _rank_from_head(mesh, cslots, heads, face_of, sizes)
     order = np.empty(len(cslots), dtype=np.int64)
     order[offsets[face_of] + rank] = cslots
     return order, offsets
 
 
-def _already_in_ring_order(
-    mesh: Mesh, cslots: np.ndarray, offsets: np.ndarray, fslots: np.ndarray
-) -> bool:
-    """Cheap test for a freshly built mesh, whose slots are laid out face by face."""
-    ca = mesh._c.arrays
-    n = len(cslots)
-    # without moved ids and free slots, id order is slot order: cslots == 0..n-1
-    if n == 0 or n != mesh._c.n or mesh._c.moved:
+def _in_ring_order(nxt: np.ndarray, offsets: np.ndarray) -> bool:
+    """True when ``offsets`` cut slots ``0..n-1`` into blocks of at least one
+    corner, each one face ring in slot order (``nxt``: the ``(n,)`` next links)."""
+    if offsets[0] != 0 or (len(offsets) > 1 and np.diff(offsets).min() < 1):
         return False
-    heads = mesh._f.arrays["corner"][fslots]
-    if not np.array_equal(heads, offsets[:-1]):
-        return False
-    expected = np.arange(1, n + 1, dtype=np.int64)
+    expected = np.arange(1, len(nxt) + 1, dtype=nxt.dtype)
     expected[offsets[1:] - 1] = offsets[:-1]
-    return bool(np.array_equal(ca["next"][:n], expected))
+    return bool(np.array_equal(nxt, expected))
 
 
 def _rank_from_head(
-    mesh: Mesh, cslots: np.ndarray, fslots: np.ndarray, face_of: np.ndarray,
+    mesh: Mesh, cslots: np.ndarray, heads: np.ndarray, face_of: np.ndarray,
     sizes: np.ndarray,
 ) -> np.ndarray:
     """``(C,)`` position of each corner in its face ring, the head at 0.
 
     List ranking by pointer doubling: each corner learns its distance to the last
     corner of its ring (the one before the head), in O(log max face size) passes.
+    ``heads`` are the head corner slots of the faces.
     """
     ca = mesh._c.arrays
     dense = _dense_map(cslots, mesh._c.n)
     succ = dense[ca["next"][cslots]]
     is_head = np.zeros(len(cslots), dtype=bool)
-    is_head[dense[mesh._f.arrays["corner"][fslots]]] = True
+    is_head[dense[heads]] = True
     last = is_head[succ]
     succ = np.where(last, np.arange(len(cslots), dtype=np.int64), succ)
     dist = (~last).astype(np.int64)
