@@ -376,3 +376,59 @@ def test_catmull_clark_levels_budget_counts_the_last_level():
     m = cube()
     with pytest.raises(DLFLError, match="would produce 1,536 faces"):
         subdivide(m, "catmull-clark", levels=4, max_faces=1000)
+
+
+def _layout_meshes() -> list[Mesh]:
+    mixed = torus(7, 5)
+    subdivide(mixed, "triangulate")
+    subdivide(mixed, "pentagon")
+    return [cube(), mixed, grid(3, 2), face_visiting_vertices_twice(), pyramid(70),
+            topmod_mesh("genus3hexa1")]
+
+
+@pytest.mark.parametrize("index", range(6))
+def test_vertex_rings_walk_equals_pointer_doubling(index):
+    from livemod.dlfl.subdivision._layout import cycle_layout, read_topology, walk_rings
+
+    t = read_topology(_layout_meshes()[index])
+    expected = cycle_layout(t.vprev)
+    walked = walk_rings(t.vprev, t.cv, t.valence)
+    if int(t.valence.max()) > 64:  # the 70-gon's apex: pointer doubling instead
+        assert walked is None
+    else:
+        assert walked is not None
+        assert all(np.array_equal(a, b) for a, b in zip(walked, expected, strict=True))
+    assert all(np.array_equal(a, b) for a, b in zip(t.vertex_rings(), expected, strict=True))
+
+
+def test_walk_refuses_a_vertex_with_two_fans():
+    from livemod.dlfl.subdivision._layout import walk_rings
+
+    # corners 0..3 at one vertex, in two cycles (0 1) and (2 3)
+    perm = np.array([1, 0, 3, 2])
+    assert walk_rings(perm, np.zeros(4, dtype=np.int64), np.array([4])) is None
+
+
+@pytest.mark.parametrize("index", range(6))
+def test_ring_sums_equal_bincount_sums(index):
+    from livemod.dlfl.subdivision._layout import group_sum, read_topology, ring_sums
+
+    t = read_topology(_layout_meshes()[index])
+    assert np.array_equal(ring_sums(t.offsets, t.pos, t.cv),
+                          group_sum(t.face, t.pos[t.cv], t.nf))
+
+
+def test_ring_sums_of_many_runs_of_sizes():
+    from livemod.dlfl.subdivision._layout import group_sum, ring_sums
+
+    rng = np.random.default_rng(3)
+    sizes = np.concatenate([rng.integers(1, 6, size=200), np.full(50, 4)])
+    offsets = np.concatenate([[0], np.cumsum(sizes)])
+    values = rng.normal(size=(40, 3))
+    index = rng.integers(0, 40, size=int(offsets[-1]))
+    ring = np.repeat(np.arange(len(sizes)), sizes)
+    expected = group_sum(ring, values[index], len(sizes))
+    assert np.array_equal(ring_sums(offsets, values, index), expected)
+    few = slice(200, 251)  # one run: the column-wise path
+    assert np.array_equal(ring_sums(offsets[few] - offsets[200], values,
+                                    index[offsets[200]:]), expected[200:])

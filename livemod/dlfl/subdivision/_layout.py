@@ -17,9 +17,10 @@ A scheme checks the face budget (:data:`settings`) before it allocates.
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -46,34 +47,32 @@ class Settings:
 settings = Settings()
 
 
-@dataclass
 class Topology:
     """Dense arrays of a mesh without its point-spheres.
 
-    Attributes (``C`` corners, ``F`` faces, ``E`` edges, ``V`` vertices, all dense):
+    Given (``C`` corners, ``F`` faces, ``E`` edges, ``V`` vertices, all dense):
         pos: ``(V, 3)`` positions. cv: ``(C,)`` vertex of each corner.
-        nxt, prv, mate: ``(C,)`` corner links; ``mate`` is the corner on the other
-            side of the corner's edge (at the other end).
-        face: ``(C,)`` face of each corner. edge: ``(C,)`` edge of each corner.
-        offsets: ``(F + 1,)`` face starts. hole: ``(F,)`` hole flags.
-        edge_corners: ``(E, 2)`` the two sides of each edge.
+        mate: ``(C,)`` the corner on the other side of the corner's edge (at the
+            other end). offsets: ``(F + 1,)`` face starts (corners are laid out
+            face after face). hole: ``(F,)`` hole flags.
         spheres: ``(S, 3)`` positions of the point-spheres set aside.
         face_ids: ``(F,)`` id of each (kept) face.
+
+    Derived on first use and kept (a step reads only what it needs; the middle
+    steps of a composite never need some of them): ``nxt``, ``prv`` ``(C,)``
+    corner links; ``face``, ``edge`` ``(C,)`` face and edge of each corner;
+    ``edge_corners`` ``(E, 2)`` the two sides of each edge (given by
+    :func:`read_topology`, else numbered by their lower corner).
     """
 
-    pos: np.ndarray
-    cv: np.ndarray
-    nxt: np.ndarray
-    prv: np.ndarray
-    mate: np.ndarray
-    face: np.ndarray
-    edge: np.ndarray
-    offsets: np.ndarray
-    hole: np.ndarray
-    edge_corners: np.ndarray
-    spheres: np.ndarray
-    face_ids: np.ndarray
-    _cache: dict[str, np.ndarray] = field(default_factory=dict, repr=False)
+    def __init__(self, pos: np.ndarray, cv: np.ndarray, mate: np.ndarray, offsets: np.ndarray,
+                 hole: np.ndarray, spheres: np.ndarray, face_ids: np.ndarray,
+                 edge_corners: np.ndarray | None = None) -> None:
+        self.pos, self.cv, self.mate, self.offsets = pos, cv, mate, offsets
+        self.hole, self.spheres, self.face_ids = hole, spheres, face_ids
+        if edge_corners is not None:
+            self.__dict__["edge_corners"] = edge_corners
+        self._cache: dict[str, np.ndarray] = {}
 
     @property
     def nv(self) -> int:
@@ -91,12 +90,46 @@ class Topology:
     def ne(self) -> int:
         return len(self.edge_corners)
 
-    @property
+    @functools.cached_property
     def sizes(self) -> np.ndarray:
         """``(F,)`` face sizes."""
         return np.diff(self.offsets)
 
-    @property
+    @functools.cached_property
+    def nxt(self) -> np.ndarray:
+        """``(C,)`` the next corner of the same face."""
+        nxt = np.arange(1, self.nc + 1, dtype=np.int64)
+        nxt[self.offsets[1:] - 1] = self.offsets[:-1]
+        return nxt
+
+    @functools.cached_property
+    def prv(self) -> np.ndarray:
+        """``(C,)`` the previous corner of the same face."""
+        prv = np.arange(-1, self.nc - 1, dtype=np.int64)
+        prv[self.offsets[:-1]] = self.offsets[1:] - 1
+        return prv
+
+    @functools.cached_property
+    def face(self) -> np.ndarray:
+        """``(C,)`` face of each corner."""
+        return np.repeat(np.arange(self.nf, dtype=np.int64), self.sizes)
+
+    @functools.cached_property
+    def edge_corners(self) -> np.ndarray:
+        """``(E, 2)`` the two sides of each edge, edges in order of their lower side."""
+        lower = np.flatnonzero(self.mate > np.arange(self.nc))
+        return np.stack([lower, self.mate[lower]], axis=1)
+
+    @functools.cached_property
+    def edge(self) -> np.ndarray:
+        """``(C,)`` edge of each corner (the edge to the next corner)."""
+        edge = np.empty(self.nc, dtype=np.int64)
+        numbers = np.arange(self.ne, dtype=np.int64)
+        edge[self.edge_corners[:, 0]] = numbers
+        edge[self.edge_corners[:, 1]] = numbers
+        return edge
+
+    @functools.cached_property
     def valence(self) -> np.ndarray:
         """``(V,)`` number of corners (= edges, counting a self-loop twice) per vertex."""
         return np.bincount(self.cv, minlength=self.nv)
@@ -110,7 +143,7 @@ class Topology:
     def centroids(self) -> np.ndarray:
         """``(F, 3)`` mean of each face's corner positions (TopMod's centroid)."""
         if "centroids" not in self._cache:
-            sums = group_sum(self.face, self.pos[self.cv], self.nf)
+            sums = ring_sums(self.offsets, self.pos, self.cv)
             self._cache["centroids"] = sums / np.maximum(self.sizes, 1)[:, None]
         return self._cache["centroids"]
 
@@ -136,10 +169,13 @@ class Topology:
         Returns:
             ``(order, offsets)``: ``order`` ``(C,)`` lists the corners ring after
             ring; ring ``k`` is ``order[offsets[k]:offsets[k + 1]]``. Rings come in
-            order of their smallest corner. A vertex visited by one fan has one ring.
+            order of their smallest corner, each starting there. A vertex visited
+            by one fan has one ring.
         """
         if "rings" not in self._cache:
-            order, offsets = cycle_layout(self.vprev)
+            perm = self.vprev
+            rings = walk_rings(perm, self.cv, self.valence)
+            order, offsets = cycle_layout(perm) if rings is None else rings
             self._cache["rings"], self._cache["ring_offsets"] = order, offsets
         return self._cache["rings"], self._cache["ring_offsets"]
 
@@ -161,6 +197,37 @@ def group_sum(index: np.ndarray, values: np.ndarray, count: int) -> np.ndarray:
     out = np.empty((count, 3))
     for axis in range(3):
         out[:, axis] = np.bincount(index, weights=values[:, axis], minlength=count)
+    return out
+
+
+# above this many runs of equal ring size, ring_sums goes by bincount
+MAX_RUNS = 32
+
+
+def ring_sums(offsets: np.ndarray, values: np.ndarray, index: np.ndarray) -> np.ndarray:
+    """``(R, 3)``: ``values[index]`` summed over each ring (bitwise as :func:`group_sum`).
+
+    Args:
+        offsets: ``(R + 1,)`` ring starts in ``index``; every ring non-empty.
+        values: ``(N, 3)``. index: ``(offsets[-1],)`` rows of ``values``.
+
+    Scheme outputs come in blocks of equal ring size: each run of equal sizes is
+    summed column by column in ring order, a few gathers and adds instead of
+    bincount's per-element scatter.
+    """
+    sizes = np.diff(offsets)
+    cuts = np.flatnonzero(sizes[1:] != sizes[:-1]) + 1
+    if len(cuts) > MAX_RUNS:
+        ring = np.repeat(np.arange(len(sizes), dtype=np.int64), sizes)
+        return group_sum(ring, values[index], len(sizes))
+    bounds = [0, *cuts.tolist(), len(sizes)]
+    out = np.empty((len(sizes), 3))
+    for start, stop in zip(bounds[:-1], bounds[1:], strict=True):
+        n = int(sizes[start]) if stop > start else 0
+        rows = index[offsets[start]:offsets[stop]].reshape(-1, max(n, 1))
+        out[start:stop] = values[rows[:, 0]] if n else 0.0
+        for j in range(1, n):
+            out[start:stop] += values[rows[:, j]]
     return out
 
 
@@ -191,6 +258,61 @@ def cycle_layout(perm: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     order = np.empty(n, dtype=np.int64)
     order[start[root] + rank] = np.arange(n)
     return order, offsets
+
+
+# walking a ring costs one Python-level numpy step per corner of the longest
+# ring; above this, pointer doubling (O(log L) passes over every corner) wins
+MAX_WALK = 64
+
+
+def walk_rings(perm: np.ndarray, cv: np.ndarray, valence: np.ndarray
+               ) -> tuple[np.ndarray, np.ndarray] | None:
+    """:func:`cycle_layout` of ``perm`` when its cycles are the vertices' rings.
+
+    Each vertex's ring is walked from its smallest corner, all rings in step,
+    the longest first (ring ``k`` of a step is active while it has corners left).
+
+    Args:
+        perm: ``(C,)`` a permutation whose cycles should each hold the corners of
+            one vertex (``vprev``). cv: ``(C,)`` vertex of each corner.
+        valence: ``(V,)`` corners per vertex.
+
+    Returns:
+        ``(order, offsets)`` as :func:`cycle_layout` gives them, or None when a
+        vertex's corners are not one cycle (several fans) or a ring is longer
+        than :data:`MAX_WALK`.
+    """
+    n = len(perm)
+    if n == 0 or int(valence.max()) > MAX_WALK:
+        return None
+    first = np.empty(len(valence), dtype=np.int64)
+    first[cv[::-1]] = np.arange(n - 1, -1, -1, dtype=np.int64)  # the smallest wins
+    is_first = np.zeros(n, dtype=bool)
+    is_first[first[valence > 0]] = True
+    starts = np.flatnonzero(is_first)
+    sizes = valence[cv[starts]]
+    offsets = np.zeros(len(starts) + 1, dtype=np.int64)
+    np.cumsum(sizes, out=offsets[1:])
+    order = _walk(perm, starts, sizes, offsets)
+    seen = np.zeros(n, dtype=bool)
+    seen[order] = True
+    return (order, offsets) if seen.all() else None
+
+
+def _walk(perm: np.ndarray, starts: np.ndarray, sizes: np.ndarray, offsets: np.ndarray
+          ) -> np.ndarray:
+    """``(C,)``: ring ``k`` (from ``starts[k]``, ``sizes[k]`` steps of ``perm``) at
+    ``offsets[k]``."""
+    by_size = np.argsort(-sizes, kind="stable")  # active rings stay a prefix
+    current, base = starts[by_size], offsets[:-1][by_size]
+    longer = len(starts) - np.cumsum(np.bincount(sizes))  # rings longer than k
+    order = np.empty(int(offsets[-1]), dtype=np.int64)
+    for k in range(int(sizes.max())):
+        active = int(longer[k])
+        current, base = current[:active], base[:active]
+        order[base + k] = current
+        current = perm[current]
+    return order
 
 
 class Pending(Mesh):
@@ -236,7 +358,7 @@ def read_topology(mesh: Mesh) -> Topology:
         positions, hole = positions[keep_vertex], hole[keep_face]
         face_ids = face_ids[keep_face]
         edge_corners = cmap[edge_corners]
-    return _topology(positions, cv, mate, offsets, hole, edge_corners, spheres, face_ids)
+    return Topology(positions, cv, mate, offsets, hole, spheres, face_ids, edge_corners)
 
 
 def topology_of(positions: np.ndarray, cv: np.ndarray, mate: np.ndarray, sizes: np.ndarray,
@@ -244,10 +366,8 @@ def topology_of(positions: np.ndarray, cv: np.ndarray, mate: np.ndarray, sizes: 
     """The :class:`Topology` of a scheme's output arrays (for repeated levels)."""
     offsets = np.zeros(len(sizes) + 1, dtype=np.int64)
     np.cumsum(sizes, out=offsets[1:])
-    lower = np.flatnonzero(mate > np.arange(len(mate)))
-    edge_corners = np.stack([lower, mate[lower]], axis=1)
-    return _topology(positions, cv, mate, offsets, hole, edge_corners, spheres,
-                     np.zeros(len(sizes), dtype=np.int64))
+    return Topology(positions, cv, mate, offsets, hole, spheres,
+                    np.zeros(len(sizes), dtype=np.int64))
 
 
 def check_levels(levels: object) -> int:
@@ -259,24 +379,6 @@ def check_levels(levels: object) -> int:
     if isinstance(levels, bool) or not isinstance(levels, int | np.integer) or levels < 1:
         raise DLFLError(f"option levels must be a positive integer, got {levels!r}")
     return int(levels)
-
-
-def _topology(
-    positions: np.ndarray, cv: np.ndarray, mate: np.ndarray, offsets: np.ndarray,
-    hole: np.ndarray, edge_corners: np.ndarray, spheres: np.ndarray, face_ids: np.ndarray,
-) -> Topology:
-    n = len(cv)
-    sizes = np.diff(offsets)
-    nxt = np.arange(1, n + 1, dtype=np.int64)
-    nxt[offsets[1:] - 1] = offsets[:-1]
-    prv = np.arange(-1, n - 1, dtype=np.int64)
-    prv[offsets[:-1]] = offsets[1:] - 1
-    face = np.repeat(np.arange(len(sizes), dtype=np.int64), sizes)
-    edge = np.empty(n, dtype=np.int64)
-    edge[edge_corners[:, 0]] = np.arange(len(edge_corners))
-    edge[edge_corners[:, 1]] = np.arange(len(edge_corners))
-    return Topology(positions, cv, nxt, prv, mate, face, edge, offsets, hole,
-                    edge_corners, spheres, face_ids)
 
 
 def check_budget(t: Topology, new_faces: int, scheme: str, max_faces: int | None) -> None:

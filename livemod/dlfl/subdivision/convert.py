@@ -567,7 +567,9 @@ def dual(mesh: Mesh, *, accurate: bool = False, max_faces: int | None = None) ->
     position = np.empty(t.nc, dtype=np.int64)
     position[order] = np.arange(t.nc)
     # the side across edge(prev r) is in the ring of the edge's other end, at the
-    # corner after that edge's other side
-    mates = position[t.nxt[t.mate[t.prv[order]]]]
+    # corner after that edge's other side; mate(prev r) is r's successor in its ring
+    after = np.arange(1, t.nc + 1, dtype=np.int64)
+    after[offsets[1:] - 1] = offsets[:-1]
+    mates = position[t.nxt[order[after]]]
     build_paired(mesh, t, t.centroids(), t.face[order], mates, np.diff(offsets),
                  np.zeros(len(offsets) - 1, dtype=bool))
