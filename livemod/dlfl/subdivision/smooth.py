@@ -106,46 +106,67 @@ def loop(mesh: Mesh, *, max_faces: int | None = None) -> None:
     """
     t = read_topology(mesh)
     check_budget(t, t.nc + t.nf, "loop", max_faces)
-    positions = np.concatenate([_loop_vertices(t), _loop_edge_points(t)])
+    # one contiguous column per axis: 1-D gathers and bincounts are the fast ones
+    columns = np.ascontiguousarray(t.pos.T)
+    positions = np.empty((t.nv + t.ne, 3))
+    _loop_vertices(t, columns, positions[: t.nv])
+    _loop_edge_points(t, columns, positions[t.nv :])
     _corner_cut_faces(mesh, t, positions)
 
 
 def _corner_cut_faces(mesh: Mesh, t: Topology, positions: np.ndarray) -> None:
     """Loop's topology, mates computed directly: corner triangle of c at 3c..3c+2,
-    then the inner polygons in the old corner layout (corner 3C + c)."""
+    then the inner polygons in the old corner layout (corner 3C + c).
+
+    ``positions``: ``(V + E, 3)``, the old vertices' new points, then the edge points.
+    """
     nxt, prv, mate, nc = t.nxt, t.prv, t.mate, t.nc
-    tri = np.empty((nc, 3), dtype=np.int32)
+    # filled in place: no int32 -> int64 concatenation of ~4C entries
+    verts = np.empty(4 * nc, dtype=np.int64)
+    tri = verts[: 3 * nc].reshape(nc, 3)
     tri[:, 0] = t.cv
-    tri[:, 1] = t.nv + t.edge
-    tri[:, 2] = t.nv + t.edge[prv]
-    tri_mate = np.empty((nc, 3), dtype=np.int64)
+    np.add(t.edge, t.nv, out=verts[3 * nc :])
+    tri[:, 1] = verts[3 * nc :]
+    tri[:, 2] = verts[3 * nc :][prv]
+    mates = np.empty(4 * nc, dtype=np.int64)
+    tri_mate = mates[: 3 * nc].reshape(nc, 3)
     tri_mate[:, 0] = 3 * nxt[mate] + 2
     tri_mate[:, 1] = 3 * nc + prv
     tri_mate[:, 2] = 3 * mate[prv]
-    verts = np.concatenate([tri.ravel(), t.nv + t.edge])
-    mates = np.concatenate([tri_mate.ravel(), 3 * nxt + 1])
+    mates[3 * nc :] = 3 * nxt + 1
     sizes = np.concatenate([np.full(nc, 3, dtype=np.int64), t.sizes])
     hole = np.concatenate([np.repeat(t.hole, t.sizes), t.hole])
     build_paired(mesh, t, positions, verts, mates, sizes, hole)
 
 
-def _loop_edge_points(t: Topology) -> np.ndarray:
+def _loop_edge_points(t: Topology, columns: np.ndarray, out: np.ndarray) -> None:
+    """Write the ``(E, 3)`` Loop edge points into ``out``; ``columns`` is ``(3, V)``."""
     a, b = t.edge_corners[:, 0], t.edge_corners[:, 1]
-    p, cv, prv = t.pos, t.cv, t.prv
-    ends = p[cv[a]] + p[cv[b]]
+    cv, prv = t.cv, t.prv
+    ends = (cv[a], cv[b])
     if len(t.sizes) and t.sizes.min() == t.sizes.max() == 3:
         # triangles: prev and next-next are the same opposite corner
-        return 0.375 * ends + 0.125 * (p[cv[prv[a]]] + p[cv[prv[b]]])
+        opposite = (cv[prv[a]], cv[prv[b]])
+        for axis, x in enumerate(columns):
+            out[:, axis] = 0.375 * (x[ends[0]] + x[ends[1]]) + 0.125 * (
+                x[opposite[0]] + x[opposite[1]])
+        return
     nxt2 = t.nxt[t.nxt]
-    wings = p[cv[prv[a]]] + p[cv[nxt2[a]]] + p[cv[prv[b]]] + p[cv[nxt2[b]]]
-    return 0.375 * ends + 0.0625 * wings
+    wings = (cv[prv[a]], cv[nxt2[a]], cv[prv[b]], cv[nxt2[b]])
+    for axis, x in enumerate(columns):
+        out[:, axis] = 0.375 * (x[ends[0]] + x[ends[1]]) + 0.0625 * (
+            x[wings[0]] + x[wings[1]] + x[wings[2]] + x[wings[3]])
 
 
-def _loop_vertices(t: Topology) -> np.ndarray:
+def _loop_vertices(t: Topology, columns: np.ndarray, out: np.ndarray) -> None:
+    """Write the ``(V, 3)`` Loop vertex points into ``out``; ``columns`` is ``(3, V)``."""
     n = np.maximum(t.valence, 1).astype(np.float64)
     beta = (0.625 - (0.375 + 0.25 * np.cos(2 * math.pi / n)) ** 2) / n
-    neighbours = vertex_sum(t, t.pos[t.cv[t.nxt]])
-    return (1 - n * beta)[:, None] * t.pos + beta[:, None] * neighbours
+    keep = 1 - n * beta
+    neighbour = t.cv[t.nxt]
+    for axis, x in enumerate(columns):
+        sums = np.bincount(t.cv, weights=x[neighbour], minlength=t.nv)
+        out[:, axis] = keep * x + beta * sums
 
 
 def loop_style(mesh: Mesh, *, length: float = 1.0, max_faces: int | None = None) -> None:
