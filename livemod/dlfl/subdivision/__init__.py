@@ -24,7 +24,11 @@ dual-checkerboard          dual, checker, dual
 
 Otherwise a composite's options go to its middle step. A composite that fails
 leaves the mesh unchanged (its steps pass arrays along and the mesh is built once,
-at the end). Aliases: "dual-pentagon" = "pentagon-preserve" (TopMod's Python
+at the end). Where the composition allows, a composite computes its result
+directly: ``cubic-pentagonalization`` is :func:`pentagon` with the double dual's
+vertex positions, ``dual-checkerboard`` is :func:`checker`'s topology with the
+positions of the dual of checker on the dual; the same mesh up to the order of
+its elements. Aliases: "dual-pentagon" = "pentagon-preserve" (TopMod's Python
 name), "allfaces" = "linear-vertex" (Python's ``subdivideAllFaces``); GUI
 "Stellate" is ``linear-vertex`` with ``usequads=False``. ``sierpinsky`` (TopMod's
 ``multiConnectMidpoints``, TOPMOD.md section 5) and ``modified-corner-cut`` are
@@ -46,6 +50,7 @@ from ..errors import DLFLError
 from ..mesh import Mesh
 from ._layout import Pending, build_pending, read_topology, settings
 from .convert import (
+    cubic_pentagonalization,
     double_stellate,
     dual,
     dual_1264,
@@ -64,7 +69,7 @@ from .convert import (
     triangulate,
     vertex_cut,
 )
-from .extra import checker, dome, doo_sabin_bc_new
+from .extra import checker, dome, doo_sabin_bc_new, dual_checkerboard
 from .smooth import catmull_clark, corner_cut, doo_sabin, doo_sabin_bc, loop, loop_style
 
 Scheme = Callable[..., None]
@@ -150,10 +155,10 @@ SCHEMES: dict[str, Scheme] = {
     "subdivide-all-edges": subdivide_all_edges,
     "sierpinsky": sierpinsky,
 }
-SCHEMES.update({
+COMPOSITES: dict[str, Scheme] = {
     "root3": _composite("root3", (dual, honeycomb, dual), 1),
     "root-3": _composite("root-3", (dual, honeycomb, dual), 1),
-    "cubic-pentagonalization": _composite("cubic-pentagonalization", (pentagon, dual, dual), 0),
+    "cubic-pentagonalization": cubic_pentagonalization,
     "dual-pentagonalization": _composite("dual-pentagonalization", (dual, pentagon, dual), 1),
     "dual-pentagon-preserving": _composite(
         "dual-pentagon-preserving", (dual, pentagon_preserve, dual), 1),
@@ -161,8 +166,9 @@ SCHEMES.update({
         "six-preserving-loop-style", (dual, root4, dual), 1),
     "dual-loop": _composite("dual-loop", (dual, loop, dual), 1),
     "12.6.4": _composite("12.6.4", (dual, dual_1264, dual), 1),
-    "dual-checkerboard": _composite("dual-checkerboard", (dual, checker, dual), 1),
-})
+    "dual-checkerboard": dual_checkerboard,
+}
+SCHEMES.update(COMPOSITES)
 
 
 def scheme_options(scheme: str) -> list[str]:
@@ -209,8 +215,9 @@ def subdivide(mesh: Mesh, scheme: str, **options: Any) -> None:
 
 
 __all__ = [
-    "SCHEMES", "catmull_clark", "checker", "corner_cut", "dome", "doo_sabin", "doo_sabin_bc",
-    "doo_sabin_bc_new", "double_stellate", "dual", "dual_1264", "fractal", "honeycomb",
+    "SCHEMES", "catmull_clark", "checker", "corner_cut", "cubic_pentagonalization", "dome",
+    "doo_sabin", "doo_sabin_bc", "doo_sabin_bc_new", "double_stellate", "dual", "dual_1264",
+    "dual_checkerboard", "fractal", "honeycomb",
     "linear_vertex", "loop", "loop_style", "modified_corner_cut", "pentagon",
     "pentagon_preserve", "root4", "scheme_options", "settings", "sierpinsky", "simplest", "sqrt3", "star",
     "stellate", "subdivide", "subdivide_all_edges", "subdivide_faces", "triangulate",

@@ -26,6 +26,7 @@ from ._blocks import (
 )
 from ._layout import (
     Faces,
+    Pending,
     Topology,
     build,
     build_paired,
@@ -342,6 +343,25 @@ def pentagon(mesh: Mesh, *, offset: float = 0.0, max_faces: int | None = None) -
     faces = Faces()
     faces.add(verts, labels, t.hole[t.face])
     build(mesh, t, positions, faces)
+
+
+def cubic_pentagonalization(mesh: Mesh, *, offset: float = 0.0,
+                            max_faces: int | None = None) -> None:
+    """GUI "Cubic Pentagonalization" (TopMod: pentagon(offset), dual, dual), in one step.
+
+    A dual of a dual has the mesh's own topology, each vertex moved to the mean
+    of the centroids of its faces (one per corner): this is :func:`pentagon`
+    with that move and no hole faces (a dual makes none). Cube: 38/60/24.
+
+    Raises:
+        DLFLError: a bad ``offset``, or the face budget.
+    """
+    work = Pending(read_topology(mesh))
+    pentagon(work, offset=offset, max_faces=max_faces)
+    x = work.topology
+    check_budget(x, x.nv, "dual", max_faces)
+    moved = vertex_sum(x, x.centroids()[x.face]) / np.maximum(x.valence, 1)[:, None]
+    build_paired(mesh, x, moved, x.cv, x.mate, x.sizes, np.zeros(x.nf, dtype=bool))
 
 
 def dual_1264(mesh: Mesh, *, scale: float = 0.7, max_faces: int | None = None) -> None:

@@ -1,4 +1,5 @@
-"""Schemes built from insets and Doo-Sabin extrusions: checker, doo-sabin-bc-new, dome.
+"""Schemes built from insets and Doo-Sabin extrusions: checker (and its GUI dual
+composite), doo-sabin-bc-new, dome.
 
 Each function remeshes ``mesh`` in place (every element gets a fresh id) and
 returns ``None``; hole faces are treated as faces and the faces made inside a
@@ -20,6 +21,7 @@ from ._layout import (
     check_number,
     cos_weights,
     group_sum,
+    normalize,
     read_topology,
     ring_weighted,
     vertex_sum,
@@ -52,13 +54,63 @@ def checker(mesh: Mesh, *, thickness: float = 0.33, max_faces: int | None = None
     inset = p + thickness * inward
     near = p + thickness * (next_p - p)
     positions = np.concatenate([t.pos, near, inset])
-    _checker_faces(mesh, t, positions)
+    _checker_faces(mesh, t, positions, t.hole)
 
 
-def _checker_faces(mesh: Mesh, t: Topology, positions: np.ndarray) -> None:
+def dual_checkerboard(mesh: Mesh, *, thickness: float = 0.33,
+                      max_faces: int | None = None) -> None:
+    """GUI "Dual Checkerboard" (TopMod: dual, checker(t), dual), in one step.
+
+    The dual of ``checker`` on the dual has checker's own topology on the mesh
+    (old vertex v <-> the dual's inset face of v, near(c) <-> the dual's side
+    quad along the edge of c, inset(c) <-> the dual's corner quad of c), so
+    this lays out :func:`checker`'s faces and puts each vertex at the centroid
+    of its face of checker-on-the-dual, computed from the dual's geometry over
+    the mesh's own corners. No face is a hole (a dual makes none). Cube:
+    56/108/54 quads.
+
+    Raises:
+        DLFLError: a bad ``thickness``, or the face budget.
+    """
+    thickness = check_number("thickness", thickness, 0.0, 0.5)
+    t = read_topology(mesh)
+    check_budget(t, max(t.nv, t.nf) + 2 * t.nc, "dual-checkerboard", max_faces)
+    inset, near = _checker_on_dual(t, thickness)
+    nxt = t.nxt
+    side = nxt[t.mate]  # the dual's corner whose side quad lies along the edge of c
+    at_vertex = vertex_sum(t, inset) / np.maximum(t.valence, 1)[:, None]
+    at_near = (near[side] + near[nxt] + inset + inset[side]) / 4.0
+    at_inset = (t.centroids()[t.face] + near + inset + near[nxt]) / 4.0
+    positions = np.concatenate([at_vertex, at_near, at_inset])
+    _checker_faces(mesh, t, positions, np.zeros(t.nf, dtype=bool))
+
+
+def _checker_on_dual(t: Topology, thickness: float) -> tuple[np.ndarray, np.ndarray]:
+    """``(C, 3)`` inset and near points of :func:`checker` on the dual of ``t``.
+
+    The dual's corner of mesh corner c sits at the centroid of face(c); its
+    face is c's vertex ring, its next corner ``mate(prev c)`` and its previous
+    one ``next(mate c)`` (whose face is face(mate c)).
+    """
+    cen = t.centroids()
+    p = cen[t.face]
+    prev_p = cen[t.face[t.mate]]
+    next_p = cen[t.face[t.mate[t.prv]]]
+    # the dual's face normals: Newell sums over each vertex ring
+    normals = normalize(vertex_sum(t, np.cross(p, next_p)))
+    inward = (prev_p - p) + (next_p - p)
+    concave = np.einsum("ij,ij->i", np.cross(next_p - p, prev_p - p), normals[t.cv]) < 0
+    inward[concave] *= -1
+    return p + thickness * inward, p + thickness * (next_p - p)
+
+
+def _checker_faces(mesh: Mesh, t: Topology, positions: np.ndarray, hole: np.ndarray) -> None:
     """Inset faces (corner c at c), side quads (at C + 4c: near(c), near(mate c),
     inset(next c), inset(c)) and corner quads (at 5C + 4c: vertex, near(c),
-    inset(c), near(mate(prev c)))), their mates computed directly."""
+    inset(c), near(mate(prev c)))), their mates computed directly.
+
+    ``hole`` ``(F,)``: the old faces' flags, given to their inset faces and side quads.
+    """
     v, nc, c = t.nv, t.nc, np.arange(t.nc)
     nxt, prv, mate = t.nxt, t.prv, t.mate
     near, inset = v + c, v + nc + c
@@ -70,8 +122,8 @@ def _checker_faces(mesh: Mesh, t: Topology, positions: np.ndarray) -> None:
     verts = np.concatenate([inset, side.ravel(), corner.ravel()])
     mates = np.concatenate([nc + 4 * c + 2, side_mate.ravel(), corner_mate.ravel()])
     sizes = np.concatenate([t.sizes, np.full(2 * nc, 4, dtype=np.int64)])
-    hole = np.concatenate([t.hole, t.hole[t.face], np.zeros(nc, dtype=bool)])
-    build_paired(mesh, t, positions, verts, mates, sizes, hole)
+    holes = np.concatenate([hole, hole[t.face], np.zeros(nc, dtype=bool)])
+    build_paired(mesh, t, positions, verts, mates, sizes, holes)
 
 
 def _split_face_values(t: Topology) -> tuple[np.ndarray, np.ndarray]:
