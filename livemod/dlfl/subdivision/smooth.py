@@ -27,7 +27,6 @@ from ._layout import (
     face_weighted,
     read_topology,
     topology_of,
-    vertex_sum,
 )
 from .convert import subdivide_all_edges
 
@@ -50,11 +49,7 @@ def catmull_clark(mesh: Mesh, *, levels: int = 1, max_faces: int | None = None) 
     t = read_topology(mesh)
     check_budget(t, t.nc * 4 ** (levels - 1), "catmull-clark", max_faces)
     for level in range(levels):
-        centroids = t.centroids()
-        a, b = t.edge_corners[:, 0], t.edge_corners[:, 1]
-        edge_points = 0.25 * (t.pos[t.cv[a]] + t.pos[t.cv[b]]
-                              + centroids[t.face[a]] + centroids[t.face[b]])
-        positions = np.concatenate([_cc_vertices(t, centroids), edge_points, centroids])
+        positions = _cc_points(t, t.centroids())
         verts, mates = _cc_faces(t)
         sizes = np.full(t.nc, 4, dtype=np.int64)
         hole = np.repeat(t.hole, t.sizes)
@@ -84,12 +79,27 @@ def _cc_faces(t: Topology) -> tuple[np.ndarray, np.ndarray]:
     return verts.ravel(), mates.ravel()
 
 
-def _cc_vertices(t: Topology, centroids: np.ndarray) -> np.ndarray:
-    """``(V, 3)`` Catmull-Clark vertex points."""
-    n = np.maximum(t.valence, 1)[:, None].astype(np.float64)
-    q = vertex_sum(t, centroids[t.face]) / n
-    r = vertex_sum(t, 0.5 * (t.pos[t.cv] + t.pos[t.cv[t.nxt]])) / n
-    return (q + 2 * r + (n - 3) * t.pos) / n
+def _cc_points(t: Topology, centroids: np.ndarray) -> np.ndarray:
+    """``(V + E + F, 3)`` Catmull-Clark points: vertex points, edge points, centroids.
+
+    Computed axis by axis on contiguous columns: 1-D gathers and bincounts are
+    several times faster than gathering ``(N, 3)`` rows.
+    """
+    nv, ne = t.nv, t.ne
+    out = np.empty((nv + ne + t.nf, 3))
+    out[nv + ne :] = centroids
+    a, b = t.edge_corners[:, 0], t.edge_corners[:, 1]
+    ends, sides = (t.cv[a], t.cv[b]), (t.face[a], t.face[b])
+    n = np.maximum(t.valence, 1).astype(np.float64)
+    ahead = t.cv[t.nxt]
+    for axis in range(3):
+        x = np.ascontiguousarray(t.pos[:, axis])
+        c = np.ascontiguousarray(centroids[:, axis])
+        out[nv : nv + ne, axis] = 0.25 * (x[ends[0]] + x[ends[1]] + c[sides[0]] + c[sides[1]])
+        q = np.bincount(t.cv, weights=c[t.face], minlength=nv) / n
+        r = np.bincount(t.cv, weights=0.5 * (x[t.cv] + x[ahead]), minlength=nv) / n
+        out[:nv, axis] = (q + 2 * r + (n - 3) * x) / n
+    return out
 
 
 def loop(mesh: Mesh, *, max_faces: int | None = None) -> None:
