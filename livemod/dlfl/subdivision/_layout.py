@@ -204,12 +204,14 @@ def group_sum(index: np.ndarray, values: np.ndarray, count: int) -> np.ndarray:
 MAX_RUNS = 32
 
 
-def ring_sums(offsets: np.ndarray, values: np.ndarray, index: np.ndarray) -> np.ndarray:
+def ring_sums(offsets: np.ndarray, values: np.ndarray,
+              index: np.ndarray | None = None) -> np.ndarray:
     """``(R, 3)``: ``values[index]`` summed over each ring (bitwise as :func:`group_sum`).
 
     Args:
         offsets: ``(R + 1,)`` ring starts in ``index``; every ring non-empty.
-        values: ``(N, 3)``. index: ``(offsets[-1],)`` rows of ``values``.
+        values: ``(N, 3)``. index: ``(offsets[-1],)`` rows of ``values``
+            (None: ``values`` itself is laid out ring after ring).
 
     Scheme outputs come in blocks of equal ring size: each run of equal sizes is
     summed column by column in ring order, a few gathers and adds instead of
@@ -219,15 +221,22 @@ def ring_sums(offsets: np.ndarray, values: np.ndarray, index: np.ndarray) -> np.
     cuts = np.flatnonzero(sizes[1:] != sizes[:-1]) + 1
     if len(cuts) > MAX_RUNS:
         ring = np.repeat(np.arange(len(sizes), dtype=np.int64), sizes)
-        return group_sum(ring, values[index], len(sizes))
+        return group_sum(ring, values if index is None else values[index], len(sizes))
     bounds = [0, *cuts.tolist(), len(sizes)]
     out = np.empty((len(sizes), 3))
     for start, stop in zip(bounds[:-1], bounds[1:], strict=True):
-        n = int(sizes[start]) if stop > start else 0
-        rows = index[offsets[start]:offsets[stop]].reshape(-1, max(n, 1))
-        out[start:stop] = values[rows[:, 0]] if n else 0.0
-        for j in range(1, n):
-            out[start:stop] += values[rows[:, j]]
+        n = int(sizes[start]) if stop > start else 1
+        block = slice(offsets[start], offsets[stop])
+        if index is None:
+            columns = values[block].reshape(-1, n, 3)
+            out[start:stop] = columns[:, 0]
+            for j in range(1, n):
+                out[start:stop] += columns[:, j]
+        else:
+            rows = index[block].reshape(-1, n)
+            out[start:stop] = values[rows[:, 0]]
+            for j in range(1, n):
+                out[start:stop] += values[rows[:, j]]
     return out
 
 

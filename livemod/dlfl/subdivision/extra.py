@@ -20,9 +20,9 @@ from ._layout import (
     check_budget,
     check_number,
     cos_weights,
-    group_sum,
     normalize,
     read_topology,
+    ring_sums,
     ring_weighted,
     vertex_sum,
 )
@@ -137,11 +137,10 @@ def _split_face_values(t: Topology) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _ring_centroids(values: np.ndarray, offsets: np.ndarray) -> np.ndarray:
-    """``(R, 3)`` mean of each ring, repeated per ring corner -> ``(N, 3)``."""
+    """``(N, 3)``: the mean of each ring of ``values`` ``(N, 3)``, repeated per ring corner."""
     sizes = np.diff(offsets)
-    ring = np.repeat(np.arange(len(sizes)), sizes)
-    sums = group_sum(ring, values, len(sizes))
-    return (sums / np.maximum(sizes, 1)[:, None])[ring]
+    means = ring_sums(offsets, values) / np.maximum(sizes, 1)[:, None]
+    return np.repeat(means, sizes, axis=0)
 
 
 def _ds_ring(values: np.ndarray, offsets: np.ndarray, shift: np.ndarray,
@@ -222,23 +221,37 @@ def dome(mesh: Mesh, *, length: float = 1.0, scale: float = 1.0,
     t = read_topology(mesh)
     steps = len(DOME_DISTANCES)
     check_budget(t, t.nf + steps * 4 * t.nc, "dome", max_faces)
-    split_pos, corner_vertex, side_label, offsets = _split_in_four(t)
-    rings = [split_pos[corner_vertex]]
-    normals = np.repeat(t.face_normals(), 4 * t.sizes, axis=0)
-    for d, s in zip(DOME_DISTANCES, DOME_SCALES, strict=True):
-        rings.append(_ds_ring(rings[-1], offsets, d * length * normals, s * scale))
-    positions = np.concatenate([split_pos, *rings[1:]])
-    faces = Faces()
-    _ring_quads(t, corner_vertex, side_label, offsets, len(split_pos), steps, faces)
-    build(mesh, t, positions, faces)
+    split_pos, corner_vertex, across, offsets = _split_in_four(t)
+    rings = _dome_rings(t, split_pos[corner_vertex], offsets, length, scale)
+    positions = np.concatenate([split_pos, rings.reshape(-1, 3)])
+    verts, mates = _dome_corners(corner_vertex, across, offsets, len(split_pos), steps)
+    split_hole = np.repeat(t.hole, 4 * t.sizes)
+    sizes = np.concatenate([np.full(steps * len(across), 4, dtype=np.int64), 4 * t.sizes])
+    hole = np.concatenate([np.tile(split_hole, steps), t.hole])
+    build_paired(mesh, t, positions, verts, mates, sizes, hole)
+
+
+def _dome_rings(t: Topology, first: np.ndarray, offsets: np.ndarray, length: float,
+                scale: float) -> np.ndarray:
+    """``(steps, N, 3)``: the point of every split corner on every extruded ring.
+
+    ``first`` ``(N, 3)``: the split faces' corners; ``offsets`` their ring starts.
+    """
+    rings = np.empty((len(DOME_DISTANCES), len(first), 3))
+    normals = np.repeat(t.face_normals(), np.diff(offsets), axis=0)
+    previous = first
+    for k, (d, s) in enumerate(zip(DOME_DISTANCES, DOME_SCALES, strict=True)):
+        rings[k] = _ds_ring(previous, offsets, d * length * normals, s * scale)
+        previous = rings[k]
+    return rings
 
 
 def _split_in_four(t: Topology) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Every edge split into 4 equal parts.
 
-    Returns positions ``(V + 3E, 3)``, then per split corner (4 per old corner,
-    face after face) its vertex and its side's label (``4 * edge + segment``
-    counted from the edge's first side), and the split ring offsets.
+    Returns positions ``(V + 3E, 3)``; per split corner (4 per old corner,
+    face after face) its vertex ``(N,)`` and the split corner across its side
+    ``(N,)``; and the split ring offsets ``(F + 1,)``.
     """
     ends = t.cv[t.edge_corners]
     start, stop = t.pos[ends[:, 0]], t.pos[ends[:, 1]]
@@ -250,33 +263,37 @@ def _split_in_four(t: Topology) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.
     along = np.where(forward[:, None], j[None, :], 2 - j[None, :])
     inner = t.nv + 3 * t.edge[:, None] + along
     corner_vertex = np.concatenate([t.cv[:, None], inner], axis=1).ravel()
-    seg = np.arange(4)
-    seg_label = np.where(forward[:, None], seg[None, :], 3 - seg[None, :])
-    side_label = (4 * t.edge[:, None] + seg_label).ravel()
-    return positions, corner_vertex, side_label, 4 * t.offsets
+    # segment s of corner c runs the other way as segment 3 - s of mate(c)
+    across = (4 * t.mate[:, None] + np.arange(3, -1, -1)).ravel()
+    return positions, corner_vertex, across, 4 * t.offsets
 
 
-def _ring_quads(t: Topology, corner_vertex: np.ndarray, side_label: np.ndarray,
-                offsets: np.ndarray, base: int, steps: int, faces: Faces) -> None:
-    """Side quads of ``steps`` stacked extrusions of every split face, and end faces.
+def _dome_corners(corner_vertex: np.ndarray, across: np.ndarray, offsets: np.ndarray,
+                  base: int, steps: int) -> tuple[np.ndarray, np.ndarray]:
+    """Corners of ``steps`` stacked extrusions of every split face, mates computed directly.
 
-    Ring ``k`` (1..steps) point of split corner ``i`` is ``base + (k-1) N + i``.
-    Labels: split sides as given (``< 4E``), ring sides and uprights above.
+    Layer ``k`` quad of split corner ``i`` (corners ``4(kN + i) + j``): lower(i),
+    lower(next i), upper(next i), upper(i), where ring ``k`` point of ``i`` is
+    ``base + kN + i`` and layer 0's lower points are the split corners; then the
+    end faces (corner ``4 steps N + i``). Returns ``(4 steps N + N,)`` vertices and mates.
     """
     n = len(corner_vertex)
-    sizes = np.diff(offsets)
-    i = np.arange(n)
-    nxt = np.arange(1, n + 1)
+    i = np.arange(n, dtype=np.int64)
+    nxt = i + 1
     nxt[offsets[1:] - 1] = offsets[:-1]
-    hole = np.repeat(t.hole, sizes)
-    ring_label0 = 4 * t.ne
-    lower_vert, lower_label = corner_vertex, side_label
+    prv = np.empty(n, dtype=np.int64)
+    prv[nxt] = i
+    verts = np.empty((steps, n, 4), dtype=np.int32)  # the builder's own dtype
+    mates = np.empty((steps, n, 4), dtype=np.int64)
     for k in range(steps):
+        lower = corner_vertex if k == 0 else base + (k - 1) * n + i
         upper = base + k * n + i
-        upright = ring_label0 + (2 * k) * n + i
-        upper_label = ring_label0 + (2 * k + 1) * n + i
-        verts = np.stack([lower_vert, lower_vert[nxt], upper[nxt], upper], axis=1)
-        labels = np.stack([lower_label, upright[nxt], upper_label, upright], axis=1)
-        faces.add(verts, labels, hole)
-        lower_vert, lower_label = upper, upper_label
-    faces.add(lower_vert, lower_label, t.hole, sizes)
+        verts[k] = np.stack([lower, lower[nxt], upper[nxt], upper], axis=1)
+        mates[k, :, 0] = 4 * across + 0 if k == 0 else 4 * ((k - 1) * n + i) + 2
+        mates[k, :, 1] = 4 * (k * n + nxt) + 3
+        mates[k, :, 2] = 4 * ((k + 1) * n + i) if k < steps - 1 else 4 * steps * n + i
+        mates[k, :, 3] = 4 * (k * n + prv) + 1
+    end_verts = (base + (steps - 1) * n + i).astype(np.int32)
+    end_mates = 4 * ((steps - 1) * n + i) + 2
+    return (np.concatenate([verts.ravel(), end_verts]),
+            np.concatenate([mates.ravel(), end_mates]))
