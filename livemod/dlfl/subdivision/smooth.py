@@ -215,20 +215,33 @@ def _doo_sabin_paired(t: Topology, order: np.ndarray) -> tuple[np.ndarray, np.nd
 
     Layout: F-faces (corner c at c), edge quads (edge k at C + 4k:
     next(a), a, next(b), b for its sides a, b), V-faces (ring position q at C + 4E + q).
+    Returns the ``(2C + 4E,)`` int64 vertex and mate of every new corner, each
+    filled block by block in place (no stacking and concatenating).
     """
     nc, c = t.nc, np.arange(t.nc)
+    ring_base = nc + 4 * t.ne
     a, b = t.edge_corners[:, 0], t.edge_corners[:, 1]
     na, nb = t.nxt[a], t.nxt[b]
     position = np.empty(nc, dtype=np.int64)
     position[order] = c
     is_a = a[t.edge] == c
-    face_mate = nc + 4 * t.edge + np.where(is_a, 0, 2)
-    ring_base = nc + 4 * t.ne
-    quad_mate = np.stack([a, ring_base + position[nb], b, ring_base + position[na]], axis=1)
     prev = t.prv[order]
-    ring_mate = nc + 4 * t.edge[prev] + np.where(is_a[prev], 3, 1)
-    verts = np.concatenate([c, np.stack([na, a, nb, b], axis=1).ravel(), order])
-    return verts, np.concatenate([face_mate, quad_mate.ravel(), ring_mate])
+    verts = np.empty(ring_base + nc, dtype=np.int64)
+    verts[:nc] = c
+    _columns(verts[nc:ring_base], na, a, nb, b)
+    verts[ring_base:] = order
+    mates = np.empty(ring_base + nc, dtype=np.int64)
+    mates[:nc] = nc + 4 * t.edge + np.where(is_a, 0, 2)
+    _columns(mates[nc:ring_base], a, ring_base + position[nb], b, ring_base + position[na])
+    mates[ring_base:] = nc + 4 * t.edge[prev] + np.where(is_a[prev], 3, 1)
+    return verts, mates
+
+
+def _columns(out: np.ndarray, *columns: np.ndarray) -> None:
+    """Interleave the ``(k,)`` ``columns`` into the flat ``out`` (``(k * len(columns),)``)."""
+    rows = out.reshape(-1, len(columns))
+    for i, column in enumerate(columns):
+        rows[:, i] = column
 
 
 def _doo_sabin_count(t: Topology) -> int:
@@ -252,7 +265,8 @@ def doo_sabin(mesh: Mesh, *, check: bool = True, max_faces: int | None = None) -
     del check
     t = read_topology(mesh)
     check_budget(t, _doo_sabin_count(t), "doo-sabin", max_faces)
-    points = face_weighted(t, t.pos[t.cv], lambda n: cos_weights(n, 0.25 + 1.25 / n))
+    points = face_weighted(t, np.take(t.pos, t.cv, axis=0),
+                           lambda n: cos_weights(n, 0.25 + 1.25 / n))
     _doo_sabin_like(mesh, t, points)
 
 
@@ -270,7 +284,7 @@ def corner_cut(mesh: Mesh, *, alpha: float = 9 / 16, max_faces: int | None = Non
     alpha = check_number("alpha", alpha, 0.333, 0.999)
     t = read_topology(mesh)
     check_budget(t, _doo_sabin_count(t), "corner-cut", max_faces)
-    points = face_weighted(t, t.pos[t.cv], lambda n: cos_weights(n, alpha))
+    points = face_weighted(t, np.take(t.pos, t.cv, axis=0), lambda n: cos_weights(n, alpha))
     _doo_sabin_like(mesh, t, points)
 
 
