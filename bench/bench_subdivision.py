@@ -8,7 +8,7 @@ seconds) for docs/performance.md:
 * Catmull-Clark of the cube, 5 levels (6 -> 6,144 quads);
 * Catmull-Clark one level 98,304 -> 393,216 quads, DLFL in and out, against
   pymeshlab's same step (its quads given as a polygon mesh);
-* Loop one level 81,920 -> 327,680 triangles against pymeshlab and trimesh;
+* Loop one level 81,920 -> 327,680 triangles against pymeshlab, trimesh and libigl;
 * Doo-Sabin at the same size as Catmull-Clark;
 * every scheme at 10k, 100k and 1M input quads (a quad torus), with the ratio to
   Catmull-Clark on the same input, measured in the same child process (one per
@@ -188,6 +188,13 @@ def bench_loop(repeats: int) -> list[Row]:
     else:
         seconds = median_time(lambda: subdivide_loop(vertices, faces, iterations=1), repeats)
         rows.append(("", "trimesh", fmt(seconds)))
+    try:
+        import igl  # libigl's Python bindings (pip install libigl)
+    except ImportError:
+        rows.append(("", "libigl", "not installed"))
+    else:
+        seconds = median_time(lambda: igl.loop(vertices, faces, 1), repeats)
+        rows.append(("", "libigl", fmt(seconds)))
     return rows
 
 
