@@ -150,17 +150,17 @@ class Topology:
     def midpoints(self) -> np.ndarray:
         """``(E, 3)`` midpoint of each edge."""
         ends = self.cv[self.edge_corners]
-        return 0.5 * (self.pos[ends[:, 0]] + self.pos[ends[:, 1]])
+        return 0.5 * (rows(self.pos, ends[:, 0]) + rows(self.pos, ends[:, 1]))
 
     def neighbour_mean(self) -> np.ndarray:
         """``(V, 3)`` mean position of each vertex's neighbours (one per corner)."""
-        sums = vertex_sum(self, self.pos[self.cv[self.nxt]])
+        sums = vertex_sum(self, rows(self.pos, self.cv[self.nxt]))
         return sums / np.maximum(self.valence, 1)[:, None]
 
     def face_normals(self) -> np.ndarray:
         """``(F, 3)`` unit Newell normal of each face (zero when degenerate)."""
-        p = self.pos[self.cv]
-        q = self.pos[self.cv[self.nxt]]
+        p = rows(self.pos, self.cv)
+        q = rows(self.pos, self.cv[self.nxt])
         return normalize(group_sum(self.face, np.cross(p, q), self.nf))
 
     def vertex_rings(self) -> tuple[np.ndarray, np.ndarray]:
@@ -178,6 +178,14 @@ class Topology:
             order, offsets = cycle_layout(perm) if rings is None else rings
             self._cache["rings"], self._cache["ring_offsets"] = order, offsets
         return self._cache["rings"], self._cache["ring_offsets"]
+
+
+def rows(values: np.ndarray, index: np.ndarray) -> np.ndarray:
+    """``values[index]`` for ``(N, k)`` ``values`` and an ``(M,)`` ``index``: ``(M, k)``.
+
+    ``np.take`` along axis 0: three to four times faster than fancy indexing of rows.
+    """
+    return np.take(values, index, axis=0)
 
 
 def normalize(vectors: np.ndarray) -> np.ndarray:
@@ -221,7 +229,7 @@ def ring_sums(offsets: np.ndarray, values: np.ndarray,
     cuts = np.flatnonzero(sizes[1:] != sizes[:-1]) + 1
     if len(cuts) > MAX_RUNS:
         ring = np.repeat(np.arange(len(sizes), dtype=np.int64), sizes)
-        return group_sum(ring, values if index is None else values[index], len(sizes))
+        return group_sum(ring, values if index is None else rows(values, index), len(sizes))
     bounds = [0, *cuts.tolist(), len(sizes)]
     out = np.empty((len(sizes), 3))
     for start, stop in zip(bounds[:-1], bounds[1:], strict=True):
@@ -233,10 +241,10 @@ def ring_sums(offsets: np.ndarray, values: np.ndarray,
             for j in range(1, n):
                 out[start:stop] += columns[:, j]
         else:
-            rows = index[block].reshape(-1, n)
-            out[start:stop] = values[rows[:, 0]]
+            block_index = index[block].reshape(-1, n)
+            out[start:stop] = rows(values, block_index[:, 0])
             for j in range(1, n):
-                out[start:stop] += values[rows[:, j]]
+                out[start:stop] += rows(values, block_index[:, j])
     return out
 
 

@@ -36,6 +36,7 @@ from ._layout import (
     face_weighted,
     normalize,
     read_topology,
+    rows,
     vertex_sum,
 )
 
@@ -216,8 +217,8 @@ def vertex_cut(mesh: Mesh, *, offset: float = 0.25, max_faces: int | None = None
         return
     t = read_topology(mesh)
     check_budget(t, t.nf + t.nv, "vertex-cut", max_faces)
-    p = t.pos[t.cv]
-    points = p + offset * (t.pos[t.cv[t.nxt]] - p)
+    p = rows(t.pos, t.cv)
+    points = p + offset * (rows(t.pos, t.cv[t.nxt]) - p)
     corners = np.arange(t.nc)
     verts = np.stack([corners, t.mate], axis=1)
     labels = np.stack([t.edge, t.ne + t.nxt], axis=1)
@@ -238,7 +239,7 @@ def honeycomb(mesh: Mesh, *, max_faces: int | None = None) -> None:
     """
     t = read_topology(mesh)
     check_budget(t, t.nf + t.nv, "honeycomb", max_faces)
-    mids = t.midpoints()[t.edge]
+    mids = rows(t.midpoints(), t.edge)
     points = face_weighted(t, mids, lambda n: cos_weights(n, HONEYCOMB_ALPHA + 1.25 / n))
     faces = Faces()
     face_rings(t, 0, 0, faces)
@@ -268,8 +269,8 @@ def root4(mesh: Mesh, *, weight: float = 0.0, twist: float = 0.0,
     twist = check_number("twist", twist)
     t = read_topology(mesh)
     check_budget(t, t.nf + t.ne, "root4", max_faces)
-    p = t.pos[t.cv]
-    m = (1 - twist) * p + twist * t.pos[t.cv[t.nxt]]
+    p = rows(t.pos, t.cv)
+    m = (1 - twist) * p + twist * rows(t.pos, t.cv[t.nxt])
     inner = face_weighted(t, m, lambda n: cos_weights(n, HONEYCOMB_ALPHA + 1.25 / n))
     around = vertex_sum(t, inner) / np.maximum(t.valence, 1)[:, None]
     vertices = (1 - weight) * t.pos + weight * around
@@ -300,9 +301,9 @@ def pentagon_preserve(mesh: Mesh, *, scale: float = 0.75,
     scale = check_number("scale", scale)
     t = read_topology(mesh)
     check_budget(t, t.nf + t.nc, "pentagon-preserve", max_faces)
-    cen = t.centroids()[t.face]
+    cen = rows(t.centroids(), t.face)
     mids = t.midpoints()
-    inner = cen + scale * (mids[t.edge] - cen)
+    inner = cen + scale * (rows(mids, t.edge) - cen)
     positions = np.concatenate([t.pos, mids, inner])
     base, nc, prev = t.nv + t.ne, t.nc, t.prv
     c = np.arange(nc)
@@ -332,9 +333,9 @@ def pentagon(mesh: Mesh, *, offset: float = 0.0, max_faces: int | None = None) -
     t = read_topology(mesh)
     check_budget(t, t.nc, "pentagon", max_faces)
     cen = t.centroids()
-    p = t.pos[t.cv]
-    near = p + (t.pos[t.cv[t.nxt]] - p) / 3.0
-    near += offset * (cen[t.face] - near)
+    p = rows(t.pos, t.cv)
+    near = p + (rows(t.pos, t.cv[t.nxt]) - p) / 3.0
+    near += offset * (rows(cen, t.face) - near)
     positions = np.concatenate([t.pos, near, cen])
     v, nc, prev, mate = t.nv, t.nc, t.prv, t.mate
     c = np.arange(nc)
@@ -360,7 +361,7 @@ def cubic_pentagonalization(mesh: Mesh, *, offset: float = 0.0,
     pentagon(work, offset=offset, max_faces=max_faces)
     x = work.topology
     check_budget(x, x.nv, "dual", max_faces)
-    moved = vertex_sum(x, x.centroids()[x.face]) / np.maximum(x.valence, 1)[:, None]
+    moved = vertex_sum(x, rows(x.centroids(), x.face)) / np.maximum(x.valence, 1)[:, None]
     build_paired(mesh, x, moved, x.cv, x.mate, x.sizes, np.zeros(x.nf, dtype=bool))
 
 
@@ -378,10 +379,10 @@ def dual_1264(mesh: Mesh, *, scale: float = 0.7, max_faces: int | None = None) -
     scale = abs(check_number("scale", scale))
     t = read_topology(mesh)
     check_budget(t, t.nf + t.ne + t.nv, "dual-12.6.4", max_faces)
-    p, q = t.pos[t.cv], t.pos[t.cv[t.nxt]]
+    p, q = rows(t.pos, t.cv), rows(t.pos, t.cv[t.nxt])
     first, second = (2 * p + q) / 3.0, (p + 2 * q) / 3.0
     if scale not in (0.0, 1.0):
-        cen = t.centroids()[t.face]
+        cen = rows(t.centroids(), t.face)
         first, second = cen + scale * (first - cen), cen + scale * (second - cen)
     build_paired(mesh, t, np.concatenate([first, second]), *_dual_1264_layout(t))
 
@@ -477,7 +478,7 @@ def star(mesh: Mesh, *, offset: float = 0.0, max_faces: int | None = None) -> No
     t = read_topology(mesh)
     check_budget(t, 3 * t.nc, "star", max_faces)
     cen = t.centroids()
-    second = (t.pos[t.cv] + t.pos[t.cv[t.nxt]] + cen[t.face]) / 3.0
+    second = (rows(t.pos, t.cv) + rows(t.pos, t.cv[t.nxt]) + rows(cen, t.face)) / 3.0
     positions = np.concatenate([t.pos, _stellate_centres(t, offset), second])
     e, nc, c, nxt = t.ne, t.nc, np.arange(t.nc), t.nxt
     centre, mid = t.nv + t.face, t.nv + t.nf + c
@@ -509,7 +510,7 @@ def double_stellate(mesh: Mesh, *, offset: float = 0.0, curve: float = 0.0,
     t = read_topology(mesh)
     check_budget(t, t.ne + t.nc, "double-stellate", max_faces)
     centres = _stellate_centres(t, offset)
-    p, q, r = t.pos[t.cv], t.pos[t.cv[t.nxt]], centres[t.face]
+    p, q, r = rows(t.pos, t.cv), rows(t.pos, t.cv[t.nxt]), rows(centres, t.face)
     second = (p + q + r) / 3.0
     if curve:
         second += curve * normalize(np.cross(q - p, r - p))
@@ -557,15 +558,15 @@ def fractal(mesh: Mesh, *, offset: float = 1.0, max_faces: int | None = None) ->
 def _fractal_heights(t: Topology, mids: np.ndarray) -> np.ndarray:
     """``(F,)`` sqrt(L2^2 - L1^2) of each face (0 where negative)."""
     head = t.offsets[:-1]
-    first = mids[t.edge[head]]
-    second = mids[t.edge[t.nxt[head]]]
+    first = rows(mids, t.edge[head])
+    second = rows(mids, t.edge[t.nxt[head]])
     n = t.sizes
     # n steps round the 2n-corner split face from the first midpoint land on
     # midpoint n/2 (n even) or on corner (n + 1)/2 (n odd)
     odd = (n % 2).astype(bool)
     step = np.where(odd, (n + 1) // 2, n // 2) % np.maximum(n, 1)
     corner = head + step
-    opposite = np.where(odd[:, None], t.pos[t.cv[corner]], mids[t.edge[corner]])
+    opposite = np.where(odd[:, None], rows(t.pos, t.cv[corner]), rows(mids, t.edge[corner]))
     l1 = 0.5 * np.linalg.norm(first - opposite, axis=1)
     l2 = np.linalg.norm(first - second, axis=1)
     return np.sqrt(np.maximum(l2 * l2 - l1 * l1, 0.0))

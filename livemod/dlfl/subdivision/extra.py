@@ -24,6 +24,7 @@ from ._layout import (
     read_topology,
     ring_sums,
     ring_weighted,
+    rows,
     vertex_sum,
 )
 
@@ -46,7 +47,7 @@ def checker(mesh: Mesh, *, thickness: float = 0.33, max_faces: int | None = None
     thickness = check_number("thickness", thickness, 0.0, 0.5)
     t = read_topology(mesh)
     check_budget(t, t.nf + 2 * t.nc, "checker", max_faces)
-    p, prev_p, next_p = t.pos[t.cv], t.pos[t.cv[t.prv]], t.pos[t.cv[t.nxt]]
+    p, prev_p, next_p = rows(t.pos, t.cv), rows(t.pos, t.cv[t.prv]), rows(t.pos, t.cv[t.nxt])
     inward = (prev_p - p) + (next_p - p)
     concave = np.einsum("ij,ij->i", np.cross(next_p - p, prev_p - p),
                         t.face_normals()[t.face]) < 0
@@ -79,8 +80,8 @@ def dual_checkerboard(mesh: Mesh, *, thickness: float = 0.33,
     nxt = t.nxt
     side = nxt[t.mate]  # the dual's corner whose side quad lies along the edge of c
     at_vertex = vertex_sum(t, inset) / np.maximum(t.valence, 1)[:, None]
-    at_near = (near[side] + near[nxt] + inset + inset[side]) / 4.0
-    at_inset = (t.centroids()[t.face] + near + inset + near[nxt]) / 4.0
+    at_near = (rows(near, side) + rows(near, nxt) + inset + rows(inset, side)) / 4.0
+    at_inset = (rows(t.centroids(), t.face) + near + inset + rows(near, nxt)) / 4.0
     positions = np.concatenate([at_vertex, at_near, at_inset])
     _checker_faces(mesh, t, positions, np.zeros(t.nf, dtype=bool))
 
@@ -93,13 +94,13 @@ def _checker_on_dual(t: Topology, thickness: float) -> tuple[np.ndarray, np.ndar
     one ``next(mate c)`` (whose face is face(mate c)).
     """
     cen = t.centroids()
-    p = cen[t.face]
-    prev_p = cen[t.face[t.mate]]
-    next_p = cen[t.face[t.mate[t.prv]]]
+    p = rows(cen, t.face)
+    prev_p = rows(cen, t.face[t.mate])
+    next_p = rows(cen, t.face[t.mate[t.prv]])
     # the dual's face normals: Newell sums over each vertex ring
     normals = normalize(vertex_sum(t, np.cross(p, next_p)))
     inward = (prev_p - p) + (next_p - p)
-    concave = np.einsum("ij,ij->i", np.cross(next_p - p, prev_p - p), normals[t.cv]) < 0
+    concave = np.einsum("ij,ij->i", np.cross(next_p - p, prev_p - p), rows(normals, t.cv)) < 0
     inward[concave] *= -1
     return p + thickness * inward, p + thickness * (next_p - p)
 
@@ -132,7 +133,7 @@ def _split_face_values(t: Topology) -> tuple[np.ndarray, np.ndarray]:
     Returns ``(values, offsets)``: ``(2C, 3)`` positions (corner, midpoint of its
     side, ...) face after face, and the ``(F + 1,)`` ring offsets.
     """
-    values = np.stack([t.pos[t.cv], t.midpoints()[t.edge]], axis=1).reshape(-1, 3)
+    values = np.stack([rows(t.pos, t.cv), rows(t.midpoints(), t.edge)], axis=1).reshape(-1, 3)
     return values, 2 * t.offsets
 
 
@@ -222,7 +223,7 @@ def dome(mesh: Mesh, *, length: float = 1.0, scale: float = 1.0,
     steps = len(DOME_DISTANCES)
     check_budget(t, t.nf + steps * 4 * t.nc, "dome", max_faces)
     split_pos, corner_vertex, across, offsets = _split_in_four(t)
-    rings = _dome_rings(t, split_pos[corner_vertex], offsets, length, scale)
+    rings = _dome_rings(t, rows(split_pos, corner_vertex), offsets, length, scale)
     positions = np.concatenate([split_pos, rings.reshape(-1, 3)])
     verts, mates = _dome_corners(corner_vertex, across, offsets, len(split_pos), steps)
     split_hole = np.repeat(t.hole, 4 * t.sizes)
@@ -254,7 +255,7 @@ def _split_in_four(t: Topology) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.
     ``(N,)``; and the split ring offsets ``(F + 1,)``.
     """
     ends = t.cv[t.edge_corners]
-    start, stop = t.pos[ends[:, 0]], t.pos[ends[:, 1]]
+    start, stop = rows(t.pos, ends[:, 0]), rows(t.pos, ends[:, 1])
     fractions = np.array([0.25, 0.5, 0.75])
     points = start[:, None, :] + fractions[None, :, None] * (stop - start)[:, None, :]
     positions = np.concatenate([t.pos, points.reshape(-1, 3)])
