@@ -305,14 +305,29 @@ def pentagon_preserve(mesh: Mesh, *, scale: float = 0.75,
     mids = t.midpoints()
     inner = cen + scale * (rows(mids, t.edge) - cen)
     positions = np.concatenate([t.pos, mids, inner])
-    base, nc, prev = t.nv + t.ne, t.nc, t.prv
+    build_paired(mesh, t, positions, *_pentagon_preserve_layout(t))
+
+
+def _pentagon_preserve_layout(t: Topology) -> tuple[np.ndarray, np.ndarray, np.ndarray,
+                                                      np.ndarray]:
+    """Pentagon preserving's corners with mates computed directly.
+
+    Points: vertices, edge midpoints at V + e, inner copies at V + E + c. Layout:
+    inner faces (corner c at c), then per corner c the pentagon at C + 5c:
+    vertex, midpoint(edge c), inner(c), inner(prev c), midpoint(edge prev c).
+    Returns the new corners' vertices and mates, the face sizes and hole flags.
+    """
+    base, nc, prev, nxt, mate = t.nv + t.ne, t.nc, t.prv, t.nxt, t.mate
     c = np.arange(nc)
-    faces = Faces()
-    face_rings(t, base, 0, faces)
     verts = np.stack([t.cv, t.nv + t.edge, base + c, base + prev, t.nv + t.edge[prev]], axis=1)
-    labels = np.stack([nc + c, 2 * nc + c, prev, 2 * nc + prev, nc + t.mate[prev]], axis=1)
-    faces.add(verts, labels, t.hole[t.face])
-    build(mesh, t, positions, faces)
+    pent = nc + 5 * np.stack([nxt[mate], nxt, np.zeros(nc, dtype=np.int64), prev, mate[prev]],
+                             axis=1)
+    pent += np.array([4, 3, 0, 1, 0])
+    pent[:, 2] = prev  # the inner face's side from inner(prev c) to inner(c)
+    mates = np.concatenate([nc + 5 * nxt + 2, pent.ravel()])
+    sizes = np.concatenate([t.sizes, np.full(nc, 5, dtype=np.int64)])
+    hole = np.concatenate([t.hole, t.hole[t.face]])
+    return np.concatenate([base + c, verts.ravel()]), mates, sizes, hole
 
 
 def pentagon(mesh: Mesh, *, offset: float = 0.0, max_faces: int | None = None) -> None:
@@ -337,13 +352,15 @@ def pentagon(mesh: Mesh, *, offset: float = 0.0, max_faces: int | None = None) -
     near = p + (rows(t.pos, t.cv[t.nxt]) - p) / 3.0
     near += offset * (rows(cen, t.face) - near)
     positions = np.concatenate([t.pos, near, cen])
-    v, nc, prev, mate = t.nv, t.nc, t.prv, t.mate
+    v, nc, prev, nxt, mate = t.nv, t.nc, t.prv, t.nxt, t.mate
     c = np.arange(nc)
     verts = np.stack([v + nc + t.face, v + prev, v + mate[prev], t.cv, v + c], axis=1)
-    labels = np.stack([prev, 2 * nc + t.edge[prev], nc + mate[prev], nc + c, c], axis=1)
-    faces = Faces()
-    faces.add(verts, labels, t.hole[t.face])
-    build(mesh, t, positions, faces)
+    # pentagon of c at 5c: its sides meet pentagons prev c, next(mate(prev c)),
+    # mate(prev c), next(mate c) and next c
+    mates = 5 * np.stack([prev, nxt[mate[prev]], mate[prev], nxt[mate], nxt], axis=1)
+    mates += np.array([4, 1, 3, 2, 0])
+    build_paired(mesh, t, positions, verts.ravel(), mates.ravel(),
+                 np.full(nc, 5, dtype=np.int64), t.hole[t.face])
 
 
 def cubic_pentagonalization(mesh: Mesh, *, offset: float = 0.0,
