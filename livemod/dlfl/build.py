@@ -664,25 +664,35 @@ def _edge_links(mate: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         mate: ``(C,)`` int64 mate of each corner, -1 for none.
 
     Returns:
-        ``(lower, upper, edge)``: ``(E,)`` int64 lower and upper corner of each
+        ``(lower, upper, edge)``: ``(E,)`` int32 lower and upper corner of each
         edge and ``(C,)`` int32 edge of each corner (-1 for none).
     """
-    count = len(mate)
-    # int32 halves the memory traffic of the comparison (corner counts < 2**31)
-    lower = np.flatnonzero(mate.astype(np.int32) > np.arange(count, dtype=np.int32))
+    lower = np.concatenate(
+        [np.flatnonzero(mate[part] > np.arange(part.start, part.stop)) + part.start
+         for part in _chunks(len(mate))] or [np.zeros(0, dtype=np.int64)], dtype=np.int32)
     upper = mate[lower]
-    edge = np.full(count, -1, dtype=np.int32)
+    edge = np.full(len(mate), -1, dtype=np.int32)
     number = np.arange(len(lower), dtype=np.int32)
     edge[lower] = number
     edge[upper] = number
-    return lower, upper, edge
+    return lower, upper.astype(np.int32), edge
 
 
 def _lowest_corners(cvert: np.ndarray, num_v: int) -> np.ndarray:
     """``(V,)`` int32 lowest corner of each vertex, from the ``(C,)`` int64 ``cvert``.
 
-    Scattering in reverse lets the lowest corner write last.
+    Corners are scattered in decreasing order, so that the lowest writes last.
     """
     vcorner = np.zeros(num_v, dtype=np.int32)
-    vcorner[cvert[::-1]] = np.arange(len(cvert) - 1, -1, -1, dtype=np.int32)
+    for part in reversed(_chunks(len(cvert))):
+        vcorner[cvert[part][::-1]] = np.arange(part.stop - 1, part.start - 1, -1, dtype=np.int32)
     return vcorner
+
+
+CHUNK = 1 << 16
+
+
+def _chunks(count: int) -> list[slice]:
+    """``0..count`` cut into slices of ``CHUNK``: chunk-wise passes over the
+    corners keep their temporaries small (fresh pages cost more than the loop)."""
+    return [slice(start, min(start + CHUNK, count)) for start in range(0, count, CHUNK)]
