@@ -432,3 +432,50 @@ def test_ring_sums_of_many_runs_of_sizes():
     few = slice(200, 251)  # one run: the column-wise path
     assert np.array_equal(ring_sums(offsets[few] - offsets[200], values,
                                     index[offsets[200]:]), expected[200:])
+
+
+def _faces_of(mesh: Mesh, points: list[int]) -> list[tuple[int, ...]]:
+    """Each face as its cycle of ``points`` (one per vertex) from the least, sorted."""
+    a = mesh_arrays(mesh)
+    faces = []
+    for start, stop in zip(a.face_offsets[:-1].tolist(), a.face_offsets[1:].tolist(), strict=True):
+        ring = [points[v] for v in a.corner_vertex[start:stop].tolist()]
+        k = min(range(len(ring)), key=lambda i: ring[i:] + ring[:i])
+        faces.append(tuple(ring[k:] + ring[:k]))
+    return sorted(faces)
+
+
+def assert_same_mesh(mesh: Mesh, other: Mesh, tolerance: float = 1e-9) -> None:
+    """``mesh`` is ``other`` up to the order of its elements: each vertex lies within
+    ``tolerance`` of one of ``other``'s, the same points and the same oriented
+    faces (as cycles of points; points within ``tolerance`` count as one)."""
+    p, q = mesh_arrays(mesh).positions, mesh_arrays(other).positions
+    assert p.shape == q.shape and mesh.counts() == other.counts()
+    close = np.linalg.norm(q[:, None, :] - q[None, :, :], axis=2) <= tolerance
+    label = close.argmax(axis=1)  # the first of other's points close to each
+    distance = np.linalg.norm(p[:, None, :] - q[None, :, :], axis=2)
+    nearest = distance.argmin(axis=1)
+    assert distance[np.arange(len(p)), nearest].max(initial=0.0) <= tolerance
+    mine, theirs = label[nearest].tolist(), label.tolist()
+    assert sorted(mine) == sorted(theirs)
+    assert _faces_of(mesh, mine) == _faces_of(other, theirs)
+
+
+# composites computed in one step -> (middle scheme, its options)
+ONE_STEP = [
+    ("12.6.4", "dual-12.6.4", {}), ("12.6.4", "dual-12.6.4", {"scale": 1.0}),
+    ("12.6.4", "dual-12.6.4", {"scale": -0.4}),
+    ("dual-pentagon-preserving", "pentagon-preserve", {"scale": 0.3}),
+    ("dual-pentagon-preserving", "pentagon-preserve", {}),
+]
+
+
+@pytest.mark.parametrize(("composite", "middle", "options"), ONE_STEP)
+@pytest.mark.parametrize("index", range(6))
+def test_one_step_composite_equals_its_three_steps(composite, middle, options, index):
+    direct, steps = _layout_meshes()[index], _layout_meshes()[index]
+    subdivide(direct, composite, **options)
+    for scheme, kwargs in (("dual", {}), (middle, options), ("dual", {})):
+        subdivide(steps, scheme, **kwargs)
+    validate(direct)
+    assert_same_mesh(direct, steps)

@@ -1,0 +1,186 @@
+"""GUI composite schemes (dual, scheme, dual) computed in one step.
+
+A dual, a scheme and a dual again give a mesh whose elements are the mesh's own
+vertices, edges, faces and corners: the final dual's vertices are the middle
+scheme's faces and its faces the middle scheme's vertices. Each function here
+lays out that final mesh over the old corners (mates computed directly) and puts
+each vertex at the centroid of its face of the middle step, worked out from the
+first dual's geometry (its vertices are the face centroids; its face of vertex
+v has the mean ``Cv`` of v's face centroids as centroid). Same meshes as the
+three steps up to the order of elements, positions to rounding; no face is a
+hole (a dual makes none); point-spheres survive.
+
+Conventions (``t`` the mesh): the first dual's corner of corner c sits at
+``face(c)``'s centroid, in v = ``cv(c)``'s ring, its edge crossing the edge of
+``prev c``; the next corner of that ring is ``vprev(c) = mate(prev c)``.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..mesh import Mesh
+from ._layout import (
+    Topology,
+    build_paired,
+    check_budget,
+    check_number,
+    read_topology,
+    ring_sums,
+    rows,
+    vertex_sum,
+)
+
+
+def _check_steps(t: Topology, steps: list[tuple[int, str]], max_faces: int | None) -> None:
+    """The face budget of each of the three steps, checked as the steps would.
+
+    Raises:
+        DLFLError: the first step over the budget (as that step words it).
+    """
+    for count, name in steps:
+        check_budget(t, count, name, max_faces)
+
+
+def _vertex_centres(t: Topology, cen: np.ndarray) -> np.ndarray:
+    """``(V, 3)`` ``Cv``: the mean of each vertex's face centroids (one per corner),
+    the centroid of the first dual's face of v. ``cen``: ``(F, 3)`` centroids."""
+    return vertex_sum(t, rows(cen, t.face)) / np.maximum(t.valence, 1)[:, None]
+
+
+def twelve_six_four(mesh: Mesh, *, scale: float = 0.7, max_faces: int | None = None) -> None:
+    """GUI "12.6.4" (TopMod: dual, dual-12.6.4(sf), dual), in one step.
+
+    The result has a vertex per old vertex, edge and face, and two triangles per
+    old corner c (vertex, midpoint of c's edge, face; vertex, face, midpoint of
+    the previous edge). Positions: the centroids of dual-12.6.4's faces on the
+    dual: ``Cv`` per vertex, per edge ``(1 - s) mean(Cv of its ends) + s
+    mean(its faces' centroids)``, per face ``(1 - s) mean(Cv of its corners) + s
+    (2 centroid + mean(centroids across its edges)) / 3`` (``s = |scale|``; 1
+    when it is 0 or 1, as dual-12.6.4 then does not scale). Cube: 26/72/48.
+
+    Raises:
+        DLFLError: a bad ``scale``, or the face budget.
+    """
+    scale = abs(check_number("scale", scale))
+    t = read_topology(mesh)
+    _check_steps(t, [(t.nv, "dual"), (t.nv + t.ne + t.nf, "dual-12.6.4"),
+                     (2 * t.nc, "dual")], max_faces)
+    s = 1.0 if scale in (0.0, 1.0) else scale
+    positions = _points_1264(t, s)
+    verts, mates = _triangles_1264(t)
+    build_paired(mesh, t, positions, verts, mates, np.full(2 * t.nc, 3, dtype=np.int64),
+                 np.zeros(2 * t.nc, dtype=bool))
+
+
+def _points_1264(t: Topology, s: float) -> np.ndarray:
+    """``(V + E + F, 3)``: the vertex, edge and face points of :func:`twelve_six_four`."""
+    cen = t.centroids()
+    centre = _vertex_centres(t, cen)
+    faces = t.face[t.edge_corners]
+    edge_points = 0.5 * (rows(cen, faces[:, 0]) + rows(cen, faces[:, 1]))
+    sizes = np.maximum(t.sizes, 1)[:, None]
+    across = ring_sums(t.offsets, cen, t.face[t.mate]) / sizes
+    face_points = (2.0 * cen + across) / 3.0
+    if s != 1.0:
+        ends = t.cv[t.edge_corners]
+        edge_points *= s
+        edge_points += (0.5 * (1 - s)) * (rows(centre, ends[:, 0]) + rows(centre, ends[:, 1]))
+        face_points *= s
+        face_points += (1 - s) * (ring_sums(t.offsets, centre, t.cv) / sizes)
+    return np.concatenate([centre, edge_points, face_points])
+
+
+def _triangles_1264(t: Topology) -> tuple[np.ndarray, np.ndarray]:
+    """Two triangles per corner c, mates computed directly: at 6c (vertex, edge
+    point of c, face point) and at 6c + 3 (vertex, face point, edge point of prev c).
+
+    Returns the ``(6C,)`` vertex and mate of every new corner.
+    """
+    nxt, prv, mate, nc = t.nxt, t.prv, t.mate, t.nc
+    edge_point, face_point = t.nv + t.edge, t.nv + t.ne + t.face
+    verts = np.empty((nc, 6), dtype=np.int64)
+    verts[:, 0] = verts[:, 3] = t.cv
+    verts[:, 1] = edge_point
+    verts[:, 2] = verts[:, 4] = face_point
+    verts[:, 5] = edge_point[prv]
+    six = 6 * np.arange(nc)
+    mates = np.empty((nc, 6), dtype=np.int64)
+    mates[:, 0] = 6 * nxt[mate] + 5
+    mates[:, 1] = 6 * nxt + 4
+    mates[:, 2] = six + 3
+    mates[:, 3] = six + 2
+    mates[:, 4] = 6 * prv + 1
+    mates[:, 5] = 6 * mate[prv]
+    return verts.ravel(), mates.ravel()
+
+
+def dual_pentagon_preserving(mesh: Mesh, *, scale: float = 0.75,
+                             max_faces: int | None = None) -> None:
+    """GUI "Dual Pentagon Preserving" (TopMod: dual, pentagon-preserve(sf), dual),
+    in one step.
+
+    The result has a vertex per old vertex (at ``Cv``) and per old corner c (at
+    the centroid of pentagon-preserve's pentagon of c on the dual), and per old
+    face the polygon of its corners' points, per old edge the quad of the points
+    of its four corners, per old corner c the triangle (vertex, c, vprev(c)).
+    Cube: 32/72/42 (24 triangles, 18 quads).
+
+    Raises:
+        DLFLError: a bad ``scale``, or the face budget.
+    """
+    scale = check_number("scale", scale)
+    t = read_topology(mesh)
+    _check_steps(t, [(t.nv, "dual"), (t.nv + t.nc, "pentagon-preserve"),
+                     (t.nf + t.ne + t.nc, "dual")], max_faces)
+    cen = t.centroids()
+    centre = _vertex_centres(t, cen)
+    positions = np.concatenate([centre, _pentagon_points(t, cen, centre, scale)])
+    build_paired(mesh, t, positions, *_dual_pentagon_layout(t))
+
+
+def _pentagon_points(t: Topology, cen: np.ndarray, centre: np.ndarray,
+                     scale: float) -> np.ndarray:
+    """``(C, 3)``: per corner c, the centroid of pentagon-preserve's pentagon of c
+    on the dual: the dual's vertex (face c's centroid), the midpoints m of the
+    dual's edges across the edges of prev c and c, and their copies scaled about
+    ``Cv``, summed in the pentagon's order."""
+    faces = t.face[t.edge_corners]
+    mids = rows(0.5 * (rows(cen, faces[:, 0]) + rows(cen, faces[:, 1])), t.edge)
+    c_v = rows(centre, t.cv)
+    mids_prev = rows(mids, t.prv)
+    out = rows(cen, t.face)
+    out += mids_prev
+    out += c_v + scale * (mids_prev - c_v)
+    out += c_v + scale * (mids - c_v)
+    out += mids
+    out /= 5.0
+    return out
+
+
+def _dual_pentagon_layout(t: Topology) -> tuple[np.ndarray, np.ndarray, np.ndarray,
+                                                  np.ndarray]:
+    """:func:`dual_pentagon_preserving`'s corners, mates computed directly.
+
+    Points: vertices, then corner c's at V + c. Layout: face polygons (corner c
+    at c), edge quads (edge k at C + 4k: next a, a, next b, b for its sides a, b),
+    corner triangles (at 3C + 3c: vertex, c, vprev(c)).
+    Returns the new corners' vertices and mates, the face sizes and hole flags.
+    """
+    nc, ne, v, c = t.nc, t.ne, t.nv, np.arange(t.nc)
+    a, b = t.edge_corners[:, 0], t.edge_corners[:, 1]
+    na, nb, prv, mate = t.nxt[a], t.nxt[b], t.prv, t.mate
+    vprev = mate[prv]
+    is_a = a[t.edge] == c
+    tri = 3 * nc
+    verts = np.concatenate([v + c, (v + np.stack([na, a, nb, b], axis=1)).ravel(),
+                            np.stack([t.cv, v + c, v + vprev], axis=1).ravel()])
+    quad_mate = np.stack([a, tri + 3 * nb + 1, b, tri + 3 * na + 1], axis=1)
+    tri_mate = np.stack([tri + 3 * t.nxt[mate] + 2,
+                         nc + 4 * t.edge[prv] + np.where(is_a[prv], 3, 1),
+                         tri + 3 * vprev], axis=1)
+    mates = np.concatenate([nc + 4 * t.edge + np.where(is_a, 0, 2), quad_mate.ravel(),
+                            tri_mate.ravel()])
+    sizes = np.concatenate([t.sizes, np.full(ne, 4, dtype=np.int64),
+                            np.full(nc, 3, dtype=np.int64)])
+    return verts, mates, sizes, np.zeros(t.nf + ne + nc, dtype=bool)
