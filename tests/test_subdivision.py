@@ -479,3 +479,15 @@ def test_one_step_composite_equals_its_three_steps(composite, middle, options, i
         subdivide(steps, scheme, **kwargs)
     validate(direct)
     assert_same_mesh(direct, steps)
+
+
+@pytest.mark.parametrize("index", range(6))
+def test_doo_sabin_bc_equals_its_two_steps(index):
+    direct, steps = _layout_meshes()[index], _layout_meshes()[index]
+    subdivide(direct, "doo-sabin-bc")
+    subdivide(steps, "subdivide-all-edges")
+    subdivide(steps, "doo-sabin")
+    a, b = mesh_arrays(direct), mesh_arrays(steps)
+    for field in ("positions", "face_offsets", "face_hole", "corner_vertex", "corner_mate",
+                  "edge_corners"):
+        assert np.array_equal(getattr(a, field), getattr(b, field)), field

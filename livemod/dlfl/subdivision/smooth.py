@@ -28,7 +28,6 @@ from ._layout import (
     read_topology,
     topology_of,
 )
-from .convert import subdivide_all_edges
 
 
 def catmull_clark(mesh: Mesh, *, levels: int = 1, max_faces: int | None = None) -> None:
@@ -197,13 +196,26 @@ def loop_style(mesh: Mesh, *, length: float = 1.0, max_faces: int | None = None)
 
 
 def _doo_sabin_like(mesh: Mesh, t: Topology, points: np.ndarray) -> None:
+    """Build Doo-Sabin's topology over the ``(C, 3)`` per-corner ``points``."""
     order, offsets = t.vertex_rings()
     ring_sizes = np.diff(offsets)
-    if len(ring_sizes) and ring_sizes.min() < 3:
-        faces = Faces()  # valence 1 or 2: the general path merges 2-gons away
+    if len(ring_sizes) and ring_sizes.min() < 2:
+        faces = Faces()  # valence 1: the general path
         doo_sabin_faces(t, faces)
         build(mesh, t, points, faces)
         return
+    kept = ring_sizes >= 3
+    _doo_sabin_build(mesh, t, points, order[np.repeat(kept, ring_sizes)], ring_sizes[kept])
+
+
+def _doo_sabin_build(mesh: Mesh, t: Topology, points: np.ndarray, order: np.ndarray,
+                     ring_sizes: np.ndarray) -> None:
+    """Doo-Sabin's faces with mates computed directly, then :func:`build_paired`.
+
+    ``order`` ``(R,)``: the corners of the vertex rings of three corners or more,
+    ring after ring (as :meth:`Topology.vertex_rings` lays them out); their
+    sizes ``ring_sizes``. Precondition: every other corner lies in a ring of two.
+    """
     verts, mates = _doo_sabin_paired(t, order)
     sizes = np.concatenate([t.sizes, np.full(t.ne, 4, dtype=np.int64), ring_sizes])
     hole = np.concatenate([t.hole, np.zeros(t.ne + len(ring_sizes), dtype=bool)])
@@ -211,30 +223,46 @@ def _doo_sabin_like(mesh: Mesh, t: Topology, points: np.ndarray) -> None:
 
 
 def _doo_sabin_paired(t: Topology, order: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Doo-Sabin's corners with mates computed directly (every valence >= 3).
+    """Doo-Sabin's corners with mates computed directly.
 
     Layout: F-faces (corner c at c), edge quads (edge k at C + 4k:
-    next(a), a, next(b), b for its sides a, b), V-faces (ring position q at C + 4E + q).
-    Returns the ``(2C + 4E,)`` int64 vertex and mate of every new corner, each
+    next(a), a, next(b), b for its sides a, b), V-faces (``order[q]`` at C + 4E + q).
+    ``order``: the corners of the V-faces (see :func:`_doo_sabin_build`); a
+    valence-2 vertex gets no 2-gon: the two quad sides that would meet it meet
+    each other (one edge, as TopMod leaves them).
+    Returns the ``(C + 4E + R,)`` int64 vertex and mate of every new corner, each
     filled block by block in place (no stacking and concatenating).
     """
     nc, c = t.nc, np.arange(t.nc)
     ring_base = nc + 4 * t.ne
     a, b = t.edge_corners[:, 0], t.edge_corners[:, 1]
-    na, nb = t.nxt[a], t.nxt[b]
-    position = np.empty(nc, dtype=np.int64)
-    position[order] = c
     is_a = a[t.edge] == c
-    prev = t.prv[order]
-    verts = np.empty(ring_base + nc, dtype=np.int64)
+    prv = t.prv
+    side = nc + 4 * t.edge[prv] + np.where(is_a[prv], 3, 1)  # the quad side meeting c's V-corner
+    target = _ring_targets(t, order, side, ring_base)
+    verts = np.empty(ring_base + len(order), dtype=np.int64)
     verts[:nc] = c
-    _columns(verts[nc:ring_base], na, a, nb, b)
+    _columns(verts[nc:ring_base], t.nxt[a], a, t.nxt[b], b)
     verts[ring_base:] = order
-    mates = np.empty(ring_base + nc, dtype=np.int64)
+    mates = np.empty(ring_base + len(order), dtype=np.int64)
     mates[:nc] = nc + 4 * t.edge + np.where(is_a, 0, 2)
-    _columns(mates[nc:ring_base], a, ring_base + position[nb], b, ring_base + position[na])
-    mates[ring_base:] = nc + 4 * t.edge[prev] + np.where(is_a[prev], 3, 1)
+    _columns(mates[nc:ring_base], a, target[t.nxt[b]], b, target[t.nxt[a]])
+    mates[ring_base:] = side[order]
     return verts, mates
+
+
+def _ring_targets(t: Topology, order: np.ndarray, side: np.ndarray,
+                  ring_base: int) -> np.ndarray:
+    """``(C,)``: what meets the quad side ``side[r]`` of each corner r: r's V-corner
+    (at ``ring_base`` + its place in ``order``), or, for r in a ring of two, the
+    quad side of the other corner of the ring (``vprev(r)``)."""
+    if len(order) == t.nc:
+        target = np.empty(t.nc, dtype=np.int64)
+        target[order] = ring_base + np.arange(t.nc)
+        return target
+    target = side[t.vprev]
+    target[order] = ring_base + np.arange(len(order))
+    return target
 
 
 def _columns(out: np.ndarray, *columns: np.ndarray) -> None:
@@ -296,10 +324,36 @@ def doo_sabin_bc(mesh: Mesh, *, check: bool = True, max_faces: int | None = None
     Raises:
         DLFLError: the face budget.
     """
+    del check
     t = read_topology(mesh)
     check_budget(t, t.nf + t.nc + int(np.count_nonzero(t.valence >= 3)), "doo-sabin-bc",
                  max_faces)
-    work = mesh.copy()  # two steps: the mesh changes only when both succeed
-    subdivide_all_edges(work)
-    doo_sabin(work, check=check, max_faces=max_faces)
-    mesh.replace_with(work)
+    order, offsets = t.vertex_rings()
+    ring_sizes = np.diff(offsets)
+    split = _split_edges(t)
+    points = face_weighted(split, np.take(split.pos, split.cv, axis=0),
+                           lambda n: cos_weights(n, 0.25 + 1.25 / n))
+    if len(ring_sizes) and ring_sizes.min() < 2:
+        _doo_sabin_like(mesh, split, points)  # valence 1: the general path
+        return
+    # the split mesh's rings of three corners or more are the old ones (corner c
+    # is its corner 2c), in the same order; every midpoint has a ring of two
+    kept = ring_sizes >= 3
+    _doo_sabin_build(mesh, split, points, 2 * order[np.repeat(kept, ring_sizes)],
+                     ring_sizes[kept])
+
+
+def _split_edges(t: Topology) -> Topology:
+    """The arrays of :func:`subdivide_all_edges` on ``t``, without pairing by label.
+
+    Corner c becomes corners 2c (at its vertex) and 2c + 1 (at its edge's
+    midpoint, vertex V + edge); the side from 2c meets 2 mate(c) + 1.
+    """
+    cv = np.empty(2 * t.nc, dtype=np.int64)
+    cv[0::2] = t.cv
+    cv[1::2] = t.nv + t.edge
+    mate = np.empty(2 * t.nc, dtype=np.int64)
+    mate[0::2] = 2 * t.mate + 1
+    mate[1::2] = 2 * t.mate
+    return Topology(np.concatenate([t.pos, t.midpoints()]), cv, mate, 2 * t.offsets, t.hole,
+                    t.spheres, np.zeros(t.nf, dtype=np.int64))
