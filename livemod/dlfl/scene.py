@@ -52,6 +52,11 @@ class SceneObject:
 
 StepHook = Callable[[str], None]
 
+# Frames from a step hook up to the code that called the modeling command, when
+# the command's wrapper calls the hook (``sys._getframe(STEP_HOOK_CALLER_DEPTH)``
+# in the hook). Hooks called through record_step sit deeper.
+STEP_HOOK_CALLER_DEPTH = 2
+
 
 class Scene:
     """Several meshes (objects by integer id), the current one and the selection.
@@ -61,7 +66,9 @@ class Scene:
         current: id of the current object, or None when the scene is empty.
         selection: the viewer's selection, applied to the current object.
         step_hook: called with a label after every modeling command (the runner
-            installs one to record steps and to pause or cancel a run).
+            installs one to record steps and to pause or cancel a run); the
+            modeling-command wrapper calls it directly, see
+            ``STEP_HOOK_CALLER_DEPTH``.
         parameters: values for ``param()`` declarations (set by the runner).
         declarations: the :class:`~livemod.dlfl.params.ParamSpec` of every
             ``param()`` call of the current run, by name, in call order.
