@@ -18,9 +18,9 @@ import random
 import sys
 import threading
 import time
-from collections.abc import Callable, Iterator
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
-from types import CodeType, FrameType
+from types import CodeType
 
 import numpy as np
 
@@ -29,54 +29,8 @@ from livemod.dlfl.scene import Scene, Selection, use_scene
 
 from .errors import Cancelled, cancelled_error, exception_error, is_user_file, syntax_error
 from .instrument import CANCEL_FLAG, STOP_FUNCTION, compile_script
-from .playback import Playback
+from .recording import RunControl, StepRecorder
 from .results import ScriptError, StepRecord
-
-PauseCallback = Callable[[int, tuple[StepRecord, ...], Scene], None]
-
-
-class RunControl:
-    """Steers one run from other threads: cancel it, and pause it in playback.
-
-    Args:
-        playback: the session's playback state, or None for runs that never pause.
-        on_pause: called in the worker with ``(step index, steps, scene)`` just
-            before the run blocks at a step.
-    """
-
-    def __init__(self, playback: Playback | None = None,
-                 on_pause: PauseCallback | None = None) -> None:
-        self.playback = playback
-        self.on_pause = on_pause
-        self.paused_at: int | None = None
-        self.finished = False
-        self.cancel_requested = False  # a plain bool: the step hook reads it every step
-        self._namespace: dict | None = None
-        self._steps: Callable[[], int] = lambda: 0
-
-    @property
-    def cancelled(self) -> bool:
-        return self.cancel_requested
-
-    @property
-    def step_count(self) -> int:
-        """Steps the run has finished so far."""
-        return self._steps()
-
-    def cancel(self) -> None:
-        """Ask the run to stop at its next step or next loop iteration of the script."""
-        self.cancel_requested = True
-        if self._namespace is not None:
-            self._namespace[CANCEL_FLAG] = True  # read by the checks compile_script adds
-        if self.playback is not None:
-            self.playback.wake()
-
-    def attach(self, namespace: dict, recorder: StepRecorder) -> None:
-        """Give the control the run's globals (so :meth:`cancel` can flag them) and
-        its recorder (to count steps)."""
-        self._namespace = namespace
-        self._steps = recorder.step_count
-        namespace[CANCEL_FLAG] = self.cancel_requested
 
 
 @dataclass
@@ -95,7 +49,7 @@ class RunOutcome:
 
     status: str
     scene: Scene
-    steps: tuple[StepRecord, ...]
+    steps: Sequence[StepRecord]
     error: ScriptError | None
     elapsed: float
     modules: tuple[str, ...] = ()
@@ -105,88 +59,6 @@ class RunOutcome:
     def declarations(self) -> dict:
         """``name -> ParamSpec`` the script declared with ``param()``, in order."""
         return dict(self.scene.declarations)
-
-
-class StepRecorder:
-    """Records steps, pauses and cancels a run; :attr:`hook` is the scene's ``step_hook``.
-
-    The hook runs after every modeling command, so it is a closure over local
-    names that appends a plain tuple; :class:`StepRecord` objects are built only
-    when :attr:`steps` is read (at a pause and at the end).
-    """
-
-    def __init__(self, script: str, scene: Scene, control: RunControl | None) -> None:
-        self.script = script
-        self.scene = scene
-        self.control = control
-        self.started = time.perf_counter()
-        self._raw: list[tuple[str, int | None, tuple[int, int, int], float]] = []
-        self._records: list[StepRecord] = []
-        self.hook = self._make_hook()
-
-    def step_count(self) -> int:
-        return len(self._raw)
-
-    @property
-    def steps(self) -> tuple[StepRecord, ...]:
-        """The steps recorded so far (records are built once, on first request)."""
-        records, raw = self._records, self._raw
-        records.extend(_step_record(i, *raw[i]) for i in range(len(records), len(raw)))
-        return tuple(records)
-
-    def _make_hook(self) -> Callable[[str], None]:
-        raw, scene, script, control = self._raw, self.scene, self.script, self.control
-        started, clock, getframe = self.started, time.perf_counter, sys._getframe
-        playback = control.playback if control is not None else None
-        objects = scene.objects  # the dict itself never changes identity
-        depth = [1]  # where the script's frame was last found: usually the same again
-
-        def hook(label: str) -> None:
-            if control is not None and control.cancel_requested:
-                raise Cancelled
-            try:
-                frame: FrameType | None = getframe(depth[0])
-            except ValueError:
-                frame = None
-            if frame is None or frame.f_code.co_filename != script:
-                frame, depth[0] = _find_script_frame(getframe(1), script)
-            obj = objects.get(scene.current)  # type: ignore[arg-type]
-            counts = obj.mesh.counts() if obj is not None else (0, 0, 0)
-            raw.append((label, None if frame is None else frame.f_lineno, counts,
-                        clock() - started))
-            if playback is not None and playback.mode == "step":
-                index = len(raw) - 1
-                if index >= playback.target:
-                    self._pause(control, playback, index)  # type: ignore[arg-type]
-
-        return hook
-
-    def _pause(self, control: RunControl, playback: Playback, index: int) -> None:
-        control.paused_at = index
-        if control.on_pause is not None:
-            control.on_pause(index, self.steps, self.scene)
-        playback.wait(index, lambda: control.cancel_requested)
-        control.paused_at = None
-        if control.cancel_requested:
-            raise Cancelled
-
-
-def _step_record(index: int, label: str, line: int | None, counts: tuple[int, int, int],
-                 elapsed: float) -> StepRecord:
-    """A :class:`StepRecord` built without the frozen dataclass's per-field
-    ``object.__setattr__`` calls (runs make thousands of them)."""
-    record = object.__new__(StepRecord)
-    record.__dict__.update(index=index, label=label, line=line, counts=counts, elapsed=elapsed)
-    return record
-
-
-def _find_script_frame(frame: FrameType | None, script: str) -> tuple[FrameType | None, int]:
-    """The innermost frame running ``script`` at or above ``frame``, and its depth
-    counted from the hook (1 = the hook's caller); ``(None, 1)`` when there is none."""
-    depth = 1
-    while frame is not None and frame.f_code.co_filename != script:
-        frame, depth = frame.f_back, depth + 1
-    return (frame, depth) if frame is not None else (None, 1)
 
 
 def _raise_cancelled() -> None:
@@ -306,7 +178,8 @@ def execute(
         control.attach(namespace, recorder)
     status, error, modules = _exec(code, namespace, script, scene, recorder, seed)
     scene.step_hook = None
-    return RunOutcome(status, scene, tuple(recorder.steps), error,
+    recorder.release()
+    return RunOutcome(status, scene, recorder.steps, error,
                       time.perf_counter() - started, tuple(modules), source)
 
 

@@ -7,8 +7,14 @@ without sharing anything mutable with the run that made it.
 
 from __future__ import annotations
 
+import bisect
 import dataclasses
+import functools
+import operator
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
+from types import CodeType
+from typing import overload
 
 import numpy as np
 
@@ -35,6 +41,97 @@ class StepRecord:
     line: int | None
     counts: tuple[int, int, int]
     elapsed: float
+
+
+# a recorded step is this many items of a recorder's flat list: label, code,
+# f_lasti, then n and len(free) of the vertex, edge and face tables (V = n -
+# len(free), as Mesh.counts() says), then perf_counter() (see StepList)
+STEP_FIELDS = 10
+
+
+class StepList(Sequence[StepRecord]):
+    """The steps of a run: an immutable sequence of :class:`StepRecord`.
+
+    The runner's step hook only appends the raw facts of each step to a flat
+    list (see ``STEP_FIELDS``); a record is built, and the script line looked
+    up from the code and instruction offset, when the step is read. A run of
+    thousands of commands thus pays for the records someone looks at. The list
+    may grow on (a paused run goes on); this view keeps its first ``count`` steps.
+
+    It compares equal to a tuple of the same records and pickles as one.
+    """
+
+    __slots__ = ("_flat", "_count", "_started")
+
+    def __init__(self, flat: list, count: int, started: float) -> None:
+        self._flat = flat
+        self._count = count
+        self._started = started
+
+    def __len__(self) -> int:
+        return self._count
+
+    @overload
+    def __getitem__(self, index: int) -> StepRecord: ...
+
+    @overload
+    def __getitem__(self, index: slice) -> tuple[StepRecord, ...]: ...
+
+    def __getitem__(self, index: int | slice) -> StepRecord | tuple[StepRecord, ...]:
+        """The record of step ``index`` (negative counts from the end), or a tuple
+        of records for a slice.
+
+        Raises:
+            IndexError: no such step.
+        """
+        if isinstance(index, slice):
+            return tuple(self._record(k) for k in range(*index.indices(self._count)))
+        k = operator.index(index)
+        k += self._count if k < 0 else 0
+        if not 0 <= k < self._count:
+            raise IndexError(f"step {index} of {self._count}")
+        return self._record(k)
+
+    def __iter__(self) -> Iterator[StepRecord]:
+        return (self._record(k) for k in range(self._count))
+
+    def __eq__(self, other: object) -> bool:
+        if isinstance(other, StepList | tuple):
+            return len(self) == len(other) and tuple(self) == tuple(other)
+        return NotImplemented
+
+    def __hash__(self) -> int:
+        return hash(tuple(self))
+
+    def __reduce__(self) -> tuple:
+        return tuple, (tuple(self),)
+
+    def __repr__(self) -> str:
+        return f"StepList({list(self)!r})"
+
+    def _record(self, k: int) -> StepRecord:
+        at = k * STEP_FIELDS
+        label, code, lasti, nv, fv, ne, fe, nf, ff, clock = self._flat[at:at + STEP_FIELDS]
+        return StepRecord(k, label, code_line(code, lasti), (nv - fv, ne - fe, nf - ff),
+                          clock - self._started)
+
+
+def code_line(code: CodeType | None, lasti: int) -> int | None:
+    """The source line of byte offset ``lasti`` in ``code`` (what ``frame.f_lineno``
+    says for a frame of ``code`` at ``f_lasti == lasti``); None without code."""
+    if code is None:
+        return None
+    if lasti < 0:
+        return code.co_firstlineno
+    starts, lines = _line_table(code)
+    return lines[bisect.bisect_right(starts, lasti) - 1]
+
+
+@functools.lru_cache(maxsize=64)
+def _line_table(code: CodeType) -> tuple[list[int], list[int | None]]:
+    """Start offsets of ``code``'s line ranges, and their lines (for bisection)."""
+    ranges = list(code.co_lines())
+    return [start for start, _, _ in ranges], [line for _, _, line in ranges]
 
 
 @dataclass(frozen=True)
@@ -89,7 +186,7 @@ class RunResult:
     run_id: int
     script: str
     status: str
-    steps: tuple[StepRecord, ...]
+    steps: Sequence[StepRecord]
     step_index: int | None
     arrays: MeshArrays | None
     preview: MeshArrays | None

@@ -22,7 +22,7 @@ import os
 import queue
 import threading
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 from livemod.dlfl.arrays import MeshArrays
@@ -114,7 +114,7 @@ class LiveSession:
         self._current: _Run | None = None
         self._last_good: RunResult | None = None
         self._last_posted: RunResult | None = None
-        self._last_steps: tuple[StepRecord, ...] = ()
+        self._last_steps: Sequence[StepRecord] = ()
         self._source: str | None = None
         self._seen: dict[str, bytes] = {}
         self._base: Scene | None = base.copy() if base is not None else None
@@ -516,7 +516,7 @@ class LiveSession:
             return dataclasses.replace(error, file=self.output)
         return None
 
-    def _post_paused(self, run: _Run, index: int, steps: tuple[StepRecord, ...],
+    def _post_paused(self, run: _Run, index: int, steps: Sequence[StepRecord],
                      scene: Scene) -> None:
         """Worker, at a pause: post the mesh as it is after step ``index``."""
         result = RunResult(run.run_id, run.script, "paused", steps, index,

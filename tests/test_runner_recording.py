@@ -1,0 +1,239 @@
+"""The step hook and StepList: lines, counts and records as a plain reference says."""
+
+from __future__ import annotations
+
+import dis
+import gc
+import pickle
+import sys
+import textwrap
+
+import pytest
+
+from livemod.dlfl.scene import Scene, use_scene
+from livemod.runner import RunControl, StepRecord, execute
+from livemod.runner.execute import script_namespace
+from livemod.runner.instrument import CANCEL_FLAG, compile_script
+from livemod.runner.recording import StepRecorder
+from livemod.runner.results import StepList
+
+HELPER = '''\
+from livemod.dlfl import createVertex, step
+
+
+def ring(n):
+    for i in range(n):
+        createVertex((i, 0, 0))
+
+
+def points(n):
+    for i in range(n):
+        createVertex((0, i, 0))
+        yield i
+
+
+def call_back(fn):
+    createVertex((9, 9, 9))
+    fn()
+'''
+
+SCRIPT = '''\
+"""Commands called every way a script can call them."""
+from __future__ import annotations
+
+import helper_rec
+from livemod.dlfl import current_scene
+
+
+def one(x):
+    createVertex((x, 1, 0))
+
+
+def two(x):
+    one(x)
+    createVertex((x, 2, 0))
+
+
+def gen(n):
+    for i in range(n):
+        createVertex((i, 3, 0))
+        yield i
+
+
+for i in range(3):
+    createVertex((i, 0, 0))
+    two(i)
+    helper_rec.ring(2)
+    helper_rec.call_back(lambda: createVertex((0, 0, 5)))
+    one(i) if i % 2 else helper_rec.ring(1)
+for k in gen(2):
+    createVertex((k, 4, 0))
+for k in helper_rec.points(2):
+    one(k)
+total = sum(helper_rec.points(2))
+[createVertex((j, 5, 0)) for j in range(2)]
+list(map(createVertex, [(0, 6, 0), (1, 6, 0)]))
+step("marked")
+with current_scene().command("grouped"):
+    createVertex((0, 7, 0))
+'''
+
+
+def reference_hook(scene: Scene, script: str, seen: list) -> None:
+    """A step hook the obvious way: walk to the script's frame, ask f_lineno and counts()."""
+
+    def hook(label: str) -> None:
+        frame = sys._getframe(1)
+        while frame is not None and frame.f_code.co_filename != script:
+            frame = frame.f_back
+        obj = scene.objects.get(scene.current)  # type: ignore[arg-type]
+        counts = obj.mesh.counts() if obj is not None else (0, 0, 0)
+        seen.append((label, None if frame is None else frame.f_lineno, counts))
+
+    scene.step_hook = hook
+
+
+def write(tmp_path, name: str, text: str) -> str:
+    path = tmp_path / name
+    path.write_text(textwrap.dedent(text), encoding="utf-8")
+    return str(path)
+
+
+def reference_steps(path: str) -> list:
+    """(label, line, counts) of each step of the script at ``path``, by reference_hook."""
+    with open(path, encoding="utf-8") as handle:
+        code = compile_script(handle.read(), path)
+    scene, seen = Scene(), []
+    reference_hook(scene, path, seen)
+    sys.path.insert(0, str(path).rsplit("/", 1)[0])
+    try:
+        with use_scene(scene):
+            exec(code, script_namespace(path, None))  # noqa: S102
+    finally:
+        sys.path.pop(0)
+        sys.modules.pop("helper_rec", None)
+    return seen
+
+
+def test_lines_and_counts_match_the_reference_for_every_way_of_calling(tmp_path):
+    write(tmp_path, "helper_rec.py", HELPER)
+    path = write(tmp_path, "calls.py", SCRIPT)
+    outcome = execute(path)
+    assert outcome.status == "ok", outcome.error
+    got = [(s.label, s.line, s.counts) for s in outcome.steps]
+    assert got == reference_steps(path)
+    # every calling line shows up: script functions (9, 14), a script generator (19),
+    # helper modules (26, 31, 33), a callback (27), comprehension, map, step(), with
+    assert {line for _, line, _ in got} == {9, 14, 19, 24, 26, 27, 28, 30, 31, 33, 34, 35, 36, 37}
+
+
+def test_line_of_a_script_function_called_where_a_helper_was_called_before(tmp_path):
+    # same depth below the loop's frame both times: only the innermost script frame is right
+    write(tmp_path, "helper_rec.py", HELPER)
+    path = write(tmp_path, "depth.py", """\
+        import helper_rec
+
+        def mine():
+            createVertex((0, 0, 0))
+
+        for i in range(2):
+            helper_rec.ring(1)
+            mine()
+        """)
+    outcome = execute(path)
+    assert [s.line for s in outcome.steps] == [7, 4, 7, 4]
+
+
+def test_helper_generator_driven_from_two_lines_reports_each_line(tmp_path):
+    write(tmp_path, "helper_rec.py", HELPER)
+    path = write(tmp_path, "gens.py", """\
+        import helper_rec
+
+        it = helper_rec.points(4)
+        next(it)
+        next(it)
+        for _ in it:
+            pass
+        """)
+    outcome = execute(path)
+    assert [s.line for s in outcome.steps] == [4, 5, 6, 6]
+
+
+def test_counts_follow_the_current_object_through_switch_and_kill(tmp_path):
+    path = write(tmp_path, "objects.py", """\
+        createVertex((0, 0, 0))
+        load("cube")
+        switch(0)
+        createVertex((1, 0, 0))
+        kill(0)
+        step("cube is current")
+        deleteEdge(edges()[0])
+        kill(1)
+        step("empty")
+        """)
+    outcome = execute(path)
+    assert outcome.status == "ok", outcome.error
+    assert [(s.label, s.counts) for s in outcome.steps] == [
+        ("createVertex", (1, 0, 1)), ("load cube", (8, 12, 6)), ("createVertex", (2, 0, 2)),
+        ("cube is current", (8, 12, 6)), ("deleteEdge", (8, 11, 5)), ("empty", (0, 0, 0))]
+
+
+def test_steps_are_the_records_they_always_were(tmp_path):
+    path = write(tmp_path, "plain.py", "for i in range(3):\n    createVertex((i, 0, 0))\n")
+    steps = execute(path).steps
+    first = steps[0]
+    assert isinstance(first, StepRecord)
+    assert (first.index, first.label, first.line, first.counts) == (0, "createVertex", 2, (1, 0, 1))
+    assert 0.0 <= first.elapsed <= steps[-1].elapsed
+    records = tuple(steps)
+    assert steps == records and records == tuple(steps) and hash(steps) == hash(records)
+    assert steps[-1] == records[2] and steps[1:] == records[1:] and list(reversed(steps))[0] == records[2]
+    assert pickle.loads(pickle.dumps(steps)) == records
+    with pytest.raises(IndexError):
+        steps[3]
+    assert StepList([], 0, 0.0) == () and steps != records[:2]
+
+
+def test_a_view_of_the_steps_keeps_its_length_while_the_run_goes_on():
+    scene = Scene()
+    recorder = StepRecorder("/virtual/script.py", scene, None)
+    scene.step_hook = recorder.hook
+    with use_scene(scene):
+        from livemod.dlfl import createVertex
+
+        createVertex((0, 0, 0))
+        early = recorder.steps
+        createVertex((1, 0, 0))
+    assert len(early) == 1 and len(recorder.steps) == 2
+    assert early[0] == recorder.steps[0] and early[0].line is None  # not called from the script
+
+
+def test_the_run_does_not_keep_a_script_frame_alive(tmp_path):
+    path = write(tmp_path, "frames.py", """\
+        import weakref
+        from livemod.dlfl import current_scene
+
+        class Big:
+            pass
+
+        def make():
+            big = Big()
+            current_scene().parameters["big"] = weakref.ref(big)
+            createVertex((0, 0, 0))
+
+        make()
+        """)
+    control = RunControl()
+    outcome = execute(path, control=control)
+    gc.collect()
+    assert outcome.status == "ok" and outcome.scene.parameters["big"]() is None
+
+
+def test_top_level_loops_read_the_cancel_flag_as_a_global():
+    source = '"""doc"""\nfrom __future__ import annotations\nfor i in range(2):\n    pass\n'
+    code = compile_script(source, "/virtual/loop.py")
+    loads = [(i.opname, i.argval) for i in dis.get_instructions(code) if i.argval == CANCEL_FLAG]
+    assert loads == [("LOAD_GLOBAL", CANCEL_FLAG)]
+    namespace = script_namespace("/virtual/loop.py", None)
+    exec(code, namespace)  # noqa: S102  (docstring and __future__ import still come first)
+    assert namespace["__doc__"] == "doc"
