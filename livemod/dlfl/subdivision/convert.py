@@ -274,14 +274,30 @@ def root4(mesh: Mesh, *, weight: float = 0.0, twist: float = 0.0,
     inner = face_weighted(t, m, lambda n: cos_weights(n, HONEYCOMB_ALPHA + 1.25 / n))
     around = vertex_sum(t, inner) / np.maximum(t.valence, 1)[:, None]
     vertices = (1 - weight) * t.pos + weight * around
-    faces = Faces()
-    face_rings(t, t.nv, 0, faces)
+    build_paired(mesh, t, np.concatenate([vertices, inner]), *root4_layout(t))
+
+
+def root4_layout(t: Topology) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Root-4's corners with mates computed directly.
+
+    Points: vertices, then corner c's at V + c. Layout: face polygons (corner c
+    at c), edge hexagons (edge k at C + 6k: end of a, next a, a, start of a,
+    next b, b, for its sides a, b). Also the layout of the GUI's dual-loop.
+    Returns the new corners' vertices and mates, the face sizes and hole flags.
+    """
+    nc, v, c = t.nc, t.nv, np.arange(t.nc)
     a, b = t.edge_corners[:, 0], t.edge_corners[:, 1]
-    na, nb, nc, v = t.nxt[a], t.nxt[b], t.nc, t.nv
+    na, nb, prv = t.nxt[a], t.nxt[b], t.prv
+    is_a = a[t.edge] == c
+    hexagon = nc + 6 * t.edge
+    leaving = hexagon + np.where(is_a, 2, 5)  # the spoke from c's point to c's vertex
+    arriving = hexagon[prv] + np.where(is_a[prv], 0, 3)  # from c's vertex to c's point
     verts = np.stack([t.cv[na], v + na, v + a, t.cv[a], v + nb, v + b], axis=1)
-    labels = np.stack([nc + na, a, nc + a, nc + nb, b, nc + b], axis=1)
-    faces.add(verts, labels, np.zeros(len(a), dtype=bool))
-    build(mesh, t, np.concatenate([vertices, inner]), faces)
+    mates = np.stack([leaving[na], a, arriving[a], leaving[nb], b, arriving[b]], axis=1)
+    sizes = np.concatenate([t.sizes, np.full(t.ne, 6, dtype=np.int64)])
+    hole = np.concatenate([t.hole, np.zeros(t.ne, dtype=bool)])
+    return (np.concatenate([v + c, verts.ravel()]),
+            np.concatenate([hexagon + np.where(is_a, 1, 4), mates.ravel()]), sizes, hole)
 
 
 def pentagon_preserve(mesh: Mesh, *, scale: float = 0.75,
