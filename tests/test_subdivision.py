@@ -467,6 +467,9 @@ ONE_STEP = [
     ("12.6.4", "dual-12.6.4", {"scale": -0.4}),
     ("dual-pentagon-preserving", "pentagon-preserve", {"scale": 0.3}),
     ("dual-pentagon-preserving", "pentagon-preserve", {}),
+    ("dual-loop", "loop", {}), ("root3", "honeycomb", {}), ("root-3", "honeycomb", {}),
+    ("six-preserving-loop-style", "root4", {}),
+    ("six-preserving-loop-style", "root4", {"weight": 0.4, "twist": 0.2}),
 ]
 
 

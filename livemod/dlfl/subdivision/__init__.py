@@ -27,9 +27,9 @@ leaves the mesh unchanged (its steps pass arrays along and the mesh is built onc
 at the end). Where the composition allows, a composite computes its result
 directly: ``cubic-pentagonalization`` is :func:`pentagon` with the double dual's
 vertex positions, ``dual-checkerboard`` is :func:`checker`'s topology with the
-positions of the dual of checker on the dual, ``12.6.4`` and
-``dual-pentagon-preserving`` lay out the final dual over the old corners
-(:mod:`.composites`); the same mesh up to the order of its elements. Aliases: "dual-pentagon" = "pentagon-preserve" (TopMod's Python
+positions of the dual of checker on the dual; the other composites but
+``dual-pentagonalization`` lay out the final dual over the old corners
+(:mod:`.composites`). The same mesh up to the order of its elements. Aliases: "dual-pentagon" = "pentagon-preserve" (TopMod's Python
 name), "allfaces" = "linear-vertex" (Python's ``subdivideAllFaces``); GUI
 "Stellate" is ``linear-vertex`` with ``usequads=False``. ``sierpinsky`` (TopMod's
 ``multiConnectMidpoints``, TOPMOD.md section 5) and ``modified-corner-cut`` are
@@ -50,7 +50,13 @@ from typing import Any
 from ..errors import DLFLError
 from ..mesh import Mesh
 from ._layout import Pending, build_pending, read_topology, settings
-from .composites import dual_pentagon_preserving, twelve_six_four
+from .composites import (
+    dual_loop,
+    dual_pentagon_preserving,
+    root3,
+    six_preserving_loop_style,
+    twelve_six_four,
+)
 from .convert import (
     cubic_pentagonalization,
     double_stellate,
@@ -158,14 +164,13 @@ SCHEMES: dict[str, Scheme] = {
     "sierpinsky": sierpinsky,
 }
 COMPOSITES: dict[str, Scheme] = {
-    "root3": _composite("root3", (dual, honeycomb, dual), 1),
-    "root-3": _composite("root-3", (dual, honeycomb, dual), 1),
+    "root3": root3,
+    "root-3": root3,
     "cubic-pentagonalization": cubic_pentagonalization,
     "dual-pentagonalization": _composite("dual-pentagonalization", (dual, pentagon, dual), 1),
     "dual-pentagon-preserving": dual_pentagon_preserving,
-    "six-preserving-loop-style": _composite(
-        "six-preserving-loop-style", (dual, root4, dual), 1),
-    "dual-loop": _composite("dual-loop", (dual, loop, dual), 1),
+    "six-preserving-loop-style": six_preserving_loop_style,
+    "dual-loop": dual_loop,
     "12.6.4": twelve_six_four,
     "dual-checkerboard": dual_checkerboard,
 }
@@ -218,9 +223,9 @@ def subdivide(mesh: Mesh, scheme: str, **options: Any) -> None:
 __all__ = [
     "SCHEMES", "catmull_clark", "checker", "corner_cut", "cubic_pentagonalization", "dome",
     "doo_sabin", "doo_sabin_bc", "doo_sabin_bc_new", "double_stellate", "dual", "dual_1264",
-    "dual_checkerboard", "dual_pentagon_preserving", "fractal", "honeycomb",
+    "dual_checkerboard", "dual_loop", "dual_pentagon_preserving", "fractal", "honeycomb",
     "linear_vertex", "loop", "loop_style", "modified_corner_cut", "pentagon",
-    "pentagon_preserve", "root4", "scheme_options", "settings", "sierpinsky", "simplest", "sqrt3", "star",
-    "stellate", "subdivide", "subdivide_all_edges", "subdivide_faces", "triangulate",
-    "twelve_six_four", "vertex_cut",
+    "pentagon_preserve", "root3", "root4", "scheme_options", "settings", "sierpinsky",
+    "simplest", "six_preserving_loop_style", "sqrt3", "star", "stellate", "subdivide",
+    "subdivide_all_edges", "subdivide_faces", "triangulate", "twelve_six_four", "vertex_cut",
 ]

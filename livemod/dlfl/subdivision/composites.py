@@ -25,11 +25,15 @@ from ._layout import (
     build_paired,
     check_budget,
     check_number,
+    cos_weights,
     read_topology,
     ring_sums,
+    ring_weighted,
     rows,
     vertex_sum,
 )
+from .convert import HONEYCOMB_ALPHA, root4_layout
+from .smooth import corner_cut_layout
 
 
 def _check_steps(t: Topology, steps: list[tuple[int, str]], max_faces: int | None) -> None:
@@ -184,3 +188,151 @@ def _dual_pentagon_layout(t: Topology) -> tuple[np.ndarray, np.ndarray, np.ndarr
     sizes = np.concatenate([t.sizes, np.full(ne, 4, dtype=np.int64),
                             np.full(nc, 3, dtype=np.int64)])
     return verts, mates, sizes, np.zeros(t.nf + ne + nc, dtype=bool)
+
+
+def dual_loop(mesh: Mesh, *, max_faces: int | None = None) -> None:
+    """GUI "Dual Loop Subdivision" (TopMod: dual, loop, dual), in one step.
+
+    The result has :func:`root4`'s topology: a point per old vertex (the mean of
+    Loop's edge points on the dual around it) and per old corner c (the
+    centroid of Loop's corner triangle of c on the dual: the dual's vertex of
+    face c, smoothed, and the edge points across the edges of prev c and c).
+    Cube: 32/48/18 (6 quads, 12 hexagons).
+
+    Raises:
+        DLFLError: the face budget.
+    """
+    t = read_topology(mesh)
+    _check_steps(t, [(t.nv, "dual"), (t.nc + t.nv, "loop"), (t.nf + t.ne, "dual")], max_faces)
+    cen = t.centroids()
+    edge_points = rows(_loop_edge_points_on_dual(t, cen), t.edge)
+    corner_points = rows(_loop_vertices_on_dual(t, cen), t.face)
+    corner_points += rows(edge_points, t.prv)
+    corner_points += edge_points
+    corner_points /= 3.0
+    centre = vertex_sum(t, edge_points) / np.maximum(t.valence, 1)[:, None]
+    verts, mates, sizes, _ = root4_layout(t)
+    build_paired(mesh, t, np.concatenate([centre, corner_points]), verts, mates, sizes,
+                 np.zeros(len(sizes), dtype=bool))
+
+
+def _loop_vertices_on_dual(t: Topology, cen: np.ndarray) -> np.ndarray:
+    """``(F, 3)`` Loop's vertex points on the dual: the dual's vertex of face f has
+    valence ``size(f)`` and the centroids across f's edges as neighbours."""
+    n = np.maximum(t.sizes, 1).astype(np.float64)
+    beta = (0.625 - (0.375 + 0.25 * np.cos(2 * np.pi / n)) ** 2) / n
+    sums = ring_sums(t.offsets, cen, t.face[t.mate])
+    return (1 - n * beta)[:, None] * cen + beta[:, None] * sums
+
+
+def _loop_edge_points_on_dual(t: Topology, cen: np.ndarray) -> np.ndarray:
+    """``(E, 3)`` Loop's edge points on the dual, for the dual's edge across each
+    edge (sides a, b): its ends are faces a and b; the wings are the faces across
+    the edges next to a and b (on triangles, all valences 3, the opposite ones)."""
+    a, b = t.edge_corners[:, 0], t.edge_corners[:, 1]
+    face, mate, nxt, prv = t.face, t.mate, t.nxt, t.prv
+    ends = rows(cen, face[a]) + rows(cen, face[b])
+    if len(t.valence) and t.valence.min() == t.valence.max() == 3:
+        opposite = rows(cen, face[mate[nxt[a]]]) + rows(cen, face[mate[nxt[b]]])
+        return 0.375 * ends + 0.125 * opposite
+    wings = rows(cen, face[mate[nxt[a]]]) + rows(cen, face[mate[prv[b]]])
+    wings += rows(cen, face[mate[nxt[b]]])
+    wings += rows(cen, face[mate[prv[a]]])
+    return 0.375 * ends + 0.0625 * wings
+
+
+def _honeycomb_on_dual(t: Topology, values: np.ndarray) -> np.ndarray:
+    """``(C, 3)``: honeycomb's per-corner weights (as :func:`honeycomb` and
+    :func:`root4` apply them) over the dual's faces, the vertex rings; ``values``
+    ``(C, 3)`` holds the dual's per-corner values at the old corners."""
+    order, offsets = t.vertex_rings()
+    out = np.empty_like(values)
+    out[order] = ring_weighted(offsets, rows(values, order),
+                               lambda n: cos_weights(n, HONEYCOMB_ALPHA + 1.25 / n))
+    return out
+
+
+def root3(mesh: Mesh, *, max_faces: int | None = None) -> None:
+    """GUI "Root-3" (TopMod: dual, honeycomb, dual), in one step.
+
+    The result has :func:`sqrt3`'s topology (per old corner c the triangle of
+    its vertex and the faces on both sides of the edge of prev c): a point per
+    old vertex (``Cv``) and per old face (the centroid of honeycomb's polygon of
+    the dual's vertex of f: the honeycomb points of f's corners and of the
+    corners after their mates). Cube: 14/36/24 triangles.
+
+    Raises:
+        DLFLError: the face budget.
+    """
+    t = read_topology(mesh)
+    _check_steps(t, [(t.nv, "dual"), (t.nf + t.nv, "honeycomb"), (t.nc, "dual")], max_faces)
+    cen = t.centroids()
+    faces = t.face[t.edge_corners]
+    mids = 0.5 * (rows(cen, faces[:, 0]) + rows(cen, faces[:, 1]))
+    points = _honeycomb_on_dual(t, rows(mids, t.edge[t.prv]))
+    around = ring_sums(t.offsets, points)
+    around += ring_sums(t.offsets, points, t.nxt[t.mate])
+    around /= 2.0 * np.maximum(t.sizes, 1)[:, None]
+    positions = np.concatenate([_vertex_centres(t, cen), around])
+    verts, mates = _root3_triangles(t)
+    build_paired(mesh, t, positions, verts, mates, np.full(t.nc, 3, dtype=np.int64),
+                 np.zeros(t.nc, dtype=bool))
+
+
+def _root3_triangles(t: Topology) -> tuple[np.ndarray, np.ndarray]:
+    """One triangle per corner c at 3c (vertex, face c, face vprev(c)), mates
+    computed directly. Returns the ``(3C,)`` vertex and mate of every new corner."""
+    nxt, mate, vprev = t.nxt, t.mate, t.vprev
+    verts = np.empty((t.nc, 3), dtype=np.int64)
+    verts[:, 0] = t.cv
+    verts[:, 1] = t.nv + t.face
+    verts[:, 2] = verts[:, 1][vprev]
+    mates = np.empty((t.nc, 3), dtype=np.int64)
+    mates[:, 0] = 3 * nxt[mate] + 2
+    mates[:, 1] = 3 * nxt[vprev] + 1
+    mates[:, 2] = 3 * vprev
+    return verts.ravel(), mates.ravel()
+
+
+def six_preserving_loop_style(mesh: Mesh, *, weight: float = 0.0, twist: float = 0.0,
+                              max_faces: int | None = None) -> None:
+    """GUI six-preservation "Loop Style" (TopMod: dual, root4(a, twist), dual), in
+    one step.
+
+    The result has Loop's topology (a triangle per old corner, the polygon of
+    its edges' points per old face): a point per old vertex (``Cv``) and per old
+    edge (the centroid of root4's hexagon on the dual: the dual's vertices of
+    its two faces, moved by ``weight``, and root4's inner points of its four
+    corners). Cube: 20/48/30.
+
+    Raises:
+        DLFLError: a bad option value, or the face budget.
+    """
+    weight = check_number("weight", weight)
+    twist = check_number("twist", twist)
+    t = read_topology(mesh)
+    _check_steps(t, [(t.nv, "dual"), (t.nv + t.ne, "root4"), (t.nf + t.nc, "dual")], max_faces)
+    cen = t.centroids()
+    p = rows(cen, t.face)
+    inner = _honeycomb_on_dual(t, (1 - twist) * p + twist * rows(p, t.vprev))
+    around = ring_sums(t.offsets, inner) / np.maximum(t.sizes, 1)[:, None]
+    moved = (1 - weight) * cen + weight * around
+    positions = np.concatenate([_vertex_centres(t, cen), _hexagon_centres(t, moved, inner)])
+    verts, mates, sizes = corner_cut_layout(t)
+    build_paired(mesh, t, positions, verts, mates, sizes, np.zeros(len(sizes), dtype=bool))
+
+
+def _hexagon_centres(t: Topology, moved: np.ndarray, inner: np.ndarray) -> np.ndarray:
+    """``(E, 3)``: per edge (sides a, b), the centroid of root4's hexagon on the
+    dual, summed in its order: the dual's vertices ``moved`` ``(F, 3)`` of faces
+    a and b, the ``inner`` ``(C, 3)`` points of a, b and the corners after them."""
+    a, b = t.edge_corners[:, 0], t.edge_corners[:, 1]
+    na, nb = t.nxt[a], t.nxt[b]
+    out = rows(moved, t.face[b])
+    out += rows(inner, b)
+    out += rows(inner, na)
+    out += rows(moved, t.face[a])
+    out += rows(inner, a)
+    out += rows(inner, nb)
+    out /= 6.0
+    return out

@@ -124,10 +124,21 @@ def loop(mesh: Mesh, *, max_faces: int | None = None) -> None:
 
 
 def _corner_cut_faces(mesh: Mesh, t: Topology, positions: np.ndarray) -> None:
-    """Loop's topology, mates computed directly: corner triangle of c at 3c..3c+2,
-    then the inner polygons in the old corner layout (corner 3C + c).
+    """Build Loop's topology (:func:`corner_cut_layout`); faces made from a hole
+    face are holes. ``positions``: ``(V + E, 3)``, the old vertices' new points,
+    then the edge points."""
+    verts, mates, sizes = corner_cut_layout(t)
+    hole = np.concatenate([np.repeat(t.hole, t.sizes), t.hole])
+    build_paired(mesh, t, positions, verts, mates, sizes, hole)
 
-    ``positions``: ``(V + E, 3)``, the old vertices' new points, then the edge points.
+
+def corner_cut_layout(t: Topology) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Loop's topology, mates computed directly: corner triangle of c at 3c..3c+2
+    (vertex, edge point V + edge(c), edge point of prev c), then the inner
+    polygons of edge points in the old corner layout (corner 3C + c).
+
+    Returns the ``(4C,)`` vertex and mate of every new corner and the
+    ``(C + F,)`` face sizes.
     """
     nxt, prv, mate, nc = t.nxt, t.prv, t.mate, t.nc
     # filled in place: no int32 -> int64 concatenation of ~4C entries
@@ -143,9 +154,7 @@ def _corner_cut_faces(mesh: Mesh, t: Topology, positions: np.ndarray) -> None:
     tri_mate[:, 1] = 3 * nc + prv
     tri_mate[:, 2] = 3 * mate[prv]
     mates[3 * nc :] = 3 * nxt + 1
-    sizes = np.concatenate([np.full(nc, 3, dtype=np.int64), t.sizes])
-    hole = np.concatenate([np.repeat(t.hole, t.sizes), t.hole])
-    build_paired(mesh, t, positions, verts, mates, sizes, hole)
+    return verts, mates, np.concatenate([np.full(nc, 3, dtype=np.int64), t.sizes])
 
 
 def _loop_edge_points(t: Topology, columns: np.ndarray, out: np.ndarray) -> None:
