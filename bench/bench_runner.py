@@ -24,6 +24,7 @@ import statistics
 import sys
 import tempfile
 import time
+import timeit
 
 from livemod.dlfl import from_polygons
 from livemod.dlfl.scene import Scene, use_scene
@@ -141,34 +142,35 @@ def print_overhead(title: str, ways: dict[str, tuple[float, float, float]],
           f"{100 * (nm / bm - 1):+.1f} %)")
 
 
-def bench_hook_cost(repeats: int) -> tuple[float, float, float]:
-    """Least seconds per call over ``repeats`` timings (load inflates the least
-    least): (the runner's step hook plus building its record, a no-op hook, one
-    createVertex command with no hook)."""
-    import timeit
-
+def bench_hook_cost(repeats: int, n: int = 20000) -> tuple[float, float, float, float]:
+    """Least seconds per command over ``repeats`` interleaved timings (load inflates
+    the least least) of createVertex called from a loop compiled as the script, as
+    in a run: (the runner's step hook minus none, a no-op hook minus none, no hook,
+    reading one recorded step back as a StepRecord)."""
     from livemod.dlfl import createVertex
-    from livemod.runner.execute import StepRecorder
+    from livemod.runner.recording import StepRecorder
 
     script = "/bench/fake_script.py"
-    scene = Scene()
-    scene.add(grid_mesh(10))
-    recorder = StepRecorder(script, scene, None)
-    caller = compile("def call(hook):\n    hook('step')\n", script, "exec")
-    namespace: dict = {}
-    exec(caller, namespace)
-    call, hook, n = namespace["call"], recorder.hook, 20000
-
-    def record_and_build() -> None:
-        call(hook)
-
-    hook_s = min(timeit.repeat(record_and_build, number=n, repeat=repeats)) / n
-    build_s = min(timeit.repeat(lambda: recorder.steps[-1:], number=1, repeat=1))
-    noop_s = min(timeit.repeat(lambda: call(lambda label: None), number=n, repeat=repeats)) / n
-    with use_scene(Scene()):
-        command_s = min(timeit.repeat(lambda: createVertex((0.0, 0.0, 0.0)), number=n,
-                                      repeat=repeats)) / n
-    return hook_s + build_s / len(recorder._raw), noop_s, command_s
+    namespace: dict = {"createVertex": createVertex}
+    exec(compile("def loop(n):\n    for i in range(n):\n        createVertex((0.0, 0.0, 0.0))\n",
+                 script, "exec"), namespace)
+    hooks = {"none": lambda scene: None, "noop": lambda scene: lambda label: None,
+             "runner": lambda scene: StepRecorder(script, scene, None).hook}
+    best = dict.fromkeys(hooks, float("inf"))
+    for _ in range(repeats):
+        for name, make in hooks.items():
+            scene = Scene()
+            scene.step_hook = make(scene)
+            with use_scene(scene):
+                cpu = time.process_time()
+                namespace["loop"](n)
+                best[name] = min(best[name], (time.process_time() - cpu) / n)
+    recorder = StepRecorder(script, Scene(), None)
+    with use_scene(recorder.scene):
+        recorder.scene.step_hook = recorder.hook
+        namespace["loop"](1000)
+    read = min(timeit.repeat(lambda: list(recorder.steps), number=1, repeat=repeats)) / 1000
+    return best["runner"] - best["none"], best["noop"] - best["none"], best["none"], read
 
 
 def _wait_ok(session: LiveSession, timeout: float = 30.0):
@@ -323,10 +325,11 @@ def main(argv: list[str] | None = None) -> int:
     debounce = 0.15
     print(f"python {sys.version.split()[0]}, {os.cpu_count()} cpus")
     with tempfile.TemporaryDirectory() as folder:
-        hook_s, noop_s, command_s = bench_hook_cost(repeats)
-        print(f"per step (least of {repeats}): recording {hook_s * 1e6:.2f} us, a no-op hook "
-              f"{noop_s * 1e6:.2f} us, one createVertex {command_s * 1e6:.2f} us -> recording "
-              f"adds {100 * hook_s / command_s:.0f} % to the smallest command")
+        hook_s, noop_s, command_s, read_s = bench_hook_cost(repeats)
+        print(f"per step (least of {repeats}, load {os.getloadavg()[0]:.1f}): recording "
+              f"{hook_s * 1e6:.2f} us, a no-op hook {noop_s * 1e6:.2f} us, one createVertex "
+              f"{command_s * 1e6:.2f} us -> recording adds {100 * hook_s / command_s:.0f} % to "
+              f"the smallest command; reading a step back later {read_s * 1e6:.2f} us")
         print_overhead("10,000 createVertex", bench_step_overhead(folder, repeats), repeats)
         base = Scene()
         base.add(grid_mesh(100))
