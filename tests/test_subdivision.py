@@ -470,6 +470,8 @@ ONE_STEP = [
     ("dual-loop", "loop", {}), ("root3", "honeycomb", {}), ("root-3", "honeycomb", {}),
     ("six-preserving-loop-style", "root4", {}),
     ("six-preserving-loop-style", "root4", {"weight": 0.4, "twist": 0.2}),
+    ("dual-pentagonalization", "pentagon", {}),
+    ("dual-pentagonalization", "pentagon", {"offset": 0.3}),
 ]
 
 

@@ -22,14 +22,14 @@ dual-loop                  dual, loop, dual
 dual-checkerboard          dual, checker, dual
 ========================== ===========================================
 
-Otherwise a composite's options go to its middle step. A composite that fails
-leaves the mesh unchanged (its steps pass arrays along and the mesh is built once,
-at the end). Where the composition allows, a composite computes its result
-directly: ``cubic-pentagonalization`` is :func:`pentagon` with the double dual's
-vertex positions, ``dual-checkerboard`` is :func:`checker`'s topology with the
-positions of the dual of checker on the dual; the other composites but
-``dual-pentagonalization`` lay out the final dual over the old corners
-(:mod:`.composites`). The same mesh up to the order of its elements. Aliases: "dual-pentagon" = "pentagon-preserve" (TopMod's Python
+Otherwise a composite's options go to its middle step. Each composite computes
+its result in one step (the face budget is checked before anything is built; a
+failure leaves the mesh unchanged): ``cubic-pentagonalization`` is :func:`pentagon`
+with the double dual's vertex positions, ``dual-checkerboard`` is
+:func:`checker`'s topology with the positions of the dual of checker on the
+dual; the others lay out the final dual over the old corners
+(:mod:`.composites`). The same mesh as the three steps up to the order of its
+elements and rounding. Aliases: "dual-pentagon" = "pentagon-preserve" (TopMod's Python
 name), "allfaces" = "linear-vertex" (Python's ``subdivideAllFaces``); GUI
 "Stellate" is ``linear-vertex`` with ``usequads=False``. ``sierpinsky`` (TopMod's
 ``multiConnectMidpoints``, TOPMOD.md section 5) and ``modified-corner-cut`` are
@@ -49,10 +49,11 @@ from typing import Any
 
 from ..errors import DLFLError
 from ..mesh import Mesh
-from ._layout import Pending, build_pending, read_topology, settings
+from ._layout import read_topology, settings
 from .composites import (
     dual_loop,
     dual_pentagon_preserving,
+    dual_pentagonalization,
     root3,
     six_preserving_loop_style,
     twelve_six_four,
@@ -115,23 +116,6 @@ def sierpinsky(mesh: Mesh, *, max_faces: int | None = None) -> None:
     run(mesh)
 
 
-def _composite(name: str, steps: tuple[Scheme, Scheme, Scheme], main: int) -> Scheme:
-    """A scheme running three ``steps``; its options go to ``steps[main]``."""
-
-    def run(mesh: Mesh, *, max_faces: int | None = None, **options: Any) -> None:
-        # the steps pass arrays along; the mesh is built once, after the last step
-        work = Pending(read_topology(mesh))
-        for index, step in enumerate(steps):
-            step(work, max_faces=max_faces, **(options if index == main else {}))
-        build_pending(mesh, work)
-
-    names = ", ".join(step.__name__ for step in steps)
-    run.__name__ = name.replace("-", "_").replace(".", "_")
-    run.__doc__ = f"GUI composite scheme {name!r}: {names}; options go to {steps[main].__name__}."
-    run.__signature__ = inspect.signature(steps[main])  # type: ignore[attr-defined]
-    return run
-
-
 SCHEMES: dict[str, Scheme] = {
     "loop": loop,
     "checker": checker,
@@ -167,7 +151,7 @@ COMPOSITES: dict[str, Scheme] = {
     "root3": root3,
     "root-3": root3,
     "cubic-pentagonalization": cubic_pentagonalization,
-    "dual-pentagonalization": _composite("dual-pentagonalization", (dual, pentagon, dual), 1),
+    "dual-pentagonalization": dual_pentagonalization,
     "dual-pentagon-preserving": dual_pentagon_preserving,
     "six-preserving-loop-style": six_preserving_loop_style,
     "dual-loop": dual_loop,
@@ -223,7 +207,8 @@ def subdivide(mesh: Mesh, scheme: str, **options: Any) -> None:
 __all__ = [
     "SCHEMES", "catmull_clark", "checker", "corner_cut", "cubic_pentagonalization", "dome",
     "doo_sabin", "doo_sabin_bc", "doo_sabin_bc_new", "double_stellate", "dual", "dual_1264",
-    "dual_checkerboard", "dual_loop", "dual_pentagon_preserving", "fractal", "honeycomb",
+    "dual_checkerboard", "dual_loop", "dual_pentagon_preserving",
+    "dual_pentagonalization", "fractal", "honeycomb",
     "linear_vertex", "loop", "loop_style", "modified_corner_cut", "pentagon",
     "pentagon_preserve", "root3", "root4", "scheme_options", "settings", "sierpinsky",
     "simplest", "six_preserving_loop_style", "sqrt3", "star", "stellate", "subdivide",

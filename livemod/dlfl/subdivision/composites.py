@@ -336,3 +336,61 @@ def _hexagon_centres(t: Topology, moved: np.ndarray, inner: np.ndarray) -> np.nd
     out += rows(inner, nb)
     out /= 6.0
     return out
+
+
+def dual_pentagonalization(mesh: Mesh, *, offset: float = 0.0,
+                           max_faces: int | None = None) -> None:
+    """GUI "Dual Pentagonalization" (TopMod: dual, pentagon(offset), dual), in one step.
+
+    The result has a vertex per old corner c (the centroid of pentagon's
+    pentagon of c on the dual) and per old face the polygon of its corners'
+    points, per old corner c the triangle (c, prev c, vprev(c)) and per old
+    vertex the polygon of its ring. Cube: 24/60/38 (32 triangles, 6 quads).
+
+    Raises:
+        DLFLError: a bad ``offset``, or the face budget.
+    """
+    offset = check_number("offset", offset)
+    t = read_topology(mesh)
+    _check_steps(t, [(t.nv, "dual"), (t.nc, "pentagon"), (t.nf + t.nc + t.nv, "dual")],
+                 max_faces)
+    build_paired(mesh, t, _pentagon_centres(t, offset), *_dual_pentagonalization_layout(t))
+
+
+def _pentagon_centres(t: Topology, offset: float) -> np.ndarray:
+    """``(C, 3)``: per corner c, the centroid of :func:`pentagon`'s pentagon of c
+    on the dual: the dual's face centroid ``Cv``, its trisection points ("near")
+    of next(mate c) and next c, its vertex (face c's centroid) and near(c),
+    summed in the pentagon's order."""
+    cen = t.centroids()
+    c_v = rows(_vertex_centres(t, cen), t.cv)
+    p = rows(cen, t.face)
+    near = p + (rows(p, t.vprev) - p) / 3.0
+    near += offset * (c_v - near)
+    out = c_v
+    out += rows(near, t.nxt[t.mate])
+    out += rows(near, t.nxt)
+    out += p
+    out += near
+    out /= 5.0
+    return out
+
+
+def _dual_pentagonalization_layout(t: Topology) -> tuple[np.ndarray, np.ndarray, np.ndarray,
+                                                           np.ndarray]:
+    """:func:`dual_pentagonalization`'s corners, mates computed directly.
+
+    Layout: face polygons (corner c at c), triangles (at C + 3c: c, prev c,
+    vprev(c)), vertex polygons (ring position q at 4C + q, in
+    :meth:`Topology.vertex_rings` order). Returns the new corners' vertices and
+    mates, the face sizes and hole flags.
+    """
+    nc, c, vprev = t.nc, np.arange(t.nc), t.vprev
+    order, offsets = t.vertex_rings()
+    position = np.empty(nc, dtype=np.int64)
+    position[order] = 4 * nc + c
+    verts = np.concatenate([c, np.stack([c, t.prv, vprev], axis=1).ravel(), order])
+    tri_mate = np.stack([t.prv, nc + 3 * t.nxt[vprev] + 1, position], axis=1)
+    mates = np.concatenate([nc + 3 * t.nxt, tri_mate.ravel(), nc + 3 * order + 2])
+    sizes = np.concatenate([t.sizes, np.full(nc, 3, dtype=np.int64), np.diff(offsets)])
+    return verts, mates, sizes, np.zeros(len(sizes), dtype=bool)
