@@ -158,6 +158,14 @@ def test_number_forms() -> None:
                                        [12345678901234567890.5, 0.1, 0.0]]
 
 
+def test_numbers_without_integer_part_only() -> None:
+    # no number with an integer run at all once sent the fast path out of bounds
+    soup = parse_obj(b"v .5 .25 -.75\nv .1 .2 .3\nv .0 .0 .0\nf 1 2 3\n")
+    assert soup.positions.tolist() == [[0.5, 0.25, -0.75], [0.1, 0.2, 0.3], [0.0, 0.0, 0.0]]
+    with pytest.raises(DLFLError, match="<obj>:1: a v line needs 3 coordinates, got 1"):
+        read_obj(b"v .0")
+
+
 def test_open_mesh_gets_a_hole_and_unused_vertices_become_point_spheres() -> None:
     text = b"v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 5 5 5\nf 1 2 3 4\n"
     mesh = read_obj(text)

@@ -223,6 +223,8 @@ def parse_number_lines(buf: np.ndarray, starts: np.ndarray, want: int) -> tuple[
     bad.append(rs[~allowed])
     rejected = _lines_of(starts, np.concatenate(bad))
     lead = np.flatnonzero(is_int)  # every number starts with its integer run
+    if len(lead) == 0:  # only numbers like ".5": the caller parses every line
+        return np.zeros((num_lines, want)), np.zeros(num_lines, dtype=bool)
     first, counts = _per_line(starts, rs[lead])
     rejected |= counts < want
     values = _numbers(scan, lead, is_frac)
