@@ -263,6 +263,44 @@ def test_doo_sabin_joins_a_valence_two_vertex_by_one_edge():
     assert checked(m) == (48, 84, 38)
 
 
+def _cube_with_dangling_edge() -> Mesh:
+    """The cube plus an edge from a corner of its second face to a new vertex."""
+    m = cube()
+    v = m.create_vertex((0.5, 0.5, 2.0))
+    m.insert_edge(m.face_corners(m.face_ids()[1])[0], m.vertex_corners(v)[0])
+    return m
+
+
+@pytest.mark.parametrize("scheme", ["doo-sabin", "corner-cut"])
+def test_doo_sabin_turns_a_valence_one_vertex_quad_into_a_triangle(scheme):
+    m = _cube_with_dangling_edge()
+    assert checked(m) == (9, 13, 6)
+    subdivide(m, scheme)
+    # V = C = 26; F = F + E + 8 vertices of valence >= 3; genus 0 gives E
+    assert checked(m) == (26, 51, 27)
+    # F-faces: 5 quads and the hexagon that walks the dangling edge; edge faces:
+    # 12 quads and the dangling edge's triangle; vertex faces: 7 triangles and
+    # a quad at the valence-4 end (the valence-1 end gets none)
+    assert dict(face_size_histogram(m)) == {3: 1 + 7, 4: 5 + 12 + 1, 6: 1}
+
+
+def test_doo_sabin_of_a_lone_edge_is_two_two_gons():
+    m = Mesh()
+    a, b = m.create_vertex((0.0, 0.0, 0.0)), m.create_vertex((1.0, 0.0, 0.0))
+    m.insert_edge(m.vertex_corners(a)[0], m.vertex_corners(b)[0])
+    subdivide(m, "doo-sabin")
+    assert checked(m) == (2, 2, 2)
+    assert dict(face_size_histogram(m)) == {2: 2}
+
+
+@pytest.mark.parametrize("scheme", sorted(set(SCHEMES) - {"sierpinsky"}))
+def test_every_scheme_keeps_a_dangling_edge_mesh_valid(scheme):
+    m = _cube_with_dangling_edge()
+    subdivide(m, scheme)
+    checked(m)
+    assert genus(m) == 0
+
+
 def test_path_face_does_not_crash_catmull_clark():
     m = path_face()
     subdivide(m, "catmull-clark")

@@ -99,6 +99,9 @@ def doo_sabin_faces(t: Topology, faces: Faces) -> None:
 
     F-faces (labels ``[0, C)``), one quad per edge, and a V-face per vertex
     (labels ``[C, 2C)``); a valence-2 vertex gets no 2-gon: its two sides merge.
+    At a valence-1 vertex the quad's two corners would share the vertex's one
+    point, so the quad loses one of them and becomes a triangle (an edge
+    dangling from both ends gives a 2-gon).
     """
     face_rings(t, 0, 0, faces)
     rep = merge_two_rings(t)
@@ -106,6 +109,11 @@ def doo_sabin_faces(t: Topology, faces: Faces) -> None:
     na, nb = t.nxt[a], t.nxt[b]
     verts = np.stack([na, a, nb, b], axis=1)
     labels = np.stack([a, t.nc + rep[nb], b, t.nc + rep[na]], axis=1)
-    faces.add(verts, labels, np.zeros(len(a), dtype=bool))
+    # na == b: b's vertex has one corner, so the side b -> na is empty (likewise a)
+    drop = np.zeros(verts.shape, dtype=bool)
+    drop[:, 0], drop[:, 2] = na == b, nb == a
+    labels[drop[:, 0], 3] = labels[drop[:, 0], 0]
+    labels[drop[:, 2], 1] = labels[drop[:, 2], 2]
+    faces.add(verts[~drop], labels[~drop], np.False_, 4 - drop.sum(axis=1))
     corners = np.arange(t.nc)
     vertex_rings(t, corners, t.nc + corners, faces, min_size=3)

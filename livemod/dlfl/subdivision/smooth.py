@@ -292,8 +292,9 @@ def doo_sabin(mesh: Mesh, *, check: bool = True, max_faces: int | None = None) -
     Rule: each corner i of an n-gon gets the point sum_j w_ij v_j with
     w_ii = 1/4 + 5/(4n), w_ij = (3 + 2 cos(2 pi (i - j)/n)) / (4n) (quads:
     9/16, 3/16, 3/16, 1/16). New faces: one per face, one quad per edge, one per
-    vertex of valence >= 3 (a valence-2 vertex joins its two quads by one edge).
-    Cube: 24/48/26. ``check`` (TopMod: skip corners already adjacent when joining)
+    vertex of valence >= 3 (a valence-2 vertex joins its two quads by one edge;
+    at a valence-1 vertex, the end of a dangling edge, the edge's quad is a
+    triangle). Cube: 24/48/26. ``check`` (TopMod: skip corners already adjacent when joining)
     is accepted for compatibility; the vectorized joins never need it.
 
     Raises:
