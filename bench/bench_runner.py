@@ -17,10 +17,12 @@
 from __future__ import annotations
 
 import argparse
+import gc
 import os
 import queue
 import resource
 import statistics
+import subprocess
 import sys
 import tempfile
 import time
@@ -29,12 +31,6 @@ import timeit
 from livemod.dlfl import from_polygons
 from livemod.dlfl.scene import Scene, use_scene
 from livemod.runner import LiveSession, execute
-from livemod.runner.batch import (
-    ProcessPoolVariantExecutor,
-    SerialExecutor,
-    make_variants,
-    run_batch,
-)
 
 SMALL_COMMANDS = (
     "from livemod.dlfl import *\n"
@@ -121,6 +117,9 @@ def bench_step_overhead(folder: str, repeats: int, source: str = SMALL_COMMANDS,
         fn()  # warm up imports and caches
     for _ in range(repeats):
         for name, fn in ways.items():  # interleaved, so load changes hit all alike
+            # the previous way's scene is garbage now: collect it before the clock
+            # starts, or the next way pays for it
+            gc.collect()
             wall, cpu = time.perf_counter(), time.process_time()
             fn()
             times[name].append((time.perf_counter() - wall, time.process_time() - cpu))
@@ -244,24 +243,42 @@ def bench_cancel_latency(folder: str, saves: int, debounce: float) -> float:
         session.join()
 
 
-def bench_batch(folder: str, variants: int, jobs: int) -> tuple[float, float]:
-    """(sequential seconds, pooled seconds) for ``variants`` runs of the grid script."""
+BATCH_CHILD = """
+import sys, time
+from livemod.runner.batch import ProcessPoolVariantExecutor, SerialExecutor, make_variants, run_batch
+path, count, jobs = sys.argv[1], int(sys.argv[2]), int(sys.argv[3])
+work = make_variants(path, [{"size": 60 + i % 4} for i in range(count)], None)
+executor = ProcessPoolVariantExecutor(jobs) if jobs > 1 else SerialExecutor()
+started = time.perf_counter()
+results = run_batch(work, executor, quiet=True)
+took = time.perf_counter() - started
+assert all(r.status == "ok" for r in results), [r.error for r in results]
+print(took, sum(r.elapsed for r in results))
+"""
+
+
+def bench_batch(folder: str, variants: int, jobs: int, repeats: int = 3
+                ) -> tuple[float, float]:
+    """Median (sequential seconds, pooled seconds) for ``variants`` runs of the grid
+    script, each batch in a fresh process as ``livemod batch -j 1`` and ``-j jobs``
+    would run it (a warm benchmark process would favour the sequential side: its
+    heap is already faulted in, a fresh worker's is not)."""
     path = os.path.join(folder, "variant.py")
     with open(path, "w") as handle:
         handle.write(VARIANT)
-    work = make_variants(path, [{"size": 60 + i % 4} for i in range(variants)], None)
-    started = time.perf_counter()
-    serial = run_batch(work, SerialExecutor(), quiet=True)
-    sequential = time.perf_counter() - started
-    started = time.perf_counter()
-    pooled = run_batch(work, ProcessPoolVariantExecutor(jobs), quiet=True)
-    parallel = time.perf_counter() - started
-    assert all(r.status == "ok" for r in serial + pooled), [r.error for r in serial + pooled]
-    busy = sum(r.elapsed for r in pooled) / sum(r.elapsed for r in serial)
-    in_flight = sum(r.elapsed for r in pooled) / parallel
+    runs: dict[int, list[tuple[float, float]]] = {1: [], jobs: []}
+    for _ in range(repeats):
+        for j in runs:  # alternated, so load changes hit both alike
+            out = subprocess.run([sys.executable, "-c", BATCH_CHILD, path, str(variants), str(j)],
+                                 check=True, capture_output=True, text=True).stdout.split()
+            runs[j].append((float(out[0]), float(out[1])))
+    sequential = statistics.median(t for t, _ in runs[1])
+    parallel = statistics.median(t for t, _ in runs[jobs])
+    busy = statistics.median(b for _, b in runs[jobs]) / statistics.median(b for _, b in runs[1])
     print(f"  (variant run time in the pool / alone: {busy:.2f}, above 1 when the cores "
-          f"are shared with other work; variants in flight on average: {in_flight:.2f} "
-          f"of {jobs})")
+          f"are shared with other work; variants in flight on average: "
+          f"{statistics.median(b for _, b in runs[jobs]) / parallel:.2f} of {jobs}; "
+          f"median of {repeats} fresh processes each)")
     return sequential, parallel
 
 
