@@ -154,8 +154,7 @@ class Topology:
 
     def neighbour_mean(self) -> np.ndarray:
         """``(V, 3)`` mean position of each vertex's neighbours (one per corner)."""
-        sums = vertex_sum(self, rows(self.pos, self.cv[self.nxt]))
-        return sums / np.maximum(self.valence, 1)[:, None]
+        return vertex_mean(self, rows(self.pos, self.cv[self.nxt]))
 
     def face_normals(self) -> np.ndarray:
         """``(F, 3)`` unit Newell normal of each face (zero when degenerate)."""
@@ -197,6 +196,12 @@ def normalize(vectors: np.ndarray) -> np.ndarray:
 def vertex_sum(t: Topology, per_corner: np.ndarray) -> np.ndarray:
     """``(V, 3)`` sum of a ``(C, 3)`` per-corner quantity over each vertex's corners."""
     return group_sum(t.cv, per_corner, t.nv)
+
+
+def vertex_mean(t: Topology, per_corner: np.ndarray) -> np.ndarray:
+    """``(V, 3)`` mean of a ``(C, 3)`` per-corner quantity over each vertex's corners
+    (zero at a vertex without corners)."""
+    return vertex_sum(t, per_corner) / np.maximum(t.valence, 1)[:, None]
 
 
 def group_sum(index: np.ndarray, values: np.ndarray, count: int) -> np.ndarray:

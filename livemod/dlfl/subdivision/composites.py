@@ -30,7 +30,7 @@ from ._layout import (
     ring_sums,
     ring_weighted,
     rows,
-    vertex_sum,
+    vertex_mean,
 )
 from .convert import HONEYCOMB_ALPHA, root4_layout
 from .smooth import corner_cut_layout
@@ -49,7 +49,7 @@ def _check_steps(t: Topology, steps: list[tuple[int, str]], max_faces: int | Non
 def _vertex_centres(t: Topology, cen: np.ndarray) -> np.ndarray:
     """``(V, 3)`` ``Cv``: the mean of each vertex's face centroids (one per corner),
     the centroid of the first dual's face of v. ``cen``: ``(F, 3)`` centroids."""
-    return vertex_sum(t, rows(cen, t.face)) / np.maximum(t.valence, 1)[:, None]
+    return vertex_mean(t, rows(cen, t.face))
 
 
 def twelve_six_four(mesh: Mesh, *, scale: float = 0.7, max_faces: int | None = None) -> None:
@@ -210,7 +210,7 @@ def dual_loop(mesh: Mesh, *, max_faces: int | None = None) -> None:
     corner_points += rows(edge_points, t.prv)
     corner_points += edge_points
     corner_points /= 3.0
-    centre = vertex_sum(t, edge_points) / np.maximum(t.valence, 1)[:, None]
+    centre = vertex_mean(t, edge_points)
     verts, mates, sizes, _ = root4_layout(t)
     build_paired(mesh, t, np.concatenate([centre, corner_points]), verts, mates, sizes,
                  np.zeros(len(sizes), dtype=bool))

@@ -37,7 +37,7 @@ from ._layout import (
     normalize,
     read_topology,
     rows,
-    vertex_sum,
+    vertex_mean,
 )
 
 HONEYCOMB_ALPHA = 2 ** -0.5 - 0.25
@@ -272,7 +272,7 @@ def root4(mesh: Mesh, *, weight: float = 0.0, twist: float = 0.0,
     p = rows(t.pos, t.cv)
     m = (1 - twist) * p + twist * rows(t.pos, t.cv[t.nxt])
     inner = face_weighted(t, m, lambda n: cos_weights(n, HONEYCOMB_ALPHA + 1.25 / n))
-    around = vertex_sum(t, inner) / np.maximum(t.valence, 1)[:, None]
+    around = vertex_mean(t, inner)
     vertices = (1 - weight) * t.pos + weight * around
     build_paired(mesh, t, np.concatenate([vertices, inner]), *root4_layout(t))
 
@@ -394,7 +394,7 @@ def cubic_pentagonalization(mesh: Mesh, *, offset: float = 0.0,
     pentagon(work, offset=offset, max_faces=max_faces)
     x = work.topology
     check_budget(x, x.nv, "dual", max_faces)
-    moved = vertex_sum(x, rows(x.centroids(), x.face)) / np.maximum(x.valence, 1)[:, None]
+    moved = vertex_mean(x, rows(x.centroids(), x.face))
     build_paired(mesh, x, moved, x.cv, x.mate, x.sizes, np.zeros(x.nf, dtype=bool))
 
 

@@ -25,6 +25,7 @@ from ._layout import (
     ring_sums,
     ring_weighted,
     rows,
+    vertex_mean,
     vertex_sum,
 )
 
@@ -79,7 +80,7 @@ def dual_checkerboard(mesh: Mesh, *, thickness: float = 0.33,
     inset, near = _checker_on_dual(t, thickness)
     nxt = t.nxt
     side = nxt[t.mate]  # the dual's corner whose side quad lies along the edge of c
-    at_vertex = vertex_sum(t, inset) / np.maximum(t.valence, 1)[:, None]
+    at_vertex = vertex_mean(t, inset)
     at_near = (rows(near, side) + rows(near, nxt) + inset + rows(inset, side)) / 4.0
     at_inset = (rows(t.centroids(), t.face) + near + inset + rows(near, nxt)) / 4.0
     positions = np.concatenate([at_vertex, at_near, at_inset])
@@ -176,7 +177,7 @@ def doo_sabin_bc_new(mesh: Mesh, *, scale: float = 1.0, length: float = 1.0,
     values, offsets = _split_face_values(t)
     ring = _ds_ring(values, offsets, np.zeros(1), scale)
     at_vertex, at_mid = ring[0::2], ring[1::2]
-    around = vertex_sum(t, at_vertex) / np.maximum(t.valence, 1)[:, None]
+    around = vertex_mean(t, at_vertex)
     vertices = length * t.pos + (1 - length) * around
     positions = np.concatenate([vertices, at_vertex, at_mid])
     _bc_new_faces(mesh, t, positions)
