@@ -172,16 +172,21 @@ def bench_hook_cost(repeats: int, n: int = 20000) -> tuple[float, float, float, 
     return best["runner"] - best["none"], best["noop"] - best["none"], best["none"], read
 
 
-def _wait_ok(session: LiveSession, timeout: float = 30.0):
+def _wait_for(session: LiveSession, wanted, what: str, timeout: float):
+    """The next result for which ``wanted(result)`` holds (others are skipped)."""
     deadline = time.monotonic() + timeout
     while time.monotonic() < deadline:
         try:
             result = session.results.get(timeout=0.001)
         except queue.Empty:
             continue
-        if result.preview is None:
+        if wanted(result):
             return result
-    raise RuntimeError("no result")
+    raise RuntimeError(f"{what} not shown")
+
+
+def _wait_ok(session: LiveSession, timeout: float = 30.0):
+    return _wait_for(session, lambda r: r.preview is None, "a result", timeout)
 
 
 def _save(path: str, text: str) -> float:
@@ -290,15 +295,8 @@ LONG_SCRIPT = (
 
 
 def _wait_paused(session: LiveSession, k: int, timeout: float = 120.0):
-    deadline = time.monotonic() + timeout
-    while time.monotonic() < deadline:
-        try:
-            result = session.results.get(timeout=0.001)
-        except queue.Empty:
-            continue
-        if result.status == "paused" and result.step_index == k:
-            return result
-    raise RuntimeError(f"step {k} not shown")
+    return _wait_for(session, lambda r: r.status == "paused" and r.step_index == k,
+                     f"step {k}", timeout)
 
 
 def bench_step_back(folder: str) -> tuple[float, float, float, int]:
