@@ -95,3 +95,14 @@ def test_empty_mesh():
     assert a.counts == (0, 0, 0)
     assert a.face_offsets.tolist() == [0]
     assert a.edge_corners.shape == (0, 2)
+
+
+def test_surface_polygons_leave_out_holes_and_point_spheres():
+    # an open quad (one hole face) plus an unused vertex (a point-sphere face)
+    m = from_polygons([(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (5, 5, 5)], [(0, 1, 2, 3)])
+    a = mesh_arrays(m)
+    assert a.face_sizes.tolist() == [4, 4, 1]
+    assert a.face_is_surface.tolist() == [True, False, False]
+    sizes, vertices = a.surface_polygons()
+    assert sizes.tolist() == [4]
+    assert vertices.tolist() == [0, 1, 2, 3]

@@ -67,6 +67,17 @@ class MeshArrays:
         point_sphere = (sizes == 1) & (self.corner_edge[self.face_offsets[:-1]] < 0)
         return ~self.face_hole & ~point_sphere
 
+    def surface_polygons(self) -> tuple[np.ndarray, np.ndarray]:
+        """The polygons a file writes (see :attr:`face_is_surface`).
+
+        Returns:
+            ``(sizes, vertices)``: ``(S,)`` int64 corner count of each surface
+            face and ``(sum of sizes,)`` dense vertex index of their corners,
+            face after face from each head corner.
+        """
+        sizes, written = self.face_sizes, self.face_is_surface
+        return sizes[written], self.corner_vertex[np.repeat(written, sizes)]
+
     @property
     def corner_next(self) -> np.ndarray:
         """``(C,)`` int64 dense index of the next corner in the same face."""

@@ -346,12 +346,9 @@ def write_obj(mesh: Mesh, path: str | os.PathLike[str]) -> None:
 def obj_bytes(mesh: Mesh) -> bytes:
     """The OBJ text of ``mesh`` (see :func:`write_obj`)."""
     a = mesh_arrays(mesh)
-    sizes = a.face_sizes
-    written = a.face_is_surface
-    corners = np.repeat(written, sizes)
-    header = b"# livemod OBJ: %d vertices, %d faces\n" % (len(a.positions), int(written.sum()))
-    return header + _vertex_text(a.positions) + _face_text(a.corner_vertex[corners] + 1,
-                                                           sizes[written])
+    sizes, vertices = a.surface_polygons()
+    header = b"# livemod OBJ: %d vertices, %d faces\n" % (len(a.positions), len(sizes))
+    return header + _vertex_text(a.positions) + _face_text(vertices + 1, sizes)
 
 
 def _vertex_text(positions: np.ndarray) -> bytes:

@@ -29,10 +29,7 @@ def write_ply(mesh: Mesh, path: str | os.PathLike[str]) -> None:
 def ply_bytes(mesh: Mesh) -> bytes:
     """The binary PLY of ``mesh`` (see :func:`write_ply`)."""
     a = mesh_arrays(mesh)
-    sizes = a.face_sizes
-    written = a.face_is_surface
-    sizes = sizes[written]
-    indices = a.corner_vertex[np.repeat(written, a.face_sizes)]
+    sizes, indices = a.surface_polygons()
     count_type = "uchar" if len(sizes) == 0 or sizes.max() <= 255 else "uint"
     header = "\n".join([
         "ply", "format binary_little_endian 1.0", "comment written by livemod",
