@@ -196,16 +196,6 @@ def _next_in_face(offsets: np.ndarray) -> np.ndarray:
     return nxt
 
 
-def _prev_in_face(offsets: np.ndarray) -> np.ndarray:
-    """``(C,)`` index of the previous corner in the same face, wrapping around."""
-    count = int(offsets[-1])
-    prv = np.arange(-1, count - 1, dtype=np.int64)
-    sizes = np.diff(offsets)
-    starts = offsets[:-1][sizes > 0]
-    prv[starts] = offsets[1:][sizes > 0] - 1
-    return prv
-
-
 def _face_of_corner(offsets: np.ndarray) -> np.ndarray:
     sizes = np.diff(offsets)
     return np.repeat(np.arange(len(sizes), dtype=np.int64), sizes)
