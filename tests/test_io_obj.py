@@ -260,6 +260,24 @@ def test_round_trip_of_random_positions_is_exact(tmp_path: Path) -> None:
     assert np.array_equal(np.signbit(again.positions_view()), np.signbit(positions))
 
 
+def test_a_file_of_many_pieces_is_written_whole_and_reads_back(tmp_path: Path) -> None:
+    from livemod.dlfl.io.obj import _LINES_PER_PASS
+
+    # a strip of quads longer than one writer piece, so write_obj streams several
+    n = _LINES_PER_PASS // 2 + 7
+    x = np.arange(n + 1, dtype=np.float64) / 3.0
+    positions = np.concatenate([np.stack([x, 0 * x, -x], 1), np.stack([x, 1 + 0 * x, x], 1)])
+    k = np.arange(n)
+    mesh = from_polygons(positions, np.stack([k, k + 1, k + n + 2, k + n + 1], 1))
+    path = tmp_path / "strip.obj"
+    write_obj(mesh, path)
+    assert path.read_bytes() == obj_bytes(mesh)
+    again = read_obj(path)
+    validate(again)
+    assert again.counts() == mesh.counts()
+    assert np.array_equal(again.positions_view(), positions)
+
+
 def test_load_and_save_dispatch_by_extension(tmp_path: Path) -> None:
     mesh = read_obj(CUBE)
     for ext in ("obj", "dlfl"):
@@ -297,6 +315,23 @@ def test_float_text_parses_back_to_the_same_bits(values: list[float]) -> None:
     back = np.array([float(t) for t in texts])
     assert np.array_equal(back.view(np.int64), x.view(np.int64))
     assert all(b"e" not in t for t, v in zip(texts, x, strict=True) if 1e-6 <= abs(v) < 1e15)
+    for text, value in zip(texts, x.tolist(), strict=True):
+        ours, shortest = _significant(text), _significant(repr(value).encode())
+        # 15 digits whenever some 15 suffice: then they are the shortest's
+        assert ours == shortest if len(shortest) <= 15 else len(ours) <= 17
+
+
+def _significant(text: bytes) -> bytes:
+    """The significant digits of a decimal (no sign, point, exponent or outer zeros)."""
+    mantissa = text.lower().split(b"e")[0].lstrip(b"-")
+    return mantissa.replace(b".", b"").strip(b"0")
+
+
+def test_float_text_forms() -> None:
+    x = np.array([0.0, -0.0, 1.0, -2.5, 0.1, 1e-6, 1.5e-6, 123456.0, 1e15, 1e-7, 2**0.5, -1e14])
+    texts = [bytes(row[row != 0]) for row in format_floats(x)]
+    assert texts == [b"0", b"-0.0", b"1", b"-2.5", b"0.1", b"0.000001", b"0.0000015",
+                     b"123456", b"1000000000000000.0", b"1e-07", b"1.4142135623730951", b"-100000000000000"]
 
 
 @settings(max_examples=200, deadline=None)

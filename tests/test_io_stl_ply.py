@@ -10,7 +10,14 @@ import numpy as np
 import pytest
 
 from livemod.dlfl import Mesh, from_polygons
-from livemod.dlfl.io import atomic_write, read_obj, save_mesh, write_ply, write_stl
+from livemod.dlfl.io import (
+    atomic_write,
+    read_obj,
+    save_mesh,
+    write_atomically,
+    write_ply,
+    write_stl,
+)
 
 SAMPLES = Path(__file__).resolve().parents[2] / "shared" / "data" / "topmod-objs"
 
@@ -106,6 +113,23 @@ def test_atomic_write_replaces_only_on_success(tmp_path: Path) -> None:
     with atomic_write(path) as handle:
         handle.write(b"new")
     assert path.read_bytes() == b"new"
+    assert os.listdir(tmp_path) == ["a.bin"]
+
+
+def test_pieces_are_written_in_order_and_a_failing_piece_keeps_the_old_file(
+    tmp_path: Path,
+) -> None:
+    path = tmp_path / "a.bin"
+    write_atomically(path, iter([b"one ", b"two ", b"three"]))
+    assert path.read_bytes() == b"one two three"
+
+    def pieces():  # type: ignore[no-untyped-def]
+        yield b"half a file"
+        raise ValueError("the mesh went away")
+
+    with pytest.raises(ValueError, match="went away"):
+        write_atomically(path, pieces())
+    assert path.read_bytes() == b"one two three"
     assert os.listdir(tmp_path) == ["a.bin"]
 
 

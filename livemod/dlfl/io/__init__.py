@@ -13,7 +13,7 @@ from collections.abc import Callable, Mapping
 
 from ..errors import DLFLError
 from ..mesh import Mesh
-from .atomic import atomic_write
+from .atomic import atomic_write, write_atomically
 from .dlflfile import read_dlfl, write_dlfl
 from .obj import read_obj, write_obj
 from .ply import write_ply
@@ -21,7 +21,7 @@ from .stl import write_stl
 
 __all__ = [
     "atomic_write", "load_mesh", "open_mesh", "read_dlfl", "read_obj", "save_mesh", "write_dlfl",
-    "write_obj", "write_ply", "write_stl",
+    "write_atomically", "write_obj", "write_ply", "write_stl",
 ]
 
 READERS: dict[str, Callable[[str], Mesh]] = {"obj": read_obj, "dlfl": read_dlfl}

@@ -12,7 +12,7 @@ from __future__ import annotations
 import contextlib
 import os
 import tempfile
-from collections.abc import Iterator
+from collections.abc import Iterable, Iterator
 from typing import BinaryIO
 
 
@@ -48,14 +48,25 @@ def atomic_write(path: str | os.PathLike[str]) -> Iterator[BinaryIO]:
     _sync_folder(folder)
 
 
-def write_atomically(path: str | os.PathLike[str], data: bytes) -> None:
+def write_atomically(path: str | os.PathLike[str], data: bytes | Iterable[bytes]) -> None:
     """Replace ``path`` with ``data`` through :func:`atomic_write`.
+
+    Args:
+        path: the file to create or replace.
+        data: the contents, or an iterable of pieces written one after another
+            (so a large file never has to exist whole in memory).
 
     Raises:
         OSError: the file cannot be written; an existing file is left intact.
+            Whatever iterating ``data`` raises is re-raised, the file likewise
+            left intact.
     """
     with atomic_write(path) as handle:
-        handle.write(data)
+        if isinstance(data, bytes | bytearray | memoryview):
+            handle.write(data)
+            return
+        for piece in data:
+            handle.write(piece)
 
 
 def _mode_for(target: str) -> int:

@@ -22,7 +22,9 @@ twice, point-spheres. livemod marks hole faces with ``usemtl hole``.
 
 from __future__ import annotations
 
+import itertools
 import os
+from collections.abc import Iterator
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -277,18 +279,26 @@ def write_dlfl(mesh: Mesh, path: str | os.PathLike[str], *, reverse: bool = Fals
         OSError: the file cannot be written; an existing file is left intact.
     """
     stem = os.path.splitext(os.path.basename(os.fspath(path)))[0] or "mesh"
-    text = dlfl_bytes(mesh, stem, reverse=reverse)
-    write_atomically(path, text)
+    write_atomically(path, dlfl_pieces(mesh, stem, reverse=reverse))
 
 
 def dlfl_bytes(mesh: Mesh, mtl_name: str = "mesh", *, reverse: bool = False) -> bytes:
     """The ``.dlfl`` text of ``mesh`` (see :func:`write_dlfl`)."""
+    return b"".join(dlfl_pieces(mesh, mtl_name, reverse=reverse))
+
+
+def dlfl_pieces(mesh: Mesh, mtl_name: str = "mesh", *, reverse: bool = False,
+                ) -> Iterator[bytes]:
+    """The ``.dlfl`` text of ``mesh`` in pieces, for :func:`write_dlfl`.
+
+    Precondition: the mesh is not changed while the pieces are consumed.
+    """
     a = mesh_arrays(mesh)
     header = b"DLFL\nmtllib %s.mtl\n#\n" % mtl_name.encode("utf-8", "replace")
-    return b"".join([
-        header, vertex_lines(a.positions, b"v"), b"#\n", _corner_lines(a), b"#\n",
-        _edge_lines(a, reverse), b"#\n", _face_lines(a, reverse), b"#\n",
-    ])
+    return itertools.chain(
+        [header], vertex_lines(a.positions, b"v"), [b"#\n", _corner_lines(a), b"#\n"],
+        _edge_lines(a, reverse), [b"#\n"], _face_lines(a, reverse), [b"#\n"],
+    )
 
 
 def _corner_lines(a: MeshArrays) -> bytes:
@@ -303,14 +313,14 @@ def _corner_lines(a: MeshArrays) -> bytes:
     ])
 
 
-def _edge_lines(a: MeshArrays, reverse: bool) -> bytes:
+def _edge_lines(a: MeshArrays, reverse: bool) -> Iterator[bytes]:
     ends = a.edge_corners
     if reverse:
         ends = a.corner_next[ends]
     return index_lines(ends.ravel(), np.full(len(ends), 2, dtype=np.int64), b"e")
 
 
-def _face_lines(a: MeshArrays, reverse: bool) -> bytes:
+def _face_lines(a: MeshArrays, reverse: bool) -> Iterator[bytes]:
     """``usemtl`` whenever the material changes, and ``f`` lines of corner indices."""
     corners = np.arange(len(a.corner_vertex), dtype=np.int64)
     if reverse:
@@ -322,12 +332,10 @@ def _face_lines(a: MeshArrays, reverse: bool) -> bytes:
     sizes = a.face_sizes
     runs = np.flatnonzero(np.diff(a.face_hole.astype(np.int8))) + 1
     bounds = [0, *runs.tolist(), len(sizes)]
-    parts = []
     for lo, hi in zip(bounds[:-1], bounds[1:], strict=True):
         if hi == lo:
             continue
         material = HOLE_MATERIAL if a.face_hole[lo] else "default"
         c_lo, c_hi = a.face_offsets[lo], a.face_offsets[hi]
-        parts.append(b"usemtl %s\n" % material.encode())
-        parts.append(index_lines(corners[c_lo:c_hi], sizes[lo:hi], b"f"))
-    return b"".join(parts)
+        yield b"usemtl %s\n" % material.encode()
+        yield from index_lines(corners[c_lo:c_hi], sizes[lo:hi], b"f")

@@ -15,7 +15,9 @@ parser, which also produces the ``file:line: what is wrong`` errors.
 
 from __future__ import annotations
 
+import itertools
 import os
+from collections.abc import Iterator
 from dataclasses import dataclass
 
 import numpy as np
@@ -339,29 +341,34 @@ def write_obj(mesh: Mesh, path: str | os.PathLike[str]) -> None:
     Raises:
         OSError: the file cannot be written; an existing file is left intact.
     """
-    text = obj_bytes(mesh)
-    write_atomically(path, text)
+    write_atomically(path, obj_pieces(mesh))
 
 
 def obj_bytes(mesh: Mesh) -> bytes:
     """The OBJ text of ``mesh`` (see :func:`write_obj`)."""
+    return b"".join(obj_pieces(mesh))
+
+
+def obj_pieces(mesh: Mesh) -> Iterator[bytes]:
+    """The OBJ text of ``mesh`` in pieces of at most ``_LINES_PER_PASS`` lines
+    (for :func:`write_obj`: a million-vertex file is never whole in memory).
+
+    Precondition: the mesh is not changed while the pieces are consumed.
+    """
     a = mesh_arrays(mesh)
     sizes, vertices = a.surface_polygons()
-    header = b"# livemod OBJ: %d vertices, %d faces\n" % (len(a.positions), len(sizes))
-    return header + _vertex_text(a.positions) + _face_text(vertices + 1, sizes)
-
-
-def _vertex_text(positions: np.ndarray) -> bytes:
-    """``v x y z`` lines for ``(V, 3)`` float64 positions."""
-    return vertex_lines(positions, b"v")
-
-
-def vertex_lines(positions: np.ndarray, keyword: bytes) -> bytes:
-    """Lines ``keyword x y z`` with coordinates that parse back to the same bits."""
-    return b"".join(
-        _vertex_pass(positions[i : i + _LINES_PER_PASS], keyword)
-        for i in range(0, len(positions), _LINES_PER_PASS)
+    return itertools.chain(
+        [b"# livemod OBJ: %d vertices, %d faces\n" % (len(a.positions), len(sizes))],
+        vertex_lines(a.positions, b"v"),
+        index_lines(vertices + 1, sizes, b"f"),
     )
+
+
+def vertex_lines(positions: np.ndarray, keyword: bytes) -> Iterator[bytes]:
+    """Lines ``keyword x y z`` with coordinates that parse back to the same bits,
+    ``_LINES_PER_PASS`` lines a piece (``(V, 3)`` float64 ``positions``)."""
+    for i in range(0, len(positions), _LINES_PER_PASS):
+        yield _vertex_pass(positions[i : i + _LINES_PER_PASS], keyword)
 
 
 def _vertex_pass(positions: np.ndarray, keyword: bytes) -> bytes:
@@ -371,13 +378,9 @@ def _vertex_pass(positions: np.ndarray, keyword: bytes) -> bytes:
     ])
 
 
-def _face_text(one_based: np.ndarray, sizes: np.ndarray, keyword: bytes = b"f") -> bytes:
-    """``f i j k ...`` lines: ``(C,)`` 1-based indices grouped by ``(F,)`` sizes."""
-    return index_lines(one_based, sizes, keyword)
-
-
-def index_lines(values: np.ndarray, sizes: np.ndarray, keyword: bytes) -> bytes:
-    """Lines ``keyword v0 v1 ...`` of non-negative integers, ``sizes[i]`` per line.
+def index_lines(values: np.ndarray, sizes: np.ndarray, keyword: bytes) -> Iterator[bytes]:
+    """Lines ``keyword v0 v1 ...`` of non-negative integers, ``sizes[i]`` per line,
+    ``_LINES_PER_PASS`` lines a piece.
 
     Args:
         values: ``(C,)`` non-negative int64.
@@ -385,11 +388,9 @@ def index_lines(values: np.ndarray, sizes: np.ndarray, keyword: bytes) -> bytes:
         keyword: the line's first word.
     """
     offsets = np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64)
-    parts = []
     for i in range(0, len(sizes), _LINES_PER_PASS):
         j = min(i + _LINES_PER_PASS, len(sizes))
-        parts.append(_index_pass(values[offsets[i] : offsets[j]], sizes[i:j], keyword))
-    return b"".join(parts)
+        yield _index_pass(values[offsets[i] : offsets[j]], sizes[i:j], keyword)
 
 
 def _index_pass(values: np.ndarray, sizes: np.ndarray, keyword: bytes) -> bytes:
