@@ -149,6 +149,45 @@ def test_fast_obj_parser_agrees_with_reference(text: str) -> None:
     assert parse_or_error(data, True) == parse_or_error(data, False)
 
 
+# mostly plain lines (the readers' fastest path) with the odd other line among
+# them, so blocks are split between the plain and the general tokenizer
+plain_number = st.one_of(
+    st.floats(-1e6, 1e6, allow_nan=False).map(lambda x: f"{x:.{abs(hash(x)) % 19}f}"),
+    st.integers(-10**19, 10**19).map(str),
+    st.from_regex(r"-?[0-9]{1,22}(\.[0-9]{1,24})?", fullmatch=True),
+)
+plain_vertex = st.tuples(plain_number, plain_number, plain_number).map(
+    lambda xyz: "v " + " ".join(xyz))
+plain_face = st.lists(st.integers(1, 30).map(str), min_size=1, max_size=5).map(
+    lambda c: "f " + " ".join(c))
+mostly_plain = st.lists(
+    st.one_of(plain_vertex, plain_vertex, plain_face, plain_face, vertex_line, face_line),
+    min_size=1, max_size=40).map(lambda lines: "\n".join(lines) + "\n")
+
+
+@pytest.mark.timeout(60)
+@settings(max_examples=60, deadline=None)
+@given(mostly_plain)
+def test_plain_lines_among_others_parse_as_the_reference_does(text: str) -> None:
+    data = text.encode()
+    assert parse_or_error(data, True) == parse_or_error(data, False)
+
+
+@pytest.mark.parametrize("text", [
+    # huge indices on otherwise plain lines, alone and beside general ones
+    b"v 0 0 0\nf 1 2 3\nf 1 20000000000000000000\nf 1/2 3\n",
+    b"f 1 20000000000000000000\n",
+    b"v 1 2 3\nf 1 1 1\nf 4611686018427387904 1\nf 1/1\n",
+    b"v 0 0 0\nf 0000000000000000000001 1 1\nf 1//1 1\n",
+    # long mantissas, leading zeros, negative zero, commas, tabs and CR
+    b"v 0.1234567890123456789012 -0000012.5 -0.0\nv 1,2,\t3\r\nv 1.5 2.5 3e1\n",
+    b"v 123456789012345678901234 1.0000000000000000000001 -9.999999999999999999\n",
+    b"v 1 2\nv 1 2 3 4\nv 1..2 3 4\nv -1 -2 -3\nv 1. 2 3\nv .5 2 3\n",
+])
+def test_plain_path_edge_cases_parse_as_the_reference_does(text: bytes) -> None:
+    assert parse_or_error(text, True) == parse_or_error(text, False)
+
+
 def test_fast_parser_on_a_big_regular_block_matches_reference() -> None:
     rng = np.random.default_rng(3)
     values = rng.standard_normal((500, 3)) * 10.0 ** rng.integers(-10, 20, (500, 3))

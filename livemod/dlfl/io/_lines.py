@@ -1,11 +1,13 @@
 """Vectorized tokenizing of text lines held in one uint8 buffer.
 
 The readers split a file into lines once, copy the lines of one kind (``v``,
-``f``, ...) into a buffer and parse all of them with whole-array numpy steps.
-These fast paths only accept plain input (digits, ``.``, ``-``, separators; for
-indices also ``/``); every line they do not accept is reported back, and the
-reader parses it with plain Python, which is the reference behaviour and the
-one that raises errors. So the fast path never needs to explain an error.
+``f``, ...) into a buffer and parse all of them with whole-array numpy steps,
+in two tiers: lines in the plain form (``[-]d+[.d+]`` numbers, bare indices)
+take the cheapest path, the others a general tokenizer that also knows
+exponents, signs, ``v/t/n`` corners and relative indices. Neither accepts
+anything else; every line they do not accept is reported back, and the reader
+parses it with plain Python, which is the reference behaviour and the one that
+raises errors. So the fast paths never need to explain an error.
 
 Buffers follow one convention: byte 0 is a separator (the blanked keyword of the
 first line) and the last byte is ``\\n``, so every token has a separator on
@@ -139,6 +141,14 @@ def _run_values(buf: np.ndarray, other: np.ndarray, run_starts: np.ndarray,
     )
 
 
+def _distinct_sorted(values: np.ndarray) -> np.ndarray:
+    """The distinct values of a sorted array (``np.unique`` costs ~60 ms on its
+    first call in a process, a tenth of a small file's load)."""
+    if len(values) < 2:
+        return values
+    return values[np.concatenate([[True], values[1:] != values[:-1]])]
+
+
 class _Scan:
     """Digit runs and the classes of the other bytes of a writable line buffer.
 
@@ -152,7 +162,7 @@ class _Scan:
     def __init__(self, buf: np.ndarray, starts: np.ndarray, classes: np.ndarray) -> None:
         self.buf = buf
         self.classes = classes
-        cuts = np.unique(starts[np.searchsorted(starts, np.arange(0, len(buf), _BLOCK))])
+        cuts = _distinct_sorted(starts[np.searchsorted(starts, np.arange(0, len(buf), _BLOCK))])
         bounds = [*cuts.tolist(), len(buf)] if len(cuts) else [0, len(buf)]
         parts = [_scan_block(buf, a, b) for a, b in zip(bounds[:-1], bounds[1:], strict=True)]
         self.other, self.run_starts, self.run_ends = (
@@ -189,23 +199,10 @@ def _per_line(starts: np.ndarray, token_starts: np.ndarray) -> tuple[np.ndarray,
     return first, counts
 
 
-def parse_number_lines(buf: np.ndarray, starts: np.ndarray, want: int) -> tuple[np.ndarray, np.ndarray]:
-    """The first ``want`` decimal numbers of every line.
-
-    The fast path takes numbers of the form ``[-]digits[.digits][e[+-]digits]``
-    separated by blanks or commas (numbers with an exponent go through
-    ``float()`` one by one).
-
-    Args:
-        buf: ``(S,)`` uint8 lines with their keyword blanked (see module doc).
-        starts: ``(L,)`` int64 line starts.
-        want: how many numbers to take per line; later ones are ignored.
-
-    Returns:
-        ``(values, accepted)``: ``(L, want)`` float64 and ``(L,)`` bool; lines
-        not accepted (other characters, too few or malformed numbers) hold
-        garbage and must be parsed by the caller.
-    """
+def _general_number_lines(buf: np.ndarray, starts: np.ndarray, want: int,
+                          ) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`parse_number_lines` for any line: numbers with an exponent too
+    (through ``float()`` one by one), with the same arguments and results."""
     num_lines = len(starts)
     scan = _Scan(buf, starts, _NUMBER_CLASSES)
     rs, re = scan.run_starts, scan.run_ends
@@ -285,19 +282,10 @@ def _python_float(text: bytes) -> float:
         return float("nan")
 
 
-def parse_index_lines(buf: np.ndarray, starts: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """The leading integer of every token (``7``, ``-2``, ``7/1/3``, ``7//3``).
-
-    Args:
-        buf: ``(S,)`` uint8 lines with their keyword blanked (see module doc).
-        starts: ``(L,)`` int64 line starts.
-
-    Returns:
-        ``(values, counts, accepted)``: ``(T,)`` int64 leading integer of every
-        token in order, ``(L,)`` tokens per line and ``(L,)`` bool; lines not
-        accepted (no tokens, other characters, malformed tokens, more than 18
-        digits) must be parsed by the caller.
-    """
+def _general_index_lines(buf: np.ndarray, starts: np.ndarray,
+                         ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """:func:`parse_index_lines` for any line: signed indices and ``v/t/n``
+    corners too, with the same arguments and results."""
     num_lines = len(starts)
     scan = _Scan(buf, starts, _INDEX_CLASSES)
     rs, re = scan.run_starts, scan.run_ends
@@ -321,3 +309,207 @@ def parse_index_lines(buf: np.ndarray, starts: np.ndarray) -> tuple[np.ndarray, 
     rejected |= counts == 0
     values = scan.values()[lead_runs]
     return np.where(negative[lead_runs], -values, values), counts, ~rejected
+
+
+# ------------------------------------------------------------- plain lines
+#
+# Nearly every line of a large file is plain: numbers ``[-]d+[.d+]`` or bare
+# indices between blanks. Those need no tokenizer: a number is one run of
+# digits and points, with the point dropped one digit run, and one
+# ``numpy.fromstring`` reads every mantissa of a block. Only the few bytes that
+# are neither digits, points, spaces nor newlines are looked at one by one
+# (their classes and neighbours). Lines that are not plain go to the general
+# tokenizer above, in a block of their own.
+
+
+class _PlainScan:
+    """Number tokens of a block, and the bytes that may break the plain form.
+
+    Args:
+        buf: ``(S,)`` uint8 lines (see module doc).
+        starts: ``(L,)`` int64 line starts.
+        classes: ``(256,)`` byte class table (for the special bytes only).
+
+    Attributes:
+        is_digit, is_dot: ``(S,)`` bool, the digits and the points.
+        ts, te: ``(T,)`` int64 start and end (exclusive) of every run of digits
+            and points (a number without its sign).
+        per_line: ``(L,)`` int64 tokens per line.
+        special, special_cls: positions and classes of the bytes that are not
+            digits, points, spaces or newlines.
+        dots: positions of the points; ``has_point`` and ``point``: ``(T,)``
+            whether a token has one and where its last one is.
+        two_points: ``(T,)`` bool, tokens with more than one point.
+    """
+
+    def __init__(self, buf: np.ndarray, starts: np.ndarray, classes: np.ndarray) -> None:
+        self.is_digit = (buf - np.uint8(48)) < 10
+        self.is_dot = is_dot = buf == 46
+        numeric = self.is_digit | is_dot
+        self.ts, self.te = _runs(numeric)
+        _, self.per_line = _per_line(starts, self.ts)
+        odd = ~numeric
+        odd &= buf != 32
+        odd &= buf != 10
+        self.special = np.flatnonzero(odd)
+        self.special_cls = classes[buf[self.special]]
+        self.dots = np.flatnonzero(is_dot)
+        self.has_point, self.point, self.two_points = _points(self.dots, self.ts, self.te)
+
+    def flagged(self, starts: np.ndarray, bad_bytes: list[np.ndarray],
+                bad_tokens: np.ndarray) -> np.ndarray:
+        """``(L,)`` bool: lines holding one of ``bad_bytes`` (positions) or a token
+        flagged in ``bad_tokens`` (``(T,)`` bool)."""
+        flagged = _lines_of(starts, np.concatenate(bad_bytes))
+        flagged[_owner(starts, self.ts[bad_tokens])] = True
+        return flagged
+
+
+def _points(dots: np.ndarray, ts: np.ndarray, te: np.ndarray,
+            ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Which tokens ``[ts, te)`` hold one of the sorted ``dots``, where the last one
+    is, and which hold two or more: three ``(T,)`` arrays."""
+    if len(dots) == len(ts) and (dots > ts).all() and (dots < te).all():
+        # a point in every token, as most writers give: no search needed
+        return np.ones(len(ts), dtype=bool), dots, np.zeros(len(ts), dtype=bool)
+    at = np.searchsorted(dots, te) - 1  # the last point before a token's end
+    before = dots[np.maximum(at - 1, 0)] if len(dots) else ts
+    point = dots[np.maximum(at, 0)] if len(dots) else ts
+    has_point = (at >= 0) & (point > ts)
+    return has_point, point, has_point & (at >= 1) & (before > ts)
+
+
+def _lines_block(buf: np.ndarray, starts: np.ndarray, lines: np.ndarray,
+                 ) -> tuple[np.ndarray, np.ndarray]:
+    """Lines ``lines`` of a block (see module doc) as a block of their own."""
+    ends = np.append(starts[1:], len(buf)) - 1
+    return gather_lines(buf, starts, ends, lines)
+
+
+def parse_number_lines(buf: np.ndarray, starts: np.ndarray, want: int,
+                       ) -> tuple[np.ndarray, np.ndarray]:
+    """The first ``want`` decimal numbers of every line.
+
+    Numbers of the form ``[-]digits[.digits][e[+-]digits]`` separated by blanks
+    or commas. Lines of exactly ``want`` numbers without exponent take the
+    plain path; the others the general tokenizer (numbers with an exponent go
+    through ``float()`` one by one there).
+
+    Args:
+        buf: ``(S,)`` uint8 lines with their keyword blanked (see module doc);
+            changed while parsing, restored before returning.
+        starts: ``(L,)`` int64 line starts.
+        want: how many numbers to take per line; later ones are ignored.
+
+    Returns:
+        ``(values, accepted)``: ``(L, want)`` float64 and ``(L,)`` bool; lines
+        not accepted (other characters, too few or malformed numbers) hold
+        garbage and must be parsed by the caller.
+    """
+    values = np.zeros((len(starts), want))
+    scan = _PlainScan(buf, starts, _NUMBER_CLASSES)
+    plain = _plain_number_lines(buf, scan, starts, want)
+    rest = np.flatnonzero(~plain)
+    if len(rest) < len(starts):
+        values[plain] = _plain_numbers(buf, scan, starts, plain).reshape(-1, want)
+    if len(rest):
+        block, block_starts = _lines_block(buf, starts, rest)
+        values[rest], plain[rest] = _general_number_lines(block, block_starts, want)
+    return values, plain
+
+
+def _plain_number_lines(buf: np.ndarray, scan: _PlainScan, starts: np.ndarray,
+                        want: int) -> np.ndarray:
+    """``(L,)`` bool: the lines of exactly ``want`` numbers ``[-]d+[.d+]``, blank-
+    or comma-separated."""
+    special, cls, dots, is_digit = scan.special, scan.special_cls, scan.dots, scan.is_digit
+    minus = special[cls == MINUS]
+    bad = [
+        special[(cls != SEP) & (cls != MINUS)],
+        minus[(_NUMBER_CLASSES[buf[minus - 1]] != SEP) | ~is_digit[minus + 1]],
+        dots[~is_digit[dots - 1] | ~is_digit[dots + 1]],
+    ]
+    return ~scan.flagged(starts, bad, scan.two_points) & (scan.per_line == want)
+
+
+def _plain_numbers(buf: np.ndarray, scan: _PlainScan, starts: np.ndarray,
+                   plain: np.ndarray) -> np.ndarray:
+    """``(T,)`` float64 value of every token on the ``plain`` lines (``(L,)`` bool)."""
+    ts, te, has_point, point = scan.ts, scan.te, scan.has_point, scan.point
+    read = ~scan.is_dot  # what fromstring reads: no points, and only plain lines
+    if not plain.all():
+        read &= np.repeat(plain, np.diff(np.append(starts, len(buf))))
+        kept = np.repeat(plain, scan.per_line)
+        ts, te, has_point, point = ts[kept], te[kept], has_point[kept], point[kept]
+    frac_len = np.where(has_point, te - 1 - point, 0)
+    negative = buf[ts - 1] == ord("-")
+    blanked = scan.special  # signs and separators: fromstring's gaps must be blanks
+    saved = buf[blanked]
+    buf[blanked] = 32
+    try:
+        mantissa = np.fromstring(buf[read].tobytes(), dtype=np.int64, sep=" ")
+    finally:
+        buf[blanked] = saved
+    values, decided = decimal_to_float(np.minimum(mantissa, 10**18), np.minimum(frac_len, 22))
+    # long (or saturated) mantissas and near-halfway cases: Python decides
+    for i in np.flatnonzero(~decided | (mantissa >= 10**18) | (frac_len > 22)).tolist():
+        values[i] = float(buf[ts[i] : te[i]].tobytes())
+    return np.negative(values, out=values, where=negative)
+
+
+def parse_index_lines(buf: np.ndarray, starts: np.ndarray,
+                      ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The leading integer of every token (``7``, ``-2``, ``7/1/3``, ``7//3``).
+
+    Lines of bare non-negative indices take the plain path, the others the
+    general tokenizer.
+
+    Args:
+        buf: ``(S,)`` uint8 lines with their keyword blanked (see module doc).
+        starts: ``(L,)`` int64 line starts.
+
+    Returns:
+        ``(values, counts, accepted)``: ``(T,)`` int64 leading integer of every
+        token in order, ``(L,)`` tokens per line and ``(L,)`` bool; lines not
+        accepted (no tokens, other characters, malformed tokens, more than 18
+        digits) must be parsed by the caller.
+    """
+    is_digit = (buf - np.uint8(48)) < 10
+    odd = ~is_digit
+    odd &= buf != 32
+    odd &= buf != 10
+    special = np.flatnonzero(odd)
+    token_starts = np.flatnonzero(is_digit[1:] > is_digit[:-1]) + 1
+    _, per_line = _per_line(starts, token_starts)
+    plain = ~_lines_of(starts, special[_INDEX_CLASSES[buf[special]] != SEP]) & (per_line > 0)
+    if plain.all():  # digits and blanks only: numpy reads the block as it is
+        values = np.fromstring(buf.tobytes(), dtype=np.int64, sep=" ")
+        huge = values >= 10**18  # (saturated) beyond what the general path accepts
+        if not huge.any():
+            return values, per_line, plain
+        plain[_owner(starts, token_starts[huge])] = False
+    return _merge_index_lines(buf, starts, plain, per_line)
+
+
+def _merge_index_lines(buf: np.ndarray, starts: np.ndarray, plain: np.ndarray,
+                       per_line: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """:func:`parse_index_lines` of a block with lines that are not plain: the plain
+    ones and the others parsed in blocks of their own, merged in line order."""
+    plain_lines = np.flatnonzero(plain)
+    block, _ = _lines_block(buf, starts, plain_lines)
+    plain_values = np.fromstring(block.tobytes(), dtype=np.int64, sep=" ")
+    huge = plain_values >= 10**18  # (saturated) beyond what the general path takes
+    if huge.any():
+        plain = plain.copy()
+        plain[np.repeat(plain_lines, per_line[plain_lines])[huge]] = False
+        return _merge_index_lines(buf, starts, plain, per_line)
+    counts = np.where(plain, per_line, 0)
+    accepted = plain.copy()
+    rest = np.flatnonzero(~plain)
+    block, block_starts = _lines_block(buf, starts, rest)
+    rest_values, counts[rest], accepted[rest] = _general_index_lines(block, block_starts)
+    values = np.empty(int(counts.sum()), dtype=np.int64)
+    in_plain = np.repeat(plain, counts)
+    values[in_plain] = plain_values
+    values[~in_plain] = rest_values
+    return values, counts, accepted

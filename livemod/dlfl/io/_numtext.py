@@ -272,36 +272,45 @@ def decimal_to_float(mantissa: np.ndarray, frac_len: np.ndarray) -> tuple[np.nda
     m = np.asarray(mantissa, dtype=np.int64)
     k = np.asarray(frac_len, dtype=np.int64)
     small = m < 2**53
+    big = np.flatnonzero(~small)
+    if len(big) == len(m) and len(m):  # 17 digits and more, as most writers give
+        return _big_mantissa(m, k)
     values = np.where(small, m, 0).astype(np.float64) / _POW10[k]  # Clinger's fast path
     decided = small.copy()
-    big = np.flatnonzero(~small)
     if len(big):
         values[big], decided[big] = _big_mantissa(m[big], k[big])
     return values, decided
 
 
+def _split_table(values: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Veltkamp halves of a table of constants, for gathering instead of splitting."""
+    return _split(values)
+
+
+_POW10_HI, _POW10_LO = _split_table(_POW10)
+
 
 def _big_mantissa(m: np.ndarray, k: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Divide a mantissa above 2**53 by ``10**k`` in double-double arithmetic.
+    """Divide a positive mantissa (above 2**53) by ``10**k`` in double-double arithmetic.
 
     The quotient ``q1`` plus a tail accurate to about 2**-100 relative decides
-    the rounding; values whose residual sits within 2**-40 ulp of a halfway
-    point are reported undecided.
+    the rounding. Values whose residual is not clearly below half the gap to
+    the next float down (the smaller of the two gaps, with a margin of 2**-40
+    of it) are reported undecided.
     """
     m_hi = m.astype(np.float64)
     m_lo = (m - m_hi.astype(np.int64)).astype(np.float64)  # exact, |m_lo| <= 2**9
     p = _POW10[k]
     q1 = m_hi / p
     q1_hi, q1_lo = _split(q1)
-    p_hi, p_lo = _split(p)
+    p_hi, p_lo = _POW10_HI[k], _POW10_LO[k]
     prod = q1 * p
     prod_err = ((q1_hi * p_hi - prod) + q1_hi * p_lo + q1_lo * p_hi) + q1_lo * p_lo
     remainder = ((m_hi - prod) - prod_err) + m_lo
     tail = remainder / p
     s = q1 + tail
     residual = tail - (s - q1)
-    up_gap = np.spacing(s)
-    down_gap = s - np.nextafter(s, 0.0)
-    half_gap = np.where(residual >= 0, up_gap, down_gap) * 0.5
-    decided = np.abs(residual) < half_gap - up_gap * 2.0**-40
+    # the gap to the next float down, from the bits (s is positive and normal)
+    gap_down = s - (s.view(np.int64) - 1).view(np.float64)
+    decided = np.abs(residual) < gap_down * (0.5 - 2.0**-40)
     return s, decided
