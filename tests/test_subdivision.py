@@ -426,7 +426,8 @@ def _layout_meshes() -> list[Mesh]:
 
 @pytest.mark.parametrize("index", range(6))
 def test_vertex_rings_walk_equals_pointer_doubling(index):
-    from livemod.dlfl.subdivision._layout import cycle_layout, read_topology, walk_rings
+    from livemod.dlfl._graph import cycle_layout, walk_rings
+    from livemod.dlfl.subdivision._layout import read_topology
 
     t = read_topology(_layout_meshes()[index])
     expected = cycle_layout(t.vprev)
@@ -440,7 +441,7 @@ def test_vertex_rings_walk_equals_pointer_doubling(index):
 
 
 def test_walk_refuses_a_vertex_with_two_fans():
-    from livemod.dlfl.subdivision._layout import walk_rings
+    from livemod.dlfl._graph import walk_rings
 
     # corners 0..3 at one vertex, in two cycles (0 1) and (2 3)
     perm = np.array([1, 0, 3, 2])

@@ -1,4 +1,4 @@
-"""Vectorized graph helpers: permutation cycles and connected components."""
+"""Vectorized graph helpers: permutation cycles, vertex rings and connected components."""
 
 from __future__ import annotations
 
@@ -52,3 +52,87 @@ def component_labels(num_nodes: int, a: np.ndarray, b: np.ndarray) -> np.ndarray
             if np.array_equal(grand, parent):
                 break
             parent = grand
+
+
+def cycle_layout(perm: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The cycles of a permutation laid out contiguously, each in cycle order.
+
+    Returns ``(order, offsets)``; each cycle starts at its smallest element.
+    """
+    n = len(perm)
+    root = cycle_labels(perm)
+    is_root = root == np.arange(n)
+    pred = np.empty(n, dtype=np.int64)
+    pred[perm] = np.arange(n)
+    pred[is_root] = np.flatnonzero(is_root)
+    rank = (~is_root).astype(np.int64)
+    while True:
+        rank += rank[pred]
+        jumped = pred[pred]
+        if np.array_equal(jumped, pred):
+            break
+        pred = jumped
+    roots = np.flatnonzero(is_root)
+    sizes = np.bincount(root, minlength=n)[roots]
+    offsets = np.zeros(len(roots) + 1, dtype=np.int64)
+    np.cumsum(sizes, out=offsets[1:])
+    start = np.zeros(n, dtype=np.int64)
+    start[roots] = offsets[:-1]
+    order = np.empty(n, dtype=np.int64)
+    order[start[root] + rank] = np.arange(n)
+    return order, offsets
+
+
+# walking a ring costs one Python-level numpy step per corner of the longest
+# ring; above this, pointer doubling (O(log L) passes over every corner) wins
+MAX_WALK = 64
+
+
+def walk_rings(perm: np.ndarray, cv: np.ndarray, valence: np.ndarray
+               ) -> tuple[np.ndarray, np.ndarray] | None:
+    """:func:`cycle_layout` of ``perm`` when its cycles are the vertices' rings.
+
+    Each vertex's ring is walked from its smallest corner, all rings in step,
+    the longest first (ring ``k`` of a step is active while it has corners left).
+
+    Args:
+        perm: ``(C,)`` a permutation whose cycles should each hold the corners of
+            one vertex (``vprev``). cv: ``(C,)`` vertex of each corner.
+        valence: ``(V,)`` corners per vertex.
+
+    Returns:
+        ``(order, offsets)`` as :func:`cycle_layout` gives them, or None when a
+        vertex's corners are not one cycle (several fans) or a ring is longer
+        than :data:`MAX_WALK`.
+    """
+    n = len(perm)
+    if n == 0 or int(valence.max()) > MAX_WALK:
+        return None
+    first = np.empty(len(valence), dtype=np.int64)
+    first[cv[::-1]] = np.arange(n - 1, -1, -1, dtype=np.int64)  # the smallest wins
+    is_first = np.zeros(n, dtype=bool)
+    is_first[first[valence > 0]] = True
+    starts = np.flatnonzero(is_first)
+    sizes = valence[cv[starts]]
+    offsets = np.zeros(len(starts) + 1, dtype=np.int64)
+    np.cumsum(sizes, out=offsets[1:])
+    order = _walk(perm, starts, sizes, offsets)
+    seen = np.zeros(n, dtype=bool)
+    seen[order] = True
+    return (order, offsets) if seen.all() else None
+
+
+def _walk(perm: np.ndarray, starts: np.ndarray, sizes: np.ndarray, offsets: np.ndarray
+          ) -> np.ndarray:
+    """``(C,)``: ring ``k`` (from ``starts[k]``, ``sizes[k]`` steps of ``perm``) at
+    ``offsets[k]``."""
+    by_size = np.argsort(-sizes, kind="stable")  # active rings stay a prefix
+    current, base = starts[by_size], offsets[:-1][by_size]
+    longer = len(starts) - np.cumsum(np.bincount(sizes))  # rings longer than k
+    order = np.empty(int(offsets[-1]), dtype=np.int64)
+    for k in range(int(sizes.max())):
+        active = int(longer[k])
+        current, base = current[:active], base[:active]
+        order[base + k] = current
+        current = perm[current]
+    return order

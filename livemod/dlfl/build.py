@@ -19,7 +19,7 @@ from typing import Any
 
 import numpy as np
 
-from ._graph import cycle_labels
+from ._graph import cycle_labels, walk_rings
 from ._table import Table
 from .errors import DLFLError, DLFLRepairWarning
 from .mesh import CORNER_SPEC, EDGE_SPEC, FACE_SPEC, VERTEX_SPEC, Mesh
@@ -558,6 +558,9 @@ def _check_vertex_fans(soup: Polygons, mate: np.ndarray, where: _Where) -> None:
     has = mate >= 0
     vnext = np.arange(len(mate), dtype=np.int64)
     vnext[has] = nxt[mate[has]]
+    valence = np.bincount(soup.indices, minlength=len(soup.positions))
+    if walk_rings(vnext, soup.indices, valence) is not None:
+        return  # every vertex's corners are one ring: the quick answer
     labels = cycle_labels(vnext)
     roots = labels == np.arange(len(labels))
     fans = np.bincount(soup.indices[roots], minlength=len(soup.positions))
