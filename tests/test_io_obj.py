@@ -83,6 +83,25 @@ def test_fast_parser_agrees_with_reference_parser_on_samples(name: str) -> None:
     assert np.array_equal(fast.face_lines, slow.face_lines)
 
 
+def test_well_formed_lines_never_reach_the_reference_parser(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    import livemod.dlfl.io.obj as obj_module
+
+    def refuse(raw: bytes, line: int, label: str) -> None:
+        raise AssertionError(f"line {line} fell back to the Python parser: {raw!r}")
+
+    monkeypatch.setattr(obj_module, "_parse_line", refuse)
+    # plain lines, and lines only the general tokenizer reads, in one block
+    text = b"".join(
+        b"v %d.5 -0.25 %s\n" % (i, b"6.1e-17" if i % 7 == 0 else b"3") for i in range(200)
+    ) + b"".join(b"f %d %d/1 -1//2\n" % (i + 1, i + 2) if i % 5 == 0 else
+                 b"f %d %d %d\n" % (i + 1, i + 2, i + 3) for i in range(150))
+    soup = parse_obj(text)
+    assert soup.positions.shape == (200, 3) and len(soup.offsets) == 151
+    assert soup.positions[7, 2] == 6.1e-17 and soup.positions[8, 2] == 3.0
+
+
 def test_beveledcube_is_reoriented_with_a_note() -> None:
     with pytest.warns(DLFLRepairWarning, match="re-oriented"):
         mesh = read_obj(SAMPLES / "beveledcube.obj")

@@ -397,7 +397,7 @@ def parse_number_lines(buf: np.ndarray, starts: np.ndarray, want: int,
 
     Args:
         buf: ``(S,)`` uint8 lines with their keyword blanked (see module doc);
-            changed while parsing, restored before returning.
+            its bytes are overwritten while parsing.
         starts: ``(L,)`` int64 line starts.
         want: how many numbers to take per line; later ones are ignored.
 
@@ -410,10 +410,11 @@ def parse_number_lines(buf: np.ndarray, starts: np.ndarray, want: int,
     scan = _PlainScan(buf, starts, _NUMBER_CLASSES)
     plain = _plain_number_lines(buf, scan, starts, want)
     rest = np.flatnonzero(~plain)
+    if len(rest):  # copied out first: the plain path blanks them in buf
+        block, block_starts = _lines_block(buf, starts, rest)
     if len(rest) < len(starts):
         values[plain] = _plain_numbers(buf, scan, starts, plain).reshape(-1, want)
     if len(rest):
-        block, block_starts = _lines_block(buf, starts, rest)
         values[rest], plain[rest] = _general_number_lines(block, block_starts, want)
     return values, plain
 
@@ -434,27 +435,36 @@ def _plain_number_lines(buf: np.ndarray, scan: _PlainScan, starts: np.ndarray,
 
 def _plain_numbers(buf: np.ndarray, scan: _PlainScan, starts: np.ndarray,
                    plain: np.ndarray) -> np.ndarray:
-    """``(T,)`` float64 value of every token on the ``plain`` lines (``(L,)`` bool)."""
+    """``(T,)`` float64 value of every token on the ``plain`` lines (``(L,)`` bool).
+
+    Blanks the signs, the separators and the other lines in ``buf``: fromstring
+    then reads one digit run per number once the points are dropped.
+    """
     ts, te, has_point, point = scan.ts, scan.te, scan.has_point, scan.point
-    read = ~scan.is_dot  # what fromstring reads: no points, and only plain lines
     if not plain.all():
-        read &= np.repeat(plain, np.diff(np.append(starts, len(buf))))
         kept = np.repeat(plain, scan.per_line)
         ts, te, has_point, point = ts[kept], te[kept], has_point[kept], point[kept]
+        _blank_lines(buf, starts, ~plain)
     frac_len = np.where(has_point, te - 1 - point, 0)
     negative = buf[ts - 1] == ord("-")
-    blanked = scan.special  # signs and separators: fromstring's gaps must be blanks
-    saved = buf[blanked]
-    buf[blanked] = 32
-    try:
-        mantissa = np.fromstring(buf[read].tobytes(), dtype=np.int64, sep=" ")
-    finally:
-        buf[blanked] = saved
+    buf[scan.special] = 32
+    mantissa = np.fromstring(buf[~scan.is_dot].tobytes(), dtype=np.int64, sep=" ")
     values, decided = decimal_to_float(np.minimum(mantissa, 10**18), np.minimum(frac_len, 22))
     # long (or saturated) mantissas and near-halfway cases: Python decides
     for i in np.flatnonzero(~decided | (mantissa >= 10**18) | (frac_len > 22)).tolist():
         values[i] = float(buf[ts[i] : te[i]].tobytes())
     return np.negative(values, out=values, where=negative)
+
+
+def _blank_lines(buf: np.ndarray, starts: np.ndarray, lines: np.ndarray) -> None:
+    """Overwrite the lines flagged in ``lines`` (``(L,)`` bool) with blanks."""
+    chosen = np.flatnonzero(lines)
+    if len(chosen) > 1000:  # many: one mask over the block beats a loop
+        buf[np.repeat(lines, np.diff(np.append(starts, len(buf))))] = 32
+        return
+    ends = np.append(starts[1:], len(buf))
+    for a, b in zip(starts[chosen].tolist(), ends[chosen].tolist(), strict=True):
+        buf[a:b] = 32
 
 
 def parse_index_lines(buf: np.ndarray, starts: np.ndarray,
