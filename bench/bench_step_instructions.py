@@ -1,0 +1,160 @@
+"""Instructions a recorded step costs, counted by callgrind (plain python, not a test).
+
+    python bench/bench_step_instructions.py [--only NAME ...] [--jobs N]
+
+Wall and CPU times on the shared development machines vary by +-15 % from run
+to run, too much to tell 8 % from 10 %; callgrind's instruction counts do not
+vary. Each workload runs in child processes under ``valgrind --tool=callgrind``
+at two sizes, both bare (compiled and exec'd with the scene bound, no step hook,
+none of the runner's cancel checks) and through ``livemod.runner.execute``.
+Everything but the loop is the same at both sizes, so the difference of the two
+totals over the difference of the step counts is what one step costs, startup
+(interpreter, numpy, imports, base mesh) cancelled out. The overhead is
+recorded / bare - 1 per step: the target of the issue is at most 10 %.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import re
+import subprocess
+import sys
+import tempfile
+from concurrent.futures import ThreadPoolExecutor
+from dataclasses import dataclass
+
+# the child: the same imports and base scene for both modes and both sizes, so
+# that only the loop's length differs between the two sizes of one mode
+CHILD = """
+import os
+import sys
+from livemod.dlfl import from_polygons
+from livemod.dlfl.scene import Scene, use_scene
+from livemod.runner import execute
+
+mode, path, grid, steps = sys.argv[1], sys.argv[2], int(sys.argv[3]), int(sys.argv[4])
+with open(path) as handle:
+    source = handle.read()
+base = None
+if grid:
+    pts = [(x, y, 0.0) for y in range(grid + 1) for x in range(grid + 1)]
+    quads = [(y * (grid + 1) + x, y * (grid + 1) + x + 1, (y + 1) * (grid + 1) + x + 1,
+              (y + 1) * (grid + 1) + x) for y in range(grid) for x in range(grid)]
+    base = Scene()
+    base.add(from_polygons(pts, quads))
+if mode == "bare":
+    code = compile(source, path, "exec")
+    scene = base.copy() if base is not None else Scene()
+    with use_scene(scene):
+        exec(code, {"__name__": "__main__"})
+    assert scene.step_hook is None
+else:
+    outcome = execute(path, source=source, base=base)
+    assert outcome.status == "ok" and len(outcome.steps) == steps, outcome.error
+# the run is over: what the interpreter's teardown frees and collects is not part
+# of it (it would count the final full collection walking the recorded steps)
+sys.stdout.flush()
+os._exit(0)
+"""
+
+
+@dataclass(frozen=True)
+class Workload:
+    """A script whose loop runs ``{n}`` times, ``per_iteration`` steps each.
+
+    ``grid`` > 0 starts it from a ``grid`` x ``grid`` quad mesh.
+    """
+
+    name: str
+    template: str
+    small: int
+    large: int
+    per_iteration: int = 1
+    grid: int = 0
+
+    def steps(self, n: int) -> int:
+        return n * self.per_iteration
+
+
+WORKLOADS = (
+    Workload("createVertex", (
+        "from livemod.dlfl import *\n"
+        "for i in range({n}):\n"
+        "    createVertex((i * 0.1, 0.0, 0.0))\n"), 1000, 11000),
+    Workload("subdivideEdge/move", (
+        "from livemod.dlfl import *\n"
+        "es = edges()\n"
+        "for i in range({n}):\n"
+        "    v = subdivideEdge(es[i])[0]\n"
+        "    move([v], (0.0, 0.0, 0.001))\n"), 500, 5500, per_iteration=2, grid=100),
+    Workload("cubical extrusion", (
+        "from livemod.dlfl import *\n"
+        "from livemod.dlfl import current_scene, from_polygons\n"
+        "P = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1)]\n"
+        "Q = [(0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7)]\n"
+        "current_scene().add(from_polygons(P, Q))\n"
+        "face = faces()[1]\n"
+        "for i in range({n}):\n"
+        "    face = extrude('cubical', face, 0.1)\n"), 200, 1200),
+)
+
+COLLECTED = re.compile(r"Collected\s*:\s*(\d+)")
+
+
+def _count(folder: str, workload: Workload, mode: str, n: int) -> int:
+    """Instructions callgrind counts for one child running ``workload`` at ``n``.
+
+    The script file has the same name at both sizes (only its loop bound
+    differs), so every path the child touches is the same length.
+
+    Raises:
+        RuntimeError: the child failed, or callgrind printed no total.
+    """
+    sub = os.path.join(folder, f"{mode}-{n:06d}-{WORKLOADS.index(workload)}")
+    os.makedirs(sub, exist_ok=True)
+    path = os.path.join(sub, "script.py")
+    with open(path, "w") as handle:
+        handle.write(workload.template.format(n=f"{n:6d}"))
+    # one hash seed, and numpy's BLAS without worker threads (valgrind runs threads
+    # one at a time, and idle ones spin for a varying number of instructions)
+    env = dict(os.environ, PYTHONHASHSEED="0", OPENBLAS_NUM_THREADS="1",
+               OMP_NUM_THREADS="1", MKL_NUM_THREADS="1")
+    args = ["valgrind", "--tool=callgrind", f"--callgrind-out-file={sub}/callgrind.out",
+            sys.executable, "-c", CHILD, mode, path, str(workload.grid),
+            str(workload.steps(n))]
+    done = subprocess.run(args, capture_output=True, text=True, env=env)
+    found = COLLECTED.search(done.stderr)
+    if done.returncode != 0 or found is None:
+        raise RuntimeError(f"{workload.name} {mode} {n}: {done.stderr[-2000:]}")
+    return int(found.group(1))
+
+
+def per_step(workload: Workload, small: int, large: int) -> float:
+    """Instructions per step from the totals of the small and the large run."""
+    return (large - small) / (workload.steps(workload.large) - workload.steps(workload.small))
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--only", nargs="*", help="workload names (default: all)")
+    parser.add_argument("--jobs", type=int, default=os.cpu_count() or 1,
+                        help="callgrind children at a time")
+    args = parser.parse_args(argv)
+    chosen = [w for w in WORKLOADS if not args.only or w.name in args.only]
+    print(f"python {sys.version.split()[0]}; callgrind instructions per step "
+          "(large minus small run, over the steps between)")
+    with tempfile.TemporaryDirectory() as folder, ThreadPoolExecutor(args.jobs) as pool:
+        # submit every child first, so that they keep the cores busy throughout
+        futures = {(w.name, mode, n): pool.submit(_count, folder, w, mode, n)
+                   for w in chosen for mode in ("bare", "runner") for n in (w.small, w.large)}
+        for w in chosen:
+            b, r = (per_step(w, futures[w.name, mode, w.small].result(),
+                             futures[w.name, mode, w.large].result()) for mode in ("bare", "runner"))
+            print(f"{w.name:20s} bare {b:10,.0f}  recorded {r:10,.0f}  "
+                  f"step +{r - b:7,.0f}  overhead {100 * (r / b - 1):+6.2f} %", flush=True)
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
