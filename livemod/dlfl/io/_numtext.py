@@ -272,14 +272,15 @@ def decimal_to_float(mantissa: np.ndarray, frac_len: np.ndarray) -> tuple[np.nda
     m = np.asarray(mantissa, dtype=np.int64)
     k = np.asarray(frac_len, dtype=np.int64)
     small = m < 2**53
+    exact = np.where(small, m, 0).astype(np.float64) / _POW10[k]  # Clinger's fast path
     big = np.flatnonzero(~small)
-    if len(big) == len(m) and len(m):  # 17 digits and more, as most writers give
-        return _big_mantissa(m, k)
-    values = np.where(small, m, 0).astype(np.float64) / _POW10[k]  # Clinger's fast path
+    if 2 * len(big) > len(m):  # mostly 17 digits and more, as most writers give:
+        values, decided = _big_mantissa(np.where(small, 2**53, m), k)  # no scatter
+        return np.where(small, exact, values), decided | small
     decided = small.copy()
     if len(big):
-        values[big], decided[big] = _big_mantissa(m[big], k[big])
-    return values, decided
+        exact[big], decided[big] = _big_mantissa(m[big], k[big])
+    return exact, decided
 
 
 def _split_table(values: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
