@@ -2,11 +2,16 @@
 
 from __future__ import annotations
 
+import _thread
+import contextvars
 import dis
 import gc
 import pickle
 import sys
 import textwrap
+import threading
+import time
+from types import CodeType
 
 import pytest
 
@@ -14,6 +19,7 @@ from livemod.dlfl.scene import Scene, use_scene
 from livemod.runner import RunControl, StepRecord, execute
 from livemod.runner.execute import script_namespace
 from livemod.runner.instrument import CANCEL_FLAG, compile_script
+from livemod.runner.playback import Playback
 from livemod.runner.recording import StepRecorder
 from livemod.runner.results import StepList
 
@@ -237,3 +243,69 @@ def test_top_level_loops_read_the_cancel_flag_as_a_global():
     namespace = script_namespace("/virtual/loop.py", None)
     exec(code, namespace)  # noqa: S102  (docstring and __future__ import still come first)
     assert namespace["__doc__"] == "doc"
+
+
+def hook_calls(run) -> int:
+    """How many times ``run()`` calls a runner step hook (counted by a profiler)."""
+    hook_code = next(c for c in StepRecorder._make_hook.__code__.co_consts
+                     if isinstance(c, CodeType) and c.co_name == "hook")
+    calls = 0
+
+    def profile(frame, event, arg) -> None:
+        nonlocal calls
+        calls += event == "call" and frame.f_code is hook_code
+
+    sys.setprofile(profile)
+    try:
+        run()
+    finally:
+        sys.setprofile(None)
+    return calls
+
+
+def test_the_wrapper_records_what_the_hook_records_and_leaves_it_the_new_callers(tmp_path):
+    write(tmp_path, "helper_rec.py", HELPER)
+    path = write(tmp_path, "calls.py", SCRIPT)
+    runs = []
+    for control in (None, RunControl(Playback())):  # a run that may pause: the hook records all
+        outcome = execute(path, control=control)
+        runs.append([(s.index, s.label, s.line, s.counts) for s in outcome.steps])
+    assert runs[0] == runs[1] and len(runs[0]) == 40
+    loop = write(tmp_path, "loop.py", "for i in range(50):\n    createVertex((i, 0, 0))\n")
+    assert hook_calls(lambda: execute(loop)) == 1  # the first step: the caller is new
+    assert hook_calls(lambda: execute(loop, control=RunControl(Playback()))) == 50
+
+
+@pytest.mark.timeout(60)
+def test_a_cancel_stops_steps_the_wrapper_records(tmp_path):
+    # the helper's loop has no compiled-in check: only the steps can stop it
+    write(tmp_path, "helper_spin.py", "from livemod.dlfl import createVertex\n\n\n"
+          "def ring(n):\n    for i in range(n):\n        createVertex((i, 0, 0))\n")
+    path = write(tmp_path, "spin.py", "import helper_spin\nhelper_spin.ring(10 ** 8)\n")
+    control = RunControl()
+    threading.Timer(0.2, control.cancel).start()
+    outcome = execute(path, control=control)
+    assert outcome.status == "cancelled" and 0 < len(outcome.steps) < 10 ** 8
+    assert outcome.error is not None and outcome.error.line == 2  # the script's line
+    early = RunControl()
+    early.cancel()  # before the run starts, so before the recorder is attached
+    outcome = execute(path, control=early)
+    assert outcome.status == "cancelled" and len(outcome.steps) == 0
+
+
+def test_a_command_with_no_python_caller_is_recorded_without_a_line():
+    scene = Scene()
+    recorder = StepRecorder("/virtual/script.py", scene, None)
+    recorder.install()
+    with use_scene(scene):
+        context = contextvars.copy_context()
+    from livemod.dlfl import createVertex
+
+    # the wrapper is the bottom frame of the new thread: no frame called it
+    _thread.start_new_thread(context.run, (createVertex, (0, 0, 0)))
+    deadline = time.monotonic() + 10
+    while recorder.step_count() == 0 and time.monotonic() < deadline:
+        time.sleep(0.01)
+    recorder.release()
+    steps = recorder.steps
+    assert [(s.label, s.line, s.counts) for s in steps] == [("createVertex", None, (1, 0, 1))]

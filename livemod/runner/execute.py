@@ -172,12 +172,11 @@ def execute(
         return RunOutcome("error", scene, (), syntax_error(exc, script), time.perf_counter() - started,
                           source=source)
     recorder = StepRecorder(script, scene, control)
-    scene.step_hook = recorder.hook
+    recorder.install()
     namespace = script_namespace(script, parameters)
     if control is not None:
         control.attach(namespace, recorder)
     status, error, modules = _exec(code, namespace, script, scene, recorder, seed)
-    scene.step_hook = None
     recorder.release()
     return RunOutcome(status, scene, recorder.steps, error,
                       time.perf_counter() - started, tuple(modules), source)

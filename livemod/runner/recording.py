@@ -1,11 +1,14 @@
 """The step hook: what the runner notes after every modeling command.
 
 It runs once per command, so it does as little as it can: it appends the raw
-facts of the step (label, the script frame's code and instruction offset,
-``V``/``E``/``F`` and the clock) to one flat list, and a :class:`StepList`
-turns them into :class:`StepRecord` objects when they are read. Everything it
-reads is bound to closure variables, and the script's frame is cached by the
-identity of the frame that called the command (see :func:`script_frame`).
+facts of the step (label, the script frame's instruction offset, ``V``/``E``/``F``
+and the clock) to the run's :class:`~livemod.dlfl.scene.StepLog`, and a
+:class:`StepList` turns them into :class:`StepRecord` objects when they are
+read. Everything it reads is bound to closure variables, and the script's frame
+is cached by the identity of the frame that called the command (see
+:func:`script_frame`). In runs that never pause, the modeling-command wrapper
+reads that cache as well and records the steps of a cached caller itself: the
+hook then runs only when the caller changes, and on every step once cancelled.
 
 :class:`RunControl` lives here too: the hook reads its cancel flag every step.
 """
@@ -19,7 +22,7 @@ from collections.abc import Callable, Sequence
 from types import CodeType, FrameType
 
 from livemod.dlfl.mesh import Mesh
-from livemod.dlfl.scene import STEP_HOOK_CALLER_DEPTH, Scene
+from livemod.dlfl.scene import NO_STEP_LOG, STEP_HOOK_CALLER_DEPTH, Scene, StepLog
 
 from .errors import Cancelled
 from .instrument import CANCEL_FLAG
@@ -72,6 +75,7 @@ class RunControl:
         self.cancel_requested = False  # a plain bool: the step hook reads it every step
         self._namespace: dict | None = None
         self._steps: Callable[[], int] = lambda: 0
+        self._to_hook: Callable[[], None] = lambda: None  # see attach
 
     @property
     def cancelled(self) -> bool:
@@ -85,6 +89,8 @@ class RunControl:
     def cancel(self) -> None:
         """Ask the run to stop at its next step or next loop iteration of the script."""
         self.cancel_requested = True
+        # after the flag: a step that finds the scene's log gone finds the flag set
+        self._to_hook()
         if self._namespace is not None:
             self._namespace[CANCEL_FLAG] = True  # read by the checks compile_script adds
         if self.playback is not None:
@@ -92,10 +98,14 @@ class RunControl:
 
     def attach(self, namespace: dict, recorder: StepRecorder) -> None:
         """Give the control the run's globals (so :meth:`cancel` can flag them) and
-        its recorder (to count steps)."""
+        its recorder (to count steps, and to send every step to the hook, which
+        checks the cancel flag, once cancelled)."""
         self._namespace = namespace
         self._steps = recorder.step_count
+        self._to_hook = recorder.every_step_to_hook
         namespace[CANCEL_FLAG] = self.cancel_requested
+        if self.cancel_requested:  # cancelled before _to_hook was set: cancel() missed it
+            recorder.every_step_to_hook()
 
 
 class _Nowhere:
@@ -112,6 +122,10 @@ _EMPTY = Mesh()  # counted when the scene has no current object
 class StepRecorder:
     """Records steps, pauses and cancels a run; :attr:`hook` is the scene's ``step_hook``.
 
+    :meth:`install` also gives the scene the recorder's :class:`StepLog`, so
+    that the modeling-command wrapper records the steps of callers the hook has
+    seen itself, for runs that never pause; a cancel takes it away again.
+
     Attributes:
         hook: the step hook; call it only from the modeling-command wrapper or
             :meth:`Scene.record_step` (it finds the script's line from there).
@@ -123,47 +137,60 @@ class StepRecorder:
         self.scene = scene
         self.control = control
         self.started = time.perf_counter()
-        self._flat: list = []  # STEP_FIELDS items per step, see StepList
+        self._log = StepLog()
         self.hook: Callable[[str], None] = self._make_hook()
+
+    def install(self) -> None:
+        """Make the scene record its steps here: its ``step_hook``, and its
+        ``step_log`` unless the run may pause (the wrapper does not pause)."""
+        self.scene.step_hook = self.hook
+        if self.control is None or self.control.playback is None:
+            self.scene.step_log = self._log
+
+    def every_step_to_hook(self) -> None:
+        """Take the log away from the scene: from the next step on, the hook records
+        every step (and so checks the cancel flag). Safe from any thread."""
+        self.scene.step_log = NO_STEP_LOG
 
     def step_count(self) -> int:
         """Steps recorded so far."""
-        return len(self._flat) // STEP_FIELDS
+        return len(self._log.facts) // STEP_FIELDS
 
     @property
     def steps(self) -> StepList:
         """The steps recorded so far (a view that later steps do not change)."""
-        return StepList(self._flat, self.step_count(), self.started)
+        return StepList(self._log, self.step_count(), self.started)
 
     def release(self) -> None:
-        """End the recording (call it once the hook is uninstalled): drops the hook,
-        and with it the frames it caches, which keep their locals alive."""
+        """End the recording: uninstalls the hook and the log, and drops the
+        frames they cache, which keep their locals alive."""
+        self.scene.step_hook = None
+        self.scene.step_log = NO_STEP_LOG
         self.hook = _ended
+        self._log.follow(_UNCACHED, _NOWHERE, self._log.code)
 
     def _make_hook(self) -> Callable[[str], None]:
-        extend, scene, objects, clock = self._flat.extend, self.scene, self.scene.objects, time.perf_counter
+        log, scene, objects, clock = self._log, self.scene, self.scene.objects, time.perf_counter
+        extend = log.facts.extend
         control, script, getframe = self.control or RunControl(), self.script, sys._getframe
         playback, step_done = control.playback, self._step_done
-        caller: object = _UNCACHED
-        frame: FrameType | _Nowhere = _NOWHERE
-        code: CodeType | None = None
+        log.follow(_UNCACHED, _NOWHERE, None)
 
         def hook(label: str) -> None:
-            nonlocal caller, frame, code
             if control.cancel_requested:
                 raise Cancelled
             try:
                 here: FrameType | None = getframe(STEP_HOOK_CALLER_DEPTH)
             except ValueError:  # called from near the bottom of a thread's stack
                 here = None
-            if here is not caller:
-                caller, frame, code = script_frame(here, script)
+            if here is not log.caller:  # the cache the command wrapper reads, too
+                log.follow(*script_frame(here, script))
             try:
                 m = objects[scene.current].mesh  # type: ignore[index]
             except KeyError:  # no current object
                 m = _EMPTY
             # Mesh.counts() inlined, its subtractions left to StepList: this is per step
-            extend((label, code, frame.f_lasti, m._v.n, len(m._v.free), m._e.n,
+            extend((label, log.frame.f_lasti, m._v.n, len(m._v.free), m._e.n,
                     len(m._e.free), m._f.n, len(m._f.free), clock()))
             if playback is not None and playback.mode == "step":
                 step_done(control, playback)

@@ -20,7 +20,7 @@ import numpy as np
 
 from livemod.dlfl.arrays import MeshArrays, mesh_arrays
 from livemod.dlfl.mesh import Mesh
-from livemod.dlfl.scene import Scene
+from livemod.dlfl.scene import STEP_FIELDS, Scene, StepLog
 
 
 @dataclass(frozen=True)
@@ -43,28 +43,23 @@ class StepRecord:
     elapsed: float
 
 
-# a recorded step is this many items of a recorder's flat list: label, code,
-# f_lasti, then n and len(free) of the vertex, edge and face tables (V = n -
-# len(free), as Mesh.counts() says), then perf_counter() (see StepList)
-STEP_FIELDS = 10
-
-
 class StepList(Sequence[StepRecord]):
     """The steps of a run: an immutable sequence of :class:`StepRecord`.
 
-    The runner's step hook only appends the raw facts of each step to a flat
-    list (see ``STEP_FIELDS``); a record is built, and the script line looked
-    up from the code and instruction offset, when the step is read. A run of
-    thousands of commands thus pays for the records someone looks at. The list
-    may grow on (a paused run goes on); this view keeps its first ``count`` steps.
+    The runner's step hook (or the modeling-command wrapper) only appends the
+    raw facts of each step to a :class:`~livemod.dlfl.scene.StepLog`; a record
+    is built, and the script line looked up from the code and instruction
+    offset, when the step is read. A run of thousands of commands thus pays for
+    the records someone looks at. The log may grow on (a paused run goes on);
+    this view keeps its first ``count`` steps.
 
     It compares equal to a tuple of the same records and pickles as one.
     """
 
-    __slots__ = ("_flat", "_count", "_started")
+    __slots__ = ("_log", "_count", "_started")
 
-    def __init__(self, flat: list, count: int, started: float) -> None:
-        self._flat = flat
+    def __init__(self, log: StepLog, count: int, started: float) -> None:
+        self._log = log
         self._count = count
         self._started = started
 
@@ -111,9 +106,9 @@ class StepList(Sequence[StepRecord]):
 
     def _record(self, k: int) -> StepRecord:
         at = k * STEP_FIELDS
-        label, code, lasti, nv, fv, ne, fe, nf, ff, clock = self._flat[at:at + STEP_FIELDS]
-        return StepRecord(k, label, code_line(code, lasti), (nv - fv, ne - fe, nf - ff),
-                          clock - self._started)
+        label, lasti, nv, fv, ne, fe, nf, ff, clock = self._log.facts[at:at + STEP_FIELDS]
+        return StepRecord(k, label, code_line(self._log.code_of(k), lasti),
+                          (nv - fv, ne - fe, nf - ff), clock - self._started)
 
 
 def code_line(code: CodeType | None, lasti: int) -> int | None:
