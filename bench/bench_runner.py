@@ -141,35 +141,45 @@ def print_overhead(title: str, ways: dict[str, tuple[float, float, float]],
           f"{100 * (nm / bm - 1):+.1f} %)")
 
 
-def bench_hook_cost(repeats: int, n: int = 20000) -> tuple[float, float, float, float]:
+def bench_hook_cost(repeats: int, n: int = 20000) -> dict[str, float]:
     """Least seconds per command over ``repeats`` interleaved timings (load inflates
     the least least) of createVertex called from a loop compiled as the script, as
-    in a run: (the runner's step hook minus none, a no-op hook minus none, no hook,
-    reading one recorded step back as a StepRecord)."""
+    in a run. Keys: "none" (no hook), and the extra seconds of "runner" (the
+    recorder installed as a straight run installs it: the command wrapper records
+    a known caller's steps), "hook" (every step through the runner's hook, as in
+    runs that may pause) and "noop" (a hook that does nothing); "read" is reading
+    one recorded step back as a StepRecord."""
     from livemod.dlfl import createVertex
-    from livemod.runner.recording import StepRecorder
+    from livemod.runner.playback import Playback
+    from livemod.runner.recording import RunControl, StepRecorder
 
     script = "/bench/fake_script.py"
     namespace: dict = {"createVertex": createVertex}
     exec(compile("def loop(n):\n    for i in range(n):\n        createVertex((0.0, 0.0, 0.0))\n",
                  script, "exec"), namespace)
-    hooks = {"none": lambda scene: None, "noop": lambda scene: lambda label: None,
-             "runner": lambda scene: StepRecorder(script, scene, None).hook}
-    best = dict.fromkeys(hooks, float("inf"))
+
+    def noop(scene: Scene) -> None:
+        scene.step_hook = lambda label: None
+
+    setups = {"none": lambda scene: None, "noop": noop,
+              "runner": lambda scene: StepRecorder(script, scene, None).install(),
+              "hook": lambda scene: StepRecorder(script, scene, RunControl(Playback())).install()}
+    best = dict.fromkeys(setups, float("inf"))
     for _ in range(repeats):
-        for name, make in hooks.items():
+        for name, setup in setups.items():
             scene = Scene()
-            scene.step_hook = make(scene)
+            setup(scene)
             with use_scene(scene):
                 cpu = time.process_time()
                 namespace["loop"](n)
                 best[name] = min(best[name], (time.process_time() - cpu) / n)
     recorder = StepRecorder(script, Scene(), None)
+    recorder.install()
     with use_scene(recorder.scene):
-        recorder.scene.step_hook = recorder.hook
         namespace["loop"](1000)
     read = min(timeit.repeat(lambda: list(recorder.steps), number=1, repeat=repeats)) / 1000
-    return best["runner"] - best["none"], best["noop"] - best["none"], best["none"], read
+    extra = {name: best[name] - best["none"] for name in ("runner", "hook", "noop")}
+    return {"none": best["none"], **extra, "read": read}
 
 
 def _wait_for(session: LiveSession, wanted, what: str, timeout: float):
@@ -340,11 +350,13 @@ def main(argv: list[str] | None = None) -> int:
     debounce = 0.15
     print(f"python {sys.version.split()[0]}, {os.cpu_count()} cpus")
     with tempfile.TemporaryDirectory() as folder:
-        hook_s, noop_s, command_s, read_s = bench_hook_cost(repeats)
+        cost = bench_hook_cost(repeats)
         print(f"per step (least of {repeats}, load {os.getloadavg()[0]:.1f}): recording "
-              f"{hook_s * 1e6:.2f} us, a no-op hook {noop_s * 1e6:.2f} us, one createVertex "
-              f"{command_s * 1e6:.2f} us -> recording adds {100 * hook_s / command_s:.0f} % to "
-              f"the smallest command; reading a step back later {read_s * 1e6:.2f} us")
+              f"{cost['runner'] * 1e6:.2f} us (through the hook, as runs that may pause: "
+              f"{cost['hook'] * 1e6:.2f} us), a no-op hook {cost['noop'] * 1e6:.2f} us, one "
+              f"createVertex {cost['none'] * 1e6:.2f} us -> recording adds "
+              f"{100 * cost['runner'] / cost['none']:.0f} % to the smallest command; reading a "
+              f"step back later {cost['read'] * 1e6:.2f} us")
         print_overhead("10,000 createVertex", bench_step_overhead(folder, repeats), repeats)
         base = Scene()
         base.add(grid_mesh(100))
