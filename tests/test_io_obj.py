@@ -102,6 +102,25 @@ def test_well_formed_lines_never_reach_the_reference_parser(
     assert soup.positions[7, 2] == 6.1e-17 and soup.positions[8, 2] == 3.0
 
 
+@pytest.mark.parametrize("name", ["soccerballdual.obj", "genus3hexa3.obj", "beveledcube.obj"])
+def test_many_small_passes_on_threads_read_and_write_as_one_pass_does(
+    name: str, monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    import livemod.dlfl.io.obj as obj_module
+
+    data = (SAMPLES / name).read_bytes()
+    slow = parse_obj(data, fast=False)
+    mesh = load_quietly(SAMPLES / name)
+    text_in_one_piece = obj_bytes(mesh)
+    monkeypatch.setattr(obj_module, "_LINES_PER_PASS", 37)  # dozens of passes, threaded
+    fast = parse_obj(data)
+    assert np.array_equal(fast.positions, slow.positions)
+    assert np.array_equal(fast.indices, slow.indices)
+    assert np.array_equal(fast.offsets, slow.offsets)
+    assert np.array_equal(fast.face_lines, slow.face_lines)
+    assert obj_bytes(mesh) == text_in_one_piece
+
+
 def test_beveledcube_is_reoriented_with_a_note() -> None:
     with pytest.warns(DLFLRepairWarning, match="re-oriented"):
         mesh = read_obj(SAMPLES / "beveledcube.obj")

@@ -28,6 +28,7 @@ from ..errors import DLFLError
 from ..mesh import Mesh
 from ._lines import gather_lines, parse_index_lines, parse_number_lines, split_lines
 from ._numtext import format_floats, format_uints, join_columns
+from ._parallel import map_in_order
 from .atomic import write_atomically
 from .source import read_source, show_token
 
@@ -105,8 +106,7 @@ def parse_obj(data: bytes, label: str = "<obj>", *, fast: bool = True) -> ObjSou
     parsed = _Parsed()
     for line in np.flatnonzero(kinds == _OTHER_SUSPECT).tolist():
         parsed.parse_line(_line_bytes(buf, starts, ends, line), line, label)
-    _parse_vertices(buf, starts, ends, np.flatnonzero(kinds == _VERTEX), parsed, label)
-    _parse_faces(buf, starts, ends, np.flatnonzero(kinds == _FACE), parsed, label)
+    _parse_vectorized(buf, starts, ends, kinds, parsed, label)
     if parsed.errors:
         raise parsed.errors[0][1]  # the first bad line of the file, as a reader would
     return parsed.soup(label)
@@ -257,29 +257,38 @@ def _passes(lines: np.ndarray) -> list[np.ndarray]:
     return [lines[i : i + _LINES_PER_PASS] for i in range(0, len(lines), _LINES_PER_PASS)]
 
 
-def _parse_vertices(buf: np.ndarray, starts: np.ndarray, ends: np.ndarray, lines: np.ndarray,
-                    parsed: _Parsed, label: str) -> None:
-    """Parse the plain ``v`` lines with numpy; hand the others to the Python parser."""
-    for part in _passes(lines):
-        block, block_starts = gather_lines(buf, starts, ends, part)
-        block[block_starts] = 32  # blank the keyword
-        values, accepted = parse_number_lines(block, block_starts, 3)
-        parsed.vertex_blocks.append((part[accepted], values[accepted]))
-        for line in part[~accepted].tolist():
+def _parse_vectorized(buf: np.ndarray, starts: np.ndarray, ends: np.ndarray,
+                      kinds: np.ndarray, parsed: _Parsed, label: str) -> None:
+    """Parse the ``v`` and ``f`` lines pass by pass with numpy, the passes on a few
+    threads (numpy releases the GIL in them); the lines a pass does not accept go
+    to the Python parser, in file order."""
+    passes = [(_vertex_lines_pass, part) for part in _passes(np.flatnonzero(kinds == _VERTEX))]
+    passes += [(_face_lines_pass, part) for part in _passes(np.flatnonzero(kinds == _FACE))]
+    results = map_in_order(lambda task: task[0](buf, starts, ends, task[1]), passes)
+    for (kind, _), (block, rejected) in zip(passes, results, strict=True):
+        blocks = parsed.vertex_blocks if kind is _vertex_lines_pass else parsed.face_blocks
+        blocks.append(block)  # type: ignore[arg-type]
+        for line in rejected.tolist():
             parsed.parse_line(_line_bytes(buf, starts, ends, line), line, label)
 
 
-def _parse_faces(buf: np.ndarray, starts: np.ndarray, ends: np.ndarray, lines: np.ndarray,
-                 parsed: _Parsed, label: str) -> None:
-    """Parse the plain ``f`` lines with numpy; hand the others to the Python parser."""
-    for part in _passes(lines):
-        block, block_starts = gather_lines(buf, starts, ends, part)
-        block[block_starts] = 32
-        values, counts, accepted = parse_index_lines(block, block_starts)
-        keep = np.repeat(accepted, counts)
-        parsed.face_blocks.append((part[accepted], counts[accepted], values[keep]))
-        for line in part[~accepted].tolist():
-            parsed.parse_line(_line_bytes(buf, starts, ends, line), line, label)
+def _vertex_lines_pass(buf: np.ndarray, starts: np.ndarray, ends: np.ndarray, part: np.ndarray,
+                       ) -> tuple[tuple[np.ndarray, ...], np.ndarray]:
+    """``((lines, (n, 3) positions), rejected lines)`` of the ``v`` lines ``part``."""
+    block, block_starts = gather_lines(buf, starts, ends, part)
+    block[block_starts] = 32  # blank the keyword
+    values, accepted = parse_number_lines(block, block_starts, 3)
+    return (part[accepted], values[accepted]), part[~accepted]
+
+
+def _face_lines_pass(buf: np.ndarray, starts: np.ndarray, ends: np.ndarray, part: np.ndarray,
+                     ) -> tuple[tuple[np.ndarray, ...], np.ndarray]:
+    """``((lines, counts, raw indices), rejected lines)`` of the ``f`` lines ``part``."""
+    block, block_starts = gather_lines(buf, starts, ends, part)
+    block[block_starts] = 32
+    values, counts, accepted = parse_index_lines(block, block_starts)
+    keep = np.repeat(accepted, counts)
+    return (part[accepted], counts[accepted], values[keep]), part[~accepted]
 
 
 def _parse_line(raw: bytes, line: int, label: str) -> tuple[str, list[float] | list[int]] | None:
@@ -366,9 +375,10 @@ def obj_pieces(mesh: Mesh) -> Iterator[bytes]:
 
 def vertex_lines(positions: np.ndarray, keyword: bytes) -> Iterator[bytes]:
     """Lines ``keyword x y z`` with coordinates that parse back to the same bits,
-    ``_LINES_PER_PASS`` lines a piece (``(V, 3)`` float64 ``positions``)."""
-    for i in range(0, len(positions), _LINES_PER_PASS):
-        yield _vertex_pass(positions[i : i + _LINES_PER_PASS], keyword)
+    ``_LINES_PER_PASS`` lines a piece (``(V, 3)`` float64 ``positions``), the
+    pieces formatted a few ahead on other threads."""
+    chunks = (positions[i : i + _LINES_PER_PASS] for i in range(0, len(positions), _LINES_PER_PASS))
+    return map_in_order(lambda chunk: _vertex_pass(chunk, keyword), chunks)
 
 
 def _vertex_pass(positions: np.ndarray, keyword: bytes) -> bytes:
@@ -380,7 +390,7 @@ def _vertex_pass(positions: np.ndarray, keyword: bytes) -> bytes:
 
 def index_lines(values: np.ndarray, sizes: np.ndarray, keyword: bytes) -> Iterator[bytes]:
     """Lines ``keyword v0 v1 ...`` of non-negative integers, ``sizes[i]`` per line,
-    ``_LINES_PER_PASS`` lines a piece.
+    ``_LINES_PER_PASS`` lines a piece (formatted a few ahead on other threads).
 
     Args:
         values: ``(C,)`` non-negative int64.
@@ -388,9 +398,10 @@ def index_lines(values: np.ndarray, sizes: np.ndarray, keyword: bytes) -> Iterat
         keyword: the line's first word.
     """
     offsets = np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64)
-    for i in range(0, len(sizes), _LINES_PER_PASS):
-        j = min(i + _LINES_PER_PASS, len(sizes))
-        yield _index_pass(values[offsets[i] : offsets[j]], sizes[i:j], keyword)
+    bounds = [(i, min(i + _LINES_PER_PASS, len(sizes))) for i in range(0, len(sizes), _LINES_PER_PASS)]
+    return map_in_order(
+        lambda ij: _index_pass(values[offsets[ij[0]] : offsets[ij[1]]], sizes[ij[0] : ij[1]], keyword),
+        bounds)
 
 
 def _index_pass(values: np.ndarray, sizes: np.ndarray, keyword: bytes) -> bytes:
