@@ -32,30 +32,36 @@ from livemod.dlfl import from_polygons
 from livemod.dlfl.scene import Scene, use_scene
 from livemod.runner import LiveSession, execute
 
-SMALL_COMMANDS = (
+# the step-overhead workloads, their loops ``{n}`` long (bench_step_instructions.py
+# runs the same scripts under callgrind)
+SMALL_TEMPLATE = (
     "from livemod.dlfl import *\n"
-    "for i in range(10000):\n"
+    "for i in range({n}):\n"
     "    createVertex((i * 0.1, 0.0, 0.0))\n"
 )
 
-MIXED_COMMANDS = (
+MIXED_TEMPLATE = (
     "from livemod.dlfl import *\n"
     "es = edges()\n"
-    "for i in range(5000):\n"
+    "for i in range({n}):\n"
     "    v = subdivideEdge(es[i])[0]\n"
     "    move([v], (0.0, 0.0, 0.001))\n"
 )
 
-EXTRUSIONS = (
+EXTRUSION_TEMPLATE = (
     "from livemod.dlfl import *\n"
     "from livemod.dlfl import current_scene, from_polygons\n"
     "P = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1)]\n"
     "Q = [(0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7)]\n"
     "current_scene().add(from_polygons(P, Q))\n"
     "face = faces()[1]\n"
-    "for i in range(2000):\n"
+    "for i in range({n}):\n"
     "    face = extrude('cubical', face, 0.1)\n"
 )
+
+SMALL_COMMANDS = SMALL_TEMPLATE.format(n=10000)
+MIXED_COMMANDS = MIXED_TEMPLATE.format(n=5000)
+EXTRUSIONS = EXTRUSION_TEMPLATE.format(n=2000)
 
 TWENTY_COMMANDS = (
     "{marker}\n"

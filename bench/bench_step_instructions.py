@@ -30,6 +30,8 @@ import tempfile
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 
+from bench_runner import EXTRUSION_TEMPLATE, MIXED_TEMPLATE, SMALL_TEMPLATE
+
 # the child: the same imports and base scene for both modes and both sizes, so
 # that only the loop's length differs between the two sizes of one mode
 CHILD = """
@@ -84,25 +86,9 @@ class Workload:
 
 
 WORKLOADS = (
-    Workload("createVertex", (
-        "from livemod.dlfl import *\n"
-        "for i in range({n}):\n"
-        "    createVertex((i * 0.1, 0.0, 0.0))\n"), 1000, 11000),
-    Workload("subdivideEdge/move", (
-        "from livemod.dlfl import *\n"
-        "es = edges()\n"
-        "for i in range({n}):\n"
-        "    v = subdivideEdge(es[i])[0]\n"
-        "    move([v], (0.0, 0.0, 0.001))\n"), 500, 5500, per_iteration=2, grid=100),
-    Workload("cubical extrusion", (
-        "from livemod.dlfl import *\n"
-        "from livemod.dlfl import current_scene, from_polygons\n"
-        "P = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1)]\n"
-        "Q = [(0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7)]\n"
-        "current_scene().add(from_polygons(P, Q))\n"
-        "face = faces()[1]\n"
-        "for i in range({n}):\n"
-        "    face = extrude('cubical', face, 0.1)\n"), 200, 1200),
+    Workload("createVertex", SMALL_TEMPLATE, 1000, 11000),
+    Workload("subdivideEdge/move", MIXED_TEMPLATE, 500, 5500, per_iteration=2, grid=100),
+    Workload("cubical extrusion", EXTRUSION_TEMPLATE, 200, 1200),
 )
 
 COLLECTED = re.compile(r"Collected\s*:\s*([\d ]+)")
