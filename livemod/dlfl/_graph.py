@@ -136,3 +136,37 @@ def _walk(perm: np.ndarray, starts: np.ndarray, sizes: np.ndarray, offsets: np.n
         order[base + k] = current
         current = perm[current]
     return order
+
+
+def one_cycle_each(perm: np.ndarray, group: np.ndarray, sizes: np.ndarray) -> bool | None:
+    """Whether the elements of every group form one single cycle of ``perm``.
+
+    Args:
+        perm: ``(C,)`` a permutation that maps every element into its own group
+            (``vnext`` around vertices, say).
+        group: ``(C,)`` group of each element. sizes: ``(G,)`` elements per group.
+
+    Returns:
+        True or False; None when a group is larger than :data:`MAX_WALK`, where
+        walking costs more than :func:`cycle_labels` (ask that instead).
+
+    Each group's cycle through one of its elements is walked, all groups in
+    step; it holds the whole group unless it closes before ``sizes`` steps.
+    """
+    if len(perm) == 0:
+        return True
+    if int(sizes.max()) > MAX_WALK:
+        return None
+    first = np.empty(len(sizes), dtype=np.int64)
+    first[group] = np.arange(len(perm), dtype=np.int64)  # any element of a group will do
+    start = first[sizes > 0]
+    left = sizes[sizes > 0]
+    current = perm[start]
+    for step in range(1, int(left.max())):
+        keep = left > step
+        start, left, current = start[keep], left[keep], current[keep]
+        if (current == start).any():
+            return False  # a cycle closed before it held its whole group
+        current = perm[current]
+    return True
+

@@ -19,7 +19,7 @@ from typing import Any
 
 import numpy as np
 
-from ._graph import cycle_labels, walk_rings
+from ._graph import cycle_labels, one_cycle_each
 from ._table import Table
 from .errors import DLFLError, DLFLRepairWarning
 from .mesh import CORNER_SPEC, EDGE_SPEC, FACE_SPEC, VERTEX_SPEC, Mesh
@@ -556,10 +556,13 @@ def _check_vertex_fans(soup: Polygons, mate: np.ndarray, where: _Where) -> None:
     """Refuse a vertex whose corners form several fans (a bow-tie)."""
     nxt = soup.next_corner
     has = mate >= 0
-    vnext = np.arange(len(mate), dtype=np.int64)
-    vnext[has] = nxt[mate[has]]
+    if has.all():  # closed, no point-spheres: the usual mesh
+        vnext = nxt[mate]
+    else:
+        vnext = np.arange(len(mate), dtype=np.int64)
+        vnext[has] = nxt[mate[has]]
     valence = np.bincount(soup.indices, minlength=len(soup.positions))
-    if walk_rings(vnext, soup.indices, valence) is not None:
+    if one_cycle_each(vnext, soup.indices, valence):
         return  # every vertex's corners are one ring: the quick answer
     labels = cycle_labels(vnext)
     roots = labels == np.arange(len(labels))
