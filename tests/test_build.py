@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import itertools
+
 import numpy as np
 import pytest
 
@@ -16,6 +18,7 @@ from livemod.dlfl import (
     validate,
 )
 from livemod.dlfl.analysis import component_genera
+from livemod.dlfl.build import _next_in_face
 from tests.meshes import CUBE_FACES, CUBE_POSITIONS, euler_ok, torus_polygons
 
 SQUARE = [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]]
@@ -251,3 +254,12 @@ def test_each_component_is_oriented_from_its_first_face():
         m = from_polygons(pos, faces)
     validate(m)
     assert m.face_vertices(6) == [v + 8 for v in CUBE_FACES[0][::-1]]
+
+
+@pytest.mark.parametrize("offsets", [[0, 4, 8, 12], [0, 3, 7, 8, 10], [0, 1, 2], [0, 2, 2, 5], [0]])
+def test_next_in_face_wraps_every_face(offsets):
+    # the all-k-gons shortcut and the general path must agree with a plain walk
+    off = np.array(offsets, dtype=np.int64)
+    expected = [start + (c - start + 1) % (end - start)
+                for start, end in itertools.pairwise(offsets) for c in range(start, end)]
+    assert _next_in_face(off).tolist() == expected

@@ -191,6 +191,10 @@ def _next_in_face(offsets: np.ndarray) -> np.ndarray:
     count = int(offsets[-1])
     nxt = np.arange(1, count + 1, dtype=np.int64)
     sizes = np.diff(offsets)
+    k = int(sizes[0]) if len(sizes) else 0
+    if k > 0 and sizes.min() == k == sizes.max():
+        nxt[k - 1 :: k] -= k  # all faces k-gons (an (F, k) array): a strided step, no masks
+        return nxt
     ends = offsets[1:][sizes > 0] - 1
     nxt[ends] = offsets[:-1][sizes > 0]
     return nxt
