@@ -13,7 +13,6 @@ import importlib
 import itertools
 import multiprocessing
 import os
-import sys
 import threading
 import time
 from collections.abc import Callable, Iterable, Iterator
@@ -24,6 +23,7 @@ import numpy as np
 
 from livemod.dlfl.errors import DLFLError
 from livemod.dlfl.params import ParamSpec
+from livemod.progress import ProgressBar
 
 from .declarations import undeclared
 
@@ -256,25 +256,16 @@ def run_batch(variants: list[Variant], executor: VariantExecutor | None = None, 
     """Run ``variants`` (on ``executor``, default a pool of ``jobs`` processes) with a
     progress bar on ``progress`` (default: the current ``sys.stderr``; none if
     ``quiet``); results come back sorted by variant index."""
-    progress = None if quiet else (progress or sys.stderr)
+    bar = None if quiet else ProgressBar("batch", progress)
     if executor is None:
         executor = ProcessPoolVariantExecutor(jobs) if jobs > 1 else SerialExecutor()
     results = []
     for done, result in enumerate(executor.map_unordered(run_variant, variants), start=1):
         results.append(result)
-        if progress is not None:
-            _draw_progress(progress, done, len(variants), result)
-    if progress is not None:
-        progress.write("\n")
+        if bar is not None:
+            bar(done, len(variants), "" if result.status == "ok"
+                else f"variant {result.index} failed")
     return sorted(results, key=lambda r: r.index)
-
-
-def _draw_progress(out: TextIO, done: int, total: int, last: VariantResult) -> None:
-    width = 30
-    filled = width * done // max(total, 1)
-    mark = "" if last.status == "ok" else f"  (variant {last.index} failed)"
-    out.write(f"\rbatch [{'#' * filled}{'.' * (width - filled)}] {done}/{total}{mark}")
-    out.flush()
 
 
 def index_rows(results: list[VariantResult]) -> list[dict[str, Any]]:

@@ -100,8 +100,9 @@ def _given_values(command: str, script: str, texts: list[str]) -> dict[str, Any]
 
 def _render(args: argparse.Namespace) -> int:
     from livemod.dlfl.errors import DLFLError
+    from livemod.progress import ProgressBar
 
-    from .headless import progress_bar, render_arrays
+    from .headless import render_arrays
     from .renderer import LABEL_KINDS, Style
 
     values = _given_values("render", args.input, args.set)
@@ -116,7 +117,7 @@ def _render(args: argparse.Namespace) -> int:
               file=sys.stderr)
     style = Style(edges=not args.no_edges, vertices=args.vertices, preview=args.preview,
                   labels=labels)
-    progress = progress_bar() if args.turntable > 1 else None
+    progress = ProgressBar("rendering") if args.turntable > 1 else None
     paths = render_arrays(arrays, args.output, size=args.size, turntable=args.turntable,
                           elevation=args.elevation, style=style, preview=preview,
                           progress=progress, ortho=args.ortho,

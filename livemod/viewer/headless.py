@@ -6,11 +6,8 @@ Mesa's llvmpipe; its output is bit-identical across runs.
 
 from __future__ import annotations
 
-import math
-import sys
 from collections.abc import Callable, Iterator
 from pathlib import Path
-from typing import TextIO
 
 import moderngl
 import numpy as np
@@ -132,20 +129,6 @@ def write_images(out: str, images: list[np.ndarray], fps: float = 25.0) -> list[
         path.parent.mkdir(parents=True, exist_ok=True)
         Image.fromarray(image).save(path)
     return paths
-
-
-def progress_bar(stream: TextIO | None = None) -> Callable[[int, int], None]:
-    """A callback drawing ``[#####.....] k/N`` on ``stream`` (stderr by default)."""
-    out = stream if stream is not None else sys.stderr
-
-    def show(done: int, total: int) -> None:
-        filled = math.floor(30 * done / max(total, 1))
-        out.write(f"\rrendering [{'#' * filled}{'.' * (30 - filled)}] {done}/{total}")
-        if done >= total:
-            out.write("\n")
-        out.flush()
-
-    return show
 
 
 def render_arrays(arrays: MeshArrays | None, out: str, *, size: tuple[int, int] = (800, 600),
