@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import argparse
 import importlib
+import os
 import sys
 from collections.abc import Sequence
 
@@ -102,11 +103,26 @@ def main(argv: Sequence[str] | None = None) -> int:
     args = parser.parse_args(argv)
     try:
         return int(args.handler(args) or 0)
+    except BrokenPipeError:
+        return _reader_went_away()
     except (DLFLError, OSError) as exc:
         print(f"livemod: error: {exc}", file=sys.stderr)
         return 1
     except KeyboardInterrupt:
         return 130
+
+
+def _reader_went_away() -> int:
+    """Exit quietly when whoever reads our output (``| head``) has closed the pipe.
+
+    Standard output is pointed at the null device, so that the interpreter's
+    last flush does not fail again; returns 128 + SIGPIPE, as a shell tool
+    killed by the signal would.
+    """
+    devnull = os.open(os.devnull, os.O_WRONLY)
+    os.dup2(devnull, sys.stdout.fileno())
+    os.close(devnull)
+    return 141
 
 
 if __name__ == "__main__":

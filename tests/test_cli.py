@@ -3,6 +3,8 @@ their subsystems)."""
 
 from __future__ import annotations
 
+import subprocess
+import sys
 from pathlib import Path
 
 import pytest
@@ -50,3 +52,17 @@ def test_every_subcommand_is_registered() -> None:
     parser = build_parser()
     choices = parser._subparsers._group_actions[0].choices  # type: ignore[union-attr]
     assert {"info", "convert", "run", "batch", "view", "render"} <= set(choices)
+
+
+def test_a_closed_pipe_ends_the_command_quietly(tmp_path: Path) -> None:
+    # `livemod run --steps script | head -1`: the reader leaves after one line
+    script = tmp_path / "many.py"
+    script.write_text("for i in range(20000):\n    createVertex((i, 0.0, 0.0))\n")
+    proc = subprocess.Popen([sys.executable, "-m", "livemod", "run", str(script), "--steps"],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    assert proc.stdout is not None and proc.stderr is not None
+    proc.stdout.readline()
+    proc.stdout.close()
+    errors = proc.stderr.read().decode()
+    assert proc.wait(timeout=60) == 141
+    assert errors == ""
