@@ -11,7 +11,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from livemod.dlfl import DLFLError, DLFLRepairWarning, Mesh, from_polygons, genus, validate
-from livemod.dlfl.io import load_mesh, read_obj, save_mesh, write_obj
+from livemod.dlfl.io import _numtext, load_mesh, read_obj, save_mesh, write_obj
 from livemod.dlfl.io._numtext import decimal_to_float, format_floats, format_uints
 from livemod.dlfl.io.obj import obj_bytes, parse_obj
 
@@ -363,6 +363,22 @@ def _significant(text: bytes) -> bytes:
     """The significant digits of a decimal (no sign, point, exponent or outer zeros)."""
     mantissa = text.lower().split(b"e")[0].lstrip(b"-")
     return mantissa.replace(b".", b"").strip(b"0")
+
+
+def test_chunk_tables_hold_the_text_of_every_chunk() -> None:
+    def table(text_of) -> list[bytes]:
+        return [text_of(i).ljust(4, b"\0") for i in range(10000)]
+
+    def lead(i: int) -> bytes:
+        return str(i).rjust(4, "\0").encode() if i else b""
+
+    def as_text(chunks: np.ndarray) -> list[bytes]:
+        return [bytes(row) for row in chunks.view(np.uint8).reshape(-1, 4)]
+
+    assert as_text(_numtext._FULL) == table(lambda i: f"{i:04d}".encode())
+    assert as_text(_numtext._LEAD) == table(lead)
+    assert as_text(_numtext._UNITS) == table(lambda i: lead(i) or b"\0\0\0" b"0")
+    assert as_text(_numtext._TRAIL) == table(lambda i: f"{i:04d}".rstrip("0").encode())
 
 
 def test_float_text_forms() -> None:
