@@ -50,8 +50,8 @@ def _chunk_tables() -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     trail = np.where(i % (10 * place) != 0, digits, 0).astype(np.uint8)
     units = lead.copy()
     units[0, 3] = ord("0")
-    full, lead, units, trail = (t.view(np.uint32).ravel() for t in (digits, lead, units, trail))
-    return full, lead, units, trail
+    return (digits.view(np.uint32).ravel(), lead.view(np.uint32).ravel(),
+            units.view(np.uint32).ravel(), trail.view(np.uint32).ravel())
 
 
 _FULL, _LEAD, _UNITS, _TRAIL = _chunk_tables()
