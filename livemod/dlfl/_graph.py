@@ -164,7 +164,8 @@ def one_cycle_each(perm: np.ndarray, group: np.ndarray, sizes: np.ndarray) -> bo
     current = perm[start]
     for step in range(1, int(left.max())):
         keep = left > step
-        start, left, current = start[keep], left[keep], current[keep]
+        if not keep.all():  # all the same size (a quad torus: valence 4): nothing to drop
+            start, left, current = start[keep], left[keep], current[keep]
         if (current == start).any():
             return False  # a cycle closed before it held its whole group
         current = perm[current]

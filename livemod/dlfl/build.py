@@ -57,6 +57,12 @@ class Polygons:
         """``(C,)`` int64 index of the next corner in the same face (computed once)."""
         return _next_in_face(self.offsets)
 
+    @functools.cached_property
+    def next_vertex(self) -> np.ndarray:
+        """``(C,)`` int64 vertex of the next corner in the same face: each corner's
+        side runs from ``indices`` to ``next_vertex`` (computed once)."""
+        return self.indices[self.next_corner]
+
 
 def as_polygons(positions: Any, faces: Any, offsets: Any = None) -> Polygons:
     """Normalise a polygon soup to :class:`Polygons`.
@@ -162,9 +168,8 @@ def _check_soup(soup: Polygons, where: _Where) -> None:
     if (sizes < 1).any():
         f = int(np.flatnonzero(sizes < 1)[0])
         raise DLFLError(f"{where.prefix([f])}{where.face(f)} has no vertices")
-    bad = (soup.indices < 0) | (soup.indices >= nv)
-    if bad.any():
-        c = int(np.flatnonzero(bad)[0])
+    if len(soup.indices) and (soup.indices.min() < 0 or soup.indices.max() >= nv):
+        c = int(np.flatnonzero((soup.indices < 0) | (soup.indices >= nv))[0])
         f = int(np.searchsorted(soup.offsets, c, side="right") - 1)
         raise DLFLError(
             f"{where.prefix([f])}{where.face(f)} uses vertex index {int(soup.indices[c])}, "
@@ -173,8 +178,7 @@ def _check_soup(soup: Polygons, where: _Where) -> None:
     if not np.isfinite(soup.positions).all():
         v = int(np.flatnonzero(~np.isfinite(soup.positions).all(axis=1))[0])
         raise DLFLError(f"{where.prefix()}vertex {v} has a position that is not finite")
-    nxt = soup.next_corner
-    same = soup.indices == soup.indices[nxt]
+    same = soup.indices == soup.next_vertex
     if len(sizes) and sizes.min() == 1:
         same &= np.repeat(sizes, sizes) > 1
     if same.any():
@@ -214,8 +218,7 @@ def _pair_sides(
     """
     nv = max(len(soup.positions), 1)
     nxt = soup.next_corner
-    u = soup.indices
-    w = u[nxt]
+    u, w = soup.indices, soup.next_vertex
     single = soup.single_corners
     key = np.minimum(u, w) * nv + np.maximum(u, w)
     key[single] = -1 - np.flatnonzero(single)  # point-sphere corners pair with nothing
@@ -470,8 +473,7 @@ def _face_adjacency(soup: Polygons) -> tuple[np.ndarray, np.ndarray, np.ndarray]
     Returns ``(src, dst, same)``: ``(2k,)`` face pairs and whether the two faces
     traverse the shared edge in the same direction (one of them must flip).
     """
-    u = soup.indices
-    w = u[soup.next_corner]
+    u, w = soup.indices, soup.next_vertex
     sides = np.flatnonzero(u != w)  # one-corner faces have no side
     key = np.minimum(u[sides], w[sides]) * max(len(soup.positions), 1)
     key += np.maximum(u[sides], w[sides])
