@@ -154,7 +154,6 @@ def from_polygons(
     hole_flags[real : real + holes] = True
     mesh = from_corner_arrays(
         soup.positions, soup.offsets, soup.indices, mate, hole_flags, first_ids=first_ids,
-        corner_next=soup.next_corner,
     )
     mesh.notes = notes
     for note in notes:
@@ -590,7 +589,6 @@ def from_corner_arrays(
     face_hole: np.ndarray | None = None,
     *,
     first_ids: tuple[int, int, int, int] = (0, 0, 0, 0),
-    corner_next: np.ndarray | None = None,
 ) -> Mesh:
     """Build a mesh from corners laid out face by face, with known pairing.
 
@@ -604,8 +602,6 @@ def from_corner_arrays(
             edge (the corner's edge runs to the next corner); -1 for a point-sphere.
         face_hole: ``(F,)`` bool hole flags.
         first_ids: first vertex, edge, face and corner id.
-        corner_next: ``(C,)`` next corner of each corner in its face, when the
-            caller already has it (derived from ``offsets`` otherwise).
 
     Returns:
         The mesh; vertex ``i`` gets id ``first_ids[0] + i``, face ``i`` gets
@@ -617,8 +613,6 @@ def from_corner_arrays(
     cvert = np.asarray(corner_vertex, dtype=np.int64)
     mate = np.asarray(corner_mate, dtype=np.int64)
     nxt, prv, face = _ring_links(offsets)
-    if corner_next is not None:
-        nxt = corner_next
     lower, upper, edge = _edge_links(mate)
     num_f = len(offsets) - 1
     hole = np.zeros(num_f, np.uint8) if face_hole is None else np.asarray(face_hole, np.uint8)
