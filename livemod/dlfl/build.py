@@ -57,12 +57,6 @@ class Polygons:
         """``(C,)`` int64 index of the next corner in the same face (computed once)."""
         return _next_in_face(self.offsets)
 
-    @functools.cached_property
-    def next_vertex(self) -> np.ndarray:
-        """``(C,)`` int64 vertex of the next corner in the same face: each corner's
-        side runs from ``indices`` to ``next_vertex`` (computed once)."""
-        return self.indices[self.next_corner]
-
 
 def as_polygons(positions: Any, faces: Any, offsets: Any = None) -> Polygons:
     """Normalise a polygon soup to :class:`Polygons`.
@@ -143,9 +137,10 @@ def from_polygons(
     """
     soup = as_polygons(positions, faces, offsets)
     where = _Where(source, None if face_lines is None else np.asarray(face_lines))
-    _check_soup(soup, where)
+    far = _check_soup(soup, where)
     notes: list[str] = []
-    soup, mate = _pair_sides(soup, where, notes)
+    soup, mate = _pair_sides(soup, where, notes, far)
+    del far  # 8 bytes a corner, not to be held through the rest of the build
     soup, mate, holes = _close_boundaries(soup, mate, where)
     soup, mate, num_ps = _add_point_spheres(soup, mate)
     _check_vertex_fans(soup, mate, where)
@@ -161,7 +156,10 @@ def from_polygons(
     return mesh
 
 
-def _check_soup(soup: Polygons, where: _Where) -> None:
+def _check_soup(soup: Polygons, where: _Where) -> np.ndarray:
+    """Refuse empty faces, indices out of range, positions that are not finite and
+    zero-length sides; returns the ``(C,)`` far vertex of every corner's side
+    (``indices[next_corner]``), which the pairing needs too."""
     nv = len(soup.positions)
     sizes = soup.sizes
     if (sizes < 1).any():
@@ -177,7 +175,8 @@ def _check_soup(soup: Polygons, where: _Where) -> None:
     if not np.isfinite(soup.positions).all():
         v = int(np.flatnonzero(~np.isfinite(soup.positions).all(axis=1))[0])
         raise DLFLError(f"{where.prefix()}vertex {v} has a position that is not finite")
-    same = soup.indices == soup.next_vertex
+    far = soup.indices[soup.next_corner]
+    same = soup.indices == far
     if len(sizes) and sizes.min() == 1:
         same &= np.repeat(sizes, sizes) > 1
     if same.any():
@@ -187,6 +186,7 @@ def _check_soup(soup: Polygons, where: _Where) -> None:
             f"{where.prefix([f])}{where.face(f)} visits vertex {int(soup.indices[c])} "
             "twice in a row (a zero-length side)"
         )
+    return far
 
 
 def _next_in_face(offsets: np.ndarray) -> np.ndarray:
@@ -209,15 +209,17 @@ def _face_of_corner(offsets: np.ndarray) -> np.ndarray:
 
 
 def _pair_sides(
-    soup: Polygons, where: _Where, notes: list[str]
+    soup: Polygons, where: _Where, notes: list[str], far: np.ndarray | None = None
 ) -> tuple[Polygons, np.ndarray]:
     """Pair each side ``u -> w`` with a side ``w -> u``; -1 where none exists.
 
+    ``far`` is the ``(C,)`` far vertex ``w`` of every side, when already known.
     Returns the (possibly re-oriented) soup and the ``(C,)`` mate of each corner.
     """
     nv = max(len(soup.positions), 1)
     nxt = soup.next_corner
-    u, w = soup.indices, soup.next_vertex
+    u = soup.indices
+    w = u[nxt] if far is None else far
     single = soup.single_corners
     key = np.minimum(u, w) * nv + np.maximum(u, w)
     key[single] = -1 - np.flatnonzero(single)  # point-sphere corners pair with nothing
@@ -472,7 +474,8 @@ def _face_adjacency(soup: Polygons) -> tuple[np.ndarray, np.ndarray, np.ndarray]
     Returns ``(src, dst, same)``: ``(2k,)`` face pairs and whether the two faces
     traverse the shared edge in the same direction (one of them must flip).
     """
-    u, w = soup.indices, soup.next_vertex
+    u = soup.indices
+    w = u[soup.next_corner]
     sides = np.flatnonzero(u != w)  # one-corner faces have no side
     key = np.minimum(u[sides], w[sides]) * max(len(soup.positions), 1)
     key += np.maximum(u[sides], w[sides])
