@@ -8,8 +8,10 @@ import sys
 import threading
 import time
 
+import numpy as np
 import pytest
 
+from livemod.dlfl import from_polygons
 from livemod.runner import cli
 from livemod.runner.batch import (
     SerialExecutor,
@@ -20,6 +22,7 @@ from livemod.runner.batch import (
     sweep,
 )
 
+from .meshes import CUBE_FACES, CUBE_POSITIONS
 from .runner_scripts.support import script_path, write_by_rename
 
 RING = script_path("ring.py")
@@ -30,6 +33,17 @@ def test_run_prints_summary_and_steps(capsys):
     out = capsys.readouterr().out
     assert "V=14 E=18 F=6" in out and "genus=0" in out
     assert "line   11  cube" in out and "done" in out
+
+
+def test_summary_gives_genus_per_component_only_for_several(tmp_path, capsys):
+    script = tmp_path / "two.py"
+    script.write_text("load('cube')\nload('torus')\n")  # two objects, the second current
+    assert cli.main(["run", str(script)]) == 0
+    assert "components=1 genus=1\n" in capsys.readouterr().out
+    two = from_polygons(np.vstack([CUBE_POSITIONS, CUBE_POSITIONS + 5.0]),
+                        CUBE_FACES + [[i + 8 for i in f] for f in CUBE_FACES])
+    cli.print_summary("two cubes", two, 0, 0.0)
+    assert "components=2 genus=0 (per component: 0, 0)" in capsys.readouterr().out
 
 
 def test_run_failure_exits_non_zero_with_file_and_line(capsys):

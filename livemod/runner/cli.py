@@ -154,8 +154,9 @@ def print_summary(script: str, mesh: Any, steps: int, elapsed: float,
         return
     s = summarize(mesh)
     genera = ", ".join(str(g) for g in s.component_genera)
+    per_component = f" (per component: {genera})" if s.components > 1 else ""
     print(f"V={s.vertices} E={s.edges} F={s.faces} holes={s.holes} "
-          f"components={s.components} genus={s.genus} ({genera})", file=out)
+          f"components={s.components} genus={s.genus}{per_component}", file=out)
     sizes = " ".join(f"{k}:{v}" for k, v in sorted(s.face_sizes.items()))
     print(f"face sizes: {sizes}", file=out)
 
