@@ -288,3 +288,15 @@ def test_glfw_window_reloads_on_save_and_closes(xvfb_display: str, tmp_path: Pat
                           timeout=90, cwd=root)
     assert done.returncode == 0, done.stdout + done.stderr
     assert "glfw window ok" in done.stdout
+
+
+def test_view_without_a_display_says_so_in_one_line(tmp_path: Path) -> None:
+    script = tmp_path / "model.py"
+    script.write_text(CUBE.format(scale=1.0))
+    env = {k: v for k, v in os.environ.items() if k not in ("DISPLAY", "WAYLAND_DISPLAY")}
+    done = subprocess.run([sys.executable, "-m", "livemod", "view", str(script)],
+                          capture_output=True, text=True, timeout=60, env=env)
+    assert done.returncode == 1
+    assert "Traceback" not in done.stderr
+    assert done.stderr.startswith("livemod: error: cannot open a window (")
+    assert "no display" in done.stderr and "livemod render" in done.stderr

@@ -10,9 +10,12 @@ explicit arguments (moderngl-window would otherwise parse ``sys.argv``), and
 from __future__ import annotations
 
 import logging
+import os
 import queue
+import re
 import sys
 import time
+import warnings
 from collections import deque
 from collections.abc import Callable
 from dataclasses import dataclass, replace
@@ -556,8 +559,29 @@ class LiveViewer(mglw.WindowConfig):
             session.close()
 
 
+class WindowUnavailable(OSError):
+    """No window could be opened (no display, no GL): ``livemod view`` says why."""
+
+
+def _window_failure(exc: Exception, warned: list[str]) -> str:
+    """The message for a window that did not open, with what the toolkit warned."""
+    # glfw words its errors "(65550) b'X11: ...'"
+    reason = "; ".join(re.sub(r"^\(\d+\) b['\"](.*)['\"]$", r"\1", text) for text in warned)
+    reason = reason or str(exc)
+    hint = ""
+    if not (os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY")):
+        hint = (" There is no display (DISPLAY and WAYLAND_DISPLAY are unset): run it"
+                " in a desktop session or under xvfb-run, or work headless with"
+                " `livemod run --watch` and `livemod render`.")
+    return f"cannot open a window ({reason}).{hint}"
+
+
 def create_viewer(options: ViewOptions) -> LiveViewer:
-    """Open the window described by ``options`` (on the calling, main thread)."""
+    """Open the window described by ``options`` (on the calling, main thread).
+
+    Raises:
+        WindowUnavailable: the window toolkit could not open a window.
+    """
     attributes = {"options": options, "samples": options.samples, "vsync": options.vsync,
                   "window_size": options.size}
     config_cls = type("LiveViewerWindow", (LiveViewer,), attributes)
@@ -565,7 +589,12 @@ def create_viewer(options: ViewOptions) -> LiveViewer:
             "--samples", str(options.samples)]
     if options.backend == "headless":
         args += ["--backend", "egl"]
-    viewer = mglw.create_window_config_instance(config_cls, args=args)
+    with warnings.catch_warnings(record=True) as said:  # glfw warns the reason, then fails
+        warnings.simplefilter("always")
+        try:
+            viewer = mglw.create_window_config_instance(config_cls, args=args)
+        except (ValueError, RuntimeError) as exc:
+            raise WindowUnavailable(_window_failure(exc, [str(w.message) for w in said])) from None
     assert isinstance(viewer, LiveViewer)
     viewer.timer.start()
     return viewer
