@@ -115,6 +115,9 @@ def _first(item: tuple[int, Any]) -> int:
 # the step log of scenes whose steps all go to the hook (its caller, None, is no frame)
 NO_STEP_LOG = StepLog()
 
+# what a recorded step counts when the scene has no current object (never changed)
+NO_MESH = Mesh()
+
 
 class Scene:
     """Several meshes (objects by integer id), the current one and the selection.

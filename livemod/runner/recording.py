@@ -21,8 +21,7 @@ import time
 from collections.abc import Callable, Sequence
 from types import CodeType, FrameType
 
-from livemod.dlfl.mesh import Mesh
-from livemod.dlfl.scene import NO_STEP_LOG, STEP_HOOK_CALLER_DEPTH, Scene, StepLog
+from livemod.dlfl.scene import NO_MESH, NO_STEP_LOG, STEP_HOOK_CALLER_DEPTH, Scene, StepLog
 
 from .errors import Cancelled
 from .instrument import CANCEL_FLAG
@@ -116,7 +115,6 @@ class _Nowhere:
 
 
 _NOWHERE = _Nowhere()
-_EMPTY = Mesh()  # counted when the scene has no current object
 
 
 class StepRecorder:
@@ -188,7 +186,7 @@ class StepRecorder:
             try:
                 m = objects[scene.current].mesh  # type: ignore[index]
             except KeyError:  # no current object
-                m = _EMPTY
+                m = NO_MESH
             # Mesh.counts() inlined, its subtractions left to StepList: this is per step
             extend((label, log.frame.f_lasti, m._v.n, len(m._v.free), m._e.n,
                     len(m._e.free), m._f.n, len(m._f.free), clock()))

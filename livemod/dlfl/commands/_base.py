@@ -10,7 +10,7 @@ from typing import Any, TypeVar, cast
 
 from ..errors import DLFLError
 from ..mesh import Mesh
-from ..scene import Scene, current_scene
+from ..scene import NO_MESH, Scene, current_scene
 
 F = TypeVar("F", bound=Callable[..., Any])
 
@@ -26,8 +26,6 @@ def mesh() -> Mesh:
     """The current object's mesh."""
     return current_scene().mesh
 
-
-_NO_MESH = Mesh()  # counted when the scene has no current object
 
 
 def modeling_command(func: F) -> F:
@@ -61,7 +59,7 @@ def modeling_command(func: F) -> F:
                         try:
                             m = sc.objects[sc.current].mesh  # type: ignore[index]
                         except KeyError:
-                            m = _NO_MESH
+                            m = NO_MESH
                         log.facts.extend((label, log.frame.f_lasti, m._v.n, len(m._v.free),
                                           m._e.n, len(m._e.free), m._f.n, len(m._f.free),
                                           perf_counter()))
