@@ -348,10 +348,7 @@ class _PlainScan:
         numeric = self.is_digit | is_dot
         self.ts, self.te = _runs(numeric)
         _, self.per_line = _per_line(starts, self.ts)
-        odd = ~numeric
-        odd &= buf != 32
-        odd &= buf != 10
-        self.special = np.flatnonzero(odd)
+        self.special = _special_bytes(buf, numeric)
         self.special_cls = classes[buf[self.special]]
         self.dots = np.flatnonzero(is_dot)
         self.has_point, self.point, self.two_points = _points(self.dots, self.ts, self.te)
@@ -363,6 +360,15 @@ class _PlainScan:
         flagged = _lines_of(starts, np.concatenate(bad_bytes))
         flagged[_owner(starts, self.ts[bad_tokens])] = True
         return flagged
+
+
+def _special_bytes(buf: np.ndarray, numeric: np.ndarray) -> np.ndarray:
+    """Positions of the bytes of ``buf`` that are neither ``numeric`` (``(S,)``
+    bool), blanks nor newlines: the only ones the plain paths look at."""
+    odd = ~numeric
+    odd &= buf != 32
+    odd &= buf != 10
+    return np.flatnonzero(odd)
 
 
 def _points(dots: np.ndarray, ts: np.ndarray, te: np.ndarray,
@@ -485,20 +491,15 @@ def parse_index_lines(buf: np.ndarray, starts: np.ndarray,
         digits) must be parsed by the caller.
     """
     is_digit = (buf - np.uint8(48)) < 10
-    odd = ~is_digit
-    odd &= buf != 32
-    odd &= buf != 10
-    special = np.flatnonzero(odd)
+    special = _special_bytes(buf, is_digit)
     token_starts = np.flatnonzero(is_digit[1:] > is_digit[:-1]) + 1
     _, per_line = _per_line(starts, token_starts)
     plain = ~_lines_of(starts, special[_INDEX_CLASSES[buf[special]] != SEP]) & (per_line > 0)
     if plain.all():  # digits and blanks only: numpy reads the block as it is
         values = np.fromstring(buf.tobytes(), dtype=np.int64, sep=" ")
-        huge = values >= 10**18  # (saturated) beyond what the general path accepts
-        if not huge.any():
+        if not (values >= 10**18).any():  # none (saturated) beyond the general path
             return values, per_line, plain
-        plain[_owner(starts, token_starts[huge])] = False
-    return _merge_index_lines(buf, starts, plain, per_line)
+    return _merge_index_lines(buf, starts, plain, per_line)  # it sets huge lines aside
 
 
 def _merge_index_lines(buf: np.ndarray, starts: np.ndarray, plain: np.ndarray,

@@ -284,12 +284,8 @@ def decimal_to_float(mantissa: np.ndarray, frac_len: np.ndarray) -> tuple[np.nda
     return exact, decided
 
 
-def _split_table(values: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Veltkamp halves of a table of constants, for gathering instead of splitting."""
-    return _split(values)
-
-
-_POW10_HI, _POW10_LO = _split_table(_POW10)
+# the powers' Veltkamp halves, gathered per value instead of split per value
+_POW10_HI, _POW10_LO = _split(_POW10)
 
 
 def _big_mantissa(m: np.ndarray, k: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -253,8 +253,9 @@ def _resolve_indices(
 _LINES_PER_PASS = 1 << 16
 
 
-def _passes(lines: np.ndarray) -> list[np.ndarray]:
-    return [lines[i : i + _LINES_PER_PASS] for i in range(0, len(lines), _LINES_PER_PASS)]
+def _passes(rows: np.ndarray) -> list[np.ndarray]:
+    """``rows`` (line numbers, positions, ...) cut into views of ``_LINES_PER_PASS``."""
+    return [rows[i : i + _LINES_PER_PASS] for i in range(0, len(rows), _LINES_PER_PASS)]
 
 
 def _parse_vectorized(buf: np.ndarray, starts: np.ndarray, ends: np.ndarray,
@@ -377,8 +378,7 @@ def vertex_lines(positions: np.ndarray, keyword: bytes) -> Iterator[bytes]:
     """Lines ``keyword x y z`` with coordinates that parse back to the same bits,
     ``_LINES_PER_PASS`` lines a piece (``(V, 3)`` float64 ``positions``), the
     pieces formatted a few ahead on other threads."""
-    chunks = (positions[i : i + _LINES_PER_PASS] for i in range(0, len(positions), _LINES_PER_PASS))
-    return map_in_order(lambda chunk: _vertex_pass(chunk, keyword), chunks)
+    return map_in_order(lambda chunk: _vertex_pass(chunk, keyword), _passes(positions))
 
 
 def _vertex_pass(positions: np.ndarray, keyword: bytes) -> bytes:
