@@ -27,7 +27,6 @@ def mesh() -> Mesh:
     return current_scene().mesh
 
 
-
 def modeling_command(func: F) -> F:
     """Mark a thesis command that changes the mesh: it records one step when done.
 
