@@ -118,6 +118,29 @@ def test_syntax_error_reports_line_and_runs_nothing(tmp_path):
     assert result.steps == ()
 
 
+def test_a_misspelt_command_gets_the_suggestion_python_would_give(tmp_path):
+    path = write(tmp_path, "typo.py", "load('cube')\nf = faces()[0]\nextrud('cubical', f)\n")
+    error = run_script(path).error
+    assert error is not None and error.line == 3
+    assert error.message == "NameError: name 'extrud' is not defined. Did you mean: 'extrude'?"
+    assert error.traceback.endswith(error.message + "\n")
+
+
+def test_a_misspelt_attribute_gets_a_suggestion_and_a_far_one_none(tmp_path):
+    path = write(tmp_path, "attr.py", "import numpy\nnumpy.arange(3).sorted()\n")
+    assert run_script(path).error.message.endswith(". Did you mean: 'sort'?")
+    path = write(tmp_path, "far.py", "zzzqqq_not_a_name + 1\n")
+    assert run_script(path).error.message == "NameError: name 'zzzqqq_not_a_name' is not defined"
+
+
+def test_the_traceback_keeps_every_line_of_the_text_and_the_notes(tmp_path):
+    path = write(tmp_path, "notes.py", (
+        "e = ValueError('first line\\nsecond line')\ne.add_note('while doing x')\nraise e\n"))
+    error = run_script(path).error
+    assert error.message == "ValueError: first line"
+    assert error.traceback.endswith("ValueError: first line\nsecond line\nwhile doing x\n")
+
+
 def test_error_in_a_local_module_points_into_it(tmp_path):
     write(tmp_path, "helper_bad.py", "def boom():\n    x = 1\n    raise RuntimeError('bad helper')\n")
     path = write(tmp_path, "main_bad.py", "import helper_bad\n\nhelper_bad.boom()\n")

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import builtins
+import difflib
 import os
 import traceback
 from types import TracebackType
@@ -43,15 +45,60 @@ def exception_error(exc: BaseException, path: str) -> ScriptError:
     """
     frames = _user_frames(exc.__traceback__, path)
     file, line = (frames[-1].filename, frames[-1].lineno) if frames else (path, None)
-    message = _one_line(exc)
+    suggestion = _suggestion(exc)
+    hint = f". Did you mean: '{suggestion}'?" if suggestion else ""
+    message = _one_line(exc) + hint
     text = "Traceback (most recent call last):\n"
-    text += "".join(traceback.format_list(frames)) + message + "\n"
+    text += "".join(traceback.format_list(frames)) + _described(exc, hint)
     return ScriptError("exception", file, line, message, text)
 
 
 def _one_line(exc: BaseException) -> str:
     text = str(exc).strip().splitlines()
     return f"{type(exc).__name__}: {text[0]}" if text else type(exc).__name__
+
+
+def _described(exc: BaseException, hint: str) -> str:
+    """The last lines of a traceback: type, whole text and ``hint``, then the
+    exception's notes (``add_note``), each on its own line."""
+    body = str(exc)
+    lines = [(f"{type(exc).__name__}: {body}" if body else type(exc).__name__) + hint]
+    notes = getattr(exc, "__notes__", None)
+    if isinstance(notes, list | tuple):
+        lines += [str(note) for note in notes]
+    return "\n".join(lines) + "\n"
+
+
+def _suggestion(exc: BaseException) -> str | None:
+    """The name a misspelt name or attribute was most likely meant to be, as
+    Python's own traceback offers it ("Did you mean: 'extrude'?"), or None.
+
+    CPython 3.11 computes that only when it prints a traceback itself, so the
+    runner, which formats its own, looks the name up the same way: among the
+    raising frame's names and the builtins, or the object's attributes.
+    """
+    name = getattr(exc, "name", None)
+    if not isinstance(name, str) or not isinstance(exc, NameError | AttributeError):
+        return None
+    if isinstance(exc, AttributeError):
+        try:
+            candidates = dir(exc.obj)
+        except Exception:  # an object whose __dir__ fails offers no suggestion
+            return None
+    else:
+        candidates = _frame_names(exc.__traceback__)
+    close = difflib.get_close_matches(name, [c for c in candidates if c != name], n=1)
+    return close[0] if close else None
+
+
+def _frame_names(tb: TracebackType | None) -> list[str]:
+    """Local, global and builtin names of the frame ``tb`` ends in."""
+    if tb is None:
+        return list(vars(builtins))
+    while tb.tb_next is not None:
+        tb = tb.tb_next
+    frame = tb.tb_frame
+    return [*frame.f_locals, *frame.f_globals, *vars(builtins)]
 
 
 def is_user_file(filename: str, script: str) -> bool:
