@@ -54,6 +54,14 @@ def test_every_subcommand_is_registered() -> None:
     assert {"info", "convert", "run", "batch", "view", "render"} <= set(choices)
 
 
+@pytest.mark.parametrize("command", [["run"], ["view"], ["render", "-o", "x.png"],
+                                     ["batch", "--param", "n=1"]])
+def test_every_command_that_runs_a_script_takes_a_selection(command: list[str]) -> None:
+    args = build_parser().parse_args(
+        [command[0], "s.py", *command[1:], "--select", "faces=1,2", "--select", "corners=3"])
+    assert args.select == ["faces=1,2", "corners=3"]
+
+
 def test_a_closed_pipe_ends_the_command_quietly(tmp_path: Path) -> None:
     # `livemod run --steps script | head -1`: the reader leaves after one line
     script = tmp_path / "many.py"

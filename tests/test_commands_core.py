@@ -174,6 +174,15 @@ def test_selection(cube_scene):
     assert faces(True) == () and corners(True) == ()
 
 
+def test_picks_the_mesh_lacks_are_left_out_and_noted(cube_scene):
+    cube_scene.selection = dlfl.Selection(faces=(2, 99, 98), vertices=(3, 50), corners=(500,))
+    assert faces(True) == (2,) and verts(True) == (3,) and corners(True) == ()
+    assert faces(True) == (2,)  # asked again: noted once
+    assert cube_scene.missing_picks == dlfl.Selection(faces=(99, 98), vertices=(50,),
+                                                      corners=(500,))
+    assert cube_scene.copy().missing_picks == dlfl.Selection()  # a run's own record
+
+
 def test_get_save_restore_corner(cube_scene):
     e = cube_scene.mesh.corner_edge(0)
     assert getCorner(e, 0) == (0, 0)

@@ -67,6 +67,53 @@ def test_run_with_params_seed_and_output(tmp_path, capsys):
     assert out.exists() and out.read_text().count("\nv ") + out.read_text().startswith("v ") == 5
 
 
+RIND = "load('cube')\nrind(faces(True), False, 0.1)\n"
+
+
+def test_run_select_is_what_faces_true_returns(tmp_path, capsys):
+    script = tmp_path / "crust.py"
+    script.write_text(RIND)
+    crust = tmp_path / "crust.stl"
+    assert cli.main(["run", str(script), "--select", "faces=0", "-o", str(crust)]) == 0
+    captured = capsys.readouterr()
+    # one face opened: a single crust of 14 quads (without it, two closed shells)
+    assert "V=16 E=28 F=14 holes=0 components=1 genus=0" in captured.out
+    assert captured.err == "" and crust.exists()
+    assert cli.main(["run", str(script)]) == 0
+    assert "F=12 holes=0 components=2" in capsys.readouterr().out
+
+
+def test_run_warns_of_picks_the_mesh_did_not_have(tmp_path, capsys):
+    script = tmp_path / "crust.py"
+    script.write_text(RIND)
+    assert cli.main(["run", str(script), "--select", "faces=0,99", "--select", "corners=7"]) == 0
+    err = capsys.readouterr().err
+    # corners(True) is never called, so corner 7 goes unremarked
+    assert err == ("livemod run: warning: the mesh had no faces 99 when the script asked for "
+                   "the selection; those picks were left out\n")
+
+
+def test_a_bad_select_stops_before_running(tmp_path, capsys):
+    script = tmp_path / "crust.py"
+    script.write_text(RIND)
+    with pytest.raises(SystemExit) as stopped:
+        cli.main(["run", str(script), "--select", "face=0"])
+    assert stopped.value.code == 2
+    assert "--select 'face=0': the kind must be one of" in capsys.readouterr().err
+
+
+def test_batch_variants_start_with_the_selection(tmp_path, capsys):
+    script = tmp_path / "crusts.py"
+    script.write_text("t = param('t', 0.1)\nload('cube')\nrind(faces(True), False, t)\n")
+    code = cli.main(["batch", str(script), "--param", "t=0.1:0.2:2", "--select", "faces=0,1",
+                     "-o", str(tmp_path / "c_{index}.obj"), "-j", "1"])
+    assert code == 0, capsys.readouterr().err
+    # faces 0 and 1 share an edge, so one hole of six edges: four outer and four
+    # inner quads and six rim quads (without the selection: two shells of six)
+    for index in (0, 1):
+        assert (tmp_path / f"c_{index}.obj").read_text().count("\nf ") == 4 + 4 + 6
+
+
 def test_livemod_entry_point_runs_a_script():
     done = subprocess.run([sys.executable, "-m", "livemod.runner.cli", "run", RING,
                            "--param", "count=4", "--param", "radius=1"],

@@ -87,6 +87,37 @@ def test_selection_is_empty():
     assert not Selection(corners=(3,)).is_empty()
 
 
+def test_selection_parses_the_select_options_and_writes_them_back():
+    picked = Selection.parse(["faces=12,31", "corners=88", "Faces=31, 5", "verts=2",
+                              "vertices=7"])
+    assert picked == Selection(faces=(12, 31, 5), vertices=(2, 7), corners=(88,))
+    assert picked.options() == ("--select faces=12,31,5 --select verts=2,7 "
+                                "--select corners=88")
+    again = picked.options().replace("--select ", "").split()
+    assert Selection.parse(again) == picked
+    assert Selection().options() == "" and Selection.parse([]) == Selection()
+
+
+@pytest.mark.parametrize(("text", "wrong"), [
+    ("face=1", "the kind must be one of faces, edges, verts, vertices, corners"),
+    ("12", "the kind must be one of"),
+    ("faces=", "'' is not an id"),
+    ("faces=1,,2", "'' is not an id"),
+    ("faces=-1", "'-1' is not an id"),
+    ("edges=1.5", "'1.5' is not an id"),
+    ("corners=٣", "'٣' is not an id"),   # a digit, but not one a user types as an id
+])
+def test_selection_parse_names_what_is_wrong(text, wrong):
+    with pytest.raises(ValueError, match=f"--select '{text}': {wrong}"):
+        Selection.parse([text])
+
+
+def test_selection_adding_keeps_order_and_each_id_once():
+    picked = Selection(faces=(3, 1)).adding("faces", [1, 4, 4, 2])
+    assert picked == Selection(faces=(3, 1, 4, 2))
+    assert picked.adding("corners", ()) == picked
+
+
 def test_use_scene_binds_per_thread():
     mine = Scene()
     seen: dict[str, Scene] = {}

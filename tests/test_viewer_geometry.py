@@ -137,6 +137,9 @@ def test_selection_echo_is_python() -> None:
     face = int(arrays.face_ids[arrays.corner_face[5]])
     vertex = int(arrays.vertex_ids[arrays.corner_vertex[5]])
     assert lines[2] == f"corners(True) == (({face}, {vertex}),)"
+    assert lines[3] == (f"(headless: livemod run|render|batch SCRIPT --select faces=12,31 "
+                        f"--select verts=2 --select corners={corner})")
+    assert selection_python(Selection(), arrays) == ["faces(True) == ()"]
 
 
 def _result(status: str = "ok", stale: bool = False, step_index: int | None = None):

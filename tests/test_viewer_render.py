@@ -201,6 +201,20 @@ def test_render_command_reports_script_errors(tmp_path: Path, capsys) -> None:
     assert "bad.py:2" in err and "no mesh today" in err
 
 
+def test_render_command_runs_the_script_with_the_selection(tmp_path: Path, capsys) -> None:
+    script = tmp_path / "longer.py"
+    # a picked face is pulled out three sizes of the cube: another shape in the frame
+    script.write_text("load('cube')\nfor f in faces(True):\n    extrude('cubical', f, 3.0)\n")
+    plain, moved = tmp_path / "plain.png", tmp_path / "moved.png"
+    assert main(["render", str(script), "-o", str(plain), "--size", "48x48"]) == 0
+    assert main(["render", str(script), "-o", str(moved), "--size", "48x48",
+                 "--select", "faces=0,77"]) == 0
+    assert plain.read_bytes() != moved.read_bytes()
+    assert "the mesh had no faces 77 when" in capsys.readouterr().err
+    assert main(["render", "cube", "-o", str(plain), "--select", "faces=0"]) == 2
+    assert "--select needs a script, not 'cube'" in capsys.readouterr().err
+
+
 def test_view_command_refuses_a_missing_script(tmp_path: Path, capsys) -> None:
     assert main(["view", str(tmp_path / "missing.py")]) == 1
     assert "missing.py" in capsys.readouterr().err

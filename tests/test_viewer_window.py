@@ -15,6 +15,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from livemod.dlfl.scene import Selection
 from livemod.viewer.hud import hud_lines
 from livemod.viewer.window import (
     LiveViewer,
@@ -96,6 +97,20 @@ def test_pick_select_rerun_and_error_keeps_the_stale_mesh(headless) -> None:
     assert "error, stale" in _hud_text(viewer)
     assert "model.py:1" in echo.getvalue()
     assert np.array_equal(viewer.capture(), before)        # the last good mesh stays
+
+
+def test_the_select_option_reaches_the_first_run(tmp_path: Path) -> None:
+    script = tmp_path / "model.py"
+    script.write_text(CUBE.format(scale=1.0))
+    viewer = create_viewer(ViewOptions(str(script), backend="headless", size=(160, 120),
+                                       samples=0, vsync=False, echo=io.StringIO(),
+                                       selection=Selection(faces=(2,))))
+    try:
+        _wait(viewer, _has_run(1))
+        assert viewer.result.arrays.positions[:, 0].max() == pytest.approx(3.0)
+        assert viewer.selection == Selection(faces=(2,))
+    finally:
+        close_viewer(viewer)
 
 
 def test_keys_change_style_camera_and_pick_mode(headless) -> None:

@@ -10,7 +10,7 @@ from __future__ import annotations
 import bisect
 import contextlib
 import contextvars
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass, field, replace
 from typing import Any
 
@@ -34,6 +34,58 @@ class Selection:
 
     def is_empty(self) -> bool:
         return not (self.faces or self.edges or self.vertices or self.corners)
+
+    def adding(self, name: str, ids: Iterable[int]) -> Selection:
+        """This selection with ``ids`` added to field ``name`` (``"faces"``,
+        ``"edges"``, ``"vertices"`` or ``"corners"``), each id once."""
+        have: tuple[int, ...] = getattr(self, name)
+        return replace(self, **{name: have + tuple(i for i in dict.fromkeys(ids) if i not in have)})
+
+    @classmethod
+    def parse(cls, texts: Iterable[str]) -> Selection:
+        """The selection that ``--select`` options name, e.g. ``["faces=12,31",
+        "corners=88"]``: a kind (``faces``, ``edges``, ``verts`` or ``vertices``,
+        ``corners``), ``=``, and ids separated by commas (corners by corner id).
+        A kind given twice gets the ids of both, each once, in the order given.
+
+        Raises:
+            ValueError: an unknown kind, or an id that is not a whole number >= 0.
+        """
+        selection = cls()
+        for text in texts:
+            kind, _, ids = text.partition("=")
+            name = _SELECTION_KINDS.get(kind.strip().lower())
+            if name is None:
+                raise ValueError(f"--select {text!r}: the kind must be one of "
+                                 f"{', '.join(_SELECTION_KINDS)} (as in faces=12,31)")
+            selection = selection.adding(name, _selection_ids(text, ids))
+        return selection
+
+    def options(self) -> str:
+        """The ``--select`` options that give this selection to ``livemod run``,
+        ``render``, ``batch`` or ``view`` (empty for an empty selection)."""
+        parts = [f"--select {kind}={','.join(map(str, getattr(self, name)))}"
+                 for kind, name in _SELECTION_OPTIONS if getattr(self, name)]
+        return " ".join(parts)
+
+
+# the kinds ``Selection.parse`` accepts -> Selection field; ``options`` writes the first
+_SELECTION_KINDS = {"faces": "faces", "edges": "edges", "verts": "vertices",
+                    "vertices": "vertices", "corners": "corners"}
+_SELECTION_OPTIONS = (("faces", "faces"), ("edges", "edges"), ("verts", "vertices"),
+                      ("corners", "corners"))
+
+
+def _selection_ids(text: str, ids: str) -> list[int]:
+    """The ids of one ``--select`` option, ``ids`` being what follows its ``=``."""
+    found = []
+    for part in ids.split(","):
+        part = part.strip()
+        if not part.isdigit() or not part.isascii():
+            raise ValueError(f"--select {text!r}: {part!r} is not an id (a whole number "
+                             f"0 or more); ids are separated by commas, as in faces=12,31")
+        found.append(int(part))
+    return found
 
 
 @dataclass
@@ -126,6 +178,9 @@ class Scene:
         objects: object id -> :class:`SceneObject`, in creation order.
         current: id of the current object, or None when the scene is empty.
         selection: the viewer's selection, applied to the current object.
+        missing_picks: the ids of ``selection`` that ``faces(True)`` and the like
+            left out because the current mesh had no such element then (a pick
+            from an older result, or a mistyped ``--select``).
         step_hook: called with a label after every modeling command (the runner
             installs one to record steps and to pause or cancel a run); the
             modeling-command wrapper calls it directly, see
@@ -144,6 +199,7 @@ class Scene:
         self.objects: dict[int, SceneObject] = {}
         self.current: int | None = None
         self.selection = Selection()
+        self.missing_picks = Selection()
         self.step_hook: StepHook | None = None
         self.step_log = NO_STEP_LOG
         self.parameters: dict[str, object] = {}

@@ -23,6 +23,7 @@ import numpy as np
 
 from livemod.dlfl.errors import DLFLError
 from livemod.dlfl.params import ParamSpec
+from livemod.dlfl.scene import Selection
 from livemod.progress import ProgressBar
 
 from .declarations import undeclared
@@ -38,6 +39,7 @@ class Variant:
     output: str | None = None
     mesh_path: str | None = None
     seed: int | None = 0
+    selection: Selection | None = None
 
 
 @dataclass(frozen=True)
@@ -155,7 +157,8 @@ def run_variant(variant: Variant) -> VariantResult:
     parameters = dict(variant.parameters)
     try:
         outcome = run_outcome(variant.script, mesh_path=variant.mesh_path,
-                              seed=variant.seed, parameters=parameters)
+                              seed=variant.seed, parameters=parameters,
+                              selection=variant.selection)
     except OSError as exc:
         return _failed(variant, str(exc), started)
     if outcome.error is not None:
@@ -240,12 +243,15 @@ def _process_context() -> multiprocessing.context.BaseContext:
 
 
 def make_variants(script: str, parameter_sets: list[dict[str, Any]], pattern: str | None,
-                  *, mesh_path: str | None = None, seed: int | None = 0) -> list[Variant]:
-    """One :class:`Variant` per parameter set, outputs named from ``pattern``."""
+                  *, mesh_path: str | None = None, seed: int | None = 0,
+                  selection: Selection | None = None) -> list[Variant]:
+    """One :class:`Variant` per parameter set, outputs named from ``pattern``; every
+    variant starts with the same ``selection`` (what ``faces(True)`` returns)."""
     script = os.path.abspath(script)
     return [
         Variant(i, script, tuple(params.items()),
-                output_name(pattern, params, i) if pattern else None, mesh_path, seed)
+                output_name(pattern, params, i) if pattern else None, mesh_path, seed,
+                selection)
         for i, params in enumerate(parameter_sets)
     ]
 

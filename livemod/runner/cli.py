@@ -17,10 +17,11 @@ from typing import Any, TextIO
 
 from livemod.dlfl.analysis import summarize
 from livemod.dlfl.errors import DLFLError
+from livemod.dlfl.scene import Selection
 
 from .batch import declared_sweep, index_path, make_variants, run_batch, sweep, write_index
 from .declarations import declared_parameters, describe, given_values, undeclared
-from .headless import run_outcome
+from .headless import missing_picks_note, run_outcome
 from .results import RunResult, StepRecord, current_mesh
 
 OUTPUT_SUFFIXES = (".obj", ".dlfl", ".stl", ".ply")
@@ -58,6 +59,30 @@ def _seed(text: str) -> int | None:
     return None if text.lower() == "none" else int(text)
 
 
+def add_select_option(parser: argparse.ArgumentParser) -> None:
+    """Add ``--select KIND=IDS`` (repeatable), the selection ``faces(True)`` and the
+    like return in the script, as the viewer's picks give it there."""
+    parser.add_argument("--select", action="append", default=[], type=_select_text,
+                        metavar="KIND=IDS",
+                        help="what faces(True) etc. return, e.g. faces=12,31 (kinds: faces, "
+                             "edges, verts, corners), repeatable; the viewer echoes its "
+                             "picks in this form")
+
+
+def _select_text(text: str) -> str:
+    try:
+        Selection.parse([text])
+    except ValueError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
+    return text
+
+
+def selection_of(args: argparse.Namespace) -> Selection | None:
+    """The selection of the ``--select`` options (checked as they were parsed), or
+    None when there were none."""
+    return Selection.parse(args.select) if args.select else None
+
+
 def _add_run(subparsers: Any) -> None:
     run = subparsers.add_parser("run", help="run a modeling script headless (or on every save)")
     run.add_argument("script", help="the Python script")
@@ -67,6 +92,7 @@ def _add_run(subparsers: Any) -> None:
     run.add_argument("--seed", type=_seed, default=0, help="seed of random/numpy (or 'none')")
     run.add_argument("--set", "--param", dest="set", action="append", default=[],
                      metavar="NAME=VALUE", help="a declared script parameter, repeatable")
+    add_select_option(run)
     run.add_argument("--watch", action="store_true", help="re-run (and rewrite OUT) on every save")
     run.add_argument("--poll", action="store_true", help="poll for changes (no fs events)")
     run.add_argument("--max-runs", type=int, default=None, help=argparse.SUPPRESS)
@@ -86,6 +112,7 @@ def _add_batch(subparsers: Any) -> None:
     batch.add_argument("-j", "--jobs", type=int, default=os.cpu_count() or 1)
     batch.add_argument("--mesh", metavar="IN", help="mesh every variant starts from")
     batch.add_argument("--seed", type=_seed, default=0)
+    add_select_option(batch)
     batch.set_defaults(handler=cmd_batch)
 
 
@@ -107,7 +134,7 @@ def cmd_run(args: argparse.Namespace) -> int:
         return _watch(args, params)
     try:
         outcome = run_outcome(args.script, mesh_path=args.mesh, seed=args.seed,
-                              parameters=params)
+                              parameters=params, selection=selection_of(args))
     except OSError as exc:
         print(f"livemod run: {exc}", file=sys.stderr)
         return 2
@@ -118,6 +145,9 @@ def _finish_run(args: argparse.Namespace, outcome: Any, params: dict[str, Any]) 
     """Report a headless run (steps, error or summary) and save its mesh; the exit code."""
     if args.steps:
         print_steps(outcome.steps)
+    note = missing_picks_note(outcome.scene)
+    if note is not None:
+        print(f"livemod run: {note}", file=sys.stderr)
     problem = undeclared(outcome.declarations, params) if outcome.error is None else None
     if problem is not None:  # only for scripts whose declarations are computed
         print(f"livemod run: {problem}", file=sys.stderr)
@@ -177,6 +207,7 @@ def _watch(args: argparse.Namespace, params: dict[str, Any]) -> int:
 
     session = LiveSession(args.script, mesh_path=args.mesh, seed=args.seed, poll=args.poll,
                           preview=False, output=args.output, parameters=params)
+    session.set_selection(selection_of(args))
     session.start()
     print(f"watching {session.script} (Ctrl-C to stop)", file=sys.stderr)
     seen = 0
@@ -213,7 +244,7 @@ def cmd_batch(args: argparse.Namespace) -> int:
         specs = declared_parameters(args.script)
         sets = sweep(declared_sweep(text, specs) for text in args.param)
         variants = make_variants(args.script, sets, args.output, mesh_path=args.mesh,
-                                 seed=args.seed)
+                                 seed=args.seed, selection=selection_of(args))
     except (ValueError, DLFLError, OSError) as exc:
         print(f"livemod batch: {exc}", file=sys.stderr)
         return 2

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import os
 
-from livemod.dlfl.scene import Selection
+from livemod.dlfl.scene import Scene, Selection
 
 from .execute import RunOutcome, base_scene, execute
 from .results import RunResult, parameter_items, snapshot_scene
@@ -21,6 +21,20 @@ def run_outcome(path: str | os.PathLike[str], *, mesh_path: str | None = None,
     """
     base = base_scene(mesh_path) if mesh_path is not None else None
     return execute(path, base=base, seed=seed, parameters=parameters, selection=selection)
+
+
+def missing_picks_note(scene: Scene) -> str | None:
+    """One line naming the selected ids a run's ``faces(True)`` and the like left out
+    (the mesh had no such element then), or None when there were none."""
+    missing = scene.missing_picks
+    named = [f"{kind} {', '.join(map(str, getattr(missing, name)))}"
+             for kind, name in (("faces", "faces"), ("edges", "edges"),
+                                ("vertices", "vertices"), ("corners", "corners"))
+             if getattr(missing, name)]
+    if not named:
+        return None
+    return (f"warning: the mesh had no {'; no '.join(named)} when the script asked for "
+            f"the selection; those picks were left out")
 
 
 def result_of(outcome: RunOutcome, script: str, parameters: dict | None,

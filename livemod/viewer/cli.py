@@ -13,6 +13,9 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
+from livemod.dlfl.scene import Selection
+from livemod.runner.cli import add_select_option, selection_of
+
 SCRIPT_SUFFIXES = (".py",)
 
 
@@ -37,6 +40,7 @@ def add_commands(subparsers: Any) -> None:
                       help="poll for changes (for file systems that send no events)")
     view.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
                       help="a declared script parameter to start with, repeatable")
+    add_select_option(view)
     view.set_defaults(handler=_view)
     _add_render(subparsers)
 
@@ -50,6 +54,7 @@ def _add_render(subparsers: Any) -> None:
     render.add_argument("--mesh", help="mesh a script starts from")
     render.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
                         help="a declared script parameter, repeatable")
+    add_select_option(render)
     render.add_argument("--size", type=parse_size, default=(800, 600), help="WxH pixels")
     render.add_argument("--turntable", type=int, default=0, metavar="N",
                         help="N frames evenly spaced around the up axis")
@@ -77,7 +82,7 @@ def _view(args: argparse.Namespace) -> int:
     if values is None:
         return 2
     return view(ViewOptions(args.script, mesh_path=args.mesh, size=args.size, poll=args.poll,
-                            parameters=values))
+                            parameters=values, selection=selection_of(args)))
 
 
 def _given_values(command: str, script: str, texts: list[str]) -> dict[str, Any] | None:
@@ -111,7 +116,11 @@ def _render(args: argparse.Namespace) -> int:
     labels = frozenset(k.strip() for k in args.labels.split(",") if k.strip())
     if labels - set(LABEL_KINDS):
         raise DLFLError(f"unknown label kinds: {sorted(labels - set(LABEL_KINDS))}")
-    arrays, preview = _load_input(args.input, args.mesh, args.preview, values)
+    selection = selection_of(args)
+    if selection is not None and Path(args.input).suffix.lower() not in SCRIPT_SUFFIXES:
+        print(f"livemod render: --select needs a script, not {args.input!r}", file=sys.stderr)
+        return 2
+    arrays, preview = _load_input(args.input, args.mesh, args.preview, values, selection)
     if args.preview and preview is None:
         print("livemod: warning: no patch preview available; drawing the mesh",
               file=sys.stderr)
@@ -135,12 +144,13 @@ def _samples(args: argparse.Namespace) -> int:
 
 
 def _load_input(path: str, mesh_path: str | None, want_preview: bool,
-                values: dict[str, Any] | None = None) -> tuple[Any, Any]:
+                values: dict[str, Any] | None = None,
+                selection: Selection | None = None) -> tuple[Any, Any]:
     """``(arrays, preview or None)`` of a script's result (run with the parameter
-    ``values``) or of a mesh file."""
+    ``values`` and ``selection``) or of a mesh file."""
 
     if Path(path).suffix.lower() in SCRIPT_SUFFIXES:
-        return _run_for_render(path, mesh_path, want_preview, values)
+        return _run_for_render(path, mesh_path, want_preview, values, selection)
     from livemod.dlfl import mesh_arrays
 
     mesh = importlib.import_module("livemod.dlfl.io").open_mesh(path)
@@ -153,8 +163,10 @@ def _load_input(path: str, mesh_path: str | None, want_preview: bool,
 
 
 def _run_for_render(path: str, mesh_path: str | None, want_preview: bool,
-                    values: dict[str, Any] | None = None) -> tuple[Any, Any]:
-    """Run a script headless; ``(arrays, preview)`` of the mesh it leaves.
+                    values: dict[str, Any] | None = None,
+                    selection: Selection | None = None) -> tuple[Any, Any]:
+    """Run a script headless (with the parameter ``values`` and ``selection``);
+    ``(arrays, preview)`` of the mesh it leaves.
 
     Raises:
         DLFLError: the script failed (the message names file and line).
@@ -163,10 +175,14 @@ def _run_for_render(path: str, mesh_path: str | None, want_preview: bool,
     from livemod.dlfl.errors import DLFLError
     from livemod.runner import run_outcome
     from livemod.runner.declarations import undeclared
+    from livemod.runner.headless import missing_picks_note
     from livemod.runner.preview import preview_arrays
     from livemod.runner.results import current_mesh
 
-    outcome = run_outcome(path, mesh_path=mesh_path, parameters=values)
+    outcome = run_outcome(path, mesh_path=mesh_path, parameters=values, selection=selection)
+    note = missing_picks_note(outcome.scene)
+    if note is not None:
+        print(f"livemod render: {note}", file=sys.stderr)
     if outcome.error is not None:
         error = outcome.error
         raise DLFLError(f"{error.file}:{error.line}: {error.message}")

@@ -123,9 +123,11 @@ def toggle_pick(selection: Selection, mode: str, element_id: int, add: bool) -> 
 
 
 def selection_python(selection: Selection, arrays: MeshArrays | None) -> list[str]:
-    """The selection as the Python a script would see, e.g. ``faces(True) == (12, 31)``.
+    """The selection as the Python a script would see, e.g. ``faces(True) == (12, 31)``,
+    then the ``--select`` options that give it to a headless run.
 
-    Corners are shown as ``(faceid, vertexid)`` pairs, as ``corners(True)`` returns.
+    Corners are shown as ``(faceid, vertexid)`` pairs, as ``corners(True)`` returns
+    (and by corner id in the options).
     """
     lines = []
     for call, ids in (("faces", selection.faces), ("edges", selection.edges),
@@ -135,7 +137,9 @@ def selection_python(selection: Selection, arrays: MeshArrays | None) -> list[st
     if selection.corners:
         pairs = tuple(_corner_pair(arrays, c) for c in selection.corners)
         lines.append(f"corners(True) == {pairs!r}")
-    return lines or ["faces(True) == ()"]
+    if not lines:
+        return ["faces(True) == ()"]
+    return [*lines, f"(headless: livemod run|render|batch SCRIPT {selection.options()})"]
 
 
 def _corner_pair(arrays: MeshArrays | None, corner_id: int) -> tuple[int, int]:

@@ -55,6 +55,8 @@ class ViewOptions:
         poll: poll the file system instead of waiting for change events (network
             drives, WSL, containers).
         parameters: script parameter values the first run starts with (``--set``).
+        selection: what ``faces(True)`` and the like return from the first run on
+            (``--select``), until a pick changes it.
     """
 
     script: str
@@ -67,6 +69,7 @@ class ViewOptions:
     echo: Any = None
     poll: bool = False
     parameters: dict[str, Any] | None = None
+    selection: Selection | None = None
 
 
 def _default_factory(poll: bool, parameters: dict[str, Any] | None = None,
@@ -111,7 +114,8 @@ class LiveViewer(mglw.WindowConfig):
         self.camera = Camera()
         self.style = Style()
         self.pick_mode = "face"
-        self.selection = Selection()
+        self.selection = self.options.selection or Selection()
+        self.renderer.set_selection(self.selection)
         self.show_help = False
         self.show_hud = True
         self.playing = False
@@ -140,6 +144,8 @@ class LiveViewer(mglw.WindowConfig):
         factory = self.options.session_factory or _default_factory(
             self.options.poll, self.options.parameters)
         session = factory(self.script, self.mesh_path)
+        if not self.selection.is_empty():
+            session.set_selection(self.selection)
         session.start()
         self.waiting = True
         self.wnd.title = f"livemod - {Path(self.script).name}"

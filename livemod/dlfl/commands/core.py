@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import builtins
 import os
-from collections.abc import Iterable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from typing import Any
 
 import numpy as np
@@ -113,10 +113,15 @@ def createFace(points: Sequence[Point], bothNew: bool = False) -> tuple[int, int
 
 # -- ids and walks --------------------------------------------------------------
 
-def _ids(all_ids: np.ndarray, picked: tuple[int, ...], selected: bool) -> tuple[int, ...]:
-    if selected:
-        return picked
-    return tuple(all_ids.tolist())
+def _picked(name: str, is_live: Callable[[int], bool]) -> tuple[int, ...]:
+    """The ids of selection field ``name`` that ``is_live`` in the current mesh; the
+    others are noted in the scene's ``missing_picks``."""
+    sc = scene()
+    picked: tuple[int, ...] = getattr(sc.selection, name)
+    kept = tuple(i for i in picked if is_live(i))
+    if len(kept) < len(picked):
+        sc.missing_picks = sc.missing_picks.adding(name, (i for i in picked if i not in kept))
+    return kept
 
 
 def faces(selected: bool = False) -> tuple[int, ...]:
@@ -125,9 +130,8 @@ def faces(selected: bool = False) -> tuple[int, ...]:
     Hole faces (boundaries of open meshes) are left out.
     """
     m = mesh()
-    sel = scene().selection.faces
     if selected:
-        return tuple(f for f in sel if m.has_face(f))
+        return _picked("faces", m.has_face)
     ids = m.face_ids()
     holes = m._f.arrays["hole"][m._f.live_slots()].astype(bool)
     return tuple(ids[~holes].tolist())
@@ -136,23 +140,20 @@ def faces(selected: bool = False) -> tuple[int, ...]:
 def edges(selected: bool = False) -> tuple[int, ...]:
     """Ids of all edges (in creation order), or of the selected ones."""
     m = mesh()
-    sel = tuple(e for e in scene().selection.edges if m.has_edge(e))
-    return _ids(m.edge_ids(), sel, selected)
+    return _picked("edges", m.has_edge) if selected else tuple(m.edge_ids().tolist())
 
 
 def verts(selected: bool = False) -> tuple[int, ...]:
     """Ids of all vertices (in creation order), or of the selected ones."""
     m = mesh()
-    sel = tuple(v for v in scene().selection.vertices if m.has_vertex(v))
-    return _ids(m.vertex_ids(), sel, selected)
+    return _picked("vertices", m.has_vertex) if selected else tuple(m.vertex_ids().tolist())
 
 
 def corners(selected: bool = False) -> tuple[tuple[int, int], ...]:
     """``((faceid, vertexid), ...)`` of all corners, face by face, or the selected ones."""
     m = mesh()
     if selected:
-        picked = [c for c in scene().selection.corners if m.has_corner(c)]
-        return tuple(corner_tuple(m, c) for c in picked)
+        return tuple(corner_tuple(m, c) for c in _picked("corners", m.has_corner))
     return tuple(corner_tuple(m, c) for f in faces() for c in m.face_corners(f))
 
 
