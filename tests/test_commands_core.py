@@ -46,7 +46,7 @@ from livemod.dlfl.commands.core import (
     verts,
     walk,
 )
-from tests.meshes import counts, cube
+from tests.meshes import counts, cube, snapshot
 
 OBJS = Path(__file__).resolve().parents[2] / "shared" / "data" / "topmod-objs"
 
@@ -284,3 +284,40 @@ def test_junk_arguments_raise_dlfl_errors(cube_scene, command, args, message):
     with pytest.raises(DLFLError, match=message):
         command(*args)
     assert counts(cube_scene) == (8, 12, 6)
+
+
+NAN, INF = float("nan"), float("inf")
+
+
+@pytest.mark.parametrize(("call", "message"), [
+    (lambda d: d.createVertex((INF, 0, 0)), "three finite numbers, got \\(inf, 0, 0\\)"),
+    (lambda d: d.createFace([(0, 0, 0), (1, 0, 0), (NAN, 1, 0)]), "three finite numbers"),
+    (lambda d: d.move([0], (NAN, 0, 0)), "three finite numbers"),
+    (lambda d: d.translate(INF, 0, 0), "three finite numbers"),
+    (lambda d: d.scale((NAN, 1, 1)), "three finite numbers"),
+    (lambda d: d.rind([0], False, NAN), "percent must be finite, got nan"),
+    (lambda d: d.rind([0], True, INF), "percent must be finite, got inf"),
+    (lambda d: d.rind([0], False, "thin"), "percent must be a number, got 'thin'"),
+    (lambda d: d.addHandle("hermite", (0, 0), (5, 4), 5, NAN, 25), "weight1 must be finite"),
+    (lambda d: d.addHandle("bezier", (0, 0), (5, 4), 5, 25, INF), "weight2 must be finite"),
+    (lambda d: d.extrude("cubical", 0, "x"), "distance must be a number, got 'x'"),
+    (lambda d: d.extrude("cubical", 0, 1.0, 1, NAN), "rotation must be finite"),
+    (lambda d: d.wireframe("x"), "thickness must be a number, got 'x'"),
+    (lambda d: d.column(INF, 4), "thickness must be finite"),
+])
+def test_numbers_that_are_not_finite_are_refused_and_the_mesh_kept(cube_scene, call, message):
+    before = snapshot(cube_scene.mesh)
+    with pytest.raises(DLFLError, match=message):
+        call(dlfl)
+    assert snapshot(cube_scene.mesh) == before
+
+
+@pytest.mark.parametrize(("command", "args"), [
+    ("translate", (1e308, 0.0, 0.0)), ("scale", ((1e308, 1.0, 1.0),)),
+    ("move", ([0], (1e308, 0.0, 0.0)))])
+def test_moves_that_overflow_to_infinity_are_refused(cube_scene, command, args):
+    getattr(dlfl, command)(*args)  # far, but finite
+    before = snapshot(cube_scene.mesh)
+    with pytest.raises(DLFLError, match=f"{command} would move vertices to infinity"):
+        getattr(dlfl, command)(*args)
+    assert snapshot(cube_scene.mesh) == before

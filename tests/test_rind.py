@@ -96,10 +96,24 @@ def test_negative_scale_grows_the_outer_shell():
     np.testing.assert_allclose(pos[8:], cube().positions_view(), atol=1e-12)
 
 
-def test_scale_is_clamped_to_one():
+@pytest.mark.parametrize("scale", [1.0, 3.0, -1.0, -1.5])
+def test_a_scale_of_magnitude_one_or_more_is_refused(scale):
+    # TopMod clamped it to [-1, 1] and built an inner shell on the outer one
     m = cube()
-    rind(m, [], use_scaling=True, scale=3.0)
-    np.testing.assert_allclose(m.positions_view()[8:], cube().positions_view())
+    with pytest.raises(DLFLError, match=f"scale {scale} leaves no thickness between the shells"):
+        rind(m, [0], use_scaling=True, scale=scale)
+    assert snapshot(m) == snapshot(cube())
+
+
+@pytest.mark.parametrize(("given", "message"), [
+    ({"thickness": float("nan")}, "thickness must be finite, got nan"),
+    ({"use_scaling": True, "scale": float("inf")}, "scale must be finite, got inf"),
+])
+def test_non_finite_thickness_or_scale_is_refused(given, message):
+    m = cube()
+    with pytest.raises(DLFLError, match=message):
+        rind(m, [0], **given)
+    assert snapshot(m) == snapshot(cube())
 
 
 def test_negative_thickness_moves_the_original_outward():

@@ -172,7 +172,8 @@ class Table:
 
     def _as_int(self, eid: Any) -> int:
         if isinstance(eid, (bool, np.bool_)) or not hasattr(eid, "__index__"):
-            raise DLFLError(f"expected a {self.kind} id (an integer), got {eid!r}")
+            article = "an" if self.kind[0] in "aeiou" else "a"
+            raise DLFLError(f"expected {article} {self.kind} id (an integer), got {eid!r}")
         return int(eid.__index__())
 
     def _missing_message(self, eid: int) -> str:

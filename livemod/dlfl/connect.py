@@ -25,6 +25,7 @@ from collections.abc import Callable
 
 import numpy as np
 
+from ._checks import finite_number
 from .analysis import face_points, polygon_normal
 from .errors import DLFLError
 from .mesh import Mesh
@@ -65,6 +66,12 @@ def _check_segments(segments: int, max_connections: int = -1) -> None:
         raise DLFLError(f"segments must be an integer >= 1, got {segments!r}")
     if isinstance(max_connections, bool) or not isinstance(max_connections, int | np.integer):
         raise DLFLError(f"max_connections must be an integer, got {max_connections!r}")
+
+
+def _check_weights(weight1: float, weight2: float) -> None:
+    """Raises DLFLError unless both tangent weights are finite numbers."""
+    finite_number(weight1, "weight1")
+    finite_number(weight2, "weight2")
 
 
 def _same_size(mesh: Mesh, face1: int, face2: int, op: str) -> None:
@@ -486,9 +493,11 @@ def hermite_handle(
     Raises:
         DLFLError: a corner is not live, both are in one face, faces of different
             sizes with ``segments`` > 1 (TopMod silently did nothing),
-            ``segments`` < 1, or see :func:`hermite_rings`.
+            ``segments`` < 1, a weight that is not a finite number, or see
+            :func:`hermite_rings`.
     """
     _check_segments(segments, max_connections)
+    _check_weights(weight1, weight2)
     if segments == 1:  # TopMod: a plain connectFaces, whatever the sizes and normals
         return connect_faces(mesh, corner1, corner2, max_connections=max_connections)
     start, end, n1, n2 = _handle_ends(mesh, corner1, corner2, segments, "hermite_handle")
@@ -525,6 +534,7 @@ def bezier_handle(
     Raises:
         DLFLError: as :func:`hermite_handle` (faces of different sizes included).
     """
+    _check_weights(weight1, weight2)
     start, end, n1, n2 = _handle_ends(mesh, corner1, corner2, segments, "bezier_handle")
     rings = bezier_rings(start, end, n1, n2, segments, weight1, weight2)
     first = mesh.next_ids()[1]

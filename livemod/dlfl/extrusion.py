@@ -28,6 +28,7 @@ from functools import lru_cache
 
 import numpy as np
 
+from ._checks import finite_number
 from .connect import _quad_band, _triangle_band
 from .errors import DLFLError
 from .mesh import Mesh
@@ -418,21 +419,28 @@ def _check_face(mesh: Mesh, face: int) -> None:
                         "only faces of 3 or more corners can be extruded")
 
 
-def _check_numbers(segments: int, opts: Options) -> None:
+def _checked_numbers(segments: int, opts: Options) -> Options:
+    """``opts`` with its numbers as floats.
+
+    Raises:
+        DLFLError: ``segments`` is not an integer >= 1, or an option is not a
+            finite number.
+    """
     if isinstance(segments, bool) or not isinstance(segments, int | np.integer) or segments < 1:
         raise DLFLError(f"segments must be an integer >= 1, got {segments!r}")
-    for name in ("distance", "rotation", "scale", "twist", "thickness"):
-        value = getattr(opts, name)
-        if isinstance(value, bool) or not isinstance(value, int | float | np.floating | np.integer) \
-                or not math.isfinite(value):
-            raise DLFLError(f"{name} must be a finite number, got {value!r}")
+    return replace(opts, distance=finite_number(opts.distance, "distance"),
+                   rotation=finite_number(opts.rotation, "rotation"),
+                   scale=finite_number(opts.scale, "scale"),
+                   twist=finite_number(opts.twist, "twist"),
+                   thickness=finite_number(opts.thickness, "thickness"))
 
 
-def _prepare(mesh: Mesh, face: int, kind: str, segments: int, opts: Options) -> Kind:
+def _prepare(mesh: Mesh, face: int, kind: str, segments: int,
+             opts: Options) -> tuple[Kind, Options]:
+    """The kind's spec and the checked options, or a DLFLError (see :func:`extrude`)."""
     spec = KINDS[resolve_kind(kind)]
     _check_face(mesh, face)
-    _check_numbers(segments, opts)
-    return spec
+    return spec, _checked_numbers(segments, opts)
 
 
 def extrude(
@@ -469,9 +477,9 @@ def extrude(
             (use :func:`extrude_fan`), a face that is gone or has < 3 corners,
             ``segments`` < 1, a non-finite number. The mesh is unchanged.
     """
-    opts = Options(float(distance), float(rotation), float(scale), float(twist), bool(dual_mesh),
-                bool(hexagonalize), float(thickness), bool(fractional))
-    spec = _prepare(mesh, face, kind, segments, opts)
+    spec, opts = _prepare(mesh, face, kind, segments, Options(
+        distance, rotation, scale, twist, bool(dual_mesh), bool(hexagonalize), thickness,
+        bool(fractional)))
     if spec.step is None:
         raise DLFLError(f"extrusion kind {resolve_kind(kind)!r} ends in a fan of triangles, "
                         "not an end face; use extrude_fan()")
@@ -497,8 +505,8 @@ def extrude_fan(
         DLFLError: unknown kind, a kind with an end face (use :func:`extrude`), a
             face that is gone or has < 3 corners. The mesh is unchanged.
     """
-    opts = Options(distance=float(distance), rotation=float(rotation), scale=float(scale))
-    spec = _prepare(mesh, face, kind, 1, opts)
+    spec, opts = _prepare(mesh, face, kind, 1,
+                          Options(distance=distance, rotation=rotation, scale=scale))
     if spec.fan is None:
         raise DLFLError(f"extrusion kind {resolve_kind(kind)!r} ends in a face; use extrude()")
     return spec.fan(mesh, int(face), opts)

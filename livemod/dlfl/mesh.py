@@ -22,6 +22,7 @@ docstrings say so.
 from __future__ import annotations
 
 from collections.abc import Iterable, Sequence
+from math import isfinite
 from typing import Any
 
 import numpy as np
@@ -68,12 +69,20 @@ def _live_slot(table: Table, eid: Any) -> int:
 
 
 def _as_point(position: Any) -> tuple[float, float, float]:
+    """``position`` as three floats.
+
+    Raises:
+        DLFLError: not three numbers, or one of them is NaN or infinite.
+    """
     try:
         x, y, z = (float(v) for v in position)
     except (TypeError, ValueError):
         raise DLFLError(
             f"expected a position (x, y, z) of three numbers, got {position!r}"
         ) from None
+    if not (isfinite(x) and isfinite(y) and isfinite(z)):
+        raise DLFLError(f"expected a position (x, y, z) of three finite numbers, got "
+                        f"{position!r}")
     return x, y, z
 
 
@@ -957,6 +966,10 @@ class Mesh:
         Args:
             vertices: ``(k,)`` vertex ids.
             positions: ``(k, 3)`` floats, or ``(3,)`` for all of them.
+
+        Raises:
+            DLFLError: an id that is not a live vertex, positions of another shape,
+                or a NaN or infinite coordinate (nothing is moved then).
         """
         if not hasattr(vertices, "__iter__"):
             raise DLFLError(f"set_positions needs a sequence of vertex ids, got {vertices!r}")
@@ -969,4 +982,6 @@ class Mesh:
             raise DLFLError(
                 f"positions must have shape (3,) or ({len(slots)}, 3), got {values.shape}"
             )
+        if not np.isfinite(values).all():
+            raise DLFLError("positions must be finite numbers (NaN or infinity given)")
         self._v.arrays["position"][slots] = values

@@ -18,6 +18,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ._checks import finite_number
 from .analysis import corner_normals
 from .arrays import MeshArrays, mesh_arrays
 from .build import from_corner_arrays
@@ -280,10 +281,15 @@ def _shell_positions(
 ) -> tuple[np.ndarray, np.ndarray]:
     """``(outer, inner)`` ``(V, 3)`` positions of the two shells."""
     p = a.positions
+    finite_number(scale if scale is not None else thickness,
+                  "scale" if scale is not None else "thickness")
     if scale is not None:
         s = float(np.clip(scale, -1.0, 1.0))
         if s == 0.0:
-            raise DLFLError("scale 0 would collapse the inner shell to a point; use 0 < |scale| <= 1")
+            raise DLFLError("scale 0 would collapse the inner shell to a point; use 0 < |scale| < 1")
+        if abs(s) == 1.0:  # TopMod clamps to [-1, 1] and builds two coincident shells
+            raise DLFLError(f"scale {scale} leaves no thickness between the shells (an inner "
+                            f"copy of the same size); use 0 < |scale| < 1")
         centre = p.mean(axis=0)
         if s > 0:
             moved = (p - centre) * s + centre
@@ -318,8 +324,8 @@ def rind(
     distance from every face (exactly, at corners where three faces meet, when
     ``uniform``); a negative one moves the original outward instead. With
     ``use_scaling`` the inner copy is ``scale`` times the mesh about its vertex
-    centroid (``scale`` clamped to [-1, 1]; negative scales the outer shell by
-    ``-1/scale`` instead). Punching ``k`` faces of a genus-0 shell gives genus
+    centroid (``0 < |scale| < 1``; negative scales the outer shell by ``-1/scale``
+    instead; TopMod clamped it to [-1, 1], where +-1 gave two coincident shells). Punching ``k`` faces of a genus-0 shell gives genus
     ``k - 1``. With ``cleanup``, the zero-thickness double wall left between two
     punched faces that share an edge is removed (TopMod's cleanup), and a vertex
     whose faces are all punched goes with it.
@@ -330,7 +336,8 @@ def rind(
     mesh is rebuilt (fresh ids).
 
     Raises:
-        DLFLError: a face id that is not in the mesh, a zero thickness or scale,
+        DLFLError: a face id that is not in the mesh, a zero or non-finite
+            thickness or scale, a scale of magnitude 1 or more,
             an inner copy whose faces would collapse or turn over, point-spheres,
             every face punched with cleanup (nothing would be left).
             The mesh is unchanged.

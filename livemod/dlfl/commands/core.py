@@ -360,6 +360,18 @@ def _xyz(args: tuple[Any, ...], name: str) -> tuple[np.ndarray, tuple[Any, ...]]
     raise DLFLError(f"{name} takes (x, y, z) or ((x, y, z)), got {args!r}")
 
 
+def _finite_positions(positions: np.ndarray, command: str) -> np.ndarray:
+    """``positions`` (``(k, 3)`` or ``(3,)``), checked before they are written.
+
+    Raises:
+        DLFLError: a coordinate overflowed to infinity (the mesh is unchanged).
+    """
+    if not np.isfinite(positions).all():
+        raise DLFLError(f"{command} would move vertices to infinity (coordinates past "
+                        f"{np.finfo(np.float64).max:.3g})")
+    return positions
+
+
 @modeling_command
 def translate(*args: Any, relative: bool = True) -> None:
     """``translate(x, y, z[, relative])``: move the current object.
@@ -373,7 +385,11 @@ def translate(*args: Any, relative: bool = True) -> None:
     obj = scene().current_object
     delta = offset if relative else offset - obj.origin
     m = obj.mesh
-    m._v.arrays["position"][m._v.live_slots()] += delta
+    slots = m._v.live_slots()
+    pos = m._v.arrays["position"]
+    with np.errstate(over="ignore", invalid="ignore"):  # overflow is refused just below
+        moved = pos[slots] + delta
+    pos[slots] = _finite_positions(moved, "translate")
     obj.origin = obj.origin + delta
 
 
@@ -385,7 +401,9 @@ def scale(*args: Any) -> None:
     m = obj.mesh
     slots = m._v.live_slots()
     pos = m._v.arrays["position"]
-    pos[slots] = (pos[slots] - obj.origin) * factors + obj.origin
+    with np.errstate(over="ignore", invalid="ignore"):  # overflow is refused just below
+        scaled = (pos[slots] - obj.origin) * factors + obj.origin
+    pos[slots] = _finite_positions(scaled, "scale")
     obj.factor = obj.factor * factors
 
 
@@ -399,7 +417,9 @@ def move(vertexids: Iterable[int], *args: Any, relative: bool = True) -> None:
     ids = _id_list(vertexids, "move")
     slots = [m._v.slot(v) for v in ids]
     pos = m._v.arrays["position"]
-    pos[slots] = pos[slots] + target if relative else target
+    with np.errstate(over="ignore", invalid="ignore"):  # overflow is refused just below
+        moved = pos[slots] + target if relative else np.broadcast_to(target, (len(slots), 3))
+    pos[slots] = _finite_positions(moved, "move")
 
 
 def freezeTrans() -> None:

@@ -17,6 +17,7 @@ from .. import geometry, sponge
 from .. import rind as _rind
 from .. import sierpinsky as _sierpinsky
 from .. import wireframe as _wire
+from .._checks import finite_number
 from ..errors import DLFLError
 from ._base import mesh, modeling_command
 
@@ -43,7 +44,8 @@ def rind(facelist: Any, useScaling: bool, percent: float, uniform: bool = True) 
     """``rind(facelist, useScaling, percent[, uniform])``: crust, then punch the faces.
 
     ``percent`` is the thickness when ``useScaling`` is false, otherwise the
-    scale of the inner copy (TopMod clamps it to [-1, 1]). ``uniform`` keeps the
+    scale of the inner copy, ``0 < |percent| < 1`` (TopMod clamped it to [-1, 1],
+    where +-1 gave two coincident shells). ``uniform`` keeps the
     thickness exact at corners (TopMod parsed this bool as a double; livemod
     takes a bool). Punching ``k`` faces of a closed genus-0 object gives genus
     ``k - 1``; faces that share an edge open into one hole.
@@ -52,7 +54,7 @@ def rind(facelist: Any, useScaling: bool, percent: float, uniform: bool = True) 
         DLFLError: a face id that is gone, a zero or inverting thickness/scale.
     """
     faces = _face_list(facelist)
-    value = float(percent)
+    value = finite_number(percent, "percent")
     if useScaling:
         _rind.rind(mesh(), faces, use_scaling=True, scale=value)
     else:
@@ -62,7 +64,7 @@ def rind(facelist: Any, useScaling: bool, percent: float, uniform: bool = True) 
 @modeling_command
 def crust(thickness: float = 0.5, uniform: bool = True) -> None:
     """``crust([thickness, uniform])``: TopMod's createCrust; two shells (livemod extra)."""
-    _rind.crust(mesh(), float(thickness), uniform=bool(uniform))
+    _rind.crust(mesh(), finite_number(thickness, "thickness"), uniform=bool(uniform))
 
 
 @modeling_command
@@ -71,7 +73,7 @@ def wireframe(thickness: float = 0.1, split: bool = True) -> None:
 
     Cube: 48/120/64, genus 5.
     """
-    _wire.wireframe(mesh(), float(thickness), bool(split))
+    _wire.wireframe(mesh(), finite_number(thickness, "thickness"), bool(split))
 
 
 @modeling_command
@@ -86,7 +88,7 @@ def column(thickness: float, segments: Any) -> None:
         segments = int(segments)
     if not isinstance(segments, int) or isinstance(segments, bool):
         raise DLFLError(f"segments must be a whole number, got {segments!r}")
-    _wire.columns(mesh(), float(thickness), segments)
+    _wire.columns(mesh(), finite_number(thickness, "thickness"), segments)
 
 
 @modeling_command
@@ -98,7 +100,7 @@ def sierpinsky() -> None:
 @modeling_command
 def menger(thickness: float = 0.67) -> None:
     """``menger([thickness])``: TopMod's Menger sponge remeshing (cube 64/156/84)."""
-    sponge.sponge(mesh(), float(thickness))
+    sponge.sponge(mesh(), finite_number(thickness, "thickness"))
 
 
 @modeling_command

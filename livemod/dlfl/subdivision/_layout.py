@@ -24,6 +24,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .._checks import finite_number
 from .._graph import cycle_layout, walk_rings
 from ..arrays import mesh_arrays
 from ..build import from_corner_arrays
@@ -466,11 +467,7 @@ def check_number(name: str, value: object, low: float | None = None,
     Raises:
         DLFLError: not a number, not finite, or out of range (naming the option).
     """
-    if isinstance(value, bool) or not isinstance(value, int | float | np.floating | np.integer):
-        raise DLFLError(f"option {name} must be a number, got {value!r}")
-    number = float(value)
-    if not math.isfinite(number):
-        raise DLFLError(f"option {name} must be finite, got {value!r}")
+    number = finite_number(value, f"option {name}")
     if (low is not None and number < low) or (high is not None and number > high):
         raise DLFLError(f"option {name} must be in [{low}, {high}], got {value!r}")
     return number
