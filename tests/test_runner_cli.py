@@ -114,6 +114,17 @@ def test_batch_variants_start_with_the_selection(tmp_path, capsys):
         assert (tmp_path / f"c_{index}.obj").read_text().count("\nf ") == 4 + 4 + 6
 
 
+def test_params_and_set_of_a_script_that_is_not_utf8_say_so_in_one_line(tmp_path, capsys):
+    script = tmp_path / "latin.py"
+    script.write_bytes(b"n = param('n', 3)\n# caf\xe9\n")
+    assert cli.main(["params", str(script)]) == 2
+    assert cli.main(["run", str(script), "--set", "n=4"]) == 2
+    err = capsys.readouterr().err.splitlines()
+    assert err == [f"livemod {command}: {script}:2: byte 0xe9 on line 2 is not UTF-8 text: "
+                   "save the file as UTF-8, or declare its encoding on the first line "
+                   "(# -*- coding: latin-1 -*-)" for command in ("params", "run")]
+
+
 def test_livemod_entry_point_runs_a_script():
     done = subprocess.run([sys.executable, "-m", "livemod.runner.cli", "run", RING,
                            "--param", "count=4", "--param", "radius=1"],

@@ -141,6 +141,31 @@ def test_the_traceback_keeps_every_line_of_the_text_and_the_notes(tmp_path):
     assert error.traceback.endswith("ValueError: first line\nsecond line\nwhile doing x\n")
 
 
+def test_scripts_are_decoded_as_python_decodes_them(tmp_path):
+    bom = tmp_path / "bom.py"  # older Notepad writes a byte-order mark
+    bom.write_bytes(b"\xef\xbb\xbfcreateVertex((0, 0, 0))\n")
+    assert run_script(str(bom)).status == "ok"
+    declared = tmp_path / "declared.py"
+    declared.write_bytes(b"# -*- coding: latin-1 -*-\nname = param('name', 'caf\xe9')\n")
+    outcome = execute(str(declared))
+    assert outcome.status == "ok" and outcome.scene.parameters == {} \
+        and outcome.scene.declarations["name"].default == "caf\u00e9"
+
+
+def test_a_script_that_is_not_text_in_its_encoding_is_a_syntax_error(tmp_path):
+    latin = tmp_path / "latin.py"
+    latin.write_bytes(b"x = 1\ny = 'caf\xe9'\n")
+    error = run_script(str(latin)).error
+    assert error.kind == "syntax" and error.line == 2
+    assert error.message == ("SyntaxError: byte 0xe9 on line 2 is not UTF-8 text: save the "
+                             "file as UTF-8, or declare its encoding on the first line "
+                             "(# -*- coding: latin-1 -*-)")
+    unknown = tmp_path / "unknown.py"
+    unknown.write_bytes(b"# -*- coding: martian -*-\nx = 1\n")
+    error = run_script(str(unknown)).error
+    assert error.kind == "syntax" and error.message == "SyntaxError: unknown encoding: martian"
+
+
 def test_error_in_a_local_module_points_into_it(tmp_path):
     write(tmp_path, "helper_bad.py", "def boom():\n    x = 1\n    raise RuntimeError('bad helper')\n")
     path = write(tmp_path, "main_bad.py", "import helper_bad\n\nhelper_bad.boom()\n")

@@ -15,6 +15,8 @@ from typing import Any
 from livemod.dlfl.errors import DLFLError
 from livemod.dlfl.params import ParamSpec, make_spec
 
+from .instrument import read_script
+
 _PARAM_ARGS = ("name", "default", "min", "max", "step", "choices", "doc")
 
 
@@ -27,8 +29,21 @@ def declared_parameters(script: str | Path) -> dict[str, ParamSpec]:
         OSError: the script cannot be read.
     """
     path = Path(script)
-    specs = literal_declarations(path.read_text(encoding="utf-8"), path)
+    specs = literal_declarations(_source(path), path)
     return specs if specs is not None else _run_for_declarations(path)
+
+
+def _source(path: Path) -> str:
+    """The script's text (see :func:`~livemod.runner.instrument.read_script`).
+
+    Raises:
+        DLFLError: its bytes are not text in its encoding.
+        OSError: it cannot be read.
+    """
+    try:
+        return read_script(str(path))
+    except SyntaxError as exc:
+        raise DLFLError(f"{path}:{exc.lineno}: {exc.msg}") from None
 
 
 def literal_declarations(source: str, path: str | Path) -> dict[str, ParamSpec] | None:
@@ -187,5 +202,5 @@ def given_values(script: str | Path, texts: list[str]) -> dict[str, Any]:
     if not raw:
         return {}
     path = Path(script)
-    specs = literal_declarations(path.read_text(encoding="utf-8"), path)
+    specs = literal_declarations(_source(path), path)
     return raw if specs is None else check_values(specs, raw)

@@ -28,7 +28,7 @@ import livemod.dlfl as dlfl
 from livemod.dlfl.scene import Scene, Selection, use_scene
 
 from .errors import Cancelled, cancelled_error, exception_error, is_user_file, syntax_error
-from .instrument import CANCEL_FLAG, STOP_FUNCTION, compile_script
+from .instrument import CANCEL_FLAG, STOP_FUNCTION, compile_script, read_script
 from .recording import RunControl, StepRecorder
 from .results import ScriptError, StepRecord
 
@@ -160,17 +160,16 @@ def execute(
         OSError: ``path`` cannot be read (only when ``source`` is None).
     """
     script = os.path.abspath(os.fspath(path))
-    if source is None:
-        with open(script, encoding="utf-8") as handle:
-            source = handle.read()
     started = time.perf_counter()
     scene = prepare_scene(base, selection, parameters)
     scene.directory = os.path.dirname(script)
     try:
+        if source is None:
+            source = read_script(script)
         code = compile_script(source, script)
     except SyntaxError as exc:
         return RunOutcome("error", scene, (), syntax_error(exc, script), time.perf_counter() - started,
-                          source=source)
+                          source=source or "")
     recorder = StepRecorder(script, scene, control)
     recorder.install()
     namespace = script_namespace(script, parameters)

@@ -20,6 +20,8 @@ tracebacks and step lines are unchanged.
 from __future__ import annotations
 
 import ast
+import io
+import tokenize
 from types import CodeType
 
 CANCEL_FLAG = "__livemod_cancel__"
@@ -95,3 +97,43 @@ def compile_script(source: str, path: str, *, checks: bool = True) -> CodeType:
     if checks:
         tree = _InsertChecks().visit(tree)
     return compile(tree, path, "exec", dont_inherit=True)
+
+
+def read_script(path: str) -> str:
+    """The text of the script at ``path``, decoded as Python decodes a source file:
+    UTF-8 (a byte-order mark allowed), or the encoding a ``# -*- coding: ... -*-``
+    line in the first two names.
+
+    Raises:
+        OSError: the file cannot be read.
+        SyntaxError: its bytes are not text in that encoding (the line and byte
+            named, as Python names them), or the coding line names no encoding.
+    """
+    with open(path, "rb") as handle:
+        return decode_script(handle.read(), path)
+
+
+def decode_script(data: bytes, path: str) -> str:
+    """The bytes ``data`` of the script at ``path`` as text (see :func:`read_script`).
+
+    Raises:
+        SyntaxError: as :func:`read_script`.
+    """
+    try:
+        encoding, _ = tokenize.detect_encoding(io.BytesIO(data).readline)
+    except SyntaxError as exc:  # a bad coding line, or bytes that are not UTF-8
+        _decoded(data, "utf-8", path)  # names the byte, if that is what it was
+        raise SyntaxError(exc.msg, (path, 1, 1, None)) from None
+    return _decoded(data, encoding, path)
+
+
+def _decoded(data: bytes, encoding: str, path: str) -> str:
+    """``data`` decoded, or a SyntaxError naming the first byte that is not text."""
+    try:
+        return data.decode(encoding)
+    except UnicodeDecodeError as exc:
+        line = data.count(b"\n", 0, exc.start) + 1
+        name = "UTF-8" if encoding.startswith("utf-8") else encoding
+        raise SyntaxError(f"byte 0x{data[exc.start]:02x} on line {line} is not {name} text: "
+                          f"save the file as UTF-8, or declare its encoding on the first "
+                          f"line (# -*- coding: latin-1 -*-)", (path, line, 1, None)) from None

@@ -32,8 +32,9 @@ from livemod.dlfl.params import ParamSpec
 from livemod.dlfl.scene import Scene, Selection
 
 from .declarations import check_values, fitting_values, literal_declarations
-from .errors import Cancelled, exception_error
+from .errors import Cancelled, exception_error, syntax_error
 from .execute import RunControl, RunOutcome, base_scene, execute, interrupt_user_code
+from .instrument import decode_script
 from .playback import Playback
 from .preview import PreviewWorker, preview_arrays
 from .results import (
@@ -400,9 +401,12 @@ class LiveSession:
         started = time.perf_counter()
         with self._lock:
             parameters, selection = dict(self._parameters), self._selection
+        digest = None  # of the bytes read, when this run reads the script
         try:
             if source is None:
-                source = _read(run.script)
+                with open(run.script, "rb") as handle:
+                    data = handle.read()
+                source, digest = decode_script(data, run.script), _hash(data)
             base = self._base_scene()
         except Exception as exc:
             run.control.finished = True
@@ -410,7 +414,8 @@ class LiveSession:
             return
         with self._lock:
             self._source = source
-            self._seen[run.script] = _hash(source.encode("utf-8"))
+            if digest is not None:
+                self._seen[run.script] = digest
             parameters = self._fit_parameters(run.script, source, parameters)
         try:
             outcome = execute(run.script, source=source, base=base, seed=self.seed,
@@ -496,10 +501,14 @@ class LiveSession:
             self._previews.request(result, mesh)
 
     def _publish_failure(self, run: _Run, exc: Exception, elapsed: float) -> None:
-        """A run that could not start (script unreadable, ``--mesh`` unloadable)."""
+        """A run that could not start (script unreadable or not text, ``--mesh``
+        unloadable)."""
         with self._lock:
             last = self._last_good
-        error = dataclasses.replace(exception_error(exc, run.script), file=run.script)
+        if isinstance(exc, SyntaxError):  # bytes that are not text: as Python reports it
+            error = syntax_error(exc, run.script)
+        else:
+            error = dataclasses.replace(exception_error(exc, run.script), file=run.script)
         self._post(RunResult(run.run_id, run.script, "error", (), None,
                              last.arrays if last else None, None, error, elapsed,
                              last is not None, last.parameters if last else ()))
@@ -569,9 +578,6 @@ def _preview_worker(preview: bool | Callable[[Mesh], MeshArrays | None],
     return PreviewWorker(post, is_current, compute)
 
 
-def _read(path: str) -> str:
-    with open(path, encoding="utf-8") as handle:
-        return handle.read()
 
 
 def _hash(data: bytes) -> bytes:
