@@ -197,3 +197,16 @@ def test_every_format_writes_point_clouds_and_empty_meshes(points: int, tmp_path
     assert len(triangles) == 0
     header, positions, faces = read_ply(tmp_path / "cloud.ply")
     assert len(positions) == points and faces == []
+
+
+def test_a_killed_writer_can_remove_its_unfinished_temporary_file(tmp_path: Path) -> None:
+    from livemod.dlfl.io.atomic import remove_unfinished
+
+    target = tmp_path / "mesh.obj"
+    target.write_bytes(b"old")
+    with pytest.raises(FileNotFoundError), atomic_write(target) as handle:
+        handle.write(b"half of a new mesh")
+        remove_unfinished()  # what a batch worker does on SIGTERM, before it exits
+        assert sorted(p.name for p in tmp_path.iterdir()) == ["mesh.obj"]
+    assert target.read_bytes() == b"old"
+    remove_unfinished()  # nothing under way: nothing to do

@@ -167,6 +167,39 @@ def test_batch_in_two_processes_end_to_end(tmp_path, capsys):
     assert len(names) == 9 and "ring_6_2.0_7.obj" in names and "index.json" in names
 
 
+def test_batch_refuses_outputs_that_two_variants_would_share(tmp_path, capsys):
+    same = str(tmp_path / "same.obj")
+    assert cli.main(["batch", RING, "--param", "count=3:4:2", "--param", "radius=1",
+                     "-o", same]) == 2
+    assert (f"names one file, {same}, for variants 0 {{'count': 3, 'radius': 1.0}} and 1 "
+            f"{{'count': 4, 'radius': 1.0}}; put {{index}} or the swept parameters in it"
+            in capsys.readouterr().err)
+    rounded = str(tmp_path / "r_{radius:.0f}.obj")  # 1.0 and 1.5 both print as 1 (or 2)
+    assert cli.main(["batch", RING, "--param", "count=3", "--param", "radius=1:2:3",
+                     "-o", rounded]) == 2
+    assert os.listdir(tmp_path) == []
+
+
+def test_a_parameter_named_index_clashes_with_the_pattern_field():
+    with pytest.raises(ValueError, match="a parameter named 'index' clashes"):
+        output_name("out/{index}.obj", {"index": 2}, 0)
+    with pytest.raises(ValueError, match="cannot format"):
+        output_name("out/{name:.2f}.obj", {"name": "abc"}, 0)
+
+
+@pytest.mark.timeout(120)
+def test_a_variant_that_kills_its_worker_fails_alone(tmp_path, capsys):
+    script = tmp_path / "dies.py"
+    script.write_text("import os\nn = param('n', 0)\nif n == 1:\n    os._exit(5)\n"
+                      "createVertex((n, 0, 0))\n")
+    code = cli.main(["batch", str(script), "--param", "n=0:3:4", "-o",
+                     str(tmp_path / "out" / "{n}.obj"), "-j", "2"])
+    captured = capsys.readouterr()
+    assert code == 1 and "3/4 variants ok" in captured.out
+    assert "variant 1 {'n': 1}: its worker process died" in captured.err
+    assert sorted(os.listdir(tmp_path / "out")) == ["0.obj", "2.obj", "3.obj", "index.json"]
+
+
 def test_batch_reports_failing_variants(tmp_path, capsys):
     code = cli.main(["batch", RING, "--param", "count=1:3:3", "--param", "radius=1", "-j", "1"])
     assert code == 1

@@ -13,9 +13,11 @@ import importlib
 import itertools
 import multiprocessing
 import os
+import signal
 import threading
 import time
 from collections.abc import Callable, Iterable, Iterator
+from concurrent.futures.process import BrokenProcessPool
 from dataclasses import dataclass
 from typing import Any, Protocol, TextIO
 
@@ -137,12 +139,18 @@ def output_name(pattern: str, parameters: dict[str, Any], index: int) -> str:
     """``pattern`` formatted with the parameters and ``index`` (e.g. ``out/{r:.2f}.obj``).
 
     Raises:
-        ValueError: the pattern names a field that is neither a parameter nor ``index``.
+        ValueError: the pattern names a field that is neither a parameter nor ``index``,
+            a format spec does not fit its value, or a parameter is named ``index``.
     """
+    if "index" in parameters:
+        raise ValueError("a parameter named 'index' clashes with the output pattern's "
+                         "{index}, the variant's number; rename the parameter")
     try:
         return pattern.format(index=index, **parameters)
     except (KeyError, IndexError) as exc:
         raise ValueError(f"output pattern {pattern!r} names an unknown field {exc}") from None
+    except ValueError as exc:  # a format spec that does not fit the value, e.g. {name:.2f}
+        raise ValueError(f"output pattern {pattern!r} cannot format {parameters}: {exc}") from None
 
 
 def run_variant(variant: Variant) -> VariantResult:
@@ -207,9 +215,32 @@ class FuturesVariantExecutor:
 
     def map_unordered(self, fn: Callable[[Variant], VariantResult],
                       variants: list[Variant]) -> Iterator[VariantResult]:
-        futures = [self.executor.submit(fn, v) for v in variants]
-        for future in concurrent.futures.as_completed(futures):
-            yield future.result()
+        """As :meth:`VariantExecutor.map_unordered`; a variant whose future failed
+        (its worker died, or the cluster lost it) comes back as a failed result."""
+        started = time.perf_counter()
+        for variant, outcome in _finished(self.executor, fn, variants):
+            yield outcome if isinstance(outcome, VariantResult) else _failed(
+                variant, _lost(outcome), started)
+
+
+def _finished(executor: concurrent.futures.Executor, fn: Callable[[Variant], VariantResult],
+              variants: list[Variant],
+              ) -> Iterator[tuple[Variant, VariantResult | Exception]]:
+    """``(variant, its result or the exception its future raised)``, as they finish."""
+    futures = {executor.submit(fn, v): v for v in variants}
+    for future in concurrent.futures.as_completed(futures):
+        try:
+            yield futures[future], future.result()
+        except Exception as exc:
+            yield futures[future], exc
+
+
+def _lost(exc: Exception) -> str:
+    """What to say of a variant whose run never reported back."""
+    if isinstance(exc, BrokenProcessPool):
+        return ("its worker process died (the script called os._exit, crashed the "
+                "interpreter, or ran out of memory)")
+    return f"{type(exc).__name__}: {exc}"
 
 
 class ProcessPoolVariantExecutor:
@@ -226,9 +257,37 @@ class ProcessPoolVariantExecutor:
 
     def map_unordered(self, fn: Callable[[Variant], VariantResult],
                       variants: list[Variant]) -> Iterator[VariantResult]:
+        """As :meth:`VariantExecutor.map_unordered`. A worker that dies breaks the
+        whole pool, so the variants it took down are run again, each in a pool of
+        its own: only one that kills its own worker is reported failed."""
         context = _process_context()
-        with concurrent.futures.ProcessPoolExecutor(self.jobs, mp_context=context) as pool:
-            yield from FuturesVariantExecutor(pool).map_unordered(fn, variants)
+        lost = []
+        with concurrent.futures.ProcessPoolExecutor(self.jobs, mp_context=context,
+                                                    initializer=_worker_started) as pool:
+            for variant, outcome in _finished(pool, fn, variants):
+                if isinstance(outcome, BrokenProcessPool):
+                    lost.append(variant)
+                elif isinstance(outcome, VariantResult):
+                    yield outcome
+                else:
+                    yield _failed(variant, _lost(outcome), time.perf_counter())
+        for variant in lost:
+            with concurrent.futures.ProcessPoolExecutor(1, mp_context=context,
+                                                        initializer=_worker_started) as alone:
+                yield from FuturesVariantExecutor(alone).map_unordered(fn, [variant])
+
+
+def _worker_started() -> None:
+    """In each pool worker: when the pool kills it (SIGTERM, after another worker
+    died), remove the temporary file of a mesh it was writing, then exit."""
+    signal.signal(signal.SIGTERM, _killed)
+
+
+def _killed(signum: int, frame: object) -> None:
+    from livemod.dlfl.io.atomic import remove_unfinished
+
+    remove_unfinished()
+    os._exit(128 + signum)  # not SystemExit: a run would catch it and go on
 
 
 def _process_context() -> multiprocessing.context.BaseContext:
@@ -246,14 +305,34 @@ def make_variants(script: str, parameter_sets: list[dict[str, Any]], pattern: st
                   *, mesh_path: str | None = None, seed: int | None = 0,
                   selection: Selection | None = None) -> list[Variant]:
     """One :class:`Variant` per parameter set, outputs named from ``pattern``; every
-    variant starts with the same ``selection`` (what ``faces(True)`` returns)."""
+    variant starts with the same ``selection`` (what ``faces(True)`` returns).
+
+    Raises:
+        ValueError: see :func:`output_name`, or two variants would write one file.
+    """
     script = os.path.abspath(script)
-    return [
+    variants = [
         Variant(i, script, tuple(params.items()),
                 output_name(pattern, params, i) if pattern else None, mesh_path, seed,
                 selection)
         for i, params in enumerate(parameter_sets)
     ]
+    _check_distinct_outputs(variants, pattern)
+    return variants
+
+
+def _check_distinct_outputs(variants: list[Variant], pattern: str | None) -> None:
+    """Raises ValueError when two variants would write the same file."""
+    first: dict[str, Variant] = {}
+    for variant in variants:
+        if variant.output is None:
+            continue
+        seen = first.setdefault(os.path.abspath(variant.output), variant)
+        if seen is not variant:
+            raise ValueError(
+                f"output pattern {pattern!r} names one file, {variant.output}, for variants "
+                f"{seen.index} {dict(seen.parameters)} and {variant.index} "
+                f"{dict(variant.parameters)}; put {{index}} or the swept parameters in it")
 
 
 def run_batch(variants: list[Variant], executor: VariantExecutor | None = None, *,
@@ -298,7 +377,8 @@ def index_path(variants: list[Variant], given: str | None) -> str | None:
 
 def write_index(path: str, script: str, specs: dict[str, ParamSpec],
                 results: list[VariantResult]) -> None:
-    """Write the sweep's index: the script, its declarations and every variant.
+    """Write the sweep's index: the script, its declarations and every variant
+    (atomically: a reader never sees half of it).
 
     Raises:
         OSError: the file cannot be written.
@@ -312,7 +392,8 @@ def write_index(path: str, script: str, specs: dict[str, ParamSpec],
                         "doc": s.doc} for s in specs.values()],
         "variants": index_rows(results),
     }
+    from livemod.dlfl.io.atomic import write_atomically
+
     os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
-    with open(path, "w", encoding="utf-8") as handle:
-        json.dump(document, handle, indent=2, default=str)
-        handle.write("\n")
+    text = json.dumps(document, indent=2, default=str) + "\n"
+    write_atomically(path, text.encode("utf-8"))

@@ -34,6 +34,7 @@ def atomic_write(path: str | os.PathLike[str]) -> Iterator[BinaryIO]:
     target = os.path.abspath(os.fspath(path))
     folder, name = os.path.split(target)
     fd, tmp_path = tempfile.mkstemp(prefix=f".{name}.", suffix=".tmp", dir=folder)
+    _in_progress.add(tmp_path)
     try:
         with os.fdopen(fd, "wb") as handle:
             yield handle
@@ -45,7 +46,24 @@ def atomic_write(path: str | os.PathLike[str]) -> Iterator[BinaryIO]:
         with contextlib.suppress(OSError):
             os.unlink(tmp_path)
         raise
+    finally:
+        _in_progress.discard(tmp_path)
     _sync_folder(folder)
+
+
+# temporary files of the writes under way in this process
+_in_progress: set[str] = set()
+
+
+def remove_unfinished() -> None:
+    """Remove the temporary files of the writes still under way in this process.
+
+    For a process that is being killed (a batch worker on SIGTERM): the writes
+    will never finish, and their targets are untouched.
+    """
+    for tmp_path in list(_in_progress):
+        with contextlib.suppress(OSError):
+            os.unlink(tmp_path)
 
 
 def write_atomically(path: str | os.PathLike[str], data: bytes | Iterable[bytes]) -> None:
