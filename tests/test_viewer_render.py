@@ -215,6 +215,20 @@ def test_render_command_runs_the_script_with_the_selection(tmp_path: Path, capsy
     assert "--select needs a script, not 'cube'" in capsys.readouterr().err
 
 
+def test_render_refuses_a_bad_output_before_the_script_runs(tmp_path: Path, capsys) -> None:
+    marker = tmp_path / "ran"
+    script = tmp_path / "slow.py"
+    script.write_text(f"open({str(marker)!r}, 'w').close()\n" + CUBE_SCRIPT)
+    assert main(["render", str(script), "-o", str(tmp_path / "x.foo")]) == 2
+    assert main(["render", str(script), "-o", str(tmp_path / "t.png"), "--turntable", "3"]) == 2
+    err = capsys.readouterr().err
+    assert "give a .png or .gif name" in err and "3 frames cannot go to one PNG" in err
+    assert not marker.exists()
+    assert main(["render", str(script), "-o", str(tmp_path / "y.png"), "--samples", "3"]) == 2
+    assert "--samples 3: this GL takes 0, 2" in capsys.readouterr().err
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["ran", "slow.py"]  # no image
+
+
 def test_view_command_refuses_a_missing_script(tmp_path: Path, capsys) -> None:
     assert main(["view", str(tmp_path / "missing.py")]) == 1
     assert "missing.py" in capsys.readouterr().err

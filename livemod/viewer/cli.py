@@ -107,11 +107,16 @@ def _render(args: argparse.Namespace) -> int:
     from livemod.dlfl.errors import DLFLError
     from livemod.progress import ProgressBar
 
-    from .headless import render_arrays
+    from .headless import output_paths, render_arrays
     from .renderer import LABEL_KINDS, Style
 
     values = _given_values("render", args.input, args.set)
     if values is None:
+        return 2
+    try:  # before the script runs: a long run should not end in a bad file name
+        output_paths(args.output, max(args.turntable, 1))
+    except ValueError as exc:
+        print(f"livemod render: {exc}", file=sys.stderr)
         return 2
     labels = frozenset(k.strip() for k in args.labels.split(",") if k.strip())
     if labels - set(LABEL_KINDS):
@@ -127,10 +132,13 @@ def _render(args: argparse.Namespace) -> int:
     style = Style(edges=not args.no_edges, vertices=args.vertices, preview=args.preview,
                   labels=labels)
     progress = ProgressBar("rendering") if args.turntable > 1 else None
-    paths = render_arrays(arrays, args.output, size=args.size, turntable=args.turntable,
-                          elevation=args.elevation, style=style, preview=preview,
-                          progress=progress, ortho=args.ortho,
-                          samples=_samples(args))
+    try:
+        paths = render_arrays(arrays, args.output, size=args.size, turntable=args.turntable,
+                              elevation=args.elevation, style=style, preview=preview,
+                              progress=progress, ortho=args.ortho, samples=_samples(args))
+    except ValueError as exc:  # a size or MSAA level this GL cannot make
+        print(f"livemod render: {exc}", file=sys.stderr)
+        return 2
     print(f"wrote {paths[0]}" if len(paths) == 1 else f"wrote {len(paths)} frames: "
           f"{paths[0]} .. {paths[-1]}")
     return 0
@@ -139,7 +147,7 @@ def _render(args: argparse.Namespace) -> int:
 def _samples(args: argparse.Namespace) -> int:
     """The MSAA level: as given, or 4 for one frame and 0 for turntable frames."""
     if args.samples is not None:
-        return max(int(args.samples), 0)
+        return int(args.samples)
     return 0 if args.turntable > 1 else 4
 
 

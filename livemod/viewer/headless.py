@@ -6,6 +6,8 @@ Mesa's llvmpipe; its output is bit-identical across runs.
 
 from __future__ import annotations
 
+import functools
+import io
 from collections.abc import Callable, Iterator
 from pathlib import Path
 
@@ -37,6 +39,7 @@ class Offscreen:
                  ctx: moderngl.Context | None = None) -> None:
         self.ctx = ctx if ctx is not None else create_context()
         self.size = (int(size[0]), int(size[1]))
+        _check_target(self.ctx, self.size, samples)
         self.renderer = Renderer(self.ctx)
         self.resolved = self.ctx.framebuffer([self.ctx.renderbuffer(self.size, 4)],
                                              self.ctx.depth_renderbuffer(self.size))
@@ -62,6 +65,18 @@ class Offscreen:
     def release(self) -> None:
         """Free the context and everything in it."""
         self.ctx.release()
+
+
+def _check_target(ctx: moderngl.Context, size: tuple[int, int], samples: int) -> None:
+    """Raises ValueError when this GL cannot make a ``size`` target with ``samples``."""
+    largest = int(ctx.info.get("GL_MAX_RENDERBUFFER_SIZE", 0) or 0)
+    if largest and max(size) > largest:
+        raise ValueError(f"{size[0]}x{size[1]} is larger than this GL's largest image, "
+                         f"{largest}x{largest}")
+    most = int(ctx.max_samples)
+    if samples < 0 or (samples and (samples & (samples - 1) or samples > most)):
+        levels = ", ".join(str(n) for n in (0, 2, 4, 8, 16, 32) if n <= most)
+        raise ValueError(f"--samples {samples}: this GL takes {levels}")
 
 
 def framed_camera(arrays: MeshArrays | None, elevation: float = 25.0, yaw: float = 30.0,
@@ -94,41 +109,81 @@ def render_turntable(offscreen: Offscreen, camera: Camera, style: Style, frames:
     return images
 
 
-def frame_paths(out: str, frames: int) -> list[Path]:
-    """File names of a PNG sequence: ``out`` with ``{frame}`` or ``%03d``, or a folder."""
+IMAGE_SUFFIXES = (".png", ".gif")
+
+
+def output_paths(out: str, frames: int) -> list[Path]:
+    """The files rendering ``frames`` frames to ``out`` writes, checked before any
+    rendering: ``x.gif`` (all frames in one), ``x.png`` (one frame), or a PNG
+    sequence: a name with ``{frame}`` (format spec allowed) or one ``%d``-style
+    field, or a folder (``frame_000.png``, ...).
+
+    Raises:
+        ValueError: another suffix, a pattern with other fields, several frames
+            for one PNG, or a pattern that names two frames alike.
+    """
+    target = Path(out)
+    if "{" not in out and "%" not in out and target.suffix:
+        if target.suffix.lower() not in IMAGE_SUFFIXES:
+            raise ValueError(f"cannot write images to {out!r}: give a .png or .gif name, a "
+                             "folder, or a name with {frame} or %03d")
+        if target.suffix.lower() == ".png" and frames > 1:
+            raise ValueError(f"{frames} frames cannot go to one PNG ({out}); use .gif, a "
+                             "folder, or a name with {frame}, e.g. turn_{frame:03d}.png")
+        return [target]
+    paths = _sequence(out, frames)
+    if len(set(paths)) < len(paths):
+        raise ValueError(f"the pattern {out!r} names two frames alike; put {{frame}} in it")
+    return paths
+
+
+def _sequence(out: str, frames: int) -> list[Path]:
+    """The PNG sequence of a pattern or folder ``out`` (see :func:`output_paths`)."""
     width = max(3, len(str(frames - 1)))
-    if "{frame" in out:
-        return [Path(out.format(frame=index)) for index in range(frames)]
-    if "%" in out:
-        return [Path(out % index) for index in range(frames)]
-    folder = Path(out)
-    return [folder / f"frame_{index:0{width}d}.png" for index in range(frames)]
+    try:
+        if "{" in out:
+            return [Path(out.format(frame=index)) for index in range(frames)]
+        if "%" in out:
+            return [Path(out % index) for index in range(frames)]
+    except (KeyError, IndexError, ValueError, TypeError) as exc:
+        percent = "; write %% for a percent sign" if "%" in out else ""
+        raise ValueError(f"the output pattern {out!r} takes only {{frame}} or one %d "
+                         f"field ({type(exc).__name__}: {exc}){percent}") from None
+    return [Path(out) / f"frame_{index:0{width}d}.png" for index in range(frames)]
 
 
 def write_images(out: str, images: list[np.ndarray], fps: float = 25.0) -> list[Path]:
-    """Write ``images``: a GIF if ``out`` ends in .gif, one PNG, or a PNG sequence.
+    """Write ``images`` where :func:`output_paths` says, each file atomically.
 
     Returns the paths written. GIF frame delays are whole centiseconds, so 25 fps
     (40 ms) is exact.
+
+    Raises:
+        ValueError: see :func:`output_paths`.
+        OSError: a file cannot be written.
     """
     from PIL import Image
 
-    target = Path(out)
-    if target.suffix.lower() == ".gif":
-        target.parent.mkdir(parents=True, exist_ok=True)
-        pictures = [Image.fromarray(image) for image in images]
-        pictures[0].save(target, save_all=True, append_images=pictures[1:],
-                         duration=round(1000.0 / fps), loop=0, optimize=False)
-        return [target]
-    if len(images) == 1 and "{frame" not in out and "%" not in out and target.suffix:
-        target.parent.mkdir(parents=True, exist_ok=True)
-        Image.fromarray(images[0]).save(target)
-        return [target]
-    paths = frame_paths(out, len(images))
-    for path, image in zip(paths, images, strict=True):
-        path.parent.mkdir(parents=True, exist_ok=True)
-        Image.fromarray(image).save(path)
+    paths = output_paths(out, len(images))
+    pictures = [Image.fromarray(image) for image in images]
+    if len(paths) == 1 and paths[0].suffix.lower() == ".gif":
+        _save(paths[0], lambda f: pictures[0].save(
+            f, format="GIF", save_all=True, append_images=pictures[1:],
+            duration=round(1000.0 / fps), loop=0, optimize=False))
+        return paths
+    for path, picture in zip(paths, pictures, strict=True):
+        _save(path, functools.partial(picture.save, format="PNG"))
     return paths
+
+
+def _save(path: Path, write: Callable[[io.BytesIO], None]) -> None:
+    """Encode with ``write`` in memory, then replace ``path`` atomically."""
+    from livemod.dlfl.io.atomic import write_atomically
+
+    data = io.BytesIO()
+    write(data)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    write_atomically(path, data.getvalue())
 
 
 def render_arrays(arrays: MeshArrays | None, out: str, *, size: tuple[int, int] = (800, 600),
