@@ -84,10 +84,14 @@ def _info(args: argparse.Namespace) -> int:
 def _convert(args: argparse.Namespace) -> int:
     from livemod.dlfl.io import open_mesh, save_mesh
 
+    from livemod.dlfl import summarize
+
     mesh = open_mesh(args.input)
     save_mesh(mesh, args.output)
-    v, e, f = mesh.counts()
-    print(f"wrote {args.output} ({v} vertices, {e} edges, {f} faces)")
+    summary = summarize(mesh)  # faces as `livemod info` counts them: holes apart
+    holes = f", {summary.holes} holes" if summary.holes else ""
+    print(f"wrote {args.output} ({summary.vertices} vertices, {summary.edges} edges, "
+          f"{summary.faces - summary.holes} faces{holes})")
     return 0
 
 

@@ -48,6 +48,22 @@ def test_convert_round_trips_through_dlfl(tmp_path: Path, capsys: pytest.Capture
     assert "Number of faces : 6" in capsys.readouterr().out
 
 
+def test_convert_counts_faces_as_info_does(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    triangle = tmp_path / "tri.obj"
+    triangle.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")  # open: one face, one hole
+    assert main(["convert", str(triangle), str(tmp_path / "tri.dlfl")]) == 0
+    assert capsys.readouterr().out.endswith("(3 vertices, 3 edges, 1 faces, 1 holes)\n")
+
+
+def test_a_write_into_a_missing_folder_names_the_target(tmp_path: Path) -> None:
+    from livemod.dlfl.io import save_mesh
+    from livemod.dlfl.shapes import cube
+
+    target = tmp_path / "missing" / "c.obj"
+    with pytest.raises(FileNotFoundError, match=f"cannot write {target}: No such file"):
+        save_mesh(cube(), target)
+
+
 def test_every_subcommand_is_registered() -> None:
     parser = build_parser()
     choices = parser._subparsers._group_actions[0].choices  # type: ignore[union-attr]

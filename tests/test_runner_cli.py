@@ -125,6 +125,30 @@ def test_params_and_set_of_a_script_that_is_not_utf8_say_so_in_one_line(tmp_path
                    "(# -*- coding: latin-1 -*-)" for command in ("params", "run")]
 
 
+def test_run_makes_the_output_folder_and_says_when_there_is_nothing_to_write(tmp_path, capsys):
+    out = tmp_path / "new" / "folder" / "ring.obj"
+    assert cli.main(["run", RING, "-o", str(out)]) == 0 and out.exists()
+    empty = tmp_path / "empty.py"
+    empty.write_text("x = 1\n")
+    stale = tmp_path / "old.obj"
+    stale.write_text("v 0 0 0\n")
+    capsys.readouterr()
+    assert cli.main(["run", str(empty), "-o", str(stale)]) == 0
+    assert capsys.readouterr().err == (f"livemod run: the script left no mesh; {stale} "
+                                       "was not written\n")
+    assert stale.read_text() == "v 0 0 0\n"
+
+
+@pytest.mark.parametrize(("argv", "message"), [
+    (["batch", RING, "--param", "count=3", "-j", "0"], "jobs must be a whole number >= 1, not '0'"),
+    (["run", RING, "--seed", "abc"], "the seed must be a whole number or 'none', not 'abc'"),
+])
+def test_bad_jobs_and_seeds_are_one_line_errors(argv, message, capsys):
+    with pytest.raises(SystemExit) as stopped:
+        cli.main(argv)
+    assert stopped.value.code == 2 and message in capsys.readouterr().err
+
+
 def test_livemod_entry_point_runs_a_script():
     done = subprocess.run([sys.executable, "-m", "livemod.runner.cli", "run", RING,
                            "--param", "count=4", "--param", "radius=1"],
@@ -259,3 +283,13 @@ def test_any_futures_executor_can_run_a_batch(tmp_path):
     with ThreadPoolExecutor(1) as pool:  # stands in for a Dask client's executor
         results = run_batch(variants, FuturesVariantExecutor(pool), quiet=True)
     assert [r.counts for r in results] == [(3, 3, 2), (4, 4, 2)]
+
+
+def test_watch_reports_no_write_when_a_run_left_no_mesh(capsys):
+    from types import SimpleNamespace
+
+    empty = SimpleNamespace(run_id=3, error=None, arrays=None, status="ok", steps=(),
+                            elapsed=0.01)
+    cli._report(empty, "out.obj")
+    assert capsys.readouterr().out == ("run 3: ok, 0 steps, V=0 E=0 F=0, 0.010 s, "
+                                       "no mesh to write\n")

@@ -56,7 +56,23 @@ def cmd_params(args: argparse.Namespace) -> int:
 
 
 def _seed(text: str) -> int | None:
-    return None if text.lower() == "none" else int(text)
+    if text.lower() == "none":
+        return None
+    try:
+        return int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(
+            f"the seed must be a whole number or 'none', not {text!r}") from None
+
+
+def _jobs(text: str) -> int:
+    try:
+        jobs = int(text)
+    except ValueError:
+        jobs = 0
+    if jobs < 1:
+        raise argparse.ArgumentTypeError(f"jobs must be a whole number >= 1, not {text!r}")
+    return jobs
 
 
 def add_select_option(parser: argparse.ArgumentParser) -> None:
@@ -109,9 +125,10 @@ def _add_batch(subparsers: Any) -> None:
                        help="the sweep's JSON index (default: index.json next to the outputs)")
     batch.add_argument("-o", "--output", metavar="PATTERN",
                        help="output file pattern, e.g. 'out/{name}_{index}.obj'")
-    batch.add_argument("-j", "--jobs", type=int, default=os.cpu_count() or 1)
+    batch.add_argument("-j", "--jobs", type=_jobs, default=os.cpu_count() or 1,
+                       help="processes to run variants on (default: one per core)")
     batch.add_argument("--mesh", metavar="IN", help="mesh every variant starts from")
-    batch.add_argument("--seed", type=_seed, default=0)
+    batch.add_argument("--seed", type=_seed, default=0, help="seed of random/numpy (or 'none')")
     add_select_option(batch)
     batch.set_defaults(handler=cmd_batch)
 
@@ -162,9 +179,15 @@ def _finish_run(args: argparse.Namespace, outcome: Any, params: dict[str, Any]) 
 
 
 def _save(mesh: Any, output: str | None) -> int:
-    if output is None or mesh is None:
+    """Write ``mesh`` to ``output`` (its folder made if missing); the exit code."""
+    if output is None:
+        return 0
+    if mesh is None:
+        print(f"livemod run: the script left no mesh; {output} was not written",
+              file=sys.stderr)
         return 0
     try:
+        os.makedirs(os.path.dirname(os.path.abspath(output)), exist_ok=True)
         importlib.import_module("livemod.dlfl.io").save_mesh(mesh, output)
     except Exception as exc:
         print(f"livemod run: cannot write {output}: {type(exc).__name__}: {exc}",
@@ -232,7 +255,9 @@ def _report(result: RunResult, output: str | None) -> None:
         print(f"run {result.run_id}: {result.error}", file=sys.stderr, flush=True)
         return
     v, e, f = result.arrays.counts if result.arrays is not None else (0, 0, 0)
-    wrote = f", wrote {output}" if output else ""
+    wrote = ""
+    if output:
+        wrote = f", wrote {output}" if result.arrays is not None else ", no mesh to write"
     print(f"run {result.run_id}: {result.status}, {len(result.steps)} steps, "
           f"V={v} E={e} F={f}, {result.elapsed:.3f} s{wrote}", flush=True)
 

@@ -519,6 +519,7 @@ class LiveSession:
         if self.output is None or mesh is None:
             return None
         try:
+            os.makedirs(os.path.dirname(os.path.abspath(self.output)), exist_ok=True)
             importlib.import_module("livemod.dlfl.io").save_mesh(mesh, self.output)
         except Exception as exc:
             error = exception_error(exc, self.script)

@@ -33,7 +33,10 @@ def atomic_write(path: str | os.PathLike[str]) -> Iterator[BinaryIO]:
     """
     target = os.path.abspath(os.fspath(path))
     folder, name = os.path.split(target)
-    fd, tmp_path = tempfile.mkstemp(prefix=f".{name}.", suffix=".tmp", dir=folder)
+    try:
+        fd, tmp_path = tempfile.mkstemp(prefix=f".{name}.", suffix=".tmp", dir=folder)
+    except OSError as exc:  # say so of the target, not of a temporary name it never saw
+        raise type(exc)(exc.errno, f"cannot write {target}: {exc.strerror}") from None
     _in_progress.add(tmp_path)
     try:
         with os.fdopen(fd, "wb") as handle:
