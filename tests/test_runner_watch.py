@@ -88,6 +88,22 @@ def test_vanished_script_waits_for_its_return(tmp_path):
         assert vertex_count(next_result(live)) == 4
 
 
+@pytest.mark.timeout(60)
+def test_a_script_created_after_the_session_started_runs_on_its_first_save(tmp_path):
+    script = tmp_path / "later.py"
+    notifier = ManualNotifier()
+    live = LiveSession(str(script), notifier=notifier, debounce=0.05, preview=False)
+    with closing_session(live):
+        live.start()
+        assert next_result(live).status == "error"  # not there yet
+        script.write_text(vertices_script(2))
+        notifier.fire(str(script))
+        assert vertex_count(next_result(live)) == 2
+        script.write_text(vertices_script(3))
+        notifier.fire(str(script))
+        assert vertex_count(next_result(live)) == 3
+
+
 # -- real file system (watchdog) ----------------------------------------------------
 
 

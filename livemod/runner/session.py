@@ -337,8 +337,10 @@ class LiveSession:
             return  # the script vanished (or is being replaced): wait for it to return
         with self._lock:
             changed = [p for p, d in digests.items() if p in self._seen and self._seen[p] != d]
+            # no run has read the script yet (it did not exist): its first save runs it
+            appeared = script not in self._seen
             self._seen.update({p: d for p, d in digests.items() if d is not None})
-        if changed:
+        if changed or appeared:
             self._request(None)
 
     def _supervise(self) -> None:
