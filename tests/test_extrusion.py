@@ -337,3 +337,22 @@ def test_rotation_is_right_handed_about_the_normal():
     end = extrude(m, TOP, "cubical", 1.0, rotation=90.0)
     # about +y, a right-handed quarter turn takes (x, z) to (z, -x): v0 (1, 1, 1) -> (1, 2, -1)
     assert np.allclose(m.position(m.face_vertices(end)[0]), [1.0, 2.0, -1.0], atol=1e-12)
+
+
+def _face_with_a_dangling_edge() -> tuple[Mesh, int]:
+    m = cube()
+    top = int(m.face_ids()[0])
+    spoke_end = m.create_vertex((0.3, 1.0, -0.4))
+    m.insert_edge(int(m.face_corners(top)[0]), int(m.vertex_corners(spoke_end)[0]))
+    return m, top
+
+
+@pytest.mark.parametrize(("kind", "run"), [("icosa", extrude), ("double-stellate", extrude_fan)])
+def test_kinds_that_need_a_simple_face_refuse_one_with_a_dangling_edge(kind, run) -> None:
+    m, top = _face_with_a_dangling_edge()
+    before = snapshot(m)
+    with pytest.raises(DLFLError, match=f"face {top} visits vertex .* more than once .*{kind}"):
+        run(m, top, kind)
+    assert snapshot(m) == before  # was left half-extruded before the check
+    extrude(m, top, "cubical")     # the other kinds take such a face
+    validate(m)

@@ -358,11 +358,15 @@ def dome_fan(mesh: Mesh, face: int, opts: Options) -> list[int]:
 
 @dataclass(frozen=True)
 class Kind:
-    """One extrusion kind: its step, whether it ends in a fan, TopMod's name."""
+    """One extrusion kind: its step, whether it ends in a fan, TopMod's name, and
+    whether it needs a face that visits each of its vertices once (kinds whose
+    later sub-steps work on faces the first one made, which come out degenerate
+    from a face with a dangling edge or a loop inside it)."""
 
     step: Callable[[Mesh, int, Options], int] | None
     fan: Callable[[Mesh, int, Options], list[int]] | None
     topmod: str
+    simple_face: bool = False
 
 
 KINDS: dict[str, Kind] = {
@@ -370,13 +374,14 @@ KINDS: dict[str, Kind] = {
     "doo-sabin": Kind(doo_sabin_step, None, "extrudeFaceDS"),
     "octa": Kind(dual_step, None, "extrudeDualFace"),
     "dodeca": Kind(dodeca_step, None, "extrudeFaceDodeca"),
-    "icosa": Kind(icosa_step, None, "extrudeFaceIcosa"),
+    "icosa": Kind(icosa_step, None, "extrudeFaceIcosa", simple_face=True),
     "cuboctahedral": Kind(cuboctahedral_step, None, "extrudeFaceCubOcta"),
     "hex-tile": Kind(hex_tile_step, None, "extrudeHexTileFace"),
     "planar-offset": Kind(planar_offset_step, None, "extrudeFacePlanarOffset"),
     "stellate": Kind(None, lambda m, f, opts: stellate_fan(m, f, opts.distance), "stellateFace"),
     "double-stellate": Kind(
-        None, lambda m, f, opts: double_stellate_fan(m, f, opts.distance), "doubleStellateFace"),
+        None, lambda m, f, opts: double_stellate_fan(m, f, opts.distance), "doubleStellateFace",
+        simple_face=True),
     "dome": Kind(None, dome_fan, "extrudeFaceDome"),
 }
 ALIASES = {"dual": "octa", "inset": "planar-offset", "cubocta": "cuboctahedral",
@@ -440,7 +445,19 @@ def _prepare(mesh: Mesh, face: int, kind: str, segments: int,
     """The kind's spec and the checked options, or a DLFLError (see :func:`extrude`)."""
     spec = KINDS[resolve_kind(kind)]
     _check_face(mesh, face)
+    if spec.simple_face:
+        _check_simple(mesh, int(face), resolve_kind(kind))
     return spec, _checked_numbers(segments, opts)
+
+
+def _check_simple(mesh: Mesh, face: int, kind: str) -> None:
+    """Raises DLFLError when ``face`` visits a vertex more than once."""
+    vertices = mesh.face_vertices(face)
+    if len(set(vertices)) < len(vertices):
+        twice = next(v for v in vertices if vertices.count(v) > 1)
+        raise DLFLError(f"face {face} visits vertex {twice} more than once (an edge dangles "
+                        f"into it, or a loop): {kind} extrusion needs a face whose corners "
+                        "are distinct vertices")
 
 
 def extrude(
@@ -475,7 +492,8 @@ def extrude(
     Raises:
         DLFLError: unknown kind (lists the valid ones), a kind that ends in a fan
             (use :func:`extrude_fan`), a face that is gone or has < 3 corners,
-            ``segments`` < 1, a non-finite number. The mesh is unchanged.
+            for icosa a face that visits a vertex twice, ``segments`` < 1, a
+            non-finite number. The mesh is unchanged.
     """
     spec, opts = _prepare(mesh, face, kind, segments, Options(
         distance, rotation, scale, twist, bool(dual_mesh), bool(hexagonalize), thickness,
@@ -503,7 +521,8 @@ def extrude_fan(
 
     Raises:
         DLFLError: unknown kind, a kind with an end face (use :func:`extrude`), a
-            face that is gone or has < 3 corners. The mesh is unchanged.
+            face that is gone or has < 3 corners, for double-stellate a face that
+            visits a vertex twice. The mesh is unchanged.
     """
     spec, opts = _prepare(mesh, face, kind, 1,
                           Options(distance=distance, rotation=rotation, scale=scale))
