@@ -169,7 +169,7 @@ def test_torus_genus_is_kept(scheme):
     assert genus(m) == 1
 
 
-@pytest.mark.parametrize("scheme", OWN_SCHEMES)
+@pytest.mark.parametrize("scheme", ALL_SCHEMES)  # the delegated ones set them aside too
 def test_several_components_and_point_spheres_survive(scheme):
     m = two_cubes()
     m.create_vertex((9.0, 9.0, 9.0))

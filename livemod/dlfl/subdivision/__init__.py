@@ -98,7 +98,7 @@ def modified_corner_cut(mesh: Mesh, *, thickness: float = 0.25,
 
     t = read_topology(mesh)
     check_budget(t, t.nf + t.ne + t.nv, "modified-corner-cut", max_faces)
-    cut(mesh, thickness)
+    _point_spheres_aside(mesh, lambda work: cut(work, thickness))
 
 
 def sierpinsky(mesh: Mesh, *, max_faces: int | None = None) -> None:
@@ -113,7 +113,26 @@ def sierpinsky(mesh: Mesh, *, max_faces: int | None = None) -> None:
 
     t = read_topology(mesh)
     check_budget(t, t.nf + t.nv, "sierpinsky", max_faces)
-    run(mesh)
+    _point_spheres_aside(mesh, run)
+
+
+def _point_spheres_aside(mesh: Mesh, scheme: Callable[[Mesh], Any]) -> None:
+    """Run ``scheme`` (which refuses point-spheres) on ``mesh`` without its
+    point-spheres, then put them back at their places, as every other scheme
+    leaves them. On an error the mesh is unchanged."""
+    spheres = [v for v in mesh.vertex_ids().tolist() if mesh.is_point_sphere(v)]
+    if not spheres:
+        scheme(mesh)
+        return
+    places = [mesh.position(v) for v in spheres]
+    work = mesh.copy()
+    for v in spheres:
+        work.remove_vertex(v)
+    if work.counts()[2]:
+        scheme(work)
+    for place in places:
+        work.create_vertex(place)
+    mesh.replace_with(work)
 
 
 SCHEMES: dict[str, Scheme] = {
