@@ -82,9 +82,8 @@ def _info(args: argparse.Namespace) -> int:
 
 
 def _convert(args: argparse.Namespace) -> int:
-    from livemod.dlfl.io import open_mesh, save_mesh
-
     from livemod.dlfl import summarize
+    from livemod.dlfl.io import open_mesh, save_mesh
 
     mesh = open_mesh(args.input)
     save_mesh(mesh, args.output)

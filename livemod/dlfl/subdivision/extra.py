@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..errors import DLFLError
 from ..mesh import Mesh
 from ._layout import (
     Faces,
@@ -46,6 +47,9 @@ def checker(mesh: Mesh, *, thickness: float = 0.33, max_faces: int | None = None
         DLFLError: a bad ``thickness``, or the face budget.
     """
     thickness = check_number("thickness", thickness, 0.0, 0.5)
+    if thickness == 0.0:  # every new vertex would sit on an old one
+        raise DLFLError("option thickness must be in (0, 0.5]: 0 puts the new corners on "
+                        "the old vertices")
     t = read_topology(mesh)
     check_budget(t, t.nf + 2 * t.nc, "checker", max_faces)
     p, prev_p, next_p = rows(t.pos, t.cv), rows(t.pos, t.cv[t.prv]), rows(t.pos, t.cv[t.nxt])
@@ -75,6 +79,9 @@ def dual_checkerboard(mesh: Mesh, *, thickness: float = 0.33,
         DLFLError: a bad ``thickness``, or the face budget.
     """
     thickness = check_number("thickness", thickness, 0.0, 0.5)
+    if thickness == 0.0:  # every new vertex would sit on an old one
+        raise DLFLError("option thickness must be in (0, 0.5]: 0 puts the new corners on "
+                        "the old vertices")
     t = read_topology(mesh)
     check_budget(t, max(t.nv, t.nf) + 2 * t.nc, "dual-checkerboard", max_faces)
     inset, near = _checker_on_dual(t, thickness)
