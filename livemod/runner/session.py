@@ -406,9 +406,7 @@ class LiveSession:
         digest = None  # of the bytes read, when this run reads the script
         try:
             if source is None:
-                with open(run.script, "rb") as handle:
-                    data = handle.read()
-                source, digest = decode_script(data, run.script), _hash(data)
+                source, digest = _read_script(run.script)
             base = self._base_scene()
         except Exception as exc:
             run.control.finished = True
@@ -581,6 +579,14 @@ def _preview_worker(preview: bool | Callable[[Mesh], MeshArrays | None],
     return PreviewWorker(post, is_current, compute)
 
 
+
+
+def _read_script(path: str) -> tuple[str, bytes]:
+    """The script's text and the digest of its bytes (what a watched save is
+    compared with). Raises OSError, or SyntaxError for bytes that are not text."""
+    with open(path, "rb") as handle:
+        data = handle.read()
+    return decode_script(data, path), _hash(data)
 
 
 def _hash(data: bytes) -> bytes:

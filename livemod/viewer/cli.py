@@ -78,52 +78,45 @@ def _view(args: argparse.Namespace) -> int:
 
     if not Path(args.script).exists():
         raise OSError(f"no such script: {args.script}")
-    values = _given_values("view", args.script, args.set)
-    if values is None:
+    try:
+        values = _given_values(args.script, args.set)
+    except ValueError as exc:
+        print(f"livemod view: {exc}", file=sys.stderr)
         return 2
     return view(ViewOptions(args.script, mesh_path=args.mesh, size=args.size, poll=args.poll,
                             parameters=values, selection=selection_of(args)))
 
 
-def _given_values(command: str, script: str, texts: list[str]) -> dict[str, Any] | None:
-    """The ``--set`` values checked against the script's declarations; None (after
-    printing one line) when a name or value is bad."""
+def _given_values(script: str, texts: list[str]) -> dict[str, Any]:
+    """The ``--set`` values checked against the script's declarations.
+
+    Raises:
+        ValueError: a name the script does not declare, a value that does not
+            fit, or ``--set`` for a mesh file.
+    """
     from livemod.dlfl.errors import DLFLError
     from livemod.runner.declarations import given_values
 
     if not texts:
         return {}
     if Path(script).suffix.lower() not in SCRIPT_SUFFIXES:
-        print(f"livemod {command}: --set needs a script, not {script!r}", file=sys.stderr)
-        return None
+        raise ValueError(f"--set needs a script, not {script!r}")
     try:
         return given_values(script, texts)
-    except (ValueError, DLFLError) as exc:
-        print(f"livemod {command}: {exc}", file=sys.stderr)
-        return None
+    except DLFLError as exc:
+        raise ValueError(str(exc)) from None
 
 
 def _render(args: argparse.Namespace) -> int:
-    from livemod.dlfl.errors import DLFLError
     from livemod.progress import ProgressBar
 
-    from .headless import output_paths, render_arrays
-    from .renderer import LABEL_KINDS, Style
+    from .headless import render_arrays
+    from .renderer import Style
 
-    values = _given_values("render", args.input, args.set)
-    if values is None:
-        return 2
-    try:  # before the script runs: a long run should not end in a bad file name
-        output_paths(args.output, max(args.turntable, 1))
+    try:  # all before the script runs: a long run should not end in a bad argument
+        values, labels, selection = _render_inputs(args)
     except ValueError as exc:
         print(f"livemod render: {exc}", file=sys.stderr)
-        return 2
-    labels = frozenset(k.strip() for k in args.labels.split(",") if k.strip())
-    if labels - set(LABEL_KINDS):
-        raise DLFLError(f"unknown label kinds: {sorted(labels - set(LABEL_KINDS))}")
-    selection = selection_of(args)
-    if selection is not None and Path(args.input).suffix.lower() not in SCRIPT_SUFFIXES:
-        print(f"livemod render: --select needs a script, not {args.input!r}", file=sys.stderr)
         return 2
     arrays, preview = _load_input(args.input, args.mesh, args.preview, values, selection)
     if args.preview and preview is None:
@@ -142,6 +135,29 @@ def _render(args: argparse.Namespace) -> int:
     print(f"wrote {paths[0]}" if len(paths) == 1 else f"wrote {len(paths)} frames: "
           f"{paths[0]} .. {paths[-1]}")
     return 0
+
+
+def _render_inputs(args: argparse.Namespace,
+                   ) -> tuple[dict[str, Any], frozenset[str], Selection | None]:
+    """``livemod render``'s parameter values, label kinds and selection, with the
+    output name checked.
+
+    Raises:
+        ValueError: a bad ``--set``, ``-o``, ``--labels`` or ``--select`` (the
+            message says which).
+    """
+    from .headless import output_paths
+    from .renderer import LABEL_KINDS
+
+    values = _given_values(args.input, args.set)
+    output_paths(args.output, max(args.turntable, 1))
+    labels = frozenset(k.strip() for k in args.labels.split(",") if k.strip())
+    if labels - set(LABEL_KINDS):
+        raise ValueError(f"unknown label kinds: {sorted(labels - set(LABEL_KINDS))}")
+    selection = selection_of(args)
+    if selection is not None and Path(args.input).suffix.lower() not in SCRIPT_SUFFIXES:
+        raise ValueError(f"--select needs a script, not {args.input!r}")
+    return values, labels, selection
 
 
 def _samples(args: argparse.Namespace) -> int:
