@@ -433,11 +433,11 @@ def _checked_numbers(segments: int, opts: Options) -> Options:
     """
     if isinstance(segments, bool) or not isinstance(segments, int | np.integer) or segments < 1:
         raise DLFLError(f"segments must be an integer >= 1, got {segments!r}")
-    return replace(opts, distance=finite_number(opts.distance, "distance"),
-                   rotation=finite_number(opts.rotation, "rotation"),
-                   scale=finite_number(opts.scale, "scale"),
-                   twist=finite_number(opts.twist, "twist"),
-                   thickness=finite_number(opts.thickness, "thickness"))
+    # a new Options, not dataclasses.replace: this runs on every extrusion
+    return Options(finite_number(opts.distance, "distance"),
+                   finite_number(opts.rotation, "rotation"), finite_number(opts.scale, "scale"),
+                   finite_number(opts.twist, "twist"), opts.dual_mesh, opts.hexagonalize,
+                   finite_number(opts.thickness, "thickness"), opts.fractional)
 
 
 def _prepare(mesh: Mesh, face: int, kind: str, segments: int,
