@@ -263,3 +263,13 @@ def test_next_in_face_wraps_every_face(offsets):
     expected = [start + (c - start + 1) % (end - start)
                 for start, end in itertools.pairwise(offsets) for c in range(start, end)]
     assert _next_in_face(off).tolist() == expected
+
+
+@pytest.mark.parametrize("lunes", [2, 3, 7, 11])
+def test_a_bouquet_of_two_gons_between_two_vertices_builds_a_sphere(lunes: int) -> None:
+    # every side pairs with every opposite side, so the pairing must be searched
+    # side by side: seven lunes once ran out of tries before finding the cycle
+    m = from_polygons([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]], [[0, 1]] * (lunes - 1) + [[1, 0]])
+    validate(m)
+    assert m.counts() == (2, lunes, lunes) and genus(m) == 0
+    assert sorted(len(m.vertex_corners(v)) for v in m.vertex_ids().tolist()) == [lunes, lunes]

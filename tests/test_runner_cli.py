@@ -164,6 +164,8 @@ def test_parse_param_sweep_and_output_names():
     for bad in ("n", "n=1:2", "n=1:2:0", "n=a:2:3", "1n=1:2:3"):
         with pytest.raises(ValueError):
             parse_param(bad)
+    with pytest.raises(ValueError, match="--param a given more than once"):
+        sweep([("a", [1]), ("b", [2]), ("a", [3])])
     combos = sweep([("a", [1, 2]), ("b", [0.5])])
     assert combos == [{"a": 1, "b": 0.5}, {"a": 2, "b": 0.5}]
     assert output_name("out/{a}_{b:.2f}_{index:03d}.obj", combos[1], 1) == "out/2_0.50_001.obj"

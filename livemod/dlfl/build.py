@@ -13,7 +13,7 @@ from __future__ import annotations
 import functools
 import itertools
 import warnings
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -357,10 +357,7 @@ def _assign_groups(
         return None
     fwd, back, verts = groups[k]
     failed = k
-    for perm in itertools.islice(itertools.permutations(back), 720):
-        mate[fwd], mate[list(perm)] = list(perm), fwd
-        if any(_closes_early(v, soup, mate, nxt) for v in verts):
-            continue
+    for _ in itertools.islice(_group_pairings(fwd, back, verts, soup, mate, nxt), 720):
         failed_later = _assign_groups(groups, k + 1, soup, mate, nxt, backtrack)
         if failed_later is None:
             return None
@@ -369,6 +366,40 @@ def _assign_groups(
             break
     mate[fwd], mate[back] = -1, -1
     return failed
+
+
+def _group_pairings(fwd: list[int], back: list[int], verts: tuple[int, int], soup: Polygons,
+                    mate: np.ndarray, nxt: np.ndarray, budget: int = 20000) -> Iterator[None]:
+    """Set ``mate`` to each pairing of the sides ``fwd`` with the sides ``back`` in
+    turn (yielding after each) that closes no fan early at either vertex.
+
+    Side by side, so a pair that closes a fan too soon (say both sides of one
+    2-gon) prunes every pairing that has it, instead of every permutation being
+    tried. At most ``budget`` pairs are tried in all; the mate entries of the
+    group are -1 again when the pairings run out.
+    """
+    free = list(back)
+    tried = 0
+
+    def place(i: int) -> Iterator[None]:
+        nonlocal tried
+        if i == len(fwd):
+            yield
+            return
+        for j in range(len(free)):  # in order: the pairings come as permutations would
+            tried += 1
+            if tried > budget:
+                return
+            b = free[j]
+            mate[fwd[i]], mate[b] = b, fwd[i]
+            # a fan closed too soon stays closed whatever is paired later: prune
+            if not any(_closes_early(v, soup, mate, nxt) for v in verts):
+                del free[j]
+                yield from place(i + 1)
+                free.insert(j, b)
+            mate[fwd[i]], mate[b] = -1, -1
+
+    yield from place(0)
 
 
 def _closes_early(vertex: int, soup: Polygons, mate: np.ndarray, nxt: np.ndarray) -> bool:

@@ -128,9 +128,17 @@ def _spaced(start: float, stop: float, count: int) -> list[Any]:
 
 
 def sweep(ranges: Iterable[tuple[str, list[Any]]]) -> list[dict[str, Any]]:
-    """Every combination of the ranges (the last one varying fastest)."""
+    """Every combination of the ranges (the last one varying fastest).
+
+    Raises:
+        ValueError: a name given twice (the first range would be dropped).
+    """
     ranges = list(ranges)
     names = [name for name, _ in ranges]
+    twice = sorted({name for name in names if names.count(name) > 1})
+    if twice:
+        raise ValueError(f"--param {', '.join(twice)} given more than once; give one range "
+                         "or list per parameter (e.g. n=1,2,5)")
     return [dict(zip(names, combo, strict=True))
             for combo in itertools.product(*(values for _, values in ranges))]
 
