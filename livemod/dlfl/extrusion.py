@@ -443,10 +443,11 @@ def _checked_numbers(segments: int, opts: Options) -> Options:
 def _prepare(mesh: Mesh, face: int, kind: str, segments: int,
              opts: Options) -> tuple[Kind, Options]:
     """The kind's spec and the checked options, or a DLFLError (see :func:`extrude`)."""
-    spec = KINDS[resolve_kind(kind)]
+    name = resolve_kind(kind)
+    spec = KINDS[name]
     _check_face(mesh, face)
     if spec.simple_face:
-        _check_simple(mesh, int(face), resolve_kind(kind))
+        _check_simple(mesh, int(face), name)
     return spec, _checked_numbers(segments, opts)
 
 

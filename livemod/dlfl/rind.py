@@ -325,8 +325,8 @@ def rind(
     ``uniform``); a negative one moves the original outward instead. With
     ``use_scaling`` the inner copy is ``scale`` times the mesh about its vertex
     centroid (``0 < |scale| < 1``; negative scales the outer shell by ``-1/scale``
-    instead; TopMod clamped it to [-1, 1], where +-1 gave two coincident shells). Punching ``k`` faces of a genus-0 shell gives genus
-    ``k - 1``. With ``cleanup``, the zero-thickness double wall left between two
+    instead; TopMod clamped it to [-1, 1], where +-1 gave two coincident shells).
+    Punching ``k`` faces of a genus-0 shell gives genus ``k - 1``. With ``cleanup``, the zero-thickness double wall left between two
     punched faces that share an edge is removed (TopMod's cleanup), and a vertex
     whose faces are all punched goes with it.
 

@@ -9,7 +9,6 @@ meshes never travel (each variant writes its own output file).
 from __future__ import annotations
 
 import concurrent.futures
-import importlib
 import itertools
 import multiprocessing
 import os
@@ -167,7 +166,7 @@ def run_variant(variant: Variant) -> VariantResult:
     from livemod.dlfl.analysis import genus
 
     from .headless import run_outcome
-    from .results import current_mesh
+    from .results import current_mesh, save_result
 
     started = time.perf_counter()
     parameters = dict(variant.parameters)
@@ -184,8 +183,7 @@ def run_variant(variant: Variant) -> VariantResult:
     shape_genus = genus(mesh) if mesh is not None else None
     if variant.output is not None and mesh is not None:
         try:
-            os.makedirs(os.path.dirname(os.path.abspath(variant.output)), exist_ok=True)
-            importlib.import_module("livemod.dlfl.io").save_mesh(mesh, variant.output)
+            save_result(mesh, variant.output)
         except Exception as exc:
             return _failed(variant, f"{variant.output}: {type(exc).__name__}: {exc}", started)
     return VariantResult(variant.index, variant.parameters, "ok", counts, None,

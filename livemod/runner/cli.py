@@ -8,7 +8,6 @@ exit code. :func:`main` is a stand-alone entry point over the same parsers.
 from __future__ import annotations
 
 import argparse
-import importlib
 import os
 import queue
 import sys
@@ -22,7 +21,7 @@ from livemod.dlfl.scene import Selection
 from .batch import declared_sweep, index_path, make_variants, run_batch, sweep, write_index
 from .declarations import declared_parameters, describe, given_values, undeclared
 from .headless import missing_picks_note, run_outcome
-from .results import RunResult, StepRecord, current_mesh
+from .results import RunResult, StepRecord, current_mesh, save_result
 
 OUTPUT_SUFFIXES = (".obj", ".dlfl", ".stl", ".ply")
 
@@ -187,8 +186,7 @@ def _save(mesh: Any, output: str | None) -> int:
               file=sys.stderr)
         return 0
     try:
-        os.makedirs(os.path.dirname(os.path.abspath(output)), exist_ok=True)
-        importlib.import_module("livemod.dlfl.io").save_mesh(mesh, output)
+        save_result(mesh, output)
     except Exception as exc:
         print(f"livemod run: cannot write {output}: {type(exc).__name__}: {exc}",
               file=sys.stderr)

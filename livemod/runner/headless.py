@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import os
 
 from livemod.dlfl.scene import Scene, Selection
@@ -27,10 +28,8 @@ def missing_picks_note(scene: Scene) -> str | None:
     """One line naming the selected ids a run's ``faces(True)`` and the like left out
     (the mesh had no such element then), or None when there were none."""
     missing = scene.missing_picks
-    named = [f"{kind} {', '.join(map(str, getattr(missing, name)))}"
-             for kind, name in (("faces", "faces"), ("edges", "edges"),
-                                ("vertices", "vertices"), ("corners", "corners"))
-             if getattr(missing, name)]
+    named = [f"{field.name} {', '.join(map(str, ids))}" for field in dataclasses.fields(missing)
+             if (ids := getattr(missing, field.name))]
     if not named:
         return None
     return (f"warning: the mesh had no {'; no '.join(named)} when the script asked for "

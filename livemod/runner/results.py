@@ -215,6 +215,20 @@ def current_mesh(scene: Scene) -> Mesh | None:
     return scene.objects[scene.current].mesh
 
 
+def save_result(mesh: Mesh, path: str) -> None:
+    """Write a run's mesh to ``path`` (format by suffix, atomically), making its
+    folder if missing, as ``run -o``, ``run --watch -o`` and batch outputs do.
+
+    Raises:
+        OSError, DLFLError: the file cannot be written, or its suffix is unknown.
+    """
+    import importlib
+    import os
+
+    os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
+    importlib.import_module("livemod.dlfl.io").save_mesh(mesh, path)
+
+
 def snapshot_scene(scene: Scene) -> MeshArrays | None:
     """Render arrays of the scene's current object, None for an empty scene."""
     mesh = current_mesh(scene)

@@ -17,7 +17,6 @@ from __future__ import annotations
 
 import dataclasses
 import hashlib
-import importlib
 import os
 import queue
 import threading
@@ -43,6 +42,7 @@ from .results import (
     StepRecord,
     current_mesh,
     parameter_items,
+    save_result,
     snapshot_scene,
 )
 from .snapshots import DEFAULT_BUDGET, SnapshotCache
@@ -519,8 +519,7 @@ class LiveSession:
         if self.output is None or mesh is None:
             return None
         try:
-            os.makedirs(os.path.dirname(os.path.abspath(self.output)), exist_ok=True)
-            importlib.import_module("livemod.dlfl.io").save_mesh(mesh, self.output)
+            save_result(mesh, self.output)
         except Exception as exc:
             error = exception_error(exc, self.script)
             return dataclasses.replace(error, file=self.output)
@@ -577,8 +576,6 @@ def _preview_worker(preview: bool | Callable[[Mesh], MeshArrays | None],
         return None
     compute = preview_arrays if preview is True else preview
     return PreviewWorker(post, is_current, compute)
-
-
 
 
 def _read_script(path: str) -> tuple[str, bytes]:

@@ -31,6 +31,20 @@ from ._layout import (
 )
 
 
+def _checker_thickness(thickness: object) -> float:
+    """The checkerboards' ``thickness`` as a float in (0, 0.5].
+
+    Raises:
+        DLFLError: not a finite number in (0, 0.5] (0 puts every new corner on an
+            old vertex).
+    """
+    checked = check_number("thickness", thickness, 0.0, 0.5)
+    if checked == 0.0:
+        raise DLFLError("option thickness must be in (0, 0.5]: 0 puts the new corners on "
+                        "the old vertices")
+    return checked
+
+
 def checker(mesh: Mesh, *, thickness: float = 0.33, max_faces: int | None = None) -> None:
     """Checkerboard remeshing (TopMod ``checkerBoardRemeshing(t)``, "checker").
 
@@ -46,10 +60,7 @@ def checker(mesh: Mesh, *, thickness: float = 0.33, max_faces: int | None = None
     Raises:
         DLFLError: a bad ``thickness``, or the face budget.
     """
-    thickness = check_number("thickness", thickness, 0.0, 0.5)
-    if thickness == 0.0:  # every new vertex would sit on an old one
-        raise DLFLError("option thickness must be in (0, 0.5]: 0 puts the new corners on "
-                        "the old vertices")
+    thickness = _checker_thickness(thickness)
     t = read_topology(mesh)
     check_budget(t, t.nf + 2 * t.nc, "checker", max_faces)
     p, prev_p, next_p = rows(t.pos, t.cv), rows(t.pos, t.cv[t.prv]), rows(t.pos, t.cv[t.nxt])
@@ -78,10 +89,7 @@ def dual_checkerboard(mesh: Mesh, *, thickness: float = 0.33,
     Raises:
         DLFLError: a bad ``thickness``, or the face budget.
     """
-    thickness = check_number("thickness", thickness, 0.0, 0.5)
-    if thickness == 0.0:  # every new vertex would sit on an old one
-        raise DLFLError("option thickness must be in (0, 0.5]: 0 puts the new corners on "
-                        "the old vertices")
+    thickness = _checker_thickness(thickness)
     t = read_topology(mesh)
     check_budget(t, max(t.nv, t.nf) + 2 * t.nc, "dual-checkerboard", max_faces)
     inset, near = _checker_on_dual(t, thickness)
