@@ -357,6 +357,7 @@ def test_unknown_scheme_lists_the_valid_names():
     ("catmull-clark", {"levels": 1.5}, "levels must be a positive integer"),
     ("checker", {"thickness": 0.7}, "thickness must be in"),
     ("checker", {"thickness": 0}, "thickness must be in \\(0, 0.5\\]: 0 puts"),
+    ("dual-checkerboard", {"thickness": 0}, "thickness must be in \\(0, 0.5\\]: 0 puts"),
     ("checker", {"thickness": "thin"}, "thickness must be a number"),
     ("corner-cut", {"alpha": 0.1}, "alpha must be in"),
     ("vertex-cut", {"offset": float("nan")}, "offset must be finite"),
