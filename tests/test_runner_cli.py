@@ -97,9 +97,9 @@ def test_a_bad_select_stops_before_running(tmp_path, capsys):
     script = tmp_path / "crust.py"
     script.write_text(RIND)
     with pytest.raises(SystemExit) as stopped:
-        cli.main(["run", str(script), "--select", "face=0"])
+        cli.main(["run", str(script), "--select", "fcae=0"])
     assert stopped.value.code == 2
-    assert "--select 'face=0': the kind must be one of" in capsys.readouterr().err
+    assert "--select 'fcae=0': the kind must be one of" in capsys.readouterr().err
 
 
 def test_batch_variants_start_with_the_selection(tmp_path, capsys):

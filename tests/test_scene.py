@@ -91,6 +91,9 @@ def test_selection_parses_the_select_options_and_writes_them_back():
     picked = Selection.parse(["faces=12,31", "corners=88", "Faces=31, 5", "verts=2",
                               "vertices=7"])
     assert picked == Selection(faces=(12, 31, 5), vertices=(2, 7), corners=(88,))
+    singular = Selection.parse(["face=12,31", "corner=88", "face=5", "vert=2", "vertex=7"])
+    assert singular == picked
+    assert Selection.parse(["edge=4", "edges=6"]) == Selection(edges=(4, 6))
     assert picked.options() == ("--select faces=12,31,5 --select verts=2,7 "
                                 "--select corners=88")
     again = picked.options().replace("--select ", "").split()
@@ -99,7 +102,7 @@ def test_selection_parses_the_select_options_and_writes_them_back():
 
 
 @pytest.mark.parametrize(("text", "wrong"), [
-    ("face=1", "the kind must be one of faces, edges, verts, vertices, corners"),
+    ("fcae=1", r"the kind must be one of faces, edges, vertices, corners \(or its singular"),
     ("12", "the kind must be one of"),
     ("faces=", "'' is not an id"),
     ("faces=1,,2", "'' is not an id"),

@@ -45,7 +45,8 @@ class Selection:
     def parse(cls, texts: Iterable[str]) -> Selection:
         """The selection that ``--select`` options name, e.g. ``["faces=12,31",
         "corners=88"]``: a kind (``faces``, ``edges``, ``verts`` or ``vertices``,
-        ``corners``), ``=``, and ids separated by commas (corners by corner id).
+        ``corners``, or the singular of one, as in ``face=3``), ``=``, and ids
+        separated by commas (corners by corner id).
         A kind given twice gets the ids of both, each once, in the order given.
 
         Raises:
@@ -57,7 +58,8 @@ class Selection:
             name = _SELECTION_KINDS.get(kind.strip().lower())
             if name is None:
                 raise ValueError(f"--select {text!r}: the kind must be one of "
-                                 f"{', '.join(_SELECTION_KINDS)} (as in faces=12,31)")
+                                 f"{', '.join(dict.fromkeys(_SELECTION_KINDS.values()))} "
+                                 f"(or its singular, as in faces=12,31 or face=3)")
             selection = selection.adding(name, _selection_ids(text, ids))
         return selection
 
@@ -70,8 +72,9 @@ class Selection:
 
 
 # the kinds ``Selection.parse`` accepts -> Selection field; ``options`` writes the first
-_SELECTION_KINDS = {"faces": "faces", "edges": "edges", "verts": "vertices",
-                    "vertices": "vertices", "corners": "corners"}
+_SELECTION_KINDS = {"faces": "faces", "face": "faces", "edges": "edges", "edge": "edges",
+                    "verts": "vertices", "vert": "vertices", "vertices": "vertices",
+                    "vertex": "vertices", "corners": "corners", "corner": "corners"}
 _SELECTION_OPTIONS = (("faces", "faces"), ("edges", "edges"), ("verts", "vertices"),
                       ("corners", "corners"))
 
