@@ -1,4 +1,4 @@
-"""File formats: OBJ and TopMod's .dlfl (read and write), STL and PLY (write).
+"""File formats: OBJ, TopMod's .dlfl, STL (binary and ASCII) and PLY, read and written.
 
 :func:`load_mesh` and :func:`save_mesh` choose the format from the file
 extension (or ``format=``). Every writer replaces its target atomically (see
@@ -17,14 +17,15 @@ from .atomic import atomic_write, write_atomically
 from .dlflfile import read_dlfl, write_dlfl
 from .obj import read_obj, write_obj
 from .ply import write_ply
-from .stl import write_stl
+from .stl import read_stl, write_stl
 
 __all__ = [
-    "atomic_write", "load_mesh", "open_mesh", "read_dlfl", "read_obj", "save_mesh", "write_dlfl",
+    "atomic_write", "load_mesh", "open_mesh", "read_dlfl", "read_obj", "read_stl", "save_mesh",
+    "write_dlfl",
     "write_atomically", "write_obj", "write_ply", "write_stl",
 ]
 
-READERS: dict[str, Callable[[str], Mesh]] = {"obj": read_obj, "dlfl": read_dlfl}
+READERS: dict[str, Callable[[str], Mesh]] = {"obj": read_obj, "dlfl": read_dlfl, "stl": read_stl}
 WRITERS: dict[str, Callable[[Mesh, str], None]] = {
     "obj": write_obj, "dlfl": write_dlfl, "stl": write_stl, "ply": write_ply,
 }
@@ -41,11 +42,11 @@ def _format_of(path: str, format: str | None, table: Mapping[str, object], verb:
 
 
 def load_mesh(path: str | os.PathLike[str], *, format: str | None = None) -> Mesh:  # noqa: A002
-    """Read a mesh from an ``.obj`` or ``.dlfl`` file.
+    """Read a mesh from an ``.obj``, ``.dlfl`` or ``.stl`` file.
 
     Args:
         path: the file.
-        format: ``"obj"`` or ``"dlfl"`` to override the extension.
+        format: ``"obj"``, ``"dlfl"`` or ``"stl"`` to override the extension.
 
     Raises:
         DLFLError: an unknown format, or a malformed file (``file:line: ...``).

@@ -1,15 +1,30 @@
-"""Binary STL export: triangle fans of the drawn faces."""
+"""STL: binary export of the drawn faces as triangle fans; binary and ASCII import.
+
+STL is a triangle soup: every triangle repeats its corners' coordinates. The
+reader welds corners with exactly equal coordinates into one vertex (in the
+order they first appear), drops triangles that welding collapsed, and builds the
+mesh with :func:`livemod.dlfl.from_polygons`, so a closed, consistently
+oriented STL comes back as a closed manifold, and one with cracks as an open
+mesh with hole faces.
+"""
 
 from __future__ import annotations
 
+import functools
+import itertools
 import os
+import warnings
 
 import numpy as np
 
 from ..analysis import face_normals
 from ..arrays import MeshArrays, mesh_arrays
+from ..build import from_polygons
+from ..errors import DLFLError, DLFLRepairWarning
 from ..mesh import Mesh
+from ._lines import gather_lines, parse_number_lines, split_lines
 from .atomic import write_atomically
+from .source import read_source, show_token
 
 _TRIANGLE = np.dtype([("normal", "<f4", 3), ("corners", "<f4", (3, 3)), ("attribute", "<u2")])
 
@@ -52,3 +67,337 @@ def triangle_fans(a: MeshArrays) -> tuple[np.ndarray, np.ndarray]:
     k = np.arange(len(faces)) - np.repeat(np.cumsum(count) - count, count) + 1
     head = a.face_offsets[faces]
     return np.stack([head, head + k, head + k + 1], axis=1), faces
+
+
+def read_stl(source: str | os.PathLike[str] | bytes, *, name: str | None = None) -> Mesh:
+    """Load a binary or ASCII STL file into a mesh.
+
+    A file whose size is exactly 84 bytes plus 50 per triangle its header
+    counts is binary (even if its header starts with ``solid``, as some
+    exporters write); otherwise a file starting with ``solid`` is ASCII. ASCII
+    loops of more than three vertices become polygons. Facet normals are
+    ignored: the orientation comes from the corner order, as the format says.
+
+    Args:
+        source: a path, or the file contents as bytes.
+        name: the file name to use in messages (default: the path, or ``<stl>``).
+
+    Returns:
+        The mesh: vertex ``j`` is the ``j``-th distinct corner position, face
+        ``i`` the ``i``-th triangle (or loop) welding left with three or more
+        corners. Triangles that collapsed are reported in ``mesh.notes`` and as
+        a :class:`DLFLRepairWarning`; open boundaries get hole faces (see
+        :func:`livemod.dlfl.from_polygons`).
+
+    Raises:
+        DLFLError: a file that is neither kind, a truncated binary file, a
+            malformed ASCII file (``file:line: ...``), a coordinate that is not
+            finite, or triangles that do not form an orientable 2-manifold.
+        OSError: the file cannot be read.
+    """
+    data, label = read_source(source, name, "<stl>")
+    corners, offsets, facet_lines = parse_stl(data, label)
+    if len(offsets) == 1:
+        return Mesh()
+    return _welded_mesh(corners, offsets, facet_lines, label)
+
+
+def parse_stl(data: bytes, label: str = "<stl>") -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
+    """The polygon soup of an STL file, before welding.
+
+    Returns:
+        ``(corners, offsets, facet_lines)``: ``(C, 3)`` float64 corner positions
+        face by face, ``(F + 1,)`` int64 face start offsets into ``corners``, and
+        the ``(F,)`` 1-based line of each ``facet`` (None for binary files).
+
+    Raises:
+        DLFLError: as :func:`read_stl` says, naming ``label``.
+    """
+    if _is_binary(data):
+        count = int(np.frombuffer(data, "<u4", 1, 80)[0])
+        triangles = np.frombuffer(data, _TRIANGLE, count, 84)
+        corners = triangles["corners"].reshape(-1, 3).astype(np.float64)
+        _check_finite(corners, label)
+        return corners, np.arange(0, 3 * count + 1, 3, dtype=np.int64), None
+    if data.lstrip()[:5].lower() == b"solid":
+        return _AsciiStl(data, label).soup()
+    if len(data) >= 84:
+        count = int(np.frombuffer(data, "<u4", 1, 80)[0])
+        raise DLFLError(f"{label}: not an STL file: as binary STL its header counts {count} "
+                        f"triangles ({84 + 50 * count} bytes), but the file has {len(data)} "
+                        f"bytes; and it does not start with 'solid', as ASCII STL does")
+    raise DLFLError(f"{label}: not an STL file: {len(data)} bytes, too short for binary STL, "
+                    f"and it does not start with 'solid', as ASCII STL does")
+
+
+def _is_binary(data: bytes) -> bool:
+    """Whether ``data`` has exactly the size its binary header promises."""
+    if len(data) < 84:
+        return False
+    count = int(np.frombuffer(data, "<u4", 1, 80)[0])
+    return len(data) == 84 + 50 * count
+
+
+def _check_finite(corners: np.ndarray, label: str) -> None:
+    """Raise for the first corner of a binary file with a NaN or infinite coordinate."""
+    bad = np.flatnonzero(~np.isfinite(corners).all(axis=1))
+    if len(bad):
+        raise DLFLError(f"{label}: triangle {bad[0] // 3}: a vertex coordinate is not finite: "
+                        f"{corners[bad[0]].tolist()}")
+
+
+def _welded_mesh(corners: np.ndarray, offsets: np.ndarray, facet_lines: np.ndarray | None,
+                 label: str) -> Mesh:
+    """The mesh of an STL soup: equal positions welded, collapsed faces dropped."""
+    positions, vertex_of_corner = weld_positions(corners)
+    indices, offsets, kept = drop_collapsed(vertex_of_corner, offsets)
+    positions, indices = _used_vertices_only(positions, indices)
+    lines = None if facet_lines is None else facet_lines[kept]
+    mesh = Mesh() if len(indices) == 0 else from_polygons(
+        positions, indices, offsets, source=label, face_lines=lines)
+    dropped = len(kept) - int(np.count_nonzero(kept))
+    if dropped:
+        note = (f"{label}: {dropped} degenerate facet{'s' if dropped > 1 else ''} (two corners "
+                f"at the same point) left out")
+        mesh.notes.append(note)
+        warnings.warn(note, DLFLRepairWarning, stacklevel=3)
+    return mesh
+
+
+def _used_vertices_only(positions: np.ndarray, indices: np.ndarray
+                        ) -> tuple[np.ndarray, np.ndarray]:
+    """``(positions, indices)`` without the vertices only dropped facets used
+    (they would become point-spheres), the others keeping their order."""
+    used = np.zeros(len(positions), dtype=bool)
+    used[indices] = True
+    if used.all():
+        return positions, indices
+    return positions[used], (np.cumsum(used) - 1)[indices]
+
+
+def weld_positions(corners: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Merge corners whose coordinates are exactly equal (``-0.0`` equals ``0.0``).
+
+    Args:
+        corners: ``(C, 3)`` float64 positions.
+
+    Returns:
+        ``(positions, vertex_of_corner)``: ``(V, 3)`` float64 distinct positions
+        in the order they first appear, and the ``(C,)`` int64 vertex of each corner.
+    """
+    bits = np.ascontiguousarray(corners + 0.0).view(np.uint64)  # + 0.0: -0.0 becomes 0.0
+    order, starts = _sorted_groups(bits)
+    group = np.cumsum(starts) - 1
+    # a stable sort puts each group's first corner in the file first, so the groups'
+    # starts, taken by corner, number the vertices in the order they first appear
+    first_corner = order[starts]
+    rank = np.empty(len(first_corner), dtype=np.int64)
+    rank[np.argsort(first_corner, kind="stable")] = np.arange(len(first_corner))
+    vertex_of_corner = np.empty(len(corners), dtype=np.int64)
+    vertex_of_corner[order] = rank[group]
+    positions = np.empty((len(first_corner), 3))
+    positions[rank] = corners[first_corner] + 0.0
+    return positions, vertex_of_corner
+
+
+def _sorted_groups(bits: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """A stable order of the rows of ``bits`` (``(C, 3)`` uint64, C >= 1) that puts
+    equal rows together, and the ``(C,)`` bool mask of where each run starts.
+
+    Sorting one 64-bit mix of the three columns is about twice as fast as sorting
+    by all three. Rows with equal mixes but different bits (a collision, never
+    seen in practice) would break the runs, so they send it to the full sort.
+    """
+    mix = _mix(bits)
+    order = np.argsort(mix, kind="stable")
+    mix = mix[order]
+    differs = _rows_differ(bits, order)
+    if np.any(differs & (mix[1:] == mix[:-1])):
+        order = np.lexsort((bits[:, 2], bits[:, 1], bits[:, 0]))
+        differs = _rows_differ(bits, order)
+    return order, np.concatenate([[True], differs])
+
+
+def _mix(bits: np.ndarray) -> np.ndarray:
+    """``(C,)`` uint64 hash of each row of ``bits`` (``(C, 3)`` uint64).
+
+    Every step folds the high bits down before the next multiplication: a float
+    read from float32 has 29 zero low bits, which a plain product keeps zero.
+    """
+    mixed = bits[:, 0].copy()
+    with np.errstate(over="ignore"):
+        for column, factor in ((1, 0xBF58476D1CE4E5B9), (2, 0x94D049BB133111EB)):
+            mixed ^= mixed >> np.uint64(31)
+            mixed *= np.uint64(factor)
+            mixed ^= bits[:, column]
+        mixed ^= mixed >> np.uint64(29)
+        mixed *= np.uint64(0x9E3779B97F4A7C15)
+        mixed ^= mixed >> np.uint64(32)
+    return mixed
+
+
+def _rows_differ(bits: np.ndarray, order: np.ndarray) -> np.ndarray:
+    """``(C - 1,)`` bool: row ``order[k + 1]`` of ``bits`` differs from row ``order[k]``.
+
+    Column by column, so no ``(C, 3)`` copy is made (fresh memory is slow here).
+    """
+    differs = np.zeros(len(order) - 1, dtype=bool)
+    for column in range(bits.shape[1]):
+        values = bits[:, column][order]
+        differs |= values[1:] != values[:-1]
+    return differs
+
+
+def drop_collapsed(indices: np.ndarray, offsets: np.ndarray
+                   ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Remove each corner equal to the next one in its face, then faces left
+    with fewer than three corners.
+
+    Args:
+        indices: ``(C,)`` int64 vertex of every corner, face by face.
+        offsets: ``(F + 1,)`` int64 face start offsets into ``indices``.
+
+    Returns:
+        ``(indices, offsets, kept)``: the new soup, and the ``(F,)`` bool mask
+        of the faces kept.
+    """
+    sizes = np.diff(offsets)
+    face = np.repeat(np.arange(len(sizes)), sizes)
+    nxt = np.arange(len(indices)) + 1
+    nxt[offsets[1:] - 1] = offsets[:-1]  # each face's last corner is followed by its first
+    distinct = indices != indices[nxt]
+    left = np.bincount(face[distinct], minlength=len(sizes))
+    kept = left >= 3
+    keep_corner = distinct & kept[face]
+    new_offsets = np.concatenate([[0], np.cumsum(left[kept])]).astype(np.int64)
+    return indices[keep_corner], new_offsets, kept
+
+
+# the ASCII keywords the parser looks for, as word codes (0: any other word)
+_FACET, _NORMAL, _OUTER, _LOOP, _VERTEX, _ENDLOOP, _ENDFACET, _ENDSOLID = range(1, 9)
+_KEYWORDS = {b"facet": _FACET, b"normal": _NORMAL, b"outer": _OUTER, b"loop": _LOOP,
+             b"vertex": _VERTEX, b"endloop": _ENDLOOP, b"endfacet": _ENDFACET,
+             b"endsolid": _ENDSOLID}
+
+
+class _AsciiStl:
+    """The words of an ASCII STL file and the positions of its keywords.
+
+    Attributes:
+        words: the file split at ASCII blanks, as ``bytes.split`` splits it.
+        codes: ``(W,)`` int8 keyword code of each word (0 for other words).
+        facet, outer, endloop, endfacet, vertex: ``(K,)`` int64 word index of
+            each occurrence of that keyword.
+    """
+
+    def __init__(self, data: bytes, label: str) -> None:
+        self.label, self.data = label, data
+        self.words = data.split()
+        get = _KEYWORDS.get
+        self.codes = np.fromiter(map(get, self.words, itertools.repeat(0)), np.int8,
+                                 len(self.words))
+        self.facet, self.outer, self.endloop, self.endfacet, self.vertex = (
+            np.flatnonzero(self.codes == code)
+            for code in (_FACET, _OUTER, _ENDLOOP, _ENDFACET, _VERTEX))
+
+    def soup(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """See :func:`parse_stl`."""
+        self._check_structure()
+        loop_of = np.searchsorted(self.outer, self.vertex) - 1
+        sizes = np.bincount(loop_of, minlength=len(self.outer))
+        corners = self._coordinates()
+        bad = np.flatnonzero(~np.isfinite(corners).all(axis=1))[:1]
+        if len(bad):
+            raise DLFLError(f"{self.label}:{self.line_of(self.vertex[bad])[0]}: a vertex "
+                            f"coordinate is not finite: {corners[bad[0]].tolist()}")
+        offsets = np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64)
+        return corners, offsets, self.line_of(self.facet)
+
+    def _check_structure(self) -> None:
+        """Raise, naming the first facet that is not ``facet normal NX NY NZ /
+        outer loop / vertex X Y Z (three or more) / endloop / endfacet``."""
+        bad = self._first_bad_facet()
+        if bad is None:
+            return
+        if bad < len(self.facet):
+            line = self.line_of(self.facet[bad : bad + 1])[0]
+            where = f"{self.label}:{line}: facet {bad}"
+        else:
+            line = self.line_of(np.array([len(self.words) - 1]))[0]
+            where = f"{self.label}:{line}: after facet {bad - 1} (the file may be cut short)"
+        raise DLFLError(f"{where} is not 'facet normal NX NY NZ, outer loop, vertex X Y Z (three "
+                        f"or more), endloop, endfacet'")
+
+    def _first_bad_facet(self) -> int | None:
+        """The index of the first malformed facet, or None when all are well formed."""
+        f, o, el, ef = self.facet, self.outer, self.endloop, self.endfacet
+        n = min(len(f), len(o), len(el), len(ef))
+        f, o, el, ef = f[:n], o[:n], el[:n], ef[:n]
+        loop_of = np.searchsorted(self.outer, self.vertex) - 1
+        vertex_ok = (loop_of >= 0) & (loop_of < n)
+        inside = self.vertex[vertex_ok] - o[loop_of[vertex_ok]]
+        vertex_ok[vertex_ok] = (self.vertex[vertex_ok] < el[loop_of[vertex_ok]]) & (
+            (inside - 2) % 4 == 0)
+        sizes = np.bincount(loop_of[vertex_ok], minlength=n)[:n]
+        after = np.append(f[1:], len(self.words))
+        ok = ((o - f == 5) & (self._code_after(f) == _NORMAL) & (self._code_after(o) == _LOOP)
+              & (sizes >= 3) & (el - o - 2 == 4 * sizes) & (ef - el == 1) & (ef < after)
+              & ((after - ef == 1) | (self._code_after(ef) == _ENDSOLID)))
+        bad = [int(k) for k in np.flatnonzero(~ok)[:1]]
+        bad += [max(int(loop_of[k]), 0) for k in np.flatnonzero(~vertex_ok)[:1]]
+        if max(len(self.facet), len(self.outer), len(self.endloop), len(self.endfacet)) > n:
+            bad.append(n)
+        return min(bad) if bad else None
+
+    def _code_after(self, at: np.ndarray) -> np.ndarray:
+        """``(K,)`` keyword code of the word after each of ``at`` (0 past the end)."""
+        codes = np.append(self.codes, np.int8(0))
+        return codes[at + 1]
+
+    def line_of(self, word_index: np.ndarray) -> np.ndarray:
+        """``(K,)`` 1-based line of each given word."""
+        return np.searchsorted(self._newlines(), self._word_starts[word_index]) + 1
+
+    @functools.cached_property
+    def _word_starts(self) -> np.ndarray:
+        """``(W,)`` int64 byte offset of every word."""
+        buf = np.frombuffer(self.data, dtype=np.uint8)
+        blank = (buf == 32) | ((buf >= 9) & (buf <= 13))  # what bytes.split() splits at
+        return np.flatnonzero(~blank & np.concatenate([[True], blank[:-1]]))
+
+    def _newlines(self) -> np.ndarray:
+        return np.flatnonzero(np.frombuffer(self.data, dtype=np.uint8) == 10)
+
+    def _coordinates(self) -> np.ndarray:
+        """``(C, 3)`` float64 coordinates following each ``vertex``.
+
+        Lines holding just ``vertex X Y Z`` go through the OBJ reader's
+        vectorized number parser; any other vertex is read word by word.
+        """
+        values, accepted = self._vertex_lines()
+        for k in np.flatnonzero(~accepted).tolist():
+            values[k] = [self._number(self.vertex[k] + 1 + axis) for axis in range(3)]
+        return values
+
+    def _vertex_lines(self) -> tuple[np.ndarray, np.ndarray]:
+        """``(values, accepted)`` as :func:`._lines.parse_number_lines` gives them,
+        for the line of every ``vertex`` word (none accepted where two share a line)."""
+        data = self.data if self.data.endswith(b"\n") else self.data + b"\n"
+        buf, starts, ends = split_lines(data)
+        at = self._word_starts[self.vertex]
+        lines = np.searchsorted(ends, at)
+        if np.any(np.diff(lines) <= 0):
+            return np.zeros((len(at), 3)), np.zeros(len(at), dtype=bool)
+        block, block_starts = gather_lines(buf, starts, ends, lines)
+        keyword = block_starts + (at - starts[lines])
+        block[keyword[:, None] + np.arange(len(b"vertex"))] = 32  # blank the keyword
+        return parse_number_lines(block, block_starts, 3)
+
+    def _number(self, k: int) -> float:
+        """Word ``k`` as a float, or a ``file:line: bad number`` error."""
+        word = self.words[k] if k < len(self.words) else b""
+        try:
+            return float(word)
+        except ValueError:
+            line = self.line_of(np.array([min(k, len(self.words) - 1)]))[0]
+            raise DLFLError(f"{self.label}:{line}: bad number {show_token(word)}") from None
