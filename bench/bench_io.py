@@ -1,9 +1,11 @@
-"""OBJ I/O benchmark: a 1,000,000-quad torus, livemod against trimesh.
+"""File I/O benchmark: a 1,000,000-quad torus, livemod against trimesh.
 
 Plain script (not a test). Prints the median of several runs of each step,
-side by side with trimesh in the same run:
+side by side with trimesh in the same run: OBJ load and write, then loading the
+same torus as binary STL (2,000,000 triangles, welded: trimesh's default
+``process=True`` merges vertices too) and as binary PLY:
 
-    python bench/bench_io.py [--runs 3] [--grid 1000]
+    python bench/bench_io.py [--runs 3] [--grid 1000] [--skip-obj]
 
 Targets (issue 2): load <= 2.0 s and >= 2x faster than
 ``trimesh.load(path, process=False)``; write <= 1.8 s.
@@ -24,7 +26,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from timing import median_times  # noqa: E402
 
 from livemod.dlfl import Mesh, from_polygons  # noqa: E402
-from livemod.dlfl.io import load_mesh, write_obj  # noqa: E402
+from livemod.dlfl.io import load_mesh, save_mesh, write_obj  # noqa: E402
 from livemod.dlfl.io.obj import obj_bytes  # noqa: E402
 
 
@@ -50,27 +52,54 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--runs", type=int, default=3)
     parser.add_argument("--grid", type=int, default=1000)
+    parser.add_argument("--skip-obj", action="store_true", help="only the STL and PLY loads")
     args = parser.parse_args()
     mesh = torus(args.grid)
     try:
         import trimesh
     except ImportError:
         trimesh = None
+    if not args.skip_obj:
+        bench_obj(mesh, trimesh, args.runs)
+    bench_other_formats(mesh, trimesh, args.runs)
+
+
+def bench_other_formats(mesh: Mesh, trimesh: object, runs: int) -> None:
+    """Median load times of ``mesh`` written as binary STL and PLY, with trimesh's."""
+    rows = []
+    with tempfile.TemporaryDirectory() as folder:
+        for suffix in ("stl", "ply"):
+            path = Path(folder) / f"torus.{suffix}"
+            save_mesh(mesh, path)
+            rows.append((f"livemod load_mesh .{suffix}",
+                         median_times(load_mesh, runs, setup=lambda p=path: p)))
+            if trimesh is not None:
+                rows.append((f"trimesh.load .{suffix}", median_times(
+                    trimesh.load, runs, setup=lambda p=path: p)))  # type: ignore[attr-defined]
+    print(f"STL and PLY loads of the same torus, median of {runs} runs:")
+    print(f"| {'step':30s} | {'wall s':>7s} | {'CPU s':>7s} |")
+    print(f"|{'-' * 32}|{'-' * 9}|{'-' * 9}|")
+    for name, (wall, cpu) in rows:
+        print(f"| {name:30s} | {wall:7.2f} | {cpu:7.2f} |")
+
+
+def bench_obj(mesh: Mesh, trimesh: object, runs: int) -> None:
+    """OBJ text, write and load of ``mesh``, with trimesh's load and export."""
     with tempfile.TemporaryDirectory() as folder:
         ours = Path(folder) / "torus.obj"
-        rows = [("livemod OBJ text (obj_bytes)", median_times(lambda: obj_bytes(mesh), args.runs)),
-                ("livemod write_obj", median_times(lambda: write_obj(mesh, ours), args.runs))]
+        rows = [("livemod OBJ text (obj_bytes)", median_times(lambda: obj_bytes(mesh), runs)),
+                ("livemod write_obj", median_times(lambda: write_obj(mesh, ours), runs))]
         size_mb = ours.stat().st_size / 1e6
-        rows.append(("livemod load_mesh", median_times(lambda: load_mesh(ours), args.runs)))
+        rows.append(("livemod load_mesh", median_times(lambda: load_mesh(ours), runs)))
         if trimesh is not None:
             peer = trimesh.load(ours, process=False)
             rows.append(("trimesh.load(process=False)",
-                         median_times(lambda: trimesh.load(ours, process=False), args.runs)))
+                         median_times(lambda: trimesh.load(ours, process=False), runs)))
             theirs = Path(folder) / "trimesh.obj"
-            rows.append(("trimesh export", median_times(lambda: peer.export(theirs), args.runs)))
+            rows.append(("trimesh export", median_times(lambda: peer.export(theirs), runs)))
             rows.append(("trimesh export + fsync",
-                         median_times(lambda: export_synced(peer, theirs), args.runs)))
-    report(rows, mesh, size_mb, args.runs)
+                         median_times(lambda: export_synced(peer, theirs), runs)))
+    report(rows, mesh, size_mb, runs)
 
 
 def report(rows: list[tuple[str, tuple[float, float]]], mesh: Mesh, size_mb: float,

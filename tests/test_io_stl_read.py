@@ -104,15 +104,27 @@ def test_minus_zero_welds_with_zero() -> None:
     assert not np.signbit(positions).any()
 
 
-def test_a_hash_collision_falls_back_to_the_full_sort(monkeypatch) -> None:
+def reference_weld(corners: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """weld_positions the slow, obvious way: a dict in file order."""
+    seen: dict[tuple[float, ...], int] = {}
+    vertex_of_corner = [seen.setdefault(tuple(p + 0.0), len(seen)) for p in corners]
+    return np.array(list(seen), dtype=float).reshape(-1, 3), np.array(vertex_of_corner)
+
+
+@pytest.mark.parametrize("fake_mix", [
+    lambda bits: np.zeros(len(bits), dtype=np.uint64),       # every row collides
+    lambda bits: (bits[:, 0] >> np.uint64(62)) << np.uint64(62),  # a few tangled runs
+    None,                                                      # the real hash
+])
+def test_welding_is_right_even_when_hashes_collide(monkeypatch, fake_mix) -> None:
     rng = np.random.default_rng(5)
-    corners = rng.integers(0, 4, size=(200, 3)).astype(float)
-    expected = weld_positions(corners)
-    monkeypatch.setattr(stl_module, "_mix", lambda bits: np.zeros(len(bits), dtype=np.uint64))
-    collided = weld_positions(corners)
-    assert np.array_equal(collided[0], expected[0])
-    assert np.array_equal(collided[1], expected[1])
-    assert np.array_equal(collided[0][collided[1]], corners)
+    corners = rng.integers(-3, 4, size=(500, 3)).astype(float) * 0.5
+    if fake_mix is not None:
+        monkeypatch.setattr(stl_module, "_mix", fake_mix)
+    positions, vertex_of_corner = weld_positions(corners)
+    expected_positions, expected_vertices = reference_weld(corners)
+    assert np.array_equal(positions, expected_positions)
+    assert np.array_equal(vertex_of_corner, expected_vertices)
 
 
 def test_drop_collapsed_removes_repeats_then_faces_under_three_corners() -> None:

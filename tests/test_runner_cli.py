@@ -254,18 +254,22 @@ def test_run_watch_rewrites_the_output_on_save(tmp_path, capsys):
     assert out.read_text().count("f ") == 2
 
 
-def test_run_starts_from_the_mesh_given_with_mesh(tmp_path, capsys):
+@pytest.mark.parametrize(("suffix", "counts"), [
+    ("obj", "V=5 E=5 F=2"), ("dlfl", "V=5 E=5 F=2"), ("ply", "V=5 E=5 F=2"),
+    ("stl", "V=5 E=6 F=3"),  # STL holds the quad as two triangles
+])
+def test_run_starts_from_the_mesh_given_with_mesh(tmp_path, capsys, suffix, counts):
     from livemod.dlfl import from_polygons
     from livemod.dlfl.io import save_mesh
 
-    base = tmp_path / "quad.obj"
+    base = tmp_path / f"quad.{suffix}"
     save_mesh(from_polygons([(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0)], [(0, 1, 2, 3)]),
               str(base))
     script = tmp_path / "grow.py"
     script.write_text("subdivideEdge(edges()[0])\n")
     assert cli.main(["run", str(script), "--mesh", str(base), "--steps"]) == 0
     out = capsys.readouterr().out
-    assert "V=5 E=5 F=2" in out and "subdivideEdge" in out
+    assert counts in out and "subdivideEdge" in out
 
 
 def test_the_top_level_livemod_command_has_run_and_batch(capsys):

@@ -729,3 +729,16 @@ def _chunks(count: int) -> list[slice]:
     """``0..count`` cut into slices of ``CHUNK``: chunk-wise passes over the
     corners keep their temporaries small (fresh pages cost more than the loop)."""
     return [slice(start, min(start + CHUNK, count)) for start in range(0, count, CHUNK)]
+
+
+def point_cloud(positions: Any) -> Mesh:
+    """A mesh of point-spheres, one per position (what a file without faces holds).
+
+    Args:
+        positions: ``(V, 3)`` vertex positions; vertex ``j`` gets id ``j``.
+    """
+    points = np.asarray(positions, dtype=np.float64).reshape(-1, 3)
+    count = len(points)
+    corners = np.arange(count, dtype=np.int64)
+    return from_corner_arrays(points, np.arange(count + 1), corners,
+                              np.full(count, -1, dtype=np.int64))

@@ -101,7 +101,7 @@ def selection_of(args: argparse.Namespace) -> Selection | None:
 def _add_run(subparsers: Any) -> None:
     run = subparsers.add_parser("run", help="run a modeling script headless (or on every save)")
     run.add_argument("script", help="the Python script")
-    run.add_argument("--mesh", metavar="IN", help="mesh the script starts from (.obj, .dlfl)")
+    run.add_argument("--mesh", metavar="IN", help="mesh the script starts from (.obj .dlfl .stl .ply)")
     run.add_argument("-o", "--output", metavar="OUT", help="write the result (.obj .dlfl .stl .ply)")
     run.add_argument("--steps", action="store_true", help="print the step list")
     run.add_argument("--seed", type=_seed, default=0, help="seed of random/numpy (or 'none')")

@@ -34,7 +34,7 @@ def add_commands(subparsers: Any) -> None:
     """Register ``view`` and ``render`` on the ``livemod`` subparsers."""
     view = subparsers.add_parser("view", help="open the live window on a script")
     view.add_argument("script", help="the Python script to watch and run")
-    view.add_argument("--mesh", help="mesh every run starts from (.obj, .dlfl)")
+    view.add_argument("--mesh", help="mesh every run starts from (.obj .dlfl .stl .ply)")
     view.add_argument("--size", type=parse_size, default=(1280, 800), help="WxH window size")
     view.add_argument("--poll", action="store_true",
                       help="poll for changes (for file systems that send no events)")

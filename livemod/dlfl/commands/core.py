@@ -216,7 +216,7 @@ def restoreCorner(cornerid: int) -> tuple[int, int]:
 # -- objects --------------------------------------------------------------------
 
 def load(filename: str) -> int:
-    """Load ``.obj``/``.dlfl`` (by extension), or a built-in shape by name
+    """Load ``.obj``/``.dlfl``/``.stl``/``.ply`` (by extension), or a built-in shape by name
     (``load("soccerball")``); push it as the current object and return its id.
 
     Raises:

@@ -16,16 +16,19 @@ from ..mesh import Mesh
 from .atomic import atomic_write, write_atomically
 from .dlflfile import read_dlfl, write_dlfl
 from .obj import read_obj, write_obj
-from .ply import write_ply
+from .ply import read_ply, write_ply
 from .stl import read_stl, write_stl
 
 __all__ = [
-    "atomic_write", "load_mesh", "open_mesh", "read_dlfl", "read_obj", "read_stl", "save_mesh",
+    "atomic_write", "load_mesh", "open_mesh", "read_dlfl", "read_obj", "read_ply", "read_stl",
+    "save_mesh",
     "write_dlfl",
     "write_atomically", "write_obj", "write_ply", "write_stl",
 ]
 
-READERS: dict[str, Callable[[str], Mesh]] = {"obj": read_obj, "dlfl": read_dlfl, "stl": read_stl}
+READERS: dict[str, Callable[[str], Mesh]] = {
+    "obj": read_obj, "dlfl": read_dlfl, "stl": read_stl, "ply": read_ply,
+}
 WRITERS: dict[str, Callable[[Mesh, str], None]] = {
     "obj": write_obj, "dlfl": write_dlfl, "stl": write_stl, "ply": write_ply,
 }
@@ -42,11 +45,12 @@ def _format_of(path: str, format: str | None, table: Mapping[str, object], verb:
 
 
 def load_mesh(path: str | os.PathLike[str], *, format: str | None = None) -> Mesh:  # noqa: A002
-    """Read a mesh from an ``.obj``, ``.dlfl`` or ``.stl`` file.
+    """Read a mesh from an ``.obj``, ``.dlfl``, ``.stl`` or ``.ply`` file.
 
     Args:
         path: the file.
-        format: ``"obj"``, ``"dlfl"`` or ``"stl"`` to override the extension.
+        format: ``"obj"``, ``"dlfl"``, ``"stl"`` or ``"ply"`` to override the
+            extension.
 
     Raises:
         DLFLError: an unknown format, or a malformed file (``file:line: ...``).

@@ -23,7 +23,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..arrays import mesh_arrays
-from ..build import from_corner_arrays, from_polygons
+from ..build import from_polygons, point_cloud
 from ..errors import DLFLError
 from ..mesh import Mesh
 from ._lines import gather_lines, parse_index_lines, parse_number_lines, split_lines
@@ -71,18 +71,10 @@ def read_obj(source: str | os.PathLike[str] | bytes, *, name: str | None = None)
     data, label = read_source(source, name, "<obj>")
     soup = parse_obj(data, label)
     if len(soup.indices) == 0:
-        return _point_cloud(soup.positions)
+        return point_cloud(soup.positions)
     return from_polygons(
         soup.positions, soup.indices, soup.offsets, source=label, face_lines=soup.face_lines
     )
-
-
-def _point_cloud(positions: np.ndarray) -> Mesh:
-    """Every vertex a point-sphere (an OBJ without faces)."""
-    count = len(positions)
-    corners = np.arange(count, dtype=np.int64)
-    return from_corner_arrays(positions, np.arange(count + 1), corners,
-                              np.full(count, -1, dtype=np.int64))
 
 
 def parse_obj(data: bytes, label: str = "<obj>", *, fast: bool = True) -> ObjSoup:

@@ -1,14 +1,29 @@
-"""Binary little-endian PLY export: polygons as they are, holes left out."""
+"""PLY: a reader for ASCII and binary files, a binary little-endian writer.
+
+Reading keeps the ``x``, ``y``, ``z`` properties of element ``vertex`` and the
+``vertex_indices`` list (or ``vertex_index``, else the first list) of element
+``face``; every other element and property is skipped. Elements whose rows all
+have one layout are read with whole-array numpy steps; others row by row.
+
+Writing gives polygons as they are, holes left out.
+"""
 
 from __future__ import annotations
 
 import os
+import re
+import struct
+from array import array
+from dataclasses import dataclass, field
 
 import numpy as np
 
 from ..arrays import mesh_arrays
+from ..build import from_polygons, point_cloud
+from ..errors import DLFLError
 from ..mesh import Mesh
 from .atomic import write_atomically
+from .source import read_source, show_token
 
 
 def write_ply(mesh: Mesh, path: str | os.PathLike[str]) -> None:
@@ -55,3 +70,593 @@ def _face_records(sizes: np.ndarray, indices: np.ndarray, count_type: str) -> by
     out[count_pos.ravel()] = counts.view(np.uint8)
     out[~is_count] = indices.astype("<i4").view(np.uint8)
     return out.tobytes()
+
+
+# ---------------------------------------------------------------------- reader
+
+# PLY type names -> numpy type codes (byte order added per file)
+_TYPES = {
+    "char": "i1", "int8": "i1", "uchar": "u1", "uint8": "u1",
+    "short": "i2", "int16": "i2", "ushort": "u2", "uint16": "u2",
+    "int": "i4", "int32": "i4", "uint": "u4", "uint32": "u4",
+    "float": "f4", "float32": "f4", "double": "f8", "float64": "f8",
+}
+_STRUCT_CODES = {"i1": "b", "u1": "B", "i2": "h", "u2": "H", "i4": "i", "u4": "I"}
+_ENCODINGS = {"ascii": "ascii", "binary_little_endian": "<", "binary_big_endian": ">"}
+
+
+@dataclass
+class PlySoup:
+    """What a PLY file holds.
+
+    Attributes:
+        positions: ``(V, 3)`` float64, one row per ``vertex`` row.
+        indices: ``(C,)`` int64 0-based vertex index of every face corner.
+        offsets: ``(F + 1,)`` int64 face start offsets into ``indices`` (``[0]``
+            when the file has no ``face`` element or no face rows).
+    """
+
+    positions: np.ndarray
+    indices: np.ndarray
+    offsets: np.ndarray
+
+
+@dataclass(frozen=True)
+class _Property:
+    """One ``property`` line: numpy codes without byte order (``"f4"``)."""
+
+    name: str
+    code: str  # the value's type, or a list's item type
+    count_code: str | None = None  # a list's count type; None for a scalar
+
+
+@dataclass
+class _Element:
+    name: str
+    count: int
+    properties: list[_Property] = field(default_factory=list)
+
+
+@dataclass
+class _Header:
+    encoding: str = ""  # "ascii", "<" or ">"; "" until the format line
+    elements: list[_Element] = field(default_factory=list)
+    body_start: int = 0  # offset of the first byte after end_header's line
+
+
+@dataclass(frozen=True)
+class _Roles:
+    """Which element and properties the mesh comes from (indices into the header)."""
+
+    vertex: int
+    xyz: tuple[int, int, int]
+    face: int | None
+    corners: int | None  # the face element's list of vertex indices
+
+
+@dataclass
+class _Table:
+    """The wanted properties of an element, by property index.
+
+    ``scalars[i]`` is the ``(n,)`` column of scalar property ``i``; ``lists[i]``
+    is ``((n,) int64 counts, (sum counts,) items)`` of list property ``i``.
+    """
+
+    scalars: dict[int, np.ndarray] = field(default_factory=dict)
+    lists: dict[int, tuple[np.ndarray, np.ndarray]] = field(default_factory=dict)
+
+
+def read_ply(source: str | os.PathLike[str] | bytes, *, name: str | None = None) -> Mesh:
+    """Load an ASCII or binary (either byte order) PLY file into a mesh.
+
+    Args:
+        source: a path, or the file contents as bytes.
+        name: the file name to use in messages (default: the path, or ``<ply>``).
+
+    Returns:
+        The mesh; face ``i`` is the ``i``-th ``face`` row, vertex ``j`` the
+        ``j``-th ``vertex`` row. Open boundaries get hole faces, unused vertices
+        become point-spheres (all of them when there are no faces).
+
+    Raises:
+        DLFLError: ``file: ...`` for a malformed header, a file that ends inside
+            an element, a bad number or list count, a coordinate that is not
+            finite, a vertex index out of range, or a mesh that is not an
+            orientable 2-manifold (from :func:`livemod.dlfl.from_polygons`).
+        OSError: the file cannot be read.
+    """
+    data, label = read_source(source, name, "<ply>")
+    soup = parse_ply(data, label)
+    if len(soup.offsets) == 1:
+        return point_cloud(soup.positions)
+    return from_polygons(soup.positions, soup.indices, soup.offsets, source=label)
+
+
+def parse_ply(data: bytes, label: str = "<ply>") -> PlySoup:
+    """Parse PLY bytes into a polygon soup (see :class:`PlySoup`).
+
+    Raises:
+        DLFLError: ``label: ...`` for anything malformed (see :func:`read_ply`).
+    """
+    header = _parse_header(data, label)
+    roles = _roles(header, label)
+    wanted = {roles.vertex: set(roles.xyz)}
+    if roles.face is not None and roles.corners is not None:
+        wanted[roles.face] = {roles.corners}
+    body: _BinaryBody | _AsciiBody
+    if header.encoding == "ascii":
+        body = _AsciiBody(data[header.body_start :], label)
+    else:
+        body = _BinaryBody(data, header.body_start, header.encoding, label)
+    tables = [body.element(e, wanted.get(i, set())) for i, e in enumerate(header.elements)]
+    positions = _positions(tables[roles.vertex], roles.xyz, label)
+    if roles.face is None or roles.corners is None:
+        return PlySoup(positions, np.zeros(0, dtype=np.int64), np.zeros(1, dtype=np.int64))
+    counts, items = tables[roles.face].lists[roles.corners]
+    offsets = np.zeros(len(counts) + 1, dtype=np.int64)
+    np.cumsum(counts, out=offsets[1:])
+    return PlySoup(positions, _vertex_indices(items, offsets, len(positions), label), offsets)
+
+
+# ---------------------------------------------------------------------- header
+
+
+def _parse_header(data: bytes, label: str) -> _Header:
+    """The header's format and elements, and where the body starts.
+
+    Raises:
+        DLFLError: ``label: header: ...`` for a line that is not understood.
+    """
+    first, pos = _next_line(data, 0)
+    if first.strip() != b"ply":
+        raise DLFLError(f"{label}: not a PLY file (the first line is not 'ply')")
+    header = _Header()
+    while pos < len(data):
+        line, pos = _next_line(data, pos)
+        words = line.decode("utf-8", "replace").split()
+        if words == ["end_header"]:
+            if not header.encoding:
+                raise DLFLError(f"{label}: header: no format line")
+            header.body_start = pos
+            return header
+        _header_line(words, header, label)
+    raise DLFLError(f"{label}: header: no end_header line")
+
+
+def _next_line(data: bytes, pos: int) -> tuple[bytes, int]:
+    """The line starting at ``pos`` (without its ``\\n``) and the next line's start."""
+    end = data.find(b"\n", pos)
+    end = len(data) if end < 0 else end
+    return data[pos:end], end + 1
+
+
+def _header_line(words: list[str], header: _Header, label: str) -> None:
+    """Add what one header line says to ``header``."""
+    keyword = words[0] if words else "comment"
+    if keyword in ("comment", "obj_info"):
+        return
+    if keyword == "format":
+        if header.encoding:
+            raise DLFLError(f"{label}: header: a second format line")
+        header.encoding = _encoding(words, label)
+    elif keyword == "element":
+        header.elements.append(_element(words, header, label))
+    elif keyword == "property":
+        if not header.elements:
+            raise DLFLError(f"{label}: header: a property line before any element line")
+        header.elements[-1].properties.append(_property(words, label))
+    else:
+        raise DLFLError(f"{label}: header: unknown line {_shown(words)}")
+
+
+def _shown(words: list[str]) -> str:
+    return show_token(" ".join(words).encode())
+
+
+def _encoding(words: list[str], label: str) -> str:
+    if len(words) != 3 or words[1] not in _ENCODINGS or words[2] != "1.0":
+        raise DLFLError(f"{label}: header: unsupported format {_shown(words[1:])}")
+    return _ENCODINGS[words[1]]
+
+
+def _element(words: list[str], header: _Header, label: str) -> _Element:
+    if len(words) != 3 or not re.fullmatch("[0-9]{1,30}", words[2]):
+        raise DLFLError(f"{label}: header: bad element line {_shown(words)}")
+    name = words[1]
+    if name in ("vertex", "face") and any(e.name == name for e in header.elements):
+        raise DLFLError(f"{label}: header: a second element '{name}'")
+    return _Element(name, int(words[2]))
+
+
+def _property(words: list[str], label: str) -> _Property:
+    is_list = len(words) > 1 and words[1] == "list"
+    if len(words) != (5 if is_list else 3):
+        raise DLFLError(f"{label}: header: bad property line {_shown(words)}")
+    types = words[2:4] if is_list else words[1:2]
+    for type_name in types:
+        if type_name not in _TYPES:
+            raise DLFLError(f"{label}: header: unknown property type {show_token(type_name.encode())}")
+    if not is_list:
+        return _Property(words[2], _TYPES[words[1]])
+    if _TYPES[words[2]] not in _STRUCT_CODES:
+        raise DLFLError(f"{label}: header: list count type '{words[2]}' is not an integer type")
+    return _Property(words[4], _TYPES[words[3]], _TYPES[words[2]])
+
+
+def _roles(header: _Header, label: str) -> _Roles:
+    """Find ``vertex`` with its x, y, z and ``face`` with its index list.
+
+    Raises:
+        DLFLError: no ``vertex`` element, a missing coordinate, or a ``face``
+            element without a list property.
+    """
+    names = [e.name for e in header.elements]
+    if "vertex" not in names:
+        raise DLFLError(f"{label}: no 'vertex' element")
+    vertex = names.index("vertex")
+    scalars = [p.name if p.count_code is None else None for p in header.elements[vertex].properties]
+    for axis in "xyz":
+        if axis not in scalars:
+            raise DLFLError(f"{label}: element 'vertex' has no property '{axis}'")
+    xyz = (scalars.index("x"), scalars.index("y"), scalars.index("z"))
+    if "face" not in names:
+        return _Roles(vertex, xyz, None, None)
+    face = names.index("face")
+    lists = [p.name if p.count_code else None for p in header.elements[face].properties]
+    named = [n for n in ("vertex_indices", "vertex_index") if n in lists]
+    if not named and not any(lists):
+        raise DLFLError(f"{label}: element 'face' has no list property (vertex_indices)")
+    corners = lists.index(named[0]) if named else next(i for i, n in enumerate(lists) if n)
+    return _Roles(vertex, xyz, face, corners)
+
+
+# ---------------------------------------------------------------------- mesh data
+
+
+def _positions(table: _Table, xyz: tuple[int, int, int], label: str) -> np.ndarray:
+    """``(V, 3)`` float64 from the x, y, z columns; refuses NaN and infinities."""
+    positions = np.stack([table.scalars[i] for i in xyz], axis=1).astype(np.float64)
+    finite = np.isfinite(positions)
+    if not finite.all():
+        v, axis = (int(k) for k in np.argwhere(~finite)[0])
+        value = float(positions[v, axis])
+        raise DLFLError(f"{label}: vertex {v}: coordinate {value} is not finite")
+    return positions
+
+
+def _vertex_indices(items: np.ndarray, offsets: np.ndarray, num_vertices: int,
+                    label: str) -> np.ndarray:
+    """``(C,)`` int64 corner vertex indices from the face lists' ``(C,)`` items.
+
+    Raises:
+        DLFLError: ``label: face f: ...`` for an index that is not a whole
+            number (ASCII or float items) or not in ``[0, num_vertices)``.
+    """
+    whole = np.ones(len(items), dtype=bool)
+    if items.dtype.kind == "f":
+        whole = np.isfinite(items) & (items == np.floor(items))
+    bad = ~whole | (items < 0) | (items >= num_vertices)
+    if not bad.any():
+        return items.astype(np.int64)
+    c = int(np.flatnonzero(bad)[0])
+    face = int(np.searchsorted(offsets, c, side="right")) - 1
+    if not whole[c]:
+        raise DLFLError(f"{label}: face {face}: vertex index {items[c]} is not a whole number")
+    raise DLFLError(f"{label}: face {face}: vertex index {int(items[c])} is out of range "
+                    f"({num_vertices} vertices)")
+
+
+def _item_offsets(first: np.ndarray, counts: np.ndarray, stride: int) -> np.ndarray:
+    """``(sum counts,)`` position of every list item: row ``r``'s items start at
+    ``first[r]`` and are ``stride`` apart."""
+    before = np.cumsum(counts) - counts
+    total = int(counts.sum())
+    return np.repeat(first - before * stride, counts) + np.arange(total, dtype=np.int64) * stride
+
+
+def _empty_table(element: _Element, wanted: set[int]) -> _Table:
+    """The wanted columns of an element without rows (or without properties)."""
+    table = _Table()
+    for i in wanted:
+        if element.properties[i].count_code is None:
+            table.scalars[i] = np.zeros(0)
+        else:
+            table.lists[i] = (np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int64))
+    return table
+
+
+def _ends_inside(label: str, element: _Element, row: int) -> DLFLError:
+    return DLFLError(f"{label}: the file ends inside element '{element.name}' "
+                     f"(row {row} of {element.count})")
+
+
+def _too_many_rows(label: str, element: _Element, left: int, unit: str) -> DLFLError:
+    return DLFLError(f"{label}: element '{element.name}' has {element.count} rows, more "
+                     f"than the {left} {unit} left in the file can hold")
+
+
+def _list_count(count: float, where: str, prop: _Property) -> int:
+    """A list's count as an int; refuses negative and fractional counts."""
+    if not float(count).is_integer():
+        raise DLFLError(f"{where}: list '{prop.name}' has count {count}, not a whole number")
+    if count < 0:
+        raise DLFLError(f"{where}: list '{prop.name}' has a negative count ({int(count)})")
+    return int(count)
+
+
+# ---------------------------------------------------------------------- binary body
+
+
+class _BinaryBody:
+    """Reads the elements of a binary body one after the other.
+
+    An element whose rows all have the list counts of its first row (every
+    element without lists, and the faces of a mesh of one polygon size) is one
+    ``np.frombuffer`` with a structured dtype; any other goes row by row.
+    """
+
+    def __init__(self, data: bytes, start: int, order: str, label: str) -> None:
+        self.data, self.pos, self.order, self.label = data, start, order, label
+
+    def element(self, element: _Element, wanted: set[int]) -> _Table:
+        """The wanted columns of ``element``'s rows, which start at ``self.pos``."""
+        if element.count == 0 or not element.properties:
+            return _empty_table(element, wanted)
+        self._check_room(element)
+        _, first_counts, first_end = self._walk(element, 1)
+        dtype = self._row_dtype(element, first_counts[0].tolist())
+        if element.count <= (len(self.data) - self.pos) // dtype.itemsize:
+            rows = np.frombuffer(self.data, dtype, count=element.count, offset=self.pos)
+            if all((rows[f"n{i}"] == rows[f"n{i}"][0]).all() for i in _list_indices(element)):
+                self.pos += element.count * dtype.itemsize
+                return _rows_table(rows, element, wanted)
+        starts, counts, end = self._walk(element, element.count)
+        self.pos = end
+        return self._walked_table(element, starts, counts, wanted)
+
+    def _check_room(self, element: _Element) -> None:
+        """Refuse, before reading, a row count the rest of the file cannot hold."""
+        sizes = [np.dtype(p.count_code or p.code).itemsize for p in element.properties]
+        left = len(self.data) - self.pos
+        room = left // sum(sizes)
+        if element.count <= room:
+            return
+        if not _list_indices(element):  # rows of one size: we know where it ends
+            raise _ends_inside(self.label, element, room + 1)
+        raise _too_many_rows(self.label, element, left, "bytes")
+
+    def _row_dtype(self, element: _Element, counts: list[int]) -> np.dtype:
+        """A row as a structured dtype: ``p{i}`` value (or items), ``n{i}`` list count."""
+        fields: list[tuple[str, str] | tuple[str, str, tuple[int]]] = []
+        list_counts = iter(counts)
+        for i, prop in enumerate(element.properties):
+            if prop.count_code is None:
+                fields.append((f"p{i}", self.order + prop.code))
+            else:
+                fields.append((f"n{i}", self.order + prop.count_code))
+                fields.append((f"p{i}", self.order + prop.code, (next(list_counts),)))
+        return np.dtype(fields)
+
+    def _walk(self, element: _Element, rows: int) -> tuple[np.ndarray, np.ndarray, int]:
+        """Walk ``rows`` rows from ``self.pos`` (which stays).
+
+        Returns:
+            ``(starts, counts, end)``: ``(rows, P)`` int64 byte offset of every
+            property, ``(rows, L)`` int64 count of every list, the end offset.
+        """
+        data, end, pos = self.data, len(self.data), self.pos
+        steps = [(np.dtype(p.count_code or p.code).itemsize,
+                  struct.Struct(self.order + _STRUCT_CODES[p.count_code]) if p.count_code else None,
+                  np.dtype(p.code).itemsize, p) for p in element.properties]
+        starts, counts = array("q"), array("q")
+        for row in range(rows):
+            for size, count_struct, item_size, prop in steps:
+                starts.append(pos)
+                if count_struct is not None and pos + size <= end:
+                    count = count_struct.unpack_from(data, pos)[0]
+                    if count < 0:
+                        _list_count(count, f"{self.label}: {element.name} {row}", prop)
+                    counts.append(count)
+                    pos += count * item_size
+                pos += size
+            if pos > end:
+                raise _ends_inside(self.label, element, row + 1)
+        shape = (rows, -1)
+        return np.array(starts, np.int64).reshape(shape), np.array(counts, np.int64).reshape(shape), pos
+
+    def _walked_table(self, element: _Element, starts: np.ndarray, counts: np.ndarray,
+                      wanted: set[int]) -> _Table:
+        """The wanted columns, gathered from the offsets :meth:`_walk` found."""
+        table = _Table()
+        list_column = {i: k for k, i in enumerate(_list_indices(element))}
+        for i in wanted:
+            prop = element.properties[i]
+            item = np.dtype(self.order + prop.code)
+            if prop.count_code is None:
+                table.scalars[i] = _values_at(self.data, starts[:, i], item)
+                continue
+            row_counts = counts[:, list_column[i]]
+            first = starts[:, i] + np.dtype(prop.count_code).itemsize
+            offsets = _item_offsets(first, row_counts, item.itemsize)
+            table.lists[i] = (row_counts, _values_at(self.data, offsets, item))
+        return table
+
+
+def _list_indices(element: _Element) -> list[int]:
+    return [i for i, p in enumerate(element.properties) if p.count_code is not None]
+
+
+def _rows_table(rows: np.ndarray, element: _Element, wanted: set[int]) -> _Table:
+    """The wanted columns of rows read as one structured array (lists of one length)."""
+    table = _Table()
+    for i in wanted:
+        if element.properties[i].count_code is None:
+            table.scalars[i] = rows[f"p{i}"]
+        else:
+            items = rows[f"p{i}"]
+            counts = np.full(len(rows), items.shape[1], dtype=np.int64)
+            table.lists[i] = (counts, items.reshape(-1))
+    return table
+
+
+def _values_at(data: bytes, offsets: np.ndarray, dtype: np.dtype) -> np.ndarray:
+    """``(N,)`` values of ``dtype`` at byte ``offsets`` of ``data``, at any alignment.
+
+    One zero-copy view of ``data`` per alignment, gathered from, instead of an
+    index for every byte of every value.
+    """
+    size = dtype.itemsize
+    values = np.empty(len(offsets), dtype=dtype)
+    remainder = offsets % size
+    for shift in range(size):
+        chosen = remainder == shift
+        if chosen.any():
+            view = np.frombuffer(data, dtype, count=(len(data) - shift) // size, offset=shift)
+            values[chosen] = view[offsets[chosen] // size]
+    return values
+
+
+# ---------------------------------------------------------------------- ASCII body
+
+
+class _AsciiBody:
+    """Reads the elements of an ASCII body, split into tokens once.
+
+    Only the tokens of wanted properties and of list counts are converted. An
+    element whose rows all have the list counts of its first row is read as
+    columns of equally spaced tokens; any other goes row by row.
+    """
+
+    def __init__(self, body: bytes, label: str) -> None:
+        self.tokens = body.split()
+        self.t, self.label = 0, label
+        # float() takes "1_000" and non-ASCII digits: only then check every token
+        self.careful = b"_" in body or not body.isascii()
+
+    def element(self, element: _Element, wanted: set[int]) -> _Table:
+        """The wanted columns of ``element``'s rows, which start at token ``self.t``."""
+        if element.count == 0 or not element.properties:
+            return _empty_table(element, wanted)
+        left = len(self.tokens) - self.t
+        if element.count > left // len(element.properties):
+            if not _list_indices(element):
+                raise _ends_inside(self.label, element, left // len(element.properties) + 1)
+            raise _too_many_rows(self.label, element, left, "numbers")
+        starts, counts, end = self._walk(element, 1)
+        width = end - self.t
+        if element.count * width <= left and self._uniform(element, starts[0] - self.t, width):
+            table = self._uniform_table(element, starts[0] - self.t, counts[0], width, wanted)
+            self.t += element.count * width
+            return table
+        starts, counts, self.t = self._walk(element, element.count)
+        return self._walked_table(element, starts, counts, wanted)
+
+    def _column(self, element: _Element, first: int, width: int) -> np.ndarray:
+        """``(n,)`` float64: the token ``first`` of every row, rows ``width`` apart."""
+        stop = self.t + element.count * width
+        tokens = self.tokens[self.t + first : stop : width]
+        return _numbers(tokens, f"{self.label}: element '{element.name}'", self.careful)
+
+    def _uniform(self, element: _Element, offsets: np.ndarray, width: int) -> bool:
+        """Whether every row's list counts are the first row's.
+
+        A token that is not a number says no too: the rows may just not be
+        ``width`` tokens apart, and the row-by-row walk names the real problem.
+        """
+        for i in _list_indices(element):
+            try:
+                counts = self._column(element, int(offsets[i]), width)
+            except DLFLError:
+                return False
+            if not (counts == counts[0]).all():
+                return False
+        return True
+
+    def _uniform_table(self, element: _Element, offsets: np.ndarray, first_counts: np.ndarray,
+                       width: int, wanted: set[int]) -> _Table:
+        """The wanted columns of rows ``width`` tokens wide (token offsets ``offsets``)."""
+        table = _Table()
+        list_column = {i: k for k, i in enumerate(_list_indices(element))}
+        for i in wanted:
+            at = int(offsets[i])
+            if element.properties[i].count_code is None:
+                table.scalars[i] = self._column(element, at, width)
+                continue
+            count = int(first_counts[list_column[i]])
+            items = [self._column(element, at + 1 + k, width) for k in range(count)]
+            flat = np.stack(items, axis=1).ravel() if items else np.zeros(0)
+            table.lists[i] = (np.full(element.count, count, dtype=np.int64), flat)
+        return table
+
+    def _walk(self, element: _Element, rows: int) -> tuple[np.ndarray, np.ndarray, int]:
+        """Walk ``rows`` rows from token ``self.t`` (which stays).
+
+        Returns:
+            ``(starts, counts, end)``: ``(rows, P)`` int64 token index of every
+            property, ``(rows, L)`` int64 count of every list, the end index.
+        """
+        tokens, end, t = self.tokens, len(self.tokens), self.t
+        starts, counts = array("q"), array("q")
+        for row in range(rows):
+            for prop in element.properties:
+                starts.append(t)
+                if prop.count_code is not None and t < end:
+                    count = self._count(tokens[t], element, row, prop)
+                    counts.append(count)
+                    t += count
+                t += 1
+            if t > end:
+                raise _ends_inside(self.label, element, row + 1)
+        shape = (rows, -1)
+        return np.array(starts, np.int64).reshape(shape), np.array(counts, np.int64).reshape(shape), t
+
+    def _count(self, token: bytes, element: _Element, row: int, prop: _Property) -> int:
+        """The list count ``token`` of row ``row``; refuses what is not a whole
+        number of at least 0 (``3.0`` is taken, as a whole number)."""
+        if not self.careful:
+            try:
+                count = int(token)  # the usual form, and cheaper than float()
+                if count >= 0:
+                    return count
+            except ValueError:
+                pass
+        where = f"{self.label}: {element.name} {row}"
+        return _list_count(_number(token, where, self.careful), where, prop)
+
+    def _walked_table(self, element: _Element, starts: np.ndarray, counts: np.ndarray,
+                      wanted: set[int]) -> _Table:
+        """The wanted columns, gathered from the token indices :meth:`_walk` found."""
+        table = _Table()
+        list_column = {i: k for k, i in enumerate(_list_indices(element))}
+        where = f"{self.label}: element '{element.name}'"
+        for i in wanted:
+            if element.properties[i].count_code is None:
+                picked = [self.tokens[k] for k in starts[:, i].tolist()]
+                table.scalars[i] = _numbers(picked, where, self.careful)
+                continue
+            row_counts = counts[:, list_column[i]]
+            offsets = _item_offsets(starts[:, i] + 1, row_counts, 1)
+            picked = [self.tokens[k] for k in offsets.tolist()]
+            table.lists[i] = (row_counts, _numbers(picked, where, self.careful))
+        return table
+
+
+def _numbers(tokens: list[bytes], where: str, careful: bool) -> np.ndarray:
+    """``(N,)`` float64 of number tokens; ``careful`` checks each (see :func:`_number`)."""
+    if not careful:
+        try:
+            return np.fromiter(map(float, tokens), dtype=np.float64, count=len(tokens))
+        except ValueError:
+            pass  # find the bad token, and say which it is
+    return np.array([_number(token, where, True) for token in tokens], dtype=np.float64)
+
+
+def _number(token: bytes, where: str, careful: bool) -> float:
+    """``float(token)``; refuses what is not a number (with ``careful``, also
+    underscores and non-ASCII bytes, which ``float`` would take)."""
+    try:
+        if careful and (b"_" in token or not token.isascii()):
+            raise ValueError(token)
+        return float(token)
+    except ValueError:
+        raise DLFLError(f"{where}: bad number {show_token(token)}") from None
