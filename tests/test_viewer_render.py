@@ -223,10 +223,25 @@ def test_render_refuses_a_bad_output_before_the_script_runs(tmp_path: Path, caps
     assert main(["render", str(script), "-o", str(tmp_path / "t.png"), "--turntable", "3"]) == 2
     err = capsys.readouterr().err
     assert "give a .png or .gif name" in err and "3 frames cannot go to one PNG" in err
-    assert not marker.exists()
     assert main(["render", str(script), "-o", str(tmp_path / "y.png"), "--samples", "3"]) == 2
-    assert "--samples 3: this GL takes 0, 2" in capsys.readouterr().err
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["ran", "slow.py"]  # no image
+    assert main(["render", str(script), "-o", str(tmp_path / "y.png"), "--size", "99999x9"]) == 2
+    err = capsys.readouterr().err
+    assert "--samples 3: this GL takes 0, 2" in err and "is larger than this GL's largest" in err
+    assert not marker.exists()  # the GL checks too came before the script
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["slow.py"]  # no image
+
+
+def test_no_egl_is_one_line_naming_what_to_install(monkeypatch, tmp_path: Path, capsys) -> None:
+    import moderngl
+
+    def no_egl(**options: object) -> None:
+        raise Exception("libEGL.so: cannot open shared object file")
+
+    monkeypatch.setattr(moderngl, "create_standalone_context", no_egl)
+    assert main(["render", "cube", "-o", str(tmp_path / "c.png")]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("livemod render: no offscreen GL 3.3 context over EGL (libEGL.so: ")
+    assert "apt-get install libegl1 libegl-mesa0" in err
 
 
 def test_view_command_refuses_a_missing_script(tmp_path: Path, capsys) -> None:

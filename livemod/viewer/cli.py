@@ -108,16 +108,31 @@ def _given_values(script: str, texts: list[str]) -> dict[str, Any]:
 
 
 def _render(args: argparse.Namespace) -> int:
+    from .headless import NoOffscreenGL, Offscreen
+
+    try:  # all before the script runs: a long run should not end in a bad argument
+        inputs = _render_inputs(args)
+        offscreen = Offscreen(args.size, samples=_samples(args))
+    except (ValueError, NoOffscreenGL) as exc:
+        print(f"livemod render: {exc}", file=sys.stderr)
+        return 2
+    try:
+        paths = _render_to(args, offscreen, *inputs)
+    finally:
+        offscreen.release()
+    print(f"wrote {paths[0]}" if len(paths) == 1 else f"wrote {len(paths)} frames: "
+          f"{paths[0]} .. {paths[-1]}")
+    return 0
+
+
+def _render_to(args: argparse.Namespace, offscreen: Any, values: dict[str, Any],
+               labels: frozenset[str], selection: Selection | None) -> list[Path]:
+    """Run or load ``livemod render``'s input and draw it into ``offscreen``."""
     from livemod.progress import ProgressBar
 
     from .headless import render_arrays
     from .renderer import Style
 
-    try:  # all before the script runs: a long run should not end in a bad argument
-        values, labels, selection = _render_inputs(args)
-    except ValueError as exc:
-        print(f"livemod render: {exc}", file=sys.stderr)
-        return 2
     arrays, preview = _load_input(args.input, args.mesh, args.preview, values, selection)
     if args.preview and preview is None:
         print("livemod: warning: no patch preview available; drawing the mesh",
@@ -125,16 +140,9 @@ def _render(args: argparse.Namespace) -> int:
     style = Style(edges=not args.no_edges, vertices=args.vertices, preview=args.preview,
                   labels=labels)
     progress = ProgressBar("rendering") if args.turntable > 1 else None
-    try:
-        paths = render_arrays(arrays, args.output, size=args.size, turntable=args.turntable,
-                              elevation=args.elevation, style=style, preview=preview,
-                              progress=progress, ortho=args.ortho, samples=_samples(args))
-    except ValueError as exc:  # a size or MSAA level this GL cannot make
-        print(f"livemod render: {exc}", file=sys.stderr)
-        return 2
-    print(f"wrote {paths[0]}" if len(paths) == 1 else f"wrote {len(paths)} frames: "
-          f"{paths[0]} .. {paths[-1]}")
-    return 0
+    return render_arrays(arrays, args.output, turntable=args.turntable,
+                         elevation=args.elevation, style=style, preview=preview,
+                         progress=progress, ortho=args.ortho, offscreen=offscreen)
 
 
 def _render_inputs(args: argparse.Namespace,

@@ -22,10 +22,24 @@ from .geometry import sample_points
 from .renderer import Renderer, Style
 
 
+class NoOffscreenGL(RuntimeError):
+    """No standalone GL context could be made (no EGL library, or no GL 3.3)."""
+
+
 def create_context() -> moderngl.Context:
-    """A standalone GL 3.3+ context over EGL (no display needed)."""
+    """A standalone GL 3.3+ context over EGL (no display needed).
+
+    Raises:
+        NoOffscreenGL: EGL or a GL 3.3 driver is missing (the message says what
+            to install).
+    """
     options: dict = {"backend": "egl", "require": 330}
-    return moderngl.create_standalone_context(**options)
+    try:
+        return moderngl.create_standalone_context(**options)
+    except Exception as exc:  # moderngl/glcontext raise plain Exceptions here
+        raise NoOffscreenGL(
+            f"no offscreen GL 3.3 context over EGL ({exc}); headless rendering needs Mesa's "
+            f"EGL, e.g. apt-get install libegl1 libegl-mesa0 libgl1-mesa-dri") from exc
 
 
 class Offscreen:
@@ -190,25 +204,45 @@ def render_arrays(arrays: MeshArrays | None, out: str, *, size: tuple[int, int] 
                   turntable: int = 0, elevation: float = 25.0, style: Style | None = None,
                   preview: MeshArrays | None = None, selection: Selection | None = None,
                   progress: Callable[[int, int], None] | None = None,
-                  ortho: bool = False, samples: int | None = None) -> list[Path]:
+                  ortho: bool = False, samples: int | None = None,
+                  offscreen: Offscreen | None = None) -> list[Path]:
     """Render ``arrays`` to ``out`` (one frame, or a ``turntable`` of that many frames).
 
     The framing is computed once for all the turntable's angles, so it holds at every
     one. ``samples`` is the MSAA level: by default 4 for one frame and 0 for a
     turntable (edges are anti-aliased in the shader; MSAA triples software GL's cost).
+    With ``offscreen`` (made beforehand, so a bad size or GL fails before a long
+    run), it is drawn into and left to the caller to release; ``size`` and
+    ``samples`` are then its own.
+
+    Raises:
+        ValueError: a size or MSAA level this GL cannot make.
+        NoOffscreenGL: no offscreen GL context could be made.
     """
+    if offscreen is not None:
+        return _render_into(offscreen, arrays, out, turntable, elevation, style, preview,
+                            selection, progress, ortho)
     if samples is None:
         samples = 0 if turntable > 1 else 4
     offscreen = Offscreen(size, samples=samples)
     try:
-        offscreen.renderer.set_mesh(arrays, preview)
-        if selection is not None:
-            offscreen.renderer.set_selection(selection)
-        camera = framed_camera(arrays, elevation, ortho=ortho, aspect=size[0] / size[1],
-                               frames=max(turntable, 1))
-        style = style if style is not None else Style()
-        frames = max(turntable, 1)
-        images = render_turntable(offscreen, camera, style, frames, progress)
+        return _render_into(offscreen, arrays, out, turntable, elevation, style, preview,
+                            selection, progress, ortho)
     finally:
         offscreen.release()
+
+
+def _render_into(offscreen: Offscreen, arrays: MeshArrays | None, out: str, turntable: int,
+                 elevation: float, style: Style | None, preview: MeshArrays | None,
+                 selection: Selection | None, progress: Callable[[int, int], None] | None,
+                 ortho: bool) -> list[Path]:
+    """:func:`render_arrays` into an existing target (which stays open)."""
+    size = offscreen.size
+    offscreen.renderer.set_mesh(arrays, preview)
+    if selection is not None:
+        offscreen.renderer.set_selection(selection)
+    camera = framed_camera(arrays, elevation, ortho=ortho, aspect=size[0] / size[1],
+                           frames=max(turntable, 1))
+    images = render_turntable(offscreen, camera, style if style is not None else Style(),
+                              max(turntable, 1), progress)
     return write_images(out, images)
