@@ -17,26 +17,29 @@ from PIL import Image, ImageDraw
 
 from livemod.dlfl import mesh_arrays
 from livemod.runner.execute import execute
+from livemod.runner.results import snapshot_others
 from livemod.viewer.headless import render_arrays
 
 ROOT = Path(__file__).resolve().parents[1]
 IMAGES = ROOT / "docs" / "images"
 THUMB = 200
 COLUMNS = 4
-# the current (last) of twelve balls reads well at thumbnail size
+# twelve of the thirty balls (two rows) still read at thumbnail size
 PARAMETERS = {"wireframe_soccerballs.py": {"count": 12}}
 
 
-def script_arrays(path: Path):  # noqa: ANN201  (MeshArrays)
+def script_arrays(path: Path):  # noqa: ANN201  ((MeshArrays, MeshArrays or None))
+    """The current object's arrays and the other objects' (as ``livemod render`` draws)."""
     outcome = execute(path, parameters=PARAMETERS.get(path.name))
     if outcome.error is not None:
         raise SystemExit(f"{path.name}: {outcome.error}")
-    return mesh_arrays(outcome.scene.mesh)
+    return mesh_arrays(outcome.scene.mesh), snapshot_others(outcome.scene)
 
 
 def thumbnail(path: Path, folder: Path) -> Image.Image:
     out = folder / f"{path.stem}.png"
-    render_arrays(script_arrays(path), str(out), size=(THUMB, THUMB), elevation=25.0)
+    arrays, others = script_arrays(path)
+    render_arrays(arrays, str(out), size=(THUMB, THUMB), elevation=25.0, others=others)
     image = Image.open(out).convert("RGB")
     ImageDraw.Draw(image).text((6, THUMB - 16), path.stem, fill=(230, 230, 230))
     return image
@@ -55,8 +58,9 @@ def main() -> int:
     IMAGES.mkdir(parents=True, exist_ok=True)
     scripts = sorted((ROOT / "scripts").glob("*.py"))
     gallery(scripts).save(IMAGES / "gallery.png", optimize=True)
-    render_arrays(script_arrays(ROOT / "scripts" / "tower.py"), str(IMAGES / "tower.gif"),
-                  size=(360, 360), turntable=36, elevation=20.0, samples=0)
+    arrays, others = script_arrays(ROOT / "scripts" / "tower.py")
+    render_arrays(arrays, str(IMAGES / "tower.gif"), size=(360, 360), turntable=36,
+                  elevation=20.0, samples=0, others=others)
     print(f"wrote {IMAGES / 'gallery.png'} and {IMAGES / 'tower.gif'}", file=sys.stderr)
     return 0
 

@@ -106,3 +106,34 @@ def test_surface_polygons_leave_out_holes_and_point_spheres():
     sizes, vertices = a.surface_polygons()
     assert sizes.tolist() == [4]
     assert vertices.tolist() == [0, 1, 2, 3]
+
+
+def test_concatenated_arrays_are_the_disjoint_union_of_the_parts():
+    from livemod.dlfl import genus
+    from livemod.dlfl.arrays import concatenate_arrays
+
+    parts = [cube(), torus(5, 3), path_face(), Mesh()]
+    point = Mesh()
+    point.create_vertex((9.0, 9.0, 9.0))  # a point-sphere: mate and edge -1 stay -1
+    parts.append(point)
+    snapshots = [mesh_arrays(p) for p in parts]
+    joined = concatenate_arrays(snapshots)
+    assert joined.counts == tuple(sum(s.counts[k] for s in snapshots) for k in range(3))
+    union = from_corner_arrays(joined.positions, joined.face_offsets, joined.corner_vertex,
+                               joined.corner_mate)
+    validate(union)
+    again = mesh_arrays(union)
+    for name in ("positions", "face_offsets", "corner_vertex", "corner_face", "corner_mate",
+                 "corner_edge", "edge_corners"):
+        assert np.array_equal(getattr(again, name), getattr(joined, name)), name
+    assert genus(union) == sum(genus(p) for p in parts[:3])
+    assert np.array_equal(joined.face_ids, np.concatenate([s.face_ids for s in snapshots]))
+
+
+def test_concatenate_arrays_needs_a_part():
+    import pytest
+
+    from livemod.dlfl.arrays import concatenate_arrays
+
+    with pytest.raises(ValueError, match="at least one"):
+        concatenate_arrays([])

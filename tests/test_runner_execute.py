@@ -243,3 +243,17 @@ def test_instrumented_code_keeps_docstrings_and_lines():
 
 def test_cancelled_is_a_base_exception():
     assert not issubclass(Cancelled, Exception)
+
+
+def test_results_carry_the_scenes_other_objects_for_drawing(tmp_path):
+    script = tmp_path / "three.py"
+    script.write_text("load('cube')\nload('tetrahedron')\ntranslate(4, 0, 0)\n"
+                      "load('octahedron')\n")
+    result = run_script(script)
+    assert result.arrays is not None and result.arrays.counts == (6, 12, 8)  # the current
+    assert result.others is not None and result.others.counts == (8 + 4, 12 + 6, 6 + 4)
+    assert not result.others.positions.flags.writeable
+    assert result.others.positions[8:, 0].min() > 2.0  # the tetrahedron moved with it
+    single = tmp_path / "one.py"
+    single.write_text("load('cube')\n")
+    assert run_script(single).others is None

@@ -59,3 +59,15 @@ def test_session_posts_the_preview_in_a_second_result_off_the_caller_thread():
         assert second.run_id == first.run_id and second.preview is not None
         assert second.preview.counts == first.arrays.counts  # type: ignore[union-attr]
         assert threads and threading.main_thread() not in threads
+
+
+def test_session_results_carry_the_other_objects(tmp_path):
+    script = tmp_path / "two.py"
+    script.write_text("load('cube')\nload('tetrahedron')\n")
+    live = LiveSession(str(script), notifier=ManualNotifier(), preview=None)
+    with closing_session(live):
+        live.start()
+        result = next_result(live)
+        assert result.status == "ok"
+        assert result.arrays is not None and result.arrays.counts == (4, 6, 4)
+        assert result.others is not None and result.others.counts == (8, 12, 6)

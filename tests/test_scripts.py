@@ -20,6 +20,7 @@ from livemod.dlfl.analysis import component_genera
 from livemod.dlfl.shapes import cube
 from livemod.dlfl.subdivision import subdivide
 from livemod.runner.execute import execute
+from livemod.runner.results import snapshot_others
 from livemod.viewer.headless import render_arrays
 
 SCRIPTS = Path(__file__).resolve().parents[1] / "scripts"
@@ -156,7 +157,8 @@ def test_every_script_renders_a_thumbnail(name: str, tmp_path: Path) -> None:
     outcome = execute(SCRIPTS / name, parameters=parameters)
     assert outcome.error is None, outcome.error
     out = tmp_path / "thumb.png"
-    render_arrays(mesh_arrays(outcome.scene.mesh), str(out), size=(96, 96), samples=0)
+    render_arrays(mesh_arrays(outcome.scene.mesh), str(out), size=(96, 96), samples=0,
+                  others=snapshot_others(outcome.scene))
     image = np.asarray(Image.open(out).convert("RGB")).astype(int)
     background = image[0, 0]
     covered = np.any(np.abs(image - background) > 12, axis=2).mean()

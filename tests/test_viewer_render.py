@@ -10,6 +10,7 @@ import pytest
 from PIL import Image
 
 from livemod.dlfl import from_polygons, mesh_arrays
+from livemod.dlfl.arrays import concatenate_arrays
 from livemod.dlfl.scene import Selection
 from livemod.dlfl.shapes import cube
 from livemod.viewer.cli import main
@@ -33,10 +34,18 @@ current_scene().add(from_polygons(P, F))
 
 
 @pytest.fixture(scope="module")
-def offscreen() -> Iterator[Offscreen]:
+def shared_offscreen() -> Iterator[Offscreen]:
     target = Offscreen(SIZE, samples=0)
     yield target
     target.release()
+
+
+@pytest.fixture
+def offscreen(shared_offscreen: Offscreen) -> Iterator[Offscreen]:
+    """The module's target, its context current (a `livemod render` in an earlier test
+    made contexts of its own)."""
+    shared_offscreen.activate()
+    yield shared_offscreen
 
 
 def _mask(image: np.ndarray) -> np.ndarray:
@@ -247,3 +256,64 @@ def test_no_egl_is_one_line_naming_what_to_install(monkeypatch, tmp_path: Path, 
 def test_view_command_refuses_a_missing_script(tmp_path: Path, capsys) -> None:
     assert main(["view", str(tmp_path / "missing.py")]) == 1
     assert "missing.py" in capsys.readouterr().err
+
+
+def _moved(arrays, dx: float):  # type: ignore[no-untyped-def]
+    """``arrays`` with every position shifted by ``dx`` along x."""
+    import dataclasses
+
+    return dataclasses.replace(arrays, positions=arrays.positions + [dx, 0.0, 0.0])
+
+
+def test_other_objects_are_drawn_framed_and_hide_but_are_never_picked(
+        offscreen: Offscreen) -> None:
+    current, other = mesh_arrays(cube()), _moved(mesh_arrays(cube()), -4.0)
+    offscreen.renderer.set_mesh(current, None, other)
+    both = framed_camera(concatenate_arrays([current, other]), elevation=0.0, yaw=0.0,
+                         ortho=True)
+    image = offscreen.render(both, Style(edges=False))
+    y = SIZE[1] // 2
+    (a, b), (c, d) = _runs(_mask(image)[y])  # the two cubes, the other on the left (-x)
+    assert not np.array_equal(image[y, (a + b) // 2], image[y, (c + d) // 2])  # muted colour
+    assert offscreen.renderer.pick(both, SIZE, (a + b) // 2, y, "face") is None
+    hit = offscreen.renderer.pick(both, SIZE, (c + d) // 2, y, "face")
+    assert hit is not None and hit.kind == "face"
+    # seen from -x, the other cube stands in front of the current one: no pick
+    behind = framed_camera(concatenate_arrays([current, other]), elevation=0.0, yaw=-90.0,
+                           ortho=True)
+    assert offscreen.renderer.pick(behind, SIZE, SIZE[0] // 2, SIZE[1] // 2, "face") is None
+    offscreen.renderer.set_mesh(current)
+    assert offscreen.renderer.pick(behind, SIZE, SIZE[0] // 2, SIZE[1] // 2, "face") is not None
+
+
+def test_render_draws_every_object_of_the_scene(tmp_path: Path) -> None:
+    script = tmp_path / "two.py"
+    script.write_text("load('cube')\nload('cube')\ntranslate(5, 0, 0)\n")
+    one = tmp_path / "one.py"
+    one.write_text("load('cube')\ntranslate(5, 0, 0)\n")
+    for path in (script, one):
+        assert main(["render", str(path), "-o", str(tmp_path / f"{path.stem}.png"),
+                     "--size", "160x120", "--elevation", "0"]) == 0
+    two_mask = _mask(np.asarray(Image.open(tmp_path / "two.png").convert("RGB")))
+    one_mask = _mask(np.asarray(Image.open(tmp_path / "one.png").convert("RGB")))
+    # two cubes side by side, framed together, against the one cube alone
+    assert len(_runs(two_mask[60])) == 2 and len(_runs(one_mask[60])) == 1
+
+
+def _runs(row: np.ndarray) -> list[tuple[int, int]]:
+    """The ``(start, stop)`` runs of True in a ``(W,)`` bool row."""
+    edges = np.flatnonzero(np.diff(np.concatenate([[0], row.astype(int), [0]])))
+    return list(zip(edges[::2].tolist(), edges[1::2].tolist(), strict=True))
+
+
+def test_a_target_renders_the_same_after_other_contexts_come_and_go(
+        offscreen: Offscreen) -> None:
+    arrays = mesh_arrays(cube())
+    offscreen.renderer.set_mesh(arrays)
+    camera = framed_camera(arrays)
+    before = offscreen.render(camera, Style())
+    with pytest.raises(ValueError, match="--samples 3"):
+        Offscreen(SIZE, samples=3)
+    other = Offscreen(SIZE, samples=0)
+    other.release()
+    assert np.array_equal(offscreen.render(camera, Style()), before)

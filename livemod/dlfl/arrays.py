@@ -9,6 +9,7 @@ map them back to element ids.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -140,6 +141,44 @@ def mesh_arrays(mesh: Mesh) -> MeshArrays:
         edge_ids=_rows(E.ids, eslots, E.count),
         edge_corners=edge_corners,
     )
+
+
+def concatenate_arrays(parts: Sequence[MeshArrays]) -> MeshArrays:
+    """Several snapshots as one, for drawing several objects at once.
+
+    Dense indices (``corner_vertex``, ``corner_face``, ``corner_edge``,
+    ``corner_mate``, ``edge_corners``, ``face_offsets``) are shifted so that each
+    part refers to its own elements; ``-1`` entries stay ``-1``. Ids are copied
+    as they are, so different parts may share ids: the result is for drawing,
+    not for naming elements.
+
+    Args:
+        parts: one or more snapshots (see :func:`mesh_arrays`).
+
+    Raises:
+        ValueError: ``parts`` is empty.
+    """
+    if not parts:
+        raise ValueError("concatenate_arrays needs at least one MeshArrays")
+    sizes = np.array([(len(p.positions), len(p.face_ids), len(p.corner_ids), len(p.edge_ids))
+                      for p in parts], dtype=np.int64)
+    v0, f0, c0, e0 = (np.concatenate([[0], np.cumsum(sizes[:, k])[:-1]]) for k in range(4))
+
+    def joined(name: str, shift: np.ndarray | None = None) -> np.ndarray:
+        arrays = [getattr(p, name) for p in parts]
+        if shift is not None:
+            arrays = [np.where(a >= 0, a + k, a) for a, k in zip(arrays, shift, strict=True)]
+        return np.concatenate(arrays)
+
+    offsets = np.concatenate([[0]] + [p.face_offsets[1:] + k for p, k in zip(parts, c0,
+                                                                           strict=True)])
+    return MeshArrays(
+        positions=joined("positions"), vertex_ids=joined("vertex_ids"),
+        face_ids=joined("face_ids"), face_offsets=offsets.astype(np.int64),
+        face_hole=joined("face_hole"), corner_ids=joined("corner_ids"),
+        corner_vertex=joined("corner_vertex", v0), corner_face=joined("corner_face", f0),
+        corner_edge=joined("corner_edge", e0), corner_mate=joined("corner_mate", c0),
+        edge_ids=joined("edge_ids"), edge_corners=joined("edge_corners", c0))
 
 
 def _slots(table: Table) -> np.ndarray | None:

@@ -18,7 +18,7 @@ from typing import overload
 
 import numpy as np
 
-from livemod.dlfl.arrays import MeshArrays, mesh_arrays
+from livemod.dlfl.arrays import MeshArrays, concatenate_arrays, mesh_arrays
 from livemod.dlfl.mesh import Mesh
 from livemod.dlfl.scene import STEP_FIELDS, Scene, StepLog
 
@@ -176,6 +176,10 @@ class RunResult:
             controls); empty when the script declares none.
         partial: for errors, the mesh as the failed run left it (None otherwise).
         values: the values the run was given, as sorted ``(name, value)`` pairs.
+        others: the scene's other objects (all but the current one) as one
+            render snapshot, drawn beside ``arrays`` (ids may repeat between
+            objects; see :func:`livemod.dlfl.arrays.concatenate_arrays`); None
+            when the scene holds one object or none.
     """
 
     run_id: int
@@ -191,6 +195,7 @@ class RunResult:
     parameters: tuple = ()
     partial: MeshArrays | None = None
     values: tuple = ()
+    others: MeshArrays | None = None
 
 
 def freeze_arrays(arrays: MeshArrays) -> MeshArrays:
@@ -233,6 +238,15 @@ def snapshot_scene(scene: Scene) -> MeshArrays | None:
     """Render arrays of the scene's current object, None for an empty scene."""
     mesh = current_mesh(scene)
     return None if mesh is None else snapshot_mesh(mesh)
+
+
+def snapshot_others(scene: Scene) -> MeshArrays | None:
+    """Render arrays of every object but the current one, joined in object order;
+    None when there are none (or they are all empty)."""
+    parts = [mesh_arrays(obj.mesh) for oid, obj in scene.objects.items()
+             if oid != scene.current]
+    parts = [part for part in parts if len(part.positions)]
+    return freeze_arrays(concatenate_arrays(parts)) if parts else None
 
 
 def parameter_items(parameters: dict | None) -> tuple:

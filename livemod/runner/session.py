@@ -43,6 +43,7 @@ from .results import (
     current_mesh,
     parameter_items,
     save_result,
+    snapshot_others,
     snapshot_scene,
 )
 from .snapshots import DEFAULT_BUDGET, SnapshotCache
@@ -486,12 +487,13 @@ class LiveSession:
             run.run_id, run.script, status, outcome.steps, None,
             last.arrays if last else None, last.preview if last else None, error,
             outcome.elapsed, last is not None, self._specs(outcome.scene),
-            snapshot_scene(outcome.scene), values))
+            snapshot_scene(outcome.scene), values, last.others if last else None))
 
     def _publish_ok(self, run: _Run, outcome: RunOutcome, values: tuple) -> None:
         result = RunResult(run.run_id, run.script, "ok", outcome.steps, None,
                            snapshot_scene(outcome.scene), None, None, outcome.elapsed,
-                           False, self._specs(outcome.scene), values=values)
+                           False, self._specs(outcome.scene), values=values,
+                           others=snapshot_others(outcome.scene))
         with self._lock:
             if run.run_id == self._run_id:
                 self._last_good, self._last_steps = result, outcome.steps
@@ -531,7 +533,8 @@ class LiveSession:
         result = RunResult(run.run_id, run.script, "paused", steps, index,
                            snapshot_scene(scene), None, None,
                            steps[-1].elapsed if steps else 0.0, False,
-                           self._specs(scene), values=parameter_items(scene.parameters))
+                           self._specs(scene), values=parameter_items(scene.parameters),
+                           others=snapshot_others(scene))
         with self._lock:
             self._snapshots.put(result)
             if self._shown is not None:

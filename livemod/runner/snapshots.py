@@ -29,7 +29,8 @@ def arrays_bytes(arrays: MeshArrays | None) -> int:
 
 
 def result_bytes(result: RunResult) -> int:
-    return arrays_bytes(result.arrays) + arrays_bytes(result.preview)
+    """Bytes of the snapshots ``result`` holds (mesh, preview, other objects)."""
+    return sum(arrays_bytes(a) for a in (result.arrays, result.preview, result.others))
 
 
 class SnapshotCache:

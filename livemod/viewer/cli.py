@@ -133,7 +133,8 @@ def _render_to(args: argparse.Namespace, offscreen: Any, values: dict[str, Any],
     from .headless import render_arrays
     from .renderer import Style
 
-    arrays, preview = _load_input(args.input, args.mesh, args.preview, values, selection)
+    arrays, preview, others = _load_input(args.input, args.mesh, args.preview, values,
+                                          selection)
     if args.preview and preview is None:
         print("livemod: warning: no patch preview available; drawing the mesh",
               file=sys.stderr)
@@ -142,7 +143,8 @@ def _render_to(args: argparse.Namespace, offscreen: Any, values: dict[str, Any],
     progress = ProgressBar("rendering") if args.turntable > 1 else None
     return render_arrays(arrays, args.output, turntable=args.turntable,
                          elevation=args.elevation, style=style, preview=preview,
-                         progress=progress, ortho=args.ortho, offscreen=offscreen)
+                         progress=progress, ortho=args.ortho, offscreen=offscreen,
+                         others=others)
 
 
 def _render_inputs(args: argparse.Namespace,
@@ -177,9 +179,9 @@ def _samples(args: argparse.Namespace) -> int:
 
 def _load_input(path: str, mesh_path: str | None, want_preview: bool,
                 values: dict[str, Any] | None = None,
-                selection: Selection | None = None) -> tuple[Any, Any]:
-    """``(arrays, preview or None)`` of a script's result (run with the parameter
-    ``values`` and ``selection``) or of a mesh file."""
+                selection: Selection | None = None) -> tuple[Any, Any, Any]:
+    """``(arrays, preview or None, other objects or None)`` of a script's result (run
+    with the parameter ``values`` and ``selection``) or of a mesh file."""
 
     if Path(path).suffix.lower() in SCRIPT_SUFFIXES:
         return _run_for_render(path, mesh_path, want_preview, values, selection)
@@ -191,14 +193,14 @@ def _load_input(path: str, mesh_path: str | None, want_preview: bool,
         from livemod.runner.preview import preview_arrays
 
         preview = preview_arrays(mesh)
-    return mesh_arrays(mesh), preview
+    return mesh_arrays(mesh), preview, None
 
 
 def _run_for_render(path: str, mesh_path: str | None, want_preview: bool,
                     values: dict[str, Any] | None = None,
-                    selection: Selection | None = None) -> tuple[Any, Any]:
+                    selection: Selection | None = None) -> tuple[Any, Any, Any]:
     """Run a script headless (with the parameter ``values`` and ``selection``);
-    ``(arrays, preview)`` of the mesh it leaves.
+    ``(arrays, preview, others)`` of the mesh it leaves and its other objects.
 
     Raises:
         DLFLError: the script failed (the message names file and line).
@@ -209,7 +211,7 @@ def _run_for_render(path: str, mesh_path: str | None, want_preview: bool,
     from livemod.runner.declarations import undeclared
     from livemod.runner.headless import missing_picks_note
     from livemod.runner.preview import preview_arrays
-    from livemod.runner.results import current_mesh
+    from livemod.runner.results import current_mesh, snapshot_others
 
     outcome = run_outcome(path, mesh_path=mesh_path, parameters=values, selection=selection)
     note = missing_picks_note(outcome.scene)
@@ -221,10 +223,10 @@ def _run_for_render(path: str, mesh_path: str | None, want_preview: bool,
     problem = undeclared(outcome.declarations, values or {})
     if problem is not None:  # a script whose declarations are computed
         raise DLFLError(problem)
-    mesh = current_mesh(outcome.scene)
+    mesh, others = current_mesh(outcome.scene), snapshot_others(outcome.scene)
     if mesh is None:
-        return None, None
-    return mesh_arrays(mesh), preview_arrays(mesh) if want_preview else None
+        return None, None, others
+    return mesh_arrays(mesh), preview_arrays(mesh) if want_preview else None, others
 
 
 def main(argv: Sequence[str] | None = None) -> int:

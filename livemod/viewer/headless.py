@@ -9,12 +9,13 @@ from __future__ import annotations
 import functools
 import io
 from collections.abc import Callable, Iterator
+from dataclasses import dataclass
 from pathlib import Path
 
 import moderngl
 import numpy as np
 
-from livemod.dlfl.arrays import MeshArrays
+from livemod.dlfl.arrays import MeshArrays, concatenate_arrays
 from livemod.dlfl.scene import Selection
 
 from .camera import Camera
@@ -46,14 +47,27 @@ class Offscreen:
     """An offscreen target of ``size`` with its own context and renderer.
 
     Colour is rendered with ``samples``-fold MSAA and resolved into a plain
-    framebuffer that :meth:`read` returns as an image.
+    framebuffer that :meth:`render` returns as an image. :meth:`render` makes the
+    context current first (:meth:`activate`): GL calls go to the context made
+    last, and another Offscreen made in the meantime (even one since released)
+    would otherwise get them. Code that calls :attr:`renderer` directly calls
+    :meth:`activate` first.
+
+    Raises:
+        ValueError: a size or MSAA level this GL cannot make (nothing is left open).
+        NoOffscreenGL: no context could be made.
     """
 
     def __init__(self, size: tuple[int, int], samples: int = 4,
                  ctx: moderngl.Context | None = None) -> None:
         self.ctx = ctx if ctx is not None else create_context()
         self.size = (int(size[0]), int(size[1]))
-        _check_target(self.ctx, self.size, samples)
+        try:
+            _check_target(self.ctx, self.size, samples)
+        except ValueError:
+            if ctx is None:  # made here: a refused Offscreen leaves no context behind
+                self.ctx.release()
+            raise
         self.renderer = Renderer(self.ctx)
         self.resolved = self.ctx.framebuffer([self.ctx.renderbuffer(self.size, 4)],
                                              self.ctx.depth_renderbuffer(self.size))
@@ -67,6 +81,7 @@ class Offscreen:
     def render(self, camera: Camera, style: Style, overlay: np.ndarray | None = None,
                ) -> np.ndarray:
         """Draw one frame; returns ``(H, W, 3)`` uint8 RGB, row 0 at the top."""
+        self.activate()
         self.renderer.draw(self.target, camera, style)
         if self.samples > 0:
             self.ctx.copy_framebuffer(self.resolved, self.target)
@@ -75,6 +90,12 @@ class Offscreen:
         raw = self.resolved.read(components=3, alignment=1)
         width, height = self.size
         return np.frombuffer(raw, dtype=np.uint8).reshape(height, width, 3)[::-1].copy()
+
+    def activate(self) -> None:
+        """Make this target's context the one GL calls go to."""
+        # moderngl makes a context current only by entering it; leaving it would
+        # leave none current, so it is entered and not left
+        self.ctx.__enter__()
 
     def release(self) -> None:
         """Free the context and everything in it."""
@@ -205,7 +226,8 @@ def render_arrays(arrays: MeshArrays | None, out: str, *, size: tuple[int, int] 
                   preview: MeshArrays | None = None, selection: Selection | None = None,
                   progress: Callable[[int, int], None] | None = None,
                   ortho: bool = False, samples: int | None = None,
-                  offscreen: Offscreen | None = None) -> list[Path]:
+                  offscreen: Offscreen | None = None,
+                  others: MeshArrays | None = None) -> list[Path]:
     """Render ``arrays`` to ``out`` (one frame, or a ``turntable`` of that many frames).
 
     The framing is computed once for all the turntable's angles, so it holds at every
@@ -213,35 +235,50 @@ def render_arrays(arrays: MeshArrays | None, out: str, *, size: tuple[int, int] 
     turntable (edges are anti-aliased in the shader; MSAA triples software GL's cost).
     With ``offscreen`` (made beforehand, so a bad size or GL fails before a long
     run), it is drawn into and left to the caller to release; ``size`` and
-    ``samples`` are then its own.
+    ``samples`` are then its own. ``others`` (the scene's other objects) are drawn
+    beside ``arrays`` and framed with it.
 
     Raises:
         ValueError: a size or MSAA level this GL cannot make.
         NoOffscreenGL: no offscreen GL context could be made.
     """
+    drawn = _Drawn(arrays, preview, others, selection)
     if offscreen is not None:
-        return _render_into(offscreen, arrays, out, turntable, elevation, style, preview,
-                            selection, progress, ortho)
+        return _render_into(offscreen, drawn, out, turntable, elevation, style, progress, ortho)
     if samples is None:
         samples = 0 if turntable > 1 else 4
     offscreen = Offscreen(size, samples=samples)
     try:
-        return _render_into(offscreen, arrays, out, turntable, elevation, style, preview,
-                            selection, progress, ortho)
+        return _render_into(offscreen, drawn, out, turntable, elevation, style, progress, ortho)
     finally:
         offscreen.release()
 
 
-def _render_into(offscreen: Offscreen, arrays: MeshArrays | None, out: str, turntable: int,
-                 elevation: float, style: Style | None, preview: MeshArrays | None,
-                 selection: Selection | None, progress: Callable[[int, int], None] | None,
-                 ortho: bool) -> list[Path]:
+@dataclass(frozen=True)
+class _Drawn:
+    """What :func:`render_arrays` draws: the mesh, its preview, the other objects."""
+
+    arrays: MeshArrays | None
+    preview: MeshArrays | None
+    others: MeshArrays | None
+    selection: Selection | None
+
+    def framed(self) -> MeshArrays | None:
+        """What the camera frames: the mesh and the other objects together."""
+        parts = [a for a in (self.arrays, self.others) if a is not None]
+        return concatenate_arrays(parts) if len(parts) > 1 else next(iter(parts), None)
+
+
+def _render_into(offscreen: Offscreen, drawn: _Drawn, out: str, turntable: int,
+                 elevation: float, style: Style | None,
+                 progress: Callable[[int, int], None] | None, ortho: bool) -> list[Path]:
     """:func:`render_arrays` into an existing target (which stays open)."""
     size = offscreen.size
-    offscreen.renderer.set_mesh(arrays, preview)
-    if selection is not None:
-        offscreen.renderer.set_selection(selection)
-    camera = framed_camera(arrays, elevation, ortho=ortho, aspect=size[0] / size[1],
+    offscreen.activate()
+    offscreen.renderer.set_mesh(drawn.arrays, drawn.preview, drawn.others)
+    if drawn.selection is not None:
+        offscreen.renderer.set_selection(drawn.selection)
+    camera = framed_camera(drawn.framed(), elevation, ortho=ortho, aspect=size[0] / size[1],
                            frames=max(turntable, 1))
     images = render_turntable(offscreen, camera, style if style is not None else Style(),
                               max(turntable, 1), progress)

@@ -46,6 +46,7 @@ PALETTE = np.array([
 
 BASE_COLOR = (1.0, 0.59, 0.36)      # TopMod's render colour (255, 151, 92)
 PREVIEW_COLOR = (0.62, 0.78, 0.95)
+OTHER_COLOR = (0.86, 0.70, 0.60)     # the scene's other objects: the base colour, muted
 BACK_COLOR = (0.45, 0.45, 0.62)
 SELECTED_COLOR = (0.35, 0.95, 0.35)
 EDGE_COLOR = (0.08, 0.08, 0.09)
@@ -191,8 +192,10 @@ class Renderer:
         self.quad = ctx.buffer(corners.tobytes())
         self.arrays: MeshArrays | None = None
         self.preview: MeshArrays | None = None
+        self.others: MeshArrays | None = None
         self.selection = Selection()
         self._mesh: _MeshGPU | None = None
+        self._others: _MeshGPU | None = None
         self._preview: _MeshGPU | None = None
         self._label_cache: tuple[object, np.ndarray] | None = None
         self._pick_fbo: moderngl.Framebuffer | None = None
@@ -210,14 +213,21 @@ class Renderer:
 
     # -- content ---------------------------------------------------------------
 
-    def set_mesh(self, arrays: MeshArrays | None, preview: MeshArrays | None = None) -> None:
-        """Upload ``arrays`` (and its patch ``preview``) in one step, replacing the old."""
-        if self._mesh is not None:
-            self._mesh.release()
-        self._mesh = None
-        self.arrays = arrays
-        if arrays is not None:
-            self._mesh = _MeshGPU(self.ctx, self.programs, build_geometry(arrays))
+    def set_mesh(self, arrays: MeshArrays | None, preview: MeshArrays | None = None,
+                 others: MeshArrays | None = None) -> None:
+        """Upload ``arrays`` (and its patch ``preview``) in one step, replacing the old.
+
+        ``others``: the scene's other objects, drawn beside it in a muted colour;
+        they hide what is behind them but are never picked or labelled.
+        """
+        for old in (self._mesh, self._others):
+            if old is not None:
+                old.release()
+        self.arrays, self.others = arrays, others
+        self._mesh = None if arrays is None else _MeshGPU(self.ctx, self.programs,
+                                                          build_geometry(arrays))
+        self._others = None if others is None else _MeshGPU(self.ctx, self.programs,
+                                                            build_geometry(others))
         self.set_preview(preview)
         self.set_selection(self.selection)
 
@@ -243,8 +253,18 @@ class Renderer:
 
     @property
     def bounds(self) -> np.ndarray | None:
-        """``(2, 3)`` bounds of the current mesh, or None without one."""
-        return None if self._mesh is None else self._mesh.geometry.bounds
+        """``(2, 3)`` bounds of everything drawn (the mesh and the other objects),
+        or None when nothing is."""
+        drawn = [m.geometry.bounds for m in (self._mesh, self._others) if m is not None]
+        if not drawn:
+            return None
+        return np.stack([np.min([b[0] for b in drawn], axis=0),
+                         np.max([b[1] for b in drawn], axis=0)])
+
+    def drawn_positions(self) -> np.ndarray:
+        """``(n, 3)`` positions of the mesh and the other objects (for framing)."""
+        parts = [a.positions for a in (self.arrays, self.others) if a is not None]
+        return np.concatenate(parts) if parts else np.zeros((0, 3))
 
     # -- drawing ---------------------------------------------------------------
 
@@ -254,32 +274,48 @@ class Renderer:
         width, height = fbo.size
         self.ctx.viewport = (0, 0, width, height)
         fbo.clear(*style.background)
-        if self._mesh is None:
+        if self._mesh is None and self._others is None:
             return
         self._set_view(camera, width / max(height, 1))
         self.ctx.enable(moderngl.DEPTH_TEST | moderngl.PROGRAM_POINT_SIZE)
         self.ctx.disable(moderngl.CULL_FACE | moderngl.BLEND)
+        if self._others is not None:
+            self._draw_scenery(self._others, style)
+        if self._mesh is not None:
+            self._draw_current(self._mesh, camera, style, (width, height))
+
+    def _draw_scenery(self, others: _MeshGPU, style: Style) -> None:
+        """The other objects: their faces, or their edges when faces are off. Their
+        wireframe is left out so that the object being modelled stands out."""
+        if style.faces or style.preview:
+            self._draw_faces(others, OTHER_COLOR)
+        elif style.edges:
+            self._draw_edges(others)
+
+    def _draw_current(self, mesh: _MeshGPU, camera: Camera, style: Style,
+                      size: tuple[int, int]) -> None:
+        """The current object with its preview, selection, points and labels."""
         show_preview = style.preview and self._preview is not None
         # the wireframe over the mesh's own faces is drawn inside the face pass
         wire_in_faces = style.edges and style.faces and not show_preview
         if style.faces or show_preview:
-            surface = self._preview if show_preview else self._mesh
-            assert surface is not None
+            surface = self._preview if show_preview and self._preview is not None else mesh
             color = PREVIEW_COLOR if show_preview else BASE_COLOR
             self._draw_faces(surface, color, wire=wire_in_faces)
         if style.edges and not wire_in_faces:
-            self._draw_edges(self._mesh)
-        elif self._mesh.selected_lines is not None:
-            self._draw_edges(self._mesh, selected_only=True)
+            self._draw_edges(mesh)
+        elif mesh.selected_lines is not None:
+            self._draw_edges(mesh, selected_only=True)
         if style.vertices or self.selection.vertices:
-            self._draw_points(self._mesh, style.point_size, only_selected=not style.vertices)
+            self._draw_points(mesh, style.point_size, only_selected=not style.vertices)
         self._draw_corners(style.point_size)
         if style.labels:
-            self._draw_labels(camera, style, (width, height))
+            self._draw_labels(camera, style, size)
 
     def _set_view(self, camera: Camera, aspect: float) -> None:
-        if self._mesh is not None:
-            camera.scene_radius = max(camera.scene_radius, self._mesh.geometry.radius)
+        for mesh in (self._mesh, self._others):
+            if mesh is not None:
+                camera.scene_radius = max(camera.scene_radius, mesh.geometry.radius)
         view_matrix = camera.view_matrix()
         mvp = _matrix_bytes(camera.projection_matrix(aspect) @ view_matrix)
         view = _matrix_bytes(view_matrix)
@@ -292,6 +328,7 @@ class Renderer:
                     wire: bool = False) -> None:
         program = self.programs["face"]
         program["wire"].value = int(wire)  # type: ignore[union-attr]
+        program["pickable"].value = int(mesh is not self._others)  # type: ignore[union-attr]
         program["viewport"].value = tuple(float(v) for v in self.ctx.viewport[2:])  # type: ignore[union-attr]
         program["edge_color"].value = EDGE_COLOR  # type: ignore[union-attr]
         mesh.triangle_index.use(4)
@@ -482,6 +519,8 @@ class Renderer:
         self._set_view(camera, fbo.size[0] / max(fbo.size[1], 1))
         self.ctx.enable(moderngl.DEPTH_TEST | moderngl.PROGRAM_POINT_SIZE)
         self.ctx.disable(moderngl.BLEND | moderngl.CULL_FACE)
+        if self._others is not None:  # they hide what is behind them, with id 0
+            self._draw_faces(self._others, OTHER_COLOR)
         self._draw_faces(self._mesh, BASE_COLOR)
         if kind == "edge":
             self._draw_edges(self._mesh)

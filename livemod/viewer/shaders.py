@@ -38,6 +38,7 @@ uniform sampler2D position_table;
 uniform mat4 mvp;
 uniform vec2 viewport;
 uniform int wire;
+uniform int pickable;  // 0: the scene's other objects, which hide but are not picked
 uniform vec3 base_color;
 uniform vec3 selected_color;
 uniform vec3 back_color;
@@ -88,7 +89,7 @@ void main() {
     vec3 rgb = shade(n, base);
     if (wire != 0) rgb = mix(rgb, edge_color, wire_coverage(entry >> 29));
     color = vec4(rgb, 1.0);
-    pick = (1u << 28) | (face + 1u);
+    pick = pickable != 0 ? (1u << 28) | (face + 1u) : 0u;
 }
 """
 

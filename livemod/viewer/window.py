@@ -171,7 +171,7 @@ class LiveViewer(mglw.WindowConfig):
         if result.status == "ok":
             self.total_steps = len(result.steps)
         if result.arrays is not None and result.arrays is not self.renderer.arrays:
-            self._upload(result.arrays, result.preview)
+            self._upload(result.arrays, result.preview, result.others)
         elif result.arrays is None and result.error is None:
             self.renderer.set_mesh(None)  # the script ended with no mesh: show none
             self.genus = None
@@ -181,10 +181,10 @@ class LiveViewer(mglw.WindowConfig):
             self._echo(f"error: {result.error.file}:{result.error.line}: "
                        f"{result.error.message}")
 
-    def _upload(self, arrays: Any, preview: Any) -> None:
+    def _upload(self, arrays: Any, preview: Any, others: Any = None) -> None:
         from livemod.dlfl.analysis import genus
 
-        self.renderer.set_mesh(arrays, preview)
+        self.renderer.set_mesh(arrays, preview, others)
         self.renderer.set_selection(self.selection)
         self.genus = genus(arrays) if len(arrays.positions) else 0
         bounds = self.renderer.bounds
@@ -320,10 +320,10 @@ class LiveViewer(mglw.WindowConfig):
         self.camera.ortho = not self.camera.ortho
 
     def _do_fit(self) -> None:
-        arrays = self.renderer.arrays
-        if arrays is not None and len(arrays.positions):
+        positions = self.renderer.drawn_positions()
+        if len(positions):
             width, height = self.wnd.fbo.size
-            self.camera.fit_points(sample_points(arrays.positions), width / max(height, 1))
+            self.camera.fit_points(sample_points(positions), width / max(height, 1))
 
     def _do_play_pause(self) -> None:
         self.playing = not self.playing

@@ -10,6 +10,7 @@ Writing gives polygons as they are, holes left out.
 
 from __future__ import annotations
 
+import functools
 import os
 import re
 import struct
@@ -22,6 +23,7 @@ from ..arrays import mesh_arrays
 from ..build import from_polygons, point_cloud
 from ..errors import DLFLError
 from ..mesh import Mesh
+from ._lines import gather_lines, parse_number_lines, split_lines
 from .atomic import write_atomically
 from .source import read_source, show_token
 
@@ -517,26 +519,233 @@ def _values_at(data: bytes, offsets: np.ndarray, dtype: np.dtype) -> np.ndarray:
 
 
 # ---------------------------------------------------------------------- ASCII body
+#
+# Two paths read an element and give the same table. The line path takes the
+# layout every exporter writes, one row per line, and parses whole groups of
+# lines with the OBJ reader's vectorized parser; it never raises, and where
+# anything does not fit it declines. The token path reads any layout token by
+# token, and is the one that names what is wrong.
+
+# the bytes that bytes.split() splits at: the token path's blanks
+_BLANKS = np.zeros(256, dtype=bool)
+_BLANKS[list(b" \t\n\r\v\f")] = True
+# lines per parse: enough to amortise the call, few enough that its
+# temporaries stay in the cache (as in the OBJ reader)
+_LINES_PER_PASS = 1 << 16
+
+
+@dataclass(frozen=True)
+class _Lines:
+    """The lines of an ASCII body and the tokens (``body.split()``) on each.
+
+    Attributes:
+        buf: ``(B,)`` uint8 view of the body, ending with ``\\n``.
+        starts, ends: ``(L,)`` int64 offset of every line and of its ``\\n``.
+        ids: ``(N,)`` int64 the lines holding a token, in order (lines of
+            blanks hold none: the token path does not see them either).
+        first: ``(N,)`` int64 index in ``body.split()`` of each one's first token.
+        widths: ``(N,)`` int64 how many tokens each one holds.
+    """
+
+    buf: np.ndarray
+    starts: np.ndarray
+    ends: np.ndarray
+    ids: np.ndarray
+    first: np.ndarray
+    widths: np.ndarray
+
+
+def _token_lines(body: bytes) -> _Lines:
+    """The lines of ``body`` and the tokens on each (see :class:`_Lines`)."""
+    buf, starts, ends = split_lines(body if body.endswith(b"\n") else body + b"\n")
+    blank = _BLANKS[buf]
+    # a token starts at a byte that is not blank, after one that is (or at 0)
+    token_starts = np.flatnonzero(blank[:-1] > blank[1:]) + 1
+    if not blank[0]:
+        token_starts = np.concatenate([[0], token_starts])
+    first = np.searchsorted(token_starts, starts)
+    widths = np.diff(np.append(first, len(token_starts)))
+    ids = np.flatnonzero(widths)
+    return _Lines(buf, starts, ends, ids, first[ids], widths[ids])
+
+
+@dataclass(frozen=True)
+class _RowLayout:
+    """Where the tokens of an element's row sit on a line holding just that row.
+
+    A row whose list has ``n`` items is ``len(properties) + n`` tokens: the
+    scalars before the list at their property index, the list count at
+    ``at``, its items after it, then the scalars after the list, ``n`` later.
+    """
+
+    element: _Element
+    wanted: set[int]
+    at: int | None  # the element's one list property; None without a list
+
+    def column(self, i: int, n: int) -> int:
+        """The token of scalar property ``i`` on a line whose list has ``n`` items."""
+        return i + n if self.at is not None and i > self.at else i
+
+    def needed(self, n: int) -> list[int]:
+        """The tokens to convert on a line whose list has ``n`` items: the
+        wanted scalars, the list count, and the items of a wanted list."""
+        columns = [self.column(i, n) for i in self.wanted if i != self.at]
+        if self.at is not None:
+            columns.append(self.at)
+            if self.at in self.wanted:
+                columns += range(self.at + 1, self.at + 1 + n)
+        return columns
+
+    def empty_table(self, sizes: np.ndarray) -> _Table:
+        """The table to fill for rows whose lists have ``sizes`` (``(n,)`` int64) items."""
+        table = _Table()
+        for i in self.wanted:
+            if i == self.at:
+                table.lists[i] = (sizes, np.empty(int(sizes.sum())))
+            else:
+                table.scalars[i] = np.empty(len(sizes))
+        return table
+
+    def fill(self, table: _Table, values: np.ndarray, rows: np.ndarray, n: int,
+             offsets: np.ndarray) -> None:
+        """Copy rows ``rows`` (``(k,)`` int64) of the element, whose lists have
+        ``n`` items, from their ``(k, P + n)`` ``values`` into ``table``;
+        ``offsets`` is each row's first item in the list's items."""
+        for i, column in table.scalars.items():
+            column[rows] = values[:, self.column(i, n)]
+        if self.at is not None and self.at in table.lists:
+            items = table.lists[self.at][1]
+            items[offsets[rows][:, None] + np.arange(n)] = values[:, self.at + 1 : self.at + 1 + n]
 
 
 class _AsciiBody:
-    """Reads the elements of an ASCII body, split into tokens once.
+    """Reads the elements of an ASCII body one after the other.
 
-    Only the tokens of wanted properties and of list counts are converted. An
-    element whose rows all have the list counts of its first row is read as
-    columns of equally spaced tokens; any other goes row by row.
+    The line path (:meth:`_line_table`) reads an element whose rows are the
+    next ``count`` lines holding tokens, one row each (lines of blanks are
+    passed over), and whose rows have at most one list. It parses the lines of
+    one length together with :func:`._lines.parse_number_lines`; the lines
+    that parser does not take go through :func:`_number` and
+    :meth:`_count` token by token, as in the token path. Where a needed token
+    is refused, or a list count is not what the line's length says, it
+    declines, and the token path reads the element and names the problem.
+
+    The token path (:meth:`_token_table`) splits the body into tokens once and
+    converts only those of wanted properties and of list counts. An element
+    whose rows all have the list counts of its first row is read as columns of
+    equally spaced tokens; any other goes row by row.
+
+    Both read from token ``self.t`` and leave it after the element.
     """
 
     def __init__(self, body: bytes, label: str) -> None:
-        self.tokens = body.split()
-        self.t, self.label = 0, label
+        self.body, self.t, self.label = body, 0, label
         # float() takes "1_000" and non-ASCII digits: only then check every token
         self.careful = b"_" in body or not body.isascii()
 
+    @functools.cached_property
+    def tokens(self) -> list[bytes]:
+        """``(T,)`` every token of the body (split only if the token path runs)."""
+        return self.body.split()
+
+    @functools.cached_property
+    def lines(self) -> _Lines:
+        return _token_lines(self.body)
+
     def element(self, element: _Element, wanted: set[int]) -> _Table:
-        """The wanted columns of ``element``'s rows, which start at token ``self.t``."""
+        """The wanted columns of ``element``'s rows, which start at token ``self.t``.
+
+        Raises:
+            DLFLError: the rows run past the end of the body, or a list count
+                or wanted number is malformed.
+        """
         if element.count == 0 or not element.properties:
             return _empty_table(element, wanted)
+        table = self._line_table(element, wanted)
+        return self._token_table(element, wanted) if table is None else table
+
+    # ------------------------------------------------------------ line path
+
+    def _line_table(self, element: _Element, wanted: set[int]) -> _Table | None:
+        """The wanted columns of ``element``'s rows read line by line, or None
+        where the line path declines (see the class doc); never raises."""
+        found = self._row_lines(element)
+        if found is None:
+            return None
+        ids, sizes = found
+        lists = _list_indices(element)
+        layout = _RowLayout(element, wanted, lists[0] if lists else None)
+        table = layout.empty_table(sizes)
+        offsets = np.cumsum(sizes) - sizes
+        for n, rows in _groups(sizes):
+            for part in range(0, len(rows), _LINES_PER_PASS):
+                chosen = rows[part : part + _LINES_PER_PASS]
+                values = self._line_values(layout, ids[chosen], n)
+                if values is None:
+                    return None
+                layout.fill(table, values, chosen, n, offsets)
+        self.t += len(ids) * len(element.properties) + int(sizes.sum())
+        return table
+
+    def _row_lines(self, element: _Element) -> tuple[np.ndarray, np.ndarray] | None:
+        """The lines of ``element``'s rows, if they are one row each.
+
+        Returns:
+            ``(ids, sizes)``: ``(n,)`` int64 the next ``n = count`` lines holding
+            tokens, and the number of list items a row on each would have
+            (zeros without a list); None when the element has several lists,
+            token ``self.t`` does not start a line, fewer lines are left, or a
+            line is too short for a row (without a list: not exactly as long).
+        """
+        lists, lines, count = _list_indices(element), self.lines, element.count
+        j = int(np.searchsorted(lines.first, self.t))
+        if len(lists) > 1 or j + count > len(lines.ids) or lines.first[j] != self.t:
+            return None
+        sizes = lines.widths[j : j + count] - len(element.properties)
+        if (sizes < 0).any() or (not lists and (sizes != 0).any()):
+            return None
+        return lines.ids[j : j + count], sizes
+
+    def _line_values(self, layout: _RowLayout, ids: np.ndarray, n: int) -> np.ndarray | None:
+        """``(k, P + n)`` float64 numbers of lines ``ids`` (``(k,)`` int64), rows
+        whose lists have ``n`` items; only the :meth:`_RowLayout.needed` columns
+        are meaningful. None where a needed token is refused or a list count is
+        not ``n``."""
+        width = len(layout.element.properties) + n
+        if not layout.needed(n):  # an element nobody wants: nothing to convert
+            return np.zeros((len(ids), width))
+        block, starts, commas = _padded_lines(self.lines, ids)
+        values, accepted = parse_number_lines(block, starts, width)
+        accepted &= ~commas
+        for k in np.flatnonzero(~accepted).tolist():
+            if not self._python_row(values[k], int(ids[k]), layout, n):
+                return None
+        if layout.at is not None and not (values[:, layout.at] == n).all():
+            return None
+        return values
+
+    def _python_row(self, out: np.ndarray, line: int, layout: _RowLayout, n: int) -> bool:
+        """Convert the needed tokens of ``line`` into ``out`` (``(P + n,)``) as
+        the token path would; False if it would refuse one of them."""
+        lines = self.lines
+        tokens = bytes(lines.buf[lines.starts[line] : lines.ends[line]]).split()
+        where = f"{self.label}: element '{layout.element.name}'"
+        try:
+            for column in layout.needed(n):
+                if column == layout.at:
+                    prop = layout.element.properties[column]
+                    out[column] = self._count(tokens[column], layout.element, 0, prop)
+                else:
+                    out[column] = _number(tokens[column], where, self.careful)
+        except DLFLError:
+            return False
+        return True
+
+    # ------------------------------------------------------------ token path
+
+    def _token_table(self, element: _Element, wanted: set[int]) -> _Table:
+        """The wanted columns of ``element``'s rows (at least one row and one
+        property) read from the tokens; raises as :meth:`element` says."""
         left = len(self.tokens) - self.t
         if element.count > left // len(element.properties):
             if not _list_indices(element):
@@ -660,3 +869,29 @@ def _number(token: bytes, where: str, careful: bool) -> float:
         return float(token)
     except ValueError:
         raise DLFLError(f"{where}: bad number {show_token(token)}") from None
+
+
+def _groups(sizes: np.ndarray) -> list[tuple[int, np.ndarray]]:
+    """``(n, rows)`` for each distinct value ``n`` of ``sizes`` (``(N,)`` int64,
+    N > 0): ``rows`` the ``(k,)`` int64 indices, ascending, where it occurs."""
+    if (sizes == sizes[0]).all():  # one polygon size, or no list: no sort
+        return [(int(sizes[0]), np.arange(len(sizes)))]
+    order = np.argsort(sizes, kind="stable")
+    cuts = np.flatnonzero(np.diff(sizes[order])) + 1
+    return [(int(sizes[rows[0]]), rows) for rows in np.split(order, cuts)]
+
+
+def _padded_lines(lines: _Lines, ids: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Lines ``ids`` (``(K,)`` sorted int64) copied into one buffer as
+    :mod:`._lines` wants it: every line after a blank, the last byte ``\n``.
+
+    Returns:
+        ``(block, starts, commas)``: ``(S,)`` uint8, ``(K,)`` int64 line starts,
+        and ``(K,)`` bool the lines holding a comma, which
+        :func:`._lines.parse_number_lines` takes as a blank and ``float()`` not.
+    """
+    block, starts = gather_lines(lines.buf, lines.starts, lines.ends, ids)
+    commas = np.zeros(len(ids), dtype=bool)
+    commas[np.searchsorted(starts, np.flatnonzero(block == ord(",")), side="right") - 1] = True
+    # a PLY line starts with its first number: give it the blank the parser needs
+    return np.insert(block, starts, np.uint8(32)), starts + np.arange(len(ids)), commas
