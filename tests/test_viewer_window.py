@@ -113,6 +113,23 @@ def test_the_select_option_reaches_the_first_run(tmp_path: Path) -> None:
         close_viewer(viewer)
 
 
+def test_the_window_shows_every_object_and_fits_them_all(tmp_path: Path) -> None:
+    script = tmp_path / "two.py"
+    script.write_text("load('cube')\nload('cube')\ntranslate(6, 0, 0)\n")
+    viewer = create_viewer(ViewOptions(str(script), backend="headless", size=(200, 100),
+                                       samples=0, vsync=False, echo=io.StringIO()))
+    try:
+        _wait(viewer, _has_run(1))
+        assert viewer.renderer.others is not None and viewer.renderer.others.counts == (8, 12, 6)
+        image = viewer.capture().astype(int)
+        covered = np.abs(image - image[0, 0]).sum(axis=2) > 12
+        columns = np.flatnonzero(covered.any(axis=0))
+        assert columns.min() < 60 and columns.max() > 140  # both cubes fitted in the frame
+        assert viewer.renderer.bounds[:, 0].tolist() == pytest.approx([-1.0, 7.0])
+    finally:
+        close_viewer(viewer)
+
+
 def test_keys_change_style_camera_and_pick_mode(headless) -> None:
     viewer, _, _ = headless
     _wait(viewer, _has_run(1))
