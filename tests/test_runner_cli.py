@@ -299,3 +299,17 @@ def test_watch_reports_no_write_when_a_run_left_no_mesh(capsys):
     cli._report(empty, "out.obj")
     assert capsys.readouterr().out == ("run 3: ok, 0 steps, V=0 E=0 F=0, 0.010 s, "
                                        "no mesh to write\n")
+
+
+def test_run_says_which_object_of_several_it_counted_and_wrote(tmp_path, capsys):
+    script = tmp_path / "two.py"
+    script.write_text("load('cube')\nload('tetrahedron')\n")
+    assert cli.main(["run", str(script), "-o", str(tmp_path / "out.obj")]) == 0
+    out = capsys.readouterr().out
+    assert "V=4 E=6 F=4" in out
+    assert ("objects: 2 in the scene; the counts above and -o are the current one's "
+            "(object 1; the script can switch() to another and save() it)") in out
+    single = tmp_path / "one.py"
+    single.write_text("load('cube')\n")
+    assert cli.main(["run", str(single)]) == 0
+    assert "objects:" not in capsys.readouterr().out

@@ -174,6 +174,10 @@ def _finish_run(args: argparse.Namespace, outcome: Any, params: dict[str, Any]) 
         return 1
     mesh = current_mesh(outcome.scene)
     print_summary(args.script, mesh, len(outcome.steps), outcome.elapsed)
+    if len(outcome.scene.objects) > 1:
+        print(f"objects: {len(outcome.scene.objects)} in the scene; the counts above"
+              f"{' and -o' if args.output else ''} are the current one's (object "
+              f"{outcome.scene.current}; the script can switch() to another and save() it)")
     return _save(mesh, args.output)
 
 
