@@ -14,6 +14,7 @@ from .runner_scripts.support import (
     next_result,
     same_mesh,
     script_path,
+    started_session,
     straight_snapshots,
 )
 
@@ -108,9 +109,7 @@ def test_a_reload_while_paused_keeps_the_place(session):
 def test_goto_after_an_error_shows_the_steps_that_finished(tmp_path):
     path = tmp_path / "fails.py"
     path.write_text("createVertex((0, 0, 0))\ncreateVertex((1, 0, 0))\nraise ValueError('late')\n")
-    live = LiveSession(str(path), notifier=ManualNotifier(), preview=False)
-    with closing_session(live):
-        live.start()
+    with started_session(path, preview=False) as live:
         failed = next_result(live, lambda r: r.status == "error")
         assert len(failed.steps) == 2 and failed.arrays is None and not failed.stale
         assert failed.error is not None and failed.error.line == 3

@@ -11,7 +11,7 @@ from livemod.dlfl.mesh import Mesh
 from livemod.runner import LiveSession, ManualNotifier, preview
 from livemod.runner.results import snapshot_mesh
 
-from .runner_scripts.support import closing_session, next_result, script_path
+from .runner_scripts.support import closing_session, next_result, script_path, started_session
 
 QUAD = ([(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0)], [(0, 1, 2, 3)])
 
@@ -64,9 +64,7 @@ def test_session_posts_the_preview_in_a_second_result_off_the_caller_thread():
 def test_session_results_carry_the_other_objects(tmp_path):
     script = tmp_path / "two.py"
     script.write_text("load('cube')\nload('tetrahedron')\n")
-    live = LiveSession(str(script), notifier=ManualNotifier(), preview=None)
-    with closing_session(live):
-        live.start()
+    with started_session(script, preview=None) as live:
         result = next_result(live)
         assert result.status == "ok"
         assert result.arrays is not None and result.arrays.counts == (4, 6, 4)

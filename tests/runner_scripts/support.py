@@ -115,6 +115,17 @@ def same_mesh(a: MeshArrays | None, b: MeshArrays | None) -> bool:
 
 
 @contextlib.contextmanager
+def started_session(path, **options):  # noqa: ANN001, ANN003, ANN201  (a LiveSession)
+    """A started LiveSession on ``path`` with a manual notifier, closed afterwards."""
+    from livemod.runner import LiveSession, ManualNotifier
+
+    live = LiveSession(str(path), notifier=ManualNotifier(), **options)
+    with closing_session(live):
+        live.start()
+        yield live
+
+
+@contextlib.contextmanager
 def closing_session(live):  # noqa: ANN001, ANN201  (a LiveSession)
     """Yield ``live``; close it afterwards and check its threads have ended."""
     try:
