@@ -291,14 +291,18 @@ def test_the_one_layout_and_the_row_by_row_paths_agree(
 ) -> None:
     from livemod.dlfl.io import ply
 
+    monkeypatch.setattr(ply, "_LINE_PATH_MIN_BYTES", 0)  # small files too
     data = make()
-    fast = parse_ply(data)
+    fast = parse_ply(data)  # ASCII: the line path
+    monkeypatch.setattr(ply._AsciiBody, "_line_table", lambda *args: None)
+    tokens = parse_ply(data)  # ASCII: the token path's one layout
     monkeypatch.setattr(ply._BinaryBody, "element", walked)
     monkeypatch.setattr(ply._AsciiBody, "_uniform", lambda *args: False)
     slow = parse_ply(data)
-    assert fast.positions.tobytes() == slow.positions.tobytes()
-    assert np.array_equal(fast.indices, slow.indices)
-    assert np.array_equal(fast.offsets, slow.offsets)
+    for other in (tokens, slow):
+        assert fast.positions.tobytes() == other.positions.tobytes()
+        assert np.array_equal(fast.indices, other.indices)
+        assert np.array_equal(fast.offsets, other.offsets)
 
 
 def test_ascii_and_binary_files_of_one_mesh_read_the_same() -> None:
@@ -495,3 +499,251 @@ def test_every_truncation_of_a_binary_and_an_ascii_file_is_refused_cleanly() -> 
         for cut in range(len(base) - 1):
             with pytest.raises(DLFLError):
                 quiet_read(base[:cut])
+
+
+# ------------------------------------------------------------- the ASCII line path
+#
+# An ASCII element laid out one row per line is parsed in blocks of lines (the
+# line path); anything else, and every error, goes token by token (the token
+# path). The two must agree bit for bit, errors included.
+
+
+def outcome(data: bytes) -> tuple[bytes, bytes, bytes] | str:
+    """What :func:`parse_ply` gives: the soup's bytes, or the error's message."""
+    try:
+        soup = parse_ply(data, "f.ply")
+    except DLFLError as error:
+        return str(error)
+    return soup.positions.tobytes(), soup.indices.tobytes(), soup.offsets.tobytes()
+
+
+def token_path_outcome(data: bytes) -> tuple[bytes, bytes, bytes] | str:
+    """:func:`outcome` with the line path switched off."""
+    from livemod.dlfl.io import ply
+
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(ply._AsciiBody, "_line_table", lambda *args: None)
+        return outcome(data)
+
+
+def number_text(rng: np.random.Generator) -> str:
+    """A coordinate in one of the forms writers use, or float() takes."""
+    value = float(rng.standard_normal() * 10.0 ** rng.integers(-6, 7))
+    style = int(rng.integers(12))
+    texts = [
+        repr(value), f"{value:.3f}", f"{value:.6E}", f"{value:+.5g}",  # 17 digits, +, E
+        f"{value:.4f}".replace("0.", ".", 1),  # ".5", "-.5"
+        f"{round(value)}.", str(round(value)),  # "5.", "5"
+        f"{value:.25f}", str(rng.choice(["-0", "-0.0", "0", "+0"])),  # 25 digits, signed zeros
+        repr(value * 1e300 if abs(value) < 1e6 else 5e-324), f"{value:.17e}", repr(value),
+    ]
+    return texts[style]
+
+
+def index_text(rng: np.random.Generator, index: int) -> str:
+    """A list count or vertex index, now and then in a form float() takes too."""
+    forms = [str(index)] * 20 + [f"{index}.0", f"+{index}", f"0{index}", f"{index}e0"]
+    return forms[int(rng.integers(len(forms)))]
+
+
+def random_element(rng: np.random.Generator, name: str, vertices: int,
+                   ) -> tuple[list[str], list[list[str]]]:
+    """The header lines and rows (as tokens) of an element: ``vertex`` (x, y, z
+    and extras in any order, maybe a list), ``face`` (maybe scalars around the
+    list of indices below ``vertices``), ``edge`` (integers) or ``material`` (a
+    list of floats)."""
+    count = int(rng.integers(1, 30)) if name == "vertex" else int(rng.integers(0, 30))
+    if name == "vertex":
+        extras = ["float nx", "uchar red", "int flags"][: int(rng.integers(4))]
+        props = [str(p) for p in rng.permutation(["double x", "float y", "double z", *extras])]
+        if rng.random() < 0.2:
+            props.insert(int(rng.integers(len(props) + 1)), "list uchar float uv")
+    elif name == "face":
+        props = ["uchar intensity"] * int(rng.random() < 0.3) + ["list uchar int vertex_indices"]
+        props += ["float quality"] * int(rng.random() < 0.3)
+    else:
+        props = ["int a", "int b"] if name == "edge" else ["list uchar float values"]
+    rows = [random_row(rng, props, vertices) for _ in range(count)]
+    return [f"element {name} {count}", *(f"property {p}" for p in props)], rows
+
+
+def random_row(rng: np.random.Generator, props: list[str], vertices: int) -> list[str]:
+    row = []
+    for prop in props:
+        if prop.startswith("list"):
+            size = int(rng.choice([3, 3, 3, 4, 4, 5, 6, 0, 1, 12]))
+            row.append(index_text(rng, size))
+            if prop.split()[2] == "int":
+                row += [index_text(rng, int(i)) for i in rng.integers(0, vertices, size)]
+            else:
+                row += [number_text(rng) for _ in range(size)]
+        elif prop.split()[0] in ("uchar", "int"):
+            row.append(index_text(rng, int(rng.integers(0, 30))))
+        else:
+            row.append(number_text(rng))
+    return row
+
+
+def random_ascii_ply(seed: int) -> bytes:
+    """A random ASCII PLY: mixed number forms and face sizes, extra properties and
+    elements, CRLF, blank lines, odd blanks, and now and then rows not one per line."""
+    rng = np.random.default_rng(seed)
+    vertex = random_element(rng, "vertex", 0)
+    elements = [vertex] + [random_element(rng, str(name), len(vertex[1])) for name in
+                           ["face", *rng.choice(["edge", "material"], int(rng.integers(3)))]]
+    elements = [elements[i] for i in rng.permutation(len(elements))]
+    text = ["ply", "format ascii 1.0", *(line for e in elements for line in e[0]), "end_header"]
+    for row in (row for e in elements for row in e[1]):
+        blanks = rng.choice([" ", "  ", "\t", " \t "], len(row))
+        line = "".join(b + t for b, t in zip(blanks, row, strict=True))
+        text.append(line if rng.random() < 0.3 else line.lstrip())
+        if rng.random() < 0.05:
+            text.append(str(rng.choice(["", " \t", " "])))
+    newline = "\r\n" if rng.random() < 0.4 else "\n"
+    body = text.index("end_header") + 1
+    if rng.random() < 0.15 and len(text) > body + 1:  # a row over two lines, or two on one
+        k = int(rng.integers(body, len(text) - 1))
+        if rng.random() < 0.5:
+            text[k] = text[k].strip().replace(" ", newline, 1).replace("\t", newline, 1)
+        else:
+            text[k : k + 2] = [text[k] + " " + text[k + 1]]
+    return (newline.join(text) + (newline if rng.random() < 0.8 else "")).encode()
+
+
+def counting_line_tables(patch: pytest.MonkeyPatch) -> list[bool]:
+    """Record, for every element the line path is asked for, whether it read it."""
+    from livemod.dlfl.io import ply
+
+    taken: list[bool] = []
+    line_table = ply._AsciiBody._line_table
+
+    def spy(self, element, wanted):  # type: ignore[no-untyped-def]
+        table = line_table(self, element, wanted)
+        taken.append(table is not None)
+        return table
+
+    patch.setattr(ply._AsciiBody, "_line_table", spy)
+    return taken
+
+
+def line_path_for_small_files(patch: pytest.MonkeyPatch, small_passes: bool = False) -> None:
+    """Take the line path whatever the body's size; with ``small_passes``, in
+    passes of 3 lines and scan slices of 16 bytes (many passes, on threads)."""
+    from livemod.dlfl.io import ply
+
+    patch.setattr(ply, "_LINE_PATH_MIN_BYTES", 0)
+    if small_passes:
+        patch.setattr(ply, "_LINES_PER_PASS", 3)
+        patch.setattr(ply, "_BYTES_PER_SCAN", 16)
+
+
+@pytest.mark.parametrize("passes", ["whole", "small"])
+def test_the_line_and_token_paths_agree_on_random_files(
+    passes: str, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    line_path_for_small_files(monkeypatch, passes == "small")
+    taken = counting_line_tables(monkeypatch)
+    for seed in range(60 if passes == "small" else 100):  # the small passes are slow
+        data = random_ascii_ply(seed)
+        fast = outcome(data)
+        assert fast == token_path_outcome(data), seed
+        assert not isinstance(fast, str), (seed, fast)  # the files are valid
+    assert sum(taken) > 0.9 * len(taken)  # rows over two lines decline the rest
+
+
+MUTATIONS = list(b"0123456789 -+.eE\n\r\t\v\x1c,_/xn#") + [0xD9, 0xA1]
+
+
+@pytest.mark.timeout(60)
+@FUZZ
+@given(st.integers(0, 10**6), st.booleans(),
+       st.lists(st.tuples(st.integers(0, 2), st.integers(0, 10**6), st.sampled_from(MUTATIONS)),
+                min_size=1, max_size=4))
+def test_the_line_and_token_paths_agree_on_mutated_files(
+    seed: int, small: bool, edits: list[tuple[int, int, int]]
+) -> None:
+    data = random_ascii_ply(seed)
+    body = data.index(b"end_header") + len(b"end_header")
+    data = data[:body] + mutate(data[body:], edits)
+    with pytest.MonkeyPatch.context() as patch:
+        line_path_for_small_files(patch, small)
+        assert outcome(data) == token_path_outcome(data)
+
+
+def test_exporter_layouts_never_need_the_token_path(monkeypatch: pytest.MonkeyPatch) -> None:
+    from livemod.dlfl.io import ply
+
+    def refuse(*args):  # type: ignore[no-untyped-def]
+        raise AssertionError("the token path ran")
+
+    big = ascii_of(torus(60, 60))
+    assert len(big) - len(header_of(big)) > ply._LINE_PATH_MIN_BYTES
+    assert_same_mesh(cube(), read_ply(ASCII_CUBE))  # a small file: the token path
+    monkeypatch.setattr(ply._AsciiBody, "_token_table", refuse)
+    assert_same_mesh(torus(60, 60), read_ply(big))
+    line_path_for_small_files(monkeypatch)
+    ones, zeros = ["1", "+1", "1.", "1.0", "1e0", "10E-1", ".1e1"], ["0", "0.", ".0", "0e5", "+0"]
+    header = f"element tag 2\nproperty int t\n{V8}property uchar red\nelement face 6\n" \
+             f"property uchar intensity\n{TRIANGLE_FACES}property float quality\n"
+    rows = ["abc", "x,y"]  # nobody wants the tags: they are not converted
+    rows += [" ".join(ones[k % 7] if c else zeros[k % 5] for c in p) + "\t255 "
+             for k, p in enumerate(CUBE_POSITIONS.tolist())]
+    counts = ["4", "4.0", "+4", "04", "4e0", "4"]
+    rows += [f" 7 {counts[k]} {' '.join(map(str, f))} 0.25" for k, f in enumerate(CUBE_FACES)]
+    for newline in ("\n", "\r\n"):
+        for blank in ("", " \t"):
+            lines = [r for row in rows for r in (row, blank) if r or row is rows[3]]
+            assert_same_mesh(cube(), read_ply(ascii_ply(header, lines, newline)))
+    assert faces_of(read_ply(mixed_ascii().replace(b"\n", b"\r\n"))) == MIXED_FACES
+    assert_same_mesh(torus(6, 5), read_ply(ascii_of(torus(6, 5))))
+
+
+@pytest.mark.parametrize(("row", "text", "message"), [
+    (3, "0, 1, 0", r"element 'vertex': bad number '0,'"),
+    (3, "0,1,0", r"element 'vertex': bad number '0,1,0'"),
+    (8 + 1, "4 0 1/1 2 3", r"element 'face': bad number '1/1'"),
+    (8 + 1, "4, 0 1 2 3", r"face 1: bad number '4,'"),
+    (8 + 5, "4 0 1 2 0x7", r"element 'face': bad number '0x7'"),
+    (3, "0 1e999 0", r"vertex 3: coordinate inf is not finite"),
+    (3, "0 -nan 0", r"vertex 3: coordinate nan is not finite"),
+    (3, "0 0 1_0", r"element 'vertex': bad number '1_0'"),
+])
+def test_the_line_path_leaves_refusals_to_the_token_path(
+    row: int, text: str, message: str, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    line_path_for_small_files(monkeypatch)
+    data = ascii_cube_with(row, text)
+    assert outcome(data) == token_path_outcome(data)
+    with pytest.raises(DLFLError, match=message):
+        read_ply(data)
+
+
+def test_integer_coordinates_keep_the_sign_of_minus_zero(monkeypatch: pytest.MonkeyPatch) -> None:
+    line_path_for_small_files(monkeypatch)
+    header = "element vertex 3\nproperty int x\nproperty int y\nproperty int z\n"
+    data = ascii_ply(header, ["-0 1 2", "3 -4 -0", "5 6 7"])
+    positions = parse_ply(data).positions
+    assert positions.tolist() == [[0, 1, 2], [3, -4, 0], [5, 6, 7]]
+    assert np.signbit(positions).tolist() == [[True, False, False], [False, True, True],
+                                              [False] * 3]
+    assert outcome(data) == token_path_outcome(data)
+
+
+def test_faces_of_many_sizes_few_of_each(monkeypatch: pytest.MonkeyPatch) -> None:
+    line_path_for_small_files(monkeypatch)
+    rng = np.random.default_rng(3)
+    sizes = np.where(rng.random(3000) < 0.995, 3, rng.integers(4, 200, 3000))
+    rows = ["0 0 0"] * 200
+    rows += [" ".join(map(str, [n, *rng.integers(0, 200, n)])) for n in sizes]
+    data = ascii_ply(f"element vertex 200\n{XYZ}element face 3000\n{TRIANGLE_FACES}", rows)
+    soup = parse_ply(data)
+    assert np.diff(soup.offsets).tolist() == sizes.tolist()
+    assert outcome(data) == token_path_outcome(data)
+
+
+@pytest.mark.parametrize("count", [2**63, 2**64 + 5, 10**30])
+def test_a_list_count_past_any_integer_type_ends_inside_the_element(count: int) -> None:
+    data = ascii_ply(f"element vertex 3\n{XYZ}element face 1\n{TRIANGLE_FACES}",
+                     ["0 0 0", "1 0 0", "0 1 0", f"{count} 0 1 2"])
+    with pytest.raises(DLFLError, match=r"the file ends inside element 'face' \(row 1 of 1\)"):
+        read_ply(data)

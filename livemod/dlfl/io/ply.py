@@ -2,15 +2,20 @@
 
 Reading keeps the ``x``, ``y``, ``z`` properties of element ``vertex`` and the
 ``vertex_indices`` list (or ``vertex_index``, else the first list) of element
-``face``; every other element and property is skipped. Elements whose rows all
-have one layout are read with whole-array numpy steps; others row by row.
+``face``; every other element and property is skipped. Binary elements whose
+rows all have one layout are read with whole-array numpy steps, others row by
+row. ASCII elements laid out one row per line, as exporters write them, are
+parsed in blocks of lines by the OBJ reader's vectorized parsers (see
+:mod:`._lines`); any other layout, and every error, goes token by token.
 
 Writing gives polygons as they are, holes left out.
 """
 
 from __future__ import annotations
 
+import contextlib
 import functools
+import itertools
 import os
 import re
 import struct
@@ -23,7 +28,8 @@ from ..arrays import mesh_arrays
 from ..build import from_polygons, point_cloud
 from ..errors import DLFLError
 from ..mesh import Mesh
-from ._lines import gather_lines, parse_number_lines, split_lines
+from ._lines import gather_lines, parse_index_lines, parse_number_lines
+from ._parallel import map_in_order
 from .atomic import write_atomically
 from .source import read_source, show_token
 
@@ -521,17 +527,19 @@ def _values_at(data: bytes, offsets: np.ndarray, dtype: np.dtype) -> np.ndarray:
 # ---------------------------------------------------------------------- ASCII body
 #
 # Two paths read an element and give the same table. The line path takes the
-# layout every exporter writes, one row per line, and parses whole groups of
-# lines with the OBJ reader's vectorized parser; it never raises, and where
+# layout every exporter writes, one row per line, and parses whole blocks of
+# lines with the OBJ reader's vectorized parsers; it never raises, and where
 # anything does not fit it declines. The token path reads any layout token by
 # token, and is the one that names what is wrong.
 
-# the bytes that bytes.split() splits at: the token path's blanks
-_BLANKS = np.zeros(256, dtype=bool)
-_BLANKS[list(b" \t\n\r\v\f")] = True
 # lines per parse: enough to amortise the call, few enough that its
 # temporaries stay in the cache (as in the OBJ reader)
 _LINES_PER_PASS = 1 << 16
+# bytes per pass of the scan for tokens: a cache-sized slice of the body
+_BYTES_PER_SCAN = 1 << 20
+# below this body size the token path is quicker: the line path's fixed cost
+# (tens of numpy calls per element, ~1 ms) outweighs its speed
+_LINE_PATH_MIN_BYTES = 1 << 17
 
 
 @dataclass(frozen=True)
@@ -556,17 +564,37 @@ class _Lines:
 
 
 def _token_lines(body: bytes) -> _Lines:
-    """The lines of ``body`` and the tokens on each (see :class:`_Lines`)."""
-    buf, starts, ends = split_lines(body if body.endswith(b"\n") else body + b"\n")
-    blank = _BLANKS[buf]
-    # a token starts at a byte that is not blank, after one that is (or at 0)
-    token_starts = np.flatnonzero(blank[:-1] > blank[1:]) + 1
-    if not blank[0]:
-        token_starts = np.concatenate([[0], token_starts])
-    first = np.searchsorted(token_starts, starts)
-    widths = np.diff(np.append(first, len(token_starts)))
+    """The lines of ``body`` and the tokens on each (see :class:`_Lines`).
+
+    The body is scanned in slices of whole lines, on a few threads: a token
+    never spans a newline, so a line's first token is the tokens before it.
+    """
+    data = body if body.endswith(b"\n") else body + b"\n"
+    buf = np.frombuffer(data, dtype=np.uint8)
+    cuts = [0]
+    while cuts[-1] < len(data):  # after the first newline past the next slice (or the end)
+        cuts.append(data.find(b"\n", cuts[-1] + _BYTES_PER_SCAN) + 1 or len(data))
+    parts = list(map_in_order(lambda cut: _scan_lines(buf, *cut), itertools.pairwise(cuts)))
+    starts, ends, widths = (np.concatenate([part[i] for part in parts]) for i in range(3))
     ids = np.flatnonzero(widths)
+    first = np.cumsum(widths) - widths
     return _Lines(buf, starts, ends, ids, first[ids], widths[ids])
+
+
+def _scan_lines(buf: np.ndarray, start: int, end: int) -> tuple[np.ndarray, ...]:
+    """``(starts, ends, widths)``: ``(L,)`` int64 line and ``\\n`` offsets and
+    token counts of the whole lines ``buf[start:end]``."""
+    part = buf[start:end]
+    ends = np.flatnonzero(part == 10)
+    starts = np.concatenate([[0], ends[:-1] + 1])
+    blank = (part - np.uint8(9)) < 5  # what bytes.split() splits at: \t \n \v \f \r
+    blank |= part == 32  # and the blank (arithmetic is faster than a table here)
+    # a token starts where a blank is followed by anything else, or at 0
+    tokens = np.flatnonzero(blank[:-1] > blank[1:]) + 1
+    if not blank[0]:
+        tokens = np.concatenate([[0], tokens])
+    widths = np.diff(np.searchsorted(tokens, starts), append=len(tokens))
+    return starts + start, ends + start, widths
 
 
 @dataclass(frozen=True)
@@ -581,6 +609,14 @@ class _RowLayout:
     element: _Element
     wanted: set[int]
     at: int | None  # the element's one list property; None without a list
+    integral: bool  # every property (list items too) of an integer type
+
+    @classmethod
+    def of(cls, element: _Element, wanted: set[int]) -> _RowLayout:
+        """The layout of ``element`` (which has at most one list)."""
+        lists = _list_indices(element)
+        integral = all(p.code[0] in "iu" for p in element.properties)
+        return cls(element, wanted, lists[0] if lists else None, integral)
 
     def column(self, i: int, n: int) -> int:
         """The token of scalar property ``i`` on a line whose list has ``n`` items."""
@@ -608,27 +644,39 @@ class _RowLayout:
 
     def fill(self, table: _Table, values: np.ndarray, rows: np.ndarray, n: int,
              offsets: np.ndarray) -> None:
-        """Copy rows ``rows`` (``(k,)`` int64) of the element, whose lists have
-        ``n`` items, from their ``(k, P + n)`` ``values`` into ``table``;
-        ``offsets`` is each row's first item in the list's items."""
+        """Copy rows ``rows`` (``(k,)`` ascending int64, k > 0) of the element,
+        whose lists have ``n`` items, from their ``(k, P + n)`` ``values`` into
+        ``table``; ``offsets`` is each row's first item in the list's items."""
         for i, column in table.scalars.items():
             column[rows] = values[:, self.column(i, n)]
         if self.at is not None and self.at in table.lists:
-            items = table.lists[self.at][1]
-            items[offsets[rows][:, None] + np.arange(n)] = values[:, self.at + 1 : self.at + 1 + n]
+            items, lists = table.lists[self.at][1], values[:, self.at + 1 : self.at + 1 + n]
+            start = int(offsets[rows[0]])
+            if rows[-1] - rows[0] + 1 == len(rows):  # consecutive rows: their items are too
+                items[start : start + lists.size] = lists.ravel()
+            else:
+                items[offsets[rows][:, None] + np.arange(n)] = lists
+
+
+# One group of rows parsed together: (picked, n, values), rows ``picked``
+# ((k,) int64) whose lists have ``n`` items, and their (k, P + n) float64 numbers
+_Piece = tuple[np.ndarray, int, np.ndarray]
 
 
 class _AsciiBody:
     """Reads the elements of an ASCII body one after the other.
 
-    The line path (:meth:`_line_table`) reads an element whose rows are the
-    next ``count`` lines holding tokens, one row each (lines of blanks are
-    passed over), and whose rows have at most one list. It parses the lines of
-    one length together with :func:`._lines.parse_number_lines`; the lines
-    that parser does not take go through :func:`_number` and
-    :meth:`_count` token by token, as in the token path. Where a needed token
-    is refused, or a list count is not what the line's length says, it
-    declines, and the token path reads the element and names the problem.
+    The line path (:meth:`_line_table`) reads an element with at most one
+    list whose rows are the next ``count`` lines holding tokens, one row each
+    (lines of blanks are passed over, as they hold no token). It parses a few
+    thousand lines at a time: an element of integer types first with
+    :func:`._lines.parse_index_lines`, and the lines that does not take, or
+    every line of any other element, with :func:`._lines.parse_number_lines`
+    in groups of one length; the lines neither takes go through
+    :func:`_number` and :meth:`_count` token by token, as in the token path.
+    Where one of those refuses a needed token, or a list count is not what
+    its line's length says, it declines, and the token path reads the element
+    and names the problem.
 
     The token path (:meth:`_token_table`) splits the body into tokens once and
     converts only those of wanted properties and of list counts. An element
@@ -650,6 +698,7 @@ class _AsciiBody:
 
     @functools.cached_property
     def lines(self) -> _Lines:
+        """The body's lines and the tokens on each (scanned on first use)."""
         return _token_lines(self.body)
 
     def element(self, element: _Element, wanted: set[int]) -> _Table:
@@ -668,22 +717,26 @@ class _AsciiBody:
 
     def _line_table(self, element: _Element, wanted: set[int]) -> _Table | None:
         """The wanted columns of ``element``'s rows read line by line, or None
-        where the line path declines (see the class doc); never raises."""
+        where the line path declines (see the class doc, and a body under
+        :data:`_LINE_PATH_MIN_BYTES`); never raises."""
+        if len(self.body) < _LINE_PATH_MIN_BYTES:
+            return None
         found = self._row_lines(element)
         if found is None:
             return None
         ids, sizes = found
-        lists = _list_indices(element)
-        layout = _RowLayout(element, wanted, lists[0] if lists else None)
+        layout = _RowLayout.of(element, wanted)
         table = layout.empty_table(sizes)
         offsets = np.cumsum(sizes) - sizes
-        for n, rows in _groups(sizes):
-            for part in range(0, len(rows), _LINES_PER_PASS):
-                chosen = rows[part : part + _LINES_PER_PASS]
-                values = self._line_values(layout, ids[chosen], n)
-                if values is None:
-                    return None
-                layout.fill(table, values, chosen, n, offsets)
+        passes = [np.arange(k, min(k + _LINES_PER_PASS, len(ids)))
+                  for k in range(0, len(ids), _LINES_PER_PASS)]
+        # numpy lets go of the GIL in the parsers: passes on a few threads
+        parsed = map_in_order(lambda rows: self._pass(layout, ids[rows], sizes[rows]), passes)
+        for rows, pieces in zip(passes, parsed, strict=True):
+            if pieces is None:
+                return None  # the passes still running are finished, then dropped
+            for picked, n, values in pieces:
+                layout.fill(table, values, rows[picked], n, offsets)
         self.t += len(ids) * len(element.properties) + int(sizes.sum())
         return table
 
@@ -706,22 +759,52 @@ class _AsciiBody:
             return None
         return lines.ids[j : j + count], sizes
 
-    def _line_values(self, layout: _RowLayout, ids: np.ndarray, n: int) -> np.ndarray | None:
+    def _pass(self, layout: _RowLayout, ids: np.ndarray, sizes: np.ndarray) -> list[_Piece] | None:
+        """The numbers on lines ``ids`` (``(k,)`` int64), rows whose lists have
+        ``sizes`` items, as pieces (see :data:`_Piece`; ``picked`` indexes
+        ``ids``, and only the :meth:`_RowLayout.needed` columns are meaningful).
+        None where a needed token is refused or a list count is not its size."""
+        if layout.at is None and not layout.wanted:  # nobody wants it: nothing to convert
+            return []
+        pieces: list[_Piece] = []
+        rest = np.arange(len(ids))
+        if layout.integral:
+            pieces, rest = self._index_pieces(layout, ids, sizes)
+        for n, group in _groups(sizes[rest]):
+            values = self._number_values(layout, ids[rest[group]], n)
+            if values is None:
+                return None
+            pieces.append((rest[group], n, values))
+        if layout.at is not None and not all((v[:, layout.at] == n).all() for _, n, v in pieces):
+            return None
+        return pieces
+
+    def _index_pieces(self, layout: _RowLayout, ids: np.ndarray, sizes: np.ndarray,
+                      ) -> tuple[list[_Piece], np.ndarray]:
+        """:meth:`_pass` for the lines of plain integers ``[-]d+`` (any length of
+        list), and the ``(r,)`` int64 indices into ``ids`` of the other lines."""
+        # "-0" would lose its sign, and "7/1" is a corner to the parser, not a number
+        block, starts, odd = _padded_lines(self.lines, ids, b"-/")
+        flat, counts, accepted = parse_index_lines(block, starts)
+        accepted &= ~odd & (counts == len(layout.element.properties) + sizes)
+        first = np.cumsum(counts) - counts
+        taken = np.flatnonzero(accepted)
+        pieces = []
+        for n, group in _groups(sizes[taken]):
+            columns = np.arange(len(layout.element.properties) + n)
+            values = flat[first[taken[group], None] + columns].astype(np.float64)
+            pieces.append((taken[group], n, values))
+        return pieces, np.flatnonzero(~accepted)
+
+    def _number_values(self, layout: _RowLayout, ids: np.ndarray, n: int) -> np.ndarray | None:
         """``(k, P + n)`` float64 numbers of lines ``ids`` (``(k,)`` int64), rows
-        whose lists have ``n`` items; only the :meth:`_RowLayout.needed` columns
-        are meaningful. None where a needed token is refused or a list count is
-        not ``n``."""
-        width = len(layout.element.properties) + n
-        if not layout.needed(n):  # an element nobody wants: nothing to convert
-            return np.zeros((len(ids), width))
-        block, starts, commas = _padded_lines(self.lines, ids)
-        values, accepted = parse_number_lines(block, starts, width)
-        accepted &= ~commas
-        for k in np.flatnonzero(~accepted).tolist():
+        whose lists have ``n`` items (see :meth:`_pass`); None where a needed
+        token is refused."""
+        block, starts, odd = _padded_lines(self.lines, ids, b",")
+        values, accepted = parse_number_lines(block, starts, len(layout.element.properties) + n)
+        for k in np.flatnonzero(~accepted | odd).tolist():
             if not self._python_row(values[k], int(ids[k]), layout, n):
                 return None
-        if layout.at is not None and not (values[:, layout.at] == n).all():
-            return None
         return values
 
     def _python_row(self, out: np.ndarray, line: int, layout: _RowLayout, n: int) -> bool:
@@ -734,7 +817,8 @@ class _AsciiBody:
             for column in layout.needed(n):
                 if column == layout.at:
                     prop = layout.element.properties[column]
-                    out[column] = self._count(tokens[column], layout.element, 0, prop)
+                    count = self._count(tokens[column], layout.element, 0, prop)
+                    out[column] = min(count, n + 1)  # other than n is all that counts
                 else:
                     out[column] = _number(tokens[column], where, self.careful)
         except DLFLError:
@@ -822,15 +906,16 @@ class _AsciiBody:
     def _count(self, token: bytes, element: _Element, row: int, prop: _Property) -> int:
         """The list count ``token`` of row ``row``; refuses what is not a whole
         number of at least 0 (``3.0`` is taken, as a whole number)."""
+        count = -1
         if not self.careful:
-            try:
+            with contextlib.suppress(ValueError):
                 count = int(token)  # the usual form, and cheaper than float()
-                if count >= 0:
-                    return count
-            except ValueError:
-                pass
-        where = f"{self.label}: {element.name} {row}"
-        return _list_count(_number(token, where, self.careful), where, prop)
+        if count < 0:
+            where = f"{self.label}: {element.name} {row}"
+            count = _list_count(_number(token, where, self.careful), where, prop)
+        # more items than tokens left ends the file inside the element; capped so a
+        # count past 2**63 is that error too, not an overflow of the count array
+        return min(count, len(self.tokens) + 1)
 
     def _walked_table(self, element: _Element, starts: np.ndarray, counts: np.ndarray,
                       wanted: set[int]) -> _Table:
@@ -872,8 +957,10 @@ def _number(token: bytes, where: str, careful: bool) -> float:
 
 
 def _groups(sizes: np.ndarray) -> list[tuple[int, np.ndarray]]:
-    """``(n, rows)`` for each distinct value ``n`` of ``sizes`` (``(N,)`` int64,
-    N > 0): ``rows`` the ``(k,)`` int64 indices, ascending, where it occurs."""
+    """``(n, rows)`` for each distinct value ``n`` of ``sizes`` (``(N,)`` int64):
+    ``rows`` the ``(k,)`` int64 indices, ascending, where it occurs."""
+    if len(sizes) == 0:
+        return []
     if (sizes == sizes[0]).all():  # one polygon size, or no list: no sort
         return [(int(sizes[0]), np.arange(len(sizes)))]
     order = np.argsort(sizes, kind="stable")
@@ -881,17 +968,38 @@ def _groups(sizes: np.ndarray) -> list[tuple[int, np.ndarray]]:
     return [(int(sizes[rows[0]]), rows) for rows in np.split(order, cuts)]
 
 
-def _padded_lines(lines: _Lines, ids: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Lines ``ids`` (``(K,)`` sorted int64) copied into one buffer as
-    :mod:`._lines` wants it: every line after a blank, the last byte ``\n``.
+def _padded_lines(lines: _Lines, ids: np.ndarray, odd: bytes,
+                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Lines ``ids`` (``(K,)`` sorted int64, K > 0) copied into one buffer as
+    :mod:`._lines` wants it: every line after a blank, the last byte ``\\n``.
 
     Returns:
-        ``(block, starts, commas)``: ``(S,)`` uint8, ``(K,)`` int64 line starts,
-        and ``(K,)`` bool the lines holding a comma, which
-        :func:`._lines.parse_number_lines` takes as a blank and ``float()`` not.
+        ``(block, starts, flagged)``: ``(S,)`` uint8, ``(K,)`` int64 line
+        starts, and ``(K,)`` bool the lines holding a byte of ``odd`` (one a
+        parser takes and the token path does not, such as a comma).
     """
-    block, starts = gather_lines(lines.buf, lines.starts, lines.ends, ids)
-    commas = np.zeros(len(ids), dtype=bool)
-    commas[np.searchsorted(starts, np.flatnonzero(block == ord(",")), side="right") - 1] = True
+    block = _line_bytes(lines, ids)
+    lengths = lines.ends[ids] + 1 - lines.starts[ids]
+    starts = np.cumsum(lengths) - lengths
+    hits = np.zeros(len(block), dtype=bool)
+    for byte in odd:
+        hits |= block == byte
+    flagged = np.zeros(len(ids), dtype=bool)
+    flagged[np.searchsorted(starts, np.flatnonzero(hits), side="right") - 1] = True
     # a PLY line starts with its first number: give it the blank the parser needs
-    return np.insert(block, starts, np.uint8(32)), starts + np.arange(len(ids)), commas
+    return np.insert(block, starts, np.uint8(32)), starts + np.arange(len(ids)), flagged
+
+
+def _line_bytes(lines: _Lines, ids: np.ndarray) -> np.ndarray:
+    """``(S,)`` uint8 the bytes of lines ``ids`` (``(K,)`` sorted int64, K > 0),
+    newlines included, one after the other (a view when they are consecutive)."""
+    first, last = int(ids[0]), int(ids[-1])
+    block = lines.buf[lines.starts[first] : lines.ends[last] + 1]
+    if len(ids) == last - first + 1:
+        return block
+    lengths = lines.ends[first : last + 1] + 1 - lines.starts[first : last + 1]
+    chosen = np.zeros(last - first + 1, dtype=bool)
+    chosen[ids - first] = True
+    if len(block) > 4 * int(lengths[chosen].sum()):  # a few among many: slice by slice
+        return gather_lines(lines.buf, lines.starts, lines.ends, ids)[0]
+    return block[np.repeat(chosen, lengths)]  # one mask beats a slice per line
