@@ -289,9 +289,9 @@ def walked(self, element, wanted):  # type: ignore[no-untyped-def]
 def test_the_one_layout_and_the_row_by_row_paths_agree(
     make, monkeypatch: pytest.MonkeyPatch  # type: ignore[no-untyped-def]
 ) -> None:
-    from livemod.dlfl.io import ply
+    from livemod.dlfl.io import _ply_ascii, ply
 
-    monkeypatch.setattr(ply, "_LINE_PATH_MIN_BYTES", 0)  # small files too
+    monkeypatch.setattr(_ply_ascii, "_LINE_PATH_MIN_BYTES", 0)  # small files too
     data = make()
     fast = parse_ply(data)  # ASCII: the line path
     monkeypatch.setattr(ply._AsciiBody, "_line_table", lambda *args: None)
@@ -519,7 +519,7 @@ def outcome(data: bytes) -> tuple[bytes, bytes, bytes] | str:
 
 def token_path_outcome(data: bytes) -> tuple[bytes, bytes, bytes] | str:
     """:func:`outcome` with the line path switched off."""
-    from livemod.dlfl.io import ply
+    from livemod.dlfl.io import _ply_ascii as ply
 
     with pytest.MonkeyPatch.context() as patch:
         patch.setattr(ply._AsciiBody, "_line_table", lambda *args: None)
@@ -612,7 +612,7 @@ def random_ascii_ply(seed: int) -> bytes:
 
 def counting_line_tables(patch: pytest.MonkeyPatch) -> list[bool]:
     """Record, for every element the line path is asked for, whether it read it."""
-    from livemod.dlfl.io import ply
+    from livemod.dlfl.io import _ply_ascii as ply
 
     taken: list[bool] = []
     line_table = ply._AsciiBody._line_table
@@ -629,7 +629,7 @@ def counting_line_tables(patch: pytest.MonkeyPatch) -> list[bool]:
 def line_path_for_small_files(patch: pytest.MonkeyPatch, small_passes: bool = False) -> None:
     """Take the line path whatever the body's size; with ``small_passes``, in
     passes of 3 lines and scan slices of 16 bytes (many passes, on threads)."""
-    from livemod.dlfl.io import ply
+    from livemod.dlfl.io import _ply_ascii as ply
 
     patch.setattr(ply, "_LINE_PATH_MIN_BYTES", 0)
     if small_passes:
@@ -671,7 +671,7 @@ def test_the_line_and_token_paths_agree_on_mutated_files(
 
 
 def test_exporter_layouts_never_need_the_token_path(monkeypatch: pytest.MonkeyPatch) -> None:
-    from livemod.dlfl.io import ply
+    from livemod.dlfl.io import _ply_ascii as ply
 
     def refuse(*args):  # type: ignore[no-untyped-def]
         raise AssertionError("the token path ran")
