@@ -273,3 +273,17 @@ def test_a_bouquet_of_two_gons_between_two_vertices_builds_a_sphere(lunes: int) 
     validate(m)
     assert m.counts() == (2, lunes, lunes) and genus(m) == 0
     assert sorted(len(m.vertex_corners(v)) for v in m.vertex_ids().tolist()) == [lunes, lunes]
+
+
+def test_join_meshes_keeps_each_mesh_as_a_component_holes_included():
+    from livemod.dlfl.build import join_meshes
+
+    box = from_polygons(CUBE_POSITIONS, CUBE_FACES[1:])  # open: its top is a hole
+    ring = from_polygons(*torus_polygons(5, 3))
+    joined = join_meshes([box, ring, box])
+    validate(joined)
+    assert joined.counts() == tuple(2 * a + b for a, b in zip(box.counts(), ring.counts(),
+                                                             strict=True))
+    assert sorted(component_genera(joined)) == [0, 0, 1]
+    assert sum(joined.is_hole(int(f)) for f in joined.face_ids()) == 2
+    assert join_meshes([]).counts() == (0, 0, 0)

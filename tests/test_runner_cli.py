@@ -308,8 +308,32 @@ def test_run_says_which_object_of_several_it_counted_and_wrote(tmp_path, capsys)
     out = capsys.readouterr().out
     assert "V=4 E=6 F=4" in out
     assert ("objects: 2 in the scene; the counts above and -o are the current one's "
-            "(object 1; the script can switch() to another and save() it)") in out
+            "(object 1; --all-objects joins them all)") in out
     single = tmp_path / "one.py"
     single.write_text("load('cube')\n")
     assert cli.main(["run", str(single)]) == 0
     assert "objects:" not in capsys.readouterr().out
+
+
+def test_all_objects_joins_the_scene_for_run_watch_and_batch(tmp_path, capsys):
+    from livemod.dlfl.analysis import component_genera
+    from livemod.dlfl.io import load_mesh
+    from livemod.runner.batch import make_variants, run_variant
+
+    script = tmp_path / "two.py"
+    script.write_text("n = param('n', 2)\nload('cube')\nfor i in range(n):\n    load('torus')\n"
+                      "    translate(5 * (i + 1), 0, 0)\n")
+    out = tmp_path / "all.obj"
+    assert cli.main(["run", str(script), "--all-objects", "-o", str(out)]) == 0
+    printed = capsys.readouterr().out
+    assert "objects: 3, joined into one mesh for the counts above and -o" in printed
+    assert sorted(component_genera(load_mesh(out))) == [0, 1, 1]
+    watched = tmp_path / "watched.obj"
+    assert cli.main(["run", "--watch", str(script), "--all-objects", "-o", str(watched),
+                     "--max-runs", "1"]) == 0
+    assert load_mesh(watched).counts() == load_mesh(out).counts()
+    variant, = make_variants(str(script), [{"n": 1}], str(tmp_path / "v.obj"),
+                             all_objects=True)
+    result = run_variant(variant)
+    assert result.status == "ok" and result.counts == load_mesh(tmp_path / "v.obj").counts()
+    assert sorted(component_genera(load_mesh(tmp_path / "v.obj"))) == [0, 1]

@@ -731,6 +731,25 @@ def _chunks(count: int) -> list[slice]:
     return [slice(start, min(start + CHUNK, count)) for start in range(0, count, CHUNK)]
 
 
+def join_meshes(meshes: Sequence[Mesh]) -> Mesh:
+    """One mesh holding a copy of each of ``meshes``, as separate components.
+
+    Elements are numbered densely, mesh after mesh (the meshes' own ids are not
+    kept); hole faces stay holes.
+
+    Args:
+        meshes: the meshes to join, in order (none gives an empty mesh).
+    """
+    from .arrays import concatenate_arrays, mesh_arrays
+
+    parts = [mesh_arrays(mesh) for mesh in meshes]
+    if not parts:
+        return Mesh()
+    joined = concatenate_arrays(parts)
+    return from_corner_arrays(joined.positions, joined.face_offsets, joined.corner_vertex,
+                              joined.corner_mate, joined.face_hole)
+
+
 def point_cloud(positions: Any) -> Mesh:
     """A mesh of point-spheres, one per position (what a file without faces holds).
 

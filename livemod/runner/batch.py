@@ -41,6 +41,7 @@ class Variant:
     mesh_path: str | None = None
     seed: int | None = 0
     selection: Selection | None = None
+    all_objects: bool = False
 
 
 @dataclass(frozen=True)
@@ -166,7 +167,7 @@ def run_variant(variant: Variant) -> VariantResult:
     from livemod.dlfl.analysis import genus
 
     from .headless import run_outcome
-    from .results import current_mesh, save_result
+    from .results import result_mesh, save_result
 
     started = time.perf_counter()
     parameters = dict(variant.parameters)
@@ -178,7 +179,7 @@ def run_variant(variant: Variant) -> VariantResult:
         return _failed(variant, str(exc), started)
     if outcome.error is not None:
         return _failed(variant, str(outcome.error), started)
-    mesh = current_mesh(outcome.scene)
+    mesh = result_mesh(outcome.scene, variant.all_objects)
     counts = mesh.counts() if mesh is not None else (0, 0, 0)
     shape_genus = genus(mesh) if mesh is not None else None
     if variant.output is not None and mesh is not None:
@@ -309,9 +310,11 @@ def _process_context() -> multiprocessing.context.BaseContext:
 
 def make_variants(script: str, parameter_sets: list[dict[str, Any]], pattern: str | None,
                   *, mesh_path: str | None = None, seed: int | None = 0,
-                  selection: Selection | None = None) -> list[Variant]:
+                  selection: Selection | None = None,
+                  all_objects: bool = False) -> list[Variant]:
     """One :class:`Variant` per parameter set, outputs named from ``pattern``; every
-    variant starts with the same ``selection`` (what ``faces(True)`` returns).
+    variant starts with the same ``selection`` (what ``faces(True)`` returns) and
+    with ``all_objects`` writes every object of its scene joined.
 
     Raises:
         ValueError: see :func:`output_name`, or two variants would write one file.
@@ -320,7 +323,7 @@ def make_variants(script: str, parameter_sets: list[dict[str, Any]], pattern: st
     variants = [
         Variant(i, script, tuple(params.items()),
                 output_name(pattern, params, i) if pattern else None, mesh_path, seed,
-                selection)
+                selection, all_objects)
         for i, params in enumerate(parameter_sets)
     ]
     _check_distinct_outputs(variants, pattern)

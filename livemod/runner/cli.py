@@ -21,7 +21,7 @@ from livemod.dlfl.scene import Selection
 from .batch import declared_sweep, index_path, make_variants, run_batch, sweep, write_index
 from .declarations import declared_parameters, describe, given_values, undeclared
 from .headless import missing_picks_note, run_outcome
-from .results import RunResult, StepRecord, current_mesh, save_result
+from .results import RunResult, StepRecord, result_mesh, save_result
 
 OUTPUT_SUFFIXES = (".obj", ".dlfl", ".stl", ".ply")
 
@@ -92,6 +92,13 @@ def _select_text(text: str) -> str:
     return text
 
 
+def add_all_objects_option(parser: argparse.ArgumentParser) -> None:
+    """``--all-objects``: write (and count) every object of the scene, joined."""
+    parser.add_argument("--all-objects", action="store_true",
+                        help="write and count every object of the scene joined into one "
+                             "mesh (default: the current object)")
+
+
 def selection_of(args: argparse.Namespace) -> Selection | None:
     """The selection of the ``--select`` options (checked as they were parsed), or
     None when there were none."""
@@ -104,6 +111,7 @@ def _add_run(subparsers: Any) -> None:
     run.add_argument("--mesh", metavar="IN", help="mesh the script starts from (.obj .dlfl .stl .ply)")
     run.add_argument("-o", "--output", metavar="OUT", help="write the result (.obj .dlfl .stl .ply)")
     run.add_argument("--steps", action="store_true", help="print the step list")
+    add_all_objects_option(run)
     run.add_argument("--seed", type=_seed, default=0, help="seed of random/numpy (or 'none')")
     run.add_argument("--set", "--param", dest="set", action="append", default=[],
                      metavar="NAME=VALUE", help="a declared script parameter, repeatable")
@@ -127,6 +135,7 @@ def _add_batch(subparsers: Any) -> None:
     batch.add_argument("-j", "--jobs", type=_jobs, default=os.cpu_count() or 1,
                        help="processes to run variants on (default: one per core)")
     batch.add_argument("--mesh", metavar="IN", help="mesh every variant starts from")
+    add_all_objects_option(batch)
     batch.add_argument("--seed", type=_seed, default=0, help="seed of random/numpy (or 'none')")
     add_select_option(batch)
     batch.set_defaults(handler=cmd_batch)
@@ -172,13 +181,23 @@ def _finish_run(args: argparse.Namespace, outcome: Any, params: dict[str, Any]) 
         print(outcome.error.traceback.rstrip(), file=sys.stderr)
         print(str(outcome.error), file=sys.stderr)
         return 1
-    mesh = current_mesh(outcome.scene)
+    mesh = result_mesh(outcome.scene, args.all_objects)
     print_summary(args.script, mesh, len(outcome.steps), outcome.elapsed)
-    if len(outcome.scene.objects) > 1:
-        print(f"objects: {len(outcome.scene.objects)} in the scene; the counts above"
-              f"{' and -o' if args.output else ''} are the current one's (object "
-              f"{outcome.scene.current}; the script can switch() to another and save() it)")
+    _print_objects(outcome.scene, args)
     return _save(mesh, args.output)
+
+
+def _print_objects(scene: Any, args: argparse.Namespace) -> None:
+    """Say which objects the summary (and ``-o``) cover, when the scene has several."""
+    count = len(scene.objects)
+    if count <= 1:
+        return
+    if args.all_objects:
+        print(f"objects: {count}, joined into one mesh for the counts above"
+              f"{' and -o' if args.output else ''}")
+        return
+    print(f"objects: {count} in the scene; the counts above{' and -o' if args.output else ''} "
+          f"are the current one's (object {scene.current}; --all-objects joins them all)")
 
 
 def _save(mesh: Any, output: str | None) -> int:
@@ -231,7 +250,8 @@ def _watch(args: argparse.Namespace, params: dict[str, Any]) -> int:
     from .session import LiveSession
 
     session = LiveSession(args.script, mesh_path=args.mesh, seed=args.seed, poll=args.poll,
-                          preview=False, output=args.output, parameters=params)
+                          preview=False, output=args.output, parameters=params,
+                          all_objects=args.all_objects)
     session.set_selection(selection_of(args))
     session.start()
     print(f"watching {session.script} (Ctrl-C to stop)", file=sys.stderr)
@@ -271,7 +291,8 @@ def cmd_batch(args: argparse.Namespace) -> int:
         specs = declared_parameters(args.script)
         sets = sweep(declared_sweep(text, specs) for text in args.param)
         variants = make_variants(args.script, sets, args.output, mesh_path=args.mesh,
-                                 seed=args.seed, selection=selection_of(args))
+                                 seed=args.seed, selection=selection_of(args),
+                                 all_objects=args.all_objects)
     except (ValueError, DLFLError, OSError) as exc:
         print(f"livemod batch: {exc}", file=sys.stderr)
         return 2

@@ -220,6 +220,17 @@ def current_mesh(scene: Scene) -> Mesh | None:
     return scene.objects[scene.current].mesh
 
 
+def result_mesh(scene: Scene, all_objects: bool = False) -> Mesh | None:
+    """The mesh a run's output holds: the current object's, or with ``all_objects``
+    every object of the scene joined into one mesh (each a component); None for
+    an empty scene."""
+    if not all_objects or len(scene.objects) <= 1:
+        return current_mesh(scene)
+    from livemod.dlfl.build import join_meshes
+
+    return join_meshes([obj.mesh for obj in scene.objects.values()])
+
+
 def save_result(mesh: Mesh, path: str) -> None:
     """Write a run's mesh to ``path`` (format by suffix, atomically), making its
     folder if missing, as ``run -o``, ``run --watch -o`` and batch outputs do.

@@ -42,6 +42,7 @@ from .results import (
     StepRecord,
     current_mesh,
     parameter_items,
+    result_mesh,
     save_result,
     snapshot_others,
     snapshot_scene,
@@ -83,6 +84,7 @@ class LiveSession:
             (True: :func:`preview_arrays`; or a function ``Mesh -> MeshArrays | None``).
         notifier: the file-event source (tests inject a ManualNotifier).
         output: save the mesh here after every successful run (``run --watch -o``).
+        all_objects: save every object of the scene joined, not just the current one.
         parameters: initial script parameters (globals and ``scene.parameters``).
         base: a scene every run starts from (copied per run), instead of ``mesh_path``.
         snapshot_budget: bytes of paused snapshots kept for stepping back without a
@@ -96,12 +98,14 @@ class LiveSession:
                  seed: int | None = 0, debounce: float = 0.15, poll: bool = False,
                  preview: bool | Callable[[Mesh], MeshArrays | None] = True, notifier: Notifier | None = None,
                  output: str | None = None, parameters: dict | None = None,
+                 all_objects: bool = False,
                  base: Scene | None = None, snapshot_budget: int = DEFAULT_BUDGET) -> None:
         self.script = os.path.abspath(os.fspath(script))
         self.results: queue.Queue[RunResult] = queue.Queue()
         self.mesh_path = mesh_path
         self.seed = seed
         self.output = output
+        self.all_objects = all_objects
         self._parameters = dict(parameters or {})
         self._declarations: dict[str, ParamSpec] = {}  # of the newest script text
         self._selection: Selection | None = None
@@ -517,7 +521,7 @@ class LiveSession:
 
     def _save_output(self, outcome: RunOutcome) -> ScriptError | None:
         """Write the mesh to ``output`` (``run --watch -o``); an error if that fails."""
-        mesh = current_mesh(outcome.scene)
+        mesh = result_mesh(outcome.scene, self.all_objects)
         if self.output is None or mesh is None:
             return None
         try:
