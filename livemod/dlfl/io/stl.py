@@ -352,16 +352,17 @@ class _AsciiStl:
                         f"or more), endloop, endfacet'")
 
     def _first_bad_facet(self) -> int | None:
-        """The index of the first malformed facet, or None when all are well formed."""
+        """The index of the first malformed facet, or None when all are well formed.
+
+        Keyword positions say it all: a facet is ``facet normal NX NY NZ`` (5 words
+        up to ``outer``), ``outer loop``, 4 words per ``vertex X Y Z``, then
+        ``endloop endfacet``, directly followed by the next ``facet`` (or by
+        ``endsolid``). Keywords missing from the end show as unequal counts.
+        """
         f, o, el, ef = self.facet, self.outer, self.endloop, self.endfacet
         n = min(len(f), len(o), len(el), len(ef))
         f, o, el, ef = f[:n], o[:n], el[:n], ef[:n]
-        loop_of = np.searchsorted(self.outer, self.vertex) - 1
-        vertex_ok = (loop_of >= 0) & (loop_of < n)
-        inside = self.vertex[vertex_ok] - o[loop_of[vertex_ok]]
-        vertex_ok[vertex_ok] = (self.vertex[vertex_ok] < el[loop_of[vertex_ok]]) & (
-            (inside - 2) % 4 == 0)
-        sizes = np.bincount(loop_of[vertex_ok], minlength=n)[:n]
+        loop_of, vertex_ok, sizes = self._vertices_in_loops(o, el)
         after = np.append(f[1:], len(self.words))
         ok = ((o - f == 5) & (self._code_after(f) == _NORMAL) & (self._code_after(o) == _LOOP)
               & (sizes >= 3) & (el - o - 2 == 4 * sizes) & (ef - el == 1) & (ef < after)
@@ -371,6 +372,18 @@ class _AsciiStl:
         if max(len(self.facet), len(self.outer), len(self.endloop), len(self.endfacet)) > n:
             bad.append(n)
         return min(bad) if bad else None
+
+    def _vertices_in_loops(self, outer: np.ndarray, endloop: np.ndarray
+                           ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """``(loop_of, ok, sizes)``: the loop each ``vertex`` word follows (-1 before
+        any), whether it sits inside that loop at a 4-word step, and how many do,
+        per loop (``outer``/``endloop``: ``(n,)`` word indices of complete loops)."""
+        n = len(outer)
+        loop_of = np.searchsorted(self.outer, self.vertex) - 1
+        ok = (loop_of >= 0) & (loop_of < n)
+        step = self.vertex[ok] - outer[loop_of[ok]] - 2
+        ok[ok] = (self.vertex[ok] < endloop[loop_of[ok]]) & (step % 4 == 0)
+        return loop_of, ok, np.bincount(loop_of[ok], minlength=n)[:n]
 
     def _code_after(self, at: np.ndarray) -> np.ndarray:
         """``(K,)`` keyword code of the word after each of ``at`` (0 past the end)."""
