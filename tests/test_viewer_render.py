@@ -317,3 +317,28 @@ def test_a_target_renders_the_same_after_other_contexts_come_and_go(
     other = Offscreen(SIZE, samples=0)
     other.release()
     assert np.array_equal(offscreen.render(camera, Style()), before)
+
+
+def test_grid_and_axes_show_when_asked_and_are_never_picked(offscreen: Offscreen) -> None:
+    arrays = mesh_arrays(cube())
+    offscreen.renderer.set_mesh(arrays)
+    camera = framed_camera(arrays, elevation=30.0)
+    camera.distance *= 2.5  # room around the cube for the grid
+    plain = _mask(offscreen.render(camera, Style()))
+    guided = _mask(offscreen.render(camera, Style(grid=True)))
+    extra = guided & ~plain
+    assert extra.sum() > 200 and not (plain & ~guided).any()
+    rows, cols = np.nonzero(extra)
+    assert offscreen.renderer.pick(camera, SIZE, int(cols[0]), int(rows[0]), "face") is None
+
+
+def test_hidden_other_objects_are_not_drawn_nor_in_the_way(offscreen: Offscreen) -> None:
+    current, other = mesh_arrays(cube()), _moved(mesh_arrays(cube()), -4.0)
+    offscreen.renderer.set_mesh(current, None, other)
+    behind = framed_camera(concatenate_arrays([current, other]), elevation=0.0, yaw=-90.0,
+                           ortho=True)
+    shown = offscreen.render(behind, Style())
+    assert offscreen.renderer.pick(behind, SIZE, SIZE[0] // 2, SIZE[1] // 2, "face") is None
+    hidden = offscreen.render(behind, Style(others=False))
+    assert not np.array_equal(shown, hidden)
+    assert offscreen.renderer.pick(behind, SIZE, SIZE[0] // 2, SIZE[1] // 2, "face") is not None

@@ -150,6 +150,10 @@ def test_keys_change_style_camera_and_pick_mode(headless) -> None:
     viewer.handle_key("H")
     run_frames(viewer, 2)
     assert viewer.show_help
+    before = viewer.capture()
+    assert viewer.handle_key("X") == "toggle_grid" and viewer.style.grid
+    assert not np.array_equal(viewer.capture(), before)
+    assert viewer.handle_key("A") == "toggle_others" and not viewer.style.others
 
 
 def test_shift_click_adds_and_escape_clears(headless) -> None:

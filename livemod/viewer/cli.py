@@ -66,6 +66,8 @@ def _add_render(subparsers: Any) -> None:
     render.add_argument("--ortho", action="store_true", help="orthographic projection")
     render.add_argument("--vertices", action="store_true", help="draw vertices")
     render.add_argument("--no-edges", action="store_true", help="hide the edges")
+    render.add_argument("--grid", action="store_true",
+                        help="draw a ground grid and the x, y, z axes")
     render.add_argument("--samples", type=int, default=None,
                         help="MSAA samples; default 4 for one frame, 0 for a turntable "
                         "(edges are anti-aliased in the shader; MSAA triples the cost "
@@ -139,7 +141,7 @@ def _render_to(args: argparse.Namespace, offscreen: Any, values: dict[str, Any],
         print("livemod: warning: no patch preview available; drawing the mesh",
               file=sys.stderr)
     style = Style(edges=not args.no_edges, vertices=args.vertices, preview=args.preview,
-                  labels=labels)
+                  labels=labels, grid=args.grid)
     progress = ProgressBar("rendering") if args.turntable > 1 else None
     return render_arrays(arrays, args.output, turntable=args.turntable,
                          elevation=args.elevation, style=style, preview=preview,

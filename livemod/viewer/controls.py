@@ -45,6 +45,8 @@ KEY_BINDINGS: tuple[Binding, ...] = (
     Binding("W", "", "toggle_edges", "wireframe (edges) on/off"),
     Binding("V", "", "toggle_vertices", "vertices on/off"),
     Binding("P", "", "toggle_preview", "patch-smoothed preview on/off"),
+    Binding("A", "", "toggle_others", "the scene's other objects on/off"),
+    Binding("X", "", "toggle_grid", "ground grid and axes on/off"),
     Binding("F", "ctrl", "labels_faces", "face id labels on/off"),
     Binding("E", "ctrl", "labels_edges", "edge id labels on/off"),
     Binding("V", "ctrl", "labels_vertices", "vertex id labels on/off"),

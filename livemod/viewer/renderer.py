@@ -65,6 +65,9 @@ class Style:
         labels_selected_only: label only the selected elements.
         point_size: vertex point size in pixels.
         background: RGBA clear colour.
+        others: draw the scene's other objects (see :meth:`Renderer.set_mesh`).
+        grid: draw a ground grid under the scene and the x, y, z axes (red,
+            green, blue) from the origin.
     """
 
     faces: bool = True
@@ -75,6 +78,8 @@ class Style:
     labels_selected_only: bool = False
     point_size: float = 6.0
     background: tuple[float, float, float, float] = (0.16, 0.17, 0.19, 1.0)
+    others: bool = True
+    grid: bool = False
 
 
 @dataclass(frozen=True)
@@ -163,6 +168,39 @@ class _MeshGPU:
             obj.release()
 
 
+GRID_COLOR = (0.30, 0.31, 0.34)
+AXIS_COLORS = ((0.85, 0.25, 0.25), (0.30, 0.75, 0.30), (0.30, 0.45, 0.90))
+
+
+def guide_lines(bounds: np.ndarray) -> list[tuple[np.ndarray, tuple[float, float, float]]]:
+    """The ground grid and the three axes for a scene of ``(2, 3)`` ``bounds``.
+
+    The grid lies in the plane y = bounds' bottom, centred under the scene, its
+    spacing a power of ten, or twice or five times one, that gives 10 to 25 cells
+    across the scene's larger horizontal size; the axes run from the origin, as long as
+    the scene is large.
+
+    Returns:
+        ``(lines, rgb)`` pairs: ``(2 * L, 3)`` float64 segment ends and their colour.
+    """
+    size = float(max(np.ptp(bounds[:, [0, 2]], axis=0).max(), 1e-6))
+    step = 10.0 ** np.floor(np.log10(size / 10.0))
+    step *= 5.0 if size / step > 50 else 2.0 if size / step > 20 else 1.0
+    centre = np.round(bounds.mean(axis=0) / step) * step
+    half = np.ceil(0.75 * size / step) * step
+    ticks = np.arange(-half, half + step / 2, step)
+    y = float(bounds[0, 1])
+    along_x = [[(centre[0] - half, y, centre[2] + t), (centre[0] + half, y, centre[2] + t)]
+               for t in ticks]
+    along_z = [[(centre[0] + t, y, centre[2] - half), (centre[0] + t, y, centre[2] + half)]
+               for t in ticks]
+    grid = np.array(along_x + along_z, dtype=np.float64).reshape(-1, 3)
+    length = max(size, float(np.ptp(bounds[:, 1])))
+    axes = [(np.array([(0.0, 0.0, 0.0), tuple(length * np.eye(3)[k])]), AXIS_COLORS[k])
+            for k in range(3)]
+    return [(grid, GRID_COLOR), *axes]
+
+
 def _matrix_bytes(matrix: np.ndarray) -> bytes:
     """A row-major numpy ``(4, 4)`` as the column-major float32 GL expects."""
     return np.ascontiguousarray(matrix.T, dtype=np.float32).tobytes()
@@ -180,6 +218,8 @@ class Renderer:
                                 fragment_shader=shaders.EDGE_FRAGMENT),
             "point": ctx.program(vertex_shader=shaders.MESH_VERTEX,
                                  fragment_shader=shaders.POINT_FRAGMENT),
+            "line": ctx.program(vertex_shader=shaders.MESH_VERTEX,
+                                fragment_shader=shaders.LINE_FRAGMENT),
             "text": ctx.program(vertex_shader=shaders.TEXT_VERTEX,
                                 fragment_shader=shaders.TEXT_FRAGMENT),
         }
@@ -196,6 +236,7 @@ class Renderer:
         self.selection = Selection()
         self._mesh: _MeshGPU | None = None
         self._others: _MeshGPU | None = None
+        self._others_shown = True
         self._preview: _MeshGPU | None = None
         self._label_cache: tuple[object, np.ndarray] | None = None
         self._pick_fbo: moderngl.Framebuffer | None = None
@@ -279,10 +320,26 @@ class Renderer:
         self._set_view(camera, width / max(height, 1))
         self.ctx.enable(moderngl.DEPTH_TEST | moderngl.PROGRAM_POINT_SIZE)
         self.ctx.disable(moderngl.CULL_FACE | moderngl.BLEND)
-        if self._others is not None:
+        self._others_shown = style.others  # picking hides what the frame hid
+        if style.grid:
+            self._draw_guides()
+        if self._others is not None and style.others:
             self._draw_scenery(self._others, style)
         if self._mesh is not None:
             self._draw_current(self._mesh, camera, style, (width, height))
+
+    def _draw_guides(self) -> None:
+        """The ground grid and the axes, sized to what is drawn (see :func:`guide_lines`)."""
+        bounds = self.bounds
+        assert bounds is not None
+        program = self.programs["line"]
+        for lines, color in guide_lines(bounds):
+            program["line_color"].value = color  # type: ignore[union-attr]
+            buffer = self.ctx.buffer(lines.astype(np.float32).tobytes())
+            vao = self.ctx.vertex_array(program, [(buffer, "3f", "in_position")])
+            vao.render(moderngl.LINES)
+            vao.release()
+            buffer.release()
 
     def _draw_scenery(self, others: _MeshGPU, style: Style) -> None:
         """The other objects: their faces, or their edges when faces are off. Their
@@ -519,7 +576,7 @@ class Renderer:
         self._set_view(camera, fbo.size[0] / max(fbo.size[1], 1))
         self.ctx.enable(moderngl.DEPTH_TEST | moderngl.PROGRAM_POINT_SIZE)
         self.ctx.disable(moderngl.BLEND | moderngl.CULL_FACE)
-        if self._others is not None:  # they hide what is behind them, with id 0
+        if self._others is not None and self._others_shown:  # they hide, with id 0
             self._draw_faces(self._others, OTHER_COLOR)
         self._draw_faces(self._mesh, BASE_COLOR)
         if kind == "edge":

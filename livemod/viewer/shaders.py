@@ -126,6 +126,17 @@ void main() {
 }
 """
 
+LINE_FRAGMENT = """
+#version 330
+uniform vec3 line_color;
+layout(location = 0) out vec4 color;
+layout(location = 1) out uint pick;
+void main() {
+    color = vec4(line_color, 1.0);
+    pick = 0u;  // guides (grid, axes) are never picked
+}
+"""
+
 TEXT_VERTEX = """
 #version 330
 uniform mat4 mvp;
