@@ -342,3 +342,12 @@ def test_hidden_other_objects_are_not_drawn_nor_in_the_way(offscreen: Offscreen)
     hidden = offscreen.render(behind, Style(others=False))
     assert not np.array_equal(shown, hidden)
     assert offscreen.renderer.pick(behind, SIZE, SIZE[0] // 2, SIZE[1] // 2, "face") is not None
+
+
+def test_render_on_a_light_background(tmp_path: Path) -> None:
+    out = tmp_path / "light.png"
+    assert main(["render", "cube", "-o", str(out), "--size", "64x48", "--background",
+                 "light"]) == 0
+    image = np.asarray(Image.open(out).convert("RGB"))
+    assert image[0, 0].tolist() == [round(0.93 * 255)] * 2 + [round(0.92 * 255)]
+    assert np.abs(image[24, 32].astype(int) - image[0, 0]).sum() > 60  # the cube is there

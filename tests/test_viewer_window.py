@@ -154,6 +154,12 @@ def test_keys_change_style_camera_and_pick_mode(headless) -> None:
     assert viewer.handle_key("X") == "toggle_grid" and viewer.style.grid
     assert not np.array_equal(viewer.capture(), before)
     assert viewer.handle_key("A") == "toggle_others" and not viewer.style.others
+    dark = viewer.capture()
+    viewer.handle_key("B")
+    light = viewer.capture()
+    assert light[0, 0].min() > 200 > dark[0, 0].max()
+    viewer.handle_key("B")
+    assert np.array_equal(viewer.capture(), dark)
 
 
 def test_shift_click_adds_and_escape_clears(headless) -> None:

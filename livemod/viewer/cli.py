@@ -68,6 +68,8 @@ def _add_render(subparsers: Any) -> None:
     render.add_argument("--no-edges", action="store_true", help="hide the edges")
     render.add_argument("--grid", action="store_true",
                         help="draw a ground grid and the x, y, z axes")
+    render.add_argument("--background", choices=("dark", "light"), default="dark",
+                        help="background colour (default: dark)")
     render.add_argument("--samples", type=int, default=None,
                         help="MSAA samples; default 4 for one frame, 0 for a turntable "
                         "(edges are anti-aliased in the shader; MSAA triples the cost "
@@ -133,15 +135,16 @@ def _render_to(args: argparse.Namespace, offscreen: Any, values: dict[str, Any],
     from livemod.progress import ProgressBar
 
     from .headless import render_arrays
-    from .renderer import Style
+    from .renderer import DARK_BACKGROUND, LIGHT_BACKGROUND, Style
 
     arrays, preview, others = _load_input(args.input, args.mesh, args.preview, values,
                                           selection)
     if args.preview and preview is None:
         print("livemod: warning: no patch preview available; drawing the mesh",
               file=sys.stderr)
+    background = LIGHT_BACKGROUND if args.background == "light" else DARK_BACKGROUND
     style = Style(edges=not args.no_edges, vertices=args.vertices, preview=args.preview,
-                  labels=labels, grid=args.grid)
+                  labels=labels, grid=args.grid, background=background)
     progress = ProgressBar("rendering") if args.turntable > 1 else None
     return render_arrays(arrays, args.output, turntable=args.turntable,
                          elevation=args.elevation, style=style, preview=preview,

@@ -77,7 +77,7 @@ class Style:
     labels: frozenset[str] = field(default_factory=frozenset)
     labels_selected_only: bool = False
     point_size: float = 6.0
-    background: tuple[float, float, float, float] = (0.16, 0.17, 0.19, 1.0)
+    background: tuple[float, float, float, float] = (0.16, 0.17, 0.19, 1.0)  # dark
     others: bool = True
     grid: bool = False
 
@@ -168,6 +168,8 @@ class _MeshGPU:
             obj.release()
 
 
+DARK_BACKGROUND = (0.16, 0.17, 0.19, 1.0)
+LIGHT_BACKGROUND = (0.93, 0.93, 0.92, 1.0)   # for pictures on a white page
 GRID_COLOR = (0.30, 0.31, 0.34)
 AXIS_COLORS = ((0.85, 0.25, 0.25), (0.30, 0.75, 0.30), (0.30, 0.45, 0.90))
 

@@ -32,7 +32,7 @@ from .controls import PICK_MODES, action_for, selection_python, toggle_pick
 from .geometry import sample_points
 from .hud import hud_quads
 from .params_panel import Hit, ParameterPanel
-from .renderer import Renderer, Style
+from .renderer import DARK_BACKGROUND, LIGHT_BACKGROUND, Renderer, Style
 
 SCRIPT_SUFFIXES = (".py",)
 PARAMETER_DEBOUNCE = 0.15  # seconds a dragged slider rests before the script re-runs
@@ -315,6 +315,11 @@ class LiveViewer(mglw.WindowConfig):
 
     def _do_toggle_hud(self) -> None:
         self.show_hud = not self.show_hud
+
+    def _do_toggle_background(self) -> None:
+        light = self.style.background == DARK_BACKGROUND
+        self.style = replace(self.style,
+                             background=LIGHT_BACKGROUND if light else DARK_BACKGROUND)
 
     def _do_toggle_ortho(self) -> None:
         self.camera.ortho = not self.camera.ortho
