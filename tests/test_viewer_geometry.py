@@ -226,3 +226,20 @@ def test_guide_lines_grid_spacing_and_axes() -> None:
         assert ends[1][k] == pytest.approx(5.0) and np.count_nonzero(ends[1]) == 1
     big = guide_lines(np.array([[0.0, 0.0, 0.0], [300.0, 1.0, 40.0]]))[0][0]
     assert float(np.diff(np.unique(big[:, 0].round(6))).min()) == pytest.approx(20.0)
+
+
+def test_vertex_normals_are_unit_sums_of_the_triangles_around() -> None:
+    from livemod.dlfl import mesh_arrays
+    from livemod.dlfl.shapes import cube
+    from livemod.viewer.geometry import build_geometry, vertex_normals
+
+    geometry = build_geometry(mesh_arrays(cube()))
+    normals = vertex_normals(geometry.positions, geometry.triangles)
+    assert normals.dtype == np.float32 and normals.shape == (8, 3)
+    np.testing.assert_allclose(np.linalg.norm(normals, axis=1), 1.0, rtol=1e-6)
+    # each corner of the cube points out along its diagonal, up to the fan's
+    # uneven split of each square into two triangles
+    outward = np.sign(geometry.positions)
+    assert np.all(np.sign(normals) == outward)
+    lonely = vertex_normals(np.zeros((2, 3)), np.zeros((0, 3), dtype=np.uint32))
+    assert np.array_equal(lonely, np.zeros((2, 3), dtype=np.float32))

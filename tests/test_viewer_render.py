@@ -351,3 +351,19 @@ def test_render_on_a_light_background(tmp_path: Path) -> None:
     image = np.asarray(Image.open(out).convert("RGB"))
     assert image[0, 0].tolist() == [round(0.93 * 255)] * 2 + [round(0.92 * 255)]
     assert np.abs(image[24, 32].astype(int) - image[0, 0]).sum() > 60  # the cube is there
+
+
+def test_smooth_shading_changes_the_faces_not_the_picks(offscreen: Offscreen) -> None:
+    from livemod.dlfl.shapes import torus
+
+    arrays = mesh_arrays(torus(16, 12))
+    offscreen.renderer.set_mesh(arrays)
+    camera = framed_camera(arrays, elevation=40.0)
+    flat = offscreen.render(camera, Style(edges=False))
+    smooth = offscreen.render(camera, Style(edges=False, smooth=True))
+    assert np.array_equal(_mask(flat), _mask(smooth))  # the same silhouette
+    assert (np.abs(flat.astype(int) - smooth.astype(int)).sum(axis=2) > 6).mean() > 0.05
+    hit = offscreen.renderer.pick(camera, SIZE, SIZE[0] // 2, SIZE[1] // 4, "face")
+    offscreen.render(camera, Style(smooth=True))
+    again = offscreen.renderer.pick(camera, SIZE, SIZE[0] // 2, SIZE[1] // 4, "face")
+    assert hit is not None and again == hit

@@ -160,6 +160,8 @@ def test_keys_change_style_camera_and_pick_mode(headless) -> None:
     assert light[0, 0].min() > 200 > dark[0, 0].max()
     viewer.handle_key("B")
     assert np.array_equal(viewer.capture(), dark)
+    assert viewer.handle_key("N") == "toggle_smooth" and viewer.style.smooth
+    run_frames(viewer, 1)  # draws the normals' first use
 
 
 def test_shift_click_adds_and_escape_clears(headless) -> None:

@@ -70,6 +70,8 @@ def _add_render(subparsers: Any) -> None:
                         help="draw a ground grid and the x, y, z axes")
     render.add_argument("--background", choices=("dark", "light"), default="dark",
                         help="background colour (default: dark)")
+    render.add_argument("--smooth", action="store_true",
+                        help="smooth shading (vertex normals) instead of flat faces")
     render.add_argument("--samples", type=int, default=None,
                         help="MSAA samples; default 4 for one frame, 0 for a turntable "
                         "(edges are anti-aliased in the shader; MSAA triples the cost "
@@ -144,7 +146,7 @@ def _render_to(args: argparse.Namespace, offscreen: Any, values: dict[str, Any],
               file=sys.stderr)
     background = LIGHT_BACKGROUND if args.background == "light" else DARK_BACKGROUND
     style = Style(edges=not args.no_edges, vertices=args.vertices, preview=args.preview,
-                  labels=labels, grid=args.grid, background=background)
+                  labels=labels, grid=args.grid, background=background, smooth=args.smooth)
     progress = ProgressBar("rendering") if args.turntable > 1 else None
     return render_arrays(arrays, args.output, turntable=args.turntable,
                          elevation=args.elevation, style=style, preview=preview,

@@ -48,6 +48,7 @@ KEY_BINDINGS: tuple[Binding, ...] = (
     Binding("A", "", "toggle_others", "the scene's other objects on/off"),
     Binding("X", "", "toggle_grid", "ground grid and axes on/off"),
     Binding("B", "", "toggle_background", "dark / light background"),
+    Binding("N", "", "toggle_smooth", "flat / smooth shading"),
     Binding("F", "ctrl", "labels_faces", "face id labels on/off"),
     Binding("E", "ctrl", "labels_edges", "edge id labels on/off"),
     Binding("V", "ctrl", "labels_vertices", "vertex id labels on/off"),

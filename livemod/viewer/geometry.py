@@ -96,6 +96,27 @@ def fan_triangles(arrays: MeshArrays) -> tuple[np.ndarray, np.ndarray, np.ndarra
     return tris.astype(np.uint32), face_of_tri.astype(np.uint32), sides
 
 
+def vertex_normals(positions: np.ndarray, triangles: np.ndarray) -> np.ndarray:
+    """``(V, 3)`` float32 unit normals for smooth shading: the sum of the
+    (area-weighted) normals of the triangles at each vertex; zero where a vertex
+    has none or they cancel.
+
+    Args:
+        positions: ``(V, 3)`` vertex positions.
+        triangles: ``(T, 3)`` vertex indices.
+    """
+    p = np.asarray(positions, dtype=np.float64)
+    tri = np.asarray(triangles, dtype=np.int64)
+    cross = np.cross(p[tri[:, 1]] - p[tri[:, 0]], p[tri[:, 2]] - p[tri[:, 0]])
+    summed = np.zeros((len(p), 3))
+    for axis in range(3):
+        summed[:, axis] = np.bincount(tri.ravel(), np.repeat(cross[:, axis], 3),
+                                      minlength=len(p))
+    length = np.linalg.norm(summed, axis=1, keepdims=True)
+    return np.divide(summed, length, out=np.zeros_like(summed), where=length > 0).astype(
+        np.float32)
+
+
 def build_geometry(arrays: MeshArrays) -> RenderGeometry:
     """Prepare all buffers of ``arrays`` (see the module docstring)."""
     positions = np.ascontiguousarray(arrays.positions, dtype=np.float32)

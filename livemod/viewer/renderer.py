@@ -17,7 +17,14 @@ from livemod.dlfl.scene import Selection
 
 from . import shaders
 from .camera import Camera
-from .geometry import RenderGeometry, build_geometry, corner_points, decode_pick, dense_flags
+from .geometry import (
+    RenderGeometry,
+    build_geometry,
+    corner_points,
+    decode_pick,
+    dense_flags,
+    vertex_normals,
+)
 from .text import QUAD_FLOATS, glyph_atlas, layout_labels
 
 TABLE_WIDTH = 4096
@@ -66,6 +73,7 @@ class Style:
         point_size: vertex point size in pixels.
         background: RGBA clear colour.
         others: draw the scene's other objects (see :meth:`Renderer.set_mesh`).
+        smooth: shade faces with interpolated vertex normals instead of flat.
         grid: draw a ground grid under the scene and the x, y, z axes (red,
             green, blue) from the origin.
     """
@@ -80,6 +88,7 @@ class Style:
     background: tuple[float, float, float, float] = (0.16, 0.17, 0.19, 1.0)  # dark
     others: bool = True
     grid: bool = False
+    smooth: bool = False
 
 
 @dataclass(frozen=True)
@@ -135,7 +144,20 @@ class _MeshGPU:
         self.edge_vao = ctx.vertex_array(programs["edge"], content, self.lines, 4)
         self.point_vao = ctx.vertex_array(programs["point"], content)
         self.ctx, self.edge_program = ctx, programs["edge"]
+        self.face_program = programs["face"]
         self.selected_lines: tuple[moderngl.Buffer, moderngl.VertexArray] | None = None
+        self.smooth: tuple[moderngl.Buffer, moderngl.VertexArray] | None = None
+
+    def smooth_vao(self) -> moderngl.VertexArray:
+        """The face pass with vertex normals, built on first use (uploads stay lean)."""
+        if self.smooth is None:
+            normals = vertex_normals(self.geometry.positions, self.geometry.triangles)
+            buffer = self.ctx.buffer(normals.tobytes())
+            vao = self.ctx.vertex_array(
+                self.face_program, [(self.positions, "3f", "in_position"),
+                                    (buffer, "3f", "in_normal")], self.triangles, 4)
+            self.smooth = (buffer, vao)
+        return self.smooth[1]
 
     def set_flags(self, face: np.ndarray, edge: np.ndarray, vertex: np.ndarray) -> None:
         """Replace the selection flags; each ``(n,)`` uint8 in dense order."""
@@ -161,6 +183,9 @@ class _MeshGPU:
     def release(self) -> None:
         """Free every GL object of this mesh."""
         self._release_selected_lines()
+        if self.smooth is not None:
+            self.smooth[1].release()
+            self.smooth[0].release()
         for obj in (self.face_vao, self.edge_vao, self.point_vao, self.positions,
                     self.triangles, self.lines, self.triangle_face, self.face_flags,
                     self.edge_flags, self.vertex_flags, self.triangle_index,
@@ -347,7 +372,7 @@ class Renderer:
         """The other objects: their faces, or their edges when faces are off. Their
         wireframe is left out so that the object being modelled stands out."""
         if style.faces or style.preview:
-            self._draw_faces(others, OTHER_COLOR)
+            self._draw_faces(others, OTHER_COLOR, smooth=style.smooth)
         elif style.edges:
             self._draw_edges(others)
 
@@ -360,7 +385,7 @@ class Renderer:
         if style.faces or show_preview:
             surface = self._preview if show_preview and self._preview is not None else mesh
             color = PREVIEW_COLOR if show_preview else BASE_COLOR
-            self._draw_faces(surface, color, wire=wire_in_faces)
+            self._draw_faces(surface, color, wire=wire_in_faces, smooth=style.smooth)
         if style.edges and not wire_in_faces:
             self._draw_edges(mesh)
         elif mesh.selected_lines is not None:
@@ -384,8 +409,9 @@ class Renderer:
                 program["view"].write(view)  # type: ignore[union-attr]
 
     def _draw_faces(self, mesh: _MeshGPU, color: tuple[float, float, float],
-                    wire: bool = False) -> None:
+                    wire: bool = False, smooth: bool = False) -> None:
         program = self.programs["face"]
+        program["smooth_shading"].value = int(smooth)  # type: ignore[union-attr]
         program["wire"].value = int(wire)  # type: ignore[union-attr]
         program["pickable"].value = int(mesh is not self._others)  # type: ignore[union-attr]
         program["viewport"].value = tuple(float(v) for v in self.ctx.viewport[2:])  # type: ignore[union-attr]
@@ -403,7 +429,7 @@ class Renderer:
             # a closed manifold hides its back faces: skip them (about a third of
             # the frame time on software GL); open meshes show them tinted
             self.ctx.enable(moderngl.CULL_FACE)
-        mesh.face_vao.render(moderngl.TRIANGLES)
+        (mesh.smooth_vao() if smooth else mesh.face_vao).render(moderngl.TRIANGLES)
         self.ctx.disable(moderngl.CULL_FACE)
         self.ctx.polygon_offset = (0.0, 0.0)
 

@@ -21,8 +21,11 @@ in vec3 in_position;
 out vec3 v_view;
 flat out int v_vertex;
 uniform float point_size;
+in vec3 in_normal;  // bound for smooth shading only (0 otherwise)
+out vec3 v_normal;
 void main() {
     v_view = (view * vec4(in_position, 1.0)).xyz;
+    v_normal = mat3(view) * in_normal;
     v_vertex = gl_VertexID;
     gl_PointSize = point_size;
     gl_Position = mvp * vec4(in_position, 1.0);
@@ -39,6 +42,8 @@ uniform mat4 mvp;
 uniform vec2 viewport;
 uniform int wire;
 uniform int pickable;  // 0: the scene's other objects, which hide but are not picked
+uniform int smooth_shading;  // 1: interpolated vertex normals instead of the face's
+in vec3 v_normal;
 uniform vec3 base_color;
 uniform vec3 selected_color;
 uniform vec3 back_color;
@@ -84,6 +89,11 @@ void main() {
     uint entry = fetch(triangle_face, gl_PrimitiveID);
     uint face = entry & 0x1FFFFFFFu;
     vec3 n = normalize(cross(dFdx(v_view), dFdy(v_view)));
+    if (smooth_shading != 0 && dot(v_normal, v_normal) > 0.0) {
+        // the flat normal faces the viewer on front faces; keep that side
+        vec3 s = normalize(v_normal);
+        n = dot(s, n) < 0.0 ? -s : s;
+    }
     bool selected = fetch(face_flags, int(face)) != 0u;
     vec3 base = selected ? selected_color : (gl_FrontFacing ? base_color : back_color);
     vec3 rgb = shade(n, base);
