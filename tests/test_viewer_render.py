@@ -367,3 +367,16 @@ def test_smooth_shading_changes_the_faces_not_the_picks(offscreen: Offscreen) ->
     offscreen.render(camera, Style(smooth=True))
     again = offscreen.renderer.pick(camera, SIZE, SIZE[0] // 2, SIZE[1] // 4, "face")
     assert hit is not None and again == hit
+
+
+def test_render_on_a_transparent_background_writes_alpha(tmp_path: Path, capsys) -> None:
+    out = tmp_path / "clear.png"
+    assert main(["render", "cube", "-o", str(out), "--size", "64x48", "--background",
+                 "transparent"]) == 0
+    image = np.asarray(Image.open(out))
+    assert image.shape == (48, 64, 4)
+    assert image[0, 0, 3] == 0 and image[24, 32, 3] == 255
+    assert main(["render", "cube", "-o", str(tmp_path / "t.gif"), "--turntable", "2",
+                 "--background", "transparent"]) == 2
+    assert "--background transparent needs PNG output" in capsys.readouterr().err
+    assert not (tmp_path / "t.gif").exists()

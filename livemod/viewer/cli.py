@@ -68,8 +68,9 @@ def _add_render(subparsers: Any) -> None:
     render.add_argument("--no-edges", action="store_true", help="hide the edges")
     render.add_argument("--grid", action="store_true",
                         help="draw a ground grid and the x, y, z axes")
-    render.add_argument("--background", choices=("dark", "light"), default="dark",
-                        help="background colour (default: dark)")
+    render.add_argument("--background", choices=("dark", "light", "transparent"),
+                        default="dark", help="background (default: dark; transparent: "
+                                             "PNG with alpha)")
     render.add_argument("--smooth", action="store_true",
                         help="smooth shading (vertex normals) instead of flat faces")
     render.add_argument("--samples", type=int, default=None,
@@ -144,7 +145,8 @@ def _render_to(args: argparse.Namespace, offscreen: Any, values: dict[str, Any],
     if args.preview and preview is None:
         print("livemod: warning: no patch preview available; drawing the mesh",
               file=sys.stderr)
-    background = LIGHT_BACKGROUND if args.background == "light" else DARK_BACKGROUND
+    background = {"light": LIGHT_BACKGROUND, "transparent": (*DARK_BACKGROUND[:3], 0.0)}.get(
+        args.background, DARK_BACKGROUND)
     style = Style(edges=not args.no_edges, vertices=args.vertices, preview=args.preview,
                   labels=labels, grid=args.grid, background=background, smooth=args.smooth)
     progress = ProgressBar("rendering") if args.turntable > 1 else None
@@ -167,7 +169,10 @@ def _render_inputs(args: argparse.Namespace,
     from .renderer import LABEL_KINDS
 
     values = _given_values(args.input, args.set)
-    output_paths(args.output, max(args.turntable, 1))
+    paths = output_paths(args.output, max(args.turntable, 1))
+    if args.background == "transparent" and paths[0].suffix.lower() == ".gif":
+        raise ValueError(f"--background transparent needs PNG output, not {args.output!r} "
+                         f"(a GIF cannot hold soft edges)")
     labels = frozenset(k.strip() for k in args.labels.split(",") if k.strip())
     if labels - set(LABEL_KINDS):
         raise ValueError(f"unknown label kinds: {sorted(labels - set(LABEL_KINDS))}")

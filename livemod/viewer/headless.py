@@ -80,16 +80,19 @@ class Offscreen:
 
     def render(self, camera: Camera, style: Style, overlay: np.ndarray | None = None,
                ) -> np.ndarray:
-        """Draw one frame; returns ``(H, W, 3)`` uint8 RGB, row 0 at the top."""
+        """Draw one frame; returns ``(H, W, 3)`` uint8 RGB, row 0 at the top, or
+        ``(H, W, 4)`` RGBA when ``style.background`` is not opaque (a transparent
+        background: alpha 0 where nothing is drawn)."""
         self.activate()
         self.renderer.draw(self.target, camera, style)
         if self.samples > 0:
             self.ctx.copy_framebuffer(self.resolved, self.target)
         if overlay is not None:
             self.renderer.draw_overlay(self.resolved, overlay)
-        raw = self.resolved.read(components=3, alignment=1)
+        channels = 3 if style.background[3] >= 1.0 else 4
+        raw = self.resolved.read(components=channels, alignment=1)
         width, height = self.size
-        return np.frombuffer(raw, dtype=np.uint8).reshape(height, width, 3)[::-1].copy()
+        return np.frombuffer(raw, dtype=np.uint8).reshape(height, width, channels)[::-1].copy()
 
     def activate(self) -> None:
         """Make this target's context the one GL calls go to."""
@@ -202,6 +205,9 @@ def write_images(out: str, images: list[np.ndarray], fps: float = 25.0) -> list[
     paths = output_paths(out, len(images))
     pictures = [Image.fromarray(image) for image in images]
     if len(paths) == 1 and paths[0].suffix.lower() == ".gif":
+        if images and images[0].shape[2] == 4:
+            raise ValueError(f"{out}: a GIF cannot hold a transparent background's soft "
+                             f"edges; write PNG frames (a folder or a %03d name)")
         _save(paths[0], lambda f: pictures[0].save(
             f, format="GIF", save_all=True, append_images=pictures[1:],
             duration=round(1000.0 / fps), loop=0, optimize=False))
