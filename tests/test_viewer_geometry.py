@@ -147,7 +147,7 @@ def _result(status: str = "ok", stale: bool = False, step_index: int | None = No
     steps = tuple(SimpleNamespace(index=i, label=f"op{i}", line=10 + i, counts=(1, 1, 1),
                                   elapsed=0.0) for i in range(3))
     return SimpleNamespace(status=status, stale=stale, steps=steps, step_index=step_index,
-                           arrays=mesh_arrays(cube()), elapsed=0.25, error=None)
+                           arrays=mesh_arrays(cube()), elapsed=0.25, error=None, others=None)
 
 
 def test_hud_shows_state_counts_genus_and_step() -> None:

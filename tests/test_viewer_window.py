@@ -126,6 +126,7 @@ def test_the_window_shows_every_object_and_fits_them_all(tmp_path: Path) -> None
         columns = np.flatnonzero(covered.any(axis=0))
         assert columns.min() < 60 and columns.max() > 140  # both cubes fitted in the frame
         assert viewer.renderer.bounds[:, 0].tolist() == pytest.approx([-1.0, 7.0])
+        assert "V 8  E 12  F 6  genus 0\nother objects: V 8  F 6" in _hud_text(viewer)
     finally:
         close_viewer(viewer)
 
