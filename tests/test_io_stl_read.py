@@ -177,7 +177,8 @@ def test_ascii_loops_of_four_are_quads_and_layout_does_not_matter() -> None:
     assert square.face_vertices(0) == [0, 1, 2, 3]
     squashed = SQUARE.replace(b"\n  vertex 1 0 0", b" vertex 1e0 0 0")  # two on a line
     spaced = SQUARE.replace(b"\n", b"\r\n").replace(b"vertex 1 1 0", b"vertex\t+1.0  1 0.0e1")
-    for text in (squashed, spaced, SQUARE.rstrip(b"\n")):
+    shouted = SQUARE.upper()  # some old exporters write the keywords in capitals
+    for text in (squashed, spaced, SQUARE.rstrip(b"\n"), shouted):
         again = read_stl(text)
         assert np.array_equal(mesh_arrays(again).positions, mesh_arrays(square).positions)
     assert read_stl(b"solid empty\nendsolid empty\n").counts() == (0, 0, 0)

@@ -301,6 +301,7 @@ _FACET, _NORMAL, _OUTER, _LOOP, _VERTEX, _ENDLOOP, _ENDFACET, _ENDSOLID = range(
 _KEYWORDS = {b"facet": _FACET, b"normal": _NORMAL, b"outer": _OUTER, b"loop": _LOOP,
              b"vertex": _VERTEX, b"endloop": _ENDLOOP, b"endfacet": _ENDFACET,
              b"endsolid": _ENDSOLID}
+_KEYWORDS |= {word.upper(): code for word, code in _KEYWORDS.items()}  # old exporters
 
 
 class _AsciiStl:
