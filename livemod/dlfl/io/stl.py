@@ -14,6 +14,7 @@ import functools
 import itertools
 import os
 import warnings
+from collections.abc import Callable
 
 import numpy as np
 
@@ -113,16 +114,15 @@ def parse_stl(data: bytes, label: str = "<stl>") -> tuple[np.ndarray, np.ndarray
     Raises:
         DLFLError: as :func:`read_stl` says, naming ``label``.
     """
-    if _is_binary(data):
-        count = int(np.frombuffer(data, "<u4", 1, 80)[0])
+    count = _header_count(data)
+    if count is not None and len(data) == 84 + 50 * count:
         triangles = np.frombuffer(data, _TRIANGLE, count, 84)
         corners = triangles["corners"].reshape(-1, 3).astype(np.float64)
-        _check_finite(corners, label)
+        _check_finite(corners, lambda k: f"{label}: triangle {k // 3}:")
         return corners, np.arange(0, 3 * count + 1, 3, dtype=np.int64), None
     if data.lstrip()[:5].lower() == b"solid":
         return _AsciiStl(data, label).soup()
-    if len(data) >= 84:
-        count = int(np.frombuffer(data, "<u4", 1, 80)[0])
+    if count is not None:
         raise DLFLError(f"{label}: not an STL file: as binary STL its header counts {count} "
                         f"triangles ({84 + 50 * count} bytes), but the file has {len(data)} "
                         f"bytes; and it does not start with 'solid', as ASCII STL does")
@@ -130,19 +130,18 @@ def parse_stl(data: bytes, label: str = "<stl>") -> tuple[np.ndarray, np.ndarray
                     f"and it does not start with 'solid', as ASCII STL does")
 
 
-def _is_binary(data: bytes) -> bool:
-    """Whether ``data`` has exactly the size its binary header promises."""
-    if len(data) < 84:
-        return False
-    count = int(np.frombuffer(data, "<u4", 1, 80)[0])
-    return len(data) == 84 + 50 * count
+def _header_count(data: bytes) -> int | None:
+    """The triangle count a binary header gives, or None for a file shorter than one
+    (binary files are 84 bytes plus 50 per triangle)."""
+    return int(np.frombuffer(data, "<u4", 1, 80)[0]) if len(data) >= 84 else None
 
 
-def _check_finite(corners: np.ndarray, label: str) -> None:
-    """Raise for the first corner of a binary file with a NaN or infinite coordinate."""
+def _check_finite(corners: np.ndarray, where: Callable[[int], str]) -> None:
+    """Raise for the first corner with a NaN or infinite coordinate; ``where(k)`` is
+    the message's prefix naming corner ``k`` (its triangle, or its line)."""
     bad = np.flatnonzero(~np.isfinite(corners).all(axis=1))
     if len(bad):
-        raise DLFLError(f"{label}: triangle {bad[0] // 3}: a vertex coordinate is not finite: "
+        raise DLFLError(f"{where(int(bad[0]))} a vertex coordinate is not finite: "
                         f"{corners[bad[0]].tolist()}")
 
 
@@ -327,13 +326,9 @@ class _AsciiStl:
     def soup(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """See :func:`parse_stl`."""
         self._check_structure()
-        loop_of = np.searchsorted(self.outer, self.vertex) - 1
-        sizes = np.bincount(loop_of, minlength=len(self.outer))
+        sizes = (self.endloop - self.outer - 2) // 4  # well formed now: 4 words a vertex
         corners = self._coordinates()
-        bad = np.flatnonzero(~np.isfinite(corners).all(axis=1))[:1]
-        if len(bad):
-            raise DLFLError(f"{self.label}:{self.line_of(self.vertex[bad])[0]}: a vertex "
-                            f"coordinate is not finite: {corners[bad[0]].tolist()}")
+        _check_finite(corners, lambda k: f"{self.label}:{self.line_of(self.vertex[k:k + 1])[0]}:")
         offsets = np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64)
         return corners, offsets, self.line_of(self.facet)
 
@@ -393,7 +388,16 @@ class _AsciiStl:
 
     def line_of(self, word_index: np.ndarray) -> np.ndarray:
         """``(K,)`` 1-based line of each given word."""
-        return np.searchsorted(self._newlines(), self._word_starts[word_index]) + 1
+        return self._line_index(word_index) + 1
+
+    def _line_index(self, word_index: np.ndarray) -> np.ndarray:
+        """``(K,)`` 0-based line of each given word (an index into :attr:`_text_lines`)."""
+        return np.searchsorted(self._text_lines[2], self._word_starts[word_index])
+
+    @functools.cached_property
+    def _text_lines(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """:func:`._lines.split_lines` of the file (a last newline added if missing)."""
+        return split_lines(self.data if self.data.endswith(b"\n") else self.data + b"\n")
 
     @functools.cached_property
     def _word_starts(self) -> np.ndarray:
@@ -401,9 +405,6 @@ class _AsciiStl:
         buf = np.frombuffer(self.data, dtype=np.uint8)
         blank = (buf == 32) | ((buf >= 9) & (buf <= 13))  # what bytes.split() splits at
         return np.flatnonzero(~blank & np.concatenate([[True], blank[:-1]]))
-
-    def _newlines(self) -> np.ndarray:
-        return np.flatnonzero(np.frombuffer(self.data, dtype=np.uint8) == 10)
 
     def _coordinates(self) -> np.ndarray:
         """``(C, 3)`` float64 coordinates following each ``vertex``.
@@ -419,10 +420,9 @@ class _AsciiStl:
     def _vertex_lines(self) -> tuple[np.ndarray, np.ndarray]:
         """``(values, accepted)`` as :func:`._lines.parse_number_lines` gives them,
         for the line of every ``vertex`` word (none accepted where two share a line)."""
-        data = self.data if self.data.endswith(b"\n") else self.data + b"\n"
-        buf, starts, ends = split_lines(data)
+        buf, starts, ends = self._text_lines
         at = self._word_starts[self.vertex]
-        lines = np.searchsorted(ends, at)
+        lines = self._line_index(self.vertex)
         if np.any(np.diff(lines) <= 0):
             return np.zeros((len(at), 3)), np.zeros(len(at), dtype=bool)
         block, block_starts = gather_lines(buf, starts, ends, lines)
