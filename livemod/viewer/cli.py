@@ -138,17 +138,16 @@ def _render_to(args: argparse.Namespace, offscreen: Any, values: dict[str, Any],
     from livemod.progress import ProgressBar
 
     from .headless import render_arrays
-    from .renderer import DARK_BACKGROUND, LIGHT_BACKGROUND, Style
+    from .renderer import BACKGROUNDS, Style
 
     arrays, preview, others = _load_input(args.input, args.mesh, args.preview, values,
                                           selection)
     if args.preview and preview is None:
         print("livemod: warning: no patch preview available; drawing the mesh",
               file=sys.stderr)
-    background = {"light": LIGHT_BACKGROUND, "transparent": (*DARK_BACKGROUND[:3], 0.0)}.get(
-        args.background, DARK_BACKGROUND)
     style = Style(edges=not args.no_edges, vertices=args.vertices, preview=args.preview,
-                  labels=labels, grid=args.grid, background=background, smooth=args.smooth)
+                  labels=labels, grid=args.grid, background=BACKGROUNDS[args.background],
+                  smooth=args.smooth)
     progress = ProgressBar("rendering") if args.turntable > 1 else None
     return render_arrays(arrays, args.output, turntable=args.turntable,
                          elevation=args.elevation, style=style, preview=preview,

@@ -15,7 +15,7 @@ from pathlib import Path
 import moderngl
 import numpy as np
 
-from livemod.dlfl.arrays import MeshArrays, concatenate_arrays
+from livemod.dlfl.arrays import MeshArrays
 from livemod.dlfl.scene import Selection
 
 from .camera import Camera
@@ -121,10 +121,17 @@ def framed_camera(arrays: MeshArrays | None, elevation: float = 25.0, yaw: float
                   ortho: bool = False, aspect: float = 1.0, frames: int = 1) -> Camera:
     """A camera at ``yaw``/``elevation`` framing ``arrays`` tightly at every one of the
     ``frames`` turntable yaws (so the framing holds over the whole orbit)."""
+    positions = np.zeros((0, 3)) if arrays is None else arrays.positions
+    return camera_framing(positions, elevation, yaw, ortho, aspect, frames)
+
+
+def camera_framing(positions: np.ndarray, elevation: float = 25.0, yaw: float = 30.0,
+                   ortho: bool = False, aspect: float = 1.0, frames: int = 1) -> Camera:
+    """:func:`framed_camera` for ``(n, 3)`` ``positions`` (none: the default view)."""
     camera = Camera(yaw=yaw, pitch=elevation, ortho=ortho)
-    if arrays is not None and len(arrays.positions):
+    if len(positions):
         yaws = yaw + 360.0 * np.arange(max(frames, 1)) / max(frames, 1)
-        camera.fit_points(sample_points(arrays.positions), aspect, yaws)
+        camera.fit_points(sample_points(positions), aspect, yaws)
     return camera
 
 
@@ -269,11 +276,6 @@ class _Drawn:
     others: MeshArrays | None
     selection: Selection | None
 
-    def framed(self) -> MeshArrays | None:
-        """What the camera frames: the mesh and the other objects together."""
-        parts = [a for a in (self.arrays, self.others) if a is not None]
-        return concatenate_arrays(parts) if len(parts) > 1 else next(iter(parts), None)
-
 
 def _render_into(offscreen: Offscreen, drawn: _Drawn, out: str, turntable: int,
                  elevation: float, style: Style | None,
@@ -284,8 +286,9 @@ def _render_into(offscreen: Offscreen, drawn: _Drawn, out: str, turntable: int,
     offscreen.renderer.set_mesh(drawn.arrays, drawn.preview, drawn.others)
     if drawn.selection is not None:
         offscreen.renderer.set_selection(drawn.selection)
-    camera = framed_camera(drawn.framed(), elevation, ortho=ortho, aspect=size[0] / size[1],
-                           frames=max(turntable, 1))
+    # framed as the window fits: the mesh and the other objects together
+    camera = camera_framing(offscreen.renderer.drawn_positions(), elevation, ortho=ortho,
+                            aspect=size[0] / size[1], frames=max(turntable, 1))
     images = render_turntable(offscreen, camera, style if style is not None else Style(),
                               max(turntable, 1), progress)
     return write_images(out, images)

@@ -61,6 +61,13 @@ POINT_COLOR = (0.95, 0.95, 0.2)
 CORNER_COLOR = (0.1, 1.0, 1.0)
 
 
+DARK_BACKGROUND = (0.16, 0.17, 0.19, 1.0)
+LIGHT_BACKGROUND = (0.93, 0.93, 0.92, 1.0)   # for pictures on a white page
+TRANSPARENT_BACKGROUND = (*DARK_BACKGROUND[:3], 0.0)  # offscreen images with alpha
+BACKGROUNDS = {"dark": DARK_BACKGROUND, "light": LIGHT_BACKGROUND,
+               "transparent": TRANSPARENT_BACKGROUND}  # ``livemod render --background``
+
+
 @dataclass(frozen=True)
 class Style:
     """What to draw.
@@ -85,7 +92,7 @@ class Style:
     labels: frozenset[str] = field(default_factory=frozenset)
     labels_selected_only: bool = False
     point_size: float = 6.0
-    background: tuple[float, float, float, float] = (0.16, 0.17, 0.19, 1.0)  # dark
+    background: tuple[float, float, float, float] = DARK_BACKGROUND
     others: bool = True
     grid: bool = False
     smooth: bool = False
@@ -193,8 +200,6 @@ class _MeshGPU:
             obj.release()
 
 
-DARK_BACKGROUND = (0.16, 0.17, 0.19, 1.0)
-LIGHT_BACKGROUND = (0.93, 0.93, 0.92, 1.0)   # for pictures on a white page
 GRID_COLOR = (0.30, 0.31, 0.34)
 AXIS_COLORS = ((0.85, 0.25, 0.25), (0.30, 0.75, 0.30), (0.30, 0.45, 0.90))
 

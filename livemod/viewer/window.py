@@ -181,7 +181,7 @@ class LiveViewer(mglw.WindowConfig):
             self._echo(f"error: {result.error.file}:{result.error.line}: "
                        f"{result.error.message}")
 
-    def _upload(self, arrays: Any, preview: Any, others: Any = None) -> None:
+    def _upload(self, arrays: Any, preview: Any, others: Any) -> None:
         from livemod.dlfl.analysis import genus
 
         self.renderer.set_mesh(arrays, preview, others)
