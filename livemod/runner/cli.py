@@ -192,12 +192,12 @@ def _print_objects(scene: Any, args: argparse.Namespace) -> None:
     count = len(scene.objects)
     if count <= 1:
         return
+    covered = "the counts above and -o" if args.output else "the counts above"
     if args.all_objects:
-        print(f"objects: {count}, joined into one mesh for the counts above"
-              f"{' and -o' if args.output else ''}")
+        print(f"objects: {count}, joined into one mesh for {covered}")
         return
-    print(f"objects: {count} in the scene; the counts above{' and -o' if args.output else ''} "
-          f"are the current one's (object {scene.current}; --all-objects joins them all)")
+    print(f"objects: {count} in the scene; {covered} are the current one's (object "
+          f"{scene.current}; --all-objects joins them all)")
 
 
 def _save(mesh: Any, output: str | None) -> int:

@@ -198,11 +198,15 @@ class RunResult:
     others: MeshArrays | None = None
 
 
-def freeze_arrays(arrays: MeshArrays) -> MeshArrays:
-    """A copy of ``arrays`` whose numpy arrays are private and read-only."""
+def freeze_arrays(arrays: MeshArrays, copy: bool = True) -> MeshArrays:
+    """A copy of ``arrays`` whose numpy arrays are private and read-only.
+
+    ``copy=False`` is for arrays nothing else holds (fresh from
+    :func:`concatenate_arrays`): they are made read-only without a second copy.
+    """
     copies = {}
     for field in dataclasses.fields(arrays):
-        arr = np.array(getattr(arrays, field.name), copy=True)
+        arr = np.array(getattr(arrays, field.name), copy=copy)
         arr.flags.writeable = False
         copies[field.name] = arr
     return MeshArrays(**copies)
@@ -257,7 +261,7 @@ def snapshot_others(scene: Scene) -> MeshArrays | None:
     parts = [mesh_arrays(obj.mesh) for oid, obj in scene.objects.items()
              if oid != scene.current]
     parts = [part for part in parts if len(part.positions)]
-    return freeze_arrays(concatenate_arrays(parts)) if parts else None
+    return freeze_arrays(concatenate_arrays(parts), copy=False) if parts else None
 
 
 def parameter_items(parameters: dict | None) -> tuple:

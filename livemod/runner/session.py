@@ -521,8 +521,10 @@ class LiveSession:
 
     def _save_output(self, outcome: RunOutcome) -> ScriptError | None:
         """Write the mesh to ``output`` (``run --watch -o``); an error if that fails."""
-        mesh = result_mesh(outcome.scene, self.all_objects)
-        if self.output is None or mesh is None:
+        if self.output is None:
+            return None
+        mesh = result_mesh(outcome.scene, self.all_objects)  # joining costs: only to save
+        if mesh is None:
             return None
         try:
             save_result(mesh, self.output)
