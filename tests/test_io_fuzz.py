@@ -204,3 +204,14 @@ def test_every_truncation_of_a_crlf_file_is_refused_cleanly() -> None:
     for cut in range(960, 1010):
         with contextlib.suppress(DLFLError):
             read_obj(DUAL_OBJ[:cut])
+
+
+@FUZZ
+@given(st.binary(max_size=200) | st.text(" \t\n\r\x0b\x0cab1", max_size=60).map(str.encode))
+def test_token_starts_find_the_words_bytes_split_finds(data: bytes) -> None:
+    from livemod.dlfl.io._lines import token_starts
+
+    starts = token_starts(np.frombuffer(data, dtype=np.uint8)).tolist()
+    words = data.split()
+    assert len(starts) == len(words)
+    assert all(data[s : s + len(w)] == w for s, w in zip(starts, words, strict=True))

@@ -12,7 +12,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import DLFLError
-from ._lines import gather_lines, parse_index_lines, parse_number_lines
+from ._lines import gather_lines, parse_index_lines, parse_number_lines, token_starts
 from ._parallel import map_in_order
 from ._ply_layout import (
     _Element,
@@ -90,12 +90,7 @@ def _scan_lines(buf: np.ndarray, start: int, end: int) -> tuple[np.ndarray, ...]
     part = buf[start:end]
     ends = np.flatnonzero(part == 10)
     starts = np.concatenate([[0], ends[:-1] + 1])
-    blank = (part - np.uint8(9)) < 5  # what bytes.split() splits at: \t \n \v \f \r
-    blank |= part == 32  # and the blank (arithmetic is faster than a table here)
-    # a token starts where a blank is followed by anything else, or at 0
-    tokens = np.flatnonzero(blank[:-1] > blank[1:]) + 1
-    if not blank[0]:
-        tokens = np.concatenate([[0], tokens])
+    tokens = token_starts(part)
     widths = np.diff(np.searchsorted(tokens, starts), append=len(tokens))
     return starts + start, ends + start, widths
 

@@ -23,7 +23,7 @@ from ..arrays import MeshArrays, mesh_arrays
 from ..build import from_polygons
 from ..errors import DLFLError, DLFLRepairWarning
 from ..mesh import Mesh
-from ._lines import gather_lines, parse_number_lines, split_lines
+from ._lines import gather_lines, parse_number_lines, split_lines, token_starts
 from .atomic import write_atomically
 from .source import read_source, show_token
 
@@ -402,9 +402,7 @@ class _AsciiStl:
     @functools.cached_property
     def _word_starts(self) -> np.ndarray:
         """``(W,)`` int64 byte offset of every word."""
-        buf = np.frombuffer(self.data, dtype=np.uint8)
-        blank = (buf == 32) | ((buf >= 9) & (buf <= 13))  # what bytes.split() splits at
-        return np.flatnonzero(~blank & np.concatenate([[True], blank[:-1]]))
+        return token_starts(np.frombuffer(self.data, dtype=np.uint8))
 
     def _coordinates(self) -> np.ndarray:
         """``(C, 3)`` float64 coordinates following each ``vertex``.
