@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-from pathlib import Path
 from types import SimpleNamespace
 
 import numpy as np
@@ -20,7 +19,6 @@ from livemod.viewer.controls import (
     toggle_pick,
 )
 from livemod.viewer.geometry import build_geometry, decode_pick, fan_triangles
-from livemod.viewer.headless import output_paths
 from livemod.viewer.hud import hud_lines, run_state, step_line
 from livemod.viewer.renderer import Style
 from livemod.viewer.text import QUAD_FLOATS, glyph_atlas, layout_labels
@@ -162,27 +160,6 @@ def test_hud_shows_state_counts_genus_and_step() -> None:
     for part in ("tower.py", "ok", "0.250 s", "V 8  E 12  F 6  genus 0", "step 3/3", "60 fps",
                  "faces(True) == (1,)"):
         assert part in text
-
-
-def test_output_paths_of_patterns_folders_and_single_files() -> None:
-    assert [p.name for p in output_paths("out/t_{frame:02d}.png", 2)] == ["t_00.png", "t_01.png"]
-    assert [p.name for p in output_paths("t_%03d.png", 2)] == ["t_000.png", "t_001.png"]
-    assert output_paths("folder", 2)[1].as_posix() == "folder/frame_001.png"
-    assert output_paths("turn.gif", 36) == [Path("turn.gif")]
-    assert output_paths("one.PNG", 1) == [Path("one.PNG")]
-
-
-@pytest.mark.parametrize(("out", "frames", "wrong"), [
-    ("x.foo", 1, "give a .png or .gif name, a folder, or a name with {frame} or %03d"),
-    ("tt.png", 3, "3 frames cannot go to one PNG \\(tt.png\\); use .gif"),
-    ("100%.png", 1, "takes only {frame} or one %d field .*write %% for a percent sign"),
-    ("f_{frame}_{x}.png", 2, "takes only {frame} or one %d field \\(KeyError: 'x'\\)"),
-    ("same.png{}", 2, "takes only {frame}"),
-    ("fixed_{frame:.0s}.png", 2, "takes only {frame}|names two frames alike"),
-])
-def test_output_paths_refuse_what_cannot_be_written(out: str, frames: int, wrong: str) -> None:
-    with pytest.raises(ValueError, match=wrong):
-        output_paths(out, frames)
 
 
 def test_docs_list_every_key() -> None:

@@ -202,6 +202,31 @@ def test_render_command_writes_png_gif_and_sequence(tmp_path: Path, capsys) -> N
         "frame_000.png", "frame_001.png"]
 
 
+def test_render_command_writes_mp4_and_webp_turntables(tmp_path: Path, capsys) -> None:
+    import av
+
+    movie, webp = tmp_path / "turn.mp4", tmp_path / "turn.webp"
+    for out in (movie, webp):
+        assert main(["render", "cube", "-o", str(out), "--size", "64x48", "--turntable", "4",
+                     "--fps", "12.5"]) == 0
+    with av.open(str(movie)) as container:
+        stream = container.streams.video[0]
+        frames = [f.to_ndarray(format="rgb24") for f in container.decode(stream)]
+        assert stream.average_rate == 12.5
+    with Image.open(webp) as animation:
+        assert animation.n_frames == 4
+        pictures = []
+        for k in range(4):
+            animation.seek(k)
+            pictures.append(np.asarray(animation.convert("RGB")))
+        assert animation.info["duration"] == 80
+    assert len(frames) == 4 and frames[0].shape == (48, 64, 3)
+    for lossy, exact in zip(frames, pictures, strict=True):  # the same turntable
+        assert np.abs(lossy.astype(int) - exact).mean() < 6.0
+    assert not np.array_equal(pictures[0], pictures[1])  # and it turns
+    assert capsys.readouterr().out.startswith("wrote ")
+
+
 def test_render_command_reports_script_errors(tmp_path: Path, capsys) -> None:
     script = tmp_path / "bad.py"
     script.write_text("x = 1\nraise ValueError('no mesh today')\n")
@@ -231,7 +256,15 @@ def test_render_refuses_a_bad_output_before_the_script_runs(tmp_path: Path, caps
     assert main(["render", str(script), "-o", str(tmp_path / "x.foo")]) == 2
     assert main(["render", str(script), "-o", str(tmp_path / "t.png"), "--turntable", "3"]) == 2
     err = capsys.readouterr().err
-    assert "give a .png or .gif name" in err and "3 frames cannot go to one PNG" in err
+    assert "give a .png, .gif, .webp or .mp4 name" in err
+    assert "3 frames cannot go to one PNG" in err
+    assert main(["render", str(script), "-o", str(tmp_path / "t.mp4"), "--size", "65x48",
+                 "--turntable", "2"]) == 2
+    assert main(["render", str(script), "-o", str(tmp_path / "t.gif"), "--fps", "0",
+                 "--turntable", "2"]) == 2
+    err = capsys.readouterr().err
+    assert "MP4 needs an even width and height, got 65x48; try 66x48" in err
+    assert "frames per second must be a positive number, got 0.0" in err
     assert main(["render", str(script), "-o", str(tmp_path / "y.png"), "--samples", "3"]) == 2
     assert main(["render", str(script), "-o", str(tmp_path / "y.png"), "--size", "99999x9"]) == 2
     err = capsys.readouterr().err
@@ -376,7 +409,12 @@ def test_render_on_a_transparent_background_writes_alpha(tmp_path: Path, capsys)
     image = np.asarray(Image.open(out))
     assert image.shape == (48, 64, 4)
     assert image[0, 0, 3] == 0 and image[24, 32, 3] == 255
+    webp = tmp_path / "clear.webp"
+    assert main(["render", "cube", "-o", str(webp), "--size", "64x48", "--background",
+                 "transparent"]) == 0
+    assert np.array_equal(np.asarray(Image.open(webp).convert("RGBA")), image)  # lossless
     assert main(["render", "cube", "-o", str(tmp_path / "t.gif"), "--turntable", "2",
                  "--background", "transparent"]) == 2
-    assert "--background transparent needs PNG output" in capsys.readouterr().err
+    assert ("a transparent background needs PNG or WebP output, not "
+            f"'{tmp_path / 't.gif'}' (a GIF cannot hold soft edges)") in capsys.readouterr().err
     assert not (tmp_path / "t.gif").exists()

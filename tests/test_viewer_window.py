@@ -165,6 +165,27 @@ def test_keys_change_style_camera_and_pick_mode(headless) -> None:
     run_frames(viewer, 1)  # draws the normals' first use
 
 
+def test_screenshots_opaque_and_transparent(headless, tmp_path: Path, monkeypatch) -> None:
+    from PIL import Image
+
+    viewer, _, echo = headless
+    _wait(viewer, _has_run(1))
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "model_000.png").write_bytes(b"an earlier screenshot")
+    assert viewer.handle_key("F12") == "screenshot"
+    assert viewer.handle_key("F12", shift=True) == "screenshot_transparent"
+    assert viewer.screenshots == [Path("model_001.png"), Path("model_002.png")]
+    assert (tmp_path / "model_000.png").read_bytes() == b"an earlier screenshot"
+    opaque = np.asarray(Image.open("model_001.png"))
+    clear = np.asarray(Image.open("model_002.png"))
+    assert opaque.shape == (240, 320, 3) and clear.shape == (240, 320, 4)
+    assert np.array_equal(opaque, viewer.capture())
+    drawn = clear[..., 3] == 255
+    assert clear[0, 0, 3] == 0 and drawn[120, 160]
+    assert np.array_equal(clear[drawn][:, :3], opaque[drawn])  # the same picture where drawn
+    assert "screenshot: model_002.png" in echo.getvalue()
+
+
 def test_shift_click_adds_and_escape_clears(headless) -> None:
     viewer, _, echo = headless
     _wait(viewer, _has_run(1))

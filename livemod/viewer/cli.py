@@ -47,10 +47,12 @@ def add_commands(subparsers: Any) -> None:
 
 def _add_render(subparsers: Any) -> None:
     render = subparsers.add_parser(
-        "render", help="render a script's result or a mesh to PNG, a PNG sequence or a GIF")
+        "render", help="render a script's result or a mesh to PNG, a PNG sequence, a GIF, "
+                       "an animated WebP or an MP4")
     render.add_argument("input", help="a script (.py) or a mesh file or shape name")
     render.add_argument("-o", "--output", required=True,
-                        help="out.png, out.gif, a folder, or a pattern with {frame} / %%03d")
+                        help="out.png, out.gif, out.webp, out.mp4 (needs livemod[video]), a "
+                             "folder, or a pattern with {frame} / %%03d")
     render.add_argument("--mesh", help="mesh a script starts from")
     render.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
                         help="a declared script parameter, repeatable")
@@ -58,6 +60,8 @@ def _add_render(subparsers: Any) -> None:
     render.add_argument("--size", type=parse_size, default=(800, 600), help="WxH pixels")
     render.add_argument("--turntable", type=int, default=0, metavar="N",
                         help="N frames evenly spaced around the up axis")
+    render.add_argument("--fps", type=float, default=25.0,
+                        help="frames per second of a GIF, WebP or MP4 (default: 25)")
     render.add_argument("--elevation", type=float, default=25.0, metavar="DEG",
                         help="camera height above the horizon in degrees")
     render.add_argument("--preview", action="store_true", help="draw the patch preview")
@@ -152,7 +156,7 @@ def _render_to(args: argparse.Namespace, offscreen: Any, values: dict[str, Any],
     return render_arrays(arrays, args.output, turntable=args.turntable,
                          elevation=args.elevation, style=style, preview=preview,
                          progress=progress, ortho=args.ortho, offscreen=offscreen,
-                         others=others)
+                         others=others, fps=args.fps)
 
 
 def _render_inputs(args: argparse.Namespace,
@@ -164,14 +168,12 @@ def _render_inputs(args: argparse.Namespace,
         ValueError: a bad ``--set``, ``-o``, ``--labels`` or ``--select`` (the
             message says which).
     """
-    from .headless import output_paths
+    from .imagefiles import check_output
     from .renderer import LABEL_KINDS
 
     values = _given_values(args.input, args.set)
-    paths = output_paths(args.output, max(args.turntable, 1))
-    if args.background == "transparent" and paths[0].suffix.lower() == ".gif":
-        raise ValueError(f"--background transparent needs PNG output, not {args.output!r} "
-                         f"(a GIF cannot hold soft edges)")
+    check_output(args.output, max(args.turntable, 1), args.size,
+                 transparent=args.background == "transparent", fps=args.fps)
     labels = frozenset(k.strip() for k in args.labels.split(",") if k.strip())
     if labels - set(LABEL_KINDS):
         raise ValueError(f"unknown label kinds: {sorted(labels - set(LABEL_KINDS))}")

@@ -68,6 +68,8 @@ KEY_BINDINGS: tuple[Binding, ...] = (
     Binding("G", "", "run_to_end", "run to the end"),
     Binding("R", "", "reload", "re-run the script now"),
     Binding("F12", "", "screenshot", "save a screenshot (PNG, no HUD)"),
+    Binding("F12", "shift", "screenshot_transparent",
+            "save a screenshot with a transparent background (PNG with alpha)"),
     Binding("M", "", "next_pick_mode", "pick mode: face > edge > vertex > corner"),
     Binding("F", "shift", "pick_face", "pick faces"),
     Binding("E", "shift", "pick_edge", "pick edges"),

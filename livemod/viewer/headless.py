@@ -6,8 +6,6 @@ Mesa's llvmpipe; its output is bit-identical across runs.
 
 from __future__ import annotations
 
-import functools
-import io
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from pathlib import Path
@@ -20,6 +18,7 @@ from livemod.dlfl.scene import Selection
 
 from .camera import Camera
 from .geometry import sample_points
+from .imagefiles import check_output, write_images
 from .renderer import Renderer, Style
 
 
@@ -154,93 +153,13 @@ def render_turntable(offscreen: Offscreen, camera: Camera, style: Style, frames:
     return images
 
 
-IMAGE_SUFFIXES = (".png", ".gif")
-
-
-def output_paths(out: str, frames: int) -> list[Path]:
-    """The files rendering ``frames`` frames to ``out`` writes, checked before any
-    rendering: ``x.gif`` (all frames in one), ``x.png`` (one frame), or a PNG
-    sequence: a name with ``{frame}`` (format spec allowed) or one ``%d``-style
-    field, or a folder (``frame_000.png``, ...).
-
-    Raises:
-        ValueError: another suffix, a pattern with other fields, several frames
-            for one PNG, or a pattern that names two frames alike.
-    """
-    target = Path(out)
-    if "{" not in out and "%" not in out and target.suffix:
-        if target.suffix.lower() not in IMAGE_SUFFIXES:
-            raise ValueError(f"cannot write images to {out!r}: give a .png or .gif name, a "
-                             "folder, or a name with {frame} or %03d")
-        if target.suffix.lower() == ".png" and frames > 1:
-            raise ValueError(f"{frames} frames cannot go to one PNG ({out}); use .gif, a "
-                             "folder, or a name with {frame}, e.g. turn_{frame:03d}.png")
-        return [target]
-    paths = _sequence(out, frames)
-    if len(set(paths)) < len(paths):
-        raise ValueError(f"the pattern {out!r} names two frames alike; put {{frame}} in it")
-    return paths
-
-
-def _sequence(out: str, frames: int) -> list[Path]:
-    """The PNG sequence of a pattern or folder ``out`` (see :func:`output_paths`)."""
-    width = max(3, len(str(frames - 1)))
-    try:
-        if "{" in out:
-            return [Path(out.format(frame=index)) for index in range(frames)]
-        if "%" in out:
-            return [Path(out % index) for index in range(frames)]
-    except (KeyError, IndexError, ValueError, TypeError) as exc:
-        percent = "; write %% for a percent sign" if "%" in out else ""
-        raise ValueError(f"the output pattern {out!r} takes only {{frame}} or one %d "
-                         f"field ({type(exc).__name__}: {exc}){percent}") from None
-    return [Path(out) / f"frame_{index:0{width}d}.png" for index in range(frames)]
-
-
-def write_images(out: str, images: list[np.ndarray], fps: float = 25.0) -> list[Path]:
-    """Write ``images`` where :func:`output_paths` says, each file atomically.
-
-    Returns the paths written. GIF frame delays are whole centiseconds, so 25 fps
-    (40 ms) is exact.
-
-    Raises:
-        ValueError: see :func:`output_paths`.
-        OSError: a file cannot be written.
-    """
-    from PIL import Image
-
-    paths = output_paths(out, len(images))
-    pictures = [Image.fromarray(image) for image in images]
-    if len(paths) == 1 and paths[0].suffix.lower() == ".gif":
-        if images and images[0].shape[2] == 4:
-            raise ValueError(f"{out}: a GIF cannot hold a transparent background's soft "
-                             f"edges; write PNG frames (a folder or a %03d name)")
-        _save(paths[0], lambda f: pictures[0].save(
-            f, format="GIF", save_all=True, append_images=pictures[1:],
-            duration=round(1000.0 / fps), loop=0, optimize=False))
-        return paths
-    for path, picture in zip(paths, pictures, strict=True):
-        _save(path, functools.partial(picture.save, format="PNG"))
-    return paths
-
-
-def _save(path: Path, write: Callable[[io.BytesIO], None]) -> None:
-    """Encode with ``write`` in memory, then replace ``path`` atomically."""
-    from livemod.dlfl.io.atomic import write_atomically
-
-    data = io.BytesIO()
-    write(data)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    write_atomically(path, data.getvalue())
-
-
 def render_arrays(arrays: MeshArrays | None, out: str, *, size: tuple[int, int] = (800, 600),
                   turntable: int = 0, elevation: float = 25.0, style: Style | None = None,
                   preview: MeshArrays | None = None, selection: Selection | None = None,
                   progress: Callable[[int, int], None] | None = None,
                   ortho: bool = False, samples: int | None = None,
                   offscreen: Offscreen | None = None,
-                  others: MeshArrays | None = None) -> list[Path]:
+                  others: MeshArrays | None = None, fps: float = 25.0) -> list[Path]:
     """Render ``arrays`` to ``out`` (one frame, or a ``turntable`` of that many frames).
 
     The framing is computed once for all the turntable's angles, so it holds at every
@@ -249,20 +168,25 @@ def render_arrays(arrays: MeshArrays | None, out: str, *, size: tuple[int, int] 
     With ``offscreen`` (made beforehand, so a bad size or GL fails before a long
     run), it is drawn into and left to the caller to release; ``size`` and
     ``samples`` are then its own. ``others`` (the scene's other objects) are drawn
-    beside ``arrays`` and framed with it.
+    beside ``arrays`` and framed with it. ``fps`` is the frame rate of a GIF,
+    WebP or MP4 ``out`` (see :func:`~livemod.viewer.imagefiles.write_images`).
 
     Raises:
-        ValueError: a size or MSAA level this GL cannot make.
+        ValueError: a size or MSAA level this GL cannot make, or an ``out`` that
+            cannot take these frames (see :func:`~livemod.viewer.imagefiles.check_output`;
+            checked before rendering).
         NoOffscreenGL: no offscreen GL context could be made.
     """
     drawn = _Drawn(arrays, preview, others, selection)
     if offscreen is not None:
-        return _render_into(offscreen, drawn, out, turntable, elevation, style, progress, ortho)
+        return _render_into(offscreen, drawn, out, turntable, elevation, style, progress,
+                            ortho, fps)
     if samples is None:
         samples = 0 if turntable > 1 else 4
     offscreen = Offscreen(size, samples=samples)
     try:
-        return _render_into(offscreen, drawn, out, turntable, elevation, style, progress, ortho)
+        return _render_into(offscreen, drawn, out, turntable, elevation, style, progress,
+                            ortho, fps)
     finally:
         offscreen.release()
 
@@ -279,16 +203,19 @@ class _Drawn:
 
 def _render_into(offscreen: Offscreen, drawn: _Drawn, out: str, turntable: int,
                  elevation: float, style: Style | None,
-                 progress: Callable[[int, int], None] | None, ortho: bool) -> list[Path]:
+                 progress: Callable[[int, int], None] | None, ortho: bool,
+                 fps: float) -> list[Path]:
     """:func:`render_arrays` into an existing target (which stays open)."""
     size = offscreen.size
+    style = style if style is not None else Style()
+    frames = max(turntable, 1)
+    check_output(out, frames, size, transparent=style.background[3] < 1.0, fps=fps)
     offscreen.activate()
     offscreen.renderer.set_mesh(drawn.arrays, drawn.preview, drawn.others)
     if drawn.selection is not None:
         offscreen.renderer.set_selection(drawn.selection)
     # framed as the window fits: the mesh and the other objects together
     camera = camera_framing(offscreen.renderer.drawn_positions(), elevation, ortho=ortho,
-                            aspect=size[0] / size[1], frames=max(turntable, 1))
-    images = render_turntable(offscreen, camera, style if style is not None else Style(),
-                              max(turntable, 1), progress)
-    return write_images(out, images)
+                            aspect=size[0] / size[1], frames=frames)
+    images = render_turntable(offscreen, camera, style, frames, progress)
+    return write_images(out, images, fps)

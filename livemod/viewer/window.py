@@ -31,6 +31,7 @@ from .camera import Camera, bounds_changed_a_lot
 from .controls import PICK_MODES, action_for, selection_python, toggle_pick
 from .geometry import sample_points
 from .hud import hud_quads
+from .imagefiles import save_png
 from .params_panel import Hit, ParameterPanel
 from .renderer import DARK_BACKGROUND, LIGHT_BACKGROUND, Renderer, Style
 
@@ -238,33 +239,38 @@ class LiveViewer(mglw.WindowConfig):
                 "style": self.style, "ortho": self.camera.ortho, "playing": self.playing,
                 "hud": self.show_hud, "help": self.show_help}
 
-    def capture(self) -> np.ndarray:
-        """Render the scene (no HUD) offscreen at the window's size: ``(H, W, 3)`` uint8."""
+    def capture(self, transparent: bool = False) -> np.ndarray:
+        """Render the scene (no HUD) offscreen at the window's size: ``(H, W, 3)``
+        uint8, or ``(H, W, 4)`` with alpha 0 where nothing is drawn when
+        ``transparent``."""
         size = self.wnd.fbo.size
+        style, channels = self.style, 3
+        if transparent:
+            style, channels = replace(style, background=(*style.background[:3], 0.0)), 4
         fbo = self.ctx.framebuffer([self.ctx.renderbuffer(size, 4)],
                                    self.ctx.depth_renderbuffer(size))
         try:
-            self.renderer.draw(fbo, self.camera, self.style)
-            raw = fbo.read(components=3, alignment=1)
+            self.renderer.draw(fbo, self.camera, style)
+            raw = fbo.read(components=channels, alignment=1)
         finally:
             for attachment in (*fbo.color_attachments, fbo.depth_attachment):
                 if attachment is not None:
                     attachment.release()
             fbo.release()
             self.wnd.use()
-        return np.frombuffer(raw, dtype=np.uint8).reshape(size[1], size[0], 3)[::-1].copy()
+        image = np.frombuffer(raw, dtype=np.uint8).reshape(size[1], size[0], channels)
+        return image[::-1].copy()
 
-    def save_screenshot(self) -> Path:
-        """Write :meth:`capture` to ``<script>_NNN.png`` in the working directory."""
-        from PIL import Image
-
+    def save_screenshot(self, transparent: bool = False) -> Path:
+        """Write :meth:`capture` to ``<script>_NNN.png`` in the working directory
+        (atomically, never over an earlier one) and return its path."""
         stem = Path(self.script).stem
         index = len(self.screenshots)
         path = Path(f"{stem}_{index:03d}.png")
         while path.exists():
             index += 1
             path = Path(f"{stem}_{index:03d}.png")
-        Image.fromarray(self.capture()).save(path)
+        save_png(path, self.capture(transparent))
         self.screenshots.append(path)
         self._echo(f"screenshot: {path}")
         return path
@@ -359,6 +365,9 @@ class LiveViewer(mglw.WindowConfig):
 
     def _do_screenshot(self) -> None:
         self.save_screenshot()
+
+    def _do_screenshot_transparent(self) -> None:
+        self.save_screenshot(transparent=True)
 
     def _do_next_pick_mode(self) -> None:
         self.pick_mode = PICK_MODES[(PICK_MODES.index(self.pick_mode) + 1) % len(PICK_MODES)]

@@ -1,0 +1,158 @@
+"""Output names and image/animation files of ``livemod render`` (no GL needed)."""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import av
+import numpy as np
+import pytest
+from PIL import Image
+
+from livemod.viewer.imagefiles import check_output, output_paths, save_png, write_images
+
+
+def moving_square(frames: int, size: tuple[int, int] = (64, 48), alpha: bool = False,
+                  ) -> list[np.ndarray]:
+    """``frames`` images ``(H, W, 3 or 4)``: a white square walking over a red ramp
+    (alpha: the ramp half transparent, the square opaque)."""
+    width, height = size
+    images = []
+    for k in range(frames):
+        image = np.zeros((height, width, 4 if alpha else 3), np.uint8)
+        image[..., 0] = 30 * k + 20
+        if alpha:
+            image[..., 3] = 128
+        image[10:26, 4 + 6 * k:20 + 6 * k] = 255
+        images.append(image)
+    return images
+
+
+def test_output_paths_of_patterns_folders_and_single_files() -> None:
+    assert [p.name for p in output_paths("out/t_{frame:02d}.png", 2)] == ["t_00.png", "t_01.png"]
+    assert [p.name for p in output_paths("t_%03d.png", 2)] == ["t_000.png", "t_001.png"]
+    assert output_paths("folder", 2)[1].as_posix() == "folder/frame_001.png"
+    for name in ("turn.gif", "turn.webp", "turn.MP4"):
+        assert output_paths(name, 36) == [Path(name)]
+    assert output_paths("one.PNG", 1) == [Path("one.PNG")]
+
+
+@pytest.mark.parametrize(("out", "frames", "wrong"), [
+    ("x.foo", 1, "give a .png, .gif, .webp or .mp4 name, a folder, or a name with {frame} "
+                 "or %03d"),
+    ("tt.png", 3, "3 frames cannot go to one PNG \\(tt.png\\); use .gif, .webp, .mp4"),
+    ("100%.png", 1, "takes only {frame} or one %d field .*write %% for a percent sign"),
+    ("f_{frame}_{x}.png", 2, "takes only {frame} or one %d field \\(KeyError: 'x'\\)"),
+    ("same.png{}", 2, "takes only {frame}"),
+    ("fixed_{frame:.0s}.png", 2, "takes only {frame}|names two frames alike"),
+])
+def test_output_paths_refuse_what_cannot_be_written(out: str, frames: int, wrong: str) -> None:
+    with pytest.raises(ValueError, match=wrong):
+        output_paths(out, frames)
+
+
+@pytest.mark.parametrize(("out", "size", "transparent", "fps", "wrong"), [
+    ("t.gif", (64, 48), True, 25.0, "needs PNG or WebP output, not 't.gif' \\(a GIF cannot "
+                                    "hold soft edges\\)"),
+    ("t.mp4", (64, 48), True, 25.0, "not 't.mp4' \\(MP4 has no alpha\\)"),
+    ("t.mp4", (63, 48), False, 25.0, "MP4 needs an even width and height, got 63x48; try 64x48"),
+    ("t.mp4", (64, 47), False, 25.0, "got 64x47; try 64x48"),
+    ("t.gif", (64, 48), False, 0.0, "frames per second must be a positive number, got 0.0"),
+    ("t.webp", (64, 48), False, float("nan"), "positive number, got nan"),
+])
+def test_check_output_refuses_what_the_format_cannot_hold(
+        out: str, size: tuple[int, int], transparent: bool, fps: float, wrong: str) -> None:
+    with pytest.raises(ValueError, match=wrong):
+        check_output(out, 4, size, transparent=transparent, fps=fps)
+
+
+def test_check_output_takes_what_the_formats_hold() -> None:
+    assert check_output("t.webp", 4, (63, 47), transparent=True) == [Path("t.webp")]
+    assert check_output("seq", 2, (63, 47), transparent=True)[1] == Path("seq/frame_001.png")
+    assert check_output("t.mp4", 4, (64, 48), fps=30.0) == [Path("t.mp4")]
+
+
+def test_mp4_without_pyav_names_the_extra_to_install(monkeypatch) -> None:
+    monkeypatch.setitem(sys.modules, "av", None)  # find_spec then raises ValueError
+    monkeypatch.setattr("importlib.util.find_spec", lambda name: None)
+    with pytest.raises(ValueError, match='writing t.mp4 needs PyAV: pip install "livemod'
+                                         '\\[video\\]" \\(or write .gif or .webp\\)'):
+        check_output("t.mp4", 4, (64, 48))
+
+
+def test_mp4_holds_every_frame_at_the_rate_asked(tmp_path: Path) -> None:
+    images = moving_square(7)
+    out = tmp_path / "turn.mp4"
+    assert write_images(str(out), images, fps=30.0) == [out]
+    with av.open(str(out)) as container:
+        stream = container.streams.video[0]
+        assert stream.codec_context.name == "h264"
+        assert (stream.codec_context.width, stream.codec_context.height) == (64, 48)
+        assert stream.average_rate == 30
+        decoded = [frame.to_ndarray(format="rgb24") for frame in container.decode(stream)]
+    assert len(decoded) == 7
+    for made, back in zip(images, decoded, strict=True):
+        # lossy, but close, and the square is where it was in that frame
+        assert np.abs(made.astype(int) - back).mean() < 4.0
+    assert out.read_bytes().find(b"moov") < out.read_bytes().find(b"mdat")  # index first
+
+
+def test_mp4_is_the_same_bytes_every_time(tmp_path: Path) -> None:
+    first, second = tmp_path / "a.mp4", tmp_path / "b.mp4"
+    write_images(str(first), moving_square(4))
+    write_images(str(second), moving_square(4))
+    assert first.read_bytes() == second.read_bytes()
+
+
+def test_webp_is_lossless_with_alpha_and_loops(tmp_path: Path) -> None:
+    images = moving_square(5, alpha=True)
+    out = tmp_path / "turn.webp"
+    write_images(str(out), images, fps=20.0)
+    with Image.open(out) as webp:
+        assert webp.n_frames == 5 and webp.info["loop"] == 0
+        for k, made in enumerate(images):
+            webp.seek(k)
+            frame = np.asarray(webp.convert("RGBA"))  # loads the frame and its info
+            assert webp.info["duration"] == 50
+            assert np.array_equal(frame, made)
+
+
+def test_gif_frames_and_delay(tmp_path: Path) -> None:
+    out = tmp_path / "turn.gif"
+    write_images(str(out), moving_square(3), fps=25.0)
+    with Image.open(out) as gif:
+        assert gif.n_frames == 3 and gif.info["duration"] == 40 and gif.info["loop"] == 0
+
+
+def test_png_sequence_and_single_png(tmp_path: Path) -> None:
+    images = moving_square(2)
+    paths = write_images(str(tmp_path / "seq" / "f_{frame}.png"), images)
+    assert [p.name for p in paths] == ["f_0.png", "f_1.png"]
+    for path, made in zip(paths, images, strict=True):
+        assert np.array_equal(np.asarray(Image.open(path)), made)
+    clear = moving_square(1, alpha=True)[0]
+    save_png(tmp_path / "one.png", clear)
+    assert np.array_equal(np.asarray(Image.open(tmp_path / "one.png")), clear)
+
+
+def test_a_failed_write_leaves_the_old_file(tmp_path: Path, monkeypatch) -> None:
+    out = tmp_path / "turn.mp4"
+    out.write_bytes(b"old movie")
+
+    def broken(*args, **kwargs):
+        raise OSError("disk full")
+
+    monkeypatch.setattr(av.VideoFrame, "from_ndarray", broken)
+    with pytest.raises(OSError, match="disk full"):
+        write_images(str(out), moving_square(2))
+    assert out.read_bytes() == b"old movie"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["turn.mp4"]  # no temporary left
+
+
+def test_write_images_refuses_no_frames_and_bad_names_before_writing(tmp_path: Path) -> None:
+    with pytest.raises(ValueError, match="no frames to write to"):
+        write_images(str(tmp_path / "t.gif"), [])
+    with pytest.raises(ValueError, match="MP4 has no alpha"):
+        write_images(str(tmp_path / "t.mp4"), moving_square(2, alpha=True))
+    assert list(tmp_path.iterdir()) == []
