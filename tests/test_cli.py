@@ -90,3 +90,26 @@ def test_a_closed_pipe_ends_the_command_quietly(tmp_path: Path) -> None:
     errors = proc.stderr.read().decode()
     assert proc.wait(timeout=60) == 141
     assert errors == ""
+
+
+def test_a_closed_pipe_ends_a_printing_script_quietly(tmp_path: Path) -> None:
+    # `livemod run script | head -1` where the script itself prints
+    script = tmp_path / "chatty.py"
+    script.write_text("for i in range(200000):\n    print(i)\n")
+    proc = subprocess.Popen([sys.executable, "-m", "livemod", "run", str(script)],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    assert proc.stdout is not None and proc.stderr is not None
+    assert proc.stdout.readline() == b"0\n"
+    proc.stdout.close()
+    errors = proc.stderr.read().decode()
+    assert proc.wait(timeout=60) == 141
+    assert errors == ""
+
+
+def test_a_scripts_own_broken_pipe_is_still_its_error(tmp_path: Path) -> None:
+    script = tmp_path / "sock.py"
+    script.write_text("print('hello')\nraise BrokenPipeError(32, 'its own socket')\n")
+    done = subprocess.run([sys.executable, "-m", "livemod", "run", str(script)],
+                          capture_output=True, text=True, timeout=60)
+    assert done.returncode == 1 and done.stdout == "hello\n"
+    assert "sock.py:2: BrokenPipeError: [Errno 32] its own socket" in done.stderr

@@ -10,6 +10,7 @@ from __future__ import annotations
 import argparse
 import os
 import queue
+import select
 import sys
 from collections.abc import Sequence
 from typing import Any, TextIO
@@ -177,6 +178,8 @@ def _finish_run(args: argparse.Namespace, outcome: Any, params: dict[str, Any]) 
     if problem is not None:  # only for scripts whose declarations are computed
         print(f"livemod run: {problem}", file=sys.stderr)
         return 2
+    if outcome.error is not None and _script_output_went_away(outcome.error):
+        raise BrokenPipeError  # `livemod run script | head`: end quietly, as for our own output
     if outcome.error is not None:
         print(outcome.error.traceback.rstrip(), file=sys.stderr)
         print(str(outcome.error), file=sys.stderr)
@@ -185,6 +188,25 @@ def _finish_run(args: argparse.Namespace, outcome: Any, params: dict[str, Any]) 
     print_summary(args.script, mesh, len(outcome.steps), outcome.elapsed)
     _print_objects(outcome.scene, args)
     return _save(mesh, args.output)
+
+
+def _script_output_went_away(error: Any) -> bool:
+    """True when the script failed writing to our standard output because its
+    reader closed the pipe (a BrokenPipeError of its own socket is an error)."""
+    if not error.message.startswith("BrokenPipeError"):
+        return False
+    try:
+        sys.stdout.flush()  # the script's unwritten output is still buffered
+    except BrokenPipeError:
+        return True
+    except (OSError, ValueError):
+        return False
+    try:  # nothing was left to flush: ask the pipe (POLLERR once its reader is gone)
+        poller = select.poll()
+        poller.register(sys.stdout.fileno(), 0)
+        return any(events & select.POLLERR for _, events in poller.poll(0))
+    except (OSError, ValueError, AttributeError):  # no fileno, no poll (Windows)
+        return False
 
 
 def _print_objects(scene: Any, args: argparse.Namespace) -> None:
