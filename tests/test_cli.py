@@ -78,32 +78,30 @@ def test_every_command_that_runs_a_script_takes_a_selection(command: list[str]) 
     assert args.select == ["faces=1,2", "corners=3"]
 
 
+def _first_line_then_close(args: list[str]) -> tuple[str, str, int]:
+    """Run ``livemod *args``, read one line of its output and close the pipe, as
+    ``| head -1`` does: ``(that line, all of stderr, exit code)``."""
+    proc = subprocess.Popen([sys.executable, "-m", "livemod", *args],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    assert proc.stdout is not None and proc.stderr is not None
+    line = proc.stdout.readline().decode()
+    proc.stdout.close()
+    errors = proc.stderr.read().decode()
+    return line, errors, proc.wait(timeout=60)
+
+
 def test_a_closed_pipe_ends_the_command_quietly(tmp_path: Path) -> None:
     # `livemod run --steps script | head -1`: the reader leaves after one line
     script = tmp_path / "many.py"
     script.write_text("for i in range(20000):\n    createVertex((i, 0.0, 0.0))\n")
-    proc = subprocess.Popen([sys.executable, "-m", "livemod", "run", str(script), "--steps"],
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE)
-    assert proc.stdout is not None and proc.stderr is not None
-    proc.stdout.readline()
-    proc.stdout.close()
-    errors = proc.stderr.read().decode()
-    assert proc.wait(timeout=60) == 141
-    assert errors == ""
+    assert _first_line_then_close(["run", str(script), "--steps"])[1:] == ("", 141)
 
 
 def test_a_closed_pipe_ends_a_printing_script_quietly(tmp_path: Path) -> None:
     # `livemod run script | head -1` where the script itself prints
     script = tmp_path / "chatty.py"
     script.write_text("for i in range(200000):\n    print(i)\n")
-    proc = subprocess.Popen([sys.executable, "-m", "livemod", "run", str(script)],
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE)
-    assert proc.stdout is not None and proc.stderr is not None
-    assert proc.stdout.readline() == b"0\n"
-    proc.stdout.close()
-    errors = proc.stderr.read().decode()
-    assert proc.wait(timeout=60) == 141
-    assert errors == ""
+    assert _first_line_then_close(["run", str(script)]) == ("0\n", "", 141)
 
 
 def test_a_scripts_own_broken_pipe_is_still_its_error(tmp_path: Path) -> None:
