@@ -142,3 +142,19 @@ def test_each_command_is_one_step(scene):
     extrude("dodeca", 0)
     connectFaces(1, 3)
     assert labels == ["extrude", "connectFaces"]
+
+
+def test_extrude_failing_in_a_later_segment_changes_nothing(scene):
+    before = snapshot(scene.mesh)
+    with pytest.raises(DLFLError, match="dodeca extrusion of face 0 cannot be built: "
+                       "a point it makes on the way overflows"):
+        extrude("dodeca", 0, 1e308, 2)
+    assert snapshot(scene.mesh) == before
+
+
+@pytest.mark.parametrize("pair", [(None, 0), (0, None), (1.5, 0), ("0", 0)])
+def test_connect_edges_refuses_a_half_edge_that_is_not_two_ids(scene, pair):
+    before = snapshot(scene.mesh)
+    with pytest.raises(DLFLError, match="must hold ids"):
+        connectEdges(pair, (1, 1))
+    assert snapshot(scene.mesh) == before

@@ -8,7 +8,7 @@ import math
 import numpy as np
 import pytest
 
-from livemod.dlfl import DLFLError, Mesh, face_size_histogram, genus, validate
+from livemod.dlfl import DLFLError, Mesh, face_size_histogram, from_polygons, genus, validate
 from livemod.dlfl.analysis import face_centroid, face_normal, face_points
 from livemod.dlfl.extrusion import (
     KINDS,
@@ -19,7 +19,7 @@ from livemod.dlfl.extrusion import (
     small_polygon_normal,
 )
 from livemod.dlfl.shapes import cube, dodecahedron, tetrahedron
-from tests.meshes import euler_ok, snapshot
+from tests.meshes import CUBE_FACES, CUBE_POSITIONS, euler_ok, snapshot
 
 TOP = 0  # cube face 0: vertices 0..3 at y = +1, normal +y
 
@@ -356,3 +356,68 @@ def test_kinds_that_need_a_simple_face_refuse_one_with_a_dangling_edge(kind, run
     assert snapshot(m) == before  # was left half-extruded before the check
     extrude(m, top, "cubical")     # the other kinds take such a face
     validate(m)
+
+
+# -- failures part-way (later segments and sub-steps) ---------------------------------
+
+def shifted_cube() -> Mesh:
+    """TopMod's cube moved to (5, 5, 5): scaling a face by 1e-11 twice about its
+    centroid rounds all its points onto the centroid, a degenerate face."""
+    m = cube()
+    m.set_positions(m.vertex_ids(), m.positions_view() + 5.0)
+    return m
+
+
+def zero_edge_cube() -> Mesh:
+    """The unit cube with vertex 1 moved onto vertex 0: face 0 keeps a normal, but
+    a stellation of it has a triangle with no area."""
+    pos = CUBE_POSITIONS.copy()
+    pos[1] = pos[0]
+    return from_polygons(pos, CUBE_FACES)
+
+
+# kind, options, cause: each builds its first segment (or sub-step) and used to
+# raise in a later one, with the mesh already changed
+PART_WAY = [
+    ("cubical", {"distance": 1e308, "segments": 2}, "overflows"),
+    ("planar-offset", {"distance": 1e308, "segments": 2}, "overflows"),
+    ("cubical", {"scale": 1e-11, "segments": 3}, "degenerate"),
+    ("doo-sabin", {"scale": 1e-11, "segments": 3}, "degenerate"),
+    ("octa", {"scale": 1e-11, "segments": 3}, "degenerate"),
+    ("dodeca", {"distance": 1e308, "segments": 2}, "overflows"),
+    ("icosa", {"scale": 1e-11, "segments": 2}, "degenerate"),
+    ("icosa", {"distance": 1e308}, "overflows"),
+    ("cuboctahedral", {"scale": 1e-11, "segments": 2}, "degenerate"),
+    ("hex-tile", {"scale": 1e-11, "segments": 2}, "degenerate"),
+    ("dome", {"scale": 1e-11}, "degenerate"),
+    ("dome", {"distance": 1e308}, "overflows"),
+]
+
+
+@pytest.mark.parametrize(("kind", "options", "cause"), PART_WAY)
+def test_an_extrusion_failing_part_way_leaves_the_mesh_unchanged(kind, options, cause):
+    m = shifted_cube()
+    before = snapshot(m)
+    run = extrude_fan if KINDS[kind].fan is not None else extrude
+    with pytest.raises(DLFLError, match=f"{kind} extrusion of face {TOP} cannot be built: .*"
+                       f"{cause}.*the mesh is unchanged"):
+        run(m, TOP, kind, **options)
+    assert snapshot(m) == before
+
+
+def test_double_stellate_refuses_a_face_whose_stellation_is_degenerate():
+    m = zero_edge_cube()
+    before = snapshot(m)
+    with pytest.raises(DLFLError, match="double-stellate extrusion of face 0 cannot be built: "
+                       "a face it makes on the way is degenerate"):
+        extrude_fan(m, 0, "double-stellate", 1.0)
+    assert snapshot(m) == before
+
+
+def test_a_first_step_that_overflows_names_the_point():
+    m = cube()
+    m.set_positions(m.vertex_ids(), m.positions_view() * 4.0)  # corners 4 from the centroid
+    before = snapshot(m)
+    with pytest.raises(DLFLError, match=r"would put a point at \[.*inf.*overflow"):
+        extrude(m, TOP, "cubical", scale=1e308)
+    assert snapshot(m) == before

@@ -59,6 +59,17 @@ class Options:
 
 # -- local geometry ------------------------------------------------------------------
 
+class _GeometryError(DLFLError):
+    """A step cannot be built: the face it extrudes has no normal, or a point it
+    makes is not finite. The message names the face or point; ``reason`` says
+    the same without ids, for a rehearsal (:func:`_rehearse`), whose ids are
+    those of a scratch mesh."""
+
+    def __init__(self, message: str, reason: str) -> None:
+        super().__init__(message)
+        self.reason = reason
+
+
 def _face_geometry(mesh: Mesh, face: int) -> tuple[np.ndarray, np.ndarray]:
     """``(k, 3)`` points of ``face`` from its head and its ``(3,)`` unit normal.
 
@@ -67,7 +78,7 @@ def _face_geometry(mesh: Mesh, face: int) -> tuple[np.ndarray, np.ndarray]:
     geometry twice per extrusion, a sixth of a chained step's time).
 
     Raises:
-        DLFLError: the face has no normal (collinear or coincident points).
+        _GeometryError: the face has no normal (collinear or coincident points).
     """
     # vertex slots straight from the ring: no id round trip on the hot path
     vertex_slot = mesh._c.vertex
@@ -75,8 +86,24 @@ def _face_geometry(mesh: Mesh, face: int) -> tuple[np.ndarray, np.ndarray]:
     points = mesh._v.arrays["position"][[vertex_slot[c] for c in ring]]
     normal = small_polygon_normal(points.tolist())
     if normal == (0.0, 0.0, 0.0):
-        raise DLFLError(f"face {face} is degenerate (no normal); it cannot be extruded")
+        raise _GeometryError(f"face {face} is degenerate (no normal); it cannot be extruded",
+                             "a face it makes on the way is degenerate (no normal)")
     return points, np.array(normal)
+
+
+def _finite(points: np.ndarray) -> np.ndarray:
+    """``points`` (``(k, 3)`` or ``(3,)``), checked before they reach the mesh.
+
+    Raises:
+        _GeometryError: a coordinate overflowed to infinity (or is NaN).
+    """
+    if not np.isfinite(points).all():
+        bad = points if points.ndim == 1 else points[~np.isfinite(points).all(axis=1)][0]
+        raise _GeometryError(
+            f"the extrusion would put a point at {bad.tolist()}: its numbers overflow; "
+            "use a smaller distance or scale",
+            "a point it makes on the way overflows (use a smaller distance or scale)")
+    return points
 
 
 def small_polygon_normal(points: list[list[float]]) -> tuple[float, float, float]:
@@ -170,7 +197,7 @@ def doo_sabin_weights(n: int) -> np.ndarray:
 def _bridge(mesh: Mesh, face: int, points: np.ndarray, dual: bool = False) -> int:
     """Create ``points`` as a two-sided polygon and join its back to ``face``, head to
     head (quads, or with ``dual`` a band of triangles). Returns the front, the end face."""
-    front, back = mesh.create_face(points.tolist())
+    front, back = mesh.create_face(_finite(points).tolist())
     join = _triangle_band if dual else _quad_band
     join(mesh, mesh.face_corner(face), mesh.face_corner(back))
     return front
@@ -308,7 +335,7 @@ def stellate_fan(mesh: Mesh, face: int, distance: float) -> list[int]:
     """TopMod's ``stellateFace``: a point at centroid + ``distance`` n joined to every
     corner (a cone of triangles). Returns the triangles' ids around the apex."""
     points, normal = _face_geometry(mesh, face)
-    apex = mesh.create_vertex(points.mean(axis=0) + distance * normal)
+    apex = mesh.create_vertex(_finite(points.mean(axis=0) + distance * normal))
     tip = mesh.vertex_corner(apex)
     mesh.insert_edge(tip, mesh.face_corner(face))
     while mesh.face_size(mesh.corner_face(tip)) > 3:
@@ -326,7 +353,7 @@ def double_stellate_fan(mesh: Mesh, face: int, distance: float) -> list[int]:
     triangles = []
     for triangle in first:
         triangles.extend(stellate_fan(mesh, triangle, 0.0))
-    mesh.set_position(apex, mesh.position(apex) + distance * normal)
+    mesh.set_position(apex, _finite(mesh.position(apex) + distance * normal))
     return triangles
 
 
@@ -358,27 +385,32 @@ def dome_fan(mesh: Mesh, face: int, opts: Options) -> list[int]:
 
 @dataclass(frozen=True)
 class Kind:
-    """One extrusion kind: its step, whether it ends in a fan, TopMod's name, and
+    """One extrusion kind: its step, whether it ends in a fan, TopMod's name,
     whether it needs a face that visits each of its vertices once (kinds whose
     later sub-steps work on faces the first one made, which come out degenerate
-    from a face with a dangling edge or a loop inside it)."""
+    from a face with a dangling edge or a loop inside it), and whether one step
+    is a single build (one polygon or apex, every point checked before the mesh
+    changes), which needs no rehearsal on a scratch copy to fail cleanly."""
 
     step: Callable[[Mesh, int, Options], int] | None
     fan: Callable[[Mesh, int, Options], list[int]] | None
     topmod: str
     simple_face: bool = False
+    single_build: bool = False
 
 
 KINDS: dict[str, Kind] = {
-    "cubical": Kind(cubical_step, None, "extrudeFace"),
-    "doo-sabin": Kind(doo_sabin_step, None, "extrudeFaceDS"),
-    "octa": Kind(dual_step, None, "extrudeDualFace"),
+    "cubical": Kind(cubical_step, None, "extrudeFace", single_build=True),
+    "doo-sabin": Kind(doo_sabin_step, None, "extrudeFaceDS", single_build=True),
+    "octa": Kind(dual_step, None, "extrudeDualFace", single_build=True),
     "dodeca": Kind(dodeca_step, None, "extrudeFaceDodeca"),
     "icosa": Kind(icosa_step, None, "extrudeFaceIcosa", simple_face=True),
     "cuboctahedral": Kind(cuboctahedral_step, None, "extrudeFaceCubOcta"),
     "hex-tile": Kind(hex_tile_step, None, "extrudeHexTileFace"),
-    "planar-offset": Kind(planar_offset_step, None, "extrudeFacePlanarOffset"),
-    "stellate": Kind(None, lambda m, f, opts: stellate_fan(m, f, opts.distance), "stellateFace"),
+    "planar-offset": Kind(planar_offset_step, None, "extrudeFacePlanarOffset",
+                          single_build=True),
+    "stellate": Kind(None, lambda m, f, opts: stellate_fan(m, f, opts.distance), "stellateFace",
+                     single_build=True),
     "double-stellate": Kind(
         None, lambda m, f, opts: double_stellate_fan(m, f, opts.distance), "doubleStellateFace",
         simple_face=True),
@@ -492,22 +524,31 @@ def extrude(
 
     Raises:
         DLFLError: unknown kind (lists the valid ones), a kind that ends in a fan
-            (use :func:`extrude_fan`), a face that is gone or has < 3 corners,
-            for icosa a face that visits a vertex twice, ``segments`` < 1, a
-            non-finite number. The mesh is unchanged.
+            (use :func:`extrude_fan`), a face that is gone, has < 3 corners or
+            no normal, for icosa a face that visits a vertex twice, ``segments``
+            < 1, a non-finite number, or numbers that overflow or make a
+            degenerate face in a later step or segment (checked on a scratch
+            copy first). The mesh is unchanged.
     """
     spec, opts = _prepare(mesh, face, kind, segments, Options(
         distance, rotation, scale, twist, bool(dual_mesh), bool(hexagonalize), thickness,
         bool(fractional)))
-    if spec.step is None:
+    step = spec.step
+    if step is None:
         raise DLFLError(f"extrusion kind {resolve_kind(kind)!r} ends in a fan of triangles, "
                         "not an end face; use extrude_fan()")
-    face = int(face)
-    for i in range(int(segments)):
-        previous = mesh.face_edges(face) if (hexagonalize and i > 0) else []
-        face = spec.step(mesh, face, opts)
-        _delete_edges(mesh, previous)
-    return face
+    count = int(segments)
+
+    def run(m: Mesh, f: int) -> int:
+        for i in range(count):
+            previous = m.face_edges(f) if (opts.hexagonalize and i > 0) else []
+            f = step(m, f, opts)
+            _delete_edges(m, previous)
+        return f
+
+    if count > 1 or not spec.single_build:
+        _rehearse(mesh, int(face), resolve_kind(kind), run)
+    return run(mesh, int(face))
 
 
 def extrude_fan(
@@ -522,11 +563,44 @@ def extrude_fan(
 
     Raises:
         DLFLError: unknown kind, a kind with an end face (use :func:`extrude`), a
-            face that is gone or has < 3 corners, for double-stellate a face that
-            visits a vertex twice. The mesh is unchanged.
+            face that is gone, has < 3 corners or no normal, for double-stellate a
+            face that visits a vertex twice, or numbers that overflow or make a
+            degenerate face in a later step (dome, double-stellate; checked on a
+            scratch copy first). The mesh is unchanged.
     """
     spec, opts = _prepare(mesh, face, kind, 1,
                           Options(distance=distance, rotation=rotation, scale=scale))
-    if spec.fan is None:
+    fan = spec.fan
+    if fan is None:
         raise DLFLError(f"extrusion kind {resolve_kind(kind)!r} ends in a face; use extrude()")
-    return spec.fan(mesh, int(face), opts)
+    if not spec.single_build:
+        _rehearse(mesh, int(face), resolve_kind(kind), lambda m, f: fan(m, f, opts))
+    return fan(mesh, int(face), opts)
+
+
+def _rehearse(mesh: Mesh, face: int, kind: str, run: Callable[[Mesh, int], object]) -> None:
+    """Run an extrusion of several steps on a scratch copy of ``face`` first.
+
+    Later steps extrude faces the earlier ones made, whose shape is known only
+    once those are built: a step can find its face degenerate or its points
+    overflowing after others have changed the mesh. Each step reads nothing but
+    the points of the face it extrudes and builds on faces the extrusion made,
+    so the face's points as a two-sided polygon meet the same geometry. This
+    costs as much again as the extrusion, independent of the mesh's size (a
+    copy of the mesh to restore would not be); single builds skip it.
+
+    Raises:
+        DLFLError: the face itself is degenerate, or a step on the way would fail
+            (the message says why); ``mesh`` is untouched.
+    """
+    points, _ = _face_geometry(mesh, face)  # a degenerate face is named as itself
+    scratch = Mesh()
+    front, _ = scratch.create_face(points.tolist())
+    try:
+        run(scratch, front)
+    except _GeometryError as exc:
+        raise DLFLError(f"{kind} extrusion of face {face} cannot be built: {exc.reason}; "
+                        "the mesh is unchanged") from None
+    except DLFLError as exc:
+        raise DLFLError(f"{kind} extrusion of face {face} cannot be built: {exc}; "
+                        "the mesh is unchanged") from None

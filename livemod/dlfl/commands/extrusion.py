@@ -11,6 +11,7 @@ from typing import Any
 
 from .. import connect as _connect
 from .. import extrusion as _extrusion
+from .._checks import id_list
 from ..errors import DLFLError
 from ._base import mesh, modeling_command, resolve_corner
 
@@ -122,9 +123,15 @@ def extrude(type: str, faceid: int, *options: Any, **keywords: Any) -> int | lis
 
 
 def _half_edge(value: Any, what: str) -> tuple[int, int]:
+    """``value`` as an ``(edgeid, faceid)`` pair of ints.
+
+    Raises:
+        DLFLError: not a pair, or an entry that is not an integer id.
+    """
     if not (isinstance(value, tuple | list) and len(value) == 2):
         raise DLFLError(f"{what} must be an (edgeid, faceid) pair, got {value!r}")
-    return int(value[0]), int(value[1])
+    edge, face = id_list(value, what)
+    return edge, face
 
 
 @modeling_command
