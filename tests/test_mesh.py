@@ -615,3 +615,23 @@ def test_split_delete_keeps_both_side_corners():
     faces = m.delete_edge(e)
     assert m.corner_face(c0) == faces[0] and m.corner_face(c1) == faces[1]
     assert sorted(m.corner_ids().tolist()) == list(range(24))
+
+
+BIG = 1.7e308  # the sum or difference of two such coordinates is past the float range
+
+
+def test_collapse_between_far_out_ends_stays_finite():
+    m = Mesh()
+    m.create_face([(BIG, 0, 0), (BIG, BIG, 0), (0, -BIG, 0)])
+    edge = int(m.edge_ids()[0])
+    survivor = m.collapse_edge(edge)
+    checked(m)
+    np.testing.assert_allclose(m.position(survivor), (BIG, BIG / 2, 0))
+
+
+def test_subdivide_between_far_out_ends_stays_finite():
+    m = Mesh()
+    m.create_face([(-BIG, BIG, 0), (BIG, -BIG, 0)])
+    new = m.subdivide_edge(int(m.edge_ids()[0]), 4)
+    checked(m)
+    np.testing.assert_allclose([m.position(v)[0] for v in new], [-BIG / 2, 0, BIG / 2])

@@ -13,6 +13,7 @@ from livemod.dlfl.io.obj import read_obj
 from livemod.dlfl.shapes import cube, grid, torus
 from livemod.dlfl.subdivision import SCHEMES, settings, subdivide, subdivide_faces
 from tests.meshes import euler_ok, path_face, snapshot, two_cubes
+from tests.meshes import torus as small_torus
 
 OBJS = Path(__file__).resolve().parents[2] / "shared" / "data" / "topmod-objs"
 
@@ -537,3 +538,25 @@ def test_doo_sabin_bc_equals_its_two_steps(index):
     for field in ("positions", "face_offsets", "face_hole", "corner_vertex", "corner_mate",
                   "edge_corners"):
         assert np.array_equal(getattr(a, field), getattr(b, field)), field
+
+
+@pytest.mark.parametrize(("scheme", "options", "size"), [
+    ("root4", {"weight": 1e308}, 1.0), ("loop-style", {"length": 1e308}, 1.0),
+    ("modified-corner-cut", {"thickness": 1e160}, 1.0), ("fractal", {}, 1e300),
+])
+def test_options_that_overflow_are_refused_before_the_mesh_changes(scheme, options, size):
+    m = small_torus()
+    m.set_positions(m.vertex_ids(), m.positions_view() * size)
+    before = snapshot(m)
+    with pytest.raises(DLFLError, match="not finite: the arguments are too large"):
+        subdivide(m, scheme, **options)
+    assert snapshot(m) == before
+
+
+@pytest.mark.parametrize("faces", [[0, None], [0.0], "01"])
+def test_subdivide_faces_refuses_entries_that_are_not_ids(faces):
+    m = cube()
+    before = snapshot(m)
+    with pytest.raises(DLFLError, match="face_ids must"):
+        subdivide_faces(m, faces)
+    assert snapshot(m) == before

@@ -644,7 +644,12 @@ def from_corner_arrays(
         The mesh; vertex ``i`` gets id ``first_ids[0] + i``, face ``i`` gets
         ``first_ids[2] + i``, corner ``i`` gets ``first_ids[3] + i`` and edges are
         numbered in order of their lower corner. A vertex's corner is its lowest.
+
+    Raises:
+        DLFLError: a position is NaN or infinite.
     """
+    positions = np.asarray(positions, dtype=np.float64)
+    _check_finite_result(positions)
     offsets = np.asarray(offsets, dtype=np.int64)
     # int64 indices: numpy converts int32 index arrays on every fancy index
     cvert = np.asarray(corner_vertex, dtype=np.int64)
@@ -662,8 +667,27 @@ def from_corner_arrays(
     mesh._f = Table.from_arrays("face", FACE_SPEC, fid, {"corner": offsets[:-1], "hole": hole})
     mesh._v = Table.from_arrays("vertex", VERTEX_SPEC, vid, {
         "corner": _lowest_corners(cvert, len(positions)),
-        "position": np.asarray(positions, dtype=np.float64)})
+        "position": positions})
     return mesh
+
+
+def _check_finite_result(positions: np.ndarray) -> None:
+    """Refuse NaN or infinite positions before a mesh is built of them.
+
+    Every remeshing operation builds its result here before swapping it in, so
+    this one check keeps them all from making a mesh :func:`validate` refuses
+    when their numbers overflow or degenerate geometry divides by zero.
+
+    Raises:
+        DLFLError: naming the first such vertex (its index in ``positions``).
+    """
+    if np.isfinite(positions).all():
+        return
+    v = int(np.flatnonzero(~np.isfinite(positions).all(axis=1))[0])
+    raise DLFLError(
+        f"the result would put vertex {v} at {positions[v].tolist()}, which is not finite: "
+        "the arguments are too large, or the mesh's geometry is degenerate (coincident "
+        "points, zero-length edges, zero-area faces); the mesh is unchanged")
 
 
 def _ring_links(offsets: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

@@ -22,7 +22,7 @@ docstrings say so.
 from __future__ import annotations
 
 from collections.abc import Iterable, Sequence
-from math import isfinite
+from math import isfinite, isinf
 from typing import Any
 
 import numpy as np
@@ -84,6 +84,14 @@ def _as_point(position: Any) -> tuple[float, float, float]:
         raise DLFLError(f"expected a position (x, y, z) of three finite numbers, got "
                         f"{position!r}")
     return x, y, z
+
+
+def _between(p0: list[float], p1: list[float], t: float) -> list[float]:
+    """The point ``t`` of the way from ``p0`` to ``p1`` (3 floats each) as weighted
+    ends, which cannot overflow between finite ends (``p1 - p0`` can); clamped to
+    the ends, since the rounded sum may step just past one of them."""
+    return [min(max(a * (1.0 - t) + b * t, min(a, b)), max(a, b))
+            for a, b in zip(p0, p1, strict=True)]
 
 
 class Mesh:
@@ -747,8 +755,9 @@ class Mesh:
         """Split ``edge`` into ``divisions`` equal parts; return the new vertex ids.
 
         The new vertices sit at ``p0 + i (p1 - p0) / divisions`` from the vertex
-        ``p0`` of side ``c0``. The edge keeps its id as the first part (from
-        ``p0``); each further part is a new edge.
+        ``p0`` of side ``c0`` (as ``(1 - t) p0 + t p1`` when ``p1 - p0`` overflows,
+        between ends far apart near the largest float). The edge keeps its id as
+        the first part (from ``p0``); each further part is a new edge.
 
         Raises:
             DLFLError: ``edge`` is not live, or ``divisions`` is not an integer >= 1.
@@ -760,16 +769,22 @@ class Mesh:
         es = self._e.slot(edge)
         pos = self._v.arrays["position"]
         C = self._c
-        p0 = pos[C.vertex[self._e.c0[es]]].copy()
-        p1 = pos[C.vertex[self._e.c1[es]]].copy()
+        # plain floats: a 3-vector's arithmetic is several times faster than numpy's
+        p0 = pos[C.vertex[self._e.c0[es]]].tolist()
+        p1 = pos[C.vertex[self._e.c1[es]]].tolist()
+        d = [b - a for a, b in zip(p0, p1, strict=True)]
+        overflows = any(map(isinf, d))
         new_vertices = []
         last = es
         for i in range(1, int(divisions)):
-            vs, last = self._split_edge_slot(last, p0 + (p1 - p0) * (i / divisions))
+            t = i / divisions
+            point = (_between(p0, p1, t) if overflows
+                     else [a + x * t for a, x in zip(p0, d, strict=True)])
+            vs, last = self._split_edge_slot(last, point)
             new_vertices.append(self._v.idv[vs])
         return new_vertices
 
-    def _split_edge_slot(self, es: int, point: np.ndarray) -> tuple[int, int]:
+    def _split_edge_slot(self, es: int, point: Any) -> tuple[int, int]:
         """Split edge slot ``es`` at ``point``; return (new vertex slot, new edge slot)."""
         C, E, V = self._c, self._e, self._v
         C.reserve(2)
@@ -819,7 +834,8 @@ class Mesh:
             lone = C.next[s1] == s1 and C.next[s2] == s2
             self.delete_edge(edge, cleanup and not lone)
             return survivor
-        midpoint = (pos[v1] + pos[v2]) * 0.5
+        # halves first: the sum of two far-apart points can overflow, their mean cannot
+        midpoint = pos[v1] * 0.5 + pos[v2] * 0.5
         nxt = C.next
         leaf2, leaf1 = nxt[s1] == s2, nxt[s2] == s1
         if leaf1 or leaf2:
