@@ -3,11 +3,13 @@
 from __future__ import annotations
 
 from collections import Counter
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
+import pytest
 
-from livemod.dlfl import Mesh, Scene, from_polygons, mesh_arrays, validate
+from livemod.dlfl import DLFLError, Mesh, Scene, from_polygons, mesh_arrays, validate
 from livemod.dlfl.analysis import component_genera
 
 CUBE_POSITIONS = np.array(
@@ -82,6 +84,16 @@ def snapshot(mesh: Mesh) -> tuple[Any, ...]:
     a = mesh_arrays(mesh)
     fields = [np.asarray(getattr(a, name)).tolist() for name in a.__dataclass_fields__]
     return (*fields, mesh.next_ids())
+
+
+def assert_refused(mesh: Mesh, call: Callable[[Mesh], object], message: str,
+                   error: type[Exception] = DLFLError) -> None:
+    """Assert that ``call(mesh)`` raises ``error`` matching ``message`` and leaves
+    ``mesh`` exactly as it was (:func:`snapshot`)."""
+    before = snapshot(mesh)
+    with pytest.raises(error, match=message):
+        call(mesh)
+    assert snapshot(mesh) == before
 
 
 def same_up_to_ids(mesh: Mesh) -> tuple[Any, ...]:

@@ -18,10 +18,14 @@ from livemod.dlfl.connect import (
     dual_connect_faces,
     hermite_handle,
     hermite_point,
+    multi_face_handle,
     rotation_between,
 )
+from livemod.dlfl.extrusion import extrude
 from livemod.dlfl.shapes import cube
-from tests.meshes import euler_ok, snapshot
+from livemod.dlfl.subdivision import subdivide
+from tests.meshes import assert_refused, euler_ok, snapshot
+from tests.meshes import cube as unit_cube
 
 TOP, RIGHT, BOTTOM = 0, 1, 5  # cube faces: 0 = (v0..v3) at y = 1, 1 at x = 1, 5 at y = -1
 
@@ -309,11 +313,7 @@ def test_convex_hull_of_a_cube_with_extra_points_merges_facets():
 def test_multi_face_handle_bad_input(faces, message):
     from livemod.dlfl.connect import multi_face_handle
 
-    m = cube()
-    before = snapshot(m)
-    with pytest.raises(DLFLError, match=message):
-        multi_face_handle(m, faces)
-    assert snapshot(m) == before
+    assert_refused(cube(), lambda m: multi_face_handle(m, faces), message)
 
 
 def test_multi_face_handle_refuses_coplanar_points():
@@ -342,3 +342,30 @@ def test_one_segment_hermite_handle_is_connect_faces_even_for_unequal_faces():
     m = pentagon_cube()
     hermite_handle(m, *above(m), 1)
     assert checked(m) == (9, 18, 9) and genus(m) == 1
+
+
+@pytest.mark.parametrize(("call", "message"), [
+    (lambda m: multi_face_handle(m, [TOP, None]), "faces must hold ids"),
+    (lambda m: multi_face_handle(m, [TOP, 1.5]), "faces must hold ids"),
+    (lambda m: multi_face_handle(m, [TOP, BOTTOM], "abc"), "scale must be a number"),
+    (lambda m: multi_face_handle(m, [TOP, BOTTOM], 1.0, [1, 2]), "extrude must be a number"),
+    (lambda m: connect_faces(m, m.face_corner(TOP), m.face_corner(BOTTOM), 3, bubble=None),
+     "bubble must be a number"),
+    (lambda m: connect_faces(m, m.face_corner(TOP), m.face_corner(BOTTOM), 3, pinch=[1, 2]),
+     "pinch must be a number"),
+])
+def test_arguments_of_the_wrong_type_are_refused(call, message):
+    assert_refused(cube(), call, message)
+
+
+def test_a_hub_whose_hull_does_not_close_is_refused_before_building():
+    m = unit_cube()
+    v = m.create_vertex((0.5, 0.5, 0.0))  # a dangling edge inside face 0
+    m.insert_edge(m.face_corners(0)[0], m.vertex_corner(v))
+    extrude(m, 3, "cubical", 0.999999999)
+    subdivide(m, "pentagon-preserve", scale=-0.9999)
+    before = snapshot(m)
+    # pushed 720 out, these faces' points are nearly coplanar at the hull's scale
+    with pytest.raises(DLFLError, match="convex hull does not close up"):
+        multi_face_handle(m, [37, 40, 34], 1.0, 720.0)
+    assert snapshot(m) == before

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from livemod.dlfl import DLFLError, face_size_histogram, validate
+from livemod.dlfl import DLFLError, Mesh, face_size_histogram, validate
 from livemod.dlfl.analysis import face_normals
 from livemod.dlfl.arrays import mesh_arrays
 from livemod.dlfl.geometry import (
@@ -18,7 +18,8 @@ from livemod.dlfl.geometry import (
     split_valence2_vertices,
 )
 from livemod.dlfl.shapes import cube, spherical_cube, torus
-from tests.meshes import snapshot
+from tests.meshes import assert_refused, snapshot
+from tests.meshes import cube as unit_cube
 
 
 def bumped_cube():
@@ -132,3 +133,33 @@ def test_geometry_ops_keep_torus_topology():
     after = snapshot(m)
     assert after[2:] != () and m.counts() == (48, 96, 48)
     assert before[0] != after[0]
+
+
+@pytest.mark.parametrize(("call", "message"), [
+    (lambda m: mesh_smooth(m, 1.5), "iterations must be a whole number"),
+    (lambda m: mesh_smooth(m, "2"), "iterations must be a whole number"),
+    (lambda m: planarize(m, None), "steps must be a whole number"),
+    (lambda m: planarize(m, 2.5), "steps must be a whole number"),
+    (lambda m: split_valence2_vertices(m, "2"), "offset must be a number"),
+])
+def test_arguments_of_the_wrong_type_are_refused(call, message):
+    assert_refused(cube(), call, message)
+
+
+def test_split_valence2_vertices_that_overflow_change_nothing():
+    m = unit_cube()
+    m.set_positions(m.vertex_ids(), m.positions_view() * 1e300)
+    for edge in m.edge_ids()[:2].tolist():
+        m.subdivide_edge(edge)  # two valence-2 vertices: the first split succeeds
+    before = snapshot(m)
+    with pytest.raises(DLFLError, match="finite"):
+        split_valence2_vertices(m, -1.0)
+    assert snapshot(m) == before
+
+
+def test_cleanup_winged_vertices_keeps_a_vertex_whose_faces_are_2gons():
+    m = Mesh()
+    m.create_face([(0, 0, 0), (1, 0, 0), (0, 1, 0)])  # two-sided: every vertex has valence 2
+    assert cleanup_winged_vertices(m) == 1  # then the other two sit on two 2-gons
+    validate(m)
+    assert m.counts() == (2, 2, 2)

@@ -226,3 +226,20 @@ def test_sculpted_solids_face_outward():
     m = cube()
     sponge(m, 2 / 3, keep_2gons=False)
     assert np.isclose(enclosed_volume(m), 8 * 20 / 27)  # 20 of the 27 sub-cubes
+
+
+@pytest.mark.parametrize("faces", [[TOP, None], [1.0], ["0"]])
+def test_rind_refuses_face_lists_holding_no_ids(faces):
+    m = cube()
+    before = snapshot(m)
+    with pytest.raises(DLFLError, match="faces must hold ids"):
+        rind(m, faces, 0.2)
+    assert snapshot(m) == before
+
+
+def test_a_thickness_that_overflows_is_refused():
+    m = cube()
+    before = snapshot(m)
+    with pytest.raises(DLFLError, match="not finite: the arguments are too large"):
+        crust(m, -1e308)  # the outer copy moves outward past the float range
+    assert snapshot(m) == before

@@ -15,7 +15,7 @@ from livemod.dlfl import (
 )
 from livemod.dlfl.shapes import cube, icosahedron, tetrahedron, torus
 from livemod.dlfl.sponge import sponge
-from tests.meshes import point_sphere, snapshot
+from tests.meshes import assert_refused, point_sphere, snapshot
 
 
 def test_cube_matches_topmod():
@@ -67,3 +67,11 @@ def two_gons():
 def test_bad_meshes_are_refused(make):
     with pytest.raises(DLFLError):
         sponge(make(), 0.1)
+
+
+@pytest.mark.parametrize(("thickness", "message"), [
+    (None, "thickness must be a number"), (1 + 1j, "thickness must be a number"),
+    (1.7976931348623157e308, "not finite"),
+])
+def test_thickness_of_the_wrong_kind_or_size_is_refused(thickness, message):
+    assert_refused(cube(), lambda m: sponge(m, thickness), message)

@@ -15,7 +15,7 @@ from livemod.dlfl.transform import (
     transform,
     translate,
 )
-from tests.meshes import snapshot
+from tests.meshes import assert_refused, snapshot
 
 BASE = cube().positions_view()
 
@@ -88,3 +88,14 @@ def test_bad_input_raises_and_leaves_the_mesh_unchanged(call):
     with pytest.raises(DLFLError):
         call(m)
     assert snapshot(m) == before
+
+
+@pytest.mark.parametrize(("call", "message"), [
+    (lambda m: rotate(m, (0, 0, 1), None), "degrees must be a number"),
+    (lambda m: rotate(m, (0, 0, 1), float("nan")), "degrees must be finite"),
+    (lambda m: translate(m, (1, 0, 0), vertices=[None]), "vertices must hold ids"),
+    (lambda m: translate(m, (1, 0, 0), vertices=[0.5]), "vertices must hold ids"),
+    (lambda m: move_vertices(m, [True], (1, 0, 0)), "vertices must hold ids"),
+])
+def test_bad_arguments_are_refused_and_move_nothing(call, message):
+    assert_refused(cube(), call, message)

@@ -15,7 +15,7 @@ from livemod.dlfl.wireframe import (
     vertex_rings,
     wireframe,
 )
-from tests.meshes import point_sphere, snapshot
+from tests.meshes import assert_refused, point_sphere, snapshot
 
 
 def summary(mesh):
@@ -202,3 +202,23 @@ def test_corner_cut_points_are_half_the_thickness_from_both_edge_lines():
             rel = points - v0
             dist = np.linalg.norm(rel - np.einsum("ij,ij->i", rel, d)[:, None] * d, axis=1)
             np.testing.assert_allclose(dist, 0.1, atol=1e-12)
+
+
+@pytest.mark.parametrize(("call", "message"), [
+    (lambda m: wireframe(m, 1e308), "not finite: the arguments are too large"),
+    (lambda m: wireframe(m, None), "thickness must be a number"),
+    (lambda m: wireframe(m, 0.1, width="1"), "width must be a number"),
+    (lambda m: modified_corner_cut(m, (1.0,)), "thickness must be a number"),
+    (lambda m: modified_corner_cut(m, 1e308), "not finite: the arguments are too large"),
+    (lambda m: columns(m, None, 4), "thickness must be a number"),
+    (lambda m: columns(m, 0.25, "4"), "segments must be a whole number"),
+    (lambda m: columns(m, 0.25, 3.5), "segments must be a whole number"),
+])
+def test_bad_input_is_refused_and_changes_nothing(call, message):
+    assert_refused(cube(), call, message)
+
+
+def test_columns_take_a_whole_float_count():
+    m = cube()
+    columns(m, 0.25, 4.0)
+    assert summary(m)[0] == (96, 216, 112)

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 import numbers
+from collections.abc import Iterable
 
 from .errors import DLFLError
 
@@ -25,4 +26,35 @@ def finite_number(value: object, name: str) -> float:
     number = float(value)  # type: ignore[arg-type]
     if not math.isfinite(number):
         raise DLFLError(f"{name} must be finite, got {value!r}")
+    return number
+
+
+def id_list(values: object, name: str) -> list[int]:
+    """``values``, an iterable of element ids, as a list of ints.
+
+    Python and numpy integers are ids; bools, floats and strings are not (a
+    float would otherwise be truncated to some other element's id).
+
+    Raises:
+        DLFLError: ``values`` is not iterable, or holds something that is not an
+            integer; the message names ``name`` and shows the value.
+    """
+    if isinstance(values, str | bytes) or not isinstance(values, Iterable):
+        raise DLFLError(f"{name} must be a list of ids, got {values!r}")
+    ids = list(values)
+    for value in ids:
+        if isinstance(value, bool) or not isinstance(value, numbers.Integral):
+            raise DLFLError(f"{name} must hold ids (integers), got {value!r}")
+    return [int(value) for value in ids]
+
+
+def positive_number(value: object, name: str) -> float:
+    """``value`` as a float greater than 0.
+
+    Raises:
+        DLFLError: not a finite number (see :func:`finite_number`), or not > 0.
+    """
+    number = finite_number(value, name)
+    if number <= 0:
+        raise DLFLError(f"{name} must be a positive number, got {value!r}")
     return number

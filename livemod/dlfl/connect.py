@@ -20,12 +20,11 @@ it created, in creation order.
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable
 
 import numpy as np
 
-from ._checks import finite_number
+from ._checks import finite_number, id_list
 from .analysis import face_points, polygon_normal
 from .errors import DLFLError
 from .mesh import Mesh
@@ -151,12 +150,14 @@ def _pinch_scale(t: float, pinch: float, center: float, bubble: float) -> float:
 
 
 def _check_pinch(pinch: float, center: float, bubble: float) -> None:
+    """Raises DLFLError unless the pinch profile's three numbers are usable."""
+    pinch = finite_number(pinch, "pinch")
+    center = finite_number(center, "pinch_center")
+    bubble = finite_number(bubble, "bubble")
     if not 0.0 < center < 1.0:
         raise DLFLError(f"pinch_center must lie strictly between 0 and 1, got {center!r}")
     if not bubble > 0.0:
         raise DLFLError(f"bubble must be > 0, got {bubble!r}")
-    if not math.isfinite(pinch):
-        raise DLFLError(f"pinch must be a finite number, got {pinch!r}")
 
 
 def _end_rings(mesh: Mesh, corner1: int, corner2: int) -> tuple[np.ndarray, np.ndarray]:
@@ -702,17 +703,21 @@ def multi_face_handle(mesh: Mesh, faces: list[int], scale: float = 1.0,
         The ids of the new edges (the hull's and the tubes').
 
     Raises:
-        DLFLError: fewer than two faces, a repeated or gone face, a face of
-            fewer than 3 corners, points all in one plane, or a face with no
-            hull face facing it (TopMod skipped it silently). The mesh is unchanged.
+        DLFLError: fewer than two faces, an entry that is not an id, a repeated
+            or gone face, a face of fewer than 3 corners, ``scale`` or ``extrude``
+            not a finite number, points all in one plane, or a face with no hull
+            face facing it (TopMod skipped it silently). The mesh is unchanged.
     """
-    faces = [int(f) for f in faces]
+    faces = id_list(faces, "faces")
+    scale = finite_number(scale, "scale")
+    extrude = finite_number(extrude, "extrude")
     _check_handle_faces(mesh, faces)
     normals = [polygon_normal(face_points(mesh, f)) for f in faces]
     points = _hub_points(mesh, faces, normals, extrude, scale)
     polygons = convex_hull_polygons(points)
     if float(normals[0] @ (face_points(mesh, faces[0]).mean(axis=0) - points.mean(axis=0))) > 0:
         polygons = [poly[::-1] for poly in polygons]
+    _check_closed_hull(polygons, len(points))
     partner = _facing_polygons(points, polygons, faces, normals)
     first = mesh.next_ids()[1]
     hull_faces = add_polyhedron(mesh, points, polygons)
@@ -720,6 +725,30 @@ def multi_face_handle(mesh: Mesh, faces: list[int], scale: float = 1.0,
         c1, c2 = closest_corners(mesh, face, hull_faces[poly])
         _quad_band(mesh, c1, c2)
     return _new_edges(mesh, first)
+
+
+def _check_closed_hull(polygons: list[list[int]], count: int) -> None:
+    """Refuse a hull that :func:`add_polyhedron` cannot build: one that is not a
+    closed sphere over all ``count`` points, with one fan around each.
+
+    Nearly coplanar points can give hull facets that do not close up, which
+    would otherwise surface part-way through the hub's construction.
+
+    Raises:
+        DLFLError: a side without its reverse, a repeated side, an unused point,
+            a point with two fans, or an Euler characteristic other than 2.
+    """
+    sides = [(a, b) for poly in polygons for a, b in zip(poly, poly[1:] + poly[:1], strict=True)]
+    unique = set(sides)
+    closed = len(unique) == len(sides) and all((b, a) in unique for a, b in sides)
+    degree: dict[int, int] = {}
+    for a, _ in sides:
+        degree[a] = degree.get(a, 0) + 1
+    one_fan = closed and all(len(ring) == degree[p] for p, ring in _rotations(polygons).items())
+    euler = count - len(sides) // 2 + len(polygons)
+    if not (one_fan and len(degree) == count and euler == 2):
+        raise DLFLError("the hub's convex hull does not close up (its points are too nearly "
+                        "coplanar); try another extrude or scale")
 
 
 def _check_handle_faces(mesh: Mesh, faces: list[int]) -> None:

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ._checks import finite_number
 from .analysis import face_centroids, face_normals
 from .arrays import MeshArrays, mesh_arrays
 from .errors import DLFLError
@@ -39,6 +40,19 @@ def _write(mesh: Mesh, a: MeshArrays, positions: np.ndarray) -> None:
     mesh.set_positions(a.vertex_ids, positions)
 
 
+def _count(value: object, name: str) -> int:
+    """``value`` as a count of repetitions.
+
+    Raises:
+        DLFLError: ``value`` is not an integer (bools are not), or is negative.
+    """
+    if isinstance(value, bool) or not isinstance(value, int | np.integer):
+        raise DLFLError(f"{name} must be a whole number >= 0, got {value!r}")
+    if value < 0:
+        raise DLFLError(f"{name} must be at least 0, got {value}")
+    return int(value)
+
+
 def mesh_smooth(mesh: Mesh, iterations: int = 1) -> None:
     """TopMod's ``meshsmooth()`` (GUI CTRL+M): tangential relaxation.
 
@@ -48,17 +62,21 @@ def mesh_smooth(mesh: Mesh, iterations: int = 1) -> None:
     between vertices (QUIRK); livemod does.
 
     Raises:
-        DLFLError: ``iterations`` below 0.
+        DLFLError: ``iterations`` not a whole number >= 0, or positions that
+            overflow; the mesh is unchanged.
     """
-    if iterations < 0:
-        raise DLFLError(f"iterations must be at least 0, got {iterations}")
-    for _ in range(iterations):
-        a = mesh_arrays(mesh)
-        average = _face_means(a, face_centroids(a))
-        normal = _unit(_face_means(a, face_normals(a)))
-        move = average - a.positions
+    a = mesh_arrays(mesh)
+    positions = a.positions
+    for _ in range(_count(iterations, "iterations")):
+        # the topology never changes: only the positions of the arrays move on
+        current = MeshArrays(**{**a.__dict__, "positions": positions})
+        average = _face_means(current, face_centroids(current))
+        normal = _unit(_face_means(current, face_normals(current)))
+        move = average - positions
         move -= np.einsum("ij,ij->i", move, normal)[:, None] * normal
-        _write(mesh, a, a.positions + move)
+        positions = positions + move
+    # one write at the end: an overflow in a later iteration moves nothing
+    _write(mesh, a, positions)
 
 
 def planarize(mesh: Mesh, steps: int = 100) -> None:
@@ -70,13 +88,13 @@ def planarize(mesh: Mesh, steps: int = 100) -> None:
     Faces flatten; the topology is unchanged.
 
     Raises:
-        DLFLError: ``steps`` below 0.
+        DLFLError: ``steps`` not a whole number >= 0, or positions that overflow;
+            the mesh is unchanged.
     """
-    if steps < 0:
-        raise DLFLError(f"steps must be at least 0, got {steps}")
+    total = _count(steps, "steps")
     a = mesh_arrays(mesh)
     positions = a.positions.copy()
-    for i in range(steps):
+    for i in range(total):
         weight = 0.3 - i * 0.3 / 110
         current = MeshArrays(**{**a.__dict__, "positions": positions})
         normals = face_normals(current)[a.corner_face]
@@ -138,13 +156,19 @@ def cleanup_winged_vertices(mesh: Mesh) -> int:
     """TopMod's ``cleanupWingedVertices``: remove every valence-2 vertex.
 
     For each, an edge joins its two neighbours across one of its faces, then its
-    two edges are deleted (the vertex goes with them). Returns the count.
+    two edges are deleted (the vertex goes with them). A vertex both of whose
+    faces are 2-gons is kept: its two neighbours are one corner there, so no edge
+    can join them (TopMod's insert then fails). Returns the count removed.
     """
     removed = 0
     for v in mesh.vertex_ids().tolist():
         if not mesh.has_vertex(v) or mesh.valence(v) != 2:
             continue
-        c = mesh.vertex_corner(v)
+        # earlier removals can shrink a face to a 2-gon: use a face with room
+        wide = [c for c in mesh.vertex_corners(v) if mesh.face_size(mesh.corner_face(c)) > 2]
+        if not wide:
+            continue
+        c = wide[0]
         mesh.insert_edge(mesh.corner_prev(c), mesh.corner_next(c))
         for e in mesh.vertex_edges(v):
             if mesh.has_edge(e):
@@ -163,19 +187,28 @@ def split_valence2_vertices(mesh: Mesh, offset: float = -0.1) -> list[int]:
 
     Returns:
         The ids of the new vertices.
+
+    Raises:
+        DLFLError: ``offset`` is not a finite number, or a moved vertex would
+            overflow to infinity; the mesh is unchanged.
     """
+    offset = finite_number(offset, "offset")
+    # each split reads positions earlier splits moved, so an overflow shows only
+    # part-way: split a copy and keep it once every split has succeeded
+    work = mesh.copy()
     new_vertices = []
-    for v in mesh.vertex_ids().tolist():
-        if mesh.valence(v) != 2:
+    for v in work.vertex_ids().tolist():
+        if work.valence(v) != 2:
             continue
-        e1, e2 = mesh.vertex_edges(v)[:2]
-        origin = mesh.position(v)
-        d1, d2 = (_direction(mesh, e, v) for e in (e1, e2))
-        size = offset if offset > 0 else 0.1 * _length(mesh, e1)
-        new = mesh.subdivide_edge(e1)[0]
-        mesh.set_position(v, origin + size * _unit(d1 - d2))
-        mesh.set_position(new, origin + size * _unit(d2 - d1))
+        e1, e2 = work.vertex_edges(v)[:2]
+        origin = work.position(v)
+        d1, d2 = (_direction(work, e, v) for e in (e1, e2))
+        size = offset if offset > 0 else 0.1 * _length(work, e1)
+        new = work.subdivide_edge(e1)[0]
+        work.set_position(v, origin + size * _unit(d1 - d2))
+        work.set_position(new, origin + size * _unit(d2 - d1))
         new_vertices.append(new)
+    mesh.replace_with(work)
     return new_vertices
 
 

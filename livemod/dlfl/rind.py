@@ -18,7 +18,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._checks import finite_number
+from ._checks import finite_number, id_list
 from .analysis import corner_normals
 from .arrays import MeshArrays, mesh_arrays
 from .build import from_corner_arrays
@@ -254,9 +254,13 @@ def _skip_walls(
 
 
 def _dense_faces(a: MeshArrays, faces: Iterable[int]) -> np.ndarray:
-    """``(F,)`` bool mask of the listed face ids, refusing ids that are not faces."""
+    """``(F,)`` bool mask of the listed face ids.
+
+    Raises:
+        DLFLError: an entry that is not an integer, or an id that is not a face.
+    """
     mask = np.zeros(len(a.face_ids), bool)
-    wanted = np.asarray(list(faces), dtype=np.int64)
+    wanted = np.asarray(id_list(faces, "faces"), dtype=np.int64)
     if len(wanted) == 0:
         return mask
     where = np.searchsorted(a.face_ids, wanted)

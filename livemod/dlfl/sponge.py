@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ._checks import positive_number
 from .analysis import face_centroids
 from .arrays import MeshArrays, mesh_arrays
 from .build import from_corner_arrays
@@ -52,8 +53,7 @@ def sponge(mesh: Mesh, thickness: float = 0.67, *, keep_2gons: bool = True) -> N
 
 
 def _check_input(a: MeshArrays, thickness: float) -> None:
-    if not np.isfinite(thickness) or thickness <= 0:
-        raise DLFLError(f"thickness must be a positive number, got {thickness}")
+    positive_number(thickness, "thickness")
     if (a.corner_edge < 0).any():
         raise DLFLError("sponge needs a mesh without point-spheres")
     if (a.face_sizes < 3).any():

@@ -12,6 +12,7 @@ from typing import Any
 
 import numpy as np
 
+from ._checks import finite_number, id_list
 from .errors import DLFLError
 from .mesh import Mesh
 
@@ -35,12 +36,13 @@ def _selected(mesh: Mesh, vertices: Iterable[int] | None) -> tuple[np.ndarray, n
     """``(ids (k,), positions (k, 3))`` of the chosen vertices (all by default).
 
     Raises:
-        DLFLError: an id that is not a vertex of the mesh.
+        DLFLError: an entry that is not an integer, or an id that is not a vertex
+            of the mesh.
     """
     all_ids, all_positions = mesh.vertex_ids(), mesh.positions_view()
     if vertices is None:
         return all_ids, all_positions
-    ids = np.asarray(list(vertices), dtype=np.int64).reshape(-1)
+    ids = np.asarray(id_list(vertices, "vertices"), dtype=np.int64).reshape(-1)
     order = np.argsort(all_ids)
     where = np.minimum(np.searchsorted(all_ids[order], ids), max(len(all_ids) - 1, 0))
     found = order[where] if len(all_ids) else where
@@ -82,14 +84,14 @@ def rotation_matrix(axis: Any, degrees: float) -> np.ndarray:
     """``(3, 3)`` rotation by ``degrees`` about ``axis`` (right-handed, Rodrigues).
 
     Raises:
-        DLFLError: a zero or non-finite axis.
+        DLFLError: a zero or non-finite axis, or ``degrees`` not a finite number.
     """
+    theta = np.radians(finite_number(degrees, "degrees"))
     k = _vector(axis, "axis")
     length = float(np.linalg.norm(k))
     if length == 0.0:
         raise DLFLError("rotation axis must not be zero")
     k = k / length
-    theta = np.radians(float(degrees))
     cross = np.array([[0, -k[2], k[1]], [k[2], 0, -k[0]], [-k[1], k[0], 0]])
     return np.eye(3) + np.sin(theta) * cross + (1 - np.cos(theta)) * cross @ cross
 

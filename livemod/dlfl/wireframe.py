@@ -16,6 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ._checks import positive_number
 from .analysis import face_centroids
 from .arrays import MeshArrays, mesh_arrays
 from .build import from_corner_arrays
@@ -166,8 +167,7 @@ def corner_cut_arrays(a: MeshArrays, thickness: float) -> CornerCut:
 
 
 def _check_cut_input(a: MeshArrays, thickness: float) -> None:
-    if not np.isfinite(thickness) or thickness <= 0:
-        raise DLFLError(f"thickness must be a positive number, got {thickness}")
+    positive_number(thickness, "thickness")
     if len(a.face_ids) == 0:
         raise DLFLError("corner cutting needs a mesh with faces; this one is empty")
     if (a.corner_edge < 0).any():
@@ -246,8 +246,9 @@ def wireframe(
     Raises:
         DLFLError: ``thickness`` not positive, point-spheres; the mesh is unchanged.
     """
-    if not np.isfinite(thickness) or thickness <= 0:
-        raise DLFLError(f"thickness must be a positive number, got {thickness}")
+    thickness = positive_number(thickness, "thickness")
+    if width is not None:
+        width = positive_number(width, "width")
     cut = corner_cut_arrays(mesh_arrays(mesh), thickness if width is None else width)
     a = _arrays_of(cut)
     front = np.zeros(len(a.face_ids), bool)
@@ -431,7 +432,7 @@ def columns(mesh: Mesh, thickness: float = 0.25, segments: int = 4) -> None:
         DLFLError: ``thickness`` not positive, ``segments`` below 3, point-spheres,
             self-loops, or rings that do not clear each other; the mesh is unchanged.
     """
-    _check_columns_input(mesh, thickness, segments)
+    thickness, segments = _check_columns_input(mesh, thickness, segments)
     a = mesh_arrays(mesh)
     points = column_rings(a, thickness, segments).reshape(-1, 3)
     order, offsets = vertex_rings(a)
@@ -445,11 +446,14 @@ def columns(mesh: Mesh, thickness: float = 0.25, segments: int = 4) -> None:
     mesh.replace_with(from_polygons(points, polygons, first_ids=mesh.next_ids()))
 
 
-def _check_columns_input(mesh: Mesh, thickness: float, segments: int) -> None:
-    if not np.isfinite(thickness) or thickness <= 0:
-        raise DLFLError(f"thickness must be a positive number, got {thickness}")
-    if int(segments) != segments or segments < 3:
-        raise DLFLError(f"segments must be a whole number of at least 3, got {segments}")
+def _check_columns_input(mesh: Mesh, thickness: float, segments: int) -> tuple[float, int]:
+    """The checked ``(thickness, segments)``; see :func:`columns` for what is refused."""
+    thickness = positive_number(thickness, "thickness")
+    # 4.0 is a whole number too; a string, NaN or 3.5 is not
+    whole = isinstance(segments, int | np.integer) or (
+        isinstance(segments, float) and segments.is_integer())
+    if isinstance(segments, bool) or not whole or segments < 3:
+        raise DLFLError(f"segments must be a whole number of at least 3, got {segments!r}")
     for v in mesh.vertex_ids().tolist():
         if mesh.is_point_sphere(v):
             raise DLFLError(f"columns need a mesh without point-spheres; vertex {v} is one")
@@ -457,6 +461,7 @@ def _check_columns_input(mesh: Mesh, thickness: float, segments: int) -> None:
         u, w = mesh.edge_vertices(e)
         if u == w:
             raise DLFLError(f"columns cannot follow the self-loop edge {e}")
+    return thickness, int(segments)
 
 
 def _joint(points: np.ndarray, starts: list[int], segments: int) -> list[list[int]]:

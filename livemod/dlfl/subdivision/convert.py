@@ -14,6 +14,7 @@ from collections.abc import Iterable
 
 import numpy as np
 
+from .._checks import id_list
 from ..errors import DLFLError
 from ..mesh import Mesh
 from ._blocks import (
@@ -62,9 +63,10 @@ def _selected_faces(t: Topology, face_ids: Iterable[int]) -> np.ndarray:
     """``(F,)`` bool mask of the faces named by id.
 
     Raises:
-        DLFLError: an id that is not a face with at least one edge.
+        DLFLError: an entry that is not an integer, or an id that is not a face
+            with at least one edge.
     """
-    ids = [int(f) for f in face_ids]
+    ids = id_list(face_ids, "face_ids")
     where = np.searchsorted(t.face_ids, ids)
     for f, w in zip(ids, where.tolist(), strict=True):
         if w >= len(t.face_ids) or t.face_ids[w] != f:
