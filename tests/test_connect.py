@@ -369,3 +369,10 @@ def test_a_hub_whose_hull_does_not_close_is_refused_before_building():
     with pytest.raises(DLFLError, match="convex hull does not close up"):
         multi_face_handle(m, [37, 40, 34], 1.0, 720.0)
     assert snapshot(m) == before
+
+
+def test_segment_counts_a_mesh_cannot_hold_are_refused_at_once():
+    assert_refused(cube(), lambda m: connect_faces(m, *above(m), 10**30),
+                   f"segments={10**30} would make at least {2 * 10**30:,} corners")
+    assert_refused(cube(), lambda m: connect_faces(m, *above(m), True),
+                   "segments must be an integer >= 1, got True")

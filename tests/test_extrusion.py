@@ -19,7 +19,7 @@ from livemod.dlfl.extrusion import (
     small_polygon_normal,
 )
 from livemod.dlfl.shapes import cube, dodecahedron, tetrahedron
-from tests.meshes import CUBE_FACES, CUBE_POSITIONS, euler_ok, snapshot
+from tests.meshes import CUBE_FACES, CUBE_POSITIONS, assert_refused, euler_ok, snapshot
 
 TOP = 0  # cube face 0: vertices 0..3 at y = +1, normal +y
 
@@ -421,3 +421,14 @@ def test_a_first_step_that_overflows_names_the_point():
     with pytest.raises(DLFLError, match=r"would put a point at \[.*inf.*overflow"):
         extrude(m, TOP, "cubical", scale=1e308)
     assert snapshot(m) == before
+
+
+@pytest.mark.parametrize(("kind", "segments", "message"), [
+    ("cubical", 10**30, f"segments={10**30} would make at least {4 * 10**30:,} corners"),
+    ("dodeca", 600_000_000, "would make at least 2,400,000,000 corners, more than a mesh "
+                            "can hold \\(2,147,483,647\\)"),
+    ("doo-sabin", 1.5, "segments must be an integer >= 1, got 1.5"),
+    ("icosa", 0, "segments must be an integer >= 1, got 0"),
+])
+def test_segment_counts_a_mesh_cannot_hold_are_refused_at_once(kind, segments, message):
+    assert_refused(cube(), lambda m: extrude(m, 0, kind, 0.5, segments), message)

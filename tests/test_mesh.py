@@ -7,6 +7,7 @@ import pytest
 
 from livemod.dlfl import DLFLError, Mesh, genus, num_components, validate
 from tests.meshes import (
+    assert_refused,
     corner_structure,
     cube,
     euler_ok,
@@ -635,3 +636,9 @@ def test_subdivide_between_far_out_ends_stays_finite():
     new = m.subdivide_edge(int(m.edge_ids()[0]), 4)
     checked(m)
     np.testing.assert_allclose([m.position(v)[0] for v in new], [-BIG / 2, 0, BIG / 2])
+
+
+def test_subdividing_into_more_parts_than_a_mesh_holds_is_refused():
+    assert_refused(cube(), lambda m: m.subdivide_edge(0, 2**30),
+                   "divisions=1073741824 would make at least 2,147,483,648 corners")
+    assert_refused(cube(), lambda m: m.subdivide_edge(0, 0), "divisions must be an integer >= 1")

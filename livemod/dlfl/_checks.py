@@ -58,3 +58,27 @@ def positive_number(value: object, name: str) -> float:
     if number <= 0:
         raise DLFLError(f"{name} must be a positive number, got {value!r}")
     return number
+
+
+# ids and corner links are int32 in the element tables: no mesh holds more of a kind
+MAX_ELEMENTS = 2**31 - 1
+
+
+def whole_count(value: object, name: str, *, least: int = 1, each: int = 1) -> int:
+    """``value`` as an int of at least ``least``, for an operation that makes at
+    least ``each`` new corners per unit of it.
+
+    Raises:
+        DLFLError: not an integer (bools are not), below ``least``, or so large
+            that ``value * each`` corners would not fit in a mesh (a count like
+            ``10**30`` would otherwise run until memory ran out).
+    """
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral):
+        raise DLFLError(f"{name} must be an integer >= {least}, got {value!r}")
+    count = int(value)
+    if count < least:
+        raise DLFLError(f"{name} must be an integer >= {least}, got {count}")
+    if count * each > MAX_ELEMENTS:
+        raise DLFLError(f"{name}={count} would make at least {count * each:,} corners, more "
+                        f"than a mesh can hold ({MAX_ELEMENTS:,})")
+    return count

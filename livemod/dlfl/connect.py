@@ -24,7 +24,7 @@ from collections.abc import Callable
 
 import numpy as np
 
-from ._checks import finite_number, id_list
+from ._checks import finite_number, id_list, whole_count
 from .analysis import face_points, polygon_normal
 from .errors import DLFLError
 from .mesh import Mesh
@@ -61,8 +61,9 @@ def _two_faces(mesh: Mesh, corner1: int, corner2: int, op: str) -> tuple[int, in
 
 
 def _check_segments(segments: int, max_connections: int = -1) -> None:
-    if isinstance(segments, bool) or not isinstance(segments, int | np.integer) or segments < 1:
-        raise DLFLError(f"segments must be an integer >= 1, got {segments!r}")
+    """Raises DLFLError unless ``segments`` is a count >= 1 whose corners fit in a
+    mesh (each segment makes at least two) and ``max_connections`` an integer."""
+    whole_count(segments, "segments", each=2)
     if isinstance(max_connections, bool) or not isinstance(max_connections, int | np.integer):
         raise DLFLError(f"max_connections must be an integer, got {max_connections!r}")
 
@@ -233,8 +234,8 @@ def connect_faces(
         when ``segments`` is 1).
 
     Raises:
-        DLFLError: a corner is not live, both are in one face, ``segments`` < 1,
-            faces of different sizes with ``segments`` > 1 (TopMod silently did
+        DLFLError: a corner is not live, both are in one face, ``segments`` not
+            an integer >= 1 or more than a mesh can hold, faces of different sizes with ``segments`` > 1 (TopMod silently did
             nothing), or a bad pinch value.
     """
     face1, face2 = _two_faces(mesh, corner1, corner2, "connect_faces")
@@ -494,7 +495,8 @@ def hermite_handle(
     Raises:
         DLFLError: a corner is not live, both are in one face, faces of different
             sizes with ``segments`` > 1 (TopMod silently did nothing),
-            ``segments`` < 1, a weight that is not a finite number, or see
+            ``segments`` not an integer >= 1 or more than a mesh can hold, a
+            weight that is not a finite number, or see
             :func:`hermite_rings`.
     """
     _check_segments(segments, max_connections)

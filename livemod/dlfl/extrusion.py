@@ -28,7 +28,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from ._checks import finite_number
+from ._checks import finite_number, whole_count
 from .connect import _quad_band, _triangle_band
 from .errors import DLFLError
 from .mesh import Mesh
@@ -456,15 +456,12 @@ def _check_face(mesh: Mesh, face: int) -> None:
                         "only faces of 3 or more corners can be extruded")
 
 
-def _checked_numbers(segments: int, opts: Options) -> Options:
+def _checked_numbers(opts: Options) -> Options:
     """``opts`` with its numbers as floats.
 
     Raises:
-        DLFLError: ``segments`` is not an integer >= 1, or an option is not a
-            finite number.
+        DLFLError: an option is not a finite number.
     """
-    if isinstance(segments, bool) or not isinstance(segments, int | np.integer) or segments < 1:
-        raise DLFLError(f"segments must be an integer >= 1, got {segments!r}")
     # a new Options, not dataclasses.replace: this runs on every extrusion
     return Options(finite_number(opts.distance, "distance"),
                    finite_number(opts.rotation, "rotation"), finite_number(opts.scale, "scale"),
@@ -480,7 +477,9 @@ def _prepare(mesh: Mesh, face: int, kind: str, segments: int,
     _check_face(mesh, face)
     if spec.simple_face:
         _check_simple(mesh, int(face), name)
-    return spec, _checked_numbers(segments, opts)
+    # every segment makes at least a new polygon of the face's size
+    whole_count(segments, "segments", each=mesh.face_size(int(face)))
+    return spec, _checked_numbers(opts)
 
 
 def _check_simple(mesh: Mesh, face: int, kind: str) -> None:
@@ -526,7 +525,8 @@ def extrude(
         DLFLError: unknown kind (lists the valid ones), a kind that ends in a fan
             (use :func:`extrude_fan`), a face that is gone, has < 3 corners or
             no normal, for icosa a face that visits a vertex twice, ``segments``
-            < 1, a non-finite number, or numbers that overflow or make a
+            not an integer >= 1 or more than a mesh can hold (see
+            :func:`~livemod.dlfl._checks.whole_count`), a non-finite number, or numbers that overflow or make a
             degenerate face in a later step or segment (checked on a scratch
             copy first). The mesh is unchanged.
     """

@@ -27,6 +27,7 @@ from typing import Any
 
 import numpy as np
 
+from ._checks import whole_count
 from ._table import FieldSpec, Table
 from .errors import DLFLError
 
@@ -760,12 +761,10 @@ class Mesh:
         the first part (from ``p0``); each further part is a new edge.
 
         Raises:
-            DLFLError: ``edge`` is not live, or ``divisions`` is not an integer >= 1.
+            DLFLError: ``edge`` is not live, or ``divisions`` is not an integer >= 1
+                (or makes more corners than a mesh holds).
         """
-        if isinstance(divisions, bool) or not isinstance(divisions, (int, np.integer)):
-            raise DLFLError(f"divisions must be an integer >= 1, got {divisions!r}")
-        if divisions < 1:
-            raise DLFLError(f"divisions must be an integer >= 1, got {divisions}")
+        divisions = whole_count(divisions, "divisions", each=2)  # 2 corners per new vertex
         es = self._e.slot(edge)
         pos = self._v.arrays["position"]
         C = self._c
