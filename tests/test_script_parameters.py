@@ -158,13 +158,26 @@ createFace([(float(i), float(i * i % 5), 0.0) for i in range(n)])
 '''
 
 
+def test_a_parameter_declared_in_a_branch_that_did_not_run(tmp_path, capsys):
+    script = tmp_path / "branch.py"
+    script.write_text('big = param("big", False)\nif big:\n    n = param("n", 3, max=9)\n'
+                      'else:\n    n = 1\nload("cube")\n')
+    assert cli.main(["run", str(script), "--set", "big=true", "--set", "n=4"]) == 0
+    assert cli.main(["run", str(script), "--set", "n=12"]) == 2  # checked before running
+    assert "above its maximum 9" in capsys.readouterr().err
+    assert cli.main(["run", str(script), "--set", "n=4"]) == 2
+    err = capsys.readouterr().err
+    assert ("the run declared no parameter 'n' (it declared: big); a param() call declares "
+            "it only when it runs (not in an if branch") in err
+
+
 def test_computed_declarations_are_checked_by_the_run(tmp_path, capsys):
     script = tmp_path / "computed.py"
     script.write_text(COMPUTED)
     assert cli.main(["run", str(script), "--set", "n=5"]) == 0
     assert "V=5 E=5 F=2" in capsys.readouterr().out
     assert cli.main(["run", str(script), "--set", "m=5"]) == 2
-    assert "declares no parameter 'm' (it declares: n)" in capsys.readouterr().err
+    assert "the run declared no parameter 'm' (it declared: n)" in capsys.readouterr().err
     assert cli.main(["run", str(script), "--set", "n=12"]) == 1   # the run's error
     assert "above its maximum 9" in capsys.readouterr().err
     assert cli.main(["params", str(script)]) == 0

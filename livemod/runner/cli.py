@@ -174,7 +174,8 @@ def _finish_run(args: argparse.Namespace, outcome: Any, params: dict[str, Any]) 
     note = missing_picks_note(outcome.scene)
     if note is not None:
         print(f"livemod run: {note}", file=sys.stderr)
-    problem = undeclared(outcome.declarations, params) if outcome.error is None else None
+    problem = (undeclared(outcome.declarations, params, ran=True)
+               if outcome.error is None else None)
     if problem is not None:  # only for scripts whose declarations are computed
         print(f"livemod run: {problem}", file=sys.stderr)
         return 2

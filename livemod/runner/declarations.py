@@ -170,11 +170,20 @@ def fitting_values(specs: dict[str, ParamSpec], values: dict[str, Any],
     return kept
 
 
-def undeclared(specs: dict[str, ParamSpec], values: dict[str, Any]) -> str | None:
-    """The error line for the first name in ``values`` that ``specs`` lacks, else None."""
+def undeclared(specs: dict[str, ParamSpec], values: dict[str, Any],
+               ran: bool = False) -> str | None:
+    """The error line for the first name in ``values`` that ``specs`` lacks, else None.
+
+    With ``ran``, ``specs`` are what a run declared: a ``param()`` in a branch the
+    run did not take is in the script but not in them, and the line says so.
+    """
     for name in values:
         if name not in specs:
             known = ", ".join(specs) or "none"
+            if ran:
+                return (f"the run declared no parameter {name!r} (it declared: {known}); "
+                        f"a param() call declares it only when it runs (not in an if "
+                        f"branch or a function that did not run)")
             return f"the script declares no parameter {name!r} (it declares: {known})"
     return None
 

@@ -233,7 +233,7 @@ def _run_for_render(path: str, mesh_path: str | None, want_preview: bool,
     if outcome.error is not None:
         error = outcome.error
         raise DLFLError(f"{error.file}:{error.line}: {error.message}")
-    problem = undeclared(outcome.declarations, values or {})
+    problem = undeclared(outcome.declarations, values or {}, ran=True)
     if problem is not None:  # a script whose declarations are computed
         raise DLFLError(problem)
     mesh, others = current_mesh(outcome.scene), snapshot_others(outcome.scene)
