@@ -111,3 +111,24 @@ def test_a_scripts_own_broken_pipe_is_still_its_error(tmp_path: Path) -> None:
                           capture_output=True, text=True, timeout=60)
     assert done.returncode == 1 and done.stdout == "hello\n"
     assert "sock.py:2: BrokenPipeError: [Errno 32] its own socket" in done.stderr
+
+
+@pytest.mark.parametrize(("option", "message"), [
+    (["--turntable", "-3"], "the frame count must be a whole number >= 0, not '-3'"),
+    (["--turntable", "2.5"], "the frame count must be a whole number >= 0, not '2.5'"),
+    (["--elevation", "nan"], "strictly between -90 and 90, not 'nan'"),
+    (["--elevation", "90"], "strictly between -90 and 90, not '90'"),
+    (["--elevation", "up"], "strictly between -90 and 90, not 'up'"),
+])
+def test_render_refuses_frame_counts_and_elevations_it_cannot_draw(option, message, capsys):
+    with pytest.raises(SystemExit) as stop:
+        build_parser().parse_args(["render", "cube", "-o", "x.png", *option])
+    assert stop.value.code == 2 and message in capsys.readouterr().err
+    args = build_parser().parse_args(["render", "cube", "-o", "x.png", "--elevation", "-89.5"])
+    assert args.elevation == -89.5 and args.turntable == 0
+
+
+def test_render_names_a_missing_script_before_anything_else(tmp_path, capsys):
+    assert main(["render", str(tmp_path / "gone.py"), "-o", str(tmp_path / "x.png")]) == 2
+    assert f"livemod render: no such script: {tmp_path / 'gone.py'}" in capsys.readouterr().err
+    assert list(tmp_path.iterdir()) == []

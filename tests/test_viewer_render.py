@@ -227,6 +227,16 @@ def test_render_command_writes_mp4_and_webp_turntables(tmp_path: Path, capsys) -
     assert capsys.readouterr().out.startswith("wrote ")
 
 
+def test_render_of_a_script_that_leaves_no_mesh_warns(tmp_path: Path, capsys) -> None:
+    script = tmp_path / "nothing.py"
+    script.write_text("x = 1\n")
+    out = tmp_path / "empty.png"
+    assert main(["render", str(script), "-o", str(out), "--size", "32x24"]) == 0
+    assert "nothing.py left no mesh; the picture shows an empty scene" in capsys.readouterr().err
+    image = np.asarray(Image.open(out))
+    assert (image == image[0, 0]).all()  # the background only
+
+
 def test_render_command_reports_script_errors(tmp_path: Path, capsys) -> None:
     script = tmp_path / "bad.py"
     script.write_text("x = 1\nraise ValueError('no mesh today')\n")

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import argparse
 import importlib
+import math
 import sys
 from collections.abc import Sequence
 from pathlib import Path
@@ -28,6 +29,31 @@ def parse_size(text: str) -> tuple[int, int]:
     if width <= 0 or height <= 0:
         raise argparse.ArgumentTypeError(f"size must be positive, not {text!r}")
     return width, height
+
+
+def parse_frames(text: str) -> int:
+    """``--turntable``'s frame count, a whole number >= 0; raises ArgumentTypeError."""
+    try:
+        frames = int(text)
+    except ValueError:
+        frames = -1
+    if frames < 0:
+        raise argparse.ArgumentTypeError(f"the frame count must be a whole number >= 0, "
+                                         f"not {text!r}")
+    return frames
+
+
+def parse_elevation(text: str) -> float:
+    """``--elevation`` in degrees, strictly between -90 and 90 (the camera looks
+    straight down or up at the poles, where its turn is undefined)."""
+    try:
+        degrees = float(text)
+    except ValueError:
+        degrees = math.nan
+    if not -90.0 < degrees < 90.0:
+        raise argparse.ArgumentTypeError(f"the elevation must be a number of degrees "
+                                         f"strictly between -90 and 90, not {text!r}")
+    return degrees
 
 
 def add_commands(subparsers: Any) -> None:
@@ -58,11 +84,11 @@ def _add_render(subparsers: Any) -> None:
                         help="a declared script parameter, repeatable")
     add_select_option(render)
     render.add_argument("--size", type=parse_size, default=(800, 600), help="WxH pixels")
-    render.add_argument("--turntable", type=int, default=0, metavar="N",
+    render.add_argument("--turntable", type=parse_frames, default=0, metavar="N",
                         help="N frames evenly spaced around the up axis")
     render.add_argument("--fps", type=float, default=25.0,
                         help="frames per second of a GIF, WebP or MP4 (default: 25)")
-    render.add_argument("--elevation", type=float, default=25.0, metavar="DEG",
+    render.add_argument("--elevation", type=parse_elevation, default=25.0, metavar="DEG",
                         help="camera height above the horizon in degrees")
     render.add_argument("--preview", action="store_true", help="draw the patch preview")
     render.add_argument("--labels", nargs="?", const="faces,edges,vertices", default="",
@@ -146,7 +172,10 @@ def _render_to(args: argparse.Namespace, offscreen: Any, values: dict[str, Any],
 
     arrays, preview, others = _load_input(args.input, args.mesh, args.preview, values,
                                           selection)
-    if args.preview and preview is None:
+    if arrays is None and others is None:
+        print(f"livemod render: warning: {args.input} left no mesh; the picture shows an "
+              "empty scene", file=sys.stderr)
+    elif args.preview and preview is None:
         print("livemod: warning: no patch preview available; drawing the mesh",
               file=sys.stderr)
     style = Style(edges=not args.no_edges, vertices=args.vertices, preview=args.preview,
@@ -165,12 +194,14 @@ def _render_inputs(args: argparse.Namespace,
     output name checked.
 
     Raises:
-        ValueError: a bad ``--set``, ``-o``, ``--labels`` or ``--select`` (the
-            message says which).
+        ValueError: a script that does not exist, or a bad ``--set``, ``-o``,
+            ``--fps``, ``--labels`` or ``--select`` (the message says which).
     """
     from .imagefiles import check_output
     from .renderer import LABEL_KINDS
 
+    if Path(args.input).suffix.lower() in SCRIPT_SUFFIXES and not Path(args.input).is_file():
+        raise ValueError(f"no such script: {args.input}")
     values = _given_values(args.input, args.set)
     check_output(args.output, max(args.turntable, 1), args.size,
                  transparent=args.background == "transparent", fps=args.fps)
