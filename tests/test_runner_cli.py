@@ -133,7 +133,7 @@ def test_run_makes_the_output_folder_and_says_when_there_is_nothing_to_write(tmp
     stale = tmp_path / "old.obj"
     stale.write_text("v 0 0 0\n")
     capsys.readouterr()
-    assert cli.main(["run", str(empty), "-o", str(stale)]) == 0
+    assert cli.main(["run", str(empty), "-o", str(stale)]) == 1
     assert capsys.readouterr().err == (f"livemod run: the script left no mesh; {stale} "
                                        "was not written\n")
     assert stale.read_text() == "v 0 0 0\n"
@@ -224,6 +224,16 @@ def test_a_variant_that_kills_its_worker_fails_alone(tmp_path, capsys):
     assert code == 1 and "3/4 variants ok" in captured.out
     assert "variant 1 {'n': 1}: its worker process died" in captured.err
     assert sorted(os.listdir(tmp_path / "out")) == ["0.obj", "2.obj", "3.obj", "index.json"]
+
+
+def test_a_variant_that_leaves_no_mesh_fails_and_writes_nothing(tmp_path):
+    script = tmp_path / "maybe.py"
+    script.write_text('n = param("n", 0, min=0, max=1)\nif n:\n    load("cube")\n')
+    out = tmp_path / "out" / "v{n}.obj"
+    results = run_batch(make_variants(str(script), [{"n": 0}, {"n": 1}], str(out)))
+    assert [r.status for r in results] == ["error", "ok"]
+    assert results[0].error == f"the script left no mesh; {tmp_path / 'out' / 'v0.obj'} was not written"
+    assert sorted(p.name for p in (tmp_path / "out").iterdir()) == ["v1.obj"]
 
 
 def test_batch_reports_failing_variants(tmp_path, capsys):

@@ -182,6 +182,9 @@ def run_variant(variant: Variant) -> VariantResult:
     mesh = result_mesh(outcome.scene, variant.all_objects)
     counts = mesh.counts() if mesh is not None else (0, 0, 0)
     shape_genus = genus(mesh) if mesh is not None else None
+    if variant.output is not None and mesh is None:
+        return _failed(variant, f"the script left no mesh; {variant.output} was not written",
+                       started)
     if variant.output is not None and mesh is not None:
         try:
             save_result(mesh, variant.output)

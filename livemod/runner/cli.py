@@ -227,10 +227,10 @@ def _save(mesh: Any, output: str | None) -> int:
     """Write ``mesh`` to ``output`` (its folder made if missing); the exit code."""
     if output is None:
         return 0
-    if mesh is None:
+    if mesh is None:  # an error: whatever waits for OUT must not take an old one
         print(f"livemod run: the script left no mesh; {output} was not written",
               file=sys.stderr)
-        return 0
+        return 1
     try:
         save_result(mesh, output)
     except Exception as exc:
