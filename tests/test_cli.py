@@ -81,13 +81,13 @@ def test_every_command_that_runs_a_script_takes_a_selection(command: list[str]) 
 def _first_line_then_close(args: list[str]) -> tuple[str, str, int]:
     """Run ``livemod *args``, read one line of its output and close the pipe, as
     ``| head -1`` does: ``(that line, all of stderr, exit code)``."""
-    proc = subprocess.Popen([sys.executable, "-m", "livemod", *args],
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE)
-    assert proc.stdout is not None and proc.stderr is not None
-    line = proc.stdout.readline().decode()
-    proc.stdout.close()
-    errors = proc.stderr.read().decode()
-    return line, errors, proc.wait(timeout=60)
+    with subprocess.Popen([sys.executable, "-m", "livemod", *args],
+                          stdout=subprocess.PIPE, stderr=subprocess.PIPE) as proc:
+        assert proc.stdout is not None and proc.stderr is not None
+        line = proc.stdout.readline().decode()
+        proc.stdout.close()
+        errors = proc.stderr.read().decode()
+        return line, errors, proc.wait(timeout=60)
 
 
 def test_a_closed_pipe_ends_the_command_quietly(tmp_path: Path) -> None:

@@ -13,7 +13,6 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from PIL import Image
 
 from livemod.dlfl import genus, mesh_arrays, validate
 from livemod.dlfl.analysis import component_genera
@@ -22,6 +21,7 @@ from livemod.dlfl.subdivision import subdivide
 from livemod.runner.execute import execute
 from livemod.runner.results import snapshot_others
 from livemod.viewer.headless import render_arrays
+from tests.images import read_image
 
 SCRIPTS = Path(__file__).resolve().parents[1] / "scripts"
 
@@ -159,7 +159,7 @@ def test_every_script_renders_a_thumbnail(name: str, tmp_path: Path) -> None:
     out = tmp_path / "thumb.png"
     render_arrays(mesh_arrays(outcome.scene.mesh), str(out), size=(96, 96), samples=0,
                   others=snapshot_others(outcome.scene))
-    image = np.asarray(Image.open(out).convert("RGB")).astype(int)
+    image = read_image(out, "RGB").astype(int)
     background = image[0, 0]
     covered = np.any(np.abs(image - background) > 12, axis=2).mean()
     assert 0.02 < covered < 0.95

@@ -11,6 +11,7 @@ import pytest
 from PIL import Image
 
 from livemod.viewer.imagefiles import check_output, output_paths, save_png, write_images
+from tests.images import read_image
 
 
 def moving_square(frames: int, size: tuple[int, int] = (64, 48), alpha: bool = False,
@@ -130,10 +131,10 @@ def test_png_sequence_and_single_png(tmp_path: Path) -> None:
     paths = write_images(str(tmp_path / "seq" / "f_{frame}.png"), images)
     assert [p.name for p in paths] == ["f_0.png", "f_1.png"]
     for path, made in zip(paths, images, strict=True):
-        assert np.array_equal(np.asarray(Image.open(path)), made)
+        assert np.array_equal(read_image(path), made)
     clear = moving_square(1, alpha=True)[0]
     save_png(tmp_path / "one.png", clear)
-    assert np.array_equal(np.asarray(Image.open(tmp_path / "one.png")), clear)
+    assert np.array_equal(read_image(tmp_path / "one.png"), clear)
 
 
 def test_a_failed_write_leaves_the_old_file(tmp_path: Path, monkeypatch) -> None:

@@ -16,6 +16,7 @@ from livemod.dlfl.shapes import cube
 from livemod.viewer.cli import main
 from livemod.viewer.headless import Offscreen, framed_camera, render_turntable
 from livemod.viewer.renderer import Style
+from tests.images import read_image
 
 SIZE = (160, 120)
 BACKGROUND = np.array([round(0.16 * 255), round(0.17 * 255), round(0.19 * 255)])
@@ -186,11 +187,13 @@ def test_render_command_writes_png_gif_and_sequence(tmp_path: Path, capsys) -> N
     script.write_text(CUBE_SCRIPT)
     png = tmp_path / "one.png"
     assert main(["render", str(script), "-o", str(png), "--size", "96x64", "--labels"]) == 0
-    assert Image.open(png).size == (96, 64)
+    with Image.open(png) as picture:
+        assert picture.size == (96, 64)
     gif = tmp_path / "turn.gif"
     assert main(["render", str(script), "-o", str(gif), "--size", "64x64",
                  "--turntable", "3", "--elevation", "30"]) == 0
-    assert Image.open(gif).n_frames == 3
+    with Image.open(gif) as animation:
+        assert animation.n_frames == 3
     again = tmp_path / "again.gif"
     assert main(["render", str(script), "-o", str(again), "--size", "64x64",
                  "--turntable", "3", "--elevation", "30"]) == 0
@@ -233,7 +236,7 @@ def test_render_of_a_script_that_leaves_no_mesh_warns(tmp_path: Path, capsys) ->
     out = tmp_path / "empty.png"
     assert main(["render", str(script), "-o", str(out), "--size", "32x24"]) == 0
     assert "nothing.py left no mesh; the picture shows an empty scene" in capsys.readouterr().err
-    image = np.asarray(Image.open(out))
+    image = read_image(out)
     assert (image == image[0, 0]).all()  # the background only
 
 
@@ -337,8 +340,8 @@ def test_render_draws_every_object_of_the_scene(tmp_path: Path) -> None:
     for path in (script, one):
         assert main(["render", str(path), "-o", str(tmp_path / f"{path.stem}.png"),
                      "--size", "160x120", "--elevation", "0"]) == 0
-    two_mask = _mask(np.asarray(Image.open(tmp_path / "two.png").convert("RGB")))
-    one_mask = _mask(np.asarray(Image.open(tmp_path / "one.png").convert("RGB")))
+    two_mask = _mask(read_image(tmp_path / "two.png", "RGB"))
+    one_mask = _mask(read_image(tmp_path / "one.png", "RGB"))
     # two cubes side by side, framed together, against the one cube alone
     assert len(_runs(two_mask[60])) == 2 and len(_runs(one_mask[60])) == 1
 
@@ -391,7 +394,7 @@ def test_render_on_a_light_background(tmp_path: Path) -> None:
     out = tmp_path / "light.png"
     assert main(["render", "cube", "-o", str(out), "--size", "64x48", "--background",
                  "light"]) == 0
-    image = np.asarray(Image.open(out).convert("RGB"))
+    image = read_image(out, "RGB")
     assert image[0, 0].tolist() == [round(0.93 * 255)] * 2 + [round(0.92 * 255)]
     assert np.abs(image[24, 32].astype(int) - image[0, 0]).sum() > 60  # the cube is there
 
@@ -416,13 +419,13 @@ def test_render_on_a_transparent_background_writes_alpha(tmp_path: Path, capsys)
     out = tmp_path / "clear.png"
     assert main(["render", "cube", "-o", str(out), "--size", "64x48", "--background",
                  "transparent"]) == 0
-    image = np.asarray(Image.open(out))
+    image = read_image(out)
     assert image.shape == (48, 64, 4)
     assert image[0, 0, 3] == 0 and image[24, 32, 3] == 255
     webp = tmp_path / "clear.webp"
     assert main(["render", "cube", "-o", str(webp), "--size", "64x48", "--background",
                  "transparent"]) == 0
-    assert np.array_equal(np.asarray(Image.open(webp).convert("RGBA")), image)  # lossless
+    assert np.array_equal(read_image(webp, "RGBA"), image)  # lossless
     assert main(["render", "cube", "-o", str(tmp_path / "t.gif"), "--turntable", "2",
                  "--background", "transparent"]) == 2
     assert ("a transparent background needs PNG or WebP output, not "

@@ -166,7 +166,7 @@ def test_keys_change_style_camera_and_pick_mode(headless) -> None:
 
 
 def test_screenshots_opaque_and_transparent(headless, tmp_path: Path, monkeypatch) -> None:
-    from PIL import Image
+    from tests.images import read_image
 
     viewer, _, echo = headless
     _wait(viewer, _has_run(1))
@@ -176,8 +176,8 @@ def test_screenshots_opaque_and_transparent(headless, tmp_path: Path, monkeypatc
     assert viewer.handle_key("F12", shift=True) == "screenshot_transparent"
     assert viewer.screenshots == [Path("model_001.png"), Path("model_002.png")]
     assert (tmp_path / "model_000.png").read_bytes() == b"an earlier screenshot"
-    opaque = np.asarray(Image.open("model_001.png"))
-    clear = np.asarray(Image.open("model_002.png"))
+    opaque = read_image("model_001.png")
+    clear = read_image("model_002.png")
     assert opaque.shape == (240, 320, 3) and clear.shape == (240, 320, 4)
     assert np.array_equal(opaque, viewer.capture())
     drawn = clear[..., 3] == 255
