@@ -232,7 +232,8 @@ def test_a_variant_that_leaves_no_mesh_fails_and_writes_nothing(tmp_path):
     out = tmp_path / "out" / "v{n}.obj"
     results = run_batch(make_variants(str(script), [{"n": 0}, {"n": 1}], str(out)))
     assert [r.status for r in results] == ["error", "ok"]
-    assert results[0].error == f"the script left no mesh; {tmp_path / 'out' / 'v0.obj'} was not written"
+    written = tmp_path / "out" / "v0.obj"
+    assert results[0].error == f"the script left no mesh; {written} was not written"
     assert sorted(p.name for p in (tmp_path / "out").iterdir()) == ["v1.obj"]
 
 

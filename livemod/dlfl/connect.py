@@ -235,8 +235,9 @@ def connect_faces(
 
     Raises:
         DLFLError: a corner is not live, both are in one face, ``segments`` not
-            an integer >= 1 or more than a mesh can hold, faces of different sizes with ``segments`` > 1 (TopMod silently did
-            nothing), or a bad pinch value.
+            an integer >= 1 or more than a mesh can hold, faces of different
+            sizes with ``segments`` > 1 (TopMod silently did nothing), or a bad
+            pinch value.
     """
     face1, face2 = _two_faces(mesh, corner1, corner2, "connect_faces")
     _check_segments(segments, max_connections)

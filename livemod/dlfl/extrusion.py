@@ -525,10 +525,10 @@ def extrude(
         DLFLError: unknown kind (lists the valid ones), a kind that ends in a fan
             (use :func:`extrude_fan`), a face that is gone, has < 3 corners or
             no normal, for icosa a face that visits a vertex twice, ``segments``
-            not an integer >= 1 or more than a mesh can hold (see
-            :func:`~livemod.dlfl._checks.whole_count`), a non-finite number, or numbers that overflow or make a
-            degenerate face in a later step or segment (checked on a scratch
-            copy first). The mesh is unchanged.
+            not an integer >= 1 or more than a mesh can hold, a non-finite
+            number, or numbers that overflow or make a degenerate face in a
+            later step or segment (checked on a scratch copy first). The mesh
+            is unchanged.
     """
     spec, opts = _prepare(mesh, face, kind, segments, Options(
         distance, rotation, scale, twist, bool(dual_mesh), bool(hexagonalize), thickness,

@@ -86,8 +86,9 @@ def check_output(out: str, frames: int, size: tuple[int, int], *,
     if not np.isfinite(fps) or fps <= 0:
         raise ValueError(f"frames per second must be a positive number, got {fps}")
     if transparent and suffix in OPAQUE_ONLY:
+        why = "a GIF cannot hold soft edges" if suffix == ".gif" else "MP4 has no alpha"
         raise ValueError(f"a transparent background needs PNG or WebP output, not {out!r} "
-                         f"({'a GIF cannot hold soft edges' if suffix == '.gif' else 'MP4 has no alpha'})")
+                         f"({why})")
     if suffix == ".mp4":
         if size[0] % 2 or size[1] % 2:
             raise ValueError(f"MP4 needs an even width and height, got {size[0]}x{size[1]}; "
