@@ -131,6 +131,42 @@ def test_the_window_shows_every_object_and_fits_them_all(tmp_path: Path) -> None
         close_viewer(viewer)
 
 
+def test_tab_shows_the_other_objects_one_at_a_time(tmp_path: Path) -> None:
+    script = tmp_path / "three.py"
+    # object 0 a tetrahedron, object 1 an octahedron, object 2 (current) a cube
+    script.write_text("load('tetrahedron')\nload('octahedron')\ntranslate(4, 0, 0)\n"
+                      "load('cube')\ntranslate(-4, 0, 0)\n")
+    echo = io.StringIO()
+    viewer = create_viewer(ViewOptions(str(script), backend="headless", size=(200, 100),
+                                       samples=0, vsync=False, echo=echo))
+    try:
+        _wait(viewer, _has_run(1))
+        assert [oid for oid, _, _ in viewer.result.other_objects] == [0, 1]
+        assert viewer.renderer.others.counts == (4 + 6, 6 + 12, 4 + 8)
+        everything = viewer.capture()
+        seen = []
+        for _ in range(3):
+            assert viewer.handle_key("TAB") == "cycle_others"
+            run_frames(viewer, 1)
+            seen.append((viewer.shown_other, viewer.renderer.others.counts))
+        assert seen == [(0, (4, 6, 4)), (1, (6, 12, 8)), (None, (10, 18, 12))]
+        assert np.array_equal(viewer.capture(), everything)  # all of them again
+        viewer.handle_key("TAB")
+        assert ("other objects: object 0 'tetrahedron' alone (of 2; Tab: next): V 4  F 4"
+                in _hud_text(viewer))
+        assert not np.array_equal(viewer.capture(), everything)
+        viewer.handle_key("A")  # hidden, then Tab shows the next one
+        viewer.handle_key("TAB")
+        assert viewer.style.others and viewer.shown_other == 1
+        script.write_text(script.read_text() + "kill(1)\n")  # the one shown goes away
+        viewer.session.reload()
+        _wait(viewer, _has_run(2))
+        assert viewer.shown_other is None and viewer.renderer.others.counts == (4, 6, 4)
+        assert "other objects: object 1 'octahedron' alone (of 2; Tab: next)" in echo.getvalue()
+    finally:
+        close_viewer(viewer)
+
+
 def test_keys_change_style_camera_and_pick_mode(headless) -> None:
     viewer, _, _ = headless
     _wait(viewer, _has_run(1))

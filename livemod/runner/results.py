@@ -14,7 +14,7 @@ import operator
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 from types import CodeType
-from typing import overload
+from typing import Any, overload
 
 import numpy as np
 
@@ -180,6 +180,9 @@ class RunResult:
             render snapshot, drawn beside ``arrays`` (ids may repeat between
             objects; see :func:`livemod.dlfl.arrays.concatenate_arrays`); None
             when the scene holds one object or none.
+        other_objects: the same objects one by one, as ``(object id, name,
+            render snapshot)`` in object order (the viewer shows them one at a
+            time); empty when ``others`` is None.
     """
 
     run_id: int
@@ -196,6 +199,7 @@ class RunResult:
     partial: MeshArrays | None = None
     values: tuple = ()
     others: MeshArrays | None = None
+    other_objects: tuple = ()
 
 
 def freeze_arrays(arrays: MeshArrays, copy: bool = True) -> MeshArrays:
@@ -258,10 +262,32 @@ def snapshot_scene(scene: Scene) -> MeshArrays | None:
 def snapshot_others(scene: Scene) -> MeshArrays | None:
     """Render arrays of every object but the current one, joined in object order;
     None when there are none (or they are all empty)."""
-    parts = [mesh_arrays(obj.mesh) for oid, obj in scene.objects.items()
-             if oid != scene.current]
-    parts = [part for part in parts if len(part.positions)]
-    return freeze_arrays(concatenate_arrays(parts), copy=False) if parts else None
+    return join_others(snapshot_other_objects(scene))
+
+
+def snapshot_other_objects(scene: Scene) -> tuple[tuple[int, str, MeshArrays], ...]:
+    """``(object id, name, read-only render arrays)`` of every object but the current
+    one that has vertices, in object order."""
+    parts = ((oid, obj.name, mesh_arrays(obj.mesh)) for oid, obj in scene.objects.items()
+             if oid != scene.current)
+    return tuple((oid, name, freeze_arrays(arrays, copy=False))
+                 for oid, name, arrays in parts if len(arrays.positions))
+
+
+def join_others(objects: Sequence[tuple[int, str, MeshArrays]]) -> MeshArrays | None:
+    """The render arrays of ``objects`` (as :func:`snapshot_other_objects` gives
+    them) joined into one, read-only; None when there are none."""
+    if not objects:
+        return None
+    if len(objects) == 1:  # already read-only: no second copy of a lone object
+        return objects[0][2]
+    return freeze_arrays(concatenate_arrays([arrays for _, _, arrays in objects]), copy=False)
+
+
+def other_fields(scene: Scene) -> dict[str, Any]:
+    """The ``others`` and ``other_objects`` fields of a :class:`RunResult` of ``scene``."""
+    objects = snapshot_other_objects(scene)
+    return {"others": join_others(objects), "other_objects": objects}
 
 
 def parameter_items(parameters: dict | None) -> tuple:

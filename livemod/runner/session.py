@@ -41,10 +41,10 @@ from .results import (
     ScriptError,
     StepRecord,
     current_mesh,
+    other_fields,
     parameter_items,
     result_mesh,
     save_result,
-    snapshot_others,
     snapshot_scene,
 )
 from .snapshots import DEFAULT_BUDGET, SnapshotCache
@@ -491,13 +491,14 @@ class LiveSession:
             run.run_id, run.script, status, outcome.steps, None,
             last.arrays if last else None, last.preview if last else None, error,
             outcome.elapsed, last is not None, self._specs(outcome.scene),
-            snapshot_scene(outcome.scene), values, last.others if last else None))
+            snapshot_scene(outcome.scene), values, last.others if last else None,
+            last.other_objects if last else ()))
 
     def _publish_ok(self, run: _Run, outcome: RunOutcome, values: tuple) -> None:
         result = RunResult(run.run_id, run.script, "ok", outcome.steps, None,
                            snapshot_scene(outcome.scene), None, None, outcome.elapsed,
                            False, self._specs(outcome.scene), values=values,
-                           others=snapshot_others(outcome.scene))
+                           **other_fields(outcome.scene))
         with self._lock:
             if run.run_id == self._run_id:
                 self._last_good, self._last_steps = result, outcome.steps
@@ -540,7 +541,7 @@ class LiveSession:
                            snapshot_scene(scene), None, None,
                            steps[-1].elapsed if steps else 0.0, False,
                            self._specs(scene), values=parameter_items(scene.parameters),
-                           others=snapshot_others(scene))
+                           **other_fields(scene))
         with self._lock:
             self._snapshots.put(result)
             if self._shown is not None:

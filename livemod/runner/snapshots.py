@@ -29,8 +29,10 @@ def arrays_bytes(arrays: MeshArrays | None) -> int:
 
 
 def result_bytes(result: RunResult) -> int:
-    """Bytes of the snapshots ``result`` holds (mesh, preview, other objects)."""
-    return sum(arrays_bytes(a) for a in (result.arrays, result.preview, result.others))
+    """Bytes of the snapshots ``result`` holds (mesh, preview, other objects joined
+    and one by one; a lone other object is both, and counted once)."""
+    parts = [a for _, _, a in result.other_objects if a is not result.others]
+    return sum(arrays_bytes(a) for a in (result.arrays, result.preview, result.others, *parts))
 
 
 class SnapshotCache:

@@ -32,7 +32,7 @@ class Binding:
         """How the help overlay names the key, e.g. ``Ctrl+F``."""
         name = {"NUMBER_1": "1", "NUMBER_2": "2", "NUMBER_3": "3", "NUMBER_4": "4",
                 "SPACE": "Space", "RIGHT": "Right", "LEFT": "Left", "PERIOD": ".",
-                "COMMA": ",", "END": "End", "ESCAPE": "Esc"}.get(self.key, self.key)
+                "COMMA": ",", "END": "End", "ESCAPE": "Esc", "TAB": "Tab"}.get(self.key, self.key)
         prefix = {"": "", "shift": "Shift+", "ctrl": "Ctrl+"}[self.modifiers]
         return prefix + name
 
@@ -46,6 +46,7 @@ KEY_BINDINGS: tuple[Binding, ...] = (
     Binding("V", "", "toggle_vertices", "vertices on/off"),
     Binding("P", "", "toggle_preview", "patch-smoothed preview on/off"),
     Binding("A", "", "toggle_others", "the scene's other objects on/off"),
+    Binding("TAB", "", "cycle_others", "the other objects one at a time, then all again"),
     Binding("X", "", "toggle_grid", "ground grid and axes on/off"),
     Binding("B", "", "toggle_background", "dark / light background"),
     Binding("N", "", "toggle_smooth", "flat / smooth shading"),

@@ -55,11 +55,13 @@ def hud_lines(info: dict[str, Any]) -> list[tuple[str, int]]:
         holes = int(arrays.face_hole.sum())  # counted apart, as TopMod does
         extra = f"  holes {holes}" if holes else ""
         lines.append((f"V {v}  E {e}  F {f - holes}{extra}  genus {info['genus']}", TEXT))
-    others = None if result is None else result.others
-    if others is not None:  # drawn beside the current object (key A hides them)
+    # drawn beside the current object (key A hides them, Tab shows one at a time)
+    others = info.get("others", None if result is None else result.others)
+    if others is not None:
         holes = int(others.face_hole.sum())
-        lines.append((f"other objects: V {others.counts[0]}  F {others.counts[2] - holes}",
-                      LABEL_DIM))
+        note = info.get("others_note", "")
+        lines.append((f"other objects{': ' + note if note else ''}: V {others.counts[0]}  "
+                      f"F {others.counts[2] - holes}", LABEL_DIM))
     lines.append((step_line(result, info.get("total_steps", 0)), TEXT))
     style = info["style"]
     view = "ortho" if info["ortho"] else "persp"

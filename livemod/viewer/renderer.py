@@ -293,16 +293,22 @@ class Renderer:
         ``others``: the scene's other objects, drawn beside it in a muted colour;
         they hide what is behind them but are never picked or labelled.
         """
-        for old in (self._mesh, self._others):
-            if old is not None:
-                old.release()
-        self.arrays, self.others = arrays, others
+        if self._mesh is not None:
+            self._mesh.release()
+        self.arrays = arrays
         self._mesh = None if arrays is None else _MeshGPU(self.ctx, self.programs,
                                                           build_geometry(arrays))
-        self._others = None if others is None else _MeshGPU(self.ctx, self.programs,
-                                                            build_geometry(others))
+        self.set_others(others)
         self.set_preview(preview)
         self.set_selection(self.selection)
+
+    def set_others(self, others: MeshArrays | None) -> None:
+        """Upload (or drop, with None) the other objects alone, keeping the mesh."""
+        if self._others is not None:
+            self._others.release()
+        self.others = others
+        self._others = None if others is None else _MeshGPU(self.ctx, self.programs,
+                                                            build_geometry(others))
 
     def set_preview(self, preview: MeshArrays | None) -> None:
         """Upload (or drop, with None) the patch-smoothed preview mesh."""

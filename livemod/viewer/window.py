@@ -124,6 +124,7 @@ class LiveViewer(mglw.WindowConfig):
         self.result: Any = None
         self.genus: int | None = None
         self.total_steps = 0
+        self.shown_other: int | None = None  # the other object shown alone (Tab); None: all
         self.frame_times: deque[float] = deque(maxlen=120)
         self.screenshots: list[Path] = []
         self._fit_bounds: np.ndarray | None = None
@@ -172,7 +173,7 @@ class LiveViewer(mglw.WindowConfig):
         if result.status == "ok":
             self.total_steps = len(result.steps)
         if result.arrays is not None and result.arrays is not self.renderer.arrays:
-            self._upload(result.arrays, result.preview, result.others)
+            self._upload(result.arrays, result.preview, self._visible_others(result))
         elif result.arrays is None and result.error is None:
             self.renderer.set_mesh(None)  # the script ended with no mesh: show none
             self.genus = None
@@ -193,6 +194,24 @@ class LiveViewer(mglw.WindowConfig):
                 self._fit_bounds, bounds):
             self._do_fit()
             self._fit_bounds = bounds
+
+    def _visible_others(self, result: Any) -> Any:
+        """The other objects to draw: all joined, or the one Tab chose while the
+        scene still has it."""
+        for oid, _, arrays in result.other_objects:
+            if oid == self.shown_other:
+                return arrays
+        self.shown_other = None
+        return result.others
+
+    def _others_note(self) -> str:
+        """Which other objects are drawn, for the HUD and the echo."""
+        objects = self.result.other_objects if self.result is not None else ()
+        for oid, name, _ in objects:
+            if oid == self.shown_other:
+                named = f" {name!r}" if name else ""
+                return f"object {oid}{named} alone (of {len(objects)}; Tab: next)"
+        return f"all {len(objects)}" if len(objects) > 1 else ""
 
     def _echo(self, line: str) -> None:
         stream = self.options.echo if self.options.echo is not None else sys.stdout
@@ -221,9 +240,9 @@ class LiveViewer(mglw.WindowConfig):
         if now - self._fps_time > 0.5 and self.frame_times:
             self._fps_shown = round(len(self.frame_times) / max(sum(self.frame_times), 1e-9))
             self._fps_time = now
-        key = (id(self.result), self.waiting, self.total_steps, self.genus, self._fps_shown, self.pick_mode,
-               self.selection, self.style, self.camera.ortho, self.playing, self.show_hud,
-               self.show_help, size, self.params.state())
+        key = (id(self.result), self.waiting, self.total_steps, self.genus, self._fps_shown,
+               self.pick_mode, self.selection, self.style, self.camera.ortho, self.playing,
+               self.show_hud, self.show_help, size, self.params.state(), self.shown_other)
         if self._overlay_cache is None or self._overlay_cache[0] != key:
             panel = self.params.quads(size) if self._panel_shown() else None
             quads = hud_quads(self._hud_info(), size)
@@ -236,6 +255,7 @@ class LiveViewer(mglw.WindowConfig):
                 "genus": self.genus, "fps": self._fps_shown, "pick_mode": self.pick_mode,
                 "selection": selection_python(self.selection, self.renderer.arrays)
                 if not self.selection.is_empty() else [],
+                "others": self.renderer.others, "others_note": self._others_note(),
                 "style": self.style, "ortho": self.camera.ortho, "playing": self.playing,
                 "hud": self.show_hud, "help": self.show_help}
 
@@ -362,6 +382,18 @@ class LiveViewer(mglw.WindowConfig):
     def _do_reload(self) -> None:
         self.session.reload()
         self.waiting = True
+
+    def _do_cycle_others(self) -> None:
+        objects = self.result.other_objects if self.result is not None else ()
+        if not objects:
+            self._echo("the scene has no other objects")
+            return
+        order = [None, *(oid for oid, _, _ in objects)]
+        at = order.index(self.shown_other) if self.shown_other in order else 0
+        self.shown_other = order[(at + 1) % len(order)]
+        self.style = replace(self.style, others=True)  # choosing one means showing it
+        self.renderer.set_others(self._visible_others(self.result))
+        self._echo(f"other objects: {self._others_note()}")
 
     def _do_screenshot(self) -> None:
         self.save_screenshot()
