@@ -205,13 +205,13 @@ class LiveViewer(mglw.WindowConfig):
         return result.others
 
     def _others_note(self) -> str:
-        """Which other objects are drawn, for the HUD and the echo."""
+        """Which other object is drawn alone, for the HUD and the echo ("" for all)."""
         objects = self.result.other_objects if self.result is not None else ()
         for oid, name, _ in objects:
             if oid == self.shown_other:
                 named = f" {name!r}" if name else ""
                 return f"object {oid}{named} alone (of {len(objects)}; Tab: next)"
-        return f"all {len(objects)}" if len(objects) > 1 else ""
+        return ""
 
     def _echo(self, line: str) -> None:
         stream = self.options.echo if self.options.echo is not None else sys.stdout
@@ -393,7 +393,7 @@ class LiveViewer(mglw.WindowConfig):
         self.shown_other = order[(at + 1) % len(order)]
         self.style = replace(self.style, others=True)  # choosing one means showing it
         self.renderer.set_others(self._visible_others(self.result))
-        self._echo(f"other objects: {self._others_note()}")
+        self._echo(f"other objects: {self._others_note() or 'all ' + str(len(objects))}")
 
     def _do_screenshot(self) -> None:
         self.save_screenshot()
