@@ -376,3 +376,11 @@ def test_segment_counts_a_mesh_cannot_hold_are_refused_at_once():
                    f"segments={10**30} would make at least {2 * 10**30:,} corners")
     assert_refused(cube(), lambda m: connect_faces(m, *above(m), True),
                    "segments must be an integer >= 1, got True")
+
+
+def test_a_hub_that_overflows_is_refused_before_lapack_sees_it(capfd):
+    from livemod.dlfl.connect import multi_face_handle
+
+    assert_refused(cube(), lambda m: multi_face_handle(m, [TOP, BOTTOM, 2], 1e308, 1.0),
+                   "a convex hull needs finite points whose differences are finite")
+    assert "DLASCL" not in capfd.readouterr().err  # LAPACK's own complaint about NaN

@@ -560,9 +560,16 @@ def convex_hull_polygons(points: np.ndarray, tolerance: float = 1e-9) -> list[li
         One list of point indices per face, outward counter-clockwise.
 
     Raises:
-        DLFLError: fewer than 4 points, or all of them in one plane.
+        DLFLError: fewer than 4 points, a point that is not finite, or all of
+            them in one plane.
     """
     pts = np.asarray(points, dtype=np.float64)
+    # before LAPACK: it prints its own complaint about NaN to stderr
+    with np.errstate(over="ignore", invalid="ignore"):
+        finite = bool(np.isfinite(pts).all() and np.isfinite(pts[1:] - pts[0]).all())
+    if not finite:
+        raise DLFLError("a convex hull needs finite points whose differences are finite; "
+                        "these overflow (a smaller extrude or scale keeps them in range)")
     if len(pts) < 4 or np.linalg.matrix_rank(pts[1:] - pts[0], tol=1e-9) < 3:
         raise DLFLError("a convex hull needs at least 4 points not all in one plane")
     eps = tolerance * max(1.0, float(np.abs(pts).max()))
