@@ -136,10 +136,10 @@ def test_geometry_ops_keep_torus_topology():
 
 
 @pytest.mark.parametrize(("call", "message"), [
-    (lambda m: mesh_smooth(m, 1.5), "iterations must be a whole number"),
-    (lambda m: mesh_smooth(m, "2"), "iterations must be a whole number"),
-    (lambda m: planarize(m, None), "steps must be a whole number"),
-    (lambda m: planarize(m, 2.5), "steps must be a whole number"),
+    (lambda m: mesh_smooth(m, 1.5), "iterations must be an integer >= 0"),
+    (lambda m: mesh_smooth(m, "2"), "iterations must be an integer >= 0"),
+    (lambda m: planarize(m, None), "steps must be an integer >= 0"),
+    (lambda m: planarize(m, 2.5), "steps must be an integer >= 0"),
     (lambda m: split_valence2_vertices(m, "2"), "offset must be a number"),
 ])
 def test_arguments_of_the_wrong_type_are_refused(call, message):

@@ -11,10 +11,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._checks import finite_number
+from ._checks import finite_number, whole_count
 from .analysis import face_centroids, face_normals
 from .arrays import MeshArrays, mesh_arrays
-from .errors import DLFLError
 from .mesh import Mesh
 
 __all__ = [
@@ -40,19 +39,6 @@ def _write(mesh: Mesh, a: MeshArrays, positions: np.ndarray) -> None:
     mesh.set_positions(a.vertex_ids, positions)
 
 
-def _count(value: object, name: str) -> int:
-    """``value`` as a count of repetitions.
-
-    Raises:
-        DLFLError: ``value`` is not an integer (bools are not), or is negative.
-    """
-    if isinstance(value, bool) or not isinstance(value, int | np.integer):
-        raise DLFLError(f"{name} must be a whole number >= 0, got {value!r}")
-    if value < 0:
-        raise DLFLError(f"{name} must be at least 0, got {value}")
-    return int(value)
-
-
 def mesh_smooth(mesh: Mesh, iterations: int = 1) -> None:
     """TopMod's ``meshsmooth()`` (GUI CTRL+M): tangential relaxation.
 
@@ -67,7 +53,7 @@ def mesh_smooth(mesh: Mesh, iterations: int = 1) -> None:
     """
     a = mesh_arrays(mesh)
     positions = a.positions
-    for _ in range(_count(iterations, "iterations")):
+    for _ in range(whole_count(iterations, "iterations", least=0, each=0)):
         # the topology never changes: only the positions of the arrays move on
         current = MeshArrays(**{**a.__dict__, "positions": positions})
         average = _face_means(current, face_centroids(current))
@@ -91,7 +77,7 @@ def planarize(mesh: Mesh, steps: int = 100) -> None:
         DLFLError: ``steps`` not a whole number >= 0, or positions that overflow;
             the mesh is unchanged.
     """
-    total = _count(steps, "steps")
+    total = whole_count(steps, "steps", least=0, each=0)
     a = mesh_arrays(mesh)
     positions = a.positions.copy()
     for i in range(total):
