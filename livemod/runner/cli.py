@@ -12,7 +12,7 @@ import os
 import queue
 import select
 import sys
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from typing import Any, TextIO
 
 from livemod.dlfl.analysis import summarize
@@ -65,14 +65,23 @@ def _seed(text: str) -> int | None:
             f"the seed must be a whole number or 'none', not {text!r}") from None
 
 
-def _jobs(text: str) -> int:
-    try:
-        jobs = int(text)
-    except ValueError:
-        jobs = 0
-    if jobs < 1:
-        raise argparse.ArgumentTypeError(f"jobs must be a whole number >= 1, not {text!r}")
-    return jobs
+def whole_number_option(what: str, least: int) -> Callable[[str], int]:
+    """An argparse ``type``: the text as a whole number of at least ``least``, or
+    an ArgumentTypeError naming ``what``."""
+    def parse(text: str) -> int:
+        try:
+            value = int(text)
+        except ValueError:
+            value = least - 1
+        if value < least:
+            raise argparse.ArgumentTypeError(
+                f"{what} must be a whole number >= {least}, not {text!r}")
+        return value
+
+    return parse
+
+
+_jobs = whole_number_option("jobs", 1)
 
 
 def add_select_option(parser: argparse.ArgumentParser) -> None:

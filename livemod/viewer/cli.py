@@ -15,7 +15,7 @@ from pathlib import Path
 from typing import Any
 
 from livemod.dlfl.scene import Selection
-from livemod.runner.cli import add_select_option, selection_of
+from livemod.runner.cli import add_select_option, selection_of, whole_number_option
 
 SCRIPT_SUFFIXES = (".py",)
 
@@ -31,16 +31,7 @@ def parse_size(text: str) -> tuple[int, int]:
     return width, height
 
 
-def parse_frames(text: str) -> int:
-    """``--turntable``'s frame count, a whole number >= 0; raises ArgumentTypeError."""
-    try:
-        frames = int(text)
-    except ValueError:
-        frames = -1
-    if frames < 0:
-        raise argparse.ArgumentTypeError(f"the frame count must be a whole number >= 0, "
-                                         f"not {text!r}")
-    return frames
+parse_frames = whole_number_option("the frame count", 0)  # ``--turntable``
 
 
 def parse_elevation(text: str) -> float:
