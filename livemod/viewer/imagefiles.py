@@ -125,21 +125,14 @@ def write_images(out: str, images: Sequence[np.ndarray], fps: float = 25.0) -> l
     return paths
 
 
-def _gif(images: Sequence[np.ndarray], fps: float, data: io.BytesIO) -> None:
+def _pillow_animation(images: Sequence[np.ndarray], fps: float, data: io.BytesIO, *,
+                      format: str, **options: object) -> None:  # noqa: A002 (Pillow's name)
+    """Encode ``images`` as one looping Pillow animation of ``format`` into ``data``."""
     from PIL import Image
 
     pictures = [Image.fromarray(image) for image in images]
-    pictures[0].save(data, format="GIF", save_all=True, append_images=pictures[1:],
-                     duration=round(1000.0 / fps), loop=0, optimize=False)
-
-
-def _webp(images: Sequence[np.ndarray], fps: float, data: io.BytesIO) -> None:
-    from PIL import Image
-
-    pictures = [Image.fromarray(image) for image in images]
-    pictures[0].save(data, format="WEBP", save_all=True, append_images=pictures[1:],
-                     duration=round(1000.0 / fps), loop=0, lossless=True,
-                     exact=True)  # keep the colour under alpha 0 too: the PNG's pixels
+    pictures[0].save(data, format=format, save_all=True, append_images=pictures[1:],
+                     duration=round(1000.0 / fps), loop=0, **options)
 
 
 def _mp4(images: Sequence[np.ndarray], fps: float, data: io.BytesIO) -> None:
@@ -161,7 +154,10 @@ def _mp4(images: Sequence[np.ndarray], fps: float, data: io.BytesIO) -> None:
 
 
 _ANIMATION_WRITERS: dict[str, Callable[[Sequence[np.ndarray], float, io.BytesIO], None]] = {
-    ".gif": _gif, ".webp": _webp, ".mp4": _mp4}
+    ".gif": functools.partial(_pillow_animation, format="GIF", optimize=False),
+    # exact: keep the colour under alpha 0 too, the PNG's pixels
+    ".webp": functools.partial(_pillow_animation, format="WEBP", lossless=True, exact=True),
+    ".mp4": _mp4}
 
 
 def _save(path: Path, write: Callable[[io.BytesIO], None]) -> None:
