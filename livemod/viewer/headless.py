@@ -19,7 +19,7 @@ from livemod.dlfl.scene import Selection
 from .camera import Camera
 from .geometry import sample_points
 from .imagefiles import check_output, write_images
-from .renderer import Renderer, Style
+from .renderer import Renderer, Style, read_image
 
 
 class NoOffscreenGL(RuntimeError):
@@ -88,10 +88,7 @@ class Offscreen:
             self.ctx.copy_framebuffer(self.resolved, self.target)
         if overlay is not None:
             self.renderer.draw_overlay(self.resolved, overlay)
-        channels = 3 if style.background[3] >= 1.0 else 4
-        raw = self.resolved.read(components=channels, alignment=1)
-        width, height = self.size
-        return np.frombuffer(raw, dtype=np.uint8).reshape(height, width, channels)[::-1].copy()
+        return read_image(self.resolved, style)
 
     def activate(self) -> None:
         """Make this target's context the one GL calls go to."""
@@ -178,6 +175,10 @@ def render_arrays(arrays: MeshArrays | None, out: str, *, size: tuple[int, int] 
         NoOffscreenGL: no offscreen GL context could be made.
     """
     drawn = _Drawn(arrays, preview, others, selection)
+    style = style if style is not None else Style()
+    # before any GL: a name that cannot take these frames costs no context
+    check_output(out, max(turntable, 1), offscreen.size if offscreen is not None else size,
+                 transparent=style.background[3] < 1.0, fps=fps)
     if offscreen is not None:
         return _render_into(offscreen, drawn, out, turntable, elevation, style, progress,
                             ortho, fps)
@@ -202,14 +203,13 @@ class _Drawn:
 
 
 def _render_into(offscreen: Offscreen, drawn: _Drawn, out: str, turntable: int,
-                 elevation: float, style: Style | None,
+                 elevation: float, style: Style,
                  progress: Callable[[int, int], None] | None, ortho: bool,
                  fps: float) -> list[Path]:
-    """:func:`render_arrays` into an existing target (which stays open)."""
+    """:func:`render_arrays` into an existing target (which stays open), its output
+    name already checked."""
     size = offscreen.size
-    style = style if style is not None else Style()
     frames = max(turntable, 1)
-    check_output(out, frames, size, transparent=style.background[3] < 1.0, fps=fps)
     offscreen.activate()
     offscreen.renderer.set_mesh(drawn.arrays, drawn.preview, drawn.others)
     if drawn.selection is not None:

@@ -233,6 +233,16 @@ def guide_lines(bounds: np.ndarray) -> list[tuple[np.ndarray, tuple[float, float
     return [(grid, GRID_COLOR), *axes]
 
 
+def read_image(fbo: moderngl.Framebuffer, style: Style) -> np.ndarray:
+    """The colour of ``fbo`` drawn with ``style``: ``(H, W, 3)`` uint8 RGB, row 0
+    at the top, or ``(H, W, 4)`` RGBA when ``style.background`` is not opaque (a
+    transparent background: alpha 0 where nothing is drawn)."""
+    channels = 3 if style.background[3] >= 1.0 else 4
+    width, height = fbo.size
+    raw = fbo.read(components=channels, alignment=1)
+    return np.frombuffer(raw, dtype=np.uint8).reshape(height, width, channels)[::-1].copy()
+
+
 def _matrix_bytes(matrix: np.ndarray) -> bytes:
     """A row-major numpy ``(4, 4)`` as the column-major float32 GL expects."""
     return np.ascontiguousarray(matrix.T, dtype=np.float32).tobytes()

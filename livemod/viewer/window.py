@@ -33,7 +33,7 @@ from .geometry import sample_points
 from .hud import hud_quads
 from .imagefiles import save_png
 from .params_panel import Hit, ParameterPanel
-from .renderer import DARK_BACKGROUND, LIGHT_BACKGROUND, Renderer, Style
+from .renderer import DARK_BACKGROUND, LIGHT_BACKGROUND, Renderer, Style, read_image
 
 SCRIPT_SUFFIXES = (".py",)
 PARAMETER_DEBOUNCE = 0.15  # seconds a dragged slider rests before the script re-runs
@@ -264,22 +264,20 @@ class LiveViewer(mglw.WindowConfig):
         uint8, or ``(H, W, 4)`` with alpha 0 where nothing is drawn when
         ``transparent``."""
         size = self.wnd.fbo.size
-        style, channels = self.style, 3
+        style = self.style
         if transparent:
-            style, channels = replace(style, background=(*style.background[:3], 0.0)), 4
+            style = replace(style, background=(*style.background[:3], 0.0))
         fbo = self.ctx.framebuffer([self.ctx.renderbuffer(size, 4)],
                                    self.ctx.depth_renderbuffer(size))
         try:
             self.renderer.draw(fbo, self.camera, style)
-            raw = fbo.read(components=channels, alignment=1)
+            return read_image(fbo, style)
         finally:
             for attachment in (*fbo.color_attachments, fbo.depth_attachment):
                 if attachment is not None:
                     attachment.release()
             fbo.release()
             self.wnd.use()
-        image = np.frombuffer(raw, dtype=np.uint8).reshape(size[1], size[0], channels)
-        return image[::-1].copy()
 
     def save_screenshot(self, transparent: bool = False) -> Path:
         """Write :meth:`capture` to ``<script>_NNN.png`` in the working directory
