@@ -41,22 +41,25 @@ def test_other_runs_and_oversized_results_are_not_kept():
 def test_other_objects_one_by_one_and_joined_are_counted_once() -> None:
     from livemod.dlfl.scene import Scene
     from livemod.dlfl.shapes import cube, tetrahedron
-    from livemod.runner.results import other_fields
+    from livemod.runner.results import object_fields
     from livemod.runner.snapshots import arrays_bytes
 
     scene = Scene()
     scene.add(tetrahedron(), "tet")
     scene.add(cube(), "box")
     scene.add(cube(), "current")
-    fields = other_fields(scene)
+    fields = object_fields(scene)
     assert [(oid, name) for oid, name, _ in fields["other_objects"]] == [(0, "tet"), (1, "box")]
     assert fields["others"].counts == (12, 18, 10)
+    assert fields["current_object"] == (2, "current")
     parts = [arrays for _, _, arrays in fields["other_objects"]]
     assert all(not arrays.positions.flags.writeable for arrays in (*parts, fields["others"]))
     result = RunResult(1, "s.py", "ok", (), None, None, None, None, 0.0, False, **fields)
     assert result_bytes(result) == sum(map(arrays_bytes, (*parts, fields["others"])))
     scene.kill(1)
-    lone = other_fields(scene)
+    lone = object_fields(scene)
+    assert lone["current_object"] == (2, "current")
+    assert object_fields(Scene())["current_object"] is None
     assert lone["others"] is lone["other_objects"][0][2]  # one object: no second copy
     result = RunResult(1, "s.py", "ok", (), None, None, None, None, 0.0, False, **lone)
     assert result_bytes(result) == arrays_bytes(lone["others"])

@@ -8,7 +8,7 @@ import os
 from livemod.dlfl.scene import Scene, Selection
 
 from .execute import RunOutcome, base_scene, execute
-from .results import RunResult, other_fields, parameter_items, snapshot_scene
+from .results import RunResult, object_fields, parameter_items, snapshot_scene
 
 
 def run_outcome(path: str | os.PathLike[str], *, mesh_path: str | None = None,
@@ -47,7 +47,7 @@ def result_of(outcome: RunOutcome, script: str, parameters: dict | None,
         error=outcome.error, elapsed=outcome.elapsed, stale=False,
         parameters=tuple(outcome.scene.declarations.values()),
         partial=None if ok else arrays, values=parameter_items(parameters),
-        **(other_fields(outcome.scene) if ok else {}),
+        **(object_fields(outcome.scene) if ok else {}),
     )
 
 

@@ -181,8 +181,10 @@ class RunResult:
             objects; see :func:`livemod.dlfl.arrays.concatenate_arrays`); None
             when the scene holds one object or none.
         other_objects: the same objects one by one, as ``(object id, name,
-            render snapshot)`` in object order (the viewer shows them one at a
-            time); empty when ``others`` is None.
+            render snapshot)`` in object order (the viewer shows or hides each);
+            empty when ``others`` is None.
+        current_object: ``(object id, name)`` of the object ``arrays`` shows, or
+            None when the scene is empty (or the result has no mesh of its own).
     """
 
     run_id: int
@@ -200,6 +202,7 @@ class RunResult:
     values: tuple = ()
     others: MeshArrays | None = None
     other_objects: tuple = ()
+    current_object: tuple[int, str] | None = None
 
 
 def freeze_arrays(arrays: MeshArrays, copy: bool = True) -> MeshArrays:
@@ -284,10 +287,13 @@ def join_others(objects: Sequence[tuple[int, str, MeshArrays]]) -> MeshArrays | 
     return freeze_arrays(concatenate_arrays([arrays for _, _, arrays in objects]), copy=False)
 
 
-def other_fields(scene: Scene) -> dict[str, Any]:
-    """The ``others`` and ``other_objects`` fields of a :class:`RunResult` of ``scene``."""
+def object_fields(scene: Scene) -> dict[str, Any]:
+    """The ``others``, ``other_objects`` and ``current_object`` fields of a
+    :class:`RunResult` of ``scene``."""
     objects = snapshot_other_objects(scene)
-    return {"others": join_others(objects), "other_objects": objects}
+    current = scene.current
+    named = None if current is None else (current, scene.objects[current].name)
+    return {"others": join_others(objects), "other_objects": objects, "current_object": named}
 
 
 def parameter_items(parameters: dict | None) -> tuple:

@@ -41,7 +41,7 @@ from .results import (
     ScriptError,
     StepRecord,
     current_mesh,
-    other_fields,
+    object_fields,
     parameter_items,
     result_mesh,
     save_result,
@@ -492,13 +492,13 @@ class LiveSession:
             last.arrays if last else None, last.preview if last else None, error,
             outcome.elapsed, last is not None, self._specs(outcome.scene),
             snapshot_scene(outcome.scene), values, last.others if last else None,
-            last.other_objects if last else ()))
+            last.other_objects if last else (), last.current_object if last else None))
 
     def _publish_ok(self, run: _Run, outcome: RunOutcome, values: tuple) -> None:
         result = RunResult(run.run_id, run.script, "ok", outcome.steps, None,
                            snapshot_scene(outcome.scene), None, None, outcome.elapsed,
                            False, self._specs(outcome.scene), values=values,
-                           **other_fields(outcome.scene))
+                           **object_fields(outcome.scene))
         with self._lock:
             if run.run_id == self._run_id:
                 self._last_good, self._last_steps = result, outcome.steps
@@ -541,7 +541,7 @@ class LiveSession:
                            snapshot_scene(scene), None, None,
                            steps[-1].elapsed if steps else 0.0, False,
                            self._specs(scene), values=parameter_items(scene.parameters),
-                           **other_fields(scene))
+                           **object_fields(scene))
         with self._lock:
             self._snapshots.put(result)
             if self._shown is not None:
