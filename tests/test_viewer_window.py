@@ -148,8 +148,8 @@ def test_tab_shows_the_other_objects_one_at_a_time(tmp_path: Path) -> None:
         for _ in range(3):
             assert viewer.handle_key("TAB") == "cycle_others"
             run_frames(viewer, 1)
-            seen.append((viewer.shown_other, viewer.renderer.others.counts))
-        assert seen == [(0, (4, 6, 4)), (1, (6, 12, 8)), (None, (10, 18, 12))]
+            seen.append((viewer.hidden_others, viewer.renderer.others.counts))
+        assert seen == [({1}, (4, 6, 4)), ({0}, (6, 12, 8)), (set(), (10, 18, 12))]
         assert np.array_equal(viewer.capture(), everything)  # all of them again
         viewer.handle_key("TAB")
         assert ("other objects: object 0 'tetrahedron' alone (of 2; Tab: next): V 4  F 4"
@@ -157,12 +157,91 @@ def test_tab_shows_the_other_objects_one_at_a_time(tmp_path: Path) -> None:
         assert not np.array_equal(viewer.capture(), everything)
         viewer.handle_key("A")  # hidden, then Tab shows the next one
         viewer.handle_key("TAB")
-        assert viewer.style.others and viewer.shown_other == 1
+        assert viewer.style.others and viewer.hidden_others == {0}
         script.write_text(script.read_text() + "kill(1)\n")  # the one shown goes away
         viewer.session.reload()
         _wait(viewer, _has_run(2))
-        assert viewer.shown_other is None and viewer.renderer.others.counts == (4, 6, 4)
+        assert not viewer.hidden_others and viewer.renderer.others.counts == (4, 6, 4)
         assert "other objects: object 1 'octahedron' alone (of 2; Tab: next)" in echo.getvalue()
+    finally:
+        close_viewer(viewer)
+
+
+def _click_object_row(viewer: LiveViewer, line: int, part: str = "row") -> None:
+    """Click the object list's ``line``-th drawn row (0: the header); ``part`` "row",
+    or the header's "all" / "none" button."""
+    run_frames(viewer, 1)  # lays the list out below the parameters panel
+    size = viewer.wnd.fbo.size
+    x, y, width, row_height = viewer.objects.frame(size)
+    py = int(y + 6 + (line + 0.5) * row_height)
+    px = x + 30 if part == "row" else next(  # the button's first pixel, as the panel lays it out
+        px for px in range(int(x), int(x + width)) if viewer.objects.hit(px, py, size).part == part)
+    viewer.on_mouse_press_event(int(px), py, viewer.wnd.mouse.left)
+    viewer.on_mouse_release_event(int(px), py, viewer.wnd.mouse.left)
+    run_frames(viewer, 1)
+
+
+def test_the_object_list_shows_and_hides_each_other_object(tmp_path: Path) -> None:
+    script = tmp_path / "three.py"
+    script.write_text("load('tetrahedron')\nload('octahedron')\ntranslate(4, 0, 0)\n"
+                      "load('cube')\ntranslate(-4, 0, 0)\n")
+    echo = io.StringIO()
+    viewer = create_viewer(ViewOptions(str(script), backend="headless", size=(400, 300),
+                                       samples=0, vsync=False, echo=echo))
+    try:
+        _wait(viewer, _has_run(1))
+        everything = viewer.capture()
+        assert viewer.handle_key("L") == "toggle_object_list"
+        assert [row.text() for row in viewer.objects.rows] == [
+            "0 tetrahedron   V 4  F 4", "1 octahedron   V 6  F 8",
+            "2 cube   V 8  F 6  (current)"]
+        _click_object_row(viewer, 1)  # untick the tetrahedron
+        assert viewer.hidden_others == {0} and viewer.renderer.others.counts == (6, 12, 8)
+        assert "other objects: object 1 'octahedron' alone (of 2; Tab: next)" in _hud_text(viewer)
+        assert not np.array_equal(viewer.capture(), everything)
+        _click_object_row(viewer, 0, "none")
+        assert viewer.hidden_others == {0, 1} and viewer.renderer.others is None
+        assert "other objects: 0 of 2 shown (L: list)" in _hud_text(viewer)
+        _click_object_row(viewer, 0, "all")
+        assert not viewer.hidden_others and np.array_equal(viewer.capture(), everything)
+        _click_object_row(viewer, 3)  # the current object's row: nothing to hide
+        assert "the current object is always drawn" in echo.getvalue()
+        _click_object_row(viewer, 2)  # untick the octahedron, then the script adds one
+        script.write_text(script.read_text() + "load('icosahedron')\n")
+        viewer.session.reload()
+        _wait(viewer, _has_run(2))
+        assert viewer.hidden_others == {1}  # still hidden; the new object is shown
+        assert viewer.renderer.others.counts == (4 + 8, 6 + 12, 4 + 6)  # tetrahedron, cube
+        assert "other objects: 2 of 3 shown (L: list)" in _hud_text(viewer)
+    finally:
+        close_viewer(viewer)
+
+
+def test_the_wheel_scrolls_the_object_list_and_zooms_elsewhere(tmp_path: Path) -> None:
+    script = tmp_path / "many.py"
+    script.write_text("for i in range(40):\n    load('tetrahedron')\n    translate(2 * i, 0, 0)\n")
+    viewer = create_viewer(ViewOptions(str(script), backend="headless", size=(400, 300),
+                                       samples=0, vsync=False, echo=io.StringIO()))
+    try:
+        _wait(viewer, _has_run(1))
+        viewer.handle_key("L")
+        run_frames(viewer, 1)
+        x, y, _, _ = viewer.objects.frame(viewer.wnd.fbo.size)
+        distance = viewer.camera.distance
+        viewer.on_mouse_position_event(int(x + 30), int(y + 40), 0, 0)
+        viewer.on_mouse_scroll_event(0.0, -3.0)  # wheel down over the list: it scrolls
+        assert viewer.objects.shown_rows(viewer.wnd.fbo.size).start == 3
+        assert viewer.camera.distance == distance
+        viewer.on_mouse_scroll_event(0.0, 1.0)
+        assert viewer.objects.shown_rows(viewer.wnd.fbo.size).start == 2
+        viewer.on_mouse_position_event(10, 290, 0, 0)  # off the list: the wheel zooms
+        viewer.on_mouse_scroll_event(0.0, 1.0)
+        assert viewer.camera.distance != distance
+        viewer.handle_key("L")  # the list closed: the wheel zooms over its place too
+        distance = viewer.camera.distance
+        viewer.on_mouse_position_event(int(x + 30), int(y + 40), 0, 0)
+        viewer.on_mouse_scroll_event(0.0, 1.0)
+        assert viewer.camera.distance != distance
     finally:
         close_viewer(viewer)
 

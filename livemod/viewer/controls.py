@@ -47,6 +47,8 @@ KEY_BINDINGS: tuple[Binding, ...] = (
     Binding("P", "", "toggle_preview", "patch-smoothed preview on/off"),
     Binding("A", "", "toggle_others", "the scene's other objects on/off"),
     Binding("TAB", "", "cycle_others", "the other objects one at a time, then all again"),
+    Binding("L", "", "toggle_object_list",
+            "the object list: tick or untick each other object to show or hide it"),
     Binding("X", "", "toggle_grid", "ground grid and axes on/off"),
     Binding("B", "", "toggle_background", "dark / light background"),
     Binding("N", "", "toggle_smooth", "flat / smooth shading"),

@@ -55,13 +55,13 @@ def hud_lines(info: dict[str, Any]) -> list[tuple[str, int]]:
         holes = int(arrays.face_hole.sum())  # counted apart, as TopMod does
         extra = f"  holes {holes}" if holes else ""
         lines.append((f"V {v}  E {e}  F {f - holes}{extra}  genus {info['genus']}", TEXT))
-    # drawn beside the current object (key A hides them, Tab shows one at a time)
+    # drawn beside the current object (A hides them, Tab shows one at a time, L lists them)
     others = info.get("others", None if result is None else result.others)
-    if others is not None:
-        holes = int(others.face_hole.sum())
-        note = info.get("others_note", "")
-        lines.append((f"other objects{': ' + note if note else ''}: V {others.counts[0]}  "
-                      f"F {others.counts[2] - holes}", LABEL_DIM))
+    note = info.get("others_note", "")
+    if others is not None or note:
+        counts = "" if others is None else (
+            f": V {others.counts[0]}  F {others.counts[2] - int(others.face_hole.sum())}")
+        lines.append((f"other objects{': ' + note if note else ''}{counts}", LABEL_DIM))
     lines.append((step_line(result, info.get("total_steps", 0)), TEXT))
     style = info["style"]
     view = "ortho" if info["ortho"] else "persp"

@@ -103,6 +103,11 @@ class ParameterPanel:
         x = max(size[0] - MARGIN - width, float(MARGIN))
         return x, float(MARGIN), width, float(atlas.line_height + 4)
 
+    def bottom(self, size: tuple[int, int]) -> float:
+        """Framebuffer y just below the panel (its top when there are no parameters)."""
+        _, y, _, row_height = self.frame(size)
+        return y + (len(self.specs) + 1) * row_height + 2 * PADDING if self.specs else y
+
     def _control_x(self, size: tuple[int, int]) -> tuple[float, float, float]:
         """``(control left, control width, reset button left)``."""
         x, _, width, _ = self.frame(size)

@@ -32,6 +32,14 @@ from .controls import PICK_MODES, action_for, selection_python, toggle_pick
 from .geometry import sample_points
 from .hud import hud_quads
 from .imagefiles import save_png
+from .objects_panel import (
+    MARGIN,
+    ObjectPanel,
+    kept_hidden,
+    next_alone,
+    result_rows,
+    visible_objects,
+)
 from .params_panel import Hit, ParameterPanel
 from .renderer import DARK_BACKGROUND, LIGHT_BACKGROUND, Renderer, Style, read_image
 
@@ -124,12 +132,14 @@ class LiveViewer(mglw.WindowConfig):
         self.result: Any = None
         self.genus: int | None = None
         self.total_steps = 0
-        self.shown_other: int | None = None  # the other object shown alone (Tab); None: all
+        self.objects = ObjectPanel()  # the object list (L) and the hidden objects' ids
+        self.show_objects = False
         self.frame_times: deque[float] = deque(maxlen=120)
         self.screenshots: list[Path] = []
         self._fit_bounds: np.ndarray | None = None
         self._press: tuple[int, int, int] | None = None
         self._moved = False
+        self._pointer: tuple[float, float] = (-1.0, -1.0)  # window point of the mouse
         self._key_names = _key_names(self.wnd.keys)
         self._last_frame = time.perf_counter()
         self._fps_shown, self._fps_time = 0.0, 0.0
@@ -167,6 +177,7 @@ class LiveViewer(mglw.WindowConfig):
     def _apply(self, result: Any) -> None:
         first_error = result.error is not None and (
             self.result is None or self.result.error != result.error)
+        self._sync_objects(result)
         self.result = result
         self.waiting = False
         self._sync_parameters(result)
@@ -195,23 +206,50 @@ class LiveViewer(mglw.WindowConfig):
             self._do_fit()
             self._fit_bounds = bounds
 
+    @property
+    def hidden_others(self) -> frozenset[int]:
+        """Ids of the other objects not drawn (unticked in the object list, or not
+        the one ``Tab`` shows alone)."""
+        return self.objects.hidden
+
+    def _other_ids(self, result: Any = None) -> list[int]:
+        result = self.result if result is None else result
+        return [oid for oid, _, _ in result.other_objects] if result is not None else []
+
+    def _sync_objects(self, result: Any) -> None:
+        """List ``result``'s objects, keeping hidden the ones still there."""
+        before = frozenset(self._other_ids()) - self.objects.hidden
+        hidden = kept_hidden(self.objects.hidden, before, self._other_ids(result))
+        self.objects.sync(result_rows(result), hidden)
+
     def _visible_others(self, result: Any) -> Any:
-        """The other objects to draw: all joined, or the one Tab chose while the
-        scene still has it."""
-        for oid, _, arrays in result.other_objects:
-            if oid == self.shown_other:
-                return arrays
-        self.shown_other = None
-        return result.others
+        """The other objects to draw, joined: all of them (the result's own join),
+        or those not hidden; None when none is shown."""
+        if not self.objects.hidden:
+            return result.others
+        from livemod.runner.results import join_others
+
+        return join_others(visible_objects(result.other_objects, self.objects.hidden))
+
+    def set_hidden_others(self, hidden: frozenset[int]) -> None:
+        """Draw the other objects whose ids are not in ``hidden`` (and the others at
+        all: choosing what to show means showing it)."""
+        self.objects.hidden = frozenset(hidden)
+        self.style = replace(self.style, others=True)
+        if self.result is not None:
+            self.renderer.set_others(self._visible_others(self.result))
 
     def _others_note(self) -> str:
-        """Which other object is drawn alone, for the HUD and the echo ("" for all)."""
+        """Which other objects are drawn, for the HUD and the echo ("" for all)."""
         objects = self.result.other_objects if self.result is not None else ()
-        for oid, name, _ in objects:
-            if oid == self.shown_other:
-                named = f" {name!r}" if name else ""
-                return f"object {oid}{named} alone (of {len(objects)}; Tab: next)"
-        return ""
+        shown = visible_objects(objects, self.objects.hidden)
+        if len(shown) == len(objects):
+            return ""
+        if len(shown) == 1:
+            oid, name, _ = shown[0]
+            named = f" {name!r}" if name else ""
+            return f"object {oid}{named} alone (of {len(objects)}; Tab: next)"
+        return f"{len(shown)} of {len(objects)} shown (L: list)"
 
     def _echo(self, line: str) -> None:
         stream = self.options.echo if self.options.echo is not None else sys.stdout
@@ -242,12 +280,21 @@ class LiveViewer(mglw.WindowConfig):
             self._fps_time = now
         key = (id(self.result), self.waiting, self.total_steps, self.genus, self._fps_shown,
                self.pick_mode, self.selection, self.style, self.camera.ortho, self.playing,
-               self.show_hud, self.show_help, size, self.params.state(), self.shown_other)
+               self.show_hud, self.show_help, size, self.params.state(),
+               self.objects.state(), self._objects_shown())
         if self._overlay_cache is None or self._overlay_cache[0] != key:
-            panel = self.params.quads(size) if self._panel_shown() else None
-            quads = hud_quads(self._hud_info(), size)
-            self._overlay_cache = (key, quads if panel is None else np.concatenate([panel, quads]))
+            parts = [hud_quads(self._hud_info(), size)]
+            if self._panel_shown():  # the parameters' tooltip is drawn over the list
+                parts.insert(0, self.params.quads(size))
+            if self._objects_shown():
+                self.objects.top = self.params.bottom(size) + (
+                    MARGIN if self.params.specs else 0)
+                parts.insert(0, self.objects.quads(size))
+            self._overlay_cache = (key, np.concatenate(parts))
         return self._overlay_cache[1]
+
+    def _objects_shown(self) -> bool:
+        return self.show_objects and self._panel_shown() and self.objects.has_others()
 
     def _hud_info(self) -> dict[str, Any]:
         return {"script": self.script, "result": self.result, "waiting": self.waiting,
@@ -382,16 +429,17 @@ class LiveViewer(mglw.WindowConfig):
         self.waiting = True
 
     def _do_cycle_others(self) -> None:
-        objects = self.result.other_objects if self.result is not None else ()
-        if not objects:
+        ids = self._other_ids()
+        if not ids:
             self._echo("the scene has no other objects")
             return
-        order = [None, *(oid for oid, _, _ in objects)]
-        at = order.index(self.shown_other) if self.shown_other in order else 0
-        self.shown_other = order[(at + 1) % len(order)]
-        self.style = replace(self.style, others=True)  # choosing one means showing it
-        self.renderer.set_others(self._visible_others(self.result))
-        self._echo(f"other objects: {self._others_note() or 'all ' + str(len(objects))}")
+        self.set_hidden_others(next_alone(ids, self.objects.hidden))
+        self._echo(f"other objects: {self._others_note() or 'all ' + str(len(ids))}")
+
+    def _do_toggle_object_list(self) -> None:
+        self.show_objects = not self.show_objects
+        if self.show_objects and not self._other_ids():
+            self._echo("the scene has no other objects to list")
 
     def _do_screenshot(self) -> None:
         self.save_screenshot()
@@ -428,14 +476,20 @@ class LiveViewer(mglw.WindowConfig):
         if hit is not None:
             self._press_panel(hit, x * self._pixel_ratio())
             return
+        hit = self._objects_hit(x, y)
+        if hit is not None:
+            self._press_objects(hit)
+            return
         self._press = (x, y, button)
         self._moved = False
 
     def on_mouse_position_event(self, x: int, y: int, dx: int, dy: int) -> None:
+        self._pointer = (x, y)
         hit = self._panel_hit(x, y)
         self.params.hover = hit.row if hit is not None and hit.row >= 0 else None
 
     def on_mouse_drag_event(self, x: int, y: int, dx: int, dy: int) -> None:
+        self._pointer = (x, y)
         if self._param_drag is not None:
             self._drag_slider(x * self._pixel_ratio())
             return
@@ -459,6 +513,11 @@ class LiveViewer(mglw.WindowConfig):
             self.click(x, y, add=bool(self.wnd.modifiers.shift))
 
     def on_mouse_scroll_event(self, x_offset: float, y_offset: float) -> None:
+        # the wheel scrolls the object list under the pointer, else zooms
+        if y_offset and self._objects_hit(*self._pointer) is not None:
+            rows = max(1, round(abs(y_offset)))
+            self.objects.scroll(-rows if y_offset > 0 else rows, self.wnd.fbo.size)
+            return
         self.camera.zoom(y_offset)
 
     def _pixel_ratio(self) -> float:
@@ -511,6 +570,26 @@ class LiveViewer(mglw.WindowConfig):
             return None
         ratio = self._pixel_ratio()
         return self.params.hit(x * ratio, y * ratio, self.wnd.fbo.size)
+
+    def _objects_hit(self, x: float, y: float) -> Hit | None:
+        if not self._objects_shown():
+            return None
+        ratio = self._pixel_ratio()
+        return self.objects.hit(x * ratio, y * ratio, self.wnd.fbo.size)
+
+    def _press_objects(self, hit: Hit) -> None:
+        """A click on the object list: tick or untick an object, or all / none."""
+        ids = frozenset(self._other_ids())
+        if hit.part in ("all", "none"):
+            self.set_hidden_others(frozenset() if hit.part == "all" else ids)
+        elif hit.part == "toggle":
+            self.set_hidden_others(self.objects.hidden ^ {self.objects.rows[hit.row].oid})
+        elif hit.part == "current":
+            self._echo("the current object is always drawn (S and W hide its faces and edges)")
+            return
+        else:
+            return
+        self._echo(f"other objects: {self._others_note() or 'all ' + str(len(ids))}")
 
     def _press_panel(self, hit: Hit, px: float) -> None:
         """A click on the panel: reset, start a slider drag, toggle or cycle a choice."""
@@ -596,6 +675,7 @@ class LiveViewer(mglw.WindowConfig):
         self._close_session()
         self.selection = Selection()
         self.renderer.set_selection(self.selection)
+        self.objects.sync((), frozenset())  # another script's objects share no ids
         self._fit_bounds = None
         self.result = None
         self.total_steps = 0
