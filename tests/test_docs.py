@@ -1,5 +1,5 @@
 """The documentation stays true to the code: the generated API reference is up to
-date and the README's example script runs."""
+date, and the README's example script and every Python example of the docs run."""
 
 from __future__ import annotations
 
@@ -7,7 +7,11 @@ import re
 import runpy
 from pathlib import Path
 
+import pytest
+
 from livemod.dlfl import Scene, genus, use_scene, validate
+from livemod.dlfl.io import save_mesh
+from livemod.dlfl.shapes import cube
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -36,3 +40,32 @@ def test_readme_example_runs() -> None:
     validate(scene.mesh)
     assert scene.mesh.num_faces > 100
     assert genus(scene.mesh) == 0
+
+
+def _python_blocks() -> list[tuple[str, int, str]]:
+    """``(file, line, code)`` of every ```python block of the README and docs/."""
+    found = []
+    for path in (ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))):
+        text = path.read_text(encoding="utf-8")
+        for match in re.finditer(r"```python\n(.*?)```", text, flags=re.S):
+            line = text.count("\n", 0, match.start(1)) + 1
+            found.append((path.relative_to(ROOT).as_posix(), line, match.group(1)))
+    return found
+
+
+@pytest.mark.parametrize(("name", "line", "code"), _python_blocks(),
+                         ids=[f"{name}:{line}" for name, line, _ in _python_blocks()])
+def test_every_python_example_in_the_docs_runs(name: str, line: int, code: str,
+                                               tmp_path: Path, monkeypatch) -> None:
+    """Each example runs as written, in a folder that has a model.obj to load."""
+    save_mesh(cube(), str(tmp_path / "model.obj"))
+    monkeypatch.chdir(tmp_path)
+    with use_scene(Scene()):
+        # its own file name and first line, so a failure points at the doc
+        exec(compile("\n" * (line - 1) + code, str(ROOT / name), "exec"),
+             {"__name__": "__doc_example__"})
+
+
+def test_the_docs_have_python_examples() -> None:
+    assert {name for name, _, _ in _python_blocks()} >= {
+        "README.md", "docs/guide.md", "docs/extrusions.md", "docs/parameters.md"}
