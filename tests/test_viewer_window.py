@@ -85,9 +85,12 @@ def test_pick_select_rerun_and_error_keeps_the_stale_mesh(headless) -> None:
     face = viewer.selection.faces
     assert len(face) == 1
     assert f"faces(True) == ({face[0]},)" in echo.getvalue()
+    measured = f"face {face[0]}: 4 sides, area 4, normal "
+    assert measured in echo.getvalue() and measured in _hud_text(viewer)
     viewer.handle_key("R")
     _wait(viewer, _has_run(2))
     assert viewer.result.arrays.positions[:, 0].max() == pytest.approx(3.0)  # saw faces(True)
+    assert measured in _hud_text(viewer)  # measured again on the new mesh
     assert viewer.camera.distance == fitted               # kept across the reload
     before = viewer.capture()
     script.write_text("x = (\n")                          # a syntax error
@@ -310,8 +313,9 @@ def test_shift_click_adds_and_escape_clears(headless) -> None:
     viewer.click(160, y, add=True)
     assert viewer.selection.faces == (*first, other)
     assert f"faces(True) == {(*first, other)!r}" in echo.getvalue()
+    assert "2 faces: area 8" in _hud_text(viewer)
     viewer.handle_key("ESCAPE")
-    assert viewer.selection.is_empty()
+    assert viewer.selection.is_empty() and "area" not in _hud_text(viewer)
     assert echo.getvalue().rstrip().endswith("faces(True) == ()")
 
 

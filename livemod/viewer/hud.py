@@ -69,6 +69,7 @@ def hud_lines(info: dict[str, Any]) -> list[tuple[str, int]]:
     lines.append((f"pick {info['pick_mode']}  {view}  {mode}"
                   f"{'  playing' if info['playing'] else ''}", LABEL_DIM))
     lines += [(line, LABEL_DIM) for line in info["selection"][:4]]
+    lines += [(line, TEXT) for line in info.get("measures", ())[:4]]
     lines.append((f"{info['fps']:.0f} fps   H: help", LABEL_DIM))
     return lines
 

@@ -32,6 +32,7 @@ from .controls import PICK_MODES, action_for, selection_python, toggle_pick
 from .geometry import sample_points
 from .hud import hud_quads
 from .imagefiles import save_png
+from .measure import measure_lines
 from .objects_panel import (
     MARGIN,
     ObjectPanel,
@@ -125,6 +126,7 @@ class LiveViewer(mglw.WindowConfig):
         self.pick_mode = "face"
         self.selection = self.options.selection or Selection()
         self.renderer.set_selection(self.selection)
+        self.measures: list[str] = []  # the HUD's measurements of the picked elements
         self.show_help = False
         self.show_hud = True
         self.playing = False
@@ -187,6 +189,7 @@ class LiveViewer(mglw.WindowConfig):
             self._upload(result.arrays, result.preview, self._visible_others(result))
         elif result.arrays is None and result.error is None:
             self.renderer.set_mesh(None)  # the script ended with no mesh: show none
+            self.measures = []
             self.genus = None
         elif result.preview is not None and result.preview is not self.renderer.preview:
             self.renderer.set_preview(result.preview)
@@ -199,6 +202,7 @@ class LiveViewer(mglw.WindowConfig):
 
         self.renderer.set_mesh(arrays, preview, others)
         self.renderer.set_selection(self.selection)
+        self.measures = measure_lines(self.selection, arrays)
         self.genus = genus(arrays) if len(arrays.positions) else 0
         bounds = self.renderer.bounds
         if bounds is not None and len(arrays.positions) and bounds_changed_a_lot(
@@ -301,7 +305,7 @@ class LiveViewer(mglw.WindowConfig):
                 "total_steps": self.total_steps,
                 "genus": self.genus, "fps": self._fps_shown, "pick_mode": self.pick_mode,
                 "selection": selection_python(self.selection, self.renderer.arrays)
-                if not self.selection.is_empty() else [],
+                if not self.selection.is_empty() else [], "measures": self.measures,
                 "others": self.renderer.others, "others_note": self._others_note(),
                 "style": self.style, "ortho": self.camera.ortho, "playing": self.playing,
                 "hud": self.show_hud, "help": self.show_help}
@@ -544,7 +548,8 @@ class LiveViewer(mglw.WindowConfig):
         self.selection = selection
         self.renderer.set_selection(selection)
         self.session.set_selection(selection)
-        for line in selection_python(selection, self.renderer.arrays):
+        self.measures = measure_lines(selection, self.renderer.arrays)
+        for line in (*selection_python(selection, self.renderer.arrays), *self.measures):
             self._echo(line)
 
     # -- parameters --------------------------------------------------------------
@@ -675,6 +680,7 @@ class LiveViewer(mglw.WindowConfig):
         self._close_session()
         self.selection = Selection()
         self.renderer.set_selection(self.selection)
+        self.measures = []
         self.objects.sync((), frozenset())  # another script's objects share no ids
         self._fit_bounds = None
         self.result = None

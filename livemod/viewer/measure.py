@@ -1,0 +1,134 @@
+"""Measurements of the picked elements, as the HUD shows them (GL-free).
+
+One picked face tells its sides, area and normal; one edge its length; one vertex
+its position and valence; two vertices their distance; one corner its face, vertex
+and angle; several of a kind their total area, total length or extent. Everything
+is read from the result's :class:`~livemod.dlfl.arrays.MeshArrays`, so it measures
+exactly what is drawn.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+
+import numpy as np
+
+from livemod.dlfl.arrays import MeshArrays
+from livemod.dlfl.scene import Selection
+
+
+def measure_lines(selection: Selection, arrays: MeshArrays | None) -> list[str]:
+    """The HUD's measurement lines for ``selection`` on ``arrays`` (ids that are not
+    in ``arrays``, as after a re-run that renumbered them, are left out)."""
+    if arrays is None:
+        return []
+    lines = []
+    for measure, ids, table in ((_faces, selection.faces, arrays.face_ids),
+                                (_edges, selection.edges, arrays.edge_ids),
+                                (_vertices, selection.vertices, arrays.vertex_ids),
+                                (_corners, selection.corners, arrays.corner_ids)):
+        dense = _dense(table, ids)
+        if dense:
+            lines += measure(arrays, [int(ids_i) for ids_i in table[dense]], dense)
+    return lines
+
+
+def _dense(table: np.ndarray, ids: Sequence[int]) -> list[int]:
+    """Dense indices of the ``ids`` that ``table`` (an id array) holds, in pick order."""
+    if not ids:
+        return []
+    order = np.argsort(table, kind="stable")
+    wanted = np.asarray(ids, dtype=np.int64)
+    at = np.minimum(np.searchsorted(table[order], wanted), len(table) - 1)
+    found = table[order][at] == wanted
+    return [int(i) for i in order[at][found]]
+
+
+def _num(value: float) -> str:
+    return f"{value:.4g}"
+
+
+def _point(p: np.ndarray) -> str:
+    return "(" + ", ".join(_num(float(x)) for x in p) + ")"
+
+
+def face_area_normal(arrays: MeshArrays, face: int) -> tuple[float, np.ndarray]:
+    """Area and ``(3,)`` unit normal of dense face ``face`` (Newell's method, so
+    non-planar faces get their best-fit normal); the normal is zero for a
+    degenerate face."""
+    start, stop = arrays.face_offsets[face], arrays.face_offsets[face + 1]
+    ring = arrays.positions[arrays.corner_vertex[start:stop]]
+    twice = np.cross(ring, np.roll(ring, -1, axis=0)).sum(axis=0)
+    length = float(np.linalg.norm(twice))
+    return length / 2.0, twice / length if length > 0 else np.zeros(3)
+
+
+def _faces(arrays: MeshArrays, ids: list[int], dense: list[int]) -> list[str]:
+    areas = [face_area_normal(arrays, f) for f in dense]
+    if len(dense) > 1:
+        return [f"{len(dense)} faces: area {_num(sum(a for a, _ in areas))}"]
+    area, normal = areas[0]
+    sides = int(arrays.face_sizes[dense[0]])
+    kind = " (hole)" if arrays.face_hole[dense[0]] else ""
+    return [f"face {ids[0]}{kind}: {sides} sides, area {_num(area)}, normal {_point(normal)}"]
+
+
+def _edge_ends(arrays: MeshArrays, edge: int) -> tuple[int, int]:
+    """Dense vertex indices of an edge's two ends."""
+    corner = arrays.edge_corners[edge, 0]
+    return (int(arrays.corner_vertex[corner]),
+            int(arrays.corner_vertex[arrays.edge_corners[edge, 1]]))
+
+
+def _edges(arrays: MeshArrays, ids: list[int], dense: list[int]) -> list[str]:
+    ends = [_edge_ends(arrays, e) for e in dense]
+    lengths = [float(np.linalg.norm(arrays.positions[a] - arrays.positions[b]))
+               for a, b in ends]
+    if len(dense) > 1:
+        return [f"{len(dense)} edges: length {_num(sum(lengths))}"]
+    a, b = ends[0]
+    return [f"edge {ids[0]}: length {_num(lengths[0])}, vertices "
+            f"{int(arrays.vertex_ids[a])}-{int(arrays.vertex_ids[b])}"]
+
+
+def _vertices(arrays: MeshArrays, ids: list[int], dense: list[int]) -> list[str]:
+    points = arrays.positions[dense]
+    if len(dense) == 1:
+        valence = int(np.count_nonzero((arrays.corner_vertex == dense[0])
+                                       & (arrays.corner_edge >= 0)))
+        return [f"vertex {ids[0]} at {_point(points[0])}, valence {valence}"]
+    if len(dense) == 2:
+        delta = points[1] - points[0]
+        return [f"vertices {ids[0]}-{ids[1]}: distance {_num(float(np.linalg.norm(delta)))}, "
+                f"delta {_point(delta)}"]
+    extent = points.max(axis=0) - points.min(axis=0)
+    return [f"{len(dense)} vertices: extent {_point(extent)}"]
+
+
+def corner_angle(arrays: MeshArrays, corner: int) -> float:
+    """Degrees between the two edges at dense corner ``corner`` (0 when either is
+    degenerate, as at a point-sphere)."""
+    face = arrays.corner_face[corner]
+    start, stop = arrays.face_offsets[face], arrays.face_offsets[face + 1]
+    before = start + (corner - start - 1) % (stop - start)
+    after = start + (corner - start + 1) % (stop - start)
+    here = arrays.positions[arrays.corner_vertex[corner]]
+    u = arrays.positions[arrays.corner_vertex[before]] - here
+    w = arrays.positions[arrays.corner_vertex[after]] - here
+    norms = float(np.linalg.norm(u) * np.linalg.norm(w))
+    if norms == 0:
+        return 0.0
+    return math.degrees(math.acos(min(max(float(u @ w) / norms, -1.0), 1.0)))
+
+
+def _corners(arrays: MeshArrays, ids: list[int], dense: list[int]) -> list[str]:
+    lines = []
+    for cid, corner in list(zip(ids, dense, strict=True))[:2]:
+        face = int(arrays.face_ids[arrays.corner_face[corner]])
+        vertex = int(arrays.vertex_ids[arrays.corner_vertex[corner]])
+        lines.append(f"corner {cid}: face {face} at vertex {vertex}, "
+                     f"angle {corner_angle(arrays, corner):.1f} deg")
+    if len(dense) > 2:
+        lines.append(f"... {len(dense) - 2} more corners")
+    return lines
