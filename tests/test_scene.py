@@ -6,6 +6,7 @@ import sys
 import threading
 import time
 
+import numpy as np
 import pytest
 
 from livemod.dlfl import DLFLError, Mesh, Scene, Selection, createVertex, current_scene, use_scene
@@ -119,6 +120,14 @@ def test_selection_adding_keeps_order_and_each_id_once():
     picked = Selection(faces=(3, 1)).adding("faces", [1, 4, 4, 2])
     assert picked == Selection(faces=(3, 1, 4, 2))
     assert picked.adding("corners", ()) == picked
+
+
+def test_selection_adding_takes_numpy_ids_as_ints():
+    picked = Selection().adding("vertices", np.array([11, 3, 11]))
+    assert picked.vertices == (11, 3) and all(type(i) is int for i in picked.vertices)
+    assert repr(picked.vertices) == "(11, 3)"
+    with pytest.raises(TypeError):
+        Selection().adding("faces", [1.5])
 
 
 def test_use_scene_binds_per_thread():

@@ -10,6 +10,7 @@ from __future__ import annotations
 import bisect
 import contextlib
 import contextvars
+import operator
 from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass, field, replace
 from typing import Any
@@ -37,9 +38,11 @@ class Selection:
 
     def adding(self, name: str, ids: Iterable[int]) -> Selection:
         """This selection with ``ids`` added to field ``name`` (``"faces"``,
-        ``"edges"``, ``"vertices"`` or ``"corners"``), each id once."""
+        ``"edges"``, ``"vertices"`` or ``"corners"``), each id once (numpy
+        integers become ints, so the selection prints as a script writes it)."""
         have: tuple[int, ...] = getattr(self, name)
-        return replace(self, **{name: have + tuple(i for i in dict.fromkeys(ids) if i not in have)})
+        wanted = dict.fromkeys(operator.index(i) for i in ids)
+        return replace(self, **{name: have + tuple(i for i in wanted if i not in have)})
 
     @classmethod
     def parse(cls, texts: Iterable[str]) -> Selection:
