@@ -431,3 +431,66 @@ def test_render_on_a_transparent_background_writes_alpha(tmp_path: Path, capsys)
     assert ("a transparent background needs PNG or WebP output, not "
             f"'{tmp_path / 't.gif'}' (a GIF cannot hold soft edges)") in capsys.readouterr().err
     assert not (tmp_path / "t.gif").exists()
+
+
+def _face_at_z(arrays, z: float) -> int:
+    """Dense index of the cube face whose corners all lie at ``z``."""
+    for f in range(len(arrays.face_ids)):
+        ring = arrays.positions[arrays.corner_vertex[arrays.face_offsets[f]:
+                                                     arrays.face_offsets[f + 1]]]
+        if np.allclose(ring[:, 2], z):
+            return f
+    raise AssertionError(f"no face at z={z}")
+
+
+def test_a_section_shows_the_inside_and_picks_through_the_cut(offscreen: Offscreen) -> None:
+    arrays = mesh_arrays(from_polygons(CUBE_POSITIONS, CUBE_FACES))
+    offscreen.renderer.set_mesh(arrays)
+    # from +z, looking down -z; orthographic, so the cut cube has the same outline
+    camera = framed_camera(arrays, elevation=0.0, yaw=0.0, ortho=True)
+    middle = (SIZE[1] // 2, SIZE[0] // 2)
+    whole = offscreen.render(camera, Style(edges=False))
+    cut = offscreen.render(camera, Style(edges=False, section=(2, 0.0)))
+    assert whole[middle][0] > whole[middle][2]  # the orange front face
+    assert cut[middle][2] > cut[middle][0]  # inside: the back of the far face, bluish
+    assert np.array_equal(_mask(cut), _mask(whole))  # the same outline, seen into
+    hit = offscreen.renderer.pick(camera, SIZE, middle[1], middle[0], "face")
+    assert hit is not None and hit.dense_index == _face_at_z(arrays, -1.0)
+    offscreen.render(camera, Style(edges=False))  # no section: the front face again
+    hit = offscreen.renderer.pick(camera, SIZE, middle[1], middle[0], "face")
+    assert hit is not None and hit.dense_index == _face_at_z(arrays, 1.0)
+    gone = offscreen.render(camera, Style(edges=False, section=(2, -1.5)))
+    assert not _mask(gone).any()  # the plane behind the whole cube: nothing is left
+
+
+def test_a_section_leaves_out_the_labels_of_what_it_cut_away(offscreen: Offscreen) -> None:
+    arrays = mesh_arrays(from_polygons(CUBE_POSITIONS, CUBE_FACES))
+    offscreen.renderer.set_mesh(arrays)
+    renderer = offscreen.renderer
+
+    def labelled(section) -> int:
+        quads = renderer._label_quads(Style(labels=frozenset({"faces"}), section=section))
+        return len({tuple(anchor) for anchor in quads[:, :3].tolist()})
+
+    # face centroids: one at x=-1, four at x=0, one at x=+1
+    assert (labelled(None), labelled((0, 0.0)), labelled((0, -0.5))) == (6, 5, 1)
+
+
+def test_render_section_option(tmp_path: Path, capsys) -> None:
+    script = tmp_path / "cube.py"
+    script.write_text(CUBE_SCRIPT)
+    pictures = {}
+    for name, extra in (("whole", []), ("middle", ["--section", "z"]),
+                        ("at", ["--section", "z=0"]), ("beyond", ["--section", "z=-5"])):
+        out = tmp_path / f"{name}.png"
+        assert main(["render", str(script), "-o", str(out), "--size", "160x120",
+                     "--samples", "0", "--elevation", "0", *extra]) == 0
+        pictures[name] = read_image(out)
+    assert np.array_equal(pictures["middle"], pictures["at"])  # a bare axis: the middle
+    assert not np.array_equal(pictures["middle"], pictures["whole"])
+    assert not _mask(pictures["beyond"]).any()
+    for bad in ("w", "x=one", "x=inf", "xy=1"):
+        with pytest.raises(SystemExit):
+            main(["render", str(script), "-o", str(tmp_path / "bad.png"), "--section", bad])
+        assert "--section takes x, y or z" in capsys.readouterr().err
+    assert not (tmp_path / "bad.png").exists()

@@ -249,6 +249,27 @@ def test_the_wheel_scrolls_the_object_list_and_zooms_elsewhere(tmp_path: Path) -
         close_viewer(viewer)
 
 
+def test_c_cuts_the_mesh_and_brackets_move_the_plane(headless) -> None:
+    viewer, _, echo = headless
+    _wait(viewer, _has_run(1))
+    whole = viewer.capture()
+    assert viewer.handle_key("C") == "cycle_section"
+    assert viewer.style.section == (0, 0.0)  # through the middle of the 2 x 2 x 2 cube
+    assert "section x <= 0" in _hud_text(viewer) and "section: x <= 0" in echo.getvalue()
+    assert not np.array_equal(viewer.capture(), whole)
+    assert viewer.handle_key("RIGHT_BRACKET") == "section_forward"
+    assert viewer.style.section == (0, pytest.approx(0.1))  # 1/20 of the size
+    for _ in range(40):  # never further than a step beyond the mesh
+        viewer.handle_key("LEFT_BRACKET")
+    assert viewer.style.section == (0, pytest.approx(-1.1))
+    assert [viewer.handle_key("C") and viewer.style.section for _ in range(3)] == [
+        (1, 0.0), (2, 0.0), None]
+    assert echo.getvalue().rstrip().endswith("section: off")
+    assert np.array_equal(viewer.capture(), whole)
+    viewer.handle_key("RIGHT_BRACKET")
+    assert "no section to move" in echo.getvalue()
+
+
 def test_keys_change_style_camera_and_pick_mode(headless) -> None:
     viewer, _, _ = headless
     _wait(viewer, _has_run(1))

@@ -14,6 +14,8 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+
 from livemod.dlfl.scene import Selection
 from livemod.runner.cli import add_select_option, selection_of, whole_number_option
 
@@ -45,6 +47,34 @@ def parse_elevation(text: str) -> float:
         raise argparse.ArgumentTypeError(f"the elevation must be a number of degrees "
                                          f"strictly between -90 and 90, not {text!r}")
     return degrees
+
+
+def parse_section(text: str) -> tuple[int, float | None]:
+    """``--section`` as ``(axis, at)``: ``x=0.25`` cuts away what lies beyond x = 0.25,
+    a bare ``y`` cuts through the middle of the scene (``at`` None)."""
+    name, _, value = text.partition("=")
+    axis = "xyz".find(name.strip().lower())
+    try:
+        at = float(value) if value.strip() else None
+    except ValueError:
+        at = math.nan
+    if len(name.strip()) != 1 or axis < 0 or (at is not None and not math.isfinite(at)):
+        raise argparse.ArgumentTypeError(f"--section takes x, y or z, optionally =COORDINATE "
+                                         f"(as in y=0.5), not {text!r}")
+    return axis, at
+
+
+def section_through(section: tuple[int, float | None] | None,
+                    parts: Sequence[Any]) -> tuple[int, float] | None:
+    """A :attr:`Style.section` from a parsed ``--section``: a bare axis cuts through
+    the middle of the ``parts`` drawn (MeshArrays or None; the origin if none)."""
+    if section is None or section[1] is not None:
+        return section  # type: ignore[return-value]
+    points = [part.positions for part in parts if part is not None and len(part.positions)]
+    if not points:
+        return section[0], 0.0
+    coordinates = np.concatenate(points)[:, section[0]]
+    return section[0], float(coordinates.min() + coordinates.max()) / 2
 
 
 def add_commands(subparsers: Any) -> None:
@@ -94,6 +124,10 @@ def _add_render(subparsers: Any) -> None:
                                              "PNG with alpha)")
     render.add_argument("--smooth", action="store_true",
                         help="smooth shading (vertex normals) instead of flat faces")
+    render.add_argument("--section", type=parse_section, default=None, metavar="AXIS[=AT]",
+                        help="cut the meshes at a plane and show the inside: x=0.5 cuts "
+                             "away what lies beyond x = 0.5; a bare x, y or z cuts "
+                             "through the middle")
     render.add_argument("--samples", type=int, default=None,
                         help="MSAA samples; default 4 for one frame, 0 for a turntable "
                         "(edges are anti-aliased in the shader; MSAA triples the cost "
@@ -171,7 +205,7 @@ def _render_to(args: argparse.Namespace, offscreen: Any, values: dict[str, Any],
               file=sys.stderr)
     style = Style(edges=not args.no_edges, vertices=args.vertices, preview=args.preview,
                   labels=labels, grid=args.grid, background=BACKGROUNDS[args.background],
-                  smooth=args.smooth)
+                  smooth=args.smooth, section=section_through(args.section, (arrays, others)))
     progress = ProgressBar("rendering") if args.turntable > 1 else None
     return render_arrays(arrays, args.output, turntable=args.turntable,
                          elevation=args.elevation, style=style, preview=preview,

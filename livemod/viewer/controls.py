@@ -32,7 +32,8 @@ class Binding:
         """How the help overlay names the key, e.g. ``Ctrl+F``."""
         name = {"NUMBER_1": "1", "NUMBER_2": "2", "NUMBER_3": "3", "NUMBER_4": "4",
                 "SPACE": "Space", "RIGHT": "Right", "LEFT": "Left", "PERIOD": ".",
-                "COMMA": ",", "END": "End", "ESCAPE": "Esc", "TAB": "Tab"}.get(self.key, self.key)
+                "COMMA": ",", "END": "End", "ESCAPE": "Esc", "TAB": "Tab",
+                "LEFT_BRACKET": "[", "RIGHT_BRACKET": "]"}.get(self.key, self.key)
         prefix = {"": "", "shift": "Shift+", "ctrl": "Ctrl+"}[self.modifiers]
         return prefix + name
 
@@ -50,6 +51,11 @@ KEY_BINDINGS: tuple[Binding, ...] = (
     Binding("L", "", "toggle_object_list",
             "the object list: tick or untick each other object to show or hide it"),
     Binding("X", "", "toggle_grid", "ground grid and axes on/off"),
+    Binding("C", "", "cycle_section",
+            "section: cut the meshes at a plane across x, then y, then z, then off"),
+    Binding("LEFT_BRACKET", "", "section_back", "move the section plane back (1/20 of the size)"),
+    Binding("RIGHT_BRACKET", "", "section_forward",
+            "move the section plane forward (1/20 of the size)"),
     Binding("B", "", "toggle_background", "dark / light background"),
     Binding("N", "", "toggle_smooth", "flat / smooth shading"),
     Binding("F", "ctrl", "labels_faces", "face id labels on/off"),
@@ -129,6 +135,13 @@ def toggle_pick(selection: Selection, mode: str, element_id: int, add: bool) -> 
     if element_id in current:
         return replace(selection, **{name: tuple(i for i in current if i != element_id)})
     return replace(selection, **{name: (*current, element_id)})
+
+
+def section_text(section: tuple[int, float] | None) -> str:
+    """How the HUD names a :attr:`Style.section`: ``x <= 0.25`` (what is kept), or ``off``."""
+    if section is None:
+        return "off"
+    return f"{'xyz'[section[0]]} <= {section[1]:.4g}"
 
 
 def selection_python(selection: Selection, arrays: MeshArrays | None) -> list[str]:

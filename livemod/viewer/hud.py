@@ -11,7 +11,7 @@ from typing import Any
 
 import numpy as np
 
-from .controls import help_lines
+from .controls import help_lines, section_text
 from .text import QUAD_FLOATS, GlyphAtlas, box_quad, glyph_atlas, layout_text, text_width
 
 TEXT, LABEL_DIM, ERROR_TEXT, OK_TEXT, WARN_TEXT = 0, 5, 4, 6, 7
@@ -66,7 +66,8 @@ def hud_lines(info: dict[str, Any]) -> list[tuple[str, int]]:
     style = info["style"]
     view = "ortho" if info["ortho"] else "persp"
     mode = "preview" if style.preview else "mesh"
-    lines.append((f"pick {info['pick_mode']}  {view}  {mode}"
+    cut = f"  section {section_text(style.section)}" if style.section is not None else ""
+    lines.append((f"pick {info['pick_mode']}  {view}  {mode}{cut}"
                   f"{'  playing' if info['playing'] else ''}", LABEL_DIM))
     lines += [(line, LABEL_DIM) for line in info["selection"][:4]]
     lines += [(line, TEXT) for line in info.get("measures", ())[:4]]

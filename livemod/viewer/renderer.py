@@ -7,6 +7,8 @@ integer id framebuffer. Every method must be called on the thread that owns ``ct
 
 from __future__ import annotations
 
+import contextlib
+from collections.abc import Iterator
 from dataclasses import dataclass, field
 
 import moderngl
@@ -28,6 +30,8 @@ from .geometry import (
 from .text import QUAD_FLOATS, glyph_atlas, layout_labels
 
 TABLE_WIDTH = 4096
+GL_CLIP_DISTANCE0 = 0x3000  # moderngl has no name for it: enable_direct takes the GL enum
+NO_CUT = (0.0, 0.0, 0.0, 1.0)  # a clip plane every point is in front of
 _NUMPY_DTYPES = {"u1": np.uint8, "u4": np.uint32}
 MAX_LABELS = 20000
 LABEL_KINDS = ("faces", "edges", "vertices")
@@ -83,6 +87,9 @@ class Style:
         smooth: shade faces with interpolated vertex normals instead of flat.
         grid: draw a ground grid under the scene and the x, y, z axes (red,
             green, blue) from the origin.
+        section: ``(axis, at)``: cut away every part of the meshes whose
+            coordinate ``axis`` (0, 1, 2 for x, y, z) is greater than ``at``, and
+            show the inside through the cut; None draws them whole.
     """
 
     faces: bool = True
@@ -96,6 +103,7 @@ class Style:
     others: bool = True
     grid: bool = False
     smooth: bool = False
+    section: tuple[int, float] | None = None
 
 
 @dataclass(frozen=True)
@@ -266,6 +274,7 @@ class Renderer:
                                 fragment_shader=shaders.TEXT_FRAGMENT),
         }
         self._bind_samplers()
+        self._set_clip_plane(NO_CUT)
         self.atlas = glyph_atlas()
         height, width = self.atlas.image.shape
         self.atlas_texture = ctx.texture((width, height), 1, self.atlas.image.tobytes())
@@ -279,6 +288,7 @@ class Renderer:
         self._mesh: _MeshGPU | None = None
         self._others: _MeshGPU | None = None
         self._others_shown = True
+        self._section: tuple[int, float] | None = None  # the last frame's, for picking
         self._preview: _MeshGPU | None = None
         self._label_cache: tuple[object, np.ndarray] | None = None
         self._pick_fbo: moderngl.Framebuffer | None = None
@@ -369,12 +379,39 @@ class Renderer:
         self.ctx.enable(moderngl.DEPTH_TEST | moderngl.PROGRAM_POINT_SIZE)
         self.ctx.disable(moderngl.CULL_FACE | moderngl.BLEND)
         self._others_shown = style.others  # picking hides what the frame hid
+        self._section = style.section
         if style.grid:
             self._draw_guides()
-        if self._others is not None and style.others:
-            self._draw_scenery(self._others, style)
-        if self._mesh is not None:
-            self._draw_current(self._mesh, camera, style, (width, height))
+        with self._cut(style.section):
+            if self._others is not None and style.others:
+                self._draw_scenery(self._others, style)
+            if self._mesh is not None:
+                self._draw_current(self._mesh, style)
+        if self._mesh is not None and style.labels:
+            self._draw_labels(camera, style, (width, height))
+
+    @contextlib.contextmanager
+    def _cut(self, section: tuple[int, float] | None) -> Iterator[None]:
+        """Clip the mesh passes drawn inside at ``section`` (see :attr:`Style.section`)."""
+        if section is None:
+            yield
+            return
+        axis, at = section
+        plane = [0.0, 0.0, 0.0, float(at)]
+        plane[axis] = -1.0  # distance at - p[axis]: negative beyond the plane
+        self._set_clip_plane(tuple(plane))
+        self.ctx.enable_direct(GL_CLIP_DISTANCE0)
+        try:
+            yield
+        finally:
+            self.ctx.disable_direct(GL_CLIP_DISTANCE0)
+            # llvmpipe clips by a written gl_ClipDistance even when the distance is
+            # disabled: the plane itself must go back to one that keeps everything
+            self._set_clip_plane(NO_CUT)
+
+    def _set_clip_plane(self, plane: tuple[float, ...]) -> None:
+        for name in ("face", "edge", "point", "line"):
+            self.programs[name]["clip_plane"].value = plane  # type: ignore[union-attr]
 
     def _draw_guides(self) -> None:
         """The ground grid and the axes, sized to what is drawn (see :func:`guide_lines`)."""
@@ -397,9 +434,8 @@ class Renderer:
         elif style.edges:
             self._draw_edges(others)
 
-    def _draw_current(self, mesh: _MeshGPU, camera: Camera, style: Style,
-                      size: tuple[int, int]) -> None:
-        """The current object with its preview, selection, points and labels."""
+    def _draw_current(self, mesh: _MeshGPU, style: Style) -> None:
+        """The current object with its preview, selection and points (labels apart)."""
         show_preview = style.preview and self._preview is not None
         # the wireframe over the mesh's own faces is drawn inside the face pass
         wire_in_faces = style.edges and style.faces and not show_preview
@@ -414,8 +450,6 @@ class Renderer:
         if style.vertices or self.selection.vertices:
             self._draw_points(mesh, style.point_size, only_selected=not style.vertices)
         self._draw_corners(style.point_size)
-        if style.labels:
-            self._draw_labels(camera, style, size)
 
     def _set_view(self, camera: Camera, aspect: float) -> None:
         for mesh in (self._mesh, self._others):
@@ -446,9 +480,9 @@ class Renderer:
         mesh.face_flags.use(1)
         # push faces back so edges and points drawn at the same depth win
         self.ctx.polygon_offset = (1.0, 1.0)
-        if mesh.geometry.closed:
+        if mesh.geometry.closed and self._section is None:
             # a closed manifold hides its back faces: skip them (about a third of
-            # the frame time on software GL); open meshes show them tinted
+            # the frame time on software GL); open meshes, and cut ones, show them tinted
             self.ctx.enable(moderngl.CULL_FACE)
         (mesh.smooth_vao() if smooth else mesh.face_vao).render(moderngl.TRIANGLES)
         self.ctx.disable(moderngl.CULL_FACE)
@@ -509,7 +543,7 @@ class Renderer:
 
     def _label_quads(self, style: Style) -> np.ndarray:
         """``(n, QUAD_FLOATS)`` label quads for ``style``, cached until content changes."""
-        key = (style.labels, style.labels_selected_only, id(self.arrays))
+        key = (style.labels, style.labels_selected_only, style.section, id(self.arrays))
         if self._label_cache is not None and self._label_cache[0] == key:
             return self._label_cache[1]
         arrays = self.arrays
@@ -533,8 +567,11 @@ class Renderer:
             show = selected.copy() if style.labels_selected_only else np.ones(len(ids), bool)
             if keep is not None:
                 show &= keep
+            every_anchor = np.asarray(anchors_of())
+            if style.section is not None:  # no labels on what the cut took away
+                show &= every_anchor[:, style.section[0]] <= style.section[1]
             index = np.flatnonzero(show)[:MAX_LABELS]
-            anchors = np.asarray(anchors_of())[index]
+            anchors = every_anchor[index]
             parts.append(layout_labels(self.atlas, anchors, ids[index], kind, selected[index]))
         quads = np.concatenate(parts)
         self._label_cache = (key, quads)
@@ -625,13 +662,14 @@ class Renderer:
         self._set_view(camera, fbo.size[0] / max(fbo.size[1], 1))
         self.ctx.enable(moderngl.DEPTH_TEST | moderngl.PROGRAM_POINT_SIZE)
         self.ctx.disable(moderngl.BLEND | moderngl.CULL_FACE)
-        if self._others is not None and self._others_shown:  # they hide, with id 0
-            self._draw_faces(self._others, OTHER_COLOR)
-        self._draw_faces(self._mesh, BASE_COLOR)
-        if kind == "edge":
-            self._draw_edges(self._mesh)
-        elif kind == "vertex":
-            self._draw_points(self._mesh, 9.0)
+        with self._cut(self._section):  # what the cut took away is not picked
+            if self._others is not None and self._others_shown:  # they hide, with id 0
+                self._draw_faces(self._others, OTHER_COLOR)
+            self._draw_faces(self._mesh, BASE_COLOR)
+            if kind == "edge":
+                self._draw_edges(self._mesh)
+            elif kind == "vertex":
+                self._draw_points(self._mesh, 9.0)
 
 
 _KIND_CODES = {"face": 1, "corner": 1, "edge": 2, "vertex": 3}

@@ -23,7 +23,11 @@ flat out int v_vertex;
 uniform float point_size;
 in vec3 in_normal;  // bound for smooth shading only (0 otherwise)
 out vec3 v_normal;
+// the section plane: points where this is negative are cut away (GL_CLIP_DISTANCE0,
+// enabled only while a section is drawn)
+uniform vec4 clip_plane;
 void main() {
+    gl_ClipDistance[0] = dot(vec4(in_position, 1.0), clip_plane);
     v_view = (view * vec4(in_position, 1.0)).xyz;
     v_normal = mat3(view) * in_normal;
     v_vertex = gl_VertexID;

@@ -28,7 +28,7 @@ import numpy as np
 from livemod.dlfl.scene import Selection
 
 from .camera import Camera, bounds_changed_a_lot
-from .controls import PICK_MODES, action_for, selection_python, toggle_pick
+from .controls import PICK_MODES, action_for, section_text, selection_python, toggle_pick
 from .geometry import sample_points
 from .hud import hud_quads
 from .imagefiles import save_png
@@ -42,7 +42,13 @@ from .objects_panel import (
     visible_objects,
 )
 from .params_panel import Hit, ParameterPanel
-from .renderer import DARK_BACKGROUND, LIGHT_BACKGROUND, Renderer, Style, read_image
+from .renderer import (
+    DARK_BACKGROUND,
+    LIGHT_BACKGROUND,
+    Renderer,
+    Style,
+    read_image,
+)
 
 SCRIPT_SUFFIXES = (".py",)
 PARAMETER_DEBOUNCE = 0.15  # seconds a dragged slider rests before the script re-runs
@@ -444,6 +450,35 @@ class LiveViewer(mglw.WindowConfig):
         self.show_objects = not self.show_objects
         if self.show_objects and not self._other_ids():
             self._echo("the scene has no other objects to list")
+
+    def _do_cycle_section(self) -> None:
+        axis = 0 if self.style.section is None else self.style.section[0] + 1
+        bounds = self.renderer.bounds
+        if axis > 2 or bounds is None:
+            self.style = replace(self.style, section=None)
+            self._echo("section: off")
+            return
+        self.style = replace(self.style, section=(axis, float(bounds[:, axis].mean())))
+        self._echo(f"section: {section_text(self.style.section)}")
+
+    def _do_section_back(self) -> None:
+        self._move_section(-1)
+
+    def _do_section_forward(self) -> None:
+        self._move_section(1)
+
+    def _move_section(self, direction: int) -> None:
+        """Move the section plane by 1/20 of what is drawn, along its axis."""
+        bounds, section = self.renderer.bounds, self.style.section
+        if section is None or bounds is None:
+            self._echo("no section to move: C cuts the meshes")
+            return
+        axis, at = section
+        low, high = float(bounds[0, axis]), float(bounds[1, axis])
+        step = (high - low) / 20 or 1.0
+        at = min(max(at + direction * step, low - step), high + step)
+        self.style = replace(self.style, section=(axis, at))
+        self._echo(f"section: {section_text(self.style.section)}")
 
     def _do_screenshot(self) -> None:
         self.save_screenshot()
