@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import contextlib
 import io
 import os
 import select
@@ -11,6 +12,7 @@ import sys
 import time
 from collections.abc import Callable, Iterator
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import pytest
@@ -60,6 +62,20 @@ def _has_run(run_id: int) -> Callable[[LiveViewer], bool]:
     return lambda v: v.result is not None and v.result.run_id >= run_id and not v.waiting
 
 
+@contextlib.contextmanager
+def _opened(script: Path, size: tuple[int, int], **options: Any) -> Iterator[LiveViewer]:
+    """A headless window on ``script`` (no MSAA, no vsync, ``echo`` a StringIO unless
+    given) that has shown its first run; closed on the way out."""
+    options.setdefault("echo", io.StringIO())
+    viewer = create_viewer(ViewOptions(str(script), backend="headless", size=size, samples=0,
+                                       vsync=False, **options))
+    try:
+        _wait(viewer, _has_run(1))
+        yield viewer
+    finally:
+        close_viewer(viewer)
+
+
 def _hud_text(viewer: LiveViewer) -> str:
     return "\n".join(line for line, _ in hud_lines(viewer._hud_info()))
 
@@ -105,24 +121,15 @@ def test_pick_select_rerun_and_error_keeps_the_stale_mesh(headless) -> None:
 def test_the_select_option_reaches_the_first_run(tmp_path: Path) -> None:
     script = tmp_path / "model.py"
     script.write_text(CUBE.format(scale=1.0))
-    viewer = create_viewer(ViewOptions(str(script), backend="headless", size=(160, 120),
-                                       samples=0, vsync=False, echo=io.StringIO(),
-                                       selection=Selection(faces=(2,))))
-    try:
-        _wait(viewer, _has_run(1))
+    with _opened(script, (160, 120), selection=Selection(faces=(2,))) as viewer:
         assert viewer.result.arrays.positions[:, 0].max() == pytest.approx(3.0)
         assert viewer.selection == Selection(faces=(2,))
-    finally:
-        close_viewer(viewer)
 
 
 def test_the_window_shows_every_object_and_fits_them_all(tmp_path: Path) -> None:
     script = tmp_path / "two.py"
     script.write_text("load('cube')\nload('cube')\ntranslate(6, 0, 0)\n")
-    viewer = create_viewer(ViewOptions(str(script), backend="headless", size=(200, 100),
-                                       samples=0, vsync=False, echo=io.StringIO()))
-    try:
-        _wait(viewer, _has_run(1))
+    with _opened(script, (200, 100)) as viewer:
         assert viewer.renderer.others is not None and viewer.renderer.others.counts == (8, 12, 6)
         image = viewer.capture().astype(int)
         covered = np.abs(image - image[0, 0]).sum(axis=2) > 12
@@ -130,20 +137,20 @@ def test_the_window_shows_every_object_and_fits_them_all(tmp_path: Path) -> None
         assert columns.min() < 60 and columns.max() > 140  # both cubes fitted in the frame
         assert viewer.renderer.bounds[:, 0].tolist() == pytest.approx([-1.0, 7.0])
         assert "V 8  E 12  F 6  genus 0\nother objects: V 8  F 6" in _hud_text(viewer)
-    finally:
-        close_viewer(viewer)
+
+
+def _three_objects(folder: Path) -> Path:
+    """A script whose scene is object 0 a tetrahedron, object 1 an octahedron (at
+    x = 4) and object 2, current, a cube (at x = -4)."""
+    script = folder / "three.py"
+    script.write_text("load('tetrahedron')\nload('octahedron')\ntranslate(4, 0, 0)\n"
+                      "load('cube')\ntranslate(-4, 0, 0)\n")
+    return script
 
 
 def test_tab_shows_the_other_objects_one_at_a_time(tmp_path: Path) -> None:
-    script = tmp_path / "three.py"
-    # object 0 a tetrahedron, object 1 an octahedron, object 2 (current) a cube
-    script.write_text("load('tetrahedron')\nload('octahedron')\ntranslate(4, 0, 0)\n"
-                      "load('cube')\ntranslate(-4, 0, 0)\n")
-    echo = io.StringIO()
-    viewer = create_viewer(ViewOptions(str(script), backend="headless", size=(200, 100),
-                                       samples=0, vsync=False, echo=echo))
-    try:
-        _wait(viewer, _has_run(1))
+    script, echo = _three_objects(tmp_path), io.StringIO()
+    with _opened(script, (200, 100), echo=echo) as viewer:
         assert [oid for oid, _, _ in viewer.result.other_objects] == [0, 1]
         assert viewer.renderer.others.counts == (4 + 6, 6 + 12, 4 + 8)
         everything = viewer.capture()
@@ -166,8 +173,6 @@ def test_tab_shows_the_other_objects_one_at_a_time(tmp_path: Path) -> None:
         _wait(viewer, _has_run(2))
         assert not viewer.hidden_others and viewer.renderer.others.counts == (4, 6, 4)
         assert "other objects: object 1 'octahedron' alone (of 2; Tab: next)" in echo.getvalue()
-    finally:
-        close_viewer(viewer)
 
 
 def _click_object_row(viewer: LiveViewer, line: int, part: str = "row") -> None:
@@ -185,14 +190,8 @@ def _click_object_row(viewer: LiveViewer, line: int, part: str = "row") -> None:
 
 
 def test_the_object_list_shows_and_hides_each_other_object(tmp_path: Path) -> None:
-    script = tmp_path / "three.py"
-    script.write_text("load('tetrahedron')\nload('octahedron')\ntranslate(4, 0, 0)\n"
-                      "load('cube')\ntranslate(-4, 0, 0)\n")
-    echo = io.StringIO()
-    viewer = create_viewer(ViewOptions(str(script), backend="headless", size=(400, 300),
-                                       samples=0, vsync=False, echo=echo))
-    try:
-        _wait(viewer, _has_run(1))
+    script, echo = _three_objects(tmp_path), io.StringIO()
+    with _opened(script, (400, 300), echo=echo) as viewer:
         everything = viewer.capture()
         assert viewer.handle_key("L") == "toggle_object_list"
         assert [row.text() for row in viewer.objects.rows] == [
@@ -216,17 +215,12 @@ def test_the_object_list_shows_and_hides_each_other_object(tmp_path: Path) -> No
         assert viewer.hidden_others == {1}  # still hidden; the new object is shown
         assert viewer.renderer.others.counts == (4 + 8, 6 + 12, 4 + 6)  # tetrahedron, cube
         assert "other objects: 2 of 3 shown (L: list)" in _hud_text(viewer)
-    finally:
-        close_viewer(viewer)
 
 
 def test_the_wheel_scrolls_the_object_list_and_zooms_elsewhere(tmp_path: Path) -> None:
     script = tmp_path / "many.py"
     script.write_text("for i in range(40):\n    load('tetrahedron')\n    translate(2 * i, 0, 0)\n")
-    viewer = create_viewer(ViewOptions(str(script), backend="headless", size=(400, 300),
-                                       samples=0, vsync=False, echo=io.StringIO()))
-    try:
-        _wait(viewer, _has_run(1))
+    with _opened(script, (400, 300)) as viewer:
         viewer.handle_key("L")
         run_frames(viewer, 1)
         x, y, _, _ = viewer.objects.frame(viewer.wnd.fbo.size)
@@ -245,8 +239,6 @@ def test_the_wheel_scrolls_the_object_list_and_zooms_elsewhere(tmp_path: Path) -
         viewer.on_mouse_position_event(int(x + 30), int(y + 40), 0, 0)
         viewer.on_mouse_scroll_event(0.0, 1.0)
         assert viewer.camera.distance != distance
-    finally:
-        close_viewer(viewer)
 
 
 def test_c_cuts_the_mesh_and_brackets_move_the_plane(headless) -> None:
