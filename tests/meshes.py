@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import warnings
 from collections import Counter
 from collections.abc import Callable
 from typing import Any
@@ -94,6 +95,15 @@ def assert_refused(mesh: Mesh, call: Callable[[Mesh], object], message: str,
     with pytest.raises(error, match=message):
         call(mesh)
     assert snapshot(mesh) == before
+
+
+def assert_refused_quietly(mesh: Mesh, call: Callable[[Mesh], object], message: str) -> None:
+    """:func:`assert_refused`, with any warning on the way an error: numpy's
+    ``RuntimeWarning: overflow encountered`` before a DLFLError that says the
+    same is noise on the user's stderr."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert_refused(mesh, call, message)
 
 
 def same_up_to_ids(mesh: Mesh) -> tuple[Any, ...]:

@@ -4,6 +4,7 @@ rules, chained towers, and bad input that leaves the mesh unchanged."""
 from __future__ import annotations
 
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -19,7 +20,14 @@ from livemod.dlfl.extrusion import (
     small_polygon_normal,
 )
 from livemod.dlfl.shapes import cube, dodecahedron, tetrahedron
-from tests.meshes import CUBE_FACES, CUBE_POSITIONS, assert_refused, euler_ok, snapshot
+from tests.meshes import (
+    CUBE_FACES,
+    CUBE_POSITIONS,
+    assert_refused,
+    assert_refused_quietly,
+    euler_ok,
+    snapshot,
+)
 
 TOP = 0  # cube face 0: vertices 0..3 at y = +1, normal +y
 
@@ -421,6 +429,31 @@ def test_a_first_step_that_overflows_names_the_point():
     with pytest.raises(DLFLError, match=r"would put a point at \[.*inf.*overflow"):
         extrude(m, TOP, "cubical", scale=1e308)
     assert snapshot(m) == before
+
+
+@pytest.mark.parametrize(("kind", "options"), [
+    (kind, options) for kind, options, cause in PART_WAY if cause == "overflows"] + [
+    ("doo-sabin", {"distance": 1e308, "twist": 1e308}),
+    ("octa", {"distance": -1e308, "scale": 1e308}), ("planar-offset", {"thickness": 1e308})])
+def test_an_extrusion_that_overflows_prints_no_numpy_warning(kind, options):
+    run = extrude_fan if KINDS[kind].fan is not None else extrude
+    assert_refused_quietly(shifted_cube(), lambda m: run(m, TOP, kind, **options), "overflow")
+
+
+@pytest.mark.parametrize("kind", list(KINDS))
+def test_extruding_a_face_near_the_float_range_prints_no_numpy_warning(kind):
+    near = from_polygons(CUBE_POSITIONS * 1.7e308 - 0.85e308, CUBE_FACES)
+    run = extrude_fan if KINDS[kind].fan is not None else extrude
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        before = snapshot(near)
+        try:
+            run(near, TOP, kind)
+        except DLFLError as exc:
+            assert "overflow" in str(exc)
+            assert snapshot(near) == before
+        else:
+            validate(near)
 
 
 @pytest.mark.parametrize(("kind", "segments", "message"), [

@@ -10,7 +10,7 @@ from livemod.dlfl.arrays import mesh_arrays
 from livemod.dlfl.rind import crust, crust_offsets, rind
 from livemod.dlfl.selection import faces_by_size
 from livemod.dlfl.shapes import cube, icosahedron, soccer_ball, torus
-from tests.meshes import point_sphere, snapshot
+from tests.meshes import assert_refused_quietly, point_sphere, snapshot
 
 # TopMod's cube.obj faces: 0 top (+y), 1 +x, 2 -z, 3 -x, 4 +z, 5 bottom (-y)
 TOP, BOTTOM, PLUS_X = 0, 5, 1
@@ -240,6 +240,24 @@ def test_rind_refuses_face_lists_holding_no_ids(faces):
 def test_a_thickness_that_overflows_is_refused():
     m = cube()
     before = snapshot(m)
-    with pytest.raises(DLFLError, match="not finite: the arguments are too large"):
+    with pytest.raises(DLFLError, match=r"would move vertex 0 to \[-?inf.*its numbers overflow"):
         crust(m, -1e308)  # the outer copy moves outward past the float range
     assert snapshot(m) == before
+
+
+@pytest.mark.parametrize(("call", "message"), [
+    (lambda m: crust(m, 1e308), r"thickness 1e\+308 would move vertex 0 to \[-?inf"),
+    (lambda m: rind(m, [0], 1e308), r"thickness 1e\+308 would move vertex 0 to \[-?inf"),
+    (lambda m: rind(m, [0], 1e308, uniform=False), "too large to check for faces turning over"),
+    (lambda m: crust(m, 1e300), "too large to check for faces turning over"),
+])
+def test_a_thickness_that_overflows_prints_no_numpy_warning(call, message):
+    assert_refused_quietly(cube(), call, message)
+
+
+def test_a_crust_too_large_to_check_says_so_not_that_it_turns_over():
+    # the checks' products of four coordinates overflowed past 1e77 and read as a flip
+    m = cube()
+    m.set_positions(m.vertex_ids(), m.positions_view() * 1e80)
+    with pytest.raises(DLFLError, match="too large to check for faces turning over"):
+        crust(m, 1e79)

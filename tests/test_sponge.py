@@ -15,7 +15,7 @@ from livemod.dlfl import (
 )
 from livemod.dlfl.shapes import cube, icosahedron, tetrahedron, torus
 from livemod.dlfl.sponge import sponge
-from tests.meshes import assert_refused, point_sphere, snapshot
+from tests.meshes import assert_refused, assert_refused_quietly, point_sphere, snapshot
 
 
 def test_cube_matches_topmod():
@@ -71,7 +71,15 @@ def test_bad_meshes_are_refused(make):
 
 @pytest.mark.parametrize(("thickness", "message"), [
     (None, "thickness must be a number"), (1 + 1j, "thickness must be a number"),
-    (1.7976931348623157e308, "not finite"),
+    (1.7976931348623157e308, "its numbers overflow"),
 ])
 def test_thickness_of_the_wrong_kind_or_size_is_refused(thickness, message):
     assert_refused(cube(), lambda m: sponge(m, thickness), message)
+
+
+@pytest.mark.parametrize(("thickness", "message"), [
+    (1e308, r"thickness 1e\+308 would move vertex 0 to \[-?inf.*overflow"),
+    (1e300, "too large to check for faces turning over"),
+])
+def test_a_thickness_that_overflows_prints_no_numpy_warning(thickness, message):
+    assert_refused_quietly(cube(), lambda m: sponge(m, thickness), message)

@@ -548,7 +548,8 @@ def test_options_that_overflow_are_refused_before_the_mesh_changes(scheme, optio
     m = small_torus()
     m.set_positions(m.vertex_ids(), m.positions_view() * size)
     before = snapshot(m)
-    with pytest.raises(DLFLError, match="not finite: the arguments are too large"):
+    # the corner cut names its own overflow; the others are caught as the mesh is built
+    with pytest.raises(DLFLError, match="not finite: the arguments are too large|numbers overflow"):
         subdivide(m, scheme, **options)
     assert snapshot(m) == before
 

@@ -15,7 +15,7 @@ from livemod.dlfl.transform import (
     transform,
     translate,
 )
-from tests.meshes import assert_refused, snapshot
+from tests.meshes import assert_refused, assert_refused_quietly, snapshot
 
 BASE = cube().positions_view()
 
@@ -99,3 +99,22 @@ def test_bad_input_raises_and_leaves_the_mesh_unchanged(call):
 ])
 def test_bad_arguments_are_refused_and_move_nothing(call, message):
     assert_refused(cube(), call, message)
+
+
+@pytest.mark.parametrize("call", [
+    lambda m: translate(m, (1.7e308, 0, 0)),
+    lambda m: move_vertices(m, [0, 1], (1.7e308, 0, 0)),
+    lambda m: scale(m, 1e308, center=(1e308, 0, 0)),
+    lambda m: transform(m, np.full((3, 3), 1e308)),
+    lambda m: rotate(m, (0, 0, 1), 45, center=(1.7e308, 1.7e308, 0)),
+])
+def test_moves_that_overflow_are_refused_without_numpy_warnings(call):
+    big = cube()
+    translate(big, (1.7e308, 0, 0))  # every x at 1.7e308 plus or minus 1
+    assert_refused_quietly(big, call, r"the transform would move vertex \d+ to \[.*inf")
+
+
+def test_a_huge_or_tiny_axis_rotates_like_the_unit_one():
+    # the norm of (1e308, 1e308, 0) overflowed and the axis became zero: no rotation
+    for axis in [(1e308, 1e308, 0), (1e-200, 1e-200, 0)]:
+        np.testing.assert_allclose(rotation_matrix(axis, 45), rotation_matrix((1, 1, 0), 45))

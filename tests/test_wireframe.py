@@ -15,7 +15,7 @@ from livemod.dlfl.wireframe import (
     vertex_rings,
     wireframe,
 )
-from tests.meshes import assert_refused, point_sphere, snapshot
+from tests.meshes import assert_refused, assert_refused_quietly, point_sphere, snapshot
 
 
 def summary(mesh):
@@ -205,17 +205,26 @@ def test_corner_cut_points_are_half_the_thickness_from_both_edge_lines():
 
 
 @pytest.mark.parametrize(("call", "message"), [
-    (lambda m: wireframe(m, 1e308), "not finite: the arguments are too large"),
+    (lambda m: wireframe(m, 1e308), r"cutting corners by 1e\+308 .*numbers overflow"),
     (lambda m: wireframe(m, None), "thickness must be a number"),
     (lambda m: wireframe(m, 0.1, width="1"), "width must be a number"),
     (lambda m: modified_corner_cut(m, (1.0,)), "thickness must be a number"),
-    (lambda m: modified_corner_cut(m, 1e308), "not finite: the arguments are too large"),
+    (lambda m: modified_corner_cut(m, 1e308), r"cutting corners by 1e\+308 .*overflow"),
     (lambda m: columns(m, None, 4), "thickness must be a number"),
     (lambda m: columns(m, 0.25, "4"), "segments must be a whole number"),
     (lambda m: columns(m, 0.25, 3.5), "segments must be a whole number"),
 ])
 def test_bad_input_is_refused_and_changes_nothing(call, message):
     assert_refused(cube(), call, message)
+
+
+@pytest.mark.parametrize("call", [
+    lambda m: wireframe(m, 1e308), lambda m: wireframe(m, 1e200, False),
+    lambda m: wireframe(m, 0.1, width=1e308), lambda m: modified_corner_cut(m, 1e308),
+])
+def test_a_cut_that_overflows_prints_no_numpy_warning(call):
+    assert_refused_quietly(cube(), call, r"cutting corners by .* would put a point at vertex \d+ "
+                           r"at \[.*(inf|nan).*numbers overflow")
 
 
 def test_columns_take_a_whole_float_count():

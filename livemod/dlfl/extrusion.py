@@ -207,18 +207,20 @@ def cubical_step(mesh: Mesh, face: int, opts: Options) -> int:
     """TopMod's ``extrudeFace``: the face's points scaled, rotated, then moved
     ``distance`` along the normal; ``n`` side quads. Returns the end face."""
     points, normal = _face_geometry(mesh, face)
-    points = _transformed(points, normal, opts.scale, opts.rotation)
-    return _bridge(mesh, face, points + opts.distance * normal)
+    with np.errstate(over="ignore", invalid="ignore"):  # _bridge refuses what overflows
+        points = _transformed(points, normal, opts.scale, opts.rotation) + opts.distance * normal
+    return _bridge(mesh, face, points)
 
 
 def doo_sabin_step(mesh: Mesh, face: int, opts: Options) -> int:
     """TopMod's ``extrudeFaceDS``: ``q_i = d n + (1 - twist) p_i + twist p_{i+1}``,
     then the Doo-Sabin weights, then the scale (and livemod's rotation)."""
     points, normal = _face_geometry(mesh, face)
-    twisted = (1.0 - opts.twist) * points + opts.twist * points[_after(len(points))]
-    # each row of the weights sums to 1, so moving before or after them is the same
-    inner = doo_sabin_weights(len(points)) @ twisted + opts.distance * normal
-    inner = _transformed(inner, normal, opts.scale, opts.rotation)
+    with np.errstate(over="ignore", invalid="ignore"):  # _bridge refuses what overflows
+        twisted = (1.0 - opts.twist) * points + opts.twist * points[_after(len(points))]
+        # each row of the weights sums to 1, so moving before or after them is the same
+        inner = doo_sabin_weights(len(points)) @ twisted + opts.distance * normal
+        inner = _transformed(inner, normal, opts.scale, opts.rotation)
     return _bridge(mesh, face, inner)
 
 
@@ -228,8 +230,10 @@ def dual_step(mesh: Mesh, face: int, opts: Options) -> int:
     face's old edges (cube: 12/24/14, with ``dual_mesh`` 12/20/10)."""
     points, normal = _face_geometry(mesh, face)
     old_edges = mesh.face_edges(face) if opts.dual_mesh else []
-    mids = (points + points[_after(len(points))]) * 0.5 + opts.distance * normal
-    end = _bridge(mesh, face, _transformed(mids, normal, opts.scale, opts.rotation), dual=True)
+    with np.errstate(over="ignore", invalid="ignore"):  # _bridge refuses what overflows
+        mids = (points + points[_after(len(points))]) * 0.5 + opts.distance * normal
+        mids = _transformed(mids, normal, opts.scale, opts.rotation)
+    end = _bridge(mesh, face, mids, dual=True)
     _delete_edges(mesh, old_edges)
     return end
 
@@ -247,6 +251,14 @@ def planar_offset_step(mesh: Mesh, face: int, opts: Options) -> int:
     corners; straight corners move ``thickness`` along ``n x nvec``. Then rotation
     and ``distance`` along the normal."""
     points, normal = _face_geometry(mesh, face)
+    with np.errstate(over="ignore", invalid="ignore"):  # _bridge refuses what overflows
+        inset = points + _inset_offsets(points, normal, opts)
+        inset = _transformed(inset, normal, 1.0, opts.rotation) + opts.distance * normal
+    return _bridge(mesh, face, inset)
+
+
+def _inset_offsets(points: np.ndarray, normal: np.ndarray, opts: Options) -> np.ndarray:
+    """``(k, 3)`` in-plane move of each corner of a planar-offset step."""
     pvec = points[_before(len(points))] - points
     nvec = points[_after(len(points))] - points
     if not opts.fractional:
@@ -256,8 +268,7 @@ def planar_offset_step(mesh: Mesh, face: int, opts: Options) -> int:
     offset[cross @ normal < 0] *= -1.0
     straight = np.linalg.norm(cross, axis=1) < 1e-9 * (1 + np.linalg.norm(nvec, axis=1) ** 2)
     offset[straight] = opts.thickness * _unit_rows(np.cross(normal, nvec[straight]))
-    inset = _transformed(points + offset, normal, 1.0, opts.rotation)
-    return _bridge(mesh, face, inset + opts.distance * normal)
+    return offset
 
 
 def _unit_rows(vectors: np.ndarray) -> np.ndarray:
@@ -335,7 +346,9 @@ def stellate_fan(mesh: Mesh, face: int, distance: float) -> list[int]:
     """TopMod's ``stellateFace``: a point at centroid + ``distance`` n joined to every
     corner (a cone of triangles). Returns the triangles' ids around the apex."""
     points, normal = _face_geometry(mesh, face)
-    apex = mesh.create_vertex(_finite(points.mean(axis=0) + distance * normal))
+    with np.errstate(over="ignore", invalid="ignore"):  # refused by _finite
+        apex_point = points.mean(axis=0) + distance * normal
+    apex = mesh.create_vertex(_finite(apex_point))
     tip = mesh.vertex_corner(apex)
     mesh.insert_edge(tip, mesh.face_corner(face))
     while mesh.face_size(mesh.corner_face(tip)) > 3:
@@ -353,7 +366,9 @@ def double_stellate_fan(mesh: Mesh, face: int, distance: float) -> list[int]:
     triangles = []
     for triangle in first:
         triangles.extend(stellate_fan(mesh, triangle, 0.0))
-    mesh.set_position(apex, _finite(mesh.position(apex) + distance * normal))
+    with np.errstate(over="ignore", invalid="ignore"):  # refused by _finite
+        moved = mesh.position(apex) + distance * normal
+    mesh.set_position(apex, _finite(moved))
     return triangles
 
 

@@ -63,6 +63,20 @@ def crust_offsets(a: MeshArrays, thickness: float, uniform: bool = True) -> np.n
     ``t * normalize(m)``. Straight ("winged") corners, whose normal is zero, are
     left out of the means (TopMod copied a neighbour's normal into them).
     """
+    return _scaled_offsets(a, _normal_means(a), thickness, uniform)
+
+
+@dataclass(frozen=True)
+class _NormalMeans:
+    """The corner normals a crust offset uses, and their mean at each vertex."""
+
+    has: np.ndarray  # (C,) bool: corners with a normal, on faces that are not holes
+    normals: np.ndarray  # (C, 3) unit corner normals
+    count: np.ndarray  # (V,) float64 number of such corners at each vertex
+    mean: np.ndarray  # (V, 3) their raw mean
+
+
+def _normal_means(a: MeshArrays) -> _NormalMeans:
     normals = corner_normals(a)
     # hole faces (boundaries of open meshes) face the other way: leave them out
     has = (np.linalg.norm(normals, axis=1) > 0.5) & ~a.face_hole[a.corner_face]
@@ -71,15 +85,23 @@ def crust_offsets(a: MeshArrays, thickness: float, uniform: bool = True) -> np.n
     mean = np.zeros((nv, 3))
     np.add.at(mean, a.corner_vertex[has], normals[has])
     mean /= np.maximum(count, 1)[:, None]
+    return _NormalMeans(has, normals, count, mean)
+
+
+def _scaled_offsets(a: MeshArrays, m: _NormalMeans, thickness: float,
+                    uniform: bool) -> np.ndarray:
+    """``(V, 3)`` :func:`crust_offsets` from the vertices' normal means."""
     if not uniform:
-        length = np.linalg.norm(mean, axis=1, keepdims=True)
-        return thickness * np.divide(mean, length, out=np.zeros_like(mean), where=length > 0)
-    dots = np.einsum("ij,ij->i", mean[a.corner_vertex[has]], normals[has])
+        length = np.linalg.norm(m.mean, axis=1, keepdims=True)
+        return thickness * np.divide(m.mean, length, out=np.zeros_like(m.mean),
+                                     where=length > 0)
+    dots = np.einsum("ij,ij->i", m.mean[a.corner_vertex[m.has]], m.normals[m.has])
     inverse = np.zeros(len(dots))
     np.divide(thickness, dots, out=inverse, where=np.abs(dots) > 1e-12)
-    factor = np.bincount(a.corner_vertex[has], weights=inverse, minlength=nv).astype(np.float64)
-    factor = factor / np.maximum(count, 1)
-    return mean * factor[:, None]
+    factor = np.bincount(a.corner_vertex[m.has], weights=inverse,
+                         minlength=len(a.vertex_ids)).astype(np.float64)
+    factor = factor / np.maximum(m.count, 1)
+    return m.mean * factor[:, None]
 
 
 def _face_newell(positions: np.ndarray, a: MeshArrays) -> np.ndarray:
@@ -91,6 +113,23 @@ def _face_newell(positions: np.ndarray, a: MeshArrays) -> np.ndarray:
     return out
 
 
+def offset_shell(a: MeshArrays, thickness: float, uniform: bool) -> np.ndarray:
+    """``(V, 3)`` positions moved inward by :func:`crust_offsets`, checked.
+
+    Raises:
+        DLFLError: ``thickness`` is so large that a moved coordinate overflows.
+    """
+    means = _normal_means(a)  # outside the errstate: its overflows are not checked here
+    with np.errstate(over="ignore", invalid="ignore"):  # refused just below
+        moved = a.positions - _scaled_offsets(a, means, thickness, uniform)
+    if not np.isfinite(moved).all():
+        v = int(a.vertex_ids[np.flatnonzero(~np.isfinite(moved).all(axis=1))[0]])
+        raise DLFLError(f"thickness {thickness} would move vertex {v} to "
+                        f"{moved[a.vertex_ids == v][0].tolist()}: its numbers overflow; "
+                        "use a smaller value")
+    return moved
+
+
 def check_not_inverted(a: MeshArrays, moved: np.ndarray, what: str) -> None:
     """Refuse a moved copy in which some face collapsed or turned over.
 
@@ -100,8 +139,25 @@ def check_not_inverted(a: MeshArrays, moved: np.ndarray, what: str) -> None:
         what: names the parameter in the message.
 
     Raises:
-        DLFLError: some face's vector area flips or vanishes.
+        DLFLError: some face's vector area flips or vanishes, or the products
+            that tell overflow (coordinates beyond about 1e77).
     """
+    with np.errstate(over="ignore", invalid="ignore"):  # an overflow is refused below
+        bad = _inverted_faces(a, moved)
+    if bad is None:
+        raise DLFLError(f"{what} gives a crust too large to check for faces turning over "
+                        "(its face areas overflow); use a smaller value or a smaller mesh")
+    if bad.any():
+        f = int(a.face_ids[np.flatnonzero(bad)[0]])
+        raise DLFLError(
+            f"{what} would invert the crust: the inner copy of face {f} "
+            f"(and {int(bad.sum()) - 1} more) collapses or turns over; use a smaller value"
+        )
+
+
+def _inverted_faces(a: MeshArrays, moved: np.ndarray) -> np.ndarray | None:
+    """``(F,)`` bool: faces whose moved copy collapses or turns over; None when
+    the products that tell overflow."""
     before = _face_newell(a.positions, a)
     after = _face_newell(moved, a)
     scale = np.linalg.norm(before, axis=1)
@@ -112,14 +168,13 @@ def check_not_inverted(a: MeshArrays, moved: np.ndarray, what: str) -> None:
     side_before = a.positions[ends[:, 1]] - a.positions[ends[:, 0]]
     side_after = moved[ends[:, 1]] - moved[ends[:, 0]]
     length = np.einsum("ij,ij->i", side_before, side_before)
-    flipped = (np.einsum("ij,ij->i", side_before, side_after) <= 1e-9 * length) & (length > 1e-24)
+    sides = np.einsum("ij,ij->i", side_before, side_after)
+    if not (np.isfinite(dots).all() and np.isfinite(scale * scale).all()
+            and np.isfinite(sides).all() and np.isfinite(length).all()):
+        return None
+    flipped = (sides <= 1e-9 * length) & (length > 1e-24)
     bad[a.corner_face[a.edge_corners[flipped, 0]]] = True
-    if bad.any():
-        f = int(a.face_ids[np.flatnonzero(bad)[0]])
-        raise DLFLError(
-            f"{what} would invert the crust: the inner copy of face {f} "
-            f"(and {int(bad.sum()) - 1} more) collapses or turns over; use a smaller value"
-        )
+    return bad
 
 
 def shell_arrays(
@@ -303,7 +358,7 @@ def _shell_positions(
     assert thickness is not None
     if thickness == 0.0:
         raise DLFLError("thickness 0 gives a crust with no thickness; use a nonzero value")
-    moved = p - crust_offsets(a, thickness, uniform)
+    moved = offset_shell(a, thickness, uniform)
     if thickness > 0:
         check_not_inverted(a, moved, f"thickness {thickness}")
         return p, moved

@@ -25,7 +25,7 @@ from .arrays import MeshArrays, mesh_arrays
 from .build import from_corner_arrays
 from .errors import DLFLError
 from .mesh import Mesh
-from .rind import check_not_inverted, crust_offsets
+from .rind import check_not_inverted, offset_shell
 
 __all__ = ["sponge"]
 
@@ -45,7 +45,7 @@ def sponge(mesh: Mesh, thickness: float = 0.67, *, keep_2gons: bool = True) -> N
     """
     a = mesh_arrays(mesh)
     _check_input(a, thickness)
-    inner = a.positions - crust_offsets(a, thickness, uniform=True)
+    inner = offset_shell(a, thickness, uniform=True)
     check_not_inverted(a, inner, f"thickness {thickness}")
     positions, corner_vertex, mates, offsets = _sponge_polygons(a, inner, keep_2gons)
     mesh.replace_with(from_corner_arrays(positions, offsets, corner_vertex, mates,

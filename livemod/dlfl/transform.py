@@ -62,14 +62,31 @@ def transform(
         raise DLFLError(f"matrix must be a finite 3x3 array, got shape {m.shape}")
     c = _vector(center, "center")
     ids, p = _selected(mesh, vertices)
-    mesh.set_positions(ids, (p - c) @ m.T + c)
+    with np.errstate(over="ignore", invalid="ignore"):  # refused by _finite_moved
+        moved = (p - c) @ m.T + c
+    mesh.set_positions(ids, _finite_moved(ids, moved))
+
+
+def _finite_moved(ids: np.ndarray, moved: np.ndarray) -> np.ndarray:
+    """``moved`` (``(k, 3)``, the new positions of vertices ``ids``), checked.
+
+    Raises:
+        DLFLError: a coordinate overflowed; names the first such vertex.
+    """
+    if np.isfinite(moved).all():
+        return moved
+    k = int(np.flatnonzero(~np.isfinite(moved).all(axis=1))[0])
+    raise DLFLError(f"the transform would move vertex {int(ids[k])} to {moved[k].tolist()}: "
+                    "its numbers overflow; use smaller factors or offsets (nothing is moved)")
 
 
 def translate(mesh: Mesh, offset: Any, *, vertices: Iterable[int] | None = None) -> None:
     """Move vertices by ``offset`` ``(x, y, z)``."""
     d = _vector(offset, "offset")
     ids, p = _selected(mesh, vertices)
-    mesh.set_positions(ids, p + d)
+    with np.errstate(over="ignore"):  # refused by _finite_moved
+        moved = p + d
+    mesh.set_positions(ids, _finite_moved(ids, moved))
 
 
 def scale(
@@ -88,10 +105,13 @@ def rotation_matrix(axis: Any, degrees: float) -> np.ndarray:
     """
     theta = np.radians(finite_number(degrees, "degrees"))
     k = _vector(axis, "axis")
-    length = float(np.linalg.norm(k))
-    if length == 0.0:
+    largest = float(np.abs(k).max())
+    if largest == 0.0:
         raise DLFLError("rotation axis must not be zero")
-    k = k / length
+    # to at most 1 first: the squares in the norm of (1e308, 1e308, 0) overflow,
+    # and those of (1e-200, 1e-200, 0) vanish
+    k = k / largest
+    k = k / np.linalg.norm(k)
     cross = np.array([[0, -k[2], k[1]], [k[2], 0, -k[0]], [-k[1], k[0], 0]])
     return np.eye(3) + np.sin(theta) * cross + (1 - np.cos(theta)) * cross @ cross
 
@@ -111,4 +131,9 @@ def move_vertices(
     (the thesis's ``move(vertexids, (x, y, z)[, relative])``)."""
     d = _vector(offset, "offset")
     ids, p = _selected(mesh, vertices)
-    mesh.set_positions(ids, p + d if relative else np.broadcast_to(d, p.shape))
+    if not relative:
+        mesh.set_positions(ids, np.broadcast_to(d, p.shape))
+        return
+    with np.errstate(over="ignore"):  # refused by _finite_moved
+        moved = p + d
+    mesh.set_positions(ids, _finite_moved(ids, moved))

@@ -105,6 +105,9 @@ def _cut_points(a: MeshArrays, thickness: float) -> np.ndarray:
     corner and ``x = sqrt(t^2 / (1 - (n1.n2)^2))``, ``t = thickness / 2``. When the
     neighbours coincide (a 2-gon) the corner after next stands in for the next;
     at a straight corner the point moves ``t`` toward the face centroid.
+
+    Raises:
+        DLFLError: ``thickness`` is so large that a point's coordinates overflow.
     """
     t = thickness / 2.0
     p = a.positions
@@ -117,11 +120,27 @@ def _cut_points(a: MeshArrays, thickness: float) -> np.ndarray:
     dot = np.einsum("ij,ij->i", n1, n2)
     denom = 1.0 - dot * dot
     straight = denom < 1e-12
-    x = np.sqrt(t * t / np.where(straight, 1.0, denom))
-    points = v0 + x[:, None] * (n1 + n2)
-    centre = face_centroids(a)[a.corner_face[straight]]
-    points[straight] = v0[straight] + t * _unit(centre - v0[straight])
-    return points
+    toward = _unit(face_centroids(a)[a.corner_face[straight]] - v0[straight])
+    with np.errstate(over="ignore", invalid="ignore"):  # refused by _finite_cut
+        x = np.sqrt(t * t / np.where(straight, 1.0, denom))
+        points = v0 + x[:, None] * (n1 + n2)
+        points[straight] = v0[straight] + t * toward
+    return _finite_cut(a, points, thickness)
+
+
+def _finite_cut(a: MeshArrays, points: np.ndarray, thickness: float) -> np.ndarray:
+    """``points`` (``(C, 3)``, one per corner), checked.
+
+    Raises:
+        DLFLError: a coordinate overflowed; names the first such corner's vertex.
+    """
+    if np.isfinite(points).all():
+        return points
+    c = int(np.flatnonzero(~np.isfinite(points).all(axis=1))[0])
+    v = int(a.vertex_ids[a.corner_vertex[c]])
+    raise DLFLError(f"cutting corners by {thickness} would put a point at vertex {v} at "
+                    f"{points[c].tolist()}: its numbers overflow; use a smaller thickness "
+                    "(or width)")
 
 
 def _unit(vectors: np.ndarray) -> np.ndarray:
