@@ -162,6 +162,20 @@ def test_hud_shows_state_counts_genus_and_step() -> None:
         assert part in text
 
 
+
+def test_the_help_overlay_fits_the_window_in_columns() -> None:
+    from livemod.viewer.hud import hud_quads
+
+    info = {"script": "/x/tower.py", "result": None, "waiting": True, "genus": None,
+            "fps": 0.0, "pick_mode": "face", "selection": [], "style": Style(),
+            "ortho": False, "playing": False, "hud": False, "help": True}
+    boxes = {}
+    for height in (2000, 800, 400):
+        quads = hud_quads(info, (1200, height))
+        assert quads[:, 0].min() >= 0 and (quads[:, 1] + quads[:, 6]).max() <= height
+        boxes[height] = int((quads[:, 11] == 8).sum())  # one panel box per column
+    assert boxes[2000] == 1 and boxes[800] == 2 and boxes[400] >= 3
+
 def test_docs_list_every_key() -> None:
     from pathlib import Path
 

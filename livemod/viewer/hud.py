@@ -108,8 +108,20 @@ def hud_quads(info: dict[str, Any], size: tuple[int, int]) -> np.ndarray:
             top = size[1] - MARGIN - 2 * PADDING - len(lines) * atlas.line_height
             parts.append(_panel(atlas, lines, MARGIN, top, ERROR_PANEL))
     if info["help"]:
-        lines = [(line, TEXT) for line in help_lines()]
-        width = max(text_width(atlas, text) for text, _ in lines) + 2 * PADDING
-        parts.append(_panel(atlas, lines, max(size[0] - MARGIN - width, MARGIN), MARGIN,
-                            PANEL))
+        parts += _help_panels(atlas, [(line, TEXT) for line in help_lines()], size)
     return np.concatenate(parts)
+
+
+def _help_panels(atlas: GlyphAtlas, lines: list[tuple[str, int]],
+                 size: tuple[int, int]) -> list[np.ndarray]:
+    """The help overlay at the top right, in as many columns (right to left) as the
+    window's height needs."""
+    rows = max(int((size[1] - 2 * MARGIN - 2 * PADDING) // atlas.line_height), 1)
+    columns = [lines[start:start + rows] for start in range(0, len(lines), rows)]
+    panels, right = [], float(size[0] - MARGIN)
+    for column in reversed(columns):  # the first column ends up leftmost
+        width = max(text_width(atlas, text) for text, _ in column) + 2 * PADDING
+        right = max(right - width, float(MARGIN))
+        panels.append(_panel(atlas, column, right, MARGIN, PANEL))
+        right -= MARGIN
+    return panels
