@@ -494,3 +494,70 @@ def test_render_section_option(tmp_path: Path, capsys) -> None:
             main(["render", str(script), "-o", str(tmp_path / "bad.png"), "--section", bad])
         assert "--section takes x, y or z" in capsys.readouterr().err
     assert not (tmp_path / "bad.png").exists()
+
+
+def _segment():
+    """Two point-spheres joined by insertEdge: one edge, one 2-gon, no triangle."""
+    from livemod.dlfl import Mesh
+
+    mesh = Mesh()
+    a, b = mesh.create_vertex((-1.0, 0.0, 0.0)), mesh.create_vertex((1.0, 0.0, 0.0))
+    mesh.insert_edge(mesh.vertex_corner(a), mesh.vertex_corner(b))
+    return mesh
+
+
+def test_meshes_without_triangles_draw_their_points_and_edges(offscreen: Offscreen) -> None:
+    from livemod.dlfl import Mesh
+
+    empty, points = Mesh(), Mesh()
+    points.create_vertex((-1.0, 0.0, 0.0))
+    points.create_vertex((1.0, 0.5, 0.0))
+    drawn = {}
+    for name, mesh in (("empty", empty), ("points", points), ("segment", _segment())):
+        arrays = mesh_arrays(mesh)
+        offscreen.renderer.set_mesh(arrays)  # GL buffers cannot be empty: no error here
+        camera = framed_camera(arrays, elevation=0.0, yaw=0.0)
+        image = offscreen.render(camera, Style())
+        drawn[name] = int(_mask(image).sum())
+        if name == "segment":  # one line across most of the frame
+            labels, count = _blobs(_mask(image))
+            assert count == 1 and np.ptp(np.nonzero(labels)[1]) > SIZE[0] / 2
+        if name == "points":  # each point-sphere is a point although V is off
+            labels, count = _blobs(_mask(image))
+            assert count == 2
+            hit = offscreen.renderer.pick(camera, SIZE, *_centre_of(labels == 1), "vertex")
+            assert hit is not None and hit.kind == "vertex"
+    assert drawn["empty"] == 0 and drawn["points"] > 0 and drawn["segment"] > 0
+
+
+def _blobs(mask: np.ndarray) -> tuple[np.ndarray, int]:
+    """Connected groups of True pixels (4-neighbours): ``(labels, count)``."""
+    labels = np.zeros(mask.shape, dtype=int)
+    count = 0
+    for start in zip(*np.nonzero(mask), strict=True):
+        if labels[start]:
+            continue
+        count += 1
+        todo = [start]
+        while todo:
+            y, x = todo.pop()
+            if 0 <= y < mask.shape[0] and 0 <= x < mask.shape[1] and mask[y, x] \
+                    and not labels[y, x]:
+                labels[y, x] = count
+                todo += [(y + 1, x), (y - 1, x), (y, x + 1), (y, x - 1)]
+    return labels, count
+
+
+def _centre_of(mask: np.ndarray) -> tuple[int, int]:
+    """``(x, y)`` pixel at the middle of a mask's True pixels."""
+    rows, cols = np.nonzero(mask)
+    return int(cols.mean()), int(rows.mean())
+
+
+def test_render_command_draws_a_script_of_point_spheres(tmp_path: Path) -> None:
+    script = tmp_path / "points.py"
+    script.write_text("from livemod.dlfl import *\na = createVertex((0, 0, 0))[0]\n"
+                      "b = createVertex((1, 0, 0))[0]\n")
+    out = tmp_path / "points.png"
+    assert main(["render", str(script), "-o", str(out), "--size", "160x120"]) == 0
+    assert _blobs(_mask(read_image(out)))[1] == 2

@@ -18,7 +18,7 @@ means background.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -43,6 +43,9 @@ class RenderGeometry:
         bounds: ``(2, 3)`` float64 min and max corner (zeros if empty).
         face_count: number of faces, holes included (the length of face tables).
         holes: number of hole faces.
+        point_spheres: ``(P,)`` uint32 indices of the vertices that are point-spheres
+            (a vertex with no edge, whose face is its one corner): drawn as points,
+            since they have no faces to show.
     """
 
     positions: np.ndarray
@@ -52,6 +55,7 @@ class RenderGeometry:
     bounds: np.ndarray
     face_count: int
     holes: int = 0
+    point_spheres: np.ndarray = field(default_factory=lambda: np.zeros(0, np.uint32))
 
     @property
     def triangle_face(self) -> np.ndarray:
@@ -127,8 +131,9 @@ def build_geometry(arrays: MeshArrays) -> RenderGeometry:
         bounds = np.stack([arrays.positions.min(axis=0), arrays.positions.max(axis=0)])
     else:
         bounds = np.zeros((2, 3))
+    spheres = arrays.corner_vertex[arrays.corner_edge < 0].astype(np.uint32)
     return RenderGeometry(positions, triangles, triangle_table, lines, bounds,
-                          len(arrays.face_ids), int(arrays.face_hole.sum()))
+                          len(arrays.face_ids), int(arrays.face_hole.sum()), spheres)
 
 
 def decode_pick(pick_id: int) -> tuple[int, int] | None:

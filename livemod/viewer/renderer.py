@@ -139,15 +139,23 @@ def _float3_table(ctx: moderngl.Context, points: np.ndarray) -> moderngl.Texture
     return texture
 
 
+def _buffer(ctx: moderngl.Context, data: np.ndarray) -> moderngl.Buffer:
+    """A GL buffer holding ``data``. GL buffers cannot be empty, so an empty array
+    gets a small zeroed one, which the draws never read (they skip what is empty)."""
+    return ctx.buffer(data.tobytes()) if data.size else ctx.buffer(reserve=16)
+
+
 class _MeshGPU:
-    """The GL objects of one uploaded mesh; ``release`` frees them."""
+    """The GL objects of one uploaded mesh; ``release`` frees them. A mesh may have
+    no triangles (only point-spheres and 2-gons, as while a script builds one from
+    createVertex and insertEdge), no edges or no vertices."""
 
     def __init__(self, ctx: moderngl.Context, programs: dict[str, moderngl.Program],
                  geometry: RenderGeometry) -> None:
         self.geometry = geometry
-        self.positions = ctx.buffer(geometry.positions.tobytes())
-        self.triangles = ctx.buffer(geometry.triangles.tobytes())
-        self.lines = ctx.buffer(geometry.lines.tobytes())
+        self.positions = _buffer(ctx, geometry.positions)
+        self.triangles = _buffer(ctx, geometry.triangles)
+        self.lines = _buffer(ctx, geometry.lines)
         self.triangle_face = _uint_table(ctx, geometry.triangle_table, "u4")
         self.triangle_index = _uint_table(ctx, geometry.triangles.reshape(-1), "u4")
         self.position_table = _float3_table(ctx, geometry.positions)
@@ -158,6 +166,8 @@ class _MeshGPU:
         self.face_vao = ctx.vertex_array(programs["face"], content, self.triangles, 4)
         self.edge_vao = ctx.vertex_array(programs["edge"], content, self.lines, 4)
         self.point_vao = ctx.vertex_array(programs["point"], content)
+        self.spheres = _buffer(ctx, geometry.point_spheres)
+        self.sphere_vao = ctx.vertex_array(programs["point"], content, self.spheres, 4)
         self.ctx, self.edge_program = ctx, programs["edge"]
         self.face_program = programs["face"]
         self.selected_lines: tuple[moderngl.Buffer, moderngl.VertexArray] | None = None
@@ -167,7 +177,7 @@ class _MeshGPU:
         """The face pass with vertex normals, built on first use (uploads stay lean)."""
         if self.smooth is None:
             normals = vertex_normals(self.geometry.positions, self.geometry.triangles)
-            buffer = self.ctx.buffer(normals.tobytes())
+            buffer = _buffer(self.ctx, normals)
             vao = self.ctx.vertex_array(
                 self.face_program, [(self.positions, "3f", "in_position"),
                                     (buffer, "3f", "in_normal")], self.triangles, 4)
@@ -201,7 +211,8 @@ class _MeshGPU:
         if self.smooth is not None:
             self.smooth[1].release()
             self.smooth[0].release()
-        for obj in (self.face_vao, self.edge_vao, self.point_vao, self.positions,
+        for obj in (self.face_vao, self.edge_vao, self.point_vao, self.sphere_vao,
+                    self.spheres, self.positions,
                     self.triangles, self.lines, self.triangle_face, self.face_flags,
                     self.edge_flags, self.vertex_flags, self.triangle_index,
                     self.position_table):
@@ -438,7 +449,10 @@ class Renderer:
         """The current object with its preview, selection and points (labels apart)."""
         show_preview = style.preview and self._preview is not None
         # the wireframe over the mesh's own faces is drawn inside the face pass
-        wire_in_faces = style.edges and style.faces and not show_preview
+        # (a mesh with no triangles yet, a segment of createVertex and insertEdge, has
+        # its edges drawn as lines)
+        wire_in_faces = (style.edges and style.faces and not show_preview
+                         and len(mesh.geometry.triangles) > 0)
         if style.faces or show_preview:
             surface = self._preview if show_preview and self._preview is not None else mesh
             color = PREVIEW_COLOR if show_preview else BASE_COLOR
@@ -449,6 +463,8 @@ class Renderer:
             self._draw_edges(mesh, selected_only=True)
         if style.vertices or self.selection.vertices:
             self._draw_points(mesh, style.point_size, only_selected=not style.vertices)
+        if not style.vertices and len(mesh.geometry.point_spheres):
+            self._draw_points(mesh, style.point_size, point_spheres=True)
         self._draw_corners(style.point_size)
 
     def _set_view(self, camera: Camera, aspect: float) -> None:
@@ -465,6 +481,8 @@ class Renderer:
 
     def _draw_faces(self, mesh: _MeshGPU, color: tuple[float, float, float],
                     wire: bool = False, smooth: bool = False) -> None:
+        if not len(mesh.geometry.triangles):
+            return
         program = self.programs["face"]
         program["smooth_shading"].value = int(smooth)  # type: ignore[union-attr]
         program["wire"].value = int(wire)  # type: ignore[union-attr]
@@ -496,10 +514,13 @@ class Renderer:
         mesh.edge_flags.use(2)
         if selected_only and mesh.selected_lines is not None:
             mesh.selected_lines[1].render(moderngl.LINES)
-        else:
+        elif len(mesh.geometry.lines):
             mesh.edge_vao.render(moderngl.LINES)
 
-    def _draw_points(self, mesh: _MeshGPU, size: float, only_selected: bool = False) -> None:
+    def _draw_points(self, mesh: _MeshGPU, size: float, only_selected: bool = False,
+                     point_spheres: bool = False) -> None:
+        """The vertices as points: all of them, the selected ones only, or only the
+        point-spheres (which no face shows)."""
         program = self.programs["point"]
         program["point_size"].value = size  # type: ignore[union-attr]
         program["point_color"].value = POINT_COLOR  # type: ignore[union-attr]
@@ -515,7 +536,10 @@ class Renderer:
             self._draw_marker_points(arrays.positions[picked].astype(np.float32), size,
                                      SELECTED_COLOR)
             return
-        mesh.point_vao.render(moderngl.POINTS)
+        if point_spheres:
+            mesh.sphere_vao.render(moderngl.POINTS)
+        elif len(mesh.geometry.positions):
+            mesh.point_vao.render(moderngl.POINTS)
 
     def _draw_marker_points(self, points: np.ndarray, size: float,
                             color: tuple[float, float, float]) -> None:
