@@ -375,6 +375,52 @@ def test_step_keys_show_earlier_steps_in_the_hud(headless) -> None:
     assert viewer.result.arrays.counts[0] == 9
 
 
+
+def _press_timeline(viewer: LiveViewer, step: int, drag_to: int | None = None) -> None:
+    """Click the timeline at ``step`` (or press there and drag to ``drag_to``)."""
+    size = viewer.wnd.fbo.size
+    _, y, width, height = viewer.timeline.frame(size)
+    total = viewer._steps()
+
+    def x_of(k: int) -> int:  # the first pixel whose step is k
+        return next(px for px in range(size[0]) if viewer.timeline.step_at(px, size, total) == k)
+
+    py = int(y + height - 8)
+    viewer.on_mouse_press_event(x_of(step), py, viewer.wnd.mouse.left)
+    end = step if drag_to is None else drag_to
+    if drag_to is not None:
+        viewer.on_mouse_drag_event(x_of(drag_to), py, x_of(drag_to) - x_of(step), 0)
+    viewer.on_mouse_release_event(x_of(end), py, viewer.wnd.mouse.left)
+
+
+def _at_step(k: int) -> Callable[[LiveViewer], bool]:
+    return lambda v: (not v.waiting and v.result.status in ("paused", "ok")
+                      and v.result.step_index == k)
+
+
+def test_the_timeline_scrubs_through_the_steps(tmp_path: Path) -> None:
+    script = tmp_path / "ten.py"
+    script.write_text("for i in range(10):\n    createVertex((i, 0, 0))\n")
+    with _opened(script, (400, 300)) as viewer:
+        assert viewer._steps() == 10 and viewer._timeline_shown()
+        _press_timeline(viewer, 3)
+        _wait(viewer, _at_step(3))
+        assert viewer.result.arrays.counts[0] == 4  # the mesh after the fourth step
+        assert "step 4/10: createVertex (line 2)" in _hud_text(viewer)
+        _press_timeline(viewer, 1, drag_to=7)  # a drag goes where it is let go
+        _wait(viewer, _at_step(7))
+        assert viewer.result.arrays.counts[0] == 8
+        assert viewer.handle_key("HOME") == "first_step"
+        _wait(viewer, _at_step(0))
+        assert viewer.result.arrays.counts[0] == 1
+        viewer.handle_key("END")
+        _wait(viewer, lambda v: not v.waiting and v.result.status == "ok"
+              and v.result.step_index is None)
+        assert viewer.result.arrays.counts[0] == 10
+        distance = viewer.camera.distance
+        _press_timeline(viewer, 5)  # a click on the bar is no pick and no orbit
+        assert viewer.selection.is_empty() and viewer.camera.distance == distance
+
 def test_dropping_a_script_or_a_mesh_opens_it(headless, tmp_path: Path) -> None:
     from livemod.dlfl.io import save_mesh
     from livemod.dlfl.shapes import tetrahedron

@@ -32,7 +32,7 @@ class Binding:
         """How the help overlay names the key, e.g. ``Ctrl+F``."""
         name = {"NUMBER_1": "1", "NUMBER_2": "2", "NUMBER_3": "3", "NUMBER_4": "4",
                 "SPACE": "Space", "RIGHT": "Right", "LEFT": "Left", "PERIOD": ".",
-                "COMMA": ",", "END": "End", "ESCAPE": "Esc", "TAB": "Tab",
+                "COMMA": ",", "END": "End", "HOME": "Home", "ESCAPE": "Esc", "TAB": "Tab",
                 "LEFT_BRACKET": "[", "RIGHT_BRACKET": "]"}.get(self.key, self.key)
         prefix = {"": "", "shift": "Shift+", "ctrl": "Ctrl+"}[self.modifiers]
         return prefix + name
@@ -73,6 +73,7 @@ KEY_BINDINGS: tuple[Binding, ...] = (
     Binding("PERIOD", "", "step_forward", "next step"),
     Binding("LEFT", "", "step_back", "previous step"),
     Binding("COMMA", "", "step_back", "previous step"),
+    Binding("HOME", "", "first_step", "go to the first step"),
     Binding("END", "", "run_to_end", "run to the end"),
     Binding("G", "", "run_to_end", "run to the end"),
     Binding("R", "", "reload", "re-run the script now"),

@@ -105,7 +105,8 @@ def hud_quads(info: dict[str, Any], size: tuple[int, int]) -> np.ndarray:
         result = info["result"]
         if result is not None and result.error is not None:
             lines = error_lines(result.error)
-            top = size[1] - MARGIN - 2 * PADDING - len(lines) * atlas.line_height
+            bottom = size[1] - info.get("bottom", 0.0)  # above the step timeline
+            top = bottom - MARGIN - 2 * PADDING - len(lines) * atlas.line_height
             parts.append(_panel(atlas, lines, MARGIN, top, ERROR_PANEL))
     if info["help"]:
         parts += _help_panels(atlas, [(line, TEXT) for line in help_lines()], size)

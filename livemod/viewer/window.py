@@ -49,6 +49,7 @@ from .renderer import (
     Style,
     read_image,
 )
+from .timeline import Timeline, shown_step
 
 SCRIPT_SUFFIXES = (".py",)
 PARAMETER_DEBOUNCE = 0.15  # seconds a dragged slider rests before the script re-runs
@@ -141,6 +142,8 @@ class LiveViewer(mglw.WindowConfig):
         self.genus: int | None = None
         self.total_steps = 0
         self.objects = ObjectPanel()  # the object list (L) and the hidden objects' ids
+        self.timeline = Timeline()
+        self._scrub: tuple[int | None, bool, float] = (None, False, 0.0)  # pending, dragging, when
         self.show_objects = False
         self.frame_times: deque[float] = deque(maxlen=120)
         self.screenshots: list[Path] = []
@@ -272,6 +275,7 @@ class LiveViewer(mglw.WindowConfig):
         self.frame_times.append(now - self._last_frame)
         self._last_frame = now
         self._flush_parameters()
+        self._flush_scrub()
         self._drain_results()
         fbo = self.wnd.fbo
         self.renderer.draw(fbo, self.camera, self.style)
@@ -300,6 +304,9 @@ class LiveViewer(mglw.WindowConfig):
                 self.objects.top = self.params.bottom(size) + (
                     MARGIN if self.params.specs else 0)
                 parts.insert(0, self.objects.quads(size))
+            if self._timeline_shown():
+                parts.insert(0, self.timeline.quads(size, shown_step(self.result, self._steps()),
+                                                    self._steps()))
             self._overlay_cache = (key, np.concatenate(parts))
         return self._overlay_cache[1]
 
@@ -314,7 +321,10 @@ class LiveViewer(mglw.WindowConfig):
                 if not self.selection.is_empty() else [], "measures": self.measures,
                 "others": self.renderer.others, "others_note": self._others_note(),
                 "style": self.style, "ortho": self.camera.ortho, "playing": self.playing,
-                "hud": self.show_hud, "help": self.show_help}
+                "hud": self.show_hud, "help": self.show_help,
+                # the error panel stands above the timeline
+                "bottom": self.timeline.frame(self.wnd.fbo.size)[3] + MARGIN
+                if self._timeline_shown() else 0.0}
 
     def capture(self, transparent: bool = False) -> np.ndarray:
         """Render the scene (no HUD) offscreen at the window's size: ``(H, W, 3)``
@@ -519,6 +529,9 @@ class LiveViewer(mglw.WindowConfig):
         if hit is not None:
             self._press_objects(hit)
             return
+        if self._timeline_hit(x, y):
+            self._scrub_to(x * self._pixel_ratio(), dragging=True)
+            return
         self._press = (x, y, button)
         self._moved = False
 
@@ -531,6 +544,9 @@ class LiveViewer(mglw.WindowConfig):
         self._pointer = (x, y)
         if self._param_drag is not None:
             self._drag_slider(x * self._pixel_ratio())
+            return
+        if self._scrub[1]:
+            self._scrub_to(x * self._pixel_ratio(), dragging=True)
             return
         if self._press is not None and abs(x - self._press[0]) + abs(y - self._press[1]) > 3:
             self._moved = True
@@ -545,6 +561,10 @@ class LiveViewer(mglw.WindowConfig):
         if self._param_drag is not None:
             self._param_drag = None
             self._flush_parameters(force=True)  # the value has settled
+            return
+        if self._scrub[1]:
+            self._scrub = (self._scrub[0], False, self._scrub[2])
+            self._flush_scrub(force=True)
             return
         clicked = self._press is not None and not self._moved
         self._press = None
@@ -610,6 +630,44 @@ class LiveViewer(mglw.WindowConfig):
             return None
         ratio = self._pixel_ratio()
         return self.params.hit(x * ratio, y * ratio, self.wnd.fbo.size)
+
+    # -- the step timeline -----------------------------------------------------------
+
+    def _steps(self) -> int:
+        """Steps the timeline spans: the last complete run's, or more while one runs."""
+        shown = len(self.result.steps) if self.result is not None else 0
+        return max(self.total_steps, shown)
+
+    def _timeline_shown(self) -> bool:
+        return self._panel_shown() and self._steps() > 1
+
+    def _timeline_hit(self, x: float, y: float) -> bool:
+        ratio = self._pixel_ratio()
+        return self._timeline_shown() and self.timeline.hit(x * ratio, y * ratio,
+                                                            self.wnd.fbo.size)
+
+    def _scrub_to(self, px: float, dragging: bool) -> None:
+        """Go to the step under ``px`` on the timeline once the pointer rests (a drag
+        over steps not in the snapshot cache would replay the script for each)."""
+        step = self.timeline.step_at(px, self.wnd.fbo.size, self._steps())
+        self._scrub = (step, dragging, time.perf_counter())
+        if not dragging:
+            self._flush_scrub(force=True)
+
+    def _flush_scrub(self, force: bool = False) -> None:
+        step, dragging, when = self._scrub
+        if step is None or not (force or time.perf_counter() - when >= PARAMETER_DEBOUNCE / 3):
+            return
+        self._scrub = (None, dragging, when)
+        if step != shown_step(self.result, self._steps()) or self.waiting:
+            self.playing = False
+            self.session.goto_step(step)
+            self.waiting = True
+
+    def _do_first_step(self) -> None:
+        self.playing = False
+        self.session.goto_step(0)
+        self.waiting = True
 
     def _objects_hit(self, x: float, y: float) -> Hit | None:
         if not self._objects_shown():

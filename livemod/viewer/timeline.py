@@ -1,0 +1,78 @@
+"""The step timeline: a bar along the bottom of the window to scrub through the
+steps of the script (GL-free).
+
+The bar spans the window's width; its fill reaches the step shown, and a click
+or a drag on it goes to the step under the pointer. The window sends that step
+to the session (``goto_step``), which shows it from its snapshot cache or
+replays the script to it.
+
+Coordinates are framebuffer pixels from the top left, as the HUD's.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .text import QUAD_FLOATS, box_quad, glyph_atlas, layout_text, text_width
+
+LABEL_DIM, PANEL, TRACK, FILL, HANDLE = 5, 8, 13, 14, 0
+MARGIN, PADDING = 8, 6
+BAR_HEIGHT = 10
+HANDLE_WIDTH = 4
+
+
+def shown_step(result: object, total: int) -> int | None:
+    """The 0-based step a result shows: its paused or cached step, else its last
+    one; None when it has no steps."""
+    steps = getattr(result, "steps", None) or ()
+    if not steps and not total:
+        return None
+    index = getattr(result, "step_index", None)
+    return len(steps) - 1 if index is None else min(index, max(len(steps), total) - 1)
+
+
+class Timeline:
+    """Layout and hit testing of the step bar (see the module docstring)."""
+
+    def frame(self, size: tuple[int, int]) -> tuple[float, float, float, float]:
+        """``(x, y, width, height)`` of the whole panel (bar and its labels)."""
+        height = BAR_HEIGHT + glyph_atlas().line_height + 2 * PADDING
+        width = max(size[0] - 2 * MARGIN, 40)
+        return float(MARGIN), float(size[1] - MARGIN - height), float(width), float(height)
+
+    def _bar(self, size: tuple[int, int]) -> tuple[float, float, float]:
+        """``(left, top, width)`` of the track."""
+        x, y, width, _ = self.frame(size)
+        return x + PADDING, y + PADDING + glyph_atlas().line_height, width - 2 * PADDING
+
+    def hit(self, px: float, py: float, size: tuple[int, int]) -> bool:
+        """True when framebuffer point ``(px, py)`` is on the panel."""
+        x, y, width, height = self.frame(size)
+        return x <= px <= x + width and y <= py <= y + height
+
+    def step_at(self, px: float, size: tuple[int, int], total: int) -> int:
+        """The 0-based step of ``total`` under ``px`` (clamped to the bar's ends)."""
+        left, _, width = self._bar(size)
+        fraction = min(max((px - left) / max(width, 1.0), 0.0), 1.0)
+        return min(int(fraction * total), total - 1)
+
+    def quads(self, size: tuple[int, int], shown: int | None, total: int) -> np.ndarray:
+        """The panel's quads: the track, its fill to step ``shown`` of ``total``, a
+        handle there and the labels ``1`` and ``total`` at its ends."""
+        if total < 2 or shown is None:
+            return np.zeros((0, QUAD_FLOATS), dtype=np.float32)
+        atlas = glyph_atlas()
+        x, y, width, height = self.frame(size)
+        left, top, bar_width = self._bar(size)
+        reach = bar_width * (shown + 1) / total
+        end = str(total)
+        return np.concatenate([
+            box_quad(atlas, x, y, width, height, PANEL),
+            layout_text(atlas, ["steps   click or drag to go to one"], (left, y + PADDING - 1),
+                        LABEL_DIM),
+            layout_text(atlas, [end], (left + bar_width - text_width(atlas, end),
+                                       y + PADDING - 1), LABEL_DIM),
+            box_quad(atlas, left, top, bar_width, BAR_HEIGHT, TRACK),
+            box_quad(atlas, left, top, reach, BAR_HEIGHT, FILL),
+            box_quad(atlas, left + reach - HANDLE_WIDTH / 2, top - 2, HANDLE_WIDTH,
+                     BAR_HEIGHT + 4, HANDLE)])
