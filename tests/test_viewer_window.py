@@ -118,6 +118,30 @@ def test_pick_select_rerun_and_error_keeps_the_stale_mesh(headless) -> None:
     assert np.array_equal(viewer.capture(), before)        # the last good mesh stays
 
 
+
+def test_e_shows_the_mesh_a_failed_run_left(tmp_path: Path) -> None:
+    script = tmp_path / "fails.py"
+    script.write_text("load('cube')\n")
+    echo = io.StringIO()
+    with _opened(script, (200, 150), echo=echo) as viewer:
+        good = viewer.renderer.arrays
+        viewer.handle_key("E")
+        assert "no failed run to show" in echo.getvalue()
+        script.write_text("load('cube')\nsubdivide('catmull-clark')\nraise ValueError('no')\n")
+        viewer.session.reload()
+        _wait(viewer, lambda v: v.result.status == "error" and not v.waiting)
+        assert viewer.renderer.arrays is good and "(E: the failed run's mesh)" in _hud_text(viewer)
+        assert viewer.handle_key("E") == "toggle_partial"
+        assert viewer.renderer.arrays is viewer.result.partial
+        assert "V 26  E 48  F 24" in _hud_text(viewer)  # the subdivided cube of the failed run
+        assert "the failed run's mesh (E: last good)" in _hud_text(viewer)
+        viewer.handle_key("E")
+        assert viewer.renderer.arrays is good and "V 8  E 12  F 6" in _hud_text(viewer)
+        assert [step.label for step in viewer.result.steps] == ["load cube", "subdivide"]
+        viewer.handle_key("LEFT")  # back through the steps the failed run finished
+        _wait(viewer, lambda v: v.result.status == "paused" and v.result.step_index == 0)
+        assert viewer.renderer.arrays.counts == (8, 12, 6)
+
 def test_the_select_option_reaches_the_first_run(tmp_path: Path) -> None:
     script = tmp_path / "model.py"
     script.write_text(CUBE.format(scale=1.0))

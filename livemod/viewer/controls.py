@@ -77,6 +77,8 @@ KEY_BINDINGS: tuple[Binding, ...] = (
     Binding("END", "", "run_to_end", "run to the end"),
     Binding("G", "", "run_to_end", "run to the end"),
     Binding("R", "", "reload", "re-run the script now"),
+    Binding("E", "", "toggle_partial",
+            "after an error: the mesh as the failed run left it / the last good one"),
     Binding("F12", "", "screenshot", "save a screenshot (PNG, no HUD)"),
     Binding("F12", "shift", "screenshot_transparent",
             "save a screenshot with a transparent background (PNG with alpha)"),

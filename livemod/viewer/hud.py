@@ -48,8 +48,12 @@ def hud_lines(info: dict[str, Any]) -> list[tuple[str, int]]:
     state = run_state(result, info["waiting"])
     colour = ERROR_TEXT if "error" in state else (WARN_TEXT if state != "ok" else OK_TEXT)
     elapsed = f"  {result.elapsed:.3f} s" if result is not None else ""
-    lines = [(Path(info["script"]).name, TEXT), (f"{state}{elapsed}", colour)]
-    arrays = None if result is None else result.arrays
+    shown = ""
+    if result is not None and result.error is not None and getattr(result, "partial", None) is not None:
+        shown = ("  - the failed run's mesh (E: last good)" if info.get("partial")
+                 else "  (E: the failed run's mesh)")
+    lines = [(Path(info["script"]).name, TEXT), (f"{state}{elapsed}{shown}", colour)]
+    arrays = None if result is None else info.get("arrays", result.arrays)
     if arrays is not None:
         v, e, f = arrays.counts
         holes = int(arrays.face_hole.sum())  # counted apart, as TopMod does

@@ -142,6 +142,7 @@ class LiveViewer(mglw.WindowConfig):
         self.genus: int | None = None
         self.total_steps = 0
         self.objects = ObjectPanel()  # the object list (L) and the hidden objects' ids
+        self.show_partial = False  # E: a failed run's own mesh instead of the last good one
         self.timeline = Timeline()
         self._scrub: tuple[int | None, bool, float] = (None, False, 0.0)  # pending, dragging, when
         self.show_objects = False
@@ -194,8 +195,10 @@ class LiveViewer(mglw.WindowConfig):
         self._sync_parameters(result)
         if result.status == "ok":
             self.total_steps = len(result.steps)
-        if result.arrays is not None and result.arrays is not self.renderer.arrays:
-            self._upload(result.arrays, result.preview, self._visible_others(result))
+        arrays = self._drawn_arrays(result)
+        if arrays is not None and arrays is not self.renderer.arrays:
+            preview = result.preview if arrays is result.arrays else None
+            self._upload(arrays, preview, self._visible_others(result))
         elif result.arrays is None and result.error is None:
             self.renderer.set_mesh(None)  # the script ended with no mesh: show none
             self.measures = []
@@ -218,6 +221,24 @@ class LiveViewer(mglw.WindowConfig):
                 self._fit_bounds, bounds):
             self._do_fit()
             self._fit_bounds = bounds
+
+    def _drawn_arrays(self, result: Any) -> Any:
+        """The mesh to show of ``result``: the failed run's own (E), or the last good one."""
+        if self.show_partial and result.error is not None and result.partial is not None:
+            return result.partial
+        return result.arrays
+
+    def _do_toggle_partial(self) -> None:
+        result = self.result
+        if result is None or result.error is None or result.partial is None:
+            self._echo("no failed run to show: E shows the mesh a failed run left")
+            return
+        self.show_partial = not self.show_partial
+        arrays = self._drawn_arrays(result)
+        self._upload(arrays, result.preview if arrays is result.arrays else None,
+                     self._visible_others(result))
+        self._echo("showing the mesh as the failed run left it" if self.show_partial
+                   else "showing the last good mesh")
 
     @property
     def hidden_others(self) -> frozenset[int]:
@@ -295,7 +316,7 @@ class LiveViewer(mglw.WindowConfig):
         key = (id(self.result), self.waiting, self.total_steps, self.genus, self._fps_shown,
                self.pick_mode, self.selection, self.style, self.camera.ortho, self.playing,
                self.show_hud, self.show_help, size, self.params.state(),
-               self.objects.state(), self._objects_shown())
+               self.objects.state(), self._objects_shown(), self.show_partial)
         if self._overlay_cache is None or self._overlay_cache[0] != key:
             parts = [hud_quads(self._hud_info(), size)]
             if self._panel_shown():  # the parameters' tooltip is drawn over the list
@@ -315,6 +336,7 @@ class LiveViewer(mglw.WindowConfig):
 
     def _hud_info(self) -> dict[str, Any]:
         return {"script": self.script, "result": self.result, "waiting": self.waiting,
+                "arrays": self.renderer.arrays, "partial": self.show_partial,
                 "total_steps": self.total_steps,
                 "genus": self.genus, "fps": self._fps_shown, "pick_mode": self.pick_mode,
                 "selection": selection_python(self.selection, self.renderer.arrays)
