@@ -35,14 +35,13 @@ def measure_lines(selection: Selection, arrays: MeshArrays | None) -> list[str]:
 
 
 def _dense(table: np.ndarray, ids: Sequence[int]) -> list[int]:
-    """Dense indices of the ``ids`` that ``table`` (an id array) holds, in pick order."""
+    """Dense indices of the ``ids`` that ``table`` (an id array) holds, in pick order
+    (one pass over the table: it may hold millions of ids, and picks are few)."""
     if not ids:
         return []
-    order = np.argsort(table, kind="stable")
-    wanted = np.asarray(ids, dtype=np.int64)
-    at = np.minimum(np.searchsorted(table[order], wanted), len(table) - 1)
-    found = table[order][at] == wanted
-    return [int(i) for i in order[at][found]]
+    found = np.flatnonzero(np.isin(table, np.asarray(ids, dtype=np.int64)))
+    at = {int(table[i]): int(i) for i in found}
+    return [at[i] for i in ids if i in at]
 
 
 def _num(value: float) -> str:
