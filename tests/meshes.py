@@ -106,6 +106,22 @@ def assert_refused_quietly(mesh: Mesh, call: Callable[[Mesh], object], message: 
         assert_refused(mesh, call, message)
 
 
+
+def assert_scales(make: Callable[[], Mesh], op: Callable[[Mesh, float], object],
+                  scale: float = 1e100, rtol: float = 1e-9) -> None:
+    """``op(mesh, s)`` on ``make()`` scaled by ``scale`` (with ``s = scale``: its
+    lengths scale too) gives the result on the unit mesh (``s = 1``) scaled, with
+    no warning on the way (raw products of huge coordinates overflow)."""
+    small, big = make(), make()
+    big.set_positions(big.vertex_ids(), big.positions_view() * scale)
+    op(small, 1.0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        op(big, scale)
+    assert big.counts() == small.counts()
+    np.testing.assert_allclose(big.positions_view() / scale, small.positions_view(),
+                               rtol=rtol, atol=1e-12)
+
 def same_up_to_ids(mesh: Mesh) -> tuple[Any, ...]:
     """The dense arrays without the id counters (ids of live elements kept)."""
     return snapshot(mesh)[:-1]

@@ -2,7 +2,10 @@
 
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
+import pytest
 
 from livemod.dlfl import (
     Mesh,
@@ -12,7 +15,9 @@ from livemod.dlfl import (
     face_centroids,
     face_normals,
     face_size_histogram,
+    from_polygons,
     genus,
+    mesh_arrays,
     num_components,
     summarize,
     vertex_normals,
@@ -97,3 +102,51 @@ def test_histogram_and_summary():
     m = cube()
     m.create_vertex()
     assert summarize(m).point_spheres == 1 and summarize(m).component_genera == [0, 0]
+
+
+def _scaled_cube(scale: float) -> Mesh:
+    mesh = cube()
+    mesh.set_positions(mesh.vertex_ids(), mesh.positions_view() * scale)
+    return mesh
+
+
+@pytest.mark.parametrize("scale", [1e150, 1e-150, 1e300, 1e-300, 3.0 ** 200])
+def test_normals_do_not_depend_on_the_scale_of_the_mesh(scale):
+    # cross products of raw coordinates overflowed (or underflowed) past ~1e77
+    # and the normals came out zero
+    unit = mesh_arrays(cube())
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        big = mesh_arrays(_scaled_cube(scale))
+        got = (face_normals(big), corner_normals(big), vertex_normals(big))
+        polygon = polygon_normal(big.positions[big.corner_vertex[:4]])
+    for g, want in zip(got, (face_normals(unit), corner_normals(unit), vertex_normals(unit)),
+                       strict=True):
+        np.testing.assert_allclose(g, want, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(polygon, face_normals(unit)[0], rtol=0, atol=1e-12)
+
+
+@pytest.mark.parametrize("scale", [1e150, 1e-150])
+def test_face_areas_scale_with_the_square_of_the_mesh(scale):
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        areas = face_areas(_scaled_cube(scale))
+    np.testing.assert_allclose(areas / scale / scale, np.ones(6), rtol=1e-12)
+
+
+def test_face_areas_beyond_the_float_range_are_inf_without_a_warning():
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        areas = face_areas(_scaled_cube(1e200))
+    assert np.isinf(areas).all()
+
+
+@pytest.mark.parametrize("offset", [1e12, 1e15])
+def test_a_small_face_far_from_the_origin_keeps_its_normal_and_area(offset):
+    # Newell's sum of p_i x p_{i+1} cancelled there: a wrong area, a flipped normal
+    square = np.array([[0.0, 0.0, 0.0], [1, 0, 0], [1, 1, 0], [0, 1, 0]]) + offset
+    mesh = from_polygons(square, [[0, 1, 2, 3]])
+    np.testing.assert_allclose(face_areas(mesh), [1.0, 1.0], rtol=1e-12)
+    np.testing.assert_array_equal(face_normals(mesh)[0], [0.0, 0.0, 1.0])
+    np.testing.assert_array_equal(corner_normals(mesh)[:4], [[0.0, 0.0, 1.0]] * 4)
+    np.testing.assert_array_equal(polygon_normal(square), [0.0, 0.0, 1.0])

@@ -18,7 +18,7 @@ from livemod.dlfl.geometry import (
     split_valence2_vertices,
 )
 from livemod.dlfl.shapes import cube, spherical_cube, torus
-from tests.meshes import assert_refused, snapshot
+from tests.meshes import assert_refused, assert_scales, snapshot
 from tests.meshes import cube as unit_cube
 
 
@@ -163,3 +163,17 @@ def test_cleanup_winged_vertices_keeps_a_vertex_whose_faces_are_2gons():
     assert cleanup_winged_vertices(m) == 1  # then the other two sit on two 2-gons
     validate(m)
     assert m.counts() == (2, 2, 2)
+
+
+def _diagonal_bumped_cube():
+    m = bumped_cube()
+    c = m.face_corners(2)  # a flat face (vertex 0 is the bumped one): a removable diagonal
+    m.insert_edge(c[0], c[2])
+    return m
+
+
+@pytest.mark.parametrize("op", [lambda m, s: mesh_smooth(m, 3),
+                                lambda m, s: planarize(m, 20), lambda m, s: edge_cleanup(m)])
+def test_a_huge_mesh_smooths_and_flattens_like_the_unit_one(op):
+    # the face normals of raw products overflowed past ~1e77 and came out zero
+    assert_scales(_diagonal_bumped_cube, op)

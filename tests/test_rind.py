@@ -10,7 +10,7 @@ from livemod.dlfl.arrays import mesh_arrays
 from livemod.dlfl.rind import crust, crust_offsets, rind
 from livemod.dlfl.selection import faces_by_size
 from livemod.dlfl.shapes import cube, icosahedron, soccer_ball, torus
-from tests.meshes import assert_refused_quietly, point_sphere, snapshot
+from tests.meshes import assert_refused_quietly, assert_scales, point_sphere, snapshot
 
 # TopMod's cube.obj faces: 0 top (+y), 1 +x, 2 -z, 3 -x, 4 +z, 5 bottom (-y)
 TOP, BOTTOM, PLUS_X = 0, 5, 1
@@ -249,15 +249,21 @@ def test_a_thickness_that_overflows_is_refused():
     (lambda m: crust(m, 1e308), r"thickness 1e\+308 would move vertex 0 to \[-?inf"),
     (lambda m: rind(m, [0], 1e308), r"thickness 1e\+308 would move vertex 0 to \[-?inf"),
     (lambda m: rind(m, [0], 1e308, uniform=False), "too large to check for faces turning over"),
-    (lambda m: crust(m, 1e300), "too large to check for faces turning over"),
+    # a unit cube's copy pushed 1e300 inward comes out inside out, and says so
+    (lambda m: crust(m, 1e300), "thickness 1e\\+300 would invert the crust"),
 ])
 def test_a_thickness_that_overflows_prints_no_numpy_warning(call, message):
     assert_refused_quietly(cube(), call, message)
 
 
 def test_a_crust_too_large_to_check_says_so_not_that_it_turns_over():
-    # the checks' products of four coordinates overflowed past 1e77 and read as a flip
+    # the edge products that tell a copy pushed through overflow past ~1e154
     m = cube()
-    m.set_positions(m.vertex_ids(), m.positions_view() * 1e80)
+    m.set_positions(m.vertex_ids(), m.positions_view() * 1e160)
     with pytest.raises(DLFLError, match="too large to check for faces turning over"):
-        crust(m, 1e79)
+        crust(m, 1e159)
+
+
+def test_a_crust_of_a_huge_mesh_is_the_scaled_crust_of_the_unit_one():
+    # the face-area check once squared raw Newell sums, which overflowed past 1e77
+    assert_scales(cube, lambda m, s: crust(m, 0.1 * s), rtol=1e-12)

@@ -13,6 +13,7 @@ from livemod.dlfl import Mesh, mesh_arrays, validate
 from livemod.dlfl.io.obj import read_obj
 from livemod.dlfl.shapes import cube, grid
 from livemod.dlfl.subdivision import subdivide
+from tests.meshes import assert_scales
 
 OBJS = Path(__file__).resolve().parents[2] / "shared" / "data" / "topmod-objs"
 
@@ -339,3 +340,19 @@ def test_catmull_clark_rule_on_the_torus():
     if not axis_is_z:
         rotation = rotation[[0, 2, 1]][:, [0, 2, 1]]
     assert same_points(pos @ rotation.T, pos)
+
+
+@pytest.mark.parametrize(("scheme", "options"), [
+    ("checker", {}), ("dual-checkerboard", {}), ("double-stellate", {"curve": 0.2}),
+])
+def test_a_huge_mesh_subdivides_like_the_scaled_unit_one(scheme, options):
+    # the schemes' face normals and corner tests took raw cross products, which
+    # overflowed past ~1e77: concave corners and normals came out wrong
+    def made():
+        mesh = cube()
+        mesh.set_position(0, tuple(0.8 * mesh.position(0)))  # one concave-ish corner
+        return mesh
+
+    def scheme_scaled(mesh, s):  # its options are lengths: they scale with the mesh
+        subdivide(mesh, scheme, **{k: v * s for k, v in options.items()})
+    assert_scales(made, scheme_scaled)

@@ -15,7 +15,13 @@ from livemod.dlfl.wireframe import (
     vertex_rings,
     wireframe,
 )
-from tests.meshes import assert_refused, assert_refused_quietly, point_sphere, snapshot
+from tests.meshes import (
+    assert_refused,
+    assert_refused_quietly,
+    assert_scales,
+    point_sphere,
+    snapshot,
+)
 
 
 def summary(mesh):
@@ -231,3 +237,10 @@ def test_columns_take_a_whole_float_count():
     m = cube()
     columns(m, 0.25, 4.0)
     assert summary(m)[0] == (96, 216, 112)
+
+
+@pytest.mark.parametrize("op", [lambda m, s: wireframe(m, 0.1 * s),
+                                lambda m, s: wireframe(m, 0.1 * s, width=0.05 * s)])
+def test_the_wireframe_of_a_huge_mesh_is_the_scaled_unit_one(op):
+    # its inner copy took cubes of raw edge vectors, which overflowed past ~1e100
+    assert_scales(icosahedron, op)

@@ -12,17 +12,14 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ._graph import component_labels
+from ._vectors import RingVectors, group_sum, newell, ring_vectors, true_lengths
+from ._vectors import unit as _normalize
 from .arrays import MeshArrays, mesh_arrays
 from .mesh import Mesh
 
 
 def _arrays(mesh: Mesh | MeshArrays) -> MeshArrays:
     return mesh if isinstance(mesh, MeshArrays) else mesh_arrays(mesh)
-
-
-def _normalize(vectors: np.ndarray) -> np.ndarray:
-    length = np.linalg.norm(vectors, axis=-1, keepdims=True)
-    return np.divide(vectors, length, out=np.zeros_like(vectors), where=length > 1e-300)
 
 
 def face_centroids(mesh: Mesh | MeshArrays) -> np.ndarray:
@@ -38,25 +35,23 @@ def corner_normals(mesh: Mesh | MeshArrays) -> np.ndarray:
 
     ``normalize((next - p) x (prev - p))``, flipped where it points against the
     face's Newell normal (a concave corner). Straight ("winged") corners and
-    point-spheres get zero.
+    point-spheres get zero. Any scale and offset of the mesh gives the same.
     """
     a = _arrays(mesh)
-    p = a.positions[a.corner_vertex]
-    cross = np.cross(a.positions[a.corner_vertex[a.corner_next]] - p,
-                     a.positions[a.corner_vertex[a.corner_prev]] - p)
-    newell = _newell(a)[a.corner_face]
-    flip = np.einsum("ij,ij->i", cross, newell) < 0
+    r = _ring_vectors(a)
+    ahead = r.along(a.corner_next)
+    cross = np.cross(ahead, r.along(a.corner_prev))
+    sums = newell(r, ahead, a.corner_face, len(a.face_ids))
+    flip = np.einsum("ij,ij->i", cross, np.take(sums, a.corner_face, axis=0)) < 0
     cross[flip] *= -1
     return _normalize(cross)
 
 
-def _newell(a: MeshArrays) -> np.ndarray:
-    """``(F, 3)`` unnormalised Newell normal (twice the vector area) of each face."""
-    p = a.positions[a.corner_vertex]
-    q = a.positions[a.corner_vertex[a.corner_next]]
-    out = np.zeros((len(a.face_ids), 3))
-    np.add.at(out, a.corner_face, np.cross(p, q))
-    return out
+def _ring_vectors(a: MeshArrays) -> RingVectors:
+    """The corner positions of ``a`` relative to their face's first corner, in range."""
+    p = np.take(a.positions, a.corner_vertex, axis=0)
+    origin = np.repeat(p[a.face_offsets[:-1]], a.face_sizes, axis=0)
+    return ring_vectors(p, origin, a.corner_face, len(a.face_ids))
 
 
 def face_normals(mesh: Mesh | MeshArrays) -> np.ndarray:
@@ -66,14 +61,19 @@ def face_normals(mesh: Mesh | MeshArrays) -> np.ndarray:
     normals point out. Degenerate faces (point-spheres, 2-gons) get zero.
     """
     a = _arrays(mesh)
-    sums = np.zeros((len(a.face_ids), 3))
-    np.add.at(sums, a.corner_face, corner_normals(a))
-    return _normalize(sums)
+    return _normalize(group_sum(a.corner_face, corner_normals(a), len(a.face_ids)))
 
 
 def face_areas(mesh: Mesh | MeshArrays) -> np.ndarray:
-    """``(F,)`` float64 vector area of each face (exact for planar faces)."""
-    return np.linalg.norm(_newell(_arrays(mesh)), axis=1) * 0.5
+    """``(F,)`` float64 vector area of each face (exact for planar faces).
+
+    Any offset and scale of the mesh works; an area beyond the float range
+    (about 1.8e308) is inf.
+    """
+    a = _arrays(mesh)
+    r = _ring_vectors(a)
+    sums = newell(r, r.along(a.corner_next), a.corner_face, len(a.face_ids))
+    return true_lengths(np.linalg.norm(sums, axis=1) * 0.5, r, 2)
 
 
 def vertex_normals(mesh: Mesh | MeshArrays) -> np.ndarray:
@@ -177,9 +177,12 @@ def polygon_normal(points: np.ndarray) -> np.ndarray:
     pts = np.asarray(points, dtype=np.float64)
     if len(pts) < 3:
         return np.zeros(3)
-    cross = np.cross(np.roll(pts, -1, axis=0) - pts, np.roll(pts, 1, axis=0) - pts)
-    newell = np.cross(pts, np.roll(pts, -1, axis=0)).sum(axis=0)
-    cross[cross @ newell < 0] *= -1
+    k = len(pts)
+    ring = np.zeros(k, dtype=np.int64)
+    r = ring_vectors(pts, np.broadcast_to(pts[0], pts.shape), ring, 1)
+    ahead = r.along(np.roll(np.arange(k), -1))
+    cross = np.cross(ahead, r.along(np.roll(np.arange(k), 1)))
+    cross[cross @ newell(r, ahead, ring, 1)[0] < 0] *= -1
     return _normalize(_normalize(cross).sum(axis=0))
 
 

@@ -19,6 +19,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ._checks import finite_number, id_list
+from ._vectors import newell, ring_vectors
 from .analysis import corner_normals
 from .arrays import MeshArrays, mesh_arrays
 from .build import from_corner_arrays
@@ -104,13 +105,15 @@ def _scaled_offsets(a: MeshArrays, m: _NormalMeans, thickness: float,
     return m.mean * factor[:, None]
 
 
-def _face_newell(positions: np.ndarray, a: MeshArrays) -> np.ndarray:
-    """``(F, 3)`` Newell vector (twice the vector area) of each face at ``positions``."""
-    p = positions[a.corner_vertex]
-    q = positions[a.corner_vertex[a.corner_next]]
-    out = np.zeros((len(a.face_ids), 3))
-    np.add.at(out, a.corner_face, np.cross(p, q))
-    return out
+def _face_newell(positions: np.ndarray, a: MeshArrays) -> tuple[np.ndarray, np.ndarray]:
+    """Newell vector (twice the vector area) of each face at ``positions`` ``(V, 3)``,
+    in range: ``(F, 3)`` vectors and ``(F,)`` int exponents ``e``, the true vector
+    being ``vector * 4**e``."""
+    p = np.take(positions, a.corner_vertex, axis=0)
+    r = ring_vectors(p, np.repeat(p[a.face_offsets[:-1]], a.face_sizes, axis=0),
+                     a.corner_face, len(a.face_ids))
+    sums = newell(r, r.along(a.corner_next), a.corner_face, len(a.face_ids))
+    return sums, np.zeros(len(sums), np.int64) if r.exponent is None else r.exponent
 
 
 def offset_shell(a: MeshArrays, thickness: float, uniform: bool) -> np.ndarray:
@@ -140,13 +143,13 @@ def check_not_inverted(a: MeshArrays, moved: np.ndarray, what: str) -> None:
 
     Raises:
         DLFLError: some face's vector area flips or vanishes, or the products
-            that tell overflow (coordinates beyond about 1e77).
+            that tell overflow (coordinates beyond about 1e154).
     """
     with np.errstate(over="ignore", invalid="ignore"):  # an overflow is refused below
         bad = _inverted_faces(a, moved)
     if bad is None:
         raise DLFLError(f"{what} gives a crust too large to check for faces turning over "
-                        "(its face areas overflow); use a smaller value or a smaller mesh")
+                        "(its edge products overflow); use a smaller value or a smaller mesh")
     if bad.any():
         f = int(a.face_ids[np.flatnonzero(bad)[0]])
         raise DLFLError(
@@ -157,24 +160,33 @@ def check_not_inverted(a: MeshArrays, moved: np.ndarray, what: str) -> None:
 
 def _inverted_faces(a: MeshArrays, moved: np.ndarray) -> np.ndarray | None:
     """``(F,)`` bool: faces whose moved copy collapses or turns over; None when
-    the products that tell overflow."""
-    before = _face_newell(a.positions, a)
-    after = _face_newell(moved, a)
-    scale = np.linalg.norm(before, axis=1)
-    dots = np.einsum("ij,ij->i", before, after)
-    bad = (scale > 1e-12) & (dots <= 1e-9 * scale * scale)
+    the products that tell overflow (coordinates beyond about 1e154)."""
+    bad = _flat_faces(a, moved)
     # a copy pushed through the middle keeps its face areas but reverses its sides
     ends = a.corner_vertex[a.edge_corners]
     side_before = a.positions[ends[:, 1]] - a.positions[ends[:, 0]]
     side_after = moved[ends[:, 1]] - moved[ends[:, 0]]
     length = np.einsum("ij,ij->i", side_before, side_before)
     sides = np.einsum("ij,ij->i", side_before, side_after)
-    if not (np.isfinite(dots).all() and np.isfinite(scale * scale).all()
-            and np.isfinite(sides).all() and np.isfinite(length).all()):
+    if not (np.isfinite(sides).all() and np.isfinite(length).all()):
         return None
     flipped = (sides <= 1e-9 * length) & (length > 1e-24)
     bad[a.corner_face[a.edge_corners[flipped, 0]]] = True
     return bad
+
+
+def _flat_faces(a: MeshArrays, moved: np.ndarray) -> np.ndarray:
+    """``(F,)`` bool: faces whose vector area at ``moved`` flips or vanishes
+    (``after . before <= 1e-9 |before|^2``), told in range at any scale."""
+    before, e_before = _face_newell(a.positions, a)
+    after, e_after = _face_newell(moved, a)
+    scale = np.linalg.norm(before, axis=1)
+    dots = np.einsum("ij,ij->i", before, after)
+    # both sides in the after-scale; beyond the float range means "far larger"
+    with np.errstate(over="ignore"):
+        limit = np.ldexp(1e-9 * scale * scale, 2 * (e_before - e_after))
+        area = np.ldexp(scale, 2 * e_before)
+    return (area > 1e-12) & (dots <= limit)
 
 
 def shell_arrays(

@@ -17,6 +17,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from ._checks import positive_number
+from ._vectors import in_range
+from ._vectors import unit as _unit
 from .analysis import face_centroids
 from .arrays import MeshArrays, mesh_arrays
 from .build import from_corner_arrays
@@ -143,11 +145,6 @@ def _finite_cut(a: MeshArrays, points: np.ndarray, thickness: float) -> np.ndarr
                     "(or width)")
 
 
-def _unit(vectors: np.ndarray) -> np.ndarray:
-    length = np.linalg.norm(vectors, axis=-1, keepdims=True)
-    return np.divide(vectors, length, out=np.zeros_like(vectors), where=length > 1e-300)
-
-
 def corner_cut_arrays(a: MeshArrays, thickness: float) -> CornerCut:
     """Modified corner cutting of ``a`` as corner arrays (see :class:`CornerCut`).
 
@@ -240,10 +237,11 @@ def wireframe_inner_positions(a: MeshArrays, front: np.ndarray, thickness: float
         raise DLFLError("every vertex must lie on a front face (run modified_corner_cut first)")
     p = a.positions
     v0 = p[cv[c0]]
-    e1, e2 = p[cv[nxt[c0]]] - v0, p[cv[prv[c0]]] - v0
-    e3 = p[cv[nxt[nxt[mate[c0]]]]] - v0
-    e4 = p[cv[prv[mate[prv[c0]]]]] - v0
+    e1, e2 = in_range(p[cv[nxt[c0]]] - v0), in_range(p[cv[prv[c0]]] - v0)
+    e3 = in_range(p[cv[nxt[nxt[mate[c0]]]]] - v0)
+    e4 = in_range(p[cv[prv[mate[prv[c0]]]]] - v0)
     # TopMod normalises n1..n4 on the way; only their directions reach the result
+    # (so each e may be scaled into range: raw, the cubes overflow beyond ~1e100)
     n2 = np.cross(np.cross(e1, e3), e1)
     n4 = np.cross(e2, np.cross(e2, e4))
     return v0 - thickness * _unit(np.cross(_unit(n2), _unit(n4)))
@@ -366,7 +364,7 @@ def _joint_lengths(a: MeshArrays, axis: np.ndarray, t: float) -> np.ndarray:
 def _ring_starts(a: MeshArrays, axis: np.ndarray) -> np.ndarray:
     """``(C, 3)`` unit direction of each ring's first point, perpendicular to ``axis``."""
     p, cv, nxt, prv = a.positions, a.corner_vertex, a.corner_next, a.corner_prev
-    raw = _unit(np.cross(p[cv[nxt]] - p[cv], p[cv[prv]] - p[cv]))
+    raw = _unit(np.cross(in_range(p[cv[nxt]] - p[cv]), in_range(p[cv[prv]] - p[cv])))
     raw[a.face_hole[a.corner_face]] = 0.0
     other = nxt[a.corner_mate]  # the same vertex's corner across the edge
     start = raw + raw[other]

@@ -26,6 +26,8 @@ import numpy as np
 
 from .._checks import finite_number
 from .._graph import cycle_layout, walk_rings
+from .._vectors import group_sum, newell, ring_vectors
+from .._vectors import unit as normalize
 from ..arrays import mesh_arrays
 from ..build import from_corner_arrays
 from ..errors import DLFLError
@@ -160,8 +162,9 @@ class Topology:
     def face_normals(self) -> np.ndarray:
         """``(F, 3)`` unit Newell normal of each face (zero when degenerate)."""
         p = rows(self.pos, self.cv)
-        q = rows(self.pos, self.cv[self.nxt])
-        return normalize(group_sum(self.face, np.cross(p, q), self.nf))
+        r = ring_vectors(p, np.repeat(p[self.offsets[:-1]], self.sizes, axis=0),
+                         self.face, self.nf)
+        return normalize(newell(r, r.along(self.nxt), self.face, self.nf))
 
     def vertex_rings(self) -> tuple[np.ndarray, np.ndarray]:
         """Corners grouped by vertex, counter-clockwise (``vprev`` order).
@@ -188,12 +191,6 @@ def rows(values: np.ndarray, index: np.ndarray) -> np.ndarray:
     return np.take(values, index, axis=0)
 
 
-def normalize(vectors: np.ndarray) -> np.ndarray:
-    """Unit vectors along the rows of ``vectors`` (zero rows stay zero)."""
-    length = np.linalg.norm(vectors, axis=-1, keepdims=True)
-    return np.divide(vectors, length, out=np.zeros_like(vectors), where=length > 1e-300)
-
-
 def vertex_sum(t: Topology, per_corner: np.ndarray) -> np.ndarray:
     """``(V, 3)`` sum of a ``(C, 3)`` per-corner quantity over each vertex's corners."""
     return group_sum(t.cv, per_corner, t.nv)
@@ -203,15 +200,6 @@ def vertex_mean(t: Topology, per_corner: np.ndarray) -> np.ndarray:
     """``(V, 3)`` mean of a ``(C, 3)`` per-corner quantity over each vertex's corners
     (zero at a vertex without corners)."""
     return vertex_sum(t, per_corner) / np.maximum(t.valence, 1)[:, None]
-
-
-def group_sum(index: np.ndarray, values: np.ndarray, count: int) -> np.ndarray:
-    """``(count, 3)``: ``values`` ``(N, 3)`` summed by ``index`` (bincount, not add.at:
-    several times faster)."""
-    out = np.empty((count, 3))
-    for axis in range(3):
-        out[:, axis] = np.bincount(index, weights=values[:, axis], minlength=count)
-    return out
 
 
 # above this many runs of equal ring size, ring_sums goes by bincount

@@ -15,6 +15,7 @@ from collections.abc import Iterable
 import numpy as np
 
 from .._checks import id_list
+from .._vectors import in_range
 from ..errors import DLFLError
 from ..mesh import Mesh
 from ._blocks import (
@@ -548,7 +549,7 @@ def double_stellate(mesh: Mesh, *, offset: float = 0.0, curve: float = 0.0,
     p, q, r = rows(t.pos, t.cv), rows(t.pos, t.cv[t.nxt]), rows(centres, t.face)
     second = (p + q + r) / 3.0
     if curve:
-        second += curve * normalize(np.cross(q - p, r - p))
+        second += curve * normalize(np.cross(in_range(q - p), in_range(r - p)))
     positions = np.concatenate([t.pos, centres, second])
     nc, c, prev, base = t.nc, np.arange(t.nc), t.prv, t.nv + t.nf
     a, b = t.edge_corners[:, 0], t.edge_corners[:, 1]

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from .._vectors import in_range, newell, ring_vectors
 from ..errors import DLFLError
 from ..mesh import Mesh
 from ._layout import (
@@ -27,7 +28,6 @@ from ._layout import (
     ring_weighted,
     rows,
     vertex_mean,
-    vertex_sum,
 )
 
 
@@ -65,7 +65,8 @@ def checker(mesh: Mesh, *, thickness: float = 0.33, max_faces: int | None = None
     check_budget(t, t.nf + 2 * t.nc, "checker", max_faces)
     p, prev_p, next_p = rows(t.pos, t.cv), rows(t.pos, t.cv[t.prv]), rows(t.pos, t.cv[t.nxt])
     inward = (prev_p - p) + (next_p - p)
-    concave = np.einsum("ij,ij->i", np.cross(next_p - p, prev_p - p),
+    # in range: only the sign of the product matters, and raw ones overflow
+    concave = np.einsum("ij,ij->i", np.cross(in_range(next_p - p), in_range(prev_p - p)),
                         t.face_normals()[t.face]) < 0
     inward[concave] *= -1
     inset = p + thickness * inward
@@ -113,10 +114,13 @@ def _checker_on_dual(t: Topology, thickness: float) -> tuple[np.ndarray, np.ndar
     p = rows(cen, t.face)
     prev_p = rows(cen, t.face[t.mate])
     next_p = rows(cen, t.face[t.mate[t.prv]])
-    # the dual's face normals: Newell sums over each vertex ring
-    normals = normalize(vertex_sum(t, np.cross(p, next_p)))
+    # the dual's face normals: Newell sums over each vertex ring (about the
+    # vertex, in range; its ring-next corner is mate(prev c))
+    r = ring_vectors(p, rows(t.pos, t.cv), t.cv, t.nv)
+    normals = normalize(newell(r, r.along(t.mate[t.prv]), t.cv, t.nv))
     inward = (prev_p - p) + (next_p - p)
-    concave = np.einsum("ij,ij->i", np.cross(next_p - p, prev_p - p), rows(normals, t.cv)) < 0
+    concave = np.einsum("ij,ij->i", np.cross(in_range(next_p - p), in_range(prev_p - p)),
+                        rows(normals, t.cv)) < 0
     inward[concave] *= -1
     return p + thickness * inward, p + thickness * (next_p - p)
 

@@ -1,0 +1,118 @@
+"""Vectors brought into range before their products are taken.
+
+Cross products of raw coordinates overflow beyond about 1e77 (a norm squares
+them once more) and underflow below about 1e-77, and a Newell sum of raw
+positions cancels far from the origin. The helpers here shift each ring to one
+of its own points and scale by powers of two, which is exact: inside the band
+nothing changes bit for bit, outside it directions (and areas, scaled back)
+come out right.
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numpy as np
+
+# coordinates within [1 / BAND, BAND]: products of four of them (a squared
+# cross product) stay normal floats, so arrays inside it are left as they are
+BAND = 2.0 ** 120
+
+
+def _inside(values: np.ndarray) -> bool:
+    """True when the largest magnitude in ``values`` lies in the band (or is 0)."""
+    if values.size == 0:
+        return True
+    top = max(float(values.max()), -float(values.min()))
+    return top == 0.0 or 1.0 / BAND <= top <= BAND
+
+
+def in_range(vectors: np.ndarray) -> np.ndarray:
+    """``vectors`` ``(N, 3)`` with each row scaled by a power of two to a largest
+    magnitude in [0.5, 1) when the array leaves the band, else ``vectors`` itself.
+
+    For directions only: a row keeps its direction and its unit vector.
+    """
+    if _inside(vectors):
+        return vectors
+    top = np.abs(vectors).max(axis=-1, keepdims=True)
+    return np.ldexp(vectors, -np.frexp(top)[1])
+
+
+def unit(vectors: np.ndarray) -> np.ndarray:
+    """``(N, 3)`` unit vectors along the rows of ``vectors`` (rows too short to have
+    a direction, below 1e-300 once in range, stay zero)."""
+    vectors = in_range(vectors)
+    length = np.linalg.norm(vectors, axis=-1, keepdims=True)
+    return np.divide(vectors, length, out=np.zeros_like(vectors), where=length > 1e-300)
+
+
+def group_sum(index: np.ndarray, values: np.ndarray, count: int) -> np.ndarray:
+    """``(count, 3)``: ``values`` ``(N, 3)`` summed by ``index`` ``(N,)``, in index
+    order (bincount, not add.at: several times faster, the same sums)."""
+    out = np.empty((count, 3))
+    for axis in range(3):
+        out[:, axis] = np.bincount(index, weights=values[:, axis], minlength=count)
+    return out
+
+
+class RingVectors(NamedTuple):
+    """Corner points of rings (faces) made ready for cross products.
+
+    Attributes:
+        points: ``(C, 3)`` the corner points, times 1/4 when scaled (so that a
+            difference of two cannot overflow), else the input itself.
+        rel: ``(C, 3)`` each point minus its ring's origin, times ``factor``.
+        factor: ``(C, 1)`` power of two per corner (its ring's), or None for 1.
+        exponent: ``(R,)`` int: the true ``rel`` of ring r is ``rel * 2**exponent[r]``;
+            None when 0.
+    """
+
+    points: np.ndarray
+    rel: np.ndarray
+    factor: np.ndarray | None
+    exponent: np.ndarray | None
+
+    def along(self, other: np.ndarray) -> np.ndarray:
+        """``(C, 3)`` the point of corner ``other[c]`` (same ring) minus that of
+        ``c``, scaled like ``rel``. ``other``: ``(C,)`` corner indices."""
+        d = np.take(self.points, other, axis=0) - self.points
+        return d if self.factor is None else d * self.factor
+
+
+def ring_vectors(points: np.ndarray, origin: np.ndarray, ring: np.ndarray,
+                 count: int) -> RingVectors:
+    """Shift ``(C, 3)`` corner ``points`` to their ring's ``origin`` ``(C, 3)`` (one
+    point per ring, repeated on its corners) and, when the coordinates leave the
+    band, scale each ring by a power of two. ``ring``: ``(C,)`` ring of each
+    corner, of ``count`` rings."""
+    if _inside(points) and _inside(origin):
+        rel = points - origin
+        if _inside(rel):
+            return RingVectors(points, rel, None, None)
+    points, rel = points * 0.25, origin * -0.25
+    rel += points
+    top = np.zeros(count)
+    np.maximum.at(top, ring, np.abs(rel).max(axis=1))
+    exponent = np.frexp(top)[1]
+    factor = np.ldexp(1.0, -exponent)[ring][:, None]
+    return RingVectors(points, rel * factor, factor, exponent + 2)
+
+
+def newell(r: RingVectors, edge: np.ndarray, ring: np.ndarray, count: int) -> np.ndarray:
+    """``(count, 3)`` Newell vector (twice the vector area) of each ring, in the
+    scale of ``r`` (times ``2**-exponent``). ``edge``: ``r.along(next corner)``.
+
+    ``sum (p_i - o) x (p_{i+1} - o)`` is the same for every origin ``o``, and
+    ``(p_i - o) x (p_{i+1} - p_i)`` equals its term.
+    """
+    return group_sum(ring, np.cross(r.rel, edge), count)
+
+
+def true_lengths(lengths: np.ndarray, r: RingVectors, power: int) -> np.ndarray:
+    """``(R,)`` ``lengths`` of per-ring quantities of degree ``power`` in ``r``'s
+    scale, scaled back; inf where the true value is beyond the float range."""
+    if r.exponent is None:
+        return lengths
+    with np.errstate(over="ignore"):  # documented: beyond the float range is inf
+        return np.ldexp(lengths, power * r.exponent)
