@@ -142,6 +142,33 @@ def test_e_shows_the_mesh_a_failed_run_left(tmp_path: Path) -> None:
         _wait(viewer, lambda v: v.result.status == "paused" and v.result.step_index == 0)
         assert viewer.renderer.arrays.counts == (8, 12, 6)
 
+
+def test_a_result_the_window_cannot_show_is_reported_and_the_old_mesh_stays(
+        tmp_path: Path, monkeypatch, capsys) -> None:
+    import livemod.viewer.renderer as renderer_module
+
+    script = tmp_path / "model.py"
+    script.write_text("load('cube')\n")
+    echo = io.StringIO()
+    with _opened(script, (160, 120), echo=echo) as viewer:
+        before, shown = viewer.capture(), viewer.renderer.arrays
+
+        def broken(*args, **kwargs):
+            raise RuntimeError("GL said no")
+        monkeypatch.setattr(renderer_module, "build_geometry", broken)
+        script.write_text("load('tetrahedron')\n")
+        viewer.session.reload()
+        _wait(viewer, lambda v: v.viewer_error is not None)
+        run_frames(viewer, 3)  # the window goes on drawing
+        assert "the viewer could not show run 2: RuntimeError: GL said no" in echo.getvalue()
+        assert "RuntimeError: GL said no" in _hud_text(viewer)
+        assert "Traceback" in capsys.readouterr().err
+        assert viewer.renderer.arrays is shown and np.array_equal(viewer.capture(), before)
+        monkeypatch.undo()
+        viewer.session.reload()  # the next result that can be shown clears it
+        _wait(viewer, _has_run(3))
+        assert viewer.viewer_error is None and viewer.renderer.arrays.counts == (4, 6, 4)
+
 def test_the_select_option_reaches_the_first_run(tmp_path: Path) -> None:
     script = tmp_path / "model.py"
     script.write_text(CUBE.format(scale=1.0))

@@ -53,6 +53,8 @@ def hud_lines(info: dict[str, Any]) -> list[tuple[str, int]]:
         shown = ("  - the failed run's mesh (E: last good)" if info.get("partial")
                  else "  (E: the failed run's mesh)")
     lines = [(Path(info["script"]).name, TEXT), (f"{state}{elapsed}{shown}", colour)]
+    if info.get("viewer_error"):
+        lines.append((info["viewer_error"], ERROR_TEXT))
     arrays = None if result is None else info.get("arrays", result.arrays)
     if arrays is not None:
         v, e, f = arrays.counts

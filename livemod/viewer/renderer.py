@@ -324,31 +324,31 @@ class Renderer:
         ``others``: the scene's other objects, drawn beside it in a muted colour;
         they hide what is behind them but are never picked or labelled.
         """
-        if self._mesh is not None:
-            self._mesh.release()
+        # built before the old one is released: a failed upload leaves the old drawn
+        self._mesh = self._replaced(self._mesh, arrays)
         self.arrays = arrays
-        self._mesh = None if arrays is None else _MeshGPU(self.ctx, self.programs,
-                                                          build_geometry(arrays))
         self.set_others(others)
         self.set_preview(preview)
         self.set_selection(self.selection)
 
     def set_others(self, others: MeshArrays | None) -> None:
         """Upload (or drop, with None) the other objects alone, keeping the mesh."""
-        if self._others is not None:
-            self._others.release()
+        self._others = self._replaced(self._others, others)
         self.others = others
-        self._others = None if others is None else _MeshGPU(self.ctx, self.programs,
-                                                            build_geometry(others))
 
     def set_preview(self, preview: MeshArrays | None) -> None:
         """Upload (or drop, with None) the patch-smoothed preview mesh."""
-        if self._preview is not None:
-            self._preview.release()
-        self._preview = None
+        self._preview = self._replaced(self._preview, preview)
         self.preview = preview
-        if preview is not None:
-            self._preview = _MeshGPU(self.ctx, self.programs, build_geometry(preview))
+
+    def _replaced(self, old: _MeshGPU | None, arrays: MeshArrays | None) -> _MeshGPU | None:
+        """The upload of ``arrays`` (None for none), with ``old`` released once it is
+        done; when the upload raises, ``old`` is kept as it was."""
+        new = None if arrays is None else _MeshGPU(self.ctx, self.programs,
+                                                   build_geometry(arrays))
+        if old is not None:
+            old.release()
+        return new
 
     def set_selection(self, selection: Selection) -> None:
         """Highlight ``selection`` (ids; ids missing from the mesh are ignored)."""

@@ -15,6 +15,7 @@ import queue
 import re
 import sys
 import time
+import traceback
 import warnings
 from collections import deque
 from collections.abc import Callable
@@ -143,6 +144,7 @@ class LiveViewer(mglw.WindowConfig):
         self.total_steps = 0
         self.objects = ObjectPanel()  # the object list (L) and the hidden objects' ids
         self.show_partial = False  # E: a failed run's own mesh instead of the last good one
+        self.viewer_error: str | None = None  # the last result the window failed to show
         self.timeline = Timeline()
         self._scrub: tuple[int | None, bool, float] = (None, False, 0.0)  # pending, dragging, when
         self.show_objects = False
@@ -184,9 +186,22 @@ class LiveViewer(mglw.WindowConfig):
             except queue.Empty:
                 break
         if latest is not None:
-            self._apply(latest)
+            try:
+                self._apply(latest)
+            except Exception as exc:  # a bug of the viewer's own: keep the window alive
+                self._viewer_failed(latest, exc)
+
+    def _viewer_failed(self, result: Any, exc: Exception) -> None:
+        """Say that ``result`` could not be shown (the HUD and the terminal, with the
+        traceback) and keep drawing what was shown before."""
+        self.viewer_error = f"the viewer could not show run {result.run_id}: " \
+                            f"{type(exc).__name__}: {exc}"
+        self.waiting = False
+        self._echo(self.viewer_error)
+        traceback.print_exception(exc, file=sys.stderr)
 
     def _apply(self, result: Any) -> None:
+        self.viewer_error = None
         first_error = result.error is not None and (
             self.result is None or self.result.error != result.error)
         self._sync_objects(result)
@@ -316,7 +331,8 @@ class LiveViewer(mglw.WindowConfig):
         key = (id(self.result), self.waiting, self.total_steps, self.genus, self._fps_shown,
                self.pick_mode, self.selection, self.style, self.camera.ortho, self.playing,
                self.show_hud, self.show_help, size, self.params.state(),
-               self.objects.state(), self._objects_shown(), self.show_partial)
+               self.objects.state(), self._objects_shown(), self.show_partial,
+               self.viewer_error)
         if self._overlay_cache is None or self._overlay_cache[0] != key:
             parts = [hud_quads(self._hud_info(), size)]
             if self._panel_shown():  # the parameters' tooltip is drawn over the list
@@ -337,6 +353,7 @@ class LiveViewer(mglw.WindowConfig):
     def _hud_info(self) -> dict[str, Any]:
         return {"script": self.script, "result": self.result, "waiting": self.waiting,
                 "arrays": self.renderer.arrays, "partial": self.show_partial,
+                "viewer_error": self.viewer_error,
                 "total_steps": self.total_steps,
                 "genus": self.genus, "fps": self._fps_shown, "pick_mode": self.pick_mode,
                 "selection": selection_python(self.selection, self.renderer.arrays)
