@@ -111,6 +111,12 @@ def _add_render(subparsers: Any) -> None:
                         help="frames per second of a GIF, WebP or MP4 (default: 25)")
     render.add_argument("--elevation", type=parse_elevation, default=25.0, metavar="DEG",
                         help="camera height above the horizon in degrees")
+    _add_render_style(render)
+    render.set_defaults(handler=_render)
+
+
+def _add_render_style(render: argparse.ArgumentParser) -> None:
+    """``livemod render``'s options of what is drawn and how."""
     render.add_argument("--preview", action="store_true", help="draw the patch preview")
     render.add_argument("--labels", nargs="?", const="faces,edges,vertices", default="",
                         help="id labels: comma list of faces, edges, vertices (all if bare)")
@@ -132,7 +138,6 @@ def _add_render(subparsers: Any) -> None:
                         help="MSAA samples; default 4 for one frame, 0 for a turntable "
                         "(edges are anti-aliased in the shader; MSAA triples the cost "
                         "on software GL)")
-    render.set_defaults(handler=_render)
 
 
 def _view(args: argparse.Namespace) -> int:

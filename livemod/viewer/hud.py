@@ -45,6 +45,26 @@ def step_line(result: Any, total: int = 0) -> str:
 def hud_lines(info: dict[str, Any]) -> list[tuple[str, int]]:
     """The HUD's ``(text, colour kind)`` lines from the window's ``info`` dict."""
     result = info["result"]
+    lines = [(Path(info["script"]).name, TEXT), _state_line(info)]
+    if info.get("viewer_error"):
+        lines.append((info["viewer_error"], ERROR_TEXT))
+    lines += _count_lines(info)
+    lines.append((step_line(result, info.get("total_steps", 0)), TEXT))
+    style = info["style"]
+    view = "ortho" if info["ortho"] else "persp"
+    mode = "preview" if style.preview else "mesh"
+    cut = f"  section {section_text(style.section)}" if style.section is not None else ""
+    lines.append((f"pick {info['pick_mode']}  {view}  {mode}{cut}"
+                  f"{'  playing' if info['playing'] else ''}", LABEL_DIM))
+    lines += [(line, LABEL_DIM) for line in info["selection"][:4]]
+    lines += [(line, TEXT) for line in info.get("measures", ())[:4]]
+    lines.append((f"{info['fps']:.0f} fps   H: help", LABEL_DIM))
+    return lines
+
+
+def _state_line(info: dict[str, Any]) -> tuple[str, int]:
+    """The run state and time, and after an error which mesh is shown (``E``)."""
+    result = info["result"]
     state = run_state(result, info["waiting"])
     colour = ERROR_TEXT if "error" in state else (WARN_TEXT if state != "ok" else OK_TEXT)
     elapsed = f"  {result.elapsed:.3f} s" if result is not None else ""
@@ -52,9 +72,12 @@ def hud_lines(info: dict[str, Any]) -> list[tuple[str, int]]:
     if result is not None and result.error is not None and getattr(result, "partial", None) is not None:
         shown = ("  - the failed run's mesh (E: last good)" if info.get("partial")
                  else "  (E: the failed run's mesh)")
-    lines = [(Path(info["script"]).name, TEXT), (f"{state}{elapsed}{shown}", colour)]
-    if info.get("viewer_error"):
-        lines.append((info["viewer_error"], ERROR_TEXT))
+    return f"{state}{elapsed}{shown}", colour
+
+
+def _count_lines(info: dict[str, Any]) -> list[tuple[str, int]]:
+    """V/E/F and genus of the mesh shown, then those of the other objects drawn."""
+    result, lines = info["result"], []
     arrays = None if result is None else info.get("arrays", result.arrays)
     if arrays is not None:
         v, e, f = arrays.counts
@@ -68,16 +91,6 @@ def hud_lines(info: dict[str, Any]) -> list[tuple[str, int]]:
         counts = "" if others is None else (
             f": V {others.counts[0]}  F {others.counts[2] - int(others.face_hole.sum())}")
         lines.append((f"other objects{': ' + note if note else ''}{counts}", LABEL_DIM))
-    lines.append((step_line(result, info.get("total_steps", 0)), TEXT))
-    style = info["style"]
-    view = "ortho" if info["ortho"] else "persp"
-    mode = "preview" if style.preview else "mesh"
-    cut = f"  section {section_text(style.section)}" if style.section is not None else ""
-    lines.append((f"pick {info['pick_mode']}  {view}  {mode}{cut}"
-                  f"{'  playing' if info['playing'] else ''}", LABEL_DIM))
-    lines += [(line, LABEL_DIM) for line in info["selection"][:4]]
-    lines += [(line, TEXT) for line in info.get("measures", ())[:4]]
-    lines.append((f"{info['fps']:.0f} fps   H: help", LABEL_DIM))
     return lines
 
 
