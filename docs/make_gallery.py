@@ -2,9 +2,11 @@
 
     python docs/make_gallery.py
 
-writes docs/images/tower.gif (a turntable of scripts/tower.py) and
-docs/images/gallery.png (one thumbnail per script in scripts/, labelled), through
-the same headless renderer as ``livemod render``.
+writes docs/images/tower.gif (a turntable of scripts/tower.py),
+docs/images/gallery.png (one thumbnail per script in scripts/, labelled) and
+docs/images/section.png (scripts/rind_soccerball.py whole and cut open at x = 0, as
+``livemod render --section x`` draws it), through the same headless renderer as
+``livemod render``.
 """
 
 from __future__ import annotations
@@ -19,6 +21,7 @@ from livemod.dlfl import mesh_arrays
 from livemod.runner.execute import execute
 from livemod.runner.results import snapshot_others
 from livemod.viewer.headless import render_arrays
+from livemod.viewer.renderer import Style
 
 ROOT = Path(__file__).resolve().parents[1]
 IMAGES = ROOT / "docs" / "images"
@@ -54,6 +57,21 @@ def gallery(scripts: list[Path]) -> Image.Image:
     return sheet
 
 
+def section_pair(path: Path, folder: Path) -> Image.Image:
+    """``path``'s result whole (left) and cut open by a section at x = 0 (right)."""
+    arrays, others = script_arrays(path)
+    pictures = []
+    for name, style in (("whole", Style()), ("cut", Style(section=(0, 0.0)))):
+        out = folder / f"{name}.png"
+        render_arrays(arrays, str(out), size=(360, 300), elevation=20.0, style=style,
+                      others=others)
+        pictures.append(Image.open(out).convert("RGB"))
+    sheet = Image.new("RGB", (720, 300))
+    for i, picture in enumerate(pictures):
+        sheet.paste(picture, (360 * i, 0))
+    return sheet
+
+
 def main() -> int:
     IMAGES.mkdir(parents=True, exist_ok=True)
     scripts = sorted((ROOT / "scripts").glob("*.py"))
@@ -61,7 +79,11 @@ def main() -> int:
     arrays, others = script_arrays(ROOT / "scripts" / "tower.py")
     render_arrays(arrays, str(IMAGES / "tower.gif"), size=(360, 360), turntable=36,
                   elevation=20.0, samples=0, others=others)
-    print(f"wrote {IMAGES / 'gallery.png'} and {IMAGES / 'tower.gif'}", file=sys.stderr)
+    with tempfile.TemporaryDirectory() as tmp:
+        section_pair(ROOT / "scripts" / "rind_soccerball.py", Path(tmp)).save(
+            IMAGES / "section.png", optimize=True)
+    print(f"wrote {IMAGES / 'gallery.png'}, {IMAGES / 'tower.gif'} and "
+          f"{IMAGES / 'section.png'}", file=sys.stderr)
     return 0
 
 
