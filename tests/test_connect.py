@@ -24,8 +24,9 @@ from livemod.dlfl.connect import (
 from livemod.dlfl.extrusion import extrude
 from livemod.dlfl.shapes import cube
 from livemod.dlfl.subdivision import subdivide
-from tests.meshes import assert_refused, euler_ok, snapshot
+from tests.meshes import assert_refused, assert_refused_quietly, assert_scales, euler_ok, snapshot
 from tests.meshes import cube as unit_cube
+from tests.meshes import torus as unit_torus
 
 TOP, RIGHT, BOTTOM = 0, 1, 5  # cube faces: 0 = (v0..v3) at y = 1, 1 at x = 1, 5 at y = -1
 
@@ -384,3 +385,55 @@ def test_a_hub_that_overflows_is_refused_before_lapack_sees_it(capfd):
     assert_refused(cube(), lambda m: multi_face_handle(m, [TOP, BOTTOM, 2], 1e308, 1.0),
                    "a convex hull needs finite points whose differences are finite")
     assert "DLASCL" not in capfd.readouterr().err  # LAPACK's own complaint about NaN
+
+
+# -- huge meshes and overflowing parameters (tests.meshes.cube: face 1 is the top,
+# face 3 the +x side, faces 0, 2 and 4 the bottom, -y and +y)
+
+def huge_cube(scale: float = 1e300) -> Mesh:
+    m = unit_cube()
+    m.set_positions(m.vertex_ids(), m.positions_view() * scale)
+    return m
+
+
+@pytest.mark.parametrize("op", [
+    lambda m, s: connect_faces_closest(m, 0, 1, 2),
+    lambda m, s: hermite_handle(m, m.face_corner(1), m.face_corner(3), 4, 2 * s, 2 * s,
+                                pinch=0.5),
+    lambda m, s: multi_face_handle(m, [0, 2, 4], 0.8, 0.5 * s),
+    lambda m, s: multi_face_handle(m, [0, 2, 4], 1.0, 0.5 * s),
+], ids=["closest", "hermite", "multi-scaled", "multi"])
+@pytest.mark.parametrize("scale", [1e154, 1e300])
+def test_handles_of_a_huge_mesh_are_the_scaled_unit_ones(op, scale):
+    # squared distances, norms and hull cross products of raw coordinates overflowed:
+    # warnings, then a refusal ("no hull face facing it") or NaN rings
+    assert_scales(unit_cube, op, scale)
+
+
+def test_a_hermite_handle_between_torus_faces_a_huge_mesh_apart():
+    def op(m: Mesh, s: float) -> None:
+        hermite_handle(m, m.face_corner(2), m.face_corner(9), 4, 2 * s, 2 * s)
+
+    assert_scales(unit_torus, op, 1e200)
+
+
+@pytest.mark.parametrize(("call", "message"), [
+    (lambda m: connect_faces(m, m.corner_at(0, 0), m.corner_at(1, 4), 3, pinch=1e10),
+     r"the handle would put a point at \[-inf.*overflow"),
+    (lambda m: hermite_handle(m, m.face_corner(1), m.face_corner(3), 4, 2.0, 2.0, pinch=1e10),
+     r"the handle would put a point at \[nan.*overflow"),
+], ids=["connect_faces", "hermite_handle"])
+def test_a_pinch_that_overflows_is_refused_quietly_by_name(call, message):
+    # the mesh refused the ring itself ("expected a position ... of three finite
+    # numbers"), after numpy's warnings
+    assert_refused_quietly(huge_cube(), call, message)
+
+
+@pytest.mark.parametrize(("scale", "extrude", "message"), [
+    (1e307, 1.75e308, "a convex hull needs finite points"),
+    (1.0, 1e300, "not all in one plane"),
+])
+def test_a_hub_that_overflows_is_refused_quietly(scale, extrude, message):
+    # the pushed points' coincidence test and the hull's products overflowed
+    assert_refused_quietly(huge_cube(scale),
+                           lambda m: multi_face_handle(m, [0, 2, 4], 1.0, extrude), message)

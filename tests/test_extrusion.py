@@ -25,6 +25,7 @@ from tests.meshes import (
     CUBE_POSITIONS,
     assert_refused,
     assert_refused_quietly,
+    assert_scales,
     euler_ok,
     snapshot,
 )
@@ -226,6 +227,42 @@ def test_small_polygon_normal_matches_the_analysis_rule():
         for _ in range(20):
             pts = rng.normal(size=(k, 3))
             assert np.allclose(small_polygon_normal(pts.tolist()), polygon_normal(pts), atol=1e-12)
+
+
+@pytest.mark.parametrize("scale", [1e-200, 1e200, 1e300])
+def test_small_polygon_normal_does_not_depend_on_the_scale(scale):
+    # the raw corner cross products underflowed (zero normal: "degenerate")
+    # or overflowed (NaN) beyond about 1e+-77
+    rng = np.random.default_rng(5)
+    from livemod.dlfl.analysis import polygon_normal
+
+    for k in (3, 4, 7):
+        pts = rng.normal(size=(k, 3))
+        np.testing.assert_allclose(small_polygon_normal((pts * scale).tolist()),
+                                   polygon_normal(pts), atol=1e-12)
+
+
+def test_small_polygon_normal_far_from_the_origin_keeps_its_sign():
+    # the Newell vector of raw coordinates 1e9 away cancelled to noise, and the
+    # corners were flipped to agree with it: about one square in four came out
+    # pointing down
+    rng = np.random.default_rng(0)
+    for _ in range(40):
+        square = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], float)
+        square[:, :2] += rng.normal(size=(4, 2)) * 0.01
+        far = square + [1e9, -1e9, 0.7e9]
+        np.testing.assert_allclose(small_polygon_normal(far.tolist()), [0, 0, 1], atol=1e-6)
+
+
+@pytest.mark.parametrize("scale", [1e-200, 1e200])
+@pytest.mark.parametrize("kind", ["cubical", "doo-sabin", "octa", "dodeca", "stellate"])
+def test_extruding_a_huge_or_tiny_mesh_is_the_scaled_unit_extrusion(kind, scale):
+    # such faces were refused as degenerate, or their normal was NaN
+    def op(m: Mesh, s: float) -> None:
+        run = extrude_fan if KINDS[kind].fan is not None else extrude
+        run(m, TOP, kind, 0.5 * s)
+
+    assert_scales(cube, op, scale)
 
 
 def test_kind_names_resolve_exactly_then_by_prefix():

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 import pytest
 
@@ -244,3 +246,36 @@ def test_columns_take_a_whole_float_count():
 def test_the_wireframe_of_a_huge_mesh_is_the_scaled_unit_one(op):
     # its inner copy took cubes of raw edge vectors, which overflowed past ~1e100
     assert_scales(icosahedron, op)
+
+
+@pytest.mark.parametrize("make", [cube, tetrahedron])
+def test_columns_of_a_thickness_that_overflows_are_refused_quietly(make):
+    # the joints' hulls squared inf - inf, then said "the points are all coplanar"
+    assert_refused_quietly(make(), lambda m: columns(m, 1e308, 4), "the thickness overflows")
+
+
+@pytest.mark.parametrize("scale", [1e154, 1e300])
+def test_the_columns_of_a_huge_mesh_are_the_scaled_unit_ones(scale):
+    # the joints' hull took cross products of raw coordinates ("coplanar" past ~1e154);
+    # not assert_scales: rings sit 1e-4 (absolute, as TopMod) beyond their clearance
+    small, big = torus(), torus()
+    big.set_positions(big.vertex_ids(), big.positions_view() * scale)
+    columns(small, 0.1, 4)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        columns(big, 0.1 * scale, 4)
+    assert summary(big) == summary(small)
+    np.testing.assert_allclose(big.positions_view() / scale, small.positions_view(), atol=2e-4)
+
+
+def cycles(faces: list[list[int]]) -> list[tuple[int, ...]]:
+    """Faces as cycles that start at their smallest index, sorted."""
+    return sorted(tuple(f[f.index(min(f)):] + f[:f.index(min(f))]) for f in faces)
+
+
+@pytest.mark.parametrize("scale", [1e-200, 1e200])
+def test_convex_hull_faces_do_not_depend_on_the_scale(scale):
+    points = mesh_arrays(cube()).positions
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert cycles(convex_hull_faces(points * scale)) == cycles(convex_hull_faces(points))

@@ -19,7 +19,7 @@ import numpy as np
 BAND = 2.0 ** 120
 
 
-def _inside(values: np.ndarray) -> bool:
+def in_band(values: np.ndarray) -> bool:
     """True when the largest magnitude in ``values`` lies in the band (or is 0)."""
     if values.size == 0:
         return True
@@ -33,10 +33,49 @@ def in_range(vectors: np.ndarray) -> np.ndarray:
 
     For directions only: a row keeps its direction and its unit vector.
     """
-    if _inside(vectors):
+    if in_band(vectors):
         return vectors
     top = np.abs(vectors).max(axis=-1, keepdims=True)
     return np.ldexp(vectors, -np.frexp(top)[1])
+
+
+def together_in_range(values: np.ndarray) -> np.ndarray:
+    """``values`` (any shape) times one power of two that brings its largest
+    magnitude into [0.5, 1) when it leaves the band, else ``values`` itself.
+
+    Unlike :func:`in_range` every row gets the same factor, so lengths of
+    different rows still compare; NaN, inf and all-zero arrays are left as they are.
+    """
+    if in_band(values):
+        return values
+    top = float(np.abs(values).max())
+    if not 0.0 < top < np.inf:
+        return values
+    return np.ldexp(values, -np.frexp(top)[1])
+
+
+def shifted_in_range(points: np.ndarray) -> np.ndarray:
+    """``(k, 3)`` ``points`` themselves when they and their differences lie in the
+    band, else their differences from the first point times one power of two
+    (:func:`together_in_range`), for shapes that depend only on where the points
+    lie relative to each other (hulls, planes): the same shape, with no product
+    of huge or tiny coordinates. A difference beyond the float range comes out
+    inf, for the caller to refuse (it must check the result is finite)."""
+    with np.errstate(over="ignore", invalid="ignore"):  # the caller refuses inf / NaN
+        rel = points - points[:1]
+    return points if in_band(points) and in_band(rel) else together_in_range(rel)
+
+
+def lengths(vectors: np.ndarray) -> np.ndarray:
+    """``(N,)`` Euclidean lengths of the rows of ``vectors`` ``(N, 3)``, each row
+    measured scaled by a power of two when the array leaves the band (inf only
+    where the true length is beyond the float range)."""
+    if in_band(vectors):
+        return np.linalg.norm(vectors, axis=-1)
+    exponent = np.frexp(np.abs(vectors).max(axis=-1))[1]
+    norm = np.linalg.norm(np.ldexp(vectors, -exponent[..., None]), axis=-1)
+    with np.errstate(over="ignore"):  # documented: beyond the float range is inf
+        return np.ldexp(norm, exponent)
 
 
 def unit(vectors: np.ndarray) -> np.ndarray:
@@ -86,9 +125,9 @@ def ring_vectors(points: np.ndarray, origin: np.ndarray, ring: np.ndarray,
     point per ring, repeated on its corners) and, when the coordinates leave the
     band, scale each ring by a power of two. ``ring``: ``(C,)`` ring of each
     corner, of ``count`` rings."""
-    if _inside(points) and _inside(origin):
+    if in_band(points) and in_band(origin):
         rel = points - origin
-        if _inside(rel):
+        if in_band(rel):
             return RingVectors(points, rel, None, None)
     points, rel = points * 0.25, origin * -0.25
     rel += points

@@ -25,6 +25,7 @@ from collections.abc import Callable
 import numpy as np
 
 from ._checks import finite_number, id_list, whole_count
+from ._vectors import in_band, lengths, shifted_in_range, together_in_range, unit
 from .analysis import face_points, polygon_normal
 from .errors import DLFLError
 from .mesh import Mesh
@@ -38,6 +39,7 @@ __all__ = [
 
 # ``connector(mesh, corner1, corner2)`` joins the faces of two corners
 Connector = Callable[[Mesh, int, int], object]
+_Four = tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]
 
 
 # -- checks ----------------------------------------------------------------------
@@ -182,9 +184,34 @@ def _positions(mesh: Mesh, vertices: list[int]) -> np.ndarray:
     return mesh._v.arrays["position"][[slot(v) for v in vertices]]
 
 
+def _centroid(points: np.ndarray) -> np.ndarray:
+    """``(3,)`` mean of ``(n, 3)`` points; outside the band the points are divided
+    before they are summed, so that the sum of huge points cannot overflow."""
+    if in_band(points):
+        return points.mean(axis=0)
+    return (points / len(points)).sum(axis=0)
+
+
 def _scale_about_centroid(points: np.ndarray, factor: float) -> np.ndarray:
-    centre = points.mean(axis=0)
-    return centre + (points - centre) * factor
+    """``(n, 3)`` ``points`` scaled by ``factor`` about their centroid; a point
+    beyond the float range comes out inf or NaN, for the caller to refuse."""
+    centre = _centroid(points)
+    with np.errstate(over="ignore", invalid="ignore"):  # refused by the caller
+        return centre + (points - centre) * factor
+
+
+def _check_finite_rings(rings: list[np.ndarray]) -> None:
+    """Refuse ``(n, 3)`` rings with a point beyond the float range, before any
+    of them reaches the mesh (whose own complaint would not say why).
+
+    Raises:
+        DLFLError: a coordinate is inf or NaN.
+    """
+    for ring in rings:
+        if not np.isfinite(ring).all():
+            bad = ring[~np.isfinite(ring).all(axis=1)][0].tolist()
+            raise DLFLError(f"the handle would put a point at {bad}: its numbers overflow; "
+                            "use a smaller pinch, bubble or weight")
 
 
 def _chain_rings(
@@ -196,6 +223,7 @@ def _chain_rings(
     At most ``max_connections`` joins are made (-1: all), as TopMod does, so a
     limited chain leaves loose two-sided rings.
     """
+    _check_finite_rings(rings)
     limit = len(rings) + 1 if max_connections < 0 else max_connections
     made, current = 0, corner1
     for points in rings:
@@ -252,7 +280,8 @@ def connect_faces(
     rings = []
     for i in range(1, segments):
         t = i / segments
-        ring = start + (end - start) * t
+        with np.errstate(over="ignore", invalid="ignore"):  # refused by _chain_rings
+            ring = start + (end - start) * t
         rings.append(_scale_about_centroid(ring, _pinch_scale(t, pinch, pinch_center, bubble)))
     _chain_rings(mesh, corner1, corner2, rings, _quad_band, max_connections)
     return _new_edges(mesh, first)
@@ -270,7 +299,10 @@ def closest_corners(mesh: Mesh, face1: int, face2: int) -> tuple[int, int]:
         if not mesh.has_face(face):
             raise DLFLError(f"face {face} does not exist (deleted or never made)")
     p1, p2 = face_points(mesh, face1), face_points(mesh, face2)
-    dist = np.linalg.norm(p1[:, None, :] - p2[None, :, :], axis=2)
+    # quarters cannot overflow in a difference, and one common power of two
+    # keeps the squares in range without changing which pair is closest
+    diff = together_in_range(p1[:, None, :] * 0.25 - p2[None, :, :] * 0.25)
+    dist = np.linalg.norm(diff, axis=2)
     i, j = np.unravel_index(int(np.argmin(dist)), dist.shape)
     return mesh.face_corners(face1)[int(i)], mesh.face_corners(face2)[int(j)]
 
@@ -312,7 +344,8 @@ def connect_corners(
     if segments > 1:
         _same_size(mesh, face1, face2, "connect_corners")
     start, end = _end_rings(mesh, corner1, corner2)
-    rings = [start + (end - start) * (i / segments) for i in range(1, segments)]
+    with np.errstate(over="ignore", invalid="ignore"):  # refused by _chain_rings
+        rings = [start + (end - start) * (i / segments) for i in range(1, segments)]
     _chain_rings(mesh, corner1, corner2, rings, _triangle_band, max_connections)
     return _new_edges(mesh, first)
 
@@ -431,34 +464,48 @@ def hermite_rings(
         DLFLError: the centroids coincide, or a normal points exactly against the
             centroid-to-centroid axis (TopMod refused these too).
     """
-    c1, c2 = start.mean(axis=0), end.mean(axis=0)
+    c1, c2 = _centroid(start), _centroid(end)
     axis = _handle_axis(c1, c2, n1, n2)
     q1 = (start - c1) @ rotation_between(n1, axis).T
     q2 = (end - c2) @ rotation_between(n2, axis).T
-    x = (q1[0] + q1[-1]) / np.linalg.norm(q1[0] + q1[-1])
+    x = unit((q1[0] + q1[-1])[None])[0]  # unit(): its norm squares huge rings
     y = np.cross(axis, x)
     a1, d1 = resolve_polygon(q1, x, y)
     a2, d2 = resolve_polygon(q2, x, y)
     if a2[0] - a1[0] > np.pi:
         a2 = a2 - 2 * np.pi
     a2 = a2 + 2 * np.pi * twists
-    rings = []
-    for i in range(1, segments):
-        t = i / segments
+    return [_hermite_ring(i / segments, (a1, d1, a2, d2), (x, y, axis),
+                          (c1, weight1 * n1, c2, weight2 * n2), pinch)
+            for i in range(1, segments)]
+
+
+def _hermite_ring(t: float, polar: _Four, frame: tuple[np.ndarray, np.ndarray, np.ndarray],
+                  curve: _Four, pinch: tuple[float, float, float]) -> np.ndarray:
+    """``(n, 3)`` the ring of :func:`hermite_rings` at ``t``. ``polar``: the ``(n,)``
+    angles and distances of both ends; ``frame``: ``(3,)`` x, y and axis;
+    ``curve``: ``(3,)`` the Hermite ends and tangents. Points beyond the float
+    range come out inf or NaN, which :func:`_chain_rings` refuses."""
+    a1, d1, a2, d2 = polar
+    x, y, axis = frame
+    with np.errstate(over="ignore", invalid="ignore"):  # refused by _chain_rings
         angle, dist = a1 + (a2 - a1) * t, d1 + (d2 - d1) * t
         flat = dist[:, None] * (np.cos(angle)[:, None] * x + np.sin(angle)[:, None] * y)
         flat = (flat - flat.mean(axis=0)) * _pinch_scale(t, *pinch)
-        point, tangent = hermite_point(c1, weight1 * n1, c2, weight2 * n2, t)
-        turn = rotation_between(axis, tangent / np.linalg.norm(tangent))
-        rings.append(point + flat @ turn.T)
-    return rings
+        p1, m1, p2, m2 = curve
+        point, tangent = hermite_point(p1, m1, p2, m2, t)
+        turn = rotation_between(axis, unit(tangent[None])[0])
+        return point + flat @ turn.T
 
 
 def _handle_axis(c1: np.ndarray, c2: np.ndarray, n1: np.ndarray, n2: np.ndarray) -> np.ndarray:
-    axis = c2 - c1
-    if np.linalg.norm(axis) < 1e-12:
+    """``(3,)`` unit vector from centroid ``c1`` to ``c2``, checked against the
+    ``(3,)`` unit normals (see :func:`hermite_rings` for what is refused)."""
+    # quarters: the difference of two huge centroids cannot overflow
+    axis = c2 * 0.25 - c1 * 0.25
+    if float(lengths(axis[None])[0]) < 0.25e-12:
         raise DLFLError("a Hermite handle needs faces with different centroids")
-    axis = axis / np.linalg.norm(axis)
+    axis = unit(axis[None])[0]
     if min(float(n1 @ axis), float(n2 @ axis)) < -1.0 + 1e-9:
         raise DLFLError("a face normal points exactly against the handle's axis; "
                         "TopMod cannot build this handle either (use a bezier handle)")
@@ -470,11 +517,11 @@ def resolve_polygon(points: np.ndarray, x: np.ndarray, y: np.ndarray
     """``(n,)`` angles and ``(n,)`` distances of ``(n, 3)`` points about their centroid,
     against the axes ``x`` and ``y`` (TopMod's ``resolvePolygon``): the first angle
     in ``[0, 2π)``, each next one the first value at or above the previous one."""
-    rel = points - points.mean(axis=0)
+    rel = points - _centroid(points)
     raw = np.arctan2(rel @ y, rel @ x)
     steps = np.mod(np.diff(raw), 2 * np.pi)
     angles = np.mod(raw[0], 2 * np.pi) + np.concatenate([[0.0], np.cumsum(steps)])
-    return angles, np.linalg.norm(rel, axis=1)
+    return angles, lengths(rel)  # lengths(): a norm would square huge distances
 
 
 def hermite_handle(
@@ -521,8 +568,9 @@ def bezier_rings(start: np.ndarray, end: np.ndarray, n1: np.ndarray, n2: np.ndar
     Returns:
         ``segments - 1`` arrays of shape ``(n, 3)``.
     """
-    return [hermite_point(start, weight1 * n1, end, weight2 * n2, i / segments)[0]
-            for i in range(1, segments)]
+    with np.errstate(over="ignore", invalid="ignore"):  # refused by _chain_rings
+        return [hermite_point(start, weight1 * n1, end, weight2 * n2, i / segments)[0]
+                for i in range(1, segments)]
 
 
 def bezier_handle(
@@ -563,21 +611,15 @@ def convex_hull_polygons(points: np.ndarray, tolerance: float = 1e-9) -> list[li
         DLFLError: fewer than 4 points, a point that is not finite, or all of
             them in one plane.
     """
-    pts = np.asarray(points, dtype=np.float64)
-    # before LAPACK: it prints its own complaint about NaN to stderr
-    with np.errstate(over="ignore", invalid="ignore"):
-        finite = bool(np.isfinite(pts).all() and np.isfinite(pts[1:] - pts[0]).all())
-    if not finite:
-        raise DLFLError("a convex hull needs finite points whose differences are finite; "
-                        "these overflow (a smaller extrude or scale keeps them in range)")
+    pts = _hull_points(points)
     if len(pts) < 4 or np.linalg.matrix_rank(pts[1:] - pts[0], tol=1e-9) < 3:
         raise DLFLError("a convex hull needs at least 4 points not all in one plane")
     eps = tolerance * max(1.0, float(np.abs(pts).max()))
     i, j, k = _triples(len(pts))
     normals = np.cross(pts[j] - pts[i], pts[k] - pts[i])
-    lengths = np.linalg.norm(normals, axis=1)
-    keep = lengths > eps
-    normals = normals[keep] / lengths[keep, None]
+    size = np.linalg.norm(normals, axis=1)
+    keep = size > eps
+    normals = normals[keep] / size[keep, None]
     heights = (pts @ normals.T) - np.einsum("ij,ij->i", pts[i[keep]], normals)
     faces: dict[frozenset[int], np.ndarray] = {}
     for col, normal in enumerate(normals):
@@ -587,6 +629,24 @@ def convex_hull_polygons(points: np.ndarray, tolerance: float = 1e-9) -> list[li
                 on_plane = frozenset(np.flatnonzero(np.abs(h) <= eps).tolist())
                 faces.setdefault(on_plane, sign * normal)
     return [_convex_polygon(pts, sorted(idx), normal, eps) for idx, normal in faces.items()]
+
+
+def _hull_points(points: np.ndarray) -> np.ndarray:
+    """``(k, 3)`` ``points`` as :func:`convex_hull_polygons` works on them: as they
+    are when they and their differences lie in the band, else moved to the first
+    point and scaled by a power of two, which leaves the hull's faces as they
+    were and keeps the cross products of huge or tiny points in range.
+
+    Raises:
+        DLFLError: a point, or a difference of two, is not finite.
+    """
+    pts = np.asarray(points, dtype=np.float64)
+    framed = shifted_in_range(pts)
+    # before LAPACK: it prints its own complaint about NaN to stderr
+    if not (np.isfinite(pts).all() and np.isfinite(framed).all()):
+        raise DLFLError("a convex hull needs finite points whose differences are finite; "
+                        "these overflow (a smaller extrude or scale keeps them in range)")
+    return framed
 
 
 def _triples(n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -725,7 +785,9 @@ def multi_face_handle(mesh: Mesh, faces: list[int], scale: float = 1.0,
     normals = [polygon_normal(face_points(mesh, f)) for f in faces]
     points = _hub_points(mesh, faces, normals, extrude, scale)
     polygons = convex_hull_polygons(points)
-    if float(normals[0] @ (face_points(mesh, faces[0]).mean(axis=0) - points.mean(axis=0))) > 0:
+    # quarters: the difference of two huge centroids cannot overflow
+    outward = _centroid(face_points(mesh, faces[0])) * 0.25 - _centroid(points) * 0.25
+    if float(normals[0] @ outward) > 0:
         polygons = [poly[::-1] for poly in polygons]
     _check_closed_hull(polygons, len(points))
     partner = _facing_polygons(points, polygons, faces, normals)
@@ -773,17 +835,33 @@ def _check_handle_faces(mesh: Mesh, faces: list[int]) -> None:
 
 def _hub_points(mesh: Mesh, faces: list[int], normals: list[np.ndarray], extrude: float,
                 scale: float) -> np.ndarray:
-    """``(k, 3)`` the pushed face points, coincident ones (within 1e-2) kept once."""
+    """``(k, 3)`` the pushed face points, coincident ones (within 1e-2) kept once;
+    points beyond the float range come out inf, which :func:`convex_hull_polygons`
+    refuses."""
     kept: list[np.ndarray] = []
     for f, normal in zip(faces, normals, strict=True):
-        for p in face_points(mesh, f) + extrude * normal:
-            if all(float((p - q) @ (p - q)) >= 1e-4 for q in kept):
+        with np.errstate(over="ignore"):  # refused by convex_hull_polygons
+            pushed = face_points(mesh, f) + extrude * normal
+        for p in pushed:
+            if all(_apart(p, q) for q in kept):
                 kept.append(p)
     points = np.array(kept)
     factor = abs(scale)
     if factor > 1e-12 and abs(factor - 1.0) > 1e-12:
         points = _scale_about_centroid(points, factor)
     return points
+
+
+def _apart(p: np.ndarray, q: np.ndarray) -> bool:
+    """Whether the ``(3,)`` points are at least 1e-2 apart (TopMod's merge distance),
+    squaring only differences too small to overflow. A difference that overflows
+    counts as apart (inf - inf, NaN, does not: such points are refused anyway)."""
+    with np.errstate(over="ignore", invalid="ignore"):  # inf - inf: NaN, not apart
+        d = p - q
+    top = float(np.abs(d).max())
+    if not top < 1e-2:  # apart, or NaN somewhere
+        return top >= 1e-2
+    return float(d @ d) >= 1e-4
 
 
 def _facing_polygons(points: np.ndarray, polygons: list[list[int]], faces: list[int],

@@ -106,31 +106,86 @@ def _finite(points: np.ndarray) -> np.ndarray:
     return points
 
 
+_NO_NORMAL = (0.0, 0.0, 0.0)
+# corner cross products whose length lies strictly between these are measured
+# exactly: below 1e-150 the squares fall among the subnormals (or to zero), and
+# a square beyond the float range makes the length inf
+_EXACT = (1e-150, math.inf)
+
+
 def small_polygon_normal(points: list[list[float]]) -> tuple[float, float, float]:
     """:func:`livemod.dlfl.analysis.polygon_normal` in plain Python floats.
 
     The same rule (normalised sum of the unit corner normals, each flipped to
     agree with the Newell normal), several times faster than numpy on the
     handful of points of one face, which is what chained extrusions need.
+    ``points``: ``k`` lists ``[x, y, z]``. When a corner's cross product is too
+    large or too small to measure (a huge or tiny face, or a straight corner),
+    the face is measured again from its first point scaled by a power of two,
+    as :mod:`._vectors` does, so that its scale never decides its normal.
     """
+    if len(points) < 3:
+        return _NO_NORMAL
+    normal = _corner_normal(points, _EXACT)
+    if normal is None:
+        scaled = _rescaled(points)
+        normal = _NO_NORMAL if scaled is None else _corner_normal(scaled, (1e-300, math.inf))
+    return _NO_NORMAL if normal is None else normal
+
+
+def _rescaled(points: list[list[float]]) -> list[list[float]] | None:
+    """The ``k`` differences ``points[i] - points[0]`` (of a quarter of the points
+    when the full ones overflow) times the power of two that brings their largest
+    magnitude into [0.5, 1); None when they are all zero or not finite."""
+    ox, oy, oz = points[0]
+    rel = [[x - ox, y - oy, z - oz] for x, y, z in points]
+    top = max(max(map(max, rel)), -min(map(min, rel)))
+    if top == math.inf:  # coordinates near the float limit, of opposite signs
+        q = 0.25
+        rel = [[q * x - q * ox, q * y - q * oy, q * z - q * oz] for x, y, z in points]
+        top = max(max(map(max, rel)), -min(map(min, rel)))
+    if not 0.0 < top < math.inf:  # NaN fails too
+        return None
+    f = math.ldexp(1.0, -math.frexp(top)[1])
+    return [[x * f, y * f, z * f] for x, y, z in rel]
+
+
+def _corner_normal(points: list[list[float]], keep: tuple[float, float]
+                   ) -> tuple[float, float, float] | None:
+    """The rule of :func:`small_polygon_normal` on ``k`` points ``[x, y, z]``,
+    counting the corners whose cross product's length lies strictly inside
+    ``keep``; None when another corner's does (with the first bound above 1e-300,
+    which is where it would be left out)."""
     k = len(points)
-    if k < 3:
-        return (0.0, 0.0, 0.0)
+    ox, oy, oz = points[0]
     newell = [0.0, 0.0, 0.0]
     corners = []
     for i in range(k):
         px, py, pz = points[i]
         nx, ny, nz = points[(i + 1) % k]
         qx, qy, qz = points[i - 1]
-        newell[0] += py * nz - pz * ny
-        newell[1] += pz * nx - px * nz
-        newell[2] += px * ny - py * nx
         ax, ay, az, bx, by, bz = nx - px, ny - py, nz - pz, qx - px, qy - py, qz - pz
+        # sum (p_i - p_0) x (p_{i+1} - p_i): the Newell vector without the
+        # cancellation of raw coordinates far from the origin
+        rx, ry, rz = px - ox, py - oy, pz - oz
+        newell[0] += ry * az - rz * ay
+        newell[1] += rz * ax - rx * az
+        newell[2] += rx * ay - ry * ax
         corners.append((ay * bz - az * by, az * bx - ax * bz, ax * by - ay * bx))
+    return _unit_sum(corners, newell, keep)
+
+
+def _unit_sum(corners: list[tuple[float, float, float]], newell: list[float],
+              keep: tuple[float, float]) -> tuple[float, float, float] | None:
+    """The normalised sum of the unit ``corners`` (cross products), each flipped
+    to agree with ``newell``; see :func:`_corner_normal` for ``keep``."""
+    low, high = keep
     total = [0.0, 0.0, 0.0]
     for cx, cy, cz in corners:
         length = math.sqrt(cx * cx + cy * cy + cz * cz)
-        if length <= 1e-300:
+        if not low < length < high:  # NaN fails too
+            if low > 1e-300:
+                return None
             continue
         sign = -1.0 if cx * newell[0] + cy * newell[1] + cz * newell[2] < 0 else 1.0
         total[0] += sign * cx / length
@@ -138,7 +193,7 @@ def small_polygon_normal(points: list[list[float]]) -> tuple[float, float, float
         total[2] += sign * cz / length
     length = math.sqrt(total[0] ** 2 + total[1] ** 2 + total[2] ** 2)
     if length <= 1e-300:
-        return (0.0, 0.0, 0.0)
+        return _NO_NORMAL
     return (total[0] / length, total[1] / length, total[2] / length)
 
 

@@ -17,7 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ._checks import positive_number
-from ._vectors import in_range
+from ._vectors import in_range, shifted_in_range, together_in_range
 from ._vectors import unit as _unit
 from .analysis import face_centroids
 from .arrays import MeshArrays, mesh_arrays
@@ -316,6 +316,9 @@ def _split_valence2(work: Mesh, a: MeshArrays, front: np.ndarray) -> np.ndarray:
 # -- columns ------------------------------------------------------------------
 
 
+_HALF_MAX = float(np.finfo(np.float64).max) / 2
+
+
 def column_rings(a: MeshArrays, thickness: float, segments: int) -> np.ndarray:
     """``(C, segments, 3)`` the ring of points around each corner's edge, at its vertex.
 
@@ -329,7 +332,8 @@ def column_rings(a: MeshArrays, thickness: float, segments: int) -> np.ndarray:
     a QUIRK livemod fixes).
 
     Raises:
-        DLFLError: two edges at a vertex point the same way.
+        DLFLError: two edges at a vertex point the same way, or a point of a
+            ring is beyond the float range (the thickness overflows).
     """
     p, cv = a.positions, a.corner_vertex
     axis = _unit(p[cv[a.corner_next]] - p[cv])
@@ -337,9 +341,15 @@ def column_rings(a: MeshArrays, thickness: float, segments: int) -> np.ndarray:
     u = _ring_starts(a, axis)
     w = np.cross(axis, u)
     angle = 2 * np.pi * np.arange(segments) / segments
-    centre = p[cv] + length[:, None] * axis
-    return centre[:, None, :] + thickness * (np.cos(angle)[None, :, None] * u[:, None, :]
-                                             + np.sin(angle)[None, :, None] * w[:, None, :])
+    with np.errstate(over="ignore", invalid="ignore"):  # refused just below
+        centre = p[cv] + length[:, None] * axis
+        rings = centre[:, None, :] + thickness * (np.cos(angle)[None, :, None] * u[:, None, :]
+                                                  + np.sin(angle)[None, :, None] * w[:, None, :])
+    # beyond half the float range the differences the joints' hulls take overflow
+    if not np.abs(rings).max(initial=0.0) <= _HALF_MAX:  # NaN fails too
+        raise DLFLError(f"the thickness overflows: columns of thickness {thickness!r} would "
+                        "put points beyond the float range; use a smaller thickness")
+    return rings
 
 
 def _joint_lengths(a: MeshArrays, axis: np.ndarray, t: float) -> np.ndarray:
@@ -356,7 +366,8 @@ def _joint_lengths(a: MeshArrays, axis: np.ndarray, t: float) -> np.ndarray:
     half = np.arccos(cos) / 2
     if (pair & (half < 1e-9)).any():
         raise DLFLError("two edges at one vertex point the same way; no column fits")
-    with np.errstate(divide="ignore", invalid="ignore"):
+    # a huge t overflows to inf here, which column_rings refuses
+    with np.errstate(divide="ignore", over="ignore", invalid="ignore"):
         need = t / np.tan(np.where(pair, half, 1.0)) + np.abs(cos) * t + 0.001 * t
     return np.where(pair, need, 0.0).max(axis=(1, 2), initial=0.0)
 
@@ -386,11 +397,17 @@ def convex_hull_faces(points: np.ndarray, tolerance: float = 1e-9) -> list[list[
     every point on the plane, ordered counter-clockwise seen from outside.
 
     Raises:
-        DLFLError: fewer than four points, or all of them coplanar.
+        DLFLError: fewer than four points, a difference of two beyond the float
+            range, or all of them coplanar.
     """
     n = len(points)
     if n < 4:
         raise DLFLError(f"a convex hull needs at least four points, got {n}")
+    # huge or tiny points moved and scaled: the hull's faces stay as they were
+    points = shifted_in_range(np.asarray(points, dtype=np.float64))
+    if not np.isfinite(points).all():
+        raise DLFLError("a convex hull needs points whose differences are finite; these "
+                        "overflow")
     scale = float(np.ptp(points, axis=0).max()) or 1.0
     i, j, k = _triple_indices(n)
     normals = np.cross(points[j] - points[i], points[k] - points[i])
@@ -505,7 +522,10 @@ def _tubes(points: np.ndarray, starts: np.ndarray, segments: int) -> np.ndarray:
     # cost[e, k] = sum_j |A[j] - B[(k - j) % s]|
     pa = points[a0 + j[None, None, :]]
     pb = points[b0 + (k[None, :, None] - j[None, None, :]) % segments]
-    best = np.linalg.norm(pa - pb, axis=-1).sum(axis=-1).argmin(axis=1)[:, None]
+    # quarters cannot overflow in a difference, and one common power of two
+    # keeps the norms in range without changing which rotation is closest
+    gap = together_in_range(pa * 0.25 - pb * 0.25)
+    best = np.linalg.norm(gap, axis=-1).sum(axis=-1).argmin(axis=1)[:, None]
     a, b = starts[:, :1], starts[:, 1:]
     quads = np.stack([a + j, a + (j + 1) % segments, b + (best - j - 1) % segments,
                       b + (best - j) % segments], axis=-1)
