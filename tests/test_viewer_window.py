@@ -564,7 +564,12 @@ def _glfw_probe(script_path: str) -> None:
         script.write_text(CUBE.format(scale=1.6))   # saved in the editor: no key pressed
         _wait(viewer, _has_run(2))
         assert viewer.result.arrays.positions[:, 0].max() == pytest.approx(1.6)
-        assert not np.array_equal(viewer.capture(), first)
+        second = viewer.capture()
+        assert not np.array_equal(second, first)
+        for key in ("C", "H", "L"):  # the section and the overlays on a real GLX context
+            viewer.handle_key(key)
+        assert run_frames(viewer, 3) == 3
+        assert not np.array_equal(viewer.capture(), second)  # cut open
         viewer.handle_key("Q")
         assert run_frames(viewer, 5) == 0
     finally:
