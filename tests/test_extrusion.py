@@ -242,6 +242,12 @@ def test_small_polygon_normal_does_not_depend_on_the_scale(scale):
                                    polygon_normal(pts), atol=1e-12)
 
 
+
+def test_small_polygon_normal_of_a_subnormal_face():
+    # the rescale's factor 2**1064 alone overflowed (OverflowError: math range error)
+    square = [[0.0, 0.0, 0.0], [5e-320, 0.0, 0.0], [5e-320, 5e-320, 0.0], [0.0, 5e-320, 0.0]]
+    assert small_polygon_normal(square) == (0.0, 0.0, 1.0)
+
 def test_small_polygon_normal_far_from_the_origin_keeps_its_sign():
     # the Newell vector of raw coordinates 1e9 away cancelled to noise, and the
     # corners were flipped to agree with it: about one square in four came out

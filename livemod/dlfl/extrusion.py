@@ -146,8 +146,9 @@ def _rescaled(points: list[list[float]]) -> list[list[float]] | None:
         top = max(max(map(max, rel)), -min(map(min, rel)))
     if not 0.0 < top < math.inf:  # NaN fails too
         return None
-    f = math.ldexp(1.0, -math.frexp(top)[1])
-    return [[x * f, y * f, z * f] for x, y, z in rel]
+    e = -math.frexp(top)[1]
+    # per coordinate: for a subnormal top, 2**-e alone is beyond the float range
+    return [[math.ldexp(x, e), math.ldexp(y, e), math.ldexp(z, e)] for x, y, z in rel]
 
 
 def _corner_normal(points: list[list[float]], keep: tuple[float, float]
