@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 import pytest
 
@@ -18,7 +20,7 @@ from livemod.dlfl.geometry import (
     split_valence2_vertices,
 )
 from livemod.dlfl.shapes import cube, spherical_cube, torus
-from tests.meshes import assert_refused, assert_scales, snapshot
+from tests.meshes import assert_refused, assert_refused_quietly, assert_scales, snapshot
 from tests.meshes import cube as unit_cube
 
 
@@ -146,15 +148,68 @@ def test_arguments_of_the_wrong_type_are_refused(call, message):
     assert_refused(cube(), call, message)
 
 
-def test_split_valence2_vertices_that_overflow_change_nothing():
+def _far_cube_with_valence2_vertices() -> Mesh:
+    """A unit cube with a valence-2 vertex on edge 0-1, then one on edge 2-6 moved
+    to (1.79e308, 1.79e308, 0): its new neighbour's push overflows."""
     m = unit_cube()
-    m.set_positions(m.vertex_ids(), m.positions_view() * 1e300)
+    for ends in ((0, 1), (2, 6)):
+        edge = next(e for e in m.edge_ids().tolist() if set(m.edge_vertices(e)) == set(ends))
+        new = m.subdivide_edge(edge)[0]
+    m.set_position(new, (1.79e308, 1.79e308, 0.0))
+    return m
+
+
+def test_split_valence2_vertices_that_overflow_change_nothing():
+    # the first split succeeds, the second overflows
+    assert_refused_quietly(_far_cube_with_valence2_vertices(),
+                           lambda m: split_valence2_vertices(m, -1.0),
+                           r"splitting valence-2 vertex \d+ by .* would put .* not finite")
+
+
+def _cube_with_valence2_vertices() -> Mesh:
+    m = unit_cube()
     for edge in m.edge_ids()[:2].tolist():
-        m.subdivide_edge(edge)  # two valence-2 vertices: the first split succeeds
-    before = snapshot(m)
-    with pytest.raises(DLFLError, match="finite"):
-        split_valence2_vertices(m, -1.0)
-    assert snapshot(m) == before
+        m.subdivide_edge(edge)
+    return m
+
+
+@pytest.mark.parametrize("scale", [1e160, 1e300])
+def test_a_huge_mesh_splits_valence2_vertices_like_the_unit_one(scale):
+    # the edge lengths and directions were measured raw: inf, then a NaN position
+    # ("expected a position ... of three finite numbers") for a result that exists
+    assert_scales(_cube_with_valence2_vertices, lambda m, s: split_valence2_vertices(m, -1.0),
+                  scale)
+
+
+@pytest.mark.parametrize("scale", [1e160, 1.5e308])
+def test_a_huge_mesh_spheralizes_like_the_unit_one(scale):
+    # raw norms overflowed to inf (every vertex went to the origin); the centroid's
+    # sum overflowed near the float maximum
+    small, big = unit_cube(), unit_cube()
+    big.set_positions(big.vertex_ids(), big.positions_view() * scale)
+    spheralize(small)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        spheralize(big)
+    np.testing.assert_allclose(big.positions_view(), small.positions_view(), atol=1e-15)
+
+
+def test_a_mesh_near_the_float_maximum_smooths_like_the_unit_one():
+    # the face centroids' sums overflowed: "positions must be finite numbers"
+    assert_scales(_diagonal_bumped_cube, lambda m, s: mesh_smooth(m, 2), 1e308)
+
+
+def _spread_cube() -> Mesh:
+    """A unit cube moved 1 along x but for vertex 0, moved to x = -1."""
+    m = unit_cube()
+    m.set_positions(m.vertex_ids(), m.positions_view() + [1.0, 0.0, 0.0])
+    m.set_position(0, (-1.0, 0.0, 0.0))
+    return m
+
+
+def test_a_mesh_spread_over_the_float_range_smooths_like_the_unit_one():
+    # vertex 0's move (about 2.1e308) overflowed: refused, though it ends in range
+    assert_scales(_spread_cube, lambda m, s: mesh_smooth(m, 2), 8e307)
 
 
 def test_cleanup_winged_vertices_keeps_a_vertex_whose_faces_are_2gons():

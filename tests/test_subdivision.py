@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -12,7 +13,14 @@ from livemod.dlfl.analysis import face_size_histogram, genus, num_components
 from livemod.dlfl.io.obj import read_obj
 from livemod.dlfl.shapes import cube, grid, torus
 from livemod.dlfl.subdivision import SCHEMES, settings, subdivide, subdivide_faces
-from tests.meshes import euler_ok, path_face, snapshot, two_cubes
+from tests.meshes import (
+    assert_refused_quietly,
+    assert_scales,
+    euler_ok,
+    path_face,
+    snapshot,
+    two_cubes,
+)
 from tests.meshes import torus as small_torus
 
 OBJS = Path(__file__).resolve().parents[2] / "shared" / "data" / "topmod-objs"
@@ -540,9 +548,12 @@ def test_doo_sabin_bc_equals_its_two_steps(index):
         assert np.array_equal(getattr(a, field), getattr(b, field)), field
 
 
+# (a corner cut of 1e160 and a fractal of a 1e300 torus were here: both were
+# refused through t * t and L * L overflowing, and both are fine meshes; the
+# corner cut's own overflow is in test_wireframe)
 @pytest.mark.parametrize(("scheme", "options", "size"), [
     ("root4", {"weight": 1e308}, 1.0), ("loop-style", {"length": 1e308}, 1.0),
-    ("modified-corner-cut", {"thickness": 1e160}, 1.0), ("fractal", {}, 1e300),
+    ("fractal", {"offset": 1e308}, 1.0),
 ])
 def test_options_that_overflow_are_refused_before_the_mesh_changes(scheme, options, size):
     m = small_torus()
@@ -552,6 +563,49 @@ def test_options_that_overflow_are_refused_before_the_mesh_changes(scheme, optio
     with pytest.raises(DLFLError, match="not finite: the arguments are too large|numbers overflow"):
         subdivide(m, scheme, **options)
     assert snapshot(m) == before
+
+
+_OVERFLOWING_OPTIONS = [
+    ("root4", {"weight": 1e308}), ("root4", {"twist": 1e308}), ("loop-style", {"length": 1e308}),
+    ("fractal", {"offset": 1e308}), ("pentagon", {"offset": 1e308}),
+    ("pentagon-preserve", {"scale": 1.7e308}), ("dual-12.6.4", {"scale": 1e308}),
+    ("dual-pentagon", {"scale": 1.7e308}), ("dual-pentagonalization", {"offset": 1e308}),
+    ("six-preserving-loop-style", {"twist": 1e308}), ("dome", {"length": 1e308}),
+    ("dome", {"scale": 1e308}), ("doo-sabin-bc-new", {"scale": 1e308}),
+    ("doo-sabin-bc-new", {"length": 1e308}),
+]
+
+
+@pytest.mark.parametrize(("scheme", "options"), _OVERFLOWING_OPTIONS)
+def test_options_that_overflow_are_refused_quietly(scheme, options):
+    # each printed numpy's overflow / invalid-value warnings before the refusal
+    assert_refused_quietly(small_torus(), lambda m: subdivide(m, scheme, **options),
+                           "not finite: the arguments are too large")
+
+
+# the others (corner-cut, doo-sabin, checker, sierpinsky, vertex-cut) were quiet already
+@pytest.mark.parametrize("scheme", sorted(set(SCHEMES) - {
+    "corner-cut", "doo-sabin", "checker", "sierpinsky", "vertex-cut"}))
+def test_a_mesh_near_the_float_maximum_is_refused_quietly(scheme):
+    # coordinates of 1.2e308: sums of a few of them overflow in every scheme
+    # (left refused: their means would fit, but every scheme sums raw points)
+    m = small_torus()
+    m.set_positions(m.vertex_ids(), m.positions_view() * (1.2e308 / np.abs(
+        m.positions_view()).max()))
+    before = snapshot(m)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        try:
+            subdivide(m, scheme)
+        except DLFLError:
+            assert snapshot(m) == before
+    assert np.isfinite(m.positions_view()).all()
+
+
+@pytest.mark.parametrize("scale", [1e160, 1e300])
+def test_a_huge_mesh_fractalizes_like_the_scaled_unit_one(scale):
+    # L2^2 - L1^2 overflowed to inf - inf past ~1e154: NaN centres, refused
+    assert_scales(small_torus, lambda m, s: subdivide(m, "fractal"), scale)
 
 
 @pytest.mark.parametrize("faces", [[0, None], [0.0], "01"])

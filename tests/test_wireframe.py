@@ -24,6 +24,7 @@ from tests.meshes import (
     point_sphere,
     snapshot,
 )
+from tests.meshes import tetrahedron as unit_tetrahedron
 
 
 def summary(mesh):
@@ -213,11 +214,10 @@ def test_corner_cut_points_are_half_the_thickness_from_both_edge_lines():
 
 
 @pytest.mark.parametrize(("call", "message"), [
-    (lambda m: wireframe(m, 1e308), r"cutting corners by 1e\+308 .*numbers overflow"),
+    (lambda m: wireframe(m, 1.7e308), r"a crust 1.7e\+308 thick .*numbers overflow"),
     (lambda m: wireframe(m, None), "thickness must be a number"),
     (lambda m: wireframe(m, 0.1, width="1"), "width must be a number"),
     (lambda m: modified_corner_cut(m, (1.0,)), "thickness must be a number"),
-    (lambda m: modified_corner_cut(m, 1e308), r"cutting corners by 1e\+308 .*overflow"),
     (lambda m: columns(m, None, 4), "thickness must be a number"),
     (lambda m: columns(m, 0.25, "4"), "segments must be a whole number"),
     (lambda m: columns(m, 0.25, 3.5), "segments must be a whole number"),
@@ -226,13 +226,33 @@ def test_bad_input_is_refused_and_changes_nothing(call, message):
     assert_refused(cube(), call, message)
 
 
+# a unit cube's cut points stay below the thickness (no thickness overflows them):
+# the unit tetrahedron's 45-degree corners put them farther
 @pytest.mark.parametrize("call", [
-    lambda m: wireframe(m, 1e308), lambda m: wireframe(m, 1e200, False),
-    lambda m: wireframe(m, 0.1, width=1e308), lambda m: modified_corner_cut(m, 1e308),
+    lambda m: wireframe(m, 1.7e308), lambda m: wireframe(m, 1.7e308, False),
+    lambda m: wireframe(m, 0.1, width=1.7e308), lambda m: modified_corner_cut(m, 1.7e308),
 ])
 def test_a_cut_that_overflows_prints_no_numpy_warning(call):
-    assert_refused_quietly(cube(), call, r"cutting corners by .* would put a point at vertex \d+ "
-                           r"at \[.*(inf|nan).*numbers overflow")
+    assert_refused_quietly(unit_tetrahedron(), call, r"cutting corners by .* would put a point at "
+                           r"vertex \d+ at \[.*(inf|nan).*numbers overflow")
+
+
+def test_a_crust_that_overflows_is_refused_quietly():
+    assert_refused_quietly(cube(), lambda m: wireframe(m, 1.7e308, False),
+                           r"a crust 1.7e\+308 thick would put the inner copy of vertex \d+ "
+                           r"at \[.*inf.*numbers overflow")
+
+
+@pytest.mark.parametrize("scale", [1e160, 1e300])
+def test_a_huge_mesh_cut_by_a_huge_thickness_is_the_scaled_unit_cut(scale):
+    # t * t overflowed from t ~ 1e154: refused as "its numbers overflow", which they do not
+    assert_scales(torus, lambda m, s: modified_corner_cut(m, 0.25 * s), scale)
+    assert_scales(torus, lambda m, s: wireframe(m, 0.1 * s), scale)
+
+
+def test_a_huge_mesh_cuts_corners_without_a_warning():
+    # the 2-gon test measured |v1 - v2| raw: its square overflowed past ~1e154
+    assert_scales(cube, lambda m, s: modified_corner_cut(m, 0.25 * s), 1e154)
 
 
 def test_columns_take_a_whole_float_count():

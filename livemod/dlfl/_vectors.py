@@ -46,12 +46,31 @@ def together_in_range(values: np.ndarray) -> np.ndarray:
     Unlike :func:`in_range` every row gets the same factor, so lengths of
     different rows still compare; NaN, inf and all-zero arrays are left as they are.
     """
+    exponent = range_exponent(values)
+    return values if exponent == 0 else np.ldexp(values, -exponent)
+
+
+def range_exponent(values: np.ndarray) -> int:
+    """The power of two :func:`together_in_range` divides ``values`` (any shape)
+    by: 0 inside the band and for NaN, inf and all-zero arrays."""
     if in_band(values):
-        return values
+        return 0
     top = float(np.abs(values).max())
-    if not 0.0 < top < np.inf:
-        return values
-    return np.ldexp(values, -np.frexp(top)[1])
+    return int(np.frexp(top)[1]) if 0.0 < top < np.inf else 0
+
+
+def scaled_mean(values: np.ndarray, index: np.ndarray, count: int,
+                sizes: np.ndarray) -> np.ndarray:
+    """``(count, 3)`` mean of the rows of ``values`` ``(N, 3)`` grouped by ``index``
+    ``(N,)`` (``sizes`` ``(count,)`` rows each, 0 for none), summed scaled by one
+    power of two when ``values`` leaves the band: sums of coordinates near the
+    float maximum overflow though their means do not. Unscaled, it is the
+    ``np.add.at`` sum divided, bit for bit."""
+    exponent = range_exponent(values)
+    sums = np.zeros((count, 3))
+    np.add.at(sums, index, values if exponent == 0 else np.ldexp(values, -exponent))
+    means = sums / np.maximum(sizes, 1)[:, None]
+    return means if exponent == 0 else np.ldexp(means, exponent)
 
 
 def shifted_in_range(points: np.ndarray) -> np.ndarray:

@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ._graph import component_labels
-from ._vectors import RingVectors, group_sum, newell, ring_vectors, true_lengths
+from ._vectors import RingVectors, group_sum, newell, ring_vectors, scaled_mean, true_lengths
 from ._vectors import unit as _normalize
 from .arrays import MeshArrays, mesh_arrays
 from .mesh import Mesh
@@ -25,9 +25,8 @@ def _arrays(mesh: Mesh | MeshArrays) -> MeshArrays:
 def face_centroids(mesh: Mesh | MeshArrays) -> np.ndarray:
     """``(F, 3)`` float64 mean of each face's corner positions (TopMod's centroid)."""
     a = _arrays(mesh)
-    sums = np.zeros((len(a.face_ids), 3))
-    np.add.at(sums, a.corner_face, a.positions[a.corner_vertex])
-    return sums / np.maximum(a.face_sizes, 1)[:, None]
+    return scaled_mean(a.positions[a.corner_vertex], a.corner_face, len(a.face_ids),
+                       a.face_sizes)
 
 
 def corner_normals(mesh: Mesh | MeshArrays) -> np.ndarray:

@@ -12,8 +12,11 @@ from __future__ import annotations
 import numpy as np
 
 from ._checks import finite_number, whole_count
+from ._vectors import lengths, range_exponent, scaled_mean
+from ._vectors import unit as _unit
 from .analysis import face_centroids, face_normals
 from .arrays import MeshArrays, mesh_arrays
+from .errors import DLFLError
 from .mesh import Mesh
 
 __all__ = [
@@ -24,18 +27,22 @@ __all__ = [
 
 def _face_means(a: MeshArrays, per_face: np.ndarray) -> np.ndarray:
     """``(V, 3)`` mean over the corners at each vertex of a per-face ``(F, 3)`` value."""
-    sums = np.zeros((len(a.vertex_ids), 3))
-    np.add.at(sums, a.corner_vertex, per_face[a.corner_face])
     count = np.bincount(a.corner_vertex, minlength=len(a.vertex_ids))
-    return sums / np.maximum(count, 1)[:, None]
+    return scaled_mean(per_face[a.corner_face], a.corner_vertex, len(a.vertex_ids), count)
 
 
-def _unit(vectors: np.ndarray) -> np.ndarray:
-    length = np.linalg.norm(vectors, axis=-1, keepdims=True)
-    return np.divide(vectors, length, out=np.zeros_like(vectors), where=length > 1e-300)
+def _write(mesh: Mesh, a: MeshArrays, positions: np.ndarray, what: str) -> None:
+    """Set the ``(V, 3)`` ``positions`` of ``a``'s vertices.
 
-
-def _write(mesh: Mesh, a: MeshArrays, positions: np.ndarray) -> None:
+    Raises:
+        DLFLError: a coordinate overflowed (naming the first such vertex and
+            ``what`` moved it); the mesh is unchanged.
+    """
+    bad = ~np.isfinite(positions).all(axis=1)
+    if bad.any():
+        i = int(np.flatnonzero(bad)[0])
+        raise DLFLError(f"{what} would move vertex {int(a.vertex_ids[i])} to "
+                        f"{positions[i].tolist()}: its numbers overflow; the mesh is unchanged")
     mesh.set_positions(a.vertex_ids, positions)
 
 
@@ -52,7 +59,11 @@ def mesh_smooth(mesh: Mesh, iterations: int = 1) -> None:
             overflow; the mesh is unchanged.
     """
     a = mesh_arrays(mesh)
-    positions = a.positions
+    # smoothing commutes with scaling: a mesh out of the band is smoothed scaled
+    # by a power of two (exact), where the moves of coordinates near the float
+    # maximum cannot overflow, and scaled back
+    k = range_exponent(a.positions)
+    positions = np.ldexp(a.positions, -k) if k else a.positions
     for _ in range(whole_count(iterations, "iterations", least=0, each=0)):
         # the topology never changes: only the positions of the arrays move on
         current = MeshArrays(**{**a.__dict__, "positions": positions})
@@ -61,8 +72,10 @@ def mesh_smooth(mesh: Mesh, iterations: int = 1) -> None:
         move = average - positions
         move -= np.einsum("ij,ij->i", move, normal)[:, None] * normal
         positions = positions + move
+    with np.errstate(over="ignore"):  # refused by _write
+        positions = np.ldexp(positions, k) if k else positions
     # one write at the end: an overflow in a later iteration moves nothing
-    _write(mesh, a, positions)
+    _write(mesh, a, positions, "meshsmooth")
 
 
 def planarize(mesh: Mesh, steps: int = 100) -> None:
@@ -91,7 +104,7 @@ def planarize(mesh: Mesh, steps: int = 100) -> None:
         np.add.at(sums, a.corner_vertex, offset)
         count = np.bincount(a.corner_vertex, minlength=len(positions))
         positions = positions + weight * sums / np.maximum(count, 1)[:, None]
-    _write(mesh, a, positions)
+    _write(mesh, a, positions, "planarize")
 
 
 def spheralize(mesh: Mesh) -> None:
@@ -104,7 +117,13 @@ def spheralize(mesh: Mesh) -> None:
     a = mesh_arrays(mesh)
     if len(a.positions) == 0:
         return
-    _write(mesh, a, _unit(a.positions - a.positions.mean(axis=0)))
+    # the mean of a power-of-two-scaled copy, scaled back: a sum of coordinates
+    # near the float maximum overflows though their mean does not
+    k = range_exponent(a.positions)
+    centre = np.ldexp(np.ldexp(a.positions, -k).mean(axis=0), k)
+    with np.errstate(over="ignore", invalid="ignore"):  # refused by _write
+        moved = a.positions - centre
+    _write(mesh, a, _unit(moved), "spheralize")
 
 
 def edge_cleanup(mesh: Mesh) -> int:
@@ -191,19 +210,39 @@ def split_valence2_vertices(mesh: Mesh, offset: float = -0.1) -> list[int]:
         d1, d2 = (_direction(work, e, v) for e in (e1, e2))
         size = offset if offset > 0 else 0.1 * _length(work, e1)
         new = work.subdivide_edge(e1)[0]
-        work.set_position(v, origin + size * _unit(d1 - d2))
-        work.set_position(new, origin + size * _unit(d2 - d1))
+        work.set_position(v, _pushed(v, origin, size, d1 - d2))
+        work.set_position(new, _pushed(v, origin, size, d2 - d1))
         new_vertices.append(new)
     mesh.replace_with(work)
     return new_vertices
 
 
+def _pushed(v: int, origin: np.ndarray, size: float, toward: np.ndarray) -> np.ndarray:
+    """``(3,)`` ``origin + size * normalize(toward)``, both ``(3,)``.
+
+    Raises:
+        DLFLError: a coordinate overflows (splitting vertex ``v``).
+    """
+    with np.errstate(over="ignore", invalid="ignore"):  # refused just below
+        point = origin + size * _unit(toward)
+    if not np.isfinite(point).all():
+        raise DLFLError(f"splitting valence-2 vertex {v} by {size} would put a vertex at "
+                        f"{point.tolist()}, which is not finite: its numbers overflow; use a "
+                        "smaller offset; the mesh is unchanged")
+    return point
+
+
 def _direction(mesh: Mesh, edge: int, start: int) -> np.ndarray:
+    """``(3,)`` unit direction of ``edge`` away from vertex ``start`` (NaN when the
+    difference overflows, which :func:`_pushed` refuses)."""
     a, b = mesh.edge_vertices(edge)
     other = b if a == start else a
-    return _unit(mesh.position(other) - mesh.position(start))
+    with np.errstate(over="ignore", invalid="ignore"):
+        return _unit(mesh.position(other) - mesh.position(start))
 
 
 def _length(mesh: Mesh, edge: int) -> float:
+    """Length of ``edge``, inf beyond the float range."""
     a, b = mesh.edge_vertices(edge)
-    return float(np.linalg.norm(mesh.position(a) - mesh.position(b)))
+    with np.errstate(over="ignore"):  # inf: refused by _pushed
+        return float(lengths((mesh.position(a) - mesh.position(b))[None])[0])

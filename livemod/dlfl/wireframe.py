@@ -17,7 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ._checks import positive_number
-from ._vectors import in_range, shifted_in_range, together_in_range
+from ._vectors import in_range, lengths, shifted_in_range, together_in_range
 from ._vectors import unit as _unit
 from .analysis import face_centroids
 from .arrays import MeshArrays, mesh_arrays
@@ -116,18 +116,30 @@ def _cut_points(a: MeshArrays, thickness: float) -> np.ndarray:
     cv = a.corner_vertex
     nxt, prv = a.corner_next, a.corner_prev
     v0, v1, v2 = p[cv], p[cv[prv]], p[cv[nxt]]
-    close = np.linalg.norm(v1 - v2, axis=1) < 1e-3
-    v2[close] = p[cv[nxt[nxt[close]]]]
-    n1, n2 = _unit(v1 - v0), _unit(v2 - v0)
-    dot = np.einsum("ij,ij->i", n1, n2)
-    denom = 1.0 - dot * dot
-    straight = denom < 1e-12
-    toward = _unit(face_centroids(a)[a.corner_face[straight]] - v0[straight])
-    with np.errstate(over="ignore", invalid="ignore"):  # refused by _finite_cut
-        x = np.sqrt(t * t / np.where(straight, 1.0, denom))
+    # differences of coordinates near the float maximum overflow, and so can
+    # the points: inf and NaN come out as points _finite_cut refuses
+    with np.errstate(over="ignore", invalid="ignore"):
+        close = lengths(v1 - v2) < 1e-3
+        v2[close] = p[cv[nxt[nxt[close]]]]
+        n1, n2 = _unit(v1 - v0), _unit(v2 - v0)
+        dot = np.einsum("ij,ij->i", n1, n2)
+        denom = 1.0 - dot * dot
+        straight = denom < 1e-12
+        toward = _unit(face_centroids(a)[a.corner_face[straight]] - v0[straight])
+        x = _cut_distance(t, np.where(straight, 1.0, denom))
         points = v0 + x[:, None] * (n1 + n2)
         points[straight] = v0[straight] + t * toward
     return _finite_cut(a, points, thickness)
+
+
+def _cut_distance(t: float, denom: np.ndarray) -> np.ndarray:
+    """``(C,)`` ``sqrt(t^2 / denom)`` for ``(C,)`` ``denom`` in (0, 1]; inf (unwarned
+    only inside the caller's errstate) where it overflows.
+
+    ``t * t`` overflows from ``t ~ 1e154`` though the root does not: past 2**500
+    ``t`` comes out of the root (the same value, rounded differently).
+    """
+    return np.sqrt(t * t / denom) if t < 2.0 ** 500 else t / np.sqrt(denom)
 
 
 def _finite_cut(a: MeshArrays, points: np.ndarray, thickness: float) -> np.ndarray:
@@ -237,14 +249,22 @@ def wireframe_inner_positions(a: MeshArrays, front: np.ndarray, thickness: float
         raise DLFLError("every vertex must lie on a front face (run modified_corner_cut first)")
     p = a.positions
     v0 = p[cv[c0]]
-    e1, e2 = in_range(p[cv[nxt[c0]]] - v0), in_range(p[cv[prv[c0]]] - v0)
-    e3 = in_range(p[cv[nxt[nxt[mate[c0]]]]] - v0)
-    e4 = in_range(p[cv[prv[mate[prv[c0]]]]] - v0)
-    # TopMod normalises n1..n4 on the way; only their directions reach the result
-    # (so each e may be scaled into range: raw, the cubes overflow beyond ~1e100)
-    n2 = np.cross(np.cross(e1, e3), e1)
-    n4 = np.cross(e2, np.cross(e2, e4))
-    return v0 - thickness * _unit(np.cross(_unit(n2), _unit(n4)))
+    # a huge cut puts points whose differences overflow: inf / NaN, refused below
+    with np.errstate(over="ignore", invalid="ignore"):
+        e1, e2 = in_range(p[cv[nxt[c0]]] - v0), in_range(p[cv[prv[c0]]] - v0)
+        e3 = in_range(p[cv[nxt[nxt[mate[c0]]]]] - v0)
+        e4 = in_range(p[cv[prv[mate[prv[c0]]]]] - v0)
+        # TopMod normalises n1..n4 on the way; only their directions reach the result
+        # (so each e may be scaled into range: raw, the cubes overflow beyond ~1e100)
+        n2 = np.cross(np.cross(e1, e3), e1)
+        n4 = np.cross(e2, np.cross(e2, e4))
+        inner = v0 - thickness * _unit(np.cross(_unit(n2), _unit(n4)))
+    if not np.isfinite(inner).all():
+        v = int(np.flatnonzero(~np.isfinite(inner).all(axis=1))[0])
+        raise DLFLError(f"a crust {thickness} thick would put the inner copy of vertex "
+                        f"{int(a.vertex_ids[v])} at {inner[v].tolist()}: its numbers "
+                        "overflow; use a smaller thickness")
+    return inner
 
 
 def wireframe(

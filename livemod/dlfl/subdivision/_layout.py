@@ -153,7 +153,8 @@ class Topology:
     def midpoints(self) -> np.ndarray:
         """``(E, 3)`` midpoint of each edge."""
         ends = self.cv[self.edge_corners]
-        return 0.5 * (rows(self.pos, ends[:, 0]) + rows(self.pos, ends[:, 1]))
+        with np.errstate(over="ignore"):  # inf near the float maximum: build refuses it
+            return 0.5 * (rows(self.pos, ends[:, 0]) + rows(self.pos, ends[:, 1]))
 
     def neighbour_mean(self) -> np.ndarray:
         """``(V, 3)`` mean position of each vertex's neighbours (one per corner)."""
@@ -226,8 +227,19 @@ def ring_sums(offsets: np.ndarray, values: np.ndarray,
         return group_sum(ring, values if index is None else rows(values, index), len(sizes))
     bounds = [0, *cuts.tolist(), len(sizes)]
     out = np.empty((len(sizes), 3))
+    # sums of points near the float maximum overflow: inf, which the scheme's
+    # build refuses (bincount above sums without a warning)
+    with np.errstate(over="ignore", invalid="ignore"):
+        _add_runs(out, bounds, offsets, values, index)
+    return out
+
+
+def _add_runs(out: np.ndarray, bounds: list[int], offsets: np.ndarray, values: np.ndarray,
+              index: np.ndarray | None) -> None:
+    """Write into ``out`` ``(R, 3)`` the sums of :func:`ring_sums` (same arguments),
+    one run of rings of equal size (``bounds[i]:bounds[i + 1]``) at a time."""
     for start, stop in zip(bounds[:-1], bounds[1:], strict=True):
-        n = int(sizes[start]) if stop > start else 1
+        n = int(offsets[start + 1] - offsets[start]) if stop > start else 1
         block = slice(offsets[start], offsets[stop])
         if index is None:
             columns = values[block].reshape(-1, n, 3)
@@ -239,7 +251,6 @@ def ring_sums(offsets: np.ndarray, values: np.ndarray,
             out[start:stop] = rows(values, block_index[:, 0])
             for j in range(1, n):
                 out[start:stop] += rows(values, block_index[:, j])
-    return out
 
 
 class Pending(Mesh):
@@ -417,15 +428,18 @@ def ring_weighted(
 ) -> np.ndarray:
     """:func:`face_weighted` over any ring layout given by ``offsets``."""
     sizes = np.diff(offsets)
-    if len(sizes) and sizes[0] == sizes.min() == sizes.max():
-        # one face size (all quads, all triangles): reshape instead of gathering
-        n = int(sizes[0])
-        return np.matmul(weight(n), values.reshape(-1, n, 3)).reshape(-1, 3)
-    out = np.empty_like(values)
-    for n in np.unique(sizes).tolist():
-        rings = np.flatnonzero(sizes == n)
-        corners = offsets[rings][:, None] + np.arange(n)  # (K, n)
-        out[corners] = np.matmul(weight(n), values[corners])
+    # weighted sums of points near the float maximum overflow: inf / NaN, which
+    # the scheme's build refuses
+    with np.errstate(over="ignore", invalid="ignore"):
+        if len(sizes) and sizes[0] == sizes.min() == sizes.max():
+            # one face size (all quads, all triangles): reshape instead of gathering
+            n = int(sizes[0])
+            return np.matmul(weight(n), values.reshape(-1, n, 3)).reshape(-1, 3)
+        out = np.empty_like(values)
+        for n in np.unique(sizes).tolist():
+            rings = np.flatnonzero(sizes == n)
+            corners = offsets[rings][:, None] + np.arange(n)  # (K, n)
+            out[corners] = np.matmul(weight(n), values[corners])
     return out
 
 

@@ -71,7 +71,8 @@ def twelve_six_four(mesh: Mesh, *, scale: float = 0.7, max_faces: int | None = N
     _check_steps(t, [(t.nv, "dual"), (t.nv + t.ne + t.nf, "dual-12.6.4"),
                      (2 * t.nc, "dual")], max_faces)
     s = 1.0 if scale in (0.0, 1.0) else scale
-    positions = _points_1264(t, s)
+    with np.errstate(over="ignore", invalid="ignore"):  # build refuses what overflows
+        positions = _points_1264(t, s)
     verts, mates = _triangles_1264(t)
     build_paired(mesh, t, positions, verts, mates, np.full(2 * t.nc, 3, dtype=np.int64),
                  np.zeros(2 * t.nc, dtype=bool))
@@ -139,7 +140,9 @@ def dual_pentagon_preserving(mesh: Mesh, *, scale: float = 0.75,
                      (t.nf + t.ne + t.nc, "dual")], max_faces)
     cen = t.centroids()
     centre = _vertex_centres(t, cen)
-    positions = np.concatenate([centre, _pentagon_points(t, cen, centre, scale)])
+    with np.errstate(over="ignore", invalid="ignore"):  # build refuses what overflows
+        points = _pentagon_points(t, cen, centre, scale)
+    positions = np.concatenate([centre, points])
     build_paired(mesh, t, positions, *_dual_pentagon_layout(t))
 
 
@@ -205,11 +208,12 @@ def dual_loop(mesh: Mesh, *, max_faces: int | None = None) -> None:
     t = read_topology(mesh)
     _check_steps(t, [(t.nv, "dual"), (t.nc + t.nv, "loop"), (t.nf + t.ne, "dual")], max_faces)
     cen = t.centroids()
-    edge_points = rows(_loop_edge_points_on_dual(t, cen), t.edge)
-    corner_points = rows(_loop_vertices_on_dual(t, cen), t.face)
-    corner_points += rows(edge_points, t.prv)
-    corner_points += edge_points
-    corner_points /= 3.0
+    with np.errstate(over="ignore", invalid="ignore"):  # build refuses what overflows
+        edge_points = rows(_loop_edge_points_on_dual(t, cen), t.edge)
+        corner_points = rows(_loop_vertices_on_dual(t, cen), t.face)
+        corner_points += rows(edge_points, t.prv)
+        corner_points += edge_points
+        corner_points /= 3.0
     centre = vertex_mean(t, edge_points)
     verts, mates, sizes, _ = root4_layout(t)
     build_paired(mesh, t, np.concatenate([centre, corner_points]), verts, mates, sizes,
@@ -268,11 +272,12 @@ def root3(mesh: Mesh, *, max_faces: int | None = None) -> None:
     _check_steps(t, [(t.nv, "dual"), (t.nf + t.nv, "honeycomb"), (t.nc, "dual")], max_faces)
     cen = t.centroids()
     faces = t.face[t.edge_corners]
-    mids = 0.5 * (rows(cen, faces[:, 0]) + rows(cen, faces[:, 1]))
-    points = _honeycomb_on_dual(t, rows(mids, t.edge[t.prv]))
-    around = ring_sums(t.offsets, points)
-    around += ring_sums(t.offsets, points, t.nxt[t.mate])
-    around /= 2.0 * np.maximum(t.sizes, 1)[:, None]
+    with np.errstate(over="ignore", invalid="ignore"):  # build refuses what overflows
+        mids = 0.5 * (rows(cen, faces[:, 0]) + rows(cen, faces[:, 1]))
+        points = _honeycomb_on_dual(t, rows(mids, t.edge[t.prv]))
+        around = ring_sums(t.offsets, points)
+        around += ring_sums(t.offsets, points, t.nxt[t.mate])
+        around /= 2.0 * np.maximum(t.sizes, 1)[:, None]
     positions = np.concatenate([_vertex_centres(t, cen), around])
     verts, mates = _root3_triangles(t)
     build_paired(mesh, t, positions, verts, mates, np.full(t.nc, 3, dtype=np.int64),
@@ -314,10 +319,12 @@ def six_preserving_loop_style(mesh: Mesh, *, weight: float = 0.0, twist: float =
     _check_steps(t, [(t.nv, "dual"), (t.nv + t.ne, "root4"), (t.nf + t.nc, "dual")], max_faces)
     cen = t.centroids()
     p = rows(cen, t.face)
-    inner = _honeycomb_on_dual(t, (1 - twist) * p + twist * rows(p, t.vprev))
-    around = ring_sums(t.offsets, inner) / np.maximum(t.sizes, 1)[:, None]
-    moved = (1 - weight) * cen + weight * around
-    positions = np.concatenate([_vertex_centres(t, cen), _hexagon_centres(t, moved, inner)])
+    with np.errstate(over="ignore", invalid="ignore"):  # build refuses what overflows
+        inner = _honeycomb_on_dual(t, (1 - twist) * p + twist * rows(p, t.vprev))
+        around = ring_sums(t.offsets, inner) / np.maximum(t.sizes, 1)[:, None]
+        moved = (1 - weight) * cen + weight * around
+        hexagons = _hexagon_centres(t, moved, inner)
+    positions = np.concatenate([_vertex_centres(t, cen), hexagons])
     verts, mates, sizes = corner_cut_layout(t)
     build_paired(mesh, t, positions, verts, mates, sizes, np.zeros(len(sizes), dtype=bool))
 
@@ -354,7 +361,9 @@ def dual_pentagonalization(mesh: Mesh, *, offset: float = 0.0,
     t = read_topology(mesh)
     _check_steps(t, [(t.nv, "dual"), (t.nc, "pentagon"), (t.nf + t.nc + t.nv, "dual")],
                  max_faces)
-    build_paired(mesh, t, _pentagon_centres(t, offset), *_dual_pentagonalization_layout(t))
+    with np.errstate(over="ignore", invalid="ignore"):  # build refuses what overflows
+        centres = _pentagon_centres(t, offset)
+    build_paired(mesh, t, centres, *_dual_pentagonalization_layout(t))
 
 
 def _pentagon_centres(t: Topology, offset: float) -> np.ndarray:

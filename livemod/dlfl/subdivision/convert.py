@@ -15,7 +15,7 @@ from collections.abc import Iterable
 import numpy as np
 
 from .._checks import id_list
-from .._vectors import in_range
+from .._vectors import in_range, lengths, range_exponent
 from ..errors import DLFLError
 from ..mesh import Mesh
 from ._blocks import (
@@ -273,10 +273,11 @@ def root4(mesh: Mesh, *, weight: float = 0.0, twist: float = 0.0,
     t = read_topology(mesh)
     check_budget(t, t.nf + t.ne, "root4", max_faces)
     p = rows(t.pos, t.cv)
-    m = (1 - twist) * p + twist * rows(t.pos, t.cv[t.nxt])
-    inner = face_weighted(t, m, lambda n: cos_weights(n, HONEYCOMB_ALPHA + 1.25 / n))
-    around = vertex_mean(t, inner)
-    vertices = (1 - weight) * t.pos + weight * around
+    with np.errstate(over="ignore", invalid="ignore"):  # build refuses what overflows
+        m = (1 - twist) * p + twist * rows(t.pos, t.cv[t.nxt])
+        inner = face_weighted(t, m, lambda n: cos_weights(n, HONEYCOMB_ALPHA + 1.25 / n))
+        around = vertex_mean(t, inner)
+        vertices = (1 - weight) * t.pos + weight * around
     build_paired(mesh, t, np.concatenate([vertices, inner]), *root4_layout(t))
 
 
@@ -322,7 +323,8 @@ def pentagon_preserve(mesh: Mesh, *, scale: float = 0.75,
     check_budget(t, t.nf + t.nc, "pentagon-preserve", max_faces)
     cen = rows(t.centroids(), t.face)
     mids = t.midpoints()
-    inner = cen + scale * (rows(mids, t.edge) - cen)
+    with np.errstate(over="ignore", invalid="ignore"):  # build refuses what overflows
+        inner = cen + scale * (rows(mids, t.edge) - cen)
     positions = np.concatenate([t.pos, mids, inner])
     build_paired(mesh, t, positions, *_pentagon_preserve_layout(t))
 
@@ -368,8 +370,9 @@ def pentagon(mesh: Mesh, *, offset: float = 0.0, max_faces: int | None = None) -
     check_budget(t, t.nc, "pentagon", max_faces)
     cen = t.centroids()
     p = rows(t.pos, t.cv)
-    near = p + (rows(t.pos, t.cv[t.nxt]) - p) / 3.0
-    near += offset * (rows(cen, t.face) - near)
+    with np.errstate(over="ignore", invalid="ignore"):  # build refuses what overflows
+        near = p + (rows(t.pos, t.cv[t.nxt]) - p) / 3.0
+        near += offset * (rows(cen, t.face) - near)
     positions = np.concatenate([t.pos, near, cen])
     v, nc, prev, nxt, mate = t.nv, t.nc, t.prv, t.nxt, t.mate
     c = np.arange(nc)
@@ -416,10 +419,12 @@ def dual_1264(mesh: Mesh, *, scale: float = 0.7, max_faces: int | None = None) -
     t = read_topology(mesh)
     check_budget(t, t.nf + t.ne + t.nv, "dual-12.6.4", max_faces)
     p, q = rows(t.pos, t.cv), rows(t.pos, t.cv[t.nxt])
-    first, second = (2 * p + q) / 3.0, (p + 2 * q) / 3.0
+    with np.errstate(over="ignore", invalid="ignore"):  # build refuses what overflows
+        first, second = (2 * p + q) / 3.0, (p + 2 * q) / 3.0
     if scale not in (0.0, 1.0):
         cen = rows(t.centroids(), t.face)
-        first, second = cen + scale * (first - cen), cen + scale * (second - cen)
+        with np.errstate(over="ignore", invalid="ignore"):  # build refuses what overflows
+            first, second = cen + scale * (first - cen), cen + scale * (second - cen)
     build_paired(mesh, t, np.concatenate([first, second]), *_dual_1264_layout(t))
 
 
@@ -514,7 +519,8 @@ def star(mesh: Mesh, *, offset: float = 0.0, max_faces: int | None = None) -> No
     t = read_topology(mesh)
     check_budget(t, 3 * t.nc, "star", max_faces)
     cen = t.centroids()
-    second = (rows(t.pos, t.cv) + rows(t.pos, t.cv[t.nxt]) + rows(cen, t.face)) / 3.0
+    with np.errstate(over="ignore", invalid="ignore"):  # build refuses what overflows
+        second = (rows(t.pos, t.cv) + rows(t.pos, t.cv[t.nxt]) + rows(cen, t.face)) / 3.0
     positions = np.concatenate([t.pos, _stellate_centres(t, offset), second])
     e, nc, c, nxt = t.ne, t.nc, np.arange(t.nc), t.nxt
     centre, mid = t.nv + t.face, t.nv + t.nf + c
@@ -547,9 +553,10 @@ def double_stellate(mesh: Mesh, *, offset: float = 0.0, curve: float = 0.0,
     check_budget(t, t.ne + t.nc, "double-stellate", max_faces)
     centres = _stellate_centres(t, offset)
     p, q, r = rows(t.pos, t.cv), rows(t.pos, t.cv[t.nxt]), rows(centres, t.face)
-    second = (p + q + r) / 3.0
-    if curve:
-        second += curve * normalize(np.cross(in_range(q - p), in_range(r - p)))
+    with np.errstate(over="ignore", invalid="ignore"):  # build refuses what overflows
+        second = (p + q + r) / 3.0
+        if curve:
+            second += curve * normalize(np.cross(in_range(q - p), in_range(r - p)))
     positions = np.concatenate([t.pos, centres, second])
     nc, c, prev, base = t.nc, np.arange(t.nc), t.prv, t.nv + t.nf
     a, b = t.edge_corners[:, 0], t.edge_corners[:, 1]
@@ -580,7 +587,9 @@ def fractal(mesh: Mesh, *, offset: float = 1.0, max_faces: int | None = None) ->
     t = read_topology(mesh)
     check_budget(t, 2 * t.nc, "fractal", max_faces)
     mids = t.midpoints()
-    centres = t.centroids() + (offset * _fractal_heights(t, mids))[:, None] * t.face_normals()
+    heights = _fractal_heights(t, mids)
+    with np.errstate(over="ignore", invalid="ignore"):  # build refuses what overflows
+        centres = t.centroids() + (offset * heights)[:, None] * t.face_normals()
     positions = np.concatenate([t.pos, mids, centres])
     faces = Faces()
     corner_triangles(t, t.nv, faces)
@@ -592,7 +601,8 @@ def fractal(mesh: Mesh, *, offset: float = 1.0, max_faces: int | None = None) ->
 
 
 def _fractal_heights(t: Topology, mids: np.ndarray) -> np.ndarray:
-    """``(F,)`` sqrt(L2^2 - L1^2) of each face (0 where negative)."""
+    """``(F,)`` sqrt(L2^2 - L1^2) of each face (0 where negative; inf where a
+    length is beyond the float range)."""
     head = t.offsets[:-1]
     first = rows(mids, t.edge[head])
     second = rows(mids, t.edge[t.nxt[head]])
@@ -603,9 +613,15 @@ def _fractal_heights(t: Topology, mids: np.ndarray) -> np.ndarray:
     step = np.where(odd, (n + 1) // 2, n // 2) % np.maximum(n, 1)
     corner = head + step
     opposite = np.where(odd[:, None], rows(t.pos, t.cv[corner]), rows(mids, t.edge[corner]))
-    l1 = 0.5 * np.linalg.norm(first - opposite, axis=1)
-    l2 = np.linalg.norm(first - second, axis=1)
-    return np.sqrt(np.maximum(l2 * l2 - l1 * l1, 0.0))
+    with np.errstate(over="ignore", invalid="ignore"):  # inf: refused by build
+        l1 = 0.5 * lengths(first - opposite)
+        l2 = lengths(first - second)
+        # squares of lengths past ~1e154 overflow: take them scaled by a power
+        # of two (exact; none inside the band) and scale the root back
+        k = range_exponent(l2)
+        l1, l2 = (np.ldexp(l1, -k), np.ldexp(l2, -k)) if k else (l1, l2)
+        height = np.sqrt(np.maximum(l2 * l2 - l1 * l1, 0.0))
+        return np.ldexp(height, k) if k else height
 
 
 def dual(mesh: Mesh, *, accurate: bool = False, max_faces: int | None = None) -> None:

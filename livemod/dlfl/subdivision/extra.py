@@ -64,10 +64,11 @@ def checker(mesh: Mesh, *, thickness: float = 0.33, max_faces: int | None = None
     t = read_topology(mesh)
     check_budget(t, t.nf + 2 * t.nc, "checker", max_faces)
     p, prev_p, next_p = rows(t.pos, t.cv), rows(t.pos, t.cv[t.prv]), rows(t.pos, t.cv[t.nxt])
-    inward = (prev_p - p) + (next_p - p)
-    # in range: only the sign of the product matters, and raw ones overflow
-    concave = np.einsum("ij,ij->i", np.cross(in_range(next_p - p), in_range(prev_p - p)),
-                        t.face_normals()[t.face]) < 0
+    with np.errstate(over="ignore", invalid="ignore"):  # build refuses what overflows
+        inward = (prev_p - p) + (next_p - p)
+        # in range: only the sign of the product matters, and raw ones overflow
+        concave = np.einsum("ij,ij->i", np.cross(in_range(next_p - p), in_range(prev_p - p)),
+                            t.face_normals()[t.face]) < 0
     inward[concave] *= -1
     inset = p + thickness * inward
     near = p + thickness * (next_p - p)
@@ -93,12 +94,13 @@ def dual_checkerboard(mesh: Mesh, *, thickness: float = 0.33,
     thickness = _checker_thickness(thickness)
     t = read_topology(mesh)
     check_budget(t, max(t.nv, t.nf) + 2 * t.nc, "dual-checkerboard", max_faces)
-    inset, near = _checker_on_dual(t, thickness)
-    nxt = t.nxt
-    side = nxt[t.mate]  # the dual's corner whose side quad lies along the edge of c
-    at_vertex = vertex_mean(t, inset)
-    at_near = (rows(near, side) + rows(near, nxt) + inset + rows(inset, side)) / 4.0
-    at_inset = (rows(t.centroids(), t.face) + near + inset + rows(near, nxt)) / 4.0
+    with np.errstate(over="ignore", invalid="ignore"):  # build refuses what overflows
+        inset, near = _checker_on_dual(t, thickness)
+        nxt = t.nxt
+        side = nxt[t.mate]  # the dual's corner whose side quad lies along the edge of c
+        at_vertex = vertex_mean(t, inset)
+        at_near = (rows(near, side) + rows(near, nxt) + inset + rows(inset, side)) / 4.0
+        at_inset = (rows(t.centroids(), t.face) + near + inset + rows(near, nxt)) / 4.0
     positions = np.concatenate([at_vertex, at_near, at_inset])
     _checker_faces(mesh, t, positions, np.zeros(t.nf, dtype=bool))
 
@@ -116,11 +118,12 @@ def _checker_on_dual(t: Topology, thickness: float) -> tuple[np.ndarray, np.ndar
     next_p = rows(cen, t.face[t.mate[t.prv]])
     # the dual's face normals: Newell sums over each vertex ring (about the
     # vertex, in range; its ring-next corner is mate(prev c))
-    r = ring_vectors(p, rows(t.pos, t.cv), t.cv, t.nv)
-    normals = normalize(newell(r, r.along(t.mate[t.prv]), t.cv, t.nv))
-    inward = (prev_p - p) + (next_p - p)
-    concave = np.einsum("ij,ij->i", np.cross(in_range(next_p - p), in_range(prev_p - p)),
-                        rows(normals, t.cv)) < 0
+    with np.errstate(over="ignore", invalid="ignore"):  # build refuses what overflows
+        r = ring_vectors(p, rows(t.pos, t.cv), t.cv, t.nv)
+        normals = normalize(newell(r, r.along(t.mate[t.prv]), t.cv, t.nv))
+        inward = (prev_p - p) + (next_p - p)
+        concave = np.einsum("ij,ij->i", np.cross(in_range(next_p - p), in_range(prev_p - p)),
+                            rows(normals, t.cv)) < 0
     inward[concave] *= -1
     return p + thickness * inward, p + thickness * (next_p - p)
 
@@ -194,10 +197,10 @@ def doo_sabin_bc_new(mesh: Mesh, *, scale: float = 1.0, length: float = 1.0,
     t = read_topology(mesh)
     check_budget(t, t.nf + t.nc, "doo-sabin-bc-new", max_faces)
     values, offsets = _split_face_values(t)
-    ring = _ds_ring(values, offsets, np.zeros(1), scale)
-    at_vertex, at_mid = ring[0::2], ring[1::2]
-    around = vertex_mean(t, at_vertex)
-    vertices = length * t.pos + (1 - length) * around
+    with np.errstate(over="ignore", invalid="ignore"):  # build refuses what overflows
+        ring = _ds_ring(values, offsets, np.zeros(1), scale)
+        at_vertex, at_mid = ring[0::2], ring[1::2]
+        vertices = length * t.pos + (1 - length) * vertex_mean(t, at_vertex)
     positions = np.concatenate([vertices, at_vertex, at_mid])
     _bc_new_faces(mesh, t, positions)
 
@@ -243,7 +246,8 @@ def dome(mesh: Mesh, *, length: float = 1.0, scale: float = 1.0,
     steps = len(DOME_DISTANCES)
     check_budget(t, t.nf + steps * 4 * t.nc, "dome", max_faces)
     split_pos, corner_vertex, across, offsets = _split_in_four(t)
-    rings = _dome_rings(t, rows(split_pos, corner_vertex), offsets, length, scale)
+    with np.errstate(over="ignore", invalid="ignore"):  # build refuses what overflows
+        rings = _dome_rings(t, rows(split_pos, corner_vertex), offsets, length, scale)
     positions = np.concatenate([split_pos, rings.reshape(-1, 3)])
     verts, mates = _dome_corners(corner_vertex, across, offsets, len(split_pos), steps)
     split_hole = np.repeat(t.hole, 4 * t.sizes)

@@ -48,7 +48,8 @@ def catmull_clark(mesh: Mesh, *, levels: int = 1, max_faces: int | None = None) 
     t = read_topology(mesh)
     check_budget(t, t.nc * 4 ** (levels - 1), "catmull-clark", max_faces)
     for level in range(levels):
-        positions = _cc_points(t, t.centroids())
+        with np.errstate(over="ignore", invalid="ignore"):  # build refuses what overflows
+            positions = _cc_points(t, t.centroids())
         verts, mates = _cc_faces(t)
         sizes = np.full(t.nc, 4, dtype=np.int64)
         hole = np.repeat(t.hole, t.sizes)
@@ -118,8 +119,9 @@ def loop(mesh: Mesh, *, max_faces: int | None = None) -> None:
     # one contiguous column per axis: 1-D gathers and bincounts are the fast ones
     columns = np.ascontiguousarray(t.pos.T)
     positions = np.empty((t.nv + t.ne, 3))
-    _loop_vertices(t, columns, positions[: t.nv])
-    _loop_edge_points(t, columns, positions[t.nv :])
+    with np.errstate(over="ignore", invalid="ignore"):  # build refuses what overflows
+        _loop_vertices(t, columns, positions[: t.nv])
+        _loop_edge_points(t, columns, positions[t.nv :])
     _corner_cut_faces(mesh, t, positions)
 
 
@@ -200,7 +202,8 @@ def loop_style(mesh: Mesh, *, length: float = 1.0, max_faces: int | None = None)
     length = check_number("length", length)
     t = read_topology(mesh)
     check_budget(t, t.nc + t.nf, "loop-style", max_faces)
-    vertices = length * t.pos + (1 - length) * t.neighbour_mean()
+    with np.errstate(over="ignore", invalid="ignore"):  # build refuses what overflows
+        vertices = length * t.pos + (1 - length) * t.neighbour_mean()
     _corner_cut_faces(mesh, t, np.concatenate([vertices, t.midpoints()]))
 
 
