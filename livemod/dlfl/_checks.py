@@ -6,6 +6,8 @@ import math
 import numbers
 from collections.abc import Iterable
 
+import numpy as np
+
 from .errors import DLFLError
 
 
@@ -82,3 +84,11 @@ def whole_count(value: object, name: str, *, least: int = 1, each: int = 1) -> i
         raise DLFLError(f"{name}={count} would make at least {count * each:,} corners, more "
                         f"than a mesh can hold ({MAX_ELEMENTS:,})")
     return count
+
+
+def first_not_finite(rows: np.ndarray) -> int | None:
+    """Index of the first row of ``rows`` ``(N, 3)`` with a NaN or infinite
+    coordinate (the one an overflow message names), or None when all are finite."""
+    if np.isfinite(rows).all():
+        return None
+    return int(np.flatnonzero(~np.isfinite(rows).all(axis=1))[0])

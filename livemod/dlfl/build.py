@@ -19,6 +19,7 @@ from typing import Any
 
 import numpy as np
 
+from ._checks import first_not_finite
 from ._graph import cycle_labels, one_cycle_each
 from ._table import Table
 from .errors import DLFLError, DLFLRepairWarning
@@ -172,8 +173,8 @@ def _check_soup(soup: Polygons, where: _Where) -> np.ndarray:
             f"{where.prefix([f])}{where.face(f)} uses vertex index {int(soup.indices[c])}, "
             f"but there are {nv} vertices"
         )
-    if not np.isfinite(soup.positions).all():
-        v = int(np.flatnonzero(~np.isfinite(soup.positions).all(axis=1))[0])
+    v = first_not_finite(soup.positions)
+    if v is not None:
         raise DLFLError(f"{where.prefix()}vertex {v} has a position that is not finite")
     far = soup.indices[soup.next_corner]
     same = soup.indices == far
@@ -681,9 +682,9 @@ def _check_finite_result(positions: np.ndarray) -> None:
     Raises:
         DLFLError: naming the first such vertex (its index in ``positions``).
     """
-    if np.isfinite(positions).all():
+    v = first_not_finite(positions)
+    if v is None:
         return
-    v = int(np.flatnonzero(~np.isfinite(positions).all(axis=1))[0])
     raise DLFLError(
         f"the result would put vertex {v} at {positions[v].tolist()}, which is not finite: "
         "the arguments are too large, or the mesh's geometry is degenerate (coincident "

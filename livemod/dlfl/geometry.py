@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._checks import finite_number, whole_count
+from ._checks import finite_number, first_not_finite, whole_count
 from ._vectors import lengths, range_exponent, scaled_mean
 from ._vectors import unit as _unit
 from .analysis import face_centroids, face_normals
@@ -38,9 +38,8 @@ def _write(mesh: Mesh, a: MeshArrays, positions: np.ndarray, what: str) -> None:
         DLFLError: a coordinate overflowed (naming the first such vertex and
             ``what`` moved it); the mesh is unchanged.
     """
-    bad = ~np.isfinite(positions).all(axis=1)
-    if bad.any():
-        i = int(np.flatnonzero(bad)[0])
+    i = first_not_finite(positions)
+    if i is not None:
         raise DLFLError(f"{what} would move vertex {int(a.vertex_ids[i])} to "
                         f"{positions[i].tolist()}: its numbers overflow; the mesh is unchanged")
     mesh.set_positions(a.vertex_ids, positions)

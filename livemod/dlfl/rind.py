@@ -18,7 +18,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._checks import finite_number, id_list
+from ._checks import finite_number, first_not_finite, id_list
 from ._vectors import newell, ring_vectors
 from .analysis import corner_normals
 from .arrays import MeshArrays, mesh_arrays
@@ -125,10 +125,10 @@ def offset_shell(a: MeshArrays, thickness: float, uniform: bool) -> np.ndarray:
     means = _normal_means(a)  # outside the errstate: its overflows are not checked here
     with np.errstate(over="ignore", invalid="ignore"):  # refused just below
         moved = a.positions - _scaled_offsets(a, means, thickness, uniform)
-    if not np.isfinite(moved).all():
-        v = int(a.vertex_ids[np.flatnonzero(~np.isfinite(moved).all(axis=1))[0]])
-        raise DLFLError(f"thickness {thickness} would move vertex {v} to "
-                        f"{moved[a.vertex_ids == v][0].tolist()}: its numbers overflow; "
+    i = first_not_finite(moved)
+    if i is not None:
+        raise DLFLError(f"thickness {thickness} would move vertex {int(a.vertex_ids[i])} to "
+                        f"{moved[i].tolist()}: its numbers overflow; "
                         "use a smaller value")
     return moved
 

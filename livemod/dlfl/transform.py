@@ -12,7 +12,7 @@ from typing import Any
 
 import numpy as np
 
-from ._checks import finite_number, id_list
+from ._checks import finite_number, first_not_finite, id_list
 from .errors import DLFLError
 from .mesh import Mesh
 
@@ -73,9 +73,9 @@ def _finite_moved(ids: np.ndarray, moved: np.ndarray) -> np.ndarray:
     Raises:
         DLFLError: a coordinate overflowed; names the first such vertex.
     """
-    if np.isfinite(moved).all():
+    k = first_not_finite(moved)
+    if k is None:
         return moved
-    k = int(np.flatnonzero(~np.isfinite(moved).all(axis=1))[0])
     raise DLFLError(f"the transform would move vertex {int(ids[k])} to {moved[k].tolist()}: "
                     "its numbers overflow; use smaller factors or offsets (nothing is moved)")
 

@@ -16,7 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._checks import positive_number
+from ._checks import first_not_finite, positive_number
 from ._vectors import in_range, lengths, shifted_in_range, together_in_range
 from ._vectors import unit as _unit
 from .analysis import face_centroids
@@ -148,9 +148,9 @@ def _finite_cut(a: MeshArrays, points: np.ndarray, thickness: float) -> np.ndarr
     Raises:
         DLFLError: a coordinate overflowed; names the first such corner's vertex.
     """
-    if np.isfinite(points).all():
+    c = first_not_finite(points)
+    if c is None:
         return points
-    c = int(np.flatnonzero(~np.isfinite(points).all(axis=1))[0])
     v = int(a.vertex_ids[a.corner_vertex[c]])
     raise DLFLError(f"cutting corners by {thickness} would put a point at vertex {v} at "
                     f"{points[c].tolist()}: its numbers overflow; use a smaller thickness "
@@ -259,8 +259,8 @@ def wireframe_inner_positions(a: MeshArrays, front: np.ndarray, thickness: float
         n2 = np.cross(np.cross(e1, e3), e1)
         n4 = np.cross(e2, np.cross(e2, e4))
         inner = v0 - thickness * _unit(np.cross(_unit(n2), _unit(n4)))
-    if not np.isfinite(inner).all():
-        v = int(np.flatnonzero(~np.isfinite(inner).all(axis=1))[0])
+    v = first_not_finite(inner)
+    if v is not None:
         raise DLFLError(f"a crust {thickness} thick would put the inner copy of vertex "
                         f"{int(a.vertex_ids[v])} at {inner[v].tolist()}: its numbers "
                         "overflow; use a smaller thickness")
