@@ -24,7 +24,7 @@ from collections.abc import Callable
 
 import numpy as np
 
-from ._checks import finite_number, id_list, whole_count
+from ._checks import finite_number, first_not_finite, id_list, whole_count
 from ._vectors import in_band, lengths, shifted_in_range, together_in_range, unit
 from .analysis import face_points, polygon_normal
 from .errors import DLFLError
@@ -208,10 +208,10 @@ def _check_finite_rings(rings: list[np.ndarray]) -> None:
         DLFLError: a coordinate is inf or NaN.
     """
     for ring in rings:
-        if not np.isfinite(ring).all():
-            bad = ring[~np.isfinite(ring).all(axis=1)][0].tolist()
-            raise DLFLError(f"the handle would put a point at {bad}: its numbers overflow; "
-                            "use a smaller pinch, bubble or weight")
+        bad = first_not_finite(ring)
+        if bad is not None:
+            raise DLFLError(f"the handle would put a point at {ring[bad].tolist()}: its "
+                            "numbers overflow; use a smaller pinch, bubble or weight")
 
 
 def _chain_rings(

@@ -28,7 +28,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from ._checks import finite_number, whole_count
+from ._checks import finite_number, first_not_finite, whole_count
 from .connect import _quad_band, _triangle_band
 from .errors import DLFLError
 from .mesh import Mesh
@@ -97,10 +97,11 @@ def _finite(points: np.ndarray) -> np.ndarray:
     Raises:
         _GeometryError: a coordinate overflowed to infinity (or is NaN).
     """
-    if not np.isfinite(points).all():
-        bad = points if points.ndim == 1 else points[~np.isfinite(points).all(axis=1)][0]
+    rows = np.atleast_2d(points)
+    row = first_not_finite(rows)
+    if row is not None:
         raise _GeometryError(
-            f"the extrusion would put a point at {bad.tolist()}: its numbers overflow; "
+            f"the extrusion would put a point at {rows[row].tolist()}: its numbers overflow; "
             "use a smaller distance or scale",
             "a point it makes on the way overflows (use a smaller distance or scale)")
     return points
