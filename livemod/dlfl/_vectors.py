@@ -73,6 +73,16 @@ def scaled_mean(values: np.ndarray, index: np.ndarray, count: int,
     return means if exponent == 0 else np.ldexp(means, exponent)
 
 
+def centroid(points: np.ndarray) -> np.ndarray:
+    """``(3,)`` mean of ``(n, 3)`` ``points``, taken scaled by one power of two when
+    they leave the band: the sum of coordinates near the float maximum overflows
+    though their mean does not. Inside the band, ``points.mean(axis=0)`` itself."""
+    exponent = range_exponent(points)
+    if exponent == 0:
+        return points.mean(axis=0)
+    return np.ldexp(np.ldexp(points, -exponent).mean(axis=0), exponent)
+
+
 def shifted_in_range(points: np.ndarray) -> np.ndarray:
     """``(k, 3)`` ``points`` themselves when they and their differences lie in the
     band, else their differences from the first point times one power of two

@@ -25,7 +25,7 @@ from collections.abc import Callable
 import numpy as np
 
 from ._checks import finite_number, first_not_finite, id_list, whole_count
-from ._vectors import in_band, lengths, shifted_in_range, together_in_range, unit
+from ._vectors import centroid, lengths, shifted_in_range, together_in_range, unit
 from .analysis import face_points, polygon_normal
 from .errors import DLFLError
 from .mesh import Mesh
@@ -184,18 +184,10 @@ def _positions(mesh: Mesh, vertices: list[int]) -> np.ndarray:
     return mesh._v.arrays["position"][[slot(v) for v in vertices]]
 
 
-def _centroid(points: np.ndarray) -> np.ndarray:
-    """``(3,)`` mean of ``(n, 3)`` points; outside the band the points are divided
-    before they are summed, so that the sum of huge points cannot overflow."""
-    if in_band(points):
-        return points.mean(axis=0)
-    return (points / len(points)).sum(axis=0)
-
-
 def _scale_about_centroid(points: np.ndarray, factor: float) -> np.ndarray:
     """``(n, 3)`` ``points`` scaled by ``factor`` about their centroid; a point
     beyond the float range comes out inf or NaN, for the caller to refuse."""
-    centre = _centroid(points)
+    centre = centroid(points)
     with np.errstate(over="ignore", invalid="ignore"):  # refused by the caller
         return centre + (points - centre) * factor
 
@@ -464,7 +456,7 @@ def hermite_rings(
         DLFLError: the centroids coincide, or a normal points exactly against the
             centroid-to-centroid axis (TopMod refused these too).
     """
-    c1, c2 = _centroid(start), _centroid(end)
+    c1, c2 = centroid(start), centroid(end)
     axis = _handle_axis(c1, c2, n1, n2)
     q1 = (start - c1) @ rotation_between(n1, axis).T
     q2 = (end - c2) @ rotation_between(n2, axis).T
@@ -517,7 +509,7 @@ def resolve_polygon(points: np.ndarray, x: np.ndarray, y: np.ndarray
     """``(n,)`` angles and ``(n,)`` distances of ``(n, 3)`` points about their centroid,
     against the axes ``x`` and ``y`` (TopMod's ``resolvePolygon``): the first angle
     in ``[0, 2π)``, each next one the first value at or above the previous one."""
-    rel = points - _centroid(points)
+    rel = points - centroid(points)
     raw = np.arctan2(rel @ y, rel @ x)
     steps = np.mod(np.diff(raw), 2 * np.pi)
     angles = np.mod(raw[0], 2 * np.pi) + np.concatenate([[0.0], np.cumsum(steps)])
@@ -786,7 +778,7 @@ def multi_face_handle(mesh: Mesh, faces: list[int], scale: float = 1.0,
     points = _hub_points(mesh, faces, normals, extrude, scale)
     polygons = convex_hull_polygons(points)
     # quarters: the difference of two huge centroids cannot overflow
-    outward = _centroid(face_points(mesh, faces[0])) * 0.25 - _centroid(points) * 0.25
+    outward = centroid(face_points(mesh, faces[0])) * 0.25 - centroid(points) * 0.25
     if float(normals[0] @ outward) > 0:
         polygons = [poly[::-1] for poly in polygons]
     _check_closed_hull(polygons, len(points))

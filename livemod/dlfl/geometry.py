@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 
 from ._checks import finite_number, first_not_finite, whole_count
-from ._vectors import lengths, range_exponent, scaled_mean
+from ._vectors import centroid, lengths, range_exponent, scaled_mean
 from ._vectors import unit as _unit
 from .analysis import face_centroids, face_normals
 from .arrays import MeshArrays, mesh_arrays
@@ -116,10 +116,7 @@ def spheralize(mesh: Mesh) -> None:
     a = mesh_arrays(mesh)
     if len(a.positions) == 0:
         return
-    # the mean of a power-of-two-scaled copy, scaled back: a sum of coordinates
-    # near the float maximum overflows though their mean does not
-    k = range_exponent(a.positions)
-    centre = np.ldexp(np.ldexp(a.positions, -k).mean(axis=0), k)
+    centre = centroid(a.positions)
     with np.errstate(over="ignore", invalid="ignore"):  # refused by _write
         moved = a.positions - centre
     _write(mesh, a, _unit(moved), "spheralize")
