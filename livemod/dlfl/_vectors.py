@@ -167,6 +167,17 @@ def ring_vectors(points: np.ndarray, origin: np.ndarray, ring: np.ndarray,
     return RingVectors(points, rel * factor, factor, exponent + 2)
 
 
+def face_ring_vectors(positions: np.ndarray, corner_vertex: np.ndarray,
+                      face_offsets: np.ndarray, corner_face: np.ndarray) -> RingVectors:
+    """:func:`ring_vectors` of the faces of a mesh: the corner points of
+    ``positions`` ``(V, 3)`` (``corner_vertex`` ``(C,)``), each relative to its
+    face's first corner. Faces own corners ``face_offsets[f]:face_offsets[f + 1]``
+    (``(F + 1,)``); ``corner_face`` ``(C,)`` is the face of each corner."""
+    p = np.take(positions, corner_vertex, axis=0)
+    origin = np.repeat(p[face_offsets[:-1]], np.diff(face_offsets), axis=0)
+    return ring_vectors(p, origin, corner_face, len(face_offsets) - 1)
+
+
 def newell(r: RingVectors, edge: np.ndarray, ring: np.ndarray, count: int) -> np.ndarray:
     """``(count, 3)`` Newell vector (twice the vector area) of each ring, in the
     scale of ``r`` (times ``2**-exponent``). ``edge``: ``r.along(next corner)``.

@@ -12,7 +12,15 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ._graph import component_labels
-from ._vectors import RingVectors, group_sum, newell, ring_vectors, scaled_mean, true_lengths
+from ._vectors import (
+    RingVectors,
+    face_ring_vectors,
+    group_sum,
+    newell,
+    ring_vectors,
+    scaled_mean,
+    true_lengths,
+)
 from ._vectors import unit as _normalize
 from .arrays import MeshArrays, mesh_arrays
 from .mesh import Mesh
@@ -48,9 +56,7 @@ def corner_normals(mesh: Mesh | MeshArrays) -> np.ndarray:
 
 def _ring_vectors(a: MeshArrays) -> RingVectors:
     """The corner positions of ``a`` relative to their face's first corner, in range."""
-    p = np.take(a.positions, a.corner_vertex, axis=0)
-    origin = np.repeat(p[a.face_offsets[:-1]], a.face_sizes, axis=0)
-    return ring_vectors(p, origin, a.corner_face, len(a.face_ids))
+    return face_ring_vectors(a.positions, a.corner_vertex, a.face_offsets, a.corner_face)
 
 
 def face_normals(mesh: Mesh | MeshArrays) -> np.ndarray:

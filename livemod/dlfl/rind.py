@@ -19,7 +19,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ._checks import finite_number, first_not_finite, id_list
-from ._vectors import newell, ring_vectors
+from ._vectors import face_ring_vectors, newell
 from .analysis import corner_normals
 from .arrays import MeshArrays, mesh_arrays
 from .build import from_corner_arrays
@@ -109,9 +109,7 @@ def _face_newell(positions: np.ndarray, a: MeshArrays) -> tuple[np.ndarray, np.n
     """Newell vector (twice the vector area) of each face at ``positions`` ``(V, 3)``,
     in range: ``(F, 3)`` vectors and ``(F,)`` int exponents ``e``, the true vector
     being ``vector * 4**e``."""
-    p = np.take(positions, a.corner_vertex, axis=0)
-    r = ring_vectors(p, np.repeat(p[a.face_offsets[:-1]], a.face_sizes, axis=0),
-                     a.corner_face, len(a.face_ids))
+    r = face_ring_vectors(positions, a.corner_vertex, a.face_offsets, a.corner_face)
     sums = newell(r, r.along(a.corner_next), a.corner_face, len(a.face_ids))
     return sums, np.zeros(len(sums), np.int64) if r.exponent is None else r.exponent
 

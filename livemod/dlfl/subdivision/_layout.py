@@ -26,7 +26,7 @@ import numpy as np
 
 from .._checks import finite_number
 from .._graph import cycle_layout, walk_rings
-from .._vectors import group_sum, newell, ring_vectors
+from .._vectors import face_ring_vectors, group_sum, newell
 from .._vectors import unit as normalize
 from ..arrays import mesh_arrays
 from ..build import from_corner_arrays
@@ -162,9 +162,7 @@ class Topology:
 
     def face_normals(self) -> np.ndarray:
         """``(F, 3)`` unit Newell normal of each face (zero when degenerate)."""
-        p = rows(self.pos, self.cv)
-        r = ring_vectors(p, np.repeat(p[self.offsets[:-1]], self.sizes, axis=0),
-                         self.face, self.nf)
+        r = face_ring_vectors(self.pos, self.cv, self.offsets, self.face)
         return normalize(newell(r, r.along(self.nxt), self.face, self.nf))
 
     def vertex_rings(self) -> tuple[np.ndarray, np.ndarray]:
