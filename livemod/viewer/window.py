@@ -146,7 +146,9 @@ class LiveViewer(mglw.WindowConfig):
         self.show_partial = False  # E: a failed run's own mesh instead of the last good one
         self.viewer_error: str | None = None  # the last result the window failed to show
         self.timeline = Timeline()
-        self._scrub: tuple[int | None, bool, float] = (None, False, 0.0)  # pending, dragging, when
+        self._scrubbing = False  # the timeline is being dragged
+        self._scrub_step: int | None = None  # the step to go to once the pointer rests
+        self._scrub_time = 0.0  # when the pointer last moved it
         self.show_objects = False
         self.frame_times: deque[float] = deque(maxlen=120)
         self.screenshots: list[Path] = []
@@ -212,8 +214,7 @@ class LiveViewer(mglw.WindowConfig):
             self.total_steps = len(result.steps)
         arrays = self._drawn_arrays(result)
         if arrays is not None and arrays is not self.renderer.arrays:
-            preview = result.preview if arrays is result.arrays else None
-            self._upload(arrays, preview, self._visible_others(result))
+            self._show_mesh(result, arrays)
         elif result.arrays is None and result.error is None:
             self.renderer.set_mesh(None)  # the script ended with no mesh: show none
             self.measures = []
@@ -237,6 +238,12 @@ class LiveViewer(mglw.WindowConfig):
             self._do_fit()
             self._fit_bounds = bounds
 
+    def _show_mesh(self, result: Any, arrays: Any) -> None:
+        """Upload ``arrays`` (``result``'s own mesh, or its failed run's) with the
+        result's preview when it is the preview of those arrays, and its others."""
+        preview = result.preview if arrays is result.arrays else None
+        self._upload(arrays, preview, self._visible_others(result))
+
     def _drawn_arrays(self, result: Any) -> Any:
         """The mesh to show of ``result``: the failed run's own (E), or the last good one."""
         if self.show_partial and result.error is not None and result.partial is not None:
@@ -249,9 +256,7 @@ class LiveViewer(mglw.WindowConfig):
             self._echo("no failed run to show: E shows the mesh a failed run left")
             return
         self.show_partial = not self.show_partial
-        arrays = self._drawn_arrays(result)
-        self._upload(arrays, result.preview if arrays is result.arrays else None,
-                     self._visible_others(result))
+        self._show_mesh(result, self._drawn_arrays(result))
         self._echo("showing the mesh as the failed run left it" if self.show_partial
                    else "showing the last good mesh")
 
@@ -569,7 +574,7 @@ class LiveViewer(mglw.WindowConfig):
             self._press_objects(hit)
             return
         if self._timeline_hit(x, y):
-            self._scrub_to(x * self._pixel_ratio(), dragging=True)
+            self._scrub_to(x * self._pixel_ratio())
             return
         self._press = (x, y, button)
         self._moved = False
@@ -584,8 +589,8 @@ class LiveViewer(mglw.WindowConfig):
         if self._param_drag is not None:
             self._drag_slider(x * self._pixel_ratio())
             return
-        if self._scrub[1]:
-            self._scrub_to(x * self._pixel_ratio(), dragging=True)
+        if self._scrubbing:
+            self._scrub_to(x * self._pixel_ratio())
             return
         if self._press is not None and abs(x - self._press[0]) + abs(y - self._press[1]) > 3:
             self._moved = True
@@ -601,8 +606,8 @@ class LiveViewer(mglw.WindowConfig):
             self._param_drag = None
             self._flush_parameters(force=True)  # the value has settled
             return
-        if self._scrub[1]:
-            self._scrub = (self._scrub[0], False, self._scrub[2])
+        if self._scrubbing:
+            self._scrubbing = False
             self._flush_scrub(force=True)
             return
         clicked = self._press is not None and not self._moved
@@ -685,19 +690,20 @@ class LiveViewer(mglw.WindowConfig):
         return self._timeline_shown() and self.timeline.hit(x * ratio, y * ratio,
                                                             self.wnd.fbo.size)
 
-    def _scrub_to(self, px: float, dragging: bool) -> None:
-        """Go to the step under ``px`` on the timeline once the pointer rests (a drag
-        over steps not in the snapshot cache would replay the script for each)."""
-        step = self.timeline.step_at(px, self.wnd.fbo.size, self._steps())
-        self._scrub = (step, dragging, time.perf_counter())
-        if not dragging:
-            self._flush_scrub(force=True)
+    def _scrub_to(self, px: float) -> None:
+        """Drag the timeline to ``px``: its step is gone to once the pointer rests or
+        is let go (a drag over steps not in the snapshot cache would replay the
+        script for each)."""
+        self._scrubbing = True
+        self._scrub_step = self.timeline.step_at(px, self.wnd.fbo.size, self._steps())
+        self._scrub_time = time.perf_counter()
 
     def _flush_scrub(self, force: bool = False) -> None:
-        step, dragging, when = self._scrub
-        if step is None or not (force or time.perf_counter() - when >= PARAMETER_DEBOUNCE / 3):
+        step = self._scrub_step
+        resting = time.perf_counter() - self._scrub_time >= PARAMETER_DEBOUNCE / 3
+        if step is None or not (force or resting):
             return
-        self._scrub = (None, dragging, when)
+        self._scrub_step = None
         if step != shown_step(self.result, self._steps()) or self.waiting:
             self.playing = False
             self.session.goto_step(step)
