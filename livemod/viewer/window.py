@@ -305,6 +305,10 @@ class LiveViewer(mglw.WindowConfig):
             return f"object {oid}{named} alone (of {len(objects)}; Tab: next)"
         return f"{len(shown)} of {len(objects)} shown (L: list)"
 
+    def _echo_others(self) -> None:
+        """Say which other objects are drawn now."""
+        self._echo(f"other objects: {self._others_note() or 'all ' + str(len(self._other_ids()))}")
+
     def _echo(self, line: str) -> None:
         stream = self.options.echo if self.options.echo is not None else sys.stdout
         print(line, file=stream, flush=True)
@@ -498,7 +502,7 @@ class LiveViewer(mglw.WindowConfig):
             self._echo("the scene has no other objects")
             return
         self.set_hidden_others(next_alone(ids, self.objects.hidden))
-        self._echo(f"other objects: {self._others_note() or 'all ' + str(len(ids))}")
+        self._echo_others()
 
     def _do_toggle_object_list(self) -> None:
         self.show_objects = not self.show_objects
@@ -705,13 +709,15 @@ class LiveViewer(mglw.WindowConfig):
             return
         self._scrub_step = None
         if step != shown_step(self.result, self._steps()) or self.waiting:
-            self.playing = False
-            self.session.goto_step(step)
-            self.waiting = True
+            self._goto_step(step)
 
     def _do_first_step(self) -> None:
+        self._goto_step(0)
+
+    def _goto_step(self, k: int) -> None:
+        """Stop playing and show the mesh right after step ``k`` (0-based)."""
         self.playing = False
-        self.session.goto_step(0)
+        self.session.goto_step(k)
         self.waiting = True
 
     def _objects_hit(self, x: float, y: float) -> Hit | None:
@@ -732,7 +738,7 @@ class LiveViewer(mglw.WindowConfig):
             return
         else:
             return
-        self._echo(f"other objects: {self._others_note() or 'all ' + str(len(ids))}")
+        self._echo_others()
 
     def _press_panel(self, hit: Hit, px: float) -> None:
         """A click on the panel: reset, start a slider drag, toggle or cycle a choice."""
