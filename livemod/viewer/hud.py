@@ -12,11 +12,23 @@ from typing import Any
 import numpy as np
 
 from .controls import help_lines, section_text
-from .text import QUAD_FLOATS, GlyphAtlas, box_quad, glyph_atlas, layout_text, text_width
-
-TEXT, LABEL_DIM, ERROR_TEXT, OK_TEXT, WARN_TEXT = 0, 5, 4, 6, 7
-PANEL, ERROR_PANEL = 8, 12
-MARGIN, PADDING = 8, 6
+from .text import (
+    ERROR_PANEL,
+    ERROR_TEXT,
+    LABEL_DIM,
+    MARGIN,
+    OK_TEXT,
+    PADDING,
+    PANEL,
+    QUAD_FLOATS,
+    TEXT,
+    WARN_TEXT,
+    GlyphAtlas,
+    box_quad,
+    glyph_atlas,
+    layout_text,
+    text_width,
+)
 
 
 def run_state(result: Any, waiting: bool) -> str:

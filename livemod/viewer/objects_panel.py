@@ -20,11 +20,22 @@ from typing import Any
 import numpy as np
 
 from .params_panel import PANEL_WIDTH, Hit
-from .text import QUAD_FLOATS, box_quad, glyph_atlas, layout_text, text_width
+from .text import (
+    FILL,
+    LABEL_DIM,
+    MARGIN,
+    PADDING,
+    PANEL,
+    QUAD_FLOATS,
+    TEXT,
+    TRACK,
+    WARN_TEXT,
+    box_quad,
+    glyph_atlas,
+    layout_text,
+    text_width,
+)
 
-TEXT, LABEL_DIM, WARN_TEXT, PANEL = 0, 5, 7, 8
-TRACK, FILL = 13, 14  # palette slots: an unticked and a ticked checkbox
-MARGIN, PADDING = 8, 6  # as the parameters panel, whose width it shares
 CHECK_WIDTH = 18  # the checkbox column
 BUTTONS = ("all", "none")  # header buttons, left to right
 

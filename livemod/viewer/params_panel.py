@@ -19,11 +19,24 @@ import numpy as np
 
 from livemod.dlfl.params import ParamSpec
 
-from .text import QUAD_FLOATS, GlyphAtlas, box_quad, glyph_atlas, layout_text, text_width
+from .text import (
+    BUTTON,
+    FILL,
+    LABEL_DIM,
+    MARGIN,
+    PADDING,
+    PANEL,
+    QUAD_FLOATS,
+    TEXT,
+    TRACK,
+    WARN_TEXT,
+    GlyphAtlas,
+    box_quad,
+    glyph_atlas,
+    layout_text,
+    text_width,
+)
 
-TEXT, LABEL_DIM, PANEL = 0, 5, 8
-TRACK, FILL, BUTTON = 13, 14, 15  # palette slots of the controls
-MARGIN, PADDING = 8, 6
 PANEL_WIDTH, NAME_WIDTH, RESET_WIDTH = 340, 110, 16
 SLIDER_STEPS = 1000  # an unstepped float slider moves in 1/1000 of its range
 
@@ -180,7 +193,7 @@ class ParameterPanel:
         x, _, _, row_height = self.frame(size)
         left, control_width, reset = self._control_x(size)
         value = self.values.get(spec.name, spec.default)
-        name_kind = TEXT if value == spec.default else 7  # changed values stand out
+        name_kind = TEXT if value == spec.default else WARN_TEXT  # changed values stand out
         parts = [layout_text(atlas, [spec.name], (x + PADDING, top + 1), name_kind),
                  box_quad(atlas, reset, top + 2, RESET_WIDTH, row_height - 4, BUTTON),
                  layout_text(atlas, ["x"], (reset + 4, top + 1), LABEL_DIM)]

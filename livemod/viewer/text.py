@@ -19,6 +19,14 @@ FIRST_CHAR, LAST_CHAR = 32, 126
 QUAD_FLOATS = 13
 TAB_STOP = 96  # pixels between tab stops, for aligned columns (the font is proportional)
 
+# palette slots of screen quads (rows of the renderer's PALETTE): text colours,
+# then boxes (slots 1-3 and 9-11 are the id labels')
+TEXT, ERROR_TEXT, LABEL_DIM, OK_TEXT, WARN_TEXT = 0, 4, 5, 6, 7
+PANEL, ERROR_PANEL = 8, 12
+TRACK, FILL, BUTTON = 13, 14, 15  # a slider's track or an unticked box, its fill or a
+# ticked one, a button
+MARGIN, PADDING = 8, 6  # pixels around the overlay's panels, and inside them
+
 
 @dataclass(frozen=True)
 class GlyphAtlas:

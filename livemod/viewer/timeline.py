@@ -13,10 +13,22 @@ from __future__ import annotations
 
 import numpy as np
 
-from .text import QUAD_FLOATS, box_quad, glyph_atlas, layout_text, text_width
+from .text import (
+    FILL,
+    LABEL_DIM,
+    MARGIN,
+    PADDING,
+    PANEL,
+    QUAD_FLOATS,
+    TEXT,
+    TRACK,
+    box_quad,
+    glyph_atlas,
+    layout_text,
+    text_width,
+)
 
-LABEL_DIM, PANEL, TRACK, FILL, HANDLE = 5, 8, 13, 14, 0
-MARGIN, PADDING = 8, 6
+HANDLE = TEXT  # the bright handle on the track
 BAR_HEIGHT = 10
 HANDLE_WIDTH = 4
 

@@ -35,7 +35,6 @@ from .hud import hud_quads
 from .imagefiles import save_png
 from .measure import measure_lines
 from .objects_panel import (
-    MARGIN,
     ObjectPanel,
     kept_hidden,
     next_alone,
@@ -50,6 +49,7 @@ from .renderer import (
     Style,
     read_image,
 )
+from .text import MARGIN
 from .timeline import Timeline, shown_step
 
 SCRIPT_SUFFIXES = (".py",)
