@@ -11,11 +11,18 @@ from PIL import Image
 
 from livemod.dlfl import from_polygons, mesh_arrays
 from livemod.dlfl.arrays import concatenate_arrays
+from livemod.dlfl.rind import crust
 from livemod.dlfl.scene import Selection
 from livemod.dlfl.shapes import cube
+from livemod.dlfl.subdivision.smooth import catmull_clark
 from livemod.viewer.cli import main
 from livemod.viewer.headless import Offscreen, framed_camera, render_turntable
-from livemod.viewer.renderer import Style
+from livemod.viewer.renderer import (
+    BASE_COLOR,
+    OTHER_COLOR,
+    Style,
+    hatch_spacing,
+)
 from tests.images import read_image
 
 SIZE = (160, 120)
@@ -443,7 +450,25 @@ def _face_at_z(arrays, z: float) -> int:
     raise AssertionError(f"no face at z={z}")
 
 
-def test_a_section_shows_the_inside_and_picks_through_the_cut(offscreen: Offscreen) -> None:
+def _tones(pixels: np.ndarray, color) -> np.ndarray:
+    """``(n,)`` brightness of each ``(n, 3)`` pixel as a multiple of ``color``, NaN
+    where the pixel is not a shade of that colour (the cap is drawn flat)."""
+    rgb = np.asarray(color) * 255
+    k = pixels.astype(float) @ rgb / (rgb @ rgb)
+    off = np.abs(pixels - k[:, None] * rgb).max(axis=1)
+    return np.where(off <= 3.0, k, np.nan)
+
+
+def _assert_hatched_cap(pixels: np.ndarray, color) -> None:
+    """``pixels`` are the section cap of a mesh drawn in ``color``: flat 0.72 of it,
+    with hatch lines at 0.55 of that."""
+    tones = _tones(pixels.reshape(-1, 3), color)
+    assert not np.isnan(tones).any()
+    assert np.nanmax(tones) == pytest.approx(0.72, abs=0.01)
+    assert np.nanmin(tones) < 0.66  # a hatch line (0.55 of the tone) crosses the region
+
+
+def test_a_section_caps_a_closed_mesh_and_the_cap_is_not_picked(offscreen: Offscreen) -> None:
     arrays = mesh_arrays(from_polygons(CUBE_POSITIONS, CUBE_FACES))
     offscreen.renderer.set_mesh(arrays)
     # from +z, looking down -z; orthographic, so the cut cube has the same outline
@@ -451,16 +476,88 @@ def test_a_section_shows_the_inside_and_picks_through_the_cut(offscreen: Offscre
     middle = (SIZE[1] // 2, SIZE[0] // 2)
     whole = offscreen.render(camera, Style(edges=False))
     cut = offscreen.render(camera, Style(edges=False, section=(2, 0.0)))
-    assert whole[middle][0] > whole[middle][2]  # the orange front face
-    assert cut[middle][2] > cut[middle][0]  # inside: the back of the far face, bluish
-    assert np.array_equal(_mask(cut), _mask(whole))  # the same outline, seen into
-    hit = offscreen.renderer.pick(camera, SIZE, middle[1], middle[0], "face")
-    assert hit is not None and hit.dense_index == _face_at_z(arrays, -1.0)
+    assert np.array_equal(_mask(cut), _mask(whole))  # the same outline, now the cap
+    rows, cols = np.nonzero(_mask(cut))
+    inner = cut[rows.min() + 2:rows.max() - 1, cols.min() + 2:cols.max() - 1]
+    _assert_hatched_cap(inner, BASE_COLOR)
+    assert np.isnan(_tones(whole[middle][None], BASE_COLOR)).all()  # the lit top is no cap
+    assert offscreen.renderer.pick(camera, SIZE, middle[1], middle[0], "face") is None
     offscreen.render(camera, Style(edges=False))  # no section: the front face again
     hit = offscreen.renderer.pick(camera, SIZE, middle[1], middle[0], "face")
     assert hit is not None and hit.dense_index == _face_at_z(arrays, 1.0)
     gone = offscreen.render(camera, Style(edges=False, section=(2, -1.5)))
     assert not _mask(gone).any()  # the plane behind the whole cube: nothing is left
+
+
+def test_a_cut_crust_shows_its_wall_as_cap_and_its_cavity_as_faces(offscreen: Offscreen) -> None:
+    mesh = from_polygons(CUBE_POSITIONS, CUBE_FACES)
+    crust(mesh, 0.5)  # a cube of side 2 around a cavity of side 1
+    arrays = mesh_arrays(mesh)
+    offscreen.renderer.set_mesh(arrays)
+    camera = framed_camera(arrays, elevation=0.0, yaw=0.0, ortho=True)
+    cut = offscreen.render(camera, Style(edges=False, section=(2, 0.0)))
+    rows, cols = np.nonzero(_mask(cut))
+    top, left = rows.min(), cols.min()
+    side = rows.max() - top + 1  # the outer square; the cavity is its middle half
+    wall = cut[top + 2:top + side // 4 - 2, left + 2:left + side - 2]
+    _assert_hatched_cap(wall, BASE_COLOR)
+    middle = (top + side // 2, left + side // 2)
+    assert np.isnan(_tones(cut[middle][None], BASE_COLOR)).all()  # a lit face, no cap
+    hit = offscreen.renderer.pick(camera, SIZE, middle[1], middle[0], "face")
+    assert hit is not None  # the cavity's floor, a face of the inner shell at z = -0.5
+    assert hit.dense_index == _face_at_z(arrays, -0.5)
+
+
+def test_the_cap_hides_what_lies_behind_it(offscreen: Offscreen) -> None:
+    """The cap is drawn at the plane's depth: a small cube inside the cut one (another
+    object, so not part of its parity) and a vertex on the far face both lie behind it."""
+    outer = from_polygons(CUBE_POSITIONS, CUBE_FACES)
+    catmull_clark(outer)  # a vertex at the middle of the bottom face, (0, 0, -1)
+    inner = from_polygons(np.asarray(CUBE_POSITIONS) * 0.25 + (0.0, 0.0, -0.5), CUBE_FACES)
+    arrays, others = mesh_arrays(outer), mesh_arrays(inner)
+    offscreen.renderer.set_mesh(arrays, others=others)
+    camera = framed_camera(arrays, elevation=0.0, yaw=0.0, ortho=True)
+    middle = (slice(SIZE[1] // 2 - 5, SIZE[1] // 2 + 5), slice(SIZE[0] // 2 - 5, SIZE[0] // 2 + 5))
+    whole = offscreen.render(camera, Style(edges=False, vertices=True))
+    assert np.isnan(_tones(whole[middle].reshape(-1, 3), BASE_COLOR)).all()  # lit, a point
+    cut = offscreen.render(camera, Style(edges=False, vertices=True, section=(2, 0.0)))
+    _assert_hatched_cap(cut[middle], BASE_COLOR)  # no yellow point, no small cube
+
+
+def test_an_open_mesh_is_cut_but_not_capped(offscreen: Offscreen) -> None:
+    """A mesh with a hole has no inside to cap: its back faces show through the cut."""
+    arrays = mesh_arrays(from_polygons(CUBE_POSITIONS, CUBE_FACES[1:]))  # no top face
+    offscreen.renderer.set_mesh(arrays)
+    camera = framed_camera(arrays, elevation=0.0, yaw=0.0, ortho=True)
+    middle = (SIZE[1] // 2, SIZE[0] // 2)
+    cut = offscreen.render(camera, Style(edges=False, section=(2, 0.0)))
+    assert cut[middle][2] > cut[middle][0]  # the back of the far face, bluish
+    hit = offscreen.renderer.pick(camera, SIZE, middle[1], middle[0], "face")
+    assert hit is not None and hit.dense_index == _face_at_z(arrays, -1.0)
+
+
+def test_the_other_objects_are_capped_in_their_own_colour(offscreen: Offscreen) -> None:
+    current = mesh_arrays(from_polygons(CUBE_POSITIONS, CUBE_FACES))
+    other = mesh_arrays(from_polygons(np.asarray(CUBE_POSITIONS) + (3.0, 0.0, 0.0),
+                                      CUBE_FACES))
+    offscreen.renderer.set_mesh(current, others=other)
+    camera = framed_camera(concatenate_arrays([current, other]), elevation=0.0, yaw=0.0,
+                           ortho=True)
+    image = offscreen.render(camera, Style(edges=False, section=(2, 0.0)))
+    mask = _mask(image)
+    rows, cols = np.nonzero(mask)
+    gap = np.flatnonzero(~mask[(rows.min() + rows.max()) // 2, cols.min():cols.max()])
+    left, right = cols.min() + gap.min(), cols.min() + gap.max()  # the gap between them
+    band = slice(rows.min() + 2, rows.max() - 1)
+    _assert_hatched_cap(image[band, cols.min() + 2:left - 2], BASE_COLOR)
+    _assert_hatched_cap(image[band, right + 3:cols.max() - 1], OTHER_COLOR)
+
+
+def test_hatch_spacing_is_a_power_of_two_near_eight_pixels() -> None:
+    assert hatch_spacing(0.01, 1.0) == 0.0625  # 8 pixels of 0.01: 0.08, nearest 2^-4
+    assert hatch_spacing(0.01, 0.5) == 0.125  # seen aslant: spread out
+    assert hatch_spacing(0.01, 0.01) == hatch_spacing(0.01, 0.25) == 0.25  # by at most 4x
+    assert hatch_spacing(1e100, 1.0) == 2.0 ** round(np.log2(8e100))
 
 
 def test_a_section_leaves_out_the_labels_of_what_it_cut_away(offscreen: Offscreen) -> None:

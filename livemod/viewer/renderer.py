@@ -8,6 +8,7 @@ integer id framebuffer. Every method must be called on the thread that owns ``ct
 from __future__ import annotations
 
 import contextlib
+import math
 from collections.abc import Iterator
 from dataclasses import dataclass, field
 
@@ -164,6 +165,7 @@ class _MeshGPU:
         self.vertex_flags = _uint_table(ctx, np.zeros(len(geometry.positions), np.uint8), "u1")
         content = [(self.positions, "3f", "in_position")]
         self.face_vao = ctx.vertex_array(programs["face"], content, self.triangles, 4)
+        self.parity_vao = ctx.vertex_array(programs["parity"], content, self.triangles, 4)
         self.edge_vao = ctx.vertex_array(programs["edge"], content, self.lines, 4)
         self.point_vao = ctx.vertex_array(programs["point"], content)
         self.spheres = _buffer(ctx, geometry.point_spheres)
@@ -211,7 +213,7 @@ class _MeshGPU:
         if self.smooth is not None:
             self.smooth[1].release()
             self.smooth[0].release()
-        for obj in (self.face_vao, self.edge_vao, self.point_vao, self.sphere_vao,
+        for obj in (self.face_vao, self.parity_vao, self.edge_vao, self.point_vao, self.sphere_vao,
                     self.spheres, self.positions,
                     self.triangles, self.lines, self.triangle_face, self.face_flags,
                     self.edge_flags, self.vertex_flags, self.triangle_index,
@@ -252,6 +254,25 @@ def guide_lines(bounds: np.ndarray) -> list[tuple[np.ndarray, tuple[float, float
     return [(grid, GRID_COLOR), *axes]
 
 
+def hatch_spacing(pixel_size: float, facing: float, pixels: float = 8.0) -> float:
+    """World distance between the section cap's hatch lines.
+
+    Args:
+        pixel_size: world size of a pixel at the camera's target.
+        facing: |cosine| between the line of sight and the plane's normal; a plane
+            seen aslant squeezes the lines together, so they are spread by 1/facing
+            (by at most 4x).
+        pixels: the wanted gap in pixels on a plane seen face on.
+
+    Returns:
+        a power of two near ``pixels * pixel_size / facing``, so that the lines stay
+        put while the view turns or zooms a little (they halve or double in number
+        at a step).
+    """
+    wanted = pixels * pixel_size / max(facing, 0.25)
+    return float(2.0 ** np.round(np.log2(wanted)))
+
+
 def read_image(fbo: moderngl.Framebuffer, style: Style) -> np.ndarray:
     """The colour of ``fbo`` drawn with ``style``: ``(H, W, 3)`` uint8 RGB, row 0
     at the top, or ``(H, W, 4)`` RGBA when ``style.background`` is not opaque (a
@@ -281,6 +302,10 @@ class Renderer:
                                  fragment_shader=shaders.POINT_FRAGMENT),
             "line": ctx.program(vertex_shader=shaders.MESH_VERTEX,
                                 fragment_shader=shaders.LINE_FRAGMENT),
+            "parity": ctx.program(vertex_shader=shaders.MESH_VERTEX,
+                                  fragment_shader=shaders.PARITY_FRAGMENT),
+            "cap": ctx.program(vertex_shader=shaders.CAP_VERTEX,
+                               fragment_shader=shaders.CAP_FRAGMENT),
             "text": ctx.program(vertex_shader=shaders.TEXT_VERTEX,
                                 fragment_shader=shaders.TEXT_FRAGMENT),
         }
@@ -303,11 +328,13 @@ class Renderer:
         self._preview: _MeshGPU | None = None
         self._label_cache: tuple[object, np.ndarray] | None = None
         self._pick_fbo: moderngl.Framebuffer | None = None
+        self._parity: tuple[moderngl.Framebuffer, moderngl.Texture] | None = None
+        self._cap_vao = ctx.vertex_array(self.programs["cap"], [])
 
     def _bind_samplers(self) -> None:
         """Fix each program's texture units: 0 atlas/triangle_face, 1..3 flags."""
         units = {"triangle_face": 0, "face_flags": 1, "edge_flags": 2, "vertex_flags": 3,
-                 "triangle_index": 4, "position_table": 5, "atlas": 0}
+                 "triangle_index": 4, "position_table": 5, "parity": 6, "atlas": 0}
         for program in self.programs.values():
             for name, unit in units.items():
                 if name in program:
@@ -386,7 +413,7 @@ class Renderer:
         fbo.clear(*style.background)
         if self._mesh is None and self._others is None:
             return
-        self._set_view(camera, width / max(height, 1))
+        self._set_view(camera, (width, height))
         self.ctx.enable(moderngl.DEPTH_TEST | moderngl.PROGRAM_POINT_SIZE)
         self.ctx.disable(moderngl.CULL_FACE | moderngl.BLEND)
         self._others_shown = style.others  # picking hides what the frame hid
@@ -421,7 +448,7 @@ class Renderer:
             self._set_clip_plane(NO_CUT)
 
     def _set_clip_plane(self, plane: tuple[float, ...]) -> None:
-        for name in ("face", "edge", "point", "line"):
+        for name in ("face", "edge", "point", "line", "parity", "cap"):
             self.programs[name]["clip_plane"].value = plane  # type: ignore[union-attr]
 
     def _draw_guides(self) -> None:
@@ -467,17 +494,34 @@ class Renderer:
             self._draw_points(mesh, style.point_size, point_spheres=True)
         self._draw_corners(style.point_size)
 
-    def _set_view(self, camera: Camera, aspect: float) -> None:
+    def _set_view(self, camera: Camera, size: tuple[int, int]) -> None:
+        """Give every program the view of ``camera`` on a ``(width, height)`` target."""
+        aspect = size[0] / max(size[1], 1)
         for mesh in (self._mesh, self._others):
             if mesh is not None:
                 camera.scene_radius = max(camera.scene_radius, mesh.geometry.radius)
         view_matrix = camera.view_matrix()
-        mvp = _matrix_bytes(camera.projection_matrix(aspect) @ view_matrix)
+        view_projection = camera.projection_matrix(aspect) @ view_matrix
+        mvp = _matrix_bytes(view_projection)
+        self._set_cap_view(camera, aspect, size[1])
         view = _matrix_bytes(view_matrix)
         for program in self.programs.values():
             program["mvp"].write(mvp)  # type: ignore[union-attr]
             if "view" in program:
                 program["view"].write(view)  # type: ignore[union-attr]
+
+    def _set_cap_view(self, camera: Camera, aspect: float, height: int) -> None:
+        """What the cap pass needs to turn each pixel back into a line of sight."""
+        cap = self.programs["cap"]
+        cap["eye"].value = tuple(float(v) for v in camera.eye())  # type: ignore[union-attr]
+        # a row-major (3, 3) of rows right, up, back is the column-major matrix of columns
+        basis = np.ascontiguousarray(camera.basis(), dtype=np.float32)
+        cap["camera_basis"].write(basis.tobytes())  # type: ignore[union-attr]
+        half = camera.half_height() if camera.ortho else math.tan(math.radians(camera.fov) / 2)
+        cap["half_size"].value = (half * aspect, half)  # type: ignore[union-attr]
+        cap["ortho"].value = int(camera.ortho)  # type: ignore[union-attr]
+        self._view_back = camera.basis()[2]
+        self._pixel_size = 2.0 * camera.half_height() / max(height, 1)
 
     def _draw_faces(self, mesh: _MeshGPU, color: tuple[float, float, float],
                     wire: bool = False, smooth: bool = False) -> None:
@@ -498,13 +542,66 @@ class Renderer:
         mesh.face_flags.use(1)
         # push faces back so edges and points drawn at the same depth win
         self.ctx.polygon_offset = (1.0, 1.0)
-        if mesh.geometry.closed and self._section is None:
+        if mesh.geometry.closed:
             # a closed manifold hides its back faces: skip them (about a third of
-            # the frame time on software GL); open meshes, and cut ones, show them tinted
+            # the frame time on software GL); open meshes show them tinted
             self.ctx.enable(moderngl.CULL_FACE)
         (mesh.smooth_vao() if smooth else mesh.face_vao).render(moderngl.TRIANGLES)
-        self.ctx.disable(moderngl.CULL_FACE)
         self.ctx.polygon_offset = (0.0, 0.0)
+        if mesh.geometry.closed and self._section is not None:
+            self._draw_cap(mesh, color)
+        self.ctx.disable(moderngl.CULL_FACE)
+
+    def _draw_cap(self, mesh: _MeshGPU, color: tuple[float, float, float]) -> None:
+        """The section's cap of a cut closed mesh, in a darker ``color``: the mesh's
+        cut triangles flip a parity image, then one pass over the viewport draws the
+        plane where the parity is odd (``shaders.CAP_FRAGMENT``), at its own depth.
+        Must follow the mesh's face pass, into the framebuffer now in use."""
+        assert self._section is not None
+        target, viewport = self.ctx.fbo, self.ctx.viewport
+        parity_image = self._flip_parity(mesh, (viewport[2], viewport[3]))
+        target.use()
+        self.ctx.viewport = viewport
+        self.ctx.enable(moderngl.DEPTH_TEST)
+        program = self.programs["cap"]
+        program["viewport"].value = tuple(float(v) for v in viewport[2:])  # type: ignore[union-attr]
+        program["cap_color"].value = tuple(0.72 * c for c in color)  # type: ignore[union-attr]
+        axis = self._section[0]
+        along = [1.0, 1.0, 1.0]  # hatch at 45 degrees to the two axes in the plane
+        along[axis] = 0.0
+        program["hatch_axis"].value = tuple(along)  # type: ignore[union-attr]
+        program["hatch_spacing"].value = hatch_spacing(  # type: ignore[union-attr]
+            self._pixel_size, abs(float(self._view_back[axis])))
+        parity_image.use(6)
+        self._cap_vao.render(moderngl.TRIANGLES, vertices=3)
+
+    def _flip_parity(self, mesh: _MeshGPU, size: tuple[int, int]) -> moderngl.Texture:
+        """Draw the cut triangles of ``mesh`` into the parity image of ``size``, each
+        flipping the pixels it covers between 0 and 1, and return the image. Leaves
+        the parity target bound and the depth test and culling off."""
+        parity, image = self._parity_target(size)
+        parity.use()
+        parity.clear(0.0, 0.0, 0.0, 0.0)
+        self.ctx.disable(moderngl.DEPTH_TEST | moderngl.CULL_FACE)
+        self.ctx.enable(moderngl.BLEND)
+        self.ctx.blend_func = moderngl.ONE_MINUS_DST_COLOR, moderngl.ZERO
+        mesh.parity_vao.render(moderngl.TRIANGLES)
+        self.ctx.disable(moderngl.BLEND)  # the text pass sets its own blend function
+        return image
+
+    def _parity_target(self, size: tuple[int, int],
+                       ) -> tuple[moderngl.Framebuffer, moderngl.Texture]:
+        """A one-channel framebuffer of ``size`` and its texture, for the cap's parity
+        pass (kept for the next frame of that size)."""
+        if self._parity is not None and self._parity[0].size == size:
+            return self._parity
+        if self._parity is not None:
+            self._parity[0].release()
+            self._parity[1].release()
+        texture = self.ctx.texture(size, 1)
+        texture.filter = (moderngl.NEAREST, moderngl.NEAREST)
+        self._parity = (self.ctx.framebuffer([texture]), texture)
+        return self._parity
 
     def _draw_edges(self, mesh: _MeshGPU, selected_only: bool = False) -> None:
         program = self.programs["edge"]
@@ -683,7 +780,7 @@ class Renderer:
         fbo.use()
         self.ctx.viewport = (0, 0, *fbo.size)
         fbo.clear(0.0, 0.0, 0.0, 0.0)  # 0 bits in the id attachment: background
-        self._set_view(camera, fbo.size[0] / max(fbo.size[1], 1))
+        self._set_view(camera, fbo.size)
         self.ctx.enable(moderngl.DEPTH_TEST | moderngl.PROGRAM_POINT_SIZE)
         self.ctx.disable(moderngl.BLEND | moderngl.CULL_FACE)
         with self._cut(self._section):  # what the cut took away is not picked

@@ -107,6 +107,74 @@ void main() {
 }
 """
 
+PARITY_FRAGMENT = """
+#version 330
+// Drawn with blend (1 - destination, 0) and no depth test: every triangle over a
+// pixel flips it between 0 and 1, so it ends 1 where an odd number of the cut
+// mesh's triangles lie over it.
+layout(location = 0) out vec4 parity;
+void main() {
+    parity = vec4(1.0);
+}
+"""
+
+CAP_VERTEX = """
+#version 330
+// one triangle over the whole viewport
+void main() {
+    vec2 p = vec2(float((gl_VertexID & 1) << 2) - 1.0, float((gl_VertexID & 2) << 1) - 1.0);
+    gl_Position = vec4(p, 0.0, 1.0);
+}
+"""
+
+CAP_FRAGMENT = """
+#version 330
+// The section's cap. The line of sight through a pixel crosses the section plane
+// inside a closed mesh exactly when an odd number of the cut mesh's triangles lie
+// over the pixel (the parity pass), whichever side of the plane the eye is on.
+// There the cap is drawn, flat and hatched, at the depth of the plane, so that it
+// hides what lies behind it as a real cut face would.
+uniform sampler2D parity;
+uniform mat4 mvp;
+uniform vec3 eye;
+uniform mat3 camera_basis;  // columns: the camera's right, up and back in the world
+uniform vec2 half_size;     // of the view at distance 1 (perspective) or anywhere (ortho)
+uniform int ortho;
+uniform vec2 viewport;
+uniform vec4 clip_plane;
+uniform vec3 cap_color;
+uniform vec3 hatch_axis;    // lies in the plane: the hatch lines are its level sets
+uniform float hatch_spacing;
+layout(location = 0) out vec4 color;
+layout(location = 1) out uint pick;
+void main() {
+    vec2 ndc = gl_FragCoord.xy / viewport * 2.0 - 1.0;
+    // the line of sight through the pixel, from the camera's own frame (inverting
+    // the projection matrix in single precision makes it jitter from pixel to pixel)
+    vec3 across = camera_basis * vec3(ndc * half_size, 0.0);
+    vec3 forward = -camera_basis[2];
+    vec3 origin = ortho != 0 ? eye + across : eye;
+    vec3 ray = ortho != 0 ? forward : across + forward;
+    float along = dot(clip_plane.xyz, ray);
+    float t = -dot(vec4(origin, 1.0), clip_plane) / (along == 0.0 ? 1.0 : along);
+    vec3 q = origin + t * ray;
+    // derivatives before any discard: they need the neighbouring pixels
+    float s = dot(q, hatch_axis) / hatch_spacing;
+    float w = max(fwidth(s), 1e-6);
+    float off = abs(fract(s + 0.5) - 0.5) / w;  // pixels to the nearest hatch line
+    // lines about 1.5 pixels wide, faded out where they would crowd closer than 3 pixels
+    float line = (1.0 - smoothstep(0.4, 1.2, off)) * (1.0 - smoothstep(0.25, 0.45, w));
+    bool odd = texelFetch(parity, ivec2(gl_FragCoord.xy), 0).r > 0.5;
+    // outside the section, the plane seen edge-on, or behind the eye
+    if (!odd || along == 0.0 || (ortho == 0 && t <= 0.0)) discard;
+    vec4 clip = mvp * vec4(q, 1.0);
+    gl_FragDepth = clamp(0.5 * (gl_DepthRange.diff * clip.z / clip.w + gl_DepthRange.near
+                                + gl_DepthRange.far), 0.0, 1.0);
+    color = vec4(mix(cap_color, 0.55 * cap_color, line), 1.0);
+    pick = 0u;  // the cap is no element of the mesh
+}
+"""
+
 EDGE_FRAGMENT = """
 #version 330
 uniform usampler2D edge_flags;
