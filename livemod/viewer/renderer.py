@@ -288,27 +288,25 @@ def _matrix_bytes(matrix: np.ndarray) -> bytes:
     return np.ascontiguousarray(matrix.T, dtype=np.float32).tobytes()
 
 
+# each program's (vertex, fragment) shader sources
+PROGRAMS = {
+    "face": (shaders.MESH_VERTEX, shaders.FACE_FRAGMENT),
+    "edge": (shaders.MESH_VERTEX, shaders.EDGE_FRAGMENT),
+    "point": (shaders.MESH_VERTEX, shaders.POINT_FRAGMENT),
+    "line": (shaders.MESH_VERTEX, shaders.LINE_FRAGMENT),
+    "parity": (shaders.MESH_VERTEX, shaders.PARITY_FRAGMENT),  # the section cap's
+    "cap": (shaders.CAP_VERTEX, shaders.CAP_FRAGMENT),
+    "text": (shaders.TEXT_VERTEX, shaders.TEXT_FRAGMENT),
+}
+
+
 class Renderer:
     """Draws meshes, selections, labels and screen text with one set of programs."""
 
     def __init__(self, ctx: moderngl.Context) -> None:
         self.ctx = ctx
-        self.programs = {
-            "face": ctx.program(vertex_shader=shaders.MESH_VERTEX,
-                                fragment_shader=shaders.FACE_FRAGMENT),
-            "edge": ctx.program(vertex_shader=shaders.MESH_VERTEX,
-                                fragment_shader=shaders.EDGE_FRAGMENT),
-            "point": ctx.program(vertex_shader=shaders.MESH_VERTEX,
-                                 fragment_shader=shaders.POINT_FRAGMENT),
-            "line": ctx.program(vertex_shader=shaders.MESH_VERTEX,
-                                fragment_shader=shaders.LINE_FRAGMENT),
-            "parity": ctx.program(vertex_shader=shaders.MESH_VERTEX,
-                                  fragment_shader=shaders.PARITY_FRAGMENT),
-            "cap": ctx.program(vertex_shader=shaders.CAP_VERTEX,
-                               fragment_shader=shaders.CAP_FRAGMENT),
-            "text": ctx.program(vertex_shader=shaders.TEXT_VERTEX,
-                                fragment_shader=shaders.TEXT_FRAGMENT),
-        }
+        self.programs = {name: ctx.program(vertex_shader=vertex, fragment_shader=fragment)
+                         for name, (vertex, fragment) in PROGRAMS.items()}
         self._bind_samplers()
         self._set_clip_plane(NO_CUT)
         self.atlas = glyph_atlas()
