@@ -593,6 +593,73 @@ def test_render_section_option(tmp_path: Path, capsys) -> None:
     assert not (tmp_path / "bad.png").exists()
 
 
+def _render(script: Path, out: Path, *extra: str) -> int:
+    return main(["render", str(script), "-o", str(out), "--size", "160x120", "--samples", "0",
+                 *extra])
+
+
+def test_render_compares_with_a_reference_picture(tmp_path: Path, capsys) -> None:
+    script = tmp_path / "cube.py"
+    script.write_text(CUBE_SCRIPT)
+    golden = tmp_path / "golden.png"
+    assert _render(script, golden) == 0
+    assert _render(script, tmp_path / "same.png", "--reference", str(golden)) == 0
+    assert f"matches: 0.00% of the pixels differ from {golden}" in capsys.readouterr().out
+    assert not (tmp_path / "same.diff.png").exists()
+    turned = tmp_path / "turned.png"
+    assert _render(script, turned, "--reference", str(golden), "--yaw", "60") == 1
+    err = capsys.readouterr().err
+    assert "differs: " in err and f"see {tmp_path / 'turned.diff.png'}" in err
+    marked = read_image(tmp_path / "turned.diff.png")
+    moved = np.abs(read_image(turned).astype(int) - read_image(golden)).max(axis=2) > 25
+    assert np.array_equal(np.all(marked == (255, 40, 40), axis=2), moved)
+    assert _render(script, turned, "--reference", str(golden), "--yaw", "60",
+                   "--threshold", "100%") == 0
+
+
+def test_render_refuses_a_reference_it_cannot_compare_before_it_runs(tmp_path: Path,
+                                                                      capsys) -> None:
+    script = tmp_path / "cube.py"
+    script.write_text(CUBE_SCRIPT)
+    golden = tmp_path / "golden.png"
+    Image.new("RGB", (80, 60)).save(golden)
+    out = tmp_path / "out.png"
+    refusals = {
+        ("--reference", str(tmp_path / "gone.png")): f"no reference picture at {tmp_path}",
+        ("--reference", str(golden)): "is 80x60 pixels and the render 160x120 (give --size)",
+        ("--threshold", "0.5"): "--threshold needs --reference",
+    }
+    for extra, message in refusals.items():
+        assert _render(script, out, *extra) == 2
+        assert message in capsys.readouterr().err
+    assert _render(script, tmp_path / "t.gif", "--reference", str(golden), "--turntable", "3") == 2
+    assert "--reference compares one picture: leave out --turntable" in capsys.readouterr().err
+    assert _render(script, golden, "--size", "80x60", "--reference", str(golden)) == 2
+    assert "-o would write over the reference" in capsys.readouterr().err
+    assert not out.exists() and not (tmp_path / "t.gif").exists()
+    assert read_image(golden).max() == 0  # nothing written over it
+    for bad in ("-1", "101%", "half"):
+        with pytest.raises(SystemExit):
+            _render(script, out, "--reference", str(golden), "--threshold", bad)
+        assert "the threshold is a share of the pixels" in capsys.readouterr().err
+
+
+def test_render_yaw_turns_the_camera(tmp_path: Path, capsys) -> None:
+    script = tmp_path / "two.py"
+    script.write_text(CUBE_SCRIPT + "load('cube')\ntranslate(3, 0, 0)\n")
+    pictures = {}
+    for yaw in ("30", "0", "180", "-180"):
+        assert _render(script, tmp_path / f"{yaw}.png", "--yaw", yaw) == 0
+        pictures[yaw] = read_image(tmp_path / f"{yaw}.png")
+    assert _render(script, tmp_path / "default.png") == 0
+    assert np.array_equal(read_image(tmp_path / "default.png"), pictures["30"])
+    assert not np.array_equal(pictures["0"], pictures["180"])
+    assert np.array_equal(pictures["180"], pictures["-180"])
+    with pytest.raises(SystemExit):
+        _render(script, tmp_path / "bad.png", "--yaw", "inf")
+    assert "the yaw must be a number of degrees, not 'inf'" in capsys.readouterr().err
+
+
 def _segment():
     """Two point-spheres joined by insertEdge: one edge, one 2-gon, no triangle."""
     from livemod.dlfl import Mesh

@@ -49,6 +49,29 @@ def parse_elevation(text: str) -> float:
     return degrees
 
 
+def parse_yaw(text: str) -> float:
+    """``--yaw`` in degrees around the up axis (any finite number; 0 looks from +z)."""
+    try:
+        degrees = float(text)
+    except ValueError:
+        degrees = math.nan
+    if not math.isfinite(degrees):
+        raise argparse.ArgumentTypeError(f"the yaw must be a number of degrees, not {text!r}")
+    return degrees
+
+
+def parse_threshold(text: str) -> float:
+    """``--threshold``: a share of pixels from 0 to 1, or a percentage such as ``2%``."""
+    try:
+        share = float(text[:-1]) / 100 if text.strip().endswith("%") else float(text)
+    except ValueError:
+        share = math.nan
+    if not 0.0 <= share <= 1.0:
+        raise argparse.ArgumentTypeError(f"the threshold is a share of the pixels from 0 to "
+                                         f"1 (or 0% to 100%), not {text!r}")
+    return share
+
+
 def parse_section(text: str) -> tuple[int, float | None]:
     """``--section`` as ``(axis, at)``: ``x=0.25`` cuts away what lies beyond x = 0.25,
     a bare ``y`` cuts through the middle of the scene (``at`` None)."""
@@ -111,7 +134,17 @@ def _add_render(subparsers: Any) -> None:
                         help="frames per second of a GIF, WebP or MP4 (default: 25)")
     render.add_argument("--elevation", type=parse_elevation, default=25.0, metavar="DEG",
                         help="camera height above the horizon in degrees")
+    render.add_argument("--yaw", type=parse_yaw, default=30.0, metavar="DEG",
+                        help="camera turn around the up axis in degrees (0 looks from +z; "
+                             "default 30); a turntable starts there")
     _add_render_style(render)
+    render.add_argument("--reference", metavar="IMAGE",
+                        help="compare the picture with this one: exit 1 and write "
+                             "OUTPUT.diff.png when they differ (golden-image tests)")
+    render.add_argument("--threshold", type=parse_threshold, default=None, metavar="SHARE",
+                        help="with --reference: the share of pixels that may differ "
+                             "(by more than 10%% in a channel), e.g. 0.02 or 2%% "
+                             "(default: 1%%)")
     render.set_defaults(handler=_render)
 
 
@@ -131,7 +164,7 @@ def _add_render_style(render: argparse.ArgumentParser) -> None:
     render.add_argument("--smooth", action="store_true",
                         help="smooth shading (vertex normals) instead of flat faces")
     render.add_argument("--section", type=parse_section, default=None, metavar="AXIS[=AT]",
-                        help="cut the meshes at a plane and show the inside: x=0.5 cuts "
+                        help="cut the meshes at a plane and cap the cut solids: x=0.5 cuts "
                              "away what lies beyond x = 0.5; a bare x, y or z cuts "
                              "through the middle")
     render.add_argument("--samples", type=int, default=None,
@@ -179,6 +212,7 @@ def _render(args: argparse.Namespace) -> int:
 
     try:  # all before the script runs: a long run should not end in a bad argument
         inputs = _render_inputs(args)
+        reference = _reference_of(args)
         offscreen = Offscreen(args.size, samples=_samples(args))
     except (ValueError, NoOffscreenGL) as exc:
         print(f"livemod render: {exc}", file=sys.stderr)
@@ -189,7 +223,55 @@ def _render(args: argparse.Namespace) -> int:
         offscreen.release()
     print(f"wrote {paths[0]}" if len(paths) == 1 else f"wrote {len(paths)} frames: "
           f"{paths[0]} .. {paths[-1]}")
-    return 0
+    if reference is None:
+        return 0
+    return _check_against(reference, args.reference, paths[0], args.threshold)
+
+
+def _reference_of(args: argparse.Namespace) -> np.ndarray | None:
+    """The ``--reference`` picture, checked against the render it is for (None without).
+
+    Raises:
+        ValueError: no such picture, one of another size, a turntable, or
+            ``--threshold`` without ``--reference``.
+    """
+    from .compare import read_picture
+
+    if args.reference is None:
+        if args.threshold is not None:
+            raise ValueError("--threshold needs --reference")
+        return None
+    if args.turntable > 1:
+        raise ValueError("--reference compares one picture: leave out --turntable")
+    if Path(args.reference).resolve() == Path(args.output).resolve():
+        raise ValueError(f"-o would write over the reference {args.reference}: render to "
+                         "another file (copy it over the reference to update it)")
+    reference = read_picture(args.reference, "reference picture")
+    if reference.shape[1::-1] != tuple(args.size):
+        raise ValueError(f"the reference {args.reference} is {reference.shape[1]}x"
+                         f"{reference.shape[0]} pixels and the render "
+                         f"{args.size[0]}x{args.size[1]} (give --size)")
+    return reference
+
+
+def _check_against(reference: np.ndarray, reference_path: str, rendered: Path,
+                   threshold: float | None) -> int:
+    """Compare the picture written at ``rendered`` with ``reference``; 0 when they
+    match, else 1 with ``OUTPUT.diff.png`` written (the differing pixels in red)."""
+    from .compare import THRESHOLD, difference_picture, image_difference, read_picture
+    from .imagefiles import save_png
+
+    limit = THRESHOLD if threshold is None else threshold
+    difference = image_difference(read_picture(rendered), reference)
+    summary = (f"{difference.share:.2%} of the pixels differ from {reference_path} "
+               f"(threshold {limit:.2%}; largest difference {difference.largest:.0%})")
+    if difference.matches(limit):
+        print(f"matches: {summary}")
+        return 0
+    diff_path = rendered.with_name(f"{rendered.stem}.diff.png")
+    save_png(diff_path, difference_picture(reference, difference))
+    print(f"livemod render: differs: {summary}; see {diff_path}", file=sys.stderr)
+    return 1
 
 
 def _render_to(args: argparse.Namespace, offscreen: Any, values: dict[str, Any],
@@ -213,7 +295,7 @@ def _render_to(args: argparse.Namespace, offscreen: Any, values: dict[str, Any],
                   smooth=args.smooth, section=section_through(args.section, (arrays, others)))
     progress = ProgressBar("rendering") if args.turntable > 1 else None
     return render_arrays(arrays, args.output, turntable=args.turntable,
-                         elevation=args.elevation, style=style, preview=preview,
+                         elevation=args.elevation, yaw=args.yaw, style=style, preview=preview,
                          progress=progress, ortho=args.ortho, offscreen=offscreen,
                          others=others, fps=args.fps)
 

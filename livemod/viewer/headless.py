@@ -151,7 +151,8 @@ def render_turntable(offscreen: Offscreen, camera: Camera, style: Style, frames:
 
 
 def render_arrays(arrays: MeshArrays | None, out: str, *, size: tuple[int, int] = (800, 600),
-                  turntable: int = 0, elevation: float = 25.0, style: Style | None = None,
+                  turntable: int = 0, elevation: float = 25.0, yaw: float = 30.0,
+                  style: Style | None = None,
                   preview: MeshArrays | None = None, selection: Selection | None = None,
                   progress: Callable[[int, int], None] | None = None,
                   ortho: bool = False, samples: int | None = None,
@@ -165,7 +166,9 @@ def render_arrays(arrays: MeshArrays | None, out: str, *, size: tuple[int, int] 
     With ``offscreen`` (made beforehand, so a bad size or GL fails before a long
     run), it is drawn into and left to the caller to release; ``size`` and
     ``samples`` are then its own. ``others`` (the scene's other objects) are drawn
-    beside ``arrays`` and framed with it. ``fps`` is the frame rate of a GIF,
+    beside ``arrays`` and framed with it. The camera looks from ``elevation`` degrees
+    above the horizon and ``yaw`` degrees around the up axis (0: from +z), where a
+    turntable starts. ``fps`` is the frame rate of a GIF,
     WebP or MP4 ``out`` (see :func:`~livemod.viewer.imagefiles.write_images`).
 
     Raises:
@@ -175,19 +178,18 @@ def render_arrays(arrays: MeshArrays | None, out: str, *, size: tuple[int, int] 
         NoOffscreenGL: no offscreen GL context could be made.
     """
     drawn = _Drawn(arrays, preview, others, selection)
+    orbit = _Orbit(max(turntable, 1), elevation, yaw, ortho)
     style = style if style is not None else Style()
     # before any GL: a name that cannot take these frames costs no context
     check_output(out, max(turntable, 1), offscreen.size if offscreen is not None else size,
                  transparent=style.background[3] < 1.0, fps=fps)
     if offscreen is not None:
-        return _render_into(offscreen, drawn, out, turntable, elevation, style, progress,
-                            ortho, fps)
+        return _render_into(offscreen, drawn, out, orbit, style, progress, fps)
     if samples is None:
         samples = 0 if turntable > 1 else 4
     offscreen = Offscreen(size, samples=samples)
     try:
-        return _render_into(offscreen, drawn, out, turntable, elevation, style, progress,
-                            ortho, fps)
+        return _render_into(offscreen, drawn, out, orbit, style, progress, fps)
     finally:
         offscreen.release()
 
@@ -202,20 +204,29 @@ class _Drawn:
     selection: Selection | None
 
 
-def _render_into(offscreen: Offscreen, drawn: _Drawn, out: str, turntable: int,
-                 elevation: float, style: Style,
-                 progress: Callable[[int, int], None] | None, ortho: bool,
+@dataclass(frozen=True)
+class _Orbit:
+    """Where :func:`render_arrays` looks from: ``frames`` turntable views starting at
+    ``yaw`` degrees, ``elevation`` degrees above the horizon, orthographic or not."""
+
+    frames: int
+    elevation: float
+    yaw: float
+    ortho: bool
+
+
+def _render_into(offscreen: Offscreen, drawn: _Drawn, out: str, orbit: _Orbit,
+                 style: Style, progress: Callable[[int, int], None] | None,
                  fps: float) -> list[Path]:
     """:func:`render_arrays` into an existing target (which stays open), its output
     name already checked."""
     size = offscreen.size
-    frames = max(turntable, 1)
     offscreen.activate()
     offscreen.renderer.set_mesh(drawn.arrays, drawn.preview, drawn.others)
     if drawn.selection is not None:
         offscreen.renderer.set_selection(drawn.selection)
     # framed as the window fits: the mesh and the other objects together
-    camera = camera_framing(offscreen.renderer.drawn_positions(), elevation, ortho=ortho,
-                            aspect=size[0] / size[1], frames=frames)
-    images = render_turntable(offscreen, camera, style, frames, progress)
+    camera = camera_framing(offscreen.renderer.drawn_positions(), orbit.elevation, orbit.yaw,
+                            orbit.ortho, aspect=size[0] / size[1], frames=orbit.frames)
+    images = render_turntable(offscreen, camera, style, orbit.frames, progress)
     return write_images(out, images, fps)
