@@ -600,3 +600,37 @@ def test_view_without_a_display_says_so_in_one_line(tmp_path: Path) -> None:
     assert "Traceback" not in done.stderr
     assert done.stderr.startswith("livemod: error: cannot open a window (")
     assert "no display" in done.stderr and "livemod render" in done.stderr
+
+
+def test_view_output_writes_every_good_result_and_shows_a_failed_write(tmp_path: Path) -> None:
+    from livemod.dlfl import mesh_arrays
+    from livemod.dlfl.io import open_mesh
+
+    script = tmp_path / "model.py"
+    script.write_text(CUBE.format(scale=1.0))
+    out = tmp_path / "out" / "model.obj"
+    echo = io.StringIO()
+    with _opened(script, (320, 240), echo=echo, output=str(out)) as viewer:
+        assert open_mesh(str(out)).counts() == (8, 12, 6)
+        assert f"run {viewer.result.run_id}: wrote {out}" in echo.getvalue()
+        time.sleep(0.05)
+        script.write_text(CUBE.format(scale=2.0))
+        _wait(viewer, _has_run(2))
+        assert mesh_arrays(open_mesh(str(out))).positions[:, 0].max() == pytest.approx(2.0)
+        out.unlink()
+        out.mkdir()  # a folder where the file should go: the write fails
+        time.sleep(0.05)
+        script.write_text(CUBE.format(scale=3.0))
+        _wait(viewer, _has_run(3))
+        assert viewer.result.status == "error" and viewer.result.error.file == str(out)
+        assert viewer.result.stale  # the last good cube, as after a script error
+        assert viewer.renderer.arrays.positions[:, 0].max() == pytest.approx(2.0)
+
+
+def test_view_refuses_an_output_no_writer_takes(tmp_path: Path, capsys) -> None:
+    from livemod.viewer.cli import main
+
+    script = tmp_path / "model.py"
+    script.write_text(CUBE.format(scale=1.0))
+    assert main(["view", str(script), "-o", str(tmp_path / "model.txt")]) == 2
+    assert "livemod view: output" in capsys.readouterr().err

@@ -151,7 +151,8 @@ def _add_batch(subparsers: Any) -> None:
     batch.set_defaults(handler=cmd_batch)
 
 
-def _check_output(path: str | None) -> None:
+def check_mesh_output(path: str | None) -> None:
+    """Refuse (ValueError) an ``-o`` mesh name no writer takes; None passes."""
     if path is not None and not path.lower().endswith(OUTPUT_SUFFIXES):
         raise ValueError(f"output {path!r} must end with one of {', '.join(OUTPUT_SUFFIXES)}")
 
@@ -160,7 +161,7 @@ def cmd_run(args: argparse.Namespace) -> int:
     """``livemod run``: 0 on success, 1 on a script error, 2 on bad arguments or files
     (a parameter the script does not declare, or a value that does not fit)."""
     try:
-        _check_output(args.output)
+        check_mesh_output(args.output)
         params = given_values(args.script, args.set)
     except (ValueError, DLFLError, OSError) as exc:
         print(f"livemod run: {exc}", file=sys.stderr)
@@ -319,7 +320,7 @@ def _report(result: RunResult, output: str | None) -> None:
 def cmd_batch(args: argparse.Namespace) -> int:
     """``livemod batch``: 0 when every variant succeeded, 1 otherwise, 2 on bad arguments."""
     try:
-        _check_output(args.output)
+        check_mesh_output(args.output)
         specs = declared_parameters(args.script)
         sets = sweep(declared_sweep(text, specs) for text in args.param)
         variants = make_variants(args.script, sets, args.output, mesh_path=args.mesh,

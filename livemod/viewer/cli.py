@@ -17,7 +17,13 @@ from typing import Any
 import numpy as np
 
 from livemod.dlfl.scene import Selection
-from livemod.runner.cli import add_select_option, selection_of, whole_number_option
+from livemod.runner.cli import (
+    add_all_objects_option,
+    add_select_option,
+    check_mesh_output,
+    selection_of,
+    whole_number_option,
+)
 
 SCRIPT_SUFFIXES = (".py",)
 
@@ -110,6 +116,10 @@ def add_commands(subparsers: Any) -> None:
                       help="poll for changes (for file systems that send no events)")
     view.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
                       help="a declared script parameter to start with, repeatable")
+    view.add_argument("-o", "--output", metavar="OUT",
+                      help="write the result here after every successful run "
+                           "(.obj .dlfl .stl .ply)")
+    add_all_objects_option(view)
     add_select_option(view)
     view.set_defaults(handler=_view)
     _add_render(subparsers)
@@ -179,12 +189,14 @@ def _view(args: argparse.Namespace) -> int:
     if not Path(args.script).exists():
         raise OSError(f"no such script: {args.script}")
     try:
+        check_mesh_output(args.output)
         values = _given_values(args.script, args.set)
     except ValueError as exc:
         print(f"livemod view: {exc}", file=sys.stderr)
         return 2
     return view(ViewOptions(args.script, mesh_path=args.mesh, size=args.size, poll=args.poll,
-                            parameters=values, selection=selection_of(args)))
+                            parameters=values, selection=selection_of(args),
+                            output=args.output, all_objects=args.all_objects))
 
 
 def _given_values(script: str, texts: list[str]) -> dict[str, Any]:

@@ -75,6 +75,9 @@ class ViewOptions:
         parameters: script parameter values the first run starts with (``--set``).
         selection: what ``faces(True)`` and the like return from the first run on
             (``--select``), until a pick changes it.
+        output: where the runner writes the result after every successful run
+            (``-o``; the format from the suffix), or None.
+        all_objects: write every object of the scene, joined, not only the current.
     """
 
     script: str
@@ -88,15 +91,18 @@ class ViewOptions:
     poll: bool = False
     parameters: dict[str, Any] | None = None
     selection: Selection | None = None
+    output: str | None = None
+    all_objects: bool = False
 
 
-def _default_factory(poll: bool, parameters: dict[str, Any] | None = None,
-                     ) -> Callable[[str, str | None], Any]:
+def _default_factory(options: ViewOptions) -> Callable[[str, str | None], Any]:
     """The runner's ``LiveSession`` (imported only when a window opens)."""
     from livemod.runner import LiveSession
 
     def create(script: str, mesh_path: str | None) -> Any:
-        return LiveSession(script, mesh_path=mesh_path, poll=poll, parameters=parameters)
+        return LiveSession(script, mesh_path=mesh_path, poll=options.poll,
+                           parameters=options.parameters, output=options.output,
+                           all_objects=options.all_objects)
 
     return create
 
@@ -169,8 +175,7 @@ class LiveViewer(mglw.WindowConfig):
     # -- session ---------------------------------------------------------------
 
     def _start_session(self) -> Any:
-        factory = self.options.session_factory or _default_factory(
-            self.options.poll, self.options.parameters)
+        factory = self.options.session_factory or _default_factory(self.options)
         session = factory(self.script, self.mesh_path)
         if not self.selection.is_empty():
             session.set_selection(self.selection)
@@ -212,6 +217,8 @@ class LiveViewer(mglw.WindowConfig):
         self._sync_parameters(result)
         if result.status == "ok":
             self.total_steps = len(result.steps)
+            if self.options.output is not None:  # the session wrote it before posting
+                self._echo(f"run {result.run_id}: wrote {self.options.output}")
         arrays = self._drawn_arrays(result)
         if arrays is not None and arrays is not self.renderer.arrays:
             self._show_mesh(result, arrays)
