@@ -169,6 +169,59 @@ def test_imported_helper_modules_are_watched_and_reloaded(tmp_path):
         assert [vertex_count(r) for r in settle(live)] == [1]
 
 
+def _quads_obj(count: int) -> str:
+    """An OBJ of ``count`` separate unit squares (``4 * count`` vertices)."""
+    lines = []
+    for k in range(count):
+        lines += [f"v {x + 2 * k} {y} 0" for x, y in ((0, 0), (1, 0), (1, 1), (0, 1))]
+        lines.append(f"f {4 * k + 1} {4 * k + 2} {4 * k + 3} {4 * k + 4}")
+    return "\n".join(lines) + "\n"
+
+
+@pytest.mark.timeout(60)
+def test_loaded_mesh_files_are_watched_and_read_again(tmp_path):
+    shape = tmp_path / "shape.obj"
+    shape.write_text(_quads_obj(1))
+    live, _ = start_session(tmp_path, 'load("shape.obj")\n')
+    with closing_session(live):
+        write_by_rename(str(shape), _quads_obj(3))
+        assert [vertex_count(r) for r in settle(live)] == [12]
+        write_by_rename(str(shape), "f 1 2 3\n")  # malformed: the run fails, still watched
+        assert [r.status for r in settle(live)] == ["error"]
+        write_in_place(str(shape), _quads_obj(2))
+        assert [vertex_count(r) for r in settle(live)] == [8]
+
+
+@pytest.mark.timeout(60)
+def test_the_mesh_file_a_session_starts_from_is_watched(tmp_path):
+    shape = tmp_path / "start.obj"
+    shape.write_text(_quads_obj(1))
+    live, _ = start_session(tmp_path, "createVertex((5, 5, 5))\n", mesh_path=str(shape))
+    with closing_session(live):
+        write_by_rename(str(shape), _quads_obj(2))
+        # the new file's 8 vertices and the script's point-sphere
+        assert [vertex_count(r) for r in settle(live)] == [9]
+
+
+@pytest.mark.timeout(60)
+def test_files_a_run_writes_are_not_watched(tmp_path):
+    """A script that rewrites its input, or a session whose output is the script's
+    input, would otherwise re-run itself for ever."""
+    shape = tmp_path / "shape.obj"
+    shape.write_text(_quads_obj(1))
+    saves, output = tmp_path / "saves.py", tmp_path / "output.py"
+    saves.write_text('load("shape.obj")\nsubdivide("catmull-clark")\nsave("shape.obj")\n')
+    output.write_text('load("shape.obj")\nsubdivide("catmull-clark")\n')
+    for script, options in ((saves, {}), (output, {"output": str(shape)})):
+        live = LiveSession(str(script), preview=False, **options)
+        with closing_session(live):
+            live.start()
+            assert next_result(live).status == "ok"
+            assert drain(live, quiet=1.0) == []  # no run started by its own write
+            live.reload()  # now the file is known: a second run rewrites it again
+            assert [r.status for r in drain(live, quiet=1.0)] == ["ok"]
+
+
 @pytest.mark.timeout(60)
 def test_a_syntax_error_keeps_the_last_good_mesh_marked_stale(tmp_path):
     live, script = start_session(tmp_path, vertices_script(3))

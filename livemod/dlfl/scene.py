@@ -199,6 +199,9 @@ class Scene:
             ``param()`` call of the current run, by name, in call order.
         directory: the folder relative file names in ``load``/``save`` refer to
             (the runner sets the script's folder); None for the working directory.
+        files_read, files_written: absolute paths of the mesh files ``load`` read
+            (or tried to) and ``save`` wrote in this scene, in order; a live
+            session re-runs the script when one it read changes (not copied).
     """
 
     def __init__(self) -> None:
@@ -214,6 +217,8 @@ class Scene:
         # folder that relative file names in load()/save() are read from (the
         # script's folder in a runner run; None: the working directory)
         self.directory: str | None = None
+        self.files_read: list[str] = []
+        self.files_written: list[str] = []
         self._next_object = 0
         self._command_depth = 0
 

@@ -56,6 +56,13 @@ class RunOutcome:
     source: str = ""
 
     @property
+    def files_read(self) -> tuple[str, ...]:
+        """The mesh files the script loaded and did not also save, in order (to be
+        watched: a run that rewrites its own input must not start the next one)."""
+        written = set(self.scene.files_written)
+        return tuple(dict.fromkeys(p for p in self.scene.files_read if p not in written))
+
+    @property
     def declarations(self) -> dict:
         """``name -> ParamSpec`` the script declared with ``param()``, in order."""
         return dict(self.scene.declarations)

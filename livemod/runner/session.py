@@ -136,7 +136,7 @@ class LiveSession:
     def start(self) -> None:
         """Start watching and run the script once."""
         self._watcher.start()
-        self._watcher.set_files([self.script])
+        self._watcher.set_files(self._own_files())
         self._supervisor.start()
         self.reload()
 
@@ -167,7 +167,7 @@ class LiveSession:
             self._last_good, self._last_steps, self._seen = None, (), {}
             self._rate, self._shown = None, None
             self._playback.run_to_end()  # a new script starts unpaused
-            self._watcher.set_files([self.script])
+            self._watcher.set_files(self._own_files())
         self.reload()
 
     # -- inputs of the next run ---------------------------------------------------
@@ -345,6 +345,8 @@ class LiveSession:
             # no run has read the script yet (it did not exist): its first save runs it
             appeared = script not in self._seen
             self._seen.update({p: d for p, d in digests.items() if d is not None})
+            if self._mesh_file() in changed:
+                self._base = None  # the next run reads the new --mesh
         if changed or appeared:
             self._request(None)
 
@@ -429,7 +431,7 @@ class LiveSession:
             run.control.finished = True
             return
         run.control.finished = True
-        self._watch_modules(run.script, outcome.modules)
+        self._watch_files(run.script, outcome.modules + outcome.files_read)
         if outcome.status == "ok":
             with self._lock:
                 self._declarations = dict(outcome.scene.declarations)
@@ -458,22 +460,44 @@ class LiveSession:
         self._declarations = specs
         return kept
 
-    def _base_scene(self) -> Scene | None:
-        """The ``--mesh`` scene, loaded once, in the worker (never on the caller's thread)."""
-        if self.mesh_path is not None and self._base is None:
-            self._base = base_scene(self.mesh_path)
-        return self._base
+    def _own_files(self) -> list[str]:
+        """The files watched from the start: the script and the ``--mesh`` file."""
+        mesh_file = self._mesh_file()
+        return [self.script] if mesh_file is None else [self.script, mesh_file]
 
-    def _watch_modules(self, script: str, modules: tuple[str, ...]) -> None:
-        """Watch the local modules a run imported, remembering their content now."""
+    def _mesh_file(self) -> str | None:
+        return None if self.mesh_path is None else os.path.abspath(self.mesh_path)
+
+    def _base_scene(self) -> Scene | None:
+        """The ``--mesh`` scene, loaded in the worker (never on the caller's thread)
+        once, and again after the file changed."""
+        mesh_file = self._mesh_file()
+        with self._lock:
+            base = self._base
+            if mesh_file is None or base is not None:
+                return base
+            digest = _digest(mesh_file)  # first: a file that fails to load is watched too
+            if digest is not None:
+                self._seen[mesh_file] = digest
+        base = base_scene(mesh_file)
+        with self._lock:
+            self._base = base
+        return base
+
+    def _watch_files(self, script: str, paths: tuple[str, ...]) -> None:
+        """Watch the local modules and mesh files a run read, remembering their
+        content now (the session's own ``output`` is never watched: it changes
+        because a run ended)."""
+        output = None if self.output is None else os.path.abspath(self.output)
+        paths = tuple(p for p in paths if p != output)
         with self._lock:
             if script != self.script:
                 return
-            for path in modules:
+            for path in paths:
                 digest = _digest(path)
                 if path not in self._seen and digest is not None:
                     self._seen[path] = digest
-            self._watcher.set_files(self._watcher.files | set(modules))
+            self._watcher.set_files(self._watcher.files | set(paths))
 
     def _publish(self, run: _Run, outcome: RunOutcome, values: tuple) -> None:
         if outcome.status == "cancelled" and run.cancel_reason != "user":

@@ -226,6 +226,8 @@ def load(filename: str) -> int:
 
     path = _path(filename, "load")
     name = os.fspath(filename)
+    if os.path.isfile(path):  # before reading: a file that fails to load is watched too
+        scene().files_read.append(os.path.abspath(path))
     loaded = open_mesh(path, shape_name=name)
     oid = scene().add(loaded, os.path.basename(name))
     scene().record_step(f"load {name}")
@@ -237,6 +239,7 @@ def save(filename: str) -> bool:
     from ..io import save_mesh
 
     path = _path(filename, "save")
+    scene().files_written.append(os.path.abspath(path))
     try:
         save_mesh(mesh(), path)
     except OSError as exc:
