@@ -213,8 +213,8 @@ class _MeshGPU:
         if self.smooth is not None:
             self.smooth[1].release()
             self.smooth[0].release()
-        for obj in (self.face_vao, self.parity_vao, self.edge_vao, self.point_vao, self.sphere_vao,
-                    self.spheres, self.positions,
+        for obj in (self.face_vao, self.parity_vao, self.edge_vao, self.point_vao,
+                    self.sphere_vao, self.spheres, self.positions,
                     self.triangles, self.lines, self.triangle_face, self.face_flags,
                     self.edge_flags, self.vertex_flags, self.triangle_index,
                     self.position_table):
@@ -328,6 +328,10 @@ class Renderer:
         self._pick_fbo: moderngl.Framebuffer | None = None
         self._parity: tuple[moderngl.Framebuffer, moderngl.Texture] | None = None
         self._cap_vao = ctx.vertex_array(self.programs["cap"], [])
+        # the last view's, for the cap's hatch spacing: unit vector back toward the
+        # eye, and a pixel's world size at the target
+        self._toward_eye = np.array([0.0, 0.0, 1.0])
+        self._pixel_size = 1.0
 
     def _bind_samplers(self) -> None:
         """Fix each program's texture units: 0 atlas/triangle_face, 1..3 flags."""
@@ -499,8 +503,7 @@ class Renderer:
             if mesh is not None:
                 camera.scene_radius = max(camera.scene_radius, mesh.geometry.radius)
         view_matrix = camera.view_matrix()
-        view_projection = camera.projection_matrix(aspect) @ view_matrix
-        mvp = _matrix_bytes(view_projection)
+        mvp = _matrix_bytes(camera.projection_matrix(aspect) @ view_matrix)
         self._set_cap_view(camera, aspect, size[1])
         view = _matrix_bytes(view_matrix)
         for program in self.programs.values():
@@ -512,13 +515,13 @@ class Renderer:
         """What the cap pass needs to turn each pixel back into a line of sight."""
         cap = self.programs["cap"]
         cap["eye"].value = tuple(float(v) for v in camera.eye())  # type: ignore[union-attr]
+        basis = camera.basis()
         # a row-major (3, 3) of rows right, up, back is the column-major matrix of columns
-        basis = np.ascontiguousarray(camera.basis(), dtype=np.float32)
-        cap["camera_basis"].write(basis.tobytes())  # type: ignore[union-attr]
+        cap["camera_basis"].write(basis.astype(np.float32).tobytes())  # type: ignore[union-attr]
         half = camera.half_height() if camera.ortho else math.tan(math.radians(camera.fov) / 2)
         cap["half_size"].value = (half * aspect, half)  # type: ignore[union-attr]
         cap["ortho"].value = int(camera.ortho)  # type: ignore[union-attr]
-        self._view_back = camera.basis()[2]
+        self._toward_eye = basis[2]
         self._pixel_size = 2.0 * camera.half_height() / max(height, 1)
 
     def _draw_faces(self, mesh: _MeshGPU, color: tuple[float, float, float],
@@ -569,7 +572,7 @@ class Renderer:
         along[axis] = 0.0
         program["hatch_axis"].value = tuple(along)  # type: ignore[union-attr]
         program["hatch_spacing"].value = hatch_spacing(  # type: ignore[union-attr]
-            self._pixel_size, abs(float(self._view_back[axis])))
+            self._pixel_size, abs(float(self._toward_eye[axis])))
         parity_image.use(6)
         self._cap_vao.render(moderngl.TRIANGLES, vertices=3)
 
