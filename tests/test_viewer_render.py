@@ -614,7 +614,7 @@ def test_render_compares_with_a_reference_picture(tmp_path: Path, capsys) -> Non
     moved = np.abs(read_image(turned).astype(int) - read_image(golden)).max(axis=2) > 25
     assert np.array_equal(np.all(marked == (255, 40, 40), axis=2), moved)
     assert _render(script, turned, "--reference", str(golden), "--yaw", "60",
-                   "--threshold", "100%") == 0
+                   "--threshold", " 100% ") == 0
 
 
 def test_render_refuses_a_reference_it_cannot_compare_before_it_runs(tmp_path: Path,

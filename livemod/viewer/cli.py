@@ -68,8 +68,9 @@ def parse_yaw(text: str) -> float:
 
 def parse_threshold(text: str) -> float:
     """``--threshold``: a share of pixels from 0 to 1, or a percentage such as ``2%``."""
+    given = text.strip()
     try:
-        share = float(text[:-1]) / 100 if text.strip().endswith("%") else float(text)
+        share = float(given[:-1]) / 100 if given.endswith("%") else float(given)
     except ValueError:
         share = math.nan
     if not 0.0 <= share <= 1.0:
