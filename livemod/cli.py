@@ -13,8 +13,12 @@ import importlib
 import os
 import sys
 from collections.abc import Sequence
+from typing import TYPE_CHECKING
 
 from livemod import __version__
+
+if TYPE_CHECKING:
+    from livemod.dlfl import MeshArrays
 
 SUBCOMMAND_MODULES = ("livemod.runner.cli", "livemod.viewer.cli")
 
@@ -55,11 +59,12 @@ def _add_convert(sub: argparse._SubParsersAction) -> None:
 
 
 def _info(args: argparse.Namespace) -> int:
-    from livemod.dlfl import DLFLError, summarize, validate
+    from livemod.dlfl import DLFLError, mesh_arrays, summarize, validate
     from livemod.dlfl.io import open_mesh
 
     mesh = open_mesh(args.file)
-    summary = summarize(mesh)
+    arrays = mesh_arrays(mesh)
+    summary = summarize(arrays)
     print(f"{args.file}")
     print(f"Number of vertices : {summary.vertices}")
     print(f"Number of faces : {summary.faces - summary.holes}")
@@ -70,6 +75,8 @@ def _info(args: argparse.Namespace) -> int:
     sizes = ", ".join(f"{count}x{size}" for size, count in summary.face_sizes.items())
     print(f"Face sizes : {sizes or 'none'}")
     print(f"Holes : {summary.holes}   Point-spheres : {summary.point_spheres}")
+    for line in _geometry_lines(arrays):
+        print(line)
     for note in mesh.notes:
         print(f"Note : {note}")
     try:
@@ -79,6 +86,24 @@ def _info(args: argparse.Namespace) -> int:
         return 1
     print("Valid : yes")
     return 0
+
+
+def _geometry_lines(arrays: MeshArrays) -> list[str]:
+    """``livemod info``'s size, area and volume lines."""
+    from livemod.dlfl import bounds, enclosed_volume, surface_area
+
+    low, high = bounds(arrays)
+    size = " x ".join(f"{v:.6g}" for v in high - low)
+    corners = f"from {', '.join(f'{v:.6g}' for v in low)} to {', '.join(f'{v:.6g}' for v in high)}"
+    volume, holes = enclosed_volume(arrays), int(arrays.face_hole.sum())
+    if volume is None:
+        said = f"none (open: {holes} hole{'s' if holes != 1 else ''})"
+    elif volume < 0:
+        said = f"{volume:.6g} (inside out: the faces point inward)"
+    else:
+        said = f"{volume:.6g}"
+    return [f"Size : {size} ({corners})", f"Area : {surface_area(arrays):.6g}",
+            f"Volume : {said}"]
 
 
 def _convert(args: argparse.Namespace) -> int:

@@ -25,12 +25,25 @@ from livemod.dlfl import (
 from livemod.dlfl.analysis import (
     component_of_vertices,
     corner_normals,
+    enclosed_volume,
     face_areas,
     face_centroid,
     face_normal,
     polygon_normal,
+    surface_area,
 )
-from tests.meshes import CUBE_OUTWARD, cube, path_face, tetrahedron, torus, triangle, two_cubes
+from tests.meshes import (
+    CUBE_FACES,
+    CUBE_OUTWARD,
+    CUBE_POSITIONS,
+    cube,
+    path_face,
+    tetrahedron,
+    torus,
+    torus_polygons,
+    triangle,
+    two_cubes,
+)
 
 
 def test_two_cubes_are_genus_zero_each():
@@ -150,3 +163,50 @@ def test_a_small_face_far_from_the_origin_keeps_its_normal_and_area(offset):
     np.testing.assert_array_equal(face_normals(mesh)[0], [0.0, 0.0, 1.0])
     np.testing.assert_array_equal(corner_normals(mesh)[:4], [[0.0, 0.0, 1.0]] * 4)
     np.testing.assert_array_equal(polygon_normal(square), [0.0, 0.0, 1.0])
+
+
+def test_volume_and_area_of_closed_meshes():
+    assert enclosed_volume(cube()) == pytest.approx(1.0) and surface_area(cube()) == 6.0
+    assert enclosed_volume(tetrahedron()) == pytest.approx(1 / 6)
+    assert enclosed_volume(two_cubes()) == pytest.approx(2.0)
+    pos, quads = torus_polygons(64, 48)
+    # a polygonal torus: between its inscribed and its smooth volume
+    smooth = 2 * np.pi**2 * 3.0 * 1.0**2
+    assert 0.99 * smooth < enclosed_volume(from_polygons(pos, quads)) < smooth
+    m = cube()
+    m.create_vertex()  # a point-sphere encloses nothing and changes nothing
+    assert enclosed_volume(m) == pytest.approx(1.0)
+    assert enclosed_volume(Mesh()) == 0.0
+
+
+def test_volume_is_signed_and_counts_a_crust_as_its_material():
+    from livemod.dlfl.rind import crust
+
+    inside_out = from_polygons(CUBE_POSITIONS, [face[::-1] for face in CUBE_FACES])
+    assert enclosed_volume(inside_out) == pytest.approx(-1.0)
+    shell = cube()
+    crust(shell, 0.25)  # the inner cube, of side 0.5, faces inward
+    assert enclosed_volume(shell) == pytest.approx(1.0 - 0.5**3)
+
+
+def test_an_open_mesh_encloses_no_volume():
+    assert enclosed_volume(triangle()) is None
+    assert enclosed_volume(from_polygons(CUBE_POSITIONS, CUBE_FACES[1:])) is None
+    assert surface_area(from_polygons(CUBE_POSITIONS, CUBE_FACES[1:])) == 5.0
+
+
+@pytest.mark.parametrize("scale, offset", [(1e-100, 0.0), (1e100, 0.0), (1.0, 1e12),
+                                           (1e-3, -1e6)])
+def test_volume_keeps_its_precision_at_any_scale_and_offset(scale, offset):
+    m = cube()
+    m.set_positions(m.vertex_ids(), m.positions_view() * scale + offset)
+    assert enclosed_volume(m) == pytest.approx(scale**3, rel=1e-9)
+
+
+def test_volume_beyond_the_float_range_is_inf_without_a_warning():
+    m = cube()
+    m.set_positions(m.vertex_ids(), m.positions_view() * 1e200)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert enclosed_volume(m) == np.inf
+

@@ -23,7 +23,21 @@ def test_info_prints_counts_genus_and_sizes_of_a_shape(capsys: pytest.CaptureFix
     assert "Genus : 0" in out
     assert "Components : 1 (genus per component: 0)" in out
     assert "Face sizes : 6x4" in out
+    assert "Size : 2 x 2 x 2 (from -1, -1, -1 to 1, 1, 1)" in out
+    assert "Area : 24\n" in out and "Volume : 8\n" in out
     assert "Valid : yes" in out
+
+
+def test_info_says_what_volume_an_open_or_inside_out_mesh_has(tmp_path: Path, capsys) -> None:
+    corners = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+    quads = ["1 4 3 2", "5 6 7 8", "1 2 6 5", "2 3 7 6", "3 4 8 7", "4 1 5 8"]
+    opened, flipped = tmp_path / "open.obj", tmp_path / "flipped.obj"
+    opened.write_text(corners + "".join(f"f {q}\n" for q in quads[1:]))
+    flipped.write_text(corners + "".join(f"f {' '.join(q.split()[::-1])}\n" for q in quads))
+    assert main(["info", str(opened)]) == 0
+    assert "Volume : none (open: 1 hole)" in capsys.readouterr().out
+    assert main(["info", str(flipped)]) == 0
+    assert "Volume : -1 (inside out: the faces point inward)" in capsys.readouterr().out
 
 
 def test_info_reports_genus_of_a_sample_torus(capsys: pytest.CaptureFixture[str]) -> None:

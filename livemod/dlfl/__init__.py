@@ -16,6 +16,7 @@ from .analysis import (
     MeshSummary,
     bounds,
     component_genera,
+    enclosed_volume,
     euler_characteristic,
     face_centroids,
     face_normals,
@@ -23,6 +24,7 @@ from .analysis import (
     genus,
     num_components,
     summarize,
+    surface_area,
     vertex_normals,
 )
 from .arrays import MeshArrays, mesh_arrays
@@ -37,8 +39,8 @@ __all__ = list(commands.__all__)
 
 LIBRARY_API = [
     "Mesh", "MeshArrays", "MeshSummary", "Polygons", "Scene", "Selection", "DLFLError",
-    "DLFLRepairWarning", "bounds", "component_genera", "current_scene",
+    "DLFLRepairWarning", "bounds", "component_genera", "current_scene", "enclosed_volume",
     "euler_characteristic", "face_centroids", "face_normals", "face_size_histogram",
     "from_corner_arrays", "from_polygons", "genus", "mesh_arrays", "num_components",
-    "summarize", "use_scene", "validate", "vertex_normals",
+    "summarize", "surface_area", "use_scene", "validate", "vertex_normals",
 ]

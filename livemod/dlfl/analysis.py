@@ -81,6 +81,39 @@ def face_areas(mesh: Mesh | MeshArrays) -> np.ndarray:
     return true_lengths(np.linalg.norm(sums, axis=1) * 0.5, r, 2)
 
 
+def surface_area(mesh: Mesh | MeshArrays) -> float:
+    """The total area of the faces (hole faces left out); inf beyond the float range."""
+    a = _arrays(mesh)
+    return float(face_areas(a)[~a.face_hole].sum())
+
+
+def enclosed_volume(mesh: Mesh | MeshArrays) -> float | None:
+    """The volume the faces enclose, by the divergence theorem over each face's fan
+    of triangles from its first corner; None when the mesh has hole faces (an open
+    surface encloses nothing).
+
+    Signed: negative for a mesh whose faces point inward, and a crust (an outer
+    shell around an inward-facing inner one) gets the volume of its material.
+    Exact for planar faces; computed about the middle of the bounding box in
+    units of its size, so far offsets and large or tiny scales cost no precision
+    (beyond the float range it is inf).
+    """
+    a = _arrays(mesh)
+    if a.face_hole.any():
+        return None
+    if len(a.corner_vertex) == 0:
+        return 0.0
+    low, high = bounds(a)
+    half = max(float(np.max(high / 2 - low / 2)), 1e-300)  # halves: no overflow
+    size = np.float64(2.0) ** (np.ceil(np.log2(half)) + 1)  # a power of two: exact
+    p = a.positions / size - (low / 2 + high / 2) / size
+    first = p[a.corner_vertex[a.face_offsets[a.corner_face]]]
+    here, ahead = p[a.corner_vertex], p[a.corner_vertex[a.corner_next]]
+    volume = np.einsum("ij,ij->", first, np.cross(here, ahead)) / 6.0
+    with np.errstate(over="ignore"):  # beyond the float range: inf, as documented
+        return float(volume * size**3)
+
+
 def vertex_normals(mesh: Mesh | MeshArrays) -> np.ndarray:
     """``(V, 3)`` float64 unit normals: the normalised sum of the adjacent face normals."""
     a = _arrays(mesh)
@@ -163,7 +196,9 @@ class MeshSummary:
 
 
 def summarize(mesh: Mesh | MeshArrays) -> MeshSummary:
-    """Counts, components, genus per component and the face-size histogram."""
+    """Counts, components, genus per component and the face-size histogram
+    (:func:`bounds`, :func:`surface_area` and :func:`enclosed_volume` measure the
+    geometry)."""
     a = _arrays(mesh)
     genera = component_genera(a)
     v, e, f = a.counts
