@@ -140,3 +140,21 @@ def test_quads_draw_a_box_per_other_object_ticked_or_not() -> None:
     assert int((solid == 13).sum()) == 1  # object 2 hidden
     assert int((solid == 8).sum()) == 1  # the panel's box
     assert np.all(quads[:, 0] >= panel.frame(SIZE)[0])
+
+
+def test_the_row_under_the_pointer_is_highlighted_when_a_click_would_toggle_it() -> None:
+    panel = _panel(4)
+    x = panel.frame(SIZE)[0] + 20
+    plain = panel.quads(SIZE)
+    panel.point_at(panel.hit(x, _row_y(panel, 3), SIZE))
+    assert panel.hover == 2
+    lit = panel.quads(SIZE)
+    assert len(lit) == len(plain) + 1 and int((lit[:, 11] == 15).sum()) == 1
+    row = lit[lit[:, 11] == 15][0]
+    assert row[1] <= _row_y(panel, 3) <= row[1] + row[6]  # the box spans that row
+    for over in (_row_y(panel, 1), _row_y(panel, 0), _row_y(panel, 9)):
+        panel.point_at(panel.hit(x, over, SIZE))  # the current object, the header, off
+        assert panel.hover is None
+    panel.hover = 3
+    panel.sync(panel.rows[:2], frozenset())  # a run with fewer objects
+    assert panel.hover is None

@@ -277,12 +277,14 @@ def test_the_wheel_scrolls_the_object_list_and_zooms_elsewhere(tmp_path: Path) -
         x, y, _, _ = viewer.objects.frame(viewer.wnd.fbo.size)
         distance = viewer.camera.distance
         viewer.on_mouse_position_event(int(x + 30), int(y + 40), 0, 0)
+        assert viewer.objects.hover == 0  # the first object's row: highlighted
         viewer.on_mouse_scroll_event(0.0, -3.0)  # wheel down over the list: it scrolls
         assert viewer.objects.shown_rows(viewer.wnd.fbo.size).start == 3
         assert viewer.camera.distance == distance
         viewer.on_mouse_scroll_event(0.0, 1.0)
         assert viewer.objects.shown_rows(viewer.wnd.fbo.size).start == 2
         viewer.on_mouse_position_event(10, 290, 0, 0)  # off the list: the wheel zooms
+        assert viewer.objects.hover is None
         viewer.on_mouse_scroll_event(0.0, 1.0)
         assert viewer.camera.distance != distance
         viewer.handle_key("L")  # the list closed: the wheel zooms over its place too

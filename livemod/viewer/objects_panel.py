@@ -21,6 +21,7 @@ import numpy as np
 
 from .params_panel import PANEL_WIDTH, Hit
 from .text import (
+    BUTTON,
     FILL,
     LABEL_DIM,
     MARGIN,
@@ -112,6 +113,8 @@ class ObjectPanel:
         top: framebuffer y of the panel's top (the window puts it below the
             parameters panel).
         first: the first row shown (the list scrolls when it does not fit).
+        hover: the index into :attr:`rows` of the row under the pointer (drawn
+            highlighted when a click there toggles it), or None.
     """
 
     def __init__(self) -> None:
@@ -119,15 +122,22 @@ class ObjectPanel:
         self.hidden: frozenset[int] = frozenset()
         self.top = float(MARGIN)
         self.first = 0
+        self.hover: int | None = None
 
     def sync(self, rows: Sequence[ObjectRow], hidden: frozenset[int]) -> None:
         """Show ``rows`` with the ``hidden`` ones unticked."""
         self.rows, self.hidden = tuple(rows), hidden
         self.first = min(self.first, max(len(self.rows) - 1, 0))
+        if self.hover is not None and self.hover >= len(self.rows):
+            self.hover = None
+
+    def point_at(self, hit: Hit | None) -> None:
+        """Follow the pointer: ``hit`` is what :meth:`hit` says it is over."""
+        self.hover = hit.row if hit is not None and hit.part == "toggle" else None
 
     def state(self) -> tuple:
         """A hashable summary of everything drawn (the overlay is cached on it)."""
-        return (self.rows, self.hidden, self.top, self.first)
+        return (self.rows, self.hidden, self.top, self.first, self.hover)
 
     def has_others(self) -> bool:
         """True when some listed object is not the current one (else nothing to toggle)."""
@@ -207,6 +217,8 @@ class ObjectPanel:
             parts.append(layout_text(atlas, [label], (left + 3, y + PADDING), LABEL_DIM))
         for line, index in enumerate(shown):
             top = y + PADDING + (line + 1) * row_height
+            if index == self.hover:
+                parts.append(box_quad(atlas, x + 2, top, width - 4, row_height, BUTTON))
             parts.append(self._row_quads(self.rows[index], x + PADDING, top, row_height))
         return np.concatenate(parts)
 

@@ -594,6 +594,7 @@ class LiveViewer(mglw.WindowConfig):
         self._pointer = (x, y)
         hit = self._panel_hit(x, y)
         self.params.hover = hit.row if hit is not None and hit.row >= 0 else None
+        self.objects.point_at(self._objects_hit(x, y))
 
     def on_mouse_drag_event(self, x: int, y: int, dx: int, dy: int) -> None:
         self._pointer = (x, y)
