@@ -7,9 +7,9 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
-from livemod.dlfl import from_polygons, mesh_arrays
+from livemod.dlfl import enclosed_volume, from_polygons, mesh_arrays
 from livemod.dlfl.scene import Selection
-from livemod.dlfl.shapes import cube, grid
+from livemod.dlfl.shapes import cube, grid, torus
 from livemod.viewer.camera import Camera, bounds_changed_a_lot
 from livemod.viewer.controls import (
     KEY_BINDINGS,
@@ -20,6 +20,7 @@ from livemod.viewer.controls import (
 )
 from livemod.viewer.geometry import build_geometry, decode_pick, fan_triangles
 from livemod.viewer.hud import hud_lines, run_state, step_line
+from livemod.viewer.measure import WholeMesh, WholeMeshMeasurer
 from livemod.viewer.renderer import Style
 from livemod.viewer.text import QUAD_FLOATS, glyph_atlas, layout_labels
 
@@ -153,20 +154,47 @@ def test_hud_shows_state_counts_genus_and_step() -> None:
     assert run_state(_result("error", stale=True), False) == "error, stale"
     assert step_line(_result(step_index=1)) == "step 2/3: op1 (line 11)"
     assert step_line(_result()) == "step 3/3: op2 (line 12)"
-    info = {"script": "/x/tower.py", "result": _result(), "waiting": False, "genus": 0,
-            "fps": 59.6, "pick_mode": "face", "selection": ["faces(True) == (1,)"],
-            "style": Style(), "ortho": False, "playing": False, "hud": True, "help": False}
+    info = {"script": "/x/tower.py", "result": _result(), "waiting": False,
+            "whole": WholeMesh(0, 8.0), "fps": 59.6, "pick_mode": "face",
+            "selection": ["faces(True) == (1,)"], "style": Style(), "ortho": False,
+            "playing": False, "hud": True, "help": False}
     text = "\n".join(line for line, _ in hud_lines(info))
-    for part in ("tower.py", "ok", "0.250 s", "V 8  E 12  F 6  genus 0", "step 3/3", "60 fps",
-                 "faces(True) == (1,)"):
+    for part in ("tower.py", "ok", "0.250 s", "V 8  E 12  F 6  genus 0  volume 8\n",
+                 "step 3/3", "60 fps", "faces(True) == (1,)"):
         assert part in text
+    for whole, said in ((None, "genus ...\n"), (WholeMesh(1, None), "genus 1\n"),
+                        (WholeMesh(0, -1.5), "genus 0  volume -1.5 (inside out)\n"),
+                        (WholeMesh(2, None, measuring=True), "genus 2  volume ...\n")):
+        assert said in "\n".join(line for line, _ in hud_lines({**info, "whole": whole}))
 
+
+def test_the_whole_mesh_is_measured_and_a_large_ones_volume_off_the_main_thread(
+        monkeypatch) -> None:
+    import livemod.viewer.measure as measure
+
+    measurer = WholeMeshMeasurer()
+    try:
+        assert measurer.facts() is None  # nothing shown yet
+        measurer.measure(mesh_arrays(cube()))
+        assert measurer.facts() == WholeMesh(0, pytest.approx(8.0))  # small: at once
+        monkeypatch.setattr(measure, "MEASURE_AT_ONCE", 10)  # every mesh is large now
+        measurer.measure(mesh_arrays(cube()))
+        measurer.measure(mesh_arrays(torus(40, 30)))  # the cube's answer is dropped
+        assert measurer.facts().genus == 1  # the genus at once, the volume later
+        assert measurer.wait(30) == WholeMesh(1, pytest.approx(
+            enclosed_volume(mesh_arrays(torus(40, 30)))))
+        measurer.measure(mesh_arrays(from_polygons(np.eye(3), [(0, 1, 2)])))  # open
+        assert measurer.wait(30) == WholeMesh(0, None)
+        measurer.measure(None)
+        assert measurer.facts() is None and measurer.wait() is None
+    finally:
+        measurer.close()
 
 
 def test_the_help_overlay_fits_the_window_in_columns() -> None:
     from livemod.viewer.hud import hud_quads
 
-    info = {"script": "/x/tower.py", "result": None, "waiting": True, "genus": None,
+    info = {"script": "/x/tower.py", "result": None, "waiting": True, "whole": None,
             "fps": 0.0, "pick_mode": "face", "selection": [], "style": Style(),
             "ortho": False, "playing": False, "hud": False, "help": True}
     boxes = {}

@@ -58,6 +58,13 @@ def _wait(viewer: LiveViewer, done: Callable[[LiveViewer], bool], timeout: float
     assert done(viewer), "timed out waiting for the viewer"
 
 
+def _measured(viewer: LiveViewer) -> bool:
+    """The mesh shown has its genus and volume (a large one's volume is measured off
+    the main thread)."""
+    facts = viewer.whole.facts()
+    return facts is not None and not facts.measuring
+
+
 def _has_run(run_id: int) -> Callable[[LiveViewer], bool]:
     return lambda v: v.result is not None and v.result.run_id >= run_id and not v.waiting
 
@@ -95,7 +102,8 @@ def test_pick_select_rerun_and_error_keeps_the_stale_mesh(headless) -> None:
     viewer, script, echo = headless
     _wait(viewer, _has_run(1))
     assert viewer.result.status == "ok"
-    assert "V 8  E 12  F 6  genus 0" in _hud_text(viewer)
+    _wait(viewer, _measured)
+    assert "V 8  E 12  F 6  genus 0  volume 8" in _hud_text(viewer)
     fitted = viewer.camera.distance
     viewer.click(160, 120)
     face = viewer.selection.faces
@@ -187,7 +195,8 @@ def test_the_window_shows_every_object_and_fits_them_all(tmp_path: Path) -> None
         columns = np.flatnonzero(covered.any(axis=0))
         assert columns.min() < 60 and columns.max() > 140  # both cubes fitted in the frame
         assert viewer.renderer.bounds[:, 0].tolist() == pytest.approx([-1.0, 7.0])
-        assert "V 8  E 12  F 6  genus 0\nother objects: V 8  F 6" in _hud_text(viewer)
+        _wait(viewer, _measured)
+        assert "V 8  E 12  F 6  genus 0  volume 8\nother objects: V 8  F 6" in _hud_text(viewer)
 
 
 def _three_objects(folder: Path) -> Path:

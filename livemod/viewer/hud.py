@@ -88,14 +88,17 @@ def _state_line(info: dict[str, Any]) -> tuple[str, int]:
 
 
 def _count_lines(info: dict[str, Any]) -> list[tuple[str, int]]:
-    """V/E/F and genus of the mesh shown, then those of the other objects drawn."""
+    """V/E/F, genus and volume of the mesh shown, then the counts of the other
+    objects drawn."""
     result, lines = info["result"], []
     arrays = None if result is None else info.get("arrays", result.arrays)
     if arrays is not None:
         v, e, f = arrays.counts
         holes = int(arrays.face_hole.sum())  # counted apart, as TopMod does
         extra = f"  holes {holes}" if holes else ""
-        lines.append((f"V {v}  E {e}  F {f - holes}{extra}  genus {info['genus']}", TEXT))
+        whole = info.get("whole")  # the volume may still be being measured
+        said = "genus ..." if whole is None else whole.text()
+        lines.append((f"V {v}  E {e}  F {f - holes}{extra}  {said}", TEXT))
     # drawn beside the current object (A hides them, Tab shows one at a time, L lists them)
     others = info.get("others", None if result is None else result.others)
     note = info.get("others_note", "")

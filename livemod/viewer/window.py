@@ -33,7 +33,7 @@ from .controls import PICK_MODES, action_for, section_text, selection_python, to
 from .geometry import sample_points
 from .hud import hud_quads
 from .imagefiles import save_png
-from .measure import measure_lines
+from .measure import WholeMeshMeasurer, measure_lines
 from .objects_panel import (
     ObjectPanel,
     kept_hidden,
@@ -146,7 +146,7 @@ class LiveViewer(mglw.WindowConfig):
         self.playing = False
         self.waiting = True
         self.result: Any = None
-        self.genus: int | None = None
+        self.whole = WholeMeshMeasurer()  # genus and volume of the mesh shown, off-thread
         self.total_steps = 0
         self.objects = ObjectPanel()  # the object list (L) and the hidden objects' ids
         self.show_partial = False  # E: a failed run's own mesh instead of the last good one
@@ -225,7 +225,7 @@ class LiveViewer(mglw.WindowConfig):
         elif result.arrays is None and result.error is None:
             self.renderer.set_mesh(None)  # the script ended with no mesh: show none
             self.measures = []
-            self.genus = None
+            self.whole.measure(None)
         elif result.preview is not None and result.preview is not self.renderer.preview:
             self.renderer.set_preview(result.preview)
         if first_error:
@@ -233,12 +233,10 @@ class LiveViewer(mglw.WindowConfig):
                        f"{result.error.message}")
 
     def _upload(self, arrays: Any, preview: Any, others: Any) -> None:
-        from livemod.dlfl.analysis import genus
-
         self.renderer.set_mesh(arrays, preview, others)
         self.renderer.set_selection(self.selection)
         self.measures = measure_lines(self.selection, arrays)
-        self.genus = genus(arrays) if len(arrays.positions) else 0
+        self.whole.measure(arrays)
         bounds = self.renderer.bounds
         if bounds is not None and len(arrays.positions) and bounds_changed_a_lot(
                 self._fit_bounds, bounds):
@@ -344,7 +342,8 @@ class LiveViewer(mglw.WindowConfig):
         if now - self._fps_time > 0.5 and self.frame_times:
             self._fps_shown = round(len(self.frame_times) / max(sum(self.frame_times), 1e-9))
             self._fps_time = now
-        key = (id(self.result), self.waiting, self.total_steps, self.genus, self._fps_shown,
+        key = (id(self.result), self.waiting, self.total_steps, self.whole.facts(),
+               self._fps_shown,
                self.pick_mode, self.selection, self.style, self.camera.ortho, self.playing,
                self.show_hud, self.show_help, size, self.params.state(),
                self.objects.state(), self._objects_shown(), self.show_partial,
@@ -371,7 +370,8 @@ class LiveViewer(mglw.WindowConfig):
                 "arrays": self.renderer.arrays, "partial": self.show_partial,
                 "viewer_error": self.viewer_error,
                 "total_steps": self.total_steps,
-                "genus": self.genus, "fps": self._fps_shown, "pick_mode": self.pick_mode,
+                "whole": self.whole.facts(), "fps": self._fps_shown,
+                "pick_mode": self.pick_mode,
                 "selection": selection_python(self.selection, self.renderer.arrays)
                 if not self.selection.is_empty() else [], "measures": self.measures,
                 "others": self.renderer.others, "others_note": self._others_note(),
@@ -842,6 +842,7 @@ class LiveViewer(mglw.WindowConfig):
         self._echo(f"opened {resolved}")
 
     def _close_session(self) -> None:
+        self.whole.close()
         session, self.session = self.session, None
         if session is not None:
             session.close()
