@@ -59,10 +59,9 @@ def _wait(viewer: LiveViewer, done: Callable[[LiveViewer], bool], timeout: float
 
 
 def _measured(viewer: LiveViewer) -> bool:
-    """The mesh shown has its genus and volume (a large one's volume is measured off
-    the main thread)."""
-    facts = viewer.whole.facts()
-    return facts is not None and not facts.measuring
+    """The mesh shown has its genus and volume (a large one is measured off the main
+    thread)."""
+    return viewer.whole.facts() is not None
 
 
 def _has_run(run_id: int) -> Callable[[LiveViewer], bool]:

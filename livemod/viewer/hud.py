@@ -96,7 +96,7 @@ def _count_lines(info: dict[str, Any]) -> list[tuple[str, int]]:
         v, e, f = arrays.counts
         holes = int(arrays.face_hole.sum())  # counted apart, as TopMod does
         extra = f"  holes {holes}" if holes else ""
-        whole = info.get("whole")  # the volume may still be being measured
+        whole = info.get("whole")  # a large mesh may still be being measured
         said = "genus ..." if whole is None else whole.text()
         lines.append((f"V {v}  E {e}  F {f - holes}{extra}  {said}", TEXT))
     # drawn beside the current object (A hides them, Tab shows one at a time, L lists them)

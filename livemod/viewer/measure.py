@@ -24,80 +24,69 @@ from livemod.dlfl.scene import Selection
 @dataclass(frozen=True)
 class WholeMesh:
     """What the HUD says of the whole mesh shown: its genus and the volume it
-    encloses (None for an open mesh, see
-    :func:`~livemod.dlfl.analysis.enclosed_volume`; ``measuring`` while that is
-    still being computed)."""
+    encloses (None for an open mesh; see
+    :func:`~livemod.dlfl.analysis.enclosed_volume`)."""
 
     genus: int
     volume: float | None
-    measuring: bool = False
 
     def text(self) -> str:
         """``genus 1  volume 8`` (no volume for an open mesh)."""
-        if self.measuring:
-            return f"genus {self.genus}  volume ..."
         if self.volume is None:
             return f"genus {self.genus}"
         inside_out = " (inside out)" if self.volume < 0 else ""
         return f"genus {self.genus}  volume {self.volume:.4g}{inside_out}"
 
 
-def _volume(arrays: MeshArrays) -> float | None:
-    from livemod.dlfl.analysis import enclosed_volume
+def measure_whole(arrays: MeshArrays) -> WholeMesh:
+    """The :class:`WholeMesh` facts of ``arrays`` (about 0.1 s a million corners)."""
+    from livemod.dlfl.analysis import enclosed_volume, genus
 
-    return enclosed_volume(arrays) if len(arrays.positions) else None
+    if not len(arrays.positions):
+        return WholeMesh(0, None)
+    return WholeMesh(genus(arrays), enclosed_volume(arrays))
 
 
-# meshes up to this many corners have their volume measured at once (about 0.08 s),
-# larger ones in the background
+# meshes up to this many corners are measured at once (about 0.1 s), larger ones in
+# the background
 MEASURE_AT_ONCE = 1_000_000
 
 
 class WholeMeshMeasurer:
-    """Measures the mesh shown: its genus at once (0.3 s for a million faces, as the
-    window always did), its volume at once when the mesh is small and else in a
-    thread of its own, so that a large upload does not hold the window for the
-    quarter second the volume of a million faces takes; the newest mesh wins.
+    """Measures the mesh shown: at once when it is small, else in a thread of its own,
+    so that a large upload does not hold the window for the half second or more the
+    genus and volume of a million faces take; the newest mesh wins.
 
     :meth:`measure` is called with each mesh shown; :meth:`facts` says what is known
-    of the last one. The background job gets the interpreter only between frames
-    while the window draws a large mesh on software GL (the draw holds it), so there
-    the volume of a million faces can take many seconds to appear.
+    of the last one (None until measured). The background job gets the interpreter
+    only between frames while the window draws a large mesh on software GL (the draw
+    holds it), so there its facts can take several seconds to appear.
     """
 
     def __init__(self) -> None:
         self._pool = concurrent.futures.ThreadPoolExecutor(1, thread_name_prefix="livemod-measure")
-        self._genus: int | None = None
-        self._job: concurrent.futures.Future[float | None] | None = None
+        self._job: concurrent.futures.Future[WholeMesh] | None = None
 
     def measure(self, arrays: MeshArrays | None) -> None:
         """Measure ``arrays`` (None: nothing is shown); an older job's answer is dropped."""
-        from livemod.dlfl.analysis import genus
-
         if self._job is not None:
             self._job.cancel()  # not started yet: never run
-        self._genus = self._job = None
-        if arrays is None:
-            return
-        self._genus = genus(arrays) if len(arrays.positions) else 0
-        if len(arrays.corner_vertex) > MEASURE_AT_ONCE:
-            self._job = self._pool.submit(_volume, arrays)
+        if arrays is None or len(arrays.corner_vertex) > MEASURE_AT_ONCE:
+            self._job = None if arrays is None else self._pool.submit(measure_whole, arrays)
             return
         self._job = concurrent.futures.Future()
-        self._job.set_result(_volume(arrays))
+        self._job.set_result(measure_whole(arrays))
 
     def facts(self) -> WholeMesh | None:
-        """What is known of the last mesh given (None when none is shown)."""
+        """The facts of the last mesh given, once measured; None before (or when none
+        is shown, or it could not be measured)."""
         job = self._job
-        if self._genus is None or job is None:
+        if job is None or not job.done() or job.cancelled() or job.exception() is not None:
             return None
-        if not job.done():
-            return WholeMesh(self._genus, None, measuring=True)
-        failed = job.cancelled() or job.exception() is not None
-        return WholeMesh(self._genus, None if failed else job.result())
+        return job.result()
 
     def wait(self, timeout: float | None = None) -> WholeMesh | None:
-        """Block until the last mesh's volume is known (for tests and scripted use)."""
+        """Block until the last mesh is measured (for tests and scripted use)."""
         if self._job is not None:
             concurrent.futures.wait([self._job], timeout)
         return self.facts()
