@@ -524,6 +524,23 @@ def test_the_cap_hides_what_lies_behind_it(offscreen: Offscreen) -> None:
     _assert_hatched_cap(cut[middle], BASE_COLOR)  # no yellow point, no small cube
 
 
+def test_overlapping_parts_of_one_mesh_are_capped_as_their_union(offscreen: Offscreen) -> None:
+    """Two cubes of one mesh that overlap (x in [-1, 1] and [0, 2]): the cap counts the
+    winding, so where both enclose the plane (x in [0, 1]) it is capped too, and so is
+    an inside-out mesh (winding -1)."""
+    positions = np.concatenate([CUBE_POSITIONS, np.asarray(CUBE_POSITIONS) + (1.0, 0.0, 0.0)])
+    faces = CUBE_FACES + [tuple(v + 8 for v in face) for face in CUBE_FACES]
+    flipped = [face[::-1] for face in CUBE_FACES]
+    for mesh in (from_polygons(positions, faces), from_polygons(CUBE_POSITIONS, flipped)):
+        arrays = mesh_arrays(mesh)
+        offscreen.renderer.set_mesh(arrays)
+        camera = framed_camera(arrays, elevation=0.0, yaw=0.0, ortho=True)
+        cut = offscreen.render(camera, Style(edges=False, section=(2, 0.0)))
+        rows, cols = np.nonzero(_mask(cut))
+        _assert_hatched_cap(cut[rows.min() + 2:rows.max() - 1, cols.min() + 2:cols.max() - 1],
+                            BASE_COLOR)
+
+
 def test_an_open_mesh_is_cut_but_not_capped(offscreen: Offscreen) -> None:
     """A mesh with a hole has no inside to cap: its back faces show through the cut."""
     arrays = mesh_arrays(from_polygons(CUBE_POSITIONS, CUBE_FACES[1:]))  # no top face

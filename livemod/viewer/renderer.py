@@ -165,7 +165,7 @@ class _MeshGPU:
         self.vertex_flags = _uint_table(ctx, np.zeros(len(geometry.positions), np.uint8), "u1")
         content = [(self.positions, "3f", "in_position")]
         self.face_vao = ctx.vertex_array(programs["face"], content, self.triangles, 4)
-        self.parity_vao = ctx.vertex_array(programs["parity"], content, self.triangles, 4)
+        self.winding_vao = ctx.vertex_array(programs["winding"], content, self.triangles, 4)
         self.edge_vao = ctx.vertex_array(programs["edge"], content, self.lines, 4)
         self.point_vao = ctx.vertex_array(programs["point"], content)
         self.spheres = _buffer(ctx, geometry.point_spheres)
@@ -213,7 +213,7 @@ class _MeshGPU:
         if self.smooth is not None:
             self.smooth[1].release()
             self.smooth[0].release()
-        for obj in (self.face_vao, self.parity_vao, self.edge_vao, self.point_vao,
+        for obj in (self.face_vao, self.winding_vao, self.edge_vao, self.point_vao,
                     self.sphere_vao, self.spheres, self.positions,
                     self.triangles, self.lines, self.triangle_face, self.face_flags,
                     self.edge_flags, self.vertex_flags, self.triangle_index,
@@ -294,7 +294,7 @@ PROGRAMS = {
     "edge": (shaders.MESH_VERTEX, shaders.EDGE_FRAGMENT),
     "point": (shaders.MESH_VERTEX, shaders.POINT_FRAGMENT),
     "line": (shaders.MESH_VERTEX, shaders.LINE_FRAGMENT),
-    "parity": (shaders.MESH_VERTEX, shaders.PARITY_FRAGMENT),  # the section cap's
+    "winding": (shaders.MESH_VERTEX, shaders.WINDING_FRAGMENT),  # the section cap's
     "cap": (shaders.CAP_VERTEX, shaders.CAP_FRAGMENT),
     "text": (shaders.TEXT_VERTEX, shaders.TEXT_FRAGMENT),
 }
@@ -326,7 +326,7 @@ class Renderer:
         self._preview: _MeshGPU | None = None
         self._label_cache: tuple[object, np.ndarray] | None = None
         self._pick_fbo: moderngl.Framebuffer | None = None
-        self._parity: tuple[moderngl.Framebuffer, moderngl.Texture] | None = None
+        self._winding: tuple[moderngl.Framebuffer, moderngl.Texture] | None = None
         self._cap_vao = ctx.vertex_array(self.programs["cap"], [])
         # the last view's, for the cap's hatch spacing: unit vector back toward the
         # eye, and a pixel's world size at the target
@@ -336,7 +336,7 @@ class Renderer:
     def _bind_samplers(self) -> None:
         """Fix each program's texture units: 0 atlas/triangle_face, 1..3 flags."""
         units = {"triangle_face": 0, "face_flags": 1, "edge_flags": 2, "vertex_flags": 3,
-                 "triangle_index": 4, "position_table": 5, "parity": 6, "atlas": 0}
+                 "triangle_index": 4, "position_table": 5, "winding": 6, "atlas": 0}
         for program in self.programs.values():
             for name, unit in units.items():
                 if name in program:
@@ -450,7 +450,7 @@ class Renderer:
             self._set_clip_plane(NO_CUT)
 
     def _set_clip_plane(self, plane: tuple[float, ...]) -> None:
-        for name in ("face", "edge", "point", "line", "parity", "cap"):
+        for name in ("face", "edge", "point", "line", "winding", "cap"):
             self.programs[name]["clip_plane"].value = plane  # type: ignore[union-attr]
 
     def _draw_guides(self) -> None:
@@ -555,12 +555,13 @@ class Renderer:
 
     def _draw_cap(self, mesh: _MeshGPU, color: tuple[float, float, float]) -> None:
         """The section's cap of a cut closed mesh, in a darker ``color``: the mesh's
-        cut triangles flip a parity image, then one pass over the viewport draws the
-        plane where the parity is odd (``shaders.CAP_FRAGMENT``), at its own depth.
-        Must follow the mesh's face pass, into the framebuffer now in use."""
+        cut triangles count the winding of each pixel into an image, then one pass
+        over the viewport draws the plane where it is not 0
+        (``shaders.CAP_FRAGMENT``), at its own depth. Must follow the mesh's face
+        pass, into the framebuffer now in use."""
         assert self._section is not None
         target, viewport = self.ctx.fbo, self.ctx.viewport
-        parity_image = self._flip_parity(mesh, (viewport[2], viewport[3]))
+        winding = self._count_winding(mesh, (viewport[2], viewport[3]))
         target.use()
         self.ctx.viewport = viewport
         self.ctx.enable(moderngl.DEPTH_TEST)
@@ -573,36 +574,36 @@ class Renderer:
         program["hatch_axis"].value = tuple(along)  # type: ignore[union-attr]
         program["hatch_spacing"].value = hatch_spacing(  # type: ignore[union-attr]
             self._pixel_size, abs(float(self._toward_eye[axis])))
-        parity_image.use(6)
+        winding.use(6)
         self._cap_vao.render(moderngl.TRIANGLES, vertices=3)
 
-    def _flip_parity(self, mesh: _MeshGPU, size: tuple[int, int]) -> moderngl.Texture:
-        """Draw the cut triangles of ``mesh`` into the parity image of ``size``, each
-        flipping the pixels it covers between 0 and 1, and return the image. Leaves
-        the parity target bound and the depth test and culling off."""
-        parity, image = self._parity_target(size)
-        parity.use()
-        parity.clear(0.0, 0.0, 0.0, 0.0)
+    def _count_winding(self, mesh: _MeshGPU, size: tuple[int, int]) -> moderngl.Texture:
+        """Draw the cut triangles of ``mesh`` into the winding image of ``size``, front
+        faces adding 1 and back faces taking 1 away, and return the image. Leaves
+        the winding target bound and the depth test and culling off."""
+        target, image = self._winding_target(size)
+        target.use()
+        target.clear(0.0, 0.0, 0.0, 0.0)
         self.ctx.disable(moderngl.DEPTH_TEST | moderngl.CULL_FACE)
         self.ctx.enable(moderngl.BLEND)
-        self.ctx.blend_func = moderngl.ONE_MINUS_DST_COLOR, moderngl.ZERO
-        mesh.parity_vao.render(moderngl.TRIANGLES)
+        self.ctx.blend_func = moderngl.ONE, moderngl.ONE
+        mesh.winding_vao.render(moderngl.TRIANGLES)
         self.ctx.disable(moderngl.BLEND)  # the text pass sets its own blend function
         return image
 
-    def _parity_target(self, size: tuple[int, int],
-                       ) -> tuple[moderngl.Framebuffer, moderngl.Texture]:
-        """A one-channel framebuffer of ``size`` and its texture, for the cap's parity
-        pass (kept for the next frame of that size)."""
-        if self._parity is not None and self._parity[0].size == size:
-            return self._parity
-        if self._parity is not None:
-            self._parity[0].release()
-            self._parity[1].release()
-        texture = self.ctx.texture(size, 1)
+    def _winding_target(self, size: tuple[int, int],
+                        ) -> tuple[moderngl.Framebuffer, moderngl.Texture]:
+        """A one-channel float framebuffer of ``size`` and its texture, for the cap's
+        winding pass (kept for the next frame of that size)."""
+        if self._winding is not None and self._winding[0].size == size:
+            return self._winding
+        if self._winding is not None:
+            self._winding[0].release()
+            self._winding[1].release()
+        texture = self.ctx.texture(size, 1, dtype="f2")
         texture.filter = (moderngl.NEAREST, moderngl.NEAREST)
-        self._parity = (self.ctx.framebuffer([texture]), texture)
-        return self._parity
+        self._winding = (self.ctx.framebuffer([texture]), texture)
+        return self._winding
 
     def _draw_edges(self, mesh: _MeshGPU, selected_only: bool = False) -> None:
         program = self.programs["edge"]

@@ -107,14 +107,14 @@ void main() {
 }
 """
 
-PARITY_FRAGMENT = """
+WINDING_FRAGMENT = """
 #version 330
-// Drawn with blend (1 - destination, 0) and no depth test: every triangle over a
-// pixel flips it between 0 and 1, so it ends 1 where an odd number of the cut
-// mesh's triangles lie over it.
-layout(location = 0) out vec4 parity;
+// Drawn with additive blending and no depth test into a float image: a front face
+// adds 1 and a back face takes 1 away, so each pixel ends with the winding number
+// of the cut surface along its line of sight (0 outside the solid).
+layout(location = 0) out vec4 winding;
 void main() {
-    parity = vec4(1.0);
+    winding = vec4(gl_FrontFacing ? 1.0 : -1.0);
 }
 """
 
@@ -130,11 +130,12 @@ void main() {
 CAP_FRAGMENT = """
 #version 330
 // The section's cap. The line of sight through a pixel crosses the section plane
-// inside a closed mesh exactly when an odd number of the cut mesh's triangles lie
-// over the pixel (the parity pass), whichever side of the plane the eye is on.
-// There the cap is drawn, flat and hatched, at the depth of the plane, so that it
-// hides what lies behind it as a real cut face would.
-uniform sampler2D parity;
+// inside a closed mesh exactly when the cut surface winds around it: the winding
+// pass counts its front faces less its back faces over the pixel, which is +-1 (or
+// more where parts of the mesh overlap) inside and 0 outside, whichever side of the
+// plane the eye is on. There the cap is drawn, flat and hatched, at the depth of the
+// plane, so that it hides what lies behind it as a real cut face would.
+uniform sampler2D winding;
 uniform mat4 mvp;
 uniform vec3 eye;
 uniform mat3 camera_basis;  // columns: the camera's right, up and back in the world
@@ -164,9 +165,9 @@ void main() {
     float off = abs(fract(s + 0.5) - 0.5) / w;  // pixels to the nearest hatch line
     // lines about 1.5 pixels wide, faded out where they would crowd closer than 3 pixels
     float line = (1.0 - smoothstep(0.4, 1.2, off)) * (1.0 - smoothstep(0.25, 0.45, w));
-    bool odd = texelFetch(parity, ivec2(gl_FragCoord.xy), 0).r > 0.5;
+    bool inside = abs(texelFetch(winding, ivec2(gl_FragCoord.xy), 0).r) > 0.5;
     // outside the section, the plane seen edge-on, or behind the eye
-    if (!odd || along == 0.0 || (ortho == 0 && t <= 0.0)) discard;
+    if (!inside || along == 0.0 || (ortho == 0 && t <= 0.0)) discard;
     vec4 clip = mvp * vec4(q, 1.0);
     gl_FragDepth = clamp(0.5 * (gl_DepthRange.diff * clip.z / clip.w + gl_DepthRange.near
                                 + gl_DepthRange.far), 0.0, 1.0);
