@@ -307,6 +307,9 @@ class Renderer:
         self.ctx = ctx
         self.programs = {name: ctx.program(vertex_shader=vertex, fragment_shader=fragment)
                          for name, (vertex, fragment) in PROGRAMS.items()}
+        # counts changes of what is drawn (meshes, selection): a frame drawn at the same
+        # version, camera and style is the same picture
+        self.version = 0
         self._bind_samplers()
         self._set_clip_plane(NO_CUT)
         self.atlas = glyph_atlas()
@@ -356,6 +359,7 @@ class Renderer:
         # built before the old one is released: a failed upload leaves the old drawn
         self._mesh = self._replaced(self._mesh, arrays)
         self.arrays = arrays
+        self.version += 1
         self.set_others(others)
         self.set_preview(preview)
         self.set_selection(self.selection)
@@ -364,11 +368,13 @@ class Renderer:
         """Upload (or drop, with None) the other objects alone, keeping the mesh."""
         self._others = self._replaced(self._others, others)
         self.others = others
+        self.version += 1
 
     def set_preview(self, preview: MeshArrays | None) -> None:
         """Upload (or drop, with None) the patch-smoothed preview mesh."""
         self._preview = self._replaced(self._preview, preview)
         self.preview = preview
+        self.version += 1
 
     def _replaced(self, old: _MeshGPU | None, arrays: MeshArrays | None) -> _MeshGPU | None:
         """The upload of ``arrays`` (None for none), with ``old`` released once it is
@@ -383,6 +389,7 @@ class Renderer:
         """Highlight ``selection`` (ids; ids missing from the mesh are ignored)."""
         self.selection = selection
         self._label_cache = None
+        self.version += 1
         arrays = self.arrays
         if arrays is None or self._mesh is None:
             return

@@ -166,6 +166,10 @@ class LiveViewer(mglw.WindowConfig):
         self._last_frame = time.perf_counter()
         self._fps_shown, self._fps_time = 0.0, 0.0
         self._overlay_cache: tuple[tuple, np.ndarray] | None = None
+        # the last frame drawn and its _frame_key: a frame that would look the same is
+        # copied from it (an idle window then costs a copy a frame, not a draw)
+        self._frame: tuple[tuple, Any] | None = None
+        self.keep_frames = True
         self._init_parameters()
         self.script = str(Path(self.options.script).resolve())
         self.mesh_path = self.options.mesh_path
@@ -327,10 +331,69 @@ class LiveViewer(mglw.WindowConfig):
         self._flush_parameters()
         self._flush_scrub()
         self._drain_results()
-        fbo = self.wnd.fbo
+        self._count_fps()
+        screen = self.wnd.fbo
+        if self.keep_frames:
+            self._show_kept_frame(screen)
+        else:
+            self._draw_frame(screen)
+
+    def _count_fps(self) -> None:
+        """Update the HUD's frame rate twice a second."""
+        now = time.perf_counter()
+        if now - self._fps_time > 0.5 and self.frame_times:
+            self._fps_shown = round(len(self.frame_times) / max(sum(self.frame_times), 1e-9))
+            self._fps_time = now
+
+    def _show_kept_frame(self, screen: Any) -> None:
+        """Copy the kept frame to ``screen``, drawing it again first if the picture
+        would differ (see :meth:`_frame_key`)."""
+        key, fresh = self._frame_key(screen), False
+        if self._frame is None or self._frame[0] != key:
+            target = self._frame_target(screen)
+            fresh = self._frame is None or target is not self._frame[1]
+            self._frame = (key, target)
+            self._draw_frame(target)
+        if fresh:
+            self.ctx.error  # noqa: B018  (reading it clears an older error)
+        self.ctx.copy_framebuffer(screen, self._frame[1])
+        screen.use()
+        if fresh and self.ctx.error != "GL_NO_ERROR":
+            # a screen whose MSAA moderngl misreports refuses the copy: draw each frame
+            self.keep_frames = False
+            self._draw_frame(screen)
+
+    def _draw_frame(self, fbo: Any) -> None:
+        """Draw the scene and the overlay into ``fbo``."""
         self.renderer.draw(fbo, self.camera, self.style)
         if self.show_hud or self.show_help:
             self.renderer.draw_overlay(fbo, self._overlay_quads(fbo.size))
+
+    def _frame_key(self, screen: Any) -> tuple:
+        """Everything the picture depends on: a frame with the same key is the same
+        picture, so it is copied from the last one instead of drawn again."""
+        camera = self.camera
+        view = (tuple(camera.target.tolist()), camera.distance, camera.yaw, camera.pitch,
+                camera.fov, camera.ortho)
+        # the frame rate alone does not redraw: a million faces take half a second a
+        # frame on software GL, and an idle window would be drawing all the time
+        overlay = (self._overlay_key(screen.size, with_fps=False)
+                   if self.show_hud or self.show_help else None)
+        return (self.renderer.version, view, self.style, overlay, screen.size, screen.samples)
+
+    def _frame_target(self, screen: Any) -> Any:
+        """A framebuffer like ``screen`` (size, MSAA) to keep the last frame in; the
+        old one is released when the size changed."""
+        old = None if self._frame is None else self._frame[1]
+        if old is not None and old.size == screen.size and old.samples == screen.samples:
+            return old
+        if old is not None:
+            for attachment in (*old.color_attachments, old.depth_attachment):
+                attachment.release()
+            old.release()
+        return self.ctx.framebuffer(
+            [self.ctx.renderbuffer(screen.size, 4, samples=screen.samples)],
+            self.ctx.depth_renderbuffer(screen.size, samples=screen.samples))
 
     def _panel_shown(self) -> bool:
         return self.show_hud and not self.show_help
@@ -338,16 +401,7 @@ class LiveViewer(mglw.WindowConfig):
     def _overlay_quads(self, size: tuple[int, int]) -> np.ndarray:
         """HUD quads, laid out again only when something shown changed (the FPS
         figure changes twice a second), to keep frames cheap while a script runs."""
-        now = time.perf_counter()
-        if now - self._fps_time > 0.5 and self.frame_times:
-            self._fps_shown = round(len(self.frame_times) / max(sum(self.frame_times), 1e-9))
-            self._fps_time = now
-        key = (id(self.result), self.waiting, self.total_steps, self.whole.facts(),
-               self._fps_shown,
-               self.pick_mode, self.selection, self.style, self.camera.ortho, self.playing,
-               self.show_hud, self.show_help, size, self.params.state(),
-               self.objects.state(), self._objects_shown(), self.show_partial,
-               self.viewer_error)
+        key = self._overlay_key(size)
         if self._overlay_cache is None or self._overlay_cache[0] != key:
             parts = [hud_quads(self._hud_info(), size)]
             if self._panel_shown():  # the parameters' tooltip is drawn over the list
@@ -361,6 +415,16 @@ class LiveViewer(mglw.WindowConfig):
                                                     self._steps()))
             self._overlay_cache = (key, np.concatenate(parts))
         return self._overlay_cache[1]
+
+    def _overlay_key(self, size: tuple[int, int], with_fps: bool = True) -> tuple:
+        """Everything the HUD and the panels show (but the frame rate, when not
+        ``with_fps``)."""
+        return (id(self.result), self.waiting, self.total_steps, self.whole.facts(),
+                self._fps_shown if with_fps else None, self.pick_mode, self.selection,
+                self.style,
+                self.camera.ortho, self.playing, self.show_hud, self.show_help, size,
+                self.params.state(), self.objects.state(), self._objects_shown(),
+                self.show_partial, self.viewer_error)
 
     def _objects_shown(self) -> bool:
         return self.show_objects and self._panel_shown() and self.objects.has_others()
