@@ -712,3 +712,14 @@ def test_a_screen_that_refuses_the_copy_is_drawn_every_frame(headless) -> None:
     run_frames(viewer, 3)
     assert not viewer.keep_frames
     assert drawn[0] == 1 + 3  # into the kept frame once, then straight to the screen
+
+
+def test_view_output_of_all_objects_joins_them(tmp_path: Path) -> None:
+    from livemod.dlfl.io import open_mesh
+
+    out = tmp_path / "all.obj"
+    with _opened(_three_objects(tmp_path), (320, 240), output=str(out), all_objects=True):
+        assert open_mesh(str(out)).counts() == (4 + 6 + 8, 6 + 12 + 12, 4 + 8 + 6)
+    alone = tmp_path / "alone.obj"
+    with _opened(_three_objects(tmp_path), (320, 240), output=str(alone)):
+        assert open_mesh(str(alone)).counts() == (8, 12, 6)  # the current cube
