@@ -52,6 +52,11 @@ from .renderer import (
 from .text import MARGIN
 from .timeline import Timeline, shown_step
 
+# an unchanged picture is put on the screen again this often (repaints a window that
+# was covered), and an idle glfw loop waits this long for input between frames
+REPRESENT = 0.5
+IDLE_WAIT = 0.01
+
 SCRIPT_SUFFIXES = (".py",)
 PARAMETER_DEBOUNCE = 0.15  # seconds a dragged slider rests before the script re-runs
 
@@ -170,6 +175,10 @@ class LiveViewer(mglw.WindowConfig):
         # copied from it (an idle window then costs a copy a frame, not a draw)
         self._frame: tuple[tuple, Any] | None = None
         self.keep_frames = True
+        # whether the last on_render put a picture on the screen (else the loop waits
+        # for events instead of swapping), and when it last did
+        self.presented = True
+        self._presented_at = 0.0
         self._init_parameters()
         self.script = str(Path(self.options.script).resolve())
         self.mesh_path = self.options.mesh_path
@@ -337,6 +346,7 @@ class LiveViewer(mglw.WindowConfig):
             self._show_kept_frame(screen)
         else:
             self._draw_frame(screen)
+            self.presented = True
 
     def _count_fps(self) -> None:
         """Update the HUD's frame rate twice a second."""
@@ -347,16 +357,23 @@ class LiveViewer(mglw.WindowConfig):
 
     def _show_kept_frame(self, screen: Any) -> None:
         """Copy the kept frame to ``screen``, drawing it again first if the picture
-        would differ (see :meth:`_frame_key`)."""
-        key, fresh = self._frame_key(screen), False
-        if self._frame is None or self._frame[0] != key:
-            target = self._frame_target(screen)
-            fresh = self._frame is None or target is not self._frame[1]
+        would differ (see :meth:`_frame_key`). An unchanged picture is not copied at
+        all (:attr:`presented` False: the loop need not swap) but every
+        ``REPRESENT`` seconds, which repaints a window that was covered."""
+        key, now, kept = self._frame_key(screen), time.perf_counter(), self._frame
+        changed = kept is None or kept[0] != key
+        self.presented = changed or now - self._presented_at > REPRESENT
+        if not self.presented:
+            return
+        self._presented_at = now
+        target = self._frame_target(screen) if changed or kept is None else kept[1]
+        fresh = kept is None or target is not kept[1]
+        if changed:
             self._frame = (key, target)
             self._draw_frame(target)
         if fresh:
             self.ctx.error  # noqa: B018  (reading it clears an older error)
-        self.ctx.copy_framebuffer(screen, self._frame[1])
+        self.ctx.copy_framebuffer(screen, target)
         screen.use()
         if fresh and self.ctx.error != "GL_NO_ERROR":
             # a screen whose MSAA moderngl misreports refuses the copy: draw each frame
@@ -967,8 +984,16 @@ def run_frames(viewer: LiveViewer, max_frames: int | None = None,
         current, delta = viewer.timer.next_frame()
         window.use()
         window.render(current, delta)
-        if not window.is_closing:
+        if window.is_closing:
+            pass
+        elif viewer.presented:
             window.swap_buffers()
+        elif window.name == "glfw":
+            import glfw  # the window's own backend: already loaded
+
+            # nothing new to show: sleep until an input event (or a little while)
+            # instead of swapping the same picture again
+            glfw.wait_events_timeout(IDLE_WAIT)
         frames += 1
     return frames
 
