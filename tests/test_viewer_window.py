@@ -673,6 +673,10 @@ def test_an_unchanged_frame_is_copied_not_drawn_again(headless) -> None:
     kept = _screen(viewer).copy()
     run_frames(viewer, 5)
     assert drawn[0] == 0 and np.array_equal(_screen(viewer), kept)
+    assert not viewer.presented  # nothing new: the loop need not swap
+    viewer._presented_at -= 1.0  # half a second later it is put up again
+    run_frames(viewer, 1)
+    assert viewer.presented and drawn[0] == 0  # copied, not drawn
     viewer.keep_frames = False  # drawn directly, the same picture
     run_frames(viewer, 1)
     assert drawn[0] == 1 and np.array_equal(_screen(viewer), kept)
