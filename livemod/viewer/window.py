@@ -362,7 +362,9 @@ class LiveViewer(mglw.WindowConfig):
         ``REPRESENT`` seconds, which repaints a window that was covered."""
         key, now, kept = self._frame_key(screen), time.perf_counter(), self._frame
         changed = kept is None or kept[0] != key
-        self.presented = changed or now - self._presented_at > REPRESENT
+        # other backends take their input events while swapping: they swap every frame
+        idle_ok = self.wnd.name in ("glfw", "headless")
+        self.presented = changed or not idle_ok or now - self._presented_at > REPRESENT
         if not self.presented:
             return
         self._presented_at = now
@@ -974,7 +976,9 @@ def run_frames(viewer: LiveViewer, max_frames: int | None = None,
                until: Callable[[LiveViewer], bool] | None = None) -> int:
     """The main loop: render until the window closes, ``max_frames`` or ``until``.
 
-    Returns the number of frames drawn. The caller closes with :func:`close_viewer`.
+    Returns the number of frames (turns of the loop; while the picture does not
+    change, a glfw window waits up to ``IDLE_WAIT`` s for input in each instead of
+    swapping). The caller closes with :func:`close_viewer`.
     """
     window = viewer.wnd
     frames = 0
