@@ -273,6 +273,14 @@ def hatch_spacing(pixel_size: float, facing: float, pixels: float = 8.0) -> floa
     return float(2.0 ** np.round(np.log2(wanted)))
 
 
+def release_framebuffer(fbo: moderngl.Framebuffer) -> None:
+    """Free ``fbo`` and the textures and renderbuffers attached to it."""
+    for attachment in (*fbo.color_attachments, fbo.depth_attachment):
+        if attachment is not None:
+            attachment.release()
+    fbo.release()
+
+
 def read_image(fbo: moderngl.Framebuffer, style: Style) -> np.ndarray:
     """The colour of ``fbo`` drawn with ``style``: ``(H, W, 3)`` uint8 RGB, row 0
     at the top, or ``(H, W, 4)`` RGBA when ``style.background`` is not opaque (a
@@ -605,8 +613,7 @@ class Renderer:
         if self._winding is not None and self._winding[0].size == size:
             return self._winding
         if self._winding is not None:
-            self._winding[0].release()
-            self._winding[1].release()
+            release_framebuffer(self._winding[0])
         texture = self.ctx.texture(size, 1, dtype="f2")
         texture.filter = (moderngl.NEAREST, moderngl.NEAREST)
         self._winding = (self.ctx.framebuffer([texture]), texture)
@@ -773,11 +780,7 @@ class Renderer:
         if self._pick_fbo is not None and self._pick_fbo.size == tuple(size):
             return self._pick_fbo
         if self._pick_fbo is not None:
-            for attachment in (*self._pick_fbo.color_attachments,
-                               self._pick_fbo.depth_attachment):
-                if attachment is not None:
-                    attachment.release()
-            self._pick_fbo.release()
+            release_framebuffer(self._pick_fbo)
         self._pick_fbo = self.ctx.framebuffer(
             [self.ctx.texture(size, 4), self.ctx.texture(size, 1, dtype="u4")],
             self.ctx.depth_renderbuffer(size))

@@ -48,6 +48,7 @@ from .renderer import (
     Renderer,
     Style,
     read_image,
+    release_framebuffer,
 )
 from .text import MARGIN
 from .timeline import Timeline, shown_step
@@ -368,11 +369,14 @@ class LiveViewer(mglw.WindowConfig):
         if not self.presented:
             return
         self._presented_at = now
-        target = self._frame_target(screen) if changed or kept is None else kept[1]
-        fresh = kept is None or target is not kept[1]
         if changed:
+            target = self._frame_target(screen)
+            fresh = kept is None or target is not kept[1]  # a new framebuffer
             self._frame = (key, target)
             self._draw_frame(target)
+        else:
+            assert kept is not None
+            target, fresh = kept[1], False
         if fresh:
             self.ctx.error  # noqa: B018  (reading it clears an older error)
         self.ctx.copy_framebuffer(screen, target)
@@ -407,9 +411,7 @@ class LiveViewer(mglw.WindowConfig):
         if old is not None and old.size == screen.size and old.samples == screen.samples:
             return old
         if old is not None:
-            for attachment in (*old.color_attachments, old.depth_attachment):
-                attachment.release()
-            old.release()
+            release_framebuffer(old)
         return self.ctx.framebuffer(
             [self.ctx.renderbuffer(screen.size, 4, samples=screen.samples)],
             self.ctx.depth_renderbuffer(screen.size, samples=screen.samples))
@@ -478,10 +480,7 @@ class LiveViewer(mglw.WindowConfig):
             self.renderer.draw(fbo, self.camera, style)
             return read_image(fbo, style)
         finally:
-            for attachment in (*fbo.color_attachments, fbo.depth_attachment):
-                if attachment is not None:
-                    attachment.release()
-            fbo.release()
+            release_framebuffer(fbo)
             self.wnd.use()
 
     def save_screenshot(self, transparent: bool = False) -> Path:
