@@ -339,10 +339,6 @@ class Renderer:
         self._pick_fbo: moderngl.Framebuffer | None = None
         self._winding: tuple[moderngl.Framebuffer, moderngl.Texture] | None = None
         self._cap_vao = ctx.vertex_array(self.programs["cap"], [])
-        # the last view's, for the cap's hatch spacing: unit vector back toward the
-        # eye, and a pixel's world size at the target
-        self._toward_eye = np.array([0.0, 0.0, 1.0])
-        self._pixel_size = 1.0
 
     def _bind_samplers(self) -> None:
         """Fix each program's texture units: 0 atlas/triangle_face, 1..3 flags."""
@@ -430,11 +426,11 @@ class Renderer:
         fbo.clear(*style.background)
         if self._mesh is None and self._others is None:
             return
+        self._others_shown = style.others  # picking hides what the frame hid
+        self._section = style.section  # (before the view: the cap's hatch depends on it)
         self._set_view(camera, (width, height))
         self.ctx.enable(moderngl.DEPTH_TEST | moderngl.PROGRAM_POINT_SIZE)
         self.ctx.disable(moderngl.CULL_FACE | moderngl.BLEND)
-        self._others_shown = style.others  # picking hides what the frame hid
-        self._section = style.section
         if style.grid:
             self._draw_guides()
         with self._cut(style.section):
@@ -527,7 +523,8 @@ class Renderer:
                 program["view"].write(view)  # type: ignore[union-attr]
 
     def _set_cap_view(self, camera: Camera, aspect: float, height: int) -> None:
-        """What the cap pass needs to turn each pixel back into a line of sight."""
+        """What the cap pass needs to turn each pixel back into a line of sight, and
+        the hatch of the section's plane as this view sees it."""
         cap = self.programs["cap"]
         cap["eye"].value = tuple(float(v) for v in camera.eye())  # type: ignore[union-attr]
         basis = camera.basis()
@@ -536,8 +533,15 @@ class Renderer:
         half = camera.half_height() if camera.ortho else math.tan(math.radians(camera.fov) / 2)
         cap["half_size"].value = (half * aspect, half)  # type: ignore[union-attr]
         cap["ortho"].value = int(camera.ortho)  # type: ignore[union-attr]
-        self._toward_eye = basis[2]
-        self._pixel_size = 2.0 * camera.half_height() / max(height, 1)
+        if self._section is None:
+            return
+        axis = self._section[0]
+        along = [1.0, 1.0, 1.0]  # hatch at 45 degrees to the two axes in the plane
+        along[axis] = 0.0
+        cap["hatch_axis"].value = tuple(along)  # type: ignore[union-attr]
+        pixel_size = 2.0 * camera.half_height() / max(height, 1)
+        cap["hatch_spacing"].value = hatch_spacing(  # type: ignore[union-attr]
+            pixel_size, abs(float(basis[2][axis])))
 
     def _draw_faces(self, mesh: _MeshGPU, color: tuple[float, float, float],
                     wire: bool = False, smooth: bool = False) -> None:
@@ -574,7 +578,6 @@ class Renderer:
         over the viewport draws the plane where it is not 0
         (``shaders.CAP_FRAGMENT``), at its own depth. Must follow the mesh's face
         pass, into the framebuffer now in use."""
-        assert self._section is not None
         target, viewport = self.ctx.fbo, self.ctx.viewport
         winding = self._count_winding(mesh, (viewport[2], viewport[3]))
         target.use()
@@ -583,12 +586,6 @@ class Renderer:
         program = self.programs["cap"]
         program["viewport"].value = tuple(float(v) for v in viewport[2:])  # type: ignore[union-attr]
         program["cap_color"].value = tuple(0.72 * c for c in color)  # type: ignore[union-attr]
-        axis = self._section[0]
-        along = [1.0, 1.0, 1.0]  # hatch at 45 degrees to the two axes in the plane
-        along[axis] = 0.0
-        program["hatch_axis"].value = tuple(along)  # type: ignore[union-attr]
-        program["hatch_spacing"].value = hatch_spacing(  # type: ignore[union-attr]
-            self._pixel_size, abs(float(self._toward_eye[axis])))
         winding.use(6)
         self._cap_vao.render(moderngl.TRIANGLES, vertices=3)
 
