@@ -42,13 +42,19 @@ def parse_size(text: str) -> tuple[int, int]:
 parse_frames = whole_number_option("the frame count", 0)  # ``--turntable``
 
 
+def _float_or_nan(text: str) -> float:
+    """``text`` as a float, or NaN when it is not a number (the callers refuse NaN
+    with a message of their own)."""
+    try:
+        return float(text)
+    except ValueError:
+        return math.nan
+
+
 def parse_elevation(text: str) -> float:
     """``--elevation`` in degrees, strictly between -90 and 90 (the camera looks
     straight down or up at the poles, where its turn is undefined)."""
-    try:
-        degrees = float(text)
-    except ValueError:
-        degrees = math.nan
+    degrees = _float_or_nan(text)
     if not -90.0 < degrees < 90.0:
         raise argparse.ArgumentTypeError(f"the elevation must be a number of degrees "
                                          f"strictly between -90 and 90, not {text!r}")
@@ -57,10 +63,7 @@ def parse_elevation(text: str) -> float:
 
 def parse_yaw(text: str) -> float:
     """``--yaw`` in degrees around the up axis (any finite number; 0 looks from +z)."""
-    try:
-        degrees = float(text)
-    except ValueError:
-        degrees = math.nan
+    degrees = _float_or_nan(text)
     if not math.isfinite(degrees):
         raise argparse.ArgumentTypeError(f"the yaw must be a number of degrees, not {text!r}")
     return degrees
@@ -69,10 +72,7 @@ def parse_yaw(text: str) -> float:
 def parse_threshold(text: str) -> float:
     """``--threshold``: a share of pixels from 0 to 1, or a percentage such as ``2%``."""
     given = text.strip()
-    try:
-        share = float(given[:-1]) / 100 if given.endswith("%") else float(given)
-    except ValueError:
-        share = math.nan
+    share = _float_or_nan(given[:-1]) / 100 if given.endswith("%") else _float_or_nan(given)
     if not 0.0 <= share <= 1.0:
         raise argparse.ArgumentTypeError(f"the threshold is a share of the pixels from 0 to "
                                          f"1 (or 0% to 100%), not {text!r}")
@@ -84,10 +84,7 @@ def parse_section(text: str) -> tuple[int, float | None]:
     a bare ``y`` cuts through the middle of the scene (``at`` None)."""
     name, _, value = text.partition("=")
     axis = "xyz".find(name.strip().lower())
-    try:
-        at = float(value) if value.strip() else None
-    except ValueError:
-        at = math.nan
+    at = _float_or_nan(value) if value.strip() else None
     if len(name.strip()) != 1 or axis < 0 or (at is not None and not math.isfinite(at)):
         raise argparse.ArgumentTypeError(f"--section takes x, y or z, optionally =COORDINATE "
                                          f"(as in y=0.5), not {text!r}")
