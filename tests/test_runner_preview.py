@@ -9,37 +9,60 @@ import pytest
 from livemod.dlfl import from_polygons
 from livemod.dlfl.mesh import Mesh
 from livemod.runner import LiveSession, ManualNotifier, preview
-from livemod.runner.results import snapshot_mesh
+from livemod.runner.results import RunResult, snapshot_mesh
 
 from .runner_scripts.support import closing_session, next_result, script_path, started_session
 
 QUAD = ([(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0)], [(0, 1, 2, 3)])
 
 
-def test_preview_subdivides_a_copy_level_times(monkeypatch):
-    calls = []
-
-    def fake_subdivide(mesh: Mesh, scheme: str) -> None:
-        calls.append(scheme)
-        mesh.create_face([(5, 5, 5), (6, 5, 5), (6, 6, 5)])  # in place, like the real one
-
-    monkeypatch.setattr(preview, "_subdivide_function", lambda: fake_subdivide)
+def test_preview_is_the_mesh_subdivided_level_times_on_a_copy():
     mesh = from_polygons(*QUAD)
     before = mesh.counts()
-    arrays = preview.preview_arrays(mesh, scheme="doo-sabin", levels=2)
-    assert calls == ["doo-sabin", "doo-sabin"]
+    catmull_clark = preview.preview_arrays(mesh, levels=2)
+    doo_sabin = preview.preview_arrays(mesh, scheme="doo-sabin", levels=1)
     assert mesh.counts() == before
-    assert arrays is not None and arrays.counts[2] == before[2] + 4
-    assert not arrays.positions.flags.writeable
+    # a quad and its hole face (V 4, E 4, F 2): each Catmull-Clark level adds a point per
+    # edge and face and quarters the faces: (4+4+2, 16, 8), then (10+16+8, 64, 32)
+    assert catmull_clark is not None and catmull_clark.counts == (34, 64, 32)
+    # Doo-Sabin: a vertex per corner, a quad per edge; the valence-2 vertices' 2-gons go
+    assert doo_sabin is not None and doo_sabin.counts == (8, 12, 2 + 4)
+    assert not catmull_clark.positions.flags.writeable
 
 
-def test_no_preview_without_the_module_or_over_budget(monkeypatch):
+def test_no_preview_for_an_empty_mesh_or_over_the_face_budget():
     mesh = from_polygons(*QUAD)
-    monkeypatch.setattr(preview, "_subdivide_function", lambda: None)
-    assert preview.preview_arrays(mesh) is None
-    monkeypatch.setattr(preview, "_subdivide_function", lambda: lambda m, s: None)
-    assert preview.preview_arrays(mesh, face_budget=10) is None
+    assert preview.preview_arrays(mesh, face_budget=31) is None  # 32 faces at two levels
+    assert preview.preview_arrays(mesh, face_budget=32) is not None
     assert preview.preview_arrays(Mesh()) is None
+
+
+def test_a_failing_preview_is_logged_and_the_worker_goes_on(caplog):
+    posted: list[int] = []
+    failed, done = threading.Event(), threading.Event()
+
+    def compute(mesh: Mesh):
+        if not failed.is_set():
+            failed.set()
+            raise RuntimeError("boom")
+        done.set()
+        return snapshot_mesh(mesh)
+
+    worker = preview.PreviewWorker(lambda result, arrays: posted.append(result.run_id),
+                                   lambda result: True, compute)
+    with caplog.at_level("ERROR", logger="livemod.preview"):
+        worker.request(_result(1), from_polygons(*QUAD))
+        assert failed.wait(10)
+        worker.request(_result(2), from_polygons(*QUAD))
+        assert done.wait(10)
+        worker.close()
+        worker._thread.join(10)
+    assert posted == [2]
+    assert "the preview of run 1 failed" in caplog.text and "boom" in caplog.text
+
+
+def _result(run_id: int) -> RunResult:
+    return RunResult(run_id, "s.py", "ok", (), None, None, None, None, 0.0, False)
 
 
 @pytest.mark.timeout(60)

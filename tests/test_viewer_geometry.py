@@ -189,6 +189,27 @@ def test_the_whole_mesh_is_measured_at_once_or_when_large_off_the_main_thread(
         measurer.close()
 
 
+def test_a_background_measurement_that_fails_is_logged_and_says_nothing(
+        monkeypatch, caplog) -> None:
+    import livemod.viewer.measure as measure
+
+    def broken(arrays):
+        raise FloatingPointError("no volume")
+
+    monkeypatch.setattr(measure, "MEASURE_AT_ONCE", 10)
+    monkeypatch.setattr(measure, "measure_whole", broken)
+    measurer = WholeMeshMeasurer()
+    try:
+        with caplog.at_level("ERROR", logger="livemod.measure"):
+            measurer.measure(mesh_arrays(cube()))
+            assert measurer.wait(30) is None
+            measurer.close()
+            measurer._pool.shutdown(wait=True)  # the log is written by the done callback
+    finally:
+        measurer.close()
+    assert "measuring the mesh shown failed" in caplog.text and "no volume" in caplog.text
+
+
 def test_the_help_overlay_fits_the_window_in_columns() -> None:
     from livemod.viewer.hud import hud_quads
 

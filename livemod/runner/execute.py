@@ -12,7 +12,6 @@ from __future__ import annotations
 import builtins
 import contextlib
 import ctypes
-import importlib
 import os
 import random
 import sys
@@ -25,6 +24,7 @@ from types import CodeType
 import numpy as np
 
 import livemod.dlfl as dlfl
+from livemod.dlfl.io import load_mesh
 from livemod.dlfl.scene import Scene, Selection, use_scene
 
 from .errors import Cancelled, cancelled_error, exception_error, is_user_file, syntax_error
@@ -129,8 +129,7 @@ def base_scene(mesh_path: str | None) -> Scene:
     """An empty scene, or one holding the mesh read from ``mesh_path``."""
     scene = Scene()
     if mesh_path is not None:
-        io = importlib.import_module("livemod.dlfl.io")  # written in parallel: late import
-        scene.add(io.load_mesh(os.fspath(mesh_path)), os.path.basename(mesh_path))
+        scene.add(load_mesh(os.fspath(mesh_path)), os.path.basename(mesh_path))
     return scene
 
 

@@ -2,22 +2,25 @@
 
 TopMod draws a smoothed "patch" version of the control mesh; livemod
 approximates it with two levels of Catmull-Clark (or Doo-Sabin) subdivision
-from :mod:`livemod.dlfl.subdivision`, imported late because it is written in
-parallel with the runner. Without it, or above the face budget, there is no
-preview (None) and nothing fails.
+from :mod:`livemod.dlfl.subdivision`. Above the face budget there is no preview
+(None). A preview that fails is logged (logger ``livemod.preview``) and the
+session goes on without it: the control mesh is what the user asked for.
 """
 
 from __future__ import annotations
 
-import importlib
+import logging
 import queue
 import threading
 from collections.abc import Callable
 
 from livemod.dlfl.arrays import MeshArrays
 from livemod.dlfl.mesh import Mesh
+from livemod.dlfl.subdivision import subdivide
 
 from .results import RunResult, snapshot_mesh
+
+_LOG = logging.getLogger("livemod.preview")
 
 DEFAULT_SCHEME = "catmull-clark"
 DEFAULT_LEVELS = 2
@@ -28,27 +31,17 @@ def preview_arrays(mesh: Mesh, *, scheme: str = DEFAULT_SCHEME, levels: int = DE
                    face_budget: int = DEFAULT_FACE_BUDGET) -> MeshArrays | None:
     """Read-only arrays of ``mesh`` subdivided ``levels`` times, or None.
 
-    ``mesh`` is not changed. None when the subdivision module is missing, the
-    mesh is empty, or the preview would exceed ``face_budget`` faces (each level
-    multiplies the face count by about four).
+    ``mesh`` is not changed. None when the mesh is empty or the preview would
+    exceed ``face_budget`` faces (each level multiplies the face count by about
+    four). Raises what :func:`~livemod.dlfl.subdivision.subdivide` raises.
     """
-    subdivide = _subdivide_function()
     faces = mesh.counts()[2]
-    if subdivide is None or faces == 0 or faces * 4**levels > face_budget:
+    if faces == 0 or faces * 4**levels > face_budget:
         return None
-    current = mesh.copy()
+    smoothed = mesh.copy()
     for _ in range(levels):
-        returned = subdivide(current, scheme)
-        current = returned if isinstance(returned, Mesh) else current  # in place or new
-    return snapshot_mesh(current)
-
-
-def _subdivide_function() -> Callable | None:
-    try:
-        module = importlib.import_module("livemod.dlfl.subdivision")
-    except ImportError:
-        return None
-    return getattr(module, "subdivide", None)
+        subdivide(smoothed, scheme)
+    return snapshot_mesh(smoothed)
 
 
 class PreviewWorker:
@@ -90,6 +83,8 @@ class PreviewWorker:
             try:
                 preview = self._compute(mesh)
             except Exception:  # a failing preview must never take the session down
+                _LOG.exception("the preview of run %d failed; showing the mesh unsmoothed",
+                               result.run_id)
                 preview = None
             if preview is not None:
                 self._post(result, preview)

@@ -11,6 +11,7 @@ import bisect
 import dataclasses
 import functools
 import operator
+import os
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 from types import CodeType
@@ -19,6 +20,7 @@ from typing import Any, overload
 import numpy as np
 
 from livemod.dlfl.arrays import MeshArrays, concatenate_arrays, mesh_arrays
+from livemod.dlfl.io import save_mesh
 from livemod.dlfl.mesh import Mesh
 from livemod.dlfl.scene import STEP_FIELDS, Scene, StepLog
 
@@ -249,11 +251,8 @@ def save_result(mesh: Mesh, path: str) -> None:
     Raises:
         OSError, DLFLError: the file cannot be written, or its suffix is unknown.
     """
-    import importlib
-    import os
-
     os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
-    importlib.import_module("livemod.dlfl.io").save_mesh(mesh, path)
+    save_mesh(mesh, path)
 
 
 def snapshot_scene(scene: Scene) -> MeshArrays | None:

@@ -7,7 +7,6 @@ subcommands, for tests and ``python -m``-free use.
 from __future__ import annotations
 
 import argparse
-import importlib
 import math
 import sys
 from collections.abc import Sequence
@@ -16,6 +15,7 @@ from typing import Any
 
 import numpy as np
 
+from livemod.dlfl.io import open_mesh
 from livemod.dlfl.scene import Selection
 from livemod.runner.cli import (
     add_all_objects_option,
@@ -353,7 +353,7 @@ def _load_input(path: str, mesh_path: str | None, want_preview: bool,
         return _run_for_render(path, mesh_path, want_preview, values, selection)
     from livemod.dlfl import mesh_arrays
 
-    mesh = importlib.import_module("livemod.dlfl.io").open_mesh(path)
+    mesh = open_mesh(path)
     preview = None
     if want_preview:
         from livemod.runner.preview import preview_arrays

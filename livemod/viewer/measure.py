@@ -11,6 +11,7 @@ exactly what is drawn.
 from __future__ import annotations
 
 import concurrent.futures
+import logging
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -47,6 +48,8 @@ def measure_whole(arrays: MeshArrays) -> WholeMesh:
     return WholeMesh(genus(arrays), enclosed_volume(arrays))
 
 
+_LOG = logging.getLogger("livemod.measure")
+
 # meshes up to this many corners are measured at once (0.13-0.17 s on the dev VM), larger in
 # the background
 MEASURE_AT_ONCE = 1_000_000
@@ -71,15 +74,19 @@ class WholeMeshMeasurer:
         """Measure ``arrays`` (None: nothing is shown); an older job's answer is dropped."""
         if self._job is not None:
             self._job.cancel()  # not started yet: never run
-        if arrays is None or len(arrays.corner_vertex) > MEASURE_AT_ONCE:
-            self._job = None if arrays is None else self._pool.submit(measure_whole, arrays)
-            return
-        self._job = concurrent.futures.Future()
-        self._job.set_result(measure_whole(arrays))
+        if arrays is None:
+            self._job = None
+        elif len(arrays.corner_vertex) > MEASURE_AT_ONCE:
+            self._job = self._pool.submit(measure_whole, arrays)
+            self._job.add_done_callback(_log_failure)
+        else:
+            self._job = concurrent.futures.Future()
+            self._job.set_result(measure_whole(arrays))
 
     def facts(self) -> WholeMesh | None:
         """The facts of the last mesh given, once measured; None before (or when none
-        is shown, or it could not be measured)."""
+        is shown, or it could not be measured: that failure is logged to the
+        ``livemod.measure`` logger)."""
         job = self._job
         if job is None or not job.done() or job.cancelled() or job.exception() is not None:
             return None
@@ -94,6 +101,12 @@ class WholeMeshMeasurer:
     def close(self) -> None:
         """Stop the thread (a job running finishes in the background)."""
         self._pool.shutdown(wait=False, cancel_futures=True)
+
+
+def _log_failure(job: concurrent.futures.Future[WholeMesh]) -> None:
+    if not job.cancelled() and job.exception() is not None:
+        _LOG.error("measuring the mesh shown failed; the HUD leaves out its genus and volume",
+                   exc_info=job.exception())
 
 
 def measure_lines(selection: Selection, arrays: MeshArrays | None) -> list[str]:
