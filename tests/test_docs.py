@@ -69,3 +69,35 @@ def test_every_python_example_in_the_docs_runs(name: str, line: int, code: str,
 def test_the_docs_have_python_examples() -> None:
     assert {name for name, _, _ in _python_blocks()} >= {
         "README.md", "docs/guide.md", "docs/extrusions.md", "docs/parameters.md"}
+
+
+def _dotted_references() -> list[tuple[str, str]]:
+    """``(file, name)`` of every ```livemod.…``` name quoted in the docs, the README
+    and the docstrings and comments of the package."""
+    paths = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md")),
+             *sorted((ROOT / "livemod").rglob("*.py"))]
+    return sorted({(path.relative_to(ROOT).as_posix(), name) for path in paths
+                   for name in re.findall(r"`(livemod(?:\.\w+)+)`", path.read_text("utf-8"))})
+
+
+def test_every_dotted_name_the_docs_quote_can_be_reached_by_attribute() -> None:
+    """``livemod.dlfl.X.y`` must work as typed once the package is imported: a
+    module shadowed by a same-named function (``rind``, ``wireframe``, ...) would
+    make such a name an AttributeError, so the docs must say ``from ... import``."""
+    import importlib
+    import pkgutil
+
+    import livemod
+
+    for module in pkgutil.walk_packages(livemod.__path__, "livemod."):
+        if not module.name.endswith("__main__"):  # it runs the command line
+            importlib.import_module(module.name)
+    unreachable = []
+    for name, dotted in _dotted_references():
+        target: object = livemod
+        for part in dotted.split(".")[1:]:
+            target = getattr(target, part, None)
+        if target is None:
+            unreachable.append(f"{name}: {dotted}")
+    assert len(_dotted_references()) > 40
+    assert not unreachable, "\n".join(unreachable)

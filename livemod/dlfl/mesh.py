@@ -99,7 +99,7 @@ class Mesh:
     """A DLFL mesh: an always-valid oriented 2-manifold with integer element ids.
 
     Create one empty (``Mesh()``), from polygons (:func:`livemod.dlfl.from_polygons`)
-    or from a file (:func:`livemod.dlfl.load_mesh`). The minimal operators
+    or from a file (:func:`livemod.dlfl.io.load_mesh`). The minimal operators
     (:meth:`create_vertex`, :meth:`remove_vertex`, :meth:`insert_edge`,
     :meth:`delete_edge`, :meth:`subdivide_edge`, :meth:`collapse_edge`,
     :meth:`create_face`) keep it valid; each checks its arguments first and

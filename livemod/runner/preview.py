@@ -3,7 +3,7 @@
 TopMod draws a smoothed "patch" version of the control mesh; livemod
 approximates it with two levels of Catmull-Clark (or Doo-Sabin) subdivision
 from :mod:`livemod.dlfl.subdivision`. Above the face budget there is no preview
-(None). A preview that fails is logged (logger ``livemod.preview``) and the
+(None). A preview that fails is logged (to the logger named "livemod.preview") and the
 session goes on without it: the control mesh is what the user asked for.
 """
 

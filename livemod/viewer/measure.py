@@ -86,7 +86,7 @@ class WholeMeshMeasurer:
     def facts(self) -> WholeMesh | None:
         """The facts of the last mesh given, once measured; None before (or when none
         is shown, or it could not be measured: that failure is logged to the
-        ``livemod.measure`` logger)."""
+        logger named "livemod.measure")."""
         job = self._job
         if job is None or not job.done() or job.cancelled() or job.exception() is not None:
             return None

@@ -87,8 +87,9 @@ Scheme = Callable[..., None]
 def modified_corner_cut(mesh: Mesh, *, thickness: float = 0.25,
                         max_faces: int | None = None) -> None:
     """Modified corner cutting (TopMod ``modifiedCornerCuttingSubdivide``,
-    "modified-corner-cut"): delegates to :func:`livemod.dlfl.wireframe.modified_corner_cut`
-    (the sculpting family owns it). GUI default 0.25. Cube: 24/48/26.
+    "modified-corner-cut"): delegates to the wireframe family's
+    ``from livemod.dlfl.wireframe import modified_corner_cut``. GUI default 0.25.
+    Cube: 24/48/26.
 
     Raises:
         DLFLError: a bad ``thickness`` or the face budget.
@@ -103,7 +104,7 @@ def modified_corner_cut(mesh: Mesh, *, thickness: float = 0.25,
 
 def sierpinsky(mesh: Mesh, *, max_faces: int | None = None) -> None:
     """Sierpinsky (TopMod ``multiConnectMidpoints``, "sierpinsky"): delegates to
-    :func:`livemod.dlfl.sierpinsky.sierpinsky`. Cube: 20/60/32, genus 5.
+    ``from livemod.dlfl.sierpinsky import sierpinsky``. Cube: 20/60/32, genus 5.
 
     Raises:
         DLFLError: the face budget, or input that scheme refuses.
