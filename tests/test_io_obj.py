@@ -239,6 +239,24 @@ def test_errors_name_file_and_line(text: bytes, message: str) -> None:
         read_obj(text)
 
 
+@pytest.mark.parametrize(("text", "message"), [
+    (b"hello world\nthis is not obj\n", r"<obj>:1: not an OBJ file: no vertex, .* 'hello'"),
+    (b"# a comment\n\nsolid cube\nendsolid\n", r"<obj>:3: not an OBJ file: .* 'solid'"),
+    (b"ply\nformat ascii 1.0\n", r"<obj>:1: not an OBJ file: .* 'ply'"),
+    (b"\x00\x01binary", r"<obj>: not an OBJ file: it holds binary data"),
+])
+def test_a_file_of_another_kind_is_refused_not_read_as_empty(text: bytes, message: str) -> None:
+    with pytest.raises(DLFLError, match=message):
+        read_obj(text)
+
+
+@pytest.mark.parametrize("text", [b"", b"\n\n", b"# only a comment\n", b"o empty\ng group\n",
+                                  b"mtllib a.mtl\nusemtl red\n",
+                                  b"\xef\xbb\xbf# comments after a byte order mark\n"])
+def test_a_blank_or_vertexless_obj_file_is_an_empty_mesh(text: bytes) -> None:
+    assert read_obj(text).counts() == (0, 0, 0)
+
+
 def test_error_names_the_path(tmp_path: Path) -> None:
     path = tmp_path / "broken.obj"
     path.write_bytes(b"v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 4\nf 1 2 3\n")

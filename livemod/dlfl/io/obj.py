@@ -65,16 +65,41 @@ def read_obj(source: str | os.PathLike[str] | bytes, *, name: str | None = None)
 
     Raises:
         DLFLError: ``file:line: ...`` for a malformed number, an empty face, an
-            index out of range, or a mesh that is not an orientable 2-manifold.
+            index out of range, or a mesh that is not an orientable 2-manifold;
+            a file with neither vertices nor any OBJ keyword (another format,
+            or not text). A blank file, or one of comments only, is an empty mesh.
         OSError: the file cannot be read.
     """
     data, label = read_source(source, name, "<obj>")
     soup = parse_obj(data, label)
     if len(soup.indices) == 0:
+        if len(soup.positions) == 0:
+            _check_obj_text(data, label)
         return point_cloud(soup.positions)
     return from_polygons(
         soup.positions, soup.indices, soup.offsets, source=label, face_lines=soup.face_lines
     )
+
+
+# every statement of the OBJ specification: a file of no ``v`` line passes when it
+# uses one of these (an exported empty group, say), else it is not an OBJ file
+_OBJ_KEYWORDS = frozenset(
+    b"v vt vn vp f l p o g s mg usemtl mtllib cstype deg bmat step curv curv2 surf "
+    b"parm trim hole scrv sp end con bevel c_interp d_interp lod shadow_obj trace_obj "
+    b"ctech stech maplib usemap call csh".split())
+
+
+def _check_obj_text(data: bytes, label: str) -> None:
+    """Refuse ``data`` (which held no vertex) unless it is blank, comments only, or
+    uses an OBJ keyword: a mesh file of another kind must not load as empty."""
+    if b"\0" in data:
+        raise DLFLError(f"{label}: not an OBJ file: it holds binary data")
+    for line, raw in enumerate(data.removeprefix(b"\xef\xbb\xbf").splitlines(), 1):
+        words = raw.split(None, 1)
+        if not words or words[0].startswith(b"#") or words[0] in _OBJ_KEYWORDS:
+            continue
+        raise DLFLError(f"{label}:{line}: not an OBJ file: no vertex, and the line "
+                        f"starts with {show_token(words[0])}, not an OBJ keyword")
 
 
 def parse_obj(data: bytes, label: str = "<obj>", *, fast: bool = True) -> ObjSoup:
