@@ -10,8 +10,10 @@ import numpy as np
 import pytest
 
 from livemod.dlfl import Mesh, from_polygons
+from livemod.dlfl.shapes import cube
 from livemod.dlfl.io import (
     atomic_write,
+    load_mesh,
     read_obj,
     save_mesh,
     write_atomically,
@@ -100,6 +102,22 @@ def test_ply_with_a_huge_face_uses_uint_counts(tmp_path: Path) -> None:
 
 
 # ------------------------------------------------------------ atomic writes
+
+
+def test_saving_through_a_symlink_replaces_its_target_and_keeps_the_link(
+        tmp_path: Path) -> None:
+    (tmp_path / "real").mkdir()
+    target = tmp_path / "real" / "model.obj"
+    target.write_bytes(b"old")
+    link, dangling = tmp_path / "model.obj", tmp_path / "new.obj"
+    link.symlink_to(target)
+    dangling.symlink_to(tmp_path / "real" / "new.obj")
+    save_mesh(cube(), link)
+    save_mesh(cube(), dangling)
+    assert link.is_symlink() and dangling.is_symlink()
+    assert load_mesh(target).counts() == (8, 12, 6)
+    assert load_mesh(tmp_path / "real" / "new.obj").counts() == (8, 12, 6)
+    assert sorted(p.name for p in (tmp_path / "real").iterdir()) == ["model.obj", "new.obj"]
 
 
 def test_atomic_write_replaces_only_on_success(tmp_path: Path) -> None:

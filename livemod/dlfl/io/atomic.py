@@ -4,7 +4,8 @@ Every writer in :mod:`livemod.dlfl.io` writes through :func:`atomic_write`: the
 bytes go to a temporary file in the target's folder, which is flushed, synced
 to disk and then renamed over the target with :func:`os.replace` (atomic on
 POSIX and Windows). If anything raises before the rename, the temporary file is
-removed and the old target, if any, is untouched.
+removed and the old target, if any, is untouched. Saving through a symbolic
+link replaces the file it points to and keeps the link.
 """
 
 from __future__ import annotations
@@ -21,7 +22,10 @@ def atomic_write(path: str | os.PathLike[str]) -> Iterator[BinaryIO]:
     """Open a binary file that replaces ``path`` only when the block succeeds.
 
     Args:
-        path: the file to create or replace; its folder must exist.
+        path: the file to create or replace; its folder must exist. A symbolic
+            link is followed: the file it points to is replaced and the link
+            kept, as editors save through links (a dangling link's target is
+            created).
 
     Yields:
         A binary file object open for writing (a temporary file beside ``path``).
@@ -31,7 +35,8 @@ def atomic_write(path: str | os.PathLike[str]) -> Iterator[BinaryIO]:
             Whatever the block raises is re-raised after the temporary file is
             removed.
     """
-    target = os.path.abspath(os.fspath(path))
+    # the temporary file must sit beside the file finally replaced, for the rename
+    target = os.path.realpath(os.path.abspath(os.fspath(path)))
     folder, name = os.path.split(target)
     try:
         fd, tmp_path = tempfile.mkstemp(prefix=f".{name}.", suffix=".tmp", dir=folder)
