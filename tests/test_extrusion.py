@@ -4,13 +4,34 @@ rules, chained towers, and bad input that leaves the mesh unchanged."""
 from __future__ import annotations
 
 import math
+import re
 import warnings
+from pathlib import Path
 
 import numpy as np
 import pytest
 
-from livemod.dlfl import DLFLError, Mesh, face_size_histogram, from_polygons, genus, validate
+from livemod.dlfl import (
+    DLFLError,
+    Mesh,
+    Scene,
+    commands,
+    face_size_histogram,
+    from_polygons,
+    genus,
+    use_scene,
+    validate,
+)
 from livemod.dlfl.analysis import face_centroid, face_normal, face_points
+from livemod.dlfl.connect import (
+    bezier_handle,
+    connect_corners,
+    connect_faces,
+    connect_faces_closest,
+    dual_connect_faces,
+    hermite_handle,
+    multi_face_handle,
+)
 from livemod.dlfl.extrusion import (
     KINDS,
     doo_sabin_weights,
@@ -349,8 +370,6 @@ def test_dodeca_scales_each_sub_step_by_the_sixth_root():
 def test_random_sequences_stay_valid_and_refusals_change_nothing():
     import random
 
-    from livemod.dlfl.connect import connect_faces, hermite_handle, multi_face_handle
-
     rng = random.Random(11)
     for _ in range(25):
         m = rng.choice([cube, dodecahedron, tetrahedron])()
@@ -508,3 +527,170 @@ def test_extruding_a_face_near_the_float_range_prints_no_numpy_warning(kind):
 ])
 def test_segment_counts_a_mesh_cannot_hold_are_refused_at_once(kind, segments, message):
     assert_refused(cube(), lambda m: extrude(m, 0, kind, 0.5, segments), message)
+
+
+# -- hole faces --------------------------------------------------------------------
+
+def open_box() -> tuple[Mesh, int]:
+    """The unit cube without its bottom, 8/12/6: the bottom loop is a hole face,
+    returned with the mesh."""
+    m = from_polygons(CUBE_POSITIONS, CUBE_FACES[1:])
+    (hole,) = [f for f in m.face_ids().tolist() if m.is_hole(f)]
+    return m, hole
+
+
+@pytest.mark.parametrize("kind", list(KINDS))
+def test_a_hole_face_is_refused_by_every_kind(kind):
+    # before: a cap detached from the surface, its walls holes too
+    m, hole = open_box()
+    run = extrude_fan if KINDS[kind].fan is not None else extrude
+    assert_refused(m, lambda m: run(m, hole, kind), f"face {hole} is a hole")
+
+
+def test_a_hole_face_is_refused_with_segments_and_by_the_thesis_command():
+    m, hole = open_box()
+    assert_refused(m, lambda m: extrude(m, hole, "dodeca", segments=3, hexagonalize=True),
+                   f"face {hole} is a hole .* cannot be extruded")
+    scene = Scene()
+    scene.add(m, "box")
+    with use_scene(scene):
+        assert_refused(m, lambda _: commands.extrude("cubical", hole), f"face {hole} is a hole")
+
+
+def test_a_face_next_to_a_hole_still_extrudes_and_the_hole_stays():
+    m, hole = open_box()
+    side = next(f for f in m.face_ids().tolist()
+                if f != hole and set(m.face_vertices(f)) & set(m.face_vertices(hole)))
+    extrude(m, side, "cubical")
+    assert checked(m) == (12, 20, 10)
+    assert [f for f in m.face_ids().tolist() if m.is_hole(f)] == [hole]
+    assert m.face_size(hole) == 4
+
+
+@pytest.mark.parametrize("options", [{"kind": "hex-tile"}, {"kind": "octa", "dual_mesh": True}])
+def test_a_step_that_deletes_an_edge_along_a_hole_grows_the_hole(options):
+    """These steps delete the face's old edges, merging each neighbour with a new
+    triangle; where the neighbour is the hole, the triangle joins the opening (it
+    used to turn the hole into a drawn face and close the box)."""
+    m, hole = open_box()
+    side = next(f for f in m.face_ids().tolist()
+                if f != hole and set(m.face_vertices(f)) & set(m.face_vertices(hole)))
+    extrude(m, side, **options)
+    validate(m)
+    holes = [f for f in m.face_ids().tolist() if m.is_hole(f)]
+    assert len(holes) == 1  # the merged face keeps the first side's id, maybe not the hole's
+    assert m.face_size(holes[0]) == 5  # the old ring plus a new vertex between two ends
+
+
+# -- hex-tile counts -----------------------------------------------------------------
+
+# One hex-tile step on an n-gon (extrudeHexTileFace, TOPMOD.md §4):
+#   dual step (midpoint n-gon as a two-sided polygon + 2n band triangles):
+#       V + n, E + n + 2n, F + 2 - 1 + (2n - 1) = F + 2n   (the first band edge merges)
+#   its dual_mesh deletes the face's n old edges, each merging two faces: E - n, F - n
+#   cubical step on the dual n-gon: V + n, E + n + n, F + n
+#   deleting the dual n-gon's n edges: E - n, F - n
+# so V + 2n, E + 3n, F + n per step, ending in an n-gon again. The cube (8/12/6,
+# n = 4): 16/24/10 after 1 segment, 24/36/14 after 2 (not 28/44/18: that is
+# TopMod's binding's dodeca-then-hex-tile variant, 20/32/14 + 8/12/4).
+@pytest.mark.parametrize(("segments", "counts", "sizes"), [
+    (1, (16, 24, 10), {4: 2, 5: 8}),
+    (2, (24, 36, 14), {4: 2, 5: 8, 6: 4}),
+])
+def test_hex_tile_counts(segments, counts, sizes):
+    m = cube()
+    end = extrude(m, TOP, "hex-tile", segments=segments)
+    assert checked(m) == counts
+    assert face_size_histogram(m) == sizes  # adjacent segments' pentagons make hexagons
+    assert m.face_size(end) == 4 and genus(m) == 0
+
+
+def test_topmods_binding_variant_is_dodeca_then_hex_tile():
+    m = cube()
+    extrude(m, extrude(m, TOP, "dodeca"), "hex-tile")
+    assert checked(m) == (28, 44, 18)
+    assert face_size_histogram(m) == {4: 6, 5: 8, 6: 4}
+
+
+# -- every V/E/F figure of docs/extrusions.md ------------------------------------------
+
+DOC = Path(__file__).resolve().parents[1] / "docs" / "extrusions.md"
+FIGURE = re.compile(r"\b\d+/\d+/\d+\b")
+
+
+def _connect(run):
+    """``run(mesh, top_corner, bottom_corner)`` on the cube's top (face 0, at
+    vertex 0) and bottom (face 5, at vertex 4) corners, the doc's top–bottom."""
+    return lambda m: run(m, m.corner_at(0, 0), m.corner_at(5, 4))
+
+
+def _handle(run):
+    """``run(mesh, c1, c2)`` on faces 0 and 1 at vertex 0, the doc's faces 0–1."""
+    return lambda m: run(m, m.corner_at(0, 0), m.corner_at(1, 0))
+
+
+# (a text only the doc's row or bullet holds, its V/E/F figure, what makes it from
+# TopMod's cube); rows that say "as above" are keyed to the row they refer to
+DOC_FIGURES = [
+    ("| cubical |", "12/20/10", lambda m: extrude(m, TOP, "cubical")),
+    ("| doo-sabin |", "12/20/10", lambda m: extrude(m, TOP, "doo-sabin")),
+    ("| octa |", "12/24/14", lambda m: extrude(m, TOP, "octa")),
+    ("| octa |", "12/20/10", lambda m: extrude(m, TOP, "octa", dual_mesh=True)),
+    ("| dodeca |", "20/32/14", lambda m: extrude(m, TOP, "dodeca")),
+    ("| dodeca |", "32/48/18",
+     lambda m: extrude(m, TOP, "dodeca", segments=2, hexagonalize=True)),
+    ("| icosa |", "20/48/30", lambda m: extrude(m, TOP, "icosa")),
+    ("| cuboctahedral |", "16/32/18", lambda m: extrude(m, TOP, "cuboctahedral")),
+    ("| hex-tile |", "16/24/10", lambda m: extrude(m, TOP, "hex-tile")),
+    ("| hex-tile |", "24/36/14", lambda m: extrude(m, TOP, "hex-tile", segments=2)),
+    ("| planar-offset |", "12/20/10", lambda m: extrude(m, TOP, "planar-offset")),
+    ("| stellate |", "9/16/9", lambda m: extrude_fan(m, TOP, "stellate")),
+    ("| double-stellate |", "13/28/17", lambda m: extrude_fan(m, TOP, "double-stellate")),
+    ("| dome |", "29/56/29", lambda m: extrude_fan(m, TOP, "dome")),
+    ("binding's own multi-segment variant", "28/44/18",
+     lambda m: extrude(m, extrude(m, TOP, "dodeca"), "hex-tile")),
+    ("binding's own multi-segment variant", "24/36/14",
+     lambda m: extrude(m, TOP, "hex-tile", segments=2)),
+    ("`connect_faces(mesh", "8/16/8", _connect(connect_faces)),
+    ("`connect_faces(mesh", "16/32/16", _connect(lambda m, a, b: connect_faces(m, a, b, 3))),
+    ("`connect_faces(mesh", "8/16/8", lambda m: connect_faces_closest(m, 0, 5)),
+    ("`connect_faces(mesh", "16/32/16", lambda m: connect_faces_closest(m, 0, 5, 3)),
+    ("`dual_connect_faces`", "8/20/12", _connect(dual_connect_faces)),
+    ("`dual_connect_faces`", "8/20/12",
+     _connect(lambda m, a, b: connect_corners(m, a, b, dual=True))),
+    ("`hermite_handle`", "44/88/44", _handle(lambda m, a, b: hermite_handle(m, a, b, 10))),
+    ("`bezier_handle`", "44/88/44", _handle(lambda m, a, b: bezier_handle(m, a, b, 10))),
+    ("`multi_face_handle(", "20/42/20", lambda m: multi_face_handle(m, [0, 2, 4])),
+]
+
+
+def _doc_blocks() -> list[str]:
+    """The lines of docs/extrusions.md, each bullet joined with its indented lines."""
+    blocks: list[str] = []
+    for line in DOC.read_text(encoding="utf-8").splitlines():
+        if line.startswith("  ") and blocks and blocks[-1].startswith("- "):
+            blocks[-1] += " " + line.strip()
+        else:
+            blocks.append(line)
+    return blocks
+
+
+@pytest.mark.parametrize(("key", "figure", "run"), DOC_FIGURES,
+                         ids=[f"{key.strip('|` ')}:{figure}" for key, figure, _ in DOC_FIGURES])
+def test_each_documented_figure_is_what_the_code_makes(key, figure, run):
+    m = cube()
+    run(m)
+    assert "/".join(map(str, checked(m))) == figure
+
+
+def test_the_documented_figures_are_exactly_those_checked():
+    blocks = [b for b in _doc_blocks() if FIGURE.search(b)]
+    keys = {key for key, _, _ in DOC_FIGURES}
+    for key in keys:
+        assert sum(key in b for b in blocks) == 1, f"{key!r} must name one row of the doc"
+    for block in blocks:
+        matching = [k for k in keys if k in block]
+        assert len(matching) == 1, f"{block!r} needs one key in DOC_FIGURES, has {matching}"
+        (key,) = matching
+        checked_here = {figure for k, figure, _ in DOC_FIGURES if k == key}
+        assert set(FIGURE.findall(block)) == checked_here, block

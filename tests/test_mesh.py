@@ -538,6 +538,25 @@ def test_hole_flags():
     assert all(m.is_hole(f) for f in m.edge_faces(e))
 
 
+def test_deleting_an_edge_between_a_face_and_a_hole_opens_the_face():
+    from livemod.dlfl import from_polygons
+    from tests.meshes import CUBE_FACES, CUBE_POSITIONS
+
+    box = from_polygons(CUBE_POSITIONS, CUBE_FACES[:-1])  # one side open: a hole face
+    hole = next(f for f in box.face_ids().tolist() if box.is_hole(f))
+    for edge in box.face_edges(hole):  # sides in either order: the hole may be c0 or c1
+        m = box.copy()
+        (merged,) = m.delete_edge(edge)
+        validate(m)
+        assert m.is_hole(merged) and m.face_size(merged) == 6
+        assert sum(not m.is_hole(f) for f in m.face_ids().tolist()) == 4
+    m = box.copy()  # two surface faces merge into a surface face
+    inner = next(e for e in m.edge_ids().tolist()
+                 if not any(m.is_hole(f) for f in m.edge_faces(e)))
+    (merged,) = m.delete_edge(inner)
+    assert not m.is_hole(merged)
+
+
 def test_set_positions_checks_shape():
     m = cube()
     m.set_positions([0, 1], [[9, 9, 9], [8, 8, 8]])

@@ -349,7 +349,9 @@ def dodeca_step(mesh: Mesh, face: int, opts: Options) -> int:
 
 def hex_tile_step(mesh: Mesh, face: int, opts: Options) -> int:
     """TopMod's ``extrudeHexTileFace``: dual with ``dual_mesh`` then cubical, each
-    ``distance / 3`` with scale ``sqrt(scale)``, then the dual face's edges deleted."""
+    ``distance / 3`` with scale ``sqrt(scale)``, then the dual face's edges deleted.
+    An ``n``-gon step adds ``2n`` vertices, ``3n`` edges and ``n`` faces and ends
+    in an ``n``-gon (cube: 16/24/10, 2 segments 24/36/14)."""
     third = replace(opts, distance=opts.distance / 3.0, scale=math.sqrt(abs(opts.scale)))
     return _dual_then_cubical(mesh, face, third)
 
@@ -519,10 +521,20 @@ def resolve_kind(name: str) -> str:
 
 
 def _check_face(mesh: Mesh, face: int) -> None:
+    """Refuse a ``face`` no extrusion can start from (every kind, via :func:`_prepare`).
+
+    Raises:
+        DLFLError: ``face`` is not an int id, does not exist, is a hole (a
+            boundary loop of an open mesh: a cap on it would be detached, with
+            hole walls), or has fewer than 3 corners.
+    """
     if isinstance(face, bool) or not isinstance(face, int | np.integer):
         raise DLFLError(f"face must be a face id (int), got {face!r}")
     if not mesh.has_face(int(face)):
         raise DLFLError(f"face {face} does not exist (deleted or never made)")
+    if mesh.is_hole(int(face)):
+        raise DLFLError(f"face {face} is a hole (a boundary loop of an open mesh, not part of "
+                        "the surface); it cannot be extruded")
     if mesh.face_size(int(face)) < 3:
         raise DLFLError(f"face {face} has {mesh.face_size(int(face))} corner(s); "
                         "only faces of 3 or more corners can be extruded")
@@ -576,7 +588,8 @@ def extrude(
     ``distance`` again (3 cubical segments of 2 from cube face 0 end at y = 3, 5, 7).
     Counts on cube face 0: cubical 12/20/10, doo-sabin 12/20/10, octa 12/24/14
     (``dual_mesh`` 12/20/10), dodeca 20/32/14 (2 segments with ``hexagonalize``
-    32/48/18), icosa 20/48/30, cuboctahedral 16/32/18.
+    32/48/18), icosa 20/48/30, cuboctahedral 16/32/18, hex-tile 16/24/10
+    (2 segments 24/36/14), planar-offset 12/20/10.
 
     Args:
         kind: a name of :data:`KINDS` (or alias, or unique prefix).
@@ -586,21 +599,22 @@ def extrude(
         twist: doo-sabin only, TopMod's fraction ``t`` of ``(1 - t) p_i + t p_{i+1}``.
         dual_mesh: octa only, delete the face's old edges (TopMod's ``mesh``).
         hexagonalize: delete the previous end face's edges between segments;
-            meant for dodeca, where adjacent pentagons merge into octagons. This is TopMod's
-            GUI rule, whose counts TOPMOD.md lists; its Python binding ran
-            hex-tile steps instead (cube, 2 segments: 28/44/18), which
-            ``kind="hex-tile"`` gives.
+            meant for dodeca, where adjacent pentagons merge into octagons.
+            This is TopMod's GUI rule, whose counts TOPMOD.md lists; its Python
+            binding ran one dodeca step, then hex-tile steps (cube, 2 segments:
+            28/44/18, the counts of a ``"hex-tile"`` extrusion of a ``"dodeca"``
+            one's end face; ``kind="hex-tile"`` alone, 2 segments: 24/36/14).
         thickness, fractional: planar-offset only, the inset (fractional: of the
             edge vectors; else absolute along unit edge vectors).
 
     Raises:
         DLFLError: unknown kind (lists the valid ones), a kind that ends in a fan
-            (use :func:`extrude_fan`), a face that is gone, has < 3 corners or
-            no normal, for icosa a face that visits a vertex twice, ``segments``
-            not an integer >= 1 or more than a mesh can hold, a non-finite
-            number, or numbers that overflow or make a degenerate face in a
-            later step or segment (checked on a scratch copy first). The mesh
-            is unchanged.
+            (use :func:`extrude_fan`), a face that is gone, is a hole, has < 3
+            corners or no normal, for icosa a face that visits a vertex twice,
+            ``segments`` not an integer >= 1 or more than a mesh can hold, a
+            non-finite number, or numbers that overflow or make a degenerate
+            face in a later step or segment (checked on a scratch copy first).
+            The mesh is unchanged.
     """
     spec, opts = _prepare(mesh, face, kind, segments, Options(
         distance, rotation, scale, twist, bool(dual_mesh), bool(hexagonalize), thickness,
@@ -635,10 +649,11 @@ def extrude_fan(
 
     Raises:
         DLFLError: unknown kind, a kind with an end face (use :func:`extrude`), a
-            face that is gone, has < 3 corners or no normal, for double-stellate a
-            face that visits a vertex twice, or numbers that overflow or make a
-            degenerate face in a later step (dome, double-stellate; checked on a
-            scratch copy first). The mesh is unchanged.
+            face that is gone, is a hole, has < 3 corners or no normal, for
+            double-stellate a face that visits a vertex twice, or numbers that
+            overflow or make a degenerate face in a later step (dome,
+            double-stellate; checked on a scratch copy first). The mesh is
+            unchanged.
     """
     spec, opts = _prepare(mesh, face, kind, 1,
                           Options(distance=distance, rotation=rotation, scale=scale))

@@ -544,7 +544,8 @@ class Mesh:
     def delete_edge(self, edge: int, cleanup: bool = True) -> list[int]:
         """Delete ``edge``, the inverse of :meth:`insert_edge`, and return the faces left.
 
-        Two different faces on its sides merge into the first (returns ``[face]``).
+        Two different faces on its sides merge into the first (returns ``[face]``);
+        when either is a hole the merged face is a hole (the other face opens).
         One face on both sides splits in two (returns ``[face, new_face]``: the
         face keeps side ``c0``, the new face gets ``c1``); a side with no corners
         left becomes a point-sphere, which ``cleanup`` (TopMod's default) removes
@@ -584,6 +585,7 @@ class Mesh:
                 x = nxt[x]
             face[s2] = f1
             self._drop_after_sides(s1, s2)
+            F.hole[f1] |= F.hole[f2]  # a face merged into a hole opens: the union is a hole
             F.release(f2)
             result = [fidv[f1]]
         # E.release(es), inlined for the interactive hot path
@@ -622,6 +624,7 @@ class Mesh:
         if vc[vert[s2]] == s2:
             vc[vert[s2]] = b if empty1 else a
         F.corner[f1] = head
+        F.hole[f1] |= F.hole[f2]
         C.release(s1)
         C.release(s2)
         F.release(f2)
