@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
 from livemod.dlfl import Mesh, from_corner_arrays, from_polygons, mesh_arrays, validate
 from tests.meshes import CUBE_FACES, CUBE_POSITIONS, corner_structure, cube, path_face, torus
@@ -137,3 +138,19 @@ def test_concatenate_arrays_needs_a_part():
 
     with pytest.raises(ValueError, match="at least one"):
         concatenate_arrays([])
+
+
+def test_arrays_are_read_only_copies_that_later_edits_do_not_change():
+    mesh = cube()
+    arrays = mesh_arrays(mesh)
+    before = arrays.positions.copy()
+    with pytest.raises(ValueError, match="read-only"):
+        arrays.positions[0, 0] = 9.0
+    with pytest.raises(ValueError, match="read-only"):
+        arrays.corner_vertex[:] = 0
+    mesh.set_positions([0], (9.0, 9.0, 9.0))
+    mesh.insert_edge(*mesh.face_corners(0)[::2])
+    np.testing.assert_array_equal(arrays.positions, before)
+    assert arrays.counts == (8, 12, 6)
+    writable = np.array(arrays.positions)
+    writable[0, 0] = 1.0  # a copy is the caller's own

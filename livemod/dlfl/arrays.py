@@ -10,7 +10,7 @@ map them back to element ids.
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 
 import numpy as np
 
@@ -21,6 +21,12 @@ from .mesh import Mesh
 @dataclass(frozen=True)
 class MeshArrays:
     """A dense, read-only snapshot of a mesh's topology and geometry.
+
+    Every array given is marked read-only on construction (a snapshot is shared
+    between threads and must not change behind their backs), so give it arrays
+    nothing else writes to; :func:`mesh_arrays` makes fresh copies, so later
+    changes to the mesh do not show. ``np.array(arrays.positions)`` gives a
+    writable copy.
 
     Attributes:
         positions: ``(V, 3)`` float64 vertex positions.
@@ -52,6 +58,10 @@ class MeshArrays:
     corner_mate: np.ndarray
     edge_ids: np.ndarray
     edge_corners: np.ndarray
+
+    def __post_init__(self) -> None:
+        for field in fields(self):
+            getattr(self, field.name).flags.writeable = False
 
     @property
     def face_sizes(self) -> np.ndarray:

@@ -223,7 +223,7 @@ def freeze_arrays(arrays: MeshArrays, copy: bool = True) -> MeshArrays:
 
 def snapshot_mesh(mesh: Mesh) -> MeshArrays:
     """Read-only render arrays of ``mesh``, sharing no memory with it."""
-    return freeze_arrays(mesh_arrays(mesh))
+    return freeze_arrays(mesh_arrays(mesh), copy=False)  # mesh_arrays copies already
 
 
 def current_mesh(scene: Scene) -> Mesh | None:
