@@ -60,15 +60,6 @@ def _alloc(table: Table) -> int:
     return slot
 
 
-def _live_slot(table: Table, eid: Any) -> int:
-    """``table.slot(eid)`` with the common case (an int at its home slot) inline."""
-    if type(eid) is int:
-        s = eid - table.base
-        if 0 <= s < table.n and table.idv[s] == eid:
-            return s
-    return table.slot(eid)
-
-
 def _as_point(position: Any) -> tuple[float, float, float]:
     """``position`` as three floats.
 

@@ -255,18 +255,13 @@ class Pending(Mesh):
     """A stand-in mesh that holds a scheme's result as a :class:`Topology`.
 
     Chained schemes (the GUI composites) pass one of these between their steps:
-    each step reads the previous step's arrays and leaves its own, and only the
-    last result is built into a real mesh (:func:`build_pending`).
+    each step reads the previous step's arrays (:func:`read_topology`) and leaves
+    its own (:func:`build_paired`), and only the last result is built into a real
+    mesh.
     """
 
     def __init__(self, topology: Topology) -> None:  # no tables: never used as a mesh
         self.topology = topology
-
-
-def build_pending(mesh: Mesh, pending: Pending) -> None:
-    """Build ``pending``'s arrays into ``mesh`` (fresh ids)."""
-    t = pending.topology
-    build_paired(mesh, t, t.pos, t.cv, t.mate, t.sizes, t.hole)
 
 
 def read_topology(mesh: Mesh) -> Topology:
