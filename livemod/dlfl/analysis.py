@@ -198,6 +198,7 @@ class MeshSummary:
 
     @property
     def components(self) -> int:
+        """Number of connected components (one genus each in ``component_genera``)."""
         return len(self.component_genera)
 
 

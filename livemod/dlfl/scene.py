@@ -34,6 +34,7 @@ class Selection:
     corners: tuple[int, ...] = ()
 
     def is_empty(self) -> bool:
+        """True when nothing of any kind is selected."""
         return not (self.faces or self.edges or self.vertices or self.corners)
 
     def adding(self, name: str, ids: Iterable[int]) -> Selection:

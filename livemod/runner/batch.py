@@ -213,6 +213,8 @@ class SerialExecutor:
 
     def map_unordered(self, fn: Callable[[Variant], VariantResult],
                       variants: list[Variant]) -> Iterator[VariantResult]:
+        """``fn`` of each variant, lazily and in order (the pool's contract allows
+        any order)."""
         return (fn(v) for v in variants)
 
 

@@ -78,6 +78,7 @@ class RunControl:
 
     @property
     def cancelled(self) -> bool:
+        """True once a newer run (or closing) asked this run to stop."""
         return self.cancel_requested
 
     @property

@@ -49,6 +49,7 @@ class SnapshotCache:
 
     @property
     def nbytes(self) -> int:
+        """Bytes of the snapshots held now (kept within the memory budget)."""
         return self._bytes
 
     def reset(self, run_id: int) -> None:

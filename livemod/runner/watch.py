@@ -25,9 +25,15 @@ _WRITE_EVENTS = frozenset({"modified", "moved", "created", "closed"})
 class Notifier(Protocol):
     """Reports paths that may have changed, from any thread."""
 
-    def start(self, callback: PathCallback) -> None: ...
-    def watch(self, folders: set[str]) -> None: ...
-    def stop(self) -> None: ...
+    def start(self, callback: PathCallback) -> None:
+        """Begin reporting: ``callback(path)`` for every path that may have
+        changed, called from the notifier's own thread."""
+
+    def watch(self, folders: set[str]) -> None:
+        """Watch exactly ``folders`` from now on (non-recursively)."""
+
+    def stop(self) -> None:
+        """Stop reporting; no callback is made after this returns."""
 
 
 class WatchdogNotifier:
@@ -45,6 +51,7 @@ class WatchdogNotifier:
         self._callback: PathCallback | None = None
 
     def start(self, callback: PathCallback) -> None:
+        """Start the observer thread; ``callback`` gets each event's paths."""
         from watchdog.observers import Observer
         from watchdog.observers.polling import PollingObserver
 
@@ -68,6 +75,7 @@ class WatchdogNotifier:
                 self._watches[folder] = watch
 
     def stop(self) -> None:
+        """Stop the observer thread and wait for it (at most 5 s)."""
         observer, self._observer = self._observer, None
         if observer is not None:
             observer.stop()  # type: ignore[attr-defined]
@@ -113,12 +121,15 @@ class ManualNotifier:
         self._callback: PathCallback | None = None
 
     def start(self, callback: PathCallback) -> None:
+        """Keep ``callback`` for :meth:`fire`."""
         self._callback = callback
 
     def watch(self, folders: set[str]) -> None:
+        """Remember ``folders`` in :attr:`folders` (tests read what is watched)."""
         self.folders = set(folders)
 
     def stop(self) -> None:
+        """Forget the callback: later :meth:`fire` calls report nothing."""
         self._callback = None
 
     def fire(self, path: str) -> None:
@@ -161,6 +172,7 @@ class FileWatcher:
 
     @property
     def files(self) -> frozenset[str]:
+        """The absolute paths watched now (the script and what it reads)."""
         return self._files
 
     def close(self) -> None:

@@ -335,6 +335,8 @@ class LiveViewer(mglw.WindowConfig):
     # -- frames ----------------------------------------------------------------
 
     def on_render(self, time_now: float, frame_time: float) -> None:
+        """Draw a frame (moderngl-window's callback): take the runner's newest
+        result, upload it, draw or copy the kept frame, then the HUD and panels."""
         now = time.perf_counter()
         self.frame_times.append(now - self._last_frame)
         self._last_frame = now
@@ -498,11 +500,14 @@ class LiveViewer(mglw.WindowConfig):
         return path
 
     def on_close(self) -> None:
+        """The window closes: stop the session's threads (moderngl-window's callback)."""
         self._close_session()
 
     # -- keys ------------------------------------------------------------------
 
     def on_key_event(self, key: Any, action: Any, modifiers: Any) -> None:
+        """A key press runs its binding (see ``H`` and docs/viewer.md); repeats and
+        releases do nothing."""
         if action != self.wnd.keys.ACTION_PRESS:
             return
         name = self._key_names.get(key)
@@ -658,6 +663,8 @@ class LiveViewer(mglw.WindowConfig):
     # -- mouse -----------------------------------------------------------------
 
     def on_mouse_press_event(self, x: int, y: int, button: int) -> None:
+        """A press on a panel, the object list or the timeline acts there; on the
+        model it starts a click (pick) or a drag (orbit, pan)."""
         hit = self._panel_hit(x, y)
         if hit is not None:
             self._press_panel(hit, x * self._pixel_ratio())
@@ -673,12 +680,15 @@ class LiveViewer(mglw.WindowConfig):
         self._moved = False
 
     def on_mouse_position_event(self, x: int, y: int, dx: int, dy: int) -> None:
+        """The pointer moved without a button: highlight the row under it."""
         self._pointer = (x, y)
         hit = self._panel_hit(x, y)
         self.params.hover = hit.row if hit is not None and hit.row >= 0 else None
         self.objects.point_at(self._objects_hit(x, y))
 
     def on_mouse_drag_event(self, x: int, y: int, dx: int, dy: int) -> None:
+        """Drag a slider or the timeline, else orbit (left) or pan (shift-left,
+        right, middle)."""
         self._pointer = (x, y)
         if self._param_drag is not None:
             self._drag_slider(x * self._pixel_ratio())
@@ -696,6 +706,8 @@ class LiveViewer(mglw.WindowConfig):
                             self.wnd.fbo.size[1])
 
     def on_mouse_release_event(self, x: int, y: int, button: int) -> None:
+        """End a drag (a slider's value is sent now), or pick on a left click that
+        did not move (shift adds to the selection)."""
         if self._param_drag is not None:
             self._param_drag = None
             self._flush_parameters(force=True)  # the value has settled
@@ -710,7 +722,7 @@ class LiveViewer(mglw.WindowConfig):
             self.click(x, y, add=bool(self.wnd.modifiers.shift))
 
     def on_mouse_scroll_event(self, x_offset: float, y_offset: float) -> None:
-        # the wheel scrolls the object list under the pointer, else zooms
+        """The wheel scrolls the object list under the pointer, else zooms."""
         if y_offset and self._objects_hit(*self._pointer) is not None:
             rows = max(1, round(abs(y_offset)))
             self.objects.scroll(-rows if y_offset > 0 else rows, self.wnd.fbo.size)
@@ -901,6 +913,7 @@ class LiveViewer(mglw.WindowConfig):
         glfw.set_drop_callback(handle, callback)
 
     def on_files_dropped_event(self, x: int, y: int, paths: list[Any]) -> None:
+        """A file dropped on the window is opened (the first of several)."""
         if paths:
             self.open_path(str(paths[0]))
 
