@@ -54,7 +54,12 @@ class ParamSpec:
         return converted
 
     def parse(self, text: str) -> Any:
-        """Parse a command-line string for this parameter."""
+        """Parse a command-line string for this parameter.
+
+        Raises:
+            DLFLError: ``text`` is not of the parameter's kind, or not one of its
+                choices; the message names the parameter and the text.
+        """
         if self.kind == "bool":
             lowered = text.strip().lower()
             if lowered in ("1", "true", "yes", "on"):

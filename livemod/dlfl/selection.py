@@ -94,7 +94,11 @@ def matching_vertices(mesh: Mesh, vertex: int) -> list[int]:
 
 
 def faces_by_area(mesh: Mesh, face: int, delta: float = 0.05) -> list[int]:
-    """TopMod's ``selectFacesByArea``: faces whose area is within ``delta`` of ``face``'s."""
+    """TopMod's ``selectFacesByArea``: faces whose area is within ``delta`` of ``face``'s.
+
+    Raises:
+        DLFLError: ``face`` does not exist.
+    """
     if not mesh.has_face(face):
         raise DLFLError(f"face {face} does not exist")
     a = mesh_arrays(mesh)
@@ -107,7 +111,11 @@ def faces_by_area(mesh: Mesh, face: int, delta: float = 0.05) -> list[int]:
 def checkerboard(mesh: Mesh, face: int) -> list[int]:
     """TopMod's checkerboard selection (SHIFT+K): from ``face``, spread to faces that
     share exactly one vertex and no edge with a selected face. On a quad grid or
-    a cube subdivided into quads this picks every other face."""
+    a cube subdivided into quads this picks every other face.
+
+    Raises:
+        DLFLError: ``face`` does not exist.
+    """
     if not mesh.has_face(face):
         raise DLFLError(f"face {face} does not exist")
     chosen = {face}

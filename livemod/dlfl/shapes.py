@@ -107,7 +107,11 @@ def torus(rings: int = 8, sides: int = 6, major: float = 2.0, minor: float = 0.5
 
 
 def grid(nx: int = 4, ny: int = 4, size: float = 1.0) -> Mesh:
-    """An open ``nx`` by ``ny`` quad grid in the xz plane facing +y (one hole face)."""
+    """An open ``nx`` by ``ny`` quad grid in the xz plane facing +y (one hole face).
+
+    Raises:
+        DLFLError: fewer than 1 cell along a side.
+    """
     if nx < 1 or ny < 1:
         raise DLFLError(f"grid needs at least 1x1 cells, got {nx}x{ny}")
     x, z = np.meshgrid(np.linspace(0, size * nx, nx + 1), np.linspace(0, size * ny, ny + 1),
@@ -204,7 +208,11 @@ def _dual_on_sphere(mesh: Mesh) -> Mesh:
 
 def spherical_cube(divisions: int = 4) -> Mesh:
     """A cube with every face cut into ``divisions`` x ``divisions`` quads, projected
-    to the unit sphere; 4 gives ``sphericalcube.obj``'s 98/192/96."""
+    to the unit sphere; 4 gives ``sphericalcube.obj``'s 98/192/96.
+
+    Raises:
+        DLFLError: ``divisions`` below 1.
+    """
     if divisions < 1:
         raise DLFLError(f"spherical_cube needs at least 1 division, got {divisions}")
     base = cube()
@@ -318,6 +326,9 @@ def genus3_hexa(level: int = 1) -> Mesh:
     row, glued where they touch (one hexagon removed from each side, the two
     rims identified: six valence-4 vertices per seam), then one seam vertex split
     in two, which turns the two faces beside the new edge into heptagons.
+
+    Raises:
+        DLFLError: ``level`` is not 1, 2 or 3.
     """
     if level not in (1, 2, 3):
         raise DLFLError(f"genus3_hexa level must be 1, 2 or 3, got {level}")

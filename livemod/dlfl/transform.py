@@ -56,7 +56,13 @@ def transform(
     mesh: Mesh, matrix: Any, *, center: Any = (0.0, 0.0, 0.0),
     vertices: Iterable[int] | None = None,
 ) -> None:
-    """Apply the ``(3, 3)`` linear map ``matrix`` about ``center``: ``p' = M (p - c) + c``."""
+    """Apply the ``(3, 3)`` linear map ``matrix`` about ``center``: ``p' = M (p - c) + c``.
+
+    Raises:
+        DLFLError: ``matrix`` is not a finite 3x3 array, ``center`` not a finite
+            point, a vertex id is not live, or a vertex would move to a
+            non-finite position. The mesh is unchanged.
+    """
     m = np.asarray(matrix, dtype=np.float64)
     if m.shape != (3, 3) or not np.isfinite(m).all():
         raise DLFLError(f"matrix must be a finite 3x3 array, got shape {m.shape}")

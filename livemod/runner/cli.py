@@ -66,8 +66,11 @@ def _seed(text: str) -> int | None:
 
 
 def whole_number_option(what: str, least: int) -> Callable[[str], int]:
-    """An argparse ``type``: the text as a whole number of at least ``least``, or
-    an ArgumentTypeError naming ``what``."""
+    """An argparse ``type``: the text as a whole number of at least ``least``.
+
+    The parser it returns raises ``argparse.ArgumentTypeError`` naming ``what``
+    for any other text.
+    """
     def parse(text: str) -> int:
         try:
             value = int(text)
@@ -152,7 +155,11 @@ def _add_batch(subparsers: Any) -> None:
 
 
 def check_mesh_output(path: str | None) -> None:
-    """Refuse (ValueError) an ``-o`` mesh name no writer takes; None passes."""
+    """Refuse an ``-o`` mesh name no writer takes; None passes.
+
+    Raises:
+        ValueError: ``path`` does not end with a suffix of ``OUTPUT_SUFFIXES``.
+    """
     if path is not None and not path.lower().endswith(OUTPUT_SUFFIXES):
         raise ValueError(f"output {path!r} must end with one of {', '.join(OUTPUT_SUFFIXES)}")
 

@@ -289,7 +289,11 @@ class LiveSession:
 
     def play(self, rate: float) -> None:
         """Advance ``rate`` steps per second (replaying from the shown step, or from
-        the start, when the run has ended)."""
+        the start, when the run has ended).
+
+        Raises:
+            ValueError: ``rate`` is not positive.
+        """
         if rate <= 0:
             raise ValueError(f"play rate must be positive, got {rate!r}")
         with self._lock:

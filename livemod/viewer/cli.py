@@ -53,7 +53,11 @@ def _float_or_nan(text: str) -> float:
 
 def parse_elevation(text: str) -> float:
     """``--elevation`` in degrees, strictly between -90 and 90 (the camera looks
-    straight down or up at the poles, where its turn is undefined)."""
+    straight down or up at the poles, where its turn is undefined).
+
+    Raises:
+        argparse.ArgumentTypeError: not a number in that range (argparse shows it).
+    """
     degrees = _float_or_nan(text)
     if not -90.0 < degrees < 90.0:
         raise argparse.ArgumentTypeError(f"the elevation must be a number of degrees "
@@ -62,7 +66,11 @@ def parse_elevation(text: str) -> float:
 
 
 def parse_yaw(text: str) -> float:
-    """``--yaw`` in degrees around the up axis (any finite number; 0 looks from +z)."""
+    """``--yaw`` in degrees around the up axis (any finite number; 0 looks from +z).
+
+    Raises:
+        argparse.ArgumentTypeError: not a finite number.
+    """
     degrees = _float_or_nan(text)
     if not math.isfinite(degrees):
         raise argparse.ArgumentTypeError(f"the yaw must be a number of degrees, not {text!r}")
@@ -70,7 +78,11 @@ def parse_yaw(text: str) -> float:
 
 
 def parse_threshold(text: str) -> float:
-    """``--threshold``: a share of pixels from 0 to 1, or a percentage such as ``2%``."""
+    """``--threshold``: a share of pixels from 0 to 1, or a percentage such as ``2%``.
+
+    Raises:
+        argparse.ArgumentTypeError: not a number, or outside 0 to 1 (0% to 100%).
+    """
     given = text.strip()
     share = _float_or_nan(given[:-1]) / 100 if given.endswith("%") else _float_or_nan(given)
     if not 0.0 <= share <= 1.0:
@@ -81,7 +93,12 @@ def parse_threshold(text: str) -> float:
 
 def parse_section(text: str) -> tuple[int, float | None]:
     """``--section`` as ``(axis, at)``: ``x=0.25`` cuts away what lies beyond x = 0.25,
-    a bare ``y`` cuts through the middle of the scene (``at`` None)."""
+    a bare ``y`` cuts through the middle of the scene (``at`` None).
+
+    Raises:
+        argparse.ArgumentTypeError: no axis x, y or z, or a coordinate that is not
+            a finite number.
+    """
     name, _, value = text.partition("=")
     axis = "xyz".find(name.strip().lower())
     at = _float_or_nan(value) if value.strip() else None

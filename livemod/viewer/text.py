@@ -51,7 +51,11 @@ class GlyphAtlas:
 
 @lru_cache(maxsize=4)
 def glyph_atlas(size: int = 13) -> GlyphAtlas:
-    """Render printable ASCII with Pillow's default font into a 16-column atlas."""
+    """Render printable ASCII with Pillow's default font into a 16-column atlas.
+
+    Raises:
+        RuntimeError: Pillow was built without FreeType (its bitmap font has no sizes).
+    """
     font = ImageFont.load_default(size=size)
     if not isinstance(font, ImageFont.FreeTypeFont):
         raise RuntimeError("livemod's labels need Pillow built with FreeType")

@@ -83,7 +83,12 @@ def read_dlfl(source: str | os.PathLike[str] | bytes, *, name: str | None = None
 
 
 def parse_dlfl(data: bytes, label: str) -> _DlflText:
-    """Read the records of a .dlfl file (no topology checks yet)."""
+    """Read the records of a .dlfl file (no topology checks yet).
+
+    Raises:
+        DLFLError: ``label:line: ...`` for a file not starting with ``DLFL`` or a
+            malformed record (missing coordinates or indices, an empty face).
+    """
     if not data.startswith(b"DLFL"):
         raise DLFLError(f"{label}:1: not a .dlfl file (it must start with 'DLFL')")
     records = _DlflText(label)
