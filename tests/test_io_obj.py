@@ -232,20 +232,14 @@ def test_open_mesh_gets_a_hole_and_unused_vertices_become_point_spheres() -> Non
         (b"v 0 0 0\nf 1 -99999999999999999999999\n", r"<obj>:2: vertex index '-9+' is out"),
         (b"v 0 0 0\nf 1 9999999999999999999 1\n", r"<obj>:2: vertex index '9+' is out"),
         (b"v 0 0 0\nf 1 999999999999999999 1\n", r"<obj>:2: vertex index 9+ is out of range"),
+        # a file of another kind is refused, not read as an empty mesh
+        (b"hello world\nthis is not obj\n", r"<obj>:1: not an OBJ file: no vertex, .* 'hello'"),
+        (b"# a comment\n\nsolid cube\nendsolid\n", r"<obj>:3: not an OBJ file: .* 'solid'"),
+        (b"ply\nformat ascii 1.0\n", r"<obj>:1: not an OBJ file: .* 'ply'"),
+        (b"\x00\x01binary", r"<obj>: not an OBJ file: it holds binary data"),
     ],
 )
 def test_errors_name_file_and_line(text: bytes, message: str) -> None:
-    with pytest.raises(DLFLError, match=message):
-        read_obj(text)
-
-
-@pytest.mark.parametrize(("text", "message"), [
-    (b"hello world\nthis is not obj\n", r"<obj>:1: not an OBJ file: no vertex, .* 'hello'"),
-    (b"# a comment\n\nsolid cube\nendsolid\n", r"<obj>:3: not an OBJ file: .* 'solid'"),
-    (b"ply\nformat ascii 1.0\n", r"<obj>:1: not an OBJ file: .* 'ply'"),
-    (b"\x00\x01binary", r"<obj>: not an OBJ file: it holds binary data"),
-])
-def test_a_file_of_another_kind_is_refused_not_read_as_empty(text: bytes, message: str) -> None:
     with pytest.raises(DLFLError, match=message):
         read_obj(text)
 
