@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import livemod.dlfl as dlfl
-from livemod.dlfl import DLFLError, Scene, use_scene
+from livemod.dlfl import DLFLError, Scene, genus, use_scene
 from livemod.dlfl.commands.core import (
     centroid,
     collapseEdge,
@@ -37,10 +37,12 @@ from livemod.dlfl.commands.core import (
     save,
     saveCorner,
     scale,
+    spliceCorners,
     step,
     subdivideEdge,
     switch,
     translate,
+    trisectEdge,
     vertexEdges,
     vertexInfo,
     verts,
@@ -117,9 +119,30 @@ def test_remove_vertex(scene):
     (corner, _) = createVertex((1, 2, 3))
     removeVertex(corner[1])
     assert counts(scene) == (0, 0, 0)
-    (corner, _) = createVertex((1, 2, 3))
-    removeVertex((corner[1], corner[0]))  # TopMod's (vertexid, faceid) form
-    assert counts(scene) == (0, 0, 0)
+
+
+def test_remove_vertex_takes_the_corner_create_vertex_returns(cube_scene):
+    # on the cube the point-spheres' face and vertex ids differ: (6, 8), (7, 9)
+    (first, _), (second, _) = createVertex((5, 0, 0)), createVertex((7, 0, 0))
+    assert (first, second) == ((6, 8), (7, 9))
+    removeVertex(first)
+    assert counts(cube_scene) == (9, 12, 7) and verts() == (*range(8), 9)
+    assert vertexInfo(9)["coords"] == (7, 0, 0)
+    removeVertex(tuple(second))  # a plain tuple, as a script might rebuild it
+    assert counts(cube_scene) == (8, 12, 6)
+
+
+def test_remove_vertex_refuses_topmods_reversed_pair(cube_scene):
+    (corner, _) = createVertex((5, 0, 0))
+    before = snapshot(cube_scene.mesh)
+    with pytest.raises(DLFLError, match=r"face 8 does not exist; removeVertex takes "
+                       r"\(faceid, vertexid\).*write \(6, 8\)"):
+        removeVertex((8, 6))
+    with pytest.raises(DLFLError, match="vertex 0 has 3 edge end"):
+        removeVertex((0, 0))  # a corner of the cube: not a point-sphere
+    with pytest.raises(DLFLError, match="expected a vertex id \\(an integer\\), got 'x'"):
+        removeVertex("x")
+    assert snapshot(cube_scene.mesh) == before
 
 
 def test_remove_vertex_with_edges_is_refused(cube_scene):
@@ -137,6 +160,109 @@ def test_delete_subdivide_collapse(cube_scene):
     assert len(deleteEdge(int(edges()[-1]))) == 1 and counts(cube_scene) == (10, 13, 5)
     with pytest.raises(DLFLError, match="subdivideEdge takes"):
         subdivideEdge(1, 2, 3)
+
+
+def test_delete_edge_returns_minus_one_when_no_face_is_left(scene):
+    (a, _), (b, _) = createVertex((0, 0, 0)), createVertex((1, 0, 0))
+    e = insertEdge(a, b)[0]
+    assert deleteEdge(e) == [-1]  # both sides were point-spheres: cleaned up, as in TopMod
+    assert counts(scene) == (0, 0, 0)
+    (a, _), (b, _) = createVertex((0, 0, 0)), createVertex((1, 0, 0))
+    e = insertEdge(a, b)[0]
+    assert len(deleteEdge(e, False)) == 2 and counts(scene) == (2, 0, 2)
+
+
+def test_trisect_edge_by_offset(cube_scene):
+    m = cube_scene.mesh
+    new = trisectEdge(0, 0.25, False)  # edge 0 runs from (0, 0, 0) to (0, 1, 0)
+    assert counts(cube_scene) == (10, 14, 6) and new == [8, 9]
+    assert [vertexInfo(v)["coords"] for v in new] == [(0, 0.25, 0), (0, 0.75, 0)]
+    assert walk(0)[0] == [0, 8, 9, 3, 2, 1] and m.edge_vertices(0) == (0, 8)
+    trisectEdge(1, 0.0, False)  # clamped to 0.01 from each end
+    np.testing.assert_allclose([vertexInfo(v)["coords"] for v in verts()[-2:]],
+                               [(0.01, 1, 0), (0.99, 1, 0)])
+    trisectEdge(2, 5.0, False)  # clamped to length/2 - 0.01
+    np.testing.assert_allclose([vertexInfo(v)["coords"] for v in verts()[-2:]],
+                               [(1, 0.51, 0), (1, 0.49, 0)])
+    assert counts(cube_scene) == (14, 18, 6)
+
+
+def test_trisect_edge_by_scale(cube_scene):
+    new = trisectEdge(0, 0.5, True)  # p = num * end + (1 - num) * midpoint
+    assert counts(cube_scene) == (10, 14, 6)
+    assert [vertexInfo(v)["coords"] for v in new] == [(0, 0.25, 0), (0, 0.75, 0)]
+    trisectEdge(1, 2.0, True)  # clamped to 0.99
+    np.testing.assert_allclose([vertexInfo(v)["coords"] for v in verts()[-2:]],
+                               [(0.005, 1, 0), (0.995, 1, 0)])
+    trisectEdge(2, -1.0, True)  # clamped to 0.01
+    np.testing.assert_allclose([vertexInfo(v)["coords"] for v in verts()[-2:]],
+                               [(1, 0.505, 0), (1, 0.495, 0)])
+
+
+@pytest.mark.parametrize(("args", "message"), [
+    ((99, 0.3, True), "edge 99 does not exist"),
+    ((0, "x", True), "num must be a number, got 'x'"),
+    ((0, float("nan"), False), "num must be finite"),
+    ((0, 0.3, "yes"), "scale must be True .* or False .*, got 'yes'"),
+])
+def test_trisect_edge_refuses_bad_arguments(cube_scene, args, message):
+    before = snapshot(cube_scene.mesh)
+    with pytest.raises(DLFLError, match=message):
+        trisectEdge(*args)
+    assert snapshot(cube_scene.mesh) == before
+
+
+def test_trisect_edge_refuses_an_offset_on_a_short_edge(cube_scene):
+    move([3], (0, 0.03, 0), False)  # edge 0 is now 0.03 long
+    before = snapshot(cube_scene.mesh)
+    with pytest.raises(DLFLError, match="edge 0 is 0.03 long: an offset trisection needs"):
+        trisectEdge(0, 0.01, False)
+    assert snapshot(cube_scene.mesh) == before
+    trisectEdge(0, 0.5, True)  # a scale factor always fits
+    assert counts(cube_scene) == (10, 14, 6)
+
+
+def test_splice_corners_of_one_face(cube_scene):
+    survivor = spliceCorners((0, 0), (0, 2))  # across the bottom face's diagonal
+    assert survivor == 0 and counts(cube_scene) == (7, 10, 5)
+    assert vertexInfo(0)["coords"] == (0.5, 0.5, 0) and 2 not in verts()
+    assert genus(cube_scene.mesh) == 0
+
+
+def test_splice_corners_of_two_faces(cube_scene):
+    survivor = spliceCorners((0, 0), (1, 6))  # bottom to the opposite top corner
+    assert survivor == 0 and counts(cube_scene) == (7, 12, 5)
+    assert vertexInfo(0)["coords"] == (0.5, 0.5, 0.5) and genus(cube_scene.mesh) == 1
+
+
+def test_splice_corners_with_point_spheres(cube_scene):
+    (a, _), (b, _) = createVertex((4, 0, 0)), createVertex((6, 0, 0))
+    assert spliceCorners(a, b) == 8 and counts(cube_scene) == (9, 12, 7)
+    assert vertexInfo(8)["type"] == "point-sphere" and vertexInfo(8)["coords"] == (5, 0, 0)
+    assert spliceCorners((6, 8), (0, 0)) == 0  # the cube's vertex stays, at the midpoint
+    assert counts(cube_scene) == (8, 12, 6) and vertexInfo(0)["coords"] == (2.5, 0, 0)
+
+
+@pytest.mark.parametrize(("args", "message"), [
+    (((0, 0), (2, 0)), "both at vertex 0: splicing needs corners at two different"),
+    (((0, 0), (0, 0)), "both at vertex 0"),
+    (((0, 0), (0, 6)), "face 0 has no corner at vertex 6"),
+    (((0, 0), "x"), "c2 must be a \\(faceid, vertexid\\) tuple"),
+])
+def test_splice_corners_refuses_bad_corners(cube_scene, args, message):
+    before = snapshot(cube_scene.mesh)
+    with pytest.raises(DLFLError, match=message):
+        spliceCorners(*args)
+    assert snapshot(cube_scene.mesh) == before
+
+
+def test_trisect_and_splice_are_commands(cube_scene):
+    assert {"trisectEdge", "spliceCorners"} <= set(dlfl.__all__)
+    labels: list[str] = []
+    cube_scene.step_hook = labels.append
+    trisectEdge(0, 0.3, True)
+    spliceCorners((0, 0), (0, 2))
+    assert labels == ["trisectEdge", "spliceCorners"]
 
 
 def test_create_face(scene):

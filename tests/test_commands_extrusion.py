@@ -8,6 +8,7 @@ import pytest
 
 import livemod.dlfl as dlfl
 from livemod.dlfl import DLFLError, Scene, face_size_histogram, genus, use_scene
+from livemod.dlfl import extrusion as _extrusion
 from livemod.dlfl.commands import addHandle, connectCorners, connectEdges, connectFaces, extrude
 from livemod.dlfl.shapes import cube
 from tests.meshes import counts, snapshot
@@ -30,7 +31,10 @@ def test_thesis_tower(scene):
 @pytest.mark.parametrize(("call", "expected"), [
     (lambda: extrude("cubical", 0), (12, 20, 10)),
     (lambda: extrude("cubical", 0, 2, 3), (20, 36, 18)),
-    (lambda: extrude("octa", 0, 2, 0, 1, True), (12, 20, 10)),
+    (lambda: extrude("octa", 0, 2, 1, 0, 1, True), (12, 20, 10)),
+    (lambda: extrude("octa", 0, 2, 3), (20, 48, 30)),  # TopMod's num second
+    (lambda: extrude("octa", 0, num=3), (20, 48, 30)),
+    (lambda: extrude("octa", 0, 2.0, 3, 0.0, 1.0, False), (20, 48, 30)),  # all 7 arguments
     (lambda: extrude("octa", 0, mesh=False), (12, 24, 14)),
     (lambda: extrude("dodeca", 0, 2, 2, 0, 1, True), (32, 48, 18)),
     (lambda: extrude("icosa", 0), (20, 48, 30)),
@@ -44,6 +48,109 @@ def test_extrude_types_and_option_orders(scene, call, expected):
     end = call()
     assert isinstance(end, int) and scene.mesh.has_face(end)
     assert counts(scene) == expected
+
+
+# each kind's positional options and the library arguments they become
+MAPPINGS = {
+    "doo-sabin": {"distance": 1.25, "segments": 3, "twist": 7.5, "scale": 0.5},
+    "dodeca": {"distance": 1.25, "segments": 3, "rotation": 7.5, "scale": 0.5,
+               "hexagonalize": True},
+    "icosa": {"distance": 1.25, "segments": 3, "rotation": 7.5, "scale": 0.5},
+    "octa": {"distance": 1.25, "segments": 3, "rotation": 7.5, "scale": 0.5, "dual_mesh": True},
+    "stellate": {"distance": 1.25},
+    "double-stellate": {"distance": 1.25},
+    "cubical": {"distance": 1.25, "segments": 3, "rotation": 7.5, "scale": 0.5},
+    "dome": {"distance": 1.25, "rotation": 3, "scale": 7.5},
+    "cuboctahedral": {"distance": 1.25, "segments": 3, "rotation": 7.5, "scale": 0.5},
+    "hex-tile": {"distance": 1.25, "segments": 3, "rotation": 7.5, "scale": 0.5},
+    "planar-offset": {"distance": 1.25, "rotation": 3, "thickness": 7.5, "fractional": 0.5},
+}
+POSITIONAL = (1.25, 3, 7.5, 0.5, True)
+
+
+@pytest.fixture
+def library_calls(monkeypatch):
+    """The keyword arguments the command passes to the library, call by call."""
+    calls: list[dict] = []
+
+    def record(mesh, face, kind, **arguments):
+        calls.append({"kind": kind, **arguments})
+        return 0
+
+    monkeypatch.setattr(_extrusion, "extrude", record)
+    monkeypatch.setattr(_extrusion, "extrude_fan", record)
+    return calls
+
+
+@pytest.mark.parametrize("kind", MAPPINGS)
+def test_each_kinds_positional_options_reach_the_library(scene, library_calls, kind):
+    expected = MAPPINGS[kind]
+    extrude(kind, 0, *POSITIONAL[:len(expected)])
+    assert library_calls == [{"kind": kind, **expected}]
+
+
+@pytest.mark.parametrize(("kind", "keywords"), [
+    ("doo-sabin", {"dist": 1.25, "num": 3, "rot": 7.5, "sf": 0.5}),
+    ("dodeca", {"dist": 1.25, "num": 3, "rot": 7.5, "sf": 0.5, "flag": True}),
+    ("icosa", {"dist": 1.25, "num": 3, "rot": 7.5, "sf": 0.5}),
+    ("octa", {"dist": 1.25, "num": 3, "rot": 7.5, "sf": 0.5, "flag": True}),
+    ("stellate", {"dist": 1.25}),
+    ("double-stellate", {"dist": 1.25}),
+    ("cubical", {"dist": 1.25, "num": 3, "rot": 7.5, "sf": 0.5}),
+    ("octa", {"distance": 1.25, "segments": 3, "rotation": 7.5, "scale": 0.5, "mesh": True}),
+    ("dodeca", {"distance": 1.25, "segments": 3, "twist": 7.5, "scale": 0.5,
+                "hexagonalize": True}),
+])
+def test_topmods_and_the_thesiss_keywords_match_the_positions(scene, library_calls, kind,
+                                                              keywords):
+    extrude(kind, 0, **keywords)
+    assert library_calls == [{"kind": kind, **MAPPINGS[kind]}]
+
+
+def test_octa_segments_build_the_same_mesh_every_way(scene):
+    from livemod.dlfl.shapes import cube
+
+    ways = [lambda: extrude("octa", 0, 1.5, 3, 20, 0.8), lambda: extrude("o", 0, 1.5, num=3,
+            rot=20, sf=0.8), lambda: extrude("octa", 0, 1.5, 3, 20, 0.8, False)]
+    library = cube()
+    end = _extrusion.extrude(library, 0, "octa", 1.5, 3, 20, 0.8)
+    for way in ways:
+        other = Scene()
+        other.add(cube())
+        with use_scene(other):
+            assert way() == end
+        assert snapshot(other.mesh) == snapshot(library)
+    assert counts(scene) == (8, 12, 6)
+
+
+@pytest.mark.parametrize("kind", MAPPINGS)
+def test_too_many_options_are_refused_for_every_kind(scene, kind):
+    count = len(MAPPINGS[kind])
+    before = snapshot(scene.mesh)
+    with pytest.raises(DLFLError, match=f"takes at most {count} options .* got {count + 1}"):
+        extrude(kind, 0, *([1] * (count + 1)))
+    assert snapshot(scene.mesh) == before
+
+
+@pytest.mark.parametrize(("kind", "keywords", "message"), [
+    ("cubical", {"flag": True}, "extrude\\('cubical'\\) has no option 'flag'"),
+    ("stellate", {"num": 2}, "extrude\\('stellate'\\) has no option 'num'; options: distance"),
+    ("octa", {"twist": 2}, "has no option 'twist'; options: distance, segments, rotation"),
+    ("dodeca", {"rotation": 2}, "has no option 'rotation'"),
+    ("cubical", {"dist": 1, "distance": 2}, "option 'distance' given twice"),
+    ("octa", {"distance": 1, "dist": 2}, "option 'dist' \\(= 'distance'\\) given twice"),
+])
+def test_unknown_and_repeated_keywords_are_refused(scene, kind, keywords, message):
+    before = snapshot(scene.mesh)
+    with pytest.raises(DLFLError, match=message):
+        extrude(kind, 0, **keywords)
+    assert snapshot(scene.mesh) == before
+
+
+def test_octa_segments_given_twice(scene):
+    with pytest.raises(DLFLError, match="option 'num' \\(= 'segments'\\) given twice"):
+        extrude("octa", 0, 2, 3, num=3)
+    assert counts(scene) == (8, 12, 6)
 
 
 @pytest.mark.parametrize(("kind", "expected", "fan"), [

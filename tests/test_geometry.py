@@ -19,7 +19,7 @@ from livemod.dlfl.geometry import (
     spheralize,
     split_valence2_vertices,
 )
-from livemod.dlfl.shapes import cube, spherical_cube, torus
+from livemod.dlfl.shapes import cube, grid, spherical_cube, torus
 from tests.meshes import assert_refused, assert_refused_quietly, assert_scales, snapshot
 from tests.meshes import cube as unit_cube
 
@@ -124,6 +124,124 @@ def test_split_valence2_vertices_pushes_the_pair_apart():
     d = m.position(v) - m.position(new[0])
     assert np.isclose(np.linalg.norm(d), 0.4)
     np.testing.assert_allclose((m.position(v) + m.position(new[0])) / 2, origin)
+
+
+def _neighbours(mesh: Mesh, v: int) -> set[int]:
+    return {u for e in mesh.vertex_edges(v) for u in mesh.edge_vertices(e) if u != v}
+
+
+def _split_pairs(mesh: Mesh, offset: float) -> list[tuple[int, int, np.ndarray]]:
+    """Split ``mesh``'s valence-2 vertices; ``(vertex, new vertex, old position)``
+    of each pair (the new ids come in the order of the vertices split)."""
+    old = {v: mesh.position(v) for v in mesh.vertex_ids().tolist() if mesh.valence(v) == 2}
+    new = split_valence2_vertices(mesh, offset)
+    assert len(new) == len(old)
+    return [(v, n, o) for (v, o), n in zip(old.items(), new, strict=True)]
+
+
+def _far_ends(mesh: Mesh, v: int, new: int) -> tuple[int, int]:
+    """The other neighbour of each of a split pair: ``v``'s, then ``new``'s."""
+    (far_v,) = _neighbours(mesh, v) - {new}
+    (far_new,) = _neighbours(mesh, new) - {v}
+    return far_v, far_new
+
+
+def assert_each_moved_toward_its_neighbour(mesh: Mesh, pairs, lengths=None) -> None:
+    """Each of a split pair left the old position ``o`` toward its own other
+    neighbour (a swapped pair folds the edge back or crosses the corner's edges).
+    With ``lengths`` (the pair's two push distances), also where exactly: along
+    ``normalize(d_own - d_other)``, ``d`` the unit directions from ``o``."""
+    for v, new, o in pairs:
+        far_v, far_new = _far_ends(mesh, v, new)
+        for moved, far in ((v, far_v), (new, far_new)):
+            assert (mesh.position(moved) - o) @ (mesh.position(far) - o) > 0, (moved, far)
+        if lengths is None:
+            continue
+        d_v, d_new = (_unit_vector(mesh.position(far) - o) for far in (far_v, far_new))
+        s_v, s_new = lengths(mesh, o, far_v, far_new)
+        np.testing.assert_allclose(mesh.position(v), o + s_v * _unit_vector(d_v - d_new))
+        np.testing.assert_allclose(mesh.position(new), o + s_new * _unit_vector(d_new - d_v))
+
+
+def _unit_vector(x: np.ndarray) -> np.ndarray:
+    return x / np.linalg.norm(x)
+
+
+def _cube_with_split_edges() -> Mesh:
+    """The edge-2 cube with the midpoints of three edges (one per axis) added:
+    three valence-2 vertices, each on a straight line between two corners."""
+    m = cube()
+    for axis in range(3):
+        edge = next(e for e in m.edge_ids().tolist()
+                    if np.ptp([m.position(u)[axis] for u in m.edge_vertices(e)]) == 2)
+        m.subdivide_edge(edge)
+    return m
+
+
+@pytest.mark.parametrize(("offset", "push"), [(-0.1, 0.1), (0.25, 0.25)])
+def test_split_valence2_vertices_keep_the_order_along_a_straight_edge(offset, push):
+    # was -1, +0.1, -0.1, +1 along the edge: each vertex pushed toward the other's
+    # neighbour, folding the edge back on itself. Each half of an edge 2 is 1 long,
+    # so offset -0.1 pushes 0.1 x 1 = 0.1; the faces stay flat squares.
+    m = _cube_with_split_edges()
+    normals = face_normals(mesh_arrays(m))
+    pairs = _split_pairs(m, offset)
+    validate(m)
+    assert m.counts() == (8 + 6, 12 + 6, 6)
+    assert_each_moved_toward_its_neighbour(m, pairs, lambda *_: (push, push))
+    for v, new, _ in pairs:
+        far_v, far_new = _far_ends(m, v, new)
+        # in order along the line: far_v, v, new, far_new
+        line = m.position(far_new) - m.position(far_v)
+        steps = [m.position(u) @ line for u in (far_v, v, new, far_new)]
+        assert steps == sorted(steps)
+    np.testing.assert_allclose(face_normals(mesh_arrays(m)), normals, atol=1e-12)
+
+
+def test_split_valence2_vertices_push_each_by_a_tenth_of_its_own_edge():
+    # TopMod's offset <= 0: the vertex moves 0.1 x its kept edge's length, the new
+    # one 0.1 x the length of the edge it was put on (here 0.5 and 1.5, in some order)
+    m = cube()
+    a, b = m.edge_vertices(0)
+    (v,) = m.subdivide_edge(0)
+    m.set_position(v, 0.75 * m.position(a) + 0.25 * m.position(b))
+    pairs = _split_pairs(m, -0.1)
+    validate(m)
+    assert_each_moved_toward_its_neighbour(
+        m, pairs, lambda mesh, o, far_v, far_new: tuple(
+            0.1 * np.linalg.norm(mesh.position(far) - o) for far in (far_v, far_new)))
+
+
+def _segments_cross(p: np.ndarray, q: np.ndarray, r: np.ndarray, s: np.ndarray) -> bool:
+    """Whether the 2D segments pq and rs cross at a point inside both."""
+    def side(a, b, c):
+        return np.sign((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]))
+    return side(p, q, r) * side(p, q, s) < 0 and side(r, s, p) * side(r, s, q) < 0
+
+
+def _crossing_sides(mesh: Mesh, face: int) -> list[tuple[int, int]]:
+    """Pairs of non-adjacent sides of ``face`` that cross, in the xz plane."""
+    ring = [mesh.position(mesh.corner_vertex(c))[[0, 2]] for c in mesh.face_corners(face)]
+    sides = [(ring[i], ring[(i + 1) % len(ring)]) for i in range(len(ring))]
+    return [(i, j) for i in range(len(sides)) for j in range(i + 2, len(sides))
+            if (i, j) != (0, len(sides) - 1) and _segments_cross(*sides[i], *sides[j])]
+
+
+def test_split_valence2_vertices_at_the_corners_of_an_open_grid_do_not_cross():
+    # a 2 x 2 grid's four corners have valence 2 (two unit edges at right angles);
+    # the swapped pair crossed the corner quad's sides. Each moves 0.1 x 1 along the
+    # chord of its neighbours, toward its own
+    m = grid(2, 2)
+    pairs = _split_pairs(m, -0.1)
+    validate(m)
+    assert m.counts() == (9 + 4, 12 + 4, 5)
+    assert_each_moved_toward_its_neighbour(m, pairs, lambda *_: (0.1, 0.1))
+    a = mesh_arrays(m)
+    quads = a.face_ids[~a.face_hole].tolist()
+    assert sorted(m.face_size(f) for f in quads) == [5, 5, 5, 5]
+    assert all(not _crossing_sides(m, f) for f in a.face_ids.tolist())
+    # every face still faces +y, the grid's side
+    np.testing.assert_allclose(face_normals(a)[~a.face_hole], [[0, 1, 0]] * 4, atol=1e-12)
 
 
 def test_geometry_ops_keep_torus_topology():

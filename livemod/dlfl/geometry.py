@@ -3,8 +3,9 @@
 The geometry operations move vertices and never change the topology (the cube
 stays 8/12/6); they are vectorized over :func:`mesh_arrays`. The cleanup helpers
 (``edgeCleanup``, ``cleanup2gons``, ``cleanupWingedVertices``,
-``splitValence2Vertices``) change the topology with the minimal operators, in
-place, keeping the ids of everything they do not delete.
+``splitValence2Vertices``) and TopMod's edge operations ``trisectEdge`` and
+``spliceCorners`` change the topology with the minimal operators, in place,
+keeping the ids of everything they do not delete.
 """
 
 from __future__ import annotations
@@ -21,7 +22,7 @@ from .mesh import Mesh
 
 __all__ = [
     "cleanup_2gons", "cleanup_winged_vertices", "edge_cleanup", "mesh_smooth", "planarize",
-    "spheralize", "split_valence2_vertices",
+    "spheralize", "split_valence2_vertices", "trisect_edge", "splice_corners",
 ]
 
 
@@ -181,10 +182,15 @@ def cleanup_winged_vertices(mesh: Mesh) -> int:
 def split_valence2_vertices(mesh: Mesh, offset: float = -0.1) -> list[int]:
     """TopMod's ``splitValence2Vertices(offset=-0.1)``: split every valence-2 vertex.
 
-    One of its edges is subdivided and the two vertices pushed apart across the
-    corner: with ``d1, d2`` the unit directions of its edges, the vertex moves to
-    ``o + s normalize(d1 - d2)`` and the new one to ``o + s normalize(d2 - d1)``,
-    where ``s = offset``, or ``0.1`` times that edge's length when ``offset <= 0``.
+    The vertex keeps its first edge ``e1``; its second edge ``e2`` is subdivided,
+    so the new vertex sits between it and ``e2``'s far end. The pair is then pushed
+    apart across the corner, each toward its own neighbour: with ``d1, d2`` the
+    unit directions of ``e1, e2`` away from the vertex at ``o``, the vertex moves
+    to ``o + s1 normalize(d1 - d2)`` and the new one to ``o + s2 normalize(d2 - d1)``,
+    where ``s1 = s2 = offset``, or ``s1, s2`` are ``0.1`` times the lengths of
+    ``e1, e2`` when ``offset <= 0``. On a straight edge the two stay on the line,
+    in order; at a bent corner they move along the chord of their neighbours.
+    Vertices of valence 2 are taken as they stand before any split.
 
     Returns:
         The ids of the new vertices.
@@ -204,10 +210,11 @@ def split_valence2_vertices(mesh: Mesh, offset: float = -0.1) -> list[int]:
         e1, e2 = work.vertex_edges(v)[:2]
         origin = work.position(v)
         d1, d2 = (_direction(work, e, v) for e in (e1, e2))
-        size = offset if offset > 0 else 0.1 * _length(work, e1)
-        new = work.subdivide_edge(e1)[0]
-        work.set_position(v, _pushed(v, origin, size, d1 - d2))
-        work.set_position(new, _pushed(v, origin, size, d2 - d1))
+        s1, s2 = ((offset, offset) if offset > 0
+                  else (0.1 * _length(work, e1), 0.1 * _length(work, e2)))
+        new = work.subdivide_edge(e2)[0]  # between v and e2's far end
+        work.set_position(v, _pushed(v, origin, s1, d1 - d2))
+        work.set_position(new, _pushed(v, origin, s2, d2 - d1))
         new_vertices.append(new)
     mesh.replace_with(work)
     return new_vertices
@@ -242,3 +249,84 @@ def _length(mesh: Mesh, edge: int) -> float:
     a, b = mesh.edge_vertices(edge)
     with np.errstate(over="ignore"):  # inf: refused by _pushed
         return float(lengths((mesh.position(a) - mesh.position(b))[None])[0])
+
+
+def trisect_edge(mesh: Mesh, edge: int, num: float, scale: bool) -> list[int]:
+    """TopMod's ``trisectEdge(E, num, scale)``: split ``edge`` in three; V+2, E+2.
+
+    With ``p0, p1`` the ends (the vertices of sides ``c0`` and ``c1``) and ``m``
+    their midpoint, the new points are ``num p0 + (1 - num) m`` and
+    ``num p1 + (1 - num) m`` when ``scale`` is True (``num`` clamped to
+    [0.01, 0.99]), else ``num`` from ``p0`` and from ``p1`` along the edge (``num``
+    clamped to [0.01, length/2 - 0.01]). The edge keeps its id as the part from
+    ``p0``; the middle and last parts are new edges.
+
+    Returns:
+        The two new vertex ids, the one near ``p0`` first.
+
+    Raises:
+        DLFLError: ``edge`` is not live, ``num`` is not a finite number,
+            ``scale`` is not a bool, or an offset trisection of an edge no longer
+            than 0.04 (no offset fits); the mesh is unchanged.
+    """
+    num = finite_number(num, "num")
+    if not isinstance(scale, bool | np.bool_):
+        raise DLFLError(f"scale must be True (num is a scale factor) or False (an offset), "
+                        f"got {scale!r}")
+    p0, p1 = (mesh.position(v) for v in mesh.edge_vertices(edge))
+    points = _scaled_trisection(p0, p1, num) if scale else _offset_trisection(edge, p0, p1, num)
+    if first_not_finite(points) is not None:  # rounding at the float maximum
+        raise DLFLError(f"trisecting edge {edge} would put a vertex at {points.tolist()}: its "
+                        "numbers overflow; the mesh is unchanged")
+    new = mesh.subdivide_edge(edge, 3)
+    mesh.set_positions(new, points)
+    return new
+
+
+def _scaled_trisection(p0: np.ndarray, p1: np.ndarray, num: float) -> np.ndarray:
+    """``(2, 3)`` points ``t p + (1 - t) m`` for ``p`` = ``p0``, ``p1`` (``(3,)``
+    each), ``m`` their midpoint and ``t`` = ``num`` clamped to [0.01, 0.99]."""
+    t = min(max(num, 0.01), 0.99)
+    mid = p0 * 0.5 + p1 * 0.5  # halves first: the sum of far-apart points can overflow
+    return np.array([t * p0 + (1 - t) * mid, t * p1 + (1 - t) * mid])
+
+
+def _offset_trisection(edge: int, p0: np.ndarray, p1: np.ndarray, num: float) -> np.ndarray:
+    """``(2, 3)`` points ``num`` from ``p0`` and from ``p1`` (``(3,)`` each, the ends
+    of ``edge``) toward the other end, ``num`` clamped to [0.01, length/2 - 0.01].
+
+    Raises:
+        DLFLError: the edge is no longer than 0.04, so that range is empty.
+    """
+    half = p1 * 0.5 - p0 * 0.5  # p1 - p0 itself can overflow
+    length = 2.0 * float(lengths(half[None])[0])
+    if length <= 0.04:
+        raise DLFLError(f"edge {edge} is {length:.3g} long: an offset trisection needs an edge "
+                        "longer than 0.04 (offsets are clamped to [0.01, length/2 - 0.01]); "
+                        "use scale=True; the mesh is unchanged")
+    offset = min(max(num, 0.01), length / 2.0 - 0.01)
+    step = offset * _unit(half[None])[0]
+    return np.array([p0 + step, p1 - step])
+
+
+def splice_corners(mesh: Mesh, corner1: int, corner2: int) -> int:
+    """TopMod's ``spliceCorners``: insert an edge between two corners, then collapse
+    it, so the two vertices become one at their midpoint.
+
+    Corners of one face split it and the halves beside the new edge close up
+    (their 2-gons are cleaned up, as by :meth:`Mesh.collapse_edge`); corners of
+    two faces merge those faces first.
+
+    Returns:
+        The surviving vertex id: ``corner1``'s, unless only ``corner1`` is a
+        point-sphere's (the new edge dangles from it, and the other end stays).
+
+    Raises:
+        DLFLError: a corner id that is not live, or both corners at one vertex
+            (nothing to splice); the mesh is unchanged.
+    """
+    v1, v2 = mesh.corner_vertex(corner1), mesh.corner_vertex(corner2)
+    if v1 == v2:
+        raise DLFLError(f"corners {corner1} and {corner2} are both at vertex {v1}: "
+                        "splicing needs corners at two different vertices")
+    return mesh.collapse_edge(mesh.insert_edge(corner1, corner2))

@@ -5,7 +5,7 @@ middle (the face shrunk to a third about its centroid) is opened, and the ring
 left around it is split into one quad per corner and one per side. A tunnel of
 quads runs from each opening to the matching face of an inner shell (the mesh
 offset inward by ``thickness``), whose faces are all open, so the tunnels meet
-inside. On the cube (edge 2) with the default 0.67 this is the level-1 Menger
+inside. On the cube (edge 2) with TopMod's 0.67 this is the level-1 Menger
 sponge surface: 64 vertices, 72 quads, genus 5.
 
 TopMod's result, 64/156/84, also holds 12 two-sided faces that its edge
@@ -13,6 +13,12 @@ collapses left behind. livemod reproduces the counts by default, with one
 2-gon along every edge of the inner shell, where TopMod's collapsed inner
 insets lay (the source was not available to confirm the exact place);
 ``keep_2gons=False`` gives the clean surface, 64/144/72.
+
+TopMod's 0.67 is an absolute length made for its edge-2 cube, whose inner
+shell collapses to a point at thickness 1. On a thinner mesh (the unit
+tetrahedron's shell collapses at its inradius 1/3) 0.67 would turn the inner
+shell inside out, so the default thickness keeps the cube's proportion there:
+0.67 times that limit.
 """
 
 from __future__ import annotations
@@ -20,45 +26,152 @@ from __future__ import annotations
 import numpy as np
 
 from ._checks import positive_number
+from ._vectors import group_sum
 from .analysis import face_centroids
 from .arrays import MeshArrays, mesh_arrays
 from .build import from_corner_arrays
 from .errors import DLFLError
 from .mesh import Mesh
-from .rind import check_not_inverted, offset_shell
+from .rind import check_not_inverted, crust_offsets, offset_shell
 
-__all__ = ["sponge"]
+__all__ = ["TOPMOD_THICKNESS", "shell_limit", "sponge"]
+
+#: TopMod's default thickness (``createSponge(t=0.67)``), made for its edge-2
+#: cube, whose inner shell collapses at thickness 1.
+TOPMOD_THICKNESS = 0.67
 
 
-def sponge(mesh: Mesh, thickness: float = 0.67, *, keep_2gons: bool = True) -> None:
+def sponge(mesh: Mesh, thickness: float | None = None, *, keep_2gons: bool = True) -> float:
     """Menger-sponge remeshing of ``mesh`` in place (rebuilt: fresh ids).
 
     Args:
-        thickness: the inward offset of the inner shell (TopMod's default 0.67,
-            which on the edge-2 cube puts the inner shell at +-0.33).
+        thickness: the inward offset of the inner shell, below the mesh's
+            :func:`shell_limit`. None (the default) takes TopMod's 0.67 (which
+            on the edge-2 cube puts the inner shell at +-0.33), or 0.67 times
+            the limit where that is less (a limit below the cube's 1).
         keep_2gons: add TopMod's 2-gons along the inner shell's edges.
 
+    Returns:
+        The thickness used.
+
     Raises:
-        DLFLError: ``thickness`` not positive or so large that the inner shell
-            turns over, point-spheres or faces of fewer than three sides; the
-            mesh is unchanged.
+        DLFLError: ``thickness`` not positive, or so large that the inner shell
+            collapses or turns over (naming the value and the limit);
+            point-spheres or faces of fewer than three sides; the mesh is
+            unchanged.
     """
     a = mesh_arrays(mesh)
-    _check_input(a, thickness)
-    inner = offset_shell(a, thickness, uniform=True)
-    check_not_inverted(a, inner, f"thickness {thickness}")
+    _check_input(a)
+    thickness, inner = _inner_shell(a, thickness)
     positions, corner_vertex, mates, offsets = _sponge_polygons(a, inner, keep_2gons)
     mesh.replace_with(from_corner_arrays(positions, offsets, corner_vertex, mates,
                                          first_ids=mesh.next_ids()))
+    return thickness
 
 
-def _check_input(a: MeshArrays, thickness: float) -> None:
-    positive_number(thickness, "thickness")
+def _check_input(a: MeshArrays) -> None:
     if (a.corner_edge < 0).any():
         raise DLFLError("sponge needs a mesh without point-spheres")
     if (a.face_sizes < 3).any():
         f = int(a.face_ids[np.flatnonzero(a.face_sizes < 3)[0]])
         raise DLFLError(f"sponge needs faces of at least three sides; face {f} has fewer")
+
+
+def _inner_shell(a: MeshArrays, thickness: float | None) -> tuple[float, np.ndarray]:
+    """The thickness :func:`sponge` uses (``thickness``, or the default for None)
+    and the ``(V, 3)`` inner shell at it.
+
+    Raises:
+        DLFLError: ``thickness`` not a positive number, or an inner shell that
+            overflows, collapses or turns over; past the :func:`shell_limit`,
+            the message names it.
+    """
+    if thickness is None:
+        thickness = TOPMOD_THICKNESS * min(1.0, shell_limit(a))
+    thickness = positive_number(thickness, "thickness")
+    inner = offset_shell(a, thickness, uniform=True)
+    try:
+        check_not_inverted(a, inner, f"thickness {thickness}")
+    except DLFLError as error:
+        # the limit is measured only here: a thickness that works costs nothing more
+        limit = shell_limit(a)
+        if thickness < limit:
+            raise
+        raise DLFLError(
+            f"thickness {thickness} is too large for this mesh: its inner shell "
+            f"collapses or turns over from thickness {limit:.6g} on; use a smaller "
+            f"value (the default here is {TOPMOD_THICKNESS * min(1.0, limit):.6g})"
+        ) from error
+    return thickness, inner
+
+
+def shell_limit(a: MeshArrays) -> float:
+    """The least thickness at which the uniform inner shell of ``a`` (the crust's
+    inward offset, ``positions - t * crust_offsets(a, 1)``) collapses or turns
+    over: an edge shrinks to nothing or reverses, or a face's vector area
+    vanishes or flips. inf when none ever does (a flat open sheet).
+
+    Args:
+        a: a mesh without point-spheres.
+
+    Returns:
+        The limit, > 0 (1 for the edge-2 cube, the inradius 1/3 for the unit
+        tetrahedron).
+    """
+    d = crust_offsets(a, 1.0)  # from unit normals: the same at any scale
+    top = float(np.abs(a.positions).max(initial=0.0))
+    # positions scaled by a power of two (exact) near 1, so products stay in range
+    k = int(np.frexp(top)[1]) if 0.0 < top < np.inf else 0
+    p = np.ldexp(a.positions, -k)
+    limit = min(_edge_limit(a, p, d), _face_limit(a, p, d))
+    return float(np.ldexp(limit, k))
+
+
+def _edge_limit(a: MeshArrays, p: np.ndarray, d: np.ndarray) -> float:
+    """Least ``t`` at which an edge of ``p - t d`` (both ``(V, 3)``) shrinks to a
+    point or reverses: ``s . (s - t ds) = 0`` for its side ``s``, inf if none."""
+    ends = a.corner_vertex[a.edge_corners]
+    side = p[ends[:, 1]] - p[ends[:, 0]]
+    closing = np.einsum("ij,ij->i", side, d[ends[:, 1]] - d[ends[:, 0]])
+    length = np.einsum("ij,ij->i", side, side)
+    shrinking = (closing > 0) & (length > 0)
+    return float((length[shrinking] / closing[shrinking]).min(initial=np.inf))
+
+
+def _face_limit(a: MeshArrays, p: np.ndarray, d: np.ndarray) -> float:
+    """Least ``t`` at which a face's Newell vector ``N(t)`` of ``p - t d`` (both
+    ``(V, 3)``) stops pointing along ``N(0)``, inf if none.
+
+    ``N(t) = N0 - t N1 + t^2 N2`` (each a sum of cross products along the ring),
+    so ``N0 . N(t)`` is a quadratic ``A - B t + C t^2`` with ``A > 0``: its least
+    positive root, or where its minimum touches zero (a face shrinking to a point).
+    """
+    q = p[a.corner_vertex] - face_centroids(MeshArrays(**{**a.__dict__, "positions": p}))[
+        a.corner_face]  # about the centroid: no cancellation between far-off points
+    dc, nxt, nf = d[a.corner_vertex], a.corner_next, len(a.face_ids)
+    n0 = group_sum(a.corner_face, np.cross(q, q[nxt]), nf)
+    n1 = group_sum(a.corner_face, np.cross(q, dc[nxt]) + np.cross(dc, q[nxt]), nf)
+    n2 = group_sum(a.corner_face, np.cross(dc, dc[nxt]), nf)
+    A = np.einsum("ij,ij->i", n0, n0)  # noqa: N806 - the quadratic's coefficients
+    B = np.einsum("ij,ij->i", n0, n1)  # noqa: N806
+    C = np.einsum("ij,ij->i", n0, n2)  # noqa: N806
+    keep = A > 0
+    return float(_least_positive_root(A[keep], B[keep], C[keep]).min(initial=np.inf))
+
+
+def _least_positive_root(A: np.ndarray, B: np.ndarray, C: np.ndarray) -> np.ndarray:  # noqa: N803
+    """``(n,)`` least ``t > 0`` with ``A - B t + C t^2 <= 0`` (all ``(n,)``, ``A > 0``),
+    inf where there is none; a minimum within ``1e-9 A`` of zero counts as a root."""
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        disc = B * B - 4 * A * C
+        # the stable pair of roots: q / C and A / q, with q = (B + sign(B) sqrt(disc)) / 2
+        half = (B + np.copysign(np.sqrt(np.maximum(disc, 0)), B)) / 2
+        roots = np.stack([np.where(C != 0, half / C, np.inf),
+                          np.where(half != 0, A / half, np.inf)])
+        roots = np.where(np.isfinite(roots) & (roots > 0), roots, np.inf).min(axis=0)
+        # no real root, but the minimum at B / 2C all but touches zero
+        touch = (disc < 0) & (C > 0) & (B > 0) & (A - B * B / (4 * C) <= 1e-9 * A)
+        return np.where(touch, B / (2 * C), np.where(disc >= 0, roots, np.inf))
 
 
 def _sponge_polygons(

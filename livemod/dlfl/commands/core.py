@@ -14,6 +14,7 @@ from typing import Any
 
 import numpy as np
 
+from .. import geometry as _geometry
 from ..analysis import face_centroid, face_normal
 from ..analysis import genus as _genus
 from ..errors import DLFLError
@@ -22,8 +23,8 @@ from ._base import corner_tuple, mesh, modeling_command, resolve_corner, scene
 
 __all__ = [
     "createVertex", "removeVertex", "insertEdge", "deleteEdge", "subdivideEdge",
-    "collapseEdge", "createFace", "faces", "edges", "verts", "corners", "walk",
-    "cornerWalk", "next", "prev", "getCorner", "saveCorner", "restoreCorner", "load",
+    "collapseEdge", "trisectEdge", "spliceCorners", "createFace", "faces", "edges", "verts",
+    "corners", "walk", "cornerWalk", "next", "prev", "getCorner", "saveCorner", "restoreCorner", "load",
     "save", "kill", "switch", "printObject", "vertexInfo", "edgeInfo", "faceInfo",
     "cornerInfo", "vertexEdges", "centroid", "translate", "scale", "move",
     "freezeTrans", "step",
@@ -38,25 +39,54 @@ Point = Sequence[float]
 def createVertex(position: Point = (0.0, 0.0, 0.0)) -> tuple[tuple[int, int], int]:
     """Create a point-sphere at ``position``: ``((faceid, vertexid), objectid)``.
 
-    With no object in the scene, one is created.
+    The corner is the point-sphere's only one (carrying its corner id), so
+    ``c, _ = createVertex(p)`` then ``insertEdge(c, ...)`` or ``removeVertex(c)``
+    work. TopMod returned ``(faceid, vertexid)`` alone. With no object in the
+    scene, one is created.
     """
     sc = scene()
     m = sc.mesh
     v = m.create_vertex(position)
     assert sc.current is not None
-    return (m.corner_face(m.vertex_corner(v)), v), sc.current
+    return corner_tuple(m, m.vertex_corner(v)), sc.current
 
 
 @modeling_command
-def removeVertex(vertexid: int | tuple[int, int]) -> None:
-    """Remove a point-sphere vertex. TopMod's ``(vertexid, faceid)`` form works too.
+def removeVertex(vertexid: Any) -> None:
+    """``removeVertex(vertexid)``: remove a point-sphere with its face and corner.
+
+    ``vertexid`` is a vertex id (the thesis) or the point-sphere's corner as a
+    ``(faceid, vertexid)`` tuple, the form :func:`createVertex` returns.
 
     Raises:
-        DLFLError: the vertex has edges.
+        DLFLError: the vertex has edges, no such vertex or corner, or a pair in
+            TopMod's reversed ``(vertexid, faceid)`` order (the message says so).
     """
-    if isinstance(vertexid, tuple):
-        vertexid = vertexid[0]
-    mesh().remove_vertex(vertexid)
+    m = mesh()
+    m.remove_vertex(_vertex_of(m, vertexid))
+
+
+def _vertex_of(m: Mesh, value: Any) -> Any:
+    """The vertex :func:`removeVertex` is given: ``value`` itself, or the vertex of
+    the corner a tuple names (checked by ``remove_vertex`` and ``resolve_corner``)."""
+    if not isinstance(value, tuple | list):
+        return value
+    try:
+        return m.corner_vertex(resolve_corner(m, value, "vertexid"))
+    except DLFLError as exc:
+        if len(value) == 2 and _is_point_sphere_corner(m, value[1], value[0]):
+            raise DLFLError(f"{exc}; removeVertex takes (faceid, vertexid), as createVertex "
+                            "returns it, not TopMod's (vertexid, faceid): write "
+                            f"({value[1]}, {value[0]})") from None
+        raise
+
+
+def _is_point_sphere_corner(m: Mesh, face: Any, vertex: Any) -> bool:
+    """True when ``(face, vertex)`` names the corner of a point-sphere."""
+    try:
+        return m.corner_edge(m.corner_at(face, vertex)) < 0
+    except DLFLError:
+        return False
 
 
 @modeling_command
@@ -83,9 +113,18 @@ def _edge_corner_tuples(m: Mesh, e: int) -> list[tuple[int, int]]:
 
 @modeling_command
 def deleteEdge(edgeid: int, cleanup: bool = True) -> list[int]:
-    """Delete an edge: ``[faceid]`` when two faces merged, ``[faceid, faceid]`` when
-    one face split (a side left with no edges is removed with ``cleanup``)."""
-    return mesh().delete_edge(edgeid, cleanup)
+    """Delete an edge and return the ids of the faces left on its sides.
+
+    Returns:
+        ``[faceid]`` when two faces merged, ``[faceid, faceid]`` when one face
+        split. With ``cleanup`` a side left as a point-sphere is removed with its
+        vertex and left out; when none is left (an edge between two
+        point-spheres) the result is ``[-1]``, as in TopMod.
+
+    Raises:
+        DLFLError: ``edgeid`` is not a live edge.
+    """
+    return mesh().delete_edge(edgeid, cleanup) or [-1]
 
 
 @modeling_command
@@ -102,6 +141,43 @@ def subdivideEdge(*args: int) -> list[int]:
 def collapseEdge(edgeid: int) -> int:
     """Collapse an edge to its midpoint; return the surviving vertex id."""
     return mesh().collapse_edge(edgeid)
+
+
+@modeling_command
+def trisectEdge(edgeid: int, num: float, scale: bool) -> list[int]:
+    """``trisectEdge(edgeid, num, scale)``: split an edge in three (TopMod's rule).
+
+    With ``scale`` True each new point is ``num * end + (1 - num) * midpoint``
+    (``num`` clamped to [0.01, 0.99]); otherwise it lies ``num`` from its end
+    along the edge (clamped to [0.01, length/2 - 0.01]).
+
+    Returns:
+        ``[vertexid, vertexid]``: the new vertices, the first nearer the edge's
+        first end; the edge keeps its id as the part from that end.
+
+    Raises:
+        DLFLError: see :func:`livemod.dlfl.geometry.trisect_edge`; the mesh is
+            unchanged.
+    """
+    return _geometry.trisect_edge(mesh(), edgeid, num, scale)
+
+
+@modeling_command
+def spliceCorners(c1: Any, c2: Any) -> int:
+    """``spliceCorners(c1, c2)``: join two corners' vertices into one, at their
+    midpoint (TopMod's insertEdge then collapseEdge).
+
+    Returns:
+        The id of the surviving vertex: ``c1``'s, unless only ``c1`` is a
+        point-sphere's (then ``c2``'s).
+
+    Raises:
+        DLFLError: a corner that does not exist, or two corners at one vertex;
+            the mesh is unchanged.
+    """
+    m = mesh()
+    return _geometry.splice_corners(m, resolve_corner(m, c1, "c1"),
+                                    resolve_corner(m, c2, "c2"))
 
 
 @modeling_command

@@ -17,13 +17,16 @@ from ._base import mesh, modeling_command, resolve_corner
 
 __all__ = ["extrude", "connectEdges", "connectCorners", "connectFaces", "addHandle"]
 
-# positional options after the face id, per kind (the thesis's order; the kinds the
-# thesis does not list follow TopMod's C++ parameter order)
+# positional options after the face id, per kind. TopMod's binding read every one of
+# its seven types as (dist, num, rot, sf, flag), ignoring what a type does not use; the
+# thesis lists each type's options in that order (for octa it leaves out segments,
+# which the binding passed second). The kinds TopMod's binding lacks follow its C++
+# parameter order.
 OPTION_ORDER: dict[str, tuple[str, ...]] = {
     "doo-sabin": ("distance", "segments", "rotation", "scale"),
     "dodeca": ("distance", "segments", "twist", "scale", "hexagonalize"),
     "icosa": ("distance", "segments", "rotation", "scale"),
-    "octa": ("distance", "rotation", "scale", "mesh"),
+    "octa": ("distance", "segments", "rotation", "scale", "mesh"),
     "stellate": ("distance",),
     "double-stellate": ("distance",),
     "cubical": ("distance", "segments", "rotation", "scale"),
@@ -49,31 +52,46 @@ def _kind(name: Any) -> str:
     raise DLFLError(f"unknown extrusion type {name!r}; valid types: {', '.join(PREFIX_ORDER)}")
 
 
-# TopMod's own argument names (TOPMOD.md §8) accepted as keywords too
+# TopMod's own argument names (TOPMOD.md §8) accepted as keywords too; ``rot`` is
+# TopMod's rotTwist, dodeca's twist; ``flag`` is octa's mesh and dodeca's hexagonalize
 KEYWORD_ALIASES = {"dist": "distance", "num": "segments", "numsegs": "segments",
                    "rot": "rotation", "sf": "scale"}
+KIND_KEYWORD_ALIASES = {"dodeca": {"rot": "twist", "flag": "hexagonalize"},
+                        "octa": {"flag": "mesh"}}
 
 
 def _options(kind: str, options: tuple[Any, ...], keywords: dict[str, Any]) -> dict[str, Any]:
+    """The options of an ``extrude(kind, faceid, *options, **keywords)`` call by name.
+
+    Raises:
+        DLFLError: more positional options than ``kind`` takes, a keyword that is
+            none of its options (nor TopMod's name for one), or an option given twice.
+    """
     order = OPTION_ORDER[kind]
-    keywords = {_keyword(kind, name): value for name, value in keywords.items()}
     if len(options) > len(order):
         raise DLFLError(f"extrude('{kind}', faceid, ...) takes at most {len(order)} options "
                         f"({', '.join(order)}), got {len(options)}")
     given = dict(zip(order, options, strict=False))
     for name, value in keywords.items():
-        if name not in order:
-            raise DLFLError(f"extrude('{kind}') has no option {name!r}; options: {', '.join(order)}")
-        if name in given:
-            raise DLFLError(f"extrude('{kind}'): option {name!r} given twice")
-        given[name] = value
+        option = _keyword(kind, name)
+        if option in given:
+            said = repr(option) if option == name else f"{name!r} (= {option!r})"
+            raise DLFLError(f"extrude('{kind}'): option {said} given twice")
+        given[option] = value
     return given
 
 
 def _keyword(kind: str, name: str) -> str:
-    if name == "flag":  # TopMod's one boolean: octa's mesh, dodeca's hexagonalize
-        return "mesh" if kind == "octa" else "hexagonalize"
-    return KEYWORD_ALIASES.get(name, name)
+    """The option of ``kind`` that keyword ``name`` sets (TopMod's names mapped).
+
+    Raises:
+        DLFLError: ``kind`` has no such option.
+    """
+    option = KIND_KEYWORD_ALIASES.get(kind, {}).get(name) or KEYWORD_ALIASES.get(name, name)
+    if option not in OPTION_ORDER[kind]:
+        raise DLFLError(f"extrude('{kind}') has no option {name!r}; options: "
+                        f"{', '.join(OPTION_ORDER[kind])}")
+    return option
 
 
 def _library_arguments(kind: str, given: dict[str, Any]) -> dict[str, Any]:
@@ -98,13 +116,15 @@ def extrude(type: str, faceid: int, *options: Any, **keywords: Any) -> int | lis
     doo-sabin [distance, segments, rotation, scale] (rotation is TopMod's twist
     fraction), dodeca [distance, segments, twist, scale, hexagonalize], icosa,
     cubical, cuboctahedral and hex-tile [distance, segments, rotation, scale],
-    octa [distance, rotation, scale, mesh], stellate and double-stellate
-    [distance], dome [distance, rotation, scale], planar-offset [distance,
-    rotation, thickness, fractional]. Defaults: distance 2, segments 1,
-    rotation 0, scale 1. A type may be abbreviated (TopMod's prefix order);
-    TopMod's names ``dist``, ``num``, ``rot``, ``sf`` and ``flag`` work as keywords.
-    TopMod's binding read every type's options in one order (dist, num, rot, sf,
-    flag); livemod follows the thesis's per-type lists, which differ for octa.
+    octa [distance, segments, rotation, scale, mesh], stellate and
+    double-stellate [distance], dome [distance, rotation, scale], planar-offset
+    [distance, rotation, thickness, fractional]. Defaults: distance 2, segments
+    1, rotation 0, scale 1. These are the positions of TopMod's binding, which
+    read every type as (dist, num, rot, sf, flag); the thesis's list for octa
+    leaves out segments, which livemod takes second as TopMod did. A type may be
+    abbreviated (TopMod's prefix order); TopMod's names ``dist``, ``num``,
+    ``rot`` (dodeca: twist) and ``sf`` work as keywords, and ``flag`` for octa's
+    mesh and dodeca's hexagonalize.
 
     Returns:
         The end face id; for stellate, double-stellate and dome, which end in a
