@@ -444,6 +444,30 @@ def test_numbers_that_are_not_finite_are_refused_and_the_mesh_kept(cube_scene, c
 def test_moves_that_overflow_to_infinity_are_refused(cube_scene, command, args):
     getattr(dlfl, command)(*args)  # far, but finite
     before = snapshot(cube_scene.mesh)
-    with pytest.raises(DLFLError, match=f"{command} would move vertices to infinity"):
+    with pytest.raises(DLFLError, match=r"would move vertex \d+ to \[.*inf.*nothing is moved"):
         getattr(dlfl, command)(*args)
     assert snapshot(cube_scene.mesh) == before
+
+
+@pytest.mark.parametrize("call", [
+    lambda: dlfl.faces("no"), lambda: dlfl.edges("yes"), lambda: dlfl.verts(2),
+    lambda: dlfl.corners(None), lambda: dlfl.deleteEdge(0, "False"),
+    lambda: dlfl.translate(1, 0, 0, "absolute"), lambda: dlfl.move([0], (1, 0, 0), 0.5),
+    lambda: dlfl.subdivideFace(0, "quads"), lambda: dlfl.dual("accurate"),
+    lambda: dlfl.extrude("octa", 0, 1, 1, 0, 1, "no"),
+    lambda: dlfl.extrude("dodeca", 0, 1, 2, 0, 1, [True]),
+    lambda: dlfl.connectEdges((0, 0), (1, 1), "check"),
+])
+def test_an_on_off_option_that_is_not_a_flag_is_refused(cube_scene, call):
+    """A string such as "no" would otherwise mean True."""
+    before = snapshot(cube_scene.mesh)
+    with pytest.raises(DLFLError, match=r"must be True or False, got"):
+        call()
+    assert snapshot(cube_scene.mesh) == before
+
+
+def test_flags_may_be_bools_numpy_bools_or_0_and_1(cube_scene):
+    assert dlfl.faces(0) == dlfl.faces(False) == dlfl.faces(np.False_)
+    dlfl.translate(1, 2, 3, 1)
+    dlfl.move([0], (5, 5, 5), np.bool_(False))
+    assert dlfl.centroid([0]) == (5.0, 5.0, 5.0)

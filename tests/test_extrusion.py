@@ -694,3 +694,12 @@ def test_the_documented_figures_are_exactly_those_checked():
         (key,) = matching
         checked_here = {figure for k, figure, _ in DOC_FIGURES if k == key}
         assert set(FIGURE.findall(block)) == checked_here, block
+
+
+@pytest.mark.parametrize("option", ["dual_mesh", "hexagonalize", "fractional"])
+def test_an_on_off_option_that_is_not_a_flag_is_refused(option):
+    m = cube()
+    before = snapshot(m)
+    with pytest.raises(DLFLError, match=f"{option} must be True or False, got 'no'"):
+        extrude(m, 0, "octa", **{option: "no"})
+    assert snapshot(m) == before

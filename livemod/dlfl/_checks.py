@@ -50,6 +50,23 @@ def id_list(values: object, name: str) -> list[int]:
     return [int(value) for value in ids]
 
 
+def flag(value: object, name: str) -> bool:
+    """``value`` as a bool, for an on/off option.
+
+    True, False, numpy bools and the integers 0 and 1 (TopMod's C++ took ints)
+    are flags; anything else is refused, or a string such as ``"no"`` or
+    ``"False"`` would silently mean True.
+
+    Raises:
+        DLFLError: ``value`` is not one of those; the message names ``name``.
+    """
+    if value is True or value is False:
+        return value
+    if isinstance(value, np.bool_ | numbers.Integral) and value in (0, 1):
+        return bool(value)
+    raise DLFLError(f"{name} must be True or False, got {value!r}")
+
+
 def positive_number(value: object, name: str) -> float:
     """``value`` as a float greater than 0.
 

@@ -28,7 +28,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from ._checks import finite_number, first_not_finite, whole_count
+from ._checks import finite_number, first_not_finite, flag, whole_count
 from .connect import _quad_band, _triangle_band
 from .errors import DLFLError
 from .mesh import Mesh
@@ -617,8 +617,8 @@ def extrude(
             The mesh is unchanged.
     """
     spec, opts = _prepare(mesh, face, kind, segments, Options(
-        distance, rotation, scale, twist, bool(dual_mesh), bool(hexagonalize), thickness,
-        bool(fractional)))
+        distance, rotation, scale, twist, flag(dual_mesh, "dual_mesh"),
+        flag(hexagonalize, "hexagonalize"), thickness, flag(fractional, "fractional")))
     step = spec.step
     if step is None:
         raise DLFLError(f"extrusion kind {resolve_kind(kind)!r} ends in a fan of triangles, "

@@ -15,6 +15,8 @@ from typing import Any
 import numpy as np
 
 from .. import geometry as _geometry
+from .. import transform as _transform
+from .._checks import flag
 from ..analysis import face_centroid, face_normal
 from ..analysis import genus as _genus
 from ..errors import DLFLError
@@ -124,7 +126,7 @@ def deleteEdge(edgeid: int, cleanup: bool = True) -> list[int]:
     Raises:
         DLFLError: ``edgeid`` is not a live edge.
     """
-    return mesh().delete_edge(edgeid, cleanup) or [-1]
+    return mesh().delete_edge(edgeid, flag(cleanup, "cleanup")) or [-1]
 
 
 @modeling_command
@@ -206,7 +208,7 @@ def faces(selected: bool = False) -> tuple[int, ...]:
     Hole faces (boundaries of open meshes) are left out.
     """
     m = mesh()
-    if selected:
+    if flag(selected, "selected"):
         return _picked("faces", m.has_face)
     ids = m.face_ids()
     holes = m._f.arrays["hole"][m._f.live_slots()].astype(bool)
@@ -216,19 +218,19 @@ def faces(selected: bool = False) -> tuple[int, ...]:
 def edges(selected: bool = False) -> tuple[int, ...]:
     """Ids of all edges (in creation order), or of the selected ones."""
     m = mesh()
-    return _picked("edges", m.has_edge) if selected else tuple(m.edge_ids().tolist())
+    return _picked("edges", m.has_edge) if flag(selected, "selected") else tuple(m.edge_ids().tolist())
 
 
 def verts(selected: bool = False) -> tuple[int, ...]:
     """Ids of all vertices (in creation order), or of the selected ones."""
     m = mesh()
-    return _picked("vertices", m.has_vertex) if selected else tuple(m.vertex_ids().tolist())
+    return _picked("vertices", m.has_vertex) if flag(selected, "selected") else tuple(m.vertex_ids().tolist())
 
 
 def corners(selected: bool = False) -> tuple[tuple[int, int], ...]:
     """``((faceid, vertexid), ...)`` of all corners, face by face, or the selected ones."""
     m = mesh()
-    if selected:
+    if flag(selected, "selected"):
         return tuple(corner_tuple(m, c) for c in _picked("corners", m.has_corner))
     return tuple(corner_tuple(m, c) for f in faces() for c in m.face_corners(f))
 
@@ -439,18 +441,6 @@ def _xyz(args: tuple[Any, ...], name: str) -> tuple[np.ndarray, tuple[Any, ...]]
     raise DLFLError(f"{name} takes (x, y, z) or ((x, y, z)), got {args!r}")
 
 
-def _finite_positions(positions: np.ndarray, command: str) -> np.ndarray:
-    """``positions`` (``(k, 3)`` or ``(3,)``), checked before they are written.
-
-    Raises:
-        DLFLError: a coordinate overflowed to infinity (the mesh is unchanged).
-    """
-    if not np.isfinite(positions).all():
-        raise DLFLError(f"{command} would move vertices to infinity (coordinates past "
-                        f"{np.finfo(np.float64).max:.3g})")
-    return positions
-
-
 @modeling_command
 def translate(*args: Any, relative: bool = True) -> None:
     """``translate(x, y, z[, relative])``: move the current object.
@@ -460,15 +450,10 @@ def translate(*args: Any, relative: bool = True) -> None:
     """
     offset, rest = _xyz(args, "translate")
     if rest:
-        relative = bool(rest[0])
+        relative = flag(rest[0], "relative")
     obj = scene().current_object
     delta = offset if relative else offset - obj.origin
-    m = obj.mesh
-    slots = m._v.live_slots()
-    pos = m._v.arrays["position"]
-    with np.errstate(over="ignore", invalid="ignore"):  # overflow is refused just below
-        moved = pos[slots] + delta
-    pos[slots] = _finite_positions(moved, "translate")
+    _transform.translate(obj.mesh, delta)
     obj.origin = obj.origin + delta
 
 
@@ -477,12 +462,7 @@ def scale(*args: Any) -> None:
     """``scale((x, y, z))``: scale the current object about its origin, per axis."""
     factors, _ = _xyz(args, "scale")
     obj = scene().current_object
-    m = obj.mesh
-    slots = m._v.live_slots()
-    pos = m._v.arrays["position"]
-    with np.errstate(over="ignore", invalid="ignore"):  # overflow is refused just below
-        scaled = (pos[slots] - obj.origin) * factors + obj.origin
-    pos[slots] = _finite_positions(scaled, "scale")
+    _transform.scale(obj.mesh, factors, center=obj.origin)
     obj.factor = obj.factor * factors
 
 
@@ -491,14 +471,12 @@ def move(vertexids: Iterable[int], *args: Any, relative: bool = True) -> None:
     """``move(vertexids, (x, y, z)[, relative])``: move vertices by (or to) a point."""
     target, rest = _xyz(args, "move")
     if rest:
-        relative = bool(rest[0])
-    m = mesh()
+        relative = flag(rest[0], "relative")
     ids = _id_list(vertexids, "move")
-    slots = [m._v.slot(v) for v in ids]
-    pos = m._v.arrays["position"]
-    with np.errstate(over="ignore", invalid="ignore"):  # overflow is refused just below
-        moved = pos[slots] + target if relative else np.broadcast_to(target, (len(slots), 3))
-    pos[slots] = _finite_positions(moved, "move")
+    if relative:
+        _transform.translate(mesh(), target, vertices=ids)
+    else:
+        mesh().set_positions(ids, target)
 
 
 def freezeTrans() -> None:

@@ -11,7 +11,7 @@ from typing import Any
 
 from .. import connect as _connect
 from .. import extrusion as _extrusion
-from .._checks import id_list
+from .._checks import flag, id_list
 from ..errors import DLFLError
 from ._base import mesh, modeling_command, resolve_corner
 
@@ -102,9 +102,9 @@ def _library_arguments(kind: str, given: dict[str, Any]) -> dict[str, Any]:
     if kind == "dodeca" and "twist" in out:
         out["rotation"] = out.pop("twist")  # the dual step's rotation angle
     if "mesh" in out:
-        out["dual_mesh"] = bool(out.pop("mesh"))
+        out["dual_mesh"] = flag(out.pop("mesh"), "mesh")
     if "hexagonalize" in out:
-        out["hexagonalize"] = bool(out["hexagonalize"])
+        out["hexagonalize"] = flag(out["hexagonalize"], "hexagonalize")
     return out
 
 
@@ -160,15 +160,15 @@ def connectEdges(e1: Any, e2: Any, loopCheck: bool = False) -> None:
     half-edges with a face; with ``loopCheck`` corners already adjacent get no edge."""
     edge1, face1 = _half_edge(e1, "e1")
     edge2, face2 = _half_edge(e2, "e2")
-    _connect.connect_edges(mesh(), edge1, face1, edge2, face2, check=bool(loopCheck))
+    _connect.connect_edges(mesh(), edge1, face1, edge2, face2, check=flag(loopCheck, "loopCheck"))
 
 
-def _is_dual(flag: Any) -> bool:
-    if isinstance(flag, str):
-        if flag.lower() != "dual":
-            raise DLFLError(f"connectCorners' last option must be 'dual', got {flag!r}")
+def _is_dual(value: Any) -> bool:
+    if isinstance(value, str):
+        if value.lower() != "dual":
+            raise DLFLError(f"connectCorners' last option must be 'dual', got {value!r}")
         return True
-    return bool(flag)
+    return flag(value, "dual")
 
 
 @modeling_command

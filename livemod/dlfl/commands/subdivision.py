@@ -12,6 +12,7 @@ from collections.abc import Iterable
 from typing import Any
 
 from .. import subdivision as _subdivision
+from .._checks import flag
 from ..errors import DLFLError
 from ._base import mesh, modeling_command, scene
 
@@ -63,7 +64,7 @@ def subdivideFace(faceid: int, usequads: bool = True) -> None:
     """
     if isinstance(faceid, bool) or not isinstance(faceid, int):
         raise DLFLError(f"faceid must be a face id, got {faceid!r}")
-    _subdivision.subdivide_faces(mesh(), [faceid], usequads=bool(usequads))
+    _subdivision.subdivide_faces(mesh(), [faceid], usequads=flag(usequads, "usequads"))
 
 
 @modeling_command
@@ -75,10 +76,10 @@ def subdivideFaces(faceids: Iterable[int] | None = None, usequads: bool = True) 
     Raises:
         DLFLError: an id that is not a face.
     """
-    _subdivision.subdivide_faces(mesh(), _face_list(faceids), usequads=bool(usequads))
+    _subdivision.subdivide_faces(mesh(), _face_list(faceids), usequads=flag(usequads, "usequads"))
 
 
 @modeling_command
 def dual(accurate: bool = False) -> None:
     """Replace the current object by its dual (vertices at the face centroids)."""
-    _subdivision.dual(mesh(), accurate=bool(accurate))
+    _subdivision.dual(mesh(), accurate=flag(accurate, "accurate"))
