@@ -471,3 +471,18 @@ def test_flags_may_be_bools_numpy_bools_or_0_and_1(cube_scene):
     dlfl.translate(1, 2, 3, 1)
     dlfl.move([0], (5, 5, 5), np.bool_(False))
     assert dlfl.centroid([0]) == (5.0, 5.0, 5.0)
+
+
+def test_numpy_integers_are_ids_like_python_ints(cube_scene):
+    """Ids read from numpy arrays (np.argmax, mesh_arrays) work as given."""
+    corner = np.int64(cube_scene.mesh.face_corners(0)[0])
+    far = np.int32(cube_scene.mesh.face_corners(0)[2])
+    edge = dlfl.insertEdge(corner, far)[0]
+    assert dlfl.deleteEdge(np.int64(edge)) == [0]
+    dlfl.subdivideFace(np.int64(0))
+    dlfl.subdivideFaces(np.array(dlfl.faces()[:2]))
+    assert cube_scene.switch(np.int64(cube_scene.current)) == cube_scene.current
+    assert type(cube_scene.current) is int
+    assert dlfl.faceInfo(np.int64(dlfl.faces()[3])) == dlfl.faceInfo(dlfl.faces()[3])
+    vertex = dlfl.verts()[0]
+    assert dlfl.vertexEdges(np.int64(vertex)) == dlfl.vertexEdges(vertex)

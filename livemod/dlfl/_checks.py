@@ -31,6 +31,11 @@ def finite_number(value: object, name: str) -> float:
     return number
 
 
+def is_id(value: object) -> bool:
+    """True for a Python or numpy integer (an id); bools are not ids."""
+    return isinstance(value, numbers.Integral) and not isinstance(value, bool)
+
+
 def id_list(values: object, name: str) -> list[int]:
     """``values``, an iterable of element ids, as a list of ints.
 

@@ -17,6 +17,7 @@ from typing import Any
 
 import numpy as np
 
+from ._checks import is_id
 from .errors import DLFLError
 from .mesh import Mesh
 
@@ -251,8 +252,8 @@ class Scene:
     def switch(self, oid: int) -> int:
         """Make object ``oid`` current and return it."""
         self._check_object(oid)
-        self.current = oid
-        return oid
+        self.current = int(oid)
+        return self.current
 
     def kill(self, oid: int) -> None:
         """Remove object ``oid``; the most recent remaining object becomes current."""
@@ -262,7 +263,7 @@ class Scene:
             self.current = next(reversed(self.objects), None)
 
     def _check_object(self, oid: object) -> None:
-        if not isinstance(oid, int) or oid not in self.objects:
+        if not is_id(oid) or oid not in self.objects:
             have = ", ".join(str(k) for k in self.objects) or "none"
             raise DLFLError(f"object {oid!r} does not exist (objects: {have})")
 

@@ -15,6 +15,7 @@ from typing import Any
 
 import numpy as np
 
+from ._checks import id_list, is_id
 from .analysis import face_areas, face_normals
 from .arrays import mesh_arrays
 from .errors import DLFLError
@@ -29,7 +30,7 @@ __all__ = [
 
 def faces_by_size(mesh: Mesh, sizes: int | Iterable[int]) -> list[int]:
     """Faces with ``sizes`` corners (one size or several); holes left out."""
-    wanted = [sizes] if isinstance(sizes, int) else list(sizes)
+    wanted = [int(sizes)] if is_id(sizes) else id_list(sizes, "sizes")
     a = mesh_arrays(mesh)
     keep = np.isin(a.face_sizes, wanted) & ~a.face_hole
     return a.face_ids[keep].tolist()

@@ -8,6 +8,7 @@ from sys import _getframe
 from time import perf_counter
 from typing import Any, TypeVar, cast
 
+from .._checks import is_id
 from ..errors import DLFLError
 from ..mesh import Mesh
 from ..scene import NO_MESH, Scene, current_scene
@@ -104,9 +105,9 @@ def resolve_corner(m: Mesh, corner: Any, what: str = "corner") -> int:
     if isinstance(corner, tuple | list) and len(corner) == 2:
         face, vertex = corner
         return m.corner_at(face, vertex)
-    if isinstance(corner, int) and not isinstance(corner, bool):
-        m.corner_face(corner)  # raises DLFLError when not live
-        return corner
+    if is_id(corner):
+        m.corner_face(int(corner))  # raises DLFLError when not live
+        return int(corner)
     raise DLFLError(
         f"{what} must be a (faceid, vertexid) tuple or a corner id, got {corner!r}"
     )

@@ -12,7 +12,7 @@ from collections.abc import Iterable
 from typing import Any
 
 from .. import subdivision as _subdivision
-from .._checks import flag
+from .._checks import flag, id_list, is_id
 from ..errors import DLFLError
 from ._base import mesh, modeling_command, scene
 
@@ -46,13 +46,9 @@ def subdivide(scheme: str, *options: Any, **keywords: Any) -> None:
 def _face_list(faceids: Any) -> list[int]:
     if faceids is None:
         return list(scene().selection.faces)
-    if isinstance(faceids, int) and not isinstance(faceids, bool):
-        return [faceids]
-    if isinstance(faceids, Iterable) and not isinstance(faceids, str | bytes):
-        ids = list(faceids)
-        if all(isinstance(f, int) and not isinstance(f, bool) for f in ids):
-            return ids
-    raise DLFLError(f"faceids must be a face id or a list of face ids, got {faceids!r}")
+    if is_id(faceids):
+        return [int(faceids)]
+    return id_list(faceids, "faceids")
 
 
 @modeling_command
@@ -62,9 +58,9 @@ def subdivideFace(faceid: int, usequads: bool = True) -> None:
     Raises:
         DLFLError: ``faceid`` is not a face.
     """
-    if isinstance(faceid, bool) or not isinstance(faceid, int):
+    if not is_id(faceid):
         raise DLFLError(f"faceid must be a face id, got {faceid!r}")
-    _subdivision.subdivide_faces(mesh(), [faceid], usequads=flag(usequads, "usequads"))
+    _subdivision.subdivide_faces(mesh(), [int(faceid)], usequads=flag(usequads, "usequads"))
 
 
 @modeling_command
