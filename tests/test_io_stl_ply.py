@@ -10,7 +10,6 @@ import numpy as np
 import pytest
 
 from livemod.dlfl import Mesh, from_polygons
-from livemod.dlfl.shapes import cube
 from livemod.dlfl.io import (
     atomic_write,
     load_mesh,
@@ -20,6 +19,7 @@ from livemod.dlfl.io import (
     write_ply,
     write_stl,
 )
+from livemod.dlfl.shapes import cube
 
 SAMPLES = Path(__file__).resolve().parents[2] / "shared" / "data" / "topmod-objs"
 

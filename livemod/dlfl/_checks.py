@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 import numbers
 from collections.abc import Iterable
+from typing import TypeGuard
 
 import numpy as np
 
@@ -31,7 +32,7 @@ def finite_number(value: object, name: str) -> float:
     return number
 
 
-def is_id(value: object) -> bool:
+def is_id(value: object) -> TypeGuard[numbers.Integral]:
     """True for a Python or numpy integer (an id); bools are not ids."""
     return isinstance(value, numbers.Integral) and not isinstance(value, bool)
 
