@@ -30,7 +30,7 @@ LIBRARY_MODULES = [
     "livemod.dlfl.mesh", "livemod.dlfl.build", "livemod.dlfl.arrays", "livemod.dlfl.validate",
     "livemod.dlfl.analysis", "livemod.dlfl.scene", "livemod.dlfl.subdivision",
     "livemod.dlfl.extrusion", "livemod.dlfl.connect", "livemod.dlfl.rind",
-    "livemod.dlfl.wireframe", "livemod.dlfl.sierpinsky", "livemod.dlfl.sponge",
+    "livemod.dlfl.wireframe", "livemod.dlfl.sierpinsky", "livemod.dlfl.sponge", "livemod.dlfl.hull",
     "livemod.dlfl.geometry", "livemod.dlfl.transform", "livemod.dlfl.selection",
     "livemod.dlfl.shapes", "livemod.dlfl.params", "livemod.dlfl.io",
 ]

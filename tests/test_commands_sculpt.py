@@ -5,10 +5,13 @@ from __future__ import annotations
 import pytest
 
 import livemod.dlfl as dlfl
-from livemod.dlfl import DLFLError, face_size_histogram, genus
+from livemod.dlfl import DLFLError, Scene, face_size_histogram, genus, use_scene, validate
 from livemod.dlfl.commands import (
     column,
+    convexHull,
+    createVertex,
     crust,
+    dualConvexHull,
     faces,
     load,
     menger,
@@ -24,7 +27,7 @@ from tests.meshes import counts, snapshot
 
 def test_star_import_gives_the_commands():
     for name in ("rind", "wireframe", "column", "sierpinsky", "menger", "meshsmooth",
-                 "planarize", "spheralize", "crust"):
+                 "planarize", "spheralize", "crust", "convexHull", "dualConvexHull"):
         assert name in dlfl.__all__
         assert callable(getattr(dlfl, name))
 
@@ -67,6 +70,51 @@ def test_extras(scene):
     for op in (meshsmooth, planarize, spheralize):
         op()
         assert counts(scene) == (16, 24, 12)
+
+
+def test_menger_without_a_thickness_fits_it_to_the_mesh(scene):
+    assert menger() == 0.67  # the cube: TopMod's default as it is
+    load("tetrahedron")  # its inner shell collapses at 1/3: 0.67 of that is used
+    assert menger() == pytest.approx(0.67 / 3)
+    validate(scene.mesh)
+    load("tetrahedron")
+    with pytest.raises(DLFLError, match="thickness 0.67 is too large for this mesh"):
+        menger(0.67)
+
+
+def test_convex_hull_of_the_cube_is_twelve_triangles(scene):
+    convexHull()
+    assert counts(scene) == (8, 18, 12) and face_size_histogram(scene.mesh) == {3: 12}
+
+
+def test_dual_convex_hull_of_the_cube_is_an_octahedron(scene):
+    dualConvexHull()
+    assert counts(scene) == (6, 12, 8) and genus(scene.mesh) == 0
+    dualConvexHull()
+    assert counts(scene) == (8, 12, 6)
+
+
+def test_convex_hull_of_a_torus_closes_it(scene):
+    load("torus")
+    convexHull()
+    validate(scene.mesh)
+    assert genus(scene.mesh) == 0 and set(face_size_histogram(scene.mesh)) == {3}
+
+
+@pytest.mark.parametrize("op", [convexHull, dualConvexHull])
+def test_hulls_of_too_few_or_coplanar_vertices_are_refused_unchanged(op):
+    with use_scene(Scene()) as sc:
+        for p in [(0, 0, 0), (1, 0, 0), (0, 1, 0)]:
+            createVertex(p)
+        before = snapshot(sc.mesh)
+        with pytest.raises(DLFLError, match="at least 4 points, got 3"):
+            op()
+        assert snapshot(sc.mesh) == before
+        createVertex((1, 1, 0))
+        before = snapshot(sc.mesh)
+        with pytest.raises(DLFLError, match="not all in one plane"):
+            op()
+        assert snapshot(sc.mesh) == before
 
 
 def test_load_a_sample_by_name_then_wireframe(scene):

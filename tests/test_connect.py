@@ -289,17 +289,19 @@ def test_multi_face_handle_on_all_six_faces():
     assert checked(m) == (32, 84, 44) and genus(m) == 5
 
 
-def test_convex_hull_of_a_cube_with_extra_points_merges_facets():
-    from livemod.dlfl.connect import add_polyhedron, convex_hull_polygons
+def test_add_polyhedron_builds_a_hull_with_a_point_on_an_edge():
+    from livemod.dlfl.connect import add_polyhedron
+    from livemod.dlfl.hull import hull_polygons
 
     corners = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)], float)
     extra = np.array([[0, 0, 0], [1, 0, 0], [0.5, 1, 1]], float)  # inside, face centre, edge
     pts = np.concatenate([corners, extra])
-    polygons = convex_hull_polygons(pts)
-    assert sorted(len(p) for p in polygons) == [4] * 6
+    polygons = hull_polygons(pts)
+    # the edge point is a corner of both faces beside its edge; the others are left out
+    assert sorted(len(p) for p in polygons) == [4] * 4 + [5] * 2
     m = Mesh()
     faces = add_polyhedron(m, pts, polygons)
-    assert checked(m) == (8, 12, 6) and len(set(faces)) == 6
+    assert checked(m) == (9, 13, 6) and len(set(faces)) == 6
     for face in faces:
         centre = face_points(m, face).mean(axis=0)
         normal = np.cross(*(face_points(m, face)[1:3] - face_points(m, face)[0]))

@@ -12,7 +12,6 @@ from livemod.dlfl.arrays import mesh_arrays
 from livemod.dlfl.shapes import cube, dodecahedron, icosahedron, tetrahedron, torus
 from livemod.dlfl.wireframe import (
     columns,
-    convex_hull_faces,
     modified_corner_cut,
     vertex_rings,
     wireframe,
@@ -156,16 +155,6 @@ def test_columns_refuse_a_bad_thickness():
         columns(m, 0.0, 4)
 
 
-def test_convex_hull_of_the_cube_corners_is_six_quads():
-    faces = convex_hull_faces(cube().positions_view())
-    assert sorted(len(f) for f in faces) == [4] * 6
-
-
-def test_convex_hull_refuses_flat_input():
-    with pytest.raises(DLFLError):
-        convex_hull_faces(np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0.0]]))
-
-
 def test_vertex_rings_walk_against_vnext():
     a = mesh_arrays(cube())
     order, offsets = vertex_rings(a)
@@ -286,16 +275,3 @@ def test_the_columns_of_a_huge_mesh_are_the_scaled_unit_ones(scale):
         columns(big, 0.1 * scale, 4)
     assert summary(big) == summary(small)
     np.testing.assert_allclose(big.positions_view() / scale, small.positions_view(), atol=2e-4)
-
-
-def cycles(faces: list[list[int]]) -> list[tuple[int, ...]]:
-    """Faces as cycles that start at their smallest index, sorted."""
-    return sorted(tuple(f[f.index(min(f)):] + f[:f.index(min(f))]) for f in faces)
-
-
-@pytest.mark.parametrize("scale", [1e-200, 1e200])
-def test_convex_hull_faces_do_not_depend_on_the_scale(scale):
-    points = mesh_arrays(cube()).positions
-    with warnings.catch_warnings():
-        warnings.simplefilter("error")
-        assert cycles(convex_hull_faces(points * scale)) == cycles(convex_hull_faces(points))

@@ -25,16 +25,17 @@ from collections.abc import Callable
 import numpy as np
 
 from ._checks import finite_number, first_not_finite, id_list, whole_count
-from ._vectors import centroid, lengths, shifted_in_range, together_in_range, unit
+from ._vectors import centroid, lengths, together_in_range, unit
 from .analysis import face_points, polygon_normal
 from .errors import DLFLError
+from .hull import hull_polygons
 from .mesh import Mesh
 
 __all__ = [
     "connect_faces", "connect_faces_closest", "closest_corners", "connect_corners",
     "dual_connect_faces", "connect_edges", "hermite_handle", "hermite_rings",
     "hermite_point", "bezier_handle", "bezier_rings", "resolve_polygon",
-    "rotation_between", "multi_face_handle", "convex_hull_polygons", "add_polyhedron",
+    "rotation_between", "multi_face_handle", "add_polyhedron",
 ]
 
 # ``connector(mesh, corner1, corner2)`` joins the faces of two corners
@@ -588,93 +589,6 @@ def bezier_handle(
 
 # -- multi-face handle -------------------------------------------------------------------
 
-def convex_hull_polygons(points: np.ndarray, tolerance: float = 1e-9) -> list[list[int]]:
-    """Faces of the convex hull of ``(k, 3)`` points, coplanar facets merged.
-
-    Every supporting plane through three of the points is a face; its points
-    are ordered counter-clockwise seen from outside and points on its edges or
-    inside it are dropped (so a point on a hull edge is dropped from both faces).
-    Brute force over all triples: meant for the few dozen points of a handle.
-
-    Returns:
-        One list of point indices per face, outward counter-clockwise.
-
-    Raises:
-        DLFLError: fewer than 4 points, a point that is not finite, or all of
-            them in one plane.
-    """
-    pts = _hull_points(points)
-    if len(pts) < 4 or np.linalg.matrix_rank(pts[1:] - pts[0], tol=1e-9) < 3:
-        raise DLFLError("a convex hull needs at least 4 points not all in one plane")
-    eps = tolerance * max(1.0, float(np.abs(pts).max()))
-    i, j, k = _triples(len(pts))
-    normals = np.cross(pts[j] - pts[i], pts[k] - pts[i])
-    size = np.linalg.norm(normals, axis=1)
-    keep = size > eps
-    normals = normals[keep] / size[keep, None]
-    heights = (pts @ normals.T) - np.einsum("ij,ij->i", pts[i[keep]], normals)
-    faces: dict[frozenset[int], np.ndarray] = {}
-    for col, normal in enumerate(normals):
-        h = heights[:, col]
-        for sign in (1.0, -1.0):
-            if np.all(sign * h <= eps):
-                on_plane = frozenset(np.flatnonzero(np.abs(h) <= eps).tolist())
-                faces.setdefault(on_plane, sign * normal)
-    return [_convex_polygon(pts, sorted(idx), normal, eps) for idx, normal in faces.items()]
-
-
-def _hull_points(points: np.ndarray) -> np.ndarray:
-    """``(k, 3)`` ``points`` as :func:`convex_hull_polygons` works on them: as they
-    are when they and their differences lie in the band, else moved to the first
-    point and scaled by a power of two, which leaves the hull's faces as they
-    were and keeps the cross products of huge or tiny points in range.
-
-    Raises:
-        DLFLError: a point, or a difference of two, is not finite.
-    """
-    pts = np.asarray(points, dtype=np.float64)
-    framed = shifted_in_range(pts)
-    # before LAPACK: it prints its own complaint about NaN to stderr
-    if not (np.isfinite(pts).all() and np.isfinite(framed).all()):
-        raise DLFLError("a convex hull needs finite points whose differences are finite; "
-                        "these overflow (a smaller extrude or scale keeps them in range)")
-    return framed
-
-
-def _triples(n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """All index triples ``i < j < k`` below ``n``, as three ``(C(n, 3),)`` arrays."""
-    grid = np.array(np.meshgrid(np.arange(n), np.arange(n), np.arange(n), indexing="ij"))
-    i, j, k = grid.reshape(3, -1)
-    keep = (i < j) & (j < k)
-    return i[keep], j[keep], k[keep]
-
-
-def _convex_polygon(pts: np.ndarray, idx: list[int], normal: np.ndarray, eps: float) -> list[int]:
-    """The corners of the convex polygon of ``pts[idx]`` (a plane with ``normal``),
-    counter-clockwise about ``normal``, collinear points dropped (monotone chain)."""
-    u = np.cross(normal, [1.0, 0.0, 0.0])
-    if np.linalg.norm(u) < 0.5:
-        u = np.cross(normal, [0.0, 1.0, 0.0])
-    u /= np.linalg.norm(u)
-    v = np.cross(normal, u)
-    flat = sorted((float(pts[p] @ u), float(pts[p] @ v), p) for p in idx)
-
-    def half(order: list[tuple[float, float, int]]) -> list[tuple[float, float, int]]:
-        chain: list[tuple[float, float, int]] = []
-        for q in order:
-            while len(chain) >= 2 and _turn(chain[-2], chain[-1], q) <= eps:
-                chain.pop()
-            chain.append(q)
-        return chain[:-1]
-
-    return [p for _, _, p in half(flat) + half(flat[::-1])]
-
-
-def _turn(a: tuple[float, float, int], b: tuple[float, float, int],
-          c: tuple[float, float, int]) -> float:
-    return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
-
-
 def add_polyhedron(mesh: Mesh, points: np.ndarray, polygons: list[list[int]]) -> list[int]:
     """Add a closed genus-0 polyhedron to ``mesh`` with the minimal operators only.
 
@@ -686,7 +600,7 @@ def add_polyhedron(mesh: Mesh, points: np.ndarray, polygons: list[list[int]]) ->
     Args:
         points: ``(k, 3)`` positions; every point must be used by a polygon.
         polygons: point indices per face, counter-clockwise seen from outside,
-            forming a closed sphere-like surface (as :func:`convex_hull_polygons`).
+            forming a closed sphere-like surface (as :func:`.hull.hull_polygons`).
 
     Returns:
         The new face id of each polygon, in order.
@@ -756,7 +670,8 @@ def multi_face_handle(mesh: Mesh, faces: list[int], scale: float = 1.0,
 
     Each face's vertices are pushed ``extrude`` along its normal (coincident
     points kept once), scaled by ``|scale|`` about their centroid (unless 0 or
-    1), and their convex hull (coplanar facets merged) is added, reversed when
+    1), and their convex hull (:func:`.hull.hull_polygons`: coplanar facets
+    merged, points on hull edges kept as corners) is added, reversed when
     the first face's normal points away from the hull's centroid. Each selected
     face is joined (closest corners, :func:`connect_faces`) to the hull face
     parallel to it and facing it. Cube faces 0, 2, 4: 20/42/20, genus 2.
@@ -767,8 +682,10 @@ def multi_face_handle(mesh: Mesh, faces: list[int], scale: float = 1.0,
     Raises:
         DLFLError: fewer than two faces, an entry that is not an id, a repeated
             or gone face, a face of fewer than 3 corners, ``scale`` or ``extrude``
-            not a finite number, points all in one plane, or a face with no hull
-            face facing it (TopMod skipped it silently). The mesh is unchanged.
+            not a finite number, points all in one plane or too nearly coplanar for
+            their hull to close up, a point inside the hull (or one of its faces),
+            or a face with no hull face facing it (TopMod skipped it silently).
+            The mesh is unchanged.
     """
     faces = id_list(faces, "faces")
     scale = finite_number(scale, "scale")
@@ -776,12 +693,12 @@ def multi_face_handle(mesh: Mesh, faces: list[int], scale: float = 1.0,
     _check_handle_faces(mesh, faces)
     normals = [polygon_normal(face_points(mesh, f)) for f in faces]
     points = _hub_points(mesh, faces, normals, extrude, scale)
-    polygons = convex_hull_polygons(points)
+    polygons = hull_polygons(points)
     # quarters: the difference of two huge centroids cannot overflow
     outward = centroid(face_points(mesh, faces[0])) * 0.25 - centroid(points) * 0.25
     if float(normals[0] @ outward) > 0:
         polygons = [poly[::-1] for poly in polygons]
-    _check_closed_hull(polygons, len(points))
+    _check_every_point_used(polygons, len(points))
     partner = _facing_polygons(points, polygons, faces, normals)
     first = mesh.next_ids()[1]
     hull_faces = add_polyhedron(mesh, points, polygons)
@@ -791,28 +708,17 @@ def multi_face_handle(mesh: Mesh, faces: list[int], scale: float = 1.0,
     return _new_edges(mesh, first)
 
 
-def _check_closed_hull(polygons: list[list[int]], count: int) -> None:
-    """Refuse a hull that :func:`add_polyhedron` cannot build: one that is not a
-    closed sphere over all ``count`` points, with one fan around each.
-
-    Nearly coplanar points can give hull facets that do not close up, which
-    would otherwise surface part-way through the hub's construction.
+def _check_every_point_used(polygons: list[list[int]], count: int) -> None:
+    """Refuse a hub hull that leaves out one of its ``count`` points (one inside the
+    hull or inside a hull face): its face would lose a corner to the hub.
 
     Raises:
-        DLFLError: a side without its reverse, a repeated side, an unused point,
-            a point with two fans, or an Euler characteristic other than 2.
+        DLFLError: naming the first point no polygon uses.
     """
-    sides = [(a, b) for poly in polygons for a, b in zip(poly, poly[1:] + poly[:1], strict=True)]
-    unique = set(sides)
-    closed = len(unique) == len(sides) and all((b, a) in unique for a, b in sides)
-    degree: dict[int, int] = {}
-    for a, _ in sides:
-        degree[a] = degree.get(a, 0) + 1
-    one_fan = closed and all(len(ring) == degree[p] for p, ring in _rotations(polygons).items())
-    euler = count - len(sides) // 2 + len(polygons)
-    if not (one_fan and len(degree) == count and euler == 2):
-        raise DLFLError("the hub's convex hull does not close up (its points are too nearly "
-                        "coplanar); try another extrude or scale")
+    unused = sorted(set(range(count)) - {p for poly in polygons for p in poly})
+    if unused:
+        raise DLFLError(f"hub point {unused[0]} lies inside the hub's convex hull (or "
+                        "inside one of its faces); try another extrude or scale")
 
 
 def _check_handle_faces(mesh: Mesh, faces: list[int]) -> None:
@@ -828,11 +734,11 @@ def _check_handle_faces(mesh: Mesh, faces: list[int]) -> None:
 def _hub_points(mesh: Mesh, faces: list[int], normals: list[np.ndarray], extrude: float,
                 scale: float) -> np.ndarray:
     """``(k, 3)`` the pushed face points, coincident ones (within 1e-2) kept once;
-    points beyond the float range come out inf, which :func:`convex_hull_polygons`
+    points beyond the float range come out inf, which :func:`.hull.hull_polygons`
     refuses."""
     kept: list[np.ndarray] = []
     for f, normal in zip(faces, normals, strict=True):
-        with np.errstate(over="ignore"):  # refused by convex_hull_polygons
+        with np.errstate(over="ignore"):  # refused by hull_polygons
             pushed = face_points(mesh, f) + extrude * normal
         for p in pushed:
             if all(_apart(p, q) for q in kept):

@@ -11,18 +11,18 @@ each stage in one vectorized pass over corner arrays (see :mod:`.rind`).
 
 from __future__ import annotations
 
-import functools
 from dataclasses import dataclass
 
 import numpy as np
 
 from ._checks import first_not_finite, positive_number
-from ._vectors import in_range, lengths, shifted_in_range, together_in_range
+from ._vectors import in_range, lengths, together_in_range
 from ._vectors import unit as _unit
 from .analysis import face_centroids
 from .arrays import MeshArrays, mesh_arrays
 from .build import from_corner_arrays
 from .errors import DLFLError
+from .hull import hull_polygons
 from .mesh import Mesh
 from .rind import shell_arrays
 
@@ -409,70 +409,11 @@ def _ring_starts(a: MeshArrays, axis: np.ndarray) -> np.ndarray:
     return _unit(start)
 
 
-def convex_hull_faces(points: np.ndarray, tolerance: float = 1e-9) -> list[list[int]]:
-    """Faces of the convex hull of ``(n, 3)`` points, coplanar triangles merged.
-
-    Brute force over all triples (meant for the few dozen points of a joint):
-    a triple's plane is a hull face when no point lies outside it; the face is
-    every point on the plane, ordered counter-clockwise seen from outside.
-
-    Raises:
-        DLFLError: fewer than four points, a difference of two beyond the float
-            range, or all of them coplanar.
-    """
-    n = len(points)
-    if n < 4:
-        raise DLFLError(f"a convex hull needs at least four points, got {n}")
-    # huge or tiny points moved and scaled: the hull's faces stay as they were
-    points = shifted_in_range(np.asarray(points, dtype=np.float64))
-    if not np.isfinite(points).all():
-        raise DLFLError("a convex hull needs points whose differences are finite; these "
-                        "overflow")
-    scale = float(np.ptp(points, axis=0).max()) or 1.0
-    i, j, k = _triple_indices(n)
-    normals = np.cross(points[j] - points[i], points[k] - points[i])
-    good = np.linalg.norm(normals, axis=1) > 1e-12 * scale * scale
-    normals = _unit(normals[good])
-    dist = points @ normals.T - np.einsum("fk,fk->f", points[i[good]], normals)
-    eps = tolerance * scale
-    outward = (dist <= eps).all(axis=0)
-    support = outward | (dist >= -eps).all(axis=0)
-    # one face per distinct set of points on a supporting plane
-    on_plane = (np.abs(dist[:, support]) <= eps).T
-    _, first = np.unique(np.packbits(on_plane, axis=1), axis=0, return_index=True)
-    sign = np.where(outward[support], 1.0, -1.0)[:, None]
-    face_normals = (normals[support] * sign)[first]
-    members = [np.flatnonzero(row).tolist() for row in on_plane[first]]
-    if not members or any(len(m) == n for m in members):
-        raise DLFLError("the points are all coplanar; they have no convex hull")
-    return [_ccw(points, m, nrm) for m, nrm in zip(members, face_normals, strict=True)]
-
-
-@functools.lru_cache(maxsize=64)
-def _triple_indices(n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Every ``i < j < k`` below ``n``, as three index arrays."""
-    i, j, k = np.array(_triples(n)).T
-    return i, j, k
-
-
-def _triples(n: int) -> list[tuple[int, int, int]]:
-    return [(a, b, c) for a in range(n) for b in range(a + 1, n) for c in range(b + 1, n)]
-
-
-def _ccw(points: np.ndarray, members: list[int], normal: np.ndarray) -> list[int]:
-    """``members`` ordered counter-clockwise about ``normal`` around their centroid."""
-    rel = points[members] - points[members].mean(axis=0)
-    u = rel[0]
-    w = (normal[1] * u[2] - normal[2] * u[1], normal[2] * u[0] - normal[0] * u[2],
-         normal[0] * u[1] - normal[1] * u[0])  # normal x u, without np.cross's overhead
-    angle = np.arctan2(rel @ w, rel @ u)
-    return [members[m] for m in np.argsort(angle)]
-
-
 def columns(mesh: Mesh, thickness: float = 0.25, segments: int = 4) -> None:
     """TopMod's ``makeWireframeWithColumns(t=0.25, segs=4)``: a tube of ``segments``
     quads around every edge, joined at every vertex by the convex hull of the
-    tube ends (coplanar hull triangles merged, as TopMod's ``edgeCleanup``).
+    tube ends (:func:`.hull.hull_polygons`: coplanar hull triangles merged, as
+    TopMod's ``edgeCleanup``).
 
     Rings as :func:`column_rings` (pi, not TopMod's 3.15); the tube of an edge
     pairs its two rings at their closest rotation (TopMod's ``connectFaces`` with
@@ -524,7 +465,7 @@ def _joint(points: np.ndarray, starts: list[int], segments: int) -> list[list[in
     if len(starts) == 1:
         return [list(range(starts[0] + segments - 1, starts[0] - 1, -1))]
     members = np.concatenate([np.arange(s, s + segments) for s in starts])
-    faces = [[int(members[i]) for i in f] for f in convex_hull_faces(points[members])]
+    faces = [[int(members[i]) for i in f] for f in hull_polygons(points[members])]
     caps = {frozenset(range(s, s + segments)) for s in starts}
     joint = [f for f in faces if frozenset(f) not in caps]
     if len(faces) - len(joint) != len(starts):

@@ -3,8 +3,9 @@
 ``rind``, ``wireframe`` and ``column`` are the thesis appendix's commands.
 The extras are livemod additions, named after TopMod's menu entries (its
 Python module had ``sierpinsky`` and ``menger`` commented out): ``sierpinsky()``,
-``menger([thickness])``, ``meshsmooth()``, ``planarize()``, ``spheralize()`` and
-``crust(thickness[, uniform])``. Every one rebuilds or reshapes the current
+``menger([thickness])``, ``meshsmooth()``, ``planarize()``, ``spheralize()``,
+``crust(thickness[, uniform])``, ``convexHull()`` and ``dualConvexHull()``
+(TopMod's sculpting menu). Every one rebuilds or reshapes the current
 object; those that rebuild it give all its elements fresh ids.
 """
 
@@ -13,7 +14,7 @@ from __future__ import annotations
 from collections.abc import Iterable
 from typing import Any
 
-from .. import geometry, sponge
+from .. import geometry, hull, sponge
 from .. import rind as _rind
 from .. import sierpinsky as _sierpinsky
 from .. import wireframe as _wire
@@ -23,7 +24,7 @@ from ._base import mesh, modeling_command
 
 __all__ = [
     "rind", "wireframe", "column", "crust", "sierpinsky", "menger", "meshsmooth",
-    "planarize", "spheralize",
+    "planarize", "spheralize", "convexHull", "dualConvexHull",
 ]
 
 
@@ -98,9 +99,20 @@ def sierpinsky() -> None:
 
 
 @modeling_command
-def menger(thickness: float = 0.67) -> None:
-    """``menger([thickness])``: TopMod's Menger sponge remeshing (cube 64/156/84)."""
-    sponge.sponge(mesh(), finite_number(thickness, "thickness"))
+def menger(thickness: float | None = None) -> float:
+    """``menger([thickness])``: TopMod's Menger sponge remeshing (cube 64/156/84).
+
+    Without ``thickness``, TopMod's 0.67, scaled down on meshes whose inner shell
+    collapses sooner (see :func:`livemod.dlfl.sponge.sponge`).
+
+    Returns:
+        The thickness used (TopMod returned nothing).
+
+    Raises:
+        DLFLError: see :func:`livemod.dlfl.sponge.sponge`; the mesh is unchanged.
+    """
+    given = None if thickness is None else finite_number(thickness, "thickness")
+    return sponge.sponge(mesh(), given)
 
 
 @modeling_command
@@ -119,3 +131,28 @@ def planarize() -> None:
 def spheralize() -> None:
     """``spheralize()``: move every vertex to the unit sphere about the centroid."""
     geometry.spheralize(mesh())
+
+
+@modeling_command
+def convexHull() -> None:
+    """``convexHull()``: TopMod's createConvexHull; the object becomes the convex hull
+    of its vertices, in triangles (coplanar facets merged, then each cut into a fan
+    from its last corner). Cube: 8/18/12.
+
+    Raises:
+        DLFLError: fewer than 4 vertices, or all of them in one plane.
+    """
+    hull.convex_hull(mesh())
+
+
+@modeling_command
+def dualConvexHull() -> None:
+    """``dualConvexHull()``: the polar dual of the object's convex hull (coplanar
+    facets merged): one face per hull vertex, one vertex per hull face. Cube: an
+    octahedron, 6/12/8 (TopMod's createDualConvexHull cut the bounding box and gave
+    the cube back).
+
+    Raises:
+        DLFLError: fewer than 4 vertices, or all of them in one plane.
+    """
+    hull.dual_convex_hull(mesh())

@@ -1,0 +1,468 @@
+"""Convex hulls of point sets, and TopMod's convex-hull sculpting operations.
+
+:func:`hull_polygons` is livemod's one convex-hull routine: the joints of
+:func:`.wireframe.columns`, the hub of :func:`.connect.multi_face_handle` and
+:func:`convex_hull` / :func:`dual_convex_hull` all use it. It wraps the hull
+face by face (gift wrapping: each new face is found by turning the plane of a
+known face about one of its sides, one pass over the points per hull edge), so
+it takes O(points x edges) time, and coplanar facets come out merged as one
+convex polygon.
+
+**Coplanar rule** (the same for every caller):
+
+* a point on the hull's surface is a polygon vertex when it is a corner of a
+  face *or lies on a hull edge*; a point on an edge is then a vertex of both
+  faces beside that edge, so the faces still pair side for side and every
+  point on the hull's edges is used;
+* a point inside a face (off its boundary), a point inside the hull, and a
+  repeat of a point that comes earlier in the input are vertices of no polygon.
+
+"On" means within ``tolerance`` times the points' largest extent (along an
+axis), so the faces do not depend on the scale of the points.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import NamedTuple
+
+import numpy as np
+
+from ._vectors import range_exponent, shifted_in_range
+from .build import from_polygons
+from .errors import DLFLError
+from .mesh import Mesh
+
+__all__ = ["hull_polygons", "hull_triangles", "convex_hull", "dual_convex_hull"]
+
+
+class _Hull(NamedTuple):
+    """A wrapped hull. ``points`` are the input moved and scaled by a power of two
+    when it leaves the float band: the input is ``origin + points * 2**exponent``."""
+
+    points: np.ndarray  # (n, 3) float
+    origin: np.ndarray  # (3,) float
+    exponent: int
+    eps: float  # the absolute tolerance in ``points``' units
+    polygons: list[list[int]]
+    normals: list[np.ndarray]  # (3,) outward unit normal of each polygon
+
+
+def hull_polygons(points: np.ndarray, tolerance: float = 1e-9) -> list[list[int]]:
+    """Faces of the convex hull of ``(n, 3)`` points, coplanar facets merged.
+
+    Which points are polygon vertices follows the module's coplanar rule: the
+    corners and the points on hull edges are, points inside a face or inside
+    the hull and repeated points are not.
+
+    Args:
+        points: ``(n, 3)`` float positions, at least 4 and not all in one plane.
+        tolerance: how far (times the points' largest extent) a point may be from
+            a plane, line or point and still count as on it.
+
+    Returns:
+        One list of point indices per face, counter-clockwise seen from outside;
+        together a closed genus-0 surface.
+
+    Raises:
+        DLFLError: fewer than 4 points, a point or a difference of two that is
+            not finite, all points in one plane, or faces that do not close up
+            (points too nearly coplanar for the tolerance).
+    """
+    return _wrap_hull(points, tolerance).polygons
+
+
+def hull_triangles(points: np.ndarray, tolerance: float = 1e-9) -> list[list[int]]:
+    """:func:`hull_polygons` cut into triangles, none of them flat.
+
+    A face without points on its edges becomes a fan from its last corner. A
+    face with points on its edges is cut ear by ear instead: each time at the
+    first corner that juts out (is not in line with its two neighbours) next to
+    one that does not, which never leaves a flat triangle.
+
+    Returns:
+        ``[i, j, k]`` point indices per triangle, counter-clockwise seen from
+        outside, face by face in :func:`hull_polygons` order.
+
+    Raises:
+        DLFLError: as :func:`hull_polygons`.
+    """
+    hull = _wrap_hull(points, tolerance)
+    return [t for poly in hull.polygons for t in _ears(hull.points, poly, hull.eps)]
+
+
+def convex_hull(mesh: Mesh) -> None:
+    """TopMod's ``createConvexHull()``: replace ``mesh`` by the convex hull of its
+    vertices, in triangles (:func:`hull_triangles`; coplanar facets are merged
+    first, then each face is cut into a fan from its last corner). Cube:
+    8/18/12, 12 triangles, as TopMod.
+
+    Vertices that are hull corners or lie on hull edges are kept at their
+    positions (in id order); the others are dropped. The mesh is rebuilt (fresh
+    ids). TopMod built the hull incrementally, so which coplanar points it kept,
+    and how it split coplanar faces, depended on the vertex order.
+
+    Raises:
+        DLFLError: fewer than 4 vertices, a position difference beyond the float
+            range, or all vertices in one plane; the mesh is unchanged.
+    """
+    hull = _wrap_hull(mesh.positions_view())
+    triangles = [t for poly in hull.polygons for t in _ears(hull.points, poly, hull.eps)]
+    _rebuild(mesh, mesh.positions_view(), triangles)
+
+
+def dual_convex_hull(mesh: Mesh) -> None:
+    """Replace ``mesh`` by the polar dual of the convex hull of its vertices.
+
+    The hull's coplanar facets are merged first (:func:`hull_polygons`), so the
+    dual has one vertex per hull face and one face per hull vertex (corners and
+    points on edges): a cube gives an octahedron, 6/12/8. Hull face ``f`` with
+    outward unit normal ``n`` at distance ``d`` from ``c``, the centroid of the
+    hull's vertices, becomes the vertex ``c + r**2 n / d``, ``r`` the root mean
+    square distance of the hull's vertices from ``c``; a hull vertex at distance
+    ``r`` lies on its dual face. The faces are planar and the result is convex.
+    The mesh is rebuilt (fresh ids).
+
+    livemod differs here (TopMod's ``createDualConvexHull()``): TopMod cut the
+    bounding box by the plane through each hull vertex along its vertex normal,
+    which for a cube cuts nothing and gives back the box (8/12/6).
+
+    Raises:
+        DLFLError: as :func:`convex_hull`, or a dual vertex beyond the float
+            range (a very flat hull); the mesh is unchanged.
+    """
+    hull = _wrap_hull(mesh.positions_view())
+    _rebuild(mesh, _polar_points(hull), _dual_polygons(hull.polygons))
+
+
+# -- the wrapping ------------------------------------------------------------------
+
+
+def _wrap_hull(points: np.ndarray, tolerance: float = 1e-9) -> _Hull:
+    """The hull of ``(n, 3)`` ``points``; see :func:`hull_polygons`."""
+    pts, origin, exponent = _frame(points)
+    eps = tolerance * float(np.ptp(pts, axis=0).max())
+    _check_not_flat(pts, eps)
+    first, normal = _first_face(pts, eps)
+    polygons, normals = [first], [normal]
+    claimed = set(_sides(first))
+    todo = [0]
+    while todo:
+        f = todo.pop()
+        for u, v in _sides(polygons[f]):
+            if (v, u) in claimed:
+                continue
+            poly, normal = _face_beyond(pts, u, v, normals[f], eps)
+            if (v, u) not in _sides(poly) or len(polygons) > 2 * len(pts):
+                raise _not_closed()
+            polygons.append(poly)
+            normals.append(normal)
+            claimed.update(_sides(poly))
+            todo.append(len(polygons) - 1)
+    _check_closed(polygons)
+    return _Hull(pts, origin, exponent, eps, polygons, normals)
+
+
+def _frame(points: np.ndarray) -> tuple[np.ndarray, np.ndarray, int]:
+    """``(framed, origin, exponent)``: ``(n, 3)`` ``points`` as the hull works on
+    them (:func:`.shifted_in_range`), with ``points = origin + framed * 2**exponent``.
+
+    Raises:
+        DLFLError: not ``(n, 3)``, fewer than 4 points, or a point or a difference
+            of two that is not finite.
+    """
+    pts = np.asarray(points, dtype=np.float64)
+    if pts.ndim != 2 or pts.shape[1] != 3:
+        raise DLFLError(f"a convex hull needs (n, 3) points, got shape {pts.shape}")
+    if len(pts) < 4:
+        raise DLFLError(f"a convex hull needs at least 4 points, got {len(pts)}")
+    framed = shifted_in_range(pts)
+    # before LAPACK: it prints its own complaint about NaN to stderr
+    if not (np.isfinite(pts).all() and np.isfinite(framed).all()):
+        raise DLFLError("a convex hull needs finite points whose differences are finite; "
+                        "these overflow")
+    if framed is pts:
+        return pts, np.zeros(3), 0
+    return framed, pts[0], range_exponent(pts - pts[0])
+
+
+def _check_not_flat(pts: np.ndarray, eps: float) -> None:
+    """Refuse ``(n, 3)`` points that all lie within ``eps`` of one plane."""
+    centred = pts - pts.mean(axis=0)
+    normal = np.linalg.svd(centred, full_matrices=False)[2][-1]
+    if not np.abs(centred @ normal).max() > eps:
+        raise DLFLError("a convex hull needs at least 4 points not all in one plane; "
+                        f"these {len(pts)} points are coplanar")
+
+
+def _not_closed() -> DLFLError:
+    """The error for faces that do not make a closed surface."""
+    return DLFLError("the convex hull does not close up (its points are too nearly "
+                     "coplanar for the tolerance)")
+
+
+def _sides(poly: list[int]) -> list[tuple[int, int]]:
+    """The directed sides ``(a, b)`` of a polygon, in order."""
+    return list(zip(poly, poly[1:] + poly[:1], strict=True))
+
+
+def _first_face(pts: np.ndarray, eps: float) -> tuple[list[int], np.ndarray]:
+    """``(polygon, outward unit normal)`` of one hull face: the plane ``x = min``
+    turned about a line through the lowest point until it rests on the hull,
+    then, if it touches only along a line, about that line."""
+    a = int(np.lexsort(pts.T[::-1])[0])  # lowest x, then y, then z
+    normal = _turned_plane(pts, a, np.array([0.0, 0.0, 1.0]), np.array([-1.0, 0.0, 0.0]), eps)
+    poly = _face_polygon(pts, a, normal, eps)
+    if len(poly) < 3:
+        b = poly[-1] if poly[-1] != a else poly[0]
+        axis = _unit3(pts[b] - pts[a])
+        normal = _turned_plane(pts, a, axis, normal, eps)
+        poly = _face_polygon(pts, a, normal, eps)
+    if len(poly) < 3:
+        raise _not_closed()
+    return poly, normal
+
+
+def _face_beyond(pts: np.ndarray, u: int, v: int, normal: np.ndarray, eps: float
+                 ) -> tuple[list[int], np.ndarray]:
+    """``(polygon, outward unit normal)`` of the hull face across side ``u -> v``
+    of the face with outward unit ``normal``."""
+    axis = _unit3(pts[v] - pts[u])
+    beyond = _turned_plane(pts, u, axis, normal, eps)
+    return _face_polygon(pts, u, beyond, eps), beyond
+
+
+def _turned_plane(pts: np.ndarray, a: int, axis: np.ndarray, normal: np.ndarray,
+                  eps: float) -> np.ndarray:
+    """``(3,)`` outward unit normal of the supporting plane reached by turning the
+    supporting plane with ``normal`` about the line through point ``a`` along the
+    unit ``axis`` (the plane's inner side ahead, ``normal x axis``, turning down).
+
+    The point seen at the widest angle gives the plane; while some point lies
+    above it (the angle of a point near the line is inexact), the plane is
+    turned on to the highest one.
+    """
+    w = pts - pts[a]
+    x, y = w @ _cross3(normal, axis), w @ normal
+    off_line = np.hypot(x, y) > eps
+    angle = np.where(off_line, np.arctan2(np.maximum(-y, 0.0), x), -1.0)
+    best = w[int(np.argmax(angle))]
+    for _ in range(len(pts)):
+        plane = _unit3(_cross3(best, axis))
+        height = w @ plane
+        top = int(np.argmax(height))
+        if height[top] <= eps:
+            return plane
+        best = w[top]
+    raise _not_closed()
+
+
+def _unit3(v: np.ndarray) -> np.ndarray:
+    """``(3,)`` ``v`` scaled to length 1 (``v`` must not be zero)."""
+    return v / np.sqrt(v @ v)
+
+
+def _cross3(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """``a x b`` of two ``(3,)`` vectors, without :func:`numpy.cross`'s overhead."""
+    return np.array([a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
+                     a[0] * b[1] - a[1] * b[0]])
+
+
+# -- one face's polygon ----------------------------------------------------------------
+
+
+def _face_polygon(pts: np.ndarray, a: int, normal: np.ndarray, eps: float) -> list[int]:
+    """The point indices of the hull face in the plane through point ``a`` with
+    ``normal``, counter-clockwise about it, by the coplanar rule: its strict
+    corners and the points on its sides, repeats and inner points left out."""
+    members = np.flatnonzero(np.abs((pts - pts[a]) @ normal) <= eps)
+    if len(members) == 3:  # most faces: a triangle, unless its points are in line
+        p, q, r = members.tolist()
+        if _juts(pts, p, q, r, eps):
+            turn = _cross3(pts[q] - pts[p], pts[r] - pts[p]) @ normal
+            return [p, q, r] if turn > 0 else [p, r, q]
+    u = _cross3(normal, np.array([1.0, 0.0, 0.0]))
+    if u @ u < 0.25:
+        u = _cross3(normal, np.array([0.0, 1.0, 0.0]))
+    u = _unit3(u)
+    xy = (pts[members] @ np.stack([u, _cross3(normal, u)], axis=1)).tolist()
+    order = _first_copies(xy, sorted(range(len(xy)), key=lambda i: (*xy[i], i)), eps)
+    corners = _strict_corners(xy, order, eps)
+    if len(corners) < 3 or len(corners) == len(order):  # no point left for the sides
+        return members[corners].tolist()
+    return members[_with_side_points(np.array(xy), np.array(order), corners, eps)].tolist()
+
+
+def _first_copies(xy: list[list[float]], order: list[int], eps: float) -> list[int]:
+    """``order`` (sorted by position) with each cluster of points within ``eps`` of
+    each other kept once, as its lowest index (of ascending point indices)."""
+    kept: list[int] = []
+    for i in order:
+        # the kept points within eps along x are the last few
+        j = len(kept) - 1
+        while j >= 0 and xy[kept[j]][0] >= xy[i][0] - eps and math.dist(xy[i], xy[kept[j]]) > eps:
+            j -= 1
+        if j >= 0 and xy[kept[j]][0] >= xy[i][0] - eps:
+            kept[j] = min(kept[j], i)
+        else:
+            kept.append(i)
+    return kept
+
+
+def _strict_corners(xy: list[list[float]], order: list[int], eps: float) -> list[int]:
+    """Indices (into the ``k`` points ``xy``, taken in the sorted ``order``) of the
+    corners of their convex polygon, counter-clockwise (Andrew's monotone chain;
+    a point within ``eps`` of the line through its neighbours is no corner)."""
+    def chain(seq: list[int]) -> list[int]:
+        out: list[int] = []
+        for q in seq:
+            while len(out) >= 2 and not _juts2(xy[out[-2]], xy[out[-1]], xy[q], eps):
+                out.pop()
+            out.append(q)
+        return out[:-1]
+
+    ring = chain(order) + chain(order[::-1])
+    # the sort's ties can leave a corner in line with its neighbours: drop it
+    k = 0
+    while len(ring) > 3 and k < len(ring):
+        if _juts2(xy[ring[k - 1]], xy[ring[k]], xy[ring[(k + 1) % len(ring)]], eps):
+            k += 1
+        else:
+            del ring[k]
+            k = 0
+    return ring
+
+
+def _juts2(a: list[float], b: list[float], c: list[float], eps: float) -> bool:
+    """Whether 2D point ``b`` lies more than ``eps`` to the right of the line
+    ``a -> c`` (a left turn ``a, b, c`` that is no straight line)."""
+    abx, aby, acx, acy = b[0] - a[0], b[1] - a[1], c[0] - a[0], c[1] - a[1]
+    return abx * acy - aby * acx > eps * math.hypot(acx, acy)
+
+
+def _juts(pts: np.ndarray, a: int, b: int, c: int, eps: float) -> bool:
+    """Whether 3D point ``b`` lies more than ``eps`` off the line through ``a, c``."""
+    ab, ac = pts[b] - pts[a], pts[c] - pts[a]
+    twice_area = _cross3(ab, ac)
+    return float(np.sqrt(twice_area @ twice_area)) > eps * float(np.sqrt(ac @ ac))
+
+
+def _with_side_points(xy: np.ndarray, candidates: np.ndarray, corners: list[int],
+                      eps: float) -> list[int]:
+    """``corners`` with, after each, the ``candidates`` lying on its side to the
+    next corner (within ``eps``), in order along the side."""
+    start, end = xy[corners], xy[np.roll(corners, -1)]
+    side = end - start  # (S, 2), then (S, K) for every side and candidate below
+    length = np.hypot(side[:, 0], side[:, 1])[:, None]
+    rel = xy[candidates][None, :, :] - start[:, None, :]
+    along = (rel[..., 0] * side[:, :1] + rel[..., 1] * side[:, 1:]) / length
+    off = np.abs(rel[..., 0] * side[:, 1:] - rel[..., 1] * side[:, :1]) / length
+    on = (off <= eps) & (along > eps) & (along < length - eps)
+    ring: list[int] = []
+    for i, a in enumerate(corners):
+        ring.append(a)
+        if on[i].any():
+            ring.extend(candidates[on[i]][np.argsort(along[i, on[i]])].tolist())
+    return ring
+
+
+# -- checks ------------------------------------------------------------------------
+
+
+def _check_closed(polygons: list[list[int]]) -> None:
+    """Refuse polygons that are not a closed genus-0 surface with one fan per vertex.
+
+    Raises:
+        DLFLError: a repeated side, a side without its reverse, a vertex with two
+            fans, or an Euler characteristic other than 2.
+    """
+    sides = [s for poly in polygons for s in _sides(poly)]
+    unique = set(sides)
+    if len(unique) != len(sides) or any((b, a) not in unique for a, b in sides):
+        raise _not_closed()
+    rings = _vertex_face_rings(polygons)
+    corners = sum(len(ring) for ring in rings.values())
+    euler = len(rings) - len(sides) // 2 + len(polygons)
+    if corners != len(sides) or euler != 2:
+        raise _not_closed()
+
+
+def _vertex_face_rings(polygons: list[list[int]]) -> dict[int, list[int]]:
+    """For each vertex (ascending), the polygons around it counter-clockwise seen
+    from outside: after polygon ``f`` comes the one across the side from the vertex
+    to its predecessor in ``f``. Needs every side paired with its reverse; a
+    vertex with two fans gets only the first."""
+    side_face: dict[tuple[int, int], int] = {}
+    before: dict[tuple[int, int], int] = {}
+    for f, poly in enumerate(polygons):
+        for i, p in enumerate(poly):
+            side_face[(p, poly[(i + 1) % len(poly)])] = f
+            before[(f, p)] = poly[i - 1]
+    start: dict[int, int] = {}
+    for (p, _), f in side_face.items():
+        start.setdefault(p, f)
+    rings = {}
+    for p in sorted(start):
+        ring, f = [start[p]], side_face[(p, before[(start[p], p)])]
+        while f != start[p]:
+            ring.append(f)
+            f = side_face[(p, before[(f, p)])]
+        rings[p] = ring
+    return rings
+
+
+# -- triangles, duals and rebuilding -------------------------------------------------------
+
+
+def _ears(pts: np.ndarray, poly: list[int], eps: float) -> list[list[int]]:
+    """Triangles of the convex polygon ``poly`` of ``(n, 3)`` ``pts``; see
+    :func:`hull_triangles` for the rule."""
+    ring = list(poly)
+    juts = [_juts(pts, ring[i - 1], ring[i], ring[(i + 1) % len(ring)], eps)
+            for i in range(len(ring))]
+    triangles = []
+    while len(ring) > 3:
+        k = len(ring)
+        i = next((i for i in range(k) if juts[i] and not (juts[i - 1] and juts[(i + 1) % k])), 0)
+        triangles.append([ring[i - 1], ring[i], ring[(i + 1) % k]])
+        del ring[i], juts[i]
+        for j in (i - 1, i % len(ring)):  # the two new neighbours of the cut
+            juts[j] = _juts(pts, ring[j - 1], ring[j], ring[(j + 1) % len(ring)], eps)
+    return [*triangles, ring]
+
+
+def _dual_polygons(polygons: list[list[int]]) -> list[list[int]]:
+    """One polygon per hull vertex (ascending): the indices of the hull polygons
+    around it, counter-clockwise seen from outside."""
+    return list(_vertex_face_rings(polygons).values())
+
+
+def _polar_points(hull: _Hull) -> np.ndarray:
+    """``(F, 3)`` the polar dual vertex of each hull polygon, in input coordinates;
+    see :func:`dual_convex_hull`.
+
+    Raises:
+        DLFLError: a dual vertex beyond the float range.
+    """
+    used = np.unique(np.concatenate(hull.polygons))
+    centre = hull.points[used].mean(axis=0)
+    radius2 = float(np.mean(np.sum((hull.points[used] - centre) ** 2, axis=1)))
+    normals = np.array(hull.normals)
+    distance = np.einsum("fk,fk->f", normals, hull.points[[p[0] for p in hull.polygons]] - centre)
+    with np.errstate(over="ignore", invalid="ignore"):  # refused just below
+        dual = np.ldexp(centre + normals * (radius2 / distance)[:, None], hull.exponent)
+        dual = hull.origin + dual
+    if not np.isfinite(dual).all():
+        raise DLFLError("the dual convex hull would put a vertex beyond the float range "
+                        "(the hull is too flat)")
+    return dual
+
+
+def _rebuild(mesh: Mesh, points: np.ndarray, polygons: list[list[int]]) -> None:
+    """Replace ``mesh`` by the polygons over the ``(n, 3)`` ``points`` they use
+    (in index order), with fresh ids."""
+    used = np.unique(np.concatenate(polygons))
+    index = np.full(len(points), -1, dtype=np.int64)
+    index[used] = np.arange(len(used))
+    faces = [index[poly].tolist() for poly in polygons]
+    mesh.replace_with(from_polygons(points[used], faces, first_ids=mesh.next_ids()))

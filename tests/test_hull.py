@@ -1,0 +1,304 @@
+"""Convex hulls: the coplanar rule, closed outward faces, TopMod's convex hull and
+its dual (exact counts, positions), and degenerate input refused without a change."""
+
+from __future__ import annotations
+
+import importlib
+import warnings
+
+import numpy as np
+import pytest
+
+from livemod.dlfl import (
+    DLFLError,
+    Mesh,
+    euler_characteristic,
+    face_size_histogram,
+    from_polygons,
+    mesh_arrays,
+    validate,
+)
+from livemod.dlfl.analysis import face_normals, face_points, polygon_normal
+from livemod.dlfl.shapes import cube, dodecahedron, grid, icosahedron, octahedron, torus
+from tests.meshes import assert_refused_quietly, assert_scales, point_sphere
+from tests.meshes import tetrahedron as unit_tetrahedron
+from tests.meshes import triangle as open_triangle
+
+# the module, not the ``hull`` names a star import might shadow
+hull = importlib.import_module("livemod.dlfl.hull")
+hull_polygons, hull_triangles = hull.hull_polygons, hull.hull_triangles
+convex_hull, dual_convex_hull = hull.convex_hull, hull.dual_convex_hull
+
+CORNERS = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)], float)
+
+
+def cycles(faces: list[list[int]]) -> list[tuple[int, ...]]:
+    """Faces as cycles that start at their smallest index, sorted."""
+    return sorted(tuple(f[f.index(min(f)):] + f[:f.index(min(f))]) for f in faces)
+
+
+def assert_closed_and_outward(points: np.ndarray, polygons: list[list[int]]) -> None:
+    """Each side is met once each way, V - E + F = 2, and every point lies on or
+    below the plane of every polygon, whose corners turn counter-clockwise."""
+    sides = [(a, b) for p in polygons for a, b in zip(p, p[1:] + p[:1], strict=True)]
+    assert len(set(sides)) == len(sides) and all((b, a) in set(sides) for a, b in sides)
+    used = {v for p in polygons for v in p}
+    assert len(used) - len(sides) // 2 + len(polygons) == 2
+    centre = points[sorted(used)].mean(axis=0)
+    for p in polygons:
+        q = points[p]
+        normal = polygon_normal(q)
+        assert normal @ (q[0] - centre) > 0  # outward
+        assert ((points - q[0]) @ normal <= 1e-9).all()
+
+
+def checked(mesh: Mesh) -> tuple[int, int, int]:
+    validate(mesh)
+    assert euler_characteristic(mesh) == 2
+    return mesh.counts()
+
+
+# -- hull_polygons and the coplanar rule ------------------------------------------------
+
+
+def test_the_cube_corners_give_six_outward_quads():
+    polygons = hull_polygons(CORNERS)
+    assert sorted(len(p) for p in polygons) == [4] * 6
+    assert_closed_and_outward(CORNERS, polygons)
+
+
+def test_a_point_on_a_hull_edge_is_a_corner_of_both_faces_beside_it():
+    points = np.concatenate([CORNERS, [[0.5, 1, 1]]])  # on the edge y = z = 1
+    polygons = hull_polygons(points)
+    assert sorted(len(p) for p in polygons) == [4, 4, 4, 4, 5, 5]
+    assert sum(8 in p for p in polygons) == 2
+    assert_closed_and_outward(points, polygons)
+
+
+def test_points_on_one_edge_follow_each_other_along_it():
+    along = [[0.5, 1, 1], [-0.5, 1, 1], [0.0, 1, 1]]
+    points = np.concatenate([CORNERS, along])
+    polygons = hull_polygons(points)
+    assert_closed_and_outward(points, polygons)
+    top = next(p for p in polygons if 8 in p and all(points[v][2] == 1 for v in p))
+    xs = [points[v][0] for v in top if points[v][1] == 1 and points[v][2] == 1]
+    assert xs in (sorted(xs), sorted(xs)[::-1]) and len(xs) == 5
+
+
+def test_points_inside_a_face_or_the_hull_are_left_out():
+    points = np.concatenate([CORNERS, [[0, 0, 0], [1, 0, 0], [0.2, -0.3, 1]]])
+    assert cycles(hull_polygons(points)) == cycles(hull_polygons(CORNERS))
+
+
+def test_a_repeated_point_is_left_out_for_the_earlier_one():
+    points = np.concatenate([CORNERS[7:], CORNERS, [[1, 1, 1 + 1e-12]]])  # 0 = 8 = 9
+    used = {v for p in hull_polygons(points) for v in p}
+    assert used == set(range(8))
+
+
+def test_every_edge_midpoint_of_the_cube_makes_six_octagons():
+    edges = [(a, b) for a in range(8) for b in range(a + 1, 8)
+             if np.abs(CORNERS[a] - CORNERS[b]).sum() == 2]
+    points = np.concatenate([CORNERS, [(CORNERS[a] + CORNERS[b]) / 2 for a, b in edges]])
+    polygons = hull_polygons(points)
+    assert sorted(len(p) for p in polygons) == [8] * 6
+    assert_closed_and_outward(points, polygons)
+
+
+def test_points_on_a_sphere_are_all_hull_vertices():
+    rng = np.random.default_rng(7)
+    points = rng.normal(size=(300, 3))
+    points /= np.linalg.norm(points, axis=1)[:, None]
+    polygons = hull_polygons(points)
+    assert len(polygons) == 2 * 300 - 4 and {v for p in polygons for v in p} == set(range(300))
+    assert_closed_and_outward(points, polygons)
+
+
+def test_points_inside_a_cloud_are_left_out():
+    rng = np.random.default_rng(3)
+    points = np.concatenate([CORNERS * 2, rng.uniform(-1.9, 1.9, size=(60, 3))])
+    assert cycles(hull_polygons(points)) == cycles(hull_polygons(CORNERS * 2))
+
+
+@pytest.mark.parametrize("scale", [1e-200, 1e200])
+def test_hull_polygons_do_not_depend_on_the_scale(scale):
+    points = mesh_arrays(cube()).positions
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert cycles(hull_polygons(points * scale)) == cycles(hull_polygons(points))
+
+
+def test_hull_polygons_do_not_depend_on_a_far_offset():
+    points = np.concatenate([CORNERS, [[0.5, 1, 1]]])
+    assert cycles(hull_polygons(points + 1e6)) == cycles(hull_polygons(points))
+
+
+@pytest.mark.parametrize(("points", "message"), [
+    (CORNERS[:3], "at least 4 points, got 3"),
+    (np.zeros((0, 3)), "at least 4 points, got 0"),
+    (CORNERS[[0, 2, 4, 6]], "not all in one plane; these 4 points are coplanar"),
+    (np.array([[0, 0, 0], [1, 1, 1], [2, 2, 2], [3, 3, 3.0]]), "not all in one plane"),
+    (np.ones((5, 3)), "not all in one plane"),
+    (np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, np.nan]]), "finite points"),
+    (np.array([[-1.7e308, 0, 0], [1.7e308, 0, 0], [0, 1, 0], [0, 0, 1]]), "finite points"),
+    (np.zeros((4, 2)), r"\(n, 3\) points"),
+])
+def test_degenerate_points_are_refused_by_name(points, message):
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        with pytest.raises(DLFLError, match=message):
+            hull_polygons(points)
+
+
+def test_hull_triangles_of_the_cube_are_twelve_and_none_is_flat():
+    triangles = hull_triangles(CORNERS)
+    assert len(triangles) == 12
+    assert_closed_and_outward(CORNERS, triangles)
+
+
+def test_a_face_without_side_points_becomes_a_fan_from_its_last_corner():
+    for poly in hull_polygons(CORNERS):
+        fan = [[poly[-1], poly[i], poly[i + 1]] for i in range(len(poly) - 2)]
+        assert set(cycles(fan)) <= set(cycles(hull_triangles(CORNERS)))
+
+
+def test_triangles_of_faces_with_points_on_every_side_are_never_flat():
+    tetra = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1.0]])
+    mids = [(tetra[a] + tetra[b]) / 2 for a in range(4) for b in range(a + 1, 4)]
+    points = np.concatenate([tetra, mids])
+    triangles = hull_triangles(points)
+    assert len(triangles) == 16  # each face: 6 points, 4 triangles
+    assert_closed_and_outward(points, triangles)
+    for t in triangles:
+        q = points[t]
+        assert np.linalg.norm(np.cross(q[1] - q[0], q[2] - q[0])) > 1e-6
+
+
+# -- convex_hull ----------------------------------------------------------------------
+
+
+def test_convex_hull_of_the_cube_is_twelve_triangles_as_topmod():
+    m = cube()
+    positions = m.positions_view()
+    convex_hull(m)
+    assert checked(m) == (8, 18, 12)
+    assert face_size_histogram(m) == {3: 12}
+    np.testing.assert_array_equal(m.positions_view(), positions)
+
+
+@pytest.mark.parametrize(("make", "counts"), [
+    (unit_tetrahedron, (4, 6, 4)),
+    (octahedron, (6, 12, 8)),
+    (icosahedron, (12, 30, 20)),
+    (dodecahedron, (20, 54, 36)),  # 12 pentagons, 3 triangles each
+])
+def test_convex_hull_of_convex_solids_keeps_their_vertices(make, counts):
+    m = make()
+    convex_hull(m)
+    assert checked(m) == counts and set(face_size_histogram(m)) == {3}
+
+
+def test_every_vertex_of_a_torus_is_inside_or_on_its_hull():
+    m = torus(8, 6)
+    before = m.positions_view()
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # no re-orientation repairs either
+        convex_hull(m)
+    checked(m)
+    normals = face_normals(m)
+    for f, normal in zip(m.face_ids().tolist(), normals, strict=True):
+        q = face_points(m, f)[0]
+        assert ((before - q) @ normal <= 1e-9).all()
+    # the hull's vertices are the outer ring's: the torus's own positions
+    assert {tuple(p) for p in m.positions_view()} <= {tuple(p) for p in before}
+
+
+def test_convex_hull_keeps_a_vertex_on_a_hull_edge():
+    m = cube()
+    m.subdivide_edge(m.edge_ids()[0])
+    convex_hull(m)
+    # two faces of the hull are pentagons (3 triangles each), four are quads
+    assert checked(m) == (9, 21, 14)
+    for f in m.face_ids().tolist():
+        q = face_points(m, f)
+        assert np.linalg.norm(np.cross(q[1] - q[0], q[2] - q[0])) > 1e-9
+
+
+def test_convex_hull_of_a_huge_cube_is_the_scaled_unit_one():
+    assert_scales(cube, lambda m, s: convex_hull(m), 1e300)
+
+
+@pytest.mark.parametrize(("make", "message"), [
+    (open_triangle, "at least 4 points, got 3"),
+    (point_sphere, "at least 4 points, got 1"),
+    (Mesh, "at least 4 points, got 0"),
+    (lambda: grid(3, 3), "not all in one plane"),
+    (lambda: from_polygons([[0, 0, 0], [1, 0, 0], [2, 0, 0], [3, 0, 0]], [[0, 1, 2, 3]]),
+     "not all in one plane"),
+])
+@pytest.mark.parametrize("op", [convex_hull, dual_convex_hull])
+def test_degenerate_meshes_are_refused_and_left_unchanged(make, message, op):
+    assert_refused_quietly(make(), op, message)
+
+
+# -- dual_convex_hull --------------------------------------------------------------------
+
+
+def test_dual_convex_hull_of_the_cube_is_an_octahedron_touching_its_corners():
+    m = cube()
+    dual_convex_hull(m)
+    assert checked(m) == (6, 12, 8) and face_size_histogram(m) == {3: 8}
+    expected = [[0, -3, 0], [3, 0, 0], [0, 0, 3], [-3, 0, 0], [0, 0, -3], [0, 3, 0]]
+    assert sorted(map(tuple, m.positions_view())) == sorted(map(tuple, np.array(expected, float)))
+    # each octahedron face passes through one cube corner (cube() is [-1, 1]^3)
+    for f, normal in zip(m.face_ids().tolist(), face_normals(m), strict=True):
+        q = face_points(m, f)[0]
+        assert np.isclose(np.abs((CORNERS - q) @ normal).min(), 0)
+        assert normal @ q > 0  # outward
+
+
+@pytest.mark.parametrize(("make", "counts"), [
+    (unit_tetrahedron, (4, 6, 4)),
+    (octahedron, (8, 12, 6)),
+    (icosahedron, (20, 30, 12)),
+    (dodecahedron, (12, 30, 20)),
+    (lambda: torus(8, 6), None),
+])
+def test_dual_convex_hull_swaps_vertices_and_faces(make, counts):
+    m, hulled = make(), make()
+    convex_hull(hulled)  # its vertices are the hull's
+    faces = len(hull_polygons(hulled.positions_view()))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # no re-orientation repairs either
+        dual_convex_hull(m)
+    v, _, f = checked(m)
+    assert (v, f) == (faces, hulled.num_vertices)
+    assert counts is None or m.counts() == counts
+
+
+def test_the_dual_of_the_triangulated_hull_is_the_dual_of_the_cube():
+    m, n = cube(), cube()
+    convex_hull(m)
+    dual_convex_hull(m)
+    dual_convex_hull(n)
+    assert m.counts() == n.counts() == (6, 12, 8)
+    np.testing.assert_allclose(m.positions_view(), n.positions_view())
+
+
+def test_the_dual_of_the_dual_of_the_cube_is_a_cube():
+    m = cube()
+    dual_convex_hull(m)
+    dual_convex_hull(m)
+    assert checked(m) == (8, 12, 6) and face_size_histogram(m) == {4: 6}
+    p = m.positions_view()
+    assert np.allclose(np.abs(p), np.abs(p[0]))  # a cube about the origin
+
+
+def test_dual_convex_hull_of_a_huge_cube_is_the_scaled_unit_one():
+    assert_scales(cube, lambda m, s: dual_convex_hull(m), 1e300)
+
+
+def test_a_dual_beyond_the_float_range_is_refused():
+    flat = from_polygons(np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0.3, 0.3, 3e-9]]) * 1e300,
+                         [[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]])
+    assert_refused_quietly(flat, dual_convex_hull, "beyond the float range")
