@@ -23,6 +23,7 @@ COMMAND_MODULES = {
     "Remeshing commands": "livemod.dlfl.commands.subdivision",
     "Extrusion and connection commands": "livemod.dlfl.commands.extrusion",
     "Sculpting commands": "livemod.dlfl.commands.sculpt",
+    "Cutting commands": "livemod.dlfl.commands.cutting",
     "Script parameters": "livemod.dlfl.commands.params",
 }
 
@@ -31,6 +32,7 @@ LIBRARY_MODULES = [
     "livemod.dlfl.analysis", "livemod.dlfl.scene", "livemod.dlfl.subdivision",
     "livemod.dlfl.extrusion", "livemod.dlfl.connect", "livemod.dlfl.rind",
     "livemod.dlfl.wireframe", "livemod.dlfl.sierpinsky", "livemod.dlfl.sponge", "livemod.dlfl.hull",
+    "livemod.dlfl.cutting",
     "livemod.dlfl.geometry", "livemod.dlfl.transform", "livemod.dlfl.selection",
     "livemod.dlfl.shapes", "livemod.dlfl.params", "livemod.dlfl.io",
 ]

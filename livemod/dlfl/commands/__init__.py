@@ -5,8 +5,9 @@
 
 from __future__ import annotations
 
-from . import core, extrusion, params, sculpt, subdivision
+from . import core, cutting, extrusion, params, sculpt, subdivision
 from .core import *  # noqa: F403
+from .cutting import *  # noqa: F403
 from .extrusion import *  # noqa: F403
 from .params import *  # noqa: F403
 from .sculpt import *  # noqa: F403
@@ -14,4 +15,5 @@ from .subdivision import *  # noqa: F403
 
 __all__ = [
     *core.__all__, *subdivision.__all__, *extrusion.__all__, *sculpt.__all__, *params.__all__,
+    *cutting.__all__,
 ]
