@@ -1,10 +1,13 @@
 """Convex hulls: the coplanar rule, closed outward faces, TopMod's convex hull and
-its dual (exact counts, positions), and degenerate input refused without a change."""
+its dual (exact counts, positions), degenerate input refused without a change, and
+the triangle lookup for small point sets giving exactly what turning gives."""
 
 from __future__ import annotations
 
 import importlib
 import warnings
+from collections.abc import Callable
+from unittest import mock
 
 import numpy as np
 import pytest
@@ -302,3 +305,163 @@ def test_a_dual_beyond_the_float_range_is_refused():
     flat = from_polygons(np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0.3, 0.3, 3e-9]]) * 1e300,
                          [[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]])
     assert_refused_quietly(flat, dual_convex_hull, "beyond the float range")
+
+
+# -- looking triangles up (up to hull._SMALL points) gives what turning gives --------------
+
+
+def rotated(points: np.ndarray, seed: int) -> np.ndarray:
+    """``points`` turned by a random rotation: coplanar up to rounding only."""
+    q = np.linalg.qr(np.random.default_rng(seed).normal(size=(3, 3)))[0]
+    return points @ q.T
+
+
+def cube_with_midpoints() -> np.ndarray:
+    """The cube's 8 corners and 12 edge midpoints (its faces: octagons)."""
+    edges = [(a, b) for a in range(8) for b in range(a + 1, 8)
+             if np.abs(CORNERS[a] - CORNERS[b]).sum() == 2]
+    return np.concatenate([CORNERS, [(CORNERS[a] + CORNERS[b]) / 2 for a, b in edges]])
+
+
+def lattice(nx: int, ny: int, nz: int) -> np.ndarray:
+    """The ``nx x ny x nz`` integer points, many in each plane and line."""
+    return np.array([[x, y, z] for x in range(nx) for y in range(ny) for z in range(nz)], float)
+
+
+def unit_sphere(n: int, seed: int) -> np.ndarray:
+    """``n`` random points on the unit sphere: every face a triangle."""
+    points = np.random.default_rng(seed).normal(size=(n, 3))
+    return points / np.linalg.norm(points, axis=1)[:, None]
+
+
+def column_joints() -> list[np.ndarray]:
+    """The point sets ``columns`` takes the hull of (one per vertex) on a few meshes."""
+    recorded = []
+
+    def record(points: np.ndarray, tolerance: float = 1e-9) -> list[list[int]]:
+        recorded.append(np.array(points))
+        return hull_polygons(points, tolerance)
+
+    wireframe = importlib.import_module("livemod.dlfl.wireframe")
+    with mock.patch.object(wireframe, "hull_polygons", record):
+        for make, segments in [(lambda: torus(6, 5), 4), (cube, 5), (icosahedron, 3),
+                               (octahedron, 6), (lambda: torus(5, 4), 8)]:
+            wireframe.columns(make(), 0.1, segments)
+    return recorded
+
+
+def degenerate_sets() -> list[np.ndarray]:
+    """Points with many in one plane or line, repeats, and their rotations."""
+    rng = np.random.default_rng(11)
+    centres = np.array([[0, 0, 1], [0, 0, -1], [1, 0, 0], [0, 1, 0], [0, 0, 0.0]])
+    sets = [cube_with_midpoints(), np.concatenate([cube_with_midpoints(), centres]),
+            lattice(3, 3, 3), lattice(4, 3, 2), lattice(2, 2, 5),
+            np.concatenate([CORNERS[7:], CORNERS, [[1, 1, 1 + 1e-12]]])]
+    sets += [rng.integers(-2, 3, size=(n, 3)).astype(float) for n in range(6, 33, 2)]
+    return sets + [rotated(points, seed) for seed, points in enumerate(sets[:6])]
+
+
+def near_tolerance_sets() -> list[np.ndarray]:
+    """Lattices shaken by about the tolerance (many are refused, the same way),
+    and points on a hull edge near a corner just off its line."""
+    rng = np.random.default_rng(5)
+    sets = [lattice(3, 3, 3) + rng.normal(size=(27, 3)) * scale * 2
+            for scale in (3e-10, 1e-9, 3e-9, 1e-8) for _ in range(5)]
+    tetra = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1.0]])
+    for off in (0.3e-9, 3e-9, 3e-8):
+        sets.append(np.concatenate([tetra, [[1e-3, off, 0], [2e-3, 0, off]]]))
+        sets.append(np.concatenate([tetra, [[0.5, off, off]]]))
+    return sets
+
+
+POINT_SETS: dict[str, Callable[[], list[np.ndarray]]] = {
+    "random spheres": lambda: [unit_sphere(n, seed) for n in range(4, 33) for seed in (1, 2)],
+    "random clouds": lambda: [np.random.default_rng(n).uniform(-1, 1, size=(n, 3))
+                              for n in range(4, 33)],
+    "degenerate": degenerate_sets,
+    "tiny, huge and far": lambda: [points * scale + offset
+                                   for points in (cube_with_midpoints(), unit_sphere(20, 3))
+                                   for scale in (1e-200, 1e200, 1.0)
+                                   for offset in (0.0, 1e6 * scale)],
+    "column joints": column_joints,
+    "near the tolerance": near_tolerance_sets,
+}
+
+
+def hull_with(points: np.ndarray, small: int, monkeypatch: pytest.MonkeyPatch) -> object:
+    """Polygons, normals (bit for bit) and triangles with the lookup up to ``small``
+    points, or the error's message."""
+    monkeypatch.setattr(hull, "_SMALL", small)
+    try:
+        found = hull._wrap_hull(points)
+        triangles = hull_triangles(points)
+    except DLFLError as error:
+        return str(error)
+    normals = [hull._resolved(found.points, n).tolist() for n in found.normals]
+    return found.polygons, normals, triangles
+
+
+@pytest.mark.parametrize("name", sorted(POINT_SETS))
+def test_looking_triangles_up_gives_what_turning_gives(name, monkeypatch):
+    sets = POINT_SETS[name]()
+    assert sets and all(len(points) <= 64 for points in sets)
+    for points in sets:
+        assert hull_with(points, 64, monkeypatch) == hull_with(points, 0, monkeypatch)
+
+
+def test_every_face_of_points_on_a_sphere_is_looked_up():
+    points = unit_sphere(hull._SMALL, 4)
+    extent = float(np.ptp(points, axis=0).max())
+    table = hull._triangle_table(points, 1e-9 * extent, extent)
+    assert len(table) == 3 * (2 * len(points) - 4)
+    assert cycles([poly for poly, _ in table.values()]) == sorted(
+        cycles(hull_polygons(points)) * 3)
+
+
+def test_most_faces_of_a_column_joint_are_looked_up():
+    points = column_joints()[0]
+    extent = float(np.ptp(points, axis=0).max())
+    looked_up = {tuple(poly) for poly, _ in hull._triangle_table(points, 1e-9 * extent,
+                                                                 extent).values()}
+    triangles = [p for p in hull_polygons(points) if len(p) == 3]
+    assert triangles and looked_up == set(map(tuple, triangles))
+
+
+def test_a_side_in_line_with_a_point_is_left_to_turning():
+    tetra = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1.0]])
+    # inside, 5 tolerances from the edge 0 - 1 (3.5 from either face beside it)
+    points = np.concatenate([tetra, [[0.5, 3.5e-9, 3.5e-9]]])
+    table = hull._triangle_table(points, 1e-9, 1.0)
+    assert {tuple(sorted(poly)) for poly, _ in table.values()} == {(0, 2, 3), (1, 2, 3)}
+    assert hull_polygons(points) == hull_polygons(tetra)
+
+
+@pytest.mark.parametrize("polygons", [
+    [[0, 2, 1], [0, 1, 3], [1, 2, 3]],  # a face missing
+    [[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2], [0, 3, 2]],  # a face twice
+    [[0, 1, 2], [0, 1, 3], [1, 2, 3], [0, 3, 2]],  # a face turned over
+    [[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2], [4, 6, 5], [4, 5, 7], [5, 6, 7], [4, 7, 6]],
+    [[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2], [0, 6, 5], [0, 5, 7], [5, 6, 7], [0, 7, 6]],
+])
+def test_polygons_that_are_no_closed_sphere_are_refused(polygons):
+    hull._check_closed([[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]])  # a tetrahedron
+    with pytest.raises(DLFLError, match="does not close up"):
+        hull._check_closed(polygons)
+
+
+@pytest.mark.parametrize("thickness", [0.0, 0.5, 0.99, 1.01, 2.0, 1e3, 1e5, 1e9])
+def test_flat_points_are_told_as_by_their_least_squares_plane(thickness):
+    rng = np.random.default_rng(int(thickness * 100) % 997)
+    for n in (4, 16, 200):
+        slab = np.column_stack([rng.uniform(-1, 1, size=(n, 2)), np.zeros(n)])
+        slab[rng.integers(n), 2] = thickness * 1e-9
+        points = rotated(slab, n)
+        eps = 1e-9 * float(np.ptp(points, axis=0).max())
+        centred = points - points.mean(axis=0)
+        normal = np.linalg.svd(centred, full_matrices=False)[2][-1]
+        flat = not np.abs(centred @ normal).max() > eps
+        if flat:
+            with pytest.raises(DLFLError, match="coplanar"):
+                hull._check_not_flat(points, eps)
+        else:
+            hull._check_not_flat(points, eps)

@@ -8,6 +8,14 @@ known face about one of its sides, one pass over the points per hull edge), so
 it takes O(points x edges) time, and coplanar facets come out merged as one
 convex polygon.
 
+For up to ``_SMALL`` points (a column joint, a hub), once turning has found one
+triangle, the hull's triangles are looked up instead: the planes through every
+three points are tried in one array pass, and a plane with every point on one
+side and only its three on it is the triangle turning would reach across each
+of its sides. Only the other faces are turned to, so the result is the same,
+polygon for polygon, in the same order, with the same normals bit for bit (a
+looked-up triangle's is computed as turning computes it, when needed).
+
 **Coplanar rule** (the same for every caller):
 
 * a point on the hull's surface is a polygon vertex when it is a corner of a
@@ -23,8 +31,12 @@ axis), so the faces do not depend on the scale of the points.
 
 from __future__ import annotations
 
+import functools
+import itertools
 import math
-from typing import NamedTuple
+from collections import Counter
+from collections.abc import Callable
+from typing import NamedTuple, TypeAlias
 
 import numpy as np
 
@@ -36,6 +48,27 @@ from .mesh import Mesh
 __all__ = ["hull_polygons", "hull_triangles", "convex_hull", "dual_convex_hull"]
 
 
+# an outward unit normal, either ``(3,)`` or, for a triangle face found across
+# side ``u -> v`` with third corner ``c``, ``(u, v, c)`` until it is needed
+_Normal: TypeAlias = np.ndarray | tuple[int, int, int]
+
+# ``across(u, v, normal)``: the face across side ``u -> v`` of the face with that
+# normal, as ``(polygon, its normal)``
+_Across: TypeAlias = Callable[[int, int, _Normal], tuple[list[int], _Normal]]
+
+_AXES = np.eye(3)
+_AXES.flags.writeable = False
+_X, _Y, _Z = _AXES
+
+# up to this many points, the hull's triangles are looked up (_triangle_table)
+_SMALL = 32
+
+# a plane through three points counts for the lookup when the third lies more
+# than this many tolerances off the line through the other two (a thinner
+# triangle's normal is too inexact to tell which points lie on its plane)
+_WIDE = 16.0
+
+
 class _Hull(NamedTuple):
     """A wrapped hull. ``points`` are the input moved and scaled by a power of two
     when it leaves the float band: the input is ``origin + points * 2**exponent``."""
@@ -45,7 +78,7 @@ class _Hull(NamedTuple):
     exponent: int
     eps: float  # the absolute tolerance in ``points``' units
     polygons: list[list[int]]
-    normals: list[np.ndarray]  # (3,) outward unit normal of each polygon
+    normals: list[_Normal]  # outward unit normal of each polygon, see _resolved
 
 
 def hull_polygons(points: np.ndarray, tolerance: float = 1e-9) -> list[list[int]]:
@@ -141,26 +174,61 @@ def dual_convex_hull(mesh: Mesh) -> None:
 def _wrap_hull(points: np.ndarray, tolerance: float = 1e-9) -> _Hull:
     """The hull of ``(n, 3)`` ``points``; see :func:`hull_polygons`."""
     pts, origin, exponent = _frame(points)
-    eps = tolerance * float(np.ptp(pts, axis=0).max())
+    extent = float(np.ptp(pts, axis=0).max())
+    eps = tolerance * extent
     _check_not_flat(pts, eps)
-    first, normal = _first_face(pts, eps)
-    polygons, normals = [first], [normal]
-    claimed = set(_sides(first))
+    polygons, normals = _wrapped(pts, eps, _across(pts, eps, extent))
+    _check_closed(polygons)
+    return _Hull(pts, origin, exponent, eps, polygons, normals)
+
+
+def _across(pts: np.ndarray, eps: float, extent: float) -> _Across:
+    """The face across a side, turned to (:func:`_face_beyond`) or, for up to
+    ``_SMALL`` points once turning has found a triangle (a hull of squares would
+    not repay the table), looked up (:func:`_triangle_table`)."""
+    table: dict[tuple[int, int], tuple[list[int], int]] | None = None
+
+    def across(u: int, v: int, normal: _Normal) -> tuple[list[int], _Normal]:
+        nonlocal table
+        found = table.get((v, u)) if table is not None else None
+        if found is not None:
+            return found[0], (u, v, found[1])
+        poly, plane = _face_beyond(pts, u, v, _resolved(pts, normal), eps)
+        if table is None and len(poly) == 3 and len(pts) <= _SMALL:
+            table = _triangle_table(pts, eps, extent)
+        return poly, plane
+
+    return across
+
+
+def _wrapped(pts: np.ndarray, eps: float, across: _Across
+             ) -> tuple[list[list[int]], list[_Normal]]:
+    """``(polygons, normals)`` of the hull in wrapping order: :func:`_first_face`,
+    then depth first the face ``across`` each side that no face found so far shares.
+
+    Raises:
+        DLFLError: a face that does not share the side it was found across, or
+            more faces than a hull of these points can have.
+    """
+    first, normal = _first_face(pts, eps, across)
+    polygons, normals, sides_of = [first], [normal], [_sides(first)]
+    claimed = set(sides_of[0])
     todo = [0]
     while todo:
         f = todo.pop()
-        for u, v in _sides(polygons[f]):
+        for u, v in sides_of[f]:
             if (v, u) in claimed:
                 continue
-            poly, normal = _face_beyond(pts, u, v, normals[f], eps)
-            if (v, u) not in _sides(poly) or len(polygons) > 2 * len(pts):
+            poly, normal = across(u, v, normals[f])
+            sides = _sides(poly)
+            if (v, u) not in sides or len(polygons) > 2 * len(pts):
                 raise _not_closed()
             polygons.append(poly)
             normals.append(normal)
-            claimed.update(_sides(poly))
+            sides_of.append(sides)
+            claimed.update(sides)
             todo.append(len(polygons) - 1)
-    _check_closed(polygons)
-    return _Hull(pts, origin, exponent, eps, polygons, normals)
+    return polygons, normals
 
 
 def _frame(points: np.ndarray) -> tuple[np.ndarray, np.ndarray, int]:
@@ -187,8 +255,22 @@ def _frame(points: np.ndarray) -> tuple[np.ndarray, np.ndarray, int]:
 
 
 def _check_not_flat(pts: np.ndarray, eps: float) -> None:
-    """Refuse ``(n, 3)`` points that all lie within ``eps`` of one plane."""
+    """Refuse ``(n, 3)`` points that all lie within ``eps`` of their least-squares
+    plane (normal to the smallest singular vector of the centred points).
+
+    The singular value decomposition is skipped when the points are plainly
+    spread out: the sum of their squared distances from that plane is the
+    smallest eigenvalue of their scatter matrix ``S``, at least
+    ``4 det(S) / trace(S)**2``, so the farthest lies beyond ``eps`` when that
+    bound exceeds ``n eps**2`` (asked here by a factor of a million, and of
+    ``det(S)`` far above its own rounding).
+    """
     centred = pts - pts.mean(axis=0)
+    (a, b, c), (_, d, e), (_, _, f) = (centred.T @ centred).tolist()
+    det, trace = a * (d * f - e * e) - b * (b * f - c * e) + c * (b * e - c * d), a + d + f
+    bound = max(1e6 * len(pts) * eps * eps, 1e-10 * trace) * trace * trace
+    if math.isfinite(det) and 4.0 * det > bound:
+        return
     normal = np.linalg.svd(centred, full_matrices=False)[2][-1]
     if not np.abs(centred @ normal).max() > eps:
         raise DLFLError("a convex hull needs at least 4 points not all in one plane; "
@@ -206,21 +288,20 @@ def _sides(poly: list[int]) -> list[tuple[int, int]]:
     return list(zip(poly, poly[1:] + poly[:1], strict=True))
 
 
-def _first_face(pts: np.ndarray, eps: float) -> tuple[list[int], np.ndarray]:
+def _first_face(pts: np.ndarray, eps: float, across: _Across) -> tuple[list[int], _Normal]:
     """``(polygon, outward unit normal)`` of one hull face: the plane ``x = min``
-    turned about a line through the lowest point until it rests on the hull,
-    then, if it touches only along a line, about that line."""
+    turned about a line through the lowest point ``a`` until it rests on the
+    hull, then, if it touches only along a line ``a -> b``, the face ``across`` it."""
     a = int(np.lexsort(pts.T[::-1])[0])  # lowest x, then y, then z
-    normal = _turned_plane(pts, a, np.array([0.0, 0.0, 1.0]), np.array([-1.0, 0.0, 0.0]), eps)
+    normal = _turned_plane(pts, a, _Z, -_X, eps)
     poly = _face_polygon(pts, a, normal, eps)
+    found: _Normal = normal
     if len(poly) < 3:
         b = poly[-1] if poly[-1] != a else poly[0]
-        axis = _unit3(pts[b] - pts[a])
-        normal = _turned_plane(pts, a, axis, normal, eps)
-        poly = _face_polygon(pts, a, normal, eps)
+        poly, found = across(a, b, normal)
     if len(poly) < 3:
         raise _not_closed()
-    return poly, normal
+    return poly, found
 
 
 def _face_beyond(pts: np.ndarray, u: int, v: int, normal: np.ndarray, eps: float
@@ -246,11 +327,11 @@ def _turned_plane(pts: np.ndarray, a: int, axis: np.ndarray, normal: np.ndarray,
     x, y = w @ _cross3(normal, axis), w @ normal
     off_line = np.hypot(x, y) > eps
     angle = np.where(off_line, np.arctan2(np.maximum(-y, 0.0), x), -1.0)
-    best = w[int(np.argmax(angle))]
+    best = w[int(angle.argmax())]
     for _ in range(len(pts)):
         plane = _unit3(_cross3(best, axis))
         height = w @ plane
-        top = int(np.argmax(height))
+        top = int(height.argmax())
         if height[top] <= eps:
             return plane
         best = w[top]
@@ -259,13 +340,106 @@ def _turned_plane(pts: np.ndarray, a: int, axis: np.ndarray, normal: np.ndarray,
 
 def _unit3(v: np.ndarray) -> np.ndarray:
     """``(3,)`` ``v`` scaled to length 1 (``v`` must not be zero)."""
-    return v / np.sqrt(v @ v)
+    return v / math.sqrt(v @ v)
 
 
 def _cross3(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """``a x b`` of two ``(3,)`` vectors, without :func:`numpy.cross`'s overhead."""
-    return np.array([a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
-                     a[0] * b[1] - a[1] * b[0]])
+    """``a x b`` of two ``(3,)`` vectors, without :func:`numpy.cross`'s overhead
+    (in Python floats: the same roundings as numpy's, one operation at a time)."""
+    (a0, a1, a2), (b0, b1, b2) = a.tolist(), b.tolist()
+    return np.array([a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0])
+
+
+def _resolved(pts: np.ndarray, normal: _Normal) -> np.ndarray:
+    """``(3,)`` outward unit normal ``normal`` (see ``_Normal``): for a triangle
+    found across ``u -> v`` with third corner ``c``, the plane :func:`_turned_plane`
+    turns to about that side, computed as it does, bit for bit."""
+    if not isinstance(normal, tuple):
+        return normal
+    u, v, c = normal
+    return _unit3(_cross3(pts[c] - pts[u], _unit3(pts[v] - pts[u])))
+
+
+# -- looking triangles up ------------------------------------------------------------
+
+
+def _triangle_table(pts: np.ndarray, eps: float, extent: float
+                    ) -> dict[tuple[int, int], tuple[list[int], int]]:
+    """The hull's triangle faces by side: ``(u, v) -> (polygon, third corner)`` for
+    every side ``u -> v`` of every triangle of :func:`_supporting_triangles`
+    (a side two of them claim is left out, for turning to decide)."""
+    triangles = _supporting_triangles(pts, eps, extent).tolist()
+    table: dict[tuple[int, int], tuple[list[int], int]] = {}
+    for p, q, r in triangles:
+        tri = [p, q, r]
+        table[p, q], table[q, r], table[r, p] = (tri, r), (tri, p), (tri, q)
+    if len(table) < 3 * len(triangles):
+        claims = Counter(side for p, q, r in triangles for side in ((p, q), (q, r), (r, p)))
+        for side in [side for side, count in claims.items() if count > 1]:
+            del table[side]
+    return table
+
+
+def _supporting_triangles(pts: np.ndarray, eps: float, extent: float) -> np.ndarray:
+    """``(m, 3)`` hull faces of ``(n, 3)`` points that are triangles, as turning
+    finds them: every ``i < j < k`` with every point on one side of its plane and
+    no other within ``eps`` of it, as ``[i, j, k]`` or ``[i, k, j]``,
+    counter-clockwise seen from outside. ``extent`` is the points' largest
+    extent along an axis.
+
+    Left out, for turning to decide: three points nearly in line (a third within
+    ``_WIDE`` tolerances of the line through the other two), whose plane is too
+    inexact to tell which points lie on it, and triangles with a side whose
+    ends are nearly in line with a third point (near its line, the angle
+    turning takes is inexact).
+    """
+    ijk, firsts = _triples(len(pts))
+    w = pts - pts[0]
+    corner = np.take(w.T, ijk, axis=1)  # (3 coordinates, 3 corners, T), T = n choose 3
+    a, b = (corner[:, 1:] - corner[:, :1]).transpose(1, 0, 2)  # j - i, k - i: (3, T) each
+    normal = np.array([a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
+                       a[0] * b[1] - a[1] * b[0]])
+    area2 = np.einsum("ij,ij->j", normal, normal)
+    # twice the area over a side (at most 2 extents long) is a corner's distance
+    # from the line through the other two
+    wide = area2 > (_WIDE * 2.0 * eps * extent) ** 2
+    with np.errstate(divide="ignore"):
+        unit = normal * np.where(wide, 1.0 / np.sqrt(area2), 0.0)  # thin: 0, all on it
+    # the height of every point above every plane: (n, T) (einsum: a matrix
+    # product this size would wake BLAS threads, slow on a busy machine)
+    height = np.einsum("ic,ct->it", w, unit)
+    height -= np.take(height, firsts)
+    below, above = height.max(axis=0) <= eps, height.min(axis=0) >= -eps
+    support = np.flatnonzero(below | above)
+    alone = support[(np.abs(np.take(height, support, axis=1)) <= eps).sum(axis=0) == 3]
+    tri = np.take(ijk, alone, axis=1).T
+    # outward is the normal (j - i) x (k - i) when every point is below the plane
+    tri = np.where(below[alone][:, None], tri, tri[:, [0, 2, 1]])
+    if wide.all():
+        return tri
+    thin = _in_line_pairs(len(pts), np.take(ijk, np.flatnonzero(~wide), axis=1))
+    return tri[~thin[tri, np.roll(tri, -1, axis=1)].any(axis=1)]
+
+
+def _in_line_pairs(n: int, triples: np.ndarray) -> np.ndarray:
+    """``(n, n)`` bool, symmetric: which pairs of ``n`` points are two of the
+    ``(3, m)`` ``triples`` (of points nearly in line)."""
+    pairs = np.zeros((n, n), dtype=bool)
+    i, j, k = triples
+    pairs[i, j] = pairs[i, k] = pairs[j, k] = True
+    return pairs | pairs.T
+
+
+@functools.cache
+def _triples(n: int) -> tuple[np.ndarray, np.ndarray]:
+    """``(ijk, firsts)``: ``(3, T)`` int, every ``i < j < k < n`` (``T = n choose 3``),
+    and ``(T,)`` where ``i`` is in an ``(n, T)`` array raveled (``i T + column``)."""
+    ijk = np.array(list(itertools.combinations(range(n), 3)), dtype=np.intp).reshape(-1, 3).T
+    ijk = np.ascontiguousarray(ijk)
+    firsts = ijk[0] * ijk.shape[1] + np.arange(ijk.shape[1])
+    for array in (ijk, firsts):
+        array.flags.writeable = False
+    return ijk, firsts
 
 
 # -- one face's polygon ----------------------------------------------------------------
@@ -281,11 +455,13 @@ def _face_polygon(pts: np.ndarray, a: int, normal: np.ndarray, eps: float) -> li
         if _juts(pts, p, q, r, eps):
             turn = _cross3(pts[q] - pts[p], pts[r] - pts[p]) @ normal
             return [p, q, r] if turn > 0 else [p, r, q]
-    u = _cross3(normal, np.array([1.0, 0.0, 0.0]))
+    u = _cross3(normal, _X)
     if u @ u < 0.25:
-        u = _cross3(normal, np.array([0.0, 1.0, 0.0]))
+        u = _cross3(normal, _Y)
     u = _unit3(u)
-    xy = (pts[members] @ np.stack([u, _cross3(normal, u)], axis=1)).tolist()
+    # the (3, 2) matrix with columns u and normal x u
+    frame = np.array(list(zip(u.tolist(), _cross3(normal, u).tolist(), strict=True)))
+    xy = (pts[members] @ frame).tolist()
     order = _first_copies(xy, sorted(range(len(xy)), key=lambda i: (*xy[i], i)), eps)
     corners = _strict_corners(xy, order, eps)
     if len(corners) < 3 or len(corners) == len(order):  # no point left for the sides
@@ -376,14 +552,31 @@ def _check_closed(polygons: list[list[int]]) -> None:
         DLFLError: a repeated side, a side without its reverse, a vertex with two
             fans, or an Euler characteristic other than 2.
     """
-    sides = [s for poly in polygons for s in _sides(poly)]
-    unique = set(sides)
-    if len(unique) != len(sides) or any((b, a) not in unique for a, b in sides):
+    heads: list[int] = []
+    tails: list[int] = []
+    befores: list[int] = []
+    for poly in polygons:
+        heads += poly
+        tails += poly[1:]
+        tails.append(poly[0])
+        befores.append(poly[-1])
+        befores += poly[:-1]
+    n = max(heads) + 1
+    sides = [p * n + q for p, q in zip(heads, tails, strict=True)]  # side (p, q) as p n + q
+    unseen = set(sides)
+    if len(unseen) != len(sides) or unseen != {q * n + p for p, q in zip(heads, tails, strict=True)}:
         raise _not_closed()
-    rings = _vertex_face_rings(polygons)
-    corners = sum(len(ring) for ring in rings.values())
-    euler = len(rings) - len(sides) // 2 + len(polygons)
-    if corners != len(sides) or euler != 2:
+    # around vertex p, side (p, q) is followed by (p, r), (r, p) the side before it
+    before = dict(zip(sides, befores, strict=True))
+    fans = 0
+    while unseen:
+        start = side = unseen.pop()
+        fans += 1
+        base = side - side % n
+        while (side := base + before[side]) != start:
+            unseen.remove(side)
+    vertices = len(set(heads))
+    if fans != vertices or vertices - len(sides) // 2 + len(polygons) != 2:
         raise _not_closed()
 
 
@@ -447,7 +640,7 @@ def _polar_points(hull: _Hull) -> np.ndarray:
     used = np.unique(np.concatenate(hull.polygons))
     centre = hull.points[used].mean(axis=0)
     radius2 = float(np.mean(np.sum((hull.points[used] - centre) ** 2, axis=1)))
-    normals = np.array(hull.normals)
+    normals = np.array([_resolved(hull.points, n) for n in hull.normals])
     distance = np.einsum("fk,fk->f", normals, hull.points[[p[0] for p in hull.polygons]] - centre)
     with np.errstate(over="ignore", invalid="ignore"):  # refused just below
         dual = np.ldexp(centre + normals * (radius2 / distance)[:, None], hull.exponent)
