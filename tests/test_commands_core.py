@@ -199,19 +199,6 @@ def test_trisect_edge_by_scale(cube_scene):
                                [(1, 0.505, 0), (1, 0.495, 0)])
 
 
-@pytest.mark.parametrize(("args", "message"), [
-    ((99, 0.3, True), "edge 99 does not exist"),
-    ((0, "x", True), "num must be a number, got 'x'"),
-    ((0, float("nan"), False), "num must be finite"),
-    ((0, 0.3, "yes"), "scale must be True .* or False .*, got 'yes'"),
-])
-def test_trisect_edge_refuses_bad_arguments(cube_scene, args, message):
-    before = snapshot(cube_scene.mesh)
-    with pytest.raises(DLFLError, match=message):
-        trisectEdge(*args)
-    assert snapshot(cube_scene.mesh) == before
-
-
 def test_trisect_edge_refuses_an_offset_on_a_short_edge(cube_scene):
     move([3], (0, 0.03, 0), False)  # edge 0 is now 0.03 long
     before = snapshot(cube_scene.mesh)
@@ -243,16 +230,20 @@ def test_splice_corners_with_point_spheres(cube_scene):
     assert counts(cube_scene) == (8, 12, 6) and vertexInfo(0)["coords"] == (2.5, 0, 0)
 
 
-@pytest.mark.parametrize(("args", "message"), [
-    (((0, 0), (2, 0)), "both at vertex 0: splicing needs corners at two different"),
-    (((0, 0), (0, 0)), "both at vertex 0"),
-    (((0, 0), (0, 6)), "face 0 has no corner at vertex 6"),
-    (((0, 0), "x"), "c2 must be a \\(faceid, vertexid\\) tuple"),
+@pytest.mark.parametrize(("command", "args", "message"), [
+    (trisectEdge, (99, 0.3, True), "edge 99 does not exist"),
+    (trisectEdge, (0, "x", True), "num must be a number, got 'x'"),
+    (trisectEdge, (0, float("nan"), False), "num must be finite"),
+    (trisectEdge, (0, 0.3, "yes"), "scale must be True or False, got 'yes'"),
+    (spliceCorners, ((0, 0), (2, 0)), "both at vertex 0: splicing needs corners at two"),
+    (spliceCorners, ((0, 0), (0, 0)), "both at vertex 0"),
+    (spliceCorners, ((0, 0), (0, 6)), "face 0 has no corner at vertex 6"),
+    (spliceCorners, ((0, 0), "x"), "c2 must be a \\(faceid, vertexid\\) tuple"),
 ])
-def test_splice_corners_refuses_bad_corners(cube_scene, args, message):
+def test_trisect_and_splice_refuse_bad_arguments(cube_scene, command, args, message):
     before = snapshot(cube_scene.mesh)
     with pytest.raises(DLFLError, match=message):
-        spliceCorners(*args)
+        command(*args)
     assert snapshot(cube_scene.mesh) == before
 
 

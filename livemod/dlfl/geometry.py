@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._checks import finite_number, first_not_finite, whole_count
+from ._checks import finite_number, first_not_finite, flag, whole_count
 from ._vectors import centroid, lengths, range_exponent, scaled_mean
 from ._vectors import unit as _unit
 from .analysis import face_centroids, face_normals
@@ -266,13 +266,11 @@ def trisect_edge(mesh: Mesh, edge: int, num: float, scale: bool) -> list[int]:
 
     Raises:
         DLFLError: ``edge`` is not live, ``num`` is not a finite number,
-            ``scale`` is not a bool, or an offset trisection of an edge no longer
+            ``scale`` is not a flag (see :func:`livemod.dlfl._checks.flag`), or an offset trisection of an edge no longer
             than 0.04 (no offset fits); the mesh is unchanged.
     """
     num = finite_number(num, "num")
-    if not isinstance(scale, bool | np.bool_):
-        raise DLFLError(f"scale must be True (num is a scale factor) or False (an offset), "
-                        f"got {scale!r}")
+    scale = flag(scale, "scale")  # True: num is a scale factor; False: an offset
     p0, p1 = (mesh.position(v) for v in mesh.edge_vertices(edge))
     points = _scaled_trisection(p0, p1, num) if scale else _offset_trisection(edge, p0, p1, num)
     if first_not_finite(points) is not None:  # rounding at the float maximum
