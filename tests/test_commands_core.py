@@ -448,6 +448,8 @@ def test_moves_that_overflow_to_infinity_are_refused(cube_scene, command, args):
     lambda: dlfl.extrude("octa", 0, 1, 1, 0, 1, "no"),
     lambda: dlfl.extrude("dodeca", 0, 1, 2, 0, 1, [True]),
     lambda: dlfl.connectEdges((0, 0), (1, 1), "check"),
+    lambda: dlfl.rind([0], "no", 0.1), lambda: dlfl.rind([0], False, 0.1, "no"),
+    lambda: dlfl.crust(0.1, "no"), lambda: dlfl.wireframe(0.1, "no"),
 ])
 def test_an_on_off_option_that_is_not_a_flag_is_refused(cube_scene, call):
     """A string such as "no" would otherwise mean True."""

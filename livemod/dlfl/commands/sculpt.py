@@ -18,7 +18,7 @@ from .. import geometry, hull, sponge
 from .. import rind as _rind
 from .. import sierpinsky as _sierpinsky
 from .. import wireframe as _wire
-from .._checks import finite_number
+from .._checks import finite_number, flag
 from ..errors import DLFLError
 from ._base import mesh, modeling_command
 
@@ -52,20 +52,21 @@ def rind(facelist: Any, useScaling: bool, percent: float, uniform: bool = True) 
     ``k - 1``; faces that share an edge open into one hole.
 
     Raises:
-        DLFLError: a face id that is gone, a zero or inverting thickness/scale.
+        DLFLError: a face id that is gone, a zero or inverting thickness/scale,
+            or a flag that is not True or False.
     """
     faces = _face_list(facelist)
     value = finite_number(percent, "percent")
-    if useScaling:
+    if flag(useScaling, "useScaling"):
         _rind.rind(mesh(), faces, use_scaling=True, scale=value)
     else:
-        _rind.rind(mesh(), faces, value, uniform=bool(uniform))
+        _rind.rind(mesh(), faces, value, uniform=flag(uniform, "uniform"))
 
 
 @modeling_command
 def crust(thickness: float = 0.5, uniform: bool = True) -> None:
     """``crust([thickness, uniform])``: TopMod's createCrust; two shells (livemod extra)."""
-    _rind.crust(mesh(), finite_number(thickness, "thickness"), uniform=bool(uniform))
+    _rind.crust(mesh(), finite_number(thickness, "thickness"), uniform=flag(uniform, "uniform"))
 
 
 @modeling_command
@@ -74,7 +75,7 @@ def wireframe(thickness: float = 0.1, split: bool = True) -> None:
 
     Cube: 48/120/64, genus 5.
     """
-    _wire.wireframe(mesh(), finite_number(thickness, "thickness"), bool(split))
+    _wire.wireframe(mesh(), finite_number(thickness, "thickness"), flag(split, "split"))
 
 
 @modeling_command
