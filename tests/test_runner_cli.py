@@ -157,6 +157,21 @@ def test_livemod_entry_point_runs_a_script():
     assert "V=4 E=4 F=2" in done.stdout
 
 
+def test_run_writes_its_output_even_when_the_reader_of_its_summary_left(tmp_path):
+    """``livemod run S -o OUT | head -1``: the pipe closes before the summary is
+    printed (here: before anything is), and OUT must still be written."""
+    out = tmp_path / "ring.obj"
+    proc = subprocess.Popen([sys.executable, "-m", "livemod.runner.cli", "run", RING,
+                             "--param", "count=4", "--param", "radius=1", "-o", str(out)],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    assert proc.stdout is not None and proc.stderr is not None
+    proc.stdout.close()  # the reader is gone before the run prints its first line
+    with proc.stderr:
+        error = proc.stderr.read().decode()
+    assert proc.wait(timeout=60) != 0 and "Traceback" not in error
+    assert out.exists() and out.read_bytes().count(b"\nf ") == 2
+
+
 def test_parse_param_sweep_and_output_names():
     assert parse_param("n=3:6:4") == ("n", [3, 4, 5, 6])
     assert parse_param("r=0:1:3") == ("r", [0.0, 0.5, 1.0])

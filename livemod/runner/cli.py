@@ -203,9 +203,14 @@ def _finish_run(args: argparse.Namespace, outcome: Any, params: dict[str, Any]) 
         print(str(outcome.error), file=sys.stderr)
         return 1
     mesh = result_mesh(outcome.scene, args.all_objects)
+    # written before anything is printed: a reader that leaves early (`| head -1`)
+    # closes our output, and OUT must not depend on it
+    code = _save(mesh, args.output)
     print_summary(args.script, mesh, len(outcome.steps), outcome.elapsed)
     _print_objects(outcome.scene, args)
-    return _save(mesh, args.output)
+    if code == 0 and args.output is not None:
+        print(f"wrote {args.output}")
+    return code
 
 
 def _script_output_went_away(error: Any) -> bool:
@@ -241,7 +246,8 @@ def _print_objects(scene: Any, args: argparse.Namespace) -> None:
 
 
 def _save(mesh: Any, output: str | None) -> int:
-    """Write ``mesh`` to ``output`` (its folder made if missing); the exit code."""
+    """Write ``mesh`` to ``output`` (its folder made if missing), saying only what
+    failed (on standard error); the exit code."""
     if output is None:
         return 0
     if mesh is None:  # an error: whatever waits for OUT must not take an old one
@@ -254,7 +260,6 @@ def _save(mesh: Any, output: str | None) -> int:
         print(f"livemod run: cannot write {output}: {type(exc).__name__}: {exc}",
               file=sys.stderr)
         return 2
-    print(f"wrote {output}")
     return 0
 
 
