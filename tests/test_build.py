@@ -17,7 +17,7 @@ from livemod.dlfl import (
     num_components,
     validate,
 )
-from livemod.dlfl.analysis import component_genera
+from livemod.dlfl.analysis import component_genera, enclosed_volume
 from livemod.dlfl.build import _next_in_face
 from tests.meshes import CUBE_FACES, CUBE_POSITIONS, euler_ok, torus_polygons
 
@@ -235,7 +235,7 @@ def test_many_flipped_faces_are_all_restored():
     pos, quads = torus_polygons(12, 9)
     rng = np.random.default_rng(7)
     flipped = rng.random(len(quads)) < 0.5
-    flipped[0] = False  # the first face of the component keeps its orientation
+    assert 2 * flipped.sum() < len(quads)  # the majority keeps its orientation
     soup = quads.copy()
     soup[flipped] = np.concatenate([soup[flipped][:, :1], soup[flipped][:, :0:-1]], axis=1)
     with pytest.warns(DLFLRepairWarning, match=f"re-oriented {int(flipped.sum())} faces"):
@@ -246,7 +246,26 @@ def test_many_flipped_faces_are_all_restored():
     assert np.array_equal(mesh_arrays(repaired).corner_mate, expected.corner_mate)
 
 
-def test_each_component_is_oriented_from_its_first_face():
+def test_a_flipped_first_face_is_the_one_turned_round():
+    faces = [list(f) for f in CUBE_FACES]
+    faces[0] = faces[0][::-1]  # an exporter got the first face wrong
+    with pytest.warns(DLFLRepairWarning, match=r"re-oriented 1 faces \(face 0\)"):
+        m = from_polygons(CUBE_POSITIONS, faces)
+    validate(m)
+    ring = m.face_vertices(0)  # the cube's own face, from the file's first corner
+    assert ring == CUBE_FACES[0][3:] + CUBE_FACES[0][:3] and enclosed_volume(m) == 1.0
+
+
+def test_a_tie_keeps_the_first_face_of_the_component():
+    faces = [list(f) for f in CUBE_FACES]
+    for f in (1, 2, 3):
+        faces[f] = faces[f][::-1]
+    with pytest.warns(DLFLRepairWarning, match=r"re-oriented 3 faces \(face 1, face 2, face 3\)"):
+        m = from_polygons(CUBE_POSITIONS, faces)
+    assert m.face_vertices(0) == CUBE_FACES[0]
+
+
+def test_each_component_keeps_the_orientation_of_most_of_its_faces():
     faces = [list(f) for f in CUBE_FACES] + [[v + 8 for v in f[::-1]] for f in CUBE_FACES]
     faces[7] = [v + 8 for v in CUBE_FACES[1]]  # one face of the second cube disagrees
     pos = np.concatenate([CUBE_POSITIONS, CUBE_POSITIONS + 3])

@@ -434,7 +434,9 @@ def _closes_early(vertex: int, soup: Polygons, mate: np.ndarray, nxt: np.ndarray
 def _reorient(soup: Polygons, where: _Where, notes: list[str]) -> Polygons:
     """Flip faces so that each component is consistently oriented.
 
-    The first face (in soup order) of each component keeps its orientation.
+    Each component keeps the orientation most of its faces have (so one flipped
+    face in a file is the one turned round, not all the others); on a tie, that
+    of its first face in soup order.
 
     Raises:
         DLFLError: a component is non-orientable (a Moebius band, say).
@@ -461,7 +463,8 @@ def _flip_order(soup: Polygons, flip: np.ndarray) -> np.ndarray:
 
 
 def _orientation_flips(soup: Polygons, where: _Where) -> np.ndarray:
-    """``(F,)`` int8: 1 for the faces to reverse, by breadth-first search per component.
+    """``(F,)`` int8: 1 for the faces to reverse, by breadth-first search per component,
+    the fewer faces of each component reversed (see :func:`_reorient`).
 
     Each search level is one vectorized step over the faces of the frontier.
     """
@@ -475,8 +478,13 @@ def _orientation_flips(soup: Polygons, where: _Where) -> np.ndarray:
     while (unset := np.flatnonzero(flip < 0)).size:
         flip[unset[0]] = 0
         frontier = unset[:1]
+        levels = [frontier]
         while frontier.size:
             frontier = _search_level(frontier, first, dst, same, flip, where)
+            levels.append(frontier)
+        component = np.concatenate(levels)
+        if 2 * int(flip[component].sum()) > len(component):
+            flip[component] ^= 1  # the majority keeps its orientation
     return flip
 
 
