@@ -12,8 +12,9 @@ import argparse
 import importlib
 import os
 import sys
+import warnings
 from collections.abc import Sequence
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, TextIO
 
 from livemod import __version__
 
@@ -129,6 +130,7 @@ def main(argv: Sequence[str] | None = None) -> int:
 
     parser = build_parser()
     args = parser.parse_args(argv)
+    _say_repairs_as_notes()
     try:
         return int(args.handler(args) or 0)
     except BrokenPipeError:
@@ -138,6 +140,24 @@ def main(argv: Sequence[str] | None = None) -> int:
         return 1
     except KeyboardInterrupt:
         return 130
+
+
+def _say_repairs_as_notes() -> None:
+    """Print a loader's repair (:class:`~livemod.dlfl.errors.DLFLRepairWarning`) as
+    one ``livemod: note: ...`` line on standard error, not as a Python warning that
+    shows livemod's own source line; other warnings are shown as Python shows them."""
+    from livemod.dlfl.errors import DLFLRepairWarning
+
+    python_shows = warnings.showwarning
+
+    def show(message: Warning | str, category: type[Warning], filename: str, lineno: int,
+             file: TextIO | None = None, line: str | None = None) -> None:
+        if issubclass(category, DLFLRepairWarning):
+            print(f"livemod: note: {message}", file=file or sys.stderr)
+        else:
+            python_shows(message, category, filename, lineno, file, line)
+
+    warnings.showwarning = show
 
 
 def _reader_went_away() -> int:

@@ -146,3 +146,20 @@ def test_render_names_a_missing_script_before_anything_else(tmp_path, capsys):
     assert main(["render", str(tmp_path / "gone.py"), "-o", str(tmp_path / "x.png")]) == 2
     assert f"livemod render: no such script: {tmp_path / 'gone.py'}" in capsys.readouterr().err
     assert list(tmp_path.iterdir()) == []
+
+
+def test_a_repair_while_loading_is_one_note_not_a_python_warning(tmp_path: Path, capsys) -> None:
+    import warnings
+
+    from tests.meshes import CUBE_FACES, CUBE_POSITIONS
+
+    flipped = [CUBE_FACES[0][::-1], *CUBE_FACES[1:]]
+    lines = [f"v {x} {y} {z}" for x, y, z in CUBE_POSITIONS]
+    lines += ["f " + " ".join(str(v + 1) for v in face) for face in flipped]
+    (tmp_path / "flip.obj").write_text("\n".join(lines) + "\n")
+    with warnings.catch_warnings():
+        warnings.simplefilter("default")  # the suite turns warnings into errors
+        assert main(["convert", str(tmp_path / "flip.obj"), str(tmp_path / "out.obj")]) == 0
+    err = capsys.readouterr().err
+    assert err.startswith("livemod: note: ") and "re-oriented 1 faces (line 9)" in err
+    assert "DLFLRepairWarning" not in err and "livemod/" not in err.replace(str(tmp_path), "")
