@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import signal
 import subprocess
 import sys
 import threading
@@ -170,6 +171,37 @@ def test_run_writes_its_output_even_when_the_reader_of_its_summary_left(tmp_path
         error = proc.stderr.read().decode()
     assert proc.wait(timeout=60) != 0 and "Traceback" not in error
     assert out.exists() and out.read_bytes().count(b"\nf ") == 2
+
+
+def test_ctrl_c_stops_a_batch_at_once_and_runs_nothing_more(tmp_path):
+    """Ctrl-C (SIGINT to the process group, as a terminal sends it) ends the running
+    variants and drops the queued ones; before, the pool went on with them all."""
+    script = tmp_path / "slow.py"
+    script.write_text(
+        "import pathlib, time\n"
+        "n = param('n', 0)\n"
+        "pathlib.Path(__file__).with_name(f'{n}.started').touch()\n"
+        "load('cube')\n"
+        "end = time.time() + 3\n"
+        "while time.time() < end:\n"
+        "    pass\n")
+    proc = subprocess.Popen([sys.executable, "-m", "livemod.runner.cli", "batch", str(script),
+                             "--param", "n=0:7:8", "-o", str(tmp_path / "out" / "{n}.obj"),
+                             "-j", "2"], start_new_session=True,
+                            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    deadline = time.monotonic() + 30
+    while not list(tmp_path.glob("*.started")) and time.monotonic() < deadline:
+        time.sleep(0.02)
+    os.killpg(proc.pid, signal.SIGINT)
+    stopped = time.monotonic()
+    assert proc.stderr is not None
+    with proc.stderr:
+        error = proc.stderr.read().decode()
+    assert proc.wait(timeout=30) == 130
+    assert time.monotonic() - stopped < 2.5  # each variant alone runs 3 s
+    assert "Traceback" not in error
+    assert len(list(tmp_path.glob("*.started"))) <= 2  # no queued variant began
+    assert not (tmp_path / "out").exists() or not list((tmp_path / "out").iterdir())
 
 
 def test_parse_param_sweep_and_output_names():

@@ -274,8 +274,9 @@ class ProcessPoolVariantExecutor:
         its own: only one that kills its own worker is reported failed."""
         context = _process_context()
         lost = []
-        with concurrent.futures.ProcessPoolExecutor(self.jobs, mp_context=context,
-                                                    initializer=_worker_started) as pool:
+        pool = concurrent.futures.ProcessPoolExecutor(self.jobs, mp_context=context,
+                                                      initializer=_worker_started)
+        try:
             for variant, outcome in _finished(pool, fn, variants):
                 if isinstance(outcome, BrokenProcessPool):
                     lost.append(variant)
@@ -283,15 +284,33 @@ class ProcessPoolVariantExecutor:
                     yield outcome
                 else:
                     yield _failed(variant, _lost(outcome), time.perf_counter())
+        except BaseException:  # Ctrl-C, or the caller stopped reading: nothing may run on
+            _stop_now(pool)
+            raise
+        pool.shutdown()
         for variant in lost:
             with concurrent.futures.ProcessPoolExecutor(1, mp_context=context,
                                                         initializer=_worker_started) as alone:
                 yield from FuturesVariantExecutor(alone).map_unordered(fn, [variant])
 
 
+def _stop_now(pool: concurrent.futures.ProcessPoolExecutor) -> None:
+    """Drop the variants not started and end the running ones (their workers remove
+    the temporary file of a mesh being written, see :func:`_killed`)."""
+    workers = list(getattr(pool, "_processes", {}).values())  # no public API before 3.14
+    pool.shutdown(wait=False, cancel_futures=True)
+    for worker in workers:
+        worker.terminate()
+    for worker in workers:
+        worker.join(timeout=5)
+
+
 def _worker_started() -> None:
-    """In each pool worker: when the pool kills it (SIGTERM, after another worker
-    died), remove the temporary file of a mesh it was writing, then exit."""
+    """In each pool worker: Ctrl-C is left to the batch (which ends the workers; a
+    worker interrupted on its own would print a traceback and take the next
+    variant); when the pool kills it (SIGTERM: Ctrl-C, or another worker died),
+    remove the temporary file of a mesh it was writing, then exit."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
     signal.signal(signal.SIGTERM, _killed)
 
 
