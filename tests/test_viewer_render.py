@@ -742,3 +742,17 @@ def test_render_command_draws_a_script_of_point_spheres(tmp_path: Path) -> None:
     out = tmp_path / "points.png"
     assert main(["render", str(script), "-o", str(out), "--size", "160x120"]) == 0
     assert _blobs(_mask(read_image(out)))[1] == 2
+
+
+def test_render_takes_the_seed_a_run_takes(tmp_path: Path) -> None:
+    script = tmp_path / "random_box.py"
+    script.write_text("import random\nload('cube')\n"
+                      "scale((random.uniform(0.2, 1), random.uniform(0.2, 1), 1))\n")
+    pictures = {}
+    for name, seed in (("a", "1"), ("b", "1"), ("c", "2")):
+        out = tmp_path / f"{name}.png"
+        assert main(["render", str(script), "-o", str(out), "--size", "64x48",
+                     "--seed", seed]) == 0
+        pictures[name] = read_image(out)
+    assert np.array_equal(pictures["a"], pictures["b"])
+    assert not np.array_equal(pictures["a"], pictures["c"])

@@ -87,6 +87,13 @@ def whole_number_option(what: str, least: int) -> Callable[[str], int]:
 _jobs = whole_number_option("jobs", 1)
 
 
+def add_seed_option(parser: argparse.ArgumentParser) -> None:
+    """Add ``--seed N`` (default 0; ``none`` leaves random and numpy.random unseeded),
+    the seed every run of the command starts from."""
+    parser.add_argument("--seed", type=_seed, default=0,
+                        help="seed of random/numpy at the start of every run (or 'none')")
+
+
 def add_select_option(parser: argparse.ArgumentParser) -> None:
     """Add ``--select KIND=IDS`` (repeatable), the selection ``faces(True)`` and the
     like return in the script, as the viewer's picks give it there."""
@@ -125,7 +132,7 @@ def _add_run(subparsers: Any) -> None:
     run.add_argument("-o", "--output", metavar="OUT", help="write the result (.obj .dlfl .stl .ply)")
     run.add_argument("--steps", action="store_true", help="print the step list")
     add_all_objects_option(run)
-    run.add_argument("--seed", type=_seed, default=0, help="seed of random/numpy (or 'none')")
+    add_seed_option(run)
     run.add_argument("--set", "--param", dest="set", action="append", default=[],
                      metavar="NAME=VALUE", help="a declared script parameter, repeatable")
     add_select_option(run)
@@ -149,7 +156,7 @@ def _add_batch(subparsers: Any) -> None:
                        help="processes to run variants on (default: one per core)")
     batch.add_argument("--mesh", metavar="IN", help="mesh every variant starts from")
     add_all_objects_option(batch)
-    batch.add_argument("--seed", type=_seed, default=0, help="seed of random/numpy (or 'none')")
+    add_seed_option(batch)
     add_select_option(batch)
     batch.set_defaults(handler=cmd_batch)
 

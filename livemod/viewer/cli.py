@@ -19,6 +19,7 @@ from livemod.dlfl.io import open_mesh
 from livemod.dlfl.scene import Selection
 from livemod.runner.cli import (
     add_all_objects_option,
+    add_seed_option,
     add_select_option,
     check_mesh_output,
     selection_of,
@@ -126,6 +127,7 @@ def add_commands(subparsers: Any) -> None:
     view = subparsers.add_parser("view", help="open the live window on a script")
     view.add_argument("script", help="the Python script to watch and run")
     view.add_argument("--mesh", help="mesh every run starts from (.obj .dlfl .stl .ply)")
+    add_seed_option(view)
     view.add_argument("--size", type=parse_size, default=(1280, 800), help="WxH window size")
     view.add_argument("--poll", action="store_true",
                       help="poll for changes (for file systems that send no events)")
@@ -149,6 +151,7 @@ def _add_render(subparsers: Any) -> None:
                         help="out.png, out.gif, out.webp, out.mp4 (needs livemod[video]), a "
                              "folder, or a pattern with {frame} / %%03d")
     render.add_argument("--mesh", help="mesh a script starts from")
+    add_seed_option(render)
     render.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
                         help="a declared script parameter, repeatable")
     add_select_option(render)
@@ -209,7 +212,8 @@ def _view(args: argparse.Namespace) -> int:
     except ValueError as exc:
         print(f"livemod view: {exc}", file=sys.stderr)
         return 2
-    return view(ViewOptions(args.script, mesh_path=args.mesh, size=args.size, poll=args.poll,
+    return view(ViewOptions(args.script, mesh_path=args.mesh, seed=args.seed,
+                            size=args.size, poll=args.poll,
                             parameters=values, selection=selection_of(args),
                             output=args.output, all_objects=args.all_objects))
 
@@ -310,7 +314,7 @@ def _render_to(args: argparse.Namespace, offscreen: Any, values: dict[str, Any],
     from .renderer import BACKGROUNDS, Style
 
     arrays, preview, others = _load_input(args.input, args.mesh, args.preview, values,
-                                          selection)
+                                          selection, args.seed)
     if arrays is None and others is None:
         print(f"livemod render: warning: {args.input} left no mesh; the picture shows an "
               "empty scene", file=sys.stderr)
@@ -362,12 +366,13 @@ def _samples(args: argparse.Namespace) -> int:
 
 def _load_input(path: str, mesh_path: str | None, want_preview: bool,
                 values: dict[str, Any] | None = None,
-                selection: Selection | None = None) -> tuple[Any, Any, Any]:
+                selection: Selection | None = None,
+                seed: int | None = 0) -> tuple[Any, Any, Any]:
     """``(arrays, preview or None, other objects or None)`` of a script's result (run
-    with the parameter ``values`` and ``selection``) or of a mesh file."""
+    with the parameter ``values``, ``selection`` and ``seed``) or of a mesh file."""
 
     if Path(path).suffix.lower() in SCRIPT_SUFFIXES:
-        return _run_for_render(path, mesh_path, want_preview, values, selection)
+        return _run_for_render(path, mesh_path, want_preview, values, selection, seed)
     from livemod.dlfl import mesh_arrays
 
     mesh = open_mesh(path)
@@ -381,8 +386,9 @@ def _load_input(path: str, mesh_path: str | None, want_preview: bool,
 
 def _run_for_render(path: str, mesh_path: str | None, want_preview: bool,
                     values: dict[str, Any] | None = None,
-                    selection: Selection | None = None) -> tuple[Any, Any, Any]:
-    """Run a script headless (with the parameter ``values`` and ``selection``);
+                    selection: Selection | None = None,
+                    seed: int | None = 0) -> tuple[Any, Any, Any]:
+    """Run a script headless (with the parameter ``values``, ``selection`` and ``seed``);
     ``(arrays, preview, others)`` of the mesh it leaves and its other objects.
 
     Raises:
@@ -396,7 +402,8 @@ def _run_for_render(path: str, mesh_path: str | None, want_preview: bool,
     from livemod.runner.preview import preview_arrays
     from livemod.runner.results import current_mesh, snapshot_others
 
-    outcome = run_outcome(path, mesh_path=mesh_path, parameters=values, selection=selection)
+    outcome = run_outcome(path, mesh_path=mesh_path, parameters=values, selection=selection,
+                          seed=seed)
     note = missing_picks_note(outcome.scene)
     if note is not None:
         print(f"livemod render: {note}", file=sys.stderr)

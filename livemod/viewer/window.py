@@ -69,6 +69,8 @@ class ViewOptions:
     Attributes:
         script: the script to watch and run.
         mesh_path: mesh every run starts from (``--mesh``), or None.
+        seed: the seed of random and numpy.random at the start of every run
+            (``--seed``; None leaves them unseeded).
         backend: moderngl-window window class: "glfw" (default) or "headless".
         size: window size in pixels.
         samples: MSAA samples of the window framebuffer.
@@ -88,6 +90,7 @@ class ViewOptions:
 
     script: str
     mesh_path: str | None = None
+    seed: int | None = 0
     backend: str = "glfw"
     size: tuple[int, int] = (1280, 800)
     samples: int = 4
@@ -106,7 +109,7 @@ def _default_factory(options: ViewOptions) -> Callable[[str, str | None], Any]:
     from livemod.runner import LiveSession
 
     def create(script: str, mesh_path: str | None) -> Any:
-        return LiveSession(script, mesh_path=mesh_path, poll=options.poll,
+        return LiveSession(script, mesh_path=mesh_path, poll=options.poll, seed=options.seed,
                            parameters=options.parameters, output=options.output,
                            all_objects=options.all_objects)
 
