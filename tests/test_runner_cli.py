@@ -158,6 +158,18 @@ def test_livemod_entry_point_runs_a_script():
     assert "V=4 E=4 F=2" in done.stdout
 
 
+def test_an_output_that_cannot_be_written_is_one_plain_line(tmp_path, capsys):
+    (tmp_path / "folder.obj").mkdir()
+    (tmp_path / "file.obj").write_text("")
+    for target, reason in ((tmp_path / "folder.obj", "Is a directory"),
+                           (tmp_path / "file.obj" / "x.obj",
+                            f"{tmp_path / 'file.obj'} is a file, not a folder")):
+        capsys.readouterr()
+        assert cli.main(["run", RING, "-o", str(target)]) == 2
+        assert capsys.readouterr().err == f"livemod run: cannot write {target}: {reason}\n"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["file.obj", "folder.obj"]
+
+
 def test_run_writes_its_output_even_when_the_reader_of_its_summary_left(tmp_path):
     """``livemod run S -o OUT | head -1``: the pipe closes before the summary is
     printed (here: before anything is), and OUT must still be written."""

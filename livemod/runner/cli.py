@@ -264,10 +264,19 @@ def _save(mesh: Any, output: str | None) -> int:
     try:
         save_result(mesh, output)
     except Exception as exc:
-        print(f"livemod run: cannot write {output}: {type(exc).__name__}: {exc}",
-              file=sys.stderr)
+        print(f"livemod run: cannot write {output}: {_why(exc)}", file=sys.stderr)
         return 2
     return 0
+
+
+def _why(exc: Exception) -> str:
+    """What failed, for a one-line message: the system's words for an OSError
+    ("Is a directory"), else the exception's kind and text."""
+    if isinstance(exc, FileExistsError):  # makedirs met a file where a folder must be
+        return f"{exc.filename} is a file, not a folder"
+    if isinstance(exc, OSError) and exc.errno:
+        return os.strerror(exc.errno)
+    return f"{type(exc).__name__}: {exc}"
 
 
 def print_summary(script: str, mesh: Any, steps: int, elapsed: float,
