@@ -11,8 +11,9 @@ link replaces the file it points to and keeps the link.
 from __future__ import annotations
 
 import contextlib
+import errno
 import os
-import tempfile
+import secrets
 from collections.abc import Iterable, Iterator
 from typing import BinaryIO
 
@@ -37,12 +38,8 @@ def atomic_write(path: str | os.PathLike[str]) -> Iterator[BinaryIO]:
     """
     # the temporary file must sit beside the file finally replaced, for the rename
     target = os.path.realpath(os.path.abspath(os.fspath(path)))
-    folder, name = os.path.split(target)
-    try:
-        fd, tmp_path = tempfile.mkstemp(prefix=f".{name}.", suffix=".tmp", dir=folder)
-    except OSError as exc:  # say so of the target, not of a temporary name it never saw
-        raise type(exc)(exc.errno, f"cannot write {target}: {exc.strerror}") from None
-    _in_progress.add(tmp_path)
+    folder = os.path.dirname(target)
+    fd, tmp_path = _temporary_beside(target)
     try:
         with os.fdopen(fd, "wb") as handle:
             yield handle
@@ -64,6 +61,29 @@ def atomic_write(path: str | os.PathLike[str]) -> Iterator[BinaryIO]:
 
 # temporary files of the writes under way in this process
 _in_progress: set[str] = set()
+
+
+def _temporary_beside(target: str) -> tuple[int, str]:
+    """A new file ``.NAME.XXXXXXXX.tmp`` in ``target``'s folder, open for writing
+    (mode 0o600), and its path, listed in ``_in_progress`` *before* it exists: a
+    worker killed between the two (SIGTERM, see :func:`remove_unfinished`) must
+    not leave it behind.
+
+    Raises:
+        OSError: the folder cannot hold it (the message names ``target``).
+    """
+    folder, name = os.path.split(target)
+    for _ in range(100):
+        tmp_path = os.path.join(folder, f".{name}.{secrets.token_hex(4)}.tmp")
+        _in_progress.add(tmp_path)
+        try:
+            return os.open(tmp_path, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600), tmp_path
+        except FileExistsError:
+            _in_progress.discard(tmp_path)
+        except OSError as exc:  # say so of the target, not of a name it never saw
+            _in_progress.discard(tmp_path)
+            raise type(exc)(exc.errno, f"cannot write {target}: {exc.strerror}") from None
+    raise FileExistsError(errno.EEXIST, f"cannot write {target}: no free temporary name")
 
 
 def remove_unfinished() -> None:
