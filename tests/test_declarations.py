@@ -43,6 +43,14 @@ def test_computed_declarations_are_found_by_running_once(tmp_path: Path) -> None
     assert specs["thickness"].default == pytest.approx(0.1)
 
 
+def test_a_literal_declaration_the_run_does_not_reach_is_listed_too(tmp_path: Path) -> None:
+    specs = declared_parameters(write(tmp_path, COMPUTED + (
+        'if t > 1:\n    big = param("big", True)\n'
+        'if t > 2:\n    huge = param("huge", 2 * t)\n')))  # computed and not run: unknown
+    assert list(specs) == ["thickness", "big"]
+    assert describe([specs["big"]]) == ["big = True  [bool]"]
+
+
 def test_values_are_checked_against_the_declarations(tmp_path: Path) -> None:
     specs = declared_parameters(write(tmp_path, LITERAL))
     assert check_values(specs, {"count": "4", "thickness": 0.2}) == {"count": 4, "thickness": 0.2}

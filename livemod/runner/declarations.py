@@ -23,14 +23,23 @@ _PARAM_ARGS = ("name", "default", "min", "max", "step", "choices", "doc")
 def declared_parameters(script: str | Path) -> dict[str, ParamSpec]:
     """The parameters ``script`` declares, by name, in the order of the script.
 
+    When a ``param()`` call computes an argument, the script is run and what the
+    run declared comes first, then the literal calls the run did not reach (a
+    branch it did not take), in the order of the script.
+
     Raises:
         DLFLError: a declaration is malformed, or the script fails when it has to
             be run to find its declarations.
         OSError: the script cannot be read.
     """
     path = Path(script)
-    specs = literal_declarations(_source(path), path)
-    return specs if specs is not None else _run_for_declarations(path)
+    source = _source(path)
+    specs = literal_declarations(source, path)
+    if specs is not None:
+        return specs
+    ran = _run_for_declarations(path)
+    readable = _readable_declarations(source, path)
+    return {**ran, **{name: spec for name, spec in readable.items() if name not in ran}}
 
 
 def _source(path: Path) -> str:
@@ -55,6 +64,26 @@ def literal_declarations(source: str, path: str | Path) -> dict[str, ParamSpec] 
     Raises:
         DLFLError: a syntax error, or a malformed literal declaration.
     """
+    calls, literal = _param_calls(source, path)
+    if all(args is not None for args in literal):
+        return _specs(Path(path), calls, literal)
+    return None
+
+
+def _readable_declarations(source: str, path: str | Path) -> dict[str, ParamSpec]:
+    """The declarations of the ``param()`` calls whose arguments are all literals."""
+    calls, literal = _param_calls(source, path)
+    kept = [(call, args) for call, args in zip(calls, literal, strict=True) if args is not None]
+    return _specs(Path(path), [call for call, _ in kept], [args for _, args in kept])
+
+
+def _param_calls(source: str, path: str | Path) -> tuple[list[ast.Call], list[Any]]:
+    """The ``param()`` calls of ``source`` in source order, and each one's literal
+    arguments (None for a call that computes one).
+
+    Raises:
+        DLFLError: a syntax error.
+    """
     try:
         tree = ast.parse(source, filename=str(path))
     except SyntaxError as exc:
@@ -62,10 +91,7 @@ def literal_declarations(source: str, path: str | Path) -> dict[str, ParamSpec] 
     calls = [node for node in ast.walk(tree)
              if isinstance(node, ast.Call) and _is_param_call(node)]
     calls.sort(key=lambda node: (node.lineno, node.col_offset))
-    literal = [_literal_arguments(call) for call in calls]
-    if all(args is not None for args in literal):
-        return _specs(Path(path), calls, literal)
-    return None
+    return calls, [_literal_arguments(call) for call in calls]
 
 
 def _is_param_call(node: ast.AST) -> bool:
