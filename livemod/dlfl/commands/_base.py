@@ -8,7 +8,7 @@ from sys import _getframe
 from time import perf_counter
 from typing import Any, TypeVar, cast
 
-from .._checks import is_id
+from .._checks import id_list, is_id
 from ..errors import DLFLError
 from ..mesh import Mesh
 from ..scene import NO_MESH, Scene, current_scene
@@ -111,6 +111,21 @@ def resolve_corner(m: Mesh, corner: Any, what: str = "corner") -> int:
     raise DLFLError(
         f"{what} must be a (faceid, vertexid) tuple or a corner id, got {corner!r}"
     )
+
+
+def id_arguments(ids: Any, name: str, selected: str | None = None) -> list[int]:
+    """A command's id argument as a list of ints: one id (Python or numpy), an
+    iterable of ids, or, when ``selected`` names a selection field (``"faces"``,
+    ``"edges"``, ...), None for the scene's selection of that kind.
+
+    Raises:
+        DLFLError: anything else; the message names ``name``.
+    """
+    if ids is None and selected is not None:
+        return list(getattr(scene().selection, selected))
+    if is_id(ids):
+        return [int(ids)]
+    return id_list(ids, name)
 
 
 def _still_there(m: Mesh, corner: Corner) -> bool:

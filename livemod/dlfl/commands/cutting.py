@@ -12,19 +12,9 @@ from __future__ import annotations
 from typing import Any
 
 from .. import cutting as _cutting
-from .._checks import id_list, is_id
-from ._base import mesh, modeling_command, scene
+from ._base import id_arguments, mesh, modeling_command
 
 __all__ = ["cutVertices", "cutEdges", "cutFaces", "truncate"]
-
-
-def _ids(ids: Any, kind: str, name: str) -> list[int]:
-    """``ids`` (one id, a list, or None for the selection's ``kind``) as a list."""
-    if ids is None:
-        return list(getattr(scene().selection, kind))
-    if is_id(ids):
-        return [int(ids)]
-    return id_list(ids, name)
 
 
 @modeling_command
@@ -40,7 +30,7 @@ def cutVertices(vertexids: Any = None, offset: float = _cutting.DEFAULT_OFFSET) 
             self-loop or one edge, ``offset`` not in (0, 1) (below 0.5 where two
             cut vertices share an edge); the mesh is unchanged.
     """
-    return _cutting.cut_vertices(mesh(), _ids(vertexids, "vertices", "vertexids"), offset)
+    return _cutting.cut_vertices(mesh(), id_arguments(vertexids, "vertexids", "vertices"), offset)
 
 
 @modeling_command
@@ -55,7 +45,7 @@ def cutEdges(edgeids: Any = None, offset: float = _cutting.DEFAULT_OFFSET) -> li
         DLFLError: an id that is not an edge, a self-loop, edges closing a cycle,
             ``offset`` not in (0, 1); the mesh is unchanged.
     """
-    return _cutting.cut_edges(mesh(), _ids(edgeids, "edges", "edgeids"), offset)
+    return _cutting.cut_edges(mesh(), id_arguments(edgeids, "edgeids", "edges"), offset)
 
 
 @modeling_command
@@ -71,7 +61,7 @@ def cutFaces(faceids: Any = None, offset: float = _cutting.DEFAULT_OFFSET) -> li
             twice, two faces sharing a vertex, ``offset`` not in (0, 1); the mesh
             is unchanged.
     """
-    return _cutting.cut_faces(mesh(), _ids(faceids, "faces", "faceids"), offset)
+    return _cutting.cut_faces(mesh(), id_arguments(faceids, "faceids", "faces"), offset)
 
 
 @modeling_command

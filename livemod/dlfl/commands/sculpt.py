@@ -11,7 +11,6 @@ object; those that rebuild it give all its elements fresh ids.
 
 from __future__ import annotations
 
-from collections.abc import Iterable
 from typing import Any
 
 from .. import geometry, hull, sponge
@@ -20,24 +19,12 @@ from .. import sierpinsky as _sierpinsky
 from .. import wireframe as _wire
 from .._checks import finite_number, flag
 from ..errors import DLFLError
-from ._base import mesh, modeling_command
+from ._base import id_arguments, mesh, modeling_command
 
 __all__ = [
     "rind", "wireframe", "column", "crust", "sierpinsky", "menger", "meshsmooth",
     "planarize", "spheralize", "convexHull", "dualConvexHull",
 ]
-
-
-def _face_list(facelist: Any) -> list[int]:
-    if isinstance(facelist, int) and not isinstance(facelist, bool):
-        return [facelist]
-    if not isinstance(facelist, Iterable):
-        raise DLFLError(f"facelist must be a list of face ids, got {facelist!r}")
-    faces = list(facelist)
-    for f in faces:
-        if not isinstance(f, int) or isinstance(f, bool):
-            raise DLFLError(f"facelist must hold face ids (integers), got {f!r}")
-    return faces
 
 
 @modeling_command
@@ -55,7 +42,7 @@ def rind(facelist: Any, useScaling: bool, percent: float, uniform: bool = True) 
         DLFLError: a face id that is gone, a zero or inverting thickness/scale,
             or a flag that is not True or False.
     """
-    faces = _face_list(facelist)
+    faces = id_arguments(facelist, "facelist")
     value = finite_number(percent, "percent")
     if flag(useScaling, "useScaling"):
         _rind.rind(mesh(), faces, use_scaling=True, scale=value)

@@ -12,9 +12,9 @@ from collections.abc import Iterable
 from typing import Any
 
 from .. import subdivision as _subdivision
-from .._checks import flag, id_list, is_id
+from .._checks import flag, is_id
 from ..errors import DLFLError
-from ._base import mesh, modeling_command, scene
+from ._base import id_arguments, mesh, modeling_command
 
 __all__ = ["subdivide", "subdivideFace", "subdivideFaces", "dual"]
 
@@ -43,14 +43,6 @@ def subdivide(scheme: str, *options: Any, **keywords: Any) -> None:
     _subdivision.subdivide(mesh(), scheme, **given, **keywords)
 
 
-def _face_list(faceids: Any) -> list[int]:
-    if faceids is None:
-        return list(scene().selection.faces)
-    if is_id(faceids):
-        return [int(faceids)]
-    return id_list(faceids, "faceids")
-
-
 @modeling_command
 def subdivideFace(faceid: int, usequads: bool = True) -> None:
     """Split one face about its centroid: quads (edges split) or a triangle fan.
@@ -72,7 +64,7 @@ def subdivideFaces(faceids: Iterable[int] | None = None, usequads: bool = True) 
     Raises:
         DLFLError: an id that is not a face.
     """
-    _subdivision.subdivide_faces(mesh(), _face_list(faceids), usequads=flag(usequads, "usequads"))
+    _subdivision.subdivide_faces(mesh(), id_arguments(faceids, "faceids", "faces"), usequads=flag(usequads, "usequads"))
 
 
 @modeling_command
