@@ -48,8 +48,8 @@ def atomic_write(path: str | os.PathLike[str]) -> Iterator[BinaryIO]:
         os.chmod(tmp_path, _mode_for(target))
         try:
             os.replace(tmp_path, target)
-        except OSError as exc:  # name the target (a folder, say), not the temporary file
-            raise type(exc)(exc.errno, f"cannot write {target}: {exc.strerror}") from None
+        except OSError as exc:  # the target may be a folder, say
+            raise _about(target, exc) from None
     except BaseException:
         with contextlib.suppress(OSError):
             os.unlink(tmp_path)
@@ -80,10 +80,15 @@ def _temporary_beside(target: str) -> tuple[int, str]:
             return os.open(tmp_path, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600), tmp_path
         except FileExistsError:
             _in_progress.discard(tmp_path)
-        except OSError as exc:  # say so of the target, not of a name it never saw
+        except OSError as exc:
             _in_progress.discard(tmp_path)
-            raise type(exc)(exc.errno, f"cannot write {target}: {exc.strerror}") from None
+            raise _about(target, exc) from None
     raise FileExistsError(errno.EEXIST, f"cannot write {target}: no free temporary name")
+
+
+def _about(target: str, exc: OSError) -> OSError:
+    """``exc`` said of ``target``, not of a temporary name the caller never saw."""
+    return type(exc)(exc.errno, f"cannot write {target}: {exc.strerror}")
 
 
 def remove_unfinished() -> None:
