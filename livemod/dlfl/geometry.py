@@ -10,6 +10,8 @@ keeping the ids of everything they do not delete.
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 
 from ._checks import finite_number, first_not_finite, flag, whole_count
@@ -66,7 +68,7 @@ def mesh_smooth(mesh: Mesh, iterations: int = 1) -> None:
     positions = np.ldexp(a.positions, -k) if k else a.positions
     for _ in range(whole_count(iterations, "iterations", least=0, each=0)):
         # the topology never changes: only the positions of the arrays move on
-        current = MeshArrays(**{**a.__dict__, "positions": positions})
+        current = replace(a, positions=positions)
         average = _face_means(current, face_centroids(current))
         normal = _unit(_face_means(current, face_normals(current)))
         move = average - positions
@@ -95,7 +97,7 @@ def planarize(mesh: Mesh, steps: int = 100) -> None:
     positions = a.positions.copy()
     for i in range(total):
         weight = 0.3 - i * 0.3 / 110
-        current = MeshArrays(**{**a.__dict__, "positions": positions})
+        current = replace(a, positions=positions)
         normals = face_normals(current)[a.corner_face]
         centres = face_centroids(current)[a.corner_face]
         p = positions[a.corner_vertex]
@@ -266,8 +268,9 @@ def trisect_edge(mesh: Mesh, edge: int, num: float, scale: bool) -> list[int]:
 
     Raises:
         DLFLError: ``edge`` is not live, ``num`` is not a finite number,
-            ``scale`` is not a flag (see :func:`livemod.dlfl._checks.flag`), or an offset trisection of an edge no longer
-            than 0.04 (no offset fits); the mesh is unchanged.
+            ``scale`` is not a flag (True, False, 0 or 1), or an offset
+            trisection of an edge no longer than 0.04 (no offset fits); the mesh
+            is unchanged.
     """
     num = finite_number(num, "num")
     scale = flag(scale, "scale")  # True: num is a scale factor; False: an offset

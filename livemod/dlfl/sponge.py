@@ -23,6 +23,8 @@ shell inside out, so the default thickness keeps the cube's proportion there:
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 
 from ._checks import positive_number
@@ -87,7 +89,7 @@ def _inner_shell(a: MeshArrays, thickness: float | None) -> tuple[float, np.ndar
             the message names it.
     """
     if thickness is None:
-        thickness = TOPMOD_THICKNESS * min(1.0, shell_limit(a))
+        thickness = _default_thickness(shell_limit(a))
     thickness = positive_number(thickness, "thickness")
     inner = offset_shell(a, thickness, uniform=True)
     try:
@@ -100,9 +102,14 @@ def _inner_shell(a: MeshArrays, thickness: float | None) -> tuple[float, np.ndar
         raise DLFLError(
             f"thickness {thickness} is too large for this mesh: its inner shell "
             f"collapses or turns over from thickness {limit:.6g} on; use a smaller "
-            f"value (the default here is {TOPMOD_THICKNESS * min(1.0, limit):.6g})"
+            f"value (the default here is {_default_thickness(limit):.6g})"
         ) from error
     return thickness, inner
+
+
+def _default_thickness(limit: float) -> float:
+    """TopMod's 0.67, or 0.67 times a :func:`shell_limit` below the edge-2 cube's 1."""
+    return TOPMOD_THICKNESS * min(1.0, limit)
 
 
 def shell_limit(a: MeshArrays) -> float:
@@ -146,7 +153,7 @@ def _face_limit(a: MeshArrays, p: np.ndarray, d: np.ndarray) -> float:
     so ``N0 . N(t)`` is a quadratic ``A - B t + C t^2`` with ``A > 0``: its least
     positive root, or where its minimum touches zero (a face shrinking to a point).
     """
-    q = p[a.corner_vertex] - face_centroids(MeshArrays(**{**a.__dict__, "positions": p}))[
+    q = p[a.corner_vertex] - face_centroids(replace(a, positions=p))[
         a.corner_face]  # about the centroid: no cancellation between far-off points
     dc, nxt, nf = d[a.corner_vertex], a.corner_next, len(a.face_ids)
     n0 = group_sum(a.corner_face, np.cross(q, q[nxt]), nf)
