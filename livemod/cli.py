@@ -26,10 +26,13 @@ SUBCOMMAND_MODULES = ("livemod.runner.cli", "livemod.viewer.cli")
 
 def build_parser() -> argparse.ArgumentParser:
     """The top-level parser with every subcommand registered."""
+    from livemod.commandline import EXIT_CODES_HELP
+
     parser = argparse.ArgumentParser(
         prog="livemod",
         description="Procedural manifold mesh modeling: run, watch, view and render "
         "DLFL scripts.",
+        epilog=f"{EXIT_CODES_HELP}. Errors are one line: livemod: error: <what>: <why>.",
     )
     parser.add_argument("--version", action="version", version=f"livemod {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True)
@@ -43,6 +46,8 @@ def build_parser() -> argparse.ArgumentParser:
                 raise
             continue
         module.add_commands(sub)
+    for command in sub.choices.values():  # each `livemod COMMAND --help` says them too
+        command.epilog = command.epilog or f"{EXIT_CODES_HELP}."
     return parser
 
 
@@ -108,10 +113,22 @@ def _geometry_lines(arrays: MeshArrays) -> list[str]:
 
 
 def _convert(args: argparse.Namespace) -> int:
+    """``livemod convert``: the output is checked before the input is read (a large
+    mesh takes a while), and its folder made if missing, as ``run -o`` does.
+
+    Raises:
+        UsageError: an output suffix no writer takes.
+        OSError, DLFLError: the input cannot be read, or the output written.
+    """
+    from livemod.commandline import check_writable
     from livemod.dlfl import summarize
     from livemod.dlfl.io import open_mesh, save_mesh
+    from livemod.runner.cli import check_mesh_output
 
+    check_mesh_output(args.output)
+    check_writable([args.output])
     mesh = open_mesh(args.input)
+    os.makedirs(os.path.dirname(os.path.abspath(args.output)), exist_ok=True)
     save_mesh(mesh, args.output)
     summary = summarize(mesh)  # faces as `livemod info` counts them: holes apart
     holes = f", {summary.holes} holes" if summary.holes else ""
@@ -123,9 +140,12 @@ def _convert(args: argparse.Namespace) -> int:
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the ``livemod`` command line; returns the process exit code.
 
-    Bad input (a missing file, a malformed mesh, a script error) prints one line
-    ``livemod: error: ...`` and returns 2 or 1, never a Python traceback.
+    What a subcommand raises becomes one line ``livemod: error: <what>: <why>``,
+    never a Python traceback: a :class:`~livemod.commandline.UsageError` exits 2
+    (as argparse's own errors do), an OSError or DLFLError (a missing file, a
+    malformed mesh, a script error) 1, Ctrl-C 130 (see :mod:`livemod.commandline`).
     """
+    from livemod.commandline import FAILED, INTERRUPTED, USAGE, UsageError, describe, error
     from livemod.dlfl.errors import DLFLError
 
     parser = build_parser()
@@ -135,17 +155,21 @@ def main(argv: Sequence[str] | None = None) -> int:
         return int(args.handler(args) or 0)
     except BrokenPipeError:
         return _reader_went_away()
+    except UsageError as exc:
+        error(describe(exc))
+        return USAGE
     except (DLFLError, OSError) as exc:
-        print(f"livemod: error: {exc}", file=sys.stderr)
-        return 1
+        error(describe(exc))
+        return FAILED
     except KeyboardInterrupt:
-        return 130
+        return INTERRUPTED
 
 
 def _say_repairs_as_notes() -> None:
     """Print a loader's repair (:class:`~livemod.dlfl.errors.DLFLRepairWarning`) as
     one ``livemod: note: ...`` line on standard error, not as a Python warning that
     shows livemod's own source line; other warnings are shown as Python shows them."""
+    from livemod.commandline import note
     from livemod.dlfl.errors import DLFLRepairWarning
 
     python_shows = warnings.showwarning
@@ -153,7 +177,7 @@ def _say_repairs_as_notes() -> None:
     def show(message: Warning | str, category: type[Warning], filename: str, lineno: int,
              file: TextIO | None = None, line: str | None = None) -> None:
         if issubclass(category, DLFLRepairWarning):
-            print(f"livemod: note: {message}", file=file or sys.stderr)
+            note(str(message), file)
         else:
             python_shows(message, category, filename, lineno, file, line)
 
@@ -167,10 +191,12 @@ def _reader_went_away() -> int:
     last flush does not fail again; returns 128 + SIGPIPE, as a shell tool
     killed by the signal would.
     """
+    from livemod.commandline import READER_LEFT
+
     devnull = os.open(os.devnull, os.O_WRONLY)
     os.dup2(devnull, sys.stdout.fileno())
     os.close(devnull)
-    return 141
+    return READER_LEFT
 
 
 if __name__ == "__main__":

@@ -50,8 +50,36 @@ def test_info_reports_genus_of_a_sample_torus(capsys: pytest.CaptureFixture[str]
 def test_info_of_a_missing_file_is_one_clear_error(capsys: pytest.CaptureFixture[str]) -> None:
     assert main(["info", "no-such-mesh.obj"]) == 1
     err = capsys.readouterr().err
-    assert err.startswith("livemod: error:")
-    assert "no-such-mesh.obj" in err
+    assert err.startswith("livemod: error: no file 'no-such-mesh.obj' and no built-in shape "
+                          "of that name; shapes: cube, ")
+    assert err.count("\n") == 1
+
+
+@pytest.mark.parametrize("command", [
+    ["run", "{missing}"], ["run", "--watch", "{missing}"], ["params", "{missing}"],
+    ["batch", "{missing}", "--param", "n=1"], ["render", "{missing}", "-o", "{tmp}/x.png"],
+    ["view", "{missing}"], ["run", "{script}", "--mesh", "{missing}"],
+    ["batch", "{script}", "--param", "n=1", "--mesh", "{missing}"],
+    ["render", "{script}", "--mesh", "{missing}", "-o", "{tmp}/x.png"],
+])
+def test_every_command_says_a_missing_input_the_same_way(command, tmp_path, capsys) -> None:
+    script, missing = tmp_path / "s.py", tmp_path / "gone.py"
+    script.write_text(f"n = param('n', 0)\nopen({str(tmp_path / 'ran')!r}, 'w').close()\n")
+    argv = [a.format(missing=missing, script=script, tmp=tmp_path) for a in command]
+    assert main(argv) == 1
+    assert capsys.readouterr().err == (f"livemod: error: cannot read {missing}: "
+                                       "No such file or directory\n")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["s.py"]  # nothing ran, nothing written
+
+
+def test_help_states_the_exit_codes(capsys: pytest.CaptureFixture[str]) -> None:
+    with pytest.raises(SystemExit) as stop:
+        main(["--help"])
+    assert stop.value.code == 0
+    assert " ".join(capsys.readouterr().out.split()).endswith(
+        "exit codes: 0 done; 1 the script, a file or a variant failed; 2 the command line is "
+        "wrong; 130 interrupted (Ctrl-C); 141 the reader of the output left (| head). Errors "
+        "are one line: livemod: error: <what>: <why>.")
 
 
 def test_convert_round_trips_through_dlfl(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
@@ -67,6 +95,20 @@ def test_convert_counts_faces_as_info_does(tmp_path: Path, capsys: pytest.Captur
     triangle.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")  # open: one face, one hole
     assert main(["convert", str(triangle), str(tmp_path / "tri.dlfl")]) == 0
     assert capsys.readouterr().out.endswith("(3 vertices, 3 edges, 1 faces, 1 holes)\n")
+
+
+def test_convert_checks_the_output_before_reading_and_makes_its_folder(tmp_path, capsys) -> None:
+    (tmp_path / "file").write_text("")
+    target = tmp_path / "file" / "c.obj"
+    # the input is missing too: the output is checked first (a large input takes a while)
+    assert main(["convert", str(tmp_path / "gone.obj"), str(target)]) == 1
+    assert capsys.readouterr().err == (f"livemod: error: cannot write {target}: "
+                                       f"{tmp_path / 'file'} is a file, not a folder\n")
+    assert main(["convert", "cube", str(tmp_path / "c.txt")]) == 2
+    assert capsys.readouterr().err == (f"livemod: error: output '{tmp_path / 'c.txt'}' must end "
+                                       "with one of .obj, .dlfl, .stl, .ply\n")
+    assert main(["convert", "cube", str(tmp_path / "new" / "c.stl")]) == 0
+    assert (tmp_path / "new" / "c.stl").exists()
 
 
 def test_a_write_into_a_missing_folder_names_the_target(tmp_path: Path) -> None:
@@ -142,10 +184,17 @@ def test_render_refuses_frame_counts_and_elevations_it_cannot_draw(option, messa
     assert args.elevation == -89.5 and args.turntable == 0
 
 
-def test_render_names_a_missing_script_before_anything_else(tmp_path, capsys):
-    assert main(["render", str(tmp_path / "gone.py"), "-o", str(tmp_path / "x.png")]) == 2
-    assert f"livemod render: no such script: {tmp_path / 'gone.py'}" in capsys.readouterr().err
-    assert list(tmp_path.iterdir()) == []
+def test_render_checks_its_output_before_the_script_runs(tmp_path, capsys):
+    script = tmp_path / "marks.py"
+    script.write_text(f"open({str(tmp_path / 'ran')!r}, 'w').close()\nload('cube')\n")
+    (tmp_path / "file").write_text("")
+    for out, frames in ((tmp_path / "file" / "x.png", "0"), (tmp_path / "file" / "t.gif", "2"),
+                        (tmp_path / "file" / "seq" / "f_{frame}.png", "2")):
+        assert main(["render", str(script), "-o", str(out), "--turntable", frames]) == 1
+        first = str(out).format(frame=0)
+        assert capsys.readouterr().err == (f"livemod: error: cannot write {first}: "
+                                           f"{tmp_path / 'file'} is a file, not a folder\n")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["file", "marks.py"]
 
 
 def test_a_repair_while_loading_is_one_note_not_a_python_warning(tmp_path: Path, capsys) -> None:

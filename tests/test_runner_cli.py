@@ -8,6 +8,7 @@ import subprocess
 import sys
 import threading
 import time
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -53,10 +54,14 @@ def test_run_failure_exits_non_zero_with_file_and_line(capsys):
     assert f"{script_path('error_at_line_7.py')}:7: DLFLError" in err
 
 
-def test_run_missing_script_and_bad_output_exit_2(capsys, tmp_path):
-    assert cli.main(["run", str(tmp_path / "nope.py")]) == 2
+def test_a_missing_script_exits_1_and_an_output_no_writer_takes_2(capsys, tmp_path):
+    missing = tmp_path / "nope.py"
+    assert cli.main(["run", str(missing)]) == 1
+    assert capsys.readouterr().err == (f"livemod: error: cannot read {missing}: "
+                                       "No such file or directory\n")
     assert cli.main(["run", RING, "-o", str(tmp_path / "x.txt")]) == 2
-    assert "must end with" in capsys.readouterr().err
+    assert capsys.readouterr().err == (f"livemod: error: output '{tmp_path / 'x.txt'}' must "
+                                       "end with one of .obj, .dlfl, .stl, .ply\n")
 
 
 def test_run_with_params_seed_and_output(tmp_path, capsys):
@@ -90,7 +95,7 @@ def test_run_warns_of_picks_the_mesh_did_not_have(tmp_path, capsys):
     assert cli.main(["run", str(script), "--select", "faces=0,99", "--select", "corners=7"]) == 0
     err = capsys.readouterr().err
     # corners(True) is never called, so corner 7 goes unremarked
-    assert err == ("livemod run: warning: the mesh had no faces 99 when the script asked for "
+    assert err == ("livemod: warning: the mesh had no faces 99 when the script asked for "
                    "the selection; those picks were left out\n")
 
 
@@ -118,12 +123,24 @@ def test_batch_variants_start_with_the_selection(tmp_path, capsys):
 def test_params_and_set_of_a_script_that_is_not_utf8_say_so_in_one_line(tmp_path, capsys):
     script = tmp_path / "latin.py"
     script.write_bytes(b"n = param('n', 3)\n# caf\xe9\n")
-    assert cli.main(["params", str(script)]) == 2
-    assert cli.main(["run", str(script), "--set", "n=4"]) == 2
+    # the script's fault, not the command line's: 1, as when it runs (without --set)
+    assert cli.main(["params", str(script)]) == 1
+    assert cli.main(["run", str(script), "--set", "n=4"]) == 1
     err = capsys.readouterr().err.splitlines()
-    assert err == [f"livemod {command}: {script}:2: byte 0xe9 on line 2 is not UTF-8 text: "
+    assert err == [f"livemod: error: {script}:2: byte 0xe9 on line 2 is not UTF-8 text: "
                    "save the file as UTF-8, or declare its encoding on the first line "
-                   "(# -*- coding: latin-1 -*-)" for command in ("params", "run")]
+                   "(# -*- coding: latin-1 -*-)"] * 2
+
+
+def test_a_syntax_error_is_the_scripts_fault_with_or_without_set(tmp_path, capsys):
+    script = tmp_path / "broken.py"
+    script.write_text("n = param('n', 3)\nif n\n")
+    assert cli.main(["run", str(script), "--set", "n=4"]) == 1
+    assert capsys.readouterr().err == (f"livemod: error: {script}:2: syntax error: "
+                                       "expected ':'\n")
+    assert cli.main(["run", str(script)]) == 1
+    assert capsys.readouterr().err.endswith(f"livemod: error: {script}:2: SyntaxError: "
+                                            "expected ':'\n")
 
 
 def test_run_makes_the_output_folder_and_says_when_there_is_nothing_to_write(tmp_path, capsys):
@@ -135,7 +152,7 @@ def test_run_makes_the_output_folder_and_says_when_there_is_nothing_to_write(tmp
     stale.write_text("v 0 0 0\n")
     capsys.readouterr()
     assert cli.main(["run", str(empty), "-o", str(stale)]) == 1
-    assert capsys.readouterr().err == (f"livemod run: the script left no mesh; {stale} "
+    assert capsys.readouterr().err == (f"livemod: error: the script left no mesh; {stale} "
                                        "was not written\n")
     assert stale.read_text() == "v 0 0 0\n"
 
@@ -158,16 +175,62 @@ def test_livemod_entry_point_runs_a_script():
     assert "V=4 E=4 F=2" in done.stdout
 
 
-def test_an_output_that_cannot_be_written_is_one_plain_line(tmp_path, capsys):
+def _marking_script(tmp_path) -> tuple[str, object]:
+    """A script that leaves a marker file when it runs (and a cube), and the marker."""
+    marker = tmp_path / "ran"
+    script = tmp_path / "marks.py"
+    script.write_text(f"n = param('n', 0)\nopen({str(marker)!r}, 'w').close()\nload('cube')\n")
+    return str(script), marker
+
+
+def test_an_output_that_cannot_be_written_fails_before_the_script_runs(tmp_path, capsys):
+    script, marker = _marking_script(tmp_path)
     (tmp_path / "folder.obj").mkdir()
     (tmp_path / "file.obj").write_text("")
     for target, reason in ((tmp_path / "folder.obj", "Is a directory"),
                            (tmp_path / "file.obj" / "x.obj",
+                            f"{tmp_path / 'file.obj'} is a file, not a folder"),
+                           (tmp_path / "file.obj" / "deeper" / "x.obj",
                             f"{tmp_path / 'file.obj'} is a file, not a folder")):
-        capsys.readouterr()
-        assert cli.main(["run", RING, "-o", str(target)]) == 2
-        assert capsys.readouterr().err == f"livemod run: cannot write {target}: {reason}\n"
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["file.obj", "folder.obj"]
+        assert cli.main(["run", script, "-o", str(target)]) == 1
+        assert capsys.readouterr().err == f"livemod: error: cannot write {target}: {reason}\n"
+        assert cli.main(["run", "--watch", script, "-o", str(target)]) == 1
+        assert capsys.readouterr().err == f"livemod: error: cannot write {target}: {reason}\n"
+    assert not marker.exists()
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["file.obj", "folder.obj", "marks.py"]
+
+
+def test_a_folder_that_takes_no_new_file_fails_before_the_script_runs(tmp_path, capsys):
+    script, marker = _marking_script(tmp_path)
+    if os.geteuid() == 0:  # root writes into any folder a mode forbids: /sys takes none
+        locked = Path("/sys")
+    else:
+        locked = tmp_path / "locked"
+        locked.mkdir(mode=0o555)
+    target = locked / "new" / "x.obj"
+    assert cli.main(["run", script, "-o", str(target)]) == 1
+    message = capsys.readouterr().err
+    assert message in (f"livemod: error: cannot write {target}: Permission denied\n",
+                       f"livemod: error: cannot write {target}: Read-only file system\n")
+    assert not marker.exists()
+
+
+def test_batch_checks_every_output_and_the_index_before_any_variant_runs(tmp_path, capsys):
+    script, marker = _marking_script(tmp_path)
+    (tmp_path / "file").write_text("")
+    pattern = str(tmp_path / "out" / "{n}.txt")
+    assert cli.main(["batch", script, "--param", "n=0:1:2", "-o", pattern, "-j", "1"]) == 2
+    assert capsys.readouterr().err == (f"livemod: error: output '{tmp_path / 'out' / '0.txt'}' "
+                                       "must end with one of .obj, .dlfl, .stl, .ply\n")
+    into_a_file = str(tmp_path / "file" / "{n}.obj")
+    assert cli.main(["batch", script, "--param", "n=0:1:2", "-o", into_a_file]) == 1
+    assert capsys.readouterr().err == (f"livemod: error: cannot write {tmp_path / 'file' / '0.obj'}"
+                                       f": {tmp_path / 'file'} is a file, not a folder\n")
+    index = tmp_path / "file" / "index.json"
+    assert cli.main(["batch", script, "--param", "n=0:1:2", "--index", str(index)]) == 1
+    assert capsys.readouterr().err == (f"livemod: error: cannot write {index}: "
+                                       f"{tmp_path / 'file'} is a file, not a folder\n")
+    assert not marker.exists() and not (tmp_path / "out").exists()
 
 
 def test_run_writes_its_output_even_when_the_reader_of_its_summary_left(tmp_path):
@@ -185,35 +248,54 @@ def test_run_writes_its_output_even_when_the_reader_of_its_summary_left(tmp_path
     assert out.exists() and out.read_bytes().count(b"\nf ") == 2
 
 
-def test_ctrl_c_stops_a_batch_at_once_and_runs_nothing_more(tmp_path):
+def test_ctrl_c_stops_a_batch_at_once_and_indexes_what_finished(tmp_path):
     """Ctrl-C (SIGINT to the process group, as a terminal sends it) ends the running
-    variants and drops the queued ones; before, the pool went on with them all."""
+    variants and drops the queued ones, and the index lists those that finished."""
+    import json
+
     script = tmp_path / "slow.py"
     script.write_text(
         "import pathlib, time\n"
         "n = param('n', 0)\n"
         "pathlib.Path(__file__).with_name(f'{n}.started').touch()\n"
         "load('cube')\n"
-        "end = time.time() + 3\n"
-        "while time.time() < end:\n"
-        "    pass\n")
+        "while n >= 2:  # variants 0 and 1 finish, the others would run for ever\n"
+        "    time.sleep(0.01)\n")
     proc = subprocess.Popen([sys.executable, "-m", "livemod.runner.cli", "batch", str(script),
                              "--param", "n=0:7:8", "-o", str(tmp_path / "out" / "{n}.obj"),
                              "-j", "2"], start_new_session=True,
-                            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
-    deadline = time.monotonic() + 30
-    while not list(tmp_path.glob("*.started")) and time.monotonic() < deadline:
-        time.sleep(0.02)
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    assert proc.stdout is not None and proc.stderr is not None
+    progress = [proc.stderr.readline() for _ in range(2)]  # one line per result off a tty
+    assert progress[1].startswith("batch [") and " 2/8" in progress[1], progress
     os.killpg(proc.pid, signal.SIGINT)
     stopped = time.monotonic()
-    assert proc.stderr is not None
-    with proc.stderr:
-        error = proc.stderr.read().decode()
-    assert proc.wait(timeout=30) == 130
-    assert time.monotonic() - stopped < 2.5  # each variant alone runs 3 s
-    assert "Traceback" not in error
-    assert len(list(tmp_path.glob("*.started"))) <= 2  # no queued variant began
-    assert not (tmp_path / "out").exists() or not list((tmp_path / "out").iterdir())
+    out, error = proc.communicate(timeout=30)
+    assert proc.returncode == 130
+    assert time.monotonic() - stopped < 2.5
+    assert "Traceback" not in error and "(interrupted)" in error
+    assert out == (f"interrupted: 2/8 variants finished, 2 ok\n"
+                   f"wrote {tmp_path / 'out' / 'index.json'}\n")
+    index = json.loads((tmp_path / "out" / "index.json").read_text())
+    assert index["interrupted"] is True and index["planned"] == 8
+    assert [(v["index"], v["status"]) for v in index["variants"]] == [(0, "ok"), (1, "ok")]
+    assert len(list(tmp_path.glob("*.started"))) <= 4  # no queued variant began
+    # no half-written mesh (nor its temporary file) of the two ended variants
+    assert sorted(os.listdir(tmp_path / "out")) == ["0.obj", "1.obj", "index.json"]
+
+
+@pytest.mark.timeout(60)
+def test_ctrl_c_ends_run_watch_with_130(tmp_path):
+    script = tmp_path / "w.py"
+    script.write_text("load('cube')\n")
+    proc = subprocess.Popen([sys.executable, "-m", "livemod", "run", "--watch", str(script)],
+                            start_new_session=True, stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True)
+    assert proc.stdout is not None
+    assert proc.stdout.readline().startswith("run 1: ok")
+    os.killpg(proc.pid, signal.SIGINT)
+    out, error = proc.communicate(timeout=30)
+    assert proc.returncode == 130 and "Traceback" not in error
 
 
 def test_parse_param_sweep_and_output_names():

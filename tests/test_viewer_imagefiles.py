@@ -10,7 +10,14 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from livemod.viewer.imagefiles import check_output, output_paths, save_png, write_images
+from livemod.viewer.imagefiles import (
+    check_output,
+    gif_delays,
+    gif_rate_note,
+    output_paths,
+    save_png,
+    write_images,
+)
 from tests.images import read_image
 
 
@@ -99,6 +106,25 @@ def test_mp4_holds_every_frame_at_the_rate_asked(tmp_path: Path) -> None:
     assert out.read_bytes().find(b"moov") < out.read_bytes().find(b"mdat")  # index first
 
 
+def test_mp4_is_encoded_once_into_the_temporary_file_beside_the_target(tmp_path: Path,
+                                                                      monkeypatch) -> None:
+    """No copy in memory or in a private folder first: while frames are encoded, the
+    atomic write's temporary file beside the target is what grows."""
+    out = tmp_path / "turn.mp4"
+    encode = av.VideoFrame.from_ndarray
+    seen: list[list[str]] = []
+
+    def watching(*args, **kwargs):
+        seen.append([p.name for p in tmp_path.iterdir()])
+        return encode(*args, **kwargs)
+
+    monkeypatch.setattr(av.VideoFrame, "from_ndarray", watching)
+    write_images(str(out), moving_square(3))
+    assert len(seen) == 3
+    assert all(len(names) == 1 and names[0].startswith(".turn.mp4.") for names in seen)
+    assert [p.name for p in tmp_path.iterdir()] == ["turn.mp4"]
+
+
 def test_mp4_is_the_same_bytes_every_time(tmp_path: Path) -> None:
     first, second = tmp_path / "a.mp4", tmp_path / "b.mp4"
     write_images(str(first), moving_square(4))
@@ -119,11 +145,46 @@ def test_webp_is_lossless_with_alpha_and_loops(tmp_path: Path) -> None:
             assert np.array_equal(frame, made)
 
 
-def test_gif_frames_and_delay(tmp_path: Path) -> None:
+def _gif_durations(path: Path) -> list[int]:
+    with Image.open(path) as gif:
+        assert gif.info["loop"] == 0
+        durations = []
+        for k in range(gif.n_frames):
+            gif.seek(k)
+            durations.append(gif.info["duration"])
+        return durations
+
+
+@pytest.mark.parametrize(("fps", "durations"), [
+    (25.0, [40, 40, 40]),
+    (30.0, [30, 40, 30]),    # 100 ms for three frames: the rate kept over the loop
+    (40.0, [20, 30, 30]),    # Pillow alone would store 25 ms as 20: 50 fps
+    (50.0, [20, 20, 20]),
+    (60.0, [20, 20, 20]),    # 17 ms would play as 100 ms in most viewers: 50 fps
+    (1000.0, [20, 20, 20]),
+])
+def test_gif_delays_are_whole_hundredths_and_at_most_50_fps(tmp_path: Path, fps: float,
+                                                            durations: list[int]) -> None:
     out = tmp_path / "turn.gif"
-    write_images(str(out), moving_square(3), fps=25.0)
-    with Image.open(out) as gif:
-        assert gif.n_frames == 3 and gif.info["duration"] == 40 and gif.info["loop"] == 0
+    write_images(str(out), moving_square(3), fps=fps)
+    assert _gif_durations(out) == durations == gif_delays(3, fps)
+
+
+def test_gif_delays_never_go_below_two_hundredths() -> None:
+    for fps in (49.0, 47.5, 33.0, 12.5, 7.0, 0.5):
+        delays = gif_delays(50, fps)
+        assert min(delays) >= 20 and all(d % 10 == 0 for d in delays)
+        assert sum(delays) == 10 * round(100 * 50 / fps)
+
+
+def test_only_a_gif_above_50_fps_gets_a_note() -> None:
+    assert gif_rate_note([Path("t.gif")], 60.0) == (
+        "a GIF plays at most 50 frames per second (its delays are whole hundredths of a "
+        "second, and viewers slow shorter ones to a tenth); writing t.gif at 50 fps, not 60 "
+        "(.webp or .mp4 play at 60)")
+    assert gif_rate_note([Path("t.gif")], 50.0) is None
+    assert gif_rate_note([Path("t.webp")], 60.0) is None
+    assert gif_rate_note([Path("a.png"), Path("b.png")], 60.0) is None
 
 
 def test_png_sequence_and_single_png(tmp_path: Path) -> None:

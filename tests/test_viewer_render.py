@@ -237,6 +237,23 @@ def test_render_command_writes_mp4_and_webp_turntables(tmp_path: Path, capsys) -
     assert capsys.readouterr().out.startswith("wrote ")
 
 
+def test_render_writes_a_gif_asked_above_50_fps_at_50_with_a_note(tmp_path: Path,
+                                                                   capsys) -> None:
+    gif = tmp_path / "fast.gif"
+    assert main(["render", "cube", "-o", str(gif), "--size", "32x32", "--turntable", "3",
+                 "--fps", "60"]) == 0
+    assert capsys.readouterr().err.startswith(
+        "livemod: note: a GIF plays at most 50 frames per second (its delays are whole "
+        "hundredths of a second, and viewers slow shorter ones to a tenth); writing "
+        f"{gif} at 50 fps, not 60 (.webp or .mp4 play at 60)\n")
+    with Image.open(gif) as animation:
+        durations = []
+        for k in range(animation.n_frames):
+            animation.seek(k)
+            durations.append(animation.info["duration"])
+    assert durations == [20, 20, 20]
+
+
 def test_render_of_a_script_that_leaves_no_mesh_warns(tmp_path: Path, capsys) -> None:
     script = tmp_path / "nothing.py"
     script.write_text("x = 1\n")
@@ -300,9 +317,10 @@ def test_no_egl_is_one_line_naming_what_to_install(monkeypatch, tmp_path: Path, 
         raise Exception("libEGL.so: cannot open shared object file")
 
     monkeypatch.setattr(moderngl, "create_standalone_context", no_egl)
-    assert main(["render", "cube", "-o", str(tmp_path / "c.png")]) == 2
+    # the machine's fault, not the command line's: 1, as `view` without a display
+    assert main(["render", "cube", "-o", str(tmp_path / "c.png")]) == 1
     err = capsys.readouterr().err
-    assert err.startswith("livemod render: no offscreen GL 3.3 context over EGL (libEGL.so: ")
+    assert err.startswith("livemod: error: no offscreen GL 3.3 context over EGL (libEGL.so: ")
     assert "apt-get install libegl1 libegl-mesa0" in err
 
 
@@ -626,7 +644,8 @@ def test_render_compares_with_a_reference_picture(tmp_path: Path, capsys) -> Non
     turned = tmp_path / "turned.png"
     assert _render(script, turned, "--reference", str(golden), "--yaw", "60") == 1
     err = capsys.readouterr().err
-    assert "differs: " in err and f"see {tmp_path / 'turned.diff.png'}" in err
+    assert err.startswith(f"livemod: error: {turned} differs: ") and err.count("\n") == 1
+    assert err.endswith(f"; see {tmp_path / 'turned.diff.png'}\n")
     marked = read_image(tmp_path / "turned.diff.png")
     moved = np.abs(read_image(turned).astype(int) - read_image(golden)).max(axis=2) > 25
     assert np.array_equal(np.all(marked == (255, 40, 40), axis=2), moved)
@@ -642,7 +661,9 @@ def test_render_refuses_a_reference_it_cannot_compare_before_it_runs(tmp_path: P
     Image.new("RGB", (80, 60)).save(golden)
     out = tmp_path / "out.png"
     refusals = {
-        ("--reference", str(tmp_path / "gone.png")): f"no reference picture at {tmp_path}",
+        ("--reference", str(tmp_path / "gone.png")): (
+            f"livemod: error: the reference picture: cannot read {tmp_path / 'gone.png'}: "
+            "No such file or directory\n"),
         ("--reference", str(golden)): "is 80x60 pixels and the render 160x120 (give --size)",
         ("--threshold", "0.5"): "--threshold needs --reference",
     }

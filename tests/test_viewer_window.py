@@ -643,7 +643,7 @@ def test_view_refuses_an_output_no_writer_takes(tmp_path: Path, capsys) -> None:
     script = tmp_path / "model.py"
     script.write_text(CUBE.format(scale=1.0))
     assert main(["view", str(script), "-o", str(tmp_path / "model.txt")]) == 2
-    assert "livemod view: output" in capsys.readouterr().err
+    assert "livemod: error: output" in capsys.readouterr().err
 
 
 def _count_draws(viewer: LiveViewer) -> list[int]:

@@ -9,6 +9,7 @@ meshes never travel (each variant writes its own output file).
 from __future__ import annotations
 
 import concurrent.futures
+import contextlib
 import itertools
 import multiprocessing
 import os
@@ -22,6 +23,7 @@ from typing import Any, Protocol, TextIO
 
 import numpy as np
 
+from livemod.commandline import describe
 from livemod.dlfl.errors import DLFLError
 from livemod.dlfl.params import ParamSpec
 from livemod.dlfl.scene import Selection
@@ -163,35 +165,47 @@ def output_name(pattern: str, parameters: dict[str, Any], index: int) -> str:
 
 def run_variant(variant: Variant) -> VariantResult:
     """Run one variant in this process and write its mesh (a top-level function,
-    so process pools can pickle it)."""
+    so process pools can pickle it). Never raises for the script's or a file's
+    failure: the result says it."""
     from livemod.dlfl.analysis import genus
 
     from .headless import run_outcome
-    from .results import result_mesh, save_result
+    from .results import result_mesh
 
     started = time.perf_counter()
-    parameters = dict(variant.parameters)
     try:
         outcome = run_outcome(variant.script, mesh_path=variant.mesh_path,
-                              seed=variant.seed, parameters=parameters,
+                              seed=variant.seed, parameters=dict(variant.parameters),
                               selection=variant.selection)
     except OSError as exc:
-        return _failed(variant, str(exc), started)
+        return _failed(variant, describe(exc), started)
     if outcome.error is not None:
         return _failed(variant, str(outcome.error), started)
     mesh = result_mesh(outcome.scene, variant.all_objects)
+    if variant.output is not None:
+        problem = _written(mesh, variant.output)
+        if problem is not None:
+            return _failed(variant, problem, started)
     counts = mesh.counts() if mesh is not None else (0, 0, 0)
-    shape_genus = genus(mesh) if mesh is not None else None
-    if variant.output is not None and mesh is None:
-        return _failed(variant, f"the script left no mesh; {variant.output} was not written",
-                       started)
-    if variant.output is not None and mesh is not None:
-        try:
-            save_result(mesh, variant.output)
-        except Exception as exc:
-            return _failed(variant, f"{variant.output}: {type(exc).__name__}: {exc}", started)
     return VariantResult(variant.index, variant.parameters, "ok", counts, None,
-                         variant.output, time.perf_counter() - started, shape_genus)
+                         variant.output, time.perf_counter() - started,
+                         genus(mesh) if mesh is not None else None)
+
+
+def _written(mesh: Any, output: str) -> str | None:
+    """Write ``mesh`` (None: the script left none) to ``output``; what went wrong,
+    or None when it was written."""
+    from .results import save_result
+
+    if mesh is None:
+        return f"the script left no mesh; {output} was not written"
+    try:
+        save_result(mesh, output)
+    except OSError as exc:
+        return describe(exc)
+    except Exception as exc:  # a writer's refusal (DLFLError), or a bug
+        return f"cannot write {output}: {type(exc).__name__}: {exc}"
+    return None
 
 
 def _failed(variant: Variant, message: str, started: float) -> VariantResult:
@@ -271,12 +285,11 @@ class ProcessPoolVariantExecutor:
                       variants: list[Variant]) -> Iterator[VariantResult]:
         """As :meth:`VariantExecutor.map_unordered`. A worker that dies breaks the
         whole pool, so the variants it took down are run again, each in a pool of
-        its own: only one that kills its own worker is reported failed."""
+        its own: only one that kills its own worker is reported failed. When the
+        caller stops reading (or Ctrl-C comes), no variant runs on."""
         context = _process_context()
         lost = []
-        pool = concurrent.futures.ProcessPoolExecutor(self.jobs, mp_context=context,
-                                                      initializer=_worker_started)
-        try:
+        with _stoppable_pool(self.jobs, context) as pool:
             for variant, outcome in _finished(pool, fn, variants):
                 if isinstance(outcome, BrokenProcessPool):
                     lost.append(variant)
@@ -284,34 +297,74 @@ class ProcessPoolVariantExecutor:
                     yield outcome
                 else:
                     yield _failed(variant, _lost(outcome), time.perf_counter())
-        except BaseException:  # Ctrl-C, or the caller stopped reading: nothing may run on
-            _stop_now(pool)
-            raise
-        pool.shutdown()
         for variant in lost:
-            with concurrent.futures.ProcessPoolExecutor(1, mp_context=context,
-                                                        initializer=_worker_started) as alone:
+            with _stoppable_pool(1, context) as alone:
                 yield from FuturesVariantExecutor(alone).map_unordered(fn, [variant])
 
 
-def _stop_now(pool: concurrent.futures.ProcessPoolExecutor) -> None:
-    """Drop the variants not started and end the running ones (their workers remove
+@contextlib.contextmanager
+def _stoppable_pool(jobs: int, context: multiprocessing.context.BaseContext,
+                    ) -> Iterator[concurrent.futures.ProcessPoolExecutor]:
+    """A process pool shut down when the block ends; when it ends in an exception
+    (Ctrl-C, or the caller stopped reading: GeneratorExit) the variants not
+    started are dropped and the running ones ended at once (their workers remove
     the temporary file of a mesh being written, see :func:`_killed`)."""
-    workers = list(getattr(pool, "_processes", {}).values())  # no public API before 3.14
-    pool.shutdown(wait=False, cancel_futures=True)
-    for worker in workers:
-        worker.terminate()
-    for worker in workers:
-        worker.join(timeout=5)
+    workers = _Workers(context)
+    pool = concurrent.futures.ProcessPoolExecutor(
+        jobs, mp_context=context, initializer=_worker_started, initargs=(workers.started,))
+    try:
+        yield pool
+    except BaseException:
+        pool.shutdown(wait=False, cancel_futures=True)
+        workers.terminate()
+        raise
+    else:
+        pool.shutdown()
+    finally:
+        workers.close()
 
 
-def _worker_started() -> None:
-    """In each pool worker: Ctrl-C is left to the batch (which ends the workers; a
-    worker interrupted on its own would print a traceback and take the next
+class _Workers:
+    """The worker processes of one pool, as each reports its process id from the
+    pool's initializer. ProcessPoolExecutor offers no public way to end its
+    workers before Python 3.14's ``terminate_workers()``; shutting it down waits
+    for the running variants, which may take minutes. A worker forked but not yet
+    through its initializer (the first milliseconds of a pool) is not known yet."""
+
+    def __init__(self, context: multiprocessing.context.BaseContext) -> None:
+        self.started = context.SimpleQueue()
+        self._ids: set[int] = set()
+
+    def terminate(self) -> None:
+        """End every reported worker that is still running, and wait for each
+        (at most 5 s). Only live children of this process are ended, so an id
+        reused since its worker exited is never signalled."""
+        self._read()
+        running = [p for p in multiprocessing.active_children() if p.pid in self._ids]
+        for worker in running:
+            worker.terminate()
+        for worker in running:
+            worker.join(timeout=5)
+
+    def close(self) -> None:
+        """Close this process's end of the queue (the pool is done with)."""
+        self.started.close()
+
+    def _read(self) -> None:
+        """Take in the process ids reported so far."""
+        while not self.started.empty():
+            self._ids.add(self.started.get())
+
+
+def _worker_started(started: Any) -> None:
+    """In each pool worker: report this process to the pool's :class:`_Workers`
+    (the queue ``started``). Ctrl-C is left to the batch (which ends the workers;
+    a worker interrupted on its own would print a traceback and take the next
     variant); when the pool kills it (SIGTERM: Ctrl-C, or another worker died),
     remove the temporary file of a mesh it was writing, then exit."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     signal.signal(signal.SIGTERM, _killed)
+    started.put(os.getpid())
 
 
 def _killed(signum: int, frame: object) -> None:
@@ -368,21 +421,40 @@ def _check_distinct_outputs(variants: list[Variant], pattern: str | None) -> Non
                 f"{dict(variant.parameters)}; put {{index}} or the swept parameters in it")
 
 
+class BatchInterrupted(KeyboardInterrupt):
+    """Ctrl-C stopped :func:`run_batch`; ``results`` are the variants that had
+    finished, sorted by variant index (the others did not run or were ended)."""
+
+    def __init__(self, results: list[VariantResult]) -> None:
+        super().__init__(f"interrupted after {len(results)} variants")
+        self.results = results
+
+
 def run_batch(variants: list[Variant], executor: VariantExecutor | None = None, *,
               jobs: int = 1, progress: TextIO | None = None,
               quiet: bool = False) -> list[VariantResult]:
     """Run ``variants`` (on ``executor``, default a pool of ``jobs`` processes) with a
     progress bar on ``progress`` (default: the current ``sys.stderr``; none if
-    ``quiet``); results come back sorted by variant index."""
+    ``quiet``); results come back sorted by variant index.
+
+    Raises:
+        BatchInterrupted: Ctrl-C (a KeyboardInterrupt) came; it holds the results
+            of the variants that had finished.
+    """
     bar = None if quiet else ProgressBar("batch", progress)
     if executor is None:
         executor = ProcessPoolVariantExecutor(jobs) if jobs > 1 else SerialExecutor()
-    results = []
-    for done, result in enumerate(executor.map_unordered(run_variant, variants), start=1):
-        results.append(result)
-        if bar is not None:
-            bar(done, len(variants), "" if result.status == "ok"
-                else f"variant {result.index} failed")
+    results: list[VariantResult] = []
+    try:
+        for result in executor.map_unordered(run_variant, variants):
+            results.append(result)
+            if bar is not None:
+                bar(len(results), len(variants), "" if result.status == "ok"
+                    else f"variant {result.index} failed")
+    except KeyboardInterrupt:
+        if bar is not None:  # a note ends the bar's line: what follows starts afresh
+            bar(len(results), len(variants), "interrupted")
+        raise BatchInterrupted(sorted(results, key=lambda r: r.index)) from None
     return sorted(results, key=lambda r: r.index)
 
 
@@ -409,9 +481,12 @@ def index_path(variants: list[Variant], given: str | None) -> str | None:
 
 
 def write_index(path: str, script: str, specs: dict[str, ParamSpec],
-                results: list[VariantResult]) -> None:
-    """Write the sweep's index: the script, its declarations and every variant
-    (atomically: a reader never sees half of it).
+                results: list[VariantResult], *, planned: int | None = None,
+                interrupted: bool = False) -> None:
+    """Write the sweep's index atomically (a reader never sees half of it): the
+    script, its declarations, ``planned`` (the number of variants of the sweep,
+    default ``len(results)``), ``interrupted`` (true when Ctrl-C stopped the batch:
+    ``variants`` then lists only those that finished) and one record per variant.
 
     Raises:
         OSError: the file cannot be written.
@@ -423,6 +498,8 @@ def write_index(path: str, script: str, specs: dict[str, ParamSpec],
         "parameters": [{"name": s.name, "kind": s.kind, "default": s.default, "min": s.min,
                         "max": s.max, "choices": list(s.choices) if s.choices else None,
                         "doc": s.doc} for s in specs.values()],
+        "planned": len(results) if planned is None else planned,
+        "interrupted": interrupted,
         "variants": index_rows(results),
     }
     from livemod.dlfl.io.atomic import write_atomically

@@ -15,16 +15,41 @@ import sys
 from collections.abc import Callable, Sequence
 from typing import Any, TextIO
 
+from livemod.commandline import (
+    DONE,
+    FAILED,
+    INTERRUPTED,
+    USAGE,
+    UsageError,
+    check_readable,
+    check_writable,
+    describe,
+    error,
+    usage_errors,
+    warning,
+)
 from livemod.dlfl.analysis import summarize
 from livemod.dlfl.errors import DLFLError
+from livemod.dlfl.io import WRITERS
 from livemod.dlfl.scene import Selection
 
-from .batch import declared_sweep, index_path, make_variants, run_batch, sweep, write_index
-from .declarations import declared_parameters, describe, given_values, undeclared
+from . import declarations
+from .batch import (
+    BatchInterrupted,
+    Variant,
+    VariantResult,
+    declared_sweep,
+    index_path,
+    make_variants,
+    run_batch,
+    sweep,
+    write_index,
+)
 from .headless import missing_picks_note, run_outcome
+from .instrument import read_script
 from .results import RunResult, StepRecord, result_mesh, save_result
 
-OUTPUT_SUFFIXES = (".obj", ".dlfl", ".stl", ".ply")
+OUTPUT_SUFFIXES = tuple(f".{key}" for key in WRITERS)
 
 
 def add_commands(subparsers: Any) -> None:
@@ -42,17 +67,20 @@ def _add_params(subparsers: Any) -> None:
 
 
 def cmd_params(args: argparse.Namespace) -> int:
-    """``livemod params``: print one line per declared parameter (2 if unreadable)."""
-    try:
-        specs = declared_parameters(args.script)
-    except (DLFLError, OSError) as exc:
-        print(f"livemod params: {exc}", file=sys.stderr)
-        return 2
+    """``livemod params``: print one line per declared parameter; returns 0.
+
+    Raises:
+        OSError: the script cannot be read.
+        DLFLError: a malformed declaration, or the script fails when it has to be
+            run to find its declarations.
+    """
+    check_readable(args.script)
+    specs = declarations.declared_parameters(args.script)
     if not specs:
         print(f"{args.script} declares no parameters")
-    for line in describe(specs.values()):
+    for line in declarations.describe(specs.values()):
         print(line)
-    return 0
+    return DONE
 
 
 def _seed(text: str) -> int | None:
@@ -165,29 +193,65 @@ def check_mesh_output(path: str | None) -> None:
     """Refuse an ``-o`` mesh name no writer takes; None passes.
 
     Raises:
-        ValueError: ``path`` does not end with a suffix of ``OUTPUT_SUFFIXES``.
+        UsageError: ``path`` does not end with a suffix of ``OUTPUT_SUFFIXES``.
     """
     if path is not None and not path.lower().endswith(OUTPUT_SUFFIXES):
-        raise ValueError(f"output {path!r} must end with one of {', '.join(OUTPUT_SUFFIXES)}")
+        raise UsageError(f"output {path!r} must end with one of {', '.join(OUTPUT_SUFFIXES)}")
+
+
+def check_run_files(script: str, mesh: str | None, output: str | None) -> None:
+    """Check what a command that runs ``script`` reads (``script``, the ``--mesh``
+    file) and writes (the ``-o`` mesh), before it runs: a long run must not end
+    in a bad name. None skips a check.
+
+    Raises:
+        UsageError: an output suffix no writer takes.
+        OSError: a file that cannot be read, or an output that cannot be written.
+    """
+    check_mesh_output(output)
+    check_readable(script)
+    if mesh is not None:
+        check_readable(mesh)
+    if output is not None:
+        check_writable([output])
+
+
+def script_values(script: str, texts: list[str]) -> dict[str, Any]:
+    """The ``--set NAME=VALUE`` texts checked against the script's declarations
+    (see :func:`~livemod.runner.declarations.given_values`); {} for none.
+
+    Raises:
+        UsageError: a text that is not ``name=value``, a name the script does not
+            declare, or a value that does not fit.
+        DLFLError: the script's own fault (a syntax error, bytes that are not
+            text, a malformed ``param()`` call), as when it runs.
+        OSError: the script cannot be read.
+    """
+    if not texts:
+        return {}
+    try:
+        source = read_script(script)
+    except SyntaxError as exc:
+        raise DLFLError(f"{script}:{exc.lineno}: {exc.msg}") from None
+    declarations.literal_declarations(source, script)  # its own faults: not usage
+    with usage_errors():
+        return declarations.given_values(script, texts)
 
 
 def cmd_run(args: argparse.Namespace) -> int:
-    """``livemod run``: 0 on success, 1 on a script error, 2 on bad arguments or files
-    (a parameter the script does not declare, or a value that does not fit)."""
-    try:
-        check_mesh_output(args.output)
-        params = given_values(args.script, args.set)
-    except (ValueError, DLFLError, OSError) as exc:
-        print(f"livemod run: {exc}", file=sys.stderr)
-        return 2
+    """``livemod run``: 0 on success, 1 when the script fails or leaves nothing to
+    write, 2 for a parameter the run did not declare, 130 when interrupted.
+
+    Raises:
+        UsageError, OSError, DLFLError: see :func:`check_run_files` and
+            :func:`script_values`; all before the script runs.
+    """
+    check_run_files(args.script, args.mesh, args.output)
+    params = script_values(args.script, args.set)
     if args.watch:
         return _watch(args, params)
-    try:
-        outcome = run_outcome(args.script, mesh_path=args.mesh, seed=args.seed,
-                              parameters=params, selection=selection_of(args))
-    except OSError as exc:
-        print(f"livemod run: {exc}", file=sys.stderr)
-        return 2
+    outcome = run_outcome(args.script, mesh_path=args.mesh, seed=args.seed,
+                          parameters=params, selection=selection_of(args))
     return _finish_run(args, outcome, params)
 
 
@@ -197,18 +261,18 @@ def _finish_run(args: argparse.Namespace, outcome: Any, params: dict[str, Any]) 
         print_steps(outcome.steps)
     note = missing_picks_note(outcome.scene)
     if note is not None:
-        print(f"livemod run: {note}", file=sys.stderr)
-    problem = (undeclared(outcome.declarations, params, ran=True)
+        warning(note)
+    problem = (declarations.undeclared(outcome.declarations, params, ran=True)
                if outcome.error is None else None)
     if problem is not None:  # only for scripts whose declarations are computed
-        print(f"livemod run: {problem}", file=sys.stderr)
-        return 2
+        error(problem)
+        return USAGE
     if outcome.error is not None and _script_output_went_away(outcome.error):
         raise BrokenPipeError  # `livemod run script | head`: end quietly, as for our own output
     if outcome.error is not None:
         print(outcome.error.traceback.rstrip(), file=sys.stderr)
-        print(str(outcome.error), file=sys.stderr)
-        return 1
+        error(str(outcome.error))
+        return FAILED
     mesh = result_mesh(outcome.scene, args.all_objects)
     # written before anything is printed: a reader that leaves early (`| head -1`)
     # closes our output, and OUT must not depend on it
@@ -254,29 +318,22 @@ def _print_objects(scene: Any, args: argparse.Namespace) -> None:
 
 def _save(mesh: Any, output: str | None) -> int:
     """Write ``mesh`` to ``output`` (its folder made if missing), saying only what
-    failed (on standard error); the exit code."""
+    failed (on standard error); the exit code. The name was checked before the
+    run, so a failure here is the disk's (full, or changed since)."""
     if output is None:
-        return 0
+        return DONE
     if mesh is None:  # an error: whatever waits for OUT must not take an old one
-        print(f"livemod run: the script left no mesh; {output} was not written",
-              file=sys.stderr)
-        return 1
+        error(f"the script left no mesh; {output} was not written")
+        return FAILED
     try:
         save_result(mesh, output)
-    except Exception as exc:
-        print(f"livemod run: cannot write {output}: {_why(exc)}", file=sys.stderr)
-        return 2
-    return 0
-
-
-def _why(exc: Exception) -> str:
-    """What failed, for a one-line message: the system's words for an OSError
-    ("Is a directory"), else the exception's kind and text."""
-    if isinstance(exc, FileExistsError):  # makedirs met a file where a folder must be
-        return f"{exc.filename} is a file, not a folder"
-    if isinstance(exc, OSError) and exc.errno:
-        return os.strerror(exc.errno)
-    return f"{type(exc).__name__}: {exc}"
+    except OSError as exc:
+        error(describe(exc))
+        return FAILED
+    except DLFLError as exc:  # a writer's refusal
+        error(f"cannot write {output}: {exc}")
+        return FAILED
+    return DONE
 
 
 def print_summary(script: str, mesh: Any, steps: int, elapsed: float,
@@ -325,12 +382,12 @@ def _watch(args: argparse.Namespace, params: dict[str, Any]) -> int:
                 continue
             seen += 1
             _report(result, args.output)
-    except KeyboardInterrupt:
-        pass
+    except KeyboardInterrupt:  # the way to stop watching, but still an interruption
+        return INTERRUPTED
     finally:
         session.close()
         session.join(5.0)
-    return 0
+    return DONE
 
 
 def _report(result: RunResult, output: str | None) -> None:
@@ -346,31 +403,77 @@ def _report(result: RunResult, output: str | None) -> None:
 
 
 def cmd_batch(args: argparse.Namespace) -> int:
-    """``livemod batch``: 0 when every variant succeeded, 1 otherwise, 2 on bad arguments."""
+    """``livemod batch``: 0 when every variant succeeded, 1 otherwise, 130 when
+    interrupted (the index then lists the variants that finished).
+
+    Raises:
+        UsageError, OSError, DLFLError: see :func:`_batch_variants`; all before
+            any variant runs.
+    """
+    specs, variants, index = _batch_variants(args)
     try:
-        check_mesh_output(args.output)
-        specs = declared_parameters(args.script)
+        results = run_batch(variants, jobs=args.jobs)
+    except BatchInterrupted as stop:
+        _report_batch(stop.results, len(variants), interrupted=True)
+        _write_batch_index(index, args.script, specs, stop.results, len(variants), True)
+        return INTERRUPTED
+    failed = _report_batch(results, len(variants), interrupted=False)
+    if _write_batch_index(index, args.script, specs, results, len(variants), False) != DONE:
+        return FAILED
+    return FAILED if failed else DONE
+
+
+def _batch_variants(args: argparse.Namespace,
+                    ) -> tuple[dict[str, Any], list[Variant], str | None]:
+    """``livemod batch``'s declarations, variants and index path, every file checked.
+
+    Raises:
+        UsageError: a ``--param`` that is malformed or does not fit the
+            declarations, or outputs no writer takes or that two variants share.
+        OSError: the script or ``--mesh`` cannot be read, or an output or the
+            index cannot be written.
+        DLFLError: a malformed declaration in the script.
+    """
+    check_run_files(args.script, args.mesh, None)
+    specs = declarations.declared_parameters(args.script)
+    with usage_errors():
         sets = sweep(declared_sweep(text, specs) for text in args.param)
         variants = make_variants(args.script, sets, args.output, mesh_path=args.mesh,
                                  seed=args.seed, selection=selection_of(args),
                                  all_objects=args.all_objects)
-    except (ValueError, DLFLError, OSError) as exc:
-        print(f"livemod batch: {exc}", file=sys.stderr)
-        return 2
-    results = run_batch(variants, jobs=args.jobs)
+    outputs = [v.output for v in variants if v.output is not None]
+    for output in outputs:
+        check_mesh_output(output)
+    index = index_path(variants, args.index)
+    check_writable([*outputs, *([index] if index is not None else [])])
+    return specs, variants, index
+
+
+def _report_batch(results: list[VariantResult], planned: int, interrupted: bool) -> bool:
+    """Print each failed variant and the tally; True when a variant failed."""
     failed = [r for r in results if r.status != "ok"]
     for r in failed:
-        print(f"variant {r.index} {dict(r.parameters)}: {r.error}", file=sys.stderr)
-    print(f"{len(results) - len(failed)}/{len(results)} variants ok")
-    index = index_path(variants, args.index)
-    if index is not None:
-        try:
-            write_index(index, args.script, specs, results)
-        except OSError as exc:
-            print(f"livemod batch: cannot write the index: {exc}", file=sys.stderr)
-            return 2
-        print(f"wrote {index}")
-    return 1 if failed else 0
+        error(f"variant {r.index} {dict(r.parameters)}: {r.error}")
+    ok = len(results) - len(failed)
+    if interrupted:
+        print(f"interrupted: {len(results)}/{planned} variants finished, {ok} ok")
+    else:
+        print(f"{ok}/{planned} variants ok")
+    return bool(failed)
+
+
+def _write_batch_index(index: str | None, script: str, specs: dict[str, Any],
+                       results: list[VariantResult], planned: int, interrupted: bool) -> int:
+    """Write the batch's index (if it has one) and say so; the exit code."""
+    if index is None:
+        return DONE
+    try:
+        write_index(index, script, specs, results, planned=planned, interrupted=interrupted)
+    except OSError as exc:
+        error(f"the index was not written: {describe(exc)}")
+        return FAILED
+    print(f"wrote {index}")
+    return DONE
 
 
 def main(argv: Sequence[str] | None = None) -> int:

@@ -26,13 +26,14 @@ def run_outcome(path: str | os.PathLike[str], *, mesh_path: str | None = None,
 
 def missing_picks_note(scene: Scene) -> str | None:
     """One line naming the selected ids a run's ``faces(True)`` and the like left out
-    (the mesh had no such element then), or None when there were none."""
+    (the mesh had no such element then), for ``livemod: warning: ...``; None when
+    there were none."""
     missing = scene.missing_picks
     named = [f"{field.name} {', '.join(map(str, ids))}" for field in dataclasses.fields(missing)
              if (ids := getattr(missing, field.name))]
     if not named:
         return None
-    return (f"warning: the mesh had no {'; no '.join(named)} when the script asked for "
+    return (f"the mesh had no {'; no '.join(named)} when the script asked for "
             f"the selection; those picks were left out")
 
 

@@ -8,20 +8,32 @@ from __future__ import annotations
 
 import argparse
 import math
-import sys
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
+from livemod.commandline import (
+    DONE,
+    FAILED,
+    UsageError,
+    check_readable,
+    check_writable,
+    describe,
+    error,
+    note,
+    usage_errors,
+    warning,
+)
 from livemod.dlfl.io import open_mesh
 from livemod.dlfl.scene import Selection
 from livemod.runner.cli import (
     add_all_objects_option,
     add_seed_option,
     add_select_option,
-    check_mesh_output,
+    check_run_files,
+    script_values,
     selection_of,
     whole_number_option,
 )
@@ -202,16 +214,17 @@ def _add_render_style(render: argparse.ArgumentParser) -> None:
 
 
 def _view(args: argparse.Namespace) -> int:
+    """``livemod view``: the window's exit code.
+
+    Raises:
+        UsageError, OSError, DLFLError: a bad ``-o`` or ``--set``, or a file that
+            cannot be read or written (see
+            :func:`~livemod.runner.cli.check_run_files`); before the window opens.
+    """
     from .window import ViewOptions, view
 
-    if not Path(args.script).exists():
-        raise OSError(f"no such script: {args.script}")
-    try:
-        check_mesh_output(args.output)
-        values = _given_values(args.script, args.set)
-    except ValueError as exc:
-        print(f"livemod view: {exc}", file=sys.stderr)
-        return 2
+    check_run_files(args.script, args.mesh, args.output)
+    values = _given_values(args.script, args.set)
     return view(ViewOptions(args.script, mesh_path=args.mesh, seed=args.seed,
                             size=args.size, poll=args.poll,
                             parameters=values, selection=selection_of(args),
@@ -222,32 +235,35 @@ def _given_values(script: str, texts: list[str]) -> dict[str, Any]:
     """The ``--set`` values checked against the script's declarations.
 
     Raises:
-        ValueError: a name the script does not declare, a value that does not
+        UsageError: a name the script does not declare, a value that does not
             fit, or ``--set`` for a mesh file.
+        DLFLError, OSError: the script's own fault, or it cannot be read (see
+            :func:`~livemod.runner.cli.script_values`).
     """
-    from livemod.dlfl.errors import DLFLError
-    from livemod.runner.declarations import given_values
-
-    if not texts:
-        return {}
-    if Path(script).suffix.lower() not in SCRIPT_SUFFIXES:
-        raise ValueError(f"--set needs a script, not {script!r}")
-    try:
-        return given_values(script, texts)
-    except DLFLError as exc:
-        raise ValueError(str(exc)) from None
+    if texts and Path(script).suffix.lower() not in SCRIPT_SUFFIXES:
+        raise UsageError(f"--set needs a script, not {script!r}")
+    return script_values(script, texts)
 
 
 def _render(args: argparse.Namespace) -> int:
+    """``livemod render``: 0 when written (and matching ``--reference``), 1 when
+    the input, the GL or the comparison fails.
+
+    Raises:
+        UsageError, OSError, DLFLError: a bad argument or file (see
+            :func:`_render_inputs`, :func:`_reference_of`), all before the script
+            runs: a long run must not end in a bad argument.
+    """
     from .headless import NoOffscreenGL, Offscreen
 
-    try:  # all before the script runs: a long run should not end in a bad argument
-        inputs = _render_inputs(args)
-        reference = _reference_of(args)
-        offscreen = Offscreen(args.size, samples=_samples(args))
-    except (ValueError, NoOffscreenGL) as exc:
-        print(f"livemod render: {exc}", file=sys.stderr)
-        return 2
+    inputs = _render_inputs(args)
+    reference = _reference_of(args)
+    try:
+        with usage_errors():  # a size or MSAA level this GL cannot make
+            offscreen = Offscreen(args.size, samples=_samples(args))
+    except NoOffscreenGL as exc:
+        error(str(exc))
+        return FAILED
     try:
         paths = _render_to(args, offscreen, *inputs)
     finally:
@@ -255,7 +271,7 @@ def _render(args: argparse.Namespace) -> int:
     print(f"wrote {paths[0]}" if len(paths) == 1 else f"wrote {len(paths)} frames: "
           f"{paths[0]} .. {paths[-1]}")
     if reference is None:
-        return 0
+        return DONE
     return _check_against(reference, args.reference, paths[0], args.threshold)
 
 
@@ -263,23 +279,29 @@ def _reference_of(args: argparse.Namespace) -> np.ndarray | None:
     """The ``--reference`` picture, checked against the render it is for (None without).
 
     Raises:
-        ValueError: no such picture, one of another size, a turntable, or
-            ``--threshold`` without ``--reference``.
+        UsageError: no such picture, one of another size, a turntable, or
+            ``--threshold`` without ``--reference``: exit 2, as ``cmp`` exits when
+            it cannot compare (1 says that the pictures differ).
     """
     from .compare import read_picture
 
     if args.reference is None:
         if args.threshold is not None:
-            raise ValueError("--threshold needs --reference")
+            raise UsageError("--threshold needs --reference")
         return None
     if args.turntable > 1:
-        raise ValueError("--reference compares one picture: leave out --turntable")
+        raise UsageError("--reference compares one picture: leave out --turntable")
     if Path(args.reference).resolve() == Path(args.output).resolve():
-        raise ValueError(f"-o would write over the reference {args.reference}: render to "
+        raise UsageError(f"-o would write over the reference {args.reference}: render to "
                          "another file (copy it over the reference to update it)")
-    reference = read_picture(args.reference, "reference picture")
+    try:
+        check_readable(args.reference)
+    except OSError as exc:
+        raise UsageError(f"the reference picture: {describe(exc)}") from None
+    with usage_errors():
+        reference = read_picture(args.reference, "reference picture")
     if reference.shape[1::-1] != tuple(args.size):
-        raise ValueError(f"the reference {args.reference} is {reference.shape[1]}x"
+        raise UsageError(f"the reference {args.reference} is {reference.shape[1]}x"
                          f"{reference.shape[0]} pixels and the render "
                          f"{args.size[0]}x{args.size[1]} (give --size)")
     return reference
@@ -298,11 +320,11 @@ def _check_against(reference: np.ndarray, reference_path: str, rendered: Path,
                f"(threshold {limit:.2%}; largest difference {difference.largest:.0%})")
     if difference.matches(limit):
         print(f"matches: {summary}")
-        return 0
+        return DONE
     diff_path = rendered.with_name(f"{rendered.stem}.diff.png")
     save_png(diff_path, difference_picture(reference, difference))
-    print(f"livemod render: differs: {summary}; see {diff_path}", file=sys.stderr)
-    return 1
+    error(f"{rendered} differs: {summary}; see {diff_path}")
+    return FAILED
 
 
 def _render_to(args: argparse.Namespace, offscreen: Any, values: dict[str, Any],
@@ -316,11 +338,9 @@ def _render_to(args: argparse.Namespace, offscreen: Any, values: dict[str, Any],
     arrays, preview, others = _load_input(args.input, args.mesh, args.preview, values,
                                           selection, args.seed)
     if arrays is None and others is None:
-        print(f"livemod render: warning: {args.input} left no mesh; the picture shows an "
-              "empty scene", file=sys.stderr)
+        warning(f"{args.input} left no mesh; the picture shows an empty scene")
     elif args.preview and preview is None:
-        print("livemod: warning: no patch preview available; drawing the mesh",
-              file=sys.stderr)
+        warning("no patch preview available; drawing the mesh")
     style = Style(edges=not args.no_edges, vertices=args.vertices, preview=args.preview,
                   labels=labels, grid=args.grid, background=BACKGROUNDS[args.background],
                   smooth=args.smooth, section=section_through(args.section, (arrays, others)))
@@ -334,26 +354,37 @@ def _render_to(args: argparse.Namespace, offscreen: Any, values: dict[str, Any],
 def _render_inputs(args: argparse.Namespace,
                    ) -> tuple[dict[str, Any], frozenset[str], Selection | None]:
     """``livemod render``'s parameter values, label kinds and selection, with the
-    output name checked.
+    files it reads and writes checked; a GIF asked for faster than GIFs play gets
+    a note (it is written at the fastest rate that plays, see
+    :func:`~livemod.viewer.imagefiles.write_images`).
 
     Raises:
-        ValueError: a script that does not exist, or a bad ``--set``, ``-o``,
-            ``--fps``, ``--labels`` or ``--select`` (the message says which).
+        UsageError: a bad ``--set``, ``-o``, ``--fps``, ``--labels`` or
+            ``--select`` (the message says which).
+        OSError: a script or ``--mesh`` that cannot be read, or an output that
+            cannot be written.
+        DLFLError: the script's own fault found while checking ``--set``.
     """
-    from .imagefiles import check_output
+    from .imagefiles import check_output, gif_rate_note
     from .renderer import LABEL_KINDS
 
-    if Path(args.input).suffix.lower() in SCRIPT_SUFFIXES and not Path(args.input).is_file():
-        raise ValueError(f"no such script: {args.input}")
+    is_script = Path(args.input).suffix.lower() in SCRIPT_SUFFIXES
+    with usage_errors():
+        paths = check_output(args.output, max(args.turntable, 1), args.size,
+                             transparent=args.background == "transparent", fps=args.fps)
+    if is_script:
+        check_run_files(args.input, args.mesh, None)
+    check_writable(paths)
     values = _given_values(args.input, args.set)
-    check_output(args.output, max(args.turntable, 1), args.size,
-                 transparent=args.background == "transparent", fps=args.fps)
     labels = frozenset(k.strip() for k in args.labels.split(",") if k.strip())
     if labels - set(LABEL_KINDS):
-        raise ValueError(f"unknown label kinds: {sorted(labels - set(LABEL_KINDS))}")
+        raise UsageError(f"unknown label kinds: {sorted(labels - set(LABEL_KINDS))}")
     selection = selection_of(args)
-    if selection is not None and Path(args.input).suffix.lower() not in SCRIPT_SUFFIXES:
-        raise ValueError(f"--select needs a script, not {args.input!r}")
+    if selection is not None and not is_script:
+        raise UsageError(f"--select needs a script, not {args.input!r}")
+    slower = gif_rate_note(paths, args.fps)  # written at the rate it plays at
+    if slower is not None:
+        note(slower)
     return values, labels, selection
 
 
@@ -404,9 +435,9 @@ def _run_for_render(path: str, mesh_path: str | None, want_preview: bool,
 
     outcome = run_outcome(path, mesh_path=mesh_path, parameters=values, selection=selection,
                           seed=seed)
-    note = missing_picks_note(outcome.scene)
-    if note is not None:
-        print(f"livemod render: {note}", file=sys.stderr)
+    left_out = missing_picks_note(outcome.scene)
+    if left_out is not None:
+        warning(left_out)
     if outcome.error is not None:
         error = outcome.error
         raise DLFLError(f"{error.file}:{error.line}: {error.message}")

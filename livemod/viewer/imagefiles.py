@@ -2,7 +2,7 @@
 
 Every name is checked by :func:`check_output` before anything is rendered, so a
 long turntable never ends in a bad file name, and every file is written
-atomically (encoded in full, then renamed over the target).
+atomically (encoded into a temporary file beside it, then renamed over it).
 
 PNG, GIF and WebP need only Pillow. MP4 (H.264, the format video sites and slide
 decks take) needs PyAV, an optional dependency: ``pip install "livemod[video]"``.
@@ -12,11 +12,10 @@ from __future__ import annotations
 
 import functools
 import importlib.util
-import io
-import tempfile
 from collections.abc import Callable, Sequence
 from fractions import Fraction
 from pathlib import Path
+from typing import BinaryIO
 
 import numpy as np
 
@@ -29,6 +28,13 @@ OPAQUE_ONLY = (".gif", ".mp4")
 VIDEO_EXTRA = 'pip install "livemod[video]"'
 # x264's quality: 18 is visually lossless for flat-shaded renders, at ~1/5 of crf 0's size
 MP4_QUALITY = "18"
+# a GIF's delays are whole hundredths of a second, and browsers and most viewers
+# play a delay under 2 of them as 10: 50 fps is the fastest a GIF plays at
+GIF_FASTEST = 50.0
+# room kept at the front of an MP4 for its index (see _mp4): measured 773 bytes for
+# one frame and ~12 more per frame; at most 32 per frame (every sample table
+# holding a full entry for each), so the room always suffices
+MP4_INDEX_ROOM = (2048, 32)
 
 
 def output_paths(out: str, frames: int) -> list[Path]:
@@ -98,14 +104,28 @@ def check_output(out: str, frames: int, size: tuple[int, int], *,
     return paths
 
 
+def gif_rate_note(paths: Sequence[Path], fps: float) -> str | None:
+    """What to tell whoever asked for ``fps`` when ``paths`` (see
+    :func:`check_output`) is one GIF faster than :data:`GIF_FASTEST`, which
+    :func:`write_images` writes at that rate; None for anything else."""
+    if len(paths) != 1 or paths[0].suffix.lower() != ".gif" or fps <= GIF_FASTEST:
+        return None
+    return (f"a GIF plays at most {GIF_FASTEST:g} frames per second (its delays are whole "
+            f"hundredths of a second, and viewers slow shorter ones to a tenth); writing "
+            f"{paths[0]} at {GIF_FASTEST:g} fps, not {fps:g} (.webp or .mp4 play at {fps:g})")
+
+
 def write_images(out: str, images: Sequence[np.ndarray], fps: float = 25.0) -> list[Path]:
     """Write ``images`` (each ``(H, W, 3)`` or, with a transparent background,
     ``(H, W, 4)`` uint8, all one size) where :func:`output_paths` says, each file
     atomically, and return the paths written.
 
-    Animations loop and play at ``fps``. GIF frame delays are whole centiseconds,
-    so 25 fps (40 ms) is exact; WebP is lossless; MP4 is H.264 (``yuv420p``, the
-    index at the front so browsers play it while loading).
+    Animations loop and play at ``fps``. A GIF plays at most at 50 fps (see
+    :data:`GIF_FASTEST`): it is written at 50 when asked for more. Its delays are
+    whole hundredths of a second, so where ``fps`` does not divide 100 they
+    alternate (30 fps: 30, 40, 30 ms, ...) to keep the rate over the loop. WebP is
+    lossless; MP4 is H.264 (``yuv420p``, the index at the front so browsers play
+    it while loading).
 
     Raises:
         ValueError: see :func:`check_output`.
@@ -125,49 +145,75 @@ def write_images(out: str, images: Sequence[np.ndarray], fps: float = 25.0) -> l
     return paths
 
 
-def _pillow_animation(images: Sequence[np.ndarray], fps: float, data: io.BytesIO, *,
-                      format: str, **options: object) -> None:  # noqa: A002 (Pillow's name)
-    """Encode ``images`` as one looping Pillow animation of ``format`` into ``data``."""
+def _pillow_animation(images: Sequence[np.ndarray], durations: list[int], data: BinaryIO,
+                      *, format: str, **options: object) -> None:  # noqa: A002 (Pillow's name)
+    """Encode ``images`` as one looping Pillow animation of ``format`` into ``data``,
+    frame ``k`` shown for ``durations[k]`` milliseconds."""
     from PIL import Image
 
     pictures = [Image.fromarray(image) for image in images]
     pictures[0].save(data, format=format, save_all=True, append_images=pictures[1:],
-                     duration=round(1000.0 / fps), loop=0, **options)
+                     duration=durations, loop=0, **options)
 
 
-def _mp4(images: Sequence[np.ndarray], fps: float, data: io.BytesIO) -> None:
+def _gif(images: Sequence[np.ndarray], fps: float, data: BinaryIO) -> None:
+    """A looping GIF at ``fps`` (at most :data:`GIF_FASTEST`) into ``data``."""
+    _pillow_animation(images, gif_delays(len(images), fps), data, format="GIF",
+                      optimize=False)
+
+
+def gif_delays(frames: int, fps: float) -> list[int]:
+    """Each of ``frames`` GIF frames' delay in milliseconds at ``fps`` (at most
+    :data:`GIF_FASTEST`): whole hundredths of a second, each the rounded running
+    total less the one before, so the loop keeps the rate (30 fps: 30, 40, 30)."""
+    ends = [round(100.0 * (k + 1) / min(fps, GIF_FASTEST)) for k in range(frames)]
+    return [10 * (end - start) for start, end in zip([0, *ends], ends, strict=False)]
+
+
+def _webp(images: Sequence[np.ndarray], fps: float, data: BinaryIO) -> None:
+    """A looping, lossless animated WebP at ``fps`` into ``data`` (``exact``: the
+    colour under alpha 0 kept too, the PNG's pixels)."""
+    _pillow_animation(images, [round(1000.0 / fps)] * len(images), data, format="WEBP",
+                      lossless=True, exact=True)
+
+
+def _mp4(images: Sequence[np.ndarray], fps: float, data: BinaryIO) -> None:
+    """An H.264 MP4 at ``fps`` into ``data`` (a seekable file), its index first.
+
+    The muxer's ``faststart`` moves the index to the front in a second pass that
+    reopens the file by name, which the atomic write's temporary file has not:
+    room for the index is kept at the front instead (``moov_size``, see
+    :data:`MP4_INDEX_ROOM`), and the muxer seeks back to write it there.
+    """
     import av
 
     height, width = images[0].shape[:2]
-    # the muxer's second pass (index to the front) reopens the file by name, so it
-    # cannot write to memory: encode into a private folder, then read back
-    with tempfile.TemporaryDirectory(prefix="livemod-mp4-") as folder:
-        name = str(Path(folder) / "out.mp4")
-        with av.open(name, mode="w", options={"movflags": "faststart"}) as container:
-            stream = container.add_stream("libx264", rate=Fraction(fps).limit_denominator(1001))
-            stream.width, stream.height, stream.pix_fmt = width, height, "yuv420p"
-            stream.options = {"crf": MP4_QUALITY}
-            for image in images:
-                container.mux(stream.encode(av.VideoFrame.from_ndarray(image, format="rgb24")))
-            container.mux(stream.encode())  # flush the frames the encoder holds back
-        data.write(Path(name).read_bytes())
+    room = MP4_INDEX_ROOM[0] + MP4_INDEX_ROOM[1] * len(images)
+    with av.open(data, mode="w", format="mp4", options={"moov_size": str(room)}) as container:
+        stream = container.add_stream("libx264", rate=Fraction(fps).limit_denominator(1001))
+        stream.width, stream.height, stream.pix_fmt = width, height, "yuv420p"
+        stream.options = {"crf": MP4_QUALITY}
+        for image in images:
+            container.mux(stream.encode(av.VideoFrame.from_ndarray(image, format="rgb24")))
+        container.mux(stream.encode())  # flush the frames the encoder holds back
 
 
-_ANIMATION_WRITERS: dict[str, Callable[[Sequence[np.ndarray], float, io.BytesIO], None]] = {
-    ".gif": functools.partial(_pillow_animation, format="GIF", optimize=False),
-    # exact: keep the colour under alpha 0 too, the PNG's pixels
-    ".webp": functools.partial(_pillow_animation, format="WEBP", lossless=True, exact=True),
-    ".mp4": _mp4}
+_ANIMATION_WRITERS: dict[str, Callable[[Sequence[np.ndarray], float, BinaryIO], None]] = {
+    ".gif": _gif, ".webp": _webp, ".mp4": _mp4}
 
 
-def _save(path: Path, write: Callable[[io.BytesIO], None]) -> None:
-    """Encode with ``write`` in memory, then replace ``path`` atomically."""
-    from livemod.dlfl.io.atomic import write_atomically
+def _save(path: Path, write: Callable[[BinaryIO], None]) -> None:
+    """Encode with ``write`` straight into the temporary file of an atomic write,
+    which then replaces ``path`` (its folder made if missing).
 
-    data = io.BytesIO()
-    write(data)
+    Raises:
+        OSError: the file cannot be written; an old ``path`` is left intact.
+    """
+    from livemod.dlfl.io.atomic import atomic_write
+
     path.parent.mkdir(parents=True, exist_ok=True)
-    write_atomically(path, data.getvalue())
+    with atomic_write(path) as handle:
+        write(handle)
 
 
 def save_png(path: Path, image: np.ndarray) -> None:
