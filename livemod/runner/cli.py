@@ -46,7 +46,6 @@ from .batch import (
     write_index,
 )
 from .headless import missing_picks_note, run_outcome
-from .instrument import read_script
 from .results import RunResult, StepRecord, result_mesh, save_result
 
 OUTPUT_SUFFIXES = tuple(f".{key}" for key in WRITERS)
@@ -229,10 +228,7 @@ def script_values(script: str, texts: list[str]) -> dict[str, Any]:
     """
     if not texts:
         return {}
-    try:
-        source = read_script(script)
-    except SyntaxError as exc:
-        raise DLFLError(f"{script}:{exc.lineno}: {exc.msg}") from None
+    source = declarations.script_source(script)
     declarations.literal_declarations(source, script)  # its own faults: not usage
     with usage_errors():
         return declarations.given_values(script, texts)

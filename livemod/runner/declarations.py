@@ -33,7 +33,7 @@ def declared_parameters(script: str | Path) -> dict[str, ParamSpec]:
         OSError: the script cannot be read.
     """
     path = Path(script)
-    source = _source(path)
+    source = script_source(path)
     specs = literal_declarations(source, path)
     if specs is not None:
         return specs
@@ -42,7 +42,7 @@ def declared_parameters(script: str | Path) -> dict[str, ParamSpec]:
     return {**ran, **{name: spec for name, spec in readable.items() if name not in ran}}
 
 
-def _source(path: Path) -> str:
+def script_source(path: Path | str) -> str:
     """The script's text (see :func:`~livemod.runner.instrument.read_script`).
 
     Raises:
@@ -237,5 +237,5 @@ def given_values(script: str | Path, texts: list[str]) -> dict[str, Any]:
     if not raw:
         return {}
     path = Path(script)
-    specs = literal_declarations(_source(path), path)
+    specs = literal_declarations(script_source(path), path)
     return raw if specs is None else check_values(specs, raw)
