@@ -30,7 +30,8 @@ COMMAND_MODULES = {
 LIBRARY_MODULES = [
     "livemod.dlfl.mesh", "livemod.dlfl.build", "livemod.dlfl.arrays", "livemod.dlfl.validate",
     "livemod.dlfl.analysis", "livemod.dlfl.scene", "livemod.dlfl.subdivision",
-    "livemod.dlfl.extrusion", "livemod.dlfl.connect", "livemod.dlfl.rind",
+    "livemod.dlfl.extrusion", "livemod.dlfl.connect", "livemod.dlfl.multihandle",
+    "livemod.dlfl.rind",
     "livemod.dlfl.wireframe", "livemod.dlfl.sierpinsky", "livemod.dlfl.sponge", "livemod.dlfl.hull",
     "livemod.dlfl.cutting",
     "livemod.dlfl.geometry", "livemod.dlfl.transform", "livemod.dlfl.selection",

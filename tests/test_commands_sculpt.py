@@ -16,6 +16,7 @@ from livemod.dlfl.commands import (
     load,
     menger,
     meshsmooth,
+    multiConnectFaces,
     planarize,
     rind,
     sierpinsky,
@@ -27,7 +28,8 @@ from tests.meshes import counts, snapshot
 
 def test_star_import_gives_the_commands():
     for name in ("rind", "wireframe", "column", "sierpinsky", "menger", "meshsmooth",
-                 "planarize", "spheralize", "crust", "convexHull", "dualConvexHull"):
+                 "planarize", "spheralize", "crust", "convexHull", "dualConvexHull",
+                 "multiConnectFaces"):
         assert name in dlfl.__all__
         assert callable(getattr(dlfl, name))
 
@@ -138,5 +140,66 @@ def test_load_a_sample_by_name_then_wireframe(scene):
 def test_bad_arguments_raise_and_leave_the_object_unchanged(scene, call):
     before = snapshot(scene.mesh)
     with pytest.raises(DLFLError):
+        call()
+    assert snapshot(scene.mesh) == before
+
+
+# -- multiConnectFaces (the scene's cube: face 0 at y = 1, 5 at y = -1, 2 and 4 at
+# z = -1 and z = 1)
+
+def test_multi_connect_faces_is_the_convex_hull_handle(scene):
+    multiConnectFaces([0, 2, 4])
+    assert counts(scene) == (20, 42, 20) and genus(scene.mesh) == 2
+
+
+def test_multi_connect_faces_takes_the_selection(scene):
+    scene.selection = dlfl.Selection(faces=(0, 2, 4))
+    multiConnectFaces(faces(True), 1.0, 0.5, True)
+    assert counts(scene) == (20, 42, 20) and genus(scene.mesh) == 2
+    load("cube")
+    scene.selection = dlfl.Selection(faces=(0, 5))
+    multiConnectFaces(method="closest-edge")  # no ids: the selection
+    assert counts(scene) == (8, 16, 8) and genus(scene.mesh) == 1
+
+
+def test_multi_connect_faces_scale_and_extrude_reach_the_hub(scene):
+    multiConnectFaces([0, 5], 1.0, 1.0)
+    # the hub is the box of the pushed faces, y = +-2, around the cube (inside out)
+    hub = [scene.mesh.position(v)[1] for v in scene.mesh.vertex_ids() if v >= 8]
+    assert counts(scene) == (16, 32, 16) and sorted(set(hub)) == [-2.0, 2.0]
+
+
+def test_multi_connect_faces_fitted(scene):
+    multiConnectFaces([0, 5], method="fitted", minFactor=0.01)
+    hub = {scene.mesh.position(v)[1] for v in scene.mesh.vertex_ids() if v >= 8}
+    assert counts(scene) == (16, 32, 16) and genus(scene.mesh) == 1
+    assert hub == {-0.015625, 0.015625}  # 0.984375 of the way to the centre
+
+
+def test_multi_connect_faces_is_one_step(scene):
+    labels: list[str] = []
+    scene.step_hook = labels.append
+    multiConnectFaces([0, 5], method="closest-edge")
+    multiConnectFaces([1, 3])
+    assert labels == ["multiConnectFaces", "multiConnectFaces"]
+
+
+@pytest.mark.parametrize(("call", "message"), [
+    (lambda: multiConnectFaces([0, 5], method="convex"), "method must be one of 'hull'"),
+    (lambda: multiConnectFaces([0, 5], extrude=1.0, method="closest-edge"),
+     "method 'closest-edge' does not use extrude"),
+    (lambda: multiConnectFaces([0, 5], maxOffsets=True, method="fitted"),
+     "method 'fitted' does not use maxOffsets"),
+    (lambda: multiConnectFaces([0, 5], minFactor=0.1), "method 'hull' does not use minFactor"),
+    (lambda: multiConnectFaces([0]), "needs two or more different faces"),
+    (lambda: multiConnectFaces([0, 99]), "face 99 does not exist"),
+    (lambda: multiConnectFaces("0, 5"), "faces must be a list of ids"),
+    (lambda: multiConnectFaces([0, 5], maxOffsets="no"), "max_offsets must be True or False"),
+    (lambda: multiConnectFaces([0, 5], method="fitted", minFactor=-1.0),
+     "min_factor must be a positive number"),
+])
+def test_multi_connect_faces_bad_arguments_leave_the_object_unchanged(scene, call, message):
+    before = snapshot(scene.mesh)
+    with pytest.raises(DLFLError, match=message):
         call()
     assert snapshot(scene.mesh) == before

@@ -149,6 +149,29 @@ def test_connect_edges_joins_two_half_edges_with_a_quad():
     assert quad
 
 
+def test_connect_edge_sides_picks_the_side_of_an_edge_whose_sides_share_a_face():
+    from livemod.dlfl.connect import connect_edge_sides
+
+    # a dangling edge inside the top face: both of its sides are in that face, so
+    # (edge, face) names neither; its corners do
+    m = cube()
+    v = m.create_vertex((0.0, 0.5, 0.5))
+    inner = m.insert_edge(m.face_corner(TOP), m.vertex_corner(v))
+    assert m.edge_faces(inner) == (TOP, TOP)
+    out_side = next(c for c in m.edge_corners(inner) if m.corner_vertex(c) == v)
+    other = m.face_corners(BOTTOM)[0]
+    u = m.corner_vertex(m.corner_next(out_side))
+    b0, b1 = m.corner_vertex(other), m.corner_vertex(m.corner_next(other))
+    made = connect_edge_sides(m, out_side, other)
+    # 9/13/6 with the dangling edge; one merging and one splitting edge: 9/15/6
+    assert len(made) == 2 and checked(m) == (9, 15, 6) and genus(m) == 1
+    # (side, next(other)) and (next(side), other): from v, not from the top's corner
+    assert [set(m.edge_vertices(e)) for e in made] == [{v, b1}, {u, b0}]
+    assert_refused(cube(), lambda m: connect_edge_sides(m, 0, 0),
+                   "connect_edge_sides needs two different corners, got corner 0 twice")
+    assert_refused(cube(), lambda m: connect_edge_sides(m, 0, 999), "side2: corner 999 does not exist")
+
+
 def test_connect_edges_check_skips_adjacent_corners():
     m = cube()
     c = m.face_corner(TOP)

@@ -30,7 +30,6 @@ from livemod.dlfl.connect import (
     connect_faces_closest,
     dual_connect_faces,
     hermite_handle,
-    multi_face_handle,
 )
 from livemod.dlfl.extrusion import (
     KINDS,
@@ -39,6 +38,11 @@ from livemod.dlfl.extrusion import (
     extrude_fan,
     resolve_kind,
     small_polygon_normal,
+)
+from livemod.dlfl.multihandle import (
+    multi_face_handle,
+    multi_face_handle_closest_edges,
+    multi_face_handle_fitted,
 )
 from livemod.dlfl.shapes import cube, dodecahedron, tetrahedron
 from tests.meshes import (
@@ -661,6 +665,9 @@ DOC_FIGURES = [
     ("`hermite_handle`", "44/88/44", _handle(lambda m, a, b: hermite_handle(m, a, b, 10))),
     ("`bezier_handle`", "44/88/44", _handle(lambda m, a, b: bezier_handle(m, a, b, 10))),
     ("`multi_face_handle(", "20/42/20", lambda m: multi_face_handle(m, [0, 2, 4])),
+    ("`multi_face_handle_closest_edges(", "8/16/8",
+     lambda m: multi_face_handle_closest_edges(m, [0, 5])),
+    ("`multi_face_handle_fitted(", "16/32/16", lambda m: multi_face_handle_fitted(m, [0, 5])),
 ]
 
 

@@ -11,7 +11,11 @@ and :meth:`Mesh.create_face` only:
   zig-zag band of triangles;
 * :func:`connect_edges`: join two half-edges with a quad;
 * :func:`hermite_handle` and :func:`bezier_handle`: curved handles;
-* :func:`multi_face_handle`: a convex-hull hub joining several faces.
+* :func:`connect_edge_sides`: the same with the half-edges given as corners;
+* :func:`multi_face_handle`, :func:`multi_face_handle_fitted` and
+  :func:`multi_face_handle_closest_edges`: several faces at once, through a
+  convex-hull hub or by quads between their closest edges (from
+  :mod:`livemod.dlfl.multihandle`, re-exported here).
 
 Every function checks all of its input before touching the mesh, so a
 :class:`DLFLError` leaves the mesh unchanged. Each returns the ids of the edges
@@ -24,18 +28,17 @@ from collections.abc import Callable
 
 import numpy as np
 
-from ._checks import finite_number, first_not_finite, id_list, whole_count
+from ._checks import finite_number, first_not_finite, whole_count
 from ._vectors import centroid, lengths, together_in_range, unit
 from .analysis import face_points, polygon_normal
 from .errors import DLFLError
-from .hull import hull_polygons
 from .mesh import Mesh
 
 __all__ = [
     "connect_faces", "connect_faces_closest", "closest_corners", "connect_corners",
     "dual_connect_faces", "connect_edges", "hermite_handle", "hermite_rings",
     "hermite_point", "bezier_handle", "bezier_rings", "resolve_polygon",
-    "rotation_between", "multi_face_handle", "add_polyhedron",
+    "rotation_between", "connect_edge_sides",
 ]
 
 # ``connector(mesh, corner1, corner2)`` joins the faces of two corners
@@ -363,6 +366,24 @@ def connect_edges(
     c2 = _side_in_face(mesh, edge2, face2, "edge2")
     if c1 == c2:
         raise DLFLError(f"connect_edges needs two different half-edges, got edge {edge1} twice")
+    return connect_edge_sides(mesh, c1, c2, check)
+
+
+def connect_edge_sides(mesh: Mesh, side1: int, side2: int, check: bool = True) -> list[int]:
+    """:func:`connect_edges` with the half-edges given as corners (a corner's edge
+    runs from its vertex to the next corner's): unambiguous where an edge has both
+    sides in one face.
+
+    Returns:
+        The ids of the (zero to two) new edges.
+
+    Raises:
+        DLFLError: a corner is not live, or both are the same.
+    """
+    c1 = _live_corner(mesh, side1, "side1")
+    c2 = _live_corner(mesh, side2, "side2")
+    if c1 == c2:
+        raise DLFLError(f"connect_edge_sides needs two different corners, got corner {c1} twice")
     c1n, c2n = mesh.corner_next(c1), mesh.corner_next(c2)
     made = []
     for a, b in ((c1, c2n), (c1n, c2)):
@@ -587,190 +608,18 @@ def bezier_handle(
     return _new_edges(mesh, first)
 
 
-# -- multi-face handle -------------------------------------------------------------------
-
-def add_polyhedron(mesh: Mesh, points: np.ndarray, polygons: list[list[int]]) -> list[int]:
-    """Add a closed genus-0 polyhedron to ``mesh`` with the minimal operators only.
-
-    One point-sphere per point, then one :meth:`Mesh.insert_edge` per edge. Each
-    edge goes into the corner whose angular sector, in the rotation the polygons
-    give each vertex, holds the new neighbour, so the partial graph always stays
-    planar and the last edges close exactly the given faces.
-
-    Args:
-        points: ``(k, 3)`` positions; every point must be used by a polygon.
-        polygons: point indices per face, counter-clockwise seen from outside,
-            forming a closed sphere-like surface (as :func:`.hull.hull_polygons`).
-
-    Returns:
-        The new face id of each polygon, in order.
-    """
-    rotation = _rotations(polygons)
-    vertex = {p: mesh.create_vertex(points[p]) for p in sorted(rotation)}
-    done: set[tuple[int, int]] = set()
-    for poly in polygons:
-        for a, b in zip(poly, poly[1:] + poly[:1], strict=True):
-            if (b, a) in done:
-                continue
-            done.add((a, b))
-            mesh.insert_edge(_sector_corner(mesh, vertex, rotation, a, b),
-                             _sector_corner(mesh, vertex, rotation, b, a))
-    return [mesh.corner_face(_corner_towards(mesh, vertex[poly[0]], vertex[poly[1]]))
-            for poly in polygons]
+# the multi-face family (multihandle.py) builds on the connections above; these
+# names stay reachable here, where users of the connect family looked for them,
+# loaded on first use so that neither module imports the other at import time
+_MULTIHANDLE_NAMES = frozenset({
+    "add_polyhedron", "face_max_offsets", "fitted_factor", "multi_face_handle",
+    "multi_face_handle_closest_edges", "multi_face_handle_fitted"})
 
 
-def _rotations(polygons: list[list[int]]) -> dict[int, list[int]]:
-    """Each point's neighbours counter-clockwise around it, seen from outside."""
-    after: dict[int, dict[int, int]] = {}
-    for poly in polygons:
-        n = len(poly)
-        for i, p in enumerate(poly):
-            after.setdefault(p, {})[poly[(i + 1) % n]] = poly[i - 1]
-    rotation = {}
-    for p, step in after.items():
-        first = next(iter(step))
-        ring, q = [first], step[first]
-        while q != first:
-            ring.append(q)
-            q = step[q]
-        rotation[p] = ring
-    return rotation
+def __getattr__(name: str) -> object:
+    """``connect.multi_face_handle`` and the rest of :mod:`.multihandle` (PEP 562)."""
+    if name in _MULTIHANDLE_NAMES:
+        from . import multihandle
 
-
-def _sector_corner(mesh: Mesh, vertex: dict[int, int], rotation: dict[int, list[int]],
-                   a: int, b: int) -> int:
-    """The corner at point ``a`` whose sector (from its next vertex counter-clockwise
-    to its previous one) holds the new neighbour ``b``."""
-    corners = mesh.vertex_corners(vertex[a])
-    if len(corners) == 1:
-        return corners[0]
-    point_of = {v: p for p, v in vertex.items()}
-    ring = rotation[a]
-    place = {q: i for i, q in enumerate(ring)}
-    for c in corners:
-        start = place[point_of[mesh.corner_vertex(mesh.corner_next(c))]]
-        end = place[point_of[mesh.corner_vertex(mesh.corner_prev(c))]]
-        span = (end - start) % len(ring) or len(ring)
-        if 0 < (place[b] - start) % len(ring) < span:
-            return c
-    raise DLFLError(f"internal: no corner of point {a} can take an edge to point {b}")
-
-
-def _corner_towards(mesh: Mesh, u: int, w: int) -> int:
-    for c in mesh.vertex_corners(u):
-        if mesh.corner_vertex(mesh.corner_next(c)) == w:
-            return c
-    raise DLFLError(f"internal: vertex {u} has no edge to vertex {w}")
-
-
-def multi_face_handle(mesh: Mesh, faces: list[int], scale: float = 1.0,
-                      extrude: float = 0.5) -> list[int]:
-    """Join several faces through one hub, the convex hull of their vertices
-    (TopMod's ``multiConnectFaces(faces, scale, extrude)``).
-
-    Each face's vertices are pushed ``extrude`` along its normal (coincident
-    points kept once), scaled by ``|scale|`` about their centroid (unless 0 or
-    1), and their convex hull (:func:`.hull.hull_polygons`: coplanar facets
-    merged, points on hull edges kept as corners) is added, reversed when
-    the first face's normal points away from the hull's centroid. Each selected
-    face is joined (closest corners, :func:`connect_faces`) to the hull face
-    parallel to it and facing it. Cube faces 0, 2, 4: 20/42/20, genus 2.
-
-    Returns:
-        The ids of the new edges (the hull's and the tubes').
-
-    Raises:
-        DLFLError: fewer than two faces, an entry that is not an id, a repeated
-            or gone face, a face of fewer than 3 corners, ``scale`` or ``extrude``
-            not a finite number, points all in one plane or too nearly coplanar for
-            their hull to close up, a point inside the hull (or one of its faces),
-            or a face with no hull face facing it (TopMod skipped it silently).
-            The mesh is unchanged.
-    """
-    faces = id_list(faces, "faces")
-    scale = finite_number(scale, "scale")
-    extrude = finite_number(extrude, "extrude")
-    _check_handle_faces(mesh, faces)
-    normals = [polygon_normal(face_points(mesh, f)) for f in faces]
-    points = _hub_points(mesh, faces, normals, extrude, scale)
-    polygons = hull_polygons(points)
-    # quarters: the difference of two huge centroids cannot overflow
-    outward = centroid(face_points(mesh, faces[0])) * 0.25 - centroid(points) * 0.25
-    if float(normals[0] @ outward) > 0:
-        polygons = [poly[::-1] for poly in polygons]
-    _check_every_point_used(polygons, len(points))
-    partner = _facing_polygons(points, polygons, faces, normals)
-    first = mesh.next_ids()[1]
-    hull_faces = add_polyhedron(mesh, points, polygons)
-    for face, poly in zip(faces, partner, strict=True):
-        c1, c2 = closest_corners(mesh, face, hull_faces[poly])
-        _quad_band(mesh, c1, c2)
-    return _new_edges(mesh, first)
-
-
-def _check_every_point_used(polygons: list[list[int]], count: int) -> None:
-    """Refuse a hub hull that leaves out one of its ``count`` points (one inside the
-    hull or inside a hull face): its face would lose a corner to the hub.
-
-    Raises:
-        DLFLError: naming the first point no polygon uses.
-    """
-    unused = sorted(set(range(count)) - {p for poly in polygons for p in poly})
-    if unused:
-        raise DLFLError(f"hub point {unused[0]} lies inside the hub's convex hull (or "
-                        "inside one of its faces); try another extrude or scale")
-
-
-def _check_handle_faces(mesh: Mesh, faces: list[int]) -> None:
-    if len(faces) < 2 or len(set(faces)) != len(faces):
-        raise DLFLError(f"multi_face_handle needs two or more different faces, got {faces}")
-    for f in faces:
-        if not mesh.has_face(f):
-            raise DLFLError(f"face {f} does not exist (deleted or never made)")
-        if mesh.face_size(f) < 3 or not np.any(polygon_normal(face_points(mesh, f))):
-            raise DLFLError(f"face {f} has no normal (fewer than 3 corners or degenerate)")
-
-
-def _hub_points(mesh: Mesh, faces: list[int], normals: list[np.ndarray], extrude: float,
-                scale: float) -> np.ndarray:
-    """``(k, 3)`` the pushed face points, coincident ones (within 1e-2) kept once;
-    points beyond the float range come out inf, which :func:`.hull.hull_polygons`
-    refuses."""
-    kept: list[np.ndarray] = []
-    for f, normal in zip(faces, normals, strict=True):
-        with np.errstate(over="ignore"):  # refused by hull_polygons
-            pushed = face_points(mesh, f) + extrude * normal
-        for p in pushed:
-            if all(_apart(p, q) for q in kept):
-                kept.append(p)
-    points = np.array(kept)
-    factor = abs(scale)
-    if factor > 1e-12 and abs(factor - 1.0) > 1e-12:
-        points = _scale_about_centroid(points, factor)
-    return points
-
-
-def _apart(p: np.ndarray, q: np.ndarray) -> bool:
-    """Whether the ``(3,)`` points are at least 1e-2 apart (TopMod's merge distance),
-    squaring only differences too small to overflow. A difference that overflows
-    counts as apart (inf - inf, NaN, does not: such points are refused anyway)."""
-    with np.errstate(over="ignore", invalid="ignore"):  # inf - inf: NaN, not apart
-        d = p - q
-    top = float(np.abs(d).max())
-    if not top < 1e-2:  # apart, or NaN somewhere
-        return top >= 1e-2
-    return float(d @ d) >= 1e-4
-
-
-def _facing_polygons(points: np.ndarray, polygons: list[list[int]], faces: list[int],
-                     normals: list[np.ndarray]) -> list[int]:
-    """For each selected face, the hull polygon whose normal is opposite to its own."""
-    hull_normals = [polygon_normal(points[poly]) for poly in polygons]
-    partner = []
-    for f, normal in zip(faces, normals, strict=True):
-        match = [i for i, n in enumerate(hull_normals) if abs(1.0 + float(n @ normal)) < 1e-6]
-        free = [i for i in match if i not in partner]
-        if not free:
-            raise DLFLError(f"face {f} has no hull face facing it; try another extrude or scale")
-        partner.append(free[0])
-    return partner
+        return getattr(multihandle, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -5,7 +5,8 @@ The extras are livemod additions, named after TopMod's menu entries (its
 Python module had ``sierpinsky`` and ``menger`` commented out): ``sierpinsky()``,
 ``menger([thickness])``, ``meshsmooth()``, ``planarize()``, ``spheralize()``,
 ``crust(thickness[, uniform])``, ``convexHull()`` and ``dualConvexHull()``
-(TopMod's sculpting menu). Every one rebuilds or reshapes the current
+(TopMod's sculpting menu), and ``multiConnectFaces(...)`` (its multi-face
+handle). Every one but ``multiConnectFaces`` rebuilds or reshapes the current
 object; those that rebuild it give all its elements fresh ids.
 """
 
@@ -13,7 +14,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from .. import geometry, hull, sponge
+from .. import geometry, hull, multihandle, sponge
 from .. import rind as _rind
 from .. import sierpinsky as _sierpinsky
 from .. import wireframe as _wire
@@ -23,8 +24,13 @@ from ._base import id_arguments, mesh, modeling_command
 
 __all__ = [
     "rind", "wireframe", "column", "crust", "sierpinsky", "menger", "meshsmooth",
-    "planarize", "spheralize", "convexHull", "dualConvexHull",
+    "planarize", "spheralize", "convexHull", "dualConvexHull", "multiConnectFaces",
 ]
+
+# multiConnectFaces' methods, with the options each one reads besides the faces
+_MULTI_METHODS = {"hull": ("scale", "extrude", "maxOffsets"), "closest-edge": (),
+                  "fitted": ("minFactor",)}
+_MULTI_DEFAULTS = {"scale": 1.0, "extrude": 0.5, "maxOffsets": False, "minFactor": 0.01}
 
 
 @modeling_command
@@ -144,3 +150,62 @@ def dualConvexHull() -> None:
         DLFLError: fewer than 4 vertices, or all of them in one plane.
     """
     hull.dual_convex_hull(mesh())
+
+
+@modeling_command
+def multiConnectFaces(faces: Any = None, scale: float = 1.0, extrude: float = 0.5,
+                      maxOffsets: bool = False, method: str = "hull",
+                      minFactor: float = 0.01) -> None:
+    """``multiConnectFaces([faces, scale, extrude, maxOffsets, method, minFactor])``:
+    join several faces (default: the selected ones) at once, TopMod's multi-face handle.
+
+    ``method`` picks TopMod's variant (its C++ told them apart by their arguments):
+
+    * ``"hull"`` (default, ``multiConnectFaces(faces, scale, extrude, maxOffsets)``):
+      a hub, the convex hull of the face points pushed ``extrude`` along their
+      normals (with ``maxOffsets``, each face as far as the others' side walls let
+      it) and scaled by ``scale``, joined to every face by a tube. Cube faces 0, 2,
+      4: 20/42/20, genus 2.
+    * ``"closest-edge"`` (TopMod's ``multiConnectFaces(faces)``): quads between the
+      closest nearly coplanar edges of different faces. Cube top and bottom: 8/16/8.
+    * ``"fitted"`` (``multiConnectFaces(faces, min_factor, true)``): the smallest
+      hub keeping every point, found by moving the faces toward their common
+      centre in steps down to ``minFactor``; for faces that face each other.
+
+    See :mod:`livemod.dlfl.multihandle` for the rules.
+
+    Raises:
+        DLFLError: an unknown ``method``, an option the method does not read set
+            away from its default, or what the method refuses (too few faces, no
+            hull face facing a face, no qualifying edge pair, ...); the mesh is
+            unchanged.
+    """
+    ids = id_arguments(faces, "faces", "faces")
+    given = {"scale": scale, "extrude": extrude, "maxOffsets": maxOffsets, "minFactor": minFactor}
+    _check_multi_options(method, given)
+    m = mesh()
+    if method == "hull":
+        multihandle.multi_face_handle(m, ids, scale, extrude, max_offsets=maxOffsets)
+    elif method == "closest-edge":
+        multihandle.multi_face_handle_closest_edges(m, ids)
+    else:
+        multihandle.multi_face_handle_fitted(m, ids, minFactor)
+
+
+def _check_multi_options(method: Any, given: dict[str, Any]) -> None:
+    """Raises DLFLError unless ``method`` is known and every option of ``given``
+    it does not read keeps its default (a value it would silently ignore)."""
+    if not isinstance(method, str) or method not in _MULTI_METHODS:
+        raise DLFLError(f"method must be one of {', '.join(map(repr, _MULTI_METHODS))}, "
+                        f"got {method!r}")
+    for name, value in given.items():
+        if name not in _MULTI_METHODS[method] and not _is_default(value, _MULTI_DEFAULTS[name]):
+            raise DLFLError(f"multiConnectFaces method {method!r} does not use {name} "
+                            f"(got {value!r})")
+
+
+def _is_default(value: Any, default: Any) -> bool:
+    # a bool default matches only a bool (0 is not False here), a number only a number
+    if isinstance(default, bool):
+        return value is default
+    return not isinstance(value, bool) and isinstance(value, int | float) and value == default
