@@ -9,6 +9,12 @@ same torus as binary STL (2,000,000 triangles, welded: trimesh's default
 
 Targets (issue 2): load <= 2.0 s and >= 2x faster than
 ``trimesh.load(path, process=False)``; write <= 1.8 s.
+
+``--dlfl`` times TopMod's ``.dlfl`` instead, next to OBJ on the same tori
+(``--dlfl-grids``, default 316 and 1225: 99,856 and 1,500,625 quads), and
+prints the .dlfl/OBJ ratios (target: within 2x of OBJ):
+
+    python bench/bench_io.py --dlfl [--runs 5] [--dlfl-grids 316,1225]
 """
 
 from __future__ import annotations
@@ -53,7 +59,13 @@ def main() -> None:
     parser.add_argument("--runs", type=int, default=3)
     parser.add_argument("--grid", type=int, default=1000)
     parser.add_argument("--skip-obj", action="store_true", help="only the STL and PLY loads")
+    parser.add_argument("--dlfl", action="store_true", help="only .dlfl against OBJ")
+    parser.add_argument("--dlfl-grids", default="316,1225",
+                        help="torus grid sizes for --dlfl, comma-separated")
     args = parser.parse_args()
+    if args.dlfl:
+        bench_dlfl([int(g) for g in args.dlfl_grids.split(",")], args.runs)
+        return
     mesh = torus(args.grid)
     try:
         import trimesh
@@ -100,6 +112,42 @@ def bench_obj(mesh: Mesh, trimesh: object, runs: int) -> None:
             rows.append(("trimesh export + fsync",
                          median_times(lambda: export_synced(peer, theirs), runs)))
     report(rows, mesh, size_mb, runs)
+
+
+def bench_dlfl(grids: list[int], runs: int) -> None:
+    """Median write and load times of .dlfl and OBJ on tori of ``grids`` x ``grids``
+    quads, with the .dlfl/OBJ ratios and the load average before and after."""
+    print(f"# .dlfl against OBJ, median of {runs} runs (wall s / CPU s of this process)")
+    print("| faces | format | MB | write wall | write CPU | load wall | load CPU |")
+    print("|---|---|---|---|---|---|---|")
+    ratios = []
+    for grid in grids:
+        mesh = torus(grid)
+        before = os.getloadavg()[0]
+        times = {fmt: _format_times(mesh, fmt, runs) for fmt in ("obj", "dlfl")}
+        for fmt, (size_mb, write, load) in times.items():
+            print(f"| {mesh.counts()[2]:,} | {fmt} | {size_mb:.1f} | {write[0]:.2f} | "
+                  f"{write[1]:.2f} | {load[0]:.2f} | {load[1]:.2f} |")
+        (_, w_obj, l_obj), (_, w_dlfl, l_dlfl) = times["obj"], times["dlfl"]
+        ratios.append((mesh.counts()[2], [w_dlfl[i] / w_obj[i] for i in (0, 1)],
+                       [l_dlfl[i] / l_obj[i] for i in (0, 1)], before, os.getloadavg()[0]))
+        del mesh
+    print()
+    print("| faces | .dlfl/OBJ write (wall, CPU) | .dlfl/OBJ load (wall, CPU) | load average |")
+    print("|---|---|---|---|")
+    for faces, write, load, before, after in ratios:
+        print(f"| {faces:,} | {write[0]:.2f}x, {write[1]:.2f}x | {load[0]:.2f}x, {load[1]:.2f}x "
+              f"| {before:.1f} -> {after:.1f} |")
+
+
+def _format_times(mesh: Mesh, fmt: str, runs: int,
+                  ) -> tuple[float, tuple[float, float], tuple[float, float]]:
+    """``(file MB, write medians, load medians)`` of ``mesh`` saved as ``fmt``."""
+    with tempfile.TemporaryDirectory() as folder:
+        path = Path(folder) / f"torus.{fmt}"
+        write = median_times(lambda: save_mesh(mesh, path), runs)
+        load = median_times(lambda: load_mesh(path), runs)
+        return path.stat().st_size / 1e6, write, load
 
 
 def report(rows: list[tuple[str, tuple[float, float]]], mesh: Mesh, size_mb: float,

@@ -7,6 +7,9 @@ same work with whole-array numpy operations:
 * :func:`format_floats` writes each float64 as a decimal that parses back to the
   same bits (15 significant digits when they suffice, else 16, else 17), in
   positional notation; values outside ``[1e-6, 1e15)`` fall back to ``repr``.
+* :func:`format_rounded` writes values rounded to a number of decimals, as
+  :func:`format_floats` writes the rounded value, from the integer count of
+  the last decimal.
 * :func:`format_uints` writes non-negative integers.
 * :func:`decimal_to_float` turns (mantissa, fraction length) pairs into the
   correctly rounded float64, flagging the rare cases it cannot decide so the
@@ -141,6 +144,59 @@ def format_floats(values: np.ndarray) -> np.ndarray:
     for i in spelled.tolist():
         text = repr(float(x[i])).encode()
         out[i, : len(text)] = np.frombuffer(text, dtype=np.uint8)
+    return out
+
+
+def format_rounded(values: np.ndarray, decimals: int) -> np.ndarray:
+    """Decimal text of float64 values rounded to ``decimals`` places.
+
+    The same text as ``format_floats(np.round(values, decimals) + 0.0)`` (so
+    ``-0.0`` and values that round to zero are written ``0``), several times
+    cheaper: the rounded value is an integer count of ``10**-decimals``, and
+    its digits are written straight from that integer (for a value ``k /
+    10**decimals`` of at most 14 digits the shortest text that parses back is
+    those digits).
+
+    Args:
+        values: ``(N,)`` float64.
+        decimals: ``0 <= decimals <= 6`` (format_floats spells smaller values
+            with an exponent).
+
+    Returns:
+        ``(N, W)`` uint8 ASCII with 0 bytes as padding, as :func:`format_floats`.
+    """
+    x = np.asarray(values, dtype=np.float64).ravel()
+    limit = 10.0 ** (14 - decimals)
+    fixed = np.abs(x) < limit  # False for NaN and infinities too
+    count = np.rint(np.where(fixed, x, 0.0) * 10.0**decimals).astype(np.int64)
+    out = _fixed_point(np.abs(count), decimals, count < 0)
+    others = np.flatnonzero(~fixed)
+    if len(others) == 0:
+        return out
+    with np.errstate(over="ignore", invalid="ignore"):  # np.round's inf near the top
+        spelled = format_floats(np.round(x[others], decimals) + 0.0)
+    width = max(out.shape[1], spelled.shape[1])
+    out = np.pad(out, ((0, 0), (0, width - out.shape[1])))
+    out[others] = np.pad(spelled, ((0, 0), (0, width - spelled.shape[1])))
+    return out
+
+
+def _fixed_point(count: np.ndarray, decimals: int, negative: np.ndarray) -> np.ndarray:
+    """``(N, W)`` uint8 text of ``±count * 10**-decimals`` (``(N,)`` int64
+    ``count >= 0``): sign, integer digits (0 written ``0``), and a point and
+    the fraction digits without trailing zeros unless the fraction is zero."""
+    scale = 10**decimals
+    whole = count // scale
+    frac = count - whole * scale
+    whole_width = len(str(int(whole.max()))) if len(count) else 1
+    chunks = -(-decimals // 4)
+    out = np.empty((len(count), 2 + whole_width + decimals), dtype=np.uint8)
+    out[:, 0] = np.where(negative, ord("-"), 0)
+    out[:, 1 : 1 + whole_width] = _integer_text(whole, whole_width)
+    out[:, 1 + whole_width] = np.where(frac != 0, ord("."), 0)
+    if decimals:  # the fraction left-aligned in whole 4-digit chunks, then cut
+        padded = frac * 10 ** (4 * chunks - decimals)
+        out[:, 2 + whole_width :] = _fraction_text(_chunks(padded, chunks))[:, :decimals]
     return out
 
 

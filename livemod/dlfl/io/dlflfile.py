@@ -18,41 +18,39 @@ Layout (TopMod's ``writeDLFL``; see docs/formats.md)::
 Because ``e`` lines give the pairing, a ``.dlfl`` file carries every state a
 DLFL can be in: 2-gons, multi-edges, self-loops, faces that visit a vertex
 twice, point-spheres. livemod marks hole faces with ``usemtl hole``.
+
+Reading works like the OBJ reader: the lines are split and sorted by their
+first bytes once, and the usual ``v``, ``fv``, ``e`` and ``f`` lines (what
+livemod and TopMod write, CRLF too) are parsed in passes of 65,536 lines with
+numpy (``fv`` lines only as far as their vertex index). Every other line, and
+every line a pass does not accept, goes to :func:`_python_record`, the
+reference parser, which also words the ``file:line: ...`` errors; the checks of
+:mod:`._dlfl_build` then find the first bad record in file order. Writing
+formats whole passes of lines with numpy, a few ahead on other threads.
 """
+
 
 from __future__ import annotations
 
 import itertools
 import os
-from collections.abc import Iterator
-from dataclasses import dataclass, field
+from collections.abc import Callable, Iterator
 
 import numpy as np
 
 from ..analysis import face_normals
 from ..arrays import MeshArrays, mesh_arrays
-from ..build import from_corner_arrays
 from ..errors import DLFLError
 from ..mesh import Mesh
-from ..validate import validate
-from ._numtext import format_floats, format_uints, join_columns
+from ._dlfl_build import DlflRecords, build_dlfl
+from ._lines import gather_lines, leading_uints, parse_index_lines, parse_number_lines, split_lines
+from ._numtext import format_rounded, format_uints, join_columns
+from ._parallel import map_in_order
 from .atomic import write_atomically
-from .obj import index_lines, vertex_lines
+from .obj import _merge_face_blocks, index_lines, vertex_lines
 from .source import read_source, show_token
 
 HOLE_MATERIAL = "hole"
-
-
-@dataclass
-class _DlflText:
-    """The records of a .dlfl file, each with its 1-based line number."""
-
-    label: str
-    positions: list[tuple[float, float, float]] = field(default_factory=list)
-    corner_vertex: list[int] = field(default_factory=list)
-    corner_lines: list[int] = field(default_factory=list)
-    edges: list[tuple[int, int, int]] = field(default_factory=list)  # (fv1, fv2, line)
-    faces: list[tuple[list[int], int, bool]] = field(default_factory=list)  # (fvs, line, hole)
 
 
 def read_dlfl(source: str | os.PathLike[str] | bytes, *, name: str | None = None) -> Mesh:
@@ -78,59 +76,230 @@ def read_dlfl(source: str | os.PathLike[str] | bytes, *, name: str | None = None
         OSError: the file cannot be read.
     """
     data, label = read_source(source, name, "<dlfl>")
-    records = parse_dlfl(data, label)
-    return _build(records)
+    return build_dlfl(parse_dlfl(data, label))
 
 
-def parse_dlfl(data: bytes, label: str) -> _DlflText:
+def parse_dlfl(data: bytes, label: str = "<dlfl>", *, fast: bool = True) -> DlflRecords:
     """Read the records of a .dlfl file (no topology checks yet).
 
+    Args:
+        data: the file contents.
+        label: the file name used in error messages.
+        fast: parse the usual lines with numpy (False parses every line in
+            Python, the reference the tests compare against).
+
+    Returns:
+        The records in file order, with 1-based line numbers; the same for
+        either value of ``fast``.
+
     Raises:
-        DLFLError: ``label:line: ...`` for a file not starting with ``DLFL`` or a
-            malformed record (missing coordinates or indices, an empty face).
+        DLFLError: ``label:line: ...`` for a file not starting with ``DLFL`` or
+            the first malformed record (missing coordinates or indices, an
+            empty face).
     """
     if not data.startswith(b"DLFL"):
         raise DLFLError(f"{label}:1: not a .dlfl file (it must start with 'DLFL')")
-    records = _DlflText(label)
-    lines = data.split(b"\n")
-    body = next((i for i, line in enumerate(lines) if line.startswith(b"#")), len(lines))
-    hole = False
-    for number, raw in enumerate(lines[body:], start=body + 1):
-        words = raw.translate(_BLANKS).split()
-        if not words or words[0].startswith(b"#"):
-            continue
-        if words[0] == b"usemtl":
-            hole = len(words) > 1 and words[1] == HOLE_MATERIAL.encode()
-            continue
-        _record(records, words, number, hole)
-    return records
+    if not data.endswith(b"\n"):
+        data += b"\n"  # split_lines wants it; the line count stays that of data.split
+    buf, starts, ends = split_lines(data)
+    kinds = _classify(buf, starts, fast)
+    records = _Collected(label)
+    python_lines = [np.flatnonzero(kinds == _OTHER)]
+    for kind, block, rejected in _fast_passes(buf, starts, ends, kinds):
+        records.blocks[kind].append(block)
+        python_lines.append(rejected)
+    for line in np.sort(np.concatenate(python_lines)).tolist():
+        raw = buf[starts[line] : ends[line]].tobytes()
+        records.add(line, _python_record(raw, line + 1, label))
+    return records.finish()
 
+
+# ---------------------------------------------------------------- line kinds
+
+_SKIP, _VERTEX, _CORNER, _EDGE, _FACE, _OTHER = range(6)
+_MATERIAL = _OTHER  # the kind of a usemtl record (those lines are Python's)
+
+
+def _classify(buf: np.ndarray, starts: np.ndarray, fast: bool) -> np.ndarray:
+    """``(L,)`` int8 kind of each line from its first three bytes.
+
+    Lines before the first ``#`` line (the header) and empty or ``#`` lines are
+    skipped; ``v``, ``fv``, ``e``, ``f`` then a space or tab are records for the
+    numpy passes; every other line (``usemtl``, a line starting with a blank,
+    ``v[``...) goes to the Python parser, which decides what it is.
+    """
+    parts = [starts[i : i + _LINES_PER_PASS] for i in range(0, len(starts), _LINES_PER_PASS)]
+    kinds = np.concatenate([np.zeros(0, dtype=np.int8),
+                            *map_in_order(lambda part: _kinds(buf, part, fast), parts)])
+    kinds[: _body_start(buf, starts)] = _SKIP
+    return kinds
+
+
+def _kinds(buf: np.ndarray, starts: np.ndarray, fast: bool) -> np.ndarray:
+    """:func:`_classify` of the lines at ``starts`` (``(n,)``), the header aside."""
+    b0 = buf[starts]
+    b1 = buf[np.minimum(starts + 1, len(buf) - 1)]
+    if not fast:
+        return _KIND_ALONE[b0]
+    kinds = np.where((b1 == 32) | (b1 == 9), _KIND_BEFORE_BLANK[b0], _KIND_ALONE[b0])
+    fv = np.flatnonzero((b0 == ord("f")) & (b1 == ord("v")))
+    b2 = buf[starts[fv] + 2]  # b1 is no newline there: b2 is in the same line
+    kinds[fv[(b2 == 32) | (b2 == 9)]] = _CORNER
+    return kinds
+
+
+def _body_start(buf: np.ndarray, starts: np.ndarray) -> int:
+    """The first line starting with ``#`` (the header's end), or the line count."""
+    for i in range(0, len(starts), 256):  # the header is a few lines
+        hits = np.flatnonzero(buf[starts[i : i + 256]] == ord("#"))
+        if len(hits):
+            return i + int(hits[0])
+    return len(starts)
+
+
+def _kind_table(keywords: dict[bytes, int]) -> np.ndarray:
+    """``(256,)`` int8 kind of a line by its first byte: ``keywords``' kinds, skipped
+    for ``#`` and an empty line, the Python parser's for any other."""
+    table = np.full(256, _OTHER, dtype=np.int8)
+    table[[ord("#"), ord("\n")]] = _SKIP
+    for byte, kind in keywords.items():
+        table[ord(byte)] = kind
+    return table
+
+
+# by the first byte, when the second is a space or tab, and else
+_KIND_BEFORE_BLANK = _kind_table({b"v": _VERTEX, b"e": _EDGE, b"f": _FACE})
+_KIND_ALONE = _kind_table({})
+# what ends a token: the blanks of bytes.split() and the bytes .dlfl reads as blanks
+_ENDS_TOKEN = np.zeros(256, dtype=bool)
+_ENDS_TOKEN[list(b" \t\n\r\v\f[],")] = True
+
+
+# ------------------------------------------------------------ numpy passes
+
+# lines per pass: the OBJ reader's figure (temporaries stay in the cache)
+_LINES_PER_PASS = 1 << 16
+
+_Block = tuple[np.ndarray, ...]  # (lines, values) or (lines, counts, values)
+_Pass = Callable[[np.ndarray, np.ndarray, np.ndarray, np.ndarray], tuple[_Block, np.ndarray]]
+
+
+def _fast_passes(buf: np.ndarray, starts: np.ndarray, ends: np.ndarray, kinds: np.ndarray,
+                 ) -> Iterator[tuple[int, _Block, np.ndarray]]:
+    """``(kind, block, rejected lines)`` of every pass, kind by kind in file order.
+
+    The passes run on a few threads (numpy lets go of the GIL in them); a
+    block holds the 0-based lines the pass accepted and their values.
+    """
+    tasks: list[tuple[int, np.ndarray]] = []
+    for kind in (_VERTEX, _CORNER, _EDGE, _FACE):
+        lines = np.flatnonzero(kinds == kind)
+        tasks += [(kind, lines[i : i + _LINES_PER_PASS])
+                  for i in range(0, len(lines), _LINES_PER_PASS)]
+    # a small file's passes cost less than starting threads for them
+    threads = 1 if sum(len(part) for _, part in tasks) <= _LINES_PER_PASS else None
+    results = map_in_order(lambda task: _PASSES[task[0]](buf, starts, ends, task[1]), tasks,
+                           threads)
+    for (kind, _), (block, rejected) in zip(tasks, results, strict=True):
+        yield kind, block, rejected
+
+
+def _vertex_pass(buf: np.ndarray, starts: np.ndarray, ends: np.ndarray, part: np.ndarray,
+                 ) -> tuple[_Block, np.ndarray]:
+    """``((lines, (n, 3) positions), rejected lines)`` of the ``v`` lines ``part``."""
+    block, block_starts = gather_lines(buf, starts, ends, part)
+    block[block_starts] = 32  # blank the keyword
+    values, accepted = parse_number_lines(block, block_starts, 3)
+    return (_kept(part, accepted), _kept(values, accepted)), part[~accepted]
+
+
+def _corner_pass(buf: np.ndarray, starts: np.ndarray, ends: np.ndarray, part: np.ndarray,
+                 ) -> tuple[_Block, np.ndarray]:
+    """``((lines, (n,) vertex indices), rejected lines)`` of the ``fv`` lines ``part``.
+
+    Only the first field counts (the rest of the line is ignored), so only its
+    digits are read: the lines accepted start ``fv``, a blank, digits, a blank.
+    """
+    vertex, length = leading_uints(buf, starts[part] + 3)
+    ends_ok = _ENDS_TOKEN[buf[starts[part] + 3 + length]]
+    accepted = (length > 0) & ends_ok
+    return (_kept(part, accepted), _kept(vertex, accepted)), part[~accepted]
+
+
+def _edge_pass(buf: np.ndarray, starts: np.ndarray, ends: np.ndarray, part: np.ndarray,
+               ) -> tuple[_Block, np.ndarray]:
+    """``((lines, (n, 2) corner indices), rejected lines)`` of the ``e`` lines ``part``:
+    lines ``e a b`` (one space between), anything after ``b`` and a blank ignored."""
+    a, a_len = leading_uints(buf, starts[part] + 2)
+    b_at = starts[part] + 3 + a_len
+    b, b_len = leading_uints(buf, b_at)
+    accepted = (a_len > 0) & (buf[b_at - 1] == ord(" ")) & (b_len > 0)
+    accepted &= _ENDS_TOKEN[buf[np.minimum(b_at + b_len, len(buf) - 1)]]
+    return (_kept(part, accepted), _kept(np.column_stack([a, b]), accepted)), part[~accepted]
+
+
+def _face_pass(buf: np.ndarray, starts: np.ndarray, ends: np.ndarray, part: np.ndarray,
+               ) -> tuple[_Block, np.ndarray]:
+    """``((lines, counts, corner indices), rejected lines)`` of the ``f`` lines ``part``."""
+    block, block_starts = gather_lines(buf, starts, ends, part)
+    block[block_starts] = 32
+    values, counts, accepted = parse_index_lines(block, block_starts, slashes=False)
+    if accepted.all():  # the usual pass: nothing to drop, nothing to copy
+        return (part, counts, values), part[:0]
+    keep = np.repeat(accepted, counts)
+    return (part[accepted], counts[accepted], values[keep]), part[~accepted]
+
+
+def _kept(rows: np.ndarray, accepted: np.ndarray) -> np.ndarray:
+    """The ``accepted`` (``(n,)`` bool) rows of ``rows``: ``rows`` itself when all
+    are (no copy of a pass's arrays in the usual case)."""
+    return rows if accepted.all() else rows[accepted]
+
+
+_PASSES: dict[int, _Pass] = {
+    _VERTEX: _vertex_pass, _CORNER: _corner_pass, _EDGE: _edge_pass, _FACE: _face_pass}
+
+
+# ------------------------------------------------------------ Python parser
 
 _BLANKS = bytes.maketrans(b"[],\r\t", b"     ")
 
 
-def _record(records: _DlflText, words: list[bytes], line: int, hole: bool) -> None:
-    """Store one ``v``/``fv``/``e``/``f`` line; other keywords are ignored."""
+def _python_record(raw: bytes, line: int, label: str) -> tuple[int, object] | None:
+    """Reference parser for one line: ``(kind, value)``, or None for a line the
+    reader ignores (blank, comment, another keyword).
+
+    Values: ``(x, y, z)`` for ``v``, the vertex index for ``fv``, ``(a, b)`` for
+    ``e``, the list of corner indices for ``f``, whether the material is
+    ``hole`` for ``usemtl``.
+
+    Raises:
+        DLFLError: ``label:line: ...`` for a malformed ``v``, ``fv``, ``e`` or ``f`` line.
+    """
+    words = raw.translate(_BLANKS).split()
+    if not words or words[0].startswith(b"#"):
+        return None
     key, args = words[0], words[1:]
-    where = f"{records.label}:{line}"
+    where = f"{label}:{line}"
+    if key == b"usemtl":
+        return _MATERIAL, len(args) > 0 and args[0] == HOLE_MATERIAL.encode()
     if key == b"v":
         if len(args) < 3:
             raise DLFLError(f"{where}: a v line needs 3 coordinates, got {len(args)}")
-        x, y, z = (_number(a, where) for a in args[:3])
-        records.positions.append((x, y, z))
-    elif key == b"fv":
+        return _VERTEX, tuple(_number(a, where) for a in args[:3])
+    if key == b"fv":
         if not args:
             raise DLFLError(f"{where}: an fv line needs a vertex index")
-        records.corner_vertex.append(_integer(args[0], where))
-        records.corner_lines.append(line)
-    elif key == b"e":
+        return _CORNER, _integer(args[0], where)
+    if key == b"e":
         if len(args) < 2:
             raise DLFLError(f"{where}: an e line needs two corner (fv) indices")
-        records.edges.append((_integer(args[0], where), _integer(args[1], where), line))
-    elif key == b"f":
+        return _EDGE, (_integer(args[0], where), _integer(args[1], where))
+    if key == b"f":
         if not args:
             raise DLFLError(f"{where}: empty face (an f line with no corners)")
-        records.faces.append(([_integer(a, where) for a in args], line, hole))
+        return _FACE, [_integer(a, where) for a in args]
+    return None
 
 
 def _number(word: bytes, where: str) -> float:
@@ -155,115 +324,72 @@ def _integer(word: bytes, where: str) -> int:
     return value
 
 
-
-# ------------------------------------------------------------------- building
-
-
-def _build(records: _DlflText) -> Mesh:
-    """Check the records and turn them into a mesh (see :func:`read_dlfl`)."""
-    label = records.label
-    num_v, num_c = len(records.positions), len(records.corner_vertex)
-    cvert = np.array(records.corner_vertex, dtype=np.int64)
-    bad = np.flatnonzero((cvert < 0) | (cvert >= num_v))
-    if len(bad):
-        c = int(bad[0])
-        raise DLFLError(f"{label}:{records.corner_lines[c]}: vertex index {int(cvert[c])} "
-                        f"is out of range (there are {num_v} v lines)")
-    order, offsets, holes = _face_layout(records, num_c)
-    new_index = np.empty(num_c, dtype=np.int64)
-    new_index[order] = np.arange(num_c)
-    mate = _edge_mates(records, num_c)
-    _check_pairing(records, cvert, mate, order, offsets, new_index)
-    dense_mate = np.where(mate >= 0, new_index[np.maximum(mate, 0)], -1)[order]
-    vertex_of = cvert[order]
-    vertex_of, dense_mate, offsets, holes = _add_point_spheres(
-        num_v, vertex_of, dense_mate, offsets, holes)
-    positions = np.array(records.positions, dtype=np.float64).reshape(-1, 3)
-    mesh = from_corner_arrays(positions, offsets, vertex_of, dense_mate, holes)
-    try:
-        validate(mesh)
-    except DLFLError as error:
-        raise DLFLError(f"{label}: not a valid DLFL mesh: {error}") from None
-    return mesh
+# ----------------------------------------------------------------- merging
 
 
-def _face_layout(records: _DlflText, num_c: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Corners in face order, face offsets and hole flags; every corner in one face."""
-    owner = np.full(num_c, -1, dtype=np.int64)
-    order: list[int] = []
-    for index, (corners, line, _) in enumerate(records.faces):
-        for c in corners:
-            if not 0 <= c < num_c:
-                raise DLFLError(f"{records.label}:{line}: corner index {c} is out of range "
-                                f"(there are {num_c} fv lines)")
-            if owner[c] >= 0:
-                other = records.faces[owner[c]][1]
-                raise DLFLError(f"{records.label}:{line}: corner {c} is already used "
-                                f"by the face on line {other}")
-            owner[c] = index
-        order.extend(corners)
-    orphans = np.flatnonzero(owner < 0)
-    if len(orphans):
-        c = int(orphans[0])
-        raise DLFLError(f"{records.label}:{records.corner_lines[c]}: corner {c} "
-                        "belongs to no face (no f line lists it)")
-    sizes = np.array([len(f[0]) for f in records.faces], dtype=np.int64)
-    offsets = np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64)
-    holes = np.array([f[2] for f in records.faces], dtype=bool)
-    return np.array(order, dtype=np.int64), offsets, holes
+class _Collected:
+    """The records from the numpy passes and from the Python parser, by kind."""
 
+    def __init__(self, label: str) -> None:
+        self.label = label
+        self.blocks: dict[int, list[_Block]] = {k: [] for k in (_VERTEX, _CORNER, _EDGE, _FACE)}
+        self.python: dict[int, list[tuple[int, object]]] = {
+            k: [] for k in (_VERTEX, _CORNER, _EDGE, _FACE, _MATERIAL)}
 
-def _edge_mates(records: _DlflText, num_c: int) -> np.ndarray:
-    """``(C,)`` the corner paired with each corner by an ``e`` line, -1 if none."""
-    mate = np.full(num_c, -1, dtype=np.int64)
-    for a, b, line in records.edges:
-        for c in (a, b):
-            if not 0 <= c < num_c:
-                raise DLFLError(f"{records.label}:{line}: corner index {c} is out of range "
-                                f"(there are {num_c} fv lines)")
-            if mate[c] >= 0:
-                raise DLFLError(f"{records.label}:{line}: corner {c} is already on an edge")
-        if a == b:
-            raise DLFLError(f"{records.label}:{line}: an edge needs two different corners")
-        mate[a], mate[b] = b, a
-    return mate
+    def add(self, line: int, record: tuple[int, object] | None) -> None:
+        """Keep the record of 0-based line ``line`` (None: nothing to keep)."""
+        if record is not None:
+            self.python[record[0]].append((line, record[1]))
 
+    def finish(self) -> DlflRecords:
+        """The records of every kind, in file order."""
+        v_lines, positions = self._fixed(_VERTEX, (3,), np.float64)
+        c_lines, corner_vertex = self._fixed(_CORNER, (), np.int64)
+        e_lines, edges = self._fixed(_EDGE, (2,), np.int64)
+        f_lines, counts, corners = self._faces()
+        offsets = np.zeros(len(counts) + 1, dtype=np.int64)
+        np.cumsum(counts, out=offsets[1:])
+        holes = self._holes(f_lines)
+        for lines in (c_lines, e_lines, f_lines):
+            lines += 1  # 1-based, in place: fresh arrays (a million-face file's 100 MB)
+        return DlflRecords(self.label, positions, corner_vertex, c_lines, edges, e_lines,
+                           corners, offsets, f_lines, holes)
 
-def _check_pairing(records: _DlflText, cvert: np.ndarray, mate: np.ndarray, order: np.ndarray,
-                   offsets: np.ndarray, new_index: np.ndarray) -> None:
-    """Each edge's corners sit at opposite ends; only point-spheres lack an edge."""
-    sizes = np.diff(offsets)
-    dense_next = np.arange(1, len(order) + 1)
-    dense_next[offsets[1:][sizes > 0] - 1] = offsets[:-1][sizes > 0]
-    nxt = np.empty_like(order)
-    nxt[order] = order[dense_next]  # next corner in file numbering
-    size_of = np.repeat(sizes, sizes)[new_index]
-    lone = np.flatnonzero((mate < 0) & (size_of > 1))
-    if len(lone):
-        c = int(lone[0])
-        raise DLFLError(f"{records.label}:{records.corner_lines[c]}: corner {c} is on no "
-                        "edge (only a point-sphere's single corner may lack an e line)")
-    for a, b, line in records.edges:
-        if cvert[a] != cvert[nxt[b]] or cvert[b] != cvert[nxt[a]]:
-            raise DLFLError(f"{records.label}:{line}: corners {a} and {b} are not at opposite "
-                            f"ends of one edge (vertices {cvert[a]}->{cvert[nxt[a]]} and "
-                            f"{cvert[b]}->{cvert[nxt[b]]})")
+    def _fixed(self, kind: int, shape: tuple[int, ...], dtype: type,
+               ) -> tuple[np.ndarray, np.ndarray]:
+        """``(lines, values)`` of a kind with one value or a fixed row per line."""
+        items = self.python[kind]
+        py_lines = np.array([line for line, _ in items], dtype=np.int64)
+        py_values: np.ndarray = np.array([value for _, value in items], dtype=dtype)
+        py_values = py_values.reshape(-1, *shape)
+        blocks = [*self.blocks[kind], (py_lines, py_values)]
+        lines = np.concatenate([b[0] for b in blocks])
+        values: np.ndarray = np.concatenate([b[1] for b in blocks]).astype(dtype, copy=False)
+        if len(items) == 0:  # the numpy blocks come in file order
+            return lines, values
+        order = np.argsort(lines, kind="stable")
+        return lines[order], values[order]
 
+    def _faces(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """``(lines, corner counts, corner indices)`` of the ``f`` lines."""
+        items: list[tuple[int, list[int]]] = self.python[_FACE]  # type: ignore[assignment]
+        py_lines = np.array([line for line, _ in items], dtype=np.int64)
+        py_counts = np.array([len(c) for _, c in items], dtype=np.int64)
+        py_corners = np.array([i for _, c in items for i in c], dtype=np.int64)
+        blocks = [*self.blocks[_FACE], (py_lines, py_counts, py_corners)]
+        if len(items) == 0:
+            return tuple(np.concatenate([b[i] for b in blocks]) for i in range(3))  # type: ignore[return-value]
+        return _merge_face_blocks(blocks)  # type: ignore[arg-type]
 
-def _add_point_spheres(
-    num_v: int, vertex_of: np.ndarray, mate: np.ndarray, offsets: np.ndarray, holes: np.ndarray,
-) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """Give each vertex without a corner a one-corner face (a point-sphere)."""
-    used = np.zeros(num_v, dtype=bool)
-    used[vertex_of] = True
-    lonely = np.flatnonzero(~used)
-    if len(lonely) == 0:
-        return vertex_of, mate, offsets, holes
-    extra = offsets[-1] + 1 + np.arange(len(lonely))
-    return (np.concatenate([vertex_of, lonely]),
-            np.concatenate([mate, np.full(len(lonely), -1, dtype=np.int64)]),
-            np.concatenate([offsets, extra]),
-            np.concatenate([holes, np.zeros(len(lonely), dtype=bool)]))
+    def _holes(self, f_lines: np.ndarray) -> np.ndarray:
+        """``(F,)`` bool: the face on each of ``f_lines`` follows ``usemtl hole``."""
+        items = self.python[_MATERIAL]
+        if not items:
+            return np.zeros(len(f_lines), dtype=bool)
+        lines = np.array([line for line, _ in items], dtype=np.int64)
+        hole = np.array([flag for _, flag in items], dtype=bool)
+        last = np.searchsorted(lines, f_lines) - 1  # the usemtl line in force
+        return np.where(last >= 0, hole[np.maximum(last, 0)], False)
 
 
 # --------------------------------------------------------------------- writer
@@ -294,28 +420,61 @@ def dlfl_bytes(mesh: Mesh, mtl_name: str = "mesh", *, reverse: bool = False) -> 
 
 def dlfl_pieces(mesh: Mesh, mtl_name: str = "mesh", *, reverse: bool = False,
                 ) -> Iterator[bytes]:
-    """The ``.dlfl`` text of ``mesh`` in pieces, for :func:`write_dlfl`.
+    """The ``.dlfl`` text of ``mesh`` in pieces of about 65,536 lines, for
+    :func:`write_dlfl` (the pieces are formatted a few ahead on other threads).
 
     Precondition: the mesh is not changed while the pieces are consumed.
     """
     a = mesh_arrays(mesh)
     header = b"DLFL\nmtllib %s.mtl\n#\n" % mtl_name.encode("utf-8", "replace")
     return itertools.chain(
-        [header], vertex_lines(a.positions, b"v"), [b"#\n", _corner_lines(a), b"#\n"],
+        [header], vertex_lines(a.positions, b"v"), [b"#\n"], _corner_lines(a), [b"#\n"],
         _edge_lines(a, reverse), [b"#\n"], _face_lines(a, reverse), [b"#\n"],
     )
 
 
-def _corner_lines(a: MeshArrays) -> bytes:
-    """``fv <v> [nx ny nz] [0 0] `` per corner, with its face's normal (6 decimals)."""
-    if len(a.corner_vertex) == 0:
-        return b""
-    normals = np.round(face_normals(a), 6)[a.corner_face] + 0.0  # + 0.0 drops -0.0
-    fields = format_floats(normals.ravel()).reshape(len(normals), 3, -1)
-    return join_columns(len(normals), [
-        b"fv ", format_uints(a.corner_vertex), b" [", fields[:, 0], b" ", fields[:, 1], b" ",
-        fields[:, 2], b"] [0 0] \n",
-    ])
+def _corner_lines(a: MeshArrays) -> Iterator[bytes]:
+    """``fv <v> [nx ny nz] [0 0] `` per corner, with its face's unit normal rounded
+    to 6 decimals, in passes of whole faces (about ``_LINES_PER_PASS`` corners)."""
+    return map_in_order(lambda faces: _corner_pass_text(a, *faces), _face_passes(a.face_offsets))
+
+
+def _face_passes(offsets: np.ndarray) -> list[tuple[int, int]]:
+    """``(first, end)`` face ranges of about ``_LINES_PER_PASS`` corners each, from
+    the ``(F + 1,)`` face offsets."""
+    cuts = np.searchsorted(offsets[:-1], np.arange(0, offsets[-1], _LINES_PER_PASS))
+    bounds = [*dict.fromkeys(cuts.tolist()), len(offsets) - 1]
+    return list(zip(bounds[:-1], bounds[1:], strict=True))
+
+
+def _corner_pass_text(a: MeshArrays, first: int, end: int) -> bytes:
+    """The ``fv`` lines of faces ``first:end``.
+
+    The normals are :func:`face_normals` of those faces alone: each face's
+    normal involves only its own corners (bit for bit the whole mesh's, inside
+    the band of ``livemod.dlfl._vectors``), and a pass's temporaries stay in
+    the cache where the whole mesh's (hundreds of MB at a million faces) did not.
+    """
+    part = _faces_alone(a, first, end)
+    fields = format_rounded(face_normals(part).ravel(), 6).reshape(end - first, 3, -1)
+    space = np.full((end - first, 1), ord(" "), dtype=np.uint8)
+    normals = np.concatenate([fields[:, 0], space, fields[:, 1], space, fields[:, 2]], axis=1)
+    return join_columns(len(part.corner_vertex), [
+        b"fv ", format_uints(part.corner_vertex), b" [", normals[part.corner_face],
+        b"] [0 0] \n"])
+
+
+def _faces_alone(a: MeshArrays, first: int, end: int) -> MeshArrays:
+    """The faces ``first:end`` of ``a`` and their corners, without edges (all the
+    rings and positions a face measure reads)."""
+    lo, hi = int(a.face_offsets[first]), int(a.face_offsets[end])
+    no_edge = np.full(hi - lo, -1, dtype=np.int64)
+    return MeshArrays(
+        positions=a.positions, vertex_ids=a.vertex_ids, face_ids=a.face_ids[first:end],
+        face_offsets=a.face_offsets[first : end + 1] - lo, face_hole=a.face_hole[first:end],
+        corner_ids=a.corner_ids[lo:hi], corner_vertex=a.corner_vertex[lo:hi],
+        corner_face=a.corner_face[lo:hi] - first, corner_edge=no_edge, corner_mate=no_edge,
+        edge_ids=np.zeros(0, dtype=np.int64), edge_corners=np.zeros((0, 2), dtype=np.int64))
 
 
 def _edge_lines(a: MeshArrays, reverse: bool) -> Iterator[bytes]:
