@@ -437,6 +437,67 @@ def test_step_keys_show_earlier_steps_in_the_hud(headless) -> None:
 
 
 
+THREE_STEPS = "load('cube')\nsubdivide('catmull-clark')\nsubdivide('catmull-clark')\n"
+
+
+def _pressed(viewer: LiveViewer, key: str, frames: int = 30) -> None:
+    """Press ``key`` and draw ``frames`` frames (time for a result to arrive)."""
+    viewer.handle_key(key)
+    for _ in range(frames):
+        run_frames(viewer, 1)
+        time.sleep(0.01)
+
+
+def test_a_step_key_with_no_step_to_go_to_says_so_and_is_not_running(tmp_path: Path) -> None:
+    script = tmp_path / "three.py"
+    script.write_text(THREE_STEPS)
+    echo = io.StringIO()
+    with _opened(script, (200, 150), echo=echo) as viewer:
+        for key, said in (("RIGHT", "at the last step"), ("END", "already at the end")):
+            _pressed(viewer, key)  # the session posts nothing: the HUD must not wait for it
+            assert not viewer.waiting and "ok  " in _hud_text(viewer) and said in echo.getvalue()
+        viewer.handle_key("HOME")
+        _wait(viewer, _at_step(0))
+        _pressed(viewer, "LEFT")
+        assert not viewer.waiting and "paused" in _hud_text(viewer)
+        assert "at the first step" in echo.getvalue()
+        viewer.handle_key("RIGHT")  # and the keys still step
+        _wait(viewer, _at_step(1))
+        assert "step 2/3: subdivide (line 2)" in _hud_text(viewer)
+
+
+def test_playing_to_the_end_stops_playing(tmp_path: Path) -> None:
+    script = tmp_path / "three.py"
+    script.write_text(THREE_STEPS)
+    with _opened(script, (200, 150)) as viewer:
+        assert viewer.handle_key("SPACE") == "play_pause" and viewer.playing
+        _wait(viewer, lambda v: v.result.run_id >= 2 and v.result.status == "ok")
+        assert not viewer.playing and "playing" not in _hud_text(viewer)
+        viewer.handle_key("SPACE")  # plays again, from the first step
+        assert viewer.playing
+        _wait(viewer, lambda v: v.result.run_id >= 3 and v.result.status == "paused")
+
+
+def test_a_syntax_error_has_no_steps_to_scrub(tmp_path: Path) -> None:
+    script = tmp_path / "three.py"
+    script.write_text(THREE_STEPS)
+    echo = io.StringIO()
+    with _opened(script, (300, 200), echo=echo) as viewer:
+        assert viewer._timeline_shown()
+        script.write_text(THREE_STEPS + "x = (\n")
+        viewer.handle_key("R")
+        _wait(viewer, lambda v: v.result.status == "error" and not v.waiting)
+        assert "no steps" in _hud_text(viewer) and not viewer._timeline_shown()
+        for key in ("LEFT", "RIGHT", "HOME"):
+            _pressed(viewer, key)
+            assert not viewer.waiting and "error, stale" in _hud_text(viewer), key
+        assert echo.getvalue().count("no steps") == 3
+        script.write_text(THREE_STEPS + "raise ValueError('no')\n")  # fails after 3 steps
+        viewer.handle_key("R")
+        _wait(viewer, lambda v: v.result.status == "error" and v.result.steps and not v.waiting)
+        assert viewer._steps() == 3 and viewer._timeline_shown()
+
+
 def _press_timeline(viewer: LiveViewer, step: int, drag_to: int | None = None) -> None:
     """Click the timeline at ``step`` (or press there and drag to ``drag_to``)."""
     size = viewer.wnd.fbo.size
@@ -598,6 +659,53 @@ def test_glfw_window_reloads_on_save_and_closes(xvfb_display: str, tmp_path: Pat
                           timeout=90, cwd=root)
     assert done.returncode == 0, done.stdout + done.stderr
     assert "glfw window ok" in done.stdout
+
+
+def _glfw_resize_probe(script_path: str) -> None:
+    """Run in a fresh process: resize the window (larger, then smaller) and check that
+    the screen shows the whole scene at the new size, as :meth:`capture` draws it, and
+    that a click in the middle picks. Raises on failure."""
+    import glfw
+
+    viewer = create_viewer(ViewOptions(script_path, backend="glfw", size=(320, 240),
+                                       samples=0, vsync=False, echo=io.StringIO()))
+    try:
+        _wait(viewer, _has_run(1))
+        viewer.handle_key("U")  # no HUD: the screen is the scene alone
+        for width, height in ((480, 360), (200, 150)):
+            glfw.set_window_size(viewer.wnd._window, width, height)
+            deadline = time.monotonic() + 5.0
+            while tuple(viewer.wnd.buffer_size) != (width, height) and time.monotonic() < deadline:
+                glfw.poll_events()
+                time.sleep(0.01)
+            run_frames(viewer, 2)
+            viewer._presented_at = 0.0  # put the frame up again: read it before a swap
+            viewer.on_render(0.0, 0.0)
+            raw = viewer.ctx.screen.read(viewport=(0, 0, width, height), components=3,
+                                         alignment=1)
+            screen = np.frombuffer(raw, dtype=np.uint8).reshape(height, width, 3)[::-1]
+            assert np.array_equal(screen, viewer.capture()), (width, height)
+            viewer.click(width / 2, height / 2)
+            assert len(viewer.selection.faces) == 1, (width, height)
+            viewer.click(2, 2)  # the background clears it
+            assert viewer.selection.is_empty()
+    finally:
+        close_viewer(viewer)
+    print("glfw resize ok")
+
+
+def test_a_resized_window_draws_and_picks_at_its_new_size(xvfb_display: str,
+                                                          tmp_path: Path) -> None:
+    script = tmp_path / "model.py"
+    script.write_text(CUBE.format(scale=1.0).replace("if faces(True)", "if False"))
+    root = Path(__file__).resolve().parent.parent
+    code = (f"import sys; sys.path.insert(0, {str(root)!r}); "
+            f"from tests.test_viewer_window import _glfw_resize_probe; "
+            f"_glfw_resize_probe({str(script)!r})")
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                          timeout=90, cwd=root)
+    assert done.returncode == 0, done.stdout + done.stderr
+    assert "glfw resize ok" in done.stdout
 
 
 def test_view_without_a_display_says_so_in_one_line(tmp_path: Path) -> None:

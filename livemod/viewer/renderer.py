@@ -418,10 +418,13 @@ class Renderer:
 
     # -- drawing ---------------------------------------------------------------
 
-    def draw(self, fbo: moderngl.Framebuffer, camera: Camera, style: Style) -> None:
-        """Clear ``fbo`` and draw the scene seen by ``camera`` in ``style``."""
+    def draw(self, fbo: moderngl.Framebuffer, camera: Camera, style: Style,
+             size: tuple[int, int] | None = None) -> None:
+        """Clear ``fbo`` and draw the scene seen by ``camera`` in ``style``, over
+        ``size`` pixels (default ``fbo.size``; a window's screen framebuffer keeps its
+        first size after a resize, so the window says the size)."""
         fbo.use()
-        width, height = fbo.size
+        width, height = size or fbo.size
         self.ctx.viewport = (0, 0, width, height)
         fbo.clear(*style.background)
         if self._mesh is None and self._others is None:
@@ -722,10 +725,12 @@ class Renderer:
     def _scene_center(self) -> np.ndarray:
         return np.zeros(3) if self._mesh is None else self._mesh.geometry.center
 
-    def draw_overlay(self, fbo: moderngl.Framebuffer, quads: np.ndarray) -> None:
-        """Draw screen-space text/box ``quads`` (see :mod:`livemod.viewer.text`) on top."""
+    def draw_overlay(self, fbo: moderngl.Framebuffer, quads: np.ndarray,
+                     size: tuple[int, int] | None = None) -> None:
+        """Draw screen-space text/box ``quads`` (see :mod:`livemod.viewer.text`) on top,
+        laid out for ``size`` pixels (default ``fbo.size``)."""
         fbo.use()
-        self._draw_quads(quads, fbo.size, screen_space=True)
+        self._draw_quads(quads, size or fbo.size, screen_space=True)
 
     def _draw_quads(self, quads: np.ndarray, size: tuple[int, int], screen_space: bool) -> None:
         if len(quads) == 0:

@@ -229,13 +229,12 @@ class LiveViewer(mglw.WindowConfig):
         first_error = result.error is not None and (
             self.result is None or self.result.error != result.error)
         self._sync_objects(result)
+        if self.playing and _run_ended(self.result, result):
+            self.playing = False  # played to the end (or failed): Space plays again
         self.result = result
         self.waiting = False
         self._sync_parameters(result)
-        if result.status == "ok":
-            self.total_steps = len(result.steps)
-            if self.options.output is not None:  # the session wrote it before posting
-                self._echo(f"run {result.run_id}: wrote {self.options.output}")
+        self._count_steps(result)
         arrays = self._drawn_arrays(result)
         if arrays is not None and arrays is not self.renderer.arrays:
             self._show_mesh(result, arrays)
@@ -248,6 +247,16 @@ class LiveViewer(mglw.WindowConfig):
         if first_error:
             self._echo(f"error: {result.error.file}:{result.error.line}: "
                        f"{result.error.message}")
+
+    def _count_steps(self, result: Any) -> None:
+        """Take the step count of a run that ended, and echo an ``-o`` write."""
+        if result.status in ("ok", "error"):
+            # a failed run's steps are what the step keys and the timeline go
+            # through; a syntax error has none, so the timeline goes with it
+            self.total_steps = len(result.steps)
+        if result.status == "ok" and self.options.output is not None:
+            self._echo(  # the session wrote it before posting
+                f"run {result.run_id}: wrote {self.options.output}")
 
     def _upload(self, arrays: Any, preview: Any, others: Any) -> None:
         self.renderer.set_mesh(arrays, preview, others)
@@ -392,10 +401,12 @@ class LiveViewer(mglw.WindowConfig):
             self._draw_frame(screen)
 
     def _draw_frame(self, fbo: Any) -> None:
-        """Draw the scene and the overlay into ``fbo``."""
-        self.renderer.draw(fbo, self.camera, self.style)
+        """Draw the scene and the overlay into ``fbo`` (the screen or the kept
+        frame, both of :attr:`screen_size`)."""
+        size = self.screen_size
+        self.renderer.draw(fbo, self.camera, self.style, size)
         if self.show_hud or self.show_help:
-            self.renderer.draw_overlay(fbo, self._overlay_quads(fbo.size))
+            self.renderer.draw_overlay(fbo, self._overlay_quads(size), size)
 
     def _frame_key(self, screen: Any) -> tuple:
         """Everything the picture depends on: a frame with the same key is the same
@@ -405,21 +416,22 @@ class LiveViewer(mglw.WindowConfig):
                 camera.fov, camera.ortho)
         # the frame rate alone does not redraw: a million faces take half a second a
         # frame on software GL, and an idle window would be drawing all the time
-        overlay = (self._overlay_key(screen.size, with_fps=False)
+        size = self.screen_size
+        overlay = (self._overlay_key(size, with_fps=False)
                    if self.show_hud or self.show_help else None)
-        return (self.renderer.version, view, self.style, overlay, screen.size, screen.samples)
+        return (self.renderer.version, view, self.style, overlay, size, screen.samples)
 
     def _frame_target(self, screen: Any) -> Any:
         """A framebuffer like ``screen`` (size, MSAA) to keep the last frame in; the
         old one is released when the size changed."""
-        old = None if self._frame is None else self._frame[1]
-        if old is not None and old.size == screen.size and old.samples == screen.samples:
+        old, size = None if self._frame is None else self._frame[1], self.screen_size
+        if old is not None and old.size == size and old.samples == screen.samples:
             return old
         if old is not None:
             release_framebuffer(old)
         return self.ctx.framebuffer(
-            [self.ctx.renderbuffer(screen.size, 4, samples=screen.samples)],
-            self.ctx.depth_renderbuffer(screen.size, samples=screen.samples))
+            [self.ctx.renderbuffer(size, 4, samples=screen.samples)],
+            self.ctx.depth_renderbuffer(size, samples=screen.samples))
 
     def _panel_shown(self) -> bool:
         return self.show_hud and not self.show_help
@@ -468,14 +480,14 @@ class LiveViewer(mglw.WindowConfig):
                 "style": self.style, "ortho": self.camera.ortho, "playing": self.playing,
                 "hud": self.show_hud, "help": self.show_help,
                 # the error panel stands above the timeline
-                "bottom": self.timeline.frame(self.wnd.fbo.size)[3] + MARGIN
+                "bottom": self.timeline.frame(self.screen_size)[3] + MARGIN
                 if self._timeline_shown() else 0.0}
 
     def capture(self, transparent: bool = False) -> np.ndarray:
         """Render the scene (no HUD) offscreen at the window's size: ``(H, W, 3)``
         uint8, or ``(H, W, 4)`` with alpha 0 where nothing is drawn when
         ``transparent``."""
-        size = self.wnd.fbo.size
+        size = self.screen_size
         style = self.style
         if transparent:
             style = replace(style, background=(*style.background[:3], 0.0))
@@ -563,7 +575,7 @@ class LiveViewer(mglw.WindowConfig):
     def _do_fit(self) -> None:
         positions = self.renderer.drawn_positions()
         if len(positions):
-            width, height = self.wnd.fbo.size
+            width, height = self.screen_size
             self.camera.fit_points(sample_points(positions), width / max(height, 1))
 
     def _do_play_pause(self) -> None:
@@ -574,20 +586,39 @@ class LiveViewer(mglw.WindowConfig):
             self.session.pause()
         self.waiting = self.playing
 
+    def _ended(self) -> bool:
+        """The result shown is of a run that ended (not a paused or cached step) and
+        the window asked for nothing since: no step lies ahead of it."""
+        result = self.result
+        return (not self.waiting and result is not None and result.status != "paused"
+                and result.step_index is None)
+
     def _do_step_forward(self) -> None:
         self.playing = False
-        self.session.step_forward()
-        self.waiting = True
+        self.session.step_forward()  # (a run a save started pauses at its next step)
+        # at the end the session posts nothing: say so, not `running` until the next save
+        if self._ended():
+            self._echo("no steps" if shown_step(self.result, self._steps()) is None
+                       else "at the last step (Left, Home or the timeline go back)")
+        else:
+            self.waiting = True
 
     def _do_step_back(self) -> None:
         self.playing = False
+        shown = shown_step(self.result, self._steps())
         self.session.step_back()
-        self.waiting = True
+        if self.waiting or (shown is not None and shown > 0):
+            self.waiting = True
+        else:  # the session has no step before this one and posts nothing
+            self._echo("no steps" if shown is None else "at the first step")
 
     def _do_run_to_end(self) -> None:
         self.playing = False
         self.session.run_to_end()
-        self.waiting = True
+        if self._ended():
+            self._echo("already at the end")
+        else:
+            self.waiting = True
 
     def _do_reload(self) -> None:
         self.session.reload()
@@ -706,7 +737,7 @@ class LiveViewer(mglw.WindowConfig):
             self.camera.orbit(dx * 0.4, dy * 0.4)
         elif states.left or states.right or states.middle:
             self.camera.pan(dx * self._pixel_ratio(), dy * self._pixel_ratio(),
-                            self.wnd.fbo.size[1])
+                            self.screen_size[1])
 
     def on_mouse_release_event(self, x: int, y: int, button: int) -> None:
         """End a drag (a slider's value is sent now), or pick on a left click that
@@ -728,12 +759,20 @@ class LiveViewer(mglw.WindowConfig):
         """The wheel scrolls the object list under the pointer, else zooms."""
         if y_offset and self._objects_hit(*self._pointer) is not None:
             rows = max(1, round(abs(y_offset)))
-            self.objects.scroll(-rows if y_offset > 0 else rows, self.wnd.fbo.size)
+            self.objects.scroll(-rows if y_offset > 0 else rows, self.screen_size)
             return
         self.camera.zoom(y_offset)
 
     def _pixel_ratio(self) -> float:
-        return self.wnd.fbo.size[0] / max(self.wnd.size[0], 1)
+        return self.screen_size[0] / max(self.wnd.size[0], 1)
+
+    @property
+    def screen_size(self) -> tuple[int, int]:
+        """The window's framebuffer size in pixels now. Not ``wnd.fbo.size``: moderngl's
+        screen framebuffer keeps the size the window opened with, so after a resize
+        the frame would be drawn (and picked, and laid out) at the old size."""
+        width, height = self.wnd.buffer_size
+        return int(width), int(height)
 
     def click(self, x: float, y: float, add: bool = False) -> None:
         """Pick at window point ``(x, y)`` in the current mode and update the selection.
@@ -742,7 +781,7 @@ class LiveViewer(mglw.WindowConfig):
         """
         ratio = self._pixel_ratio()
         px, py = int(x * ratio), int(y * ratio)
-        hit = self.renderer.pick(self.camera, self.wnd.fbo.size, px, py, self.pick_mode,
+        hit = self.renderer.pick(self.camera, self.screen_size, px, py, self.pick_mode,
                                  radius=int(6 * ratio))
         self.wnd.use()
         if hit is None:
@@ -782,7 +821,7 @@ class LiveViewer(mglw.WindowConfig):
         if not self._panel_shown():
             return None
         ratio = self._pixel_ratio()
-        return self.params.hit(x * ratio, y * ratio, self.wnd.fbo.size)
+        return self.params.hit(x * ratio, y * ratio, self.screen_size)
 
     # -- the step timeline -----------------------------------------------------------
 
@@ -797,14 +836,14 @@ class LiveViewer(mglw.WindowConfig):
     def _timeline_hit(self, x: float, y: float) -> bool:
         ratio = self._pixel_ratio()
         return self._timeline_shown() and self.timeline.hit(x * ratio, y * ratio,
-                                                            self.wnd.fbo.size)
+                                                            self.screen_size)
 
     def _scrub_to(self, px: float) -> None:
         """Drag the timeline to ``px``: its step is gone to once the pointer rests or
         is let go (a drag over steps not in the snapshot cache would replay the
         script for each)."""
         self._scrubbing = True
-        self._scrub_step = self.timeline.step_at(px, self.wnd.fbo.size, self._steps())
+        self._scrub_step = self.timeline.step_at(px, self.screen_size, self._steps())
         self._scrub_time = time.perf_counter()
 
     def _flush_scrub(self, force: bool = False) -> None:
@@ -817,6 +856,9 @@ class LiveViewer(mglw.WindowConfig):
             self._goto_step(step)
 
     def _do_first_step(self) -> None:
+        if not self.waiting and shown_step(self.result, self._steps()) is None:
+            self._echo("no steps")  # (a syntax error: replaying it would fail again)
+            return
         self._goto_step(0)
 
     def _goto_step(self, k: int) -> None:
@@ -829,7 +871,7 @@ class LiveViewer(mglw.WindowConfig):
         if not self._objects_shown():
             return None
         ratio = self._pixel_ratio()
-        return self.objects.hit(x * ratio, y * ratio, self.wnd.fbo.size)
+        return self.objects.hit(x * ratio, y * ratio, self.screen_size)
 
     def _press_objects(self, hit: Hit) -> None:
         """A click on the object list: tick or untick an object, or all / none."""
@@ -856,14 +898,14 @@ class LiveViewer(mglw.WindowConfig):
             self._drag_slider(px)
         elif hit.part in ("toggle", "prev", "next"):
             self.set_parameter(self.params.specs[hit.row].name,
-                               self.params.value_after(hit, px, self.wnd.fbo.size))
+                               self.params.value_after(hit, px, self.screen_size))
             self._flush_parameters(force=True)
 
     def _drag_slider(self, px: float) -> None:
         hit = self._param_drag
         if hit is not None and hit.row < len(self.params.specs):
             self.set_parameter(self.params.specs[hit.row].name,
-                               self.params.value_after(hit, px, self.wnd.fbo.size))
+                               self.params.value_after(hit, px, self.screen_size))
 
     def set_parameter(self, name: str, value: Any) -> None:
         """Show ``value`` for parameter ``name`` now; the script re-runs with it once
@@ -944,6 +986,14 @@ class LiveViewer(mglw.WindowConfig):
         session, self.session = self.session, None
         if session is not None:
             session.close()
+
+
+def _run_ended(shown: Any, result: Any) -> bool:
+    """``result`` is a run's end (ok, error, cancelled) newly arrived, not the
+    re-post of ``shown`` with its preview."""
+    if result.status == "paused":
+        return False
+    return shown is None or (shown.run_id, shown.status) != (result.run_id, result.status)
 
 
 class WindowUnavailable(OSError):
