@@ -193,19 +193,14 @@ def run_variant(variant: Variant) -> VariantResult:
 
 
 def _written(mesh: Any, output: str) -> str | None:
-    """Write ``mesh`` (None: the script left none) to ``output``; what went wrong,
-    or None when it was written."""
-    from .results import save_result
+    """:func:`~.results.save_problem`, with a bug in a writer reported as the
+    variant's failure too: a worker must not die of it."""
+    from .results import save_problem
 
-    if mesh is None:
-        return f"the script left no mesh; {output} was not written"
     try:
-        save_result(mesh, output)
-    except OSError as exc:
-        return describe(exc)
-    except Exception as exc:  # a writer's refusal (DLFLError), or a bug
+        return save_problem(mesh, output)
+    except Exception as exc:
         return f"cannot write {output}: {type(exc).__name__}: {exc}"
-    return None
 
 
 def _failed(variant: Variant, message: str, started: float) -> VariantResult:

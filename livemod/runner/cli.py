@@ -29,7 +29,6 @@ from livemod.commandline import (
     warning,
 )
 from livemod.dlfl.analysis import summarize
-from livemod.dlfl.errors import DLFLError
 from livemod.dlfl.io import WRITERS
 from livemod.dlfl.scene import Selection
 
@@ -46,7 +45,7 @@ from .batch import (
     write_index,
 )
 from .headless import missing_picks_note, run_outcome
-from .results import RunResult, StepRecord, result_mesh, save_result
+from .results import RunResult, StepRecord, result_mesh, save_problem
 
 OUTPUT_SUFFIXES = tuple(f".{key}" for key in WRITERS)
 
@@ -318,16 +317,9 @@ def _save(mesh: Any, output: str | None) -> int:
     run, so a failure here is the disk's (full, or changed since)."""
     if output is None:
         return DONE
-    if mesh is None:  # an error: whatever waits for OUT must not take an old one
-        error(f"the script left no mesh; {output} was not written")
-        return FAILED
-    try:
-        save_result(mesh, output)
-    except OSError as exc:
-        error(describe(exc))
-        return FAILED
-    except DLFLError as exc:  # a writer's refusal
-        error(f"cannot write {output}: {exc}")
+    problem = save_problem(mesh, output)
+    if problem is not None:
+        error(problem)
         return FAILED
     return DONE
 

@@ -20,6 +20,7 @@ from typing import Any, overload
 import numpy as np
 
 from livemod.dlfl.arrays import MeshArrays, concatenate_arrays, mesh_arrays
+from livemod.dlfl.errors import DLFLError
 from livemod.dlfl.io import save_mesh
 from livemod.dlfl.mesh import Mesh
 from livemod.dlfl.scene import STEP_FIELDS, Scene, StepLog
@@ -253,6 +254,23 @@ def save_result(mesh: Mesh, path: str) -> None:
     """
     os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
     save_mesh(mesh, path)
+
+
+def save_problem(mesh: Mesh | None, path: str) -> str | None:
+    """:func:`save_result` for a command line: write ``mesh`` (None: the script
+    left none) to ``path`` and return what went wrong as one message (no
+    ``[Errno N]``), or None when it was written."""
+    from livemod.commandline import describe
+
+    if mesh is None:  # whatever waits for the file must not take an old one
+        return f"the script left no mesh; {path} was not written"
+    try:
+        save_result(mesh, path)
+    except OSError as exc:
+        return describe(exc)
+    except DLFLError as exc:  # a writer's refusal
+        return f"cannot write {path}: {exc}"
+    return None
 
 
 def snapshot_scene(scene: Scene) -> MeshArrays | None:
