@@ -14,7 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._graph import cycle_labels, one_cycle_each
-from ..build import from_corner_arrays
+from ..build import _next_in_face, from_corner_arrays
 from ..errors import DLFLError
 from ..mesh import Mesh
 from ..validate import validate
@@ -190,8 +190,7 @@ def _check_pairing(records: DlflRecords, mate: np.ndarray, new_index: np.ndarray
     label, cvert, order = records.label, records.corner_vertex, records.face_corners
     offsets = records.face_offsets
     sizes = np.diff(offsets)
-    dense_next = np.arange(1, len(order) + 1)
-    dense_next[offsets[1:] - 1] = offsets[:-1]  # no face is empty
+    dense_next = _next_in_face(offsets)
     nxt = np.empty_like(order)
     nxt[order] = order[dense_next]  # next corner in file numbering
     size_of = np.repeat(sizes, sizes)[new_index]
@@ -238,8 +237,7 @@ def _one_fan_each(vertex_of: np.ndarray, mate: np.ndarray, offsets: np.ndarray,
     records may still break (a bow-tie vertex), at a fraction of its cost.
     ``vertex_of`` and ``mate`` are ``(C,)`` in face order, ``offsets`` ``(F + 1,)``.
     """
-    nxt = np.arange(1, len(vertex_of) + 1, dtype=np.int64)
-    nxt[offsets[1:] - 1] = offsets[:-1]
+    nxt = _next_in_face(offsets)
     vnext = np.where(mate >= 0, nxt[np.maximum(mate, 0)], np.arange(len(mate)))
     valence = np.bincount(vertex_of, minlength=num_v)
     quick = one_cycle_each(vnext, vertex_of, valence)

@@ -487,13 +487,12 @@ def _edge_lines(a: MeshArrays, reverse: bool) -> Iterator[bytes]:
 def _face_lines(a: MeshArrays, reverse: bool) -> Iterator[bytes]:
     """``usemtl`` whenever the material changes, and ``f`` lines of corner indices."""
     corners = np.arange(len(a.corner_vertex), dtype=np.int64)
+    sizes = a.face_sizes
     if reverse:
         # head first, then the other corners backwards
-        sizes = a.face_sizes
         start = np.repeat(a.face_offsets[:-1], sizes)
         rank = corners - start
         corners = np.where(rank == 0, start, start + sizes[a.corner_face] - rank)
-    sizes = a.face_sizes
     runs = np.flatnonzero(np.diff(a.face_hole.astype(np.int8))) + 1
     bounds = [0, *runs.tolist(), len(sizes)]
     for lo, hi in zip(bounds[:-1], bounds[1:], strict=True):
