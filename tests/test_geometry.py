@@ -96,6 +96,18 @@ def test_edge_cleanup_removes_a_face_diagonal():
     assert edge_cleanup(cube()) == 0
 
 
+def test_edge_cleanup_of_given_edges_looks_at_those_only():
+    m = cube()
+    c = m.face_corners(0)
+    diagonal = m.insert_edge(c[0], c[2])
+    others = [e for e in m.edge_ids().tolist() if e != diagonal]
+    assert edge_cleanup(m, others) == 0
+    assert m.counts() == (8, 13, 7)
+    assert edge_cleanup(m, [diagonal]) == 1
+    validate(m)
+    assert m.counts() == (8, 12, 6)
+
+
 def test_cleanup_2gons():
     m = cube()
     c = m.face_corners(0)

@@ -125,11 +125,12 @@ def spheralize(mesh: Mesh) -> None:
     _write(mesh, a, _unit(moved), "spheralize")
 
 
-def edge_cleanup(mesh: Mesh) -> int:
-    """TopMod's ``edgeCleanup``: delete every edge whose two faces are coplanar
-    (``|n1 . n2 - 1| < 1e-5``) or are one face. Returns the number deleted."""
+def edge_cleanup(mesh: Mesh, edges: list[int] | None = None) -> int:
+    """TopMod's ``edgeCleanup``: delete every edge (or every one of ``edges`` still
+    there, in order) whose two faces are coplanar (``|n1 . n2 - 1| < 1e-5``) or
+    are one face. Returns the number deleted."""
     deleted = 0
-    for e in mesh.edge_ids().tolist():
+    for e in mesh.edge_ids().tolist() if edges is None else edges:
         if not mesh.has_edge(e):
             continue
         f1, f2 = mesh.edge_faces(e)

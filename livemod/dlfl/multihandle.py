@@ -26,9 +26,10 @@ import numpy as np
 
 from ._checks import finite_number, flag, id_list, positive_number
 from ._vectors import centroid, lengths, shifted_in_range, unit
-from .analysis import face_normal, face_points, polygon_normal
-from .connect import closest_corners, connect_edge_sides, connect_faces
+from .analysis import face_points, polygon_normal
+from .connect import _new_edges, closest_corners, connect_edge_sides, connect_faces
 from .errors import DLFLError
+from .geometry import edge_cleanup
 from .hull import hull_polygons
 from .mesh import Mesh
 
@@ -54,11 +55,6 @@ def _check_handle_faces(mesh: Mesh, faces: list[int], op: str = "multi_face_hand
             raise DLFLError(f"face {f} does not exist (deleted or never made)")
         if mesh.face_size(f) < 3 or not np.any(polygon_normal(face_points(mesh, f))):
             raise DLFLError(f"face {f} has no normal (fewer than 3 corners or degenerate)")
-
-
-def _new_edges(mesh: Mesh, first_id: int) -> list[int]:
-    """Live edges created since the edge counter stood at ``first_id`` (ids never reuse)."""
-    return [e for e in range(first_id, mesh.next_ids()[1]) if mesh.has_edge(e)]
 
 
 def _apart(p: np.ndarray, q: np.ndarray) -> bool:
@@ -508,7 +504,7 @@ def multi_face_handle_closest_edges(mesh: Mesh, faces: list[int]) -> list[int]:
             continue
         joined |= {edge1, edge2}
         connect_edge_sides(mesh, _side_from(mesh, edge1, start1), _side_from(mesh, edge2, start2))
-    _clean_up_edges(mesh, _new_edges(mesh, first))
+    edge_cleanup(mesh, _new_edges(mesh, first))  # TopMod's cleanup, of the new edges only
     return _new_edges(mesh, first)
 
 
@@ -591,14 +587,3 @@ def _off_centre_plane(c1: np.ndarray, c2: np.ndarray, middle: np.ndarray,
     cross = np.cross(u, v)
     exists = lengths(cross) > 1e-9 * lengths(u) * lengths(v)
     return exists & (np.abs(np.einsum("ij,ij->i", unit(cross), normals)) < _COS5)
-
-
-def _clean_up_edges(mesh: Mesh, edges: list[int]) -> None:
-    """Delete each of ``edges`` whose two sides are one face or coplanar faces
-    (``|n1 . n2 - 1| < 1e-5``), the rule of :func:`.geometry.edge_cleanup`."""
-    for e in edges:
-        if not mesh.has_edge(e):
-            continue
-        f1, f2 = mesh.edge_faces(e)
-        if f1 == f2 or abs(float(face_normal(mesh, f1) @ face_normal(mesh, f2)) - 1.0) < 1e-5:
-            mesh.delete_edge(e)
