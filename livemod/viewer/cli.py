@@ -439,8 +439,8 @@ def _run_for_render(path: str, mesh_path: str | None, want_preview: bool,
     if left_out is not None:
         warning(left_out)
     if outcome.error is not None:
-        error = outcome.error
-        raise DLFLError(f"{error.file}:{error.line}: {error.message}")
+        failure = outcome.error  # (not ``error``: that is the message printer here)
+        raise DLFLError(f"{failure.file}:{failure.line}: {failure.message}")
     problem = undeclared(outcome.declarations, values or {}, ran=True)
     if problem is not None:  # a script whose declarations are computed
         raise DLFLError(problem)
