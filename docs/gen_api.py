@@ -47,7 +47,8 @@ The user guide is [guide.md](guide.md).
 `from livemod.dlfl import *` brings the thesis commands into a script. They act on the
 current object of the current scene. Corners are `(faceid, vertexid)` tuples (or corner
 ids); the corners commands return also carry their corner id, so they stay unambiguous
-where a face visits a vertex twice.
+where a face visits a vertex twice. The star import also brings `DLFLError` (a
+`ValueError`), which every command raises on bad input, so a script can catch it.
 """
 
 

@@ -92,6 +92,18 @@ def test_star_import_gives_the_commands():
     assert set(dlfl.commands.core.__all__) <= set(names)
 
 
+def test_star_import_gives_the_error_commands_raise_so_scripts_can_catch_it():
+    names: dict[str, object] = {}
+    with use_scene(Scene()):
+        exec("from livemod.dlfl import *\n"
+             "try:\n"
+             "    deleteEdge(99)\n"
+             "except DLFLError as exc:\n"
+             "    caught = str(exc)\n", names)
+    assert names["DLFLError"] is dlfl.DLFLError
+    assert "99" in str(names["caught"])
+
+
 def test_insert_edge_returns_its_corners_in_edge_info_order(cube_scene):
     e, ca, cb, cc, cd = insertEdge((0, 0), (0, 2))
     assert counts(cube_scene) == (8, 13, 7)

@@ -27,7 +27,7 @@ def test_api_reference_lists_every_thesis_command() -> None:
     import livemod.dlfl as dlfl
 
     text = (ROOT / "docs" / "api.md").read_text(encoding="utf-8")
-    missing = [name for name in dlfl.__all__ if f"### `{name}(" not in text]
+    missing = [name for name in dlfl.commands.__all__ if f"### `{name}(" not in text]
     assert missing == []
 
 

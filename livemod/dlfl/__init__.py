@@ -5,8 +5,9 @@ Two layers over one implementation:
 * the library API: :class:`Mesh` with the minimal operators, free functions per
   family (:func:`from_polygons`, :func:`validate`, :func:`mesh_arrays`, ...);
 * the thesis commands (``createVertex``, ``insertEdge``, ``extrude``, ...), which
-  act on the current scene. ``from livemod.dlfl import *`` brings exactly the
-  thesis commands into a script.
+  act on the current scene. ``from livemod.dlfl import *`` brings the thesis
+  commands into a script, and :class:`DLFLError`, the error they raise, so that a
+  script can catch it by the name the documentation gives.
 """
 
 from __future__ import annotations
@@ -35,7 +36,7 @@ from .mesh import Mesh
 from .scene import Scene, Selection, current_scene, use_scene
 from .validate import validate
 
-__all__ = list(commands.__all__)
+__all__ = [*commands.__all__, "DLFLError"]
 
 LIBRARY_API = [
     "Mesh", "MeshArrays", "MeshSummary", "Polygons", "Scene", "Selection", "DLFLError",
