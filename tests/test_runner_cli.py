@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import multiprocessing
 import os
 import signal
 import subprocess
@@ -17,6 +18,8 @@ from livemod.dlfl import from_polygons
 from livemod.runner import cli
 from livemod.runner.batch import (
     SerialExecutor,
+    _worker_started,
+    _Workers,
     make_variants,
     output_name,
     parse_param,
@@ -489,3 +492,18 @@ def test_all_objects_joins_the_scene_for_run_watch_and_batch(tmp_path, capsys):
     result = run_variant(variant)
     assert result.status == "ok" and result.counts == load_mesh(tmp_path / "v.obj").counts()
     assert sorted(component_genera(load_mesh(tmp_path / "v.obj"))) == [0, 1]
+
+
+@pytest.mark.parametrize("stopping", [False, True])
+def test_a_worker_starting_while_its_pool_is_ended_exits_before_taking_a_variant(stopping):
+    # the gap terminate() cannot signal: a worker still in its initializer
+    context = multiprocessing.get_context("fork")
+    workers = _Workers(context)
+    if stopping:
+        workers.terminate()  # nothing reported yet: it only raises the flag
+    worker = context.Process(target=_worker_started, args=(workers.started, workers.stopping))
+    worker.start()
+    worker.join(timeout=30)
+    assert workers.started.get() == worker.pid
+    assert worker.exitcode == (128 + signal.SIGTERM if stopping else 0)
+    workers.close()

@@ -306,7 +306,8 @@ def _stoppable_pool(jobs: int, context: multiprocessing.context.BaseContext,
     the temporary file of a mesh being written, see :func:`_killed`)."""
     workers = _Workers(context)
     pool = concurrent.futures.ProcessPoolExecutor(
-        jobs, mp_context=context, initializer=_worker_started, initargs=(workers.started,))
+        jobs, mp_context=context, initializer=_worker_started,
+        initargs=(workers.started, workers.stopping))
     try:
         yield pool
     except BaseException:
@@ -323,17 +324,26 @@ class _Workers:
     """The worker processes of one pool, as each reports its process id from the
     pool's initializer. ProcessPoolExecutor offers no public way to end its
     workers before Python 3.14's ``terminate_workers()``; shutting it down waits
-    for the running variants, which may take minutes. A worker forked but not yet
-    through its initializer (the first milliseconds of a pool) is not known yet."""
+    for the running variants, which may take minutes.
+
+    A worker still in its initializer when the pool is ended has not reported
+    yet, so it cannot be signalled; :attr:`stopping` covers it: a worker checks
+    it after reporting and exits before taking a variant when it is set.
+    """
 
     def __init__(self, context: multiprocessing.context.BaseContext) -> None:
         self.started = context.SimpleQueue()
+        self.stopping = context.Event()
         self._ids: set[int] = set()
 
     def terminate(self) -> None:
-        """End every reported worker that is still running, and wait for each
-        (at most 5 s). Only live children of this process are ended, so an id
-        reused since its worker exited is never signalled."""
+        """End every worker: those reported are signalled and waited for (at most
+        5 s each); any that reports later finds :attr:`stopping` set and exits.
+        Only live children of this process are signalled, so an id reused since
+        its worker exited is never signalled."""
+        # set before reading: a report the read misses comes after it, and the
+        # worker then sees the flag (it checks only after reporting)
+        self.stopping.set()
         self._read()
         running = [p for p in multiprocessing.active_children() if p.pid in self._ids]
         for worker in running:
@@ -351,15 +361,18 @@ class _Workers:
             self._ids.add(self.started.get())
 
 
-def _worker_started(started: Any) -> None:
+def _worker_started(started: Any, stopping: Any) -> None:
     """In each pool worker: report this process to the pool's :class:`_Workers`
-    (the queue ``started``). Ctrl-C is left to the batch (which ends the workers;
+    (the queue ``started``), and exit at once if the pool is being ended already
+    (the event ``stopping``). Ctrl-C is left to the batch (which ends the workers;
     a worker interrupted on its own would print a traceback and take the next
     variant); when the pool kills it (SIGTERM: Ctrl-C, or another worker died),
     remove the temporary file of a mesh it was writing, then exit."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     signal.signal(signal.SIGTERM, _killed)
     started.put(os.getpid())
+    if stopping.is_set():
+        os._exit(128 + signal.SIGTERM)  # as if signalled: it never took a variant
 
 
 def _killed(signum: int, frame: object) -> None:
