@@ -15,7 +15,9 @@ What the queue carries (all frozen, numpy arrays read-only and private):
   mesh with ``stale=True`` (None if there was none), ``partial`` the mesh as the
   failed run left it, ``steps`` the steps that finished.
 
-Only the newest run posts; a run superseded by a save posts nothing. Going back
+Only the newest run posts; a run superseded by a save posts nothing. Between a
+save and its first result, :attr:`LiveSession.activity` (a :class:`RunActivity`)
+says the newest run is at work and for how long. Going back
 shows a cached snapshot when one is in the budget, else the script is replayed
 to that step (same text, same seed).
 """
@@ -30,11 +32,11 @@ from .headless import run_outcome, run_script
 from .playback import Playback
 from .preview import preview_arrays
 from .results import RunResult, ScriptError, StepRecord
-from .session import LiveSession
+from .session import LiveSession, RunActivity
 from .watch import FileWatcher, ManualNotifier, WatchdogNotifier
 
 __all__ = [
     "Cancelled", "FileWatcher", "LiveSession", "ManualNotifier", "MeshArrays", "Playback",
-    "RunControl", "RunOutcome", "RunResult", "ScriptError", "StepRecord", "WatchdogNotifier",
+    "RunActivity", "RunControl", "RunOutcome", "RunResult", "ScriptError", "StepRecord", "WatchdogNotifier",
     "execute", "preview_arrays", "run_outcome", "run_script",
 ]

@@ -15,6 +15,8 @@ hook then runs only when the caller changes, and on every step once cancelled.
 
 from __future__ import annotations
 
+import bisect
+import dataclasses
 import inspect
 import sys
 import time
@@ -70,6 +72,9 @@ class RunControl:
         self.playback = playback
         self.on_pause = on_pause
         self.paused_at: int | None = None
+        # seconds the run has spent paused (the pause's snapshot, then the wait): the
+        # run's working time is its wall time less this
+        self.waited = 0.0
         self.finished = False
         self.cancel_requested = False  # a plain bool: the step hook reads it every step
         self._namespace: dict | None = None
@@ -137,6 +142,8 @@ class StepRecorder:
         self.control = control
         self.started = time.perf_counter()
         self._log = StepLog()
+        # (step index, seconds paused up to and including the pause after it), in order
+        self._pauses: list[tuple[int, float]] = []
         self.hook: Callable[[str], None] = self._make_hook()
 
     def install(self) -> None:
@@ -158,6 +165,8 @@ class StepRecorder:
     @property
     def steps(self) -> StepList:
         """The steps recorded so far (a view that later steps do not change)."""
+        if self._pauses:  # their elapsed leaves the pauses out
+            return _PausedStepList(self._log, self.step_count(), self.started, self._pauses)
         return StepList(self._log, self.step_count(), self.started)
 
     def release(self) -> None:
@@ -206,12 +215,40 @@ class StepRecorder:
         if not playback.should_pause(index):
             return
         control.paused_at = index
+        paused = time.perf_counter()
         if control.on_pause is not None:
             control.on_pause(index, self.steps, self.scene)
         playback.wait(index, lambda: control.cancel_requested)
+        # the snapshot and the wait are the viewer's time, not the script's
+        spent = time.perf_counter() - paused
+        control.waited += spent
+        self._pauses.append((index, spent + (self._pauses[-1][1] if self._pauses else 0.0)))
         control.paused_at = None
         if control.cancel_requested:
             raise Cancelled
+
+
+class _PausedStepList(StepList):
+    """The steps of a run that paused: each step's ``elapsed`` is the run's working
+    time, without the pauses before it (a paused run waits on the viewer).
+
+    ``pauses`` is the recorder's list; it only grows by pauses after the last step
+    of this view, which change none of its steps.
+    """
+
+    __slots__ = ("_pauses",)
+
+    def __init__(self, log: StepLog, count: int, started: float,
+                 pauses: list[tuple[int, float]]) -> None:
+        super().__init__(log, count, started)
+        self._pauses = pauses
+
+    def _record(self, k: int) -> StepRecord:
+        record = super()._record(k)
+        before = bisect.bisect_left(self._pauses, k, key=lambda pause: pause[0])
+        if before == 0:
+            return record
+        return dataclasses.replace(record, elapsed=record.elapsed - self._pauses[before - 1][1])
 
 
 def _ended(label: str) -> None:

@@ -10,7 +10,9 @@ Threads (none of them the caller's):
 
 The caller only sets state and enqueues requests, so no public method blocks.
 Results go to :attr:`LiveSession.results`; only the newest run's results are
-posted (a superseded run's are dropped).
+posted (a superseded run's are dropped). :attr:`LiveSession.activity` says,
+when polled, whether the newest run is working now and for how long, so the
+caller can show a run a save started before its first result arrives.
 """
 
 from __future__ import annotations
@@ -69,6 +71,24 @@ class _Run:
     control: RunControl
     thread: threading.Thread | None = None
     cancel_reason: str = ""
+    started: float = 0.0  # perf_counter() when the supervisor started it
+    ended: bool = False  # its end was published (or dropped): it works no more
+
+
+@dataclass(frozen=True)
+class RunActivity:
+    """The newest run while it works on the script (see :attr:`LiveSession.activity`).
+
+    Attributes:
+        run_id: the run's id, as its results will carry.
+        script: the script it runs.
+        working: seconds it has worked so far (its pauses left out, as in the
+            ``elapsed`` of its results).
+    """
+
+    run_id: int
+    script: str
+    working: float
 
 
 class LiveSession:
@@ -92,6 +112,7 @@ class LiveSession:
 
     Attributes:
         results: :class:`RunResult` snapshots; drain with ``get_nowait()``.
+        activity: the run at work now, or None (see :class:`RunActivity`); poll it.
     """
 
     def __init__(self, script: str | os.PathLike[str], *, mesh_path: str | None = None,
@@ -315,6 +336,18 @@ class LiveSession:
                 run.cancel_reason = "user"
                 run.control.cancel()
 
+    @property
+    def activity(self) -> RunActivity | None:
+        """The newest run while it works: started (by a save, a key, anything) and
+        neither paused at a step nor ended; None otherwise. Only the newest run is
+        ever reported, so a superseded run cannot stand for a newer one."""
+        with self._lock:
+            run = self._current
+            if run is None or run.ended or self._closed or run.control.paused_at is not None:
+                return None
+            working = time.perf_counter() - run.started - run.control.waited
+            return RunActivity(run.run_id, run.script, max(working, 0.0))
+
     def _live_run(self) -> _Run | None:
         """The newest run while its thread has not finished the script."""
         run = self._current
@@ -397,7 +430,8 @@ class LiveSession:
             if request.script != self.script:
                 return  # queued before open() switched scripts
             self._run_id += 1
-            run = _Run(self._run_id, request.script, RunControl(self._playback))
+            run = _Run(self._run_id, request.script, RunControl(self._playback),
+                       started=time.perf_counter())
             run.control.on_pause = lambda index, steps, scene: self._post_paused(
                 run, index, steps, scene)
             run.thread = threading.Thread(target=self._run_body, args=(run, request.source),
@@ -411,6 +445,13 @@ class LiveSession:
 
     def _run_body(self, run: _Run, source: str | None) -> None:
         """Worker thread: run the script once and publish what came out."""
+        try:
+            self._run_script(run, source)
+        finally:
+            run.ended = True  # after the publishing: the caller sees no gap between
+
+    def _run_script(self, run: _Run, source: str | None) -> None:
+        """Run the script once (in the worker) and publish what came out."""
         started = time.perf_counter()
         with self._lock:
             parameters, selection = dict(self._parameters), self._selection
@@ -518,13 +559,13 @@ class LiveSession:
         self._post(RunResult(
             run.run_id, run.script, status, outcome.steps, None,
             last.arrays if last else None, last.preview if last else None, error,
-            outcome.elapsed, last is not None, self._specs(outcome.scene),
+            _working(run, outcome), last is not None, self._specs(outcome.scene),
             snapshot_scene(outcome.scene), values, last.others if last else None,
             last.other_objects if last else (), last.current_object if last else None))
 
     def _publish_ok(self, run: _Run, outcome: RunOutcome, values: tuple) -> None:
         result = RunResult(run.run_id, run.script, "ok", outcome.steps, None,
-                           snapshot_scene(outcome.scene), None, None, outcome.elapsed,
+                           snapshot_scene(outcome.scene), None, None, _working(run, outcome),
                            False, self._specs(outcome.scene), values=values,
                            **object_fields(outcome.scene))
         with self._lock:
@@ -605,6 +646,11 @@ class LiveSession:
         if result.run_id == self._run_id and not self._closed:
             self._last_posted = result
             self.results.put(result)
+
+
+def _working(run: _Run, outcome: RunOutcome) -> float:
+    """The run's working time: its wall time less the time it spent paused."""
+    return max(outcome.elapsed - run.control.waited, 0.0)
 
 
 def _preview_worker(preview: bool | Callable[[Mesh], MeshArrays | None],

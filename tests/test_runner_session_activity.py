@@ -1,0 +1,119 @@
+"""LiveSession.activity (the run at work now) and the working time of paused runs."""
+
+from __future__ import annotations
+
+import time
+
+import pytest
+
+from livemod.runner import LiveSession, ManualNotifier, RunResult
+
+from .runner_scripts.support import closing_session, next_result
+
+SLOW = """
+import time
+start = time.perf_counter()
+while time.perf_counter() - start < {seconds}:
+    time.sleep(0.01)
+createVertex((0, 0, 0))
+"""
+
+STEPS = "createVertex((0, 0, 0))\ncreateVertex((1, 0, 0))\ncreateVertex((2, 0, 0))\n"
+
+
+def is_ok(r: RunResult) -> bool:
+    return r.status == "ok"
+
+
+def _until(condition, timeout: float = 10.0):  # noqa: ANN001, ANN202
+    """Poll ``condition`` until it gives something truthy; return that."""
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        value = condition()
+        if value:
+            return value
+        time.sleep(0.01)
+    raise AssertionError("timed out")
+
+
+@pytest.mark.timeout(60)
+def test_a_run_a_save_starts_is_reported_at_work_until_its_result(tmp_path) -> None:
+    script = tmp_path / "model.py"
+    script.write_text(SLOW.format(seconds=0.0))
+    notifier = ManualNotifier()
+    with closing_session(LiveSession(str(script), notifier=notifier, preview=False,
+                                     debounce=0.01)) as live:
+        assert live.activity is None  # nothing started yet
+        live.start()
+        next_result(live, is_ok)
+        _until(lambda: live.activity is None)
+        script.write_text(SLOW.format(seconds=0.6))
+        notifier.fire(str(script))  # saved in an editor: no call on the session
+        busy = _until(lambda: live.activity)
+        assert busy.run_id == 2 and busy.script == str(script)
+        time.sleep(0.2)
+        later = live.activity
+        assert later is not None and later.run_id == 2 and later.working > busy.working
+        done = next_result(live, is_ok)
+        assert done.run_id == 2
+        _until(lambda: live.activity is None)
+
+
+@pytest.mark.timeout(60)
+def test_only_the_newest_run_is_reported(tmp_path) -> None:
+    script = tmp_path / "model.py"
+    script.write_text(SLOW.format(seconds=5.0))
+    with closing_session(LiveSession(str(script), notifier=ManualNotifier(),
+                                     preview=False)) as live:
+        live.start()
+        assert _until(lambda: live.activity).run_id == 1
+        script.write_text(SLOW.format(seconds=0.3))
+        live.reload()  # supersedes run 1, which is cancelled
+        assert _until(lambda: (a := live.activity) is not None and a.run_id == 2 and a)
+        seen = []
+        while (activity := live.activity) is not None:
+            seen.append(activity.run_id)
+            time.sleep(0.01)
+        assert set(seen) <= {2}  # once run 2 started, run 1 never shows again
+        assert next_result(live, is_ok).run_id == 2
+
+
+@pytest.mark.timeout(60)
+def test_a_paused_run_is_not_at_work(tmp_path) -> None:
+    script = tmp_path / "steps.py"
+    script.write_text(STEPS)
+    with closing_session(LiveSession(str(script), notifier=ManualNotifier(),
+                                     preview=False)) as live:
+        live.pause()
+        live.start()
+        next_result(live, lambda r: r.status == "paused")
+        _until(lambda: live.activity is None)  # waiting on the viewer, not working
+        time.sleep(0.1)
+        assert live.activity is None
+        live.run_to_end()
+        next_result(live, is_ok)
+        assert live.activity is None
+
+
+@pytest.mark.timeout(60)
+def test_the_time_a_run_spends_paused_is_not_its_elapsed_time(tmp_path) -> None:
+    script = tmp_path / "steps.py"
+    script.write_text(STEPS)
+    with closing_session(LiveSession(str(script), notifier=ManualNotifier(),
+                                     preview=False)) as live:
+        live.pause()
+        live.start()
+        held = next_result(live, lambda r: r.status == "paused")
+        assert held.step_index == 0
+        time.sleep(0.5)
+        live.step_forward()
+        second = next_result(live, lambda r: r.status == "paused" and r.step_index == 1)
+        assert second.elapsed < 0.3  # not the half second it waited at step 0
+        assert second.steps[1].elapsed < 0.3 and second.steps[0].elapsed == held.steps[0].elapsed
+        time.sleep(0.5)
+        live.run_to_end()
+        ended = next_result(live, is_ok)
+        assert ended.run_id == held.run_id
+        assert ended.elapsed < 0.3  # a second of pauses, left out
+        assert all(step.elapsed < 0.3 for step in ended.steps)
+        assert [s.elapsed for s in ended.steps[:2]] == [s.elapsed for s in second.steps]
