@@ -15,14 +15,16 @@ from livemod.viewer.controls import (
     KEY_BINDINGS,
     action_for,
     help_lines,
+    missing_lines,
     selection_python,
+    split_picks,
     toggle_pick,
 )
 from livemod.viewer.geometry import build_geometry, decode_pick, fan_triangles
 from livemod.viewer.hud import hud_lines, run_state, step_line
 from livemod.viewer.measure import WholeMesh, WholeMeshMeasurer
 from livemod.viewer.renderer import Style
-from livemod.viewer.text import QUAD_FLOATS, glyph_atlas, layout_labels
+from livemod.viewer.text import QUAD_FLOATS, WARN_TEXT, glyph_atlas, layout_labels
 
 
 def test_fans_cover_every_face_and_skip_holes() -> None:
@@ -142,6 +144,19 @@ def test_selection_echo_is_python() -> None:
     assert selection_python(Selection(), arrays) == ["faces(True) == ()"]
 
 
+def test_picks_the_mesh_lacks_are_told_apart() -> None:
+    arrays = mesh_arrays(cube())  # faces 0-5, vertices 0-7
+    picked = Selection(faces=(5, 12, 2), edges=(40,), vertices=(7,))
+    present, missing = split_picks(picked, arrays)
+    assert present == Selection(faces=(5, 2), vertices=(7,))  # in pick order
+    assert missing == Selection(faces=(12,), edges=(40,))
+    assert missing_lines(missing) == ["picked, not in this mesh: face 12; edge 40"]
+    assert missing_lines(Selection(faces=(8, 9), vertices=(20,))) == [
+        "picked, not in this mesh: faces 8, 9; vertex 20"]
+    assert missing_lines(Selection()) == []
+    assert split_picks(picked, None) == (picked, Selection())  # no mesh: nothing to tell
+
+
 def _result(status: str = "ok", stale: bool = False, step_index: int | None = None):
     steps = tuple(SimpleNamespace(index=i, label=f"op{i}", line=10 + i, counts=(1, 1, 1),
                                   elapsed=0.0) for i in range(3))
@@ -151,6 +166,7 @@ def _result(status: str = "ok", stale: bool = False, step_index: int | None = No
 
 def test_hud_shows_state_counts_genus_and_step() -> None:
     assert run_state(None, True) == "running"
+    assert run_state(_result(), False, 1.5) == run_state(None, True, 1.5) == "running... 1.5 s"
     assert run_state(_result("error", stale=True), False) == "error, stale"
     assert step_line(_result(step_index=1)) == "step 2/3: op1 (line 11)"
     assert step_line(_result()) == "step 3/3: op2 (line 12)"
@@ -162,6 +178,12 @@ def test_hud_shows_state_counts_genus_and_step() -> None:
     for part in ("tower.py", "ok", "0.250 s", "V 8  E 12  F 6  genus 0  volume 8\n",
                  "step 3/3", "60 fps", "faces(True) == (1,)"):
         assert part in text
+    running = "\n".join(line for line, _ in hud_lines({**info, "working": 2.0}))
+    assert "running... 2.0 s\n" in running and "0.250 s" not in running  # not the last run's
+    missing = hud_lines({**info, "missing": ["picked, not in this mesh: face 12"]})
+    assert ("picked, not in this mesh: face 12", WARN_TEXT) in missing
+    hidden = "\n".join(line for line, _ in hud_lines({**info, "current_hidden": True}))
+    assert "volume 8  (hidden: L lists it)" in hidden
     for whole, said in ((None, "genus ...\n"), (WholeMesh(1, None), "genus 1\n"),
                         (WholeMesh(0, -1.5), "genus 0  volume -1.5 (inside out)\n")):
         assert said in "\n".join(line for line, _ in hud_lines({**info, "whole": whole}))

@@ -132,14 +132,19 @@ def test_a_long_list_scrolls_within_its_length() -> None:
     assert panel.fitting_rows((800, 10)) == 1  # a tiny window still shows one row
 
 
-def test_quads_draw_a_box_per_other_object_ticked_or_not() -> None:
+def test_quads_draw_a_box_per_object_ticked_or_not() -> None:
     panel = _panel(4)
     quads = panel.quads(SIZE)
     solid = quads[:, 11]  # the palette slot of each quad
-    assert int((solid == 14).sum()) == 2  # objects 1 and 3 ticked
+    assert int((solid == 14).sum()) == 3  # objects 0 (current), 1 and 3 ticked
     assert int((solid == 13).sum()) == 1  # object 2 hidden
     assert int((solid == 8).sum()) == 1  # the panel's box
     assert np.all(quads[:, 0] >= panel.frame(SIZE)[0])
+    state = panel.state()
+    panel.current_hidden = True  # the current object unticked too
+    solid = panel.quads(SIZE)[:, 11]
+    assert int((solid == 14).sum()) == 2 and int((solid == 13).sum()) == 2
+    assert panel.state() != state
 
 
 def test_the_row_under_the_pointer_is_highlighted_when_a_click_would_toggle_it() -> None:
@@ -152,8 +157,10 @@ def test_the_row_under_the_pointer_is_highlighted_when_a_click_would_toggle_it()
     assert len(lit) == len(plain) + 1 and int((lit[:, 11] == 15).sum()) == 1
     row = lit[lit[:, 11] == 15][0]
     assert row[1] <= _row_y(panel, 3) <= row[1] + row[6]  # the box spans that row
-    for over in (_row_y(panel, 1), _row_y(panel, 0), _row_y(panel, 9)):
-        panel.point_at(panel.hit(x, over, SIZE))  # the current object, the header, off
+    panel.point_at(panel.hit(x, _row_y(panel, 1), SIZE))  # the current object toggles too
+    assert panel.hover == 0
+    for over in (_row_y(panel, 0), _row_y(panel, 9)):
+        panel.point_at(panel.hit(x, over, SIZE))  # the header, off the panel
         assert panel.hover is None
     panel.hover = 3
     panel.sync(panel.rows[:2], frozenset())  # a run with fewer objects

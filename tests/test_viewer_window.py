@@ -265,8 +265,10 @@ def test_the_object_list_shows_and_hides_each_other_object(tmp_path: Path) -> No
         assert "other objects: 0 of 2 shown (L: list)" in _hud_text(viewer)
         _click_object_row(viewer, 0, "all")
         assert not viewer.hidden_others and np.array_equal(viewer.capture(), everything)
-        _click_object_row(viewer, 3)  # the current object's row: nothing to hide
-        assert "the current object is always drawn" in echo.getvalue()
+        _click_object_row(viewer, 3)  # the current object's row: hides it, then shows it
+        _click_object_row(viewer, 3)
+        assert "current object: hidden\ncurrent object: shown" in echo.getvalue()
+        assert viewer.style.current and np.array_equal(viewer.capture(), everything)
         _click_object_row(viewer, 2)  # untick the octahedron, then the script adds one
         script.write_text(script.read_text() + "load('icosahedron')\n")
         viewer.session.reload()
@@ -835,3 +837,146 @@ def test_view_output_of_all_objects_joins_them(tmp_path: Path) -> None:
     alone = tmp_path / "alone.obj"
     with _opened(_three_objects(tmp_path), (320, 240), output=str(alone)):
         assert open_mesh(str(alone)).counts() == (8, 12, 6)  # the current cube
+
+
+SLOW_SAVE = """
+import time
+start = time.perf_counter()
+while time.perf_counter() - start < 1.5:
+    time.sleep(0.01)
+load('tetrahedron')
+"""
+
+
+def test_a_run_a_save_starts_shows_running_over_the_last_result(tmp_path: Path) -> None:
+    script = tmp_path / "model.py"
+    script.write_text("load('cube')\n")
+    with _opened(script, (240, 160)) as viewer:
+        shown = viewer.renderer.arrays
+        assert "running" not in _hud_text(viewer)
+        time.sleep(0.05)
+        script.write_text(SLOW_SAVE)  # saved in an editor: no key, the window waits for nothing
+        _wait(viewer, lambda v: v.activity is not None)
+        assert not viewer.waiting and viewer.activity.run_id == 2
+        assert "running... " in _hud_text(viewer)
+        assert viewer.renderer.arrays is shown  # over the last good mesh
+        _wait(viewer, lambda v: "running... 0.5 s" in _hud_text(v))  # the time goes on
+        _wait(viewer, _has_run(2))
+        assert viewer.activity is None and "running" not in _hud_text(viewer)
+        assert viewer.renderer.arrays.counts == (4, 6, 4)
+
+
+def test_a_finished_run_the_session_still_reports_is_not_running(headless) -> None:
+    from types import SimpleNamespace
+
+    viewer, _, _ = headless
+    _wait(viewer, _has_run(1))
+    session = viewer.session
+
+    class Reporting:
+        """The session, still saying that a run works."""
+
+        activity = SimpleNamespace(run_id=1, script=viewer.script, working=0.7)
+
+        def __getattr__(self, name: str) -> Any:
+            return getattr(session, name)
+
+    viewer.session = Reporting()
+    try:
+        run_frames(viewer, 1)
+        assert viewer.activity is None  # run 1's end is shown: it works no more
+        Reporting.activity = SimpleNamespace(run_id=2, script=viewer.script, working=0.7)
+        run_frames(viewer, 1)
+        assert viewer.activity.run_id == 2 and "running... 0.5 s" in _hud_text(viewer)
+    finally:
+        viewer.session = session
+
+
+TEN_STEPS = "for i in range(10):\n    createVertex((i, 0, 0))\n"
+
+
+def _key(viewer: LiveViewer, action: str) -> None:
+    """Press or release the Right arrow (the headless backend has no key codes)."""
+    from moderngl_window.context.base.keys import KeyModifiers
+
+    viewer._key_names = {"right": "RIGHT"}
+    viewer.on_key_event("right", getattr(viewer.wnd.keys, action), KeyModifiers())
+
+
+def test_holding_a_step_key_keeps_stepping(tmp_path: Path) -> None:
+    script = tmp_path / "ten.py"
+    script.write_text(TEN_STEPS)
+    echo = io.StringIO()
+    with _opened(script, (300, 200), echo=echo) as viewer:
+        viewer.handle_key("HOME")
+        _wait(viewer, _at_step(0))
+        clock = [100.0]
+        viewer._clock = lambda: clock[0]
+        _key(viewer, "ACTION_PRESS")
+        _wait(viewer, _at_step(1))
+        clock[0] += 0.3  # not yet held long enough to repeat
+        run_frames(viewer, 5)
+        assert _at_step(1)(viewer) and viewer.held is not None
+        for step in (2, 3, 4):  # then ten steps a second
+            clock[0] += 0.11
+            _wait(viewer, _at_step(step))
+        _key(viewer, "ACTION_RELEASE")
+        clock[0] += 1.0
+        run_frames(viewer, 5)
+        assert _at_step(4)(viewer) and viewer.held is None
+        viewer.on_key_event("right", 2, None)  # glfw's own repeat: the timer repeats instead
+        run_frames(viewer, 3)
+        assert _at_step(4)(viewer)
+        viewer.handle_key("END")
+        _wait(viewer, lambda v: not v.waiting and v.result.status == "ok")
+        _key(viewer, "ACTION_PRESS")  # at the end: says so once, and does not repeat
+        for _ in range(3):
+            clock[0] += 0.5
+            run_frames(viewer, 2)
+        assert viewer.held is None and echo.getvalue().count("at the last step") == 1
+
+
+def test_picks_a_later_run_removed_are_marked_missing(tmp_path: Path) -> None:
+    script = tmp_path / "model.py"
+    script.write_text("load('cube')\n")
+    picked = Selection(faces=(5,), vertices=(1,))
+    with _opened(script, (240, 160), selection=picked) as viewer:
+        assert "faces(True) == (5,)" in _hud_text(viewer)
+        assert "not in this mesh" not in _hud_text(viewer)
+        script.write_text("load('tetrahedron')\n")  # faces 0 to 3 only
+        viewer.session.reload()
+        _wait(viewer, _has_run(2))
+        text = _hud_text(viewer)
+        assert "faces(True)" not in text and "verts(True) == (1,)" in text
+        assert "picked, not in this mesh: face 5" in text
+        assert viewer.selection == picked  # kept: an earlier step or a later run may have it
+        script.write_text("load('cube')\n")
+        viewer.session.reload()
+        _wait(viewer, _has_run(3))
+        assert "faces(True) == (5,)" in _hud_text(viewer)
+        assert "not in this mesh" not in _hud_text(viewer)
+
+
+def test_the_object_list_hides_the_current_object_too(tmp_path: Path) -> None:
+    script, echo = _three_objects(tmp_path), io.StringIO()
+    with _opened(script, (400, 300), echo=echo) as viewer:
+        viewer.handle_key("U")  # no HUD: the picture is the scene alone
+        everything = viewer.capture()
+        viewer.handle_key("U")
+        viewer.handle_key("L")
+        size = viewer.screen_size
+        on_cube = next((x, y) for x in range(0, 400, 4) for y in range(0, 300, 4)
+                       if viewer.renderer.pick(viewer.camera, size, x, y, "face") is not None)
+        _click_object_row(viewer, 3)  # the cube's row: the current object
+        assert not viewer.style.current and "current object: hidden" in echo.getvalue()
+        assert "(hidden: L lists it)" in _hud_text(viewer)
+        viewer.handle_key("U")
+        assert not np.array_equal(viewer.capture(), everything)
+        assert viewer.renderer.pick(viewer.camera, size, *on_cube, "face") is None
+        viewer.session.reload()  # hidden across runs
+        _wait(viewer, _has_run(2))
+        assert not viewer.style.current
+        viewer.handle_key("U")
+        _click_object_row(viewer, 0, "all")  # all: the current object as well
+        viewer.handle_key("U")
+        assert viewer.style.current and np.array_equal(viewer.capture(), everything)

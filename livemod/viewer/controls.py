@@ -49,7 +49,7 @@ KEY_BINDINGS: tuple[Binding, ...] = (
     Binding("A", "", "toggle_others", "the scene's other objects on/off"),
     Binding("TAB", "", "cycle_others", "the other objects one at a time, then all again"),
     Binding("L", "", "toggle_object_list",
-            "the object list: tick or untick each other object to show or hide it"),
+            "the object list: tick or untick each object to show or hide it"),
     Binding("X", "", "toggle_grid", "ground grid and axes on/off"),
     Binding("C", "", "cycle_section",
             "section: cut the meshes at a plane across x, then y, then z, then off"),
@@ -69,7 +69,7 @@ KEY_BINDINGS: tuple[Binding, ...] = (
     Binding("NUMBER_3", "", "view_side", "side view"),
     Binding("NUMBER_4", "", "view_iso", "iso view"),
     Binding("SPACE", "", "play_pause", "play the steps / pause"),
-    Binding("RIGHT", "", "step_forward", "next step"),
+    Binding("RIGHT", "", "step_forward", "next step (held: steps on)"),
     Binding("PERIOD", "", "step_forward", "next step"),
     Binding("LEFT", "", "step_back", "previous step"),
     Binding("COMMA", "", "step_back", "previous step"),
@@ -165,6 +165,38 @@ def selection_python(selection: Selection, arrays: MeshArrays | None) -> list[st
     if not lines:
         return ["faces(True) == ()"]
     return [*lines, f"(headless: livemod run|render|batch SCRIPT {selection.options()})"]
+
+
+_ARRAY_IDS = {"faces": "face_ids", "edges": "edge_ids", "vertices": "vertex_ids",
+              "corners": "corner_ids"}
+
+
+def split_picks(selection: Selection, arrays: MeshArrays | None,
+                ) -> tuple[Selection, Selection]:
+    """``(present, missing)``: the picks ``arrays`` holds and those it lacks (a later
+    run removed them, or the step shown comes before they were made). Without
+    arrays nothing can be told missing."""
+    if arrays is None or selection.is_empty():
+        return selection, Selection()
+    present, missing = {}, {}
+    for name, table in _ARRAY_IDS.items():
+        ids: tuple[int, ...] = getattr(selection, name)
+        held = np.isin(np.asarray(ids, dtype=np.int64), getattr(arrays, table)) if ids else ()
+        present[name] = tuple(i for i, ok in zip(ids, held, strict=True) if ok)
+        missing[name] = tuple(i for i, ok in zip(ids, held, strict=True) if not ok)
+    return Selection(**present), Selection(**missing)
+
+
+def missing_lines(missing: Selection) -> list[str]:
+    """The HUD's note of picks the mesh shown lacks, e.g. ``picked, not in this
+    mesh: faces 12, 31`` (the next run's ``faces(True)`` leaves them out too)."""
+    parts = []
+    for name in _ARRAY_IDS:
+        ids: tuple[int, ...] = getattr(missing, name)
+        if ids:
+            kind = name if len(ids) > 1 else {"vertices": "vertex"}.get(name, name[:-1])
+            parts.append(f"{kind} {', '.join(str(i) for i in ids)}")
+    return [f"picked, not in this mesh: {'; '.join(parts)}"] if parts else []
 
 
 def _corner_pair(arrays: MeshArrays | None, corner_id: int) -> tuple[int, int]:

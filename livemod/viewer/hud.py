@@ -31,8 +31,12 @@ from .text import (
 )
 
 
-def run_state(result: Any, waiting: bool) -> str:
-    """``running``, or the result's status, with ``stale`` appended when it is stale."""
+def run_state(result: Any, waiting: bool, working: float | None = None) -> str:
+    """``running... 1.5 s`` while a run works (``working`` its seconds so far),
+    ``running`` while the window waits for one, or the result's status, with
+    ``stale`` appended when it is stale."""
+    if working is not None:
+        return f"running... {working:.1f} s"
     if waiting or result is None:
         return "running"
     return f"{result.status}, stale" if result.stale else str(result.status)
@@ -69,6 +73,7 @@ def hud_lines(info: dict[str, Any]) -> list[tuple[str, int]]:
     lines.append((f"pick {info['pick_mode']}  {view}  {mode}{cut}"
                   f"{'  playing' if info['playing'] else ''}", LABEL_DIM))
     lines += [(line, LABEL_DIM) for line in info["selection"][:4]]
+    lines += [(line, WARN_TEXT) for line in info.get("missing", ())]
     lines += [(line, TEXT) for line in info.get("measures", ())[:4]]
     lines.append((f"{info['fps']:.0f} fps   H: help", LABEL_DIM))
     return lines
@@ -76,10 +81,11 @@ def hud_lines(info: dict[str, Any]) -> list[tuple[str, int]]:
 
 def _state_line(info: dict[str, Any]) -> tuple[str, int]:
     """The run state and time, and after an error which mesh is shown (``E``)."""
-    result = info["result"]
-    state = run_state(result, info["waiting"])
+    result, working = info["result"], info.get("working")
+    state = run_state(result, info["waiting"], working)
     colour = ERROR_TEXT if "error" in state else (WARN_TEXT if state != "ok" else OK_TEXT)
-    elapsed = f"  {result.elapsed:.3f} s" if result is not None else ""
+    # a run at work says its own time; the result's is of the run before
+    elapsed = f"  {result.elapsed:.3f} s" if result is not None and working is None else ""
     shown = ""
     if result is not None and result.error is not None and getattr(result, "partial", None) is not None:
         shown = ("  - the failed run's mesh (E: last good)" if info.get("partial")
@@ -98,7 +104,8 @@ def _count_lines(info: dict[str, Any]) -> list[tuple[str, int]]:
         extra = f"  holes {holes}" if holes else ""
         whole = info.get("whole")  # a large mesh may still be being measured
         said = "genus ..." if whole is None else whole.text()
-        lines.append((f"V {v}  E {e}  F {f - holes}{extra}  {said}", TEXT))
+        hidden = "  (hidden: L lists it)" if info.get("current_hidden") else ""
+        lines.append((f"V {v}  E {e}  F {f - holes}{extra}  {said}{hidden}", TEXT))
     # drawn beside the current object (A hides them, Tab shows one at a time, L lists them)
     others = info.get("others", None if result is None else result.others)
     note = info.get("others_note", "")

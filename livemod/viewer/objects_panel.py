@@ -1,12 +1,12 @@
-"""The object list: every object of the scene, each other one with a checkbox that
-shows or hides it (GL-free).
+"""The object list: every object of the scene, each with a checkbox that shows or
+hides it (GL-free).
 
 A scene of several objects (each ``load()`` adds one) draws the current object
 and, muted, the others. :class:`ObjectPanel` lists them all and says what a
 pointer position hits; the window keeps the set of hidden object ids, and the
 free functions here say what that set becomes when ``Tab`` is pressed or a new
-result arrives. The current object is always drawn (``S`` and ``W`` hide its
-faces and edges), so its row has no checkbox.
+result arrives. The current object's checkbox hides it whatever its id (the
+script may make another object current), until it is ticked again.
 
 Coordinates are framebuffer pixels from the top left, as the HUD's.
 """
@@ -115,6 +115,7 @@ class ObjectPanel:
         first: the first row shown (the list scrolls when it does not fit).
         hover: the index into :attr:`rows` of the row under the pointer (drawn
             highlighted when a click there toggles it), or None.
+        current_hidden: the current object is not drawn (its row unticked).
     """
 
     def __init__(self) -> None:
@@ -123,6 +124,7 @@ class ObjectPanel:
         self.top = float(MARGIN)
         self.first = 0
         self.hover: int | None = None
+        self.current_hidden = False
 
     def sync(self, rows: Sequence[ObjectRow], hidden: frozenset[int]) -> None:
         """Show ``rows`` with the ``hidden`` ones unticked."""
@@ -133,11 +135,11 @@ class ObjectPanel:
 
     def point_at(self, hit: Hit | None) -> None:
         """Follow the pointer: ``hit`` is what :meth:`hit` says it is over."""
-        self.hover = hit.row if hit is not None and hit.part == "toggle" else None
+        self.hover = hit.row if hit is not None and hit.part in ("toggle", "current") else None
 
     def state(self) -> tuple:
         """A hashable summary of everything drawn (the overlay is cached on it)."""
-        return (self.rows, self.hidden, self.top, self.first, self.hover)
+        return (self.rows, self.hidden, self.top, self.first, self.hover, self.current_hidden)
 
     def has_others(self) -> bool:
         """True when some listed object is not the current one (else nothing to toggle)."""
@@ -231,10 +233,8 @@ class ObjectPanel:
     def _row_quads(self, row: ObjectRow, left: float, top: float,
                    row_height: float) -> np.ndarray:
         atlas, box = glyph_atlas(), row_height - 6
-        if row.current:
-            return layout_text(atlas, [row.text()], (left + CHECK_WIDTH, top + 1), WARN_TEXT)
-        ticked = row.oid not in self.hidden
+        ticked = not self.current_hidden if row.current else row.oid not in self.hidden
+        colour = (WARN_TEXT if row.current else TEXT) if ticked else LABEL_DIM
         return np.concatenate([
             box_quad(atlas, left, top + 3, box, box, FILL if ticked else TRACK),
-            layout_text(atlas, [row.text()], (left + CHECK_WIDTH, top + 1),
-                        TEXT if ticked else LABEL_DIM)])
+            layout_text(atlas, [row.text()], (left + CHECK_WIDTH, top + 1), colour)])

@@ -85,6 +85,7 @@ class Style:
         point_size: vertex point size in pixels.
         background: RGBA clear colour.
         others: draw the scene's other objects (see :meth:`Renderer.set_mesh`).
+        current: draw the current object (hidden, it is neither labelled nor picked).
         smooth: shade faces with interpolated vertex normals instead of flat.
         grid: draw a ground grid under the scene and the x, y, z axes (red,
             green, blue) from the origin.
@@ -102,6 +103,7 @@ class Style:
     point_size: float = 6.0
     background: tuple[float, float, float, float] = DARK_BACKGROUND
     others: bool = True
+    current: bool = True
     grid: bool = False
     smooth: bool = False
     section: tuple[int, float] | None = None
@@ -333,6 +335,7 @@ class Renderer:
         self._mesh: _MeshGPU | None = None
         self._others: _MeshGPU | None = None
         self._others_shown = True
+        self._current_shown = True
         self._section: tuple[int, float] | None = None  # the last frame's, for picking
         self._preview: _MeshGPU | None = None
         self._label_cache: tuple[object, np.ndarray] | None = None
@@ -430,6 +433,7 @@ class Renderer:
         if self._mesh is None and self._others is None:
             return
         self._others_shown = style.others  # picking hides what the frame hid
+        self._current_shown = style.current
         self._section = style.section  # (before the view: the cap's hatch depends on it)
         self._set_view(camera, (width, height))
         self.ctx.enable(moderngl.DEPTH_TEST | moderngl.PROGRAM_POINT_SIZE)
@@ -439,9 +443,9 @@ class Renderer:
         with self._cut(style.section):
             if self._others is not None and style.others:
                 self._draw_scenery(self._others, style)
-            if self._mesh is not None:
+            if self._mesh is not None and style.current:
                 self._draw_current(self._mesh, style)
-        if self._mesh is not None and style.labels:
+        if self._mesh is not None and style.current and style.labels:
             self._draw_labels(camera, style, (width, height))
 
     @contextlib.contextmanager
@@ -764,8 +768,8 @@ class Renderer:
         A corner is its face's corner whose vertex is nearest the click (TopMod).
         """
         arrays = self.arrays
-        if self._mesh is None or arrays is None:
-            return None
+        if self._mesh is None or arrays is None or not self._current_shown:
+            return None  # (an object the frame hid is not picked)
         fbo = self._pick_target(size)
         self._render_ids(fbo, camera, kind)
         reach = 0 if kind in ("face", "corner") else radius

@@ -29,7 +29,15 @@ import numpy as np
 from livemod.dlfl.scene import Selection
 
 from .camera import Camera, bounds_changed_a_lot
-from .controls import PICK_MODES, action_for, section_text, selection_python, toggle_pick
+from .controls import (
+    PICK_MODES,
+    action_for,
+    missing_lines,
+    section_text,
+    selection_python,
+    split_picks,
+    toggle_pick,
+)
 from .geometry import sample_points
 from .hud import hud_quads
 from .imagefiles import save_png
@@ -57,6 +65,15 @@ from .timeline import Timeline, shown_step
 # was covered), and an idle glfw loop waits this long for input between frames
 REPRESENT = 0.5
 IDLE_WAIT = 0.01
+
+# the HUD's time of a run at work goes up in these steps (each one draws the frame
+# again: a million faces take half a second a frame on software GL)
+RUNNING_TICK = 0.5
+
+# a held step key steps again after REPEAT_DELAY s, then every REPEAT_INTERVAL s
+REPEAT_DELAY = 0.4
+REPEAT_INTERVAL = 0.1
+REPEATING = frozenset({"step_forward", "step_back"})
 
 SCRIPT_SUFFIXES = (".py",)
 PARAMETER_DEBOUNCE = 0.15  # seconds a dragged slider rests before the script re-runs
@@ -102,6 +119,17 @@ class ViewOptions:
     selection: Selection | None = None
     output: str | None = None
     all_objects: bool = False
+
+
+@dataclass
+class HeldKey:
+    """A step key held down: what it runs, and when it runs again."""
+
+    key: Any
+    name: str
+    shift: bool
+    ctrl: bool
+    due: float
 
 
 def _default_factory(options: ViewOptions) -> Callable[[str, str | None], Any]:
@@ -155,6 +183,7 @@ class LiveViewer(mglw.WindowConfig):
         self.playing = False
         self.waiting = True
         self.result: Any = None
+        self.activity: Any = None  # the session's run at work, newer than the result shown
         self.whole = WholeMeshMeasurer()  # genus and volume of the mesh shown, off-thread
         self.total_steps = 0
         self.objects = ObjectPanel()  # the object list (L) and the hidden objects' ids
@@ -172,9 +201,12 @@ class LiveViewer(mglw.WindowConfig):
         self._moved = False
         self._pointer: tuple[float, float] = (-1.0, -1.0)  # window point of the mouse
         self._key_names = _key_names(self.wnd.keys)
+        self.held: HeldKey | None = None  # the step key held down, repeating
+        self._clock = time.perf_counter  # of the key repeat (tests step it by hand)
         self._last_frame = time.perf_counter()
         self._fps_shown, self._fps_time = 0.0, 0.0
         self._overlay_cache: tuple[tuple, np.ndarray] | None = None
+        self._picks_cache: tuple[Selection, Any, dict[str, list[str]]] | None = None
         # the last frame drawn and its _frame_key: a frame that would look the same is
         # copied from it (an idle window then costs a copy a frame, not a draw)
         self._frame: tuple[tuple, Any] | None = None
@@ -214,6 +246,25 @@ class LiveViewer(mglw.WindowConfig):
                 self._apply(latest)
             except Exception as exc:  # a bug of the viewer's own: keep the window alive
                 self._viewer_failed(latest, exc)
+
+    def _run_activity(self) -> Any:
+        """The session's run at work (one a save started too), or None. A run whose
+        end is already shown, or one older than the result shown, is at work no
+        more: its result arrived before the session marked it ended."""
+        activity = getattr(self.session, "activity", None) if self.session is not None else None
+        shown = self.result
+        if activity is None or shown is None or activity.run_id > shown.run_id:
+            return activity
+        if activity.run_id == shown.run_id and shown.status == "paused":
+            return activity  # a paused run that goes on
+        return None
+
+    def _working(self) -> float | None:
+        """Seconds the run at work has worked, in :data:`RUNNING_TICK` steps (None
+        when no run works)."""
+        if self.activity is None:
+            return None
+        return RUNNING_TICK * int(self.activity.working / RUNNING_TICK)
 
     def _viewer_failed(self, result: Any, exc: Exception) -> None:
         """Say that ``result`` could not be shown (the HUD and the terminal, with the
@@ -355,6 +406,8 @@ class LiveViewer(mglw.WindowConfig):
         self._flush_parameters()
         self._flush_scrub()
         self._drain_results()
+        self._repeat_held_key()
+        self.activity = self._run_activity()
         self._count_fps()
         screen = self.wnd.fbo
         if self.keep_frames:
@@ -457,7 +510,8 @@ class LiveViewer(mglw.WindowConfig):
     def _overlay_key(self, size: tuple[int, int], with_fps: bool = True) -> tuple:
         """Everything the HUD and the panels show (but the frame rate, when not
         ``with_fps``)."""
-        return (id(self.result), self.waiting, self.total_steps, self.whole.facts(),
+        return (id(self.result), self.waiting, self._working(), self.total_steps,
+                self.whole.facts(),
                 self._fps_shown if with_fps else None, self.pick_mode, self.selection,
                 self.style,
                 self.camera.ortho, self.playing, self.show_hud, self.show_help, size,
@@ -469,19 +523,35 @@ class LiveViewer(mglw.WindowConfig):
 
     def _hud_info(self) -> dict[str, Any]:
         return {"script": self.script, "result": self.result, "waiting": self.waiting,
+                "working": self._working(),
                 "arrays": self.renderer.arrays, "partial": self.show_partial,
                 "viewer_error": self.viewer_error,
                 "total_steps": self.total_steps,
                 "whole": self.whole.facts(), "fps": self._fps_shown,
-                "pick_mode": self.pick_mode,
-                "selection": selection_python(self.selection, self.renderer.arrays)
-                if not self.selection.is_empty() else [], "measures": self.measures,
+                "pick_mode": self.pick_mode, **self._pick_lines(),
+                "measures": self.measures,
                 "others": self.renderer.others, "others_note": self._others_note(),
+                "current_hidden": not self.style.current,
                 "style": self.style, "ortho": self.camera.ortho, "playing": self.playing,
                 "hud": self.show_hud, "help": self.show_help,
                 # the error panel stands above the timeline
                 "bottom": self.timeline.frame(self.screen_size)[3] + MARGIN
                 if self._timeline_shown() else 0.0}
+
+    def _pick_lines(self) -> dict[str, list[str]]:
+        """The HUD's ``selection`` lines (the picks the mesh shown holds, as the next
+        run's ``faces(True)`` and the like see them) and its ``missing`` note (picks
+        it lacks: kept, as stepping back to before they were made must not lose them)."""
+        arrays, selection = self.renderer.arrays, self.selection
+        if selection.is_empty():
+            return {"selection": [], "missing": []}
+        cache = self._picks_cache  # (the arrays held, not their id: ids are reused)
+        if cache is None or cache[0] != selection or cache[1] is not arrays:
+            present, missing = split_picks(selection, arrays)
+            cache = (selection, arrays, {"selection": selection_python(present, arrays),
+                                         "missing": missing_lines(missing)})
+            self._picks_cache = cache
+        return cache[2]
 
     def capture(self, transparent: bool = False) -> np.ndarray:
         """Render the scene (no HUD) offscreen at the window's size: ``(H, W, 3)``
@@ -521,13 +591,41 @@ class LiveViewer(mglw.WindowConfig):
     # -- keys ------------------------------------------------------------------
 
     def on_key_event(self, key: Any, action: Any, modifiers: Any) -> None:
-        """A key press runs its binding (see ``H`` and docs/viewer.md); repeats and
-        releases do nothing."""
-        if action != self.wnd.keys.ACTION_PRESS:
+        """A key press runs its binding (see ``H`` and docs/viewer.md); a step key
+        held down steps on (see :meth:`_repeat_held_key`). The toolkit's own repeats
+        do nothing: glfw's come at the system's rate, pyglet sends none, and the
+        frame loop's timer repeats at one rate in every backend."""
+        keys = self.wnd.keys
+        if action == keys.ACTION_RELEASE:
+            if self.held is not None and self.held.key == key:
+                self.held = None
             return
+        if action != keys.ACTION_PRESS:
+            return
+        self.held = None  # another key ends a repeat, as a keyboard's does
         name = self._key_names.get(key)
-        if name is not None:
-            self.handle_key(name, shift=bool(modifiers.shift), ctrl=bool(modifiers.ctrl))
+        if name is None:
+            return
+        shift, ctrl = bool(modifiers.shift), bool(modifiers.ctrl)
+        # held only when it went somewhere (else it said why not, once)
+        if self.handle_key(name, shift=shift, ctrl=ctrl) in REPEATING and self.waiting:
+            self.held = HeldKey(key, name, shift, ctrl, self._clock() + REPEAT_DELAY)
+
+    def _repeat_held_key(self) -> None:
+        """Step again while a step key is held, once the step before has arrived (a
+        step that replays the script must not pile up behind the key); at the
+        first or last step the repeat ends."""
+        held = self.held
+        if held is None or self.waiting:
+            return
+        now = self._clock()
+        if now < held.due:
+            return
+        self.handle_key(held.name, shift=held.shift, ctrl=held.ctrl)
+        if self.waiting:
+            held.due = now + REPEAT_INTERVAL
+        else:
+            self.held = None  # nowhere to go: it said so once
 
     def handle_key(self, name: str, shift: bool = False, ctrl: bool = False) -> str | None:
         """Run the action bound to key ``name``; returns the action (None if unbound)."""
@@ -874,18 +972,28 @@ class LiveViewer(mglw.WindowConfig):
         return self.objects.hit(x * ratio, y * ratio, self.screen_size)
 
     def _press_objects(self, hit: Hit) -> None:
-        """A click on the object list: tick or untick an object, or all / none."""
+        """A click on the object list: tick or untick an object, or all (the current
+        one too) / none (of the others)."""
         ids = frozenset(self._other_ids())
+        if hit.part == "current":
+            self.set_current_shown(self.objects.current_hidden)
+            self._echo(f"current object: {'hidden' if self.objects.current_hidden else 'shown'}")
+            return
         if hit.part in ("all", "none"):
+            if hit.part == "all":
+                self.set_current_shown(True)
             self.set_hidden_others(frozenset() if hit.part == "all" else ids)
         elif hit.part == "toggle":
             self.set_hidden_others(self.objects.hidden ^ {self.objects.rows[hit.row].oid})
-        elif hit.part == "current":
-            self._echo("the current object is always drawn (S and W hide its faces and edges)")
-            return
         else:
             return
         self._echo_others()
+
+    def set_current_shown(self, shown: bool) -> None:
+        """Draw the current object or not (not drawn, it is not picked or labelled);
+        it stays so across runs, whichever object the script leaves current."""
+        self.objects.current_hidden = not shown
+        self.style = replace(self.style, current=shown)
 
     def _press_panel(self, hit: Hit, px: float) -> None:
         """A click on the panel: reset, start a slider drag, toggle or cycle a choice."""
@@ -974,6 +1082,7 @@ class LiveViewer(mglw.WindowConfig):
         self.renderer.set_selection(self.selection)
         self.measures = []
         self.objects.sync((), frozenset())  # another script's objects share no ids
+        self.set_current_shown(True)
         self._fit_bounds = None
         self.result = None
         self.total_steps = 0
