@@ -1,6 +1,7 @@
 """Convex hulls: the coplanar rule, closed outward faces, TopMod's convex hull and
 its dual (exact counts, positions), degenerate input refused without a change, and
-the triangle lookup for small point sets giving exactly what turning gives."""
+the triangle lookup for small point sets giving exactly what turning gives, and the
+same hulls at every scale."""
 
 from __future__ import annotations
 
@@ -465,3 +466,69 @@ def test_flat_points_are_told_as_by_their_least_squares_plane(thickness):
                 hull._check_not_flat(points, eps)
         else:
             hull._check_not_flat(points, eps)
+
+
+# -- the same hull at every scale ----------------------------------------------------------
+
+# every tolerance is relative to the points' extent (and points outside the float
+# band are framed by a power of two), so a set scaled anywhere gives the same hull
+SCALES = [1e-150, 1e-6, 1.0, 1e6, 1e150]
+
+
+def hub_points() -> np.ndarray:
+    """The hub of the multi-face handle on the unit cube's faces 0, 2, 4 (bottom,
+    -y, +y) pushed out 0.5: 12 points, 6 quads and 2 hexagons."""
+    square = np.array([[0, 0], [1, 0], [1, 1], [0, 1]], float)
+    bottom = np.c_[square, np.full(4, -0.5)]
+    minus_y, plus_y = (np.c_[square[:, 0], np.full(4, y), square[:, 1]] for y in (-0.5, 1.5))
+    return np.concatenate([bottom, minus_y, plus_y])
+
+
+def quiet_hull(points: np.ndarray) -> list[list[int]]:
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        return hull_polygons(points)
+
+
+@pytest.mark.parametrize("scale", SCALES)
+@pytest.mark.parametrize(("make", "sizes"), [
+    (hub_points, [4] * 6 + [6] * 2),
+    (cube_with_midpoints, [8] * 6),
+    (lambda: np.concatenate([CORNERS, [[0, 0, 0], [1, 0, 0], [0.5, 1, 1]]]), [4] * 4 + [5] * 2),
+], ids=["hub", "midpoints", "inside-centre-edge"])
+def test_hull_polygons_are_the_same_at_every_scale(make, sizes, scale):
+    points = make()
+    polygons = quiet_hull(points * scale)
+    assert sorted(len(p) for p in polygons) == sizes
+    assert cycles(polygons) == cycles(hull_polygons(points))
+    assert_closed_and_outward(points, polygons)
+
+
+@pytest.mark.parametrize("scale", SCALES)
+@pytest.mark.parametrize(("height", "sizes"), [
+    (0.1e-9, [4] * 6),  # well within the tolerance of the +x face: inside it, left out
+    (4e-9, [3] * 4 + [4] * 5),  # well beyond it: the apex of a flat pyramid
+])
+def test_the_tolerance_is_relative_to_the_extent_at_every_scale(height, sizes, scale):
+    # CORNERS span 2: the tolerance is 2e-9, the point is height * 2 off the face
+    points = np.concatenate([CORNERS, [[1 + 2 * height, 0, 0]]])
+    polygons = quiet_hull(points * scale)
+    assert sorted(len(p) for p in polygons) == sizes
+    assert cycles(polygons) == cycles(hull_polygons(points))
+
+
+@pytest.mark.parametrize("scale", SCALES)
+@pytest.mark.parametrize(("op", "counts", "sizes"), [
+    (convex_hull, (8, 18, 12), {3: 12}),
+    (dual_convex_hull, (6, 12, 8), {3: 8}),
+], ids=["convex", "dual"])
+def test_convex_hull_and_its_dual_are_the_same_at_every_scale(op, counts, sizes, scale):
+    unit_mesh, m = cube(), cube()
+    m.set_positions(m.vertex_ids(), m.positions_view() * scale)
+    op(unit_mesh)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        op(m)
+    assert checked(m) == counts and face_size_histogram(m) == sizes
+    np.testing.assert_allclose(m.positions_view() / scale, unit_mesh.positions_view(),
+                               rtol=1e-12, atol=1e-12)

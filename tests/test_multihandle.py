@@ -1,8 +1,11 @@
 """The multi-face handle family (livemod.dlfl.multihandle): maximum offsets, the
-fitted hub, the closest-edge joins; counts on cubes worked out by hand, bad input
-that leaves the mesh unchanged."""
+fitted hub, the closest-edge joins; counts on cubes worked out by hand, the same
+counts at every scale, bad input that leaves the mesh unchanged."""
 
 from __future__ import annotations
+
+import importlib
+import warnings
 
 import numpy as np
 import pytest
@@ -16,6 +19,7 @@ from livemod.dlfl.multihandle import (
     multi_face_handle_closest_edges,
     multi_face_handle_fitted,
 )
+from livemod.dlfl.shapes import cube as cube_obj  # TopMod's cube.obj: edge length 2
 from livemod.dlfl.shapes import octahedron
 from tests.meshes import (
     CUBE_FACES,
@@ -26,6 +30,9 @@ from tests.meshes import (
     euler_ok,
     two_cubes,
 )
+
+# the module, not a same-named function a star import might bring
+multihandle = importlib.import_module("livemod.dlfl.multihandle")
 
 # tests.meshes.cube: the unit cube [0, 1]^3; face 0 bottom (-z), 1 top (+z), 2 -y,
 # 3 +x, 4 +y, 5 -x. A second cube's faces are 6..11 in the same order.
@@ -278,5 +285,77 @@ def test_handles_of_a_huge_mesh_are_the_scaled_unit_ones(make, op, scale):
     lambda m, s: multi_face_handle_fitted(m, [PLUS_X, 11]),
 ], ids=["closest", "fitted"])
 def test_handles_of_a_tiny_mesh_are_the_scaled_unit_ones(op):
-    # (the convex-hull handle merges points within TopMod's absolute 1e-2)
+    # (the convex-hull handle: test_every_handle_is_the_same_at_every_scale)
     assert_scales(two_cubes, op, 1e-300)
+
+
+# -- the same handle at every scale ---------------------------------------------------------
+
+# TopMod merged the hub's points within an absolute 1e-2, which swallowed the whole
+# hub of a cube 1e-6 across ("a convex hull needs at least 4 points, got 1"); livemod
+# merges within 5e-3 times the faces' extent, TopMod's 1e-2 on its cube (edge 2)
+SCALES = [1e-150, 1e-6, 1.0, 1e6, 1e150]
+
+SCALED_HANDLES = {
+    "hub": (cube, lambda m, s: multi_face_handle(m, [0, 2, 4], 1.0, 0.5 * s),
+            (20, 42, 20), 2, {4: 18, 6: 2}),
+    "scaled-hub": (cube, lambda m, s: multi_face_handle(m, [0, 2, 4], 0.8, 0.5 * s),
+                   (20, 42, 20), 2, {4: 18, 6: 2}),
+    "six-faces": (cube, lambda m, s: multi_face_handle(m, [0, 1, 2, 3, 4, 5], 1.0, s),
+                  (32, 84, 44), 5, {3: 8, 4: 36}),
+    "max-offsets": (corner_cubes,
+                    lambda m, s: multi_face_handle(m, [TOP, 11], 1.0, 0.5 * s, max_offsets=True),
+                    (22, 41, 21), 0, {3: 2, 4: 19}),
+    "fitted": (two_cubes, lambda m, s: multi_face_handle_fitted(m, [PLUS_X, 11]),
+               (24, 44, 22), 0, {4: 22}),
+    "closest": (cube, lambda m, s: multi_face_handle_closest_edges(m, [0, 2, 4]),
+                (8, 16, 8), 1, {4: 8}),
+}
+
+
+def scaled_by(make, scale: float) -> Mesh:
+    """``make()`` with every position times ``scale``."""
+    mesh = make()
+    mesh.set_positions(mesh.vertex_ids(), mesh.positions_view() * scale)
+    return mesh
+
+
+@pytest.mark.parametrize("name", sorted(SCALED_HANDLES))
+@pytest.mark.parametrize("scale", SCALES)
+def test_every_handle_is_the_same_at_every_scale(name, scale):
+    make, op, counts, handles, sizes = SCALED_HANDLES[name]
+    unit_mesh, mesh = make(), scaled_by(make, scale)
+    op(unit_mesh, 1.0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        op(mesh, scale)
+    assert checked(mesh) == counts and genus(mesh) == handles
+    assert face_size_histogram(mesh) == sizes
+    np.testing.assert_allclose(mesh.positions_view() / scale, unit_mesh.positions_view(),
+                               rtol=1e-9, atol=1e-12)
+
+
+@pytest.mark.parametrize("scale", SCALES)
+def test_the_faces_shared_points_are_kept_once_at_every_scale(scale):
+    m = scaled_by(corner_cubes, scale)
+    multi_face_handle(m, [TOP, 6 + MINUS_X], 1.0, 0.5 * scale, max_offsets=True)
+    expected = [(0.0, 0.0, 2.0), (0.0, 1.0, 2.0), (1.0, 0.0, 2.0),
+                (1.0, 0.0, 3.0), (1.0, 1.0, 2.0), (1.0, 1.0, 3.0)]
+    np.testing.assert_allclose(np.array(new_points(m, 16)) / scale, expected, atol=1e-12)
+
+
+@pytest.mark.parametrize("scale", SCALES)
+def test_hub_points_merge_within_half_a_hundredth_of_the_faces_extent(scale):
+    faces_points = CUBE_POSITIONS * scale  # extent 1 (times scale)
+    points = np.array([[0, 0, 0], [0.004, 0, 0], [0.01, 0, 0],
+                       [1, 1, 1], [1, 1, 1.0049], [1, 1, 0.98]]) * scale
+    np.testing.assert_array_equal(multihandle._merged(points, faces_points), points[[0, 2, 3, 5]])
+
+
+def test_on_topmods_cube_the_merge_distance_is_its_absolute_hundredth():
+    topmod_cube = cube_obj().positions_view()  # extent 2
+    points = np.array([[0.5, 0.5, 2.0], [0.5, 0.5, 2.0099], [0.5, 0.5, 1.9899]])
+    np.testing.assert_array_equal(multihandle._merged(points, topmod_cube), points[[0, 2]])
+    # faces 200 across: 0.5 apart (TopMod: two points) is one point
+    big = np.array([[50.0, 50.0, 200.0], [50.0, 50.0, 200.5]])
+    np.testing.assert_array_equal(multihandle._merged(big, topmod_cube * 100), big[[0]])

@@ -42,6 +42,10 @@ __all__ = [
 # plane of the faces' centroids its quad may turn
 _COS5 = math.cos(math.radians(5.0))
 
+# hub points closer than this times the faces' largest extent are one: TopMod's
+# absolute 1e-2 on its cube.obj (edge length 2, livemod's cube())
+_MERGE = 5e-3
+
 
 # -- checks and small helpers --------------------------------------------------------
 
@@ -57,25 +61,46 @@ def _check_handle_faces(mesh: Mesh, faces: list[int], op: str = "multi_face_hand
             raise DLFLError(f"face {f} has no normal (fewer than 3 corners or degenerate)")
 
 
-def _apart(p: np.ndarray, q: np.ndarray) -> bool:
-    """Whether the ``(3,)`` points are at least 1e-2 apart (TopMod's merge distance),
-    squaring only differences too small to overflow. A difference that overflows
-    counts as apart (inf - inf, NaN, does not: such points are refused anyway)."""
+def _apart(p: np.ndarray, q: np.ndarray, merge: float) -> bool:
+    """Whether the ``(3,)`` points are at least ``merge`` apart, squaring only
+    differences too small to overflow. A difference that overflows counts as apart
+    (inf - inf, NaN, does not: such points are refused anyway)."""
     with np.errstate(over="ignore", invalid="ignore"):  # inf - inf: NaN, not apart
         d = p - q
     top = float(np.abs(d).max())
-    if not top < 1e-2:  # apart, or NaN somewhere
-        return top >= 1e-2
-    return float(d @ d) >= 1e-4
+    if not top < merge:  # apart, or NaN somewhere
+        return top >= merge
+    return float(d @ d) >= merge * merge
 
 
-def _merged(points: np.ndarray) -> np.ndarray:
-    """``(k, 3)`` the ``(n, 3)`` points with coincident ones (within 1e-2) kept once."""
-    kept: list[np.ndarray] = []
-    for p in points:
-        if all(_apart(p, q) for q in kept):
-            kept.append(p)
-    return np.array(kept)
+def _merged(points: np.ndarray, faces_points: np.ndarray) -> np.ndarray:
+    """``(k, 3)`` the ``(n, 3)`` ``points`` with coincident ones kept once (the first
+    of each, in order): those closer than :data:`_MERGE` times the largest extent
+    along an axis of the ``(m, 3)`` ``faces_points``, the selected faces' own points.
+
+    TopMod merged within an absolute 1e-2, which swallows the whole hub of a mesh
+    1e-6 across; relative, the merge is the same at every scale, and on TopMod's
+    cube (edge length 2) exactly its 1e-2. The faces' size, not the pushed
+    points', is the measure: how far apart their corners are does not depend on
+    ``extrude``. The test runs on both sets framed together
+    (:func:`.shifted_in_range`: moved and scaled by one power of two, so no
+    product of huge or tiny coordinates under- or overflows); inside the float
+    band the frame is the points themselves. Faces too far apart for a finite
+    extent fall back to TopMod's absolute 1e-2 on the raw points, and pushed
+    points that overflow stay inf: :func:`.hull.hull_polygons` refuses both.
+    """
+    framed = shifted_in_range(np.concatenate([faces_points, points]))
+    own, pushed = framed[:len(faces_points)], framed[len(faces_points):]
+    with np.errstate(over="ignore", invalid="ignore"):  # inf / NaN: the fallback below
+        extent = float(np.ptp(own, axis=0).max())
+    if not math.isfinite(extent):  # faces spread beyond the float range: refused later
+        pushed, extent = points, 1.0
+    merge = _MERGE * extent
+    kept: list[int] = []
+    for i, p in enumerate(pushed):
+        if all(_apart(p, pushed[j], merge) for j in kept):
+            kept.append(i)
+    return points[kept]
 
 
 # -- the hub ------------------------------------------------------------------------------
@@ -225,8 +250,10 @@ def multi_face_handle(mesh: Mesh, faces: list[int], scale: float = 1.0,
 
     Each face's vertices are pushed along its normal, by ``extrude`` or, with
     ``max_offsets``, by the face's own :func:`face_max_offsets` (``extrude`` where
-    nothing limits it); coincident points (within 1e-2) are kept once, then scaled
-    by ``|scale|`` about their centroid (unless 0 or 1). Their convex hull
+    nothing limits it); coincident points (within 5e-3 times the faces' largest
+    extent along an axis: TopMod's absolute 1e-2 on its cube, edge length 2) are
+    kept once, then scaled by ``|scale|`` about their centroid (unless 0 or 1).
+    Their convex hull
     (:func:`.hull.hull_polygons`: coplanar facets merged, points on hull edges kept
     as corners) is added, reversed when the first face's normal points away from
     the hull's centroid. Each face is joined (closest corners,
@@ -261,12 +288,14 @@ def multi_face_handle(mesh: Mesh, faces: list[int], scale: float = 1.0,
 def _hub_points(mesh: Mesh, faces: list[int], normals: list[np.ndarray], offsets: np.ndarray,
                 scale: float) -> np.ndarray:
     """``(k, 3)`` the face points pushed by ``offsets`` ``(len(faces),)``, coincident
-    ones (within 1e-2) kept once; points beyond the float range come out inf,
-    which :func:`.hull.hull_polygons` refuses."""
+    ones kept once (:func:`_merged`), scaled by ``|scale|`` about their centroid;
+    points beyond the float range come out inf, which :func:`.hull.hull_polygons`
+    refuses."""
+    rings = [face_points(mesh, f) for f in faces]
     with np.errstate(over="ignore", invalid="ignore"):  # refused by hull_polygons
-        pushed = np.concatenate([face_points(mesh, f) + t * n
-                                 for f, n, t in zip(faces, normals, offsets, strict=True)])
-    points = _merged(pushed)
+        pushed = np.concatenate([ring + t * n
+                                 for ring, n, t in zip(rings, normals, offsets, strict=True)])
+    points = _merged(pushed, np.concatenate(rings))
     factor = abs(scale)
     if factor > 1e-12 and abs(factor - 1.0) > 1e-12:
         centre = centroid(points)
