@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import contextlib
 import time
 
 import pytest
@@ -78,15 +79,22 @@ def test_only_the_newest_run_is_reported(tmp_path) -> None:
         assert next_result(live, is_ok).run_id == 2
 
 
-@pytest.mark.timeout(60)
-def test_a_paused_run_is_not_at_work(tmp_path) -> None:
-    script = tmp_path / "steps.py"
+@contextlib.contextmanager
+def _paused_at_the_first_step(folder):
+    """``(session, its first paused result)``: the STEPS script in ``folder``
+    started paused."""
+    script = folder / "steps.py"
     script.write_text(STEPS)
     with closing_session(LiveSession(str(script), notifier=ManualNotifier(),
                                      preview=False)) as live:
         live.pause()
         live.start()
-        next_result(live, lambda r: r.status == "paused")
+        yield live, next_result(live, lambda r: r.status == "paused")
+
+
+@pytest.mark.timeout(60)
+def test_a_paused_run_is_not_at_work(tmp_path) -> None:
+    with _paused_at_the_first_step(tmp_path) as (live, _):
         _until(lambda: live.activity is None)  # waiting on the viewer, not working
         time.sleep(0.1)
         assert live.activity is None
@@ -97,13 +105,7 @@ def test_a_paused_run_is_not_at_work(tmp_path) -> None:
 
 @pytest.mark.timeout(60)
 def test_the_time_a_run_spends_paused_is_not_its_elapsed_time(tmp_path) -> None:
-    script = tmp_path / "steps.py"
-    script.write_text(STEPS)
-    with closing_session(LiveSession(str(script), notifier=ManualNotifier(),
-                                     preview=False)) as live:
-        live.pause()
-        live.start()
-        held = next_result(live, lambda r: r.status == "paused")
+    with _paused_at_the_first_step(tmp_path) as (live, held):
         assert held.step_index == 0
         time.sleep(0.5)
         live.step_forward()
