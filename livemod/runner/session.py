@@ -375,8 +375,10 @@ class LiveSession:
         with self._lock:
             files, script = sorted(self._watcher.files), self.script
         digests = {path: _digest(path) for path in files}
-        if digests.get(script) is None:
-            return  # the script vanished (or is being replaced): wait for it to return
+        if digests.get(script) in (None, _EMPTY):
+            # the script vanished (or is being replaced), or an editor truncated it
+            # and has not written it yet: wait for it to return
+            return
         with self._lock:
             changed = [p for p, d in digests.items() if p in self._seen and self._seen[p] != d]
             # no run has read the script yet (it did not exist): its first save runs it
@@ -672,6 +674,9 @@ def _read_script(path: str) -> tuple[str, bytes]:
 
 def _hash(data: bytes) -> bytes:
     return hashlib.blake2b(data, digest_size=16).digest()
+
+
+_EMPTY = _hash(b"")  # the digest of an empty file (a save between truncate and write)
 
 
 def _digest(path: str) -> bytes | None:
