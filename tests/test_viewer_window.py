@@ -980,3 +980,42 @@ def test_the_object_list_hides_the_current_object_too(tmp_path: Path) -> None:
         _click_object_row(viewer, 0, "all")  # all: the current object as well
         viewer.handle_key("U")
         assert viewer.style.current and np.array_equal(viewer.capture(), everything)
+
+
+def test_the_object_list_of_one_object_hides_it(tmp_path: Path) -> None:
+    script, echo = tmp_path / "one.py", io.StringIO()
+    script.write_text("load('cube')\n")
+    with _opened(script, (400, 300), echo=echo) as viewer:
+        viewer.handle_key("L")  # one object is listed too: its checkbox hides it
+        run_frames(viewer, 1)
+        assert "no objects to list" not in echo.getvalue()
+        assert [row.text() for row in viewer.objects.rows] == ["0 cube   V 8  F 6  (current)"]
+        _click_object_row(viewer, 1)
+        assert not viewer.style.current and "current object: hidden" in echo.getvalue()
+        assert "(hidden: L lists it)" in _hud_text(viewer)
+        _click_object_row(viewer, 1)
+        assert viewer.style.current and "current object: shown" in echo.getvalue()
+
+
+def test_a_script_truncated_before_its_write_keeps_the_mesh_shown(tmp_path: Path) -> None:
+    script = tmp_path / "model.py"
+    script.write_text("load('cube')\n")
+    with _opened(script, (240, 160)) as viewer:
+        with open(script, "w"):  # an editor's truncate, its write still to come
+            pass
+        deadline = time.monotonic() + 1.0  # well past the watcher's debounce
+        run_frames(viewer, until=lambda v: time.sleep(0.01) or time.monotonic() > deadline)
+        assert viewer.result.run_id == 1 and viewer.renderer.arrays.counts[2] == 6
+        assert viewer.total_steps == 1  # not the empty run's none
+        script.write_text("load('tetrahedron')\n")
+        _wait(viewer, _has_run(2))
+        assert viewer.renderer.arrays.counts[2] == 4
+
+
+def test_a_pick_all_missing_lists_no_empty_faces_line(tmp_path: Path) -> None:
+    script = tmp_path / "model.py"
+    script.write_text("load('tetrahedron')\n")  # faces 0 to 3 only
+    with _opened(script, (240, 160), selection=Selection(faces=(5,))) as viewer:
+        text = _hud_text(viewer)
+        assert "picked, not in this mesh: face 5" in text
+        assert "faces(True)" not in text and "--select" not in text  # not `== ()`: kept

@@ -189,7 +189,8 @@ def split_picks(selection: Selection, arrays: MeshArrays | None,
 
 def missing_lines(missing: Selection) -> list[str]:
     """The HUD's note of picks the mesh shown lacks, e.g. ``picked, not in this
-    mesh: faces 12, 31`` (the next run's ``faces(True)`` leaves them out too)."""
+    mesh: faces 12, 31`` (a run's ``faces(True)`` returns what the mesh holds when
+    it is called, so one that removed its picks, as ``rind`` does, got them)."""
     parts = []
     for name in _ARRAY_IDS:
         ids: tuple[int, ...] = getattr(missing, name)

@@ -141,10 +141,6 @@ class ObjectPanel:
         """A hashable summary of everything drawn (the overlay is cached on it)."""
         return (self.rows, self.hidden, self.top, self.first, self.hover, self.current_hidden)
 
-    def has_others(self) -> bool:
-        """True when some listed object is not the current one (else nothing to toggle)."""
-        return any(not row.current for row in self.rows)
-
     # -- layout --------------------------------------------------------------
 
     def frame(self, size: tuple[int, int]) -> tuple[float, float, float, float]:

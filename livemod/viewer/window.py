@@ -519,7 +519,8 @@ class LiveViewer(mglw.WindowConfig):
                 self.show_partial, self.viewer_error)
 
     def _objects_shown(self) -> bool:
-        return self.show_objects and self._panel_shown() and self.objects.has_others()
+        # one object is listed too: its checkbox hides it
+        return self.show_objects and self._panel_shown() and bool(self.objects.rows)
 
     def _hud_info(self) -> dict[str, Any]:
         return {"script": self.script, "result": self.result, "waiting": self.waiting,
@@ -548,7 +549,9 @@ class LiveViewer(mglw.WindowConfig):
         cache = self._picks_cache  # (the arrays held, not their id: ids are reused)
         if cache is None or cache[0] != selection or cache[1] is not arrays:
             present, missing = split_picks(selection, arrays)
-            cache = (selection, arrays, {"selection": selection_python(present, arrays),
+            # all missing: no `faces(True) == ()` line (that says a pick was cleared)
+            shown = selection_python(present, arrays) if not present.is_empty() else []
+            cache = (selection, arrays, {"selection": shown,
                                          "missing": missing_lines(missing)})
             self._picks_cache = cache
         return cache[2]
@@ -732,8 +735,8 @@ class LiveViewer(mglw.WindowConfig):
 
     def _do_toggle_object_list(self) -> None:
         self.show_objects = not self.show_objects
-        if self.show_objects and not self._other_ids():
-            self._echo("the scene has no other objects to list")
+        if self.show_objects and not self.objects.rows:
+            self._echo("the scene has no objects to list")
 
     def _do_cycle_section(self) -> None:
         axis = 0 if self.style.section is None else self.style.section[0] + 1
