@@ -299,8 +299,11 @@ def test_selection(cube_scene):
                                           corners=(5,))
     assert faces(True) == (2,) and edges(True) == (1,) and verts(True) == (3,)
     assert corners(True) == ((1, 5),)
+    assert cube_scene.unselected_reads == set()
     cube_scene.selection = dlfl.Selection()
     assert faces(True) == () and corners(True) == ()
+    assert cube_scene.unselected_reads == {"faces", "corners"}  # the run's note names them
+    assert cube_scene.copy().unselected_reads == set()
 
 
 def test_picks_the_mesh_lacks_are_left_out_and_noted(cube_scene):

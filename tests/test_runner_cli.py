@@ -102,6 +102,21 @@ def test_run_warns_of_picks_the_mesh_did_not_have(tmp_path, capsys):
                    "the selection; those picks were left out\n")
 
 
+def test_run_notes_a_selection_asked_for_with_nothing_selected(tmp_path, capsys):
+    script = tmp_path / "crust.py"
+    script.write_text("load('cube')\nprint(len(edges(True)), len(verts(True)))\n"
+                      "rind(faces(True), False, 0.1)\n")
+    assert cli.main(["run", str(script)]) == 0
+    out, err = capsys.readouterr()
+    assert "0 0\n" in out and "components=2" in out  # a closed double shell
+    assert err == ("livemod: note: faces(True) and edges(True) and verts(True) found nothing "
+                   "selected, so the script got none; give --select faces=ID,... --select "
+                   "edges=ID,... --select verts=ID,..., or pick in `livemod view`\n")
+    assert cli.main(["run", str(script), "--select", "faces=0", "--select", "edges=0",
+                     "--select", "vertices=0"]) == 0
+    assert capsys.readouterr().err == ""
+
+
 def test_a_bad_select_stops_before_running(tmp_path, capsys):
     script = tmp_path / "crust.py"
     script.write_text(RIND)

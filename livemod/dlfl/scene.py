@@ -189,6 +189,9 @@ class Scene:
         missing_picks: the ids of ``selection`` that ``faces(True)`` and the like
             left out because the current mesh had no such element then (a pick
             from an older result, or a mistyped ``--select``).
+        unselected_reads: the selection fields (``"faces"``, ``"edges"``,
+            ``"vertices"``, ``"corners"``) a ``faces(True)`` or the like asked for
+            while nothing of that kind was selected (a headless run's note says so).
         step_hook: called with a label after every modeling command (the runner
             installs one to record steps and to pause or cancel a run); the
             modeling-command wrapper calls it directly, see
@@ -211,6 +214,7 @@ class Scene:
         self.current: int | None = None
         self.selection = Selection()
         self.missing_picks = Selection()
+        self.unselected_reads: set[str] = set()
         self.step_hook: StepHook | None = None
         self.step_log = NO_STEP_LOG
         self.parameters: dict[str, object] = {}

@@ -37,6 +37,25 @@ def missing_picks_note(scene: Scene) -> str | None:
             f"the selection; those picks were left out")
 
 
+# what each selection field is asked for with, and how --select names it
+_READS = {"faces": ("faces(True)", "faces"), "edges": ("edges(True)", "edges"),
+          "vertices": ("verts(True)", "verts"), "corners": ("corners(True)", "corners")}
+
+
+def unselected_note(scene: Scene) -> str | None:
+    """One line for ``livemod: note: ...`` when the script asked for a selection
+    (``faces(True)`` and the like) that had nothing in it, as a headless run
+    without ``--select`` has: a rind of no faces is a closed double shell, not the
+    crust with an opening its author picked in the window. None otherwise."""
+    asked = [_READS[name] for name in _READS if name in scene.unselected_reads]
+    if not asked:
+        return None
+    calls = " and ".join(call for call, _ in asked)
+    example = " ".join(f"--select {flag}=ID,..." for _, flag in asked)
+    return (f"{calls} found nothing selected, so the script got none; give "
+            f"{example}, or pick in `livemod view`")
+
+
 def result_of(outcome: RunOutcome, script: str, parameters: dict | None,
               run_id: int = 1) -> RunResult:
     """The immutable :class:`RunResult` of a headless outcome."""

@@ -193,9 +193,13 @@ def createFace(points: Sequence[Point], bothNew: bool = False) -> tuple[int, int
 
 def _picked(name: str, is_live: Callable[[int], bool]) -> tuple[int, ...]:
     """The ids of selection field ``name`` that ``is_live`` in the current mesh; the
-    others are noted in the scene's ``missing_picks``."""
+    others are noted in the scene's ``missing_picks``, and a field with nothing
+    selected in its ``unselected_reads``."""
     sc = scene()
     picked: tuple[int, ...] = getattr(sc.selection, name)
+    if not picked:
+        sc.unselected_reads.add(name)
+        return ()
     kept = tuple(i for i in picked if is_live(i))
     if len(kept) < len(picked):
         sc.missing_picks = sc.missing_picks.adding(name, (i for i in picked if i not in kept))
