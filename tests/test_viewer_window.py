@@ -957,6 +957,20 @@ def test_picks_a_later_run_removed_are_marked_missing(tmp_path: Path) -> None:
         assert "not in this mesh" not in _hud_text(viewer)
 
 
+def test_a_selection_the_run_found_empty_says_how_to_pick(tmp_path: Path) -> None:
+    script = tmp_path / "crust.py"
+    script.write_text("load('cube')\nrind(faces(True), False, 0.1)\n")
+    hint = "faces(True) found nothing picked: M to face mode, click a face"
+    with _opened(script, (320, 200)) as viewer:
+        assert viewer.result.unselected == ("faces",)
+        assert hint in _hud_text(viewer)
+        viewer.set_selection(Selection(faces=(0,)))  # picked: the next save uses it
+        assert hint not in _hud_text(viewer)
+    with _opened(script, (320, 200), selection=Selection(faces=(0,))) as viewer:
+        assert viewer.result.unselected == ()
+        assert "found nothing picked" not in _hud_text(viewer)
+
+
 def test_the_object_list_hides_the_current_object_too(tmp_path: Path) -> None:
     script, echo = _three_objects(tmp_path), io.StringIO()
     with _opened(script, (400, 300), echo=echo) as viewer:

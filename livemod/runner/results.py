@@ -188,6 +188,9 @@ class RunResult:
             empty when ``others`` is None.
         current_object: ``(object id, name)`` of the object ``arrays`` shows, or
             None when the scene is empty (or the result has no mesh of its own).
+        unselected: the selection fields (``"faces"``, ``"edges"``, ``"vertices"``,
+            ``"corners"``) the run asked for with ``faces(True)`` and the like
+            while nothing of that kind was selected, in that order.
     """
 
     run_id: int
@@ -206,6 +209,7 @@ class RunResult:
     others: MeshArrays | None = None
     other_objects: tuple = ()
     current_object: tuple[int, str] | None = None
+    unselected: tuple[str, ...] = ()
 
 
 def freeze_arrays(arrays: MeshArrays, copy: bool = True) -> MeshArrays:
@@ -304,13 +308,18 @@ def join_others(objects: Sequence[tuple[int, str, MeshArrays]]) -> MeshArrays | 
     return freeze_arrays(concatenate_arrays([arrays for _, _, arrays in objects]), copy=False)
 
 
+SELECTION_FIELDS = ("faces", "edges", "vertices", "corners")
+
+
 def object_fields(scene: Scene) -> dict[str, Any]:
-    """The ``others``, ``other_objects`` and ``current_object`` fields of a
-    :class:`RunResult` of ``scene``."""
+    """The ``others``, ``other_objects``, ``current_object`` and ``unselected``
+    fields of a :class:`RunResult` of ``scene``."""
     objects = snapshot_other_objects(scene)
     current = scene.current
     named = None if current is None else (current, scene.objects[current].name)
-    return {"others": join_others(objects), "other_objects": objects, "current_object": named}
+    unselected = tuple(name for name in SELECTION_FIELDS if name in scene.unselected_reads)
+    return {"others": join_others(objects), "other_objects": objects, "current_object": named,
+            "unselected": unselected}
 
 
 def parameter_items(parameters: dict | None) -> tuple:

@@ -7,6 +7,7 @@ overlay and docs/viewer.md are generated from :data:`KEY_BINDINGS`.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -185,6 +186,21 @@ def split_picks(selection: Selection, arrays: MeshArrays | None,
         present[name] = tuple(i for i, ok in zip(ids, held, strict=True) if ok)
         missing[name] = tuple(i for i, ok in zip(ids, held, strict=True) if not ok)
     return Selection(**present), Selection(**missing)
+
+
+# the command that reads each selection field, as the HUD names it
+_READER = {"faces": "faces(True)", "edges": "edges(True)", "vertices": "verts(True)",
+           "corners": "corners(True)"}
+_KIND = {field: mode for mode, field in _SELECTION_FIELD.items()}
+
+
+def unpicked_lines(unselected: Sequence[str], selection: Selection) -> list[str]:
+    """The HUD's note for each selection field in ``unselected`` (those a run's
+    ``faces(True)`` and the like found empty) that ``selection`` still has nothing
+    of, e.g. ``faces(True) found nothing picked: M to face mode, click a face``."""
+    return [f"{_READER[field]} found nothing picked: M to {_KIND[field]} mode, "
+            f"click a {_KIND[field]}"
+            for field in unselected if not getattr(selection, field)]
 
 
 def missing_lines(missing: Selection) -> list[str]:

@@ -37,6 +37,7 @@ from .controls import (
     selection_python,
     split_picks,
     toggle_pick,
+    unpicked_lines,
 )
 from .geometry import sample_points
 from .hud import hud_quads
@@ -541,11 +542,13 @@ class LiveViewer(mglw.WindowConfig):
 
     def _pick_lines(self) -> dict[str, list[str]]:
         """The HUD's ``selection`` lines (the picks the mesh shown holds, as the next
-        run's ``faces(True)`` and the like see them) and its ``missing`` note (picks
-        it lacks: kept, as stepping back to before they were made must not lose them)."""
+        run's ``faces(True)`` and the like see them) and its ``missing`` notes: picks
+        it lacks (kept, as stepping back to before they were made must not lose
+        them), and selections the run asked for with nothing picked."""
         arrays, selection = self.renderer.arrays, self.selection
+        unpicked = unpicked_lines(getattr(self.result, "unselected", ()), selection)
         if selection.is_empty():
-            return {"selection": [], "missing": []}
+            return {"selection": [], "missing": unpicked}
         cache = self._picks_cache  # (the arrays held, not their id: ids are reused)
         if cache is None or cache[0] != selection or cache[1] is not arrays:
             present, missing = split_picks(selection, arrays)
@@ -554,7 +557,7 @@ class LiveViewer(mglw.WindowConfig):
             cache = (selection, arrays, {"selection": shown,
                                          "missing": missing_lines(missing)})
             self._picks_cache = cache
-        return cache[2]
+        return {**cache[2], "missing": cache[2]["missing"] + unpicked}
 
     def capture(self, transparent: bool = False) -> np.ndarray:
         """Render the scene (no HUD) offscreen at the window's size: ``(H, W, 3)``
