@@ -16,7 +16,7 @@ import numpy as np
 
 from .. import geometry as _geometry
 from .. import transform as _transform
-from .._checks import flag
+from .._checks import flag, is_id
 from ..analysis import face_centroid, face_normal
 from ..analysis import genus as _genus
 from ..errors import DLFLError
@@ -104,6 +104,8 @@ def insertEdge(c1: Any, c2: Any, check: bool = True) -> tuple[Any, ...]:
     m = mesh()
     a = resolve_corner(m, c1, "c1")
     b = resolve_corner(m, c2, "c2")
+    if a == b:
+        raise DLFLError(f"insertEdge needs two different corners, c1 and c2 are both {c1!r}")
     e = m.insert_edge(a, b)
     return (e, *_edge_corner_tuples(m, e))
 
@@ -184,7 +186,13 @@ def spliceCorners(c1: Any, c2: Any) -> int:
 
 @modeling_command
 def createFace(points: Sequence[Point], bothNew: bool = False) -> tuple[int, int]:
-    """Create a two-sided polygon on new vertices: ``(frontfaceid, backfaceid)``."""
+    """Create a two-sided polygon on new vertices: ``(frontfaceid, backfaceid)``.
+
+    Raises:
+        DLFLError: ``points`` is not a list of ``(x, y, z)`` points.
+    """
+    if isinstance(points, str | bytes) or not isinstance(points, Iterable):
+        raise DLFLError(f"points must be a list of (x, y, z) points, got {points!r}")
     del bothNew  # TopMod's face-type flag; livemod has no face types
     return mesh().create_face(points)
 
@@ -279,7 +287,10 @@ def getCorner(edgeid: int, faceid: int) -> tuple[int, int]:
         DLFLError: the edge does not border that face.
     """
     m = mesh()
-    for c in m.edge_corners(edgeid):
+    sides = m.edge_corners(edgeid)
+    if not is_id(faceid):  # True == 1 would otherwise pick face 1
+        raise DLFLError(f"faceid must be a face id (an integer), got {faceid!r}")
+    for c in sides:
         if m.corner_face(c) == faceid:
             return corner_tuple(m, c)
     raise DLFLError(f"edge {edgeid} does not border face {faceid}")

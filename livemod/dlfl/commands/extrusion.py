@@ -11,8 +11,9 @@ from typing import Any
 
 from .. import connect as _connect
 from .. import extrusion as _extrusion
-from .._checks import flag, id_list
+from .._checks import finite_number, flag, id_list, is_id, whole_count
 from ..errors import DLFLError
+from ..mesh import Mesh
 from ._base import mesh, modeling_command, resolve_corner
 
 __all__ = ["extrude", "connectEdges", "connectCorners", "connectFaces", "addHandle"]
@@ -136,6 +137,7 @@ def extrude(type: str, faceid: int, *options: Any, **keywords: Any) -> int | lis
     """
     kind = _kind(type)
     arguments = _library_arguments(kind, _options(kind, options, keywords))
+    _face_id(faceid, "faceid")
     m = mesh()
     if _extrusion.KINDS[kind].fan is not None:
         return _extrusion.extrude_fan(m, faceid, kind, **arguments)
@@ -160,6 +162,8 @@ def connectEdges(e1: Any, e2: Any, loopCheck: bool = False) -> None:
     half-edges with a face; with ``loopCheck`` corners already adjacent get no edge."""
     edge1, face1 = _half_edge(e1, "e1")
     edge2, face2 = _half_edge(e2, "e2")
+    if edge1 == edge2:
+        raise DLFLError(f"connectEdges needs two different edges, e1 and e2 are both on edge {edge1}")
     _connect.connect_edges(mesh(), edge1, face1, edge2, face2, check=flag(loopCheck, "loopCheck"))
 
 
@@ -178,8 +182,9 @@ def connectCorners(c1: Any, c2: Any, numsegs: int = 1, maxconn: int = -1,
     corners with ``numsegs`` segments (at most ``maxconn`` joins, -1 for all);
     ``'dual'`` makes bands of triangles instead of quads."""
     m = mesh()
-    a, b = resolve_corner(m, c1, "c1"), resolve_corner(m, c2, "c2")
-    _connect.connect_corners(m, a, b, numsegs, max_connections=maxconn, dual=_is_dual(dual))
+    a, b = _two_faces_corners(m, c1, c2, "connectCorners")
+    segments, limit = _segments(numsegs, maxconn)
+    _connect.connect_corners(m, a, b, segments, max_connections=limit, dual=_is_dual(dual))
 
 
 @modeling_command
@@ -187,7 +192,12 @@ def connectFaces(f1: int, f2: int, numsegs: int = 1, maxconn: int = -1) -> None:
     """``connectFaces(faceid, faceid[, numsegs, maxconn])``: join two faces at their
     closest corners; intermediate rings by linear interpolation. ``maxconn`` is
     honoured (TopMod ignored it)."""
-    _connect.connect_faces_closest(mesh(), f1, f2, numsegs, max_connections=maxconn)
+    _face_id(f1, "f1")
+    _face_id(f2, "f2")
+    if f1 == f2:
+        raise DLFLError(f"connectFaces needs two different faces, f1 and f2 are both face {f1}")
+    segments, limit = _segments(numsegs, maxconn)
+    _connect.connect_faces_closest(mesh(), f1, f2, segments, max_connections=limit)
 
 
 @modeling_command
@@ -198,15 +208,50 @@ def addHandle(interp: str, c1: Any, c2: Any, numsegs: int, w1: float = 25.0,
     ``twists`` extra turns) or ``"bezier"`` (every vertex on its own curve; takes
     no ``maxconn`` or ``twists``). Weights default to TopMod's GUI values (25)."""
     m = mesh()
-    a, b = resolve_corner(m, c1, "c1"), resolve_corner(m, c2, "c2")
+    a, b = _two_faces_corners(m, c1, c2, "addHandle")
+    segments, limit = _segments(numsegs, maxconn)
+    w1, w2 = finite_number(w1, "w1"), finite_number(w2, "w2")
     kind = interp.lower() if isinstance(interp, str) else interp
     if kind == "hermite":
-        _connect.hermite_handle(m, a, b, numsegs, w1, w2, max_connections=maxconn,
-                                twists=twists)
+        _connect.hermite_handle(m, a, b, segments, w1, w2, max_connections=limit,
+                                twists=_twists(twists))
     elif kind == "bezier":
         if maxconn != -1 or twists != 0:
             raise DLFLError("a bezier handle takes no maxconn or twists (TopMod's has none); "
                             "use 'hermite'")
-        _connect.bezier_handle(m, a, b, numsegs, w1, w2)
+        _connect.bezier_handle(m, a, b, segments, w1, w2)
     else:
         raise DLFLError(f"addHandle interp must be 'hermite' or 'bezier', got {interp!r}")
+
+
+def _face_id(value: Any, name: str) -> None:
+    """Raises DLFLError naming ``name`` unless ``value`` is an integer id (not a bool)."""
+    if not is_id(value):
+        raise DLFLError(f"{name} must be a face id (an integer), got {value!r}")
+
+
+def _segments(numsegs: Any, maxconn: Any) -> tuple[int, int]:
+    """``numsegs`` and ``maxconn`` checked under the thesis's names (the library's
+    own messages call them segments and max_connections)."""
+    segments = whole_count(numsegs, "numsegs", each=2)
+    if not is_id(maxconn):
+        raise DLFLError(f"maxconn must be an integer (-1 for all), got {maxconn!r}")
+    return segments, int(maxconn)
+
+
+def _twists(twists: Any) -> int:
+    """``twists`` as an int: a whole number of extra turns (1.5 would be cut to 1)."""
+    if isinstance(twists, float) and twists.is_integer():
+        return int(twists)
+    if not is_id(twists):
+        raise DLFLError(f"twists must be a whole number of turns, got {twists!r}")
+    return int(twists)
+
+
+def _two_faces_corners(m: Mesh, c1: Any, c2: Any, command: str) -> tuple[int, int]:
+    """The corner ids of ``c1`` and ``c2``, which must lie in two different faces."""
+    a, b = resolve_corner(m, c1, "c1"), resolve_corner(m, c2, "c2")
+    if m.corner_face(a) == m.corner_face(b):
+        raise DLFLError(f"{command} needs c1 and c2 in two different faces, both are in "
+                        f"face {m.corner_face(a)}")
+    return a, b

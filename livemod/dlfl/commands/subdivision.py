@@ -18,6 +18,9 @@ from ._base import id_arguments, mesh, modeling_command
 
 __all__ = ["subdivide", "subdivideFace", "subdivideFaces", "dual"]
 
+# the thesis appendix's option names where livemod's differ, accepted as keywords
+THESIS_KEYWORDS = {"root4": {"a": "weight"}}
+
 
 @modeling_command
 def subdivide(scheme: str, *options: Any, **keywords: Any) -> None:
@@ -37,10 +40,14 @@ def subdivide(scheme: str, *options: Any, **keywords: Any) -> None:
         raise DLFLError(f"subdivide({scheme!r}, ...) takes at most {len(order)} options "
                         f"({names}), got {len(options)}")
     given = dict(zip(order, options, strict=False))
-    for name in keywords:
-        if name in given:
-            raise DLFLError(f"subdivide({scheme!r}): option {name!r} given twice")
-    _subdivision.subdivide(mesh(), scheme, **given, **keywords)
+    aliases = THESIS_KEYWORDS.get(scheme, {}) if isinstance(scheme, str) else {}
+    for name, value in keywords.items():
+        option = aliases.get(name, name)
+        if option in given:
+            said = repr(option) if option == name else f"{name!r} (= {option!r})"
+            raise DLFLError(f"subdivide({scheme!r}): option {said} given twice")
+        given[option] = value
+    _subdivision.subdivide(mesh(), scheme, **given)
 
 
 @modeling_command
@@ -59,12 +66,17 @@ def subdivideFace(faceid: int, usequads: bool = True) -> None:
 def subdivideFaces(faceids: Iterable[int] | None = None, usequads: bool = True) -> None:
     """Split several faces (default: the selected ones) about their centroids.
 
-    Edges shared by two of the faces are split once.
+    Edges shared by two of the faces are split once. With no faces (an empty
+    list, or nothing selected) the object is left as it is, ids included.
 
     Raises:
         DLFLError: an id that is not a face.
     """
-    _subdivision.subdivide_faces(mesh(), id_arguments(faceids, "faceids", "faces"), usequads=flag(usequads, "usequads"))
+    ids = id_arguments(faceids, "faceids", "faces")
+    quads = flag(usequads, "usequads")
+    if not ids:  # nothing to split: keep every id (a rebuild would renumber them all)
+        return
+    _subdivision.subdivide_faces(mesh(), ids, usequads=quads)
 
 
 @modeling_command
