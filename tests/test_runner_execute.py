@@ -257,3 +257,24 @@ def test_results_carry_the_scenes_other_objects_for_drawing(tmp_path):
     single = tmp_path / "one.py"
     single.write_text("load('cube')\n")
     assert run_script(single).others is None
+
+
+def test_packages_installed_in_the_scripts_folder_are_library_not_script(tmp_path):
+    """A project with its virtual environment inside (``.venv``): the packages there
+    are neither trimmed into the traceback, nor watched, nor purged after a run
+    (purging a C extension and importing it again breaks it)."""
+    packages = tmp_path / ".venv" / "lib" / "python3.11" / "site-packages"
+    packages.mkdir(parents=True)
+    (packages / "vendored_lib.py").write_text("def fail():\n    raise ValueError('inside')\n")
+    path = write(tmp_path, "uses_vendored.py", (
+        f"import sys\nsys.path.insert(0, {str(packages)!r})\nimport vendored_lib\n"
+        "sys.path.pop(0)\nvendored_lib.fail()\n"))
+    try:
+        outcome = execute(path)
+        assert outcome.error is not None
+        assert (outcome.error.file, outcome.error.line) == (path, 5)
+        assert "vendored_lib.py" not in outcome.error.traceback
+        assert outcome.modules == ()
+        assert "vendored_lib" in sys.modules
+    finally:
+        sys.modules.pop("vendored_lib", None)

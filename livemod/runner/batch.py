@@ -179,6 +179,8 @@ def run_variant(variant: Variant) -> VariantResult:
                               selection=variant.selection)
     except OSError as exc:
         return _failed(variant, describe(exc), started)
+    except DLFLError as exc:  # a --mesh that does not parse: this variant fails, the batch goes on
+        return _failed(variant, str(exc), started)
     if outcome.error is not None:
         return _failed(variant, str(outcome.error), started)
     mesh = result_mesh(outcome.scene, variant.all_objects)

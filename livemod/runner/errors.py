@@ -101,12 +101,21 @@ def _frame_names(tb: TracebackType | None) -> list[str]:
     return [*frame.f_locals, *frame.f_globals, *vars(builtins)]
 
 
+# folders of installed packages: a project often keeps its virtual environment
+# (".venv/lib/python3.11/site-packages") inside the script's folder
+_PACKAGE_FOLDERS = frozenset({"site-packages", "dist-packages"})
+
+
 def is_user_file(filename: str, script: str) -> bool:
-    """True for the script and for files in its folder that are not livemod itself."""
+    """True for the script and for files in its folder (or below) that are the
+    user's: not livemod itself, nor a package installed there."""
     if filename == script:
         return True
     folder = os.path.dirname(script) + os.sep
-    return filename.startswith(folder) and not filename.startswith(_LIBRARY_DIR)
+    if not filename.startswith(folder) or filename.startswith(_LIBRARY_DIR):
+        return False
+    below = filename[len(folder):].split(os.sep)
+    return _PACKAGE_FOLDERS.isdisjoint(below)
 
 
 def _user_frames(tb: TracebackType | None, script: str) -> traceback.StackSummary:

@@ -181,8 +181,10 @@ def execute(
     namespace = script_namespace(script, parameters)
     if control is not None:
         control.attach(namespace, recorder)
-    status, error, modules = _exec(code, namespace, script, scene, recorder, seed)
-    recorder.release()
+    try:
+        status, error, modules = _exec(code, namespace, script, scene, recorder, seed)
+    finally:  # also for a Ctrl-C: the hook and the frames it caches must not outlive the run
+        recorder.release()
     return RunOutcome(status, scene, recorder.steps, error,
                       time.perf_counter() - started, tuple(modules), source)
 
@@ -203,9 +205,19 @@ def _exec(code: CodeType, namespace: dict, script: str, scene: Scene,
     except SystemExit as exc:
         if exc.code not in (None, 0):
             return "error", exception_error(exc, script), modules
-    except Exception as exc:
+    except BaseException as exc:  # a script's own BaseException is its error, too
+        if _is_ctrl_c(exc):
+            raise
         return "error", exception_error(exc, script), modules
     return "ok", None, modules
+
+
+def _is_ctrl_c(exc: BaseException) -> bool:
+    """True for a KeyboardInterrupt in the main thread, which is where Python puts
+    Ctrl-C: ``livemod run`` must stop then. In a worker thread no signal can raise
+    one, so there it is the script's own ``raise KeyboardInterrupt``."""
+    return (isinstance(exc, KeyboardInterrupt)
+            and threading.current_thread() is threading.main_thread())
 
 
 def interrupt_user_code(thread: threading.Thread, script: str) -> bool:

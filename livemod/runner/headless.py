@@ -19,6 +19,7 @@ def run_outcome(path: str | os.PathLike[str], *, mesh_path: str | None = None,
 
     Raises:
         OSError: the script or ``mesh_path`` cannot be read.
+        DLFLError: ``mesh_path`` is not a mesh its reader takes.
     """
     base = base_scene(mesh_path) if mesh_path is not None else None
     return execute(path, base=base, seed=seed, parameters=parameters, selection=selection)

@@ -38,7 +38,10 @@ class Playback:
     def pause_at(self, index: int, rate: float | None = None) -> None:
         """Pause runs after step ``index`` (and advance at ``rate`` steps/s if given)."""
         with self._cond:
-            self.mode, self.target, self.rate = "step", max(0, index), rate
+            # the mode last: a step hook reads without the lock, and "step" with the
+            # old target would pause it at a step nobody asked for
+            self.target, self.rate = max(0, index), rate
+            self.mode = "step"
             self._cond.notify_all()
 
     def wake(self) -> None:

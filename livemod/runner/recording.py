@@ -109,7 +109,10 @@ class RunControl:
         self._steps = recorder.step_count
         self._to_hook = recorder.every_step_to_hook
         namespace[CANCEL_FLAG] = self.cancel_requested
-        if self.cancel_requested:  # cancelled before _to_hook was set: cancel() missed it
+        # read the flag again: a cancel() before _to_hook was set missed the hook, and
+        # one between the read above and its write had its True overwritten
+        if self.cancel_requested:
+            namespace[CANCEL_FLAG] = True
             recorder.every_step_to_hook()
 
 

@@ -316,7 +316,8 @@ def object_fields(scene: Scene) -> dict[str, Any]:
     fields of a :class:`RunResult` of ``scene``."""
     objects = snapshot_other_objects(scene)
     current = scene.current
-    named = None if current is None else (current, scene.objects[current].name)
+    # a script may set ``current`` to an id it never made (or killed)
+    named = (current, scene.objects[current].name) if current in scene.objects else None
     unselected = tuple(name for name in SELECTION_FIELDS if name in scene.unselected_reads)
     return {"others": join_others(objects), "other_objects": objects, "current_object": named,
             "unselected": unselected}

@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import dataclasses
 import hashlib
+import logging
 import os
 import queue
 import threading
@@ -52,6 +53,7 @@ from .results import (
 from .snapshots import DEFAULT_BUDGET, SnapshotCache
 from .watch import FileWatcher, Notifier
 
+_LOG = logging.getLogger("livemod.session")
 _JOIN_POLL = 0.02  # seconds between checks while waiting for a cancelled run
 _FORCE_AFTER = 0.3  # seconds a cancelled run may ignore its checks before it is interrupted
 
@@ -66,11 +68,13 @@ class _Request:
 
 @dataclass
 class _Run:
+    """One run of the script, as the supervisor and the worker share it."""
+
     run_id: int
     script: str
     control: RunControl
     thread: threading.Thread | None = None
-    cancel_reason: str = ""
+    cancel_reason: str = ""  # "user" (its "cancelled" result shows) or "superseded" (none does)
     started: float = 0.0  # perf_counter() when the supervisor started it
     ended: bool = False  # its end was published (or dropped): it works no more
 
@@ -145,6 +149,7 @@ class LiveSession:
         self._source: str | None = None
         self._seen: dict[str, bytes] = {}
         self._base: Scene | None = base.copy() if base is not None else None
+        self._base_version = 0  # counts changes of the --mesh file (see _base_scene)
         self._closed = False
         self._watcher = FileWatcher(self._files_changed, debounce=debounce,
                                     notifier=notifier, poll=poll)
@@ -165,7 +170,7 @@ class LiveSession:
         """Stop watching, cancel the run; threads wind down in the background."""
         with self._lock:
             self._closed = True
-            started = self._supervisor.is_alive() or self._supervisor.ident is not None
+            started = self._supervisor.ident is not None
         self._requests.put(None)
         if not started and self._previews is not None:
             self._previews.close()  # the supervisor would have closed it
@@ -182,10 +187,15 @@ class LiveSession:
         self._request(None)
 
     def open(self, script: str | os.PathLike[str]) -> None:
-        """Switch to another script: its first run starts at once; stale state is dropped."""
+        """Switch to another script: its first run starts at once; stale state is
+        dropped (the old script's text, declarations, parameter values and
+        snapshots, and any result of its runs still to come)."""
         with self._lock:
             self.script = os.path.abspath(os.fspath(script))
             self._last_good, self._last_steps, self._seen = None, (), {}
+            # a replay asked before the first run reads the new script from disk
+            self._source, self._declarations, self._parameters = None, {}, {}
+            self._snapshots.reset(-1)  # no run has that id
             self._rate, self._shown = None, None
             self._playback.run_to_end()  # a new script starts unpaused
             self._watcher.set_files(self._own_files())
@@ -304,7 +314,7 @@ class LiveSession:
             cached = self._snapshots.get(k)
             self._shown = k if cached is not None and k != paused else None
             if cached is not None:
-                self._post_cached(cached)
+                self._post_locked(cached)
                 return
         self._request(self._source)
 
@@ -386,6 +396,7 @@ class LiveSession:
             self._seen.update({p: d for p, d in digests.items() if d is not None})
             if self._mesh_file() in changed:
                 self._base = None  # the next run reads the new --mesh
+                self._base_version += 1
         if changed or appeared:
             self._request(None)
 
@@ -417,7 +428,8 @@ class LiveSession:
         if run is None:
             return
         if not run.control.finished:
-            run.cancel_reason = run.cancel_reason or reason
+            with self._lock:  # _is_newest reads it: the run's results are stale from now
+                run.cancel_reason = run.cancel_reason or reason
             run.control.cancel()
         waited = 0.0
         while run.thread is not None and run.thread.is_alive():
@@ -449,27 +461,21 @@ class LiveSession:
         """Worker thread: run the script once and publish what came out."""
         try:
             self._run_script(run, source)
+        except Exception as exc:  # livemod's fault, past the script: still say it ended
+            _LOG.exception("run %d of %s failed after the script", run.run_id, run.script)
+            self._publish_failure(run, exc, time.perf_counter() - run.started, run.script)
         finally:
             run.ended = True  # after the publishing: the caller sees no gap between
 
     def _run_script(self, run: _Run, source: str | None) -> None:
         """Run the script once (in the worker) and publish what came out."""
-        started = time.perf_counter()
         with self._lock:
             parameters, selection = dict(self._parameters), self._selection
-        digest = None  # of the bytes read, when this run reads the script
-        try:
-            if source is None:
-                source, digest = _read_script(run.script)
-            base = self._base_scene()
-        except Exception as exc:
-            run.control.finished = True
-            self._publish_failure(run, exc, time.perf_counter() - started)
+        inputs = self._inputs(run, source)
+        if inputs is None:
             return
+        source, base = inputs
         with self._lock:
-            self._source = source
-            if digest is not None:
-                self._seen[run.script] = digest
             parameters = self._fit_parameters(run.script, source, parameters)
         try:
             outcome = execute(run.script, source=source, base=base, seed=self.seed,
@@ -479,10 +485,29 @@ class LiveSession:
             return
         run.control.finished = True
         self._watch_files(run.script, outcome.modules + outcome.files_read)
-        if outcome.status == "ok":
-            with self._lock:
-                self._declarations = dict(outcome.scene.declarations)
         self._publish(run, outcome, parameter_items(parameters))
+
+    def _inputs(self, run: _Run, source: str | None) -> tuple[str, Scene | None] | None:
+        """The text to run (read now when ``source`` is None) and the base scene; None
+        when either cannot be had (that failure is published, naming its file)."""
+        started = time.perf_counter()
+        try:
+            if source is None:
+                source, digest = _read_script(run.script)
+                with self._lock:
+                    self._seen[run.script] = digest
+        except Exception as exc:
+            self._publish_failure(run, exc, time.perf_counter() - started, run.script)
+            return None
+        with self._lock:
+            self._source = source
+        try:
+            base = self._base_scene()
+        except Exception as exc:
+            mesh_file = self._mesh_file() or run.script
+            self._publish_failure(run, exc, time.perf_counter() - started, mesh_file)
+            return None
+        return source, base
 
     def _specs(self, scene: Scene) -> tuple[ParamSpec, ...]:
         """The declarations to show with a result: the script's, as known in full
@@ -520,7 +545,7 @@ class LiveSession:
         once, and again after the file changed."""
         mesh_file = self._mesh_file()
         with self._lock:
-            base = self._base
+            base, version = self._base, self._base_version
             if mesh_file is None or base is not None:
                 return base
             digest = _digest(mesh_file)  # first: a file that fails to load is watched too
@@ -528,7 +553,10 @@ class LiveSession:
                 self._seen[mesh_file] = digest
         base = base_scene(mesh_file)
         with self._lock:
-            self._base = base
+            # a change seen while loading may have come too late for this load: keep
+            # nothing, so that the run the change asked for loads the file again
+            if version == self._base_version:
+                self._base = base
         return base
 
     def _watch_files(self, script: str, paths: tuple[str, ...]) -> None:
@@ -544,11 +572,21 @@ class LiveSession:
                 digest = _digest(path)
                 if path not in self._seen and digest is not None:
                     self._seen[path] = digest
-            self._watcher.set_files(self._watcher.files | set(paths))
+            try:
+                self._watcher.set_files(self._watcher.files | set(paths))
+            except OSError as exc:  # e.g. inotify's watch limit: the run's result still counts
+                _LOG.warning("cannot watch the folders of %s: %s; saves there will not "
+                             "re-run the script", ", ".join(paths), exc)
 
     def _publish(self, run: _Run, outcome: RunOutcome, values: tuple) -> None:
-        if outcome.status == "cancelled" and run.cancel_reason != "user":
-            return  # superseded: the newer run's result is what matters
+        """Worker, at the end of a run: save ``output`` and post the result (a
+        superseded run, even one that ended, posts nothing: it ran older inputs)."""
+        with self._lock:
+            if run.cancel_reason == "superseded":
+                return
+            if outcome.status == "ok" and run.script == self.script:
+                # as the run computed them (a param() may compute its arguments)
+                self._declarations = dict(outcome.scene.declarations)
         save_error = self._save_output(outcome) if outcome.status == "ok" else None
         if outcome.status == "ok" and save_error is None:
             self._publish_ok(run, outcome, values)
@@ -557,36 +595,40 @@ class LiveSession:
         status = "error" if save_error is not None else outcome.status
         with self._lock:
             last = self._last_good
-            self._last_steps = outcome.steps
-        self._post(RunResult(
-            run.run_id, run.script, status, outcome.steps, None,
-            last.arrays if last else None, last.preview if last else None, error,
-            _working(run, outcome), last is not None, self._specs(outcome.scene),
-            snapshot_scene(outcome.scene), values, last.others if last else None,
-            last.other_objects if last else (), last.current_object if last else None))
+        result = RunResult(
+            run.run_id, run.script, status, outcome.steps, None, error=error,
+            elapsed=_working(run, outcome), parameters=self._specs(outcome.scene),
+            partial=snapshot_scene(outcome.scene), values=values, **_last_good_fields(last))
+        with self._lock:
+            if self._is_newest(result):
+                self._last_steps = outcome.steps
+            self._post_locked(result)
 
     def _publish_ok(self, run: _Run, outcome: RunOutcome, values: tuple) -> None:
+        """Post a finished run's result (it becomes the last good one) and ask for
+        its preview."""
         result = RunResult(run.run_id, run.script, "ok", outcome.steps, None,
                            snapshot_scene(outcome.scene), None, None, _working(run, outcome),
                            False, self._specs(outcome.scene), values=values,
                            **object_fields(outcome.scene))
         with self._lock:
-            if run.run_id == self._run_id:
+            if self._is_newest(result):
                 self._last_good, self._last_steps = result, outcome.steps
-        self._post(result)
+            self._post_locked(result)
         mesh = current_mesh(outcome.scene)
         if self._previews is not None and mesh is not None:
             self._previews.request(result, mesh)
 
-    def _publish_failure(self, run: _Run, exc: Exception, elapsed: float) -> None:
+    def _publish_failure(self, run: _Run, exc: Exception, elapsed: float, file: str) -> None:
         """A run that could not start (script unreadable or not text, ``--mesh``
-        unloadable)."""
+        unloadable); the error points at ``file``, the one that failed."""
+        run.control.finished = True
         with self._lock:
             last = self._last_good
         if isinstance(exc, SyntaxError):  # bytes that are not text: as Python reports it
             error = syntax_error(exc, run.script)
         else:
-            error = dataclasses.replace(exception_error(exc, run.script), file=run.script)
+            error = dataclasses.replace(exception_error(exc, file), file=file)
         self._post(RunResult(run.run_id, run.script, "error", (), None,
                              last.arrays if last else None, None, error, elapsed,
                              last is not None, last.parameters if last else ()))
@@ -624,30 +666,48 @@ class LiveSession:
 
     # -- posting ---------------------------------------------------------------------
 
+    def _is_newest(self, result: RunResult) -> bool:
+        """True while ``result`` belongs to the newest run of the open script and
+        that run was not superseded, nor the session closed (caller holds the lock)."""
+        run = self._current
+        return (run is not None and result.run_id == run.run_id
+                and result.script == self.script and run.cancel_reason != "superseded"
+                and not self._closed)
+
     def _post(self, result: RunResult) -> None:
-        """Publish ``result`` unless a newer run exists or the session is closed."""
+        """Publish ``result`` if it is still the newest (see :meth:`_is_newest`)."""
         with self._lock:
-            if result.run_id == self._run_id and not self._closed:
-                self._last_posted = result
-                self.results.put(result)
+            self._post_locked(result)
 
     def _is_latest(self, result: RunResult) -> bool:
+        """Whether ``result`` is still worth a preview: the last one posted."""
         with self._lock:
-            return self._last_posted is result
+            return self._last_posted is result and self._is_newest(result)
 
     def _post_preview(self, result: RunResult, preview: MeshArrays) -> None:
+        """Preview thread: post ``result`` again with its preview, if still shown."""
         with self._lock:
-            if self._last_posted is result and not self._closed:
+            if self._last_posted is result and self._is_newest(result):
                 with_preview = dataclasses.replace(result, preview=preview)
                 self._snapshots.put(with_preview)
                 self._last_posted = with_preview
                 self.results.put(with_preview)
 
-    def _post_cached(self, result: RunResult) -> None:
-        """Publish a result from the snapshot cache again (caller holds the lock)."""
-        if result.run_id == self._run_id and not self._closed:
+    def _post_locked(self, result: RunResult) -> None:
+        """Publish ``result`` (e.g. again, from the snapshot cache) if it is still
+        the newest (caller holds the lock)."""
+        if self._is_newest(result):
             self._last_posted = result
             self.results.put(result)
+
+
+def _last_good_fields(last: RunResult | None) -> dict:
+    """The fields of a failed run's result that show the last good one (stale)."""
+    if last is None:
+        return {"arrays": None, "preview": None, "stale": False}
+    return {"arrays": last.arrays, "preview": last.preview, "stale": True,
+            "others": last.others, "other_objects": last.other_objects,
+            "current_object": last.current_object}
 
 
 def _working(run: _Run, outcome: RunOutcome) -> float:

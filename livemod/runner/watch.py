@@ -12,12 +12,14 @@ watch on the old inode would die) and because a file may vanish and come back.
 
 from __future__ import annotations
 
+import logging
 import os
 import threading
 import time
 from collections.abc import Callable, Iterable
 from typing import Protocol
 
+_LOG = logging.getLogger("livemod.watch")
 PathCallback = Callable[[str], None]
 _WRITE_EVENTS = frozenset({"modified", "moved", "created", "closed"})
 
@@ -191,13 +193,12 @@ class FileWatcher:
                 self._cond.notify_all()
 
     def _loop(self) -> None:
+        """The debounce thread: one ``on_change`` per quiet spell until closed."""
         while self._wait_for_quiet():
             try:
                 self._on_change()
             except Exception:  # a failing callback must not stop the watching
-                import traceback
-
-                traceback.print_exc()
+                _LOG.exception("the change callback failed; watching goes on")
 
     def _wait_for_quiet(self) -> bool:
         """Block until an event is followed by ``debounce`` s of quiet; False on close."""
