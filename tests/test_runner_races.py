@@ -282,3 +282,52 @@ def test_a_current_object_id_the_scene_does_not_hold_names_no_object(tmp_path):
 
     result = run_script(str(path))
     assert result.status == "ok" and result.current_object is None
+
+
+# -- a forced interrupt that lands after the script ended --------------------------------
+
+
+def _until(condition, timeout: float = 10.0) -> None:
+    deadline = time.monotonic() + timeout
+    while not condition():
+        assert time.monotonic() < deadline, "timed out"
+        time.sleep(0.005)
+
+
+def test_a_user_cancel_whose_interrupt_lands_after_the_script_still_says_cancelled(
+        tmp_path, monkeypatch):
+    script = tmp_path / "model.py"
+    script.write_text(vertices_script(3))
+
+    def ends_then_interrupted(*args, control, **kwargs):
+        while not control.cancelled:  # the script is done; the interrupt is on its way
+            time.sleep(0.005)
+        raise session_module.Cancelled  # as PyThreadState_SetAsyncExc delivers it
+
+    with closing_session(LiveSession(str(script), notifier=ManualNotifier(),
+                                     preview=False)) as live:
+        live.start()
+        first = next_result(live, is_ok)
+        monkeypatch.setattr(session_module, "execute", ends_then_interrupted)
+        live.reload()
+        _until(lambda: live.activity is not None)
+        live.cancel()
+        cancelled = next_result(live, lambda r: r.status == "cancelled")
+        assert cancelled.run_id == first.run_id + 1 and cancelled.stale
+        assert vertex_count(cancelled) == 3  # the last good mesh stays shown
+
+
+@pytest.mark.timeout(60)
+def test_an_endless_generator_expression_is_stopped_by_the_next_save(tmp_path):
+    # no check can be compiled into a comprehension: the forced interrupt stops it
+    script = tmp_path / "model.py"
+    script.write_text("any(False for _ in iter(int, 1))\n")
+    with closing_session(LiveSession(str(script), notifier=ManualNotifier(),
+                                     preview=False)) as live:
+        live.start()
+        _until(lambda: live.activity is not None)
+        script.write_text(vertices_script(2))
+        saved = time.perf_counter()
+        live.reload()
+        assert vertex_count(next_result(live, is_ok)) == 2
+        assert time.perf_counter() - saved < 2.0

@@ -34,7 +34,7 @@ from livemod.dlfl.params import ParamSpec
 from livemod.dlfl.scene import Scene, Selection
 
 from .declarations import check_values, fitting_values, literal_declarations
-from .errors import Cancelled, exception_error, syntax_error
+from .errors import Cancelled, cancelled_error, exception_error, syntax_error
 from .execute import RunControl, RunOutcome, base_scene, execute, interrupt_user_code
 from .instrument import decode_script
 from .playback import Playback
@@ -55,7 +55,9 @@ from .watch import FileWatcher, Notifier
 
 _LOG = logging.getLogger("livemod.session")
 _JOIN_POLL = 0.02  # seconds between checks while waiting for a cancelled run
-_FORCE_AFTER = 0.3  # seconds a cancelled run may ignore its checks before it is interrupted
+# seconds a cancelled run may ignore its checks before it is interrupted: short
+# enough that code without checks (a comprehension) still stops within 200 ms
+_FORCE_AFTER = 0.1
 
 
 @dataclass
@@ -435,8 +437,10 @@ class LiveSession:
         while run.thread is not None and run.thread.is_alive():
             run.thread.join(_JOIN_POLL)
             waited += _JOIN_POLL
-            if waited >= _FORCE_AFTER and run.control.cancelled:
-                interrupt_user_code(run.thread, run.script)  # e.g. a loop in a helper module
+            # (not once the script has ended: the worker is only publishing then)
+            if waited >= _FORCE_AFTER and run.control.cancelled and not run.control.finished:
+                # e.g. a loop in a helper module, or a comprehension (no checks there)
+                interrupt_user_code(run.thread, run.script)
                 waited = 0.0
 
     def _start_run(self, request: _Request) -> None:
@@ -482,6 +486,7 @@ class LiveSession:
                               parameters=parameters, selection=selection, control=run.control)
         except Cancelled:  # a forced interrupt that arrived after the script ended
             run.control.finished = True
+            self._publish_cancelled(run)
             return
         run.control.finished = True
         self._watch_files(run.script, outcome.modules + outcome.files_read)
@@ -618,6 +623,18 @@ class LiveSession:
         mesh = current_mesh(outcome.scene)
         if self._previews is not None and mesh is not None:
             self._previews.request(result, mesh)
+
+    def _publish_cancelled(self, run: _Run) -> None:
+        """A run the user cancelled whose forced interrupt came after its script had
+        ended (so execute had no outcome to give): it still says it was cancelled."""
+        if run.cancel_reason != "user":
+            return  # superseded: the newer run's result is what shows
+        with self._lock:
+            last = self._last_good
+        self._post(RunResult(run.run_id, run.script, "cancelled", (), None,
+                             error=cancelled_error(run.script),
+                             elapsed=time.perf_counter() - run.started - run.control.waited,
+                             **_last_good_fields(last)))
 
     def _publish_failure(self, run: _Run, exc: Exception, elapsed: float, file: str) -> None:
         """A run that could not start (script unreadable or not text, ``--mesh``
