@@ -461,6 +461,20 @@ def test_any_futures_executor_can_run_a_batch(tmp_path):
     assert [r.counts for r in results] == [(3, 3, 2), (4, 4, 2)]
 
 
+def _slow_failure(variant):
+    time.sleep(0.2)
+    raise RuntimeError(f"variant {variant.index} lost in transit")
+
+
+def test_a_variant_whose_future_fails_reports_the_time_it_took(tmp_path):
+    from livemod.runner.batch import ProcessPoolVariantExecutor
+
+    variants = make_variants(RING, [{"count": 3}], None)
+    [result] = ProcessPoolVariantExecutor(1).map_unordered(_slow_failure, variants)
+    assert result.status == "error" and result.error == "RuntimeError: variant 0 lost in transit"
+    assert result.elapsed >= 0.2  # it was 0: the clock started when the failure came back
+
+
 def test_watch_reports_no_write_when_a_run_left_no_mesh(capsys):
     from types import SimpleNamespace
 

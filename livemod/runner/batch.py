@@ -284,7 +284,7 @@ class ProcessPoolVariantExecutor:
         whole pool, so the variants it took down are run again, each in a pool of
         its own: only one that kills its own worker is reported failed. When the
         caller stops reading (or Ctrl-C comes), no variant runs on."""
-        context = _process_context()
+        context, started = _process_context(), time.perf_counter()
         lost = []
         with _stoppable_pool(self.jobs, context) as pool:
             for variant, outcome in _finished(pool, fn, variants):
@@ -293,7 +293,8 @@ class ProcessPoolVariantExecutor:
                 elif isinstance(outcome, VariantResult):
                     yield outcome
                 else:
-                    yield _failed(variant, _lost(outcome), time.perf_counter())
+                    # its own start is unknown: the map's bounds it, as in the futures pool
+                    yield _failed(variant, _lost(outcome), started)
         for variant in lost:
             with _stoppable_pool(1, context) as alone:
                 yield from FuturesVariantExecutor(alone).map_unordered(fn, [variant])
