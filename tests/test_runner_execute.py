@@ -45,6 +45,26 @@ def test_result_arrays_are_read_only_copies():
         result.arrays.positions[0, 0] = 5.0
 
 
+def test_the_scripts_own_helper_wins_over_a_same_named_module_earlier_on_the_path(
+        tmp_path, monkeypatch):
+    elsewhere, project = tmp_path / "elsewhere", tmp_path / "project"
+    elsewhere.mkdir()
+    project.mkdir()
+    (elsewhere / "shapes_helper.py").write_text("WHO = 'elsewhere'\n")
+    (project / "shapes_helper.py").write_text("WHO = 'project'\n")
+    # the project folder is on the path already, but after the other one
+    monkeypatch.setattr(sys, "path", [str(elsewhere), *sys.path, str(project)])
+    monkeypatch.delitem(sys.modules, "shapes_helper", raising=False)
+    path = write(project, "main.py", (
+        "import shapes_helper\n"
+        "from livemod.dlfl import current_scene\n"
+        "current_scene().parameters['who'] = shapes_helper.WHO\n"))
+    outcome = execute(path)
+    assert outcome.status == "ok", outcome.error
+    assert outcome.scene.parameters["who"] == "project"
+    assert sys.path[0] == str(elsewhere) and sys.path[-1] == str(project)  # as it was
+
+
 def test_namespace_has_commands_file_and_name(tmp_path):
     path = write(tmp_path, "ns.py", (
         "from livemod.dlfl import current_scene\n"

@@ -94,16 +94,16 @@ def seed_generators(seed: int | None) -> None:
 
 @contextlib.contextmanager
 def script_folder_on_path(path: str) -> Iterator[None]:
-    """Put the script's folder first on ``sys.path`` for the duration of the run."""
+    """Put the script's folder first on ``sys.path`` for the duration of the run,
+    also when it is on it already but later, where a same-named module in an
+    earlier folder would shadow the script's own helper."""
     folder = os.path.dirname(path)
-    added = folder not in sys.path
-    if added:
-        sys.path.insert(0, folder)
+    sys.path.insert(0, folder)
     try:
         yield
     finally:
-        if added and folder in sys.path:
-            sys.path.remove(folder)
+        with contextlib.suppress(ValueError):  # the script may have taken it out
+            sys.path.remove(folder)  # the first: ours, unless the script added another
 
 
 @contextlib.contextmanager
