@@ -225,8 +225,7 @@ def test_a_background_measurement_that_fails_is_logged_and_says_nothing(
         with caplog.at_level("ERROR", logger="livemod.measure"):
             measurer.measure(mesh_arrays(cube()))
             assert measurer.wait(30) is None
-            measurer.close()
-            measurer._pool.shutdown(wait=True)  # the log is written by the done callback
+            measurer.close(wait=True)  # the log is written by the done callback
     finally:
         measurer.close()
     assert "measuring the mesh shown failed" in caplog.text and "no volume" in caplog.text

@@ -73,10 +73,19 @@ class Camera:
         return view
 
     def clip_range(self) -> tuple[float, float]:
-        """``(near, far)`` enclosing the scene sphere from the current eye."""
-        far = self.distance + 2.0 * self.scene_radius + 1e-3
-        near = max(self.distance - 2.0 * self.scene_radius, far * 1e-4)
-        return near, far
+        """``(near, far)`` enclosing the scene sphere (``scene_radius`` around the
+        target, doubled for margin) from the current eye.
+
+        An orthographic view's near plane may lie behind the eye: zooming it in
+        moves the eye toward the target, into the mesh, while the picture only
+        scales, so what is between the eye and the scene's front must still show.
+        A perspective one must stay in front of the eye.
+        """
+        reach = 2.0 * self.scene_radius
+        far = self.distance + reach + 1e-3
+        if self.ortho:
+            return self.distance - reach - 1e-3, far
+        return max(self.distance - reach, far * 1e-4), far
 
     def half_height(self) -> float:
         """Half the view height at the target (the orthographic scale)."""

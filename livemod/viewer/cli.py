@@ -279,8 +279,8 @@ def _reference_of(args: argparse.Namespace) -> np.ndarray | None:
     """The ``--reference`` picture, checked against the render it is for (None without).
 
     Raises:
-        UsageError: no such picture, one of another size, a turntable, or
-            ``--threshold`` without ``--reference``: exit 2, as ``cmp`` exits when
+        UsageError: no such picture, one of another size, a turntable, an MP4
+            output, or ``--threshold`` without ``--reference``: exit 2, as ``cmp`` exits when
             it cannot compare (1 says that the pictures differ).
     """
     from .compare import read_picture
@@ -291,6 +291,9 @@ def _reference_of(args: argparse.Namespace) -> np.ndarray | None:
         return None
     if args.turntable > 1:
         raise UsageError("--reference compares one picture: leave out --turntable")
+    if Path(args.output).suffix.lower() == ".mp4":  # no picture reader takes it back
+        raise UsageError(f"--reference compares a PNG, GIF or WebP picture, not "
+                         f"{Path(args.output).name} (H.264 is lossy too)")
     if Path(args.reference).resolve() == Path(args.output).resolve():
         raise UsageError(f"-o would write over the reference {args.reference}: render to "
                          "another file (copy it over the reference to update it)")
@@ -359,8 +362,8 @@ def _render_inputs(args: argparse.Namespace,
     :func:`~livemod.viewer.imagefiles.write_images`).
 
     Raises:
-        UsageError: a bad ``--set``, ``-o``, ``--fps``, ``--labels`` or
-            ``--select`` (the message says which).
+        UsageError: a bad ``--set``, ``-o``, ``--fps``, ``--labels``, or
+            ``--select`` or ``--mesh`` for a mesh input (the message says which).
         OSError: a script or ``--mesh`` that cannot be read, or an output that
             cannot be written.
         DLFLError: the script's own fault found while checking ``--set``.
@@ -374,6 +377,9 @@ def _render_inputs(args: argparse.Namespace,
                              transparent=args.background == "transparent", fps=args.fps)
     if is_script:
         check_run_files(args.input, args.mesh, None)
+    elif args.mesh is not None:  # it would be ignored: the input is the mesh drawn
+        raise UsageError(f"--mesh needs a script (it is the mesh the script starts "
+                         f"from), not {args.input!r}")
     check_writable(paths)
     values = _given_values(args.input, args.set)
     labels = frozenset(k.strip() for k in args.labels.split(",") if k.strip())

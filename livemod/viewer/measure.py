@@ -67,8 +67,16 @@ class WholeMeshMeasurer:
     """
 
     def __init__(self) -> None:
-        self._pool = concurrent.futures.ThreadPoolExecutor(1, thread_name_prefix="livemod-measure")
+        self._pool: concurrent.futures.ThreadPoolExecutor | None = None  # made when needed
         self._job: concurrent.futures.Future[WholeMesh] | None = None
+
+    def _submit(self, arrays: MeshArrays) -> concurrent.futures.Future[WholeMesh]:
+        """Measure ``arrays`` in the background thread, starting it again after
+        :meth:`close` (the window closes it with each script it stops watching)."""
+        if self._pool is None:
+            self._pool = concurrent.futures.ThreadPoolExecutor(
+                1, thread_name_prefix="livemod-measure")
+        return self._pool.submit(measure_whole, arrays)
 
     def measure(self, arrays: MeshArrays | None) -> None:
         """Measure ``arrays`` (None: nothing is shown); an older job's answer is dropped."""
@@ -77,7 +85,7 @@ class WholeMeshMeasurer:
         if arrays is None:
             self._job = None
         elif len(arrays.corner_vertex) > MEASURE_AT_ONCE:
-            self._job = self._pool.submit(measure_whole, arrays)
+            self._job = self._submit(arrays)
             self._job.add_done_callback(_log_failure)
         else:
             self._job = concurrent.futures.Future()
@@ -98,9 +106,12 @@ class WholeMeshMeasurer:
             concurrent.futures.wait([self._job], timeout)
         return self.facts()
 
-    def close(self) -> None:
-        """Stop the thread (a job running finishes in the background)."""
-        self._pool.shutdown(wait=False, cancel_futures=True)
+    def close(self, wait: bool = False) -> None:
+        """Stop the thread: a job running finishes in the background, or before
+        this returns when ``wait``. A later :meth:`measure` starts another."""
+        pool, self._pool = self._pool, None
+        if pool is not None:
+            pool.shutdown(wait=wait, cancel_futures=True)
 
 
 def _log_failure(job: concurrent.futures.Future[WholeMesh]) -> None:
@@ -148,7 +159,10 @@ def face_area_normal(arrays: MeshArrays, face: int) -> tuple[float, np.ndarray]:
     non-planar faces get their best-fit normal); the normal is zero for a
     degenerate face."""
     start, stop = arrays.face_offsets[face], arrays.face_offsets[face + 1]
-    ring = arrays.positions[arrays.corner_vertex[start:stop]]
+    ring = arrays.positions[arrays.corner_vertex[start:stop]].astype(np.float64)
+    # relative to a corner: the cross products of far-off absolute positions cancel
+    # to nothing (a unit square at 1e8 had area 0)
+    ring -= ring[0]
     twice = np.cross(ring, np.roll(ring, -1, axis=0)).sum(axis=0)
     length = float(np.linalg.norm(twice))
     return length / 2.0, twice / length if length > 0 else np.zeros(3)

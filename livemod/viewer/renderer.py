@@ -517,9 +517,7 @@ class Renderer:
     def _set_view(self, camera: Camera, size: tuple[int, int]) -> None:
         """Give every program the view of ``camera`` on a ``(width, height)`` target."""
         aspect = size[0] / max(size[1], 1)
-        for mesh in (self._mesh, self._others):
-            if mesh is not None:
-                camera.scene_radius = max(camera.scene_radius, mesh.geometry.radius)
+        camera.scene_radius = self._scene_reach(camera.target, camera.scene_radius)
         view_matrix = camera.view_matrix()
         mvp = _matrix_bytes(camera.projection_matrix(aspect) @ view_matrix)
         self._set_cap_view(camera, aspect, size[1])
@@ -528,6 +526,17 @@ class Renderer:
             program["mvp"].write(mvp)  # type: ignore[union-attr]
             if "view" in program:
                 program["view"].write(view)  # type: ignore[union-attr]
+
+    def _scene_reach(self, target: np.ndarray, fallback: float) -> float:
+        """Radius around ``target`` of a sphere holding every mesh drawn (``fallback``
+        when none is), for the camera's clip planes. Measured from the target, not
+        the meshes' centre: a re-run that moves the mesh by less than its size
+        keeps the camera (see :func:`~.camera.bounds_changed_a_lot`), and a pan
+        moves the target, so the two part. Not the largest radius ever seen
+        either: after a large mesh, a small one would get a needlessly deep range."""
+        reaches = [float(np.linalg.norm(m.geometry.center - target)) + m.geometry.radius
+                   for m in (self._mesh, self._others) if m is not None]
+        return max(reaches) if reaches else fallback
 
     def _set_cap_view(self, camera: Camera, aspect: float, height: int) -> None:
         """What the cap pass needs to turn each pixel back into a line of sight, and
@@ -645,8 +654,8 @@ class Renderer:
         program["use_flags"].value = 1  # type: ignore[union-attr]
         mesh.vertex_flags.use(3)
         if only_selected:
-            # draw every point, but discard unselected ones by depth: cheaper to
-            # just draw the selected positions as their own small batch
+            # the few selected positions as a batch of their own: cheaper than
+            # drawing every vertex and discarding the rest in the shader
             arrays = self.arrays
             assert arrays is not None
             picked = np.flatnonzero(dense_flags(arrays.vertex_ids, self.selection.vertices))

@@ -63,10 +63,15 @@ class Timeline:
         return x <= px <= x + width and y <= py <= y + height
 
     def step_at(self, px: float, size: tuple[int, int], total: int) -> int:
-        """The 0-based step of ``total`` under ``px`` (clamped to the bar's ends)."""
+        """The 0-based step of ``total`` whose handle is nearest ``px`` (clamped to
+        the bar's ends).
+
+        Step k's handle stands at the end of its fill, ``(k + 1) / total`` of the
+        bar (see :meth:`quads`), so a press on the handle to drag it keeps its step.
+        """
         left, _, width = self._bar(size)
         fraction = min(max((px - left) / max(width, 1.0), 0.0), 1.0)
-        return min(int(fraction * total), total - 1)
+        return min(max(round(fraction * total) - 1, 0), total - 1)
 
     def quads(self, size: tuple[int, int], shown: int | None, total: int) -> np.ndarray:
         """The panel's quads: the track, its fill to step ``shown`` of ``total``, a

@@ -1084,17 +1084,25 @@ class LiveViewer(mglw.WindowConfig):
         else:
             self.mesh_path = resolved
         self._close_session()
+        self._forget_the_run()
+        self.session = self._start_session()
+        self._echo(f"opened {resolved}")
+
+    def _forget_the_run(self) -> None:
+        """Drop what the window kept of the runs of the session just closed: the
+        next script's ids, steps and parameters are its own, and a key held, a
+        scrub, E or a viewer error of the old one must not carry over to it."""
         self.selection = Selection()
         self.renderer.set_selection(self.selection)
         self.measures = []
         self.objects.sync((), frozenset())  # another script's objects share no ids
         self.set_current_shown(True)
-        self._fit_bounds = None
-        self.result = None
+        self._fit_bounds = None  # fit the new script's first result
+        self.result, self.activity, self.viewer_error = None, None, None
         self.total_steps = 0
+        self.show_partial = self.playing = self._scrubbing = False
+        self.held, self._scrub_step, self._press = None, None, None
         self._init_parameters()  # the new script declares its own
-        self.session = self._start_session()
-        self._echo(f"opened {resolved}")
 
     def _close_session(self) -> None:
         self.whole.close()
@@ -1168,18 +1176,23 @@ def run_frames(viewer: LiveViewer, max_frames: int | None = None,
         current, delta = viewer.timer.next_frame()
         window.use()
         window.render(current, delta)
-        if window.is_closing:
-            pass
-        elif viewer.presented:
-            window.swap_buffers()
-        elif window.name == "glfw":
-            import glfw  # the window's own backend: already loaded
-
-            # nothing new to show: sleep until an input event (or a little while)
-            # instead of swapping the same picture again
-            glfw.wait_events_timeout(IDLE_WAIT)
+        if not window.is_closing:  # (a closed window has no buffers to swap)
+            _present_or_wait(viewer)
         frames += 1
     return frames
+
+
+def _present_or_wait(viewer: LiveViewer) -> None:
+    """Swap in the frame :meth:`LiveViewer.on_render` drew, or, when it drew none
+    (nothing changed), let a glfw window sleep until an input event or
+    :data:`IDLE_WAIT` instead of swapping the same picture again."""
+    window = viewer.wnd
+    if viewer.presented:
+        window.swap_buffers()
+    elif window.name == "glfw":
+        import glfw  # the window's own backend: already loaded
+
+        glfw.wait_events_timeout(IDLE_WAIT)
 
 
 def close_viewer(viewer: LiveViewer) -> None:
