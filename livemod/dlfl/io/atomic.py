@@ -39,13 +39,17 @@ def atomic_write(path: str | os.PathLike[str]) -> Iterator[BinaryIO]:
     # the temporary file must sit beside the file finally replaced, for the rename
     target = os.path.realpath(os.path.abspath(os.fspath(path)))
     folder = os.path.dirname(target)
-    fd, tmp_path = _temporary_beside(target)
+    old_mode = _old_mode(target)
+    # created with the old file's mode (a private file's new text is never readable
+    # by others), or 0o666 less the umask for a new file, as any other new file
+    fd, tmp_path = _temporary_beside(target, 0o666 if old_mode is None else old_mode)
     try:
         with os.fdopen(fd, "wb") as handle:
             yield handle
             handle.flush()
             os.fsync(handle.fileno())
-        os.chmod(tmp_path, _mode_for(target))
+        if old_mode is not None:  # the umask may have cleared some of its bits
+            os.chmod(tmp_path, old_mode)
         try:
             os.replace(tmp_path, target)
         except OSError as exc:  # the target may be a folder, say
@@ -63,9 +67,9 @@ def atomic_write(path: str | os.PathLike[str]) -> Iterator[BinaryIO]:
 _in_progress: set[str] = set()
 
 
-def _temporary_beside(target: str) -> tuple[int, str]:
+def _temporary_beside(target: str, mode: int) -> tuple[int, str]:
     """A new file ``.NAME.XXXXXXXX.tmp`` in ``target``'s folder, open for writing
-    (mode 0o600), and its path, listed in ``_in_progress`` *before* it exists: a
+    (``mode`` less the umask), and its path, listed in ``_in_progress`` *before* it exists: a
     worker killed between the two (SIGTERM, see :func:`remove_unfinished`) must
     not leave it behind.
 
@@ -77,7 +81,7 @@ def _temporary_beside(target: str) -> tuple[int, str]:
         tmp_path = os.path.join(folder, f".{name}.{secrets.token_hex(4)}.tmp")
         _in_progress.add(tmp_path)
         try:
-            return os.open(tmp_path, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600), tmp_path
+            return os.open(tmp_path, os.O_WRONLY | os.O_CREAT | os.O_EXCL, mode), tmp_path
         except FileExistsError:
             _in_progress.discard(tmp_path)
         except OSError as exc:
@@ -123,17 +127,17 @@ def write_atomically(path: str | os.PathLike[str], data: bytes | Iterable[bytes]
             handle.write(piece)
 
 
-def _mode_for(target: str) -> int:
-    """Permission bits for the new file: the old file's, else 0o644.
+def _old_mode(target: str) -> int | None:
+    """The permission bits of the file being replaced, or None when there is none.
 
-    ``mkstemp`` creates 0o600 files; a saved mesh should be readable like any
-    other file. (Reading the umask would mean setting it, which is not
-    thread-safe, and scripts save from a worker thread.)
+    A new file gets ``0o666`` less the umask through ``os.open``, which applies
+    the umask itself (reading the umask would mean setting it, which is not
+    thread-safe, and scripts save from a worker thread).
     """
     try:
         return os.stat(target).st_mode & 0o777
     except OSError:
-        return 0o644
+        return None
 
 
 def _sync_folder(folder: str) -> None:

@@ -48,7 +48,7 @@ from ._numtext import format_rounded, format_uints, join_columns
 from ._parallel import map_in_order
 from .atomic import write_atomically
 from .obj import _merge_face_blocks, index_lines, vertex_lines
-from .source import read_source, show_token
+from .source import lf_line_ends, read_source, show_token
 
 HOLE_MATERIAL = "hole"
 
@@ -99,9 +99,11 @@ def parse_dlfl(data: bytes, label: str = "<dlfl>", *, fast: bool = True) -> Dlfl
     """
     if not data.startswith(b"DLFL"):
         raise DLFLError(f"{label}:1: not a .dlfl file (it must start with 'DLFL')")
+    data = lf_line_ends(data)
     if not data.endswith(b"\n"):
         data += b"\n"  # split_lines wants it; the line count stays that of data.split
     buf, starts, ends = split_lines(data)
+    _check_header_ends(buf, starts, label)
     kinds = _classify(buf, starts, fast)
     records = _Collected(label)
     python_lines = [np.flatnonzero(kinds == _OTHER)]
@@ -155,6 +157,18 @@ def _body_start(buf: np.ndarray, starts: np.ndarray) -> int:
         if len(hits):
             return i + int(hits[0])
     return len(starts)
+
+
+def _check_header_ends(buf: np.ndarray, starts: np.ndarray, label: str) -> None:
+    """Refuse records with no ``#`` line before them: everything up to the first
+    ``#`` line is header, so such a file would silently load as an empty mesh
+    (a file of the ``DLFL`` and ``mtllib`` lines alone is a valid empty one)."""
+    if _body_start(buf, starts) < len(starts):
+        return
+    record = np.flatnonzero(np.isin(buf[starts[1:]], np.frombuffer(b"vef", dtype=np.uint8)))
+    if len(record):
+        raise DLFLError(f"{label}:{int(record[0]) + 2}: no '#' line ends the header before "
+                        f"this record, so it and every later line would be skipped as header")
 
 
 def _kind_table(keywords: dict[bytes, int]) -> np.ndarray:
@@ -426,11 +440,16 @@ def dlfl_pieces(mesh: Mesh, mtl_name: str = "mesh", *, reverse: bool = False,
     Precondition: the mesh is not changed while the pieces are consumed.
     """
     a = mesh_arrays(mesh)
-    header = b"DLFL\nmtllib %s.mtl\n#\n" % mtl_name.encode("utf-8", "replace")
+    # a newline in the name (a file name may hold one) would end the header early
+    name = mtl_name.encode("utf-8", "replace").translate(_CONTROLS_TO_UNDERSCORE)
+    header = b"DLFL\nmtllib %s.mtl\n#\n" % name
     return itertools.chain(
         [header], vertex_lines(a.positions, b"v"), [b"#\n"], _corner_lines(a), [b"#\n"],
         _edge_lines(a, reverse), [b"#\n"], _face_lines(a, reverse), [b"#\n"],
     )
+
+
+_CONTROLS_TO_UNDERSCORE = bytes.maketrans(bytes([*range(32), 127]), b"_" * 33)
 
 
 def _corner_lines(a: MeshArrays) -> Iterator[bytes]:

@@ -6,7 +6,8 @@ unknown keywords). Faces take the leading index of each ``v``, ``v/t``,
 ``v//n`` or ``v/t/n`` token; negative indices count back from the last vertex
 read so far. Coordinates may be separated by spaces, tabs or commas (TopMod's
 own files write ``v 1.0, 1.0, 1.0``); numbers after the third are ignored.
-Line endings ``\\n`` or ``\\r\\n``. The first ``f`` line becomes face id 0.
+Line endings ``\\n``, ``\\r\\n`` or (a file with no ``\\n``) ``\\r``; a line
+ending in ``\\`` continues on the next. The first ``f`` line becomes face id 0.
 
 Plain lines are parsed for the whole file at once with numpy (see
 :mod:`._lines`); any other line goes through :func:`_parse_line`, the reference
@@ -30,7 +31,7 @@ from ._lines import gather_lines, parse_index_lines, parse_number_lines, split_l
 from ._numtext import format_floats, format_uints, join_columns
 from ._parallel import map_in_order
 from .atomic import write_atomically
-from .source import read_source, show_token
+from .source import lf_line_ends, read_source, show_token
 
 
 @dataclass
@@ -115,9 +116,10 @@ def parse_obj(data: bytes, label: str = "<obj>", *, fast: bool = True) -> ObjSou
         DLFLError: ``label:line: ...`` for malformed ``v`` or ``f`` lines and
             face indices out of range.
     """
-    data = data.removeprefix(b"\xef\xbb\xbf")  # a UTF-8 byte order mark
+    data = lf_line_ends(data.removeprefix(b"\xef\xbb\xbf"))  # a UTF-8 byte order mark
     if not data.endswith(b"\n"):
         data += b"\n"
+    data = _join_continued(data)
     buf, starts, ends = split_lines(data)
     kinds = _classify(buf, starts, fast)
     parsed = _Parsed()
@@ -127,6 +129,29 @@ def parse_obj(data: bytes, label: str = "<obj>", *, fast: bool = True) -> ObjSou
     if parsed.errors:
         raise parsed.errors[0][1]  # the first bad line of the file, as a reader would
     return parsed.soup(label)
+
+
+def _join_continued(data: bytes) -> bytes:
+    """``data`` with every line that ends in ``\\`` joined to the next one (the OBJ
+    specification's line continuation; ``data`` ends with ``\\n``).
+
+    The newlines taken out are put back as empty lines after the joined line, so
+    the joined line keeps its first line's number and every later line its own.
+    A file with no backslash at all (a single-byte search, a memchr) is not copied.
+    """
+    if b"\\" not in data or (b"\\\n" not in data and b"\\\r\n" not in data):
+        return data
+    pieces: list[bytes] = []
+    held = 0
+    for line in data.split(b"\n"):
+        body = line[:-1] if line.endswith(b"\r") else line
+        if body.endswith(b"\\"):
+            pieces.append(body[:-1] + b" ")
+            held += 1
+        else:
+            pieces.append(line + b"\n" * (held + 1))
+            held = 0
+    return b"".join(pieces)[:-1]  # the split's last, empty piece added one newline
 
 
 _IGNORED, _VERTEX, _FACE, _OTHER_SUSPECT = range(4)

@@ -120,14 +120,19 @@ def parse_stl(data: bytes, label: str = "<stl>") -> tuple[np.ndarray, np.ndarray
         corners = triangles["corners"].reshape(-1, 3).astype(np.float64)
         _check_finite(corners, lambda k: f"{label}: triangle {k // 3}:")
         return corners, np.arange(0, 3 * count + 1, 3, dtype=np.int64), None
-    if data.lstrip()[:5].lower() == b"solid":
+    solid = data.lstrip()[:5].lower() == b"solid"
+    # a NUL byte is binary data (every float32 0.0 and attribute word holds some):
+    # a binary file under a 'solid' header read as ASCII would give no facet at all
+    if solid and b"\0" not in data:
         return _AsciiStl(data, label).soup()
+    why = ("it starts with 'solid' but holds binary data, so it is no ASCII STL either"
+           if solid else "it does not start with 'solid', as ASCII STL does")
     if count is not None:
         raise DLFLError(f"{label}: not an STL file: as binary STL its header counts {count} "
                         f"triangles ({84 + 50 * count} bytes), but the file has {len(data)} "
-                        f"bytes; and it does not start with 'solid', as ASCII STL does")
+                        f"bytes; and {why}")
     raise DLFLError(f"{label}: not an STL file: {len(data)} bytes, too short for binary STL, "
-                    f"and it does not start with 'solid', as ASCII STL does")
+                    f"and {why}")
 
 
 def _header_count(data: bytes) -> int | None:
@@ -296,10 +301,10 @@ def drop_collapsed(indices: np.ndarray, offsets: np.ndarray
 
 
 # the ASCII keywords the parser looks for, as word codes (0: any other word)
-_FACET, _NORMAL, _OUTER, _LOOP, _VERTEX, _ENDLOOP, _ENDFACET, _ENDSOLID = range(1, 9)
+_FACET, _NORMAL, _OUTER, _LOOP, _VERTEX, _ENDLOOP, _ENDFACET, _ENDSOLID, _SOLID = range(1, 10)
 _KEYWORDS = {b"facet": _FACET, b"normal": _NORMAL, b"outer": _OUTER, b"loop": _LOOP,
              b"vertex": _VERTEX, b"endloop": _ENDLOOP, b"endfacet": _ENDFACET,
-             b"endsolid": _ENDSOLID}
+             b"endsolid": _ENDSOLID, b"solid": _SOLID}
 _KEYWORDS |= {word.upper(): code for word, code in _KEYWORDS.items()}  # old exporters
 
 
@@ -319,9 +324,30 @@ class _AsciiStl:
         get = _KEYWORDS.get
         self.codes = np.fromiter(map(get, self.words, itertools.repeat(0)), np.int8,
                                  len(self.words))
+        self._forget_names()
         self.facet, self.outer, self.endloop, self.endfacet, self.vertex = (
             np.flatnonzero(self.codes == code)
             for code in (_FACET, _OUTER, _ENDLOOP, _ENDFACET, _VERTEX))
+
+    def _forget_names(self) -> None:
+        """Code the words that name a solid as no keyword: they run from ``solid``
+        (the first word) or ``endsolid`` to the end of its line, so ``solid facet``
+        names a solid 'facet'. In a file on one line a name ends at ``facet
+        normal`` or ``solid``. Names are a word or two: the loop is short."""
+        heads = np.flatnonzero((self.codes == _SOLID) | (self.codes == _ENDSOLID)).tolist()
+        for k in sorted({0, *heads}):
+            line = self._line_index(np.array([k]))[0]
+            j = k + 1
+            while j < len(self.words) and not self._name_ends(j, line):
+                self.codes[j] = 0
+                j += 1
+
+    def _name_ends(self, j: int, line: int) -> bool:
+        """Whether word ``j`` is past the name on (0-based) line ``line``."""
+        if self.codes[j] == _SOLID or self._line_index(np.array([j]))[0] != line:
+            return True
+        return bool(self.codes[j] == _FACET and j + 1 < len(self.words)
+                    and self.codes[j + 1] == _NORMAL)
 
     def soup(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """See :func:`parse_stl`."""
@@ -432,6 +458,8 @@ class _AsciiStl:
         """Word ``k`` as a float, or a ``file:line: bad number`` error."""
         word = self.words[k] if k < len(self.words) else b""
         try:
+            if b"_" in word:  # float() takes '1_0' as 10; the OBJ reader refuses it too
+                raise ValueError(word)
             return float(word)
         except ValueError:
             line = self.line_of(np.array([min(k, len(self.words) - 1)]))[0]
