@@ -262,7 +262,19 @@ def test_non_manifold_error_names_the_line(tmp_path: Path) -> None:
     path = tmp_path / "fin.obj"
     path.write_bytes(b"v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\n"
                      b"f 1 2 3\nf 2 1 4\nf 1 2 5\n")
-    with pytest.raises(DLFLError, match=r"fin\.obj:6: edge \(0, 1\) is used by 3"):
+    # vertices as the f lines number them (from 1), not livemod's indices
+    with pytest.raises(DLFLError, match=r"fin\.obj:6: edge \(1, 2\) is used by 3"):
+        read_obj(path)
+
+
+def test_errors_number_vertices_as_the_obj_file_does(tmp_path: Path) -> None:
+    path = tmp_path / "twice.obj"
+    path.write_bytes(b"v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 2 3\n")
+    with pytest.raises(DLFLError, match=r"line 5 visits vertex 2 twice in a row"):
+        read_obj(path)
+    path.write_bytes(b"v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 0 0 2\n"
+                     b"f 1 2 3\nf 1 3 4\nf 1 5 6\n")  # two fans meet at vertex 1
+    with pytest.raises(DLFLError, match=r"vertex 1 is non-manifold"):
         read_obj(path)
 
 

@@ -87,11 +87,18 @@ def as_polygons(positions: Any, faces: Any, offsets: Any = None) -> Polygons:
 
 
 class _Where:
-    """Names faces in error messages: by OBJ/.dlfl line when known."""
+    """Names faces in error messages by OBJ/.dlfl line when known, and vertices
+    as the source numbers them (OBJ from 1)."""
 
-    def __init__(self, source: str | None, face_lines: np.ndarray | None) -> None:
+    def __init__(self, source: str | None, face_lines: np.ndarray | None,
+                 vertex_base: int = 0) -> None:
         self.source = source
         self.lines = face_lines
+        self.vertex_base = vertex_base
+
+    def vertex(self, v: int) -> int:
+        """The number the source gives vertex index ``v``."""
+        return int(v) + self.vertex_base
 
     def face(self, f: int) -> str:
         if self.lines is not None:
@@ -112,6 +119,7 @@ def from_polygons(
     *,
     source: str | None = None,
     face_lines: Any = None,
+    vertex_base: int = 0,
     first_ids: tuple[int, int, int, int] = (0, 0, 0, 0),
 ) -> Mesh:
     """Build a DLFL mesh from a polygon soup.
@@ -129,6 +137,8 @@ def from_polygons(
         offsets: see :func:`as_polygons`.
         source: a file name for error messages.
         face_lines: ``(F,)`` source line of each face, for error messages.
+        vertex_base: what the source calls vertex index 0, for error messages
+            (1 for OBJ, whose ``f`` lines count vertices from 1).
         first_ids: first vertex, edge, face and corner id to hand out.
 
     Raises:
@@ -137,7 +147,7 @@ def from_polygons(
             non-manifold vertex, or a non-orientable component.
     """
     soup = as_polygons(positions, faces, offsets)
-    where = _Where(source, None if face_lines is None else np.asarray(face_lines))
+    where = _Where(source, None if face_lines is None else np.asarray(face_lines), vertex_base)
     far = _check_soup(soup, where)
     notes: list[str] = []
     soup, mate = _pair_sides(soup, where, notes, far)
@@ -170,12 +180,12 @@ def _check_soup(soup: Polygons, where: _Where) -> np.ndarray:
         c = int(np.flatnonzero((soup.indices < 0) | (soup.indices >= nv))[0])
         f = int(np.searchsorted(soup.offsets, c, side="right") - 1)
         raise DLFLError(
-            f"{where.prefix([f])}{where.face(f)} uses vertex index {int(soup.indices[c])}, "
+            f"{where.prefix([f])}{where.face(f)} uses vertex index {where.vertex(soup.indices[c])}, "
             f"but there are {nv} vertices"
         )
     v = first_not_finite(soup.positions)
     if v is not None:
-        raise DLFLError(f"{where.prefix()}vertex {v} has a position that is not finite")
+        raise DLFLError(f"{where.prefix()}vertex {where.vertex(v)} has a position that is not finite")
     far = soup.indices[soup.next_corner]
     same = soup.indices == far
     if len(sizes) and sizes.min() == 1:
@@ -184,7 +194,7 @@ def _check_soup(soup: Polygons, where: _Where) -> np.ndarray:
         c = int(np.flatnonzero(same)[0])
         f = int(np.searchsorted(soup.offsets, c, side="right") - 1)
         raise DLFLError(
-            f"{where.prefix([f])}{where.face(f)} visits vertex {int(soup.indices[c])} "
+            f"{where.prefix([f])}{where.face(f)} visits vertex {where.vertex(soup.indices[c])} "
             "twice in a row (a zero-length side)"
         )
     return far
@@ -314,7 +324,7 @@ def _refuse_crowded_edges(
     w = int(soup.indices[soup.next_corner[corners[0]]])
     used = ", ".join(where.face(f) for f in faces)
     raise DLFLError(
-        f"{where.prefix(faces)}edge ({u}, {w}) is used by {int(counts[g])} face sides "
+        f"{where.prefix(faces)}edge ({where.vertex(u)}, {where.vertex(w)}) is used by {int(counts[g])} face sides "
         f"({used}); a manifold edge has two"
     )
 
@@ -341,7 +351,7 @@ def _pair_multi_edges(
     if failed is not None:
         verts, edges = groups[failed][2], len(groups[failed][0])
         raise DLFLError(
-            f"{where.prefix()}vertices {verts[0]} and {verts[1]} are joined by "
+            f"{where.prefix()}vertices {where.vertex(verts[0])} and {where.vertex(verts[1])} are joined by "
             f"{edges} edges that cannot be arranged into a manifold"
         )
 
@@ -551,7 +561,7 @@ def _close_boundaries(
         v = int(np.flatnonzero(incoming > 1)[0])
         f = int(_face_of_corner(soup.offsets)[open_sides[end == v][0]])
         raise DLFLError(
-            f"{where.prefix([f])}vertex {v} is non-manifold: {int(incoming[v])} boundary "
+            f"{where.prefix([f])}vertex {where.vertex(v)} is non-manifold: {int(incoming[v])} boundary "
             "loops pass through it"
         )
     side_ending_at = np.full(len(soup.positions), -1, dtype=np.int64)
@@ -622,7 +632,7 @@ def _check_vertex_fans(soup: Polygons, mate: np.ndarray, where: _Where) -> None:
         v = int(np.flatnonzero(fans > 1)[0])
         f = int(_face_of_corner(soup.offsets)[np.flatnonzero(soup.indices == v)[0]])
         raise DLFLError(
-            f"{where.prefix([f])}vertex {v} is non-manifold: its faces form "
+            f"{where.prefix([f])}vertex {where.vertex(v)} is non-manifold: its faces form "
             f"{int(fans[v])} separate fans (a bow-tie)"
         )
 

@@ -78,7 +78,8 @@ def read_obj(source: str | os.PathLike[str] | bytes, *, name: str | None = None)
             _check_obj_text(data, label)
         return point_cloud(soup.positions)
     return from_polygons(
-        soup.positions, soup.indices, soup.offsets, source=label, face_lines=soup.face_lines
+        soup.positions, soup.indices, soup.offsets, source=label, face_lines=soup.face_lines,
+        vertex_base=1,  # errors name vertices as the f lines do
     )
 
 
