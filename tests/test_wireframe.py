@@ -266,7 +266,7 @@ def test_columns_of_a_thickness_that_overflows_are_refused_quietly(make):
 @pytest.mark.parametrize("scale", [1e154, 1e300])
 def test_the_columns_of_a_huge_mesh_are_the_scaled_unit_ones(scale):
     # the joints' hull took cross products of raw coordinates ("coplanar" past ~1e154);
-    # not assert_scales: rings sit 1e-4 (absolute, as TopMod) beyond their clearance
+    # rings once sat an absolute 1e-4 beyond their clearance (now 4e-4 t): atol kept
     small, big = torus(), torus()
     big.set_positions(big.vertex_ids(), big.positions_view() * scale)
     columns(small, 0.1, 4)

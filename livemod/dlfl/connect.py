@@ -24,11 +24,13 @@ it created, in creation order.
 
 from __future__ import annotations
 
+import math
+import numbers
 from collections.abc import Callable
 
 import numpy as np
 
-from ._checks import finite_number, first_not_finite, whole_count
+from ._checks import MAX_ELEMENTS, finite_number, first_not_finite, whole_count
 from ._vectors import centroid, lengths, together_in_range, unit
 from .analysis import face_points, polygon_normal
 from .errors import DLFLError
@@ -72,6 +74,24 @@ def _check_segments(segments: int, max_connections: int = -1) -> None:
     whole_count(segments, "segments", each=2)
     if isinstance(max_connections, bool) or not isinstance(max_connections, int | np.integer):
         raise DLFLError(f"max_connections must be an integer, got {max_connections!r}")
+
+
+def _check_twists(twists: object) -> int:
+    """``twists`` as an int: a whole number (``2.0`` too), not a bool or string.
+
+    Raises:
+        DLFLError: anything else; ``int()`` would truncate 1.5 to 1 unseen and
+            fail on NaN or infinity with a message that names no argument.
+    """
+    whole = isinstance(twists, numbers.Integral) or (
+        isinstance(twists, float | np.floating) and math.isfinite(twists)
+        and float(twists).is_integer())
+    if isinstance(twists, bool | np.bool_) or not whole:
+        raise DLFLError(f"twists must be a whole number of turns, got {twists!r}")
+    turns = int(twists)  # type: ignore[call-overload]
+    if abs(turns) > MAX_ELEMENTS:  # 2 pi turns must be a float (10**400 is not)
+        raise DLFLError(f"twists must be at most {MAX_ELEMENTS:,} turns either way, got {turns}")
+    return turns
 
 
 def _check_weights(weight1: float, weight2: float) -> None:
@@ -479,7 +499,8 @@ def hermite_rings(
             centroid-to-centroid axis (TopMod refused these too).
     """
     c1, c2 = centroid(start), centroid(end)
-    axis = _handle_axis(c1, c2, n1, n2)
+    size = float(max(lengths(start - c1).max(), lengths(end - c2).max()))
+    axis = _handle_axis(c1, c2, n1, n2, size)
     q1 = (start - c1) @ rotation_between(n1, axis).T
     q2 = (end - c2) @ rotation_between(n2, axis).T
     x = unit((q1[0] + q1[-1])[None])[0]  # unit(): its norm squares huge rings
@@ -512,12 +533,16 @@ def _hermite_ring(t: float, polar: _Four, frame: tuple[np.ndarray, np.ndarray, n
         return point + flat @ turn.T
 
 
-def _handle_axis(c1: np.ndarray, c2: np.ndarray, n1: np.ndarray, n2: np.ndarray) -> np.ndarray:
+def _handle_axis(c1: np.ndarray, c2: np.ndarray, n1: np.ndarray, n2: np.ndarray,
+                 size: float) -> np.ndarray:
     """``(3,)`` unit vector from centroid ``c1`` to ``c2``, checked against the
-    ``(3,)`` unit normals (see :func:`hermite_rings` for what is refused)."""
+    ``(3,)`` unit normals (see :func:`hermite_rings` for what is refused).
+    ``size``: the end rings' largest centroid distance, so that "the centroids
+    coincide" means the same at every scale (an absolute 1e-12 refused every
+    handle on a mesh 1e-13 across)."""
     # quarters: the difference of two huge centroids cannot overflow
     axis = c2 * 0.25 - c1 * 0.25
-    if float(lengths(axis[None])[0]) < 0.25e-12:
+    if float(lengths(axis[None])[0]) < 0.25e-12 * size:
         raise DLFLError("a Hermite handle needs faces with different centroids")
     axis = unit(axis[None])[0]
     if min(float(n1 @ axis), float(n2 @ axis)) < -1.0 + 1e-9:
@@ -563,11 +588,13 @@ def hermite_handle(
     """
     _check_segments(segments, max_connections)
     _check_weights(weight1, weight2)
+    # checked even for one segment, which reads neither: a typo must not pass
+    turns = _check_twists(twists)
+    _check_pinch(pinch, pinch_center, bubble)
     if segments == 1:  # TopMod: a plain connectFaces, whatever the sizes and normals
         return connect_faces(mesh, corner1, corner2, max_connections=max_connections)
     start, end, n1, n2 = _handle_ends(mesh, corner1, corner2, segments, "hermite_handle")
-    _check_pinch(pinch, pinch_center, bubble)
-    rings = hermite_rings(start, end, n1, n2, segments, weight1, weight2, int(twists),
+    rings = hermite_rings(start, end, n1, n2, segments, weight1, weight2, turns,
                           (pinch, pinch_center, bubble))
     first = mesh.next_ids()[1]
     _chain_rings(mesh, corner1, corner2, rings, _quad_band, max_connections)

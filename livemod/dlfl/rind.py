@@ -19,7 +19,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ._checks import finite_number, first_not_finite, id_list
-from ._vectors import face_ring_vectors, newell
+from ._vectors import face_ring_vectors, lengths, newell, unit
 from .analysis import corner_normals
 from .arrays import MeshArrays, mesh_arrays
 from .build import from_corner_arrays
@@ -151,7 +151,7 @@ def check_not_inverted(a: MeshArrays, moved: np.ndarray, what: str) -> None:
     if bad.any():
         f = int(a.face_ids[np.flatnonzero(bad)[0]])
         raise DLFLError(
-            f"{what} would invert the crust: the inner copy of face {f} "
+            f"{what} would invert the crust: the moved copy of face {f} "
             f"(and {int(bad.sum()) - 1} more) collapses or turns over; use a smaller value"
         )
 
@@ -168,9 +168,25 @@ def _inverted_faces(a: MeshArrays, moved: np.ndarray) -> np.ndarray | None:
     sides = np.einsum("ij,ij->i", side_before, side_after)
     if not (np.isfinite(sides).all() and np.isfinite(length).all()):
         return None
-    flipped = (sides <= 1e-9 * length) & (length > 1e-24)
+    flipped = _reversed_sides(side_before, side_after)
     bad[a.corner_face[a.edge_corners[flipped, 0]]] = True
     return bad
+
+
+def _reversed_sides(before: np.ndarray, after: np.ndarray) -> np.ndarray:
+    """``(E,)`` bool: ``before . after <= 1e-9 |before|^2`` for ``(E, 3)`` sides,
+    left out where ``before`` is far shorter than the longest side.
+
+    Told from unit vectors and range-safe lengths: the raw squares underflow
+    on a mesh 1e-160 across, and an absolute cut-off (1e-24) left out every
+    side of one 1e-12 across, so an inverted tiny crust passed.
+    """
+    cos = np.einsum("ij,ij->i", unit(before), unit(after))
+    long_before, long_after = lengths(before), lengths(after)
+    with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
+        shrunk = cos * (long_after / long_before) <= 1e-9  # NaN (0/0) is False
+    kept = long_before > 1e-12 * long_before.max(initial=0.0)
+    return ((cos <= 0.0) | shrunk) & kept
 
 
 def _flat_faces(a: MeshArrays, moved: np.ndarray) -> np.ndarray:
@@ -183,8 +199,11 @@ def _flat_faces(a: MeshArrays, moved: np.ndarray) -> np.ndarray:
     # both sides in the after-scale; beyond the float range means "far larger"
     with np.errstate(over="ignore"):
         limit = np.ldexp(1e-9 * scale * scale, 2 * (e_before - e_after))
-        area = np.ldexp(scale, 2 * e_before)
-    return (area > 1e-12) & (dots <= limit)
+    # faces of (all but) no area are left out, relative to the largest face: an
+    # absolute 1e-12 left out every face of a mesh below about 1e-6 across
+    top = int(e_before.max(initial=0))
+    area = np.ldexp(scale, 2 * (e_before - top))
+    return (area > 1e-12 * area.max(initial=0.0)) & (dots <= limit)
 
 
 def shell_arrays(
@@ -369,10 +388,10 @@ def _shell_positions(
     if thickness == 0.0:
         raise DLFLError("thickness 0 gives a crust with no thickness; use a nonzero value")
     moved = offset_shell(a, thickness, uniform)
-    if thickness > 0:
-        check_not_inverted(a, moved, f"thickness {thickness}")
-        return p, moved
-    return moved, p
+    # outward (thickness < 0) turns over too where the mesh is concave: the
+    # floor of a slot narrower than twice the thickness reverses
+    check_not_inverted(a, moved, f"thickness {thickness}")
+    return (p, moved) if thickness > 0 else (moved, p)
 
 
 def rind(
@@ -407,7 +426,8 @@ def rind(
     Raises:
         DLFLError: a face id that is not in the mesh, a zero or non-finite
             thickness or scale, a scale of magnitude 1 or more,
-            an inner copy whose faces would collapse or turn over, point-spheres,
+            a moved copy (the inner one, or with a negative thickness the
+            outer one) whose faces would collapse or turn over, point-spheres,
             every face punched with cleanup (nothing would be left).
             The mesh is unchanged.
     """

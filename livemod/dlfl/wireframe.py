@@ -119,7 +119,10 @@ def _cut_points(a: MeshArrays, thickness: float) -> np.ndarray:
     # differences of coordinates near the float maximum overflow, and so can
     # the points: inf and NaN come out as points _finite_cut refuses
     with np.errstate(over="ignore", invalid="ignore"):
-        close = lengths(v1 - v2) < 1e-3
+        # relative to the corner's edges: an absolute 1e-3 took every corner of a
+        # mesh below about 1e-3 across for a 2-gon's
+        reach = np.maximum(lengths(v1 - v0), lengths(v2 - v0))
+        close = lengths(v1 - v2) < 5e-4 * reach
         v2[close] = p[cv[nxt[nxt[close]]]]
         n1, n2 = _unit(v1 - v0), _unit(v2 - v0)
         dot = np.einsum("ij,ij->i", n1, n2)
@@ -344,7 +347,8 @@ def column_rings(a: MeshArrays, thickness: float, segments: int) -> np.ndarray:
 
     TopMod's ``createWireframeWithSegments`` placement: at a vertex the rings sit
     at one axial distance ``L`` beyond every ``t / tan(theta/2) + |cos theta| t``
-    (``theta`` the angle between two of its edges, plus ``0.001 t``), radius
+    (``theta`` the angle between two of its edges, plus ``0.001 t``), plus
+    ``4e-4 t`` (TopMod: an absolute 1e-4, made for its GUI thickness 0.25), radius
     ``t``; the first point lies toward the sum of the two corner normals at the
     vertex in the faces beside the edge (a hole face's left out; any
     perpendicular when nothing is left), the others follow at steps of
@@ -357,7 +361,9 @@ def column_rings(a: MeshArrays, thickness: float, segments: int) -> np.ndarray:
     """
     p, cv = a.positions, a.corner_vertex
     axis = _unit(p[cv[a.corner_next]] - p[cv])
-    length = _joint_lengths(a, axis, thickness)[cv] + 1e-4
+    # TopMod's extra 1e-4 is for its GUI thickness 0.25: kept in proportion
+    # (4e-4 t), or on a mesh 1e-150 across the rings, 1e-4 away, round to points
+    length = _joint_lengths(a, axis, thickness)[cv] + 4e-4 * thickness
     u = _ring_starts(a, axis)
     w = np.cross(axis, u)
     angle = 2 * np.pi * np.arange(segments) / segments
