@@ -214,7 +214,7 @@ def addHandle(interp: str, c1: Any, c2: Any, numsegs: int, w1: float = 25.0,
     kind = interp.lower() if isinstance(interp, str) else interp
     if kind == "hermite":
         _connect.hermite_handle(m, a, b, segments, w1, w2, max_connections=limit,
-                                twists=_twists(twists))
+                                twists=twists)
     elif kind == "bezier":
         if maxconn != -1 or twists != 0:
             raise DLFLError("a bezier handle takes no maxconn or twists (TopMod's has none); "
@@ -237,15 +237,6 @@ def _segments(numsegs: Any, maxconn: Any) -> tuple[int, int]:
     if not is_id(maxconn):
         raise DLFLError(f"maxconn must be an integer (-1 for all), got {maxconn!r}")
     return segments, int(maxconn)
-
-
-def _twists(twists: Any) -> int:
-    """``twists`` as an int: a whole number of extra turns (1.5 would be cut to 1)."""
-    if isinstance(twists, float) and twists.is_integer():
-        return int(twists)
-    if not is_id(twists):
-        raise DLFLError(f"twists must be a whole number of turns, got {twists!r}")
-    return int(twists)
 
 
 def _two_faces_corners(m: Mesh, c1: Any, c2: Any, command: str) -> tuple[int, int]:
