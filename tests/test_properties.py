@@ -17,6 +17,13 @@ from hypothesis import strategies as st
 from hypothesis.stateful import RuleBasedStateMachine, initialize, invariant, precondition, rule
 
 from livemod.dlfl import DLFLError, Mesh, from_polygons, mesh_arrays, validate
+from livemod.dlfl.geometry import (
+    cleanup_2gons,
+    cleanup_winged_vertices,
+    edge_cleanup,
+    splice_corners,
+    split_valence2_vertices,
+)
 from livemod.dlfl.io import read_dlfl
 from livemod.dlfl.io.dlflfile import dlfl_bytes
 from tests.meshes import (
@@ -143,6 +150,22 @@ class MeshOperators(RuleBasedStateMachine):
         self.mesh.create_face(points)
         n = len(points)
         assert self.mesh.counts() == (v + n, e + n, f + 2)
+
+    @rule(i=index, j=index, which=st.integers(min_value=0, max_value=4))
+    def cleanup_helper(self, i: int, j: int, which: int) -> None:
+        """TopMod's cleanup helpers and spliceCorners, built on the operators."""
+        m = self.mesh
+        if which == 4:
+            corners = self.corners()
+            if len(corners) < 2:
+                return
+            c1 = pick(corners, i)
+            c2 = pick([c for c in corners if c != c1], j)
+            if m.corner_vertex(c1) != m.corner_vertex(c2):
+                assert m.has_vertex(splice_corners(m, c1, c2))
+            return
+        helpers = (cleanup_2gons, cleanup_winged_vertices, edge_cleanup, split_valence2_vertices)
+        helpers[which](m)
 
     # -- inverses ----------------------------------------------------------------
 

@@ -14,7 +14,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from ._checks import finite_number, first_not_finite, flag, whole_count
+from ._checks import finite_number, first_not_finite, flag, id_list, whole_count
 from ._vectors import centroid, lengths, range_exponent, scaled_mean
 from ._vectors import unit as _unit
 from .analysis import face_centroids, face_normals
@@ -128,9 +128,14 @@ def spheralize(mesh: Mesh) -> None:
 def edge_cleanup(mesh: Mesh, edges: list[int] | None = None) -> int:
     """TopMod's ``edgeCleanup``: delete every edge (or every one of ``edges`` still
     there, in order) whose two faces are coplanar (``|n1 . n2 - 1| < 1e-5``) or
-    are one face. Returns the number deleted."""
+    are one face. Returns the number deleted.
+
+    Raises:
+        DLFLError: ``edges`` is not a list of ids (integers); nothing is deleted.
+    """
+    todo = mesh.edge_ids().tolist() if edges is None else id_list(edges, "edges")
     deleted = 0
-    for e in mesh.edge_ids().tolist() if edges is None else edges:
+    for e in todo:
         if not mesh.has_edge(e):
             continue
         f1, f2 = mesh.edge_faces(e)
@@ -148,11 +153,21 @@ def _coplanar(mesh: Mesh, f1: int, f2: int) -> bool:
 
 
 def cleanup_2gons(mesh: Mesh) -> int:
-    """TopMod's ``cleanup2gons``: delete one edge of every 2-gon. Returns the count."""
+    """TopMod's ``cleanup2gons``: delete one edge of every 2-gon. Returns the count.
+
+    The deletion merges the faces on the edge's two sides. A lone edge (a
+    component of two vertices whose one face runs along both sides of the
+    edge) is kept: deleting its edge splits that face instead of merging two,
+    which TopMod's comment rules out, and its cleanup would remove the whole
+    component.
+    """
     deleted = 0
     for f in mesh.face_ids().tolist():
-        if mesh.has_face(f) and mesh.face_size(f) == 2 and len(mesh.face_edges(f)) == 2:
-            mesh.delete_edge(mesh.face_edges(f)[0])
+        if not mesh.has_face(f) or mesh.face_size(f) != 2:
+            continue
+        edges = mesh.face_edges(f)
+        if edges[0] != edges[1]:
+            mesh.delete_edge(edges[0])
             deleted += 1
     return deleted
 

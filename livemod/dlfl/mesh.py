@@ -27,7 +27,7 @@ from typing import Any
 
 import numpy as np
 
-from ._checks import whole_count
+from ._checks import flag, whole_count
 from ._table import FieldSpec, Table
 from .errors import DLFLError
 
@@ -66,6 +66,11 @@ def _as_point(position: Any) -> tuple[float, float, float]:
     Raises:
         DLFLError: not three numbers, or one of them is NaN or infinite.
     """
+    kind = type(position)
+    # a string unpacks into digits ("123" -> 1, 2, 3; b"123" -> 49, 50, 51): refuse
+    # it, testing the common tuple and list first to keep create_vertex fast
+    if kind is not tuple and kind is not list and isinstance(position, (str, bytes, bytearray)):
+        raise DLFLError(f"expected a position (x, y, z) of three numbers, got {position!r}")
     try:
         x, y, z = (float(v) for v in position)
     except (TypeError, ValueError):
@@ -259,8 +264,14 @@ class Mesh:
         return bool(self._f.hole[self._f.slot(face)])
 
     def set_hole(self, face: int, hole: bool = True) -> None:
-        """Flag ``face`` as a hole (not drawn, written out as a boundary) or not."""
-        self._f.hole[self._f.slot(face)] = 1 if hole else 0
+        """Flag ``face`` as a hole (not drawn, written out as a boundary) or not.
+
+        Raises:
+            DLFLError: ``face`` is not live, or ``hole`` is not a flag (a string
+                such as ``"False"`` would otherwise mean True).
+        """
+        slot = self._f.slot(face)
+        self._f.hole[slot] = 1 if flag(hole, "hole") else 0
 
     def vertex_corner(self, vertex: int) -> int:
         """Id of one corner at ``vertex``."""
@@ -807,8 +818,10 @@ class Mesh:
         """Collapse ``edge`` to its midpoint and return the surviving vertex id.
 
         The vertex of side ``c0`` survives at the midpoint and takes over every
-        corner of the other end. A self-loop is deleted instead (its vertex
-        survives, as a point-sphere when nothing else is left). With ``cleanup``
+        corner of the other end; only when that vertex is a dangling end (its
+        one corner, valence 1) and the other is not does the other survive. A
+        self-loop is deleted instead (its vertex survives, as a point-sphere
+        when nothing else is left). With ``cleanup``
         (TopMod's default) a face left with one or two sides loses one edge, so no
         degenerate face remains.
 

@@ -15,7 +15,7 @@ from typing import Any
 
 import numpy as np
 
-from ._checks import id_list, is_id
+from ._checks import finite_number, id_list, is_id
 from .analysis import face_areas, face_normals
 from .arrays import mesh_arrays
 from .errors import DLFLError
@@ -57,15 +57,36 @@ def faces_by_normal(mesh: Mesh, direction: Any, max_angle: float = 1.0) -> list[
     """Faces whose normal lies within ``max_angle`` degrees of ``direction``.
 
     Raises:
-        DLFLError: a zero direction.
+        DLFLError: ``direction`` is not three finite numbers or is zero, or
+            ``max_angle`` is not a finite number.
     """
-    d = np.asarray(direction, dtype=np.float64).reshape(3)
-    if not np.linalg.norm(d) > 0:
-        raise DLFLError("direction must not be zero")
+    d = _direction(direction)
+    angle = finite_number(max_angle, "max_angle")
     a = mesh_arrays(mesh)
-    cosine = face_normals(a) @ (d / np.linalg.norm(d))
-    keep = (cosine >= np.cos(np.radians(max_angle)) - 1e-12) & ~a.face_hole
+    cosine = face_normals(a) @ d
+    keep = (cosine >= np.cos(np.radians(angle)) - 1e-12) & ~a.face_hole
     return a.face_ids[keep].tolist()
+
+
+def _direction(direction: Any) -> np.ndarray:
+    """``(3,)`` unit vector along ``direction`` (three finite numbers, not all zero).
+
+    Raises:
+        DLFLError: anything else; numpy's own ValueError would not say which
+            argument was wrong.
+    """
+    try:
+        d = np.asarray(direction, dtype=np.float64)
+    except (TypeError, ValueError):
+        d = np.zeros(0)
+    if d.shape != (3,) or not np.isfinite(d).all():
+        raise DLFLError(f"direction must be three finite numbers, got {direction!r}")
+    # to at most 1 first: the squares in the norm of (1e308, 1e308, 0) overflow
+    largest = float(np.abs(d).max())
+    if largest == 0.0:
+        raise DLFLError("direction must not be zero")
+    d = d / largest
+    return d / np.linalg.norm(d)
 
 
 def faces_where(mesh: Mesh, predicate: Callable[[int], bool]) -> list[int]:
@@ -98,10 +119,10 @@ def faces_by_area(mesh: Mesh, face: int, delta: float = 0.05) -> list[int]:
     """TopMod's ``selectFacesByArea``: faces whose area is within ``delta`` of ``face``'s.
 
     Raises:
-        DLFLError: ``face`` does not exist.
+        DLFLError: ``face`` is not a live face, or ``delta`` is not a finite number.
     """
-    if not mesh.has_face(face):
-        raise DLFLError(f"face {face} does not exist")
+    delta = finite_number(delta, "delta")
+    mesh.face_size(face)  # raises naming the face (deleted or never made)
     a = mesh_arrays(mesh)
     areas = face_areas(a)
     target = areas[int(np.searchsorted(a.face_ids, face))]
@@ -115,10 +136,10 @@ def checkerboard(mesh: Mesh, face: int) -> list[int]:
     a cube subdivided into quads this picks every other face.
 
     Raises:
-        DLFLError: ``face`` does not exist.
+        DLFLError: ``face`` is not a live face (the message says whether it was
+            deleted).
     """
-    if not mesh.has_face(face):
-        raise DLFLError(f"face {face} does not exist")
+    mesh.face_size(face)  # raises naming the face
     chosen = {face}
     todo = [face]
     while todo:

@@ -12,7 +12,7 @@ from typing import Any
 
 import numpy as np
 
-from ._checks import finite_number, first_not_finite, id_list
+from ._checks import finite_number, first_not_finite, flag, id_list
 from .errors import DLFLError
 from .mesh import Mesh
 
@@ -48,7 +48,8 @@ def _selected(mesh: Mesh, vertices: Iterable[int] | None) -> tuple[np.ndarray, n
     found = order[where] if len(all_ids) else where
     missing = (all_ids[found] != ids) if len(all_ids) else np.ones(len(ids), bool)
     if missing.any():
-        raise DLFLError(f"vertex {int(ids[missing][0])} does not exist")
+        # the table's wording: "was deleted" for an id the mesh once had
+        raise DLFLError(mesh._v._missing_message(int(ids[missing][0])))
     return ids, all_positions[found]
 
 
@@ -63,7 +64,10 @@ def transform(
             point, a vertex id is not live, or a vertex would move to a
             non-finite position. The mesh is unchanged.
     """
-    m = np.asarray(matrix, dtype=np.float64)
+    try:
+        m = np.asarray(matrix, dtype=np.float64)
+    except (TypeError, ValueError):  # strings, ragged rows
+        raise DLFLError(f"matrix must be a finite 3x3 array, got {matrix!r}") from None
     if m.shape != (3, 3) or not np.isfinite(m).all():
         raise DLFLError(f"matrix must be a finite 3x3 array, got shape {m.shape}")
     c = _vector(center, "center")
@@ -136,6 +140,7 @@ def move_vertices(
     """Move the listed vertices by ``offset`` or, with ``relative=False``, to it
     (the thesis's ``move(vertexids, (x, y, z)[, relative])``)."""
     d = _vector(offset, "offset")
+    relative = flag(relative, "relative")  # a string such as "False" would mean True
     ids, p = _selected(mesh, vertices)
     if not relative:
         mesh.set_positions(ids, np.broadcast_to(d, p.shape))

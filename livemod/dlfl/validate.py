@@ -46,6 +46,12 @@ def _fail(message: str) -> None:
 def _check_table(t: Table) -> None:
     ids = t.ids[: t.n]
     live = ids >= 0
+    # the free list's range first: the count relies on it, and the check of its
+    # contents raised IndexError on a slot past the used ones (a negative one
+    # silently read the last slot)
+    outside = [s for s in t.free if not 0 <= s < t.n]
+    if outside:
+        _fail(f"{t.kind} free list holds slot {outside[0]}, outside the {t.n} used slots")
     if t.count != int(live.sum()):
         _fail(f"{t.kind} table counts {t.count} live elements but {int(live.sum())} slots are used")
     if len(set(t.free)) != len(t.free) or any(ids[s] >= 0 for s in t.free):
