@@ -72,7 +72,7 @@ class Selection:
         """The ``--select`` options that give this selection to ``livemod run``,
         ``render``, ``batch`` or ``view`` (empty for an empty selection)."""
         parts = [f"--select {kind}={','.join(map(str, getattr(self, name)))}"
-                 for kind, name in _SELECTION_OPTIONS if getattr(self, name)]
+                 for name, kind in SELECTION_READERS.items() if getattr(self, name)]
         return " ".join(parts)
 
 
@@ -80,8 +80,10 @@ class Selection:
 _SELECTION_KINDS = {"faces": "faces", "face": "faces", "edges": "edges", "edge": "edges",
                     "verts": "vertices", "vert": "vertices", "vertices": "vertices",
                     "vertex": "vertices", "corners": "corners", "corner": "corners"}
-_SELECTION_OPTIONS = (("faces", "faces"), ("edges", "edges"), ("verts", "vertices"),
-                      ("corners", "corners"))
+# each Selection field, in field order -> the command that returns it (``verts(True)``
+# gives the vertices), which is also the kind ``Selection.options`` writes
+SELECTION_READERS = {"faces": "faces", "edges": "edges", "vertices": "verts",
+                     "corners": "corners"}
 
 
 def _selection_ids(text: str, ids: str) -> list[int]:

@@ -5,7 +5,7 @@ from __future__ import annotations
 import dataclasses
 import os
 
-from livemod.dlfl.scene import Scene, Selection
+from livemod.dlfl.scene import SELECTION_READERS, Scene, Selection
 
 from .execute import RunOutcome, base_scene, execute
 from .results import RunResult, object_fields, parameter_items, snapshot_scene
@@ -38,21 +38,16 @@ def missing_picks_note(scene: Scene) -> str | None:
             f"the selection; those picks were left out")
 
 
-# what each selection field is asked for with, and how --select names it
-_READS = {"faces": ("faces(True)", "faces"), "edges": ("edges(True)", "edges"),
-          "vertices": ("verts(True)", "verts"), "corners": ("corners(True)", "corners")}
-
-
 def unselected_note(scene: Scene) -> str | None:
     """One line for ``livemod: note: ...`` when the script asked for a selection
     (``faces(True)`` and the like) that had nothing in it, as a headless run
     without ``--select`` has: a rind of no faces is a closed double shell, not the
     crust with an opening its author picked in the window. None otherwise."""
-    asked = [_READS[name] for name in _READS if name in scene.unselected_reads]
+    asked = [kind for name, kind in SELECTION_READERS.items() if name in scene.unselected_reads]
     if not asked:
         return None
-    calls = " and ".join(call for call, _ in asked)
-    example = " ".join(f"--select {flag}=ID,..." for _, flag in asked)
+    calls = " and ".join(f"{kind}(True)" for kind in asked)
+    example = " ".join(f"--select {kind}=ID,..." for kind in asked)
     return (f"{calls} found nothing selected, so the script got none; give "
             f"{example}, or pick in `livemod view`")
 

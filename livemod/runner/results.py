@@ -23,7 +23,7 @@ from livemod.dlfl.arrays import MeshArrays, concatenate_arrays, mesh_arrays
 from livemod.dlfl.errors import DLFLError
 from livemod.dlfl.io import save_mesh
 from livemod.dlfl.mesh import Mesh
-from livemod.dlfl.scene import STEP_FIELDS, Scene, StepLog
+from livemod.dlfl.scene import SELECTION_READERS, STEP_FIELDS, Scene, StepLog
 
 
 @dataclass(frozen=True)
@@ -308,9 +308,6 @@ def join_others(objects: Sequence[tuple[int, str, MeshArrays]]) -> MeshArrays | 
     return freeze_arrays(concatenate_arrays([arrays for _, _, arrays in objects]), copy=False)
 
 
-SELECTION_FIELDS = ("faces", "edges", "vertices", "corners")
-
-
 def object_fields(scene: Scene) -> dict[str, Any]:
     """The ``others``, ``other_objects``, ``current_object`` and ``unselected``
     fields of a :class:`RunResult` of ``scene``."""
@@ -318,7 +315,7 @@ def object_fields(scene: Scene) -> dict[str, Any]:
     current = scene.current
     # a script may set ``current`` to an id it never made (or killed)
     named = (current, scene.objects[current].name) if current in scene.objects else None
-    unselected = tuple(name for name in SELECTION_FIELDS if name in scene.unselected_reads)
+    unselected = tuple(name for name in SELECTION_READERS if name in scene.unselected_reads)
     return {"others": join_others(objects), "other_objects": objects, "current_object": named,
             "unselected": unselected}
 

@@ -13,7 +13,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from livemod.dlfl.arrays import MeshArrays
-from livemod.dlfl.scene import Selection
+from livemod.dlfl.scene import SELECTION_READERS, Selection
 
 PICK_MODES = ("face", "edge", "vertex", "corner")
 _SELECTION_FIELD = {"face": "faces", "edge": "edges", "vertex": "vertices",
@@ -188,9 +188,6 @@ def split_picks(selection: Selection, arrays: MeshArrays | None,
     return Selection(**present), Selection(**missing)
 
 
-# the command that reads each selection field, as the HUD names it
-_READER = {"faces": "faces(True)", "edges": "edges(True)", "vertices": "verts(True)",
-           "corners": "corners(True)"}
 _KIND = {field: mode for mode, field in _SELECTION_FIELD.items()}
 
 
@@ -198,7 +195,7 @@ def unpicked_lines(unselected: Sequence[str], selection: Selection) -> list[str]
     """The HUD's note for each selection field in ``unselected`` (those a run's
     ``faces(True)`` and the like found empty) that ``selection`` still has nothing
     of, e.g. ``faces(True) found nothing picked: M to face mode, click a face``."""
-    return [f"{_READER[field]} found nothing picked: M to {_KIND[field]} mode, "
+    return [f"{SELECTION_READERS[field]}(True) found nothing picked: M to {_KIND[field]} mode, "
             f"click a {_KIND[field]}"
             for field in unselected if not getattr(selection, field)]
 
