@@ -25,9 +25,7 @@ from livemod.commandline import (
     check_writable,
     describe,
     error,
-    note,
     usage_errors,
-    warning,
 )
 from livemod.dlfl.analysis import summarize
 from livemod.dlfl.io import WRITERS
@@ -45,7 +43,7 @@ from .batch import (
     sweep,
     write_index,
 )
-from .headless import missing_picks_note, run_outcome, unselected_note
+from .headless import report_selection, run_outcome
 from .results import RunResult, StepRecord, result_mesh, save_problem
 
 OUTPUT_SUFFIXES = tuple(f".{key}" for key in WRITERS)
@@ -251,22 +249,11 @@ def cmd_run(args: argparse.Namespace) -> int:
     return _finish_run(args, outcome, params)
 
 
-def _note_selection(scene: Any) -> None:
-    """Say which picks the run's ``faces(True)`` and the like left out, and which
-    of them found nothing selected."""
-    left_out = missing_picks_note(scene)
-    if left_out is not None:
-        warning(left_out)
-    unselected = unselected_note(scene)
-    if unselected is not None:
-        note(unselected)
-
-
 def _finish_run(args: argparse.Namespace, outcome: Any, params: dict[str, Any]) -> int:
     """Report a headless run (steps, error or summary) and save its mesh; the exit code."""
     if args.steps:
         print_steps(outcome.steps)
-    _note_selection(outcome.scene)
+    report_selection(outcome.scene)
     problem = (declarations.undeclared(outcome.declarations, params, ran=True)
                if outcome.error is None else None)
     if problem is not None:  # only for scripts whose declarations are computed

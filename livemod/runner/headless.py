@@ -52,6 +52,18 @@ def unselected_note(scene: Scene) -> str | None:
             f"{example}, or pick in `livemod view`")
 
 
+def report_selection(scene: Scene) -> None:
+    """Print, on stderr, the warning of :func:`missing_picks_note` and the note of
+    :func:`unselected_note` for a headless run's ``scene`` (each when it has one)."""
+    from livemod.commandline import note, warning
+
+    left_out, unselected = missing_picks_note(scene), unselected_note(scene)
+    if left_out is not None:
+        warning(left_out)
+    if unselected is not None:
+        note(unselected)
+
+
 def result_of(outcome: RunOutcome, script: str, parameters: dict | None,
               run_id: int = 1) -> RunResult:
     """The immutable :class:`RunResult` of a headless outcome."""

@@ -435,17 +435,13 @@ def _run_for_render(path: str, mesh_path: str | None, want_preview: bool,
     from livemod.dlfl.errors import DLFLError
     from livemod.runner import run_outcome
     from livemod.runner.declarations import undeclared
-    from livemod.runner.headless import missing_picks_note, unselected_note
+    from livemod.runner.headless import report_selection
     from livemod.runner.preview import preview_arrays
     from livemod.runner.results import current_mesh, snapshot_others
 
     outcome = run_outcome(path, mesh_path=mesh_path, parameters=values, selection=selection,
                           seed=seed)
-    left_out, unselected = missing_picks_note(outcome.scene), unselected_note(outcome.scene)
-    if left_out is not None:
-        warning(left_out)
-    if unselected is not None:
-        note(unselected)
+    report_selection(outcome.scene)
     if outcome.error is not None:
         failure = outcome.error  # (not ``error``: that is the message printer here)
         raise DLFLError(f"{failure.file}:{failure.line}: {failure.message}")
