@@ -80,6 +80,10 @@ class _Run:
     started: float = 0.0  # perf_counter() when the supervisor started it
     ended: bool = False  # its end was published (or dropped): it works no more
 
+    def working(self) -> float:
+        """Seconds it has worked since it started, its pauses left out."""
+        return max(time.perf_counter() - self.started - self.control.waited, 0.0)
+
 
 @dataclass(frozen=True)
 class RunActivity:
@@ -357,8 +361,7 @@ class LiveSession:
             run = self._current
             if run is None or run.ended or self._closed or run.control.paused_at is not None:
                 return None
-            working = time.perf_counter() - run.started - run.control.waited
-            return RunActivity(run.run_id, run.script, max(working, 0.0))
+            return RunActivity(run.run_id, run.script, run.working())
 
     def _live_run(self) -> _Run | None:
         """The newest run while its thread has not finished the script."""
@@ -633,7 +636,7 @@ class LiveSession:
             last = self._last_good
         self._post(RunResult(run.run_id, run.script, "cancelled", (), None,
                              error=cancelled_error(run.script),
-                             elapsed=time.perf_counter() - run.started - run.control.waited,
+                             elapsed=run.working(),
                              **_last_good_fields(last)))
 
     def _publish_failure(self, run: _Run, exc: Exception, elapsed: float, file: str) -> None:
