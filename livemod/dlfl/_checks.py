@@ -32,6 +32,25 @@ def finite_number(value: object, name: str) -> float:
     return number
 
 
+def finite_vector(value: object, name: str, *, repeat_scalar: bool = False) -> np.ndarray:
+    """``(3,)`` float64 from three finite numbers (with ``repeat_scalar``, one
+    number stands for all three).
+
+    Raises:
+        DLFLError: anything else, naming ``name`` (numpy's own ValueError for
+            strings or ragged rows would not say which argument was wrong).
+    """
+    try:
+        arr = np.asarray(value, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise DLFLError(f"{name} must be three finite numbers, got {value!r}") from None
+    if repeat_scalar and arr.shape == ():
+        arr = np.full(3, float(arr))
+    if arr.shape != (3,) or not np.isfinite(arr).all():
+        raise DLFLError(f"{name} must be three finite numbers, got {value!r}")
+    return arr
+
+
 def is_id(value: object) -> TypeGuard[numbers.Integral]:
     """True for a Python or numpy integer (an id); bools are not ids."""
     return isinstance(value, numbers.Integral) and not isinstance(value, bool)

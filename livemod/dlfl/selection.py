@@ -15,7 +15,8 @@ from typing import Any
 
 import numpy as np
 
-from ._checks import finite_number, id_list, is_id
+from ._checks import finite_number, finite_vector, id_list, is_id
+from ._vectors import unit
 from .analysis import face_areas, face_normals
 from .arrays import mesh_arrays
 from .errors import DLFLError
@@ -72,21 +73,12 @@ def _direction(direction: Any) -> np.ndarray:
     """``(3,)`` unit vector along ``direction`` (three finite numbers, not all zero).
 
     Raises:
-        DLFLError: anything else; numpy's own ValueError would not say which
-            argument was wrong.
+        DLFLError: anything else, naming ``direction``.
     """
-    try:
-        d = np.asarray(direction, dtype=np.float64)
-    except (TypeError, ValueError):
-        d = np.zeros(0)
-    if d.shape != (3,) or not np.isfinite(d).all():
-        raise DLFLError(f"direction must be three finite numbers, got {direction!r}")
-    # to at most 1 first: the squares in the norm of (1e308, 1e308, 0) overflow
-    largest = float(np.abs(d).max())
-    if largest == 0.0:
+    d = finite_vector(direction, "direction")
+    if not np.abs(d).max() > 0.0:
         raise DLFLError("direction must not be zero")
-    d = d / largest
-    return d / np.linalg.norm(d)
+    return unit(d[None])[0]  # brought into range first: (1e308, 1e308, 0) has a norm
 
 
 def faces_where(mesh: Mesh, predicate: Callable[[int], bool]) -> list[int]:

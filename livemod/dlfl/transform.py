@@ -12,7 +12,7 @@ from typing import Any
 
 import numpy as np
 
-from ._checks import finite_number, first_not_finite, flag, id_list
+from ._checks import finite_number, finite_vector, first_not_finite, flag, id_list
 from .errors import DLFLError
 from .mesh import Mesh
 
@@ -21,15 +21,7 @@ __all__ = ["move_vertices", "rotate", "rotation_matrix", "scale", "transform", "
 
 def _vector(value: Any, name: str) -> np.ndarray:
     """``(3,)`` float64 from three numbers, or one number repeated."""
-    try:
-        arr = np.asarray(value, dtype=np.float64)
-    except (TypeError, ValueError):
-        raise DLFLError(f"{name} must be three finite numbers, got {value!r}") from None
-    if arr.shape == ():
-        arr = np.full(3, float(arr))
-    if arr.shape != (3,) or not np.isfinite(arr).all():
-        raise DLFLError(f"{name} must be three finite numbers, got {value!r}")
-    return arr
+    return finite_vector(value, name, repeat_scalar=True)
 
 
 def _selected(mesh: Mesh, vertices: Iterable[int] | None) -> tuple[np.ndarray, np.ndarray]:
