@@ -108,10 +108,11 @@ def assert_refused_quietly(mesh: Mesh, call: Callable[[Mesh], object], message: 
 
 
 def assert_scales(make: Callable[[], Mesh], op: Callable[[Mesh, float], object],
-                  scale: float = 1e100, rtol: float = 1e-9) -> None:
+                  scale: float = 1e100, rtol: float = 1e-9) -> Mesh:
     """``op(mesh, s)`` on ``make()`` scaled by ``scale`` (with ``s = scale``: its
     lengths scale too) gives the result on the unit mesh (``s = 1``) scaled, with
-    no warning on the way (raw products of huge coordinates overflow)."""
+    no warning on the way (raw products of huge coordinates overflow); returns
+    the scaled mesh, for further checks."""
     small, big = make(), make()
     big.set_positions(big.vertex_ids(), big.positions_view() * scale)
     op(small, 1.0)
@@ -121,6 +122,7 @@ def assert_scales(make: Callable[[], Mesh], op: Callable[[Mesh, float], object],
     assert big.counts() == small.counts()
     np.testing.assert_allclose(big.positions_view() / scale, small.positions_view(),
                                rtol=rtol, atol=1e-12)
+    return big
 
 def same_up_to_ids(mesh: Mesh) -> tuple[Any, ...]:
     """The dense arrays without the id counters (ids of live elements kept)."""
