@@ -41,6 +41,20 @@ SMALL_TEMPLATE = (
     "    createVertex((i * 0.1, 0.0, 0.0))\n"
 )
 
+# the thesis's Fig. 24, a triangle from three createVertex and three insertEdge,
+# {n} times: a script of small commands the way the thesis writes them
+TRIANGLES_TEMPLATE = (
+    "from livemod.dlfl import *\n"
+    "for i in range({n}):\n"
+    "    x = i * 2.0\n"
+    "    a, _ = createVertex((x, 0.0, 0.0))\n"
+    "    b, _ = createVertex((x + 1.0, 0.0, 0.0))\n"
+    "    c, _ = createVertex((x, 1.0, 0.0))\n"
+    "    _, a, b, _, _ = insertEdge(a, b)\n"
+    "    _, b, c, _, _ = insertEdge(b, c)\n"
+    "    insertEdge(c, a)\n"
+)
+
 MIXED_TEMPLATE = (
     "from livemod.dlfl import *\n"
     "es = edges()\n"
@@ -61,6 +75,7 @@ EXTRUSION_TEMPLATE = (
 )
 
 SMALL_COMMANDS = SMALL_TEMPLATE.format(n=10000)
+TRIANGLES = TRIANGLES_TEMPLATE.format(n=1667)  # 10,002 steps
 MIXED_COMMANDS = MIXED_TEMPLATE.format(n=5000)
 EXTRUSIONS = EXTRUSION_TEMPLATE.format(n=2000)
 
@@ -189,20 +204,29 @@ def bench_hook_cost(repeats: int, n: int = 20000) -> dict[str, float]:
     return {"none": best["none"], **extra, "read": read}
 
 
-def bench_hook_pairs(pairs: int, n: int = 20000) -> tuple[float, float, float]:
-    """The step record's overhead on createVertex timed in pairs: a bare loop of ``n``
-    commands and a recorded one back to back, in random order, ``pairs`` times.
+CREATE_VERTEX_BODY = "createVertex((0.0, 0.0, 0.0))"
+TRIANGLE_BODY = ("x = i * 2.0; a, _ = createVertex((x, 0.0, 0.0)); "
+                 "b, _ = createVertex((x + 1.0, 0.0, 0.0)); c, _ = createVertex((x, 1.0, 0.0)); "
+                 "_, a, b, _, _ = insertEdge(a, b); _, b, c, _, _ = insertEdge(b, c); "
+                 "insertEdge(c, a)")
+
+
+def bench_hook_pairs(pairs: int, n: int = 20000, body: str = CREATE_VERTEX_BODY,
+                     ) -> tuple[float, float, float]:
+    """The step record's overhead timed in pairs: a bare loop running ``body`` ``n``
+    times (createVertex, or the thesis's triangle) and a recorded one back to back,
+    in random order, ``pairs`` times.
     Returns the (first quartile, median, third quartile) of the pairs' ratios minus
     one: a pair shares the machine's state of the moment, so slow drifts of a shared
     VM cancel out of each ratio (the least of interleaved timings does not)."""
     import random
 
-    from livemod.dlfl import createVertex
+    from livemod.dlfl import createVertex, insertEdge
     from livemod.runner.recording import StepRecorder
 
     script = "/bench/fake_script.py"
-    namespace: dict = {"createVertex": createVertex}
-    exec(compile("def loop(n):\n    for i in range(n):\n        createVertex((0.0, 0.0, 0.0))\n",
+    namespace: dict = {"createVertex": createVertex, "insertEdge": insertEdge}
+    exec(compile(f"def loop(n):\n    for i in range(n):\n        {body}\n",
                  script, "exec"), namespace)
 
     def timed(recorded: bool) -> float:
@@ -407,7 +431,13 @@ def main(argv: list[str] | None = None) -> int:
         print(f"recording on createVertex timed in pairs (bare and recorded back to back, "
               f"{8 * repeats} pairs of 20,000): {100 * middle:+.1f} % (median of the ratios; "
               f"quartiles {100 * low:+.1f} % .. {100 * high:+.1f} %)")
+        low, middle, high = bench_hook_pairs(8 * repeats, 3000, TRIANGLE_BODY)
+        print(f"recording on the thesis's triangle (3 createVertex, 3 insertEdge) timed in "
+              f"pairs ({8 * repeats} pairs of 18,000 steps): {100 * middle:+.1f} % (median; "
+              f"quartiles {100 * low:+.1f} % .. {100 * high:+.1f} %)")
         print_overhead("10,000 createVertex", bench_step_overhead(folder, repeats), repeats)
+        print_overhead("10,002 commands of the thesis's triangle", bench_step_overhead(
+            folder, repeats, TRIANGLES, steps=10002), repeats)
         base = Scene()
         base.add(grid_mesh(100))
         mixed = bench_step_overhead(folder, repeats, MIXED_COMMANDS, base)

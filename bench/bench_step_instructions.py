@@ -30,7 +30,7 @@ import tempfile
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 
-from bench_runner import EXTRUSION_TEMPLATE, MIXED_TEMPLATE, SMALL_TEMPLATE
+from bench_runner import EXTRUSION_TEMPLATE, MIXED_TEMPLATE, SMALL_TEMPLATE, TRIANGLES_TEMPLATE
 
 # the child: the same imports and base scene for both modes and both sizes, so
 # that only the loop's length differs between the two sizes of one mode
@@ -87,6 +87,7 @@ class Workload:
 
 WORKLOADS = (
     Workload("createVertex", SMALL_TEMPLATE, 1000, 11000),
+    Workload("triangles", TRIANGLES_TEMPLATE, 200, 1867, per_iteration=6),
     Workload("subdivideEdge/move", MIXED_TEMPLATE, 500, 5500, per_iteration=2, grid=100),
     Workload("cubical extrusion", EXTRUSION_TEMPLATE, 200, 1200),
 )
