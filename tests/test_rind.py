@@ -96,8 +96,8 @@ def test_negative_scale_grows_the_outer_shell():
     np.testing.assert_allclose(pos[8:], cube().positions_view(), atol=1e-12)
 
 
-@pytest.mark.parametrize("scale", [1.0, 3.0, -1.0, -1.5])
-def test_a_scale_of_magnitude_one_or_more_is_refused(scale):
+@pytest.mark.parametrize("scale", [1.0, -1.0])
+def test_a_scale_of_magnitude_one_is_refused(scale):
     # TopMod clamped it to [-1, 1] and built an inner shell on the outer one
     m = cube()
     with pytest.raises(DLFLError, match=f"scale {scale} leaves no thickness between the shells"):

@@ -30,7 +30,7 @@ from collections.abc import Callable
 
 import numpy as np
 
-from ._checks import MAX_ELEMENTS, finite_number, first_not_finite, whole_count
+from ._checks import MAX_ELEMENTS, finite_number, first_not_finite, is_id, whole_count
 from ._vectors import centroid, lengths, together_in_range, unit
 from .analysis import face_points, polygon_normal
 from .errors import DLFLError
@@ -50,8 +50,16 @@ _Four = tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]
 
 # -- checks ----------------------------------------------------------------------
 
+def _face_ids(face1: object, face2: object) -> None:
+    """Refuse face ids that are not ints (a float or bool would pass ``has_face``'s
+    hash lookup, or compare equal to a different kind of id)."""
+    for what, face in (("face1", face1), ("face2", face2)):
+        if not is_id(face):
+            raise DLFLError(f"{what} must be a face id (int), got {face!r}")
+
+
 def _live_corner(mesh: Mesh, corner: int, what: str) -> int:
-    if isinstance(corner, bool) or not isinstance(corner, int | np.integer):
+    if not is_id(corner):
         raise DLFLError(f"{what} must be a corner id (int), got {corner!r}")
     if not mesh.has_corner(int(corner)):
         raise DLFLError(f"{what}: corner {corner} does not exist (deleted or never made)")
@@ -309,8 +317,9 @@ def closest_corners(mesh: Mesh, face1: int, face2: int) -> tuple[int, int]:
     Ties go to the first pair in ring order from the heads.
 
     Raises:
-        DLFLError: a face id is not live.
+        DLFLError: a face id that is not an int, or not live.
     """
+    _face_ids(face1, face2)
     for face in (face1, face2):
         if not mesh.has_face(face):
             raise DLFLError(f"face {face} does not exist (deleted or never made)")
@@ -332,8 +341,10 @@ def connect_faces_closest(
     also honours ``max_connections``, which TopMod's Python binding ignored.
 
     Raises:
-        DLFLError: as :func:`connect_faces`, or a face id is not live.
+        DLFLError: as :func:`connect_faces`, or a face id that is not an int,
+            or not live.
     """
+    _face_ids(face1, face2)  # before the equality test: 0 == 0.0
     if face1 == face2:
         raise DLFLError(f"connect_faces_closest needs two different faces, got face {face1} twice")
     c1, c2 = closest_corners(mesh, face1, face2)

@@ -20,7 +20,7 @@ import numpy as np
 
 from ._checks import finite_number, first_not_finite, id_list
 from ._vectors import face_ring_vectors, lengths, newell, unit
-from .analysis import corner_normals
+from .analysis import corner_normals, face_normals
 from .arrays import MeshArrays, mesh_arrays
 from .build import from_corner_arrays
 from .errors import DLFLError
@@ -62,7 +62,11 @@ def crust_offsets(a: MeshArrays, thickness: float, uniform: bool = True) -> np.n
     mean ``m``, the displacement is ``m * mean(t / (m . n_i))`` when ``uniform``
     (an exact offset ``t`` from every face plane of a cube corner), otherwise
     ``t * normalize(m)``. Straight ("winged") corners, whose normal is zero, are
-    left out of the means (TopMod copied a neighbour's normal into them).
+    left out of the means (TopMod copied a neighbour's normal into them); a
+    vertex whose corners are all straight takes its faces' normals instead.
+
+    Raises:
+        DLFLError: a vertex with no normal at all (its faces have no area).
     """
     return _scaled_offsets(a, _normal_means(a), thickness, uniform)
 
@@ -78,15 +82,49 @@ class _NormalMeans:
 
 
 def _normal_means(a: MeshArrays) -> _NormalMeans:
+    """The corner normals of ``a`` and their means at each vertex.
+
+    A vertex all of whose corners are straight (one added on an edge, as
+    ``subdivideEdge`` does) takes its faces' normals instead, so that it moves
+    with the edge it lies on rather than staying on the outer shell.
+
+    Raises:
+        DLFLError: a vertex with no normal at all: its faces have no area.
+    """
     normals = corner_normals(a)
     # hole faces (boundaries of open meshes) face the other way: leave them out
-    has = (np.linalg.norm(normals, axis=1) > 0.5) & ~a.face_hole[a.corner_face]
+    solid = ~a.face_hole[a.corner_face]
+    has = (np.linalg.norm(normals, axis=1) > 0.5) & solid
     nv = len(a.vertex_ids)
     count = np.bincount(a.corner_vertex[has], minlength=nv).astype(np.float64)
+    if (count == 0).any():
+        normals, has, count = _straight_vertex_normals(a, normals, has, count, solid)
     mean = np.zeros((nv, 3))
     np.add.at(mean, a.corner_vertex[has], normals[has])
     mean /= np.maximum(count, 1)[:, None]
     return _NormalMeans(has, normals, count, mean)
+
+
+def _straight_vertex_normals(a: MeshArrays, normals: np.ndarray, has: np.ndarray,
+                             count: np.ndarray, solid: np.ndarray,
+                             ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """``(normals, has, count)`` of :func:`_normal_means` with the corners of the
+    vertices that have no corner normal (``count == 0``) given their face's normal.
+
+    Raises:
+        DLFLError: such a vertex none of whose faces has a normal either.
+    """
+    bare = (count == 0)[a.corner_vertex] & solid
+    face_normal = face_normals(a)[a.corner_face]
+    normals = np.where(bare[:, None], face_normal, normals)
+    has = has | bare & (np.linalg.norm(normals, axis=1) > 0.5)
+    count = np.bincount(a.corner_vertex[has], minlength=len(count)).astype(np.float64)
+    if (count == 0).any():
+        v = int(a.vertex_ids[np.flatnonzero(count == 0)[0]])
+        raise DLFLError(f"vertex {v} has no face normal to offset it along: the faces at it "
+                        "have no area (their corners are collinear or coincident); the "
+                        "crust would have no thickness there")
+    return normals, has, count
 
 
 def _scaled_offsets(a: MeshArrays, m: _NormalMeans, thickness: float,
@@ -372,12 +410,7 @@ def _shell_positions(
     finite_number(scale if scale is not None else thickness,
                   "scale" if scale is not None else "thickness")
     if scale is not None:
-        s = float(np.clip(scale, -1.0, 1.0))
-        if s == 0.0:
-            raise DLFLError("scale 0 would collapse the inner shell to a point; use 0 < |scale| < 1")
-        if abs(s) == 1.0:  # TopMod clamps to [-1, 1] and builds two coincident shells
-            raise DLFLError(f"scale {scale} leaves no thickness between the shells (an inner "
-                            f"copy of the same size); use 0 < |scale| < 1")
+        s = _checked_scale(a, scale)
         centre = p.mean(axis=0)
         if s > 0:
             moved = (p - centre) * s + centre
@@ -392,6 +425,33 @@ def _shell_positions(
     # floor of a slot narrower than twice the thickness reverses
     check_not_inverted(a, moved, f"thickness {thickness}")
     return (p, moved) if thickness > 0 else (moved, p)
+
+
+def _checked_scale(a: MeshArrays, scale: float) -> float:
+    """``scale`` (finite, checked by the caller) as a float, if a scaled crust of
+    ``a`` can use it.
+
+    Raises:
+        DLFLError: ``scale`` 0 or of magnitude 1 or more (checked on the value
+            given: TopMod clamped it to [-1, 1]), or a mesh none of whose faces
+            has an area (both shells would lie in one line or point).
+    """
+    s = float(scale)
+    if s == 0.0:
+        raise DLFLError("scale 0 would collapse the inner shell to a point; use 0 < |scale| < 1")
+    if abs(s) > 1.0:
+        raise DLFLError(f"scale {scale} is beyond +-1: a scaled crust needs 0 < |scale| < 1 "
+                        "(the inner copy smaller than the mesh, or with a negative scale "
+                        "the outer one larger)")
+    if abs(s) == 1.0:  # TopMod clamps to [-1, 1] and builds two coincident shells
+        raise DLFLError(f"scale {scale} leaves no thickness between the shells (an inner "
+                        f"copy of the same size); use 0 < |scale| < 1")
+    solid = ~a.face_hole
+    if not (np.linalg.norm(face_normals(a)[solid], axis=1) > 0.5).any():
+        raise DLFLError("a crust needs a face with an area; every face of this mesh has "
+                        "collinear or coincident corners, so the shells would have no "
+                        "thickness")
+    return s
 
 
 def rind(
@@ -426,6 +486,8 @@ def rind(
     Raises:
         DLFLError: a face id that is not in the mesh, a zero or non-finite
             thickness or scale, a scale of magnitude 1 or more,
+            a vertex whose faces have no area (no normal to offset it along;
+            with ``use_scaling``: every face without area),
             a moved copy (the inner one, or with a negative thickness the
             outer one) whose faces would collapse or turn over, point-spheres,
             every face punched with cleanup (nothing would be left).

@@ -59,7 +59,8 @@ def sponge(mesh: Mesh, thickness: float | None = None, *, keep_2gons: bool = Tru
     Raises:
         DLFLError: ``thickness`` not positive, or so large that the inner shell
             collapses or turns over (naming the value and the limit);
-            point-spheres or faces of fewer than three sides; the mesh is
+            point-spheres or faces of fewer than three sides; a vertex whose
+            faces have no area (no normal to offset it along); the mesh is
             unchanged.
     """
     a = mesh_arrays(mesh)

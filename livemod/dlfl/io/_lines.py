@@ -79,9 +79,15 @@ _NEWLINE_BLOCK = 1 << 20
 
 def _newlines(buf: np.ndarray) -> np.ndarray:
     """``(L,)`` int64 offsets of the ``\\n`` bytes of ``buf`` (``(B,)`` uint8), in order."""
+    return byte_offsets(buf, 10)
+
+
+def byte_offsets(buf: np.ndarray, byte: int) -> np.ndarray:
+    """``(K,)`` int64 offsets of the bytes equal to ``byte`` in ``buf`` (``(B,)``
+    uint8), in order; searched in cache-sized blocks on a few threads."""
     if len(buf) <= _NEWLINE_BLOCK:
-        return np.flatnonzero(buf == 10)
-    parts = map_in_order(lambda a: np.flatnonzero(buf[a : a + _NEWLINE_BLOCK] == 10) + a,
+        return np.flatnonzero(buf == byte)
+    parts = map_in_order(lambda a: np.flatnonzero(buf[a : a + _NEWLINE_BLOCK] == byte) + a,
                          range(0, len(buf), _NEWLINE_BLOCK))
     return np.concatenate(list(parts))
 

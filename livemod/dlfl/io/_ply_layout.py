@@ -84,9 +84,16 @@ def _parse_header(data: bytes, label: str) -> _Header:
 
 
 def _next_line(data: bytes, pos: int) -> tuple[bytes, int]:
-    """The line starting at ``pos`` (without its ``\\n``) and the next line's start."""
+    """The line starting at ``pos`` (without its line end) and the next line's start.
+
+    Lines end as in Python's universal newlines (``\\n``, ``\\r\\n`` or a lone
+    ``\\r``); the ``\\r`` of a ``\\r\\n`` stays on the line, where it is a blank.
+    """
     end = data.find(b"\n", pos)
     end = len(data) if end < 0 else end
+    lone = data.find(b"\r", pos, end - 1)
+    if lone >= 0:
+        return data[pos:lone], lone + 1
     return data[pos:end], end + 1
 
 

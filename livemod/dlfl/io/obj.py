@@ -6,8 +6,9 @@ unknown keywords). Faces take the leading index of each ``v``, ``v/t``,
 ``v//n`` or ``v/t/n`` token; negative indices count back from the last vertex
 read so far. Coordinates may be separated by spaces, tabs or commas (TopMod's
 own files write ``v 1.0, 1.0, 1.0``); numbers after the third are ignored.
-Line endings ``\\n``, ``\\r\\n`` or (a file with no ``\\n``) ``\\r``; a line
-ending in ``\\`` continues on the next. The first ``f`` line becomes face id 0.
+Line endings ``\\n``, ``\\r\\n`` or a lone ``\\r``, mixed or not (Python's
+universal newlines); a line ending in ``\\`` continues on the next. The first
+``f`` line becomes face id 0.
 
 Plain lines are parsed for the whole file at once with numpy (see
 :mod:`._lines`); any other line goes through :func:`_parse_line`, the reference

@@ -4,6 +4,10 @@ from __future__ import annotations
 
 import os
 
+import numpy as np
+
+from ._lines import byte_offsets
+
 
 def read_source(
     source: str | os.PathLike[str] | bytes, name: str | None, default: str
@@ -33,13 +37,28 @@ def show_token(token: bytes) -> str:
 
 
 def lf_line_ends(data: bytes) -> bytes:
-    """``data`` with classic Mac OS line ends (a lone ``\\r``) turned into ``\\n``.
+    """``data`` with every lone ``\\r`` (one not followed by ``\\n``) turned into ``\\n``.
 
-    Only a file holding no ``\\n`` at all is rewritten: the line readers split at
-    ``\\n`` and take ``\\r`` for a blank, so such a file would read as one line
-    (its first ``v`` and nothing else). The test stops at the first ``\\n`` of an
-    ordinary file, so LF and CRLF files cost nothing.
+    The line readers split at ``\\n`` and take ``\\r`` for a blank, so this gives
+    them Python's universal newlines: ``\\r\\n``, ``\\n`` and a lone ``\\r`` (classic
+    Mac OS, or one stray line end in an LF file) each end one line. Otherwise a
+    lone ``\\r`` would join two lines into one. Both have the same length, so
+    byte offsets stay those of ``data``.
+
+    Cost: an LF file pays one memchr for ``\\r``; a CRLF file one blocked search
+    for ``\\r`` and a look at the byte after each; only a file that holds a lone
+    ``\\r`` is copied.
     """
-    if b"\n" not in data and b"\r" in data:
+    if b"\r" not in data:
+        return data
+    if b"\n" not in data:
         return data.replace(b"\r", b"\n")
-    return data
+    buf = np.frombuffer(data, dtype=np.uint8)
+    returns = byte_offsets(buf, 13)
+    following = buf[np.minimum(returns + 1, len(buf) - 1)]
+    lone = returns[(following != 10) | (returns == len(buf) - 1)]
+    if len(lone) == 0:
+        return data
+    fixed = bytearray(data)
+    np.frombuffer(fixed, dtype=np.uint8)[lone] = 10
+    return bytes(fixed)

@@ -25,7 +25,7 @@ from ..errors import DLFLError, DLFLRepairWarning
 from ..mesh import Mesh
 from ._lines import gather_lines, parse_number_lines, split_lines, token_starts
 from .atomic import write_atomically
-from .source import read_source, show_token
+from .source import lf_line_ends, read_source, show_token
 
 _TRIANGLE = np.dtype([("normal", "<f4", 3), ("corners", "<f4", (3, 3)), ("attribute", "<u2")])
 
@@ -114,7 +114,7 @@ def parse_stl(data: bytes, label: str = "<stl>") -> tuple[np.ndarray, np.ndarray
     Raises:
         DLFLError: as :func:`read_stl` says, naming ``label``.
     """
-    count = _header_count(data)
+    count = _binary_count(data)
     if count is not None and len(data) == 84 + 50 * count:
         triangles = np.frombuffer(data, _TRIANGLE, count, 84)
         corners = triangles["corners"].reshape(-1, 3).astype(np.float64)
@@ -124,15 +124,33 @@ def parse_stl(data: bytes, label: str = "<stl>") -> tuple[np.ndarray, np.ndarray
     # a NUL byte is binary data (every float32 0.0 and attribute word holds some):
     # a binary file under a 'solid' header read as ASCII would give no facet at all
     if solid and b"\0" not in data:
-        return _AsciiStl(data, label).soup()
+        return _AsciiStl(lf_line_ends(data), label).soup()  # lone \r: a line end
     why = ("it starts with 'solid' but holds binary data, so it is no ASCII STL either"
            if solid else "it does not start with 'solid', as ASCII STL does")
+    if count == 0:
+        raise DLFLError(f"{label}: not an STL file: as binary STL its header counts 0 "
+                        f"triangles, and the {len(data) - 84} bytes after the 84-byte header "
+                        f"are not whole 50-byte triangles ({len(data)} bytes in all); and {why}")
     if count is not None:
         raise DLFLError(f"{label}: not an STL file: as binary STL its header counts {count} "
                         f"triangles ({84 + 50 * count} bytes), but the file has {len(data)} "
                         f"bytes; and {why}")
     raise DLFLError(f"{label}: not an STL file: {len(data)} bytes, too short for binary STL, "
                     f"and {why}")
+
+
+def _binary_count(data: bytes) -> int | None:
+    """The triangle count of ``data`` read as binary STL: its header's, except that a
+    header count of 0 followed by exactly ``k`` whole 50-byte triangles gives ``k``.
+
+    Some exporters never fill in the count. Four zero bytes are never ASCII STL
+    text, so this cannot take an ASCII file for binary; any other mismatch of
+    size and count stays a mismatch (None: shorter than a header).
+    """
+    count = _header_count(data)
+    if count == 0 and len(data) > 84 and (len(data) - 84) % 50 == 0:
+        return (len(data) - 84) // 50
+    return count
 
 
 def _header_count(data: bytes) -> int | None:
