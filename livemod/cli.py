@@ -71,7 +71,9 @@ def _info(args: argparse.Namespace) -> int:
     mesh = open_mesh(args.file)
     arrays = mesh_arrays(mesh)
     summary = summarize(arrays)
-    print(f"{args.file}")
+    # a missing cube.obj is TopMod's built-in cube: say so, lest it pass for the file
+    built_in = "" if os.path.exists(args.file) else " (no such file: the built-in shape)"
+    print(f"{args.file}{built_in}")
     print(f"Number of vertices : {summary.vertices}")
     print(f"Number of faces : {summary.faces - summary.holes}")
     print(f"Number of edges : {summary.edges}")

@@ -47,6 +47,17 @@ def test_info_reports_genus_of_a_sample_torus(capsys: pytest.CaptureFixture[str]
     assert "Genus : 1" in out
 
 
+def test_info_says_a_missing_file_named_as_a_shape_is_the_built_in_one(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]) -> None:
+    monkeypatch.chdir(tmp_path)
+    assert main(["info", "cube.obj"]) == 0
+    assert capsys.readouterr().out.startswith("cube.obj (no such file: the built-in shape)\n")
+    (tmp_path / "cube.obj").write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
+    assert main(["info", "cube.obj"]) == 0
+    out = capsys.readouterr().out
+    assert out.startswith("cube.obj\n") and "Number of vertices : 3" in out
+
+
 def test_info_of_a_missing_file_is_one_clear_error(capsys: pytest.CaptureFixture[str]) -> None:
     assert main(["info", "no-such-mesh.obj"]) == 1
     err = capsys.readouterr().err
