@@ -42,6 +42,8 @@ class Table:
         base: ids of slots that were never reused are ``base + slot``.
         moved: id -> slot for ids that do not follow ``base + slot``.
         next_id: the id the next created element gets.
+        floor: the first id this table handed out (:meth:`from_arrays` may start
+            above 0); below it, an id was in an earlier mesh or never existed.
     """
 
     if TYPE_CHECKING:
@@ -59,6 +61,7 @@ class Table:
         self.base = 0
         self.moved: dict[int, int] = {}
         self.next_id = 0
+        self.floor = 0
         # live slots in id order, dropped on every create/delete
         self._sorted_cache: np.ndarray | None = None
         self.arrays: dict[str, np.ndarray] = {}
@@ -177,8 +180,14 @@ class Table:
         return int(eid.__index__())
 
     def _missing_message(self, eid: int) -> str:
-        if 0 <= eid < self.next_id:
+        """Why ``eid`` (not live) names nothing: deleted when this table handed
+        it out; below ``floor`` the table cannot tell whether the mesh it
+        rebuilt had it (a bulk rebuild continues the old ids) or it never existed."""
+        if self.floor <= eid < self.next_id:
             return f"{self.kind} {eid} was deleted"
+        if 0 <= eid < self.floor:
+            return (f"{self.kind} {eid} was deleted or never existed (this mesh was built "
+                    f"with {self.kind} ids from {self.floor})")
         return f"{self.kind} {eid} does not exist"
 
     def is_live(self, eid: Any) -> bool:
@@ -233,6 +242,7 @@ class Table:
         other.base = self.base
         other.moved = dict(self.moved)
         other.next_id = self.next_id
+        other.floor = self.floor
         other._sorted_cache = None
         other._refresh_views()
         return other
@@ -255,6 +265,7 @@ class Table:
         table.base = first_id
         table.moved = {}
         table.next_id = first_id + count
+        table.floor = first_id
         table._sorted_cache = None
         table.ids = np.arange(first_id, first_id + count, dtype=np.int64)
         table.arrays = {

@@ -12,8 +12,9 @@ from __future__ import annotations
 
 import functools
 import itertools
+import random
 import warnings
-from collections.abc import Iterator, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -333,112 +334,277 @@ def _pair_multi_edges(
     soup: Polygons, mate: np.ndarray, order: np.ndarray, starts: np.ndarray,
     counts: np.ndarray, u: np.ndarray, w: np.ndarray, nxt: np.ndarray, where: _Where,
 ) -> None:
-    """Pair the sides of vertex pairs joined by several edges (2-gons).
+    """Pair the sides of vertex pairs joined by several edges (2-gons, multi-edges).
 
-    Searches the pairings group by group, backtracking, so that no vertex's
-    corners close into a fan that leaves some of its corners out. Groups are
-    rare and small; past ``MAX_BACKTRACK_GROUPS`` the search stays greedy.
+    Every pairing of a group's sides ``a -> b`` with its sides ``b -> a`` makes the
+    same faces; it only decides how the corners of ``a`` and ``b`` link up around
+    those two vertices (no other vertex sees it). A manifold needs each of those
+    corner rings to be one cycle, and :func:`_solve_group` finds such a pairing
+    for a group whenever one exists. Groups sharing a vertex constrain each other;
+    they are solved in turn, with random re-pairings between rounds.
+
+    Sets ``mate`` for every side of every group. Leaves a vertex that is
+    non-manifold whatever the pairing (its other corners close a fan of their
+    own, or its boundary is ambiguous) to the checks that follow, which name it.
+
+    Raises:
+        DLFLError: the sides of a group cannot be paired into manifold rings.
     """
     groups = []
     for start, count in zip(starts.tolist(), counts.tolist(), strict=True):
         group = order[start : start + count]
-        ref = u[group[0]]
-        fwd = [int(c) for c in group if u[c] == ref]
-        back = [int(c) for c in group if u[c] != ref]
-        groups.append((fwd, back, (int(u[group[0]]), int(w[group[0]]))))
-    backtrack = len(groups) <= MAX_BACKTRACK_GROUPS
-    failed = _assign_groups(groups, 0, soup, mate, nxt, backtrack)
-    if failed is not None:
-        verts, edges = groups[failed][2], len(groups[failed][0])
-        raise DLFLError(
-            f"{where.prefix()}vertices {where.vertex(verts[0])} and {where.vertex(verts[1])} are joined by "
-            f"{edges} edges that cannot be arranged into a manifold"
-        )
+        up = u[group] < w[group]
+        fwd, back = group[up].tolist(), group[~up].tolist()
+        mate[fwd], mate[back] = back, fwd  # a first pairing; every side has a mate now
+        groups.append((fwd, back))
+    rings = _Rings.around(soup, mate, nxt, groups)
+    if rings is None:
+        return
+    for cluster in rings.clusters():
+        if not rings.solve_cluster(cluster):
+            fwd = groups[cluster[0]][0]
+            a, b = int(u[fwd[0]]), int(w[fwd[0]])
+            raise DLFLError(
+                f"{where.prefix()}vertices {where.vertex(a)} and {where.vertex(b)} are joined "
+                f"by {len(fwd)} edges that cannot be arranged into a manifold"
+            )
 
 
-MAX_BACKTRACK_GROUPS = 200
+class _Rings:
+    """The corner rings around the vertices of multi-edge groups, as the pairing
+    of the groups' sides (``mate``, changed in place) links them.
 
+    A corner ``c`` is followed around its vertex by ``nxt[mate[c]]``. For a corner
+    on a boundary, whose side has no mate yet, the hole face that
+    :func:`_close_boundaries` adds decides the next corner: ``nxt[d]`` for the
+    one open side ``d`` ending at the vertex (the hole corner in between is left
+    out, which changes no ring's cycle count).
+    """
 
-def _assign_groups(
-    groups: list[tuple[list[int], list[int], tuple[int, int]]], k: int, soup: Polygons,
-    mate: np.ndarray, nxt: np.ndarray, backtrack: bool,
-) -> int | None:
-    """Pair groups ``k..`` in place; None on success, else the group that failed."""
-    if k == len(groups):
-        return None
-    fwd, back, verts = groups[k]
-    failed = k
-    for _ in itertools.islice(_group_pairings(fwd, back, verts, soup, mate, nxt), 720):
-        failed_later = _assign_groups(groups, k + 1, soup, mate, nxt, backtrack)
-        if failed_later is None:
+    def __init__(self, mate: np.ndarray, nxt: np.ndarray,
+                 groups: list[tuple[list[int], list[int]]],
+                 corners_at: dict[int, list[int]], link: dict[int, int],
+                 group_of: dict[int, int], vertex_of: dict[int, int]) -> None:
+        self.mate, self.nxt, self.groups = mate, nxt, groups
+        self.corners_at, self.link = corners_at, link
+        self.group_of, self.vertex_of = group_of, vertex_of
+
+    @classmethod
+    def around(cls, soup: Polygons, mate: np.ndarray, nxt: np.ndarray,
+               groups: list[tuple[list[int], list[int]]]) -> _Rings | None:
+        """The rings around the groups' vertices; None when some vertex is
+        non-manifold whatever the pairing (a later check then refuses it)."""
+        sides = [s for fwd, back in groups for s in fwd + back]
+        verts = np.unique(soup.indices[sides])
+        at = np.flatnonzero(np.isin(soup.indices, verts))
+        vertex_of = dict(zip(at.tolist(), soup.indices[at].tolist(), strict=True))
+        corners_at: dict[int, list[int]] = {int(v): [] for v in verts}
+        for c, v in vertex_of.items():
+            corners_at[v].append(c)
+        group_of = {s: g for g, (fwd, back) in enumerate(groups) for s in fwd + back}
+        link = _fixed_links(soup, mate, nxt, vertex_of, group_of)
+        if link is None:
             return None
-        failed = failed_later
-        if not backtrack:
-            break
-    mate[fwd], mate[back] = -1, -1
-    return failed
+        rings = cls(mate, nxt, groups, corners_at, link, group_of, vertex_of)
+        return None if rings.has_closed_fan() else rings
+
+    def succ(self, c: int) -> int:
+        """The corner after ``c`` around its vertex, under the current pairing."""
+        if c in self.group_of:
+            return int(self.nxt[self.mate[c]])
+        return self.link[c]
+
+    def has_closed_fan(self) -> bool:
+        """True when corners of no group close a ring of their own at some vertex."""
+        for corners in self.corners_at.values():
+            seen = {c for c in corners if c in self.group_of}
+            for c in corners:
+                if c in self.group_of:
+                    x = int(self.nxt[self.mate[c]])
+                    while x not in seen:
+                        seen.add(x)
+                        x = self.link[x]
+            if len(seen) < len(corners):
+                return True
+        return False
+
+    def ring_count(self, vertex: int) -> int:
+        """Number of cycles the corners of ``vertex`` form."""
+        seen: set[int] = set()
+        cycles = 0
+        for c in self.corners_at[vertex]:
+            if c not in seen:
+                cycles += 1
+                x = c
+                while x not in seen:
+                    seen.add(x)
+                    x = self.succ(x)
+        return cycles
+
+    def clusters(self) -> list[list[int]]:
+        """The groups, gathered into sets that share vertices (each sorted)."""
+        parent = list(range(len(self.groups)))
+
+        def root(g: int) -> int:
+            while parent[g] != g:
+                g = parent[g]
+            return g
+
+        first_at: dict[int, int] = {}
+        for g, (fwd, back) in enumerate(self.groups):
+            for v in (self.vertex_of[fwd[0]], self.vertex_of[back[0]]):
+                other = first_at.setdefault(v, g)
+                parent[root(g)] = root(other)
+        out: dict[int, list[int]] = {}
+        for g in range(len(self.groups)):
+            out.setdefault(root(g), []).append(g)
+        return list(out.values())
+
+    def solve_cluster(self, cluster: list[int]) -> bool:
+        """Pair the sides of ``cluster``'s groups so that each of their vertices
+        has one ring; False when no pairing was found.
+
+        One group alone is solved exactly (:func:`_solve_group`). Groups sharing
+        vertices are first solved one at a time, the others' pairings fixed;
+        what that leaves is searched for by :meth:`walk`.
+        """
+        verts = {self.vertex_of[s] for g in cluster for s in self.groups[g][0] + self.groups[g][1]}
+        for g in cluster:
+            _solve_group(self, *self.groups[g])
+        if all(self.ring_count(v) == 1 for v in verts):
+            return True
+        return len(cluster) > 1 and self.walk(cluster, verts, MULTI_EDGE_STEPS * len(cluster))
+
+    def walk(self, cluster: list[int], verts: set[int], steps: int) -> bool:
+        """Random swaps and rotations of mates within the groups of ``cluster``,
+        kept when the rings at ``verts`` do not split further (now and then
+        anyway, to get out of a dead end); True once every ring is one cycle.
+
+        Seeded: the same soup always gives the same mesh.
+        """
+        rng = random.Random(len(cluster))
+        excess = {v: self.ring_count(v) - 1 for v in verts}
+        total = sum(excess.values())
+        for _ in range(steps):
+            if total == 0:
+                return True
+            fwd, back = self.groups[rng.choice(cluster)]
+            if len(fwd) < 2:
+                continue
+            picks = rng.sample(fwd, 3 if len(fwd) > 2 and rng.random() < 0.5 else 2)
+            _swap_mates(self.mate, picks, picks[1:] + picks[:1])
+            ends = (self.vertex_of[fwd[0]], self.vertex_of[back[0]])
+            new = {v: self.ring_count(v) - 1 for v in ends}
+            delta = sum(new[v] - excess[v] for v in ends)
+            if delta <= 0 or rng.random() < 0.05:
+                excess.update(new)
+                total += delta
+            else:
+                _swap_mates(self.mate, picks, picks[-1:] + picks[:-1])  # undo
+        return total == 0
 
 
-def _group_pairings(fwd: list[int], back: list[int], verts: tuple[int, int], soup: Polygons,
-                    mate: np.ndarray, nxt: np.ndarray, budget: int = 20000) -> Iterator[None]:
-    """Set ``mate`` to each pairing of the sides ``fwd`` with the sides ``back`` in
-    turn (yielding after each) that closes no fan early at either vertex.
-
-    Side by side, so a pair that closes a fan too soon (say both sides of one
-    2-gon) prunes every pairing that has it, instead of every permutation being
-    tried. At most ``budget`` pairs are tried in all; the mate entries of the
-    group are -1 again when the pairings run out.
-    """
-    free = list(back)
-    tried = 0
-
-    def place(i: int) -> Iterator[None]:
-        nonlocal tried
-        if i == len(fwd):
-            yield
-            return
-        for j in range(len(free)):  # in order: the pairings come as permutations would
-            tried += 1
-            if tried > budget:
-                return
-            b = free[j]
-            mate[fwd[i]], mate[b] = b, fwd[i]
-            # a fan closed too soon stays closed whatever is paired later: prune
-            if not any(_closes_early(v, soup, mate, nxt) for v in verts):
-                del free[j]
-                yield from place(i + 1)
-                free.insert(j, b)
-            mate[fwd[i]], mate[b] = -1, -1
-
-    yield from place(0)
+MULTI_EDGE_STEPS = 5000  # walk steps per group of a cluster of groups sharing vertices
 
 
-def _closes_early(vertex: int, soup: Polygons, mate: np.ndarray, nxt: np.ndarray) -> bool:
-    """True when some of ``vertex``'s corners already close into a fan without the rest.
-
-    Sides not paired yet (mate -1) leave open chains, which later pairings may
-    still join into the one fan a manifold vertex has.
-    """
-    corners = np.flatnonzero(soup.indices == vertex).tolist()
-    seen: set[int] = set()
-    for c in corners:
-        if c in seen:
+def _fixed_links(soup: Polygons, mate: np.ndarray, nxt: np.ndarray, vertex_of: dict[int, int],
+                 group_of: dict[int, int]) -> dict[int, int] | None:
+    """The next corner around its vertex of every corner in ``vertex_of`` that is
+    no group side (see :class:`_Rings`); None when a boundary through one of
+    these vertices is ambiguous, or a one-corner face shares a vertex."""
+    open_side = (mate < 0) & ~soup.single_corners  # the groups' sides are paired by now
+    opens = np.flatnonzero(open_side)
+    ending_at: dict[int, int] = {}
+    starts_at: dict[int, int] = {}
+    for c, v in zip(opens.tolist(), soup.indices[nxt[opens]].tolist(), strict=True):
+        ending_at[v] = -1 if v in ending_at else c
+    for c in opens.tolist():
+        v = int(soup.indices[c])
+        starts_at[v] = starts_at.get(v, 0) + 1
+    link = {}
+    for c, v in vertex_of.items():
+        if c in group_of:
             continue
-        x, length = c, 0
-        while True:
-            seen.add(x)
-            length += 1
-            m = int(mate[x])
-            if m < 0:
-                break
-            x = int(nxt[m])
-            if x == c:
-                if length < len(corners):
-                    return True
-                break
+        if mate[c] >= 0:
+            link[c] = int(nxt[mate[c]])
+        elif open_side[c] and starts_at[v] == 1 and ending_at.get(v, -1) >= 0:
+            link[c] = int(nxt[ending_at[v]])
+        else:
+            return None
+    return link
+
+
+def _swap_mates(mate: np.ndarray, sides: list[int], partners: list[int]) -> None:
+    """Give ``sides[i]`` the old mate of ``partners[i]``, both ways round."""
+    old = [int(mate[p]) for p in partners]
+    for s, m in zip(sides, old, strict=True):
+        mate[s], mate[m] = m, s
+
+
+def _solve_group(rings: _Rings, fwd: list[int], back: list[int]) -> bool:
+    """Pair one group's sides ``fwd`` (``a -> b``) with ``back`` (``b -> a``), the
+    other groups' pairings fixed, so that ``a`` and ``b`` each get one ring if any
+    pairing does that; returns whether it did.
+
+    Following the rings from the corner after each side ``s`` to the first side of
+    the group met gives ``lead[s]``; a pairing ``mate`` then links the group's
+    sides at the far end as ``lead[mate[.]]``. The rings are one cycle when
+    these links are (given that no fan closes without them). First the sides at
+    ``a`` are linked into one cycle; then, while the sides at ``b`` form three or
+    more cycles, rotating the mates of three sides whose mates lie in three of
+    those cycles joins them into one, and one of the two rotations keeps ``a`` one
+    cycle. Two cycles left at ``b`` is a matter of parity: no pairing joins them.
+    """
+    lead = _leads(rings, fwd + back)
+    if lead is None:
+        return False
+    reach = {lead[b]: b for b in back}
+    for f, f_next in zip(fwd, fwd[1:] + fwd[:1], strict=True):
+        b = reach[f_next]
+        rings.mate[f], rings.mate[b] = b, f
+    while True:
+        cycles = _link_cycles(back, rings.mate, lead)
+        if len(cycles) < 3:
+            return len(cycles) == 1
+        x, y, z = (cycle[0] for cycle in cycles[:3])
+        f1, f2, f3 = (int(rings.mate[s]) for s in (x, y, z))
+        _swap_mates(rings.mate, [f1, f2, f3], [f2, f3, f1])
+        if len(_link_cycles(fwd, rings.mate, lead)) != 1:
+            _swap_mates(rings.mate, [f1, f2, f3], [f3, f1, f2])  # undo
+            _swap_mates(rings.mate, [f1, f2, f3], [f3, f1, f2])  # the other rotation
+
+
+def _leads(rings: _Rings, sides: list[int]) -> dict[int, int] | None:
+    """For each side, the first side of the same group met going round the far
+    vertex from the corner after it (the group's sides not followed); None when
+    such a walk runs into a ring without them."""
+    own = set(sides)
+    lead = {}
+    for s in sides:
+        x, seen = int(rings.nxt[s]), set()
+        while x not in own:
             if x in seen:
-                break
-    return False
+                return None  # other groups' pairings close a fan here: theirs to change
+            seen.add(x)
+            x = rings.succ(x)
+        lead[s] = x
+    return lead
+
+
+def _link_cycles(sides: list[int], mate: np.ndarray, lead: dict[int, int]) -> list[list[int]]:
+    """The cycles of ``s -> lead[mate[s]]`` on ``sides`` (one end of a group)."""
+    seen: set[int] = set()
+    cycles = []
+    for s in sides:
+        if s in seen:
+            continue
+        cycle = []
+        while s not in seen:
+            seen.add(s)
+            cycle.append(s)
+            s = lead[int(mate[s])]
+        cycles.append(cycle)
+    return cycles
 
 
 def _reorient(soup: Polygons, where: _Where, notes: list[str]) -> Polygons:

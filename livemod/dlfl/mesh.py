@@ -419,7 +419,8 @@ class Mesh:
         ``corner1`` and the corners after ``corner2``; a new face takes the corners
         from after ``corner1`` up to ``corner2``. Corners of different faces merge
         the faces into one (E+1, F-1): a handle (genus+1) within one component,
-        or a join of two components. The new edge's sides are ``(corner1,
+        or a join of two components; the merged face keeps ``corner1``'s face id
+        and is a hole when either face was one. The new edge's sides are ``(corner1,
         corner2)``: :meth:`edge_corners` returns them in that order, and their
         ``corner_next`` are the two copies made at the far ends.
 
@@ -509,9 +510,17 @@ class Mesh:
         return E.idv[e]
 
     def _insert_merge(self, s1: int, s2: int) -> int:
+        """Join the faces of slots ``s1`` and ``s2`` (different faces) by a new edge.
+
+        The face of ``s1`` takes every corner and survives; the merged face is a
+        hole when either face was one, whatever the argument order, as in
+        :meth:`delete_edge` (a face merged into a hole opens). Returns the edge id.
+        """
         C, E, F = self._c, self._e, self._f
         nxt, prv, face = C.next, C.prev, C.face
         f1, f2 = face[s1], face[s2]
+        # the merged face's boundary runs along the hole's loop: the union is open
+        F.hole[f1] |= F.hole[f2]
         a, b = nxt[s1], nxt[s2]
         # a point-sphere side is never copied; a one-corner face with a loop is
         lone1, lone2 = C.edge[s1] < 0, C.edge[s2] < 0

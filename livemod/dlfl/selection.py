@@ -93,12 +93,17 @@ def matching_faces(mesh: Mesh, face: int) -> list[int]:
 
 def matching_edges(mesh: Mesh, edge: int) -> list[int]:
     """TopMod's ``selectMatchingEdges``: edges whose end valences equal ``edge``'s
-    (in either order)."""
-    valence = vertex_valences(mesh)
-    u, w = mesh.edge_vertices(edge)
-    key = sorted((valence[u], valence[w]))
-    return [e for e in mesh.edge_ids().tolist()
-            if sorted(valence[v] for v in mesh.edge_vertices(e)) == key]
+    (in either order).
+
+    Raises:
+        DLFLError: ``edge`` is not a live edge.
+    """
+    mesh.edge_vertices(edge)  # raises naming the edge (deleted or never made)
+    a = mesh_arrays(mesh)
+    valence = np.bincount(a.corner_vertex[a.corner_edge >= 0], minlength=len(a.vertex_ids))
+    ends = np.sort(valence[a.edge_vertices], axis=1)  # (E, 2): either order matches
+    key = ends[int(np.searchsorted(a.edge_ids, edge))]
+    return a.edge_ids[(ends == key).all(axis=1)].tolist()
 
 
 def matching_vertices(mesh: Mesh, vertex: int) -> list[int]:
