@@ -129,8 +129,14 @@ class Camera:
         self.distance = float(np.clip(self.distance * 0.9**steps, 1e-6, 1e9))
 
     def fit(self, bounds: np.ndarray, margin: float = 1.08) -> None:
-        """Frame the ``(2, 3)`` ``bounds`` from the current direction."""
+        """Frame the ``(2, 3)`` ``bounds`` from the current direction.
+
+        Raises:
+            ValueError: ``bounds`` are not finite (the camera is left as it was).
+        """
         bounds = np.asarray(bounds, dtype=np.float64)
+        if not np.isfinite(bounds).all():
+            raise ValueError(f"cannot frame bounds that are not finite: {bounds.tolist()}")
         radius = max(float(np.linalg.norm(bounds[1] - bounds[0])) / 2.0, 1e-6)
         self.target = bounds.mean(axis=0)
         self.scene_radius = radius
@@ -143,9 +149,12 @@ class Camera:
         The target is the centre of the points' bounding box; the distance is the
         smallest that keeps every point inside the view (width/height ``aspect``)
         at each yaw (the current yaw when None), times ``margin``. A turntable
-        passes all its yaws, so one distance frames the whole orbit.
+        passes all its yaws, so one distance frames the whole orbit. Points that
+        are not finite (NaN or inf) are left out; with none left (or none given)
+        the camera is left as it was.
         """
         points = np.asarray(points, dtype=np.float64)
+        points = points[np.isfinite(points).all(axis=1)]
         if len(points) == 0:
             return
         self.fit(np.stack([points.min(axis=0), points.max(axis=0)]))

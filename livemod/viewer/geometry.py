@@ -40,12 +40,15 @@ class RenderGeometry:
         triangle_table: ``(T,)`` uint32 dense face index of each triangle, ORed with
             its real-side bits shifted by ``SIDE_SHIFT``.
         lines: ``(E, 2)`` uint32 vertex indices of each edge.
-        bounds: ``(2, 3)`` float64 min and max corner (zeros if empty).
+        bounds: ``(2, 3)`` float64 min and max corner of the finite positions
+            (zeros if there are none).
         face_count: number of faces, holes included (the length of face tables).
         holes: number of hole faces.
         point_spheres: ``(P,)`` uint32 indices of the vertices that are point-spheres
             (a vertex with no edge, whose face is its one corner): drawn as points,
             since they have no faces to show.
+        nonfinite: number of vertices whose position is not finite (NaN or inf);
+            they are left out of ``bounds``.
     """
 
     positions: np.ndarray
@@ -56,6 +59,7 @@ class RenderGeometry:
     face_count: int
     holes: int = 0
     point_spheres: np.ndarray = field(default_factory=lambda: np.zeros(0, np.uint32))
+    nonfinite: int = 0
 
     @property
     def triangle_face(self) -> np.ndarray:
@@ -127,13 +131,31 @@ def build_geometry(arrays: MeshArrays) -> RenderGeometry:
     triangles, triangle_face, sides = fan_triangles(arrays)
     triangle_table = triangle_face | (sides << np.uint32(SIDE_SHIFT))
     lines = arrays.edge_vertices.astype(np.uint32)
-    if len(arrays.positions):
-        bounds = np.stack([arrays.positions.min(axis=0), arrays.positions.max(axis=0)])
-    else:
-        bounds = np.zeros((2, 3))
+    finite = finite_rows(arrays.positions)
     spheres = arrays.corner_vertex[arrays.corner_edge < 0].astype(np.uint32)
-    return RenderGeometry(positions, triangles, triangle_table, lines, bounds,
-                          len(arrays.face_ids), int(arrays.face_hole.sum()), spheres)
+    return RenderGeometry(positions, triangles, triangle_table, lines, finite_bounds(finite),
+                          len(arrays.face_ids), int(arrays.face_hole.sum()), spheres,
+                          len(arrays.positions) - len(finite))
+
+
+def finite_rows(points: np.ndarray) -> np.ndarray:
+    """The rows of ``(n, 3)`` ``points`` whose three coordinates are finite, as
+    ``(k, 3)``. A script may leave NaN or inf in a position (say, a division by a
+    zero length): one such vertex must not turn the bounds, and so the camera
+    framed on them, into NaN, which would blank the whole view."""
+    points = np.asarray(points)
+    if len(points) == 0 or np.isfinite(points).all():
+        return points  # (the usual case: no copy)
+    return points[np.isfinite(points).all(axis=1)]
+
+
+def finite_bounds(points: np.ndarray) -> np.ndarray:
+    """``(2, 3)`` float64 min and max corner of the finite rows of ``(n, 3)``
+    ``points`` (zeros when there are none)."""
+    finite = finite_rows(points)
+    if len(finite) == 0:
+        return np.zeros((2, 3))
+    return np.stack([finite.min(axis=0), finite.max(axis=0)]).astype(np.float64)
 
 
 def decode_pick(pick_id: int) -> tuple[int, int] | None:

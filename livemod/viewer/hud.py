@@ -106,6 +106,7 @@ def _count_lines(info: dict[str, Any]) -> list[tuple[str, int]]:
         said = "genus ..." if whole is None else whole.text()
         hidden = "  (hidden: L lists it)" if info.get("current_hidden") else ""
         lines.append((f"V {v}  E {e}  F {f - holes}{extra}  {said}{hidden}", TEXT))
+    lines += nonfinite_lines(info.get("nonfinite", 0))
     # drawn beside the current object (A hides them, Tab shows one at a time, L lists them)
     others = info.get("others", None if result is None else result.others)
     note = info.get("others_note", "")
@@ -114,6 +115,16 @@ def _count_lines(info: dict[str, Any]) -> list[tuple[str, int]]:
             f": V {others.counts[0]}  F {others.counts[2] - int(others.face_hole.sum())}")
         lines.append((f"other objects{': ' + note if note else ''}{counts}", LABEL_DIM))
     return lines
+
+
+def nonfinite_lines(count: int) -> list[tuple[str, int]]:
+    """The HUD's warning that ``count`` vertices drawn have a position that is not
+    finite (NaN or inf), which the framing leaves out; none when ``count`` is 0."""
+    if count <= 0:
+        return []
+    vertices = "vertex" if count == 1 else "vertices"
+    return [(f"{count} {vertices} not finite (NaN or inf): left out of the framing",
+             WARN_TEXT)]
 
 
 def _panel(atlas: GlyphAtlas, lines: list[tuple[str, int]], x: float, y: float,

@@ -216,6 +216,52 @@ def _save(path: Path, write: Callable[[BinaryIO], None]) -> None:
         write(handle)
 
 
+def save_new_png(path: Path, image: np.ndarray) -> None:
+    """Write one ``(H, W, 3 or 4)`` uint8 image to ``path`` as PNG, only if no file
+    has that name: the check and the write are one step, so a file another
+    process makes meanwhile is never written over. The PNG is encoded into a
+    temporary file beside ``path`` and then hard-linked to its name (a link never
+    replaces a file), so ``path`` appears whole; where the file system has no hard
+    links, ``path`` is created exclusively and written.
+
+    Raises:
+        FileExistsError: ``path`` exists (it is left as it was).
+        OSError: the file cannot be written (no partial ``path`` is left).
+    """
+    import os
+    import secrets
+
+    from PIL import Image
+
+    path.parent.mkdir(parents=True, exist_ok=True)
+    temp = path.with_name(f".{path.name}.{secrets.token_hex(6)}.tmp")
+    _write_exclusive(temp, functools.partial(Image.fromarray(image).save, format="PNG"))
+    try:
+        try:
+            os.link(temp, path)
+        except FileExistsError:
+            raise
+        except OSError:  # no hard links here (FAT, some network shares)
+            _write_exclusive(path, lambda handle: handle.write(temp.read_bytes()))
+    finally:
+        temp.unlink(missing_ok=True)
+
+
+def _write_exclusive(path: Path, write: Callable[[BinaryIO], object]) -> None:
+    """Create ``path`` (FileExistsError if it exists) and fill it with ``write``;
+    a failed write removes it again."""
+    import os
+
+    fd = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_BINARY", 0),
+                 0o666)
+    try:
+        with os.fdopen(fd, "wb") as handle:
+            write(handle)
+    except BaseException:
+        path.unlink(missing_ok=True)
+        raise
+
+
 def save_png(path: Path, image: np.ndarray) -> None:
     """Write one ``(H, W, 3 or 4)`` uint8 image to ``path`` as PNG, atomically."""
     from PIL import Image

@@ -12,6 +12,7 @@ Coordinates are framebuffer pixels from the top left, as the HUD's.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import Any
 
@@ -60,12 +61,24 @@ def slider_range(spec: ParamSpec) -> tuple[float, float]:
 
 
 def snap(spec: ParamSpec, fraction: float) -> Any:
-    """The value at ``fraction`` (clamped to 0..1) along a number's slider, on its
-    step grid (whole numbers for ints, 1/1000 of the range for unstepped floats)."""
+    """The value at ``fraction`` (clamped to 0..1) along a number's slider.
+
+    Values lie on the step grid ``lo + k * step`` (``lo`` the slider's left end;
+    the step is whole numbers for an int without one, 1/1000 of the range for a
+    float without one), from ``lo`` to the last grid value not above the right
+    end. A declared ``max`` the grid misses (a step that does not divide the
+    range) is a value of its own at the right end, so it can be reached; an open
+    end's right end is only where the slider stops drawing, not a value.
+    """
     lo, hi = slider_range(spec)
     raw = lo + min(max(fraction, 0.0), 1.0) * (hi - lo)
-    step = spec.step or (1.0 if spec.kind == "int" else (hi - lo) / SLIDER_STEPS or 1.0)
-    value = min(max(lo + round((raw - lo) / step) * step, lo), hi)
+    step = abs(spec.step or 0.0) or (1.0 if spec.kind == "int" else (hi - lo) / SLIDER_STEPS)
+    step = step or 1.0  # (an empty range)
+    last = math.floor((hi - lo) / step * (1.0 + 1e-12) + 1e-9)  # the grid's last k
+    value = lo + min(max(round((raw - lo) / step), 0), last) * step
+    if spec.max is not None and abs(hi - raw) < abs(raw - value):
+        value = hi
+    value = min(max(value, lo), hi)
     return int(round(value)) if spec.kind == "int" else round(value, 12)
 
 

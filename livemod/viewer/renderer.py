@@ -342,6 +342,10 @@ class Renderer:
         self._pick_fbo: moderngl.Framebuffer | None = None
         self._winding: tuple[moderngl.Framebuffer, moderngl.Texture] | None = None
         self._cap_vao = ctx.vertex_array(self.programs["cap"], [])
+        # the guide lines' GL objects and the bounds they were made for
+        self._guides: tuple[bytes, list[tuple[moderngl.VertexArray, moderngl.Buffer,
+                                              tuple]]] | None = None
+        self._released = False
 
     def _bind_samplers(self) -> None:
         """Fix each program's texture units: 0 atlas/triangle_face, 1..3 flags."""
@@ -404,11 +408,22 @@ class Renderer:
                              dense_flags(arrays.edge_ids, selection.edges),
                              dense_flags(arrays.vertex_ids, selection.vertices))
 
+    def _placed(self) -> list[_MeshGPU]:
+        """The mesh and the other objects uploaded that have a finite position."""
+        return [m for m in (self._mesh, self._others)
+                if m is not None and len(m.geometry.positions) > m.geometry.nonfinite]
+
+    @property
+    def nonfinite(self) -> int:
+        """How many vertices of the mesh and the other objects have a position
+        that is not finite (NaN or inf): they are left out of :attr:`bounds`."""
+        return sum(m.geometry.nonfinite for m in (self._mesh, self._others) if m is not None)
+
     @property
     def bounds(self) -> np.ndarray | None:
-        """``(2, 3)`` bounds of everything drawn (the mesh and the other objects),
-        or None when nothing is."""
-        drawn = [m.geometry.bounds for m in (self._mesh, self._others) if m is not None]
+        """``(2, 3)`` bounds of the finite positions of everything drawn (the mesh
+        and the other objects), or None when there are none."""
+        drawn = [m.geometry.bounds for m in self._placed()]
         if not drawn:
             return None
         return np.stack([np.min([b[0] for b in drawn], axis=0),
@@ -474,15 +489,65 @@ class Renderer:
     def _draw_guides(self) -> None:
         """The ground grid and the axes, sized to what is drawn (see :func:`guide_lines`)."""
         bounds = self.bounds
-        assert bounds is not None
+        if bounds is None:  # nothing with a finite position: no size to give them
+            return
         program = self.programs["line"]
-        for lines, color in guide_lines(bounds):
+        for vao, _, color in self._guide_arrays(bounds):
             program["line_color"].value = color  # type: ignore[union-attr]
-            buffer = self.ctx.buffer(lines.astype(np.float32).tobytes())
-            vao = self.ctx.vertex_array(program, [(buffer, "3f", "in_position")])
             vao.render(moderngl.LINES)
-            vao.release()
-            buffer.release()
+
+    def _guide_arrays(self, bounds: np.ndarray) -> list[tuple[moderngl.VertexArray,
+                                                               moderngl.Buffer, tuple]]:
+        """``(vertex array, buffer, rgb)`` of each of the guide lines for ``(2, 3)``
+        ``bounds``: made when the bounds change, and kept for the frames after (a
+        turn of the view or a HUD change draws them again as they were)."""
+        key = np.asarray(bounds, dtype=np.float64).tobytes()
+        if self._guides is not None and self._guides[0] == key:
+            return self._guides[1]
+        program = self.programs["line"]
+        made = []
+        for lines, color in guide_lines(bounds):
+            buffer = self.ctx.buffer(lines.astype(np.float32).tobytes())
+            made.append((self.ctx.vertex_array(program, [(buffer, "3f", "in_position")]),
+                         buffer, color))
+        self._release_guides()
+        self._guides = (key, made)
+        return made
+
+    def _release_guides(self) -> None:
+        if self._guides is not None:
+            for vao, buffer, _ in self._guides[1]:
+                vao.release()
+                buffer.release()
+            self._guides = None
+
+    def release(self) -> None:
+        """Free every GL object the renderer made: its programs, textures and
+        buffers, the uploaded meshes and the pick, winding and guide targets.
+        Calling it again does nothing. The renderer must not draw after it; call
+        it on the thread that owns ``ctx``, while ``ctx`` is alive (a context that
+        is released frees its objects with it)."""
+        if self._released:
+            return
+        self._released = True
+        for mesh in (self._mesh, self._others, self._preview):
+            if mesh is not None:
+                mesh.release()
+        self._mesh = self._others = self._preview = None
+        self.arrays = self.preview = self.others = None
+        self._label_cache = None
+        self._release_guides()
+        if self._pick_fbo is not None:
+            release_framebuffer(self._pick_fbo)
+            self._pick_fbo = None
+        if self._winding is not None:
+            release_framebuffer(self._winding[0])
+            self._winding = None
+        self._cap_vao.release()  # (the arrays before the programs they use)
+        self.quad.release()
+        self.atlas_texture.release()
+        for program in self.programs.values():
+            program.release()
 
     def _draw_scenery(self, others: _MeshGPU, style: Style) -> None:
         """The other objects: their faces, or their edges when faces are off. Their
@@ -535,7 +600,7 @@ class Renderer:
         moves the target, so the two part. Not the largest radius ever seen
         either: after a large mesh, a small one would get a needlessly deep range."""
         reaches = [float(np.linalg.norm(m.geometry.center - target)) + m.geometry.radius
-                   for m in (self._mesh, self._others) if m is not None]
+                   for m in self._placed()]
         return max(reaches) if reaches else fallback
 
     def _set_cap_view(self, camera: Camera, aspect: float, height: int) -> None:
@@ -844,10 +909,23 @@ def _nearest_id(fbo: moderngl.Framebuffer, x: int, y: int, reach: int, code: int
 
 def nearest_corner(arrays: MeshArrays, face: int, camera: Camera, size: tuple[int, int],
                    point: tuple[int, int]) -> int:
-    """Dense index of the corner of dense ``face`` whose vertex projects nearest ``point``."""
+    """Dense index of the corner of dense ``face`` whose vertex projects nearest
+    ``point`` (window pixels from the top left, of a ``size`` view).
+
+    Only corners in front of the eye count: one behind it (clip w <= 0, as when a
+    perspective eye is inside the mesh) has no place on the screen, and dividing
+    by its w would mirror it through the centre of the view, maybe onto the click.
+    A face picked at a pixel has a corner in front (w is linear over its triangle,
+    and the pixel's point is in front); when none is, the one nearest to being
+    in front (the largest w) is returned.
+    """
     start, stop = int(arrays.face_offsets[face]), int(arrays.face_offsets[face + 1])
     at = arrays.positions[arrays.corner_vertex[start:stop]]
     clip = np.c_[at, np.ones(len(at))] @ camera.view_projection(size[0] / max(size[1], 1)).T
-    ndc = clip[:, :2] / clip[:, 3:4]
+    w = clip[:, 3]
+    front = np.flatnonzero(w > 0.0)  # (a vertex that is not finite is left out too)
+    if len(front) == 0:
+        return start + int(np.argmax(w))
+    ndc = clip[front, :2] / w[front, None]
     pixels = np.c_[(ndc[:, 0] + 1) * 0.5 * size[0], (1 - ndc[:, 1]) * 0.5 * size[1]]
-    return start + int(np.argmin(((pixels - np.asarray(point)) ** 2).sum(axis=1)))
+    return start + int(front[np.argmin(((pixels - np.asarray(point)) ** 2).sum(axis=1))])

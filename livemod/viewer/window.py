@@ -41,7 +41,7 @@ from .controls import (
 )
 from .geometry import sample_points
 from .hud import hud_quads
-from .imagefiles import save_png
+from .imagefiles import save_new_png
 from .measure import WholeMeshMeasurer, measure_lines
 from .objects_panel import (
     ObjectPanel,
@@ -195,7 +195,10 @@ class LiveViewer(mglw.WindowConfig):
         self._scrub_step: int | None = None  # the step to go to once the pointer rests
         self._scrub_time = 0.0  # when the pointer last moved it
         self.show_objects = False
+        # the times of the last frames drawn (see _count_fps), and whether this
+        # loop turn drew one
         self.frame_times: deque[float] = deque(maxlen=120)
+        self._drew = False
         self.screenshots: list[Path] = []
         self._fit_bounds: np.ndarray | None = None
         self._press: tuple[int, int, int] | None = None
@@ -224,11 +227,16 @@ class LiveViewer(mglw.WindowConfig):
 
     # -- session ---------------------------------------------------------------
 
-    def _start_session(self) -> Any:
+    def _start_session(self, parameters: dict[str, Any] | None = None) -> Any:
+        """Make and start the session of :attr:`script` on :attr:`mesh_path`, its
+        first run with ``parameters`` (over ``--set``'s) when given."""
         factory = self.options.session_factory or _default_factory(self.options)
         session = factory(self.script, self.mesh_path)
         if not self.selection.is_empty():
             session.set_selection(self.selection)
+        if parameters:
+            # (queued before start: the first run and this request are one run)
+            session.set_parameters(parameters)
         session.start()
         self.waiting = True
         self.wnd.title = f"livemod - {Path(self.script).name}"
@@ -402,8 +410,9 @@ class LiveViewer(mglw.WindowConfig):
         """Draw a frame (moderngl-window's callback): take the runner's newest
         result, upload it, draw or copy the kept frame, then the HUD and panels."""
         now = time.perf_counter()
-        self.frame_times.append(now - self._last_frame)
-        self._last_frame = now
+        if self._drew:  # the turn before drew a picture: its whole turn is a frame time
+            self.frame_times.append(now - self._last_frame)
+        self._drew, self._last_frame = False, now
         self._flush_parameters()
         self._flush_scrub()
         self._drain_results()
@@ -418,7 +427,11 @@ class LiveViewer(mglw.WindowConfig):
             self.presented = True
 
     def _count_fps(self) -> None:
-        """Update the HUD's frame rate twice a second."""
+        """Update the HUD's frame rate twice a second: frames drawn per second of
+        the loop turns that drew them (each from the start of its turn to the
+        start of the next: results taken, the draw, the swap). Turns that drew
+        nothing (an unchanged picture copied, or a wait for input) do not count,
+        so an idle window keeps the rate of its last drawn frames."""
         now = time.perf_counter()
         if now - self._fps_time > 0.5 and self.frame_times:
             self._fps_shown = round(len(self.frame_times) / max(sum(self.frame_times), 1e-9))
@@ -458,6 +471,7 @@ class LiveViewer(mglw.WindowConfig):
         """Draw the scene and the overlay into ``fbo`` (the screen or the kept
         frame, both of :attr:`screen_size`)."""
         size = self.screen_size
+        self._drew = True
         self.renderer.draw(fbo, self.camera, self.style, size)
         if self.show_hud or self.show_help:
             self.renderer.draw_overlay(fbo, self._overlay_quads(size), size)
@@ -517,7 +531,7 @@ class LiveViewer(mglw.WindowConfig):
                 self.style,
                 self.camera.ortho, self.playing, self.show_hud, self.show_help, size,
                 self.params.state(), self.objects.state(), self._objects_shown(),
-                self.show_partial, self.viewer_error)
+                self.show_partial, self.viewer_error, self.renderer.nonfinite)
 
     def _objects_shown(self) -> bool:
         # one object is listed too: its checkbox hides it
@@ -527,6 +541,7 @@ class LiveViewer(mglw.WindowConfig):
         return {"script": self.script, "result": self.result, "waiting": self.waiting,
                 "working": self._working(),
                 "arrays": self.renderer.arrays, "partial": self.show_partial,
+                "nonfinite": self.renderer.nonfinite,
                 "viewer_error": self.viewer_error,
                 "total_steps": self.total_steps,
                 "whole": self.whole.facts(), "fps": self._fps_shown,
@@ -577,18 +592,34 @@ class LiveViewer(mglw.WindowConfig):
             self.wnd.use()
 
     def save_screenshot(self, transparent: bool = False) -> Path:
-        """Write :meth:`capture` to ``<script>_NNN.png`` in the working directory
-        (atomically, never over an earlier one) and return its path."""
+        """Write :meth:`capture` to ``<script>_NNN.png`` in the working directory and
+        return its path. NNN starts at the count of this window's screenshots and
+        goes up past every name taken; the name is taken in the same step as the
+        file is made (see :func:`~.imagefiles.save_new_png`), so a file that another
+        process writes meanwhile is never written over."""
+        image = self.capture(transparent)
         stem = Path(self.script).stem
         index = len(self.screenshots)
-        path = Path(f"{stem}_{index:03d}.png")
-        while path.exists():
-            index += 1
+        while True:
             path = Path(f"{stem}_{index:03d}.png")
-        save_png(path, self.capture(transparent))
+            try:
+                save_new_png(path, image)
+                break
+            except FileExistsError:
+                index += 1
         self.screenshots.append(path)
         self._echo(f"screenshot: {path}")
         return path
+
+    def release_gl(self) -> None:
+        """Free the GL objects the window made (the kept frame, and the renderer's:
+        see :meth:`Renderer.release`); calling it again does nothing. Nothing may be
+        drawn after it. :func:`close_viewer` calls it before destroying the window."""
+        self.ctx.__enter__()  # (GL calls go to the context made current last)
+        if self._frame is not None:
+            release_framebuffer(self._frame[1])
+            self._frame = None
+        self.renderer.release()
 
     def on_close(self) -> None:
         """The window closes: stop the session's threads (moderngl-window's callback)."""
@@ -1077,21 +1108,43 @@ class LiveViewer(mglw.WindowConfig):
             self.open_path(str(paths[0]))
 
     def open_path(self, path: str) -> None:
-        """Open a script (``.py``: it replaces the watched one) or a mesh (the new base)."""
+        """Open a script (``.py``: it replaces the watched one) or a mesh (the new base).
+
+        A new script starts afresh (see :meth:`_forget_the_run`). A mesh is new input
+        to the same script, so the script's parameter values are kept (the ones set
+        on the panel, one still being dragged, and ``--set``'s); the selection is
+        cleared all the same, as its ids are the old mesh's, which the new one
+        does not share."""
         resolved = str(Path(path).resolve())
-        if Path(path).suffix.lower() in SCRIPT_SUFFIXES:
+        is_script = Path(path).suffix.lower() in SCRIPT_SUFFIXES
+        kept: dict[str, Any] = {}
+        if is_script:
             self.script = resolved
         else:
             self.mesh_path = resolved
+            kept = self._parameter_values()
+        had_selection = not self.selection.is_empty()
         self._close_session()
-        self._forget_the_run()
-        self.session = self._start_session()
+        self._forget_the_run(keep_parameters=not is_script)
+        self.session = self._start_session(kept)
         self._echo(f"opened {resolved}")
+        if not is_script:
+            note = "; the selection was cleared (its ids were the old mesh's)" \
+                if had_selection else ""
+            self._echo(f"the script runs on the new mesh with its parameter values kept{note}")
 
-    def _forget_the_run(self) -> None:
+    def _parameter_values(self) -> dict[str, Any]:
+        """The values the session's next run gets, with any slider edit not sent yet."""
+        values = dict(getattr(self.session, "parameters", {}) or {})
+        values.update(self._pending)
+        return values
+
+    def _forget_the_run(self, keep_parameters: bool = False) -> None:
         """Drop what the window kept of the runs of the session just closed: the
         next script's ids, steps and parameters are its own, and a key held, a
-        scrub, E or a viewer error of the old one must not carry over to it."""
+        scrub, E or a viewer error of the old one must not carry over to it. With
+        ``keep_parameters`` (a new mesh for the same script) the parameter panel
+        stays as it is, but for edits in flight, which the caller passes on."""
         self.selection = Selection()
         self.renderer.set_selection(self.selection)
         self.measures = []
@@ -1102,7 +1155,10 @@ class LiveViewer(mglw.WindowConfig):
         self.total_steps = 0
         self.show_partial = self.playing = self._scrubbing = False
         self.held, self._scrub_step, self._press = None, None, None
-        self._init_parameters()  # the new script declares its own
+        if keep_parameters:
+            self._pending, self._param_drag = {}, None
+        else:
+            self._init_parameters()  # the new script declares its own
 
     def _close_session(self) -> None:
         self.whole.close()
@@ -1196,8 +1252,9 @@ def _present_or_wait(viewer: LiveViewer) -> None:
 
 
 def close_viewer(viewer: LiveViewer) -> None:
-    """Stop the session and destroy the window."""
+    """Stop the session, free the window's GL objects and destroy the window."""
     viewer._close_session()
+    viewer.release_gl()
     viewer.wnd.destroy()
 
 
