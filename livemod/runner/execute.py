@@ -10,16 +10,15 @@ runs in whatever thread calls it; the session calls it from a worker thread.
 from __future__ import annotations
 
 import builtins
-import contextlib
 import ctypes
 import os
 import random
 import sys
 import threading
 import time
-from collections.abc import Iterator, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass
-from types import CodeType
+from types import CodeType, ModuleType
 
 import numpy as np
 
@@ -92,37 +91,108 @@ def seed_generators(seed: int | None) -> None:
         np.random.seed(seed % 2**32)
 
 
-@contextlib.contextmanager
-def script_folder_on_path(path: str) -> Iterator[None]:
-    """Put the script's folder first on ``sys.path`` for the duration of the run,
-    also when it is on it already but later, where a same-named module in an
-    earlier folder would shadow the script's own helper."""
-    folder = os.path.dirname(path)
-    sys.path.insert(0, folder)
-    try:
-        yield
-    finally:
-        with contextlib.suppress(ValueError):  # the script may have taken it out
-            sys.path.remove(folder)  # the first: ours, unless the script added another
+# Threads running a script's ``exec`` now (see interrupt_user_code): the forced
+# interrupt is sent, and a thread leaves, under the lock, so that none is sent
+# once the run has left the user's code.
+_INTERRUPT_LOCK = threading.Lock()
+_IN_USER_CODE: set[int] = set()
 
 
-@contextlib.contextmanager
-def local_modules(path: str, found: list[str]) -> Iterator[None]:
-    """Collect (into ``found``) and purge the local modules a run imports.
+def _enter_user_code() -> None:
+    """The calling thread runs the user's code from now on (it may be interrupted)."""
+    with _INTERRUPT_LOCK:
+        _IN_USER_CODE.add(threading.get_ident())
 
-    Modules first imported during the run whose file lies in the script's folder
-    are removed from ``sys.modules`` afterwards, so the next run imports them
-    again from disk (that is how edited helpers take effect).
+
+def _leave_user_code() -> None:
+    """No forced interrupt is sent to the calling thread from now on. One sent
+    before is raised by this call at the latest (CPython raises it at the first
+    check after the lock is taken), so in the caller's ``finally``, never in
+    the cleanup after it. Idempotent."""
+    with _INTERRUPT_LOCK:
+        _IN_USER_CODE.discard(threading.get_ident())
+
+
+def _local_modules(script: str) -> dict[str, ModuleType]:
+    """The modules in ``sys.modules`` whose file is the user's, in the script's
+    folder, by name. Every run looks at every module twice, so the folder's
+    prefix is tested first (is_user_file has the last word)."""
+    prefix = os.path.dirname(script) + os.sep
+    found = {}
+    for name, module in list(sys.modules.items()):
+        file = _module_file(module)
+        if file is not None and file.startswith(prefix) and is_user_file(file, script):
+            found[name] = module
+    return found
+
+
+def _module_file(module: object) -> str | None:
+    """The module's ``__file__``, absolute; read from its ``__dict__`` so that no
+    code of the module runs (a module ``__getattr__``)."""
+    file = getattr(module, "__dict__", _NO_DICT).get("__file__")
+    if not isinstance(file, str):
+        return None
+    if file.startswith(os.sep) or os.path.isabs(file):  # the first test is the cheap one
+        return file
+    return os.path.abspath(file)
+
+
+_NO_DICT: dict = {}
+
+
+class _HostState:
+    """What a run changes in the interpreter, given back by :meth:`leave`.
+
+    :meth:`enter` puts the script's folder first on ``sys.path`` (also when it is
+    on it already but later, where a same-named module in an earlier folder would
+    shadow the script's own helper) and takes the script folder's modules out of
+    ``sys.modules``, whoever imported them (the host, say): the script imports
+    its helpers afresh from disk in every run, which is how edited helpers take
+    effect. :meth:`leave` removes the modules the run imported and puts the
+    host's back. It is idempotent, so that it can be completed when a late
+    forced interrupt cut it short.
     """
-    before = set(sys.modules)
-    try:
-        yield
-    finally:
-        for name in set(sys.modules) - before:
-            file = getattr(sys.modules.get(name), "__file__", None)
-            if file and is_user_file(os.path.abspath(file), path):
-                found.append(os.path.abspath(file))
-                sys.modules.pop(name, None)
+
+    def __init__(self, script: str) -> None:
+        self.script = script
+        self.folder = os.path.dirname(script)  # this very object goes on sys.path
+        self.host_modules = _local_modules(script)
+        self.run_modules: dict[str, ModuleType] | None = None  # set by leave()
+
+    def enter(self) -> None:
+        """Take the host's local modules out and put the folder first on the path."""
+        for name in self.host_modules:
+            sys.modules.pop(name, None)
+        sys.path.insert(0, self.folder)
+
+    def leave(self) -> None:
+        """Undo :meth:`enter`: each part checks whether it is done already."""
+        _leave_user_code()
+        if self.run_modules is None:
+            run = _local_modules(self.script)
+            self.run_modules = {name: module for name, module in run.items()
+                                if self.host_modules.get(name) is not module}
+        self._remove_run_modules()
+        sys.modules.update(self.host_modules)
+        self._remove_folder()
+
+    @property
+    def files(self) -> list[str]:
+        """Files of the local modules the run imported (after :meth:`leave`)."""
+        modules = self.run_modules or {}
+        return sorted({file for m in modules.values() if (file := _module_file(m))})
+
+    def _remove_run_modules(self) -> None:
+        for name, module in (self.run_modules or {}).items():
+            if sys.modules.get(name) is module:  # not the host's, put back before
+                del sys.modules[name]
+
+    def _remove_folder(self) -> None:
+        # by identity: the script may have taken ours out, or added an equal entry
+        for index, entry in enumerate(sys.path):
+            if entry is self.folder:
+                del sys.path[index]
+                return
 
 
 def base_scene(mesh_path: str | None) -> Scene:
@@ -192,24 +262,56 @@ def execute(
 def _exec(code: CodeType, namespace: dict, script: str, scene: Scene,
           recorder: StepRecorder, seed: int | None,
           ) -> tuple[str, ScriptError | None, list[str]]:
-    """``exec`` with the scene bound; returns ``(status, error, local module files)``."""
-    modules: list[str] = []
+    """``exec`` with the scene bound; returns ``(status, error, local module files)``.
+
+    ``sys.path`` and ``sys.modules`` are given back in every case, also when a
+    forced interrupt sent just before the script ended lands in the giving back
+    (the run is then cancelled, as it was asked to be).
+    """
+    host = _HostState(script)
+    host.enter()
+    status, error = "cancelled", None
     try:
-        with use_scene(scene), script_folder_on_path(script), local_modules(script, modules):
-            seed_generators(seed)
-            exec(code, namespace)  # noqa: S102  (running the user's script is the point)
+        status, error = _run_code(code, namespace, script, scene, recorder, seed)
+    finally:
+        try:
+            host.leave()
+        except Cancelled:  # the late interrupt (one only: see interrupt_user_code)
+            host.leave()
+            status, error = "cancelled", _cancelled(script, recorder)
+        except BaseException:  # Ctrl-C: the host's state is given back all the same
+            host.leave()
+            raise
+    return status, error, host.files
+
+
+def _cancelled(script: str, recorder: StepRecorder) -> ScriptError:
+    """The error of a cancelled run, at the line of its last step."""
+    steps = recorder.steps
+    return cancelled_error(script, steps[-1].line if steps else None)
+
+
+def _run_code(code: CodeType, namespace: dict, script: str, scene: Scene,
+              recorder: StepRecorder, seed: int | None) -> tuple[str, ScriptError | None]:
+    """``exec`` the script in ``namespace``; ``(status, error)``, errors caught."""
+    try:
+        with use_scene(scene):
+            try:
+                _enter_user_code()
+                seed_generators(seed)
+                exec(code, namespace)  # noqa: S102  (running the user's script is the point)
+            finally:  # first thing: a late interrupt lands here, not in what follows
+                _leave_user_code()
     except Cancelled:
-        steps = recorder.steps
-        line = steps[-1].line if steps else None
-        return "cancelled", cancelled_error(script, line), modules
+        return "cancelled", _cancelled(script, recorder)
     except SystemExit as exc:
         if exc.code not in (None, 0):
-            return "error", exception_error(exc, script), modules
+            return "error", exception_error(exc, script)
     except BaseException as exc:  # a script's own BaseException is its error, too
         if _is_ctrl_c(exc):
             raise
-        return "error", exception_error(exc, script), modules
-    return "ok", None, modules
+        return "error", exception_error(exc, script)
+    return "ok", None
 
 
 def _is_ctrl_c(exc: BaseException) -> bool:
@@ -227,7 +329,9 @@ def interrupt_user_code(thread: threading.Thread, script: str) -> bool:
     The compiled-in checks cover the script itself; this covers loops in the
     script's local modules. Library frames are never interrupted (a library
     operation ends at its next step instead), so the exception is only sent when
-    the innermost frame belongs to the script or a file in its folder.
+    the innermost frame belongs to the script or a file in its folder, and only
+    while ``thread`` is inside a run's ``exec`` (never once the run has left it:
+    see :func:`_leave_user_code`).
 
     Returns:
         True when the exception was sent.
@@ -235,9 +339,14 @@ def interrupt_user_code(thread: threading.Thread, script: str) -> bool:
     ident = thread.ident
     if ident is None:
         return False
-    frame = sys._current_frames().get(ident)
-    if frame is None or not is_user_file(frame.f_code.co_filename, script):
-        return False
-    sent = ctypes.pythonapi.PyThreadState_SetAsyncExc(
-        ctypes.c_ulong(ident), ctypes.py_object(Cancelled))
+    # under the lock the thread leaves by: once it has left, nothing is sent, and
+    # an exception sent before is raised in its exec's ``finally`` as it leaves
+    with _INTERRUPT_LOCK:
+        if ident not in _IN_USER_CODE:
+            return False
+        frame = sys._current_frames().get(ident)
+        if frame is None or not is_user_file(frame.f_code.co_filename, script):
+            return False
+        sent = ctypes.pythonapi.PyThreadState_SetAsyncExc(
+            ctypes.c_ulong(ident), ctypes.py_object(Cancelled))
     return bool(sent == 1)

@@ -123,6 +123,8 @@ class LiveSession:
     Attributes:
         results: :class:`RunResult` snapshots; drain with ``get_nowait()``.
         activity: the run at work now, or None (see :class:`RunActivity`); poll it.
+        empty_script: the script's path while a save left it empty (and ran
+            nothing), or None; poll it.
     """
 
     def __init__(self, script: str | os.PathLike[str], *, mesh_path: str | None = None,
@@ -154,6 +156,7 @@ class LiveSession:
         self._last_steps: Sequence[StepRecord] = ()
         self._source: str | None = None
         self._seen: dict[str, bytes] = {}
+        self._empty_script: str | None = None  # see empty_script
         self._base: Scene | None = base.copy() if base is not None else None
         self._base_version = 0  # counts changes of the --mesh file (see _base_scene)
         self._closed = False
@@ -202,7 +205,7 @@ class LiveSession:
             # a replay asked before the first run reads the new script from disk
             self._source, self._declarations, self._parameters = None, {}, {}
             self._snapshots.reset(-1)  # no run has that id
-            self._rate, self._shown = None, None
+            self._rate, self._shown, self._empty_script = None, None, None
             self._playback.run_to_end()  # a new script starts unpaused
             self._watcher.set_files(self._own_files())
         self.reload()
@@ -363,6 +366,21 @@ class LiveSession:
                 return None
             return RunActivity(run.run_id, run.script, run.working())
 
+    @property
+    def empty_script(self) -> str | None:
+        """The script's path while a save left it empty and was ignored; else None.
+
+        Empty is no bytes or whitespace only. Such a save runs nothing: an editor
+        that truncates the file and then writes it would otherwise show an empty
+        scene for the gap, so the last result stays shown. When the script is
+        still empty once the debounce has passed, this tells the caller, so the
+        window can say so (e.g. "model.py is empty: showing the last result").
+        It goes back to None when the script has content again (run or not:
+        the same text back runs nothing either) or when a run starts.
+        """
+        with self._lock:
+            return self._empty_script
+
     def _live_run(self) -> _Run | None:
         """The newest run while its thread has not finished the script."""
         run = self._current
@@ -390,9 +408,15 @@ class LiveSession:
         with self._lock:
             files, script = sorted(self._watcher.files), self.script
         digests = {path: _digest(path) for path in files}
-        if digests.get(script) in (None, _EMPTY):
-            # the script vanished (or is being replaced), or an editor truncated it
-            # and has not written it yet: wait for it to return
+        if digests.get(script) is None:
+            return  # the script vanished (or is being replaced): wait for it to return
+        emptied = digests[script] == _EMPTY or _is_blank(script)
+        with self._lock:
+            if script == self.script:
+                # an editor truncated it and has not written it yet, or the user
+                # emptied it: keep the last result, and say why (empty_script)
+                self._empty_script = script if emptied else None
+        if emptied:
             return
         with self._lock:
             changed = [p for p, d in digests.items() if p in self._seen and self._seen[p] != d]
@@ -459,7 +483,7 @@ class LiveSession:
                                           name=f"livemod-run-{run.run_id}", daemon=True)
             self._current = run
             self._snapshots.reset(run.run_id)
-            self._shown = None
+            self._shown, self._empty_script = None, None
         run.thread.start()
 
     # -- the worker ------------------------------------------------------------------
@@ -757,6 +781,17 @@ def _hash(data: bytes) -> bytes:
 
 
 _EMPTY = _hash(b"")  # the digest of an empty file (a save between truncate and write)
+
+
+def _is_blank(path: str) -> bool:
+    """True when the file holds nothing but whitespace (and a UTF-8 BOM); False
+    when it has other bytes or cannot be read."""
+    try:
+        with open(path, "rb") as handle:
+            data = handle.read()
+    except OSError:
+        return False
+    return not data.removeprefix(b"\xef\xbb\xbf").strip()
 
 
 def _digest(path: str) -> bytes | None:

@@ -12,8 +12,10 @@ watch on the old inode would die) and because a file may vanish and come back.
 
 from __future__ import annotations
 
+import contextlib
 import logging
 import os
+import stat
 import threading
 import time
 from collections.abc import Callable, Iterable
@@ -22,6 +24,7 @@ from typing import Protocol
 _LOG = logging.getLogger("livemod.watch")
 PathCallback = Callable[[str], None]
 _WRITE_EVENTS = frozenset({"modified", "moved", "created", "closed"})
+_FOLDER_EVENTS = frozenset({"created", "deleted", "moved"})
 
 
 class Notifier(Protocol):
@@ -43,71 +46,219 @@ class WatchdogNotifier:
 
     Every event's ``src_path`` and, for moves, ``dest_path`` are reported, so a
     save by rename (``tmp -> script.py``) and vim's move-away pattern are seen.
+
+    A folder that does not exist (yet, or any more: deleted, or moved away) is
+    watched through its nearest existing ancestor until it is back; then it is
+    watched again and every file in it is reported once, since files written
+    before its new watch began sent no event. The folders are looked at again
+    on every folder event and every ``recheck_interval`` seconds, by a thread of
+    the notifier's own (never the observer's, whose lock it would take in the
+    other order than :meth:`watch` does).
+
+    Args:
+        poll: use watchdog's polling observer.
+        poll_interval: seconds between the polling observer's scans.
+        recheck_interval: seconds between looks at the folders without events.
+        observer_factory: makes the observer (tests pass a fake); None: watchdog's.
     """
 
-    def __init__(self, *, poll: bool = False, poll_interval: float = 0.25) -> None:
+    def __init__(self, *, poll: bool = False, poll_interval: float = 0.25,
+                 recheck_interval: float = 1.0,
+                 observer_factory: Callable[[], object] | None = None) -> None:
         self._poll = poll
         self._poll_interval = poll_interval
+        self._recheck_interval = recheck_interval
+        self._factory = observer_factory
+        self._lock = threading.Lock()  # held around every schedule/unschedule
         self._observer: object | None = None
-        self._watches: dict[str, object] = {}
+        self._wanted: frozenset[str] = frozenset()
+        self._watches: dict[str, tuple[object, tuple[int, int] | None]] = {}
+        self._missing: set[str] = set()  # wanted folders watched through an ancestor
+        # watched folders whose watch said they were deleted (the handler's lock: it
+        # must never wait for the main one, which is held while the observer's is taken)
+        self._dead: set[str] = set()
+        self._dead_lock = threading.Lock()
         self._callback: PathCallback | None = None
+        self._wake = threading.Event()
+        self._stopping = threading.Event()
+        self._rechecker: threading.Thread | None = None
 
     def start(self, callback: PathCallback) -> None:
         """Start the observer thread; ``callback`` gets each event's paths."""
+        self._callback = callback
+        observer = self._make_observer()
+        observer.start()  # type: ignore[attr-defined]
+        with self._lock:
+            self._observer = observer
+            self._sync_locked()  # folders asked for before the start
+        self._rechecker = threading.Thread(target=self._recheck_loop, daemon=True,
+                                           name="livemod-watch-recheck")
+        self._rechecker.start()
+
+    def _make_observer(self) -> object:
+        if self._factory is not None:
+            return self._factory()
         from watchdog.observers import Observer
         from watchdog.observers.polling import PollingObserver
 
-        self._callback = callback
-        observer = PollingObserver(timeout=self._poll_interval) if self._poll else Observer()
-        observer.start()
-        self._observer = observer
+        return PollingObserver(timeout=self._poll_interval) if self._poll else Observer()
 
     def watch(self, folders: set[str]) -> None:
-        """Watch exactly ``folders`` (non-recursively); missing folders are skipped."""
-        observer = self._observer
-        if observer is None:
-            return
-        for folder in set(self._watches) - folders:
-            observer.unschedule(self._watches.pop(folder))  # type: ignore[attr-defined]
-        for folder in folders - set(self._watches):
-            if os.path.isdir(folder):
-                handler = _Handler(self._report)
-                watch = observer.schedule(  # type: ignore[attr-defined]
-                    handler, folder, recursive=False, event_filter=_event_types())
-                self._watches[folder] = watch
+        """Watch exactly ``folders`` (non-recursively); a missing one is watched
+        through its nearest existing ancestor until it exists. After :meth:`stop`
+        (also one racing this call) it does nothing."""
+        with self._lock:
+            self._wanted = frozenset(folders)
+            self._missing &= self._wanted
+            self._sync_locked()
+
+    @property
+    def watched(self) -> dict[str, str]:
+        """``wanted folder -> folder watched for it`` (itself, or an ancestor)."""
+        with self._lock:
+            return {folder: _nearest_folder(folder) if folder in self._missing else folder
+                    for folder in self._wanted}
+
+    def recheck(self) -> None:
+        """Look at the folders now: watch again each one that came back, or was
+        replaced since its watch began, and report the files in it."""
+        with self._lock:
+            if self._observer is None:
+                return  # stopped
+            with self._dead_lock:
+                dead, self._dead = self._dead, set()
+            for path, (_, identity) in list(self._watches.items()):
+                # deleted or replaced (a new folder may get the old inode: hence both)
+                if path in dead or _identity(path) != identity:
+                    self._drop_locked(path)
+                    if path in self._wanted:
+                        self._missing.add(path)
+            armed = self._sync_locked()
+        for folder in sorted(armed):
+            self._report_folder(folder)
 
     def stop(self) -> None:
-        """Stop the observer thread and wait for it (at most 5 s)."""
-        observer, self._observer = self._observer, None
+        """Stop the observer thread and wait for it (at most 5 s each)."""
+        with self._lock:  # a watch() under way finishes first; later ones do nothing
+            observer, self._observer = self._observer, None
+        self._stopping.set()
+        self._wake.set()
+        if self._rechecker is not None and self._rechecker is not threading.current_thread():
+            self._rechecker.join(timeout=5)
         if observer is not None:
             observer.stop()  # type: ignore[attr-defined]
             observer.join(timeout=5)  # type: ignore[attr-defined]
+
+    def _sync_locked(self) -> set[str]:
+        """Schedule the watches the wanted folders need now and drop the rest
+        (caller holds the lock); returns the missing folders that came back."""
+        if self._observer is None:
+            return set()
+        targets = {folder: _nearest_folder(folder) for folder in self._wanted}
+        for path in set(self._watches) - set(targets.values()):
+            self._drop_locked(path)
+        for path in set(targets.values()) - set(self._watches):
+            self._schedule_locked(path)
+        armed = {f for f in self._missing if targets[f] == f and f in self._watches}
+        self._missing = {f for f, target in targets.items()
+                         if target != f or f not in self._watches}
+        return armed
+
+    def _schedule_locked(self, path: str) -> None:
+        identity = _identity(path)
+        if identity is None:
+            return  # gone between the look and now: the next recheck finds it
+        watch = self._observer.schedule(  # type: ignore[union-attr]
+            _Handler(path, self._report, self._folder_event), path, recursive=False,
+            event_filter=_event_types())
+        self._watches[path] = (watch, identity)
+
+    def _drop_locked(self, path: str) -> None:
+        watch, _ = self._watches.pop(path)
+        with contextlib.suppress(KeyError):  # the observer may have dropped it itself
+            self._observer.unschedule(watch)  # type: ignore[union-attr]
+
+    def _recheck_loop(self) -> None:
+        """The recheck thread: after a folder event, and now and then, recheck."""
+        while not self._stopping.is_set():
+            self._wake.wait(self._recheck_interval)
+            self._wake.clear()
+            if self._stopping.is_set():
+                return
+            try:
+                self.recheck()
+            except OSError as exc:  # e.g. inotify's watch limit: try again later
+                _LOG.warning("cannot watch %s again: %s", sorted(self._missing), exc)
+
+    def _folder_event(self, folder: str, gone: bool) -> None:
+        """Observer thread: a folder event in ``folder`` (``gone``: it was deleted)."""
+        if gone:
+            with self._dead_lock:
+                self._dead.add(folder)
+        self._wake.set()
+
+    def _report_folder(self, folder: str) -> None:
+        with contextlib.suppress(OSError):  # gone again: the next recheck sees it
+            for entry in os.scandir(folder):
+                self._report(entry.path)
 
     def _report(self, path: str) -> None:
         if self._callback is not None:
             self._callback(path)
 
 
+def _nearest_folder(folder: str) -> str:
+    """``folder`` if it is a folder, else its nearest ancestor that is one."""
+    while not os.path.isdir(folder):
+        parent = os.path.dirname(folder)
+        if parent == folder:
+            return folder  # no folder at all up to the root: nothing to watch
+        folder = parent
+    return folder
+
+
+def _identity(folder: str) -> tuple[int, int] | None:
+    """``(device, inode)`` of the folder, None if it is not one now."""
+    try:
+        info = os.stat(folder)
+    except OSError:
+        return None
+    return (info.st_dev, info.st_ino) if stat.S_ISDIR(info.st_mode) else None
+
+
 def _event_types() -> list[type]:
     from watchdog.events import (
+        DirCreatedEvent,
+        DirDeletedEvent,
+        DirMovedEvent,
         FileClosedEvent,
         FileCreatedEvent,
         FileModifiedEvent,
         FileMovedEvent,
     )
 
-    return [FileModifiedEvent, FileMovedEvent, FileCreatedEvent, FileClosedEvent]
+    return [FileModifiedEvent, FileMovedEvent, FileCreatedEvent, FileClosedEvent,
+            DirCreatedEvent, DirDeletedEvent, DirMovedEvent]
 
 
 class _Handler:
-    """The watchdog event handler: forwards paths and does nothing else (it runs
-    on the observer thread)."""
+    """The watchdog event handler: forwards paths, and wakes the recheck on a
+    folder's event; nothing else (it runs on the observer thread)."""
 
-    def __init__(self, report: PathCallback) -> None:
+    def __init__(self, folder: str, report: PathCallback,
+                 folder_event: Callable[[str, bool], None]) -> None:
+        self._folder = folder
         self._report = report
+        self._folder_event = folder_event
 
     def dispatch(self, event: object) -> None:
-        if getattr(event, "event_type", "") not in _WRITE_EVENTS:
+        kind = getattr(event, "event_type", "")
+        if getattr(event, "is_directory", False):
+            if kind in _FOLDER_EVENTS:  # a watched folder, or one awaited, came or went
+                where = os.fsdecode(getattr(event, "src_path", ""))
+                self._folder_event(self._folder, kind == "deleted" and where == self._folder)
+            return
+        if kind not in _WRITE_EVENTS:
             return  # our own reads cause "opened"/"closed_no_write" events
         for attr in ("src_path", "dest_path"):
             path = getattr(event, attr, "")
