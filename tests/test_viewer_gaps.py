@@ -415,3 +415,27 @@ def test_a_dropped_mesh_keeps_the_scripts_parameters(tmp_path: Path) -> None:
                 "selection was cleared (its ids were the old mesh's)") in said
     finally:
         close_viewer(viewer)
+
+
+# -- 7. a save that empties the script ------------------------------------------------
+
+def test_an_emptied_script_is_named_over_the_last_mesh(cube_script: Path) -> None:
+    """Saved empty (or blank), the script runs nothing: the window keeps the cube and
+    the HUD says why, until the script has content again."""
+    from livemod.viewer.hud import hud_lines
+
+    viewer = _viewer(cube_script)
+    try:
+        _until(viewer, _settled)
+        cube_run = viewer.result.run_id
+        cube_script.write_text("\n  \n")
+        _until(viewer, lambda v: v.empty_script is not None)
+        text = [line for line, _ in hud_lines(viewer._hud_info())]
+        assert "box.py is empty: showing the last result" in text
+        assert viewer.result.run_id == cube_run and viewer.result.arrays.counts == (8, 12, 6)
+        cube_script.write_text("load('tetrahedron')\n")
+        _until(viewer, lambda v: _settled(v) and v.result.arrays.counts == (4, 6, 4))
+        assert viewer.empty_script is None
+        assert not any("is empty" in line for line, _ in hud_lines(viewer._hud_info()))
+    finally:
+        close_viewer(viewer)

@@ -182,6 +182,8 @@ def test_hud_shows_state_counts_genus_and_step() -> None:
     assert "running... 2.0 s\n" in running and "0.250 s" not in running  # not the last run's
     missing = hud_lines({**info, "missing": ["picked, not in this mesh: face 12"]})
     assert ("picked, not in this mesh: face 12", WARN_TEXT) in missing
+    emptied = hud_lines({**info, "empty_script": "/x/tower.py"})
+    assert ("tower.py is empty: showing the last result", WARN_TEXT) in emptied
     hidden = "\n".join(line for line, _ in hud_lines({**info, "current_hidden": True}))
     assert "volume 8  (hidden: L lists it)" in hidden
     for whole, said in ((None, "genus ...\n"), (WholeMesh(1, None), "genus 1\n"),

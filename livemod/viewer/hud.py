@@ -64,6 +64,9 @@ def hud_lines(info: dict[str, Any]) -> list[tuple[str, int]]:
     lines = [(Path(info["script"]).name, TEXT), _state_line(info)]
     if info.get("viewer_error"):
         lines.append((info["viewer_error"], ERROR_TEXT))
+    if info.get("empty_script"):  # a save emptied it: nothing ran, the last mesh stays
+        lines.append((f"{Path(info['empty_script']).name} is empty: showing the last result",
+                      WARN_TEXT))
     lines += _count_lines(info)
     lines.append((step_line(result, info.get("total_steps", 0)), TEXT))
     style = info["style"]

@@ -185,6 +185,7 @@ class LiveViewer(mglw.WindowConfig):
         self.waiting = True
         self.result: Any = None
         self.activity: Any = None  # the session's run at work, newer than the result shown
+        self.empty_script: str | None = None  # the session's: a save left the script empty
         self.whole = WholeMeshMeasurer()  # genus and volume of the mesh shown, off-thread
         self.total_steps = 0
         self.objects = ObjectPanel()  # the object list (L) and the hidden objects' ids
@@ -418,6 +419,7 @@ class LiveViewer(mglw.WindowConfig):
         self._drain_results()
         self._repeat_held_key()
         self.activity = self._run_activity()
+        self.empty_script = getattr(self.session, "empty_script", None)
         self._count_fps()
         screen = self.wnd.fbo
         if self.keep_frames:
@@ -531,7 +533,8 @@ class LiveViewer(mglw.WindowConfig):
                 self.style,
                 self.camera.ortho, self.playing, self.show_hud, self.show_help, size,
                 self.params.state(), self.objects.state(), self._objects_shown(),
-                self.show_partial, self.viewer_error, self.renderer.nonfinite)
+                self.show_partial, self.viewer_error, self.renderer.nonfinite,
+                self.empty_script)
 
     def _objects_shown(self) -> bool:
         # one object is listed too: its checkbox hides it
@@ -542,7 +545,7 @@ class LiveViewer(mglw.WindowConfig):
                 "working": self._working(),
                 "arrays": self.renderer.arrays, "partial": self.show_partial,
                 "nonfinite": self.renderer.nonfinite,
-                "viewer_error": self.viewer_error,
+                "viewer_error": self.viewer_error, "empty_script": self.empty_script,
                 "total_steps": self.total_steps,
                 "whole": self.whole.facts(), "fps": self._fps_shown,
                 "pick_mode": self.pick_mode, **self._pick_lines(),
