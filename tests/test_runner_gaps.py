@@ -4,6 +4,7 @@ an emptied script the session keeps saying it ignores."""
 
 from __future__ import annotations
 
+import contextlib
 import ctypes
 import importlib
 import os
@@ -20,7 +21,6 @@ from livemod.runner import (
     LiveSession,
     ManualNotifier,
     RunControl,
-    RunResult,
     WatchdogNotifier,
     execute,
 )
@@ -32,20 +32,13 @@ from .runner_scripts.support import (
     drain,
     next_result,
     settle,
+    vertex_count,
+    vertices_script,
     write_by_rename,
     write_in_place,
 )
 
 execute_module = importlib.import_module("livemod.runner.execute")
-
-
-def vertices_script(n: int) -> str:
-    return f"for i in range({n}):\n    createVertex((i, 0, 0))\n"
-
-
-def vertex_count(result: RunResult) -> int:
-    assert result.arrays is not None, result.error
-    return result.arrays.counts[0]
 
 
 # -- 1. a watched folder deleted and made again ----------------------------------------
@@ -374,9 +367,10 @@ def test_code_of_a_script_s_file_inside_a_run_is_interrupted(tmp_path):
 # -- 4. an emptied script --------------------------------------------------------------
 
 
-@pytest.mark.timeout(60)
-@pytest.mark.parametrize("empty", ["", "  \n\n\t\n"], ids=["no bytes", "whitespace"])
-def test_an_emptied_script_keeps_the_last_result_and_says_so(tmp_path, empty):
+@contextlib.contextmanager
+def _three_vertex_session(tmp_path):  # noqa: ANN001, ANN202
+    """``(session, script, notifier)``: a started session on ``model.py``, which
+    makes 3 vertices, its first result taken; closed afterwards."""
     script = tmp_path / "model.py"
     script.write_text(vertices_script(3))
     notifier = ManualNotifier()
@@ -384,6 +378,13 @@ def test_an_emptied_script_keeps_the_last_result_and_says_so(tmp_path, empty):
     with closing_session(live):
         live.start()
         assert vertex_count(next_result(live)) == 3
+        yield live, script, notifier
+
+
+@pytest.mark.timeout(60)
+@pytest.mark.parametrize("empty", ["", "  \n\n\t\n"], ids=["no bytes", "whitespace"])
+def test_an_emptied_script_keeps_the_last_result_and_says_so(tmp_path, empty):
+    with _three_vertex_session(tmp_path) as (live, script, notifier):
         assert live.empty_script is None
         write_in_place(str(script), empty)
         notifier.fire(str(script))
@@ -397,13 +398,7 @@ def test_an_emptied_script_keeps_the_last_result_and_says_so(tmp_path, empty):
 
 @pytest.mark.timeout(60)
 def test_an_emptied_script_given_its_old_text_back_is_not_empty_any_more(tmp_path):
-    script = tmp_path / "model.py"
-    script.write_text(vertices_script(3))
-    notifier = ManualNotifier()
-    live = LiveSession(str(script), notifier=notifier, debounce=0.05, preview=False)
-    with closing_session(live):
-        live.start()
-        assert vertex_count(next_result(live)) == 3
+    with _three_vertex_session(tmp_path) as (live, script, notifier):
         write_in_place(str(script), "")
         notifier.fire(str(script))
         _until(lambda: live.empty_script == str(script))
@@ -415,13 +410,7 @@ def test_an_emptied_script_given_its_old_text_back_is_not_empty_any_more(tmp_pat
 
 @pytest.mark.timeout(60)
 def test_a_reload_of_an_emptied_script_runs_it_and_clears_the_state(tmp_path):
-    script = tmp_path / "model.py"
-    script.write_text(vertices_script(3))
-    notifier = ManualNotifier()
-    live = LiveSession(str(script), notifier=notifier, debounce=0.05, preview=False)
-    with closing_session(live):
-        live.start()
-        assert vertex_count(next_result(live)) == 3
+    with _three_vertex_session(tmp_path) as (live, script, notifier):
         write_in_place(str(script), "\n")
         notifier.fire(str(script))
         _until(lambda: live.empty_script == str(script))

@@ -15,16 +15,13 @@ from livemod.runner.execute import script_namespace
 from livemod.runner.instrument import CANCEL_FLAG
 from livemod.runner.recording import StepRecorder
 
-from .runner_scripts.support import closing_session, next_result, settle
-
-
-def vertices_script(n: int) -> str:
-    return f"for i in range({n}):\n    createVertex((i, 0, 0))\n"
-
-
-def vertex_count(result: RunResult) -> int:
-    assert result.arrays is not None, result.error
-    return result.arrays.counts[0]
+from .runner_scripts.support import (
+    closing_session,
+    next_result,
+    settle,
+    vertex_count,
+    vertices_script,
+)
 
 
 def is_ok(r: RunResult) -> bool:

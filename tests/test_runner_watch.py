@@ -8,27 +8,19 @@ import time
 
 import pytest
 
-from livemod.runner import FileWatcher, LiveSession, ManualNotifier, RunResult
+from livemod.runner import FileWatcher, LiveSession, ManualNotifier
 
 from .runner_scripts.support import (
     closing_session,
     drain,
     next_result,
     settle,
+    vertex_count,
+    vertices_script,
     write_by_rename,
     write_in_place,
     write_vim_style,
 )
-
-
-def vertices_script(n: int) -> str:
-    return f"for i in range({n}):\n    createVertex((i, 0, 0))\n"
-
-
-def vertex_count(result: RunResult) -> int:
-    assert result.arrays is not None, result.error
-    return result.arrays.counts[0]
-
 
 # -- FileWatcher with an injected notifier (no timing on the file system) ----------
 

@@ -133,3 +133,14 @@ def closing_session(live):  # noqa: ANN001, ANN201  (a LiveSession)
     finally:
         live.close()
         assert live.join(10)
+
+
+def vertices_script(n: int) -> str:
+    """A script that makes ``n`` point-spheres (``n`` steps, ``n`` vertices)."""
+    return f"for i in range({n}):\n    createVertex((i, 0, 0))\n"
+
+
+def vertex_count(result: RunResult) -> int:
+    """The vertices of a result's mesh (the result must have one)."""
+    assert result.arrays is not None, result.error
+    return result.arrays.counts[0]
