@@ -107,7 +107,9 @@ def fan_triangles(arrays: MeshArrays) -> tuple[np.ndarray, np.ndarray, np.ndarra
 def vertex_normals(positions: np.ndarray, triangles: np.ndarray) -> np.ndarray:
     """``(V, 3)`` float32 unit normals for smooth shading: the sum of the
     (area-weighted) normals of the triangles at each vertex; zero where a vertex
-    has none or they cancel.
+    has none or they cancel. A triangle with a vertex that is not finite (NaN or
+    inf) is left out: it is not drawn, and its NaN would take the normal of
+    each of its finite vertices with it.
 
     Args:
         positions: ``(V, 3)`` vertex positions.
@@ -115,7 +117,9 @@ def vertex_normals(positions: np.ndarray, triangles: np.ndarray) -> np.ndarray:
     """
     p = np.asarray(positions, dtype=np.float64)
     tri = np.asarray(triangles, dtype=np.int64)
-    cross = np.cross(p[tri[:, 1]] - p[tri[:, 0]], p[tri[:, 2]] - p[tri[:, 0]])
+    with np.errstate(invalid="ignore", over="ignore"):  # (inf - inf: dropped below)
+        cross = np.cross(p[tri[:, 1]] - p[tri[:, 0]], p[tri[:, 2]] - p[tri[:, 0]])
+    cross[~np.isfinite(cross).all(axis=1)] = 0.0
     summed = np.zeros((len(p), 3))
     for axis in range(3):
         summed[:, axis] = np.bincount(tri.ravel(), np.repeat(cross[:, axis], 3),

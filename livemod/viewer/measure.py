@@ -25,14 +25,24 @@ from livemod.dlfl.scene import Selection
 @dataclass(frozen=True)
 class WholeMesh:
     """What the HUD says of the whole mesh shown: its genus and the volume it
-    encloses (None for an open mesh; see
-    :func:`~livemod.dlfl.analysis.enclosed_volume`)."""
+    encloses (None for an open mesh, see
+    :func:`~livemod.dlfl.analysis.enclosed_volume`, or for a closed one that
+    cannot be measured).
+
+    ``nonfinite``: how many vertices of a closed mesh have a position that is not
+    finite (NaN or inf), which leaves its volume unmeasured; 0 when it was
+    measured, or the mesh is open (it has no volume to miss).
+    """
 
     genus: int
     volume: float | None
+    nonfinite: int = 0
 
     def text(self) -> str:
-        """``genus 1  volume 8`` (no volume for an open mesh)."""
+        """``genus 1  volume 8``; no volume for an open mesh, and ``volume n/a, 2
+        vertices not finite`` for a closed one with positions that are not."""
+        if self.nonfinite:
+            return f"genus {self.genus}  volume n/a, {_vertices_not_finite(self.nonfinite)}"
         if self.volume is None:
             return f"genus {self.genus}"
         inside_out = " (inside out)" if self.volume < 0 else ""
@@ -40,11 +50,17 @@ class WholeMesh:
 
 
 def measure_whole(arrays: MeshArrays) -> WholeMesh:
-    """The :class:`WholeMesh` facts of ``arrays`` (0.13 to 0.17 s for a million corners)."""
+    """The :class:`WholeMesh` facts of ``arrays`` (0.13 to 0.17 s for a million corners).
+    The genus counts ids only; the volume is left unmeasured (not NaN) when a
+    position of a closed mesh is not finite."""
     from livemod.dlfl.analysis import enclosed_volume, genus
 
     if not len(arrays.positions):
         return WholeMesh(0, None)
+    if not arrays.face_hole.any():
+        bad = int(np.count_nonzero(~np.isfinite(arrays.positions).all(axis=1)))
+        if bad:
+            return WholeMesh(genus(arrays), None, bad)
     return WholeMesh(genus(arrays), enclosed_volume(arrays))
 
 
@@ -146,6 +162,26 @@ def _dense(table: np.ndarray, ids: Sequence[int]) -> list[int]:
     return [at[i] for i in ids if i in at]
 
 
+def _vertices_not_finite(count: int) -> str:
+    return f"{count} {'vertex' if count == 1 else 'vertices'} not finite"
+
+
+def _not_finite(arrays: MeshArrays, vertices: Sequence[int] | np.ndarray) -> str:
+    """'' when the positions of dense ``vertices`` are all finite; else which are
+    not, as ``vertex 7 not finite`` (its id) or ``3 vertices not finite`` (each
+    vertex counted once)."""
+    at = np.unique(np.asarray(vertices, dtype=np.int64))
+    bad = at[~np.isfinite(arrays.positions[at]).all(axis=1)]
+    if len(bad) == 1:
+        return f"vertex {int(arrays.vertex_ids[bad[0]])} not finite"
+    return _vertices_not_finite(len(bad)) if len(bad) else ""
+
+
+def _ring(arrays: MeshArrays, face: int) -> np.ndarray:
+    """Dense vertex indices of dense ``face``'s corners."""
+    return arrays.corner_vertex[arrays.face_offsets[face]:arrays.face_offsets[face + 1]]
+
+
 def _num(value: float) -> str:
     return f"{value:.4g}"
 
@@ -169,12 +205,16 @@ def face_area_normal(arrays: MeshArrays, face: int) -> tuple[float, np.ndarray]:
 
 
 def _faces(arrays: MeshArrays, ids: list[int], dense: list[int]) -> list[str]:
-    areas = [face_area_normal(arrays, f) for f in dense]
+    why = _not_finite(arrays, np.concatenate([_ring(arrays, f) for f in dense]))
+    areas = [] if why else [face_area_normal(arrays, f) for f in dense]
     if len(dense) > 1:
-        return [f"{len(dense)} faces: area {_num(sum(a for a, _ in areas))}"]
-    area, normal = areas[0]
+        total = f"n/a, {why}" if why else _num(sum(a for a, _ in areas))
+        return [f"{len(dense)} faces: area {total}"]
     sides = int(arrays.face_sizes[dense[0]])
     kind = " (hole)" if arrays.face_hole[dense[0]] else ""
+    if why:
+        return [f"face {ids[0]}{kind}: {sides} sides, area and normal n/a, {why}"]
+    area, normal = areas[0]
     return [f"face {ids[0]}{kind}: {sides} sides, area {_num(area)}, normal {_point(normal)}"]
 
 
@@ -187,21 +227,32 @@ def _edge_ends(arrays: MeshArrays, edge: int) -> tuple[int, int]:
 
 def _edges(arrays: MeshArrays, ids: list[int], dense: list[int]) -> list[str]:
     ends = [_edge_ends(arrays, e) for e in dense]
-    lengths = [float(np.linalg.norm(arrays.positions[a] - arrays.positions[b]))
-               for a, b in ends]
+    why = _not_finite(arrays, np.ravel(ends))
+    lengths = [] if why else [float(np.linalg.norm(arrays.positions[a] - arrays.positions[b]))
+                              for a, b in ends]
     if len(dense) > 1:
-        return [f"{len(dense)} edges: length {_num(sum(lengths))}"]
+        return [f"{len(dense)} edges: length {f'n/a, {why}' if why else _num(sum(lengths))}"]
     a, b = ends[0]
-    return [f"edge {ids[0]}: length {_num(lengths[0])}, vertices "
-            f"{int(arrays.vertex_ids[a])}-{int(arrays.vertex_ids[b])}"]
+    between = f"vertices {int(arrays.vertex_ids[a])}-{int(arrays.vertex_ids[b])}"
+    if why:
+        return [f"edge {ids[0]}: {between}, length n/a, {why}"]
+    return [f"edge {ids[0]}: length {_num(lengths[0])}, {between}"]
 
 
 def _vertices(arrays: MeshArrays, ids: list[int], dense: list[int]) -> list[str]:
     points = arrays.positions[dense]
+    why = _not_finite(arrays, dense)
     if len(dense) == 1:
         valence = int(np.count_nonzero((arrays.corner_vertex == dense[0])
                                        & (arrays.corner_edge >= 0)))
+        if why:  # (the coordinates say which are not)
+            return [f"vertex {ids[0]}: valence {valence}, position not finite "
+                    f"{_point(points[0])}"]
         return [f"vertex {ids[0]} at {_point(points[0])}, valence {valence}"]
+    if why:
+        what = "distance and delta" if len(dense) == 2 else "extent"
+        head = f"vertices {ids[0]}-{ids[1]}" if len(dense) == 2 else f"{len(dense)} vertices"
+        return [f"{head}: {what} n/a, {why}"]
     if len(dense) == 2:
         delta = points[1] - points[0]
         return [f"vertices {ids[0]}-{ids[1]}: distance {_num(float(np.linalg.norm(delta)))}, "
@@ -226,13 +277,23 @@ def corner_angle(arrays: MeshArrays, corner: int) -> float:
     return math.degrees(math.acos(min(max(float(u @ w) / norms, -1.0), 1.0)))
 
 
+def _corner_vertices(arrays: MeshArrays, corner: int) -> np.ndarray:
+    """Dense indices of the vertices at dense ``corner`` and at its face's corners
+    before and after it (what its angle is measured from)."""
+    face = arrays.corner_face[corner]
+    start, stop = arrays.face_offsets[face], arrays.face_offsets[face + 1]
+    around = start + (corner - start + np.array([-1, 0, 1])) % (stop - start)
+    return arrays.corner_vertex[around]
+
+
 def _corners(arrays: MeshArrays, ids: list[int], dense: list[int]) -> list[str]:
     lines = []
     for cid, corner in list(zip(ids, dense, strict=True))[:2]:
         face = int(arrays.face_ids[arrays.corner_face[corner]])
         vertex = int(arrays.vertex_ids[arrays.corner_vertex[corner]])
-        lines.append(f"corner {cid}: face {face} at vertex {vertex}, "
-                     f"angle {corner_angle(arrays, corner):.1f} deg")
+        why = _not_finite(arrays, _corner_vertices(arrays, corner))
+        angle = f"n/a, {why}" if why else f"{corner_angle(arrays, corner):.1f} deg"
+        lines.append(f"corner {cid}: face {face} at vertex {vertex}, angle {angle}")
     if len(dense) > 2:
         lines.append(f"... {len(dense) - 2} more corners")
     return lines

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import contextlib
 import math
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
 
 import moderngl
@@ -223,6 +223,62 @@ class _MeshGPU:
             obj.release()
 
 
+
+class _StreamBuffer:
+    """A dynamic vertex buffer that a draw refills each time it is called, and the
+    vertex array reading it (the HUD's text is drawn every frame: making and
+    freeing a buffer and a vertex array for each draw cost two GL objects a frame).
+
+    The buffer only grows (to a power of two of rows), in place: ``orphan`` with a
+    new size keeps the GL buffer name, so the vertex array made once stays valid.
+    Each refill orphans the old storage first, so a draw still reading it does
+    not hold up the write. Draws pass their own vertex or instance count: the
+    buffer holds more rows than are drawn.
+    """
+
+    def __init__(self, ctx: moderngl.Context,
+                 make_vao: Callable[[moderngl.Buffer], moderngl.VertexArray]) -> None:
+        self.ctx = ctx
+        self._make_vao = make_vao
+        self.buffer: moderngl.Buffer | None = None
+        self.vao: moderngl.VertexArray | None = None
+        self._held: np.ndarray | None = None  # the array last written, to skip a rewrite
+
+    def load(self, rows: np.ndarray) -> moderngl.VertexArray:
+        """The vertex array, its buffer now holding ``rows`` (``(n, k)`` float32,
+        n >= 1). The same array object as last time (a cached HUD or label layout)
+        is not written again."""
+        if rows is self._held and self.vao is not None:
+            return self.vao
+        data = np.ascontiguousarray(rows, dtype=np.float32)
+        row_bytes = data.nbytes // max(len(data), 1)
+        if self.buffer is None:
+            self.buffer = self.ctx.buffer(reserve=_capacity(len(data)) * row_bytes,
+                                          dynamic=True)
+            self.vao = self._make_vao(self.buffer)
+        elif self.buffer.size < data.nbytes:
+            self.buffer.orphan(_capacity(len(data)) * row_bytes)
+        else:
+            self.buffer.orphan()
+        self.buffer.write(data)
+        self._held = rows
+        assert self.vao is not None
+        return self.vao
+
+    def release(self) -> None:
+        """Free the vertex array and the buffer (a later :meth:`load` makes new ones)."""
+        if self.vao is not None:
+            self.vao.release()
+        if self.buffer is not None:
+            self.buffer.release()
+        self.buffer = self.vao = self._held = None
+
+
+def _capacity(rows: int) -> int:
+    """Rows to reserve for ``rows``: the next power of two, at least 64."""
+    return max(64, 1 << max(rows - 1, 0).bit_length())
+
+
 GRID_COLOR = (0.30, 0.31, 0.34)
 AXIS_COLORS = ((0.85, 0.25, 0.25), (0.30, 0.75, 0.30), (0.30, 0.45, 0.90))
 
@@ -345,7 +401,26 @@ class Renderer:
         # the guide lines' GL objects and the bounds they were made for
         self._guides: tuple[bytes, list[tuple[moderngl.VertexArray, moderngl.Buffer,
                                               tuple]]] | None = None
+        # the buffers the per-frame draws refill: screen text (True) and id labels
+        # (False); selected vertices and selected corners
+        self._text_streams = {screen: _StreamBuffer(ctx, self._text_vao)
+                              for screen in (True, False)}
+        self._point_streams = {kind: _StreamBuffer(ctx, self._point_vao)
+                               for kind in ("vertices", "corners")}
         self._released = False
+
+    def _text_vao(self, instances: moderngl.Buffer) -> moderngl.VertexArray:
+        """The text program's vertex array: the quad's corners, and one quad per
+        ``QUAD_FLOATS`` row of ``instances``."""
+        return self.ctx.vertex_array(self.programs["text"], [
+            (self.quad, "2f", "in_corner"),
+            (instances, "3f 2f 2f 4f 1f 1f/i", "in_anchor", "in_offset", "in_size", "in_uv",
+             "in_kind", "in_selected"),
+        ])
+
+    def _point_vao(self, points: moderngl.Buffer) -> moderngl.VertexArray:
+        """The point program's vertex array over ``(k, 3)`` float32 ``points``."""
+        return self.ctx.vertex_array(self.programs["point"], [(points, "3f", "in_position")])
 
     def _bind_samplers(self) -> None:
         """Fix each program's texture units: 0 atlas/triangle_face, 1..3 flags."""
@@ -537,6 +612,8 @@ class Renderer:
         self.arrays = self.preview = self.others = None
         self._label_cache = None
         self._release_guides()
+        for stream in (*self._text_streams.values(), *self._point_streams.values()):
+            stream.release()  # (before the quad buffer and programs they use)
         if self._pick_fbo is not None:
             release_framebuffer(self._pick_fbo)
             self._pick_fbo = None
@@ -725,7 +802,7 @@ class Renderer:
             assert arrays is not None
             picked = np.flatnonzero(dense_flags(arrays.vertex_ids, self.selection.vertices))
             self._draw_marker_points(arrays.positions[picked].astype(np.float32), size,
-                                     SELECTED_COLOR)
+                                     SELECTED_COLOR, "vertices")
             return
         if point_spheres:
             mesh.sphere_vao.render(moderngl.POINTS)
@@ -733,26 +810,24 @@ class Renderer:
             mesh.point_vao.render(moderngl.POINTS)
 
     def _draw_marker_points(self, points: np.ndarray, size: float,
-                            color: tuple[float, float, float]) -> None:
-        """Draw ``(k, 3)`` float32 ``points`` in one flat colour (no pick ids)."""
+                            color: tuple[float, float, float], kind: str) -> None:
+        """Draw ``(k, 3)`` float32 ``points`` in one flat colour (no pick ids),
+        through the stream buffer of ``kind`` ("vertices" or "corners")."""
         if len(points) == 0:
             return
         program = self.programs["point"]
         program["point_size"].value = size  # type: ignore[union-attr]
         program["point_color"].value = color  # type: ignore[union-attr]
         program["use_flags"].value = 0  # type: ignore[union-attr]
-        buffer = self.ctx.buffer(np.ascontiguousarray(points, dtype=np.float32).tobytes())
-        vao = self.ctx.vertex_array(program, [(buffer, "3f", "in_position")])
-        vao.render(moderngl.POINTS)
-        vao.release()
-        buffer.release()
+        vao = self._point_streams[kind].load(points)
+        vao.render(moderngl.POINTS, vertices=len(points))
 
     def _draw_corners(self, size: float) -> None:
         arrays = self.arrays
         if arrays is None or not self.selection.corners:
             return
         picked = np.flatnonzero(dense_flags(arrays.corner_ids, self.selection.corners))
-        self._draw_marker_points(corner_points(arrays, picked), size, CORNER_COLOR)
+        self._draw_marker_points(corner_points(arrays, picked), size, CORNER_COLOR, "corners")
 
     # -- text ------------------------------------------------------------------
 
@@ -811,6 +886,8 @@ class Renderer:
         self._draw_quads(quads, size or fbo.size, screen_space=True)
 
     def _draw_quads(self, quads: np.ndarray, size: tuple[int, int], screen_space: bool) -> None:
+        """Draw ``(n, QUAD_FLOATS)`` text/box ``quads`` over ``size`` pixels, through the
+        kept stream buffer of screen text or of labels (``screen_space``)."""
         if len(quads) == 0:
             return
         program = self.programs["text"]
@@ -819,16 +896,9 @@ class Renderer:
         self.ctx.disable(moderngl.DEPTH_TEST)
         self.ctx.enable(moderngl.BLEND)
         self.ctx.blend_func = moderngl.SRC_ALPHA, moderngl.ONE_MINUS_SRC_ALPHA
-        instances = self.ctx.buffer(np.ascontiguousarray(quads, dtype=np.float32).tobytes())
-        vao = self.ctx.vertex_array(program, [
-            (self.quad, "2f", "in_corner"),
-            (instances, "3f 2f 2f 4f 1f 1f/i", "in_anchor", "in_offset", "in_size", "in_uv",
-             "in_kind", "in_selected"),
-        ])
+        vao = self._text_streams[screen_space].load(quads)
         self.atlas_texture.use(0)
         vao.render(moderngl.TRIANGLE_STRIP, vertices=4, instances=len(quads))
-        vao.release()
-        instances.release()
         self.ctx.disable(moderngl.BLEND)
 
     # -- picking ---------------------------------------------------------------
