@@ -340,15 +340,17 @@ def _pair_multi_edges(
     same faces; it only decides how the corners of ``a`` and ``b`` link up around
     those two vertices (no other vertex sees it). A manifold needs each of those
     corner rings to be one cycle, and :func:`_solve_group` finds such a pairing
-    for a group whenever one exists. Groups sharing a vertex constrain each other;
-    they are solved in turn, with random re-pairings between rounds.
+    for a group whenever one exists. Groups sharing a vertex constrain each other:
+    they are solved in turn, then refused when an exact obstruction shows, else
+    searched for by a bounded random walk (see :meth:`_Rings.solve_cluster`).
 
     Sets ``mate`` for every side of every group. Leaves a vertex that is
     non-manifold whatever the pairing (its other corners close a fan of their
     own, or its boundary is ambiguous) to the checks that follow, which name it.
 
     Raises:
-        DLFLError: the sides of a group cannot be paired into manifold rings.
+        DLFLError: the sides of a group cannot be paired into manifold rings, or
+            the search for a pairing of groups sharing vertices gave up.
     """
     groups = []
     for start, count in zip(starts.tolist(), counts.tolist(), strict=True):
@@ -359,15 +361,34 @@ def _pair_multi_edges(
         groups.append((fwd, back))
     rings = _Rings.around(soup, mate, nxt, groups)
     if rings is None:
+        return  # an ambiguous boundary: _close_boundaries names it
+    if rings.has_closed_fan():
+        # that vertex is split whatever the pairing: pair each group as well as it
+        # allows, so that the fan check names it and not a vertex pairing would mend
+        for fwd, back in groups:
+            _solve_group(rings, fwd, back)
         return
     for cluster in rings.clusters():
-        if not rings.solve_cluster(cluster):
-            fwd = groups[cluster[0]][0]
-            a, b = int(u[fwd[0]]), int(w[fwd[0]])
-            raise DLFLError(
-                f"{where.prefix()}vertices {where.vertex(a)} and {where.vertex(b)} are joined "
-                f"by {len(fwd)} edges that cannot be arranged into a manifold"
-            )
+        outcome = rings.solve_cluster(cluster)
+        if outcome != "solved":
+            raise _unpaired(where, u, w, groups[cluster[0]][0], len(cluster),
+                            None if outcome == "impossible" else rings.walk_budget(cluster))
+
+
+def _unpaired(where: _Where, u: np.ndarray, w: np.ndarray, fwd: list[int], cluster_size: int,
+              steps: int | None) -> DLFLError:
+    """The error for a cluster of groups left unpaired, named by its first group
+    (sides ``fwd``): proven impossible when ``steps`` is None, else the search
+    of that many steps gave up, which does not prove there is no pairing."""
+    a, b = int(u[fwd[0]]), int(w[fwd[0]])
+    joined = (f"{where.prefix()}vertices {where.vertex(a)} and {where.vertex(b)} are "
+              f"joined by {len(fwd)} edges")
+    if steps is None:
+        return DLFLError(f"{joined} that cannot be arranged into a manifold")
+    return DLFLError(
+        f"{joined}, which share vertices with {cluster_size - 1} other groups of parallel "
+        f"edges; the search for a manifold arrangement of them gave up after {steps} steps "
+        "(one may still exist)")
 
 
 class _Rings:
@@ -392,8 +413,8 @@ class _Rings:
     @classmethod
     def around(cls, soup: Polygons, mate: np.ndarray, nxt: np.ndarray,
                groups: list[tuple[list[int], list[int]]]) -> _Rings | None:
-        """The rings around the groups' vertices; None when some vertex is
-        non-manifold whatever the pairing (a later check then refuses it)."""
+        """The rings around the groups' vertices; None when a boundary through
+        one of them is ambiguous (a later check then refuses it)."""
         sides = [s for fwd, back in groups for s in fwd + back]
         verts = np.unique(soup.indices[sides])
         at = np.flatnonzero(np.isin(soup.indices, verts))
@@ -405,8 +426,7 @@ class _Rings:
         link = _fixed_links(soup, mate, nxt, vertex_of, group_of)
         if link is None:
             return None
-        rings = cls(mate, nxt, groups, corners_at, link, group_of, vertex_of)
-        return None if rings.has_closed_fan() else rings
+        return cls(mate, nxt, groups, corners_at, link, group_of, vertex_of)
 
     def succ(self, c: int) -> int:
         """The corner after ``c`` around its vertex, under the current pairing."""
@@ -460,20 +480,68 @@ class _Rings:
             out.setdefault(root(g), []).append(g)
         return list(out.values())
 
-    def solve_cluster(self, cluster: list[int]) -> bool:
+    def solve_cluster(self, cluster: list[int]) -> str:
         """Pair the sides of ``cluster``'s groups so that each of their vertices
-        has one ring; False when no pairing was found.
+        has one ring.
 
         One group alone is solved exactly (:func:`_solve_group`). Groups sharing
-        vertices are first solved one at a time, the others' pairings fixed;
-        what that leaves is searched for by :meth:`walk`.
+        vertices are first solved one at a time, the others' pairings fixed; when
+        that leaves a vertex split and :meth:`cannot_join` does not rule every
+        pairing out, :meth:`walk` searches on.
+
+        Returns:
+            ``"solved"``, ``"impossible"`` (no pairing exists) or ``"gave up"``
+            (the bounded search found none; one may exist).
         """
         verts = {self.vertex_of[s] for g in cluster for s in self.groups[g][0] + self.groups[g][1]}
         for g in cluster:
             _solve_group(self, *self.groups[g])
         if all(self.ring_count(v) == 1 for v in verts):
-            return True
-        return len(cluster) > 1 and self.walk(cluster, verts, MULTI_EDGE_STEPS * len(cluster))
+            return "solved"
+        if len(cluster) == 1 or self.cannot_join(verts):
+            return "impossible"
+        return "solved" if self.walk(cluster, verts, self.walk_budget(cluster)) else "gave up"
+
+    def cannot_join(self, verts: set[int]) -> bool:
+        """True when no pairing gives every vertex of ``verts`` one ring.
+
+        Two exact obstructions. Parity: swapping the mates of two sides of a
+        group changes the ring count at both its ends by one, and every
+        re-pairing is made of such swaps, so the parity of the rings in excess
+        over ``verts`` never changes. Separation: the groups at a vertex whose
+        sides never lead to one another's (:meth:`groups_meet`) keep their
+        corners in separate rings whatever their pairings.
+        """
+        excess = sum(self.ring_count(v) - 1 for v in verts)
+        return excess % 2 == 1 or not all(self.groups_meet(v) for v in verts)
+
+    def groups_meet(self, vertex: int) -> bool:
+        """Whether the groups at ``vertex`` are connected by leads: the ring
+        through the corner after a side ending at ``vertex`` reaches a side of
+        another group first. Independent of the pairings (a group's sides end
+        at ``vertex`` whichever sides start there they pair with)."""
+        sides = [c for c in self.corners_at[vertex] if c in self.group_of]
+        parent = {self.group_of[c]: self.group_of[c] for c in sides}
+
+        def root(g: int) -> int:
+            while parent[g] != g:
+                parent[g] = g = parent[parent[g]]
+            return g
+
+        for c in sides:
+            x = int(self.nxt[self.mate[c]])
+            while x not in self.group_of:
+                x = self.link[x]
+            parent[root(self.group_of[c])] = root(self.group_of[x])
+        return len({root(g) for g in parent}) == 1
+
+    def walk_budget(self, cluster: list[int]) -> int:
+        """Steps :meth:`walk` may take on ``cluster``: each counts the rings at
+        both ends of a group, so the steps times twice the largest ring stay
+        within :data:`MULTI_EDGE_WORK` corners, well under a second."""
+        ends = {self.vertex_of[self.groups[g][end][0]] for g in cluster for end in (0, 1)}
+        largest = max(len(self.corners_at[v]) for v in ends)
+        return max(MULTI_EDGE_WORK // (2 * largest), 1)
 
     def walk(self, cluster: list[int], verts: set[int], steps: int) -> bool:
         """Random swaps and rotations of mates within the groups of ``cluster``,
@@ -504,14 +572,14 @@ class _Rings:
         return total == 0
 
 
-MULTI_EDGE_STEPS = 5000  # walk steps per group of a cluster of groups sharing vertices
+MULTI_EDGE_WORK = 200_000  # corners :meth:`_Rings.walk` may visit counting rings, per cluster
 
 
 def _fixed_links(soup: Polygons, mate: np.ndarray, nxt: np.ndarray, vertex_of: dict[int, int],
                  group_of: dict[int, int]) -> dict[int, int] | None:
     """The next corner around its vertex of every corner in ``vertex_of`` that is
-    no group side (see :class:`_Rings`); None when a boundary through one of
-    these vertices is ambiguous, or a one-corner face shares a vertex."""
+    no group side (see :class:`_Rings`), itself for a one-corner face; None when
+    a boundary through one of these vertices is ambiguous."""
     open_side = (mate < 0) & ~soup.single_corners  # the groups' sides are paired by now
     opens = np.flatnonzero(open_side)
     ending_at: dict[int, int] = {}
@@ -529,6 +597,8 @@ def _fixed_links(soup: Polygons, mate: np.ndarray, nxt: np.ndarray, vertex_of: d
             link[c] = int(nxt[mate[c]])
         elif open_side[c] and starts_at[v] == 1 and ending_at.get(v, -1) >= 0:
             link[c] = int(nxt[ending_at[v]])
+        elif not open_side[c]:
+            link[c] = c  # a point-sphere's corner: a fan of its own
         else:
             return None
     return link
@@ -559,7 +629,10 @@ def _solve_group(rings: _Rings, fwd: list[int], back: list[int]) -> bool:
     if lead is None:
         return False
     reach = {lead[b]: b for b in back}
-    for f, f_next in zip(fwd, fwd[1:] + fwd[:1], strict=True):
+    # a's cycle in a seeded random order: in side order, a face running a, b, a, b,
+    # ... round k times would leave k cycles at b, each merge an O(k) recount
+    order = random.Random(len(fwd)).sample(fwd, len(fwd))
+    for f, f_next in zip(order, order[1:] + order[:1], strict=True):
         b = reach[f_next]
         rings.mate[f], rings.mate[b] = b, f
     while True:
