@@ -8,7 +8,7 @@ import time
 import numpy as np
 import pytest
 
-import livemod.dlfl.build as build
+import livemod.dlfl._multi_edges as multi_edges
 from livemod.dlfl import from_polygons, validate
 from livemod.dlfl.errors import DLFLError
 
@@ -39,7 +39,7 @@ def test_pillows_meeting_at_one_vertex_are_refused_at_once(spokes: int) -> None:
 
 
 def test_a_chain_of_pillows_is_refused_without_a_search(monkeypatch: pytest.MonkeyPatch) -> None:
-    monkeypatch.setattr(build._Rings, "walk", _no_walk)
+    monkeypatch.setattr(multi_edges._Rings, "walk", _no_walk)
     faces = [[i, i + 1] for i in range(60) for _ in range(2)]
     seconds, message = _refuse(faces)
     assert seconds < 1.0
@@ -53,7 +53,7 @@ def test_a_chain_of_pillows_is_refused_without_a_search(monkeypatch: pytest.Monk
 def test_an_odd_number_of_split_rings_is_refused_without_a_search(
     monkeypatch: pytest.MonkeyPatch, faces: list[list[int]]
 ) -> None:
-    monkeypatch.setattr(build._Rings, "walk", _no_walk)
+    monkeypatch.setattr(multi_edges._Rings, "walk", _no_walk)
     assert _refuse(faces)[1].endswith("cannot be arranged into a manifold")
 
 
