@@ -101,3 +101,33 @@ def test_every_dotted_name_the_docs_quote_can_be_reached_by_attribute() -> None:
             unreachable.append(f"{name}: {dotted}")
     assert len(_dotted_references()) > 40
     assert not unreachable, "\n".join(unreachable)
+
+
+def _library_columns() -> list[tuple[str, str, str]]:
+    """``(file, module, function)`` for every function named in a docs table column
+    headed "library (`livemod.dlfl.X`)", as ``name(`` in its cells."""
+    found = []
+    for path in sorted((ROOT / "docs").glob("*.md")):
+        module, column = None, -1
+        for line in path.read_text(encoding="utf-8").splitlines():
+            cells = [cell.strip() for cell in line.strip().strip("|").split("|")]
+            heads = [re.fullmatch(r"library \(`(livemod(?:\.\w+)+)`\)", c) for c in cells]
+            if any(heads):
+                column = next(i for i, h in enumerate(heads) if h)
+                module = heads[column].group(1)  # type: ignore[union-attr]
+            elif not line.startswith("|"):
+                module = None  # the table ended
+            elif module is not None and len(cells) > column:
+                found += [(path.name, module, name)
+                          for name in re.findall(r"`(\w+)\(", cells[column])]
+    return found
+
+
+def test_the_functions_a_library_column_names_are_in_that_module() -> None:
+    import importlib
+
+    rows = _library_columns()
+    assert ("topmod.md", "livemod.dlfl.multihandle", "multi_face_handle") in rows
+    missing = [(name, module, function) for name, module, function in rows
+               if not hasattr(importlib.import_module(module), function)]
+    assert missing == []
