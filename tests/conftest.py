@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from collections.abc import Iterator
+from typing import Any
 
 import pytest
 
@@ -17,3 +18,29 @@ def scene() -> Iterator[Scene]:
     bound.add(cube(), "cube")
     with use_scene(bound):
         yield bound
+
+
+# the size of the offscreen target the viewer tests share (their pixel checks use it)
+OFFSCREEN_SIZE = (160, 120)
+
+
+@pytest.fixture(scope="module")
+def shared_offscreen() -> Iterator[Any]:
+    """One EGL offscreen target (:class:`livemod.viewer.headless.Offscreen`, 160 x 120,
+    no MSAA) per test module: making a context is the slow part."""
+    from livemod.viewer.headless import Offscreen
+
+    target = Offscreen(OFFSCREEN_SIZE, samples=0)
+    yield target
+    target.release()
+
+
+@pytest.fixture
+def offscreen(shared_offscreen: Any) -> Iterator[Any]:
+    """The module's target, its context current (a viewer or a ``livemod render`` in
+    another test made contexts of its own) and its selection empty."""
+    from livemod.dlfl.scene import Selection
+
+    shared_offscreen.activate()
+    shared_offscreen.renderer.set_selection(Selection())
+    yield shared_offscreen

@@ -34,6 +34,7 @@ from .runner_scripts.support import (
     settle,
     vertex_count,
     vertices_script,
+    wait_until,
     write_by_rename,
     write_in_place,
 )
@@ -401,10 +402,10 @@ def test_an_emptied_script_given_its_old_text_back_is_not_empty_any_more(tmp_pat
     with _three_vertex_session(tmp_path) as (live, script, notifier):
         write_in_place(str(script), "")
         notifier.fire(str(script))
-        _until(lambda: live.empty_script == str(script))
+        wait_until(lambda: live.empty_script == str(script))
         write_in_place(str(script), vertices_script(3))  # undone: the same text again
         notifier.fire(str(script))
-        _until(lambda: live.empty_script is None)
+        wait_until(lambda: live.empty_script is None)
         assert drain(live, quiet=0.5) == []  # the text that shows ran already
 
 
@@ -413,15 +414,9 @@ def test_a_reload_of_an_emptied_script_runs_it_and_clears_the_state(tmp_path):
     with _three_vertex_session(tmp_path) as (live, script, notifier):
         write_in_place(str(script), "\n")
         notifier.fire(str(script))
-        _until(lambda: live.empty_script == str(script))
+        wait_until(lambda: live.empty_script == str(script))
         live.reload()  # asked for: the empty script runs
         result = next_result(live)
         assert result.status == "ok" and result.arrays is None
         assert live.empty_script is None
 
-
-def _until(condition, timeout: float = 10.0) -> None:  # noqa: ANN001
-    deadline = time.monotonic() + timeout
-    while not condition():
-        assert time.monotonic() < deadline, "timed out"
-        time.sleep(0.005)

@@ -21,6 +21,7 @@ from .runner_scripts.support import (
     settle,
     vertex_count,
     vertices_script,
+    wait_until,
 )
 
 
@@ -284,12 +285,6 @@ def test_a_current_object_id_the_scene_does_not_hold_names_no_object(tmp_path):
 # -- a forced interrupt that lands after the script ended --------------------------------
 
 
-def _until(condition, timeout: float = 10.0) -> None:
-    deadline = time.monotonic() + timeout
-    while not condition():
-        assert time.monotonic() < deadline, "timed out"
-        time.sleep(0.005)
-
 
 def test_a_user_cancel_whose_interrupt_lands_after_the_script_still_says_cancelled(
         tmp_path, monkeypatch):
@@ -307,7 +302,7 @@ def test_a_user_cancel_whose_interrupt_lands_after_the_script_still_says_cancell
         first = next_result(live, is_ok)
         monkeypatch.setattr(session_module, "execute", ends_then_interrupted)
         live.reload()
-        _until(lambda: live.activity is not None)
+        wait_until(lambda: live.activity is not None)
         live.cancel()
         cancelled = next_result(live, lambda r: r.status == "cancelled")
         assert cancelled.run_id == first.run_id + 1 and cancelled.stale
@@ -322,7 +317,7 @@ def test_an_endless_generator_expression_is_stopped_by_the_next_save(tmp_path):
     with closing_session(LiveSession(str(script), notifier=ManualNotifier(),
                                      preview=False)) as live:
         live.start()
-        _until(lambda: live.activity is not None)
+        wait_until(lambda: live.activity is not None)
         script.write_text(vertices_script(2))
         saved = time.perf_counter()
         live.reload()

@@ -9,7 +9,7 @@ import pytest
 
 from livemod.runner import LiveSession, ManualNotifier, RunResult
 
-from .runner_scripts.support import closing_session, next_result
+from .runner_scripts.support import closing_session, next_result, wait_until
 
 SLOW = """
 import time
@@ -26,16 +26,6 @@ def is_ok(r: RunResult) -> bool:
     return r.status == "ok"
 
 
-def _until(condition, timeout: float = 10.0):  # noqa: ANN001, ANN202
-    """Poll ``condition`` until it gives something truthy; return that."""
-    deadline = time.monotonic() + timeout
-    while time.monotonic() < deadline:
-        value = condition()
-        if value:
-            return value
-        time.sleep(0.01)
-    raise AssertionError("timed out")
-
 
 @pytest.mark.timeout(60)
 def test_a_run_a_save_starts_is_reported_at_work_until_its_result(tmp_path) -> None:
@@ -47,17 +37,17 @@ def test_a_run_a_save_starts_is_reported_at_work_until_its_result(tmp_path) -> N
         assert live.activity is None  # nothing started yet
         live.start()
         next_result(live, is_ok)
-        _until(lambda: live.activity is None)
+        wait_until(lambda: live.activity is None)
         script.write_text(SLOW.format(seconds=0.6))
         notifier.fire(str(script))  # saved in an editor: no call on the session
-        busy = _until(lambda: live.activity)
+        busy = wait_until(lambda: live.activity)
         assert busy.run_id == 2 and busy.script == str(script)
         time.sleep(0.2)
         later = live.activity
         assert later is not None and later.run_id == 2 and later.working > busy.working
         done = next_result(live, is_ok)
         assert done.run_id == 2
-        _until(lambda: live.activity is None)
+        wait_until(lambda: live.activity is None)
 
 
 @pytest.mark.timeout(60)
@@ -67,10 +57,10 @@ def test_only_the_newest_run_is_reported(tmp_path) -> None:
     with closing_session(LiveSession(str(script), notifier=ManualNotifier(),
                                      preview=False)) as live:
         live.start()
-        assert _until(lambda: live.activity).run_id == 1
+        assert wait_until(lambda: live.activity).run_id == 1
         script.write_text(SLOW.format(seconds=0.3))
         live.reload()  # supersedes run 1, which is cancelled
-        assert _until(lambda: (a := live.activity) is not None and a.run_id == 2 and a)
+        assert wait_until(lambda: (a := live.activity) is not None and a.run_id == 2 and a)
         seen = []
         while (activity := live.activity) is not None:
             seen.append(activity.run_id)
@@ -95,7 +85,7 @@ def _paused_at_the_first_step(folder):
 @pytest.mark.timeout(60)
 def test_a_paused_run_is_not_at_work(tmp_path) -> None:
     with _paused_at_the_first_step(tmp_path) as (live, _):
-        _until(lambda: live.activity is None)  # waiting on the viewer, not working
+        wait_until(lambda: live.activity is None)  # waiting on the viewer, not working
         time.sleep(0.1)
         assert live.activity is None
         live.run_to_end()

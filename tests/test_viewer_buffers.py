@@ -6,7 +6,6 @@ from __future__ import annotations
 import dataclasses
 import io
 import time
-from collections.abc import Iterator
 from pathlib import Path
 
 import moderngl
@@ -23,7 +22,9 @@ from livemod.viewer.renderer import CORNER_COLOR, PALETTE, SELECTED_COLOR, Style
 from livemod.viewer.text import PANEL, QUAD_FLOATS, TEXT, box_quad, glyph_atlas, layout_text
 from livemod.viewer.window import ViewOptions, close_viewer, create_viewer, run_frames
 
-SIZE = (160, 120)
+from .conftest import OFFSCREEN_SIZE
+
+SIZE = OFFSCREEN_SIZE
 FRAMES = 6
 BOX_POSITIONS = [(1, 1, 1), (1, 1, -1), (-1, 1, -1), (-1, 1, 1),
                  (1, -1, 1), (1, -1, -1), (-1, -1, -1), (-1, -1, 1)]
@@ -33,18 +34,6 @@ MAKERS = ("buffer", "vertex_array", "texture", "framebuffer", "renderbuffer",
           "depth_renderbuffer", "program", "simple_vertex_array")
 
 
-@pytest.fixture(scope="module")
-def shared_offscreen() -> Iterator[Offscreen]:
-    target = Offscreen(SIZE, samples=0)
-    yield target
-    target.release()
-
-
-@pytest.fixture
-def offscreen(shared_offscreen: Offscreen) -> Iterator[Offscreen]:
-    shared_offscreen.activate()
-    shared_offscreen.renderer.set_selection(Selection())
-    yield shared_offscreen
 
 
 @pytest.fixture

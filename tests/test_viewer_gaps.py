@@ -6,8 +6,6 @@ from __future__ import annotations
 
 import dataclasses
 import io
-import time
-from collections.abc import Iterator
 from pathlib import Path
 
 import moderngl
@@ -28,7 +26,10 @@ from livemod.viewer.params_panel import snap
 from livemod.viewer.renderer import Renderer, Style, nearest_corner
 from livemod.viewer.window import ViewOptions, close_viewer, create_viewer, run_frames
 
-SIZE = (160, 120)
+from .conftest import OFFSCREEN_SIZE
+from .viewer_support import frames_until
+
+SIZE = OFFSCREEN_SIZE
 BACKGROUND = np.array([round(0.16 * 255), round(0.17 * 255), round(0.19 * 255)])
 
 BOX_POSITIONS = [(1, 1, 1), (1, 1, -1), (-1, 1, -1), (-1, 1, 1),
@@ -37,33 +38,12 @@ BOX_FACES = [(0, 1, 2, 3), (4, 5, 1, 0), (5, 6, 2, 1), (6, 7, 3, 2), (7, 4, 0, 3
              (7, 6, 5, 4)]
 
 
-@pytest.fixture(scope="module")
-def shared_offscreen() -> Iterator[Offscreen]:
-    target = Offscreen(SIZE, samples=0)
-    yield target
-    target.release()
-
-
-@pytest.fixture
-def offscreen(shared_offscreen: Offscreen) -> Iterator[Offscreen]:
-    shared_offscreen.activate()  # (a viewer made in another test made its own context)
-    yield shared_offscreen
 
 
 def _drawn(image: np.ndarray) -> np.ndarray:
     """``(H, W)`` bool: the pixels that are not background."""
     return np.abs(image.astype(int) - BACKGROUND).sum(axis=2) > 6
 
-
-def _until(viewer, done, timeout: float = 30.0) -> None:
-    deadline = time.monotonic() + timeout
-
-    def stop(v) -> bool:
-        time.sleep(0.005)
-        return done(v) or time.monotonic() > deadline
-
-    run_frames(viewer, until=stop)
-    assert done(viewer), "timed out waiting for the viewer"
 
 
 def _settled(viewer) -> bool:
@@ -200,7 +180,7 @@ def test_the_window_frames_and_warns_about_a_mesh_with_nan(cube_script: Path) ->
 
     viewer = _viewer(cube_script)
     try:
-        _until(viewer, _settled)
+        frames_until(viewer, _settled)
         viewer._fit_bounds = None  # (fit on this upload)
         viewer._upload(_cube_with({2: (np.nan, 0.0, 0.0)}), None, None)
         assert np.isfinite(viewer.camera.eye()).all() and viewer.camera.distance > 1.0
@@ -311,7 +291,7 @@ def test_release_frees_every_gl_object_of_the_renderer() -> None:
 def test_closing_the_window_releases_the_renderer(cube_script: Path) -> None:
     viewer = _viewer(cube_script)
     try:
-        _until(viewer, _settled)
+        frames_until(viewer, _settled)
         run_frames(viewer, 2)
         objects = _gl_objects(viewer.renderer) + [viewer._frame[1]]
     finally:
@@ -323,7 +303,7 @@ def test_closing_the_window_releases_the_renderer(cube_script: Path) -> None:
 def test_the_frame_rate_counts_only_frames_drawn(cube_script: Path) -> None:
     viewer = _viewer(cube_script)
     try:
-        _until(viewer, _settled)
+        frames_until(viewer, _settled)
         run_frames(viewer, 3)
         counted = len(viewer.frame_times)
         run_frames(viewer, 20)  # nothing changes: no frame is drawn
@@ -360,7 +340,7 @@ def test_a_screenshot_name_taken_meanwhile_is_not_written_over(
     monkeypatch.chdir(tmp_path)
     viewer = _viewer(cube_script)
     try:
-        _until(viewer, _settled)
+        frames_until(viewer, _settled)
         capture = viewer.capture
 
         def racing(transparent: bool = False) -> np.ndarray:
@@ -397,14 +377,14 @@ def test_a_dropped_mesh_keeps_the_scripts_parameters(tmp_path: Path) -> None:
     echo = io.StringIO()
     viewer = _viewer(script, mesh_path=str(box), echo=echo)
     try:
-        _until(viewer, _settled)
+        frames_until(viewer, _settled)
         viewer.set_parameter("n", 1)
         viewer._flush_parameters(force=True)
-        _until(viewer, lambda v: _settled(v) and v.result.arrays.counts == (26, 48, 24))
+        frames_until(viewer, lambda v: _settled(v) and v.result.arrays.counts == (26, 48, 24))
         viewer.set_selection(Selection(faces=(int(viewer.result.arrays.face_ids[0]),)))
         viewer.open_path(str(tet))
         assert viewer.selection.is_empty()
-        _until(viewer, lambda v: _settled(v) and v.result.arrays.counts[0] != 26)
+        frames_until(viewer, lambda v: _settled(v) and v.result.arrays.counts[0] != 26)
         # the tetrahedron subdivided once: the script ran with n = 1 on it
         assert viewer.result.arrays.counts == (14, 24, 12)
         assert viewer.session.parameters == {"n": 1} and viewer.params.values == {"n": 1}
@@ -426,15 +406,15 @@ def test_an_emptied_script_is_named_over_the_last_mesh(cube_script: Path) -> Non
 
     viewer = _viewer(cube_script)
     try:
-        _until(viewer, _settled)
+        frames_until(viewer, _settled)
         cube_run = viewer.result.run_id
         cube_script.write_text("\n  \n")
-        _until(viewer, lambda v: v.empty_script is not None)
+        frames_until(viewer, lambda v: v.empty_script is not None)
         text = [line for line, _ in hud_lines(viewer._hud_info())]
         assert "box.py is empty: showing the last result" in text
         assert viewer.result.run_id == cube_run and viewer.result.arrays.counts == (8, 12, 6)
         cube_script.write_text("load('tetrahedron')\n")
-        _until(viewer, lambda v: _settled(v) and v.result.arrays.counts == (4, 6, 4))
+        frames_until(viewer, lambda v: _settled(v) and v.result.arrays.counts == (4, 6, 4))
         assert viewer.empty_script is None
         assert not any("is empty" in line for line, _ in hud_lines(viewer._hud_info()))
     finally:

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-from collections.abc import Iterator
 from pathlib import Path
 
 import numpy as np
@@ -25,7 +24,9 @@ from livemod.viewer.renderer import (
 )
 from tests.images import read_image
 
-SIZE = (160, 120)
+from .conftest import OFFSCREEN_SIZE
+
+SIZE = OFFSCREEN_SIZE
 BACKGROUND = np.array([round(0.16 * 255), round(0.17 * 255), round(0.19 * 255)])
 
 CUBE_POSITIONS = [(1, 1, 1), (1, 1, -1), (-1, 1, -1), (-1, 1, 1),
@@ -41,19 +42,6 @@ current_scene().add(from_polygons(P, F))
 """
 
 
-@pytest.fixture(scope="module")
-def shared_offscreen() -> Iterator[Offscreen]:
-    target = Offscreen(SIZE, samples=0)
-    yield target
-    target.release()
-
-
-@pytest.fixture
-def offscreen(shared_offscreen: Offscreen) -> Iterator[Offscreen]:
-    """The module's target, its context current (a `livemod render` in an earlier test
-    made contexts of its own)."""
-    shared_offscreen.activate()
-    yield shared_offscreen
 
 
 def _mask(image: np.ndarray) -> np.ndarray:

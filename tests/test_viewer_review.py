@@ -4,7 +4,6 @@ faces' measures, and what a dropped script resets."""
 from __future__ import annotations
 
 import io
-import time
 from collections.abc import Iterator
 from pathlib import Path
 
@@ -19,7 +18,9 @@ from livemod.viewer.headless import Offscreen, framed_camera
 from livemod.viewer.measure import WholeMeshMeasurer, face_area_normal
 from livemod.viewer.renderer import Style
 from livemod.viewer.timeline import Timeline
-from livemod.viewer.window import ViewOptions, close_viewer, create_viewer, run_frames
+from livemod.viewer.window import ViewOptions, close_viewer, create_viewer
+
+from .viewer_support import frames_until
 
 SIZE = (160, 120)
 BACKGROUND = np.array([round(0.16 * 255), round(0.17 * 255), round(0.19 * 255)])
@@ -126,16 +127,6 @@ def test_a_measurer_closed_for_another_script_measures_again(monkeypatch) -> Non
 # -- a dropped script ---------------------------------------------------------------
 
 
-def _until(viewer, done, timeout: float = 20.0) -> None:
-    deadline = time.monotonic() + timeout
-
-    def stop(v) -> bool:
-        time.sleep(0.005)
-        return done(v) or time.monotonic() > deadline
-
-    run_frames(viewer, until=stop)
-    assert done(viewer), "timed out waiting for the viewer"
-
 
 def test_a_dropped_script_starts_without_the_old_scripts_view_state(tmp_path: Path) -> None:
     first = tmp_path / "fails.py"
@@ -143,7 +134,7 @@ def test_a_dropped_script_starts_without_the_old_scripts_view_state(tmp_path: Pa
     viewer = create_viewer(ViewOptions(str(first), backend="headless", size=(200, 150),
                                        samples=0, vsync=False, echo=io.StringIO()))
     try:
-        _until(viewer, lambda v: v.result is not None and not v.waiting)
+        frames_until(viewer, lambda v: v.result is not None and not v.waiting)
         viewer.handle_key("E")  # the failed run's mesh
         assert viewer.show_partial
         viewer.viewer_error = "an old failure"

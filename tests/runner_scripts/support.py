@@ -144,3 +144,13 @@ def vertex_count(result: RunResult) -> int:
     """The vertices of a result's mesh (the result must have one)."""
     assert result.arrays is not None, result.error
     return result.arrays.counts[0]
+
+
+def wait_until(condition, timeout: float = 10.0):  # noqa: ANN001, ANN201
+    """Poll ``condition`` every 5 ms until it gives something truthy, and return
+    that; fail the test after ``timeout`` seconds."""
+    deadline = time.monotonic() + timeout
+    while not (value := condition()):
+        assert time.monotonic() < deadline, "timed out"
+        time.sleep(0.005)
+    return value
