@@ -407,10 +407,12 @@ class LiveSession:
         """Watcher callback: queue a run when a watched file's content changed."""
         with self._lock:
             files, script = sorted(self._watcher.files), self.script
-        digests = {path: _digest(path) for path in files}
-        if digests.get(script) is None:
+        source = _read_bytes(script)  # read once: for its digest and for emptiness
+        if source is None:
             return  # the script vanished (or is being replaced): wait for it to return
-        emptied = digests[script] == _EMPTY or _is_blank(script)
+        digests = {path: _digest(path) for path in files if path != script}
+        digests[script] = _hash(source)
+        emptied = _is_blank(source)
         with self._lock:
             if script == self.script:
                 # an editor truncated it and has not written it yet, or the user
@@ -780,24 +782,22 @@ def _hash(data: bytes) -> bytes:
     return hashlib.blake2b(data, digest_size=16).digest()
 
 
-_EMPTY = _hash(b"")  # the digest of an empty file (a save between truncate and write)
+def _is_blank(data: bytes) -> bool:
+    """True when a script's bytes are nothing but whitespace (and a UTF-8 BOM):
+    an editor between truncating and writing, or a user who emptied it."""
+    return not data.removeprefix(b"\xef\xbb\xbf").strip()
 
 
-def _is_blank(path: str) -> bool:
-    """True when the file holds nothing but whitespace (and a UTF-8 BOM); False
-    when it has other bytes or cannot be read."""
+def _read_bytes(path: str) -> bytes | None:
+    """The file's bytes, None when it cannot be read (e.g. mid-rename)."""
     try:
         with open(path, "rb") as handle:
-            data = handle.read()
+            return handle.read()
     except OSError:
-        return False
-    return not data.removeprefix(b"\xef\xbb\xbf").strip()
+        return None
 
 
 def _digest(path: str) -> bytes | None:
     """Hash of the file's bytes, None when it cannot be read (e.g. mid-rename)."""
-    try:
-        with open(path, "rb") as handle:
-            return _hash(handle.read())
-    except OSError:
-        return None
+    data = _read_bytes(path)
+    return None if data is None else _hash(data)
