@@ -194,8 +194,7 @@ def face_area_normal(arrays: MeshArrays, face: int) -> tuple[float, np.ndarray]:
     """Area and ``(3,)`` unit normal of dense face ``face`` (Newell's method, so
     non-planar faces get their best-fit normal); the normal is zero for a
     degenerate face."""
-    start, stop = arrays.face_offsets[face], arrays.face_offsets[face + 1]
-    ring = arrays.positions[arrays.corner_vertex[start:stop]].astype(np.float64)
+    ring = arrays.positions[_ring(arrays, face)].astype(np.float64)
     # relative to a corner: the cross products of far-off absolute positions cancel
     # to nothing (a unit square at 1e8 had area 0)
     ring -= ring[0]
@@ -264,13 +263,8 @@ def _vertices(arrays: MeshArrays, ids: list[int], dense: list[int]) -> list[str]
 def corner_angle(arrays: MeshArrays, corner: int) -> float:
     """Degrees between the two edges at dense corner ``corner`` (0 when either is
     degenerate, as at a point-sphere)."""
-    face = arrays.corner_face[corner]
-    start, stop = arrays.face_offsets[face], arrays.face_offsets[face + 1]
-    before = start + (corner - start - 1) % (stop - start)
-    after = start + (corner - start + 1) % (stop - start)
-    here = arrays.positions[arrays.corner_vertex[corner]]
-    u = arrays.positions[arrays.corner_vertex[before]] - here
-    w = arrays.positions[arrays.corner_vertex[after]] - here
+    before, here, after = arrays.positions[_corner_vertices(arrays, corner)]
+    u, w = before - here, after - here
     norms = float(np.linalg.norm(u) * np.linalg.norm(w))
     if norms == 0:
         return 0.0

@@ -223,7 +223,6 @@ class _MeshGPU:
             obj.release()
 
 
-
 class _StreamBuffer:
     """A dynamic vertex buffer that a draw refills each time it is called, and the
     vertex array reading it (the HUD's text is drawn every frame: making and
