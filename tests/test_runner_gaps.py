@@ -19,7 +19,6 @@ from watchdog.events import DirDeletedEvent
 from livemod.dlfl.scene import current_scene
 from livemod.runner import (
     LiveSession,
-    ManualNotifier,
     RunControl,
     WatchdogNotifier,
     execute,
@@ -30,6 +29,7 @@ from livemod.runner.execute import interrupt_user_code
 from .runner_scripts.support import (
     closing_session,
     drain,
+    manual_session,
     next_result,
     settle,
     vertex_count,
@@ -210,10 +210,7 @@ def test_a_helper_the_host_imported_first_is_watched_by_the_session(tmp_path, mo
     script = tmp_path / "model.py"
     script.write_text("import helper_seen\nfor i in range(helper_seen.COUNT):\n"
                       "    createVertex((i, 0, 0))\n")
-    notifier = ManualNotifier()
-    live = LiveSession(str(script), notifier=notifier, debounce=0.05, preview=False)
-    with closing_session(live):
-        live.start()
+    with manual_session(script) as (live, notifier):
         assert vertex_count(next_result(live)) == 2
         (tmp_path / "helper_seen.py").write_text("COUNT = 7  # edited\n")
         notifier.fire(str(tmp_path / "helper_seen.py"))
@@ -374,10 +371,7 @@ def _three_vertex_session(tmp_path):  # noqa: ANN001, ANN202
     makes 3 vertices, its first result taken; closed afterwards."""
     script = tmp_path / "model.py"
     script.write_text(vertices_script(3))
-    notifier = ManualNotifier()
-    live = LiveSession(str(script), notifier=notifier, debounce=0.05, preview=False)
-    with closing_session(live):
-        live.start()
+    with manual_session(script) as (live, notifier):
         assert vertex_count(next_result(live)) == 3
         yield live, script, notifier
 

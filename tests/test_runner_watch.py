@@ -13,6 +13,7 @@ from livemod.runner import FileWatcher, LiveSession, ManualNotifier
 from .runner_scripts.support import (
     closing_session,
     drain,
+    manual_session,
     next_result,
     settle,
     vertex_count,
@@ -51,10 +52,7 @@ def test_events_in_a_burst_give_one_callback(tmp_path):
 def test_unchanged_content_is_skipped_and_changes_run(tmp_path):
     script = tmp_path / "m.py"
     script.write_text(vertices_script(2))
-    notifier = ManualNotifier()
-    live = LiveSession(str(script), notifier=notifier, debounce=0.05, preview=False)
-    with closing_session(live):
-        live.start()
+    with manual_session(script) as (live, notifier):
         assert vertex_count(next_result(live)) == 2
         notifier.fire(str(script))  # touched, not changed
         assert drain(live, quiet=0.5) == []
@@ -67,10 +65,7 @@ def test_unchanged_content_is_skipped_and_changes_run(tmp_path):
 def test_vanished_script_waits_for_its_return(tmp_path):
     script = tmp_path / "gone.py"
     script.write_text(vertices_script(2))
-    notifier = ManualNotifier()
-    live = LiveSession(str(script), notifier=notifier, debounce=0.05, preview=False)
-    with closing_session(live):
-        live.start()
+    with manual_session(script) as (live, notifier):
         next_result(live)
         script.unlink()
         notifier.fire(str(script))
@@ -83,10 +78,7 @@ def test_vanished_script_waits_for_its_return(tmp_path):
 @pytest.mark.timeout(60)
 def test_a_script_created_after_the_session_started_runs_on_its_first_save(tmp_path):
     script = tmp_path / "later.py"
-    notifier = ManualNotifier()
-    live = LiveSession(str(script), notifier=notifier, debounce=0.05, preview=False)
-    with closing_session(live):
-        live.start()
+    with manual_session(script) as (live, notifier):
         assert next_result(live).status == "error"  # not there yet
         script.write_text(vertices_script(2))
         notifier.fire(str(script))

@@ -135,6 +135,21 @@ def closing_session(live):  # noqa: ANN001, ANN201  (a LiveSession)
         assert live.join(10)
 
 
+@contextlib.contextmanager
+def manual_session(path, **options):  # noqa: ANN001, ANN003, ANN201
+    """``(session, notifier)``: a started LiveSession on ``path`` whose file events
+    a ManualNotifier gives (``notifier.fire(path)``), debounced 50 ms, with no
+    preview unless ``options`` say otherwise; closed afterwards."""
+    from livemod.runner import LiveSession, ManualNotifier
+
+    notifier = ManualNotifier()
+    live = LiveSession(str(path), notifier=notifier, **{"debounce": 0.05, "preview": False,
+                                                         **options})
+    with closing_session(live):
+        live.start()
+        yield live, notifier
+
+
 def vertices_script(n: int) -> str:
     """A script that makes ``n`` point-spheres (``n`` steps, ``n`` vertices)."""
     return f"for i in range({n}):\n    createVertex((i, 0, 0))\n"
