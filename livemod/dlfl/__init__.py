@@ -31,7 +31,16 @@ from .analysis import (
 from .arrays import MeshArrays, mesh_arrays
 from .build import Polygons, from_corner_arrays, from_polygons
 from .commands import *  # noqa: F403
-from .errors import DLFLError, DLFLRepairWarning
+from .errors import (
+    BudgetExceededError,
+    DLFLError,
+    DLFLRepairWarning,
+    FileFormatError,
+    GeometryError,
+    InvalidArgumentError,
+    NonManifoldError,
+    UnknownIdError,
+)
 from .mesh import Mesh
 from .scene import Scene, Selection, current_scene, use_scene
 from .validate import validate

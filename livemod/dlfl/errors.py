@@ -1,4 +1,20 @@
-"""Errors raised by the DLFL library."""
+"""Errors raised by the DLFL library.
+
+Every error a :mod:`livemod.dlfl` function raises for bad input is a
+:class:`DLFLError`; its subclasses say what kind of failure it was, so callers
+can branch on the type instead of the message::
+
+    DLFLError (ValueError)
+    ├── UnknownIdError (also LookupError)   an id that never existed or was deleted
+    ├── InvalidArgumentError                 a value of the wrong type, range or kind
+    ├── NonManifoldError                     input that cannot be made an oriented 2-manifold
+    ├── BudgetExceededError                  the result would pass the face budget
+    ├── FileFormatError                      a file that cannot be read (file and line)
+    └── GeometryError                        a geometric impossibility (a collapsed face,
+                                             an inverted crust, an overflowing coordinate)
+
+An operation that raises leaves the mesh exactly as it was.
+"""
 
 from __future__ import annotations
 
@@ -11,6 +27,55 @@ class DLFLError(ValueError):
     The message names the offending value and, for files, the file and line.
     An operation that raises leaves the mesh exactly as it was.
     """
+
+
+class UnknownIdError(DLFLError, LookupError):
+    """An element id that the mesh never had, or that an operation deleted."""
+
+
+class InvalidArgumentError(DLFLError):
+    """An argument of the wrong type, out of range, or of the wrong kind of element."""
+
+
+class NonManifoldError(DLFLError):
+    """Input that cannot be made into an oriented 2-manifold (an unpairable soup, a
+    bow-tie vertex, an edge shared by three faces)."""
+
+
+class BudgetExceededError(DLFLError):
+    """The operation's result would pass the face budget; nothing was allocated.
+
+    Attributes:
+        needed: the number of faces the result would have.
+        budget: the budget in force.
+    """
+
+    def __init__(self, message: str, *, needed: int = 0, budget: int = 0) -> None:
+        super().__init__(message)
+        self.needed = needed
+        self.budget = budget
+
+
+class FileFormatError(DLFLError):
+    """A file that cannot be read as its format says.
+
+    The message starts with ``file:line:`` where the line is known.
+
+    Attributes:
+        path: the file (or the label of the stream) that was read, or None.
+        line: the 1-based line (or record) where reading failed, or None.
+    """
+
+    def __init__(self, message: str, *, path: str | None = None,
+                 line: int | None = None) -> None:
+        super().__init__(message)
+        self.path = path
+        self.line = line
+
+
+class GeometryError(DLFLError):
+    """The geometry makes the operation impossible: a face with no normal, a crust
+    that turns inside out, a coordinate that overflows."""
 
 
 class DLFLRepairWarning(UserWarning):
