@@ -13,6 +13,7 @@ from livemod.runner import session as session_module
 from livemod.runner.batch import SerialExecutor, make_variants, run_batch
 from livemod.runner.execute import script_namespace
 from livemod.runner.instrument import CANCEL_FLAG
+from livemod.runner.playback import Action, RunPosition
 from livemod.runner.recording import StepRecorder
 
 from .runner_scripts.support import (
@@ -70,17 +71,18 @@ class _WatchedPlayback(Playback):
 
     def __setattr__(self, name: str, value: object) -> None:
         super().__setattr__(name, value)
-        if hasattr(self, "rate") and hasattr(self, "seen"):
+        if hasattr(self, "seen"):
             self.seen.append(self.should_pause(self.probe))
 
 
-def test_pause_at_never_shows_a_step_hook_the_new_mode_with_the_old_target():
+def test_no_write_shows_a_step_hook_a_pause_nobody_asked_for():
     playback = _WatchedPlayback()
     playback.seen = []
-    playback.pause_at(5)  # step 2 is before the target: no write may make it pause
-    playback.run_to_end()
-    playback.pause_at(9, rate=4.0)
-    assert playback.seen and not any(playback.seen)
+    live = RunPosition(live=True, done=1)  # a run working on its second step
+    for action, k in ((Action.GOTO, 5), (Action.END, 0), (Action.GOTO, 9), (Action.PLAY, 0),
+                      (Action.GOTO, 3), (Action.RUN_ENDED, 4)):
+        playback.apply(action, live, k)  # step 2 is before every step asked for
+    assert len(playback.seen) >= 12 and not any(playback.seen)
 
 
 # -- a script's own BaseException ---------------------------------------------------

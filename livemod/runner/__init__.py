@@ -19,7 +19,9 @@ Only the newest run posts; a run superseded by a save posts nothing. Between a
 save and its first result, :attr:`LiveSession.activity` (a :class:`RunActivity`)
 says the newest run is at work and for how long. Going back
 shows a cached snapshot when one is in the budget, else the script is replayed
-to that step (same text, same seed).
+to that step (same text, same seed). Playback is one state machine (running,
+playing, paused, finished; see :mod:`livemod.runner.playback` and
+docs/playback.md); :attr:`LiveSession.playback` shows where it is.
 """
 
 from __future__ import annotations
@@ -29,7 +31,7 @@ from livemod.dlfl.arrays import MeshArrays
 from .errors import Cancelled
 from .execute import RunControl, RunOutcome, execute
 from .headless import run_outcome, run_script
-from .playback import Playback
+from .playback import Playback, PlaybackState, PlaybackView
 from .preview import preview_arrays
 from .results import RunResult, ScriptError, StepRecord
 from .session import LiveSession, RunActivity
@@ -37,6 +39,6 @@ from .watch import FileWatcher, ManualNotifier, WatchdogNotifier
 
 __all__ = [
     "Cancelled", "FileWatcher", "LiveSession", "ManualNotifier", "MeshArrays", "Playback",
-    "RunActivity", "RunControl", "RunOutcome", "RunResult", "ScriptError", "StepRecord", "WatchdogNotifier",
+    "PlaybackState", "PlaybackView", "RunActivity", "RunControl", "RunOutcome", "RunResult", "ScriptError", "StepRecord", "WatchdogNotifier",
     "execute", "preview_arrays", "run_outcome", "run_script",
 ]

@@ -182,7 +182,8 @@ class StepRecorder:
 
     def _make_hook(self) -> Callable[[str], None]:
         log, scene, objects, clock = self._log, self.scene, self.scene.objects, time.perf_counter
-        extend = log.facts.extend
+        facts = log.facts
+        extend = facts.extend
         control, script, getframe = self.control or RunControl(), self.script, sys._getframe
         playback, step_done = control.playback, self._step_done
         log.follow(_UNCACHED, _NOWHERE, None)
@@ -203,7 +204,7 @@ class StepRecorder:
             # Mesh.counts() inlined, its subtractions left to StepList: this is per step
             extend((label, log.frame.f_lasti, m._v.n, len(m._v.free), m._e.n,
                     len(m._e.free), m._f.n, len(m._f.free), clock()))
-            if playback is not None and playback.mode == "step":
+            if playback is not None and len(facts) // STEP_FIELDS > playback.hold_from:
                 step_done(control, playback)
 
         return hook

@@ -37,7 +37,7 @@ from .declarations import check_values, fitting_values, literal_declarations
 from .errors import Cancelled, cancelled_error, exception_error, syntax_error
 from .execute import RunControl, RunOutcome, base_scene, execute, interrupt_user_code
 from .instrument import decode_script
-from .playback import Playback
+from .playback import Action, Playback, PlaybackView, RunPosition, Show
 from .preview import PreviewWorker, preview_arrays
 from .results import (
     RunResult,
@@ -143,17 +143,15 @@ class LiveSession:
         self._declarations: dict[str, ParamSpec] = {}  # of the newest script text
         self._selection: Selection | None = None
         self._playback = Playback()
-        self._rate: float | None = None  # steps per second while playing
-        self._paused_rate: float | None = None  # the rate to resume after pause()
         self._snapshots = SnapshotCache(snapshot_budget)
-        self._shown: int | None = None  # a cached step shown behind the live run
         self._lock = threading.RLock()
         self._requests: queue.Queue[_Request | None] = queue.Queue()
         self._run_id = 0
         self._current: _Run | None = None
         self._last_good: RunResult | None = None
         self._last_posted: RunResult | None = None
-        self._last_steps: Sequence[StepRecord] = ()
+        # the newest run's end (ok, error, cancelled), posted or not: see _post_locked
+        self._final: RunResult | None = None
         self._source: str | None = None
         self._seen: dict[str, bytes] = {}
         self._empty_script: str | None = None  # see empty_script
@@ -201,12 +199,12 @@ class LiveSession:
         snapshots, and any result of its runs still to come)."""
         with self._lock:
             self.script = os.path.abspath(os.fspath(script))
-            self._last_good, self._last_steps, self._seen = None, (), {}
+            self._last_good, self._final, self._seen = None, None, {}
             # a replay asked before the first run reads the new script from disk
             self._source, self._declarations, self._parameters = None, {}, {}
             self._snapshots.reset(-1)  # no run has that id
-            self._rate, self._shown, self._empty_script = None, None, None
-            self._playback.run_to_end()  # a new script starts unpaused
+            self._empty_script = None
+            self._playback.apply(Action.OPEN)  # a new script starts unpaused
             self._watcher.set_files(self._own_files())
         self.reload()
 
@@ -253,107 +251,121 @@ class LiveSession:
             return dict(self._declarations)
 
     # -- playback -------------------------------------------------------------------
+    # Every method here is one action of the playback's state machine (see
+    # livemod/runner/playback.py for its states and transition table). Each
+    # returns True when a result is on its way (or was posted), False when it
+    # changed nothing on screen (at the first step already, at the end already).
 
-    def pause(self) -> None:
-        """Pause the running run at its next step (later runs pause at the same place)."""
-        with self._lock:
-            self._paused_rate, self._rate = self._rate or self._paused_rate, None
-            run = self._live_run()
-            if self._shown is not None:
-                self._playback.pause_at(self._shown)
-            elif run is not None and run.control.paused_at is not None:
-                self._playback.pause_at(run.control.paused_at)
-            elif run is not None:
-                self._playback.pause_at(0)
-            else:
-                self._playback.pause_at(max(0, len(self._last_steps) - 1))
+    @property
+    def playback(self) -> PlaybackView:
+        """The playback's state, the step it shows (or goes to) and the play rate."""
+        return self._playback.view
 
-    def resume(self) -> None:
-        """Go on: playing again at the last rate if playing was paused, else to the end."""
-        with self._lock:
-            rate = self._rate or self._paused_rate
-        if rate is not None:
-            self.play(rate)
-        else:
-            self.run_to_end()
+    @property
+    def play_rate(self) -> float:
+        """Steps per second while playing (the user's choice; 2 to begin with).
 
-    def run_to_end(self) -> None:
-        """Let the current and later runs go to the end without pausing."""
-        with self._lock:
-            self._rate, self._paused_rate, self._shown = None, None, None
-            self._playback.run_to_end()
-
-    def step_forward(self) -> None:
-        """Show the next step (the paused run goes on by one step)."""
-        with self._lock:
-            if self._shown is not None:
-                target = self._shown + 1
-            else:
-                run = self._live_run()
-                paused = run.control.paused_at if run is not None else None
-                if run is not None and paused is None:
-                    self._playback.pause_at(0)  # running: stop at the next step
-                if paused is None:
-                    return
-                target = paused + 1
-        self.goto_step(target)
-
-    def step_back(self) -> None:
-        """Show the previous step (from the snapshot cache, or by replaying to it)."""
-        with self._lock:
-            position = self._shown if self._shown is not None else self._position()
-        if position is not None and position > 0:
-            self.goto_step(position - 1)
-
-    def goto_step(self, k: int) -> None:
-        """Show the mesh right after step ``k`` (0-based).
-
-        A step the live run has not reached yet is run to; one behind it is shown
-        from the snapshot cache, or else the script is replayed to it (same seed,
-        same text, so the same mesh).
+        Raises:
+            ValueError: set to a number that is not positive and finite.
         """
-        k = max(0, int(k))
-        with self._lock:
-            run = self._live_run()
-            paused = run.control.paused_at if run is not None else None
-            self._playback.pause_at(k, self._rate)
-            if run is not None and k >= run.control.step_count and (paused is None or k > paused):
-                self._shown = None  # still ahead: the run goes on to it
-                return
-            cached = self._snapshots.get(k)
-            self._shown = k if cached is not None and k != paused else None
-            if cached is not None:
-                self._post_locked(cached)
-                return
-        self._request(self._source)
+        return self._playback.rate
 
-    def play(self, rate: float) -> None:
-        """Advance ``rate`` steps per second (replaying from the shown step, or from
-        the start, when the run has ended).
+    @play_rate.setter
+    def play_rate(self, rate: float) -> None:
+        self._playback.rate = rate
+
+    def faster(self) -> float:
+        """Double the play rate, up to 64 steps a second; the new rate."""
+        return self._playback.scale_rate(2.0)
+
+    def slower(self) -> float:
+        """Halve the play rate, down to a step every 4 seconds; the new rate."""
+        return self._playback.scale_rate(0.5)
+
+    def play(self, rate: float | None = None) -> bool:
+        """Advance :attr:`play_rate` steps a second (``rate``, when given, becomes
+        it): from the step shown, or from the first step when the run has ended
+        (the script is replayed to it).
 
         Raises:
             ValueError: ``rate`` is not positive.
         """
-        if rate <= 0:
-            raise ValueError(f"play rate must be positive, got {rate!r}")
-        with self._lock:
-            self._rate = float(rate)
-            run = self._live_run()
-            if run is not None and self._shown is None:
-                paused = run.control.paused_at
-                self._playback.pause_at(0 if paused is None else paused, self._rate)
-                return
-            start, self._shown = self._shown or 0, None
-            self._playback.pause_at(start, self._rate)
-        self._request(self._source)
+        if rate is not None:
+            self._playback.rate = rate
+        return self._act(Action.PLAY)
 
-    def cancel(self) -> None:
+    def pause(self) -> bool:
+        """Hold the run at the step shown (a running run at its next step); later
+        runs (a save, a parameter change) hold at the same step."""
+        return self._act(Action.PAUSE)
+
+    def toggle_play(self) -> bool:
+        """Pause while playing, else play (the Space key)."""
+        return self._act(Action.TOGGLE)
+
+    def resume(self) -> bool:
+        """Go on from a pause: playing again if a play was paused, else to the end."""
+        return self._act(Action.RESUME)
+
+    def run_to_end(self) -> bool:
+        """Show the end: the run goes on without pausing, as later runs do; an
+        ended run's last result is shown again."""
+        return self._act(Action.END)
+
+    def step_forward(self) -> bool:
+        """Show the next step (a running run stops at its next step)."""
+        return self._act(Action.STEP_FORWARD)
+
+    def step_back(self) -> bool:
+        """Show the previous step (from the snapshot cache, or by replaying to it)."""
+        return self._act(Action.STEP_BACK)
+
+    def goto_step(self, k: int) -> bool:
+        """Show the mesh right after step ``k`` (0-based).
+
+        A step the live run has not reached yet is run to; one behind it is shown
+        from the snapshot cache, or else the script is replayed to it (same seed,
+        same text, so the same mesh). Past the last step of an ended run is its end.
+        """
+        return self._act(Action.GOTO, int(k))
+
+    def cancel(self) -> bool:
         """Stop the running run; a ``"cancelled"`` result keeps the last good mesh."""
         with self._lock:
-            run = self._live_run()
-            if run is not None:
+            run = self._current
+            if self._act(Action.CANCEL):
+                assert run is not None  # a live run, by the transition
                 run.cancel_reason = "user"
                 run.control.cancel()
+                return True
+            return False
+
+    def _act(self, action: Action, k: int = 0) -> bool:
+        """Apply ``action`` to the playback and do what showing its step takes."""
+        with self._lock:
+            show = self._playback.apply(action, self._run_position(), k)
+            if show is Show.CACHED:
+                cached = self._snapshots.get(self._playback.mode.step or 0)
+                assert cached is not None  # the position said it was there
+                self._post_locked(cached)
+            elif show is Show.FINAL:
+                assert self._final is not None  # the position said it was there
+                self._post_locked(self._final)
+            elif show is Show.REPLAY:
+                self._request(self._source)
+            return show is not Show.NOTHING
+
+    def _run_position(self) -> RunPosition:
+        """Where the newest run is, for the playback (caller holds the lock)."""
+        run, final = self._current, self._final
+        if final is not None and not self._is_newest(final):
+            final = None
+        if run is None or final is not None or run.ended or self._closed:
+            return RunPosition(final=final is not None,
+                               done=len(final.steps) if final is not None else 0,
+                               cached=self._snapshots.indexes())
+        return RunPosition(live=True, held=run.control.paused_at,
+                           done=run.control.step_count, cached=self._snapshots.indexes())
 
     @property
     def activity(self) -> RunActivity | None:
@@ -380,20 +392,6 @@ class LiveSession:
         """
         with self._lock:
             return self._empty_script
-
-    def _live_run(self) -> _Run | None:
-        """The newest run while its thread has not finished the script."""
-        run = self._current
-        if run is None or run.control.finished or run.control.cancelled:
-            return None
-        return run
-
-    def _position(self) -> int | None:
-        """The step shown now: the paused step, or the last step of a finished run."""
-        run = self._live_run()
-        if run is not None:
-            return run.control.paused_at
-        return len(self._last_steps) - 1 if self._last_steps else None
 
     # -- triggering runs ---------------------------------------------------------------
 
@@ -485,7 +483,8 @@ class LiveSession:
                                           name=f"livemod-run-{run.run_id}", daemon=True)
             self._current = run
             self._snapshots.reset(run.run_id)
-            self._shown, self._empty_script = None, None
+            self._empty_script = None
+            self._playback.apply(Action.NEW_RUN)
         run.thread.start()
 
     # -- the worker ------------------------------------------------------------------
@@ -634,8 +633,6 @@ class LiveSession:
             elapsed=_working(run, outcome), parameters=self._specs(outcome.scene),
             partial=snapshot_scene(outcome.scene), values=values, **_last_good_fields(last))
         with self._lock:
-            if self._is_newest(result):
-                self._last_steps = outcome.steps
             self._post_locked(result)
 
     def _publish_ok(self, run: _Run, outcome: RunOutcome, values: tuple) -> None:
@@ -647,7 +644,7 @@ class LiveSession:
                            **object_fields(outcome.scene))
         with self._lock:
             if self._is_newest(result):
-                self._last_good, self._last_steps = result, outcome.steps
+                self._last_good = result
             self._post_locked(result)
         mesh = current_mesh(outcome.scene)
         if self._previews is not None and mesh is not None:
@@ -703,9 +700,9 @@ class LiveSession:
                            **object_fields(scene))
         with self._lock:
             self._snapshots.put(result)
-            if self._shown is not None:
-                return  # the caller is looking at an earlier, cached step
-            self._post(result)
+            if not self._is_newest(result) or not self._playback.arrived(index):
+                return  # e.g. the caller is looking at an earlier, cached step
+            self._post_locked(result)
         mesh = current_mesh(scene)
         if self._previews is not None and mesh is not None:
             self._previews.request(result, mesh.copy())  # the live mesh changes on resume
@@ -726,25 +723,37 @@ class LiveSession:
             self._post_locked(result)
 
     def _is_latest(self, result: RunResult) -> bool:
-        """Whether ``result`` is still worth a preview: the last one posted."""
+        """Whether ``result`` is still worth a preview: the last one posted, or the
+        newest run's end kept unposted (it is posted on :meth:`run_to_end`)."""
         with self._lock:
-            return self._last_posted is result and self._is_newest(result)
+            return (self._last_posted is result or self._final is result) and self._is_newest(result)
 
     def _post_preview(self, result: RunResult, preview: MeshArrays) -> None:
-        """Preview thread: post ``result`` again with its preview, if still shown."""
+        """Preview thread: post ``result`` again with its preview, if still shown
+        (and keep it with its preview, if it is the end kept unposted)."""
         with self._lock:
-            if self._last_posted is result and self._is_newest(result):
-                with_preview = dataclasses.replace(result, preview=preview)
+            if not self._is_newest(result):
+                return
+            with_preview = dataclasses.replace(result, preview=preview)
+            if self._final is result:
+                self._final = with_preview
+            if self._last_posted is result:
                 self._snapshots.put(with_preview)
                 self._last_posted = with_preview
                 self.results.put(with_preview)
 
     def _post_locked(self, result: RunResult) -> None:
         """Publish ``result`` (e.g. again, from the snapshot cache) if it is still
-        the newest (caller holds the lock)."""
-        if self._is_newest(result):
-            self._last_posted = result
-            self.results.put(result)
+        the newest (caller holds the lock). A run's end goes to the playback
+        first, which keeps it unposted while the caller looks at an earlier step."""
+        if not self._is_newest(result):
+            return
+        if result.status != "paused":
+            self._final = result
+            if self._playback.apply(Action.RUN_ENDED, k=len(result.steps)) is Show.NOTHING:
+                return
+        self._last_posted = result
+        self.results.put(result)
 
 
 def _last_good_fields(last: RunResult | None) -> dict:

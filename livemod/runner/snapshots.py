@@ -78,6 +78,10 @@ class SnapshotCache:
             self._items.move_to_end(index)
         return result
 
+    def indexes(self) -> frozenset[int]:
+        """The steps held now."""
+        return frozenset(self._items)
+
     def __len__(self) -> int:
         return len(self._items)
 

@@ -12,6 +12,7 @@ import numpy as np
 
 from livemod.dlfl.arrays import MeshArrays
 from livemod.runner import LiveSession, Playback, RunControl, RunResult, execute
+from livemod.runner.playback import Action
 from livemod.runner.results import snapshot_scene
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -91,8 +92,9 @@ def straight_snapshots(path: str, seed: int = 0) -> tuple[list[MeshArrays | None
     The run pauses at every step only long enough to take the snapshot (it plays at
     a huge rate), all in this thread.
     """
-    playback = Playback()
-    playback.pause_at(0, rate=1e9)
+    playback = Playback(rate=1e9)
+    playback.apply(Action.PLAY)  # no run yet: playing from step 0 ...
+    playback.apply(Action.NEW_RUN)  # ... in the run started below
     snaps: list[MeshArrays | None] = []
     control = RunControl(playback, lambda index, steps, scene: snaps.append(
         snapshot_scene(scene)))
