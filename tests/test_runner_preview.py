@@ -62,7 +62,7 @@ def test_a_failing_preview_is_logged_and_the_worker_goes_on(caplog):
 
 
 def _result(run_id: int) -> RunResult:
-    return RunResult(run_id, "s.py", "ok", (), None, None, None, None, 0.0, False)
+    return RunResult.finished(run_id, "s.py", (), None, 0.0)
 
 
 @pytest.mark.timeout(60)

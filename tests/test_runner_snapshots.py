@@ -10,7 +10,7 @@ from livemod.runner.snapshots import SnapshotCache, result_bytes
 def paused(run_id: int, index: int) -> RunResult:
     arrays = snapshot_mesh(from_polygons([(0, 0, 0), (1, 0, 0), (0, 1, float(index))],
                                          [(0, 1, 2)]))
-    return RunResult(run_id, "s.py", "paused", (), index, arrays, None, None, 0.0, False)
+    return RunResult.paused(run_id, "s.py", (), index, arrays, 0.0)
 
 
 def test_budget_evicts_least_recently_used():
@@ -54,12 +54,12 @@ def test_other_objects_one_by_one_and_joined_are_counted_once() -> None:
     assert fields["current_object"] == (2, "current")
     parts = [arrays for _, _, arrays in fields["other_objects"]]
     assert all(not arrays.positions.flags.writeable for arrays in (*parts, fields["others"]))
-    result = RunResult(1, "s.py", "ok", (), None, None, None, None, 0.0, False, **fields)
+    result = RunResult.finished(1, "s.py", (), None, 0.0, **fields)
     assert result_bytes(result) == sum(map(arrays_bytes, (*parts, fields["others"])))
     scene.kill(1)
     lone = object_fields(scene)
     assert lone["current_object"] == (2, "current")
     assert object_fields(Scene())["current_object"] is None
     assert lone["others"] is lone["other_objects"][0][2]  # one object: no second copy
-    result = RunResult(1, "s.py", "ok", (), None, None, None, None, 0.0, False, **lone)
+    result = RunResult.finished(1, "s.py", (), None, 0.0, **lone)
     assert result_bytes(result) == arrays_bytes(lone["others"])

@@ -33,12 +33,13 @@ from .execute import RunControl, RunOutcome, execute
 from .headless import run_outcome, run_script
 from .playback import Playback, PlaybackState, PlaybackView
 from .preview import preview_arrays
-from .results import RunResult, ScriptError, StepRecord
+from .results import RunResult, RunStatus, ScriptError, StepRecord
 from .session import LiveSession, RunActivity
 from .watch import FileWatcher, ManualNotifier, WatchdogNotifier
 
 __all__ = [
     "Cancelled", "FileWatcher", "LiveSession", "ManualNotifier", "MeshArrays", "Playback",
-    "PlaybackState", "PlaybackView", "RunActivity", "RunControl", "RunOutcome", "RunResult", "ScriptError", "StepRecord", "WatchdogNotifier",
+    "PlaybackState", "PlaybackView", "RunActivity", "RunControl", "RunOutcome", "RunResult",
+    "RunStatus", "ScriptError", "StepRecord", "WatchdogNotifier",
     "execute", "preview_arrays", "run_outcome", "run_script",
 ]

@@ -8,7 +8,7 @@ import os
 from livemod.dlfl.scene import SELECTION_READERS, Scene, Selection
 
 from .execute import RunOutcome, base_scene, execute
-from .results import RunResult, object_fields, parameter_items, snapshot_scene
+from .results import RunResult, RunStatus, object_fields, parameter_items, snapshot_scene
 
 
 def run_outcome(path: str | os.PathLike[str], *, mesh_path: str | None = None,
@@ -67,16 +67,16 @@ def report_selection(scene: Scene) -> None:
 def result_of(outcome: RunOutcome, script: str, parameters: dict | None,
               run_id: int = 1) -> RunResult:
     """The immutable :class:`RunResult` of a headless outcome."""
-    ok = outcome.status == "ok"
-    arrays = snapshot_scene(outcome.scene)
-    return RunResult(
-        run_id=run_id, script=os.path.abspath(script), status=outcome.status,
-        steps=outcome.steps, step_index=None, arrays=arrays if ok else None, preview=None,
-        error=outcome.error, elapsed=outcome.elapsed, stale=False,
-        parameters=tuple(outcome.scene.declarations.values()),
-        partial=None if ok else arrays, values=parameter_items(parameters),
-        **(object_fields(outcome.scene) if ok else {}),
-    )
+    script = os.path.abspath(script)
+    arrays, values = snapshot_scene(outcome.scene), parameter_items(parameters)
+    specs = tuple(outcome.scene.declarations.values())
+    if outcome.status == RunStatus.OK:
+        return RunResult.finished(run_id, script, outcome.steps, arrays, outcome.elapsed,
+                                  parameters=specs, values=values,
+                                  **object_fields(outcome.scene))
+    return RunResult.failed(run_id, script, RunStatus(outcome.status), outcome.steps,
+                            outcome.error, outcome.elapsed, last_good=None,
+                            parameters=specs, partial=arrays, values=values)
 
 
 def run_script(path: str | os.PathLike[str], *, mesh_path: str | None = None,

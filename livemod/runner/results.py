@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import bisect
 import dataclasses
+import enum
 import functools
 import operator
 import os
@@ -156,6 +157,16 @@ class ScriptError:
         return f"{where}: {self.message}"
 
 
+class RunStatus(enum.StrEnum):
+    """How a run ended, or that it is paused; the values are what the HUD, the
+    terminal and ``batch``'s table show (and compare equal to those strings)."""
+
+    OK = "ok"  # the script ended
+    ERROR = "error"  # the script raised, did not compile, or could not be read or saved
+    CANCELLED = "cancelled"  # the user cancelled it (LiveSession.cancel)
+    PAUSED = "paused"  # playback holds it after a step
+
+
 @dataclass(frozen=True)
 class RunResult:
     """An immutable snapshot of one run, posted to :attr:`LiveSession.results`.
@@ -163,8 +174,8 @@ class RunResult:
     Attributes:
         run_id: increases with every run of a session; a higher id supersedes.
         script: absolute path of the script.
-        status: ``"ok"`` (the script ended), ``"error"``, ``"cancelled"`` or
-            ``"paused"`` (playback stopped after step ``step_index``).
+        status: a :class:`RunStatus`: ``"ok"`` (the script ended), ``"error"``,
+            ``"cancelled"`` or ``"paused"`` (playback stopped after step ``step_index``).
         steps: the steps that finished, in order.
         step_index: the step the arrays show when paused; None at the end.
         arrays: render snapshot of the current object. For ``"error"`` and
@@ -191,11 +202,13 @@ class RunResult:
         unselected: the selection fields (``"faces"``, ``"edges"``, ``"vertices"``,
             ``"corners"``) the run asked for with ``faces(True)`` and the like
             while nothing of that kind was selected, in that order.
+
+    Build one with :meth:`finished`, :meth:`paused` or :meth:`failed`.
     """
 
     run_id: int
     script: str
-    status: str
+    status: RunStatus
     steps: Sequence[StepRecord]
     step_index: int | None
     arrays: MeshArrays | None
@@ -210,6 +223,39 @@ class RunResult:
     other_objects: tuple = ()
     current_object: tuple[int, str] | None = None
     unselected: tuple[str, ...] = ()
+
+    @classmethod
+    def finished(cls, run_id: int, script: str, steps: Sequence[StepRecord],
+                 arrays: MeshArrays | None, elapsed: float, *, parameters: tuple = (),
+                 values: tuple = (), **objects: Any) -> RunResult:
+        """A run whose script ended (``"ok"``); ``objects`` are the fields
+        :func:`object_fields` gives."""
+        return cls(run_id, script, RunStatus.OK, steps, None, arrays, None, None, elapsed,
+                   False, parameters, values=values, **objects)
+
+    @classmethod
+    def paused(cls, run_id: int, script: str, steps: Sequence[StepRecord], index: int,
+               arrays: MeshArrays | None, elapsed: float, *, parameters: tuple = (),
+               values: tuple = (), **objects: Any) -> RunResult:
+        """A run held by playback after step ``index`` (``"paused"``)."""
+        return cls(run_id, script, RunStatus.PAUSED, steps, index, arrays, None, None,
+                   elapsed, False, parameters, values=values, **objects)
+
+    @classmethod
+    def failed(cls, run_id: int, script: str, status: RunStatus, steps: Sequence[StepRecord],
+               error: ScriptError | None, elapsed: float, *, last_good: RunResult | None,
+               parameters: tuple = (), partial: MeshArrays | None = None,
+               values: tuple = ()) -> RunResult:
+        """A run that did not end well (``"error"`` or ``"cancelled"``): it shows
+        ``last_good``'s mesh and objects, marked stale (nothing when None)."""
+        result = cls(run_id, script, status, steps, None, None, None, error, elapsed, False,
+                     parameters, partial, values)
+        if last_good is None:
+            return result
+        return dataclasses.replace(
+            result, arrays=last_good.arrays, preview=last_good.preview, stale=True,
+            others=last_good.others, other_objects=last_good.other_objects,
+            current_object=last_good.current_object)
 
 
 def freeze_arrays(arrays: MeshArrays, copy: bool = True) -> MeshArrays:

@@ -18,6 +18,7 @@ caller can show a run a save started before its first result arrives.
 from __future__ import annotations
 
 import dataclasses
+import enum
 import hashlib
 import logging
 import os
@@ -41,6 +42,7 @@ from .playback import Action, Playback, PlaybackView, RunPosition, Show
 from .preview import PreviewWorker, preview_arrays
 from .results import (
     RunResult,
+    RunStatus,
     ScriptError,
     StepRecord,
     current_mesh,
@@ -68,6 +70,13 @@ class _Request:
     source: str | None
 
 
+class CancelReason(enum.StrEnum):
+    """Why a run was cancelled."""
+
+    USER = "user"  # LiveSession.cancel(): its "cancelled" result shows
+    SUPERSEDED = "superseded"  # a newer run (or closing) replaced it: nothing of it shows
+
+
 @dataclass
 class _Run:
     """One run of the script, as the supervisor and the worker share it."""
@@ -76,7 +85,7 @@ class _Run:
     script: str
     control: RunControl
     thread: threading.Thread | None = None
-    cancel_reason: str = ""  # "user" (its "cancelled" result shows) or "superseded" (none does)
+    cancel_reason: CancelReason | None = None
     started: float = 0.0  # perf_counter() when the supervisor started it
     ended: bool = False  # its end was published (or dropped): it works no more
 
@@ -335,7 +344,7 @@ class LiveSession:
             run = self._current
             if self._act(Action.CANCEL):
                 assert run is not None  # a live run, by the transition
-                run.cancel_reason = "user"
+                run.cancel_reason = CancelReason.USER
                 run.control.cancel()
                 return True
             return False
@@ -433,7 +442,7 @@ class LiveSession:
         """Supervisor thread: start each requested run after stopping the previous one."""
         while True:
             request = self._next_request()
-            self._stop_current("superseded")
+            self._stop_current(CancelReason.SUPERSEDED)
             if request is None:
                 break
             self._start_run(request)
@@ -451,7 +460,7 @@ class LiveSession:
                 return request
         return None
 
-    def _stop_current(self, reason: str) -> None:
+    def _stop_current(self, reason: CancelReason) -> None:
         """Cancel the running run and wait until its thread is done with the script."""
         run = self._current
         if run is None:
@@ -615,7 +624,7 @@ class LiveSession:
         """Worker, at the end of a run: save ``output`` and post the result (a
         superseded run, even one that ended, posts nothing: it ran older inputs)."""
         with self._lock:
-            if run.cancel_reason == "superseded":
+            if run.cancel_reason is CancelReason.SUPERSEDED:
                 return
             if outcome.status == "ok" and run.script == self.script:
                 # as the run computed them (a param() may compute its arguments)
@@ -625,23 +634,23 @@ class LiveSession:
             self._publish_ok(run, outcome, values)
             return
         error = save_error or outcome.error
-        status = "error" if save_error is not None else outcome.status
+        status = RunStatus.ERROR if save_error is not None else RunStatus(outcome.status)
         with self._lock:
             last = self._last_good
-        result = RunResult(
-            run.run_id, run.script, status, outcome.steps, None, error=error,
-            elapsed=_working(run, outcome), parameters=self._specs(outcome.scene),
-            partial=snapshot_scene(outcome.scene), values=values, **_last_good_fields(last))
+        result = RunResult.failed(
+            run.run_id, run.script, status, outcome.steps, error, _working(run, outcome),
+            last_good=last, parameters=self._specs(outcome.scene),
+            partial=snapshot_scene(outcome.scene), values=values)
         with self._lock:
             self._post_locked(result)
 
     def _publish_ok(self, run: _Run, outcome: RunOutcome, values: tuple) -> None:
         """Post a finished run's result (it becomes the last good one) and ask for
         its preview."""
-        result = RunResult(run.run_id, run.script, "ok", outcome.steps, None,
-                           snapshot_scene(outcome.scene), None, None, _working(run, outcome),
-                           False, self._specs(outcome.scene), values=values,
-                           **object_fields(outcome.scene))
+        result = RunResult.finished(
+            run.run_id, run.script, outcome.steps, snapshot_scene(outcome.scene),
+            _working(run, outcome), parameters=self._specs(outcome.scene), values=values,
+            **object_fields(outcome.scene))
         with self._lock:
             if self._is_newest(result):
                 self._last_good = result
@@ -653,14 +662,12 @@ class LiveSession:
     def _publish_cancelled(self, run: _Run) -> None:
         """A run the user cancelled whose forced interrupt came after its script had
         ended (so execute had no outcome to give): it still says it was cancelled."""
-        if run.cancel_reason != "user":
+        if run.cancel_reason is not CancelReason.USER:
             return  # superseded: the newer run's result is what shows
         with self._lock:
             last = self._last_good
-        self._post(RunResult(run.run_id, run.script, "cancelled", (), None,
-                             error=cancelled_error(run.script),
-                             elapsed=run.working(),
-                             **_last_good_fields(last)))
+        self._post(RunResult.failed(run.run_id, run.script, RunStatus.CANCELLED, (),
+                                    cancelled_error(run.script), run.working(), last_good=last))
 
     def _publish_failure(self, run: _Run, exc: Exception, elapsed: float, file: str) -> None:
         """A run that could not start (script unreadable or not text, ``--mesh``
@@ -672,9 +679,8 @@ class LiveSession:
             error = syntax_error(exc, run.script)
         else:
             error = dataclasses.replace(exception_error(exc, file), file=file)
-        self._post(RunResult(run.run_id, run.script, "error", (), None,
-                             last.arrays if last else None, None, error, elapsed,
-                             last is not None, last.parameters if last else ()))
+        self._post(RunResult.failed(run.run_id, run.script, RunStatus.ERROR, (), error, elapsed,
+                                    last_good=last, parameters=last.parameters if last else ()))
 
     def _save_output(self, outcome: RunOutcome) -> ScriptError | None:
         """Write the mesh to ``output`` (``run --watch -o``); an error if that fails."""
@@ -693,11 +699,10 @@ class LiveSession:
     def _post_paused(self, run: _Run, index: int, steps: Sequence[StepRecord],
                      scene: Scene) -> None:
         """Worker, at a pause: post the mesh as it is after step ``index``."""
-        result = RunResult(run.run_id, run.script, "paused", steps, index,
-                           snapshot_scene(scene), None, None,
-                           steps[-1].elapsed if steps else 0.0, False,
-                           self._specs(scene), values=parameter_items(scene.parameters),
-                           **object_fields(scene))
+        result = RunResult.paused(
+            run.run_id, run.script, steps, index, snapshot_scene(scene),
+            steps[-1].elapsed if steps else 0.0, parameters=self._specs(scene),
+            values=parameter_items(scene.parameters), **object_fields(scene))
         with self._lock:
             self._snapshots.put(result)
             if not self._is_newest(result) or not self._playback.arrived(index):
@@ -714,7 +719,7 @@ class LiveSession:
         that run was not superseded, nor the session closed (caller holds the lock)."""
         run = self._current
         return (run is not None and result.run_id == run.run_id
-                and result.script == self.script and run.cancel_reason != "superseded"
+                and result.script == self.script and run.cancel_reason is not CancelReason.SUPERSEDED
                 and not self._closed)
 
     def _post(self, result: RunResult) -> None:
@@ -748,21 +753,12 @@ class LiveSession:
         first, which keeps it unposted while the caller looks at an earlier step."""
         if not self._is_newest(result):
             return
-        if result.status != "paused":
+        if result.status is not RunStatus.PAUSED:
             self._final = result
             if self._playback.apply(Action.RUN_ENDED, k=len(result.steps)) is Show.NOTHING:
                 return
         self._last_posted = result
         self.results.put(result)
-
-
-def _last_good_fields(last: RunResult | None) -> dict:
-    """The fields of a failed run's result that show the last good one (stale)."""
-    if last is None:
-        return {"arrays": None, "preview": None, "stale": False}
-    return {"arrays": last.arrays, "preview": last.preview, "stale": True,
-            "others": last.others, "other_objects": last.other_objects,
-            "current_object": last.current_object}
 
 
 def _working(run: _Run, outcome: RunOutcome) -> float:
