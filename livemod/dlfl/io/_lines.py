@@ -175,6 +175,26 @@ def _run_values(buf: np.ndarray, other: np.ndarray, run_starts: np.ndarray,
     )
 
 
+def pass_starts(starts: np.ndarray, total: int, size: int) -> np.ndarray:
+    """Where to cut records into passes of about ``size`` units each.
+
+    Args:
+        starts: ``(N,)`` sorted int64 offset of each record (a line's first
+            byte, a face's first corner), the first one 0.
+        total: the offset where the last record ends.
+        size: the units a pass should hold.
+
+    Returns:
+        ``(P,)`` int64 ascending, distinct indices into ``starts`` of the records
+        that begin a pass: record 0, then the first record starting at or after
+        each multiple of ``size``. A record longer than ``size`` (a 2 MB line, a
+        face of 100,000 corners) is a pass of its own, and no pass is empty,
+        wherever the multiples fall (at the last record, or past its start).
+    """
+    at = np.searchsorted(starts, np.arange(0, total, size))
+    return _distinct_sorted(at[at < len(starts)])
+
+
 def _distinct_sorted(values: np.ndarray) -> np.ndarray:
     """The distinct values of a sorted array (``np.unique`` costs ~60 ms on its
     first call in a process, a tenth of a small file's load)."""
@@ -196,7 +216,7 @@ class _Scan:
     def __init__(self, buf: np.ndarray, starts: np.ndarray, classes: np.ndarray) -> None:
         self.buf = buf
         self.classes = classes
-        cuts = _distinct_sorted(starts[np.searchsorted(starts, np.arange(0, len(buf), _BLOCK))])
+        cuts = starts[pass_starts(starts, len(buf), _BLOCK)]
         bounds = [*cuts.tolist(), len(buf)] if len(cuts) else [0, len(buf)]
         parts = [_scan_block(buf, a, b) for a, b in zip(bounds[:-1], bounds[1:], strict=True)]
         self.other, self.run_starts, self.run_ends = (
@@ -456,6 +476,8 @@ def parse_number_lines(buf: np.ndarray, starts: np.ndarray, want: int,
         values[plain] = _plain_numbers(buf, scan, starts, plain).reshape(-1, want)
     if len(rest):
         values[rest], plain[rest] = _general_number_lines(block, block_starts, want)
+    # a 309-digit number is inf: the caller's parser names the line
+    plain &= np.isfinite(values).all(axis=1)
     return values, plain
 
 

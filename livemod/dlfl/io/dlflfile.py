@@ -43,7 +43,14 @@ from ..arrays import MeshArrays, mesh_arrays
 from ..errors import DLFLError
 from ..mesh import Mesh
 from ._dlfl_build import DlflRecords, build_dlfl
-from ._lines import gather_lines, leading_uints, parse_index_lines, parse_number_lines, split_lines
+from ._lines import (
+    gather_lines,
+    leading_uints,
+    parse_index_lines,
+    parse_number_lines,
+    pass_starts,
+    split_lines,
+)
 from ._numtext import format_rounded, format_uints, join_columns
 from ._parallel import map_in_order
 from .atomic import write_atomically
@@ -461,8 +468,8 @@ def _corner_lines(a: MeshArrays) -> Iterator[bytes]:
 def _face_passes(offsets: np.ndarray) -> list[tuple[int, int]]:
     """``(first, end)`` face ranges of about ``_LINES_PER_PASS`` corners each, from
     the ``(F + 1,)`` face offsets."""
-    cuts = np.searchsorted(offsets[:-1], np.arange(0, offsets[-1], _LINES_PER_PASS))
-    bounds = [*dict.fromkeys(cuts.tolist()), len(offsets) - 1]
+    bounds = [*pass_starts(offsets[:-1], int(offsets[-1]), _LINES_PER_PASS).tolist(),
+              len(offsets) - 1]
     return list(zip(bounds[:-1], bounds[1:], strict=True))
 
 
