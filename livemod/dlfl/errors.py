@@ -80,3 +80,25 @@ class GeometryError(DLFLError):
 
 class DLFLRepairWarning(UserWarning):
     """A loader repaired its input (for example re-oriented a component)."""
+
+
+class DLFLSkippedLinesWarning(UserWarning):
+    """A reader skipped lines it did not understand; the mesh was read without them.
+
+    The message is ``file: ignored N line(s) not understood: line K 'text'`` (and
+    how many more). Also in ``mesh.notes``.
+
+    Attributes:
+        path: the file (or the label of the stream) that was read.
+        count: how many lines were skipped.
+        first_line: the 1-based number of the first of them.
+        first_text: that line's text, cut at 40 characters.
+    """
+
+    def __init__(self, message: str, *, path: str = "", count: int = 0, first_line: int = 0,
+                 first_text: str = "") -> None:
+        super().__init__(message)
+        self.path = path
+        self.count = count
+        self.first_line = first_line
+        self.first_text = first_text

@@ -3,9 +3,13 @@
 from __future__ import annotations
 
 import os
+import shlex
+import warnings
 
 import numpy as np
 
+from ..errors import DLFLSkippedLinesWarning, FileFormatError
+from ..mesh import Mesh
 from ._lines import byte_offsets
 
 
@@ -30,10 +34,56 @@ def read_source(
     return data, name or path
 
 
+def show_path(path: str | os.PathLike[str]) -> str:
+    """A file name as every livemod message shows it: as it is where a shell would
+    take it so (``model.obj``, ``out/a-1.stl``), else in single quotes
+    (``'my model.obj'``, ``''``), so that it can be pasted into a command. A
+    stream's label (``<obj>``) is shown as it is."""
+    name = os.fspath(path)
+    if name.startswith("<") and name.endswith(">") and len(name) > 2:
+        return name
+    return shlex.quote(name)
+
+
+def file_error(label: str, line: int | None, what: str) -> FileFormatError:
+    """The error for a file that cannot be read as its format says.
+
+    Args:
+        label: the file's name (or a stream's label such as ``<obj>``).
+        line: the 1-based line where reading failed; None where the format has
+            no lines (binary files) or the problem is the whole file's.
+        what: what is wrong.
+
+    Returns:
+        ``FileFormatError("label:line: what", path=label, line=line)`` (the
+        name shown by :func:`show_path`; ``label: what`` without a line).
+    """
+    where = show_path(label) if line is None else f"{show_path(label)}:{line}"
+    return FileFormatError(f"{where}: {what}", path=label, line=line)
+
+
+def report_skipped(mesh: Mesh, label: str, lines: list[int], first_text: bytes) -> None:
+    """Tell that a reader skipped ``lines`` (1-based, ascending, not empty) of the
+    file ``label``, the first reading ``first_text``: a note in ``mesh.notes`` and
+    a :class:`DLFLSkippedLinesWarning` (the command line prints it as a note)."""
+    count, text = len(lines), _cut(first_text.strip())
+    more = f" and {count - 1} more" if count > 1 else ""
+    message = (f"{show_path(label)}: ignored {count} line{'s' if count > 1 else ''} not "
+               f"understood: line {lines[0]} {text!r}{more}")
+    mesh.notes.append(message)
+    warnings.warn(DLFLSkippedLinesWarning(message, path=label, count=count, first_line=lines[0],
+                                          first_text=text), stacklevel=3)
+
+
 def show_token(token: bytes) -> str:
     """A token from a file as it should appear in an error message (quoted, cut at 40)."""
+    return repr(_cut(token))
+
+
+def _cut(token: bytes) -> str:
+    """``token`` as text, cut at 40 characters (``...`` added)."""
     text = token.decode("utf-8", "replace")
-    return repr(text if len(text) <= 40 else text[:40] + "...")
+    return text if len(text) <= 40 else text[:40] + "..."
 
 
 def lf_line_ends(data: bytes) -> bytes:
