@@ -139,9 +139,9 @@ def test_a_path_and_a_name_are_used_in_messages(tmp_path: Path) -> None:
     path.write_bytes(ply_bytes(cube()))
     assert read_ply(path).counts() == (8, 12, 6)
     path.write_bytes(b"ply\nformat ascii 1.0\nend_header\n")
-    with pytest.raises(DLFLError, match=r"model\.ply: no 'vertex' element"):
+    with pytest.raises(DLFLError, match=r"model\.ply:3: no 'vertex' element"):
         read_ply(path)
-    with pytest.raises(DLFLError, match=r"^other\.ply: no 'vertex'"):
+    with pytest.raises(DLFLError, match=r"^other\.ply:3: no 'vertex'"):
         read_ply(path, name="other.ply")
     with pytest.raises(OSError):
         read_ply(tmp_path / "missing.ply")
@@ -341,15 +341,15 @@ def binary_cube_with(fmt: str, values: tuple[float, ...], list_type: str = "ucha
 
 
 @pytest.mark.parametrize(("data", "message"), [
-    (b"", r"^model\.ply: not a PLY file \(the first line is not 'ply'\)$"),
+    (b"", r"^model\.ply:1: not a PLY file \(the first line is not 'ply'\)$"),
     (b"PLY\nformat ascii 1.0\n", r"not a PLY file"),
-    (b"ply\n", r"^model\.ply: header: no end_header line$"),
-    (b"ply\nelement vertex 0\nend_header\n", r"^model\.ply: header: no format line$"),
+    (b"ply\n", r"^model\.ply:1: header: no end_header line$"),
+    (b"ply\nelement vertex 0\nend_header\n", r"^model\.ply:3: header: no format line$"),
     (b"ply\nformat ascii 2.0\nend_header\n", r"header: unsupported format 'ascii 2\.0'"),
     (b"ply\nformat binary 1.0\nend_header\n", r"header: unsupported format 'binary 1\.0'"),
     (b"ply\nformat ascii 1.0\nformat ascii 1.0\nend_header\n", r"header: a second format line"),
     (b"ply\nformat ascii 1.0\nelement vertex 1\nproperty float128 x\nend_header\n",
-     r"^model\.ply: header: unknown property type 'float128'$"),
+     r"^model\.ply:4: header: unknown property type 'float128'$"),
     (b"ply\nformat ascii 1.0\nelement face 1\nproperty list uchar int128 v\nend_header\n",
      r"header: unknown property type 'int128'"),
     (b"ply\nformat ascii 1.0\nelement face 1\nproperty list float int v\nend_header\n",
@@ -366,13 +366,13 @@ def binary_cube_with(fmt: str, values: tuple[float, ...], list_type: str = "ucha
     (b"ply\nformat ascii 1.0\nelemnt vertex 0\nend_header\n",
      r"header: unknown line 'elemnt vertex 0'"),
     (b"ply\r\nformat ascii 1.0\r\nelement face 0\r\nend_header\r\n",
-     r"^model\.ply: no 'vertex' element$"),
+     r"^model\.ply:4: no 'vertex' element before end_header$"),
     (ascii_ply("element vertex 0\nproperty float x\nproperty float y\n", []),
-     r"^model\.ply: element 'vertex' has no property 'z'$"),
+     r"^model\.ply:3: element 'vertex' has no property 'z'$"),
     (ascii_ply("element vertex 0\nproperty list uchar float x\nproperty float y\n"
                "property float z\n", []), r"element 'vertex' has no property 'x'"),
     (ascii_ply(f"{V8}element face 0\nproperty int vertex_indices\n", CUBE_ROWS),
-     r"^model\.ply: element 'face' has no list property \(vertex_indices\)$"),
+     r"^model\.ply:7: element 'face' has no list property \(vertex_indices\)$"),
     (twenty_triangles_cut_in_row_12(),
      r"^model\.ply: the file ends inside element 'face' \(row 12 of 20\)$"),
     (ply_bytes(cube())[:-10], r"the file ends inside element 'face' \(row 6 of 6\)"),
@@ -384,29 +384,29 @@ def binary_cube_with(fmt: str, values: tuple[float, ...], list_type: str = "ucha
      r"the file ends inside element 'vertex' \(row 6 of 99999999999\)"),
     (binary_ply(f"element vertex 0\n{XYZ}element face 99999999999\n{TRIANGLE_FACES}", "<",
                 [("B3i", (3, 0, 1, 2))] * 2),
-     r"^model\.ply: element 'face' has 99999999999 rows, more than the 26 bytes left in "
+     r"^model\.ply:7: element 'face' has 99999999999 rows, more than the 26 bytes left in "
      r"the file can hold$"),
     (ascii_ply(f"element vertex 99999999999\n{XYZ}", ["0 0 0"]),
      r"the file ends inside element 'vertex' \(row 2 of 99999999999\)"),
     (ascii_ply(f"{V8}element face 99999999999\n{TRIANGLE_FACES}", CUBE_ROWS + FACE_ROWS),
      r"element 'face' has 99999999999 rows, more than the 30 numbers left in the file"),
     (ascii_cube_with(8 + 5, "4 0 1 99 4"),
-     r"^model\.ply: face 5: vertex index 99 is out of range \(8 vertices\)$"),
+     r"^model\.ply:23: face 5: vertex index 99 is out of range \(8 vertices\)$"),
     (ascii_cube_with(8 + 4, "4 0 1 -1 4"), r"face 4: vertex index -1 is out of range"),
     (ascii_cube_with(8 + 2, "4 0 1 2.5 4"), r"face 2: vertex index 2.5 is not a whole number"),
     (ascii_cube_with(8 + 2, "4 0 1 nan 4"), r"face 2: vertex index nan is not a whole number"),
     (ascii_cube_with(8 + 2, "4 0 1 inf 4"), r"face 2: vertex index inf is not a whole number"),
-    (ascii_cube_with(3, "0 nan 0"), r"^model\.ply: vertex 3: coordinate nan is not finite$"),
+    (ascii_cube_with(3, "0 nan 0"), r"^model\.ply:13: vertex 3: coordinate nan is not finite$"),
     (ascii_cube_with(7, "0 0 -1e999"), r"vertex 7: coordinate -inf is not finite"),
-    (ascii_cube_with(3, "0 abc 0"), r"^model\.ply: element 'vertex': bad number 'abc'$"),
+    (ascii_cube_with(3, "0 abc 0"), r"^model\.ply:13: element 'vertex': bad number 'abc'$"),
     (ascii_cube_with(3, "0 1_0 0"), r"element 'vertex': bad number '1_0'"),
     (ascii_cube_with(3, "0 \xd9\xa1 0"), r"element 'vertex': bad number"),
-    (ascii_cube_with(8 + 1, "four 0 1 2 3"), r"^model\.ply: face 1: bad number 'four'$"),
+    (ascii_cube_with(8 + 1, "four 0 1 2 3"), r"^model\.ply:19: face 1: bad number 'four'$"),
     (ascii_cube_with(8 + 1, "4 0 1 2 x"), r"element 'face': bad number 'x'"),
     (ascii_cube_with(8 + 0, "-1 0 1 2 3"),
-     r"^model\.ply: face 0: list 'vertex_indices' has a negative count \(-1\)$"),
+     r"^model\.ply:18: face 0: list 'vertex_indices' has a negative count \(-1\)$"),
     (ascii_cube_with(8 + 4, "2.5 0 1 2 3"),
-     r"^model\.ply: face 4: list 'vertex_indices' has count 2\.5, not a whole number$"),
+     r"^model\.ply:22: face 4: list 'vertex_indices' has count 2\.5, not a whole number$"),
     (binary_cube_with("ddd", (0.0, float("nan"), 0.0)), r"vertex 3: coordinate nan is not"),
     (binary_cube_with("ddd", (float("inf"), 0.0, 0.0)), r"vertex 3: coordinate inf is not"),
     (binary_cube_with("b4i", (-3, 0, 1, 2, 3), "char int"),

@@ -9,7 +9,7 @@ the error names the same line as one would.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -18,6 +18,7 @@ from ..build import _next_in_face, from_corner_arrays
 from ..errors import DLFLError
 from ..mesh import Mesh
 from ..validate import validate
+from .source import file_error
 
 
 @dataclass
@@ -36,6 +37,10 @@ class DlflRecords:
         face_offsets: ``(F + 1,)`` int64 start of each face in ``face_corners``.
         face_lines: ``(F,)`` int64 line of each ``f`` line.
         face_hole: ``(F,)`` bool, faces after ``usemtl hole``.
+        vertex_lines: ``(V,)`` int64 line of each ``v`` line.
+        skipped: ``(K,)`` int64 lines whose first word is no .dlfl record
+            (skipped by the reader, and reported).
+        first_skipped: the text of the first of them (empty when none).
     """
 
     label: str
@@ -48,6 +53,9 @@ class DlflRecords:
     face_offsets: np.ndarray
     face_lines: np.ndarray
     face_hole: np.ndarray
+    vertex_lines: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=np.int64))
+    skipped: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=np.int64))
+    first_skipped: bytes = b""
 
 
 def build_dlfl(records: DlflRecords, *, full_check: bool = False) -> Mesh:
@@ -78,11 +86,30 @@ def build_dlfl(records: DlflRecords, *, full_check: bool = False) -> Mesh:
         num_v, records.corner_vertex[order], dense_mate, records.face_offsets, records.face_hole)
     mesh = from_corner_arrays(records.positions, offsets, vertex_of, dense_mate, holes)
     if full_check or not _one_fan_each(vertex_of, dense_mate, offsets, num_v):
+        _fan_error(records, vertex_of, dense_mate, offsets)
         try:
             validate(mesh)
         except DLFLError as error:
-            raise DLFLError(f"{records.label}: not a valid DLFL mesh: {error}") from None
+            raise file_error(records.label, None, f"not a valid DLFL mesh: {error}") from None
     return mesh
+
+
+def _fan_error(records: DlflRecords, vertex_of: np.ndarray, mate: np.ndarray,
+               offsets: np.ndarray) -> None:
+    """Raise naming the ``v`` line of the first vertex whose corners form several
+    fans (a bow-tie); return when there is none (the error path of
+    :func:`_one_fan_each`, same arguments)."""
+    num_v = len(records.positions)
+    nxt = _next_in_face(offsets)
+    labels = cycle_labels(np.where(mate >= 0, nxt[np.maximum(mate, 0)], np.arange(len(mate))))
+    fans = np.bincount(vertex_of[labels == np.arange(len(labels))], minlength=num_v)
+    bad = np.flatnonzero(fans > 1)
+    if len(bad) == 0:
+        return
+    v = int(bad[0])
+    line = int(records.vertex_lines[v]) if len(records.vertex_lines) == num_v else None
+    raise file_error(records.label, line, f"vertex {v} is not a manifold vertex: its corners "
+                     f"form {int(fans[v])} separate fans (the e lines pair them so)")
 
 
 def _check_corner_vertices(records: DlflRecords, num_v: int) -> None:
@@ -91,7 +118,7 @@ def _check_corner_vertices(records: DlflRecords, num_v: int) -> None:
     bad = np.flatnonzero((cvert < 0) | (cvert >= num_v))
     if len(bad):
         c = int(bad[0])
-        raise DLFLError(f"{records.label}:{int(records.corner_lines[c])}: vertex index "
+        raise file_error(records.label, int(records.corner_lines[c]), f"vertex index "
                         f"{int(cvert[c])} is out of range (there are {num_v} v lines)")
 
 
@@ -119,7 +146,7 @@ def _check_face_corners(records: DlflRecords, num_c: int) -> None:
     used[listed] = True
     orphans = np.flatnonzero(~used)
     c = int(orphans[0])
-    raise DLFLError(f"{records.label}:{int(records.corner_lines[c])}: corner {c} "
+    raise file_error(records.label, int(records.corner_lines[c]), f"corner {c} "
                     "belongs to no face (no f line lists it)")
 
 
@@ -137,9 +164,9 @@ def _face_corner_error(records: DlflRecords, num_c: int) -> None:
     face_of = np.searchsorted(records.face_offsets, [p, first[p]], side="right") - 1
     line, c = int(records.face_lines[face_of[0]]), int(listed[p])
     if not valid[p]:
-        raise DLFLError(f"{label}:{line}: corner index {c} is out of range "
+        raise file_error(label, line, f"corner index {c} is out of range "
                         f"(there are {num_c} fv lines)")
-    raise DLFLError(f"{label}:{line}: corner {c} is already used "
+    raise file_error(label, line, f"corner {c} is already used "
                     f"by the face on line {int(records.face_lines[face_of[1]])}")
 
 
@@ -173,12 +200,12 @@ def _edge_error(records: DlflRecords, num_c: int) -> None:
     failing = np.column_stack([bad for bad, _ in checks])
     i = int(np.flatnonzero(failing.any(axis=1))[0])
     what = checks[int(np.argmax(failing[i]))][1]
-    where, c = f"{label}:{int(records.edge_lines[i])}", int(ends[i, 1 if what.endswith("b") else 0])
+    line, c = int(records.edge_lines[i]), int(ends[i, 1 if what.endswith("b") else 0])
     if what == "same":
-        raise DLFLError(f"{where}: an edge needs two different corners")
+        raise file_error(label, line, "an edge needs two different corners")
     if what.startswith("index"):
-        raise DLFLError(f"{where}: corner index {c} is out of range (there are {num_c} fv lines)")
-    raise DLFLError(f"{where}: corner {c} is already on an edge")
+        raise file_error(label, line, f"corner index {c} is out of range (there are {num_c} fv lines)")
+    raise file_error(label, line, f"corner {c} is already on an edge")
 
 
 def _check_pairing(records: DlflRecords, mate: np.ndarray, new_index: np.ndarray) -> None:
@@ -197,14 +224,14 @@ def _check_pairing(records: DlflRecords, mate: np.ndarray, new_index: np.ndarray
     lone = np.flatnonzero((mate < 0) & (size_of > 1))
     if len(lone):
         c = int(lone[0])
-        raise DLFLError(f"{label}:{int(records.corner_lines[c])}: corner {c} is on no "
+        raise file_error(label, int(records.corner_lines[c]), f"corner {c} is on no "
                         "edge (only a point-sphere's single corner may lack an e line)")
     a, b = records.edges[:, 0], records.edges[:, 1]
     bad = np.flatnonzero((cvert[a] != cvert[nxt[b]]) | (cvert[b] != cvert[nxt[a]]))
     if len(bad):
         i = int(bad[0])
         a_, b_ = int(a[i]), int(b[i])
-        raise DLFLError(f"{label}:{int(records.edge_lines[i])}: corners {a_} and {b_} are not "
+        raise file_error(label, int(records.edge_lines[i]), f"corners {a_} and {b_} are not "
                         f"at opposite ends of one edge (vertices {cvert[a_]}->{cvert[nxt[a_]]} "
                         f"and {cvert[b_]}->{cvert[nxt[b_]]})")
 

@@ -11,8 +11,14 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import DLFLError
-from ._lines import gather_lines, parse_index_lines, parse_number_lines, token_starts
+from ..errors import FileFormatError
+from ._lines import (
+    byte_offsets,
+    gather_lines,
+    parse_index_lines,
+    parse_number_lines,
+    token_starts,
+)
 from ._parallel import map_in_order
 from ._ply_layout import (
     _Element,
@@ -25,7 +31,7 @@ from ._ply_layout import (
     _Table,
     _too_many_rows,
 )
-from .source import show_token
+from .source import file_error, lf_line_ends, show_token
 
 # ---------------------------------------------------------------------- ASCII body
 #
@@ -184,8 +190,10 @@ class _AsciiBody:
     Both read from token ``self.t`` and leave it after the element.
     """
 
-    def __init__(self, body: bytes, label: str) -> None:
-        self.body, self.t, self.label = body, 0, label
+    def __init__(self, body: bytes, label: str, first_line: int = 1) -> None:
+        self.body, self.t, self.label, self.first_line = body, 0, label, first_line
+        self.element_tokens: list[int] = []  # the token each element read starts at
+        self._elements: list[_Element] = []
         # float() takes "1_000" and non-ASCII digits: only then check every token
         self.careful = b"_" in body or not body.isascii()
 
@@ -203,9 +211,11 @@ class _AsciiBody:
         """The wanted columns of ``element``'s rows, which start at token ``self.t``.
 
         Raises:
-            DLFLError: the rows run past the end of the body, or a list count
-                or wanted number is malformed.
+            FileFormatError: the rows run past the end of the body, or a list
+                count or wanted number is malformed (``file:line: ...``).
         """
+        self.element_tokens.append(self.t)
+        self._elements.append(element)
         if element.count == 0 or not element.properties:
             return _empty_table(element, wanted)
         table = self._line_table(element, wanted)
@@ -310,16 +320,15 @@ class _AsciiBody:
         the token path would; False if it would refuse one of them."""
         lines = self.lines
         tokens = bytes(lines.buf[lines.starts[line] : lines.ends[line]]).split()
-        where = f"{self.label}: element '{layout.element.name}'"
         try:
             for column in layout.needed(n):
                 if column == layout.at:
                     prop = layout.element.properties[column]
-                    count = self._count(tokens[column], layout.element, 0, prop)
+                    count = _count_value(tokens[column], self.careful, prop)
                     out[column] = min(count, n + 1)  # other than n is all that counts
                 else:
-                    out[column] = _number(tokens[column], where, self.careful)
-        except DLFLError:
+                    out[column] = _number(tokens[column], self.careful)
+        except (ValueError, FileFormatError):
             return False
         return True
 
@@ -331,7 +340,8 @@ class _AsciiBody:
         left = len(self.tokens) - self.t
         if element.count > left // len(element.properties):
             if not _list_indices(element):
-                raise _ends_inside(self.label, element, left // len(element.properties) + 1)
+                raise _ends_inside(self.label, element, left // len(element.properties) + 1,
+                                   self._last_line())
             raise _too_many_rows(self.label, element, left, "numbers")
         starts, counts, end = self._walk(element, 1)
         width = end - self.t
@@ -345,8 +355,10 @@ class _AsciiBody:
     def _column(self, element: _Element, first: int, width: int) -> np.ndarray:
         """``(n,)`` float64: the token ``first`` of every row, rows ``width`` apart."""
         stop = self.t + element.count * width
-        tokens = self.tokens[self.t + first : stop : width]
-        return _numbers(tokens, f"{self.label}: element '{element.name}'", self.careful)
+        try:
+            return _numbers(self.tokens[self.t + first : stop : width], self.careful)
+        except _NotANumber as bad:
+            raise self._bad_number(element, self.t + first + bad.at * width) from None
 
     def _uniform(self, element: _Element, offsets: np.ndarray, width: int) -> bool:
         """Whether every row's list counts are the first row's.
@@ -357,7 +369,7 @@ class _AsciiBody:
         for i in _list_indices(element):
             try:
                 counts = self._column(element, int(offsets[i]), width)
-            except DLFLError:
+            except FileFormatError:
                 return False
             if not (counts == counts[0]).all():
                 return False
@@ -386,31 +398,32 @@ class _AsciiBody:
             ``(starts, counts, end)``: ``(rows, P)`` int64 token index of every
             property, ``(rows, L)`` int64 count of every list, the end index.
         """
-        tokens, end, t = self.tokens, len(self.tokens), self.t
+        end, t = len(self.tokens), self.t
         starts, counts = array("q"), array("q")
         for row in range(rows):
             for prop in element.properties:
                 starts.append(t)
                 if prop.count_code is not None and t < end:
-                    count = self._count(tokens[t], element, row, prop)
+                    count = self._count(t, element, row, prop)
                     counts.append(count)
                     t += count
                 t += 1
             if t > end:
-                raise _ends_inside(self.label, element, row + 1)
+                raise _ends_inside(self.label, element, row + 1, self._last_line())
         shape = (rows, -1)
         return np.array(starts, np.int64).reshape(shape), np.array(counts, np.int64).reshape(shape), t
 
-    def _count(self, token: bytes, element: _Element, row: int, prop: _Property) -> int:
-        """The list count ``token`` of row ``row``; refuses what is not a whole
+    def _count(self, t: int, element: _Element, row: int, prop: _Property) -> int:
+        """The list count at token ``t``, of row ``row``; refuses what is not a whole
         number of at least 0 (``3.0`` is taken, as a whole number)."""
-        count = -1
-        if not self.careful:
-            with contextlib.suppress(ValueError):
-                count = int(token)  # the usual form, and cheaper than float()
-        if count < 0:
-            where = f"{self.label}: {element.name} {row}"
-            count = _list_count(_number(token, where, self.careful), where, prop)
+        try:
+            count = _count_value(self.tokens[t], self.careful, prop)
+        except _NotANumber:
+            raise file_error(self.label, self.token_line(t), f"{element.name} {row}: bad "
+                             f"number {show_token(self.tokens[t])}") from None
+        except ValueError as problem:
+            raise file_error(self.label, self.token_line(t),
+                             f"{element.name} {row}: {problem}") from None
         # more items than tokens left ends the file inside the element; capped so a
         # count past 2**63 is that error too, not an overflow of the count array
         return min(count, len(self.tokens) + 1)
@@ -420,38 +433,113 @@ class _AsciiBody:
         """The wanted columns, gathered from the token indices :meth:`_walk` found."""
         table = _Table()
         list_column = {i: k for k, i in enumerate(_list_indices(element))}
-        where = f"{self.label}: element '{element.name}'"
         for i in wanted:
             if element.properties[i].count_code is None:
-                picked = [self.tokens[k] for k in starts[:, i].tolist()]
-                table.scalars[i] = _numbers(picked, where, self.careful)
+                table.scalars[i] = self._numbers_at(element, starts[:, i])
                 continue
             row_counts = counts[:, list_column[i]]
             offsets = _item_offsets(starts[:, i] + 1, row_counts, 1)
-            picked = [self.tokens[k] for k in offsets.tolist()]
-            table.lists[i] = (row_counts, _numbers(picked, where, self.careful))
+            table.lists[i] = (row_counts, self._numbers_at(element, offsets))
         return table
 
+    def _numbers_at(self, element: _Element, at: np.ndarray) -> np.ndarray:
+        """``(N,)`` float64 of the tokens at ``at`` (``(N,)`` int64) of ``element``."""
+        indices = at.tolist()
+        try:
+            return _numbers([self.tokens[k] for k in indices], self.careful)
+        except _NotANumber as bad:
+            raise self._bad_number(element, indices[bad.at]) from None
 
-def _numbers(tokens: list[bytes], where: str, careful: bool) -> np.ndarray:
-    """``(N,)`` float64 of number tokens; ``careful`` checks each (see :func:`_number`)."""
+    def _bad_number(self, element: _Element, t: int) -> FileFormatError:
+        return file_error(self.label, self.token_line(t), f"element '{element.name}': bad "
+                          f"number {show_token(self.tokens[t])}")
+
+    def token_line(self, t: int) -> int:
+        """The 1-based file line of token ``t``."""
+        return self.first_line + int(np.searchsorted(self._newlines, self._token_offsets[t]))
+
+    def _last_line(self) -> int:
+        """The file's last line (where a file cut short ends)."""
+        ends_with_newline = self.body.endswith((b"\n", b"\r"))
+        return self.first_line + len(self._newlines) - int(ends_with_newline)
+
+    def line_of_row(self, index: int, row: int) -> int:
+        """The line where row ``row`` of element ``index`` (as read, in order) starts
+        (an error path: it walks the element's rows again)."""
+        saved, self.t = self.t, self.element_tokens[index]
+        try:
+            starts, _, _ = self._walk(self._elements[index], row + 1)
+        finally:
+            self.t = saved
+        return self.token_line(int(starts[row, 0]))
+
+    @functools.cached_property
+    def _newlines(self) -> np.ndarray:
+        """``(L,)`` int64 offsets of the body's line ends (a lone ``\\r`` too)."""
+        return byte_offsets(np.frombuffer(lf_line_ends(self.body), dtype=np.uint8), 10)
+
+    @functools.cached_property
+    def _token_offsets(self) -> np.ndarray:
+        """``(T,)`` int64 offset in the body of every token of :attr:`tokens`."""
+        return token_starts(np.frombuffer(self.body, dtype=np.uint8))
+
+
+def _count_value(token: bytes, careful: bool, prop: _Property) -> int:
+    """A list count token as an int.
+
+    Raises:
+        _NotANumber: the token is not a number.
+        ValueError: a negative or fractional count.
+    """
+    if not careful:
+        with contextlib.suppress(ValueError):
+            count = int(token)  # the usual form, and cheaper than float()
+            if count >= 0:
+                return count
+    return _list_count(_number(token, careful), prop)
+
+
+class _NotANumber(ValueError):
+    """Item ``at`` of a list of tokens is not a number."""
+
+    def __init__(self, at: int) -> None:
+        super().__init__(at)
+        self.at = at
+
+
+def _numbers(tokens: list[bytes], careful: bool) -> np.ndarray:
+    """``(N,)`` float64 of number tokens; ``careful`` checks each (see :func:`_number`).
+
+    Raises:
+        _NotANumber: naming the first token that is not a number.
+    """
     if not careful:
         try:
             return np.fromiter(map(float, tokens), dtype=np.float64, count=len(tokens))
         except ValueError:
             pass  # find the bad token, and say which it is
-    return np.array([_number(token, where, True) for token in tokens], dtype=np.float64)
+    values = np.empty(len(tokens))
+    for k, token in enumerate(tokens):
+        try:
+            values[k] = _number(token, True)
+        except _NotANumber:
+            raise _NotANumber(k) from None
+    return values
 
 
-def _number(token: bytes, where: str, careful: bool) -> float:
+def _number(token: bytes, careful: bool) -> float:
     """``float(token)``; refuses what is not a number (with ``careful``, also
-    underscores and non-ASCII bytes, which ``float`` would take)."""
+    underscores and non-ASCII bytes, which ``float`` would take).
+
+    Raises:
+        _NotANumber: the token is not a number.
+    """
     try:
         if careful and (b"_" in token or not token.isascii()):
             raise ValueError(token)
         return float(token)
     except ValueError:
-        raise DLFLError(f"{where}: bad number {show_token(token)}") from None
+        raise _NotANumber(0) from None
 
 
 def _groups(sizes: np.ndarray) -> list[tuple[int, np.ndarray]]:

@@ -16,9 +16,11 @@ from ._ply_layout import (
     _item_offsets,
     _list_count,
     _list_indices,
+    _Property,
     _Table,
     _too_many_rows,
 )
+from .source import file_error
 
 
 class _BinaryBody:
@@ -56,7 +58,7 @@ class _BinaryBody:
         if element.count <= room:
             return
         if not _list_indices(element):  # rows of one size: we know where it ends
-            raise _ends_inside(self.label, element, room + 1)
+            raise _ends_inside(self.label, element, room + 1, None)
         raise _too_many_rows(self.label, element, left, "bytes")
 
     def _row_dtype(self, element: _Element, counts: list[int]) -> np.dtype:
@@ -89,14 +91,25 @@ class _BinaryBody:
                 if count_struct is not None and pos + size <= end:
                     count = count_struct.unpack_from(data, pos)[0]
                     if count < 0:
-                        _list_count(count, f"{self.label}: {element.name} {row}", prop)
+                        self._check_count(count, element, row, prop)
                     counts.append(count)
                     pos += count * item_size
                 pos += size
             if pos > end:
-                raise _ends_inside(self.label, element, row + 1)
+                raise _ends_inside(self.label, element, row + 1, None)
         shape = (rows, -1)
         return np.array(starts, np.int64).reshape(shape), np.array(counts, np.int64).reshape(shape), pos
+
+    def _check_count(self, count: int, element: _Element, row: int, prop: _Property) -> None:
+        """Refuse a list count that :func:`._ply_layout._list_count` refuses."""
+        try:
+            _list_count(count, prop)
+        except ValueError as problem:
+            raise file_error(self.label, None, f"{element.name} {row}: {problem}") from None
+
+    def line_of_row(self, index: int, row: int) -> int | None:
+        """A binary file has no lines: None (messages name the row)."""
+        return None
 
     def _walked_table(self, element: _Element, starts: np.ndarray, counts: np.ndarray,
                       wanted: set[int]) -> _Table:

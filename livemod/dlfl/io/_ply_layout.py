@@ -8,8 +8,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..errors import DLFLError
-from .source import show_token
+from ..errors import FileFormatError
+from .source import file_error, show_token
 
 # PLY type names -> numpy type codes (byte order added per file)
 _TYPES = {
@@ -36,6 +36,7 @@ class _Element:
     name: str
     count: int
     properties: list[_Property] = field(default_factory=list)
+    line: int | None = None  # its header line
 
 
 @dataclass
@@ -43,6 +44,7 @@ class _Header:
     encoding: str = ""  # "ascii", "<" or ">"; "" until the format line
     elements: list[_Element] = field(default_factory=list)
     body_start: int = 0  # offset of the first byte after end_header's line
+    body_line: int = 0  # the body's first line
 
 
 @dataclass
@@ -65,22 +67,31 @@ def _parse_header(data: bytes, label: str) -> _Header:
     """The header's format and elements, and where the body starts.
 
     Raises:
-        DLFLError: ``label: header: ...`` for a line that is not understood.
+        FileFormatError: ``label:line: header: ...`` for a line that is not understood.
     """
     first, pos = _next_line(data, 0)
     if first.strip() != b"ply":
-        raise DLFLError(f"{label}: not a PLY file (the first line is not 'ply')")
+        raise file_error(label, 1, "not a PLY file (the first line is not 'ply')")
     header = _Header()
+    number = 1
     while pos < len(data):
         line, pos = _next_line(data, pos)
+        number += 1
         words = line.decode("utf-8", "replace").split()
-        if words == ["end_header"]:
-            if not header.encoding:
-                raise DLFLError(f"{label}: header: no format line")
-            header.body_start = pos
-            return header
-        _header_line(words, header, label)
-    raise DLFLError(f"{label}: header: no end_header line")
+        try:
+            if words == ["end_header"]:
+                if not header.encoding:
+                    raise _HeaderProblem("no format line")
+                header.body_start, header.body_line = pos, number + 1
+                return header
+            _header_line(words, header, number)
+        except _HeaderProblem as problem:
+            raise file_error(label, number, f"header: {problem}") from None
+    raise file_error(label, number, "header: no end_header line")
+
+
+class _HeaderProblem(Exception):
+    """What is wrong with a header line (:func:`_parse_header` adds file and line)."""
 
 
 def _next_line(data: bytes, pos: int) -> tuple[bytes, int]:
@@ -97,56 +108,56 @@ def _next_line(data: bytes, pos: int) -> tuple[bytes, int]:
     return data[pos:end], end + 1
 
 
-def _header_line(words: list[str], header: _Header, label: str) -> None:
-    """Add what one header line says to ``header``."""
+def _header_line(words: list[str], header: _Header, line: int) -> None:
+    """Add what header line ``line`` (``words``) says to ``header``."""
     keyword = words[0] if words else "comment"
     if keyword in ("comment", "obj_info"):
         return
     if keyword == "format":
         if header.encoding:
-            raise DLFLError(f"{label}: header: a second format line")
-        header.encoding = _encoding(words, label)
+            raise _HeaderProblem("a second format line")
+        header.encoding = _encoding(words)
     elif keyword == "element":
-        header.elements.append(_element(words, header, label))
+        header.elements.append(_element(words, header, line))
     elif keyword == "property":
         if not header.elements:
-            raise DLFLError(f"{label}: header: a property line before any element line")
-        header.elements[-1].properties.append(_property(words, label))
+            raise _HeaderProblem("a property line before any element line")
+        header.elements[-1].properties.append(_property(words))
     else:
-        raise DLFLError(f"{label}: header: unknown line {_shown(words)}")
+        raise _HeaderProblem(f"unknown line {_shown(words)}")
 
 
 def _shown(words: list[str]) -> str:
     return show_token(" ".join(words).encode())
 
 
-def _encoding(words: list[str], label: str) -> str:
+def _encoding(words: list[str]) -> str:
     if len(words) != 3 or words[1] not in _ENCODINGS or words[2] != "1.0":
-        raise DLFLError(f"{label}: header: unsupported format {_shown(words[1:])}")
+        raise _HeaderProblem(f"unsupported format {_shown(words[1:])}")
     return _ENCODINGS[words[1]]
 
 
-def _element(words: list[str], header: _Header, label: str) -> _Element:
+def _element(words: list[str], header: _Header, line: int) -> _Element:
     if len(words) != 3 or not re.fullmatch("[0-9]{1,30}", words[2]):
-        raise DLFLError(f"{label}: header: bad element line {_shown(words)}")
+        raise _HeaderProblem(f"bad element line {_shown(words)}")
     name = words[1]
     if name in ("vertex", "face") and any(e.name == name for e in header.elements):
-        raise DLFLError(f"{label}: header: a second element '{name}'")
-    return _Element(name, int(words[2]))
+        raise _HeaderProblem(f"a second element '{name}'")
+    return _Element(name, int(words[2]), line=line)
 
 
-def _property(words: list[str], label: str) -> _Property:
+def _property(words: list[str]) -> _Property:
     is_list = len(words) > 1 and words[1] == "list"
     if len(words) != (5 if is_list else 3):
-        raise DLFLError(f"{label}: header: bad property line {_shown(words)}")
+        raise _HeaderProblem(f"bad property line {_shown(words)}")
     types = words[2:4] if is_list else words[1:2]
     for type_name in types:
         if type_name not in _TYPES:
-            raise DLFLError(f"{label}: header: unknown property type {show_token(type_name.encode())}")
+            raise _HeaderProblem(f"unknown property type {show_token(type_name.encode())}")
     if not is_list:
         return _Property(words[2], _TYPES[words[1]])
     if _TYPES[words[2]] not in _STRUCT_CODES:
-        raise DLFLError(f"{label}: header: list count type '{words[2]}' is not an integer type")
+        raise _HeaderProblem(f"list count type '{words[2]}' is not an integer type")
     return _Property(words[4], _TYPES[words[3]], _TYPES[words[2]])
 
 
@@ -176,20 +187,27 @@ def _empty_table(element: _Element, wanted: set[int]) -> _Table:
     return table
 
 
-def _ends_inside(label: str, element: _Element, row: int) -> DLFLError:
-    return DLFLError(f"{label}: the file ends inside element '{element.name}' "
-                     f"(row {row} of {element.count})")
+def _ends_inside(label: str, element: _Element, row: int, line: int | None) -> FileFormatError:
+    """The file ends inside row ``row`` (1-based) of ``element``, at ``line`` (the
+    last line of an ASCII body; None in a binary one)."""
+    return file_error(label, line, f"the file ends inside element '{element.name}' "
+                      f"(row {row} of {element.count})")
 
 
-def _too_many_rows(label: str, element: _Element, left: int, unit: str) -> DLFLError:
-    return DLFLError(f"{label}: element '{element.name}' has {element.count} rows, more "
-                     f"than the {left} {unit} left in the file can hold")
+def _too_many_rows(label: str, element: _Element, left: int, unit: str) -> FileFormatError:
+    """``element`` declares more rows than ``left`` units can hold (its header line)."""
+    return file_error(label, element.line, f"element '{element.name}' has {element.count} "
+                      f"rows, more than the {left} {unit} left in the file can hold")
 
 
-def _list_count(count: float, where: str, prop: _Property) -> int:
-    """A list's count as an int; refuses negative and fractional counts."""
+def _list_count(count: float, prop: _Property) -> int:
+    """A list's count as an int.
+
+    Raises:
+        ValueError: a negative or fractional count (the caller adds file and line).
+    """
     if not float(count).is_integer():
-        raise DLFLError(f"{where}: list '{prop.name}' has count {count}, not a whole number")
+        raise ValueError(f"list '{prop.name}' has count {count}, not a whole number")
     if count < 0:
-        raise DLFLError(f"{where}: list '{prop.name}' has a negative count ({int(count)})")
+        raise ValueError(f"list '{prop.name}' has a negative count ({int(count)})")
     return int(count)

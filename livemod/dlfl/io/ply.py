@@ -21,13 +21,12 @@ import numpy as np
 
 from ..arrays import mesh_arrays
 from ..build import from_polygons, point_cloud
-from ..errors import DLFLError
 from ..mesh import Mesh
 from ._ply_ascii import _AsciiBody
 from ._ply_binary import _BinaryBody
 from ._ply_layout import _Header, _parse_header, _Table
 from .atomic import write_atomically
-from .source import read_source
+from .source import file_error, read_source, show_path
 
 
 def write_ply(mesh: Mesh, path: str | os.PathLike[str]) -> None:
@@ -128,7 +127,7 @@ def read_ply(source: str | os.PathLike[str] | bytes, *, name: str | None = None)
     soup = parse_ply(data, label)
     if len(soup.offsets) == 1:
         return point_cloud(soup.positions)
-    return from_polygons(soup.positions, soup.indices, soup.offsets, source=label)
+    return from_polygons(soup.positions, soup.indices, soup.offsets, source=show_path(label))
 
 
 def parse_ply(data: bytes, label: str = "<ply>") -> PlySoup:
@@ -144,34 +143,41 @@ def parse_ply(data: bytes, label: str = "<ply>") -> PlySoup:
         wanted[roles.face] = {roles.corners}
     body: _BinaryBody | _AsciiBody
     if header.encoding == "ascii":
-        body = _AsciiBody(data[header.body_start :], label)
+        body = _AsciiBody(data[header.body_start :], label, header.body_line)
     else:
         body = _BinaryBody(data, header.body_start, header.encoding, label)
     tables = [body.element(e, wanted.get(i, set())) for i, e in enumerate(header.elements)]
-    positions = _positions(tables[roles.vertex], roles.xyz, label)
-    if roles.face is None or roles.corners is None:
-        return PlySoup(positions, np.zeros(0, dtype=np.int64), np.zeros(1, dtype=np.int64))
-    counts, items = tables[roles.face].lists[roles.corners]
-    offsets = np.zeros(len(counts) + 1, dtype=np.int64)
-    np.cumsum(counts, out=offsets[1:])
-    return PlySoup(positions, _vertex_indices(items, offsets, len(positions), label), offsets)
+    try:
+        positions = _positions(tables[roles.vertex], roles.xyz, roles.vertex)
+        if roles.face is None or roles.corners is None:
+            return PlySoup(positions, np.zeros(0, dtype=np.int64), np.zeros(1, dtype=np.int64))
+        counts, items = tables[roles.face].lists[roles.corners]
+        offsets = np.zeros(len(counts) + 1, dtype=np.int64)
+        np.cumsum(counts, out=offsets[1:])
+        indices = _vertex_indices(items, offsets, len(positions), roles.face)
+    except _RowProblem as problem:
+        line = body.line_of_row(problem.element, problem.row)
+        raise file_error(label, line, str(problem)) from None
+    return PlySoup(positions, indices, offsets)
 
 
 def _roles(header: _Header, label: str) -> _Roles:
     """Find ``vertex`` with its x, y, z and ``face`` with its index list.
 
     Raises:
-        DLFLError: no ``vertex`` element, a missing coordinate, or a ``face``
-            element without a list property.
+        FileFormatError: no ``vertex`` element (naming the ``end_header``
+            line), a missing coordinate, or a ``face`` element without a list
+            property (naming the element's line).
     """
     names = [e.name for e in header.elements]
     if "vertex" not in names:
-        raise DLFLError(f"{label}: no 'vertex' element")
+        raise file_error(label, header.body_line - 1, "no 'vertex' element before end_header")
     vertex = names.index("vertex")
-    scalars = [p.name if p.count_code is None else None for p in header.elements[vertex].properties]
+    element = header.elements[vertex]
+    scalars = [p.name if p.count_code is None else None for p in element.properties]
     for axis in "xyz":
         if axis not in scalars:
-            raise DLFLError(f"{label}: element 'vertex' has no property '{axis}'")
+            raise file_error(label, element.line, f"element 'vertex' has no property '{axis}'")
     xyz = (scalars.index("x"), scalars.index("y"), scalars.index("z"))
     if "face" not in names:
         return _Roles(vertex, xyz, None, None)
@@ -179,32 +185,46 @@ def _roles(header: _Header, label: str) -> _Roles:
     lists = [p.name if p.count_code else None for p in header.elements[face].properties]
     named = [n for n in ("vertex_indices", "vertex_index") if n in lists]
     if not named and not any(lists):
-        raise DLFLError(f"{label}: element 'face' has no list property (vertex_indices)")
+        raise file_error(label, header.elements[face].line,
+                         "element 'face' has no list property (vertex_indices)")
     corners = lists.index(named[0]) if named else next(i for i, n in enumerate(lists) if n)
     return _Roles(vertex, xyz, face, corners)
+
+
+class _RowProblem(Exception):
+    """What is wrong with row ``row`` of element ``element`` (an index into the
+    header's elements); :func:`parse_ply` adds the file and the line."""
+
+    def __init__(self, element: int, row: int, what: str) -> None:
+        super().__init__(what)
+        self.element, self.row = element, row
 
 
 # ---------------------------------------------------------------------- mesh data
 
 
-def _positions(table: _Table, xyz: tuple[int, int, int], label: str) -> np.ndarray:
-    """``(V, 3)`` float64 from the x, y, z columns; refuses NaN and infinities."""
+def _positions(table: _Table, xyz: tuple[int, int, int], element: int) -> np.ndarray:
+    """``(V, 3)`` float64 from the x, y, z columns of ``element`` (its index).
+
+    Raises:
+        _RowProblem: a NaN or infinite coordinate.
+    """
     positions = np.stack([table.scalars[i] for i in xyz], axis=1).astype(np.float64)
     finite = np.isfinite(positions)
     if not finite.all():
         v, axis = (int(k) for k in np.argwhere(~finite)[0])
         value = float(positions[v, axis])
-        raise DLFLError(f"{label}: vertex {v}: coordinate {value} is not finite")
+        raise _RowProblem(element, v, f"vertex {v}: coordinate {value} is not finite")
     return positions
 
 
 def _vertex_indices(items: np.ndarray, offsets: np.ndarray, num_vertices: int,
-                    label: str) -> np.ndarray:
+                    element: int) -> np.ndarray:
     """``(C,)`` int64 corner vertex indices from the face lists' ``(C,)`` items.
 
     Raises:
-        DLFLError: ``label: face f: ...`` for an index that is not a whole
-            number (ASCII or float items) or not in ``[0, num_vertices)``.
+        _RowProblem: ``face f: ...`` for an index that is not a whole number
+            (ASCII or float items) or not in ``[0, num_vertices)``.
     """
     whole = np.ones(len(items), dtype=bool)
     if items.dtype.kind == "f":
@@ -215,6 +235,7 @@ def _vertex_indices(items: np.ndarray, offsets: np.ndarray, num_vertices: int,
     c = int(np.flatnonzero(bad)[0])
     face = int(np.searchsorted(offsets, c, side="right")) - 1
     if not whole[c]:
-        raise DLFLError(f"{label}: face {face}: vertex index {items[c]} is not a whole number")
-    raise DLFLError(f"{label}: face {face}: vertex index {int(items[c])} is out of range "
-                    f"({num_vertices} vertices)")
+        raise _RowProblem(element, face, f"face {face}: vertex index {items[c]} is not a "
+                          "whole number")
+    raise _RowProblem(element, face, f"face {face}: vertex index {int(items[c])} is out of "
+                      f"range ({num_vertices} vertices)")
