@@ -21,11 +21,11 @@ import numpy as np
 from ..analysis import face_normals
 from ..arrays import MeshArrays, mesh_arrays
 from ..build import from_polygons
-from ..errors import DLFLError, DLFLRepairWarning
+from ..errors import DLFLRepairWarning
 from ..mesh import Mesh
 from ._lines import gather_lines, parse_number_lines, split_lines, token_starts
 from .atomic import write_atomically
-from .source import lf_line_ends, read_source, show_token
+from .source import file_error, lf_line_ends, read_source, show_path, show_token
 
 _TRIANGLE = np.dtype([("normal", "<f4", 3), ("corners", "<f4", (3, 3)), ("attribute", "<u2")])
 
@@ -118,7 +118,7 @@ def parse_stl(data: bytes, label: str = "<stl>") -> tuple[np.ndarray, np.ndarray
     if count is not None and len(data) == 84 + 50 * count:
         triangles = np.frombuffer(data, _TRIANGLE, count, 84)
         corners = triangles["corners"].reshape(-1, 3).astype(np.float64)
-        _check_finite(corners, lambda k: f"{label}: triangle {k // 3}:")
+        _check_finite(corners, label, lambda k: (None, f"triangle {k // 3}: "))
         return corners, np.arange(0, 3 * count + 1, 3, dtype=np.int64), None
     solid = data.lstrip()[:5].lower() == b"solid"
     # a NUL byte is binary data (every float32 0.0 and attribute word holds some):
@@ -128,15 +128,15 @@ def parse_stl(data: bytes, label: str = "<stl>") -> tuple[np.ndarray, np.ndarray
     why = ("it starts with 'solid' but holds binary data, so it is no ASCII STL either"
            if solid else "it does not start with 'solid', as ASCII STL does")
     if count == 0:
-        raise DLFLError(f"{label}: not an STL file: as binary STL its header counts 0 "
-                        f"triangles, and the {len(data) - 84} bytes after the 84-byte header "
-                        f"are not whole 50-byte triangles ({len(data)} bytes in all); and {why}")
+        raise file_error(label, None, "not an STL file: as binary STL its header counts 0 "
+                         f"triangles, and the {len(data) - 84} bytes after the 84-byte header "
+                         f"are not whole 50-byte triangles ({len(data)} bytes in all); and {why}")
     if count is not None:
-        raise DLFLError(f"{label}: not an STL file: as binary STL its header counts {count} "
-                        f"triangles ({84 + 50 * count} bytes), but the file has {len(data)} "
-                        f"bytes; and {why}")
-    raise DLFLError(f"{label}: not an STL file: {len(data)} bytes, too short for binary STL, "
-                    f"and {why}")
+        raise file_error(label, None, "not an STL file: as binary STL its header counts "
+                         f"{count} triangles ({84 + 50 * count} bytes), but the file has "
+                         f"{len(data)} bytes; and {why}")
+    raise file_error(label, None, f"not an STL file: {len(data)} bytes, too short for binary "
+                     f"STL, and {why}")
 
 
 def _binary_count(data: bytes) -> int | None:
@@ -159,13 +159,16 @@ def _header_count(data: bytes) -> int | None:
     return int(np.frombuffer(data, "<u4", 1, 80)[0]) if len(data) >= 84 else None
 
 
-def _check_finite(corners: np.ndarray, where: Callable[[int], str]) -> None:
-    """Raise for the first corner with a NaN or infinite coordinate; ``where(k)`` is
-    the message's prefix naming corner ``k`` (its triangle, or its line)."""
+def _check_finite(corners: np.ndarray, label: str,
+                  where: Callable[[int], tuple[int | None, str]]) -> None:
+    """Raise for the first corner with a NaN or infinite coordinate; ``where(k)``
+    gives the line of corner ``k`` (None in a binary file) and what the message
+    says before the problem (its triangle)."""
     bad = np.flatnonzero(~np.isfinite(corners).all(axis=1))
     if len(bad):
-        raise DLFLError(f"{where(int(bad[0]))} a vertex coordinate is not finite: "
-                        f"{corners[bad[0]].tolist()}")
+        line, what = where(int(bad[0]))
+        raise file_error(label, line, f"{what}a vertex coordinate is not finite: "
+                         f"{corners[bad[0]].tolist()}")
 
 
 def _welded_mesh(corners: np.ndarray, offsets: np.ndarray, facet_lines: np.ndarray | None,
@@ -176,10 +179,10 @@ def _welded_mesh(corners: np.ndarray, offsets: np.ndarray, facet_lines: np.ndarr
     positions, indices = _used_vertices_only(positions, indices)
     lines = None if facet_lines is None else facet_lines[kept]
     mesh = Mesh() if len(indices) == 0 else from_polygons(
-        positions, indices, offsets, source=label, face_lines=lines)
+        positions, indices, offsets, source=show_path(label), face_lines=lines)
     dropped = len(kept) - int(np.count_nonzero(kept))
     if dropped:
-        note = (f"{label}: {dropped} degenerate facet{'s' if dropped > 1 else ''} (two corners "
+        note = (f"{show_path(label)}: {dropped} degenerate facet{'s' if dropped > 1 else ''} (two corners "
                 f"at the same point) left out")
         mesh.notes.append(note)
         warnings.warn(note, DLFLRepairWarning, stacklevel=3)
@@ -318,27 +321,32 @@ def drop_collapsed(indices: np.ndarray, offsets: np.ndarray
     return indices[keep_corner], new_offsets, kept
 
 
-# the ASCII keywords the parser looks for, as word codes (0: any other word)
-_FACET, _NORMAL, _OUTER, _LOOP, _VERTEX, _ENDLOOP, _ENDFACET, _ENDSOLID, _SOLID = range(1, 10)
+# the ASCII keywords the parser looks for, as word codes (0: any other word), and
+# the code of the words that name a solid
+_FACET, _NORMAL, _OUTER, _LOOP, _VERTEX, _ENDLOOP, _ENDFACET, _ENDSOLID, _SOLID, _NAME = range(1, 11)
 _KEYWORDS = {b"facet": _FACET, b"normal": _NORMAL, b"outer": _OUTER, b"loop": _LOOP,
              b"vertex": _VERTEX, b"endloop": _ENDLOOP, b"endfacet": _ENDFACET,
              b"endsolid": _ENDSOLID, b"solid": _SOLID}
-_KEYWORDS |= {word.upper(): code for word, code in _KEYWORDS.items()}  # old exporters
 
 
 class _AsciiStl:
     """The words of an ASCII STL file and the positions of its keywords.
 
+    Keywords are matched in any case: the format writes them in lower case,
+    old exporters in capitals, others ``Facet Normal``, ``EndLoop``.
+
     Attributes:
-        words: the file split at ASCII blanks, as ``bytes.split`` splits it.
+        data: the file in lower case (``bytes.lower``: ASCII letters only, so
+            every byte stays where it was); ``original`` as it was.
+        words: ``data`` split at ASCII blanks, as ``bytes.split`` splits it.
         codes: ``(W,)`` int8 keyword code of each word (0 for other words).
         facet, outer, endloop, endfacet, vertex: ``(K,)`` int64 word index of
             each occurrence of that keyword.
     """
 
     def __init__(self, data: bytes, label: str) -> None:
-        self.label, self.data = label, data
-        self.words = data.split()
+        self.label, self.original, self.data = label, data, data.lower()
+        self.words = self.data.split()
         get = _KEYWORDS.get
         self.codes = np.fromiter(map(get, self.words, itertools.repeat(0)), np.int8,
                                  len(self.words))
@@ -348,7 +356,7 @@ class _AsciiStl:
             for code in (_FACET, _OUTER, _ENDLOOP, _ENDFACET, _VERTEX))
 
     def _forget_names(self) -> None:
-        """Code the words that name a solid as no keyword: they run from ``solid``
+        """Code the words that name a solid as names: they run from ``solid``
         (the first word) or ``endsolid`` to the end of its line, so ``solid facet``
         names a solid 'facet'. In a file on one line a name ends at ``facet
         normal`` or ``solid``. Names are a word or two: the loop is short."""
@@ -357,7 +365,7 @@ class _AsciiStl:
             line = self._line_index(np.array([k]))[0]
             j = k + 1
             while j < len(self.words) and not self._name_ends(j, line):
-                self.codes[j] = 0
+                self.codes[j] = _NAME
                 j += 1
 
     def _name_ends(self, j: int, line: int) -> bool:
@@ -370,9 +378,11 @@ class _AsciiStl:
     def soup(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """See :func:`parse_stl`."""
         self._check_structure()
+        self._check_strays()
         sizes = (self.endloop - self.outer - 2) // 4  # well formed now: 4 words a vertex
         corners = self._coordinates()
-        _check_finite(corners, lambda k: f"{self.label}:{self.line_of(self.vertex[k:k + 1])[0]}:")
+        _check_finite(corners, self.label,
+                      lambda k: (int(self.line_of(self.vertex[k : k + 1])[0]), ""))
         offsets = np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64)
         return corners, offsets, self.line_of(self.facet)
 
@@ -384,12 +394,33 @@ class _AsciiStl:
             return
         if bad < len(self.facet):
             line = self.line_of(self.facet[bad : bad + 1])[0]
-            where = f"{self.label}:{line}: facet {bad}"
+            what = f"facet {bad}"
         else:
             line = self.line_of(np.array([len(self.words) - 1]))[0]
-            where = f"{self.label}:{line}: after facet {bad - 1} (the file may be cut short)"
-        raise DLFLError(f"{where} is not 'facet normal NX NY NZ, outer loop, vertex X Y Z (three "
-                        f"or more), endloop, endfacet'")
+            what = f"after facet {bad - 1} (the file may be cut short)"
+        raise file_error(self.label, int(line), f"{what} is not 'facet normal NX NY NZ, outer "
+                         "loop, vertex X Y Z (three or more), endloop, endfacet'")
+
+    def _check_strays(self) -> None:
+        """Raise, naming its line, for the first word outside every facet that is
+        neither ``solid``, ``endsolid`` nor a solid's name: text that is no STL
+        (the facets are well formed now)."""
+        marks = np.zeros(len(self.words) + 1, dtype=np.int64)
+        marks[self.facet] += 1
+        marks[self.endfacet + 1] -= 1
+        covered = np.cumsum(marks[:-1]) > 0
+        covered |= (self.codes == _SOLID) | (self.codes == _ENDSOLID) | (self.codes == _NAME)
+        stray = np.flatnonzero(~covered)
+        if len(stray):
+            k = int(stray[0])
+            raise file_error(self.label, int(self.line_of(stray[:1])[0]),
+                             f"{show_token(self._original_word(k))} is not part of a facet "
+                             "(an ASCII STL file is 'solid NAME', facets, 'endsolid NAME')")
+
+    def _original_word(self, k: int) -> bytes:
+        """Word ``k`` as the file writes it (before the lowering)."""
+        start = int(self._word_starts[k])
+        return self.original[start : start + len(self.words[k])]
 
     def _first_bad_facet(self) -> int | None:
         """The index of the first malformed facet, or None when all are well formed.
@@ -474,11 +505,11 @@ class _AsciiStl:
 
     def _number(self, k: int) -> float:
         """Word ``k`` as a float, or a ``file:line: bad number`` error."""
-        word = self.words[k] if k < len(self.words) else b""
+        word = self._original_word(k) if k < len(self.words) else b""
         try:
             if b"_" in word:  # float() takes '1_0' as 10; the OBJ reader refuses it too
                 raise ValueError(word)
             return float(word)
         except ValueError:
             line = self.line_of(np.array([min(k, len(self.words) - 1)]))[0]
-            raise DLFLError(f"{self.label}:{line}: bad number {show_token(word)}") from None
+            raise file_error(self.label, int(line), f"bad number {show_token(word)}") from None
