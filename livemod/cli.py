@@ -125,6 +125,7 @@ def _convert(args: argparse.Namespace) -> int:
     from livemod.commandline import check_writable
     from livemod.dlfl import summarize
     from livemod.dlfl.io import open_mesh, save_mesh
+    from livemod.dlfl.io.source import show_path
     from livemod.runner.cli import check_mesh_output
 
     check_mesh_output(args.output)
@@ -134,7 +135,7 @@ def _convert(args: argparse.Namespace) -> int:
     save_mesh(mesh, args.output)
     summary = summarize(mesh)  # faces as `livemod info` counts them: holes apart
     holes = f", {summary.holes} holes" if summary.holes else ""
-    print(f"wrote {args.output} ({summary.vertices} vertices, {summary.edges} edges, "
+    print(f"wrote {show_path(args.output)} ({summary.vertices} vertices, {summary.edges} edges, "
           f"{summary.faces - summary.holes} faces{holes})")
     return 0
 
@@ -168,17 +169,19 @@ def main(argv: Sequence[str] | None = None) -> int:
 
 
 def _say_repairs_as_notes() -> None:
-    """Print a loader's repair (:class:`~livemod.dlfl.errors.DLFLRepairWarning`) as
+    """Print a loader's repair (:class:`~livemod.dlfl.errors.DLFLRepairWarning`) or
+    the lines it skipped (:class:`~livemod.dlfl.errors.DLFLSkippedLinesWarning`) as
     one ``livemod: note: ...`` line on standard error, not as a Python warning that
-    shows livemod's own source line; other warnings are shown as Python shows them."""
+    shows livemod's own source line; other warnings are shown as Python shows them.
+    So ``info``, ``convert`` and ``run`` (``--mesh`` and a script's ``load()``) say them."""
     from livemod.commandline import note
-    from livemod.dlfl.errors import DLFLRepairWarning
+    from livemod.dlfl.errors import DLFLRepairWarning, DLFLSkippedLinesWarning
 
     python_shows = warnings.showwarning
 
     def show(message: Warning | str, category: type[Warning], filename: str, lineno: int,
              file: TextIO | None = None, line: str | None = None) -> None:
-        if issubclass(category, DLFLRepairWarning):
+        if issubclass(category, DLFLRepairWarning | DLFLSkippedLinesWarning):
             note(str(message), file)
         else:
             python_shows(message, category, filename, lineno, file, line)

@@ -26,6 +26,8 @@ import tempfile
 from collections.abc import Iterable, Iterator
 from typing import TextIO
 
+from livemod.dlfl.io.source import show_path
+
 DONE, FAILED, USAGE, INTERRUPTED, READER_LEFT = 0, 1, 2, 130, 141
 
 EXIT_CODES_HELP = ("exit codes: 0 done; 1 the script, a file or a variant failed; 2 the "
@@ -56,7 +58,7 @@ def describe(exc: BaseException) -> str:
     if isinstance(exc, OSError) and exc.strerror:
         if exc.filename is None:  # the message already names the file (atomic writes)
             return exc.strerror
-        return f"{os.fsdecode(exc.filename)}: {exc.strerror}"
+        return f"{show_path(os.fsdecode(exc.filename))}: {exc.strerror}"
     return str(exc) or type(exc).__name__
 
 
@@ -92,7 +94,7 @@ def check_readable(path: str | os.PathLike[str]) -> None:
         with open(name, "rb"):
             pass
     except OSError as exc:
-        raise type(exc)(exc.errno, f"cannot read {name}: {exc.strerror}") from None
+        raise type(exc)(exc.errno, f"cannot read {show_path(name)}: {exc.strerror}") from None
 
 
 def check_writable(paths: Iterable[str | os.PathLike[str]]) -> None:
@@ -118,7 +120,7 @@ def check_writable(paths: Iterable[str | os.PathLike[str]]) -> None:
                 _try_a_file_in(folder)
                 tried.add(folder)
         except OSError as exc:
-            raise type(exc)(exc.errno, f"cannot write {name}: {exc.strerror}") from None
+            raise type(exc)(exc.errno, f"cannot write {show_path(name)}: {exc.strerror}") from None
 
 
 def _existing_part(folder: str) -> str:
@@ -136,6 +138,6 @@ def _try_a_file_in(folder: str) -> None:
         OSError: ``folder`` is a file, or takes no new file (the system's reason).
     """
     if not os.path.isdir(folder):
-        raise NotADirectoryError(errno.ENOTDIR, f"{folder} is a file, not a folder")
+        raise NotADirectoryError(errno.ENOTDIR, f"{show_path(folder)} is a file, not a folder")
     with tempfile.TemporaryFile(dir=folder):
         pass

@@ -347,11 +347,11 @@ def test_load_and_save_dispatch_by_extension(tmp_path: Path) -> None:
         assert load_mesh(tmp_path / f"c.{ext}").counts() == (8, 12, 6)
     save_mesh(mesh, tmp_path / "c.txt", format="obj")
     assert load_mesh(tmp_path / "c.txt", format="OBJ").counts() == (8, 12, 6)
-    with pytest.raises(DLFLError, match=r"cannot write .*c\.off': unknown extension '\.off'; use one of \.obj, \.dlfl, \.stl, \.ply"):
-        save_mesh(mesh, tmp_path / "c.off")
-    with pytest.raises(DLFLError, match=r"cannot read .*c\.off': unknown extension '\.off'; "
+    with pytest.raises(DLFLError, match=r"cannot write .*c\.xyz: unknown extension '\.xyz'; use one of \.obj, \.dlfl, \.stl, \.ply"):
+        save_mesh(mesh, tmp_path / "c.xyz")
+    with pytest.raises(DLFLError, match=r"cannot read .*c\.xyz: unknown extension '\.xyz'; "
                                          r"use one of \.obj, \.dlfl, \.stl"):
-        load_mesh(tmp_path / "c.off")
+        load_mesh(tmp_path / "c.xyz")
 
 
 def test_thesis_load_and_save_commands_use_io(tmp_path: Path) -> None:

@@ -8,15 +8,17 @@ describes what each format accepts and writes.
 
 from __future__ import annotations
 
+import errno
 import os
 from collections.abc import Callable, Mapping
 
-from ..errors import DLFLError
+from ..errors import InvalidArgumentError
 from ..mesh import Mesh
 from .atomic import atomic_write, write_atomically
 from .dlflfile import read_dlfl, write_dlfl
 from .obj import read_obj, write_obj
 from .ply import read_ply, write_ply
+from .source import show_path
 from .stl import read_stl, write_stl
 
 __all__ = [
@@ -35,12 +37,17 @@ WRITERS: dict[str, Callable[[Mesh, str], None]] = {
 
 
 def _format_of(path: str, format: str | None, table: Mapping[str, object], verb: str) -> str:  # noqa: A002
-    """The format key for ``path`` (its extension unless ``format`` is given)."""
+    """The format key for ``path`` (its extension unless ``format`` is given).
+
+    Raises:
+        InvalidArgumentError: no reader (writer) takes that format.
+    """
     key = (format or os.path.splitext(path)[1]).lower().lstrip(".")
     if key not in table:
         valid = ", ".join(f".{k}" for k in table)
         what = f"format {format!r}" if format else f"extension {os.path.splitext(path)[1]!r}"
-        raise DLFLError(f"cannot {verb} {path!r}: unknown {what}; use one of {valid}")
+        raise InvalidArgumentError(f"cannot {verb} {show_path(path)}: unknown {what}; use one "
+                                   f"of {valid}")
     return key
 
 
@@ -53,10 +60,14 @@ def load_mesh(path: str | os.PathLike[str], *, format: str | None = None) -> Mes
             extension.
 
     Raises:
-        DLFLError: an unknown format, or a malformed file (``file:line: ...``).
-        OSError: the file cannot be read.
+        InvalidArgumentError: an unknown format.
+        FileFormatError: a malformed file (``file:line: ...``).
+        NonManifoldError: its faces do not form an orientable 2-manifold.
+        OSError: the file cannot be read (IsADirectoryError: it is a folder).
     """
     name = os.fspath(path)
+    if os.path.isdir(name):  # before the extension: a folder has none to speak of
+        raise IsADirectoryError(errno.EISDIR, "is a folder, not a mesh file", name)
     return READERS[_format_of(name, format, READERS, "read")](name)
 
 
@@ -70,7 +81,7 @@ def save_mesh(mesh: Mesh, path: str | os.PathLike[str], *, format: str | None = 
             extension.
 
     Raises:
-        DLFLError: an unknown format.
+        InvalidArgumentError: an unknown format.
         OSError: the file cannot be written.
     """
     name = os.fspath(path)
@@ -87,13 +98,27 @@ def open_mesh(name: str | os.PathLike[str], *, shape_name: str | None = None) ->
             ``name`` (e.g. ``name`` was resolved against a script's folder).
 
     Raises:
-        DLFLError: a malformed file, or neither a file nor a shape of that name
-            (the message lists the shapes).
+        InvalidArgumentError: neither a file nor a shape of that name: the
+            message names the folder looked in, and lists the shapes when the
+            name has no extension (a name with one is meant as a file).
+        FileFormatError, NonManifoldError: a malformed file.
         OSError: the file exists but cannot be read.
     """
     path = os.fspath(name)
     if os.path.exists(path):
         return load_mesh(path)
-    from ..shapes import load_shape
+    from ..shapes import SHAPES, load_shape
 
-    return load_shape(shape_name if shape_name is not None else path)
+    shape = os.fspath(shape_name) if shape_name is not None else path
+    if shape.lower().removesuffix(".obj") in SHAPES:
+        return load_shape(shape)
+    where = f"no file {show_path(os.path.basename(path))} in {show_path(_folder_of(path))}"
+    if os.path.splitext(shape)[1]:
+        raise InvalidArgumentError(where)
+    raise InvalidArgumentError(f"{where}, and no built-in shape {show_path(shape)}; shapes: "
+                               f"{', '.join(SHAPES)}")
+
+
+def _folder_of(path: str) -> str:
+    """The folder ``path`` is looked for in, as an absolute path."""
+    return os.path.dirname(os.path.abspath(path))

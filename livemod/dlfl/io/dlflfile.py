@@ -40,7 +40,6 @@ import numpy as np
 
 from ..analysis import face_normals
 from ..arrays import MeshArrays, mesh_arrays
-from ..errors import DLFLError
 from ..mesh import Mesh
 from ._dlfl_build import DlflRecords, build_dlfl
 from ._lines import (
@@ -55,7 +54,7 @@ from ._numtext import format_rounded, format_uints, join_columns
 from ._parallel import map_in_order
 from .atomic import write_atomically
 from .obj import _merge_face_blocks, index_lines, vertex_lines
-from .source import lf_line_ends, read_source, show_token
+from .source import file_error, lf_line_ends, read_source, report_skipped, show_token
 
 HOLE_MATERIAL = "hole"
 
@@ -83,7 +82,16 @@ def read_dlfl(source: str | os.PathLike[str] | bytes, *, name: str | None = None
         OSError: the file cannot be read.
     """
     data, label = read_source(source, name, "<dlfl>")
-    return build_dlfl(parse_dlfl(data, label))
+    records = parse_dlfl(data, label)
+    skipped = records.skipped.tolist()
+    if skipped and len(records.positions) == 0 and len(records.face_lines) == 0:
+        word = records.first_skipped.split(None, 1)[0]
+        raise file_error(label, skipped[0], f"no geometry, and the line starts with "
+                         f"{show_token(word)}, which is no .dlfl record")
+    mesh = build_dlfl(records)
+    if skipped:
+        report_skipped(mesh, label, skipped, records.first_skipped)
+    return mesh
 
 
 def parse_dlfl(data: bytes, label: str = "<dlfl>", *, fast: bool = True) -> DlflRecords:
@@ -105,7 +113,7 @@ def parse_dlfl(data: bytes, label: str = "<dlfl>", *, fast: bool = True) -> Dlfl
             empty face).
     """
     if not data.startswith(b"DLFL"):
-        raise DLFLError(f"{label}:1: not a .dlfl file (it must start with 'DLFL')")
+        raise file_error(label, 1, "not a .dlfl file (it must start with 'DLFL')")
     data = lf_line_ends(data)
     if not data.endswith(b"\n"):
         data += b"\n"  # split_lines wants it; the line count stays that of data.split
@@ -125,7 +133,7 @@ def parse_dlfl(data: bytes, label: str = "<dlfl>", *, fast: bool = True) -> Dlfl
 
 # ---------------------------------------------------------------- line kinds
 
-_SKIP, _VERTEX, _CORNER, _EDGE, _FACE, _OTHER = range(6)
+_SKIP, _VERTEX, _CORNER, _EDGE, _FACE, _OTHER, _UNKNOWN = range(7)
 _MATERIAL = _OTHER  # the kind of a usemtl record (those lines are Python's)
 
 
@@ -174,8 +182,8 @@ def _check_header_ends(buf: np.ndarray, starts: np.ndarray, label: str) -> None:
         return
     record = np.flatnonzero(np.isin(buf[starts[1:]], np.frombuffer(b"vef", dtype=np.uint8)))
     if len(record):
-        raise DLFLError(f"{label}:{int(record[0]) + 2}: no '#' line ends the header before "
-                        f"this record, so it and every later line would be skipped as header")
+        raise file_error(label, int(record[0]) + 2, "no '#' line ends the header before "
+                        "this record, so it and every later line would be skipped as header")
 
 
 def _kind_table(keywords: dict[bytes, int]) -> np.ndarray:
@@ -288,60 +296,63 @@ _BLANKS = bytes.maketrans(b"[],\r\t", b"     ")
 
 def _python_record(raw: bytes, line: int, label: str) -> tuple[int, object] | None:
     """Reference parser for one line: ``(kind, value)``, or None for a line the
-    reader ignores (blank, comment, another keyword).
+    reader passes over (blank, comment, ``mtllib``).
 
     Values: ``(x, y, z)`` for ``v``, the vertex index for ``fv``, ``(a, b)`` for
     ``e``, the list of corner indices for ``f``, whether the material is
-    ``hole`` for ``usemtl``.
+    ``hole`` for ``usemtl``; ``(_UNKNOWN, raw)`` for a line whose first word
+    is none of these (it is skipped and reported).
 
     Raises:
-        DLFLError: ``label:line: ...`` for a malformed ``v``, ``fv``, ``e`` or ``f`` line.
+        FileFormatError: ``label:line: ...`` for a malformed ``v``, ``fv``, ``e``
+            or ``f`` line.
     """
     words = raw.translate(_BLANKS).split()
-    if not words or words[0].startswith(b"#"):
+    if not words or words[0].startswith(b"#") or words[0] == b"mtllib":
         return None
     key, args = words[0], words[1:]
-    where = f"{label}:{line}"
     if key == b"usemtl":
         return _MATERIAL, len(args) > 0 and args[0] == HOLE_MATERIAL.encode()
+    if key not in _NEEDS:
+        return _UNKNOWN, raw
+    least, what = _NEEDS[key]
+    if len(args) < least:
+        raise file_error(label, line, what if key != b"v" else f"{what}, got {len(args)}")
     if key == b"v":
-        if len(args) < 3:
-            raise DLFLError(f"{where}: a v line needs 3 coordinates, got {len(args)}")
-        return _VERTEX, tuple(_number(a, where) for a in args[:3])
-    if key == b"fv":
-        if not args:
-            raise DLFLError(f"{where}: an fv line needs a vertex index")
-        return _CORNER, _integer(args[0], where)
-    if key == b"e":
-        if len(args) < 2:
-            raise DLFLError(f"{where}: an e line needs two corner (fv) indices")
-        return _EDGE, (_integer(args[0], where), _integer(args[1], where))
-    if key == b"f":
-        if not args:
-            raise DLFLError(f"{where}: empty face (an f line with no corners)")
-        return _FACE, [_integer(a, where) for a in args]
-    return None
+        return _VERTEX, tuple(_number(a, label, line) for a in args[:3])
+    indices = [_integer(a, label, line) for a in (args if key == b"f" else args[:least])]
+    return {b"fv": _CORNER, b"e": _EDGE, b"f": _FACE}[key], (
+        indices[0] if key == b"fv" else tuple(indices) if key == b"e" else indices)
 
 
-def _number(word: bytes, where: str) -> float:
+# each record's keyword: how many values it needs, and the error when it has fewer
+_NEEDS = {
+    b"v": (3, "a v line needs 3 coordinates"),
+    b"fv": (1, "an fv line needs a vertex index"),
+    b"e": (2, "an e line needs two corner (fv) indices"),
+    b"f": (1, "empty face (an f line with no corners)"),
+}
+
+
+def _number(word: bytes, label: str, line: int) -> float:
     try:
         value = float(word) if b"_" not in word else float("nan")
     except ValueError:
-        raise DLFLError(f"{where}: bad number {show_token(word)}") from None
+        raise file_error(label, line, f"bad number {show_token(word)}") from None
     if not np.isfinite(value):
-        raise DLFLError(f"{where}: {show_token(word)} is not a finite number")
+        raise file_error(label, line, f"{show_token(word)} is not a finite number")
     return value
 
 
-def _integer(word: bytes, where: str) -> int:
+def _integer(word: bytes, label: str, line: int) -> int:
     try:
         if b"_" in word:
             raise ValueError(word)
         value = int(word)
     except ValueError:
-        raise DLFLError(f"{where}: bad index {show_token(word)}") from None
+        raise file_error(label, line, f"bad index {show_token(word)}") from None
     if abs(value) >= 2**62:
-        raise DLFLError(f"{where}: index {show_token(word)} is out of range")
+        raise file_error(label, line, f"index {show_token(word)} is out of range")
     return value
 
 
@@ -355,7 +366,7 @@ class _Collected:
         self.label = label
         self.blocks: dict[int, list[_Block]] = {k: [] for k in (_VERTEX, _CORNER, _EDGE, _FACE)}
         self.python: dict[int, list[tuple[int, object]]] = {
-            k: [] for k in (_VERTEX, _CORNER, _EDGE, _FACE, _MATERIAL)}
+            k: [] for k in (_VERTEX, _CORNER, _EDGE, _FACE, _MATERIAL, _UNKNOWN)}
 
     def add(self, line: int, record: tuple[int, object] | None) -> None:
         """Keep the record of 0-based line ``line`` (None: nothing to keep)."""
@@ -371,10 +382,13 @@ class _Collected:
         offsets = np.zeros(len(counts) + 1, dtype=np.int64)
         np.cumsum(counts, out=offsets[1:])
         holes = self._holes(f_lines)
-        for lines in (c_lines, e_lines, f_lines):
+        for lines in (v_lines, c_lines, e_lines, f_lines):
             lines += 1  # 1-based, in place: fresh arrays (a million-face file's 100 MB)
+        unknown = self.python[_UNKNOWN]
         return DlflRecords(self.label, positions, corner_vertex, c_lines, edges, e_lines,
-                           corners, offsets, f_lines, holes)
+                           corners, offsets, f_lines, holes, v_lines,
+                           np.array([line + 1 for line, _ in unknown], dtype=np.int64),
+                           bytes(unknown[0][1]) if unknown else b"")  # type: ignore[call-overload]
 
     def _fixed(self, kind: int, shape: tuple[int, ...], dtype: type,
                ) -> tuple[np.ndarray, np.ndarray]:

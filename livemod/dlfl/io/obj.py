@@ -32,7 +32,7 @@ from ._lines import gather_lines, parse_index_lines, parse_number_lines, split_l
 from ._numtext import format_floats, format_uints, join_columns
 from ._parallel import map_in_order
 from .atomic import write_atomically
-from .source import lf_line_ends, read_source, show_token
+from .source import file_error, lf_line_ends, read_source, report_skipped, show_path, show_token
 
 
 @dataclass
@@ -44,12 +44,19 @@ class ObjSoup:
         indices: ``(C,)`` int64 0-based vertex index of every face corner.
         offsets: ``(F + 1,)`` int64 face start offsets into ``indices``.
         face_lines: ``(F,)`` int64 1-based line number of every ``f`` line.
+        skipped: ``(K,)`` int64 1-based lines whose first word is no OBJ
+            statement (nor a comment), which the reader skips.
+        first_skipped: the text of the first of them (empty when none).
+        binary: the file holds a NUL byte (no text file does).
     """
 
     positions: np.ndarray
     indices: np.ndarray
     offsets: np.ndarray
     face_lines: np.ndarray
+    skipped: np.ndarray
+    first_skipped: bytes = b""
+    binary: bool = False
 
 
 def read_obj(source: str | os.PathLike[str] | bytes, *, name: str | None = None) -> Mesh:
@@ -63,25 +70,33 @@ def read_obj(source: str | os.PathLike[str] | bytes, *, name: str | None = None)
         The mesh; face ``i`` is the ``i``-th ``f`` line, vertex ``j`` the ``j``-th
         ``v`` line. Open boundaries get hole faces, unused vertices become
         point-spheres, inconsistently oriented components are re-oriented (see
-        :func:`livemod.dlfl.from_polygons`).
+        :func:`livemod.dlfl.from_polygons`). Lines whose first word is no OBJ
+        statement are skipped, and said in ``mesh.notes`` and as a
+        :class:`~livemod.dlfl.errors.DLFLSkippedLinesWarning`.
 
     Raises:
-        DLFLError: ``file:line: ...`` for a malformed number, an empty face, an
-            index out of range, or a mesh that is not an orientable 2-manifold;
-            a file with neither vertices nor any OBJ keyword (another format,
-            or not text). A blank file, or one of comments only, is an empty mesh.
+        FileFormatError: ``file:line: ...`` for a malformed number, an empty face,
+            an index out of range; a file with no vertex that holds a line that
+            is no OBJ statement (another format, or not text). A blank file, or
+            one of comments and OBJ statements only, is an empty mesh.
+        NonManifoldError: the faces do not form an orientable 2-manifold
+            (``file:line: ...``, from :func:`livemod.dlfl.from_polygons`).
         OSError: the file cannot be read.
     """
     data, label = read_source(source, name, "<obj>")
     soup = parse_obj(data, label)
     if len(soup.indices) == 0:
         if len(soup.positions) == 0:
-            _check_obj_text(data, label)
-        return point_cloud(soup.positions)
-    return from_polygons(
-        soup.positions, soup.indices, soup.offsets, source=label, face_lines=soup.face_lines,
-        vertex_base=1,  # errors name vertices as the f lines do
-    )
+            _check_obj_text(soup, label)
+        mesh = point_cloud(soup.positions)
+    else:
+        mesh = from_polygons(
+            soup.positions, soup.indices, soup.offsets, source=show_path(label),
+            face_lines=soup.face_lines, vertex_base=1,  # errors name vertices as f lines do
+        )
+    if len(soup.skipped):
+        report_skipped(mesh, label, soup.skipped.tolist(), soup.first_skipped)
+    return mesh
 
 
 # every statement of the OBJ specification: a file of no ``v`` line passes when it
@@ -92,17 +107,57 @@ _OBJ_KEYWORDS = frozenset(
     b"ctech stech maplib usemap call csh".split())
 
 
-def _check_obj_text(data: bytes, label: str) -> None:
-    """Refuse ``data`` (which held no vertex) unless it is blank, comments only, or
-    uses an OBJ keyword: a mesh file of another kind must not load as empty."""
-    if b"\0" in data:
-        raise DLFLError(f"{label}: not an OBJ file: it holds binary data")
-    for line, raw in enumerate(data.removeprefix(b"\xef\xbb\xbf").splitlines(), 1):
-        words = raw.split(None, 1)
-        if not words or words[0].startswith(b"#") or words[0] in _OBJ_KEYWORDS:
-            continue
-        raise DLFLError(f"{label}:{line}: not an OBJ file: no vertex, and the line "
-                        f"starts with {show_token(words[0])}, not an OBJ keyword")
+def _check_obj_text(soup: ObjSoup, label: str) -> None:
+    """Refuse a file without vertices unless it is blank, comments only, or OBJ
+    statements only: a mesh file of another kind must not load as empty."""
+    if soup.binary:
+        raise file_error(label, None, "not an OBJ file: it holds binary data")
+    if len(soup.skipped):
+        word = soup.first_skipped.split(None, 1)[0]
+        raise file_error(label, int(soup.skipped[0]), "not an OBJ file: no vertex, and the "
+                         f"line starts with {show_token(word)}, not an OBJ keyword")
+
+
+# a line's first word is looked up as the uint64 of its first bytes (the longer
+# statements, shadow_obj and trace_obj, are looked up in Python)
+_KEY_BYTES = 8
+_BLANK_OR_HASH = np.zeros(256, dtype=bool)
+_BLANK_OR_HASH[list(b" \t\n\r\v\f#")] = True
+
+
+def _word_keys(words: list[bytes]) -> np.ndarray:
+    """``(K,)`` sorted uint64 keys of ``words`` (each at most :data:`_KEY_BYTES`)."""
+    padded = b"".join(w.ljust(_KEY_BYTES, b"\0") for w in words)
+    return np.sort(np.frombuffer(padded, dtype="<u8"))
+
+
+_OBJ_KEYWORD_KEYS = _word_keys([w for w in _OBJ_KEYWORDS if len(w) <= _KEY_BYTES])
+
+
+def _not_understood(buf: np.ndarray, starts: np.ndarray, ends: np.ndarray, kinds: np.ndarray,
+                    ) -> np.ndarray:
+    """``(K,)`` int64 0-based lines whose first word is no OBJ statement, nor a
+    comment: the lines the reader skips without knowing what they are.
+
+    The lines of kind ``_IGNORED`` (``vn``, ``usemtl``, comments: a million in a
+    large file) are looked up by their first word's key, whole-array; the few
+    others (a word longer than a key, a line starting with a blank) in Python.
+    """
+    ignored = np.flatnonzero(kinds == _IGNORED)
+    rows = buf[np.minimum(starts[ignored, None] + np.arange(_KEY_BYTES + 1), len(buf) - 1)]
+    stop = _BLANK_OR_HASH[rows]
+    length = np.where(stop.any(axis=1), stop.argmax(axis=1), _KEY_BYTES + 1)
+    rows[np.arange(_KEY_BYTES + 1) >= length[:, None]] = 0
+    keys = np.ascontiguousarray(rows[:, :_KEY_BYTES]).view("<u8").ravel()
+    at = np.minimum(np.searchsorted(_OBJ_KEYWORD_KEYS, keys), len(_OBJ_KEYWORD_KEYS) - 1)
+    known = (length == 0) | (length <= _KEY_BYTES) & (_OBJ_KEYWORD_KEYS[at] == keys)
+    doubtful = np.sort(np.concatenate([ignored[~known], np.flatnonzero(kinds == _OTHER_SUSPECT)]))
+    unknown = []
+    for line in doubtful.tolist():
+        words = _line_bytes(buf, starts, ends, line).split(b"#", 1)[0].split(None, 1)
+        if words and words[0] not in _OBJ_KEYWORDS:
+            unknown.append(line)
+    return np.array(unknown, dtype=np.int64)
 
 
 def parse_obj(data: bytes, label: str = "<obj>", *, fast: bool = True) -> ObjSoup:
@@ -115,8 +170,8 @@ def parse_obj(data: bytes, label: str = "<obj>", *, fast: bool = True) -> ObjSou
             tests use it as the reference).
 
     Raises:
-        DLFLError: ``label:line: ...`` for malformed ``v`` or ``f`` lines and
-            face indices out of range.
+        FileFormatError: ``label:line: ...`` for malformed ``v`` or ``f`` lines
+            and face indices out of range.
     """
     data = lf_line_ends(data.removeprefix(b"\xef\xbb\xbf"))  # a UTF-8 byte order mark
     if not data.endswith(b"\n"):
@@ -130,7 +185,13 @@ def parse_obj(data: bytes, label: str = "<obj>", *, fast: bool = True) -> ObjSou
     _parse_vectorized(buf, starts, ends, kinds, parsed, label)
     if parsed.errors:
         raise parsed.errors[0][1]  # the first bad line of the file, as a reader would
-    return parsed.soup(label)
+    soup = parsed.soup(label)
+    skipped = _not_understood(buf, starts, ends, kinds)
+    if len(skipped):
+        soup.skipped = skipped + 1
+        soup.first_skipped = _line_bytes(buf, starts, ends, int(skipped[0]))
+    soup.binary = b"\0" in data
+    return soup
 
 
 def _join_continued(data: bytes) -> bytes:
@@ -229,7 +290,7 @@ class _Parsed:
         else:
             before = np.repeat(np.searchsorted(v_lines, f_lines), counts)
             indices = _resolve_indices(raw, before, len(v_lines), offsets, f_lines, label)
-        return ObjSoup(positions, indices, offsets, f_lines + 1)
+        return ObjSoup(positions, indices, offsets, f_lines + 1, np.zeros(0, np.int64))
 
     def _vertices(self) -> tuple[np.ndarray, np.ndarray]:
         py_lines = np.array(sorted(self.py_vertices), dtype=np.int64)
@@ -283,11 +344,9 @@ def _resolve_indices(
         line = int(f_lines[np.searchsorted(offsets, c, side="right") - 1]) + 1
         value = int(raw[c])
         if value == 0:
-            raise DLFLError(f"{label}:{line}: vertex index 0 (OBJ indices start at 1)")
-        raise DLFLError(
-            f"{label}:{line}: vertex index {value} is out of range: "
-            f"{int(before[c])} vertices are defined before this line, {num_vertices} in all"
-        )
+            raise file_error(label, line, "vertex index 0 (OBJ indices start at 1)")
+        raise file_error(label, line, f"vertex index {value} is out of range: {int(before[c])} "
+                         f"vertices are defined before this line, {num_vertices} in all")
     return indices
 
 
@@ -348,10 +407,10 @@ def _parse_line(raw: bytes, line: int, label: str) -> tuple[str, list[float] | l
     if tokens[0] == b"v":
         numbers = b" ".join(tokens[1:]).replace(b",", b" ").split()
         if len(numbers) < 3:
-            raise DLFLError(f"{label}:{line}: a v line needs 3 coordinates, got {len(numbers)}")
+            raise file_error(label, line, f"a v line needs 3 coordinates, got {len(numbers)}")
         return "v", [_float(t, line, label) for t in numbers[:3]]
     if len(tokens) == 1:
-        raise DLFLError(f"{label}:{line}: empty face (an f line with no vertex indices)")
+        raise file_error(label, line, "empty face (an f line with no vertex indices)")
     return "f", [_index(t, line, label) for t in tokens[1:]]
 
 
@@ -361,9 +420,9 @@ def _float(token: bytes, line: int, label: str) -> float:
             raise ValueError(token)
         value = float(token)
     except ValueError:
-        raise DLFLError(f"{label}:{line}: bad number {show_token(token)}") from None
+        raise file_error(label, line, f"bad number {show_token(token)}") from None
     if not np.isfinite(value):
-        raise DLFLError(f"{label}:{line}: coordinate {show_token(token)} is not finite")
+        raise file_error(label, line, f"coordinate {show_token(token)} is not finite")
     return value
 
 
@@ -374,9 +433,9 @@ def _index(token: bytes, line: int, label: str) -> int:
             raise ValueError(head)
         value = int(head)
     except ValueError:
-        raise DLFLError(f"{label}:{line}: bad vertex index {show_token(token)}") from None
+        raise file_error(label, line, f"bad vertex index {show_token(token)}") from None
     if abs(value) >= 2**62:
-        raise DLFLError(f"{label}:{line}: vertex index {show_token(head)} is out of range")
+        raise file_error(label, line, f"vertex index {show_token(head)} is out of range")
     return value
 
 
