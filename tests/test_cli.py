@@ -224,3 +224,49 @@ def test_a_repair_while_loading_is_one_note_not_a_python_warning(tmp_path: Path,
     err = capsys.readouterr().err
     assert err.startswith("livemod: note: ") and "re-oriented 1 faces (line 9)" in err
     assert "DLFLRepairWarning" not in err and "livemod/" not in err.replace(str(tmp_path), "")
+
+
+def _livemod(args: list[str], cwd: Path) -> subprocess.CompletedProcess[str]:
+    return subprocess.run([sys.executable, "-m", "livemod", *args], cwd=cwd,
+                          capture_output=True, text=True, timeout=60, check=False)
+
+
+SKIPPED_NOTE = "livemod: note: odd.obj: ignored 1 line not understood: line 4 'hello world'\n"
+
+
+def test_info_convert_and_run_say_the_lines_a_reader_skipped(tmp_path: Path) -> None:
+    (tmp_path / "odd.obj").write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nhello world\nf 1 2 3\n")
+    (tmp_path / "pass.py").write_text("x = 1\n")
+    (tmp_path / "loads.py").write_text("load('odd.obj')\n")
+    info = _livemod(["info", "odd.obj"], tmp_path)
+    assert info.returncode == 0 and info.stderr == SKIPPED_NOTE
+    assert "Note : odd.obj: ignored 1 line not understood: line 4 'hello world'\n" in info.stdout
+    convert = _livemod(["convert", "odd.obj", "out.ply"], tmp_path)
+    assert convert.returncode == 0 and convert.stderr == SKIPPED_NOTE
+    run = _livemod(["run", "pass.py", "--mesh", "odd.obj", "-o", "out.obj"], tmp_path)
+    assert run.returncode == 0 and run.stderr == SKIPPED_NOTE
+    loads = _livemod(["run", "loads.py"], tmp_path)
+    assert loads.returncode == 0
+    assert loads.stderr == SKIPPED_NOTE.replace("odd.obj", str(tmp_path / "odd.obj"))
+
+
+def test_info_of_a_folder_says_it_is_a_folder(tmp_path: Path) -> None:
+    (tmp_path / "meshes").mkdir()
+    done = _livemod(["info", "meshes"], tmp_path)
+    assert (done.returncode, done.stderr) == (1, "livemod: error: meshes: is a folder, not a mesh file\n")
+
+
+def test_info_of_a_file_holding_no_geometry_names_the_line(tmp_path: Path) -> None:
+    (tmp_path / "g.stl").write_text("solid x\nthis is garbage\nendsolid x\n")
+    done = _livemod(["info", "g.stl"], tmp_path)
+    assert done.returncode == 1
+    assert done.stderr == ("livemod: error: g.stl:2: 'this' is not part of a facet (an ASCII "
+                           "STL file is 'solid NAME', facets, 'endsolid NAME')\n")
+
+
+def test_messages_quote_a_file_name_only_where_a_shell_needs_it(tmp_path: Path) -> None:
+    (tmp_path / "my mesh.obj").write_text("v 0 0 0\nv 1 x 0\n")
+    done = _livemod(["info", "my mesh.obj"], tmp_path)
+    assert done.stderr == "livemod: error: 'my mesh.obj':2: bad number 'x'\n"
+    done = _livemod(["info", "no such.obj"], tmp_path)
+    assert done.stderr == f"livemod: error: no file 'no such.obj' in {tmp_path}\n"

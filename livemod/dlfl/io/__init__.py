@@ -115,7 +115,8 @@ def open_mesh(name: str | os.PathLike[str], *, shape_name: str | None = None) ->
     where = f"no file {show_path(os.path.basename(path))} in {show_path(_folder_of(path))}"
     if os.path.splitext(shape)[1]:
         raise InvalidArgumentError(where)
-    raise InvalidArgumentError(f"{where}, and no built-in shape {show_path(shape)}; shapes: "
+    raise InvalidArgumentError(f"{where}, and no built-in shape "
+                               f"{show_path(os.path.basename(shape))}; shapes: "
                                f"{', '.join(SHAPES)}")
 
 
