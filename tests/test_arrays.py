@@ -154,3 +154,36 @@ def test_arrays_are_read_only_copies_that_later_edits_do_not_change():
     assert arrays.counts == (8, 12, 6)
     writable = np.array(arrays.positions)
     writable[0, 0] = 1.0  # a copy is the caller's own
+
+
+def test_fan_triangles_of_a_pentagon_start_at_its_head():
+    a = mesh_arrays(from_polygons([(0, 0, 0), (1, 0, 0), (1.5, 1, 0), (0.5, 1.6, 0), (-0.5, 1, 0)],
+                                  [(0, 1, 2, 3, 4)]))
+    corners, faces = a.fan_triangles()
+    assert corners.tolist() == [[0, 1, 2], [0, 2, 3], [0, 3, 4]]  # the hole face 1 gives none
+    assert faces.tolist() == [0, 0, 0] and corners.dtype == faces.dtype == np.int64
+
+
+def test_fan_triangles_leave_out_holes_two_gons_and_point_spheres():
+    m = from_polygons([(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (2, 2, 2), (3, 3, 3)],
+                      [(0, 1, 2, 3), (4, 5), (5, 4)])
+    m.create_vertex((9, 9, 9))
+    a = mesh_arrays(m)
+    corners, faces = a.fan_triangles()
+    drawn = ~a.face_hole & (a.face_sizes >= 3)
+    assert faces.tolist() == np.repeat(np.flatnonzero(drawn), a.face_sizes[drawn] - 2).tolist()
+    assert len(faces) == 2 and not a.face_hole[0] and a.face_hole.sum() == 1
+    assert corners.tolist() == [[0, 1, 2], [0, 2, 3]]  # the quad, from its head
+
+
+def test_fan_triangles_of_an_edited_torus_cover_each_face_once():
+    m = torus(5, 3)
+    m.insert_edge(0, 2)  # a triangle and a fresh face, laid out through the ring order
+    m.delete_edge(int(m.edge_ids()[3]))  # a hexagon
+    a = mesh_arrays(m)
+    corners, faces = a.fan_triangles()
+    assert np.bincount(faces, minlength=len(a.face_ids)).tolist() == (a.face_sizes - 2).tolist()
+    first = corners[:, 1] == corners[:, 0] + 1
+    last = corners[:, 2] == a.face_offsets[faces + 1] - 1
+    assert first.sum() == last.sum() == len(a.face_ids)  # one first and one last per face
+    validate(m)

@@ -89,6 +89,35 @@ class MeshArrays:
         sizes, written = self.face_sizes, self.face_is_surface
         return sizes[written], self.corner_vertex[np.repeat(written, sizes)]
 
+    def fan_triangles(self) -> tuple[np.ndarray, np.ndarray]:
+        """Every face that is not a hole, triangulated as a fan from its head corner.
+
+        A face of ``n >= 3`` corners gives ``n - 2`` triangles ``(head, head + k + 1,
+        head + k + 2)`` for ``k = 0 .. n - 3``, in face order; holes, 2-gons and
+        point-spheres give none. The renderer, picking and the STL writer all draw
+        these same triangles.
+
+        Returns:
+            ``(corners, faces)``: ``(T, 3)`` int64 dense corner indices of each
+            triangle and ``(T,)`` int64 dense index of its face. Its side from
+            corner 0 to corner 1 is an edge of the face when ``corners[:, 1] ==
+            corners[:, 0] + 1`` (the first triangle), from corner 2 to corner 0
+            when ``corners[:, 2]`` is the face's last corner (the last one).
+        """
+        sizes = self.face_sizes
+        count = np.where(self.face_hole, 0, np.maximum(sizes - 2, 0))
+        faces = np.repeat(np.arange(len(sizes), dtype=np.int64), count)
+        heads = self.face_offsets[:-1]
+        # triangle t of a face whose first triangle is number s has corner
+        # head + (t - s) + 1 second: one gather per triangle instead of two
+        second = np.arange(len(faces), dtype=np.int64)
+        second += (heads + 1 - (np.cumsum(count) - count))[faces]
+        corners = np.empty((len(faces), 3), dtype=np.int64)
+        corners[:, 0] = heads[faces]
+        corners[:, 1] = second
+        corners[:, 2] = second + 1
+        return corners, faces
+
     @property
     def corner_next(self) -> np.ndarray:
         """``(C,)`` int64 dense index of the next corner in the same face."""

@@ -84,24 +84,19 @@ class RenderGeometry:
 
 
 def fan_triangles(arrays: MeshArrays) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Triangulate every non-hole face as a fan from its first corner.
+    """The fans of :meth:`MeshArrays.fan_triangles` as the renderer draws them.
 
     Returns:
         ``(triangles (T, 3) uint32 vertex indices, triangle_face (T,) uint32,
         sides (T,) uint32)``: bit 0, 1, 2 of ``sides`` is set when side v0-v1, v1-v2,
-        v2-v0 is an edge of the face rather than a diagonal of the fan. Faces with
-        fewer than three corners give no triangle.
+        v2-v0 is an edge of the face rather than a diagonal of the fan.
     """
-    sizes = arrays.face_sizes
-    fan_counts = np.where(arrays.face_hole, 0, np.maximum(sizes - 2, 0))
-    face_of_tri = np.repeat(np.arange(len(sizes), dtype=np.int64), fan_counts)
-    first_tri = np.cumsum(fan_counts) - fan_counts
-    k = np.arange(len(face_of_tri), dtype=np.int64) - first_tri[face_of_tri]
-    base = arrays.face_offsets[:-1][face_of_tri]
-    cv = arrays.corner_vertex
-    tris = np.stack([cv[base], cv[base + k + 1], cv[base + k + 2]], axis=1)
-    sides = (2 | (k == 0) | ((k == fan_counts[face_of_tri] - 1) << 2)).astype(np.uint32)
-    return tris.astype(np.uint32), face_of_tri.astype(np.uint32), sides
+    corners, faces = arrays.fan_triangles()
+    first = corners[:, 1] == corners[:, 0] + 1
+    last = corners[:, 2] == arrays.face_offsets[faces + 1] - 1
+    sides = (2 | first | (last.astype(np.uint32) << 2)).astype(np.uint32)
+    triangles = arrays.corner_vertex[corners].astype(np.uint32)
+    return triangles, faces.astype(np.uint32), sides
 
 
 def vertex_normals(positions: np.ndarray, triangles: np.ndarray) -> np.ndarray:

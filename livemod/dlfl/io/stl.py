@@ -19,7 +19,7 @@ from collections.abc import Callable
 import numpy as np
 
 from ..analysis import face_normals
-from ..arrays import MeshArrays, mesh_arrays
+from ..arrays import mesh_arrays
 from ..build import from_polygons
 from ..errors import DLFLRepairWarning
 from ..mesh import Mesh
@@ -47,27 +47,12 @@ def write_stl(mesh: Mesh, path: str | os.PathLike[str]) -> None:
 def stl_bytes(mesh: Mesh) -> bytes:
     """The binary STL of ``mesh`` (see :func:`write_stl`)."""
     a = mesh_arrays(mesh)
-    tri_corners, tri_face = triangle_fans(a)
+    tri_corners, tri_face = a.fan_triangles()
     records = np.zeros(len(tri_face), dtype=_TRIANGLE)
     records["normal"] = face_normals(a)[tri_face]
     records["corners"] = a.positions[a.corner_vertex[tri_corners]]
     header = b"livemod binary STL".ljust(80, b" ")
     return header + np.uint32(len(records)).tobytes() + records.tobytes()
-
-
-def triangle_fans(a: MeshArrays) -> tuple[np.ndarray, np.ndarray]:
-    """Fan triangulation of the non-hole faces with 3 or more corners.
-
-    Returns:
-        ``(corners, faces)``: ``(T, 3)`` int64 dense corner indices (head,
-        k, k + 1) and ``(T,)`` int64 dense face index of each triangle.
-    """
-    sizes = a.face_sizes
-    count = np.where(a.face_hole | (sizes < 3), 0, sizes - 2)
-    faces = np.repeat(np.arange(len(sizes), dtype=np.int64), count)
-    k = np.arange(len(faces)) - np.repeat(np.cumsum(count) - count, count) + 1
-    head = a.face_offsets[faces]
-    return np.stack([head, head + k, head + k + 1], axis=1), faces
 
 
 def read_stl(source: str | os.PathLike[str] | bytes, *, name: str | None = None) -> Mesh:
