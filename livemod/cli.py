@@ -53,14 +53,14 @@ def build_parser() -> argparse.ArgumentParser:
 
 def _add_info(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("info", help="print counts, genus per component and face sizes of a mesh")
-    p.add_argument("file", help="a .obj, .dlfl, .stl or .ply file, or a built-in shape name")
+    p.add_argument("file", help="a .obj, .dlfl, .stl, .ply or .off file, or a built-in shape name")
     p.set_defaults(handler=_info)
 
 
 def _add_convert(sub: argparse._SubParsersAction) -> None:
-    p = sub.add_parser("convert", help="convert between .obj, .dlfl, .stl and .ply")
-    p.add_argument("input", help="a .obj, .dlfl, .stl or .ply file")
-    p.add_argument("output", help="a .obj, .dlfl, .stl or .ply file (written atomically)")
+    p = sub.add_parser("convert", help="convert between .obj, .dlfl, .stl, .ply and .off, or to .glb, .gltf or .3mf")
+    p.add_argument("input", help="a .obj, .dlfl, .stl, .ply or .off file")
+    p.add_argument("output", help="a .obj, .dlfl, .stl, .ply, .off, .glb, .gltf or .3mf file (written atomically)")
     p.set_defaults(handler=_convert)
 
 

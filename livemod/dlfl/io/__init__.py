@@ -1,4 +1,5 @@
-"""File formats: OBJ, TopMod's .dlfl, STL (binary and ASCII) and PLY, read and written.
+"""File formats: OBJ, TopMod's .dlfl, STL (binary and ASCII), PLY and OFF, read and
+written; glTF 2.0 (``.gltf``/``.glb``) and 3MF written.
 
 :func:`load_mesh` and :func:`save_mesh` choose the format from the file
 extension (or ``format=``). Every writer replaces its target atomically (see
@@ -10,29 +11,32 @@ from __future__ import annotations
 
 import errno
 import os
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Mapping, Sequence
 
 from ..errors import InvalidArgumentError
 from ..mesh import Mesh
 from .atomic import atomic_write, write_atomically
 from .dlflfile import read_dlfl, write_dlfl
+from .gltf import write_gltf
 from .obj import read_obj, write_obj
+from .off import read_off, write_off
 from .ply import read_ply, write_ply
 from .source import show_path
 from .stl import read_stl, write_stl
+from .threemf import write_3mf
 
 __all__ = [
-    "atomic_write", "load_mesh", "open_mesh", "read_dlfl", "read_obj", "read_ply", "read_stl",
-    "save_mesh",
-    "write_dlfl",
-    "write_atomically", "write_obj", "write_ply", "write_stl",
+    "atomic_write", "load_mesh", "open_mesh", "read_dlfl", "read_obj", "read_off", "read_ply",
+    "read_stl", "save_mesh", "save_objects", "write_3mf", "write_atomically", "write_dlfl", "write_gltf",
+    "write_obj", "write_off", "write_ply", "write_stl",
 ]
 
 READERS: dict[str, Callable[[str], Mesh]] = {
-    "obj": read_obj, "dlfl": read_dlfl, "stl": read_stl, "ply": read_ply,
+    "obj": read_obj, "dlfl": read_dlfl, "stl": read_stl, "ply": read_ply, "off": read_off,
 }
 WRITERS: dict[str, Callable[[Mesh, str], None]] = {
-    "obj": write_obj, "dlfl": write_dlfl, "stl": write_stl, "ply": write_ply,
+    "obj": write_obj, "dlfl": write_dlfl, "stl": write_stl, "ply": write_ply, "off": write_off,
+    "glb": write_gltf, "gltf": write_gltf, "3mf": write_3mf,
 }
 
 
@@ -52,12 +56,12 @@ def _format_of(path: str, format: str | None, table: Mapping[str, object], verb:
 
 
 def load_mesh(path: str | os.PathLike[str], *, format: str | None = None) -> Mesh:  # noqa: A002
-    """Read a mesh from an ``.obj``, ``.dlfl``, ``.stl`` or ``.ply`` file.
+    """Read a mesh from an ``.obj``, ``.dlfl``, ``.stl``, ``.ply`` or ``.off`` file.
 
     Args:
         path: the file.
-        format: ``"obj"``, ``"dlfl"``, ``"stl"`` or ``"ply"`` to override the
-            extension.
+        format: ``"obj"``, ``"dlfl"``, ``"stl"``, ``"ply"`` or ``"off"`` to
+            override the extension.
 
     Raises:
         InvalidArgumentError: an unknown format.
@@ -72,12 +76,13 @@ def load_mesh(path: str | os.PathLike[str], *, format: str | None = None) -> Mes
 
 
 def save_mesh(mesh: Mesh, path: str | os.PathLike[str], *, format: str | None = None) -> None:  # noqa: A002
-    """Write a mesh as ``.obj``, ``.dlfl``, ``.stl`` or ``.ply``, atomically.
+    """Write a mesh as ``.obj``, ``.dlfl``, ``.stl``, ``.ply``, ``.off``, ``.glb``,
+    ``.gltf`` (with a ``.bin`` beside it) or ``.3mf``, atomically.
 
     Args:
         mesh: the mesh.
         path: the target file; an existing file is replaced only on success.
-        format: ``"obj"``, ``"dlfl"``, ``"stl"`` or ``"ply"`` to override the
+        format: one of those extensions, without its dot, to override the
             extension.
 
     Raises:
@@ -86,6 +91,38 @@ def save_mesh(mesh: Mesh, path: str | os.PathLike[str], *, format: str | None = 
     """
     name = os.fspath(path)
     WRITERS[_format_of(name, format, WRITERS, "write")](mesh, name)
+
+
+# the formats that keep a scene's objects apart: one node or object each
+SCENE_WRITERS: dict[str, Callable[[Sequence[tuple[str, Mesh]], str], None]] = {
+    "glb": write_gltf, "gltf": write_gltf, "3mf": write_3mf,
+}
+
+
+def save_objects(objects: Sequence[tuple[str, Mesh]], path: str | os.PathLike[str], *,
+                 format: str | None = None) -> None:  # noqa: A002
+    """Write a scene's objects: glTF gives each a node and 3MF an object, under its
+    name; the other formats hold one mesh, so the objects are joined into one
+    (each a component).
+
+    Args:
+        objects: ``(name, mesh)`` pairs, at least one.
+        path, format: as for :func:`save_mesh`.
+
+    Raises:
+        InvalidArgumentError: an unknown format, or no object.
+        OSError: the file cannot be written.
+    """
+    name = os.fspath(path)
+    key = _format_of(name, format, WRITERS, "write")
+    if not objects:
+        raise InvalidArgumentError(f"cannot write {show_path(name)}: no object")
+    if key in SCENE_WRITERS:
+        SCENE_WRITERS[key](list(objects), name)
+        return
+    from ..build import join_meshes
+
+    WRITERS[key](join_meshes([mesh for _, mesh in objects]), name)
 
 
 def open_mesh(name: str | os.PathLike[str], *, shape_name: str | None = None) -> Mesh:

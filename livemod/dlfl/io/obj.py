@@ -478,7 +478,8 @@ def obj_pieces(mesh: Mesh) -> Iterator[bytes]:
 
 
 def vertex_lines(positions: np.ndarray, keyword: bytes) -> Iterator[bytes]:
-    """Lines ``keyword x y z`` with coordinates that parse back to the same bits,
+    """Lines ``keyword x y z`` (``x y z`` for an empty keyword) with coordinates
+    that parse back to the same bits,
     ``_LINES_PER_PASS`` lines a piece (``(V, 3)`` float64 ``positions``), the
     pieces formatted a few ahead on other threads."""
     return map_in_order(lambda chunk: _vertex_pass(chunk, keyword), _passes(positions))
@@ -486,8 +487,9 @@ def vertex_lines(positions: np.ndarray, keyword: bytes) -> Iterator[bytes]:
 
 def _vertex_pass(positions: np.ndarray, keyword: bytes) -> bytes:
     fields = format_floats(positions.ravel()).reshape(len(positions), 3, -1)
+    lead = [keyword + b" "] if keyword else []  # OFF's lines have no keyword
     return join_columns(len(positions), [
-        keyword + b" ", fields[:, 0], b" ", fields[:, 1], b" ", fields[:, 2], b"\n",
+        *lead, fields[:, 0], b" ", fields[:, 1], b" ", fields[:, 2], b"\n",
     ])
 
 
@@ -514,6 +516,8 @@ def _index_pass(values: np.ndarray, sizes: np.ndarray, keyword: bytes) -> bytes:
     firsts = np.cumsum(sizes) - sizes
     cells[firsts, : len(kw)] = kw
     cells[:, len(kw)] = ord(" ")
+    if not keyword:  # OFF's lines have none: no blank before the first value either
+        cells[firsts, 0] = 0
     cells[:, len(kw) + 1 : -1] = digits
     cells[firsts + sizes - 1, -1] = ord("\n")
     flat = cells.ravel()
