@@ -3,7 +3,7 @@
 Each object is one node with one mesh of one triangle primitive: the drawn
 faces (not holes, three corners or more) as fans from their head corners, a
 vertex per face corner (so a face's normal and colour stay its own), with
-``POSITION``, ``NORMAL`` (the face's normal by default, the vertex's averaged
+``POSITION``, ``NORMAL`` (the face's normal by default, the vertex's area-weighted
 normal with ``smooth=True``), optional ``COLOR_0`` (the face's colour) and
 ``uint32`` indices. The buffers are written with whole-array numpy steps: a
 1,000,000-quad mesh is about 120 MB of buffer.
@@ -18,7 +18,6 @@ from collections.abc import Iterator
 
 import numpy as np
 
-from ..analysis import face_normals, vertex_normals
 from ._scene_out import Objects, Part, parts
 from .atomic import write_atomically
 
@@ -108,12 +107,49 @@ def _vertex_arrays(part: Part, smooth: bool) -> Iterator[tuple[str, np.ndarray]]
     a = part.arrays
     vertex_of = a.corner_vertex[part.corners]
     yield "POSITION", a.positions[vertex_of].astype("<f4")
-    normals = vertex_normals(a)[vertex_of] if smooth else face_normals(a)[a.corner_face[part.corners]]
-    normals = normals.astype("<f4")
-    normals[~normals.any(axis=1)] = (0.0, 0.0, 1.0)  # a zero-area face: any unit vector
-    yield "NORMAL", normals
+    yield "NORMAL", _normals(part, vertex_of, smooth)
     if part.rgba is not None:
         yield "COLOR_0", part.rgba[a.corner_face[part.corners]]
+
+
+def _normals(part: Part, vertex_of: np.ndarray, smooth: bool) -> np.ndarray:
+    """``(K, 3)`` float32 unit normal of each written vertex: its face's vector area
+    (the sum of the face's fan triangles' area vectors) made unit, or with
+    ``smooth`` the sum of the vector areas of the faces round its vertex. A zero
+    sum (no area) gets +z: glTF asks for unit normals."""
+    p = part.arrays.positions
+    tri = vertex_of[part.triangles]
+    u, v = p[tri[:, 1]] - p[tri[:, 0]], p[tri[:, 2]] - p[tri[:, 0]]
+    with np.errstate(invalid="ignore", over="ignore"):
+        area = np.stack([u[:, 1] * v[:, 2] - u[:, 2] * v[:, 1],
+                         u[:, 2] * v[:, 0] - u[:, 0] * v[:, 2],
+                         u[:, 0] * v[:, 1] - u[:, 1] * v[:, 0]], axis=1)
+    area[~np.isfinite(area).all(axis=1)] = 0.0
+    # the written faces in order: each triangle's, and each written vertex's (corner's)
+    face_of_triangle = _runs(part.faces)
+    face_of_corner = _runs(part.arrays.corner_face[part.corners])
+    faces = _sum_rows(face_of_triangle, area, int(face_of_corner[-1]) + 1 if len(tri) else 0)
+    if smooth:
+        return _unit(_sum_rows(vertex_of, faces[face_of_corner], len(p)))[vertex_of]
+    return _unit(faces)[face_of_corner]
+
+
+def _runs(keys: np.ndarray) -> np.ndarray:
+    """``(N,)`` int64: the number of the run of equal ``keys`` each belongs to."""
+    return np.cumsum(np.r_[True, keys[1:] != keys[:-1]]) - 1
+
+
+def _sum_rows(owner: np.ndarray, rows: np.ndarray, count: int) -> np.ndarray:
+    """``(count, 3)`` sums of the ``(N, 3)`` rows by their ``(N,)`` owner."""
+    return np.stack([np.bincount(owner, rows[:, k], minlength=count) for k in range(3)], axis=1)
+
+
+def _unit(vectors: np.ndarray) -> np.ndarray:
+    """``vectors`` made unit as float32; +z where one is zero."""
+    length = np.linalg.norm(vectors, axis=1, keepdims=True)
+    unit = np.divide(vectors, length, out=np.zeros_like(vectors), where=length > 0)
+    unit[(length == 0).ravel()] = (0.0, 0.0, 1.0)
+    return unit.astype("<f4")
 
 
 _TYPES = {1: "SCALAR", 3: "VEC3", 4: "VEC4"}
