@@ -1,4 +1,4 @@
-"""Long fuzz run of every reader: mutated valid files, at real and small boundaries.
+"""Long fuzz run of every reader (OBJ, .dlfl, STL, PLY, OFF): mutated valid files, at real and small boundaries.
 
 Plain script (not a test; tests/test_io_adversarial.py runs the same on a small
 budget in CI):
@@ -11,7 +11,8 @@ pass sizes made small. A crash is any exception other than the project's
 errors (DLFLError and its subclasses); a mesh that reads must validate; a hang
 is a read that takes longer than --hang seconds. Prints how many inputs were
 tried, crashes and hangs per format, and writes each failing input to
-fuzz/failures/ so it can be replayed. Exits 1 if anything failed.
+livemod-fuzz-failures/ in the system's temporary folder, to be replayed.
+Exits 1 if anything failed.
 """
 
 from __future__ import annotations
@@ -20,6 +21,7 @@ import argparse
 import random
 import signal
 import sys
+import tempfile
 import time
 import traceback
 import warnings
@@ -79,7 +81,7 @@ def main() -> int:
     warnings.simplefilter("error", RuntimeWarning)  # an unchecked overflow is a crash too
     rng = random.Random(args.seed)
     outcomes: dict[str, Counter[str]] = {name: Counter() for name in FORMATS}
-    failures = ROOT / "fuzz" / "failures"
+    failures = Path(tempfile.gettempdir()) / "livemod-fuzz-failures"
     deadline, tried = time.monotonic() + args.seconds, 0
     while time.monotonic() < deadline:
         name = rng.choice(sorted(FORMATS))

@@ -18,8 +18,9 @@ from collections.abc import Callable
 import numpy as np
 
 from livemod.dlfl import DLFLRepairWarning, Mesh, from_polygons, mesh_arrays
-from livemod.dlfl.io import read_dlfl, read_obj, read_ply, read_stl
+from livemod.dlfl.io import read_dlfl, read_obj, read_off, read_ply, read_stl
 from livemod.dlfl.io.dlflfile import dlfl_bytes
+from livemod.dlfl.io.off import off_bytes
 
 Rng = random.Random
 
@@ -198,6 +199,7 @@ FORMATS: dict[str, tuple[Callable[[Mesh, Rng], bytes], Callable[[bytes], Mesh]]]
     "ply-ascii": (lambda m, r: ply_ascii_text(m, r), read_ply),
     "ply-binary-le": (lambda m, r: ply_binary_bytes(m, "<"), read_ply),
     "ply-binary-be": (lambda m, r: ply_binary_bytes(m, ">"), read_ply),
+    "off": (lambda m, r: off_bytes(m), read_off),
 }
 
 

@@ -75,6 +75,8 @@ def test_comments_blank_lines_counts_on_the_header_line_and_coff() -> None:
     (b"OFF\n3 1 0\n0 0 0\n1 y 0\n0 1 0\n3 0 1 2\n", 4, "bad number 'y'"),
     (b"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 5\n", 6, "vertex index 5 is out of range"),
     (b"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n4 0 1 2\n", 6, "the face says 4 corners but lists 3"),
+    (b"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 " + b"9" * 30 + b"\n", 6,
+     "vertex index '999999999999999999999999999999' is out of range"),
 ])
 def test_errors_name_the_file_and_line(data: bytes, line: int, what: str) -> None:
     with pytest.raises(FileFormatError) as caught:

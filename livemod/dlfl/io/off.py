@@ -243,4 +243,9 @@ def _python_face(buf: np.ndarray, starts: np.ndarray, ends: np.ndarray, line: in
     if len(numbers) < numbers[0] + 1:
         raise file_error(label, line + 1, f"the face says {numbers[0]} corners but lists "
                          f"{len(numbers) - 1} whole numbers")
-    return numbers[1 : numbers[0] + 1]
+    face = numbers[1 : numbers[0] + 1]
+    huge = [i for i in face if abs(i) >= 2**62]  # past int64: no vertex has such an index
+    if huge:
+        raise file_error(label, line + 1,
+                         f"vertex index {show_token(str(huge[0]).encode())} is out of range")
+    return face
