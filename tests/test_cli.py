@@ -117,8 +117,8 @@ def test_convert_checks_the_output_before_reading_and_makes_its_folder(tmp_path,
     assert capsys.readouterr().err == (f"livemod: error: cannot write {target}: "
                                        f"{tmp_path / 'file'} is a file, not a folder\n")
     assert main(["convert", "cube", str(tmp_path / "c.txt")]) == 2
-    assert capsys.readouterr().err == (f"livemod: error: output '{tmp_path / 'c.txt'}' must end "
-                                       "with one of .obj, .dlfl, .stl, .ply\n")
+    assert capsys.readouterr().err == (f"livemod: error: output {tmp_path / 'c.txt'} must end "
+                                       "with one of .obj, .dlfl, .stl, .ply, .off, .glb, .gltf, .3mf\n")
     assert main(["convert", "cube", str(tmp_path / "new" / "c.stl")]) == 0
     assert (tmp_path / "new" / "c.stl").exists()
 

@@ -63,8 +63,8 @@ def test_a_missing_script_exits_1_and_an_output_no_writer_takes_2(capsys, tmp_pa
     assert capsys.readouterr().err == (f"livemod: error: cannot read {missing}: "
                                        "No such file or directory\n")
     assert cli.main(["run", RING, "-o", str(tmp_path / "x.txt")]) == 2
-    assert capsys.readouterr().err == (f"livemod: error: output '{tmp_path / 'x.txt'}' must "
-                                       "end with one of .obj, .dlfl, .stl, .ply\n")
+    assert capsys.readouterr().err == (f"livemod: error: output {tmp_path / 'x.txt'} must "
+                                       "end with one of .obj, .dlfl, .stl, .ply, .off, .glb, .gltf, .3mf\n")
 
 
 def test_run_with_params_seed_and_output(tmp_path, capsys):
@@ -238,8 +238,8 @@ def test_batch_checks_every_output_and_the_index_before_any_variant_runs(tmp_pat
     (tmp_path / "file").write_text("")
     pattern = str(tmp_path / "out" / "{n}.txt")
     assert cli.main(["batch", script, "--param", "n=0:1:2", "-o", pattern, "-j", "1"]) == 2
-    assert capsys.readouterr().err == (f"livemod: error: output '{tmp_path / 'out' / '0.txt'}' "
-                                       "must end with one of .obj, .dlfl, .stl, .ply\n")
+    assert capsys.readouterr().err == (f"livemod: error: output {tmp_path / 'out' / '0.txt'} "
+                                       "must end with one of .obj, .dlfl, .stl, .ply, .off, .glb, .gltf, .3mf\n")
     into_a_file = str(tmp_path / "file" / "{n}.obj")
     assert cli.main(["batch", script, "--param", "n=0:1:2", "-o", into_a_file]) == 1
     assert capsys.readouterr().err == (f"livemod: error: cannot write {tmp_path / 'file' / '0.obj'}"

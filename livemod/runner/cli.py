@@ -29,6 +29,7 @@ from livemod.commandline import (
 )
 from livemod.dlfl.analysis import summarize
 from livemod.dlfl.io import WRITERS
+from livemod.dlfl.io.source import show_path
 from livemod.dlfl.scene import Selection
 
 from . import declarations
@@ -193,7 +194,8 @@ def check_mesh_output(path: str | None) -> None:
         UsageError: ``path`` does not end with a suffix of ``OUTPUT_SUFFIXES``.
     """
     if path is not None and not path.lower().endswith(OUTPUT_SUFFIXES):
-        raise UsageError(f"output {path!r} must end with one of {', '.join(OUTPUT_SUFFIXES)}")
+        raise UsageError(f"output {show_path(path)} must end with one of "
+                         f"{', '.join(OUTPUT_SUFFIXES)}")
 
 
 def check_run_files(script: str, mesh: str | None, output: str | None) -> None:
