@@ -125,6 +125,53 @@ def text_width(atlas: GlyphAtlas, line: str) -> float:
     return _glyph_positions(atlas, line)[-1][0]
 
 
+def wrap_line(atlas: GlyphAtlas, line: str, width: float, indent: str = "    ") -> list[str]:
+    """``line`` broken into lines no wider than ``width`` pixels: at spaces, and
+    inside a word only when the word alone is wider. Lines after the first start
+    with ``indent`` (a continuation is told from a new line). A line that fits is
+    returned as it is, spaces and all.
+
+    Returns:
+        At least one line; each fits ``width`` unless not even one character of
+        it does (a window narrower than a glyph).
+    """
+    if text_width(atlas, line) <= width:
+        return [line]
+    words = line.split(" ")
+    lines: list[str] = []
+    current = _cut_to_fit(atlas, words[0], width, indent, lines)
+    for word in words[1:]:
+        candidate = f"{current} {word}"
+        if text_width(atlas, candidate) <= width:
+            current = candidate
+        elif current.strip():
+            lines.append(current)
+            current = _cut_to_fit(atlas, indent + word, width, indent, lines)
+        else:  # only the leading spaces so far: keep them with the word
+            current = _cut_to_fit(atlas, candidate, width, indent, lines)
+    lines.append(current)
+    return lines
+
+
+def _cut_to_fit(atlas: GlyphAtlas, text: str, width: float, indent: str,
+                lines: list[str]) -> str:
+    """Append to ``lines`` the pieces of ``text`` too wide for one line, cut
+    anywhere; return the rest (which fits)."""
+    while text_width(atlas, text) > width and len(text) > len(indent) + 1:
+        cut = _fitting_prefix(atlas, text, width, len(indent) + 1)
+        lines.append(text[:cut])
+        text = indent + text[cut:]
+    return text
+
+
+def _fitting_prefix(atlas: GlyphAtlas, text: str, width: float, least: int) -> int:
+    """The length of the longest prefix of ``text`` no wider than ``width`` (at
+    least ``least`` characters, so that each cut makes progress)."""
+    edges = np.cumsum([float(atlas.advance[ord(c) if FIRST_CHAR <= ord(c) <= LAST_CHAR
+                                           else ord("?")]) for c in text])
+    return max(int(np.searchsorted(edges, width, side="right")), least)
+
+
 def layout_labels(atlas: GlyphAtlas, anchors: np.ndarray, ids: np.ndarray, kind: int,
                   selected: np.ndarray) -> np.ndarray:
     """Quads for numeric id labels centred on world ``anchors``, vectorized.
