@@ -378,15 +378,22 @@ def _watch(args: argparse.Namespace, params: dict[str, Any]) -> int:
 
 
 def _report(result: RunResult, output: str | None) -> None:
+    print(run_summary(result, output), flush=True,
+          file=sys.stderr if result.error is not None else sys.stdout)
+
+
+def run_summary(result: RunResult, output: str | None = None) -> str:
+    """The one line ``run --watch`` (and ``view``) prints for a run that ended:
+    ``run 3: ok, 12 steps, V=90 E=176 F=88, 0.020 s`` (with ``, wrote OUT`` when
+    ``output`` is given), or ``run 3: FILE:LINE: message`` for one that failed."""
     if result.error is not None:
-        print(f"run {result.run_id}: {result.error}", file=sys.stderr, flush=True)
-        return
+        return f"run {result.run_id}: {result.error}"
     v, e, f = result.arrays.counts if result.arrays is not None else (0, 0, 0)
     wrote = ""
     if output:
         wrote = f", wrote {output}" if result.arrays is not None else ", no mesh to write"
-    print(f"run {result.run_id}: {result.status}, {len(result.steps)} steps, "
-          f"V={v} E={e} F={f}, {result.elapsed:.3f} s{wrote}", flush=True)
+    return (f"run {result.run_id}: {result.status}, {len(result.steps)} steps, "
+            f"V={v} E={e} F={f}, {result.elapsed:.3f} s{wrote}")
 
 
 def cmd_batch(args: argparse.Namespace) -> int:
