@@ -221,11 +221,11 @@ def test_the_window_hud_says_the_volume_and_the_pick_cannot_be_measured(
         run_frames(viewer, until=lambda v: time.sleep(0.005) or time.monotonic() > deadline
                    or (v.result is not None and not v.waiting and v.result.status == "ok"))
         arrays = _cube({2: (np.nan, 0.0, 0.0)})
-        viewer._upload(arrays, None, None)
+        viewer.display.upload(arrays, None, None)
         vertex = int(arrays.vertex_ids[2])
         viewer.set_selection(Selection(vertices=(vertex,)))
         assert viewer.whole.wait(30) == WholeMesh(0, None, 1)
-        text = [line for line, _ in hud_lines(viewer._hud_info())]
+        text = [line for line, _ in hud_lines(viewer.view_state())]
         assert "V 8  E 12  F 6  genus 0  volume n/a, 1 vertex not finite" in text
         assert f"vertex {vertex}: valence 3, position not finite (nan, 0, 0)" in text
         assert not any("nan" in line and "not finite" not in line for line in text)

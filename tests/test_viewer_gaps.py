@@ -181,10 +181,10 @@ def test_the_window_frames_and_warns_about_a_mesh_with_nan(cube_script: Path) ->
     viewer = _viewer(cube_script)
     try:
         frames_until(viewer, _settled)
-        viewer._fit_bounds = None  # (fit on this upload)
-        viewer._upload(_cube_with({2: (np.nan, 0.0, 0.0)}), None, None)
+        viewer.display.fit_bounds = None  # (fit on this upload)
+        viewer.display.upload(_cube_with({2: (np.nan, 0.0, 0.0)}), None, None)
         assert np.isfinite(viewer.camera.eye()).all() and viewer.camera.distance > 1.0
-        text = [line for line, _ in hud_lines(viewer._hud_info())]
+        text = [line for line, _ in hud_lines(viewer.view_state())]
         assert "1 vertex not finite (NaN or inf): left out of the framing" in text
         run_frames(viewer, 1)
         assert _drawn(viewer.capture())[75, 100]
@@ -293,11 +293,11 @@ def test_closing_the_window_releases_the_renderer(cube_script: Path) -> None:
     try:
         frames_until(viewer, _settled)
         run_frames(viewer, 2)
-        objects = _gl_objects(viewer.renderer) + [viewer._frame[1]]
+        objects = _gl_objects(viewer.renderer) + [viewer.frames.kept[1]]
     finally:
         close_viewer(viewer)
     assert all(isinstance(obj.mglo, moderngl.InvalidObject) for obj in objects)
-    assert viewer.renderer._released and viewer._frame is None
+    assert viewer.renderer._released and viewer.frames.kept is None
 
 
 def test_the_frame_rate_counts_only_frames_drawn(cube_script: Path) -> None:
@@ -305,15 +305,15 @@ def test_the_frame_rate_counts_only_frames_drawn(cube_script: Path) -> None:
     try:
         frames_until(viewer, _settled)
         run_frames(viewer, 3)
-        counted = len(viewer.frame_times)
+        counted = len(viewer.frames.frame_times)
         run_frames(viewer, 20)  # nothing changes: no frame is drawn
-        assert not viewer.presented
-        assert len(viewer.frame_times) == counted
+        assert not viewer.frames.presented
+        assert len(viewer.frames.frame_times) == counted
         for _ in range(5):  # each turn of the view draws a frame
             viewer.camera.orbit(5.0, 0.0)
             run_frames(viewer, 1)
         run_frames(viewer, 1)  # (a drawn frame's time ends where the next turn starts)
-        assert len(viewer.frame_times) == counted + 5
+        assert len(viewer.frames.frame_times) == counted + 5
     finally:
         close_viewer(viewer)
 
@@ -378,8 +378,8 @@ def test_a_dropped_mesh_keeps_the_scripts_parameters(tmp_path: Path) -> None:
     viewer = _viewer(script, mesh_path=str(box), echo=echo)
     try:
         frames_until(viewer, _settled)
-        viewer.set_parameter("n", 1)
-        viewer._flush_parameters(force=True)
+        viewer.parameters.set("n", 1)
+        viewer.parameters.flush(force=True)
         frames_until(viewer, lambda v: _settled(v) and v.result.arrays.counts == (26, 48, 24))
         viewer.set_selection(Selection(faces=(int(viewer.result.arrays.face_ids[0]),)))
         viewer.open_path(str(tet))
@@ -387,7 +387,7 @@ def test_a_dropped_mesh_keeps_the_scripts_parameters(tmp_path: Path) -> None:
         frames_until(viewer, lambda v: _settled(v) and v.result.arrays.counts[0] != 26)
         # the tetrahedron subdivided once: the script ran with n = 1 on it
         assert viewer.result.arrays.counts == (14, 24, 12)
-        assert viewer.session.parameters == {"n": 1} and viewer.params.values == {"n": 1}
+        assert viewer.session.parameters == {"n": 1} and viewer.parameters.panel.values == {"n": 1}
         assert viewer.selection.is_empty()
         said = echo.getvalue()
         assert f"opened {tet.resolve()}" in said
@@ -409,13 +409,13 @@ def test_an_emptied_script_is_named_over_the_last_mesh(cube_script: Path) -> Non
         frames_until(viewer, _settled)
         cube_run = viewer.result.run_id
         cube_script.write_text("\n  \n")
-        frames_until(viewer, lambda v: v.empty_script is not None)
-        text = [line for line, _ in hud_lines(viewer._hud_info())]
+        frames_until(viewer, lambda v: v.runs.empty_script is not None)
+        text = [line for line, _ in hud_lines(viewer.view_state())]
         assert "box.py is empty: showing the last result" in text
         assert viewer.result.run_id == cube_run and viewer.result.arrays.counts == (8, 12, 6)
         cube_script.write_text("load('tetrahedron')\n")
         frames_until(viewer, lambda v: _settled(v) and v.result.arrays.counts == (4, 6, 4))
-        assert viewer.empty_script is None
-        assert not any("is empty" in line for line, _ in hud_lines(viewer._hud_info()))
+        assert viewer.runs.empty_script is None
+        assert not any("is empty" in line for line, _ in hud_lines(viewer.view_state()))
     finally:
         close_viewer(viewer)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
 from types import SimpleNamespace
 
 import numpy as np
@@ -23,8 +24,8 @@ from livemod.viewer.controls import (
 from livemod.viewer.geometry import build_geometry, decode_pick, fan_triangles
 from livemod.viewer.hud import hud_lines, run_state, step_line
 from livemod.viewer.measure import WholeMesh, WholeMeshMeasurer
-from livemod.viewer.renderer import Style
 from livemod.viewer.text import QUAD_FLOATS, WARN_TEXT, glyph_atlas, layout_labels
+from livemod.viewer.view_state import ViewState
 
 
 def test_fans_cover_every_face_and_skip_holes() -> None:
@@ -170,25 +171,24 @@ def test_hud_shows_state_counts_genus_and_step() -> None:
     assert run_state(_result("error", stale=True), False) == "error, stale"
     assert step_line(_result(step_index=1)) == "step 2/3: op1 (line 11)"
     assert step_line(_result()) == "step 3/3: op2 (line 12)"
-    info = {"script": "/x/tower.py", "result": _result(), "waiting": False,
-            "whole": WholeMesh(0, 8.0), "fps": 59.6, "pick_mode": "face",
-            "selection": ["faces(True) == (1,)"], "style": Style(), "ortho": False,
-            "playing": False, "hud": True, "help": False}
-    text = "\n".join(line for line, _ in hud_lines(info))
+    result = _result()
+    state = ViewState(script="/x/tower.py", result=result, arrays=result.arrays,
+                      whole=WholeMesh(0, 8.0), fps=59.6, selection=("faces(True) == (1,)",))
+    text = "\n".join(line for line, _ in hud_lines(state))
     for part in ("tower.py", "ok", "0.250 s", "V 8  E 12  F 6  genus 0  volume 8\n",
                  "step 3/3", "60 fps", "faces(True) == (1,)"):
         assert part in text
-    running = "\n".join(line for line, _ in hud_lines({**info, "working": 2.0}))
+    running = "\n".join(line for line, _ in hud_lines(replace(state, working=2.0)))
     assert "running... 2.0 s\n" in running and "0.250 s" not in running  # not the last run's
-    missing = hud_lines({**info, "missing": ["picked, not in this mesh: face 12"]})
+    missing = hud_lines(replace(state, missing=("picked, not in this mesh: face 12",)))
     assert ("picked, not in this mesh: face 12", WARN_TEXT) in missing
-    emptied = hud_lines({**info, "empty_script": "/x/tower.py"})
+    emptied = hud_lines(replace(state, empty_script="/x/tower.py"))
     assert ("tower.py is empty: showing the last result", WARN_TEXT) in emptied
-    hidden = "\n".join(line for line, _ in hud_lines({**info, "current_hidden": True}))
+    hidden = "\n".join(line for line, _ in hud_lines(replace(state, current_hidden=True)))
     assert "volume 8  (hidden: L lists it)" in hidden
     for whole, said in ((None, "genus ...\n"), (WholeMesh(1, None), "genus 1\n"),
                         (WholeMesh(0, -1.5), "genus 0  volume -1.5 (inside out)\n")):
-        assert said in "\n".join(line for line, _ in hud_lines({**info, "whole": whole}))
+        assert said in "\n".join(line for line, _ in hud_lines(replace(state, whole=whole)))
 
 
 def test_the_whole_mesh_is_measured_at_once_or_when_large_off_the_main_thread(
@@ -236,12 +236,10 @@ def test_a_background_measurement_that_fails_is_logged_and_says_nothing(
 def test_the_help_overlay_fits_the_window_in_columns() -> None:
     from livemod.viewer.hud import hud_quads
 
-    info = {"script": "/x/tower.py", "result": None, "waiting": True, "whole": None,
-            "fps": 0.0, "pick_mode": "face", "selection": [], "style": Style(),
-            "ortho": False, "playing": False, "hud": False, "help": True}
+    state = ViewState(script="/x/tower.py", waiting=True, hud=False, help=True)
     boxes = {}
     for height in (2000, 800, 400):
-        quads = hud_quads(info, (1200, height))
+        quads = hud_quads(replace(state, size=(1200, height)))
         assert quads[:, 0].min() >= 0 and (quads[:, 1] + quads[:, 6]).max() <= height
         boxes[height] = int((quads[:, 11] == 8).sum())  # one panel box per column
     assert boxes[2000] == 1 and boxes[800] == 2 and boxes[400] >= 3

@@ -42,12 +42,12 @@ def window(tmp_path: Path) -> Iterator[tuple[LiveViewer, io.StringIO]]:
 
 
 def _row_y(viewer: LiveViewer, row: int) -> float:
-    _, top, _, row_height = viewer.params.frame(viewer.wnd.fbo.size)
+    _, top, _, row_height = viewer.parameters.panel.frame(viewer.wnd.fbo.size)
     return top + 6 + (row + 1.5) * row_height
 
 
 def _slider_x(viewer: LiveViewer, fraction: float) -> float:
-    left, width, _ = viewer.params._control_x(viewer.wnd.fbo.size)
+    left, width, _ = viewer.parameters.panel._control_x(viewer.wnd.fbo.size)
     return left + fraction * width
 
 
@@ -58,24 +58,24 @@ def _vertices(viewer: LiveViewer) -> int:
 def test_a_dragged_slider_reruns_once_per_settled_value(window) -> None:
     viewer, _ = window
     _wait(viewer, _has_run(1))
-    assert [s.name for s in viewer.params.specs] == ["sides", "radius", "apex", "kind"]
+    assert [s.name for s in viewer.parameters.panel.specs] == ["sides", "radius", "apex", "kind"]
     assert _vertices(viewer) == 4
     y = _row_y(viewer, 0)
     viewer.on_mouse_press_event(_slider_x(viewer, 0.0), y, 1)
     for fraction in (0.2, 0.4, 0.6, 1.0):          # a quick drag: nothing re-runs yet
         viewer.on_mouse_drag_event(_slider_x(viewer, fraction), y, 5, 0)
-    assert viewer.params.values["sides"] == 12
-    assert viewer.parameter_runs == 0
-    _wait(viewer, lambda v: v.parameter_runs == 1)   # still held: the value settled
+    assert viewer.parameters.panel.values["sides"] == 12
+    assert viewer.parameters.runs_asked == 0
+    _wait(viewer, lambda v: v.parameters.runs_asked == 1)   # still held: the value settled
     _wait(viewer, lambda v: not v.waiting and v.result.values == (("sides", 12),))
     assert _vertices(viewer) == 12
     viewer.on_mouse_drag_event(_slider_x(viewer, 0.56), y, -5, 0)
     viewer.on_mouse_release_event(_slider_x(viewer, 0.56), y, 1)  # release: sent at once
-    assert viewer.parameter_runs == 2
+    assert viewer.parameters.runs_asked == 2
     _wait(viewer, lambda v: not v.waiting and v.result.values == (("sides", 8),))
     assert _vertices(viewer) == 8 and viewer.result.run_id <= 3
     assert viewer.selection.is_empty()                  # the drag never picked or orbited
-    assert max(viewer.frame_times) < 1.0                # no frame waited for a run
+    assert max(viewer.frames.frame_times) < 1.0                # no frame waited for a run
 
 
 def test_checkbox_choice_reset_hover_and_copy(window) -> None:
@@ -91,16 +91,16 @@ def test_checkbox_choice_reset_hover_and_copy(window) -> None:
     viewer.handle_key("C", ctrl=True)
     assert "apex = param('apex', True, doc='add a lone vertex above')" in echo.getvalue()
     assert "kind = param('kind', 'star', choices=['flat', 'star'])" in echo.getvalue()
-    plain = len(viewer.params.quads(size))
+    plain = len(viewer.parameters.panel.quads(size))
     viewer.on_mouse_position_event(_slider_x(viewer, 0.5), _row_y(viewer, 0), 0, 0)
-    assert viewer.params.hover == 0 and len(viewer.params.quads(size)) > plain   # the doc
-    _, reset_x = viewer.params._control_x(size)[1:]
+    assert viewer.parameters.panel.hover == 0 and len(viewer.parameters.panel.quads(size)) > plain   # the doc
+    _, reset_x = viewer.parameters.panel._control_x(size)[1:]
     viewer.on_mouse_press_event(reset_x + 4, _row_y(viewer, 2), 1)              # reset apex
     _wait(viewer, lambda v: not v.waiting and v.result.values == (("kind", "star"),))
-    x, top, width, _ = viewer.params.frame(size)
+    x, top, width, _ = viewer.parameters.panel.frame(size)
     viewer.on_mouse_press_event(x + width - 10, top + 8, 1)                     # reset all
     _wait(viewer, lambda v: not v.waiting and v.result.values == ())
-    assert _vertices(viewer) == 4 and viewer.params.values["kind"] == "flat"
+    assert _vertices(viewer) == 4 and viewer.parameters.panel.values["kind"] == "flat"
 
 
 def test_slider_values_snap_to_the_declaration() -> None:
@@ -130,8 +130,8 @@ def test_frames_keep_coming_while_the_panel_reruns(window) -> None:
         _wait(viewer, lambda v: True)
     viewer.on_mouse_release_event(_slider_x(viewer, 1.0), y, 1)
     _wait(viewer, lambda v: not v.waiting and v.result.values == (("radius", 3.0),))
-    assert viewer.parameter_runs <= 20 and time.perf_counter() - started < 30
-    assert max(viewer.frame_times) < 1.0
+    assert viewer.parameters.runs_asked <= 20 and time.perf_counter() - started < 30
+    assert max(viewer.frames.frame_times) < 1.0
 
 
 def _glfw_clipboard_probe(script_path: str) -> None:
@@ -143,7 +143,7 @@ def _glfw_clipboard_probe(script_path: str) -> None:
                                        samples=0, vsync=False, echo=io.StringIO()))
     try:
         _wait(viewer, _has_run(1))
-        viewer.set_parameter("sides", 6)
+        viewer.parameters.set("sides", 6)
         viewer.handle_key("C", ctrl=True)
         copied = glfw.get_clipboard_string(viewer.wnd._window)
         text = copied.decode() if isinstance(copied, bytes) else str(copied)

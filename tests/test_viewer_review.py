@@ -136,13 +136,13 @@ def test_a_dropped_script_starts_without_the_old_scripts_view_state(tmp_path: Pa
     try:
         frames_until(viewer, lambda v: v.result is not None and not v.waiting)
         viewer.handle_key("E")  # the failed run's mesh
-        assert viewer.show_partial
-        viewer.viewer_error = "an old failure"
+        assert viewer.display.show_partial
+        viewer.runs.viewer_error = "an old failure"
         second = tmp_path / "ok.py"
         second.write_text("load('cube')\n")
         viewer.open_path(str(second))
-        assert not viewer.show_partial and viewer.viewer_error is None
-        assert viewer.held is None and viewer._scrub_step is None and not viewer.playing
+        assert not viewer.display.show_partial and viewer.runs.viewer_error is None
+        assert viewer.stepping.held is None and viewer.stepping.scrub_step is None and not viewer.stepping.playing
     finally:
         close_viewer(viewer)
 

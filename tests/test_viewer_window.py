@@ -83,7 +83,7 @@ def _opened(script: Path, size: tuple[int, int], **options: Any) -> Iterator[Liv
 
 
 def _hud_text(viewer: LiveViewer) -> str:
-    return "\n".join(line for line, _ in hud_lines(viewer._hud_info()))
+    return "\n".join(line for line, _ in hud_lines(viewer.view_state()))
 
 
 @pytest.fixture
@@ -165,7 +165,7 @@ def test_a_result_the_window_cannot_show_is_reported_and_the_old_mesh_stays(
         monkeypatch.setattr(renderer_module, "build_geometry", broken)
         script.write_text("load('tetrahedron')\n")
         viewer.session.reload()
-        _wait(viewer, lambda v: v.viewer_error is not None)
+        _wait(viewer, lambda v: v.runs.viewer_error is not None)
         run_frames(viewer, 3)  # the window goes on drawing
         assert "the viewer could not show run 2: RuntimeError: GL said no" in echo.getvalue()
         assert "RuntimeError: GL said no" in _hud_text(viewer)
@@ -174,7 +174,7 @@ def test_a_result_the_window_cannot_show_is_reported_and_the_old_mesh_stays(
         monkeypatch.undo()
         viewer.session.reload()  # the next result that can be shown clears it
         _wait(viewer, _has_run(3))
-        assert viewer.viewer_error is None and viewer.renderer.arrays.counts == (4, 6, 4)
+        assert viewer.runs.viewer_error is None and viewer.renderer.arrays.counts == (4, 6, 4)
 
 def test_the_select_option_reaches_the_first_run(tmp_path: Path) -> None:
     script = tmp_path / "model.py"
@@ -217,7 +217,7 @@ def test_tab_shows_the_other_objects_one_at_a_time(tmp_path: Path) -> None:
         for _ in range(3):
             assert viewer.handle_key("TAB") == "cycle_others"
             run_frames(viewer, 1)
-            seen.append((viewer.hidden_others, viewer.renderer.others.counts))
+            seen.append((viewer.objects.hidden, viewer.renderer.others.counts))
         assert seen == [({1}, (4, 6, 4)), ({0}, (6, 12, 8)), (set(), (10, 18, 12))]
         assert np.array_equal(viewer.capture(), everything)  # all of them again
         viewer.handle_key("TAB")
@@ -226,11 +226,11 @@ def test_tab_shows_the_other_objects_one_at_a_time(tmp_path: Path) -> None:
         assert not np.array_equal(viewer.capture(), everything)
         viewer.handle_key("A")  # hidden, then Tab shows the next one
         viewer.handle_key("TAB")
-        assert viewer.style.others and viewer.hidden_others == {0}
+        assert viewer.style.others and viewer.objects.hidden == {0}
         script.write_text(script.read_text() + "kill(1)\n")  # the one shown goes away
         viewer.session.reload()
         _wait(viewer, _has_run(2))
-        assert not viewer.hidden_others and viewer.renderer.others.counts == (4, 6, 4)
+        assert not viewer.objects.hidden and viewer.renderer.others.counts == (4, 6, 4)
         assert "other objects: object 1 'octahedron' alone (of 2; Tab: next)" in echo.getvalue()
 
 
@@ -239,10 +239,10 @@ def _click_object_row(viewer: LiveViewer, line: int, part: str = "row") -> None:
     or the header's "all" / "none" button."""
     run_frames(viewer, 1)  # lays the list out below the parameters panel
     size = viewer.wnd.fbo.size
-    x, y, width, row_height = viewer.objects.frame(size)
+    x, y, width, row_height = viewer.objects.panel.frame(size)
     py = int(y + 6 + (line + 0.5) * row_height)
     px = x + 30 if part == "row" else next(  # the button's first pixel, as the panel lays it out
-        px for px in range(int(x), int(x + width)) if viewer.objects.hit(px, py, size).part == part)
+        px for px in range(int(x), int(x + width)) if viewer.objects.panel.hit(px, py, size).part == part)
     viewer.on_mouse_press_event(int(px), py, viewer.wnd.mouse.left)
     viewer.on_mouse_release_event(int(px), py, viewer.wnd.mouse.left)
     run_frames(viewer, 1)
@@ -253,18 +253,18 @@ def test_the_object_list_shows_and_hides_each_other_object(tmp_path: Path) -> No
     with _opened(script, (400, 300), echo=echo) as viewer:
         everything = viewer.capture()
         assert viewer.handle_key("L") == "toggle_object_list"
-        assert [row.text() for row in viewer.objects.rows] == [
+        assert [row.text() for row in viewer.objects.panel.rows] == [
             "0 tetrahedron   V 4  F 4", "1 octahedron   V 6  F 8",
             "2 cube   V 8  F 6  (current)"]
         _click_object_row(viewer, 1)  # untick the tetrahedron
-        assert viewer.hidden_others == {0} and viewer.renderer.others.counts == (6, 12, 8)
+        assert viewer.objects.hidden == {0} and viewer.renderer.others.counts == (6, 12, 8)
         assert "other objects: object 1 'octahedron' alone (of 2; Tab: next)" in _hud_text(viewer)
         assert not np.array_equal(viewer.capture(), everything)
         _click_object_row(viewer, 0, "none")
-        assert viewer.hidden_others == {0, 1} and viewer.renderer.others is None
+        assert viewer.objects.hidden == {0, 1} and viewer.renderer.others is None
         assert "other objects: 0 of 2 shown (L: list)" in _hud_text(viewer)
         _click_object_row(viewer, 0, "all")
-        assert not viewer.hidden_others and np.array_equal(viewer.capture(), everything)
+        assert not viewer.objects.hidden and np.array_equal(viewer.capture(), everything)
         _click_object_row(viewer, 3)  # the current object's row: hides it, then shows it
         _click_object_row(viewer, 3)
         assert "current object: hidden\ncurrent object: shown" in echo.getvalue()
@@ -273,7 +273,7 @@ def test_the_object_list_shows_and_hides_each_other_object(tmp_path: Path) -> No
         script.write_text(script.read_text() + "load('icosahedron')\n")
         viewer.session.reload()
         _wait(viewer, _has_run(2))
-        assert viewer.hidden_others == {1}  # still hidden; the new object is shown
+        assert viewer.objects.hidden == {1}  # still hidden; the new object is shown
         assert viewer.renderer.others.counts == (4 + 8, 6 + 12, 4 + 6)  # tetrahedron, cube
         assert "other objects: 2 of 3 shown (L: list)" in _hud_text(viewer)
 
@@ -284,17 +284,17 @@ def test_the_wheel_scrolls_the_object_list_and_zooms_elsewhere(tmp_path: Path) -
     with _opened(script, (400, 300)) as viewer:
         viewer.handle_key("L")
         run_frames(viewer, 1)
-        x, y, _, _ = viewer.objects.frame(viewer.wnd.fbo.size)
+        x, y, _, _ = viewer.objects.panel.frame(viewer.wnd.fbo.size)
         distance = viewer.camera.distance
         viewer.on_mouse_position_event(int(x + 30), int(y + 40), 0, 0)
-        assert viewer.objects.hover == 0  # the first object's row: highlighted
+        assert viewer.objects.panel.hover == 0  # the first object's row: highlighted
         viewer.on_mouse_scroll_event(0.0, -3.0)  # wheel down over the list: it scrolls
-        assert viewer.objects.shown_rows(viewer.wnd.fbo.size).start == 3
+        assert viewer.objects.panel.shown_rows(viewer.wnd.fbo.size).start == 3
         assert viewer.camera.distance == distance
         viewer.on_mouse_scroll_event(0.0, 1.0)
-        assert viewer.objects.shown_rows(viewer.wnd.fbo.size).start == 2
+        assert viewer.objects.panel.shown_rows(viewer.wnd.fbo.size).start == 2
         viewer.on_mouse_position_event(10, 290, 0, 0)  # off the list: the wheel zooms
-        assert viewer.objects.hover is None
+        assert viewer.objects.panel.hover is None
         viewer.on_mouse_scroll_event(0.0, 1.0)
         assert viewer.camera.distance != distance
         viewer.handle_key("L")  # the list closed: the wheel zooms over its place too
@@ -339,12 +339,12 @@ def test_keys_change_style_camera_and_pick_mode(headless) -> None:
     assert viewer.camera.pitch > 89
     assert not np.array_equal(viewer.capture(), first)
     viewer.handle_key("M")
-    assert viewer.pick_mode == "edge"
+    assert viewer.picking.mode == "edge"
     viewer.handle_key("C", shift=True)
-    assert viewer.pick_mode == "corner"
+    assert viewer.picking.mode == "corner"
     viewer.handle_key("H")
     run_frames(viewer, 2)
-    assert viewer.show_help
+    assert viewer.look.show_help
     before = viewer.capture()
     assert viewer.handle_key("X") == "toggle_grid" and viewer.style.grid
     assert not np.array_equal(viewer.capture(), before)
@@ -472,11 +472,11 @@ def test_playing_to_the_end_stops_playing(tmp_path: Path) -> None:
     script = tmp_path / "three.py"
     script.write_text(THREE_STEPS)
     with _opened(script, (200, 150)) as viewer:
-        assert viewer.handle_key("SPACE") == "play_pause" and viewer.playing
+        assert viewer.handle_key("SPACE") == "play_pause" and viewer.stepping.playing
         _wait(viewer, lambda v: v.result.run_id >= 2 and v.result.status == "ok")
-        assert not viewer.playing and "playing" not in _hud_text(viewer)
+        assert not viewer.stepping.playing and "playing" not in _hud_text(viewer)
         viewer.handle_key("SPACE")  # plays again, from the first step
-        assert viewer.playing
+        assert viewer.stepping.playing
         _wait(viewer, lambda v: v.result.run_id >= 3 and v.result.status == "paused")
 
 
@@ -485,11 +485,11 @@ def test_a_syntax_error_has_no_steps_to_scrub(tmp_path: Path) -> None:
     script.write_text(THREE_STEPS)
     echo = io.StringIO()
     with _opened(script, (300, 200), echo=echo) as viewer:
-        assert viewer._timeline_shown()
+        assert viewer.overlay.timeline_shown()
         script.write_text(THREE_STEPS + "x = (\n")
         viewer.handle_key("R")
         _wait(viewer, lambda v: v.result.status == "error" and not v.waiting)
-        assert "no steps" in _hud_text(viewer) and not viewer._timeline_shown()
+        assert "no steps" in _hud_text(viewer) and not viewer.overlay.timeline_shown()
         for key in ("LEFT", "RIGHT", "HOME"):
             _pressed(viewer, key)
             assert not viewer.waiting and "error, stale" in _hud_text(viewer), key
@@ -497,17 +497,17 @@ def test_a_syntax_error_has_no_steps_to_scrub(tmp_path: Path) -> None:
         script.write_text(THREE_STEPS + "raise ValueError('no')\n")  # fails after 3 steps
         viewer.handle_key("R")
         _wait(viewer, lambda v: v.result.status == "error" and v.result.steps and not v.waiting)
-        assert viewer._steps() == 3 and viewer._timeline_shown()
+        assert viewer.runs.steps() == 3 and viewer.overlay.timeline_shown()
 
 
 def _press_timeline(viewer: LiveViewer, step: int, drag_to: int | None = None) -> None:
     """Click the timeline at ``step`` (or press there and drag to ``drag_to``)."""
     size = viewer.wnd.fbo.size
-    _, y, width, height = viewer.timeline.frame(size)
-    total = viewer._steps()
+    _, y, width, height = viewer.overlay.timeline.frame(size)
+    total = viewer.runs.steps()
 
     def x_of(k: int) -> int:  # the first pixel whose step is k
-        return next(px for px in range(size[0]) if viewer.timeline.step_at(px, size, total) == k)
+        return next(px for px in range(size[0]) if viewer.overlay.timeline.step_at(px, size, total) == k)
 
     py = int(y + height - 8)
     viewer.on_mouse_press_event(x_of(step), py, viewer.wnd.mouse.left)
@@ -526,7 +526,7 @@ def test_the_timeline_scrubs_through_the_steps(tmp_path: Path) -> None:
     script = tmp_path / "ten.py"
     script.write_text("for i in range(10):\n    createVertex((i, 0, 0))\n")
     with _opened(script, (400, 300)) as viewer:
-        assert viewer._steps() == 10 and viewer._timeline_shown()
+        assert viewer.runs.steps() == 10 and viewer.overlay.timeline_shown()
         _press_timeline(viewer, 3)
         _wait(viewer, _at_step(3))
         assert viewer.result.arrays.counts[0] == 4  # the mesh after the fourth step
@@ -681,7 +681,7 @@ def _glfw_resize_probe(script_path: str) -> None:
                 glfw.poll_events()
                 time.sleep(0.01)
             run_frames(viewer, 2)
-            viewer._presented_at = 0.0  # put the frame up again: read it before a swap
+            viewer.frames.presented_at = 0.0  # put the frame up again: read it before a swap
             viewer.on_render(0.0, 0.0)
             raw = viewer.ctx.screen.read(viewport=(0, 0, width, height), components=3,
                                          alignment=1)
@@ -783,14 +783,14 @@ def test_an_unchanged_frame_is_copied_not_drawn_again(headless) -> None:
     kept = _screen(viewer).copy()
     run_frames(viewer, 5)
     assert drawn[0] == 0 and np.array_equal(_screen(viewer), kept)
-    assert not viewer.presented  # nothing new: the loop need not swap
-    viewer._presented_at -= 1.0  # half a second later it is put up again
+    assert not viewer.frames.presented  # nothing new: the loop need not swap
+    viewer.frames.presented_at -= 1.0  # half a second later it is put up again
     run_frames(viewer, 1)
-    assert viewer.presented and drawn[0] == 0  # copied, not drawn
-    viewer.keep_frames = False  # drawn directly, the same picture
+    assert viewer.frames.presented and drawn[0] == 0  # copied, not drawn
+    viewer.frames.keep_frames = False  # drawn directly, the same picture
     run_frames(viewer, 1)
     assert drawn[0] == 1 and np.array_equal(_screen(viewer), kept)
-    viewer.keep_frames = True
+    viewer.frames.keep_frames = True
     for change in (lambda: viewer.camera.orbit(10.0, 0.0), lambda: viewer.handle_key("W"),
                    lambda: viewer.click(160, 120)):
         before = drawn[0]
@@ -820,11 +820,11 @@ def test_a_screen_that_refuses_the_copy_is_drawn_every_frame(headless) -> None:
         def __getattr__(self, name: str) -> Any:
             return getattr(self._ctx, name)
 
-    viewer._frame = None  # the next frame makes a new target, and checks the copy
-    viewer.ctx = RefusingContext(viewer.ctx)  # type: ignore[assignment]
+    viewer.frames.kept = None  # the next frame makes a new target, and checks the copy
+    viewer.frames.ctx = RefusingContext(viewer.frames.ctx)
     drawn = _count_draws(viewer)
     run_frames(viewer, 3)
-    assert not viewer.keep_frames
+    assert not viewer.frames.keep_frames
     assert drawn[0] == 1 + 3  # into the kept frame once, then straight to the screen
 
 
@@ -856,13 +856,13 @@ def test_a_run_a_save_starts_shows_running_over_the_last_result(tmp_path: Path) 
         assert "running" not in _hud_text(viewer)
         time.sleep(0.05)
         script.write_text(SLOW_SAVE)  # saved in an editor: no key, the window waits for nothing
-        _wait(viewer, lambda v: v.activity is not None)
-        assert not viewer.waiting and viewer.activity.run_id == 2
+        _wait(viewer, lambda v: v.runs.activity is not None)
+        assert not viewer.waiting and viewer.runs.activity.run_id == 2
         assert "running... " in _hud_text(viewer)
         assert viewer.renderer.arrays is shown  # over the last good mesh
         _wait(viewer, lambda v: "running... 0.5 s" in _hud_text(v))  # the time goes on
         _wait(viewer, _has_run(2))
-        assert viewer.activity is None and "running" not in _hud_text(viewer)
+        assert viewer.runs.activity is None and "running" not in _hud_text(viewer)
         assert viewer.renderer.arrays.counts == (4, 6, 4)
 
 
@@ -884,10 +884,10 @@ def test_a_finished_run_the_session_still_reports_is_not_running(headless) -> No
     viewer.session = Reporting()
     try:
         run_frames(viewer, 1)
-        assert viewer.activity is None  # run 1's end is shown: it works no more
+        assert viewer.runs.activity is None  # run 1's end is shown: it works no more
         Reporting.activity = SimpleNamespace(run_id=2, script=viewer.script, working=0.7)
         run_frames(viewer, 1)
-        assert viewer.activity.run_id == 2 and "running... 0.5 s" in _hud_text(viewer)
+        assert viewer.runs.activity.run_id == 2 and "running... 0.5 s" in _hud_text(viewer)
     finally:
         viewer.session = session
 
@@ -911,19 +911,19 @@ def test_holding_a_step_key_keeps_stepping(tmp_path: Path) -> None:
         viewer.handle_key("HOME")
         _wait(viewer, _at_step(0))
         clock = [100.0]
-        viewer._clock = lambda: clock[0]
+        viewer.stepping.clock = lambda: clock[0]
         _key(viewer, "ACTION_PRESS")
         _wait(viewer, _at_step(1))
         clock[0] += 0.3  # not yet held long enough to repeat
         run_frames(viewer, 5)
-        assert _at_step(1)(viewer) and viewer.held is not None
+        assert _at_step(1)(viewer) and viewer.stepping.held is not None
         for step in (2, 3, 4):  # then ten steps a second
             clock[0] += 0.11
             _wait(viewer, _at_step(step))
         _key(viewer, "ACTION_RELEASE")
         clock[0] += 1.0
         run_frames(viewer, 5)
-        assert _at_step(4)(viewer) and viewer.held is None
+        assert _at_step(4)(viewer) and viewer.stepping.held is None
         viewer.on_key_event("right", 2, None)  # glfw's own repeat: the timer repeats instead
         run_frames(viewer, 3)
         assert _at_step(4)(viewer)
@@ -933,7 +933,7 @@ def test_holding_a_step_key_keeps_stepping(tmp_path: Path) -> None:
         for _ in range(3):
             clock[0] += 0.5
             run_frames(viewer, 2)
-        assert viewer.held is None and echo.getvalue().count("at the last step") == 1
+        assert viewer.stepping.held is None and echo.getvalue().count("at the last step") == 1
 
 
 def test_picks_a_later_run_removed_are_marked_missing(tmp_path: Path) -> None:
@@ -1003,7 +1003,7 @@ def test_the_object_list_of_one_object_hides_it(tmp_path: Path) -> None:
         viewer.handle_key("L")  # one object is listed too: its checkbox hides it
         run_frames(viewer, 1)
         assert "no objects to list" not in echo.getvalue()
-        assert [row.text() for row in viewer.objects.rows] == ["0 cube   V 8  F 6  (current)"]
+        assert [row.text() for row in viewer.objects.panel.rows] == ["0 cube   V 8  F 6  (current)"]
         _click_object_row(viewer, 1)
         assert not viewer.style.current and "current object: hidden" in echo.getvalue()
         assert "(hidden: L lists it)" in _hud_text(viewer)
@@ -1020,7 +1020,7 @@ def test_a_script_truncated_before_its_write_keeps_the_mesh_shown(tmp_path: Path
         deadline = time.monotonic() + 1.0  # well past the watcher's debounce
         run_frames(viewer, until=lambda v: time.sleep(0.01) or time.monotonic() > deadline)
         assert viewer.result.run_id == 1 and viewer.renderer.arrays.counts[2] == 6
-        assert viewer.total_steps == 1  # not the empty run's none
+        assert viewer.runs.total_steps == 1  # not the empty run's none
         script.write_text("load('tetrahedron')\n")
         _wait(viewer, _has_run(2))
         assert viewer.renderer.arrays.counts[2] == 4

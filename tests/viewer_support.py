@@ -18,3 +18,18 @@ def frames_until(viewer, done, timeout: float = 30.0) -> None:  # noqa: ANN001
 
     run_frames(viewer, until=stop)
     assert done(viewer), "timed out waiting for the viewer"
+
+
+def press_key(viewer, name: str, shift: bool = False, ctrl: bool = False,  # noqa: ANN001
+              release: bool = True) -> None:
+    """Press (and let go of) key ``name`` through the window's own key handling, as
+    the toolkit sends it (the headless backend has no key codes: the name stands
+    for its code)."""
+    from moderngl_window.context.base.keys import KeyModifiers
+
+    modifiers = KeyModifiers()
+    modifiers.shift, modifiers.ctrl = shift, ctrl
+    viewer._key_names[name] = name
+    viewer.on_key_event(name, viewer.wnd.keys.ACTION_PRESS, modifiers)
+    if release:
+        viewer.on_key_event(name, viewer.wnd.keys.ACTION_RELEASE, modifiers)

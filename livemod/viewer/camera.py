@@ -124,6 +124,15 @@ class Camera:
         right, up, _ = self.basis()
         self.target = self.target - per_pixel * (dx_pixels * right - dy_pixels * up)
 
+    def toggle_ortho(self) -> None:
+        """Orthographic after perspective and back (the apparent size stays)."""
+        self.ortho = not self.ortho
+
+    def pose(self) -> tuple:
+        """Everything the view depends on, as a value: two equal poses see the same."""
+        return (tuple(self.target.tolist()), self.distance, self.yaw, self.pitch, self.fov,
+                self.ortho)
+
     def zoom(self, steps: float) -> None:
         """Move toward (steps > 0) or away from the target, 10% per step."""
         self.distance = float(np.clip(self.distance * 0.9**steps, 1e-6, 1e9))

@@ -9,15 +9,32 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass, replace
+from enum import StrEnum
 
 import numpy as np
 
 from livemod.dlfl.arrays import MeshArrays
 from livemod.dlfl.scene import SELECTION_READERS, Selection
 
-PICK_MODES = ("face", "edge", "vertex", "corner")
-_SELECTION_FIELD = {"face": "faces", "edge": "edges", "vertex": "vertices",
-                    "corner": "corners"}
+
+class PickMode(StrEnum):
+    """What a click picks. A ``str`` too: ``PickMode.FACE == "face"``, the kind
+    names the renderer's pick pass takes."""
+
+    FACE = "face"
+    EDGE = "edge"
+    VERTEX = "vertex"
+    CORNER = "corner"
+
+    def following(self) -> PickMode:
+        """The mode ``M`` goes to from this one: face > edge > vertex > corner > face."""
+        modes = list(PickMode)
+        return modes[(modes.index(self) + 1) % len(modes)]
+
+    @property
+    def selection_field(self) -> str:
+        """The :class:`~livemod.dlfl.scene.Selection` field this mode's picks go to."""
+        return "vertices" if self is PickMode.VERTEX else f"{self.value}s"
 
 
 @dataclass(frozen=True)
@@ -126,13 +143,14 @@ def help_lines() -> list[str]:
     return lines
 
 
-def toggle_pick(selection: Selection, mode: str, element_id: int, add: bool) -> Selection:
+def toggle_pick(selection: Selection, mode: PickMode, element_id: int,
+                add: bool) -> Selection:
     """The selection after clicking ``element_id`` in pick ``mode``.
 
     A plain click selects only that element (clicking it again keeps it); with
     ``add`` (shift) the element is added, or removed if it was selected.
     """
-    name = _SELECTION_FIELD[mode]
+    name = PickMode(mode).selection_field
     current: tuple[int, ...] = getattr(selection, name)
     if not add:
         return replace(Selection(), **{name: (element_id,)})
@@ -188,7 +206,7 @@ def split_picks(selection: Selection, arrays: MeshArrays | None,
     return Selection(**present), Selection(**missing)
 
 
-_KIND = {field: mode for mode, field in _SELECTION_FIELD.items()}
+_KIND = {mode.selection_field: mode.value for mode in PickMode}
 
 
 def unpicked_lines(unselected: Sequence[str], selection: Selection) -> list[str]:

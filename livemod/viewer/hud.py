@@ -1,7 +1,8 @@
 """HUD, error overlay and help overlay as screen-text quads (GL-free).
 
-:func:`hud_lines` says what the HUD shows; :func:`hud_quads` lays out the HUD
-panel (top left), the error panel (bottom) and the help panel (top right).
+:func:`hud_lines` says what the HUD shows of a
+:class:`~livemod.viewer.view_state.ViewState`; :func:`hud_quads` lays out the
+HUD panel (top left), the error panel (bottom) and the help panel (top right).
 """
 
 from __future__ import annotations
@@ -29,6 +30,7 @@ from .text import (
     layout_text,
     text_width,
 )
+from .view_state import ViewState
 
 
 def run_state(result: Any, waiting: bool, working: float | None = None) -> str:
@@ -58,61 +60,61 @@ def step_line(result: Any, total: int = 0) -> str:
     return f"step {shown + 1}/{max(len(steps), total)}: {step.label}{where}"
 
 
-def hud_lines(info: dict[str, Any]) -> list[tuple[str, int]]:
-    """The HUD's ``(text, colour kind)`` lines from the window's ``info`` dict."""
-    result = info["result"]
-    lines = [(Path(info["script"]).name, TEXT), _state_line(info)]
-    if info.get("viewer_error"):
-        lines.append((info["viewer_error"], ERROR_TEXT))
-    if info.get("empty_script"):  # a save emptied it: nothing ran, the last mesh stays
-        lines.append((f"{Path(info['empty_script']).name} is empty: showing the last result",
+def hud_lines(state: ViewState) -> list[tuple[str, int]]:
+    """The HUD's ``(text, colour kind)`` lines of ``state``."""
+    lines = [(Path(state.script).name, TEXT), _state_line(state)]
+    if state.viewer_error:
+        lines.append((state.viewer_error, ERROR_TEXT))
+    if state.empty_script:  # a save emptied it: nothing ran, the last mesh stays
+        lines.append((f"{Path(state.empty_script).name} is empty: showing the last result",
                       WARN_TEXT))
-    lines += _count_lines(info)
-    lines.append((step_line(result, info.get("total_steps", 0)), TEXT))
-    style = info["style"]
-    view = "ortho" if info["ortho"] else "persp"
-    mode = "preview" if style.preview else "mesh"
-    cut = f"  section {section_text(style.section)}" if style.section is not None else ""
-    lines.append((f"pick {info['pick_mode']}  {view}  {mode}{cut}"
-                  f"{'  playing' if info['playing'] else ''}", LABEL_DIM))
-    lines += [(line, LABEL_DIM) for line in info["selection"][:4]]
-    lines += [(line, WARN_TEXT) for line in info.get("missing", ())]
-    lines += [(line, TEXT) for line in info.get("measures", ())[:4]]
-    lines.append((f"{info['fps']:.0f} fps   H: help", LABEL_DIM))
+    lines += _count_lines(state)
+    lines.append((step_line(state.result, state.total_steps), TEXT))
+    lines.append((_mode_line(state), LABEL_DIM))
+    lines += [(line, LABEL_DIM) for line in state.selection[:4]]
+    lines += [(line, WARN_TEXT) for line in state.missing]
+    lines += [(line, TEXT) for line in state.measures[:4]]
+    lines.append((f"{state.fps:.0f} fps   H: help", LABEL_DIM))
     return lines
 
 
-def _state_line(info: dict[str, Any]) -> tuple[str, int]:
+def _mode_line(state: ViewState) -> str:
+    """Pick mode, projection, mesh or preview, the section, and whether it plays."""
+    style = state.style
+    view = "ortho" if state.ortho else "persp"
+    mode = "preview" if style.preview else "mesh"
+    cut = f"  section {section_text(style.section)}" if style.section is not None else ""
+    return f"pick {state.pick_mode}  {view}  {mode}{cut}{'  playing' if state.playing else ''}"
+
+
+def _state_line(state: ViewState) -> tuple[str, int]:
     """The run state and time, and after an error which mesh is shown (``E``)."""
-    result, working = info["result"], info.get("working")
-    state = run_state(result, info["waiting"], working)
-    colour = ERROR_TEXT if "error" in state else (WARN_TEXT if state != "ok" else OK_TEXT)
+    result, working = state.result, state.working
+    text = run_state(result, state.waiting, working)
+    colour = ERROR_TEXT if "error" in text else (WARN_TEXT if text != "ok" else OK_TEXT)
     # a run at work says its own time; the result's is of the run before
     elapsed = f"  {result.elapsed:.3f} s" if result is not None and working is None else ""
     shown = ""
     if result is not None and result.error is not None and getattr(result, "partial", None) is not None:
-        shown = ("  - the failed run's mesh (E: last good)" if info.get("partial")
+        shown = ("  - the failed run's mesh (E: last good)" if state.partial
                  else "  (E: the failed run's mesh)")
-    return f"{state}{elapsed}{shown}", colour
+    return f"{text}{elapsed}{shown}", colour
 
 
-def _count_lines(info: dict[str, Any]) -> list[tuple[str, int]]:
-    """V/E/F, genus and volume of the mesh shown, then the counts of the other
+def _count_lines(state: ViewState) -> list[tuple[str, int]]:
+    """V/E/F, genus and volume of the mesh on screen, then the counts of the other
     objects drawn."""
-    result, lines = info["result"], []
-    arrays = None if result is None else info.get("arrays", result.arrays)
-    if arrays is not None:
+    result, arrays, lines = state.result, state.arrays, []
+    if result is not None and arrays is not None:
         v, e, f = arrays.counts
         holes = int(arrays.face_hole.sum())  # counted apart, as TopMod does
         extra = f"  holes {holes}" if holes else ""
-        whole = info.get("whole")  # a large mesh may still be being measured
-        said = "genus ..." if whole is None else whole.text()
-        hidden = "  (hidden: L lists it)" if info.get("current_hidden") else ""
+        said = "genus ..." if state.whole is None else state.whole.text()
+        hidden = "  (hidden: L lists it)" if state.current_hidden else ""
         lines.append((f"V {v}  E {e}  F {f - holes}{extra}  {said}{hidden}", TEXT))
-    lines += nonfinite_lines(info.get("nonfinite", 0))
+    lines += nonfinite_lines(state.nonfinite)
     # drawn beside the current object (A hides them, Tab shows one at a time, L lists them)
-    others = info.get("others", None if result is None else result.others)
-    note = info.get("others_note", "")
+    others, note = state.others, state.others_note
     if others is not None or note:
         counts = "" if others is None else (
             f": V {others.counts[0]}  F {others.counts[2] - int(others.face_hole.sum())}")
@@ -151,19 +153,19 @@ def error_lines(error: Any, max_lines: int = 8) -> list[tuple[str, int]]:
     return lines
 
 
-def hud_quads(info: dict[str, Any], size: tuple[int, int]) -> np.ndarray:
-    """All overlay quads for a ``size`` (width, height) framebuffer."""
-    atlas = glyph_atlas()
+def hud_quads(state: ViewState) -> np.ndarray:
+    """All overlay quads of ``state`` (HUD, error panel, help) for its framebuffer size."""
+    atlas, size = glyph_atlas(), state.size
     parts = [np.zeros((0, QUAD_FLOATS), dtype=np.float32)]
-    if info["hud"]:
-        parts.append(_panel(atlas, hud_lines(info), MARGIN, MARGIN, PANEL))
-        result = info["result"]
+    if state.hud:
+        parts.append(_panel(atlas, hud_lines(state), MARGIN, MARGIN, PANEL))
+        result = state.result
         if result is not None and result.error is not None:
             lines = error_lines(result.error)
-            bottom = size[1] - info.get("bottom", 0.0)  # above the step timeline
+            bottom = size[1] - state.bottom  # above the step timeline
             top = bottom - MARGIN - 2 * PADDING - len(lines) * atlas.line_height
             parts.append(_panel(atlas, lines, MARGIN, top, ERROR_PANEL))
-    if info["help"]:
+    if state.help:
         parts += _help_panels(atlas, [(line, TEXT) for line in help_lines()], size)
     return np.concatenate(parts)
 
