@@ -1033,3 +1033,26 @@ def test_a_pick_all_missing_lists_no_empty_faces_line(tmp_path: Path) -> None:
         text = _hud_text(viewer)
         assert "picked, not in this mesh: face 5" in text
         assert "faces(True)" not in text and "--select" not in text  # not `== ()`: kept
+
+
+def _error_panel_text(viewer: LiveViewer) -> list[str]:
+    from livemod.viewer.hud import error_panel
+
+    return [line for line, _ in error_panel(viewer.view_state())]
+
+
+def test_the_error_panel_says_whose_error_it_is(tmp_path: Path) -> None:
+    script = tmp_path / "model.py"
+    script.write_text("load('cube')\nx = (\n")
+    with _opened(script, (400, 300)) as viewer:
+        panel = _error_panel_text(viewer)
+        assert panel[:2] == ["run 1: syntax error in model.py:2",
+                             "SyntaxError: '(' was never closed"]
+        assert panel.count("SyntaxError: '(' was never closed") == 1
+        time.sleep(0.05)
+        script.write_text(SLOW_SAVE)  # a newer save, at work for a while
+        _wait(viewer, lambda v: v.runs.activity is not None)
+        assert _error_panel_text(viewer)[0] == \
+            "previous run 1: syntax error in model.py:2 (run 2 is running)"
+        _wait(viewer, _has_run(2))
+        assert viewer.result.status == "ok" and _error_panel_text(viewer) == []

@@ -29,6 +29,7 @@ from .text import (
     glyph_atlas,
     layout_text,
     text_width,
+    wrap_line,
 )
 from .view_state import ViewState
 
@@ -144,24 +145,59 @@ def _panel(atlas: GlyphAtlas, lines: list[tuple[str, int]], x: float, y: float,
     return np.concatenate(parts)
 
 
-def error_lines(error: Any, max_lines: int = 8) -> list[tuple[str, int]]:
-    """The error overlay: ``file:line``, the message and the traceback's last lines."""
+def _wrapped(atlas: GlyphAtlas, lines: list[tuple[str, int]],
+             width: float) -> list[tuple[str, int]]:
+    """``lines`` broken to fit ``width`` pixels (each piece keeps its colour)."""
+    return [(piece, kind) for text, kind in lines for piece in wrap_line(atlas, text, width)]
+
+
+def error_lines(error: Any, max_lines: int = 8, run_id: int | None = None,
+                running: int | None = None) -> list[tuple[str, int]]:
+    """The error panel: which run failed, ``file:line``, the message and the
+    traceback's last lines, but those that repeat the message (a SyntaxError's
+    traceback ends in it, as an exception's ends in its text).
+
+    With ``run_id`` the head names the run; while a newer run ``running`` is at
+    work, the error is the previous run's, and the head says so.
+    """
     where = f"{Path(error.file).name}:{error.line}" if error.line is not None else error.file
-    lines = [(f"{error.kind} error in {where}", ERROR_TEXT), (error.message, TEXT)]
-    trace = [line for line in str(error.traceback).splitlines() if line.strip()]
+    head = f"{error.kind} error in {where}"
+    if run_id is not None and running is not None and running > run_id:
+        head = f"previous run {run_id}: {head} (run {running} is running)"
+    elif run_id is not None:
+        head = f"run {run_id}: {head}"
+    lines = [(head, ERROR_TEXT), (error.message, TEXT)]
+    trace = [line for line in str(error.traceback).splitlines()
+             if line.strip() and line.strip() != error.message.strip()]
     lines += [(line, LABEL_DIM) for line in trace[-max_lines:]]
     return lines
 
 
+def error_panel(state: ViewState) -> list[tuple[str, int]]:
+    """The error panel's lines for ``state`` (none when the result shown has no
+    error), wrapped to the window's width."""
+    result = state.result
+    if result is None or result.error is None:
+        return []
+    lines = error_lines(result.error, run_id=result.run_id, running=state.running_run)
+    return _wrapped(glyph_atlas(), lines, _room(state.size))
+
+
+def _room(size: tuple[int, int]) -> float:
+    """Pixels of text a panel as wide as a ``size`` window holds."""
+    return max(size[0] - 2 * MARGIN - 2 * PADDING, 1)
+
+
 def hud_quads(state: ViewState) -> np.ndarray:
-    """All overlay quads of ``state`` (HUD, error panel, help) for its framebuffer size."""
+    """All overlay quads of ``state`` (HUD, error panel, help) for its framebuffer
+    size; long lines wrap inside the window."""
     atlas, size = glyph_atlas(), state.size
     parts = [np.zeros((0, QUAD_FLOATS), dtype=np.float32)]
     if state.hud:
-        parts.append(_panel(atlas, hud_lines(state), MARGIN, MARGIN, PANEL))
-        result = state.result
-        if result is not None and result.error is not None:
-            lines = error_lines(result.error)
+        parts.append(_panel(atlas, _wrapped(atlas, hud_lines(state), _room(size)), MARGIN,
+                            MARGIN, PANEL))
+        lines = error_panel(state)
+        if lines:
             bottom = size[1] - state.bottom  # above the step timeline
             top = bottom - MARGIN - 2 * PADDING - len(lines) * atlas.line_height
             parts.append(_panel(atlas, lines, MARGIN, top, ERROR_PANEL))

@@ -37,6 +37,7 @@ class ViewState:
         result: the runner's ``RunResult`` shown (None before the first one).
         waiting: the window asked the session for a result that has not come.
         working: seconds the run at work has worked (None when none works).
+        running_run: the id of the run at work (newer than ``result``), or None.
         total_steps: the step count of the last run that ended.
         arrays: the mesh on screen (the last good one, or a failed run's own).
         partial: the mesh on screen is the failed run's own (``E``).
@@ -66,6 +67,7 @@ class ViewState:
     result: RunResult | None = _same()
     waiting: bool = False
     working: float | None = None
+    running_run: int | None = None
     total_steps: int = 0
     arrays: MeshArrays | None = _same()
     partial: bool = False

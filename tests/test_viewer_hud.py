@@ -1,0 +1,73 @@
+"""The HUD and the error panel (GL-free): what they say, and that it fits the window."""
+
+from __future__ import annotations
+
+from types import SimpleNamespace
+
+import numpy as np
+
+from livemod.runner.errors import syntax_error
+from livemod.runner.results import ScriptError
+from livemod.viewer.hud import error_lines, error_panel, hud_quads
+from livemod.viewer.text import MARGIN
+from livemod.viewer.view_state import ViewState
+
+NAMES = ", ".join(f"scheme-{k}" for k in range(38))
+NAME_ERROR = ScriptError(
+    "exception", "/x/model.py", 4, "NameError: name 'cub' is not defined",
+    'Traceback (most recent call last):\n  File "/x/model.py", line 4, in <module>\n'
+    "    cub()\nNameError: name 'cub' is not defined\n")
+
+
+def _texts(lines: list[tuple[str, int]]) -> list[str]:
+    return [text for text, _ in lines]
+
+
+def test_the_error_panel_names_its_run() -> None:
+    assert _texts(error_lines(NAME_ERROR, run_id=3)) == [
+        "run 3: exception error in model.py:4", "NameError: name 'cub' is not defined",
+        "Traceback (most recent call last):", '  File "/x/model.py", line 4, in <module>',
+        "    cub()"]
+
+
+def test_an_error_is_the_previous_runs_while_a_newer_run_works() -> None:
+    assert _texts(error_lines(NAME_ERROR, run_id=3, running=4))[0] == \
+        "previous run 3: exception error in model.py:4 (run 4 is running)"
+    # the run that failed is itself at work no more: not "previous"
+    assert _texts(error_lines(NAME_ERROR, run_id=3, running=3))[0] == \
+        "run 3: exception error in model.py:4"
+
+
+def test_a_syntax_error_is_said_once() -> None:
+    try:
+        compile("x = (\n", "/x/model.py", "exec")
+    except SyntaxError as exc:
+        error = syntax_error(exc, "/x/model.py")
+    texts = _texts(error_lines(error, run_id=2))
+    assert texts[0] == "run 2: syntax error in model.py:1"
+    assert texts.count("SyntaxError: '(' was never closed") == 1
+    assert texts[2:] == ['  File "/x/model.py", line 1', "    x = (", "        ^"]
+
+
+def _failed(message: str) -> SimpleNamespace:
+    error = ScriptError("exception", "/x/model.py", 2, message, f"{message}\n")
+    return SimpleNamespace(run_id=5, status="error", error=error, steps=(), step_index=None,
+                           arrays=None, partial=None, stale=False, elapsed=0.01)
+
+
+def test_a_long_message_wraps_inside_the_window() -> None:
+    message = f"ValueError: unknown scheme 'doo-sabin-bc'; the schemes are {NAMES}"
+    state = ViewState(script="/x/model.py", result=_failed(message), size=(480, 360))
+    lines = _texts(error_panel(state))
+    assert lines[0] == "run 5: exception error in model.py:2" and len(lines) > 3
+    assert " ".join(line.strip() for line in lines[1:]) == message
+    quads = hud_quads(state)
+    right = quads[:, 0] + quads[:, 3] + quads[:, 5]  # anchor x + offset + width
+    assert right.max() <= 480 - MARGIN / 2
+    assert np.all(quads[:, 0] >= 0)
+
+
+def test_no_error_no_panel() -> None:
+    result = SimpleNamespace(run_id=1, status="ok", error=None, steps=(), step_index=None,
+                             arrays=None, stale=False, elapsed=0.01)
+    assert error_panel(ViewState(result=result, size=(400, 300))) == []
