@@ -71,3 +71,42 @@ def test_no_error_no_panel() -> None:
     result = SimpleNamespace(run_id=1, status="ok", error=None, steps=(), step_index=None,
                              arrays=None, stale=False, elapsed=0.01)
     assert error_panel(ViewState(result=result, size=(400, 300))) == []
+
+
+def _hud(state: ViewState) -> list[str]:
+    from livemod.viewer.hud import hud_lines
+
+    return [text for text, _ in hud_lines(state)]
+
+
+def _failed_after_steps(good, partial) -> SimpleNamespace:
+    steps = tuple(SimpleNamespace(index=i, label=label, line=i + 1, counts=(0, 0, 0),
+                                  elapsed=0.0) for i, label in enumerate(("load cube",
+                                                                          "subdivide")))
+    return SimpleNamespace(run_id=3, status="error", error=NAME_ERROR, steps=steps,
+                           step_index=None, arrays=good, partial=partial, stale=True,
+                           elapsed=0.02, others=None)
+
+
+def test_the_counts_and_the_step_say_which_run_they_are_of() -> None:
+    from livemod.dlfl import mesh_arrays
+    from livemod.dlfl.shapes import cube, tetrahedron
+
+    good, partial = mesh_arrays(cube()), mesh_arrays(tetrahedron())
+    result = _failed_after_steps(good, partial)
+    state = ViewState(script="/x/model.py", result=result, arrays=good, good_run=2,
+                      total_steps=2)
+    lines = _hud(state)
+    assert "last good mesh (run 2): V 8  E 12  F 6  genus ..." in lines
+    assert "failed run 3: step 2/2: subdivide (line 2)" in lines
+    unseen = _hud(ViewState(result=result, arrays=good, total_steps=2))  # run 2 never shown
+    assert "last good mesh: V 8  E 12  F 6  genus ..." in unseen
+    own = _hud(ViewState(result=result, arrays=partial, partial=True, total_steps=2))  # E
+    assert "failed run 3: V 4  E 6  F 4  genus ..." in own
+    assert "failed run 3: step 2/2: subdivide (line 2)" in own
+    cancelled = _hud(ViewState(result=SimpleNamespace(**{**vars(result), "status": "cancelled"}),
+                               arrays=good, good_run=2))
+    assert "cancelled run 3: step 2/2: subdivide (line 2)" in cancelled
+    ok = SimpleNamespace(**{**vars(result), "status": "ok", "error": None, "stale": False})
+    plain = _hud(ViewState(result=ok, arrays=good, good_run=3))
+    assert "V 8  E 12  F 6  genus ..." in plain and "step 2/2: subdivide (line 2)" in plain

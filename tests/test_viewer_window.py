@@ -1056,3 +1056,19 @@ def test_the_error_panel_says_whose_error_it_is(tmp_path: Path) -> None:
             "previous run 1: syntax error in model.py:2 (run 2 is running)"
         _wait(viewer, _has_run(2))
         assert viewer.result.status == "ok" and _error_panel_text(viewer) == []
+
+
+def test_after_a_name_error_the_counts_and_the_step_say_whose_they_are(tmp_path: Path) -> None:
+    script = tmp_path / "model.py"
+    script.write_text("load('cube')\n")
+    with _opened(script, (400, 300)) as viewer:
+        script.write_text("load('cube')\nsubdivide('catmull-clark')\ncub()\n")
+        viewer.session.reload()
+        _wait(viewer, lambda v: v.result.status == "error" and not v.waiting)
+        _wait(viewer, _measured)
+        text = _hud_text(viewer)
+        assert "last good mesh (run 1): V 8  E 12  F 6  genus 0  volume 8" in text
+        assert "failed run 2: step 2/2: subdivide (line 2)" in text
+        viewer.handle_key("E")  # the failed run's own mesh: both are of run 2
+        _wait(viewer, _measured)
+        assert "failed run 2: V 26  E 48  F 24  genus 0" in _hud_text(viewer)

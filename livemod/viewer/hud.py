@@ -70,7 +70,7 @@ def hud_lines(state: ViewState) -> list[tuple[str, int]]:
         lines.append((f"{Path(state.empty_script).name} is empty: showing the last result",
                       WARN_TEXT))
     lines += _count_lines(state)
-    lines.append((step_line(state.result, state.total_steps), TEXT))
+    lines.append((_run_of_steps(state) + step_line(state.result, state.total_steps), TEXT))
     lines.append((_mode_line(state), LABEL_DIM))
     lines += [(line, LABEL_DIM) for line in state.selection[:4]]
     lines += [(line, WARN_TEXT) for line in state.missing]
@@ -102,9 +102,39 @@ def _state_line(state: ViewState) -> tuple[str, int]:
     return f"{text}{elapsed}{shown}", colour
 
 
+def _failed_run(result: Any) -> str:
+    """``failed run 3`` (``cancelled run 3``) for a result of a run that did not
+    end well; "" otherwise."""
+    if result is None or result.error is None:
+        return ""
+    return f"{'cancelled' if result.status == 'cancelled' else 'failed'} run {result.run_id}"
+
+
+def _run_of_steps(state: ViewState) -> str:
+    """Whose steps the step line counts, when it is not plain: a failed run's."""
+    result = state.result
+    failed = _failed_run(result)
+    return f"{failed}: " if failed and result is not None and result.steps else ""
+
+
+def _run_of_mesh(state: ViewState) -> str:
+    """Whose mesh the counts are of, when it is not plain: after a failed run the
+    last good run's (``last good mesh (run 2): ``) or, with ``E``, the failed run's."""
+    result = state.result
+    failed = _failed_run(result)
+    if not failed or result is None:
+        return ""
+    if state.arrays is result.partial:
+        return f"{failed}: "
+    if state.arrays is not result.arrays:
+        return ""  # (not on screen: the window failed to show the result)
+    return f"last good mesh (run {state.good_run}): " if state.good_run is not None \
+        else "last good mesh: "
+
+
 def _count_lines(state: ViewState) -> list[tuple[str, int]]:
-    """V/E/F, genus and volume of the mesh on screen, then the counts of the other
-    objects drawn."""
+    """V/E/F, genus and volume of the mesh on screen (which run's, when that is not
+    the result's own), then the counts of the other objects drawn."""
     result, arrays, lines = state.result, state.arrays, []
     if result is not None and arrays is not None:
         v, e, f = arrays.counts
@@ -112,7 +142,8 @@ def _count_lines(state: ViewState) -> list[tuple[str, int]]:
         extra = f"  holes {holes}" if holes else ""
         said = "genus ..." if state.whole is None else state.whole.text()
         hidden = "  (hidden: L lists it)" if state.current_hidden else ""
-        lines.append((f"V {v}  E {e}  F {f - holes}{extra}  {said}{hidden}", TEXT))
+        lines.append((f"{_run_of_mesh(state)}V {v}  E {e}  F {f - holes}{extra}  {said}"
+                      f"{hidden}", TEXT))
     lines += nonfinite_lines(state.nonfinite)
     # drawn beside the current object (A hides them, Tab shows one at a time, L lists them)
     others, note = state.others, state.others_note

@@ -9,7 +9,7 @@ session for something (:meth:`RunTracker.expect`).
 from __future__ import annotations
 
 import queue
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from .timeline import shown_step
 
@@ -47,6 +47,7 @@ class RunTracker:
         self.total_steps = 0
         self.viewer_error: str | None = None
         self.empty_script: str | None = None
+        self._good: tuple[int, Any] | None = None  # (run id, arrays) of the last ok run
 
     def expect(self) -> None:
         """The window asked the session for a result: it is waiting for one."""
@@ -70,6 +71,8 @@ class RunTracker:
         self.result, self.waiting, self.viewer_error = result, False, None
         if result.status in ("ok", "error"):
             self.total_steps = len(result.steps)
+        if result.status == "ok":
+            self._good = (result.run_id, result.arrays)
 
     def failed_to_show(self, result: RunResult, exc: Exception) -> str:
         """Note (and return) that ``result`` could not be shown."""
@@ -97,6 +100,15 @@ class RunTracker:
         return RUNNING_TICK * int(self.activity.working / RUNNING_TICK)
 
     # -- where the steps stand ----------------------------------------------------------
+
+    @property
+    def good_run(self) -> int | None:
+        """The id of the run whose mesh the result shown shows, when it is an earlier
+        run's (a failed run shows the last good mesh) and the window saw that run."""
+        result, good = self.result, self._good
+        if result is None or good is None or result.arrays is not good[1]:
+            return None
+        return good[0]
 
     def steps(self) -> int:
         """Steps the timeline spans: the last complete run's, or more while one runs."""
