@@ -1072,3 +1072,30 @@ def test_after_a_name_error_the_counts_and_the_step_say_whose_they_are(tmp_path:
         viewer.handle_key("E")  # the failed run's own mesh: both are of run 2
         _wait(viewer, _measured)
         assert "failed run 2: V 26  E 48  F 24  genus 0" in _hud_text(viewer)
+
+
+def _summaries(echo: io.StringIO) -> list[str]:
+    """The echo's run summary lines, with their times (which vary) cut off."""
+    return [line.rsplit(", ", 1)[0] if " steps, " in line else line
+            for line in echo.getvalue().splitlines() if line.startswith("run ")]
+
+
+def test_view_prints_one_summary_line_per_run(tmp_path: Path) -> None:
+    script = tmp_path / "model.py"
+    script.write_text("load('cube')\nsubdivide('catmull-clark')\n")
+    echo = io.StringIO()
+    with _opened(script, (240, 160), echo=echo) as viewer:
+        _wait(viewer, lambda v: v.renderer.preview is not None)  # posted again with it
+        assert _summaries(echo) == ["run 1: ok, 2 steps, V=26 E=48 F=24"]
+        assert echo.getvalue().splitlines()[0].endswith(
+            f", {viewer.result.elapsed:.3f} s")  # as run --watch prints it
+        script.write_text("load('cube')\nsubdivide('catmull-clark')\ncub()\n")
+        viewer.session.reload()
+        _wait(viewer, _has_run(2))
+        viewer.handle_key("LEFT")  # a step of the failed run: a replay, no run's end
+        _wait(viewer, lambda v: v.result.status == "paused" and not v.waiting)
+        viewer.handle_key("END")  # the replay goes on to the error: that run ends
+        _wait(viewer, lambda v: v.result.status == "error" and not v.waiting)
+        said = f"{script}:3: NameError: name 'cub' is not defined"
+        assert _summaries(echo) == ["run 1: ok, 2 steps, V=26 E=48 F=24", f"run 2: {said}",
+                                    f"run {viewer.result.run_id}: {said}"]

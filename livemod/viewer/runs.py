@@ -48,6 +48,7 @@ class RunTracker:
         self.viewer_error: str | None = None
         self.empty_script: str | None = None
         self._good: tuple[int, Any] | None = None  # (run id, arrays) of the last ok run
+        self._summarized = 0  # the newest run whose end was summarized
 
     def expect(self) -> None:
         """The window asked the session for a result: it is waiting for one."""
@@ -63,6 +64,14 @@ class RunTracker:
                 taken.append(results.get_nowait())
             except queue.Empty:
                 return taken
+
+    def newly_ended(self, result: RunResult) -> bool:
+        """``result`` ends a run (ok, error, cancelled) not said ended before: a
+        preview posted after it, or a step, is no new end."""
+        if result.status == "paused" or result.run_id <= self._summarized:
+            return False
+        self._summarized = result.run_id
+        return True
 
     def take(self, result: RunResult) -> None:
         """Show ``result``: the window waits no more, and a run that ended gives

@@ -238,8 +238,12 @@ class LiveViewer(mglw.WindowConfig):
         return session
 
     def _take_results(self) -> None:
-        """Show the newest result in the session's queue (never blocks)."""
+        """Say each run that ended in the terminal, and show the newest result (never
+        blocks)."""
         arrived = self.runs.arrived(self._live_session().results)
+        for result in arrived:
+            if self.runs.newly_ended(result):
+                self._summarize(result)
         if not arrived:
             return
         try:
@@ -248,15 +252,17 @@ class LiveViewer(mglw.WindowConfig):
             self._echo(self.runs.failed_to_show(arrived[-1], exc))
             traceback.print_exception(exc, file=sys.stderr)
 
-    def _apply(self, result: RunResult) -> None:
-        """Show ``result``: its objects, steps and parameters, then its mesh; echo a
-        new error, and the ``-o`` file the session wrote before posting."""
-        shown = self.runs.result
-        if result.error is not None and (shown is None or shown.error != result.error):
-            self._echo(f"error: {result.error.file}:{result.error.line}: "
-                       f"{result.error.message}")
+    def _summarize(self, result: RunResult) -> None:
+        """One line per run, as ``livemod run --watch`` prints it, and the ``-o``
+        file the session wrote before posting."""
+        from livemod.runner.cli import run_summary
+
+        self._echo(run_summary(result))
         if result.status == "ok" and self.options.output is not None:
             self._echo(f"run {result.run_id}: wrote {self.options.output}")
+
+    def _apply(self, result: RunResult) -> None:
+        """Show ``result``: its objects, steps and parameters, then its mesh."""
         self.objects.sync(result)
         self.stepping.result_arrived(self.runs.result, result)
         self.runs.take(result)
