@@ -1099,3 +1099,24 @@ def test_view_prints_one_summary_line_per_run(tmp_path: Path) -> None:
         said = f"{script}:3: NameError: name 'cub' is not defined"
         assert _summaries(echo) == ["run 1: ok, 2 steps, V=26 E=48 F=24", f"run 2: {said}",
                                     f"run {viewer.result.run_id}: {said}"]
+
+
+def test_the_rate_keys_change_how_fast_the_steps_play(tmp_path: Path) -> None:
+    from .viewer_support import press_key
+
+    script = tmp_path / "ten.py"
+    script.write_text(TEN_STEPS)
+    echo = io.StringIO()
+    with _opened(script, (300, 200), echo=echo) as viewer:
+        assert "rate 2 steps/s" in _hud_text(viewer)
+        for _ in range(4):
+            press_key(viewer, "EQUAL")
+        press_key(viewer, "MINUS")
+        assert viewer.stepping.rate == 16.0 and "rate 16 steps/s" in _hud_text(viewer)
+        press_key(viewer, "SPACE")
+        assert "playing 16 steps/s" in _hud_text(viewer)
+        press_key(viewer, "EQUAL")  # while playing: at once
+        assert "playing 32 steps/s" in _hud_text(viewer)
+        _wait(viewer, lambda v: v.result.run_id >= 2 and v.result.status == "ok")
+        assert not viewer.stepping.playing and "rate 32 steps/s" in _hud_text(viewer)
+        assert "play rate: 16 steps/s\nplay rate: 32 steps/s" in echo.getvalue()

@@ -47,6 +47,8 @@ def window_actions(viewer: LiveViewer) -> dict[str, Action]:
         "step_back": stepping.step_back,
         "first_step": stepping.first_step,
         "run_to_end": stepping.run_to_end,
+        "faster": stepping.faster,
+        "slower": stepping.slower,
         "reload": stepping.reload,
         "toggle_partial": lambda: viewer.display.toggle_partial(viewer.runs.result),
         "cycle_others": objects.cycle,

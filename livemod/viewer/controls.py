@@ -51,7 +51,8 @@ class Binding:
         name = {"NUMBER_1": "1", "NUMBER_2": "2", "NUMBER_3": "3", "NUMBER_4": "4",
                 "SPACE": "Space", "RIGHT": "Right", "LEFT": "Left", "PERIOD": ".",
                 "COMMA": ",", "END": "End", "HOME": "Home", "ESCAPE": "Esc", "TAB": "Tab",
-                "LEFT_BRACKET": "[", "RIGHT_BRACKET": "]"}.get(self.key, self.key)
+                "LEFT_BRACKET": "[", "RIGHT_BRACKET": "]", "MINUS": "-",
+                "EQUAL": "="}.get(self.key, self.key)
         prefix = {"": "", "shift": "Shift+", "ctrl": "Ctrl+"}[self.modifiers]
         return prefix + name
 
@@ -93,6 +94,8 @@ KEY_BINDINGS: tuple[Binding, ...] = (
     Binding("COMMA", "", "step_back", "previous step"),
     Binding("HOME", "", "first_step", "go to the first step"),
     Binding("END", "", "run_to_end", "run to the end"),
+    Binding("MINUS", "", "slower", "halve the play rate (steps a second)"),
+    Binding("EQUAL", "", "faster", "double the play rate (steps a second)"),
     Binding("G", "", "run_to_end", "run to the end"),
     Binding("R", "", "reload", "re-run the script now"),
     Binding("E", "", "toggle_partial",

@@ -21,6 +21,7 @@ if TYPE_CHECKING:
     from livemod.runner.results import RunResult
 
 DEFAULT_RATE = 2.0  # steps a second while playing
+LOWEST_RATE, HIGHEST_RATE = 0.125, 64.0  # where halving and doubling the rate stop
 
 # a held step key steps again after REPEAT_DELAY s, then every REPEAT_INTERVAL s
 REPEAT_DELAY = 0.4
@@ -88,6 +89,21 @@ class Stepping:
         else:
             self._session().pause()
         self.runs.waiting = self.playing
+
+    def faster(self) -> None:
+        """Double the play rate (up to :data:`HIGHEST_RATE`)."""
+        self._set_rate(min(self.rate * 2, HIGHEST_RATE))
+
+    def slower(self) -> None:
+        """Halve the play rate (down to :data:`LOWEST_RATE`)."""
+        self._set_rate(max(self.rate / 2, LOWEST_RATE))
+
+    def _set_rate(self, rate: float) -> None:
+        """Play at ``rate`` from now on (at once when playing)."""
+        self.rate = rate
+        if self.playing:
+            self._session().play(rate)
+        self._echo(f"play rate: {rate:g} steps/s")
 
     def step_forward(self) -> None:
         """Show the next step; at the last one say so (the session posts nothing)."""

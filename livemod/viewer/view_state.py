@@ -57,7 +57,8 @@ class ViewState:
         current_hidden: the current object is not drawn.
         style: what the renderer draws.
         ortho: the camera is orthographic.
-        playing: the steps play.
+        playing: the steps play at ``rate``.
+        rate: the play rate in steps a second.
         hud, help: the HUD and the help overlay are shown.
         panels: a hashable summary of the parameters panel, the object list and
             the timeline as drawn.
@@ -89,6 +90,7 @@ class ViewState:
     style: Style = field(default_factory=Style)
     ortho: bool = False
     playing: bool = False
+    rate: float = 2.0
     hud: bool = True
     help: bool = False
     panels: tuple = ()

@@ -309,7 +309,7 @@ class LiveViewer(mglw.WindowConfig):
             measures=tuple(self.picking.measures), others=self.renderer.others,
             others_note=self.objects.note(), current_hidden=not self.look.style.current,
             style=self.look.style, ortho=self.camera.ortho, playing=self.stepping.playing,
-            hud=self.look.show_hud, help=self.look.show_help,
+            rate=self.stepping.rate, hud=self.look.show_hud, help=self.look.show_help,
             panels=self.overlay.state(), size=size, bottom=self.overlay.error_room(size))
 
     def _draw_frame(self, fbo: Any, state: ViewState) -> None:
