@@ -1,6 +1,6 @@
 """The viewer gaps the review left: corner picks from inside a mesh, positions that
-are not finite, stepped sliders, the guide lines' buffers, the frame rate, the
-renderer's release, screenshot names, and what a dropped mesh keeps."""
+are not finite, stepped sliders, the guide lines' buffers, the renderer's release,
+screenshot names, and what a dropped mesh keeps."""
 
 from __future__ import annotations
 
@@ -20,7 +20,6 @@ from livemod.dlfl.shapes import cube, tetrahedron
 from livemod.viewer.camera import Camera
 from livemod.viewer.geometry import build_geometry, finite_bounds
 from livemod.viewer.headless import Offscreen, camera_framing, framed_camera
-from livemod.viewer.hud import nonfinite_lines
 from livemod.viewer.imagefiles import save_new_png
 from livemod.viewer.params_panel import snap
 from livemod.viewer.renderer import Renderer, Style, nearest_corner
@@ -38,12 +37,9 @@ BOX_FACES = [(0, 1, 2, 3), (4, 5, 1, 0), (5, 6, 2, 1), (6, 7, 3, 2), (7, 4, 0, 3
              (7, 6, 5, 4)]
 
 
-
-
 def _drawn(image: np.ndarray) -> np.ndarray:
     """``(H, W)`` bool: the pixels that are not background."""
     return np.abs(image.astype(int) - BACKGROUND).sum(axis=2) > 6
-
 
 
 def _settled(viewer) -> bool:
@@ -149,14 +145,6 @@ def test_framing_leaves_out_positions_that_are_not_finite() -> None:
     assert untouched.target.tolist() == [0.0, 0.0, 0.0] and untouched.distance == 5.0
     with pytest.raises(ValueError, match="cannot frame bounds that are not finite"):
         Camera().fit(np.array([[0.0, 0, 0], [np.nan, 1, 1]]))
-
-
-def test_the_hud_says_how_many_vertices_are_not_finite() -> None:
-    assert nonfinite_lines(0) == []
-    assert nonfinite_lines(1)[0][0] == \
-        "1 vertex not finite (NaN or inf): left out of the framing"
-    assert nonfinite_lines(3)[0][0] == \
-        "3 vertices not finite (NaN or inf): left out of the framing"
 
 
 def test_a_mesh_with_a_nan_vertex_is_framed_and_drawn(offscreen: Offscreen) -> None:
@@ -298,24 +286,6 @@ def test_closing_the_window_releases_the_renderer(cube_script: Path) -> None:
         close_viewer(viewer)
     assert all(isinstance(obj.mglo, moderngl.InvalidObject) for obj in objects)
     assert viewer.renderer._released and viewer.frames.kept is None
-
-
-def test_the_frame_rate_counts_only_frames_drawn(cube_script: Path) -> None:
-    viewer = _viewer(cube_script)
-    try:
-        frames_until(viewer, _settled)
-        run_frames(viewer, 3)
-        counted = len(viewer.frames.frame_times)
-        run_frames(viewer, 20)  # nothing changes: no frame is drawn
-        assert not viewer.frames.presented
-        assert len(viewer.frames.frame_times) == counted
-        for _ in range(5):  # each turn of the view draws a frame
-            viewer.camera.orbit(5.0, 0.0)
-            run_frames(viewer, 1)
-        run_frames(viewer, 1)  # (a drawn frame's time ends where the next turn starts)
-        assert len(viewer.frames.frame_times) == counted + 5
-    finally:
-        close_viewer(viewer)
 
 
 # -- 5. screenshot names ----------------------------------------------------------------

@@ -2,14 +2,26 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
 from types import SimpleNamespace
 
 import numpy as np
 
+from livemod.dlfl import mesh_arrays
+from livemod.dlfl.shapes import cube
 from livemod.runner.errors import syntax_error
 from livemod.runner.results import ScriptError
-from livemod.viewer.hud import error_lines, error_panel, hud_quads
-from livemod.viewer.text import MARGIN
+from livemod.viewer.hud import (
+    error_lines,
+    error_panel,
+    hud_lines,
+    hud_quads,
+    nonfinite_lines,
+    run_state,
+    step_line,
+)
+from livemod.viewer.measure import WholeMesh
+from livemod.viewer.text import MARGIN, WARN_TEXT
 from livemod.viewer.view_state import ViewState
 
 NAMES = ", ".join(f"scheme-{k}" for k in range(38))
@@ -110,3 +122,58 @@ def test_the_counts_and_the_step_say_which_run_they_are_of() -> None:
     ok = SimpleNamespace(**{**vars(result), "status": "ok", "error": None, "stale": False})
     plain = _hud(ViewState(result=ok, arrays=good, good_run=3))
     assert "V 8  E 12  F 6  genus ..." in plain and "step 2/2: subdivide (line 2)" in plain
+
+
+def _result(status: str = "ok", stale: bool = False, step_index: int | None = None):
+    steps = tuple(SimpleNamespace(index=i, label=f"op{i}", line=10 + i, counts=(1, 1, 1),
+                                  elapsed=0.0) for i in range(3))
+    return SimpleNamespace(status=status, stale=stale, steps=steps, step_index=step_index,
+                           arrays=mesh_arrays(cube()), elapsed=0.25, error=None, others=None)
+
+
+
+def test_hud_shows_state_counts_genus_and_step() -> None:
+    assert run_state(None, True) == "running"
+    assert run_state(_result(), False, 1.5) == run_state(None, True, 1.5) == "running... 1.5 s"
+    assert run_state(_result("error", stale=True), False) == "error, stale"
+    assert step_line(_result(step_index=1)) == "step 2/3: op1 (line 11)"
+    assert step_line(_result()) == "step 3/3: op2 (line 12)"
+    result = _result()
+    state = ViewState(script="/x/tower.py", result=result, arrays=result.arrays,
+                      whole=WholeMesh(0, 8.0), fps=59.6, selection=("faces(True) == (1,)",))
+    text = "\n".join(line for line, _ in hud_lines(state))
+    for part in ("tower.py", "ok", "0.250 s", "V 8  E 12  F 6  genus 0  volume 8\n",
+                 "step 3/3", "60 fps", "faces(True) == (1,)"):
+        assert part in text
+    running = "\n".join(line for line, _ in hud_lines(replace(state, working=2.0)))
+    assert "running... 2.0 s\n" in running and "0.250 s" not in running  # not the last run's
+    missing = hud_lines(replace(state, missing=("picked, not in this mesh: face 12",)))
+    assert ("picked, not in this mesh: face 12", WARN_TEXT) in missing
+    emptied = hud_lines(replace(state, empty_script="/x/tower.py"))
+    assert ("tower.py is empty: showing the last result", WARN_TEXT) in emptied
+    hidden = "\n".join(line for line, _ in hud_lines(replace(state, current_hidden=True)))
+    assert "volume 8  (hidden: L lists it)" in hidden
+    for whole, said in ((None, "genus ...\n"), (WholeMesh(1, None), "genus 1\n"),
+                        (WholeMesh(0, -1.5), "genus 0  volume -1.5 (inside out)\n")):
+        assert said in "\n".join(line for line, _ in hud_lines(replace(state, whole=whole)))
+
+
+
+def test_the_help_overlay_fits_the_window_in_columns() -> None:
+    from livemod.viewer.hud import hud_quads
+
+    state = ViewState(script="/x/tower.py", waiting=True, hud=False, help=True)
+    boxes = {}
+    for height in (2000, 800, 400):
+        quads = hud_quads(replace(state, size=(1200, height)))
+        assert quads[:, 0].min() >= 0 and (quads[:, 1] + quads[:, 6]).max() <= height
+        boxes[height] = int((quads[:, 11] == 8).sum())  # one panel box per column
+    assert boxes[2000] == 1 and boxes[800] == 2 and boxes[400] >= 3
+
+
+def test_the_hud_says_how_many_vertices_are_not_finite() -> None:
+    assert nonfinite_lines(0) == []
+    assert nonfinite_lines(1)[0][0] == \
+        "1 vertex not finite (NaN or inf): left out of the framing"
+    assert nonfinite_lines(3)[0][0] == \
+        "3 vertices not finite (NaN or inf): left out of the framing"

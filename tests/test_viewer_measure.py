@@ -1,4 +1,5 @@
-"""Measurements of picked elements in the HUD (GL-free), on meshes whose sizes are known."""
+"""Measurements of picked elements in the HUD (GL-free), on meshes whose sizes are known,
+and of the whole mesh shown, off the main thread."""
 
 from __future__ import annotations
 
@@ -7,9 +8,15 @@ import math
 import numpy as np
 import pytest
 
-from livemod.dlfl import Mesh, from_polygons, mesh_arrays
+from livemod.dlfl import Mesh, enclosed_volume, from_polygons, mesh_arrays, shapes
 from livemod.dlfl.scene import Selection
-from livemod.viewer.measure import corner_angle, face_area_normal, measure_lines
+from livemod.viewer.measure import (
+    WholeMesh,
+    WholeMeshMeasurer,
+    corner_angle,
+    face_area_normal,
+    measure_lines,
+)
 
 # a 2 x 2 x 2 cube centred on the origin, faces outward
 P = [(1, 1, 1), (1, 1, -1), (-1, 1, -1), (-1, 1, 1),
@@ -98,3 +105,46 @@ def test_a_point_sphere_has_valence_zero_and_no_angle() -> None:
     assert measure_lines(Selection(vertices=(v,)), arrays) == [
         f"vertex {v} at (1, 2, 3), valence 0"]
     assert corner_angle(arrays, 0) == 0.0
+
+
+def test_the_whole_mesh_is_measured_at_once_or_when_large_off_the_main_thread(
+        monkeypatch) -> None:
+    import livemod.viewer.measure as measure
+
+    measurer = WholeMeshMeasurer()
+    try:
+        assert measurer.facts() is None  # nothing shown yet
+        measurer.measure(mesh_arrays(shapes.cube()))
+        assert measurer.facts() == WholeMesh(0, pytest.approx(8.0))  # small: at once
+        monkeypatch.setattr(measure, "MEASURE_AT_ONCE", 10)  # every mesh is large now
+        measurer.measure(mesh_arrays(shapes.cube()))
+        measurer.measure(mesh_arrays(shapes.torus(40, 30)))  # the cube's answer is dropped
+        assert measurer.wait(30) == WholeMesh(1, pytest.approx(
+            enclosed_volume(mesh_arrays(shapes.torus(40, 30)))))
+        measurer.measure(mesh_arrays(from_polygons(np.eye(3), [(0, 1, 2)])))  # open
+        assert measurer.wait(30) == WholeMesh(0, None)
+        measurer.measure(None)
+        assert measurer.facts() is None and measurer.wait() is None
+    finally:
+        measurer.close()
+
+
+
+def test_a_background_measurement_that_fails_is_logged_and_says_nothing(
+        monkeypatch, caplog) -> None:
+    import livemod.viewer.measure as measure
+
+    def broken(arrays):
+        raise FloatingPointError("no volume")
+
+    monkeypatch.setattr(measure, "MEASURE_AT_ONCE", 10)
+    monkeypatch.setattr(measure, "measure_whole", broken)
+    measurer = WholeMeshMeasurer()
+    try:
+        with caplog.at_level("ERROR", logger="livemod.measure"):
+            measurer.measure(mesh_arrays(shapes.cube()))
+            assert measurer.wait(30) is None
+            measurer.close(wait=True)  # the log is written by the done callback
+    finally:
+        measurer.close()
+    assert "measuring the mesh shown failed" in caplog.text and "no volume" in caplog.text

@@ -1,8 +1,16 @@
-"""Screen text (GL-free): breaking long lines to fit a width."""
+"""Screen text (GL-free): id label layout, and breaking long lines to fit a width."""
 
 from __future__ import annotations
 
-from livemod.viewer.text import glyph_atlas, text_width, wrap_line
+import numpy as np
+
+from livemod.viewer.text import (
+    QUAD_FLOATS,
+    glyph_atlas,
+    layout_labels,
+    text_width,
+    wrap_line,
+)
 
 NAMES = ", ".join(["catmull-clark", "doo-sabin", "doo-sabin-bc-new", "double-stella"] * 6)
 
@@ -39,3 +47,14 @@ def test_leading_spaces_stay_with_the_first_word() -> None:
     line = "    " + " ".join(["raise"] * 40)
     lines = wrap_line(atlas, line, 150.0)
     assert lines[0].startswith("    raise") and len(lines) > 1
+
+
+def test_label_layout_has_one_box_and_one_glyph_per_digit() -> None:
+    atlas = glyph_atlas()
+    quads = layout_labels(atlas, np.zeros((3, 3)), np.array([0, 7, 1234]), 1,
+                          np.array([False, True, False]))
+    assert quads.shape == (3 + 1 + 1 + 4, QUAD_FLOATS)
+    digits_of_1234 = quads[5:, 7]
+    expected = atlas.uv[[ord(c) for c in "1234"], 0]
+    np.testing.assert_allclose(digits_of_1234, expected)
+    assert quads[1, 12] == 1.0 and quads[0, 12] == 0.0

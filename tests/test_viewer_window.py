@@ -125,7 +125,6 @@ def test_pick_select_rerun_and_error_keeps_the_stale_mesh(headless) -> None:
     assert np.array_equal(viewer.capture(), before)        # the last good mesh stays
 
 
-
 def test_e_shows_the_mesh_a_failed_run_left(tmp_path: Path) -> None:
     script = tmp_path / "fails.py"
     script.write_text("load('cube')\n")
@@ -436,7 +435,6 @@ def test_step_keys_show_earlier_steps_in_the_hud(headless) -> None:
     viewer.handle_key("RIGHT")
     _wait(viewer, lambda v: v.result.status == "paused" and v.result.step_index == total - 2)
     assert viewer.result.arrays.counts[0] == 9
-
 
 
 THREE_STEPS = "load('cube')\nsubdivide('catmull-clark')\nsubdivide('catmull-clark')\n"
@@ -754,78 +752,6 @@ def test_view_refuses_an_output_no_writer_takes(tmp_path: Path, capsys) -> None:
     script.write_text(CUBE.format(scale=1.0))
     assert main(["view", str(script), "-o", str(tmp_path / "model.txt")]) == 2
     assert "livemod: error: output" in capsys.readouterr().err
-
-
-def _count_draws(viewer: LiveViewer) -> list[int]:
-    """Count the renderer's draws from now on (the list's one item)."""
-    drawn, draw = [0], viewer.renderer.draw
-
-    def counted(*args: Any, **kwargs: Any) -> None:
-        drawn[0] += 1
-        draw(*args, **kwargs)
-
-    viewer.renderer.draw = counted  # type: ignore[method-assign]
-    return drawn
-
-
-def _screen(viewer: LiveViewer) -> np.ndarray:
-    raw = viewer.wnd.fbo.read(components=3, alignment=1)
-    width, height = viewer.wnd.fbo.size
-    return np.frombuffer(raw, dtype=np.uint8).reshape(height, width, 3)
-
-
-def test_an_unchanged_frame_is_copied_not_drawn_again(headless) -> None:
-    viewer, _, _ = headless
-    _wait(viewer, _has_run(1))
-    viewer.handle_key("U")  # no HUD: its frame rate would change the picture
-    run_frames(viewer, 2)
-    drawn = _count_draws(viewer)
-    kept = _screen(viewer).copy()
-    run_frames(viewer, 5)
-    assert drawn[0] == 0 and np.array_equal(_screen(viewer), kept)
-    assert not viewer.frames.presented  # nothing new: the loop need not swap
-    viewer.frames.presented_at -= 1.0  # half a second later it is put up again
-    run_frames(viewer, 1)
-    assert viewer.frames.presented and drawn[0] == 0  # copied, not drawn
-    viewer.frames.keep_frames = False  # drawn directly, the same picture
-    run_frames(viewer, 1)
-    assert drawn[0] == 1 and np.array_equal(_screen(viewer), kept)
-    viewer.frames.keep_frames = True
-    for change in (lambda: viewer.camera.orbit(10.0, 0.0), lambda: viewer.handle_key("W"),
-                   lambda: viewer.click(160, 120)):
-        before = drawn[0]
-        change()
-        run_frames(viewer, 3)
-        assert drawn[0] == before + 1  # drawn once for the change, then copied
-    assert not np.array_equal(_screen(viewer), kept)
-
-
-def test_a_screen_that_refuses_the_copy_is_drawn_every_frame(headless) -> None:
-    viewer, _, _ = headless
-    _wait(viewer, _has_run(1))
-
-    class RefusingContext:
-        """The window's context, but every copy to the screen fails."""
-
-        def __init__(self, ctx: Any) -> None:
-            self._ctx, self.copies = ctx, 0
-
-        def copy_framebuffer(self, dst: Any, src: Any) -> None:
-            self.copies += 1
-
-        @property
-        def error(self) -> str:
-            return "GL_INVALID_OPERATION" if self.copies else "GL_NO_ERROR"
-
-        def __getattr__(self, name: str) -> Any:
-            return getattr(self._ctx, name)
-
-    viewer.frames.kept = None  # the next frame makes a new target, and checks the copy
-    viewer.frames.ctx = RefusingContext(viewer.frames.ctx)
-    drawn = _count_draws(viewer)
-    run_frames(viewer, 3)
-    assert not viewer.frames.keep_frames
-    assert drawn[0] == 1 + 3  # into the kept frame once, then straight to the screen
 
 
 def test_view_output_of_all_objects_joins_them(tmp_path: Path) -> None:

@@ -1,0 +1,112 @@
+"""Putting frames on the screen (over EGL): the kept frame is copied, not drawn again,
+and the frame rate counts the frames drawn."""
+
+from __future__ import annotations
+
+import io
+from collections.abc import Iterator
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pytest
+
+from livemod.viewer.window import LiveViewer, ViewOptions, close_viewer, create_viewer, run_frames
+
+from .viewer_support import frames_until
+
+
+@pytest.fixture
+def viewer(tmp_path: Path) -> Iterator[LiveViewer]:
+    """A headless window (320 x 240) that has shown a cube."""
+    script = tmp_path / "model.py"
+    script.write_text("load('cube')\n")
+    window = create_viewer(ViewOptions(str(script), backend="headless", size=(320, 240),
+                                       samples=0, vsync=False, echo=io.StringIO()))
+    frames_until(window, lambda v: v.result is not None and not v.waiting)
+    yield window
+    close_viewer(window)
+
+
+def _count_draws(viewer: LiveViewer) -> list[int]:
+    """Count the renderer's draws from now on (the list's one item)."""
+    drawn, draw = [0], viewer.renderer.draw
+
+    def counted(*args: Any, **kwargs: Any) -> None:
+        drawn[0] += 1
+        draw(*args, **kwargs)
+
+    viewer.renderer.draw = counted  # type: ignore[method-assign]
+    return drawn
+
+
+
+def _screen(viewer: LiveViewer) -> np.ndarray:
+    raw = viewer.wnd.fbo.read(components=3, alignment=1)
+    width, height = viewer.wnd.fbo.size
+    return np.frombuffer(raw, dtype=np.uint8).reshape(height, width, 3)
+
+
+
+def test_an_unchanged_frame_is_copied_not_drawn_again(viewer: LiveViewer) -> None:
+    viewer.handle_key("U")  # no HUD: its frame rate would change the picture
+    run_frames(viewer, 2)
+    drawn = _count_draws(viewer)
+    kept = _screen(viewer).copy()
+    run_frames(viewer, 5)
+    assert drawn[0] == 0 and np.array_equal(_screen(viewer), kept)
+    assert not viewer.frames.presented  # nothing new: the loop need not swap
+    viewer.frames.presented_at -= 1.0  # half a second later it is put up again
+    run_frames(viewer, 1)
+    assert viewer.frames.presented and drawn[0] == 0  # copied, not drawn
+    viewer.frames.keep_frames = False  # drawn directly, the same picture
+    run_frames(viewer, 1)
+    assert drawn[0] == 1 and np.array_equal(_screen(viewer), kept)
+    viewer.frames.keep_frames = True
+    for change in (lambda: viewer.camera.orbit(10.0, 0.0), lambda: viewer.handle_key("W"),
+                   lambda: viewer.click(160, 120)):
+        before = drawn[0]
+        change()
+        run_frames(viewer, 3)
+        assert drawn[0] == before + 1  # drawn once for the change, then copied
+    assert not np.array_equal(_screen(viewer), kept)
+
+
+
+def test_a_screen_that_refuses_the_copy_is_drawn_every_frame(viewer: LiveViewer) -> None:
+
+    class RefusingContext:
+        """The window's context, but every copy to the screen fails."""
+
+        def __init__(self, ctx: Any) -> None:
+            self._ctx, self.copies = ctx, 0
+
+        def copy_framebuffer(self, dst: Any, src: Any) -> None:
+            self.copies += 1
+
+        @property
+        def error(self) -> str:
+            return "GL_INVALID_OPERATION" if self.copies else "GL_NO_ERROR"
+
+        def __getattr__(self, name: str) -> Any:
+            return getattr(self._ctx, name)
+
+    viewer.frames.kept = None  # the next frame makes a new target, and checks the copy
+    viewer.frames.ctx = RefusingContext(viewer.frames.ctx)
+    drawn = _count_draws(viewer)
+    run_frames(viewer, 3)
+    assert not viewer.frames.keep_frames
+    assert drawn[0] == 1 + 3  # into the kept frame once, then straight to the screen
+
+
+def test_the_frame_rate_counts_only_frames_drawn(viewer: LiveViewer) -> None:
+    run_frames(viewer, 3)
+    counted = len(viewer.frames.frame_times)
+    run_frames(viewer, 20)  # nothing changes: no frame is drawn
+    assert not viewer.frames.presented
+    assert len(viewer.frames.frame_times) == counted
+    for _ in range(5):  # each turn of the view draws a frame
+        viewer.camera.orbit(5.0, 0.0)
+        run_frames(viewer, 1)
+    run_frames(viewer, 1)  # (a drawn frame's time ends where the next turn starts)
+    assert len(viewer.frames.frame_times) == counted + 5
