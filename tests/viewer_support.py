@@ -33,3 +33,15 @@ def press_key(viewer, name: str, shift: bool = False, ctrl: bool = False,  # noq
     viewer.on_key_event(name, viewer.wnd.keys.ACTION_PRESS, modifiers)
     if release:
         viewer.on_key_event(name, viewer.wnd.keys.ACTION_RELEASE, modifiers)
+
+
+class FakePlayback:
+    """A session's playback controls that record the calls they get, in order."""
+
+    def __init__(self) -> None:
+        self.calls: list[tuple] = []
+
+    def __getattr__(self, name: str):  # noqa: ANN204
+        if name.startswith("_"):
+            raise AttributeError(name)
+        return lambda *args: self.calls.append((name, *args))

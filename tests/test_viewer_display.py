@@ -1,0 +1,67 @@
+"""The mesh on screen (over EGL): which mesh of a result is drawn, and its framing."""
+
+from __future__ import annotations
+
+from types import SimpleNamespace
+
+from livemod.dlfl import mesh_arrays
+from livemod.dlfl.shapes import cube, octahedron, tetrahedron
+from livemod.viewer.camera import Camera
+from livemod.viewer.display import MeshDisplay
+from livemod.viewer.look import Look
+from livemod.viewer.measure import WholeMeshMeasurer
+from livemod.viewer.objects import SceneObjects
+from livemod.viewer.picking import Picking
+from livemod.viewer.runs import RunTracker
+
+from .conftest import OFFSCREEN_SIZE
+
+
+def _display(renderer) -> tuple[MeshDisplay, Camera, list[str]]:
+    camera, said = Camera(), []
+    objects = SceneObjects(RunTracker(), Look(), said.append, renderer.set_others)
+    display = MeshDisplay(renderer, camera, WholeMeshMeasurer(), Picking(lambda: None, print),
+                          objects, lambda: OFFSCREEN_SIZE, said.append)
+    return display, camera, said
+
+
+def _result(arrays, status="ok", partial=None, preview=None) -> SimpleNamespace:
+    error = None if status == "ok" else SimpleNamespace(message="ValueError: no")
+    return SimpleNamespace(run_id=1, status=status, arrays=arrays, partial=partial,
+                           preview=preview, error=error, others=None, other_objects=())
+
+
+def test_a_result_shows_its_mesh_framed_once(offscreen) -> None:
+    renderer = offscreen.renderer
+    display, camera, _ = _display(renderer)
+    good = mesh_arrays(cube())
+    display.show(_result(good))
+    assert renderer.arrays is good and display.fit_bounds is not None
+    camera.orbit(30.0, 0.0)
+    turned = camera.copy()
+    display.show(_result(mesh_arrays(cube())))  # the same bounds: the camera stays
+    assert camera.yaw == turned.yaw and camera.distance == turned.distance
+    preview = mesh_arrays(octahedron())
+    shown = renderer.arrays
+    display.show(_result(shown, preview=preview))  # posted again with its preview
+    assert renderer.arrays is shown and renderer.preview is preview
+    display.show(_result(None))  # the script left no mesh
+    assert renderer.arrays is None
+
+
+def test_e_shows_the_failed_runs_mesh_and_back(offscreen) -> None:
+    renderer = offscreen.renderer
+    display, _, said = _display(renderer)
+    display.toggle_partial(None)
+    assert said == ["no failed run to show: E shows the mesh a failed run left"]
+    good, partial = mesh_arrays(cube()), mesh_arrays(tetrahedron())
+    failed = _result(good, "error", partial=partial)
+    display.show(failed)
+    assert renderer.arrays is good  # the last good mesh stays
+    display.toggle_partial(failed)
+    assert renderer.arrays is partial and display.show_partial
+    display.toggle_partial(failed)
+    assert renderer.arrays is good and said[1:] == [
+        "showing the mesh as the failed run left it", "showing the last good mesh"]
+    display.forget()
+    assert not display.show_partial and display.fit_bounds is None
