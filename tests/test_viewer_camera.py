@@ -65,3 +65,10 @@ def test_fit_points_frames_a_whole_turntable_tightly() -> None:
             assert ndc.max() <= 1.0
             widest = max(widest, float(ndc.max()))
         assert widest > 0.9   # tight: no loose bounding-sphere margin
+
+
+def test_an_ortho_near_plane_may_lie_behind_the_eye() -> None:
+    near, far = Camera(distance=0.5, scene_radius=1.0, ortho=True).clip_range()
+    assert near < -1.0 and far > 1.5
+    near, _ = Camera(distance=0.5, scene_radius=1.0).clip_range()
+    assert near > 0.0  # a perspective one never

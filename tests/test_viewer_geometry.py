@@ -7,7 +7,9 @@ import pytest
 
 from livemod.dlfl import from_polygons, mesh_arrays
 from livemod.dlfl.shapes import cube, grid
-from livemod.viewer.geometry import build_geometry, decode_pick, fan_triangles
+from livemod.viewer.geometry import build_geometry, decode_pick, fan_triangles, finite_bounds
+
+from .viewer_support import cube_with
 
 
 def test_fans_cover_every_face_and_skip_holes() -> None:
@@ -70,3 +72,14 @@ def test_vertex_normals_are_unit_sums_of_the_triangles_around() -> None:
     assert np.all(np.sign(normals) == outward)
     lonely = vertex_normals(np.zeros((2, 3)), np.zeros((0, 3), dtype=np.uint32))
     assert np.array_equal(lonely, np.zeros((2, 3), dtype=np.float32))
+
+
+def test_bounds_leave_out_positions_that_are_not_finite() -> None:
+    arrays = cube_with({0: (np.nan, 1.0, 1.0), 6: (-np.inf, -1.0, -1.0)})
+    geometry = build_geometry(arrays)
+    assert geometry.nonfinite == 2
+    # vertex 0 was the only one at max x = 1 with y = z = 1; 6 the only -x, -y, -z
+    assert geometry.bounds.tolist() == [[-1.0, -1.0, -1.0], [1.0, 1.0, 1.0]]
+    assert np.isfinite(geometry.center).all() and geometry.radius == pytest.approx(3 ** 0.5)
+    assert finite_bounds(np.full((3, 3), np.nan)).tolist() == [[0.0] * 3, [0.0] * 3]
+    assert build_geometry(mesh_arrays(cube())).nonfinite == 0

@@ -15,6 +15,7 @@ from livemod.viewer.imagefiles import (
     gif_delays,
     gif_rate_note,
     output_paths,
+    save_new_png,
     save_png,
     write_images,
 )
@@ -218,3 +219,16 @@ def test_write_images_refuses_no_frames_and_bad_names_before_writing(tmp_path: P
     with pytest.raises(ValueError, match="MP4 has no alpha"):
         write_images(str(tmp_path / "t.mp4"), moving_square(2, alpha=True))
     assert list(tmp_path.iterdir()) == []
+
+
+def test_a_new_png_never_replaces_a_file(tmp_path: Path) -> None:
+    path = tmp_path / "shot.png"
+    path.write_bytes(b"someone else's")
+    image = np.zeros((4, 6, 3), np.uint8)
+    with pytest.raises(FileExistsError):
+        save_new_png(path, image)
+    assert path.read_bytes() == b"someone else's"
+    fresh = tmp_path / "sub" / "new.png"
+    save_new_png(fresh, image)
+    assert np.asarray(Image.open(fresh)).shape == (4, 6, 3)
+    assert sorted(p.name for p in tmp_path.rglob("*")) == ["new.png", "shot.png", "sub"]

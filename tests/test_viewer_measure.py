@@ -10,6 +10,7 @@ import pytest
 
 from livemod.dlfl import Mesh, enclosed_volume, from_polygons, mesh_arrays, shapes
 from livemod.dlfl.scene import Selection
+from livemod.viewer import measure
 from livemod.viewer.measure import (
     WholeMesh,
     WholeMeshMeasurer,
@@ -148,3 +149,25 @@ def test_a_background_measurement_that_fails_is_logged_and_says_nothing(
     finally:
         measurer.close()
     assert "measuring the mesh shown failed" in caplog.text and "no volume" in caplog.text
+
+
+def test_a_face_far_from_the_origin_keeps_its_area_and_normal() -> None:
+    far = 1e8
+    square = [(far, far, 0.0), (far + 1, far, 0.0), (far + 1, far + 1, 0.0), (far, far + 1, 0.0)]
+    arrays = mesh_arrays(from_polygons(square, [(0, 1, 2, 3)]))
+    area, normal = face_area_normal(arrays, 0)
+    assert area == pytest.approx(1.0, rel=1e-6)
+    assert np.allclose(np.abs(normal), (0, 0, 1))
+
+
+
+def test_a_measurer_closed_for_another_script_measures_again(monkeypatch) -> None:
+    """The window closes its measurer with the session when a script is dropped on
+    it; measuring the next script's large mesh must still work."""
+    monkeypatch.setattr(measure, "MEASURE_AT_ONCE", 0)  # every mesh in the background
+    measurer = WholeMeshMeasurer()
+    measurer.close()
+    measurer.measure(mesh_arrays(shapes.cube()))
+    facts = measurer.wait(10.0)
+    assert facts is not None and facts.genus == 0
+    measurer.close()

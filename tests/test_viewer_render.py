@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import moderngl
 import numpy as np
 import pytest
 from PIL import Image
@@ -12,19 +13,23 @@ from livemod.dlfl import from_polygons, mesh_arrays
 from livemod.dlfl.arrays import concatenate_arrays
 from livemod.dlfl.rind import crust
 from livemod.dlfl.scene import Selection
-from livemod.dlfl.shapes import cube
+from livemod.dlfl.shapes import cube, tetrahedron
 from livemod.dlfl.subdivision.smooth import catmull_clark
+from livemod.viewer.camera import Camera
 from livemod.viewer.cli import main
-from livemod.viewer.headless import Offscreen, framed_camera, render_turntable
+from livemod.viewer.headless import Offscreen, camera_framing, framed_camera, render_turntable
 from livemod.viewer.renderer import (
     BASE_COLOR,
     OTHER_COLOR,
+    Renderer,
     Style,
     hatch_spacing,
+    nearest_corner,
 )
 from tests.images import read_image
 
 from .conftest import OFFSCREEN_SIZE
+from .viewer_support import cube_with, gl_objects
 
 SIZE = OFFSCREEN_SIZE
 BACKGROUND = np.array([round(0.16 * 255), round(0.17 * 255), round(0.19 * 255)])
@@ -768,3 +773,202 @@ def test_render_takes_the_seed_a_run_takes(tmp_path: Path) -> None:
         pictures[name] = read_image(out)
     assert np.array_equal(pictures["a"], pictures["b"])
     assert not np.array_equal(pictures["a"], pictures["c"])
+
+
+# inside the box [-1, 1]^3, 0.064 in front of its z = -1 side, looking up and away
+INSIDE = dict(target=np.array([-0.6, 0.6, -0.4]), distance=1.05, yaw=128.0, pitch=-34.0,
+              fov=60.0)
+
+
+
+CLICK = (136, 8)  # a pixel of the z = -1 side, near the top right
+
+
+
+def _z_side(arrays) -> int:
+    """Dense index of the box's z = -1 side."""
+    for face in range(len(arrays.face_ids)):
+        ring = arrays.positions[arrays.corner_vertex[
+            arrays.face_offsets[face]:arrays.face_offsets[face + 1]]]
+        if len(ring) == 4 and np.all(ring[:, 2] == -1.0):
+            return face
+    raise AssertionError("no z = -1 side")
+
+
+
+def test_a_corner_behind_the_eye_is_not_picked() -> None:
+    """Two corners of the side lie behind the eye (clip w < 0); divided by their w
+    they land mirrored, one of them nearest the click. The corner picked must be
+    the one whose vertex the click is nearest on the screen among those seen."""
+    arrays = mesh_arrays(from_polygons(CUBE_POSITIONS, CUBE_FACES))
+    camera = Camera(**INSIDE)
+    assert np.all(np.abs(camera.eye()) < 1.0)
+    face = _z_side(arrays)
+    start, stop = arrays.face_offsets[face], arrays.face_offsets[face + 1]
+    at = arrays.positions[arrays.corner_vertex[start:stop]]
+    clip = np.c_[at, np.ones(4)] @ camera.view_projection(SIZE[0] / SIZE[1]).T
+    assert (clip[:, 3] < 0).sum() == 2  # two corners behind the eye
+    front = np.flatnonzero(clip[:, 3] > 0)
+    ndc = clip[front, :2] / clip[front, 3:4]
+    pixels = np.c_[(ndc[:, 0] + 1) * SIZE[0] / 2, (1 - ndc[:, 1]) * SIZE[1] / 2]
+    expected = start + front[np.argmin(((pixels - CLICK) ** 2).sum(axis=1))]
+    picked = nearest_corner(arrays, face, camera, SIZE, CLICK)
+    assert picked == expected
+    assert arrays.positions[arrays.corner_vertex[picked]].tolist() == [-1.0, 1.0, -1.0]
+
+
+
+def test_a_corner_pick_from_inside_an_open_box(offscreen: Offscreen) -> None:
+    """The same through the pick pass: the box has no bottom, so it is not closed
+    and its inner sides are drawn (and picked) from inside."""
+    arrays = mesh_arrays(from_polygons(CUBE_POSITIONS, CUBE_FACES[:5]))
+    offscreen.renderer.set_mesh(arrays)
+    hit = offscreen.renderer.pick(Camera(**INSIDE), SIZE, *CLICK, "corner")
+    assert hit is not None and hit.kind == "corner"
+    assert arrays.corner_face[hit.dense_index] == _z_side(arrays)
+    assert arrays.positions[arrays.corner_vertex[hit.dense_index]].tolist() == [-1.0, 1.0, -1.0]
+
+
+
+def test_framing_leaves_out_positions_that_are_not_finite() -> None:
+    arrays = cube_with({3: (np.nan, np.nan, np.nan), 5: (1e308 * 10, 0.0, 0.0)})
+    clean = np.delete(np.array(arrays.positions), [3, 5], axis=0)
+    framed = camera_framing(arrays.positions, aspect=4 / 3)
+    expected = camera_framing(clean, aspect=4 / 3)
+    assert np.isfinite(framed.target).all() and np.isfinite(framed.distance)
+    assert framed.target.tolist() == expected.target.tolist()
+    assert framed.distance == expected.distance
+    untouched = Camera()
+    untouched.fit_points(np.full((4, 3), np.nan), 1.0)  # nothing finite: left as it was
+    assert untouched.target.tolist() == [0.0, 0.0, 0.0] and untouched.distance == 5.0
+    with pytest.raises(ValueError, match="cannot frame bounds that are not finite"):
+        Camera().fit(np.array([[0.0, 0, 0], [np.nan, 1, 1]]))
+
+
+
+def test_a_mesh_with_a_nan_vertex_is_framed_and_drawn(offscreen: Offscreen) -> None:
+    arrays = cube_with({0: (np.nan, 0.0, 0.0)})
+    offscreen.renderer.set_mesh(arrays)
+    assert offscreen.renderer.nonfinite == 1
+    assert offscreen.renderer.bounds.tolist() == [[-1.0, -1.0, -1.0], [1.0, 1.0, 1.0]]
+    camera = framed_camera(arrays)
+    assert np.isfinite(camera.eye()).all()
+    image = offscreen.render(camera, Style(grid=True))  # the grid is sized on the bounds
+    assert _mask(image)[SIZE[1] // 2, SIZE[0] // 2]
+    offscreen.renderer.set_mesh(cube_with({v: (np.nan,) * 3 for v in range(8)}))
+    assert offscreen.renderer.bounds is None  # nothing finite: nothing to size on
+    offscreen.render(Camera(), Style(grid=True))
+
+
+
+def test_the_guide_lines_are_made_once_per_bounds(offscreen: Offscreen) -> None:
+    renderer = offscreen.renderer
+    renderer.set_mesh(mesh_arrays(cube()))
+    camera = framed_camera(renderer.arrays)
+    first = offscreen.render(camera, Style(grid=True))
+    made = renderer._guides
+    turned = camera.copy()
+    turned.orbit(20.0, 0.0)
+    offscreen.render(turned, Style(grid=True))
+    again = offscreen.render(camera, Style(grid=True))
+    assert renderer._guides is made  # the same GL objects, not made again
+    assert np.array_equal(first, again)
+    old = [vao for vao, _, _ in made[1]]
+    renderer.set_mesh(mesh_arrays(tetrahedron()))  # other bounds: made again
+    offscreen.render(camera, Style(grid=True))
+    assert renderer._guides is not made
+    assert all(isinstance(vao.mglo, moderngl.InvalidObject) for vao in old)
+
+
+
+def test_release_frees_every_gl_object_of_the_renderer() -> None:
+    offscreen = Offscreen(SIZE, samples=0)
+    try:
+        renderer = Renderer(offscreen.ctx)
+        arrays = mesh_arrays(cube())
+        renderer.set_mesh(arrays, preview=arrays, others=mesh_arrays(tetrahedron()))
+        renderer.set_selection(Selection(edges=(int(arrays.edge_ids[0]),)))
+        camera = framed_camera(arrays)
+        style = Style(grid=True, smooth=True, section=(0, 0.0))  # the winding target too
+        renderer.draw(offscreen.target, camera, style)
+        renderer.pick(camera, SIZE, SIZE[0] // 2, SIZE[1] // 2, "face")
+        assert renderer._pick_fbo is not None and renderer._winding is not None
+        objects = gl_objects(renderer)
+        kinds = {type(obj).__name__ for obj in objects}
+        assert {"Buffer", "VertexArray", "Texture", "Program", "Framebuffer"} <= kinds
+        renderer.release()
+        alive = [obj for obj in objects if not isinstance(obj.mglo, moderngl.InvalidObject)]
+        assert alive == []
+        renderer.release()  # again: nothing happens
+        assert offscreen.ctx.error == "GL_NO_ERROR"
+    finally:
+        offscreen.release()
+
+
+def test_an_ortho_camera_zoomed_in_does_not_clip_what_is_in_front(offscreen) -> None:
+    """Zooming an orthographic view brings the eye closer, not the picture: the
+    eye may go inside the mesh, and what lies behind the eye still shows."""
+    arrays = mesh_arrays(cube())
+    offscreen.activate()
+    offscreen.renderer.set_mesh(arrays)
+    camera = framed_camera(arrays, elevation=0.0, yaw=0.0, ortho=True)
+    camera.zoom(25)  # distance 0.07 of the fit: the eye is inside the cube
+    image = offscreen.render(camera, Style(edges=False))
+    assert _mask(image)[SIZE[1] // 2, SIZE[0] // 2]  # the front face fills the view
+
+
+
+def test_a_mesh_moved_off_the_target_is_not_cut_by_the_far_plane(offscreen) -> None:
+    """A re-run that moves the mesh by less than its size keeps the camera; the
+    clip planes must still enclose all of it."""
+    arrays = mesh_arrays(cube())
+    camera = framed_camera(arrays, elevation=0.0, yaw=0.0)
+    depth = -0.9 * float(np.linalg.norm(np.ptp(arrays.positions, axis=0)))
+    offscreen.activate()
+    offscreen.renderer.set_mesh(_translated(arrays, (0.0, 0.0, depth)))
+    style = Style(faces=False)  # the wireframe: the far side's edges show
+    seen = offscreen.render(camera.copy(), style)
+    # the same eye and view, its target at the moved cube's centre
+    centred = camera.copy()
+    centred.target, centred.distance = np.array([0.0, 0.0, depth]), camera.distance - depth
+    assert np.allclose(centred.eye(), camera.eye())
+    assert np.array_equal(_mask(seen), _mask(offscreen.render(centred, style)))
+
+
+
+def _translated(arrays, offset: tuple[float, float, float]):
+    """``arrays`` of a cube moved by ``offset`` (built again from its polygons)."""
+    positions = [tuple(map(float, p + np.asarray(offset))) for p in arrays.positions]
+    faces = [tuple(int(v) for v in arrays.corner_vertex[arrays.face_offsets[f]:
+                                                        arrays.face_offsets[f + 1]])
+             for f in range(len(arrays.face_ids))]
+    return mesh_arrays(from_polygons(positions, faces))
+
+
+
+def test_render_refuses_a_reference_for_an_mp4_before_it_renders(tmp_path: Path,
+                                                                 capsys) -> None:
+    """An MP4 cannot be read back as a picture (and H.264 is lossy): said at once,
+    not as a traceback after the render."""
+    from PIL import Image
+
+    from livemod.viewer.cli import main
+
+    golden = tmp_path / "golden.png"
+    Image.new("RGB", (64, 48)).save(golden)
+    out = tmp_path / "out.mp4"
+    code = main(["render", "cube", "-o", str(out), "--size", "64x48",
+                 "--reference", str(golden)])
+    assert code == 2 and not out.exists()
+    assert "--reference compares a PNG, GIF or WebP picture, not out.mp4" in \
+        capsys.readouterr().err
+
+
+
+def test_render_refuses_mesh_for_a_mesh_input(tmp_path: Path, capsys) -> None:
+    """``--mesh`` is the mesh a script starts from: for a mesh input it did nothing."""
+    from livemod.viewer.cli import main
+
+    out = tmp_path / "out.png"
+    assert main(["render", "cube", "-o", str(out), "--mesh", "tetrahedron"]) == 2
+    assert "--mesh needs a script" in capsys.readouterr().err and not out.exists()

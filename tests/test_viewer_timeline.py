@@ -58,3 +58,14 @@ def test_shown_step_of_results() -> None:
     assert shown_step(SimpleNamespace(steps=steps[:2], step_index=1), 3) == 1
     assert shown_step(SimpleNamespace(steps=(), step_index=None), 0) is None
     assert shown_step(None, 0) is None
+
+
+def test_a_press_on_the_timeline_handle_stays_on_its_step() -> None:
+    """The handle of step k is drawn at the end of the fill, (k + 1) / total of the
+    bar: pressing it (to drag it) must not jump to step k + 1."""
+    timeline, size, total = Timeline(), (800, 600), 10
+    for shown in range(total):
+        quads = timeline.quads(size, shown, total)
+        handle = quads[-1]  # the handle is the last quad
+        centre = float(handle[0] + handle[5] / 2)  # x + width / 2
+        assert timeline.step_at(centre, size, total) == shown

@@ -14,10 +14,13 @@ from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any
 
+import moderngl
 import numpy as np
 import pytest
+from PIL import Image
 
 from livemod.dlfl.scene import Selection
+from livemod.dlfl.shapes import cube, tetrahedron
 from livemod.viewer.hud import hud_lines
 from livemod.viewer.window import (
     LiveViewer,
@@ -26,6 +29,8 @@ from livemod.viewer.window import (
     create_viewer,
     run_frames,
 )
+
+from .viewer_support import cube_with, frames_until, gl_objects
 
 CUBE = """
 from livemod.dlfl import from_polygons, current_scene, faces, translate
@@ -80,6 +85,12 @@ def _opened(script: Path, size: tuple[int, int], **options: Any) -> Iterator[Liv
         yield viewer
     finally:
         close_viewer(viewer)
+
+
+def _background_differs(image: np.ndarray) -> np.ndarray:
+    """``(H, W)`` bool: the pixels that are not the dark background."""
+    background = np.array([round(0.16 * 255), round(0.17 * 255), round(0.19 * 255)])
+    return np.abs(image.astype(int) - background).sum(axis=2) > 6
 
 
 def _hud_text(viewer: LiveViewer) -> str:
@@ -1046,3 +1057,161 @@ def test_the_rate_keys_change_how_fast_the_steps_play(tmp_path: Path) -> None:
         _wait(viewer, lambda v: v.result.run_id >= 2 and v.result.status == "ok")
         assert not viewer.stepping.playing and "rate 32 steps/s" in _hud_text(viewer)
         assert "play rate: 16 steps/s\nplay rate: 32 steps/s" in echo.getvalue()
+
+
+def _settled(viewer) -> bool:
+    return viewer.result is not None and not viewer.waiting and viewer.result.status == "ok"
+
+
+
+@pytest.fixture
+def cube_script(tmp_path: Path) -> Path:
+    script = tmp_path / "box.py"
+    script.write_text("load('cube')\n")
+    return script
+
+
+
+def _viewer(script: Path, **options):
+    options.setdefault("echo", io.StringIO())
+    return create_viewer(ViewOptions(str(script), backend="headless", size=(200, 150),
+                                     samples=0, vsync=False, **options))
+
+
+
+def test_the_window_frames_and_warns_about_a_mesh_with_nan(cube_script: Path) -> None:
+    """A NaN vertex reaches the window's upload (as from a script's own arrays): the
+    view is fitted on the rest, and the HUD counts it."""
+    from livemod.viewer.hud import hud_lines
+
+    viewer = _viewer(cube_script)
+    try:
+        frames_until(viewer, _settled)
+        viewer.display.fit_bounds = None  # (fit on this upload)
+        viewer.display.upload(cube_with({2: (np.nan, 0.0, 0.0)}), None, None)
+        assert np.isfinite(viewer.camera.eye()).all() and viewer.camera.distance > 1.0
+        text = [line for line, _ in hud_lines(viewer.view_state())]
+        assert "1 vertex not finite (NaN or inf): left out of the framing" in text
+        run_frames(viewer, 1)
+        assert _background_differs(viewer.capture())[75, 100]
+    finally:
+        close_viewer(viewer)
+
+
+
+def test_closing_the_window_releases_the_renderer(cube_script: Path) -> None:
+    viewer = _viewer(cube_script)
+    try:
+        frames_until(viewer, _settled)
+        run_frames(viewer, 2)
+        objects = gl_objects(viewer.renderer) + [viewer.frames.kept[1]]
+    finally:
+        close_viewer(viewer)
+    assert all(isinstance(obj.mglo, moderngl.InvalidObject) for obj in objects)
+    assert viewer.renderer._released and viewer.frames.kept is None
+
+
+
+def test_a_screenshot_name_taken_meanwhile_is_not_written_over(
+        cube_script: Path, tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """Another process writes ``box_000.png`` while the window renders its picture."""
+    monkeypatch.chdir(tmp_path)
+    viewer = _viewer(cube_script)
+    try:
+        frames_until(viewer, _settled)
+        capture = viewer.capture
+
+        def racing(transparent: bool = False) -> np.ndarray:
+            Path("box_000.png").write_bytes(b"the other process's")
+            return capture(transparent)
+
+        monkeypatch.setattr(viewer, "capture", racing)
+        path = viewer.save_screenshot()
+    finally:
+        close_viewer(viewer)
+    assert path == Path("box_001.png")
+    assert Path("box_000.png").read_bytes() == b"the other process's"
+    assert np.asarray(Image.open(path)).shape == (150, 200, 3)
+
+
+
+SUBDIVIDED = """
+from livemod.dlfl import param
+n = param("n", 0, min=0, max=2)
+for _ in range(n):
+    subdivide("catmull-clark")
+"""
+
+
+
+def test_a_dropped_mesh_keeps_the_scripts_parameters(tmp_path: Path) -> None:
+    from livemod.dlfl.io import save_mesh
+
+    script = tmp_path / "smooth.py"
+    script.write_text(SUBDIVIDED)
+    box, tet = tmp_path / "box.obj", tmp_path / "tet.obj"
+    save_mesh(cube(), str(box))
+    save_mesh(tetrahedron(), str(tet))
+    echo = io.StringIO()
+    viewer = _viewer(script, mesh_path=str(box), echo=echo)
+    try:
+        frames_until(viewer, _settled)
+        viewer.parameters.set("n", 1)
+        viewer.parameters.flush(force=True)
+        frames_until(viewer, lambda v: _settled(v) and v.result.arrays.counts == (26, 48, 24))
+        viewer.set_selection(Selection(faces=(int(viewer.result.arrays.face_ids[0]),)))
+        viewer.open_path(str(tet))
+        assert viewer.selection.is_empty()
+        frames_until(viewer, lambda v: _settled(v) and v.result.arrays.counts[0] != 26)
+        # the tetrahedron subdivided once: the script ran with n = 1 on it
+        assert viewer.result.arrays.counts == (14, 24, 12)
+        assert viewer.session.parameters == {"n": 1} and viewer.parameters.panel.values == {"n": 1}
+        assert viewer.selection.is_empty()
+        said = echo.getvalue()
+        assert f"opened {tet.resolve()}" in said
+        assert ("the script runs on the new mesh with its parameter values kept; the "
+                "selection was cleared (its ids were the old mesh's)") in said
+    finally:
+        close_viewer(viewer)
+
+
+
+def test_an_emptied_script_is_named_over_the_last_mesh(cube_script: Path) -> None:
+    """Saved empty (or blank), the script runs nothing: the window keeps the cube and
+    the HUD says why, until the script has content again."""
+    from livemod.viewer.hud import hud_lines
+
+    viewer = _viewer(cube_script)
+    try:
+        frames_until(viewer, _settled)
+        cube_run = viewer.result.run_id
+        cube_script.write_text("\n  \n")
+        frames_until(viewer, lambda v: v.runs.empty_script is not None)
+        text = [line for line, _ in hud_lines(viewer.view_state())]
+        assert "box.py is empty: showing the last result" in text
+        assert viewer.result.run_id == cube_run and viewer.result.arrays.counts == (8, 12, 6)
+        cube_script.write_text("load('tetrahedron')\n")
+        frames_until(viewer, lambda v: _settled(v) and v.result.arrays.counts == (4, 6, 4))
+        assert viewer.runs.empty_script is None
+        assert not any("is empty" in line for line, _ in hud_lines(viewer.view_state()))
+    finally:
+        close_viewer(viewer)
+
+
+def test_a_dropped_script_starts_without_the_old_scripts_view_state(tmp_path: Path) -> None:
+    first = tmp_path / "fails.py"
+    first.write_text("load('cube')\nsubdivide('catmull-clark')\nraise ValueError('no')\n")
+    viewer = create_viewer(ViewOptions(str(first), backend="headless", size=(200, 150),
+                                       samples=0, vsync=False, echo=io.StringIO()))
+    try:
+        frames_until(viewer, lambda v: v.result is not None and not v.waiting)
+        viewer.handle_key("E")  # the failed run's mesh
+        assert viewer.display.show_partial
+        viewer.runs.viewer_error = "an old failure"
+        second = tmp_path / "ok.py"
+        second.write_text("load('cube')\n")
+        viewer.open_path(str(second))
+        assert not viewer.display.show_partial and viewer.runs.viewer_error is None
+        assert viewer.stepping.held is None and viewer.stepping.scrub_step is None and not viewer.stepping.playing
+    finally:
+        close_viewer(viewer)

@@ -1,9 +1,14 @@
-"""Driving a headless LiveViewer in tests."""
+"""Driving a headless LiveViewer in tests, and what several viewer test modules share."""
 
 from __future__ import annotations
 
+import dataclasses
 import time
 
+import moderngl
+import numpy as np
+
+from livemod.dlfl import from_polygons, mesh_arrays
 from livemod.viewer.window import run_frames
 
 
@@ -45,3 +50,44 @@ class FakePlayback:
         if name.startswith("_"):
             raise AttributeError(name)
         return lambda *args: self.calls.append((name, *args))
+
+
+# the 2 x 2 x 2 box around the origin, as polygons
+BOX_POSITIONS = [(1, 1, 1), (1, 1, -1), (-1, 1, -1), (-1, 1, 1),
+                 (1, -1, 1), (1, -1, -1), (-1, -1, -1), (-1, -1, 1)]
+BOX_FACES = [(0, 1, 2, 3), (4, 5, 1, 0), (5, 6, 2, 1), (6, 7, 3, 2), (7, 4, 0, 3),
+             (7, 6, 5, 4)]
+
+
+def cube_with(bad: dict[int, tuple[float, float, float]]):
+    """The arrays of the 2-unit cube with the positions of vertices ``bad`` replaced."""
+    arrays = mesh_arrays(from_polygons(BOX_POSITIONS, BOX_FACES))
+    positions = np.array(arrays.positions)
+    for vertex, position in bad.items():
+        positions[vertex] = position
+    return dataclasses.replace(arrays, positions=positions)
+
+
+def gl_objects(value, seen: set[int] | None = None) -> list:
+    """Every moderngl object reachable from ``value``'s attributes (recursively)."""
+    seen = set() if seen is None else seen
+    if id(value) in seen or isinstance(value, str | bytes | np.ndarray | int | float):
+        return []
+    seen.add(id(value))
+    kinds = (moderngl.Buffer, moderngl.VertexArray, moderngl.Texture, moderngl.Program,
+             moderngl.Framebuffer, moderngl.Renderbuffer)
+    if isinstance(value, kinds):
+        found = [value]
+        if isinstance(value, moderngl.Framebuffer) and \
+                not isinstance(value.mglo, moderngl.InvalidObject):
+            found += [a for a in (*value.color_attachments, value.depth_attachment) if a]
+        return found
+    if isinstance(value, dict):
+        items = list(value.values())
+    elif isinstance(value, list | tuple):
+        items = list(value)
+    elif hasattr(value, "__dict__") and type(value).__module__.startswith("livemod.viewer"):
+        items = [v for k, v in vars(value).items() if k != "ctx"]
+    else:
+        return []
+    return [obj for item in items for obj in gl_objects(item, seen)]

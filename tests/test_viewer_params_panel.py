@@ -11,6 +11,7 @@ from pathlib import Path
 
 import pytest
 
+from livemod.dlfl.params import make_spec
 from livemod.viewer.params_panel import ParameterPanel, slider_range, snap
 from livemod.viewer.window import LiveViewer, ViewOptions, close_viewer, create_viewer
 
@@ -158,9 +159,33 @@ def test_copy_key_fills_the_glfw_clipboard(tmp_path: Path) -> None:
     script = tmp_path / "polygon.py"
     script.write_text(POLYGON)
     root = Path(__file__).resolve().parent.parent
-    code = (f"import sys; sys.path.insert(0, {str(root)!r}); from tests.test_viewer_params "
+    code = (f"import sys; sys.path.insert(0, {str(root)!r}); from tests.test_viewer_params_panel "
             f"import _glfw_clipboard_probe; _glfw_clipboard_probe({str(script)!r})")
     done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                           timeout=90, cwd=root)
     assert done.returncode == 0, done.stdout + done.stderr
     assert "clipboard ok" in done.stdout
+
+
+def _values(spec) -> list:
+    return sorted({snap(spec, k / 2000) for k in range(2001)})
+
+
+
+def test_a_stepped_slider_reaches_its_max_and_stays_on_the_grid() -> None:
+    spec = make_spec("t", 0.0, min=0.0, max=1.0, step=0.3)
+    assert _values(spec) == [0.0, 0.3, 0.6, 0.9, 1.0]
+    assert snap(spec, 1.0) == 1.0 and snap(spec, 0.93) == 0.9 and snap(spec, 0.97) == 1.0
+    spec = make_spec("t", 0.0, min=0.0, max=1.0, step=0.4)
+    assert _values(spec) == [0.0, 0.4, 0.8, 1.0] and snap(spec, 1.0) == 1.0
+    spec = make_spec("n", 1, min=1, max=10, step=4)
+    assert _values(spec) == [1, 5, 9, 10]
+    spec = make_spec("t", 0.0, min=0.0, max=1.0, step=0.1)  # a step that divides it
+    assert _values(spec) == [round(0.1 * k, 12) for k in range(11)]
+
+
+
+def test_an_open_ended_stepped_slider_ends_on_its_grid() -> None:
+    """With no max the slider's right end is where drawing stops, not a value."""
+    spec = make_spec("t", 0.5, min=0.0, step=0.2)  # the slider spans 0 .. 1.5
+    assert _values(spec) == [round(0.2 * k, 12) for k in range(8)]
