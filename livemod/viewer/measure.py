@@ -85,6 +85,8 @@ class WholeMeshMeasurer:
     def __init__(self) -> None:
         self._pool: concurrent.futures.ThreadPoolExecutor | None = None  # made when needed
         self._job: concurrent.futures.Future[WholeMesh] | None = None
+        # the last job found done, and its facts
+        self._known: tuple[concurrent.futures.Future[WholeMesh], WholeMesh | None] | None = None
 
     def _submit(self, arrays: MeshArrays) -> concurrent.futures.Future[WholeMesh]:
         """Measure ``arrays`` in the background thread, starting it again after
@@ -112,9 +114,13 @@ class WholeMeshMeasurer:
         is shown, or it could not be measured: that failure is logged to the
         logger named "livemod.measure")."""
         job = self._job
-        if job is None or not job.done() or job.cancelled() or job.exception() is not None:
+        if self._known is not None and self._known[0] is job:
+            return self._known[1]  # (asked every frame: the future's locks are not free)
+        if job is None or not job.done():
             return None
-        return job.result()
+        facts = None if job.cancelled() or job.exception() is not None else job.result()
+        self._known = (job, facts)
+        return facts
 
     def wait(self, timeout: float | None = None) -> WholeMesh | None:
         """Block until the last mesh is measured (for tests and scripted use)."""
