@@ -41,15 +41,60 @@ def press_key(viewer, name: str, shift: bool = False, ctrl: bool = False,  # noq
 
 
 class FakePlayback:
-    """A session's playback controls that record the calls they get, in order."""
+    """A session's playback controls that record the calls they get, in order, and
+    answer as told: ``coming[name]`` (True unless set) says whether the call's result
+    is on its way; the rate halves and doubles between 0.25 and 64."""
 
     def __init__(self) -> None:
-        self.calls: list[tuple] = []
+        from livemod.runner.playback import PlaybackState, PlaybackView
 
-    def __getattr__(self, name: str):  # noqa: ANN204
-        if name.startswith("_"):
-            raise AttributeError(name)
-        return lambda *args: self.calls.append((name, *args))
+        self.calls: list[tuple] = []
+        self.coming: dict[str, bool] = {}
+        self.play_rate = 2.0
+        self.playback = PlaybackView(PlaybackState.FINISHED, None, 2.0)
+
+    def _call(self, name: str, *args: object) -> bool:
+        self.calls.append((name, *args))
+        return self.coming.get(name, True)
+
+    def faster(self) -> float:
+        self.play_rate = min(self.play_rate * 2, 64.0)
+        return self.play_rate
+
+    def slower(self) -> float:
+        self.play_rate = max(self.play_rate / 2, 0.25)
+        return self.play_rate
+
+    def toggle_play(self) -> bool:
+        return self._call("toggle_play")
+
+    def play(self, rate: float | None = None) -> bool:
+        return self._call("play", rate)
+
+    def pause(self) -> bool:
+        return self._call("pause")
+
+    def resume(self) -> bool:
+        return self._call("resume")
+
+    def run_to_end(self) -> bool:
+        return self._call("run_to_end")
+
+    def step_forward(self) -> bool:
+        return self._call("step_forward")
+
+    def step_back(self) -> bool:
+        return self._call("step_back")
+
+    def goto_step(self, k: int) -> bool:
+        return self._call("goto_step", k)
+
+    def cancel(self) -> bool:
+        return self._call("cancel")
+
+    def reload(self) -> None:
+        self._call("reload")
+
 
 
 # the 2 x 2 x 2 box around the origin, as polygons

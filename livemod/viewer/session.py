@@ -15,22 +15,45 @@ from typing import TYPE_CHECKING, Any, Protocol
 from livemod.dlfl.scene import Selection
 
 if TYPE_CHECKING:
+    from livemod.runner.playback import PlaybackView
     from livemod.runner.results import RunResult
     from livemod.runner.session import RunActivity
 
 
 class PlaybackControls(Protocol):
-    """Stepping through the runs: every call only sets state and returns at once;
-    what it shows arrives later as a result, and the call says whether one will."""
+    """Stepping through the runs (docs/playback.md has the state machine). Every
+    call only changes state and returns at once; what it shows arrives later as a
+    result, and the calls that step say whether one will (False: nothing is to
+    come, as at the last step already)."""
+
+    @property
+    def playback(self) -> PlaybackView:
+        """The playback's state, the step it shows (or goes to) and the play rate."""
+
+    @property
+    def play_rate(self) -> float:
+        """Steps a second while playing."""
+
+    def faster(self) -> float:
+        """Double the play rate (within the session's bounds); the new rate."""
+
+    def slower(self) -> float:
+        """Halve the play rate (within the session's bounds); the new rate."""
+
+    def toggle_play(self) -> bool:
+        """Pause while playing, else play."""
+
+    def play(self, rate: float | None = None) -> bool:
+        """Play at :attr:`play_rate` (``rate``, when given, becomes it)."""
 
     def pause(self) -> bool:
-        """Pause the running run at its next step."""
+        """Hold the run at the step shown (a running run at its next step)."""
 
     def resume(self) -> bool:
-        """Go on: play again at the last rate if playing was paused, else to the end."""
+        """Go on from a pause: play again if a play was paused, else to the end."""
 
     def run_to_end(self) -> bool:
-        """Let the current and later runs go to the end without pausing."""
+        """Show the end: the run goes on without pausing."""
 
     def step_forward(self) -> bool:
         """Show the next step."""
@@ -40,9 +63,6 @@ class PlaybackControls(Protocol):
 
     def goto_step(self, k: int) -> bool:
         """Show the mesh right after step ``k`` (0-based)."""
-
-    def play(self, rate: float) -> bool:
-        """Advance ``rate`` steps a second (``rate`` > 0)."""
 
     def cancel(self) -> bool:
         """Stop the running run."""

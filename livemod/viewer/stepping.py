@@ -2,9 +2,11 @@
 repeat and the timeline's scrub (GL-free).
 
 :class:`Stepping` turns the keys and the timeline into the session's playback
-calls (:class:`~livemod.viewer.session.PlaybackControls`) and tells the
-:class:`~livemod.viewer.runs.RunTracker` when a result is to come. When no result
-will come (at the last step, or the first), it says so instead of waiting.
+calls (:class:`~livemod.viewer.session.PlaybackControls`), whose state machine
+(docs/playback.md) decides what is shown. Each call says whether a result is on
+its way: then the :class:`~livemod.viewer.runs.RunTracker` waits for it; else
+nothing is to come (at the last step already, say) and the terminal says so, so
+the window never waits for a result that will not come.
 """
 
 from __future__ import annotations
@@ -12,16 +14,12 @@ from __future__ import annotations
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import Any
+
+from livemod.runner.playback import PlaybackState
 
 from .runs import RunTracker
 from .session import PlaybackControls
-
-if TYPE_CHECKING:
-    from livemod.runner.results import RunResult
-
-DEFAULT_RATE = 2.0  # steps a second while playing
-LOWEST_RATE, HIGHEST_RATE = 0.125, 64.0  # where halving and doubling the rate stop
 
 # a held step key steps again after REPEAT_DELAY s, then every REPEAT_INTERVAL s
 REPEAT_DELAY = 0.4
@@ -49,8 +47,6 @@ class Stepping:
         echo: prints a line in the terminal.
 
     Attributes:
-        playing: the steps play at :attr:`rate` (until the run ends or a key stops it).
-        rate: steps a second while playing.
         held: the step key held down, repeating, or None.
         clock: the clock of the key repeat (tests step it by hand).
         scrubbing: the timeline is being dragged.
@@ -62,84 +58,60 @@ class Stepping:
         self.runs = runs
         self._session = session
         self._echo = echo
-        self.rate = DEFAULT_RATE
         self.clock: Callable[[], float] = time.perf_counter
         self.forget()
 
     def forget(self) -> None:
-        """Drop what belongs to the runs of another script (the rate stays)."""
-        self.playing = False
+        """Drop a held key and a scrub (another script opened)."""
         self.held: HeldKey | None = None
         self.scrubbing = False
         self.scrub_step: int | None = None
         self._scrub_time = 0.0
 
-    def result_arrived(self, shown: RunResult | None, result: RunResult) -> None:
-        """Playing stops once a run played to its end (or failed): Space plays again."""
-        if self.playing and run_ended(shown, result):
-            self.playing = False
+    @property
+    def playing(self) -> bool:
+        """The session plays the steps (until a key stops it or the run ends)."""
+        return self._session().playback.state is PlaybackState.PLAYING
+
+    @property
+    def rate(self) -> float:
+        """Steps a second while playing."""
+        return self._session().play_rate
 
     # -- keys ---------------------------------------------------------------------
 
     def play_pause(self) -> None:
-        """Play the steps at :attr:`rate`, or pause."""
-        self.playing = not self.playing
-        if self.playing:
-            self._session().play(self.rate)
-        else:
-            self._session().pause()
-        self.runs.waiting = self.playing
+        """Play the steps (from the first after the end), or pause."""
+        self._asked(self._session().toggle_play())
 
     def faster(self) -> None:
-        """Double the play rate (up to :data:`HIGHEST_RATE`)."""
-        self._set_rate(min(self.rate * 2, HIGHEST_RATE))
+        """Double the play rate (at once when playing)."""
+        self._echo(f"play rate: {self._session().faster():g} steps/s")
 
     def slower(self) -> None:
-        """Halve the play rate (down to :data:`LOWEST_RATE`)."""
-        self._set_rate(max(self.rate / 2, LOWEST_RATE))
-
-    def _set_rate(self, rate: float) -> None:
-        """Play at ``rate`` from now on (at once when playing)."""
-        self.rate = rate
-        if self.playing:
-            self._session().play(rate)
-        self._echo(f"play rate: {rate:g} steps/s")
+        """Halve the play rate (at once when playing)."""
+        self._echo(f"play rate: {self._session().slower():g} steps/s")
 
     def step_forward(self) -> None:
-        """Show the next step; at the last one say so (the session posts nothing)."""
-        self.playing = False
-        self._session().step_forward()  # (a run a save started pauses at its next step)
-        if self.runs.ended():
+        """Show the next step; at the last one say so."""
+        if not self._asked(self._session().step_forward()):
             self._echo("no steps" if self.runs.shown_step() is None
                        else "at the last step (Left, Home or the timeline go back)")
-        else:
-            self.runs.expect()
 
     def step_back(self) -> None:
-        """Show the previous step; at the first one say so (the session posts nothing)."""
-        self.playing = False
-        shown = self.runs.shown_step()
-        self._session().step_back()
-        if self.runs.waiting or (shown is not None and shown > 0):
-            self.runs.expect()
-        else:
-            self._echo("no steps" if shown is None else "at the first step")
+        """Show the previous step; at the first one say so."""
+        if not self._asked(self._session().step_back()):
+            self._echo("no steps" if self.runs.shown_step() is None else "at the first step")
 
     def first_step(self) -> None:
-        """Go to the first step (a syntax error has none: replaying it would fail again)."""
-        if not self.runs.waiting and self.runs.shown_step() is None:
-            self._echo("no steps")
-            return
-        self.goto(0)
+        """Go to the first step (a syntax error has none)."""
+        if not self._asked(self._session().goto_step(0)):
+            self._echo("no steps" if self.runs.shown_step() is None else "at the first step")
 
     def run_to_end(self) -> None:
         """Run to the end; at the end already, say so."""
-        self.playing = False
-        self._session().run_to_end()
-        if self.runs.ended():
+        if not self._asked(self._session().run_to_end()):
             self._echo("already at the end")
-        else:
-            self.runs.expect()
 
     def reload(self) -> None:
         """Re-run the script now."""
@@ -147,14 +119,18 @@ class Stepping:
         self.runs.expect()
 
     def goto(self, k: int) -> None:
-        """Stop playing and show the mesh right after step ``k`` (0-based)."""
-        self.playing = False
-        self._session().goto_step(k)
-        self.runs.expect()
+        """Show the mesh right after step ``k`` (0-based)."""
+        self._asked(self._session().goto_step(k))
 
     def step(self, action: str) -> None:
         """Run a step action by name (one of :data:`REPEATING`)."""
         (self.step_forward if action == "step_forward" else self.step_back)()
+
+    def _asked(self, coming: bool) -> bool:
+        """Wait for a result when the session said one is ``coming``; returns it."""
+        if coming:
+            self.runs.expect()
+        return coming
 
     # -- a held key ------------------------------------------------------------------
 
@@ -210,11 +186,3 @@ class Stepping:
         self.scrub_step = None
         if step != self.runs.shown_step() or self.runs.waiting:
             self.goto(step)
-
-
-def run_ended(shown: RunResult | None, result: RunResult) -> bool:
-    """``result`` is a run's end (ok, error, cancelled) newly arrived, not the
-    re-post of ``shown`` with its preview."""
-    if result.status == "paused":
-        return False
-    return shown is None or (shown.run_id, shown.status) != (result.run_id, result.status)

@@ -264,7 +264,6 @@ class LiveViewer(mglw.WindowConfig):
     def _apply(self, result: RunResult) -> None:
         """Show ``result``: its objects, steps and parameters, then its mesh."""
         self.objects.sync(result)
-        self.stepping.result_arrived(self.runs.result, result)
         self.runs.take(result)
         self.parameters.sync(result)
         self.display.show(result)
