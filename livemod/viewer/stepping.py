@@ -109,9 +109,10 @@ class Stepping:
             self._echo("no steps" if self.runs.shown_step() is None else "at the first step")
 
     def run_to_end(self) -> None:
-        """Run to the end; at the end already, say so."""
+        """Run to the end; at the end already, or running there, say so."""
         if not self._asked(self._session().run_to_end()):
-            self._echo("already at the end")
+            running = self._session().playback.state is PlaybackState.RUNNING
+            self._echo("running to the end" if running else "already at the end")
 
     def reload(self) -> None:
         """Re-run the script now."""
