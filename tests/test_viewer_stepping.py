@@ -169,9 +169,11 @@ def test_the_hud_shows_the_rate() -> None:
     def mode_line(state: ViewState) -> str:
         return next(text for text, _ in hud_lines(state) if text.startswith("pick "))
 
-    assert mode_line(ViewState()) == "pick face  persp  mesh  rate 2 steps/s"
-    assert mode_line(ViewState(playing=True, rate=0.5)) == \
+    assert mode_line(ViewState()) == "pick face  persp  mesh  finished, rate 2 steps/s"
+    assert mode_line(ViewState(playback=PlaybackState.PLAYING, rate=0.5)) == \
         "pick face  persp  mesh  playing 0.5 steps/s"
+    assert mode_line(ViewState(playback=PlaybackState.PAUSED, rate=4.0)) == \
+        "pick face  persp  mesh  paused, rate 4 steps/s"
 
 
 # -- through the window, from every playback state -----------------------------

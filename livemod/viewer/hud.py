@@ -80,13 +80,15 @@ def hud_lines(state: ViewState) -> list[tuple[str, int]]:
 
 
 def _mode_line(state: ViewState) -> str:
-    """Pick mode, projection, mesh or preview, the section, and the play rate."""
+    """Pick mode, projection, mesh or preview, the section, the playback's state
+    (docs/playback.md) and the play rate."""
     style = state.style
     view = "ortho" if state.ortho else "persp"
     mode = "preview" if style.preview else "mesh"
     cut = f"  section {section_text(style.section)}" if style.section is not None else ""
-    playing = "playing" if state.playing else "rate"
-    return f"pick {state.pick_mode}  {view}  {mode}{cut}  {playing} {state.rate:g} steps/s"
+    rate = f"{state.rate:g} steps/s"
+    playback = f"playing {rate}" if state.playback == "playing" else f"{state.playback}, rate {rate}"
+    return f"pick {state.pick_mode}  {view}  {mode}{cut}  {playback}"
 
 
 def _state_line(state: ViewState) -> tuple[str, int]:

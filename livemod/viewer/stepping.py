@@ -69,9 +69,14 @@ class Stepping:
         self._scrub_time = 0.0
 
     @property
+    def state(self) -> PlaybackState:
+        """Where the session's playback is (docs/playback.md)."""
+        return self._session().playback.state
+
+    @property
     def playing(self) -> bool:
         """The session plays the steps (until a key stops it or the run ends)."""
-        return self._session().playback.state is PlaybackState.PLAYING
+        return self.state is PlaybackState.PLAYING
 
     @property
     def rate(self) -> float:
@@ -111,7 +116,7 @@ class Stepping:
     def run_to_end(self) -> None:
         """Run to the end; at the end already, or running there, say so."""
         if not self._asked(self._session().run_to_end()):
-            running = self._session().playback.state is PlaybackState.RUNNING
+            running = self.state is PlaybackState.RUNNING
             self._echo("running to the end" if running else "already at the end")
 
     def reload(self) -> None:

@@ -15,6 +15,8 @@ import operator
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
+from livemod.runner.playback import PlaybackState
+
 from .controls import PickMode
 from .measure import WholeMesh
 from .renderer import Style
@@ -58,7 +60,7 @@ class ViewState:
         current_hidden: the current object is not drawn.
         style: what the renderer draws.
         ortho: the camera is orthographic.
-        playing: the steps play at ``rate``.
+        playback: the session's playback state: running, playing, paused, finished.
         rate: the play rate in steps a second.
         hud, help: the HUD and the help overlay are shown.
         panels: a hashable summary of the parameters panel, the object list and
@@ -90,7 +92,7 @@ class ViewState:
     current_hidden: bool = False
     style: Style = field(default_factory=Style)
     ortho: bool = False
-    playing: bool = False
+    playback: PlaybackState = PlaybackState.FINISHED
     rate: float = 2.0
     hud: bool = True
     help: bool = False

@@ -307,7 +307,7 @@ class LiveViewer(mglw.WindowConfig):
             selection=tuple(selection), missing=tuple(missing),
             measures=tuple(self.picking.measures), others=self.renderer.others,
             others_note=self.objects.note(), current_hidden=not self.look.style.current,
-            style=self.look.style, ortho=self.camera.ortho, playing=self.stepping.playing,
+            style=self.look.style, ortho=self.camera.ortho, playback=self.stepping.state,
             rate=self.stepping.rate, hud=self.look.show_hud, help=self.look.show_help,
             panels=self.overlay.state(), size=size, bottom=self.overlay.error_room(size))
 
