@@ -12,6 +12,8 @@ from typing import Any
 
 import numpy as np
 
+from livemod.runner.results import RunStatus
+
 from .controls import help_lines, section_text
 from .text import (
     ERROR_PANEL,
@@ -110,7 +112,8 @@ def _failed_run(result: Any) -> str:
     end well; "" otherwise."""
     if result is None or result.error is None:
         return ""
-    return f"{'cancelled' if result.status == 'cancelled' else 'failed'} run {result.run_id}"
+    failed = "cancelled" if result.status == RunStatus.CANCELLED else "failed"
+    return f"{failed} run {result.run_id}"
 
 
 def _run_of_steps(state: ViewState) -> str:

@@ -11,6 +11,8 @@ from __future__ import annotations
 import queue
 from typing import TYPE_CHECKING, Any
 
+from livemod.runner.results import RunStatus
+
 from .timeline import shown_step
 
 if TYPE_CHECKING:
@@ -68,7 +70,7 @@ class RunTracker:
     def newly_ended(self, result: RunResult) -> bool:
         """``result`` ends a run (ok, error, cancelled) not said ended before: a
         preview posted after it, or a step, is no new end."""
-        if result.status == "paused" or result.run_id <= self._summarized:
+        if result.status == RunStatus.PAUSED or result.run_id <= self._summarized:
             return False
         self._summarized = result.run_id
         return True
@@ -78,9 +80,9 @@ class RunTracker:
         its step count (a failed run's steps are what the step keys and the
         timeline go through; a syntax error has none, so the timeline goes too)."""
         self.result, self.waiting, self.viewer_error = result, False, None
-        if result.status in ("ok", "error"):
+        if result.status in (RunStatus.OK, RunStatus.ERROR):
             self.total_steps = len(result.steps)
-        if result.status == "ok":
+        if result.status == RunStatus.OK:
             self._good = (result.run_id, result.arrays)
 
     def failed_to_show(self, result: RunResult, exc: Exception) -> str:
@@ -132,11 +134,11 @@ class RunTracker:
         """The result shown is of a run that ended (not a paused or cached step) and
         the window asked for nothing since: no step lies ahead of it."""
         result = self.result
-        return (not self.waiting and result is not None and result.status != "paused"
+        return (not self.waiting and result is not None and result.status != RunStatus.PAUSED
                 and result.step_index is None)
 
 
 def _newer(run_id: int, shown: RunResult) -> bool:
     """Run ``run_id`` is at work beyond ``shown``: a newer run, or the paused run
     shown going on."""
-    return run_id > shown.run_id or (run_id == shown.run_id and shown.status == "paused")
+    return run_id > shown.run_id or (run_id == shown.run_id and shown.status == RunStatus.PAUSED)

@@ -33,6 +33,7 @@ import moderngl_window as mglw
 import numpy as np
 
 from livemod.dlfl.scene import Selection
+from livemod.runner.results import RunStatus
 
 from .actions import check_bindings, window_actions
 from .camera import Camera
@@ -258,7 +259,7 @@ class LiveViewer(mglw.WindowConfig):
         from livemod.runner.cli import run_summary
 
         self._echo(run_summary(result))
-        if result.status == "ok" and self.options.output is not None:
+        if result.status == RunStatus.OK and self.options.output is not None:
             self._echo(f"run {result.run_id}: wrote {self.options.output}")
 
     def _apply(self, result: RunResult) -> None:
