@@ -365,20 +365,6 @@ def _state_line(w: Window) -> str:
     return w.hud().splitlines()[1]
 
 
-def _showing(expected: object) -> Callable[[LiveViewer], bool]:
-    """The window shows ``expected``: a ``(status, step index)``, or any pause."""
-    def shows(viewer: LiveViewer) -> bool:
-        result = viewer.result
-        if expected == ANY_PAUSE:
-            return result.status == "paused"
-        return (result.status, result.step_index) == expected
-    return shows
-
-
-def _state_line(w: Window) -> str:
-    return w.hud().splitlines()[1]
-
-
 @pytest.mark.parametrize(("state", "action"), list(EXPECTED))
 def test_every_action_from_every_state_ends_where_it_should(window: Window, state: str,
                                                             action: str) -> None:
