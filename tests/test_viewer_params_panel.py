@@ -3,8 +3,6 @@
 from __future__ import annotations
 
 import io
-import subprocess
-import sys
 from collections.abc import Iterator
 from pathlib import Path
 
@@ -15,6 +13,7 @@ from livemod.viewer.params_panel import ParameterPanel, slider_range, snap
 from livemod.viewer.window import LiveViewer, ViewOptions, close_viewer, create_viewer
 
 from .test_viewer_window import _has_run, _wait, xvfb_display  # noqa: F401  (a fixture)
+from .viewer_support import run_probe
 
 POLYGON = """
 import math
@@ -154,13 +153,8 @@ def _glfw_clipboard_probe(script_path: str) -> None:
 def test_copy_key_fills_the_glfw_clipboard(tmp_path: Path) -> None:
     script = tmp_path / "polygon.py"
     script.write_text(POLYGON)
-    root = Path(__file__).resolve().parent.parent
-    code = (f"import sys; sys.path.insert(0, {str(root)!r}); from tests.test_viewer_params_panel "
-            f"import _glfw_clipboard_probe; _glfw_clipboard_probe({str(script)!r})")
-    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                          timeout=90, cwd=root)
-    assert done.returncode == 0, done.stdout + done.stderr
-    assert "clipboard ok" in done.stdout
+    said = run_probe("test_viewer_params_panel", "_glfw_clipboard_probe", script)
+    assert "clipboard ok" in said
 
 
 def _values(spec) -> list:

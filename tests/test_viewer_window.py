@@ -30,7 +30,7 @@ from livemod.viewer.window import (
     run_frames,
 )
 
-from .viewer_support import cube_with, frames_until, gl_objects
+from .viewer_support import cube_with, frames_until, gl_objects, run_probe
 
 CUBE = """
 from livemod.dlfl import from_polygons, current_scene, faces, translate
@@ -623,13 +623,7 @@ def _glfw_probe(script_path: str) -> None:
 def test_glfw_window_reloads_on_save_and_closes(xvfb_display: str, tmp_path: Path) -> None:
     script = tmp_path / "model.py"
     script.write_text(CUBE.format(scale=1.0))
-    root = Path(__file__).resolve().parent.parent
-    code = (f"import sys; sys.path.insert(0, {str(root)!r}); "
-            f"from tests.test_viewer_window import _glfw_probe; _glfw_probe({str(script)!r})")
-    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                          timeout=90, cwd=root)
-    assert done.returncode == 0, done.stdout + done.stderr
-    assert "glfw window ok" in done.stdout
+    assert "glfw window ok" in run_probe("test_viewer_window", "_glfw_probe", script)
 
 
 def _glfw_resize_probe(script_path: str) -> None:
@@ -669,14 +663,7 @@ def test_a_resized_window_draws_and_picks_at_its_new_size(xvfb_display: str,
                                                           tmp_path: Path) -> None:
     script = tmp_path / "model.py"
     script.write_text(CUBE.format(scale=1.0).replace("if faces(True)", "if False"))
-    root = Path(__file__).resolve().parent.parent
-    code = (f"import sys; sys.path.insert(0, {str(root)!r}); "
-            f"from tests.test_viewer_window import _glfw_resize_probe; "
-            f"_glfw_resize_probe({str(script)!r})")
-    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                          timeout=90, cwd=root)
-    assert done.returncode == 0, done.stdout + done.stderr
-    assert "glfw resize ok" in done.stdout
+    assert "glfw resize ok" in run_probe("test_viewer_window", "_glfw_resize_probe", script)
 
 
 def test_view_without_a_display_says_so_in_one_line(tmp_path: Path) -> None:

@@ -3,7 +3,10 @@
 from __future__ import annotations
 
 import dataclasses
+import subprocess
+import sys
 import time
+from pathlib import Path
 
 import moderngl
 import numpy as np
@@ -136,3 +139,16 @@ def gl_objects(value, seen: set[int] | None = None) -> list:
     else:
         return []
     return [obj for item in items for obj in gl_objects(item, seen)]
+
+
+def run_probe(module: str, probe: str, script: Path) -> str:
+    """Run ``tests.<module>.<probe>(script)`` in a fresh Python process (GLX and EGL
+    contexts do not mix in one process, and an X error ends the process); fail the
+    test when it fails. Returns what it printed."""
+    root = Path(__file__).resolve().parent.parent
+    code = (f"import sys; sys.path.insert(0, {str(root)!r}); "
+            f"from tests.{module} import {probe}; {probe}({str(script)!r})")
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                          timeout=90, cwd=root)
+    assert done.returncode == 0, done.stdout + done.stderr
+    return done.stdout
