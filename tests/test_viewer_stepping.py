@@ -60,8 +60,8 @@ def test_the_rate_keys_ask_the_session_and_say_its_rate(stepping) -> None:
 def test_playing_is_the_sessions_state(stepping) -> None:
     control, session, _ = stepping
     assert not control.playing
-    session.playback = PlaybackView(PlaybackState.PLAYING, 2, 4.0)
-    assert control.playing
+    session.state = PlaybackState.PLAYING
+    assert control.playing and control.view == PlaybackView(PlaybackState.PLAYING, None, 2.0)
 
 
 def test_space_waits_for_a_result_only_when_one_comes(stepping) -> None:
@@ -89,7 +89,7 @@ def test_a_step_key_with_nowhere_to_go_says_so_and_waits_for_nothing(stepping) -
     for key in (control.step_forward, control.step_back, control.first_step):
         key()
     assert said[-3:] == ["no steps"] * 3 and not control.runs.waiting
-    session.playback = PlaybackView(PlaybackState.RUNNING, None, 2.0)
+    session.state = PlaybackState.RUNNING
     control.run_to_end()  # a run at work goes on to its end anyway
     assert said[-1] == "running to the end"
 

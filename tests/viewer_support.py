@@ -12,6 +12,7 @@ import moderngl
 import numpy as np
 
 from livemod.dlfl import from_polygons, mesh_arrays
+from livemod.runner.playback import PlaybackState, PlaybackView
 from livemod.viewer.window import run_frames
 
 
@@ -49,12 +50,14 @@ class FakePlayback:
     is on its way; the rate halves and doubles between 0.25 and 64."""
 
     def __init__(self) -> None:
-        from livemod.runner.playback import PlaybackState, PlaybackView
-
         self.calls: list[tuple] = []
         self.coming: dict[str, bool] = {}
+        self.state = PlaybackState.FINISHED
         self.play_rate = 2.0
-        self.playback = PlaybackView(PlaybackState.FINISHED, None, 2.0)
+
+    @property
+    def playback(self) -> PlaybackView:
+        return PlaybackView(self.state, None, self.play_rate)
 
     def _call(self, name: str, *args: object) -> bool:
         self.calls.append((name, *args))

@@ -16,7 +16,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
-from livemod.runner.playback import PlaybackState
+from livemod.runner.playback import PlaybackState, PlaybackView
 
 from .runs import RunTracker
 from .session import PlaybackControls
@@ -69,9 +69,14 @@ class Stepping:
         self._scrub_time = 0.0
 
     @property
+    def view(self) -> PlaybackView:
+        """The session's playback: its state (docs/playback.md), step and rate."""
+        return self._session().playback
+
+    @property
     def state(self) -> PlaybackState:
-        """Where the session's playback is (docs/playback.md)."""
-        return self._session().playback.state
+        """Where the session's playback is."""
+        return self.view.state
 
     @property
     def playing(self) -> bool:
@@ -81,7 +86,7 @@ class Stepping:
     @property
     def rate(self) -> float:
         """Steps a second while playing."""
-        return self._session().play_rate
+        return self.view.rate
 
     # -- keys ---------------------------------------------------------------------
 

@@ -295,6 +295,7 @@ class LiveViewer(mglw.WindowConfig):
     def view_state(self) -> ViewState:
         """What the overlay shows now (the panels laid out for the window's size)."""
         size, runs, result = self.screen_size, self.runs, self.runs.result
+        playback = self.stepping.view
         self.overlay.lay_out(size)
         selection, missing = self.picking.hud_lines(
             self.renderer.arrays, getattr(result, "unselected", ()))
@@ -308,8 +309,8 @@ class LiveViewer(mglw.WindowConfig):
             selection=tuple(selection), missing=tuple(missing),
             measures=tuple(self.picking.measures), others=self.renderer.others,
             others_note=self.objects.note(), current_hidden=not self.look.style.current,
-            style=self.look.style, ortho=self.camera.ortho, playback=self.stepping.state,
-            rate=self.stepping.rate, hud=self.look.show_hud, help=self.look.show_help,
+            style=self.look.style, ortho=self.camera.ortho, playback=playback.state,
+            rate=playback.rate, hud=self.look.show_hud, help=self.look.show_help,
             panels=self.overlay.state(), size=size, bottom=self.overlay.error_room(size))
 
     def _draw_frame(self, fbo: Any, state: ViewState) -> None:
