@@ -8,11 +8,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from livemod.dlfl import DLFLError, Mesh, mesh_arrays, validate
+from livemod.dlfl import DLFLError, Mesh, budget, mesh_arrays, validate
 from livemod.dlfl.analysis import face_size_histogram, genus, num_components
 from livemod.dlfl.io.obj import read_obj
 from livemod.dlfl.shapes import cube, grid, torus
-from livemod.dlfl.subdivision import SCHEMES, settings, subdivide, subdivide_faces
+from livemod.dlfl.subdivision import SCHEMES, subdivide, subdivide_faces
 from tests.meshes import (
     assert_refused_quietly,
     assert_scales,
@@ -390,8 +390,9 @@ def test_face_budget_names_the_count_before_building():
     assert snapshot(m) == before
 
 
-def test_module_budget_setting(monkeypatch):
-    monkeypatch.setattr(settings, "max_faces", 100)
+def test_session_budget_setting(monkeypatch):
+    monkeypatch.setattr(budget, "_session_default", None)
+    budget.set_default_face_budget(100)
     m = cube()
     subdivide(m, "catmull-clark")
     subdivide(m, "catmull-clark")
@@ -400,8 +401,9 @@ def test_module_budget_setting(monkeypatch):
     assert m.counts() == (98, 192, 96)
 
 
-def test_default_budget_is_twenty_million():
-    assert settings.max_faces == 20_000_000
+def test_default_budget_is_twenty_million(monkeypatch):
+    monkeypatch.delenv(budget.ENVIRONMENT_VARIABLE, raising=False)
+    assert budget.face_budget() == budget.DEFAULT_FACE_BUDGET == 20_000_000
 
 
 def test_fresh_ids_after_remeshing():

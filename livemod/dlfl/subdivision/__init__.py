@@ -47,9 +47,10 @@ import inspect
 from collections.abc import Callable
 from typing import Any
 
+from ..budget import face_budget
 from ..errors import DLFLError
 from ..mesh import Mesh
-from ._layout import read_topology, settings
+from ._sizes import check_steps
 from .composites import (
     dual_loop,
     dual_pentagon_preserving,
@@ -95,10 +96,8 @@ def modified_corner_cut(mesh: Mesh, *, thickness: float = 0.25,
         DLFLError: a bad ``thickness`` or the face budget.
     """
     from ..wireframe import modified_corner_cut as cut
-    from ._layout import check_budget
 
-    t = read_topology(mesh)
-    check_budget(t, t.nf + t.ne + t.nv, "modified-corner-cut", max_faces)
+    check_steps(mesh, ("modified-corner-cut",), max_faces)
     _point_spheres_aside(mesh, lambda work: cut(work, thickness))
 
 
@@ -110,10 +109,8 @@ def sierpinsky(mesh: Mesh, *, max_faces: int | None = None) -> None:
         DLFLError: the face budget, or input that scheme refuses.
     """
     from ..sierpinsky import sierpinsky as run
-    from ._layout import check_budget
 
-    t = read_topology(mesh)
-    check_budget(t, t.nf + t.nv, "sierpinsky", max_faces)
+    check_steps(mesh, ("sierpinsky",), max_faces)
     _point_spheres_aside(mesh, run)
 
 
@@ -214,6 +211,7 @@ def subdivide(mesh: Mesh, scheme: str, **options: Any) -> None:
             budget. The mesh is unchanged.
     """
     func = _lookup(scheme)
+    face_budget(options.get("max_faces"))  # a bad budget, even where nothing grows
     allowed = scheme_options(scheme)
     for name in options:
         if name not in allowed and name != "max_faces":
@@ -230,7 +228,7 @@ __all__ = [
     "dual_checkerboard", "dual_loop", "dual_pentagon_preserving",
     "dual_pentagonalization", "fractal", "honeycomb",
     "linear_vertex", "loop", "loop_style", "modified_corner_cut", "pentagon",
-    "pentagon_preserve", "root3", "root4", "scheme_options", "settings", "sierpinsky",
+    "pentagon_preserve", "root3", "root4", "scheme_options", "sierpinsky",
     "simplest", "six_preserving_loop_style", "sqrt3", "star", "stellate", "subdivide",
     "subdivide_all_edges", "subdivide_faces", "triangulate", "twelve_six_four", "vertex_cut",
 ]

@@ -12,7 +12,8 @@ Every scheme follows one pattern:
    point-spheres, builds the mesh in one step with ``from_corner_arrays`` and
    swaps it in. Ids are never reused: every element of the result gets a fresh id.
 
-A scheme checks the face budget (:data:`settings`) before it allocates.
+A scheme checks the face budget (:mod:`livemod.dlfl.budget`) from the mesh's
+counts before it allocates (:func:`budgeted_topology`).
 """
 
 from __future__ import annotations
@@ -20,7 +21,7 @@ from __future__ import annotations
 import functools
 import math
 from collections.abc import Callable
-from dataclasses import dataclass
+from typing import Any, NamedTuple
 
 import numpy as np
 
@@ -29,25 +30,47 @@ from .._graph import cycle_layout, walk_rings
 from .._vectors import face_ring_vectors, group_sum, newell
 from .._vectors import unit as normalize
 from ..arrays import mesh_arrays
+from ..budget import check_size, fits
 from ..build import from_corner_arrays
-from ..errors import DLFLError
+from ..errors import DLFLError, InvalidArgumentError
 from ..mesh import Mesh
 
-
-@dataclass
-class Settings:
-    """Module-level remeshing settings.
-
-    Attributes:
-        max_faces: the face budget: a scheme that would produce more faces raises
-            :class:`DLFLError` before allocating. Override per call with
-            ``max_faces=``.
-    """
-
-    max_faces: int = 20_000_000
+# ``size(counts)``: a scheme's result ``(faces, corners)`` from the counts of its
+# input without point-spheres (``nv``, ``ne``, ``nf``, ``nc`` of a Counts or a
+# Topology), point-spheres left out too
+Size = Callable[[Any], tuple[int, int]]
 
 
-settings = Settings()
+class Counts(NamedTuple):
+    """The element counts of a mesh without its ``ns`` point-spheres."""
+
+    nv: int
+    ne: int
+    nf: int
+    nc: int
+    ns: int = 0
+
+    def dual(self) -> Counts:
+        """The counts of the dual (faces and vertices swap)."""
+        return Counts(self.nf, self.ne, self.nv, self.nc, self.ns)
+
+    def after(self, size: tuple[int, int]) -> Counts:
+        """The counts of a result of ``size`` ``(faces, corners)`` with the same
+        Euler characteristic (every scheme of a composite keeps it)."""
+        faces, corners = size
+        edges = corners // 2
+        return Counts(self.nv - self.ne + self.nf + edges - faces, edges, faces, corners, self.ns)
+
+
+def counts_of(mesh: Mesh) -> Counts:
+    """The :class:`Counts` of ``mesh`` in O(1): every corner but a point-sphere's
+    is one of the two sides of an edge, so there are ``C - 2E`` point-spheres."""
+    if isinstance(mesh, Pending):
+        t = mesh.topology
+        return Counts(t.nv, t.ne, t.nf, t.nc, t.ns)
+    v, e, f = mesh.counts()
+    spheres = mesh.num_corners - 2 * e
+    return Counts(v - spheres, e, f - spheres, 2 * e, spheres)
 
 
 class Topology:
@@ -84,6 +107,10 @@ class Topology:
     @property
     def nc(self) -> int:
         return len(self.cv)
+
+    @property
+    def ns(self) -> int:
+        return len(self.spheres)
 
     @property
     def nf(self) -> int:
@@ -305,26 +332,44 @@ def check_levels(levels: object) -> int:
     """``levels`` as a positive int.
 
     Raises:
-        DLFLError: anything else.
+        InvalidArgumentError: anything else.
     """
     if isinstance(levels, bool) or not isinstance(levels, int | np.integer) or levels < 1:
-        raise DLFLError(f"option levels must be a positive integer, got {levels!r}")
+        raise InvalidArgumentError(f"option levels must be a positive integer, got {levels!r}")
     return int(levels)
 
 
-def check_budget(t: Topology, new_faces: int, scheme: str, max_faces: int | None) -> None:
-    """Refuse a result with more faces than the budget, before allocating it.
+def check_budget(t: Counts | Topology, faces: int, corners: int, scheme: str,
+                 max_faces: object) -> None:
+    """Refuse a result of ``faces`` faces and ``corners`` corners (point-spheres
+    of ``t`` left out: they come through every scheme) over the face budget.
 
     Raises:
-        DLFLError: naming the count and the budget.
+        BudgetExceededError: naming the count and the budget.
     """
-    budget = settings.max_faces if max_faces is None else max_faces
-    total = int(new_faces) + len(t.spheres)
-    if total > budget:
-        raise DLFLError(
-            f"{scheme} would produce {total:,} faces, more than the budget of "
-            f"{budget:,} (pass max_faces= or set livemod.dlfl.subdivision.settings.max_faces)"
-        )
+    check_size(scheme, faces + t.ns, corners + t.ns, max_faces=max_faces)
+
+
+def budgeted_topology(mesh: Mesh, scheme: str, max_faces: object, size: Size,
+                      exact: Size | None = None) -> Topology:
+    """:func:`read_topology`, once the face budget allows the result.
+
+    ``size`` gives the result's ``(faces, corners)`` from the counts (exact, or
+    an upper bound when ``exact`` gives them exactly from the topology): the
+    budget is checked before anything is allocated, and read from the topology
+    only when the bound passes it.
+
+    Raises:
+        BudgetExceededError: the result passes the budget.
+    """
+    counts = counts_of(mesh)
+    bound = size(counts)
+    if exact is None or fits(bound[0] + counts.ns, bound[1] + counts.ns, max_faces=max_faces):
+        check_budget(counts, *bound, scheme, max_faces)
+        return read_topology(mesh)
+    t = read_topology(mesh)
+    check_budget(t, *exact(t), scheme, max_faces)
+    return t
 
 
 class Faces:

@@ -23,7 +23,6 @@ from ..mesh import Mesh
 from ._layout import (
     Topology,
     build_paired,
-    check_budget,
     check_number,
     cos_weights,
     read_topology,
@@ -32,18 +31,9 @@ from ._layout import (
     rows,
     vertex_mean,
 )
+from ._sizes import check_steps
 from .convert import HONEYCOMB_ALPHA, root4_layout
 from .smooth import corner_cut_layout
-
-
-def _check_steps(t: Topology, steps: list[tuple[int, str]], max_faces: int | None) -> None:
-    """The face budget of each of the three steps, checked as the steps would.
-
-    Raises:
-        DLFLError: the first step over the budget (as that step words it).
-    """
-    for count, name in steps:
-        check_budget(t, count, name, max_faces)
 
 
 def _vertex_centres(t: Topology, cen: np.ndarray) -> np.ndarray:
@@ -67,9 +57,8 @@ def twelve_six_four(mesh: Mesh, *, scale: float = 0.7, max_faces: int | None = N
         DLFLError: a bad ``scale``, or the face budget.
     """
     scale = abs(check_number("scale", scale))
+    check_steps(mesh, ("dual", "dual-12.6.4", "dual"), max_faces)
     t = read_topology(mesh)
-    _check_steps(t, [(t.nv, "dual"), (t.nv + t.ne + t.nf, "dual-12.6.4"),
-                     (2 * t.nc, "dual")], max_faces)
     s = 1.0 if scale in (0.0, 1.0) else scale
     with np.errstate(over="ignore", invalid="ignore"):  # build refuses what overflows
         positions = _points_1264(t, s)
@@ -135,9 +124,8 @@ def dual_pentagon_preserving(mesh: Mesh, *, scale: float = 0.75,
         DLFLError: a bad ``scale``, or the face budget.
     """
     scale = check_number("scale", scale)
+    check_steps(mesh, ("dual", "pentagon-preserve", "dual"), max_faces)
     t = read_topology(mesh)
-    _check_steps(t, [(t.nv, "dual"), (t.nv + t.nc, "pentagon-preserve"),
-                     (t.nf + t.ne + t.nc, "dual")], max_faces)
     cen = t.centroids()
     centre = _vertex_centres(t, cen)
     with np.errstate(over="ignore", invalid="ignore"):  # build refuses what overflows
@@ -205,8 +193,8 @@ def dual_loop(mesh: Mesh, *, max_faces: int | None = None) -> None:
     Raises:
         DLFLError: the face budget.
     """
+    check_steps(mesh, ("dual", "loop", "dual"), max_faces)
     t = read_topology(mesh)
-    _check_steps(t, [(t.nv, "dual"), (t.nc + t.nv, "loop"), (t.nf + t.ne, "dual")], max_faces)
     cen = t.centroids()
     with np.errstate(over="ignore", invalid="ignore"):  # build refuses what overflows
         edge_points = rows(_loop_edge_points_on_dual(t, cen), t.edge)
@@ -268,8 +256,8 @@ def root3(mesh: Mesh, *, max_faces: int | None = None) -> None:
     Raises:
         DLFLError: the face budget.
     """
+    check_steps(mesh, ("dual", "honeycomb", "dual"), max_faces)
     t = read_topology(mesh)
-    _check_steps(t, [(t.nv, "dual"), (t.nf + t.nv, "honeycomb"), (t.nc, "dual")], max_faces)
     cen = t.centroids()
     faces = t.face[t.edge_corners]
     with np.errstate(over="ignore", invalid="ignore"):  # build refuses what overflows
@@ -315,8 +303,8 @@ def six_preserving_loop_style(mesh: Mesh, *, weight: float = 0.0, twist: float =
     """
     weight = check_number("weight", weight)
     twist = check_number("twist", twist)
+    check_steps(mesh, ("dual", "root4", "dual"), max_faces)
     t = read_topology(mesh)
-    _check_steps(t, [(t.nv, "dual"), (t.nv + t.ne, "root4"), (t.nf + t.nc, "dual")], max_faces)
     cen = t.centroids()
     p = rows(cen, t.face)
     with np.errstate(over="ignore", invalid="ignore"):  # build refuses what overflows
@@ -358,9 +346,8 @@ def dual_pentagonalization(mesh: Mesh, *, offset: float = 0.0,
         DLFLError: a bad ``offset``, or the face budget.
     """
     offset = check_number("offset", offset)
+    check_steps(mesh, ("dual", "pentagon", "dual"), max_faces)
     t = read_topology(mesh)
-    _check_steps(t, [(t.nv, "dual"), (t.nc, "pentagon"), (t.nf + t.nc + t.nv, "dual")],
-                 max_faces)
     with np.errstate(over="ignore", invalid="ignore"):  # build refuses what overflows
         centres = _pentagon_centres(t, offset)
     build_paired(mesh, t, centres, *_dual_pentagonalization_layout(t))

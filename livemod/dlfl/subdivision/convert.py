@@ -4,8 +4,7 @@ Each function remeshes ``mesh`` in place (every element gets a fresh id) and
 returns ``None``. Unless a docstring says otherwise, hole faces are treated as
 faces by the rules and the faces made from a hole face are holes again; faces
 made around old vertices or edges are ordinary faces. Point-spheres survive
-unchanged. ``max_faces`` overrides the face budget of
-:data:`livemod.dlfl.subdivision.settings`.
+unchanged. ``max_faces`` overrides the face budget (:mod:`livemod.dlfl.budget`).
 """
 
 from __future__ import annotations
@@ -30,9 +29,9 @@ from ._layout import (
     Faces,
     Pending,
     Topology,
+    budgeted_topology,
     build,
     build_paired,
-    check_budget,
     check_number,
     cos_weights,
     face_weighted,
@@ -41,6 +40,7 @@ from ._layout import (
     rows,
     vertex_mean,
 )
+from ._sizes import EXACT, SIZES, check_steps
 
 HONEYCOMB_ALPHA = 2 ** -0.5 - 0.25
 
@@ -50,8 +50,7 @@ def subdivide_all_edges(mesh: Mesh, *, max_faces: int | None = None) -> None:
 
     Faces keep their number and gain one corner per side. Cube: 20/24/6.
     """
-    t = read_topology(mesh)
-    check_budget(t, t.nf, "subdivide-all-edges", max_faces)
+    t = budgeted_topology(mesh, "subdivide-all-edges", max_faces, SIZES["subdivide-all-edges"])
     positions = np.concatenate([t.pos, t.midpoints()])
     verts = np.stack([t.cv, t.nv + t.edge], axis=1)
     labels = np.stack([np.arange(t.nc), t.mate], axis=1)
@@ -90,15 +89,29 @@ def subdivide_faces(mesh: Mesh, face_ids: Iterable[int], *, usequads: bool = Tru
     Raises:
         DLFLError: an unknown face id, or the face budget.
     """
-    t = read_topology(mesh)
+    t = budgeted_topology(mesh, "subdivide-faces", max_faces,
+                          lambda c: (c.nf + c.nc, 4 * c.nc),
+                          lambda t: _split_size(t, _selected_faces(t, face_ids), usequads))
     selected = _selected_faces(t, face_ids)
-    chosen = np.repeat(selected, t.sizes)
-    check_budget(t, t.nf - int(selected.sum()) + int(chosen.sum()), "subdivide-faces",
-                 max_faces)
     if usequads:
         _quad_split(mesh, t, selected)
     else:
         _fan_split(mesh, t, selected)
+
+
+def _split_size(t: Topology, selected: np.ndarray, usequads: bool) -> tuple[int, int]:
+    """``(faces, corners)`` of :func:`subdivide_faces`: ``n`` quads or triangles per
+    selected ``n``-gon; with ``usequads`` a kept corner gains one where its edge
+    is split."""
+    chosen = np.repeat(selected, t.sizes)
+    split = int(np.count_nonzero(chosen))
+    faces = t.nf - int(np.count_nonzero(selected)) + split
+    if not usequads:
+        return faces, 3 * split + t.nc - split
+    split_edge = np.zeros(t.ne, dtype=bool)
+    split_edge[t.edge[chosen]] = True
+    gained = int(np.count_nonzero(split_edge[t.edge[~chosen]]))
+    return faces, 4 * split + t.nc - split + gained
 
 
 def _quad_split(mesh: Mesh, t: Topology, selected: np.ndarray) -> None:
@@ -165,8 +178,8 @@ def linear_vertex(mesh: Mesh, *, usequads: bool = True, max_faces: int | None = 
     smoothing, cube 26/48/24); without, an n-gon becomes a fan of n triangles
     (GUI "Stellate", cube 14/36/24).
     """
-    t = read_topology(mesh)
-    check_budget(t, t.nc, "linear-vertex", max_faces)
+    t = budgeted_topology(mesh, "linear-vertex", max_faces,
+                          lambda c: (c.nc, (4 if usequads else 3) * c.nc))
     everything = np.ones(t.nf, dtype=bool)
     if usequads:
         _quad_split(mesh, t, everything)
@@ -180,10 +193,9 @@ def triangulate(mesh: Mesh, *, max_faces: int | None = None) -> None:
     Rule: every face that is not a triangle becomes a fan of triangles about its
     centroid (not ear clipping). Cube: 14/36/24.
     """
-    t = read_topology(mesh)
-    fan = t.sizes != 3
-    check_budget(t, int(t.sizes[fan].sum()) + int((~fan).sum()), "triangulate", max_faces)
-    _fan_split(mesh, t, fan)
+    t = budgeted_topology(mesh, "triangulate", max_faces, SIZES["triangulate"],
+                          EXACT["triangulate"])
+    _fan_split(mesh, t, t.sizes != 3)
 
 
 def simplest(mesh: Mesh, *, max_faces: int | None = None) -> None:
@@ -193,8 +205,7 @@ def simplest(mesh: Mesh, *, max_faces: int | None = None) -> None:
     of its midpoints and each vertex the polygon of the midpoints around it.
     Cube: 12/24/14 (8 triangles, 6 quads).
     """
-    t = read_topology(mesh)
-    check_budget(t, t.nf + t.nv, "simplest", max_faces)
+    t = budgeted_topology(mesh, "simplest", max_faces, SIZES["simplest"])
     faces = Faces()
     inner_polygons(t, 0, faces)
     vertex_rings(t, t.edge, t.nc + np.arange(t.nc), faces)
@@ -218,8 +229,7 @@ def vertex_cut(mesh: Mesh, *, offset: float = 0.25, max_faces: int | None = None
         return
     if offset == 0.0:
         return
-    t = read_topology(mesh)
-    check_budget(t, t.nf + t.nv, "vertex-cut", max_faces)
+    t = budgeted_topology(mesh, "vertex-cut", max_faces, SIZES["vertex-cut"])
     p = rows(t.pos, t.cv)
     points = p + offset * (rows(t.pos, t.cv[t.nxt]) - p)
     corners = np.arange(t.nc)
@@ -240,8 +250,7 @@ def honeycomb(mesh: Mesh, *, max_faces: int | None = None) -> None:
     the polygon of its p_i, the two points of each old edge are joined, and each
     old vertex of valence k becomes a 2k-gon. Cube: 24/36/14 (6 quads, 8 hexagons).
     """
-    t = read_topology(mesh)
-    check_budget(t, t.nf + t.nv, "honeycomb", max_faces)
+    t = budgeted_topology(mesh, "honeycomb", max_faces, SIZES["honeycomb"])
     mids = rows(t.midpoints(), t.edge)
     points = face_weighted(t, mids, lambda n: cos_weights(n, HONEYCOMB_ALPHA + 1.25 / n))
     faces = Faces()
@@ -270,8 +279,7 @@ def root4(mesh: Mesh, *, weight: float = 0.0, twist: float = 0.0,
     """
     weight = check_number("weight", weight)
     twist = check_number("twist", twist)
-    t = read_topology(mesh)
-    check_budget(t, t.nf + t.ne, "root4", max_faces)
+    t = budgeted_topology(mesh, "root4", max_faces, SIZES["root4"])
     p = rows(t.pos, t.cv)
     with np.errstate(over="ignore", invalid="ignore"):  # build refuses what overflows
         m = (1 - twist) * p + twist * rows(t.pos, t.cv[t.nxt])
@@ -319,8 +327,7 @@ def pentagon_preserve(mesh: Mesh, *, scale: float = 0.75,
         DLFLError: a bad ``scale``, or the face budget.
     """
     scale = check_number("scale", scale)
-    t = read_topology(mesh)
-    check_budget(t, t.nf + t.nc, "pentagon-preserve", max_faces)
+    t = budgeted_topology(mesh, "pentagon-preserve", max_faces, SIZES["pentagon-preserve"])
     cen = rows(t.centroids(), t.face)
     mids = t.midpoints()
     with np.errstate(over="ignore", invalid="ignore"):  # build refuses what overflows
@@ -366,8 +373,7 @@ def pentagon(mesh: Mesh, *, offset: float = 0.0, max_faces: int | None = None) -
         DLFLError: a bad ``offset``, or the face budget.
     """
     offset = check_number("offset", offset)
-    t = read_topology(mesh)
-    check_budget(t, t.nc, "pentagon", max_faces)
+    t = budgeted_topology(mesh, "pentagon", max_faces, SIZES["pentagon"])
     cen = t.centroids()
     p = rows(t.pos, t.cv)
     with np.errstate(over="ignore", invalid="ignore"):  # build refuses what overflows
@@ -396,10 +402,10 @@ def cubic_pentagonalization(mesh: Mesh, *, offset: float = 0.0,
     Raises:
         DLFLError: a bad ``offset``, or the face budget.
     """
+    check_steps(mesh, ("pentagon", "dual", "dual"), max_faces)
     work = Pending(read_topology(mesh))
     pentagon(work, offset=offset, max_faces=max_faces)
     x = work.topology
-    check_budget(x, x.nv, "dual", max_faces)
     moved = vertex_mean(x, rows(x.centroids(), x.face))
     build_paired(mesh, x, moved, x.cv, x.mate, x.sizes, np.zeros(x.nf, dtype=bool))
 
@@ -416,8 +422,7 @@ def dual_1264(mesh: Mesh, *, scale: float = 0.7, max_faces: int | None = None) -
         DLFLError: a bad ``scale``, or the face budget.
     """
     scale = abs(check_number("scale", scale))
-    t = read_topology(mesh)
-    check_budget(t, t.nf + t.ne + t.nv, "dual-12.6.4", max_faces)
+    t = budgeted_topology(mesh, "dual-12.6.4", max_faces, SIZES["dual-12.6.4"])
     p, q = rows(t.pos, t.cv), rows(t.pos, t.cv[t.nxt])
     with np.errstate(over="ignore", invalid="ignore"):  # build refuses what overflows
         first, second = (2 * p + q) / 3.0, (p + 2 * q) / 3.0
@@ -472,8 +477,7 @@ def stellate(mesh: Mesh, *, max_faces: int | None = None) -> None:
     edge becomes a quad (its ends and the two face centroids). Cube: 14/24/12
     (the rhombic dodecahedron's topology).
     """
-    t = read_topology(mesh)
-    check_budget(t, t.ne, "stellate", max_faces)
+    t = budgeted_topology(mesh, "stellate", max_faces, SIZES["stellate"])
     a, b = t.edge_corners[:, 0], t.edge_corners[:, 1]
     na, nb, v = t.nxt[a], t.nxt[b], t.nv
     verts = np.stack([t.cv[na], v + t.face[a], t.cv[a], v + t.face[b]], axis=1)
@@ -491,8 +495,7 @@ def sqrt3(mesh: Mesh, *, max_faces: int | None = None) -> None:
     quad split by its centroid-centroid diagonal (an edge flip); no smoothing.
     Cube: 14/36/24.
     """
-    t = read_topology(mesh)
-    check_budget(t, 2 * t.ne, "sqrt3", max_faces)
+    t = budgeted_topology(mesh, "sqrt3", max_faces, SIZES["sqrt3"])
     a, b = t.edge_corners[:, 0], t.edge_corners[:, 1]
     na, nb, v = t.nxt[a], t.nxt[b], t.nv
     fa, fb, diagonal = v + t.face[a], v + t.face[b], t.nc + np.arange(t.ne)
@@ -516,8 +519,7 @@ def star(mesh: Mesh, *, offset: float = 0.0, max_faces: int | None = None) -> No
         DLFLError: a bad ``offset``, or the face budget.
     """
     offset = check_number("offset", offset)
-    t = read_topology(mesh)
-    check_budget(t, 3 * t.nc, "star", max_faces)
+    t = budgeted_topology(mesh, "star", max_faces, SIZES["star"])
     cen = t.centroids()
     with np.errstate(over="ignore", invalid="ignore"):  # build refuses what overflows
         second = (rows(t.pos, t.cv) + rows(t.pos, t.cv[t.nxt]) + rows(cen, t.face)) / 3.0
@@ -549,8 +551,7 @@ def double_stellate(mesh: Mesh, *, offset: float = 0.0, curve: float = 0.0,
     """
     offset = check_number("offset", offset)
     curve = check_number("curve", curve)
-    t = read_topology(mesh)
-    check_budget(t, t.ne + t.nc, "double-stellate", max_faces)
+    t = budgeted_topology(mesh, "double-stellate", max_faces, SIZES["double-stellate"])
     centres = _stellate_centres(t, offset)
     p, q, r = rows(t.pos, t.cv), rows(t.pos, t.cv[t.nxt]), rows(centres, t.face)
     with np.errstate(over="ignore", invalid="ignore"):  # build refuses what overflows
@@ -584,8 +585,7 @@ def fractal(mesh: Mesh, *, offset: float = 1.0, max_faces: int | None = None) ->
         DLFLError: a bad ``offset``, or the face budget.
     """
     offset = check_number("offset", offset)
-    t = read_topology(mesh)
-    check_budget(t, 2 * t.nc, "fractal", max_faces)
+    t = budgeted_topology(mesh, "fractal", max_faces, SIZES["fractal"])
     mids = t.midpoints()
     heights = _fractal_heights(t, mids)
     with np.errstate(over="ignore", invalid="ignore"):  # build refuses what overflows
@@ -634,8 +634,7 @@ def dual(mesh: Mesh, *, accurate: bool = False, max_faces: int | None = None) ->
     become ordinary vertices. Cube: 6/12/8.
     """
     del accurate
-    t = read_topology(mesh)
-    check_budget(t, t.nv, "dual", max_faces)
+    t = budgeted_topology(mesh, "dual", max_faces, SIZES["dual"])
     order, offsets = t.vertex_rings()
     position = np.empty(t.nc, dtype=np.int64)
     position[order] = np.arange(t.nc)

@@ -4,7 +4,7 @@ composite), doo-sabin-bc-new, dome.
 Each function remeshes ``mesh`` in place (every element gets a fresh id) and
 returns ``None``; hole faces are treated as faces and the faces made inside a
 hole face are holes again; point-spheres survive. ``max_faces`` overrides the
-face budget of :data:`livemod.dlfl.subdivision.settings`.
+face budget (:mod:`livemod.dlfl.budget`).
 """
 
 from __future__ import annotations
@@ -17,9 +17,9 @@ from ..mesh import Mesh
 from ._layout import (
     Faces,
     Topology,
+    budgeted_topology,
     build,
     build_paired,
-    check_budget,
     check_number,
     cos_weights,
     normalize,
@@ -29,6 +29,7 @@ from ._layout import (
     rows,
     vertex_mean,
 )
+from ._sizes import SIZES, check_steps
 
 
 def _checker_thickness(thickness: object) -> float:
@@ -61,8 +62,7 @@ def checker(mesh: Mesh, *, thickness: float = 0.33, max_faces: int | None = None
         DLFLError: a bad ``thickness``, or the face budget.
     """
     thickness = _checker_thickness(thickness)
-    t = read_topology(mesh)
-    check_budget(t, t.nf + 2 * t.nc, "checker", max_faces)
+    t = budgeted_topology(mesh, "checker", max_faces, SIZES["checker"])
     p, prev_p, next_p = rows(t.pos, t.cv), rows(t.pos, t.cv[t.prv]), rows(t.pos, t.cv[t.nxt])
     with np.errstate(over="ignore", invalid="ignore"):  # build refuses what overflows
         inward = (prev_p - p) + (next_p - p)
@@ -92,8 +92,8 @@ def dual_checkerboard(mesh: Mesh, *, thickness: float = 0.33,
         DLFLError: a bad ``thickness``, or the face budget.
     """
     thickness = _checker_thickness(thickness)
+    check_steps(mesh, ("dual", "checker", "dual"), max_faces)
     t = read_topology(mesh)
-    check_budget(t, max(t.nv, t.nf) + 2 * t.nc, "dual-checkerboard", max_faces)
     with np.errstate(over="ignore", invalid="ignore"):  # build refuses what overflows
         inset, near = _checker_on_dual(t, thickness)
         nxt = t.nxt
@@ -194,8 +194,7 @@ def doo_sabin_bc_new(mesh: Mesh, *, scale: float = 1.0, length: float = 1.0,
     """
     scale = check_number("scale", scale)
     length = check_number("length", length)
-    t = read_topology(mesh)
-    check_budget(t, t.nf + t.nc, "doo-sabin-bc-new", max_faces)
+    t = budgeted_topology(mesh, "doo-sabin-bc-new", max_faces, SIZES["doo-sabin-bc-new"])
     values, offsets = _split_face_values(t)
     with np.errstate(over="ignore", invalid="ignore"):  # build refuses what overflows
         ring = _ds_ring(values, offsets, np.zeros(1), scale)
@@ -242,9 +241,8 @@ def dome(mesh: Mesh, *, length: float = 1.0, scale: float = 1.0,
     """
     length = check_number("length", length)
     scale = check_number("scale", scale)
-    t = read_topology(mesh)
+    t = budgeted_topology(mesh, "dome", max_faces, SIZES["dome"])
     steps = len(DOME_DISTANCES)
-    check_budget(t, t.nf + steps * 4 * t.nc, "dome", max_faces)
     split_pos, corner_vertex, across, offsets = _split_in_four(t)
     with np.errstate(over="ignore", invalid="ignore"):  # build refuses what overflows
         rings = _dome_rings(t, rows(split_pos, corner_vertex), offsets, length, scale)

@@ -3,8 +3,8 @@
 Each function remeshes ``mesh`` in place (every element gets a fresh id) and
 returns ``None``. Hole faces are treated as faces by the rules (in TopMod a hole
 is an ordinary face) and every new face made from a hole face is a hole again;
-point-spheres survive unchanged. ``max_faces`` overrides the face budget of
-:data:`livemod.dlfl.subdivision.settings`.
+point-spheres survive unchanged. ``max_faces`` overrides the face budget
+(:mod:`livemod.dlfl.budget`).
 """
 
 from __future__ import annotations
@@ -18,16 +18,16 @@ from ._blocks import doo_sabin_faces
 from ._layout import (
     Faces,
     Topology,
+    budgeted_topology,
     build,
     build_paired,
-    check_budget,
     check_levels,
     check_number,
     cos_weights,
     face_weighted,
-    read_topology,
     topology_of,
 )
+from ._sizes import EXACT, SIZES, catmull_clark_size
 
 
 def catmull_clark(mesh: Mesh, *, levels: int = 1, max_faces: int | None = None) -> None:
@@ -45,8 +45,8 @@ def catmull_clark(mesh: Mesh, *, levels: int = 1, max_faces: int | None = None) 
             the face budget.
     """
     levels = check_levels(levels)
-    t = read_topology(mesh)
-    check_budget(t, t.nc * 4 ** (levels - 1), "catmull-clark", max_faces)
+    t = budgeted_topology(mesh, "catmull-clark", max_faces,
+                          lambda c: catmull_clark_size(c, levels))
     for level in range(levels):
         with np.errstate(over="ignore", invalid="ignore"):  # build refuses what overflows
             positions = _cc_points(t, t.centroids())
@@ -114,8 +114,7 @@ def loop(mesh: Mesh, *, max_faces: int | None = None) -> None:
     Raises:
         DLFLError: the result would exceed the face budget.
     """
-    t = read_topology(mesh)
-    check_budget(t, t.nc + t.nf, "loop", max_faces)
+    t = budgeted_topology(mesh, "loop", max_faces, SIZES["loop"])
     # one contiguous column per axis: 1-D gathers and bincounts are the fast ones
     columns = np.ascontiguousarray(t.pos.T)
     positions = np.empty((t.nv + t.ne, 3))
@@ -200,8 +199,7 @@ def loop_style(mesh: Mesh, *, length: float = 1.0, max_faces: int | None = None)
         DLFLError: a bad ``length`` or the face budget.
     """
     length = check_number("length", length)
-    t = read_topology(mesh)
-    check_budget(t, t.nc + t.nf, "loop-style", max_faces)
+    t = budgeted_topology(mesh, "loop-style", max_faces, SIZES["loop-style"])
     with np.errstate(over="ignore", invalid="ignore"):  # build refuses what overflows
         vertices = length * t.pos + (1 - length) * t.neighbour_mean()
     _corner_cut_faces(mesh, t, np.concatenate([vertices, t.midpoints()]))
@@ -284,11 +282,6 @@ def _columns(out: np.ndarray, *columns: np.ndarray) -> None:
         rows[:, i] = column
 
 
-def _doo_sabin_count(t: Topology) -> int:
-    valence = t.valence
-    return t.nf + t.ne + int(np.count_nonzero(valence >= 3))
-
-
 def doo_sabin(mesh: Mesh, *, check: bool = True, max_faces: int | None = None) -> None:
     """Doo-Sabin subdivision (TopMod ``dooSabinSubdivide(check)``, "doo-sabin").
 
@@ -304,8 +297,8 @@ def doo_sabin(mesh: Mesh, *, check: bool = True, max_faces: int | None = None) -
         DLFLError: the face budget.
     """
     del check
-    t = read_topology(mesh)
-    check_budget(t, _doo_sabin_count(t), "doo-sabin", max_faces)
+    t = budgeted_topology(mesh, "doo-sabin", max_faces, SIZES["doo-sabin"],
+                          EXACT["doo-sabin"])
     points = face_weighted(t, np.take(t.pos, t.cv, axis=0),
                            lambda n: cos_weights(n, 0.25 + 1.25 / n))
     _doo_sabin_like(mesh, t, points)
@@ -323,8 +316,8 @@ def corner_cut(mesh: Mesh, *, alpha: float = 9 / 16, max_faces: int | None = Non
         DLFLError: ``alpha`` outside [1/3, 0.999], or the face budget.
     """
     alpha = check_number("alpha", alpha, 0.333, 0.999)
-    t = read_topology(mesh)
-    check_budget(t, _doo_sabin_count(t), "corner-cut", max_faces)
+    t = budgeted_topology(mesh, "corner-cut", max_faces, SIZES["corner-cut"],
+                          EXACT["corner-cut"])
     points = face_weighted(t, np.take(t.pos, t.cv, axis=0), lambda n: cos_weights(n, alpha))
     _doo_sabin_like(mesh, t, points)
 
@@ -338,9 +331,8 @@ def doo_sabin_bc(mesh: Mesh, *, check: bool = True, max_faces: int | None = None
         DLFLError: the face budget.
     """
     del check
-    t = read_topology(mesh)
-    check_budget(t, t.nf + t.nc + int(np.count_nonzero(t.valence >= 3)), "doo-sabin-bc",
-                 max_faces)
+    t = budgeted_topology(mesh, "doo-sabin-bc", max_faces, SIZES["doo-sabin-bc"],
+                          EXACT["doo-sabin-bc"])
     order, offsets = t.vertex_rings()
     ring_sizes = np.diff(offsets)
     split = _split_edges(t)
