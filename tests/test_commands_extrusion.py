@@ -86,7 +86,7 @@ def library_calls(monkeypatch):
 def test_each_kinds_positional_options_reach_the_library(scene, library_calls, kind):
     expected = MAPPINGS[kind]
     extrude(kind, 0, *POSITIONAL[:len(expected)])
-    assert library_calls == [{"kind": kind, **expected}]
+    assert library_calls == [{"kind": kind, **expected, "max_faces": None}]  # the scene's budget
 
 
 @pytest.mark.parametrize(("kind", "keywords"), [
@@ -104,7 +104,7 @@ def test_each_kinds_positional_options_reach_the_library(scene, library_calls, k
 def test_topmods_and_the_thesiss_keywords_match_the_positions(scene, library_calls, kind,
                                                               keywords):
     extrude(kind, 0, **keywords)
-    assert library_calls == [{"kind": kind, **MAPPINGS[kind]}]
+    assert library_calls == [{"kind": kind, **MAPPINGS[kind], "max_faces": None}]
 
 
 def test_octa_segments_build_the_same_mesh_every_way(scene):

@@ -17,7 +17,8 @@ and :meth:`Mesh.create_face` only:
   convex-hull hub or by quads between their closest edges (from
   :mod:`livemod.dlfl.multihandle`, re-exported here).
 
-Every function checks all of its input before touching the mesh, so a
+Every function checks all of its input, and the face budget
+(:mod:`livemod.dlfl.budget`, ``max_faces=``), before touching the mesh, so a
 :class:`DLFLError` leaves the mesh unchanged. Each returns the ids of the edges
 it created, in creation order.
 """
@@ -33,6 +34,7 @@ import numpy as np
 from ._checks import MAX_ELEMENTS, finite_number, first_not_finite, is_id, whole_count
 from ._vectors import centroid, lengths, together_in_range, unit
 from .analysis import face_points, polygon_normal
+from .budget import check_growth
 from .errors import DLFLError
 from .mesh import Mesh
 
@@ -77,11 +79,32 @@ def _two_faces(mesh: Mesh, corner1: int, corner2: int, op: str) -> tuple[int, in
 
 
 def _check_segments(segments: int, max_connections: int = -1) -> None:
-    """Raises DLFLError unless ``segments`` is a count >= 1 whose corners fit in a
-    mesh (each segment makes at least two) and ``max_connections`` an integer."""
-    whole_count(segments, "segments", each=2)
+    """Raises DLFLError unless ``segments`` is a count >= 1 and ``max_connections``
+    an integer (:func:`_check_budget` checks that its corners fit)."""
+    whole_count(segments, "segments")
     if isinstance(max_connections, bool) or not isinstance(max_connections, int | np.integer):
         raise DLFLError(f"max_connections must be an integer, got {max_connections!r}")
+
+
+def _check_budget(mesh: Mesh, corner1: int, corner2: int, segments: int, op: str,
+                  max_faces: object) -> None:
+    """Refuse a tube of ``segments`` between the faces of two live corners whose
+    result would pass the face budget, before any ring is computed.
+
+    Each of the ``segments - 1`` rings is a two-sided polygon and each of the
+    ``segments`` joins cuts two faces into at most ``n1 + n2`` quads or
+    triangles, so the tube adds at most ``segments (n1 + n2)`` faces and four
+    times that many corners.
+
+    Raises:
+        BudgetExceededError: the result would pass the budget.
+        DLFLError: a budget raised so far that the corners would not fit in a
+            mesh (each segment makes at least two).
+    """
+    sides = sum(mesh.face_size(mesh.corner_face(c)) for c in (corner1, corner2))
+    check_growth(mesh, op, faces=segments * sides, corners=4 * segments * sides,
+                 max_faces=max_faces)
+    whole_count(segments, "segments", each=2)
 
 
 def _check_twists(twists: object) -> int:
@@ -263,7 +286,7 @@ def _chain_rings(
 def connect_faces(
     mesh: Mesh, corner1: int, corner2: int, segments: int = 1, *,
     max_connections: int = -1, pinch: float = 1.0, pinch_center: float = 0.5,
-    bubble: float = 1.0,
+    bubble: float = 1.0, max_faces: object = None,
 ) -> list[int]:
     """Join two faces with a tube, matching ``corner1``'s vertex to ``corner2``'s.
 
@@ -280,6 +303,8 @@ def connect_faces(
 
     Args:
         max_connections: at most this many joins (-1, the default: all).
+        max_faces: the face budget (None: the session's, see
+            :mod:`livemod.dlfl.budget`).
 
     Returns:
         The ids of the new edges, in creation order (the first joins the corners
@@ -290,9 +315,11 @@ def connect_faces(
             an integer >= 1 or more than a mesh can hold, faces of different
             sizes with ``segments`` > 1 (TopMod silently did nothing), or a bad
             pinch value.
+        BudgetExceededError: the tube would pass the face budget.
     """
     face1, face2 = _two_faces(mesh, corner1, corner2, "connect_faces")
     _check_segments(segments, max_connections)
+    _check_budget(mesh, corner1, corner2, segments, "connect_faces", max_faces)
     _check_pinch(pinch, pinch_center, bubble)
     first = mesh.next_ids()[1]
     if segments == 1:
@@ -334,6 +361,7 @@ def closest_corners(mesh: Mesh, face1: int, face2: int) -> tuple[int, int]:
 
 def connect_faces_closest(
     mesh: Mesh, face1: int, face2: int, segments: int = 1, *, max_connections: int = -1,
+    max_faces: object = None,
 ) -> list[int]:
     """:func:`connect_faces` from two face ids, joining their closest corners.
 
@@ -348,12 +376,13 @@ def connect_faces_closest(
     if face1 == face2:
         raise DLFLError(f"connect_faces_closest needs two different faces, got face {face1} twice")
     c1, c2 = closest_corners(mesh, face1, face2)
-    return connect_faces(mesh, c1, c2, segments, max_connections=max_connections)
+    return connect_faces(mesh, c1, c2, segments, max_connections=max_connections,
+                         max_faces=max_faces)
 
 
 def connect_corners(
     mesh: Mesh, corner1: int, corner2: int, segments: int = 1, *,
-    max_connections: int = -1, dual: bool = False,
+    max_connections: int = -1, dual: bool = False, max_faces: object = None,
 ) -> list[int]:
     """Join the faces of two corners: :func:`connect_faces`, or with ``dual`` a band of
     triangles (:func:`dual_connect_faces`) between every pair of consecutive rings.
@@ -364,9 +393,11 @@ def connect_corners(
         DLFLError: as :func:`connect_faces`.
     """
     if not dual:
-        return connect_faces(mesh, corner1, corner2, segments, max_connections=max_connections)
+        return connect_faces(mesh, corner1, corner2, segments, max_connections=max_connections,
+                             max_faces=max_faces)
     face1, face2 = _two_faces(mesh, corner1, corner2, "connect_corners")
     _check_segments(segments, max_connections)
+    _check_budget(mesh, corner1, corner2, segments, "connect_corners", max_faces)
     first = mesh.next_ids()[1]
     if segments > 1:
         _same_size(mesh, face1, face2, "connect_corners")
@@ -466,13 +497,15 @@ def rotation_between(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return np.eye(3) + k + k @ k / (1.0 + c)
 
 
-def _handle_ends(mesh: Mesh, corner1: int, corner2: int, segments: int, op: str
-                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """Checks shared by the handles; returns the end rings and their normals
-    (the second face's normal reversed, as it is seen from the first)."""
+def _handle_ends(mesh: Mesh, corner1: int, corner2: int, segments: int, op: str,
+                 max_faces: object) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Checks shared by the handles (the face budget too); returns the end rings
+    and their normals (the second face's normal reversed, as it is seen from the
+    first)."""
     face1, face2 = _two_faces(mesh, corner1, corner2, op)
     _check_segments(segments)
     _same_size(mesh, face1, face2, op)
+    _check_budget(mesh, corner1, corner2, segments, op, max_faces)
     start, end = _end_rings(mesh, corner1, corner2)
     n1, n2 = polygon_normal(start), polygon_normal(end)
     if not (np.any(n1) and np.any(n2)):
@@ -578,6 +611,7 @@ def hermite_handle(
     mesh: Mesh, corner1: int, corner2: int, segments: int = 10, weight1: float = 25.0,
     weight2: float = 25.0, *, max_connections: int = -1, twists: int = 0,
     pinch: float = 1.0, pinch_center: float = 0.5, bubble: float = 1.0,
+    max_faces: object = None,
 ) -> list[int]:
     """A handle whose centroid path is a Hermite curve (TopMod's ``hermiteConnectFaces``).
 
@@ -603,8 +637,10 @@ def hermite_handle(
     turns = _check_twists(twists)
     _check_pinch(pinch, pinch_center, bubble)
     if segments == 1:  # TopMod: a plain connectFaces, whatever the sizes and normals
-        return connect_faces(mesh, corner1, corner2, max_connections=max_connections)
-    start, end, n1, n2 = _handle_ends(mesh, corner1, corner2, segments, "hermite_handle")
+        return connect_faces(mesh, corner1, corner2, max_connections=max_connections,
+                             max_faces=max_faces)
+    start, end, n1, n2 = _handle_ends(mesh, corner1, corner2, segments, "hermite_handle",
+                                      max_faces)
     rings = hermite_rings(start, end, n1, n2, segments, weight1, weight2, turns,
                           (pinch, pinch_center, bubble))
     first = mesh.next_ids()[1]
@@ -627,7 +663,7 @@ def bezier_rings(start: np.ndarray, end: np.ndarray, n1: np.ndarray, n2: np.ndar
 
 def bezier_handle(
     mesh: Mesh, corner1: int, corner2: int, segments: int = 10,
-    weight1: float = 25.0, weight2: float = 25.0,
+    weight1: float = 25.0, weight2: float = 25.0, *, max_faces: object = None,
 ) -> list[int]:
     """A handle whose every vertex follows its own Hermite curve (TopMod's
     ``bezierConnectFaces``); see :func:`bezier_rings`. Rings are joined with quads.
@@ -639,7 +675,8 @@ def bezier_handle(
         DLFLError: as :func:`hermite_handle` (faces of different sizes included).
     """
     _check_weights(weight1, weight2)
-    start, end, n1, n2 = _handle_ends(mesh, corner1, corner2, segments, "bezier_handle")
+    start, end, n1, n2 = _handle_ends(mesh, corner1, corner2, segments, "bezier_handle",
+                                      max_faces)
     rings = bezier_rings(start, end, n1, n2, segments, weight1, weight2)
     first = mesh.next_ids()[1]
     _chain_rings(mesh, corner1, corner2, rings, _quad_band, -1)

@@ -29,6 +29,7 @@ from functools import lru_cache
 import numpy as np
 
 from ._checks import finite_number, first_not_finite, flag, whole_count
+from .budget import check_growth
 from .connect import _quad_band, _triangle_band
 from .errors import DLFLError
 from .mesh import Mesh
@@ -464,31 +465,34 @@ class Kind:
     later sub-steps work on faces the first one made, which come out degenerate
     from a face with a dangling edge or a loop inside it), and whether one step
     is a single build (one polygon or apex, every point checked before the mesh
-    changes), which needs no rehearsal on a scratch copy to fail cleanly."""
+    changes), which needs no rehearsal on a scratch copy to fail cleanly.
+    ``growth``: at most how many faces and corners one step adds per corner of
+    the face (for the face budget)."""
 
     step: Callable[[Mesh, int, Options], int] | None
     fan: Callable[[Mesh, int, Options], list[int]] | None
     topmod: str
+    growth: tuple[int, int]
     simple_face: bool = False
     single_build: bool = False
 
 
 KINDS: dict[str, Kind] = {
-    "cubical": Kind(cubical_step, None, "extrudeFace", single_build=True),
-    "doo-sabin": Kind(doo_sabin_step, None, "extrudeFaceDS", single_build=True),
-    "octa": Kind(dual_step, None, "extrudeDualFace", single_build=True),
-    "dodeca": Kind(dodeca_step, None, "extrudeFaceDodeca"),
-    "icosa": Kind(icosa_step, None, "extrudeFaceIcosa", simple_face=True),
-    "cuboctahedral": Kind(cuboctahedral_step, None, "extrudeFaceCubOcta"),
-    "hex-tile": Kind(hex_tile_step, None, "extrudeHexTileFace"),
-    "planar-offset": Kind(planar_offset_step, None, "extrudeFacePlanarOffset",
+    "cubical": Kind(cubical_step, None, "extrudeFace", (1, 4), single_build=True),
+    "doo-sabin": Kind(doo_sabin_step, None, "extrudeFaceDS", (1, 4), single_build=True),
+    "octa": Kind(dual_step, None, "extrudeDualFace", (2, 6), single_build=True),
+    "dodeca": Kind(dodeca_step, None, "extrudeFaceDodeca", (2, 10)),
+    "icosa": Kind(icosa_step, None, "extrudeFaceIcosa", (6, 18), simple_face=True),
+    "cuboctahedral": Kind(cuboctahedral_step, None, "extrudeFaceCubOcta", (3, 10)),
+    "hex-tile": Kind(hex_tile_step, None, "extrudeHexTileFace", (1, 6)),
+    "planar-offset": Kind(planar_offset_step, None, "extrudeFacePlanarOffset", (1, 4),
                           single_build=True),
     "stellate": Kind(None, lambda m, f, opts: stellate_fan(m, f, opts.distance), "stellateFace",
-                     single_build=True),
+                     (1, 2), single_build=True),
     "double-stellate": Kind(
         None, lambda m, f, opts: double_stellate_fan(m, f, opts.distance), "doubleStellateFace",
-        simple_face=True),
-    "dome": Kind(None, dome_fan, "extrudeFaceDome"),
+        (3, 8), simple_face=True),
+    "dome": Kind(None, dome_fan, "extrudeFaceDome", (6, 22)),
 }
 ALIASES = {"dual": "octa", "inset": "planar-offset", "cubocta": "cuboctahedral",
            "hextile": "hex-tile", "ds": "doo-sabin"}
@@ -553,16 +557,23 @@ def _checked_numbers(opts: Options) -> Options:
                    finite_number(opts.thickness, "thickness"), opts.fractional)
 
 
-def _prepare(mesh: Mesh, face: int, kind: str, segments: int,
-             opts: Options) -> tuple[Kind, Options]:
-    """The kind's spec and the checked options, or a DLFLError (see :func:`extrude`)."""
+def _prepare(mesh: Mesh, face: int, kind: str, segments: int, opts: Options,
+             max_faces: object) -> tuple[Kind, Options]:
+    """The kind's spec and the checked options, or a DLFLError (see :func:`extrude`);
+    the face budget is checked too."""
     name = resolve_kind(kind)
     spec = KINDS[name]
     _check_face(mesh, face)
     if spec.simple_face:
         _check_simple(mesh, int(face), name)
-    # every segment makes at least a new polygon of the face's size
-    whole_count(segments, "segments", each=mesh.face_size(int(face)))
+    sides = mesh.face_size(int(face))
+    count = whole_count(segments, "segments")
+    faces, corners = spec.growth
+    check_growth(mesh, f"{name} extrusion", faces=count * faces * sides,
+                 corners=count * corners * sides, max_faces=max_faces)
+    # every segment makes at least a new polygon of the face's size (a budget
+    # raised past what a mesh can hold)
+    whole_count(segments, "segments", each=sides)
     return spec, _checked_numbers(opts)
 
 
@@ -580,7 +591,7 @@ def extrude(
     mesh: Mesh, face: int, kind: str = "cubical", distance: float = 2.0, segments: int = 1,
     rotation: float = 0.0, scale: float = 1.0, *, twist: float = 0.0,
     dual_mesh: bool = False, hexagonalize: bool = False, thickness: float = 0.25,
-    fractional: bool = True,
+    fractional: bool = True, max_faces: object = None,
 ) -> int:
     """Extrude ``face`` and return the new end face (TopMod's extrusions, TOPMOD.md §4).
 
@@ -606,6 +617,8 @@ def extrude(
             one's end face; ``kind="hex-tile"`` alone, 2 segments: 24/36/14).
         thickness, fractional: planar-offset only, the inset (fractional: of the
             edge vectors; else absolute along unit edge vectors).
+        max_faces: the face budget (None: the session's, see
+            :mod:`livemod.dlfl.budget`).
 
     Raises:
         DLFLError: unknown kind (lists the valid ones), a kind that ends in a fan
@@ -615,10 +628,12 @@ def extrude(
             non-finite number, or numbers that overflow or make a degenerate
             face in a later step or segment (checked on a scratch copy first).
             The mesh is unchanged.
+        BudgetExceededError: the segments would pass the face budget.
     """
     spec, opts = _prepare(mesh, face, kind, segments, Options(
         distance, rotation, scale, twist, flag(dual_mesh, "dual_mesh"),
-        flag(hexagonalize, "hexagonalize"), thickness, flag(fractional, "fractional")))
+        flag(hexagonalize, "hexagonalize"), thickness, flag(fractional, "fractional")),
+        max_faces)
     step = spec.step
     if step is None:
         raise DLFLError(f"extrusion kind {resolve_kind(kind)!r} ends in a fan of triangles, "
@@ -639,7 +654,7 @@ def extrude(
 
 def extrude_fan(
     mesh: Mesh, face: int, kind: str = "stellate", distance: float = 2.0,
-    rotation: float = 0.0, scale: float = 1.0,
+    rotation: float = 0.0, scale: float = 1.0, *, max_faces: object = None,
 ) -> list[int]:
     """Run an extrusion that ends in a fan of triangles; return the triangles' ids.
 
@@ -656,7 +671,7 @@ def extrude_fan(
             unchanged.
     """
     spec, opts = _prepare(mesh, face, kind, 1,
-                          Options(distance=distance, rotation=rotation, scale=scale))
+                          Options(distance=distance, rotation=rotation, scale=scale), max_faces)
     fan = spec.fan
     if fan is None:
         raise DLFLError(f"extrusion kind {resolve_kind(kind)!r} ends in a face; use extrude()")

@@ -44,6 +44,7 @@ import numpy as np
 
 from ._hull_table import triangle_table as _triangle_table
 from ._vectors import range_exponent, shifted_in_range
+from .budget import check_size
 from .build import from_polygons
 from .errors import DLFLError
 from .mesh import Mesh
@@ -121,7 +122,7 @@ def hull_triangles(points: np.ndarray, tolerance: float = 1e-9) -> list[list[int
     return [t for poly in hull.polygons for t in _ears(hull.points, poly, hull.eps)]
 
 
-def convex_hull(mesh: Mesh) -> None:
+def convex_hull(mesh: Mesh, *, max_faces: object = None) -> None:
     """TopMod's ``createConvexHull()``: replace ``mesh`` by the convex hull of its
     vertices, in triangles (:func:`hull_triangles`; coplanar facets are merged
     first, then each face is cut into a fan from its last corner). Cube:
@@ -135,13 +136,18 @@ def convex_hull(mesh: Mesh) -> None:
     Raises:
         DLFLError: fewer than 4 vertices, a position difference beyond the float
             range, or all vertices in one plane; the mesh is unchanged.
+        BudgetExceededError: the hull could pass the face budget: at most
+            ``2V - 4`` triangles (``max_faces``; None: the session's, see
+            :mod:`livemod.dlfl.budget`).
     """
+    most = max(2 * mesh.num_vertices - 4, 0)
+    check_size("convex hull", most, 3 * most, max_faces=max_faces)
     hull = _wrap_hull(mesh.positions_view())
     triangles = [t for poly in hull.polygons for t in _ears(hull.points, poly, hull.eps)]
     _rebuild(mesh, mesh.positions_view(), triangles)
 
 
-def dual_convex_hull(mesh: Mesh) -> None:
+def dual_convex_hull(mesh: Mesh, *, max_faces: object = None) -> None:
     """Replace ``mesh`` by the polar dual of the convex hull of its vertices.
 
     The hull's coplanar facets are merged first (:func:`hull_polygons`), so the
@@ -160,7 +166,11 @@ def dual_convex_hull(mesh: Mesh) -> None:
     Raises:
         DLFLError: as :func:`convex_hull`, or a dual vertex beyond the float
             range (a very flat hull); the mesh is unchanged.
+        BudgetExceededError: the dual could pass the face budget: a face per
+            vertex, at most ``6V - 12`` corners.
     """
+    vertices = mesh.num_vertices
+    check_size("dual convex hull", vertices, max(6 * vertices - 12, 0), max_faces=max_faces)
     hull = _wrap_hull(mesh.positions_view())
     _rebuild(mesh, _polar_points(hull), _dual_polygons(hull.polygons))
 

@@ -27,6 +27,7 @@ import numpy as np
 from ._checks import finite_number, flag, id_list, positive_number
 from ._vectors import centroid, lengths, shifted_in_range, unit
 from .analysis import face_points, polygon_normal
+from .budget import check_growth
 from .connect import _new_edges, closest_corners, connect_edge_sides, connect_faces
 from .errors import DLFLError
 from .geometry import edge_cleanup
@@ -59,6 +60,28 @@ def _check_handle_faces(mesh: Mesh, faces: list[int], op: str = "multi_face_hand
             raise DLFLError(f"face {f} does not exist (deleted or never made)")
         if mesh.face_size(f) < 3 or not np.any(polygon_normal(face_points(mesh, f))):
             raise DLFLError(f"face {f} has no normal (fewer than 3 corners or degenerate)")
+
+
+def _check_budget(mesh: Mesh, faces: list[int], op: str, growth: tuple[int, int],
+                  max_faces: object) -> None:
+    """Refuse a handle of the (checked) ``faces`` that could pass the face budget:
+    it adds at most ``growth`` ``(faces, corners)`` per corner of the faces.
+
+    A hub of ``S`` points (at most the faces' ``S`` corners) has at most ``2S``
+    faces and ``6S`` corners, and each tube to it at most as many faces as its
+    two ends have corners, four corners each (see :mod:`.connect`): ``(9, 34)``.
+    Quads between closest edges add a face and four corners per pair: ``(1, 4)``.
+
+    Raises:
+        BudgetExceededError: the handle could pass the budget.
+    """
+    corners = sum(mesh.face_size(f) for f in faces)
+    check_growth(mesh, op, faces=growth[0] * corners, corners=growth[1] * corners,
+                 max_faces=max_faces)
+
+
+# a hub handle's most faces and corners per corner of its faces (_check_budget)
+_HUB_GROWTH = (9, 34)
 
 
 def _apart(p: np.ndarray, q: np.ndarray, merge: float) -> bool:
@@ -244,7 +267,8 @@ def _join_hub(mesh: Mesh, faces: list[int], points: np.ndarray, polygons: list[l
 # -- convex-hull handle ------------------------------------------------------------------
 
 def multi_face_handle(mesh: Mesh, faces: list[int], scale: float = 1.0,
-                      extrude: float = 0.5, *, max_offsets: bool = False) -> list[int]:
+                      extrude: float = 0.5, *, max_offsets: bool = False,
+                      max_faces: object = None) -> list[int]:
     """Join several faces through one hub, the convex hull of their vertices
     (TopMod's ``multiConnectFaces(faces, scale, extrude, maxOffsets)``).
 
@@ -271,12 +295,15 @@ def multi_face_handle(mesh: Mesh, faces: list[int], scale: float = 1.0,
             plane or too nearly coplanar for their hull to close up, a point inside
             the hull (or one of its faces), or a face with no hull face facing it
             (TopMod skipped it silently). The mesh is unchanged.
+        BudgetExceededError: the handle could pass the face budget
+            (``max_faces``, None for the session's: :mod:`livemod.dlfl.budget`).
     """
     faces = id_list(faces, "faces")
     scale = finite_number(scale, "scale")
     extrude = finite_number(extrude, "extrude")
     use_max = flag(max_offsets, "max_offsets")
     _check_handle_faces(mesh, faces)
+    _check_budget(mesh, faces, "multi_face_handle", _HUB_GROWTH, max_faces)
     normals = [polygon_normal(face_points(mesh, f)) for f in faces]
     offsets = face_max_offsets(mesh, faces, extrude) if use_max else np.full(len(faces), extrude)
     points = _hub_points(mesh, faces, normals, offsets, scale)
@@ -402,7 +429,7 @@ def fitted_factor(fits: Callable[[float], bool], min_factor: float = 0.01,
 
 
 def multi_face_handle_fitted(mesh: Mesh, faces: list[int], min_factor: float = 0.01, *,
-                             connect: bool = True) -> list[int]:
+                             connect: bool = True, max_faces: object = None) -> list[int]:
     """Join several faces through the smallest hub that keeps all of their points
     (TopMod's ``multiConnectFaces(faces, min_factor, make_connections)``).
 
@@ -430,11 +457,13 @@ def multi_face_handle_fitted(mesh: Mesh, faces: list[int], min_factor: float = 0
             not all corners of their convex hull (TopMod stopped too), no fitting
             factor within 10 steps, or a face no hull face faces (TopMod left it
             unjoined). The mesh is unchanged.
+        BudgetExceededError: the handle could pass the face budget.
     """
     faces = id_list(faces, "faces")
     min_factor = positive_number(min_factor, "min_factor")
     join = flag(connect, "connect")
     _check_handle_faces(mesh, faces, "multi_face_handle_fitted")
+    _check_budget(mesh, faces, "multi_face_handle_fitted", _HUB_GROWTH, max_faces)
     rings = [face_points(mesh, f) for f in faces]
     _check_convex_position(np.concatenate(rings))
     moved = _toward_centre(rings)
@@ -489,7 +518,8 @@ def _check_convex_position(points: np.ndarray) -> None:
 
 # -- closest edges ------------------------------------------------------------------------
 
-def multi_face_handle_closest_edges(mesh: Mesh, faces: list[int]) -> list[int]:
+def multi_face_handle_closest_edges(mesh: Mesh, faces: list[int], *,
+                                    max_faces: object = None) -> list[int]:
     """Join several faces by quads between their closest edges (TopMod's
     "ClosestEdge" ``multiConnectFaces(faces)``).
 
@@ -517,9 +547,11 @@ def multi_face_handle_closest_edges(mesh: Mesh, faces: list[int]) -> list[int]:
     Raises:
         DLFLError: faces as :func:`multi_face_handle` refuses them, or no pair of
             edges qualifies (TopMod did nothing). The mesh is unchanged.
+        BudgetExceededError: the quads could pass the face budget.
     """
     faces = id_list(faces, "faces")
     _check_handle_faces(mesh, faces, "multi_face_handle_closest_edges")
+    _check_budget(mesh, faces, "multi_face_handle_closest_edges", (1, 4), max_faces)
     halves = _half_edges(mesh, faces)
     pairs = _edge_pairs(mesh, faces, halves)
     if not pairs:

@@ -22,6 +22,7 @@ from ._checks import finite_number, first_not_finite, id_list
 from ._vectors import face_ring_vectors, lengths, newell, unit
 from .analysis import corner_normals, face_normals
 from .arrays import MeshArrays, mesh_arrays
+from .budget import check_size
 from .build import from_corner_arrays
 from .errors import DLFLError
 from .mesh import Mesh
@@ -463,6 +464,7 @@ def rind(
     scale: float = 0.9,
     uniform: bool = True,
     cleanup: bool = True,
+    max_faces: object = None,
 ) -> None:
     """Make ``mesh`` a crust and punch the listed faces open (rind modeling).
 
@@ -492,11 +494,20 @@ def rind(
             outer one) whose faces would collapse or turn over, point-spheres,
             every face punched with cleanup (nothing would be left).
             The mesh is unchanged.
+        BudgetExceededError: the two shells and the tubes of the punched faces
+            could pass the face budget (``max_faces``; None: the session's,
+            see :mod:`livemod.dlfl.budget`).
     """
+    # two shells at least, before anything is allocated: a repeated crust doubles
+    check_size("rind", 2 * mesh.num_faces, 2 * mesh.num_corners, max_faces=max_faces)
     a = mesh_arrays(mesh)
     _check_shell_input(a)
     # an open mesh's boundary loops are always opened: the rind of a sheet is a slab
     punched = _dense_faces(a, faces) | a.face_hole
+    # each punched n-gon and its twin become at most n quads
+    sides = int(a.face_sizes[punched].sum())
+    check_size("rind", 2 * len(punched) + sides - 2 * int(np.count_nonzero(punched)),
+               2 * len(a.corner_vertex) + 2 * sides, max_faces=max_faces)
     outer, inner = _shell_positions(
         a, None if use_scaling else thickness, scale if use_scaling else None, uniform
     )
@@ -506,6 +517,7 @@ def rind(
     mesh.replace_with(shell.build(mesh))
 
 
-def crust(mesh: Mesh, thickness: float = 0.5, *, uniform: bool = True) -> None:
+def crust(mesh: Mesh, thickness: float = 0.5, *, uniform: bool = True,
+          max_faces: object = None) -> None:
     """TopMod's ``createCrust``: :func:`rind` with no face punched (two components)."""
-    rind(mesh, (), thickness, uniform=uniform)
+    rind(mesh, (), thickness, uniform=uniform, max_faces=max_faces)

@@ -31,6 +31,7 @@ from ._checks import positive_number
 from ._vectors import group_sum
 from .analysis import face_centroids
 from .arrays import MeshArrays, mesh_arrays
+from .budget import check_size
 from .build import from_corner_arrays
 from .errors import DLFLError
 from .mesh import Mesh
@@ -43,7 +44,8 @@ __all__ = ["TOPMOD_THICKNESS", "shell_limit", "sponge"]
 TOPMOD_THICKNESS = 0.67
 
 
-def sponge(mesh: Mesh, thickness: float | None = None, *, keep_2gons: bool = True) -> float:
+def sponge(mesh: Mesh, thickness: float | None = None, *, keep_2gons: bool = True,
+           max_faces: object = None) -> float:
     """Menger-sponge remeshing of ``mesh`` in place (rebuilt: fresh ids).
 
     Args:
@@ -62,7 +64,11 @@ def sponge(mesh: Mesh, thickness: float | None = None, *, keep_2gons: bool = Tru
             point-spheres or faces of fewer than three sides; a vertex whose
             faces have no area (no normal to offset it along); the mesh is
             unchanged.
+        BudgetExceededError: the result could pass the face budget: at most
+            ``7 E`` faces and ``13 C`` corners (``max_faces``; None: the
+            session's, see :mod:`livemod.dlfl.budget`).
     """
+    check_size("sponge", 7 * mesh.num_edges, 13 * mesh.num_corners, max_faces=max_faces)
     a = mesh_arrays(mesh)
     _check_input(a)
     thickness, inner = _inner_shell(a, thickness)

@@ -20,6 +20,7 @@ from ._vectors import in_range, lengths, together_in_range
 from ._vectors import unit as _unit
 from .analysis import face_centroids
 from .arrays import MeshArrays, mesh_arrays
+from .budget import check_size
 from .build import from_corner_arrays
 from .errors import DLFLError
 from .hull import hull_polygons
@@ -206,7 +207,8 @@ def _check_cut_input(a: MeshArrays, thickness: float) -> None:
         raise DLFLError(f"corner cutting needs a mesh without point-spheres; vertex {v} is one")
 
 
-def modified_corner_cut(mesh: Mesh, thickness: float = 0.25) -> list[int]:
+def modified_corner_cut(mesh: Mesh, thickness: float = 0.25, *,
+                        max_faces: object = None) -> list[int]:
     """TopMod's ``modifiedCornerCuttingSubdivide(thickness)`` (GUI 0.25).
 
     Every face gets an inner polygon whose corners are ``thickness / 2`` from
@@ -220,7 +222,11 @@ def modified_corner_cut(mesh: Mesh, thickness: float = 0.25) -> list[int]:
 
     Raises:
         DLFLError: ``thickness`` not positive, point-spheres; the mesh is unchanged.
+        BudgetExceededError: the result would pass the face budget
+            (``max_faces``; None: the session's, see :mod:`livemod.dlfl.budget`).
     """
+    v, e, f = mesh.counts()
+    check_size("modified corner cut", f + e + v, 4 * mesh.num_corners, max_faces=max_faces)
     cut = corner_cut_arrays(mesh_arrays(mesh), thickness)
     first = mesh.next_ids()
     new = from_corner_arrays(cut.positions, cut.offsets, cut.corner_vertex, cut.corner_mate,
@@ -271,7 +277,8 @@ def wireframe_inner_positions(a: MeshArrays, front: np.ndarray, thickness: float
 
 
 def wireframe(
-    mesh: Mesh, thickness: float = 0.1, split: bool = True, *, width: float | None = None
+    mesh: Mesh, thickness: float = 0.1, split: bool = True, *, width: float | None = None,
+    max_faces: object = None,
 ) -> None:
     """TopMod's ``makeWireframe(t, split)`` (API default 0.1, GUI 0.25).
 
@@ -285,10 +292,16 @@ def wireframe(
 
     Raises:
         DLFLError: ``thickness`` not positive, point-spheres; the mesh is unchanged.
+        BudgetExceededError: the result would pass the face budget: it has
+            ``2E + 2V + C`` faces and ``10 C`` corners (``max_faces``; None: the
+            session's, see :mod:`livemod.dlfl.budget`).
     """
     thickness = positive_number(thickness, "thickness")
     if width is not None:
         width = positive_number(width, "width")
+    v, e, _ = mesh.counts()
+    corners = mesh.num_corners
+    check_size("wireframe", 2 * (e + v) + corners, 10 * corners, max_faces=max_faces)
     cut = corner_cut_arrays(mesh_arrays(mesh), thickness if width is None else width)
     a = _arrays_of(cut)
     front = np.zeros(len(a.face_ids), bool)
@@ -415,7 +428,8 @@ def _ring_starts(a: MeshArrays, axis: np.ndarray) -> np.ndarray:
     return _unit(start)
 
 
-def columns(mesh: Mesh, thickness: float = 0.25, segments: int = 4) -> None:
+def columns(mesh: Mesh, thickness: float = 0.25, segments: int = 4, *,
+            max_faces: object = None) -> None:
     """TopMod's ``makeWireframeWithColumns(t=0.25, segs=4)``: a tube of ``segments``
     quads around every edge, joined at every vertex by the convex hull of the
     tube ends (:func:`.hull.hull_polygons`: coplanar hull triangles merged, as
@@ -432,8 +446,10 @@ def columns(mesh: Mesh, thickness: float = 0.25, segments: int = 4) -> None:
     Raises:
         DLFLError: ``thickness`` not positive, ``segments`` below 3, point-spheres,
             self-loops, or rings that do not clear each other; the mesh is unchanged.
+        BudgetExceededError: the result could pass the face budget
+            (``max_faces``; None: the session's, see :mod:`livemod.dlfl.budget`).
     """
-    thickness, segments = _check_columns_input(mesh, thickness, segments)
+    thickness, segments = _check_columns_input(mesh, thickness, segments, max_faces)
     a = mesh_arrays(mesh)
     points = column_rings(a, thickness, segments).reshape(-1, 3)
     order, offsets = vertex_rings(a)
@@ -447,14 +463,23 @@ def columns(mesh: Mesh, thickness: float = 0.25, segments: int = 4) -> None:
     mesh.replace_with(from_polygons(points, polygons, first_ids=mesh.next_ids()))
 
 
-def _check_columns_input(mesh: Mesh, thickness: float, segments: int) -> tuple[float, int]:
-    """The checked ``(thickness, segments)``; see :func:`columns` for what is refused."""
+def _check_columns_input(mesh: Mesh, thickness: float, segments: int,
+                         max_faces: object) -> tuple[float, int]:
+    """The checked ``(thickness, segments)``; see :func:`columns` for what is refused.
+
+    The face budget is checked before any ring point exists: ``E`` tubes of
+    ``s = segments`` quads, and at each vertex of valence ``k`` a joint of at
+    most ``2ks`` faces (a hull of its ``ks`` ring points) and ``6ks`` corners
+    less its ``k`` ring caps: at most ``5Es`` faces and ``14Es`` corners.
+    """
     thickness = positive_number(thickness, "thickness")
     # 4.0 is a whole number too; a string, NaN or 3.5 is not
     whole = isinstance(segments, int | np.integer) or (
         isinstance(segments, float) and segments.is_integer())
     if isinstance(segments, bool) or not whole or segments < 3:
         raise DLFLError(f"segments must be a whole number of at least 3, got {segments!r}")
+    tubes = mesh.num_edges * int(segments)
+    check_size("columns", 5 * tubes, 14 * tubes, max_faces=max_faces)
     for v in mesh.vertex_ids().tolist():
         if mesh.is_point_sphere(v):
             raise DLFLError(f"columns need a mesh without point-spheres; vertex {v} is one")
