@@ -249,9 +249,12 @@ class Table:
 
     @classmethod
     def from_arrays(
-        cls, kind: str, spec: FieldSpec, first_id: int, arrays: dict[str, np.ndarray]
+        cls, kind: str, spec: FieldSpec, first_id: int, arrays: dict[str, np.ndarray],
+        ids: np.ndarray | None = None,
     ) -> Table:
-        """A table whose slots ``0..n-1`` hold ids ``first_id..first_id+n-1``.
+        """A table whose slots ``0..n-1`` hold ids ``first_id..first_id+n-1``, or
+        the ``(n,)`` distinct ``ids`` given (then the next id handed out is past
+        both ``first_id - 1`` and the largest of them).
 
         ``arrays`` gives every field of ``spec`` with ``n`` rows; they are
         adopted (not copied) when their dtype already matches.
@@ -272,7 +275,19 @@ class Table:
             name: np.ascontiguousarray(arrays[name], dtype=dtype)
             for name, (dtype, _tail) in spec.items()
         }
+        if ids is not None and count:
+            table._adopt_ids(np.asarray(ids, dtype=np.int64))
         if count == 0:
             table._resize(16)
         table._refresh_views()
         return table
+
+    def _adopt_ids(self, ids: np.ndarray) -> None:
+        """Give the ``n`` slots ``ids``: those that do not follow ``base + slot``
+        (base: the first one's) go to ``moved``."""
+        self.ids = ids
+        self.base = int(ids[0])
+        off = np.flatnonzero(ids != self.base + np.arange(len(ids)))
+        self.moved = dict(zip(ids[off].tolist(), off.tolist(), strict=True))
+        self.next_id = max(self.next_id - len(ids), int(ids.max()) + 1)
+        self.floor = min(self.floor, int(ids.min()))

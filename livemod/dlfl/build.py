@@ -536,6 +536,8 @@ def from_corner_arrays(
     face_hole: np.ndarray | None = None,
     *,
     first_ids: tuple[int, int, int, int] = (0, 0, 0, 0),
+    ids: tuple[np.ndarray | None, np.ndarray | None, np.ndarray | None,
+               np.ndarray | None] | None = None,
 ) -> Mesh:
     """Build a mesh from corners laid out face by face, with known pairing.
 
@@ -549,6 +551,10 @@ def from_corner_arrays(
             edge (the corner's edge runs to the next corner); -1 for a point-sphere.
         face_hole: ``(F,)`` bool hole flags.
         first_ids: first vertex, edge, face and corner id.
+        ids: per kind (vertex, edge, face, corner), the distinct ids of its
+            elements in their order, for an operation that keeps some ids
+            (None for a kind numbered from ``first_ids``); later elements get
+            ids past the largest.
 
     Returns:
         The mesh; vertex ``i`` gets id ``first_ids[0] + i``, face ``i`` gets
@@ -569,15 +575,17 @@ def from_corner_arrays(
     num_f = len(offsets) - 1
     hole = np.zeros(num_f, np.uint8) if face_hole is None else np.asarray(face_hole, np.uint8)
     vid, eid, fid, cid = first_ids
+    vids, eids, fids, cids = ids or (None, None, None, None)
     mesh = Mesh.__new__(Mesh)
     mesh.notes = []
     mesh._c = Table.from_arrays("corner", CORNER_SPEC, cid, {
-        "next": nxt, "prev": prv, "face": face, "vertex": cvert, "edge": edge})
-    mesh._e = Table.from_arrays("edge", EDGE_SPEC, eid, {"c0": lower, "c1": upper})
-    mesh._f = Table.from_arrays("face", FACE_SPEC, fid, {"corner": offsets[:-1], "hole": hole})
+        "next": nxt, "prev": prv, "face": face, "vertex": cvert, "edge": edge}, cids)
+    mesh._e = Table.from_arrays("edge", EDGE_SPEC, eid, {"c0": lower, "c1": upper}, eids)
+    mesh._f = Table.from_arrays("face", FACE_SPEC, fid, {"corner": offsets[:-1], "hole": hole},
+                                fids)
     mesh._v = Table.from_arrays("vertex", VERTEX_SPEC, vid, {
         "corner": _lowest_corners(cvert, len(positions)),
-        "position": positions})
+        "position": positions}, vids)
     return mesh
 
 
