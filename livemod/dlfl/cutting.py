@@ -54,6 +54,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from ._checks import finite_number, id_list
+from ._truncation import check_truncatable, truncation
+from .arrays import mesh_arrays
+from .budget import check_growth, check_size
+from .build import from_corner_arrays
 from .errors import DLFLError
 from .mesh import Mesh
 
@@ -75,7 +79,7 @@ class _Region:
 
 
 def cut_vertices(mesh: Mesh, vertices: Iterable[int],
-                 offset: float = DEFAULT_OFFSET) -> list[int]:
+                 offset: float = DEFAULT_OFFSET, *, max_faces: object = None) -> list[int]:
     """Cut off each vertex: TopMod's ``cutSelectedVertices`` (Conical > Cut by Vertex).
 
     A vertex of valence ``k`` becomes a ``k``-gon whose corners lie ``offset``
@@ -100,10 +104,11 @@ def cut_vertices(mesh: Mesh, vertices: Iterable[int],
     regions = [_Region((v,), frozenset(), name=f"vertex {v}") for v in ids]
     for v in ids:
         _check_cuttable(mesh, v)
-    return _cut(mesh, regions, t)
+    return _cut(mesh, regions, t, max_faces)
 
 
-def cut_edges(mesh: Mesh, edges: Iterable[int], offset: float = DEFAULT_OFFSET) -> list[int]:
+def cut_edges(mesh: Mesh, edges: Iterable[int], offset: float = DEFAULT_OFFSET, *,
+              max_faces: object = None) -> list[int]:
     """Cut off each edge with its end vertices: TopMod's ``cutSelectedEdges``.
 
     Edges that share a vertex form one region (they must not close a cycle:
@@ -126,10 +131,11 @@ def cut_edges(mesh: Mesh, edges: Iterable[int], offset: float = DEFAULT_OFFSET) 
     """
     t = _offset(offset)
     ids = list(dict.fromkeys(id_list(edges, "edges")))
-    return _cut(mesh, _edge_regions(mesh, ids), t)
+    return _cut(mesh, _edge_regions(mesh, ids), t, max_faces)
 
 
-def cut_faces(mesh: Mesh, faces: Iterable[int], offset: float = DEFAULT_OFFSET) -> list[int]:
+def cut_faces(mesh: Mesh, faces: Iterable[int], offset: float = DEFAULT_OFFSET, *,
+              max_faces: object = None) -> list[int]:
     """Cut off each face with its vertices and edges: TopMod's ``cutSelectedFaces``.
 
     The cap replaces the face ``offset`` along every edge that leaves it: on a
@@ -154,15 +160,17 @@ def cut_faces(mesh: Mesh, faces: Iterable[int], offset: float = DEFAULT_OFFSET) 
     ids = list(dict.fromkeys(id_list(faces, "faces")))
     regions = [_face_region(mesh, f) for f in ids]
     _check_disjoint(regions)
-    return _cut(mesh, regions, t)
+    return _cut(mesh, regions, t, max_faces)
 
 
-def truncate(mesh: Mesh, offset: float = DEFAULT_OFFSET) -> list[int]:
+def truncate(mesh: Mesh, offset: float = DEFAULT_OFFSET, *,
+             max_faces: object = None) -> list[int]:
     """Cut off every vertex at once (TopMod's cut with nothing selected).
 
     The positions and counts of ``subdivide("vertex-cut", offset)`` (cube:
-    24/36/14, 8 triangles and 6 octagons), but in place: old faces keep their
-    ids. Point-spheres stay as they are.
+    24/36/14, 8 triangles and 6 octagons), but the old faces keep their ids
+    (every other element is new: the mesh is rebuilt at once, see
+    :mod:`._truncation`). Point-spheres stay as they are, ids and all.
 
     Returns:
         The cap face ids, one per vertex, in vertex id order.
@@ -170,13 +178,37 @@ def truncate(mesh: Mesh, offset: float = DEFAULT_OFFSET) -> list[int]:
     Raises:
         DLFLError: ``offset`` not in (0, 0.5), or a vertex with a self-loop or
             only one edge; the mesh is unchanged.
+        BudgetExceededError: the result would pass the face budget: a face
+            per vertex more, three corners per corner (``max_faces``; None: the
+            session's, see :mod:`livemod.dlfl.budget`).
     """
     t = _offset(offset)
     if t >= 0.5:
         raise DLFLError(f"truncate cuts every edge from both ends: offset must be below 0.5, "
                         f"got {offset!r}")
-    ids = [v for v in mesh.vertex_ids().tolist() if not mesh.is_point_sphere(v)]
-    return cut_vertices(mesh, ids, t)
+    v, e, f = mesh.counts()
+    spheres = mesh.num_corners - 2 * e  # they stay as they are
+    check_size("truncate", f + v - spheres, 6 * e + spheres, max_faces=max_faces)
+    a = mesh_arrays(mesh)
+    check_truncatable(a)
+    if not e:  # nothing but point-spheres: nothing to cut, every id kept
+        return []
+    cut = truncation(a, t)
+    first = mesh.next_ids()
+    ids = (_numbered(cut.vertex_ids, first[0]), None, _numbered(cut.face_ids, first[2]),
+           _numbered(cut.corner_ids, first[3]))
+    mesh.replace_with(from_corner_arrays(cut.positions, cut.offsets, cut.corner_vertex,
+                                         cut.corner_mate, cut.face_hole, first_ids=first,
+                                         ids=ids))
+    return ids[2][cut.caps].tolist()
+
+
+def _numbered(ids: np.ndarray, first: int) -> np.ndarray:
+    """``ids`` with each -1 replaced by the next fresh id from ``first``, in order."""
+    fresh = ids < 0
+    out = ids.copy()
+    out[fresh] = first + np.arange(int(np.count_nonzero(fresh)))
+    return out
 
 
 # -- checks --------------------------------------------------------------------------
@@ -289,13 +321,16 @@ def _check_disjoint(regions: list[_Region]) -> None:
 
 # -- the cut -------------------------------------------------------------------------
 
-def _cut(mesh: Mesh, regions: list[_Region], t: float) -> list[int]:
+def _cut(mesh: Mesh, regions: list[_Region], t: float, max_faces: object) -> list[int]:
     """Cut every region (vertex-disjoint) at offset ``t``; return their caps.
 
-    Everything that can fail is checked before the first change.
+    Everything that can fail is checked before the first change; the face
+    budget too: a cap per region, and per leaving edge end at most a cap corner
+    and the two corners of its split.
     """
     ends = [_leaving_ends(mesh, r) for r in regions]
     flat = [c for region_ends in ends for c in region_ends]
+    check_growth(mesh, "cut", faces=len(regions), corners=3 * len(flat), max_faces=max_faces)
     _check_two_sided(mesh, flat, t)
     points = _end_points(mesh, flat, t)
     # from here on nothing can fail: all checks are done
