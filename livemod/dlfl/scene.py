@@ -209,6 +209,8 @@ class Scene:
         files_read, files_written: absolute paths of the mesh files ``load`` read
             (or tried to) and ``save`` wrote in this scene, in order; a live
             session re-runs the script when one it read changes (not copied).
+        face_budget: the face budget of the commands acting on this scene (see
+            :mod:`livemod.dlfl.budget`); None for the session's default.
     """
 
     def __init__(self) -> None:
@@ -227,6 +229,7 @@ class Scene:
         self.directory: str | None = None
         self.files_read: list[str] = []
         self.files_written: list[str] = []
+        self.face_budget: int | None = None
         self._next_object = 0
         self._command_depth = 0
 
@@ -284,6 +287,7 @@ class Scene:
         other.selection = replace(self.selection)
         other.parameters = dict(self.parameters)
         other.directory = self.directory
+        other.face_budget = self.face_budget
         other._next_object = self._next_object
         return other
 

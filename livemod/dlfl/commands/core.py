@@ -8,6 +8,7 @@ corner ids). Every command checks its arguments and raises :class:`DLFLError`.
 from __future__ import annotations
 
 import builtins
+import itertools
 import os
 from collections.abc import Callable, Iterable, Sequence
 from typing import Any
@@ -16,10 +17,11 @@ import numpy as np
 
 from .. import geometry as _geometry
 from .. import transform as _transform
-from .._checks import flag, is_id
+from .._checks import flag, is_id, whole_count
 from ..analysis import face_centroid, face_normal
 from ..analysis import genus as _genus
-from ..errors import DLFLError
+from ..budget import CORNERS_PER_FACE, check_growth, face_budget
+from ..errors import DLFLError, InvalidArgumentError
 from ..mesh import Mesh, _as_point
 from ._base import corner_tuple, mesh, modeling_command, resolve_corner, scene
 
@@ -133,12 +135,23 @@ def deleteEdge(edgeid: int, cleanup: bool = True) -> list[int]:
 
 @modeling_command
 def subdivideEdge(*args: int) -> list[int]:
-    """``subdivideEdge([divisions,] edgeid)``: split an edge, return the new vertex ids."""
+    """``subdivideEdge([divisions,] edgeid)``: split an edge, return the new vertex ids.
+
+    Raises:
+        DLFLError: not a live edge, or ``divisions`` not an integer >= 1.
+        BudgetExceededError: the ``2 (divisions - 1)`` new corners would pass the
+            scene's face budget (see :mod:`livemod.dlfl.budget`).
+    """
     if len(args) == 1:
         return mesh().subdivide_edge(args[0])
     if len(args) == 2:
-        return mesh().subdivide_edge(args[1], args[0])
-    raise DLFLError(f"subdivideEdge takes ([divisions,] edgeid), got {len(args)} arguments")
+        m = mesh()
+        divisions = whole_count(args[0], "divisions", each=2)
+        check_growth(m, "subdivideEdge", faces=0, corners=2 * (divisions - 1),
+                     max_faces=scene().face_budget)
+        return m.subdivide_edge(args[1], divisions)
+    raise InvalidArgumentError(f"subdivideEdge takes ([divisions,] edgeid), got {len(args)} "
+                               "arguments")
 
 
 @modeling_command
@@ -190,11 +203,31 @@ def createFace(points: Sequence[Point], bothNew: bool = False) -> tuple[int, int
 
     Raises:
         DLFLError: ``points`` is not a list of ``(x, y, z)`` points.
+        BudgetExceededError: its ``2 n`` corners would pass the scene's face
+            budget (see :mod:`livemod.dlfl.budget`); checked before the points
+            are read.
     """
     if isinstance(points, str | bytes) or not isinstance(points, Iterable):
-        raise DLFLError(f"points must be a list of (x, y, z) points, got {points!r}")
+        raise InvalidArgumentError(f"points must be a list of (x, y, z) points, got {points!r}")
     del bothNew  # TopMod's face-type flag; livemod has no face types
-    return mesh().create_face(points)
+    m = mesh()
+    return m.create_face(_within_budget(m, points, scene().face_budget))
+
+
+def _within_budget(m: Mesh, points: Iterable[Any], budget: int | None) -> Sequence[Any]:
+    """``points`` for :func:`createFace`, refused past the face budget before the
+    points are converted: by its length, or for an iterator without one, after
+    reading at most one point more than the budget allows.
+
+    Raises:
+        BudgetExceededError: too many points.
+    """
+    if not hasattr(points, "__len__"):
+        room = max(CORNERS_PER_FACE * face_budget(budget) - m.num_corners, 0) // 2
+        points = list(itertools.islice(points, room + 1))
+    counted: Any = points
+    check_growth(m, "createFace", faces=2, corners=2 * len(counted), max_faces=budget)
+    return counted
 
 
 # -- ids and walks --------------------------------------------------------------

@@ -12,7 +12,7 @@ from __future__ import annotations
 from typing import Any
 
 from .. import cutting as _cutting
-from ._base import id_arguments, mesh, modeling_command
+from ._base import id_arguments, mesh, modeling_command, scene
 
 __all__ = ["cutVertices", "cutEdges", "cutFaces", "truncate"]
 
@@ -30,7 +30,8 @@ def cutVertices(vertexids: Any = None, offset: float = _cutting.DEFAULT_OFFSET) 
             self-loop or one edge, ``offset`` not in (0, 1) (below 0.5 where two
             cut vertices share an edge); the mesh is unchanged.
     """
-    return _cutting.cut_vertices(mesh(), id_arguments(vertexids, "vertexids", "vertices"), offset)
+    return _cutting.cut_vertices(mesh(), id_arguments(vertexids, "vertexids", "vertices"), offset,
+                                 max_faces=scene().face_budget)
 
 
 @modeling_command
@@ -45,7 +46,8 @@ def cutEdges(edgeids: Any = None, offset: float = _cutting.DEFAULT_OFFSET) -> li
         DLFLError: an id that is not an edge, a self-loop, edges closing a cycle,
             ``offset`` not in (0, 1); the mesh is unchanged.
     """
-    return _cutting.cut_edges(mesh(), id_arguments(edgeids, "edgeids", "edges"), offset)
+    return _cutting.cut_edges(mesh(), id_arguments(edgeids, "edgeids", "edges"), offset,
+                              max_faces=scene().face_budget)
 
 
 @modeling_command
@@ -61,7 +63,8 @@ def cutFaces(faceids: Any = None, offset: float = _cutting.DEFAULT_OFFSET) -> li
             twice, two faces sharing a vertex, ``offset`` not in (0, 1); the mesh
             is unchanged.
     """
-    return _cutting.cut_faces(mesh(), id_arguments(faceids, "faceids", "faces"), offset)
+    return _cutting.cut_faces(mesh(), id_arguments(faceids, "faceids", "faces"), offset,
+                              max_faces=scene().face_budget)
 
 
 @modeling_command
@@ -76,4 +79,4 @@ def truncate(offset: float = _cutting.DEFAULT_OFFSET) -> list[int]:
         DLFLError: ``offset`` not in (0, 0.5), or a vertex with a self-loop or
             one edge; the mesh is unchanged.
     """
-    return _cutting.truncate(mesh(), offset)
+    return _cutting.truncate(mesh(), offset, max_faces=scene().face_budget)

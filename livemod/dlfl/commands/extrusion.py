@@ -14,7 +14,7 @@ from .. import extrusion as _extrusion
 from .._checks import finite_number, flag, id_list, is_id, whole_count
 from ..errors import DLFLError
 from ..mesh import Mesh
-from ._base import mesh, modeling_command, resolve_corner
+from ._base import mesh, modeling_command, resolve_corner, scene
 
 __all__ = ["extrude", "connectEdges", "connectCorners", "connectFaces", "addHandle"]
 
@@ -139,9 +139,10 @@ def extrude(type: str, faceid: int, *options: Any, **keywords: Any) -> int | lis
     arguments = _library_arguments(kind, _options(kind, options, keywords))
     _face_id(faceid, "faceid")
     m = mesh()
+    budget = scene().face_budget
     if _extrusion.KINDS[kind].fan is not None:
-        return _extrusion.extrude_fan(m, faceid, kind, **arguments)
-    return _extrusion.extrude(m, faceid, kind, **arguments)
+        return _extrusion.extrude_fan(m, faceid, kind, **arguments, max_faces=budget)
+    return _extrusion.extrude(m, faceid, kind, **arguments, max_faces=budget)
 
 
 def _half_edge(value: Any, what: str) -> tuple[int, int]:
@@ -184,7 +185,8 @@ def connectCorners(c1: Any, c2: Any, numsegs: int = 1, maxconn: int = -1,
     m = mesh()
     a, b = _two_faces_corners(m, c1, c2, "connectCorners")
     segments, limit = _segments(numsegs, maxconn)
-    _connect.connect_corners(m, a, b, segments, max_connections=limit, dual=_is_dual(dual))
+    _connect.connect_corners(m, a, b, segments, max_connections=limit, dual=_is_dual(dual),
+                             max_faces=scene().face_budget)
 
 
 @modeling_command
@@ -197,7 +199,8 @@ def connectFaces(f1: int, f2: int, numsegs: int = 1, maxconn: int = -1) -> None:
     if f1 == f2:
         raise DLFLError(f"connectFaces needs two different faces, f1 and f2 are both face {f1}")
     segments, limit = _segments(numsegs, maxconn)
-    _connect.connect_faces_closest(mesh(), f1, f2, segments, max_connections=limit)
+    _connect.connect_faces_closest(mesh(), f1, f2, segments, max_connections=limit,
+                                   max_faces=scene().face_budget)
 
 
 @modeling_command
@@ -214,12 +217,12 @@ def addHandle(interp: str, c1: Any, c2: Any, numsegs: int, w1: float = 25.0,
     kind = interp.lower() if isinstance(interp, str) else interp
     if kind == "hermite":
         _connect.hermite_handle(m, a, b, segments, w1, w2, max_connections=limit,
-                                twists=twists)
+                                twists=twists, max_faces=scene().face_budget)
     elif kind == "bezier":
         if maxconn != -1 or twists != 0:
             raise DLFLError("a bezier handle takes no maxconn or twists (TopMod's has none); "
                             "use 'hermite'")
-        _connect.bezier_handle(m, a, b, segments, w1, w2)
+        _connect.bezier_handle(m, a, b, segments, w1, w2, max_faces=scene().face_budget)
     else:
         raise DLFLError(f"addHandle interp must be 'hermite' or 'bezier', got {interp!r}")
 

@@ -20,7 +20,7 @@ from .. import sierpinsky as _sierpinsky
 from .. import wireframe as _wire
 from .._checks import finite_number, flag
 from ..errors import DLFLError
-from ._base import id_arguments, mesh, modeling_command
+from ._base import id_arguments, mesh, modeling_command, scene
 
 __all__ = [
     "rind", "wireframe", "column", "crust", "sierpinsky", "menger", "meshsmooth",
@@ -50,16 +50,18 @@ def rind(facelist: Any, useScaling: bool, percent: float, uniform: bool = True) 
     """
     faces = id_arguments(facelist, "facelist")
     value = finite_number(percent, "percent")
+    budget = scene().face_budget
     if flag(useScaling, "useScaling"):
-        _rind.rind(mesh(), faces, use_scaling=True, scale=value)
+        _rind.rind(mesh(), faces, use_scaling=True, scale=value, max_faces=budget)
     else:
-        _rind.rind(mesh(), faces, value, uniform=flag(uniform, "uniform"))
+        _rind.rind(mesh(), faces, value, uniform=flag(uniform, "uniform"), max_faces=budget)
 
 
 @modeling_command
 def crust(thickness: float = 0.5, uniform: bool = True) -> None:
     """``crust([thickness, uniform])``: TopMod's createCrust; two shells (livemod extra)."""
-    _rind.crust(mesh(), finite_number(thickness, "thickness"), uniform=flag(uniform, "uniform"))
+    _rind.crust(mesh(), finite_number(thickness, "thickness"), uniform=flag(uniform, "uniform"),
+                max_faces=scene().face_budget)
 
 
 @modeling_command
@@ -68,7 +70,8 @@ def wireframe(thickness: float = 0.1, split: bool = True) -> None:
 
     Cube: 48/120/64, genus 5.
     """
-    _wire.wireframe(mesh(), finite_number(thickness, "thickness"), flag(split, "split"))
+    _wire.wireframe(mesh(), finite_number(thickness, "thickness"), flag(split, "split"),
+                    max_faces=scene().face_budget)
 
 
 @modeling_command
@@ -83,13 +86,14 @@ def column(thickness: float, segments: Any) -> None:
         segments = int(segments)
     if not isinstance(segments, int) or isinstance(segments, bool):
         raise DLFLError(f"segments must be a whole number, got {segments!r}")
-    _wire.columns(mesh(), finite_number(thickness, "thickness"), segments)
+    _wire.columns(mesh(), finite_number(thickness, "thickness"), segments,
+                  max_faces=scene().face_budget)
 
 
 @modeling_command
 def sierpinsky() -> None:
     """``sierpinsky()``: TopMod's multiConnectMidpoints (cube 20/60/32, genus 5)."""
-    _sierpinsky.sierpinsky(mesh())
+    _sierpinsky.sierpinsky(mesh(), max_faces=scene().face_budget)
 
 
 @modeling_command
@@ -106,7 +110,7 @@ def menger(thickness: float | None = None) -> float:
         DLFLError: see :func:`livemod.dlfl.sponge.sponge`; the mesh is unchanged.
     """
     given = None if thickness is None else finite_number(thickness, "thickness")
-    return sponge.sponge(mesh(), given)
+    return sponge.sponge(mesh(), given, max_faces=scene().face_budget)
 
 
 @modeling_command
@@ -136,7 +140,7 @@ def convexHull() -> None:
     Raises:
         DLFLError: fewer than 4 vertices, or all of them in one plane.
     """
-    hull.convex_hull(mesh())
+    hull.convex_hull(mesh(), max_faces=scene().face_budget)
 
 
 @modeling_command
@@ -149,7 +153,7 @@ def dualConvexHull() -> None:
     Raises:
         DLFLError: fewer than 4 vertices, or all of them in one plane.
     """
-    hull.dual_convex_hull(mesh())
+    hull.dual_convex_hull(mesh(), max_faces=scene().face_budget)
 
 
 @modeling_command
@@ -184,12 +188,14 @@ def multiConnectFaces(faces: Any = None, scale: float = 1.0, extrude: float = 0.
     given = {"scale": scale, "extrude": extrude, "maxOffsets": maxOffsets, "minFactor": minFactor}
     _check_multi_options(method, given)
     m = mesh()
+    budget = scene().face_budget
     if method == "hull":
-        multihandle.multi_face_handle(m, ids, scale, extrude, max_offsets=maxOffsets)
+        multihandle.multi_face_handle(m, ids, scale, extrude, max_offsets=maxOffsets,
+                                      max_faces=budget)
     elif method == "closest-edge":
-        multihandle.multi_face_handle_closest_edges(m, ids)
+        multihandle.multi_face_handle_closest_edges(m, ids, max_faces=budget)
     else:
-        multihandle.multi_face_handle_fitted(m, ids, minFactor)
+        multihandle.multi_face_handle_fitted(m, ids, minFactor, max_faces=budget)
 
 
 def _check_multi_options(method: Any, given: dict[str, Any]) -> None:

@@ -14,7 +14,7 @@ from typing import Any
 from .. import subdivision as _subdivision
 from .._checks import flag, is_id
 from ..errors import DLFLError
-from ._base import id_arguments, mesh, modeling_command
+from ._base import id_arguments, mesh, modeling_command, scene
 
 __all__ = ["subdivide", "subdivideFace", "subdivideFaces", "dual"]
 
@@ -28,7 +28,8 @@ def subdivide(scheme: str, *options: Any, **keywords: Any) -> None:
 
     Options may be positional, in TopMod's argument order
     (``subdivide("checker", 0.25)``, ``subdivide("double-stellate", 0.1, 0.2)``),
-    or by keyword; ``max_faces=`` overrides the face budget.
+    or by keyword; ``max_faces=`` overrides the face budget (default: the
+    scene's, see :mod:`livemod.dlfl.budget`).
 
     Raises:
         DLFLError: an unknown scheme (listing the valid names), too many options,
@@ -47,6 +48,7 @@ def subdivide(scheme: str, *options: Any, **keywords: Any) -> None:
             said = repr(option) if option == name else f"{name!r} (= {option!r})"
             raise DLFLError(f"subdivide({scheme!r}): option {said} given twice")
         given[option] = value
+    given.setdefault("max_faces", scene().face_budget)
     _subdivision.subdivide(mesh(), scheme, **given)
 
 
@@ -59,7 +61,8 @@ def subdivideFace(faceid: int, usequads: bool = True) -> None:
     """
     if not is_id(faceid):
         raise DLFLError(f"faceid must be a face id, got {faceid!r}")
-    _subdivision.subdivide_faces(mesh(), [int(faceid)], usequads=flag(usequads, "usequads"))
+    _subdivision.subdivide_faces(mesh(), [int(faceid)], usequads=flag(usequads, "usequads"),
+                                 max_faces=scene().face_budget)
 
 
 @modeling_command
@@ -76,10 +79,11 @@ def subdivideFaces(faceids: Iterable[int] | None = None, usequads: bool = True) 
     quads = flag(usequads, "usequads")
     if not ids:  # nothing to split: keep every id (a rebuild would renumber them all)
         return
-    _subdivision.subdivide_faces(mesh(), ids, usequads=quads)
+    _subdivision.subdivide_faces(mesh(), ids, usequads=quads, max_faces=scene().face_budget)
 
 
 @modeling_command
 def dual(accurate: bool = False) -> None:
     """Replace the current object by its dual (vertices at the face centroids)."""
-    _subdivision.dual(mesh(), accurate=flag(accurate, "accurate"))
+    _subdivision.dual(mesh(), accurate=flag(accurate, "accurate"),
+                      max_faces=scene().face_budget)
