@@ -43,8 +43,10 @@ Op = Callable[[Mesh, Any], object]
 
 @pytest.fixture(autouse=True)
 def session_default(monkeypatch: pytest.MonkeyPatch) -> None:
-    """Every test starts from the built-in default, whatever the machine sets."""
-    monkeypatch.delenv(budget.ENVIRONMENT_VARIABLE, raising=False)
+    """Every test starts from the built-in default, whatever the machine sets, and
+    leaves the environment as it found it (``--face-budget`` sets the variable)."""
+    monkeypatch.setenv(budget.ENVIRONMENT_VARIABLE, "1")  # recorded, so undone after
+    monkeypatch.delenv(budget.ENVIRONMENT_VARIABLE)
     monkeypatch.setattr(budget, "_session_default", None)
 
 
@@ -412,3 +414,43 @@ def test_a_menger_sponge_over_the_budget_is_refused():
     scene = cube_scene()
     scene.face_budget = 83  # 64/156/84: at most 7 E faces, 13 C corners
     refused_without_allocating(scene, commands.menger)
+
+
+# -- the session's budget from the command line ------------------------------------------
+
+GROWS = "load('cube')\nsubdivide('catmull-clark')\nsubdivide('catmull-clark')\n"
+
+
+def test_run_face_budget_refuses_what_passes_it(tmp_path, capsys):
+    from livemod import cli
+
+    script = tmp_path / "grow.py"
+    script.write_text(GROWS)
+    assert cli.main(["run", str(script), "--face-budget", "95"]) == 1
+    assert "catmull-clark would produce 96 faces, more than the budget of 95 faces" in (
+        capsys.readouterr().err)
+    assert cli.main(["run", str(script), "--face-budget", "96"]) == 0
+
+
+@pytest.mark.timeout(120)
+def test_batch_face_budget_reaches_the_worker_processes(tmp_path, capsys):
+    from livemod import cli
+
+    script = tmp_path / "grow.py"
+    script.write_text("n = param('n', 1)\n" + GROWS)
+    code = cli.main(["batch", str(script), "--param", "n=1:2:2", "--face-budget", "95",
+                     "-o", str(tmp_path / "g_{index}.obj"), "-j", "2"])
+    captured = capsys.readouterr()
+    assert code == 1
+    assert captured.err.count("more than the budget of 95 faces") == 2, captured.err
+
+
+@pytest.mark.parametrize("command", ["run", "batch", "view"])
+def test_a_bad_face_budget_is_a_usage_error(command, capsys):
+    from livemod import cli
+
+    with pytest.raises(SystemExit) as stopped:
+        cli.main([command, "x.py", "--face-budget", "0", *(["--param", "n=1"]
+                                                          if command == "batch" else [])])
+    assert stopped.value.code == 2
+    assert "the face budget must be a whole number >= 1, not '0'" in capsys.readouterr().err

@@ -28,6 +28,7 @@ from livemod.commandline import (
     usage_errors,
 )
 from livemod.dlfl.analysis import summarize
+from livemod.dlfl.budget import DEFAULT_FACE_BUDGET, ENVIRONMENT_VARIABLE
 from livemod.dlfl.io import WRITERS
 from livemod.dlfl.io.source import show_path
 from livemod.dlfl.scene import Selection
@@ -120,6 +121,26 @@ def add_seed_option(parser: argparse.ArgumentParser) -> None:
                         help="seed of random/numpy at the start of every run (or 'none')")
 
 
+class _FaceBudget(argparse.Action):
+    """``--face-budget N`` sets the session's face budget through
+    ``LIVEMOD_FACE_BUDGET``, which this process and the ones it starts (a
+    batch's workers) read (see :mod:`livemod.dlfl.budget`)."""
+
+    def __call__(self, parser: argparse.ArgumentParser, namespace: argparse.Namespace,
+                 values: Any, option_string: str | None = None) -> None:
+        os.environ[ENVIRONMENT_VARIABLE] = str(values)
+        setattr(namespace, self.dest, values)
+
+
+def add_face_budget_option(parser: argparse.ArgumentParser) -> None:
+    """Add ``--face-budget N``: refuse any modeling operation whose result would
+    pass N faces (or 4N corners), before it allocates."""
+    parser.add_argument("--face-budget", type=whole_number_option("the face budget", 1),
+                        action=_FaceBudget, metavar="N",
+                        help="refuse operations whose result would pass N faces "
+                             f"(default: ${ENVIRONMENT_VARIABLE} or {DEFAULT_FACE_BUDGET:,})")
+
+
 def add_select_option(parser: argparse.ArgumentParser) -> None:
     """Add ``--select KIND=IDS`` (repeatable), the selection ``faces(True)`` and the
     like return in the script, as the viewer's picks give it there."""
@@ -159,6 +180,7 @@ def _add_run(subparsers: Any) -> None:
     run.add_argument("--steps", action="store_true", help="print the step list")
     add_all_objects_option(run)
     add_seed_option(run)
+    add_face_budget_option(run)
     run.add_argument("--set", "--param", dest="set", action="append", default=[],
                      metavar="NAME=VALUE", help="a declared script parameter, repeatable")
     add_select_option(run)
@@ -183,6 +205,7 @@ def _add_batch(subparsers: Any) -> None:
     batch.add_argument("--mesh", metavar="IN", help="mesh every variant starts from")
     add_all_objects_option(batch)
     add_seed_option(batch)
+    add_face_budget_option(batch)
     add_select_option(batch)
     batch.set_defaults(handler=cmd_batch)
 

@@ -30,6 +30,7 @@ from livemod.dlfl.io import open_mesh
 from livemod.dlfl.scene import Selection
 from livemod.runner.cli import (
     add_all_objects_option,
+    add_face_budget_option,
     add_seed_option,
     add_select_option,
     check_run_files,
@@ -140,6 +141,7 @@ def add_commands(subparsers: Any) -> None:
     view.add_argument("script", help="the Python script to watch and run")
     view.add_argument("--mesh", help="mesh every run starts from (.obj .dlfl .stl .ply)")
     add_seed_option(view)
+    add_face_budget_option(view)
     view.add_argument("--size", type=parse_size, default=(1280, 800), help="WxH window size")
     view.add_argument("--poll", action="store_true",
                       help="poll for changes (for file systems that send no events)")
