@@ -398,7 +398,10 @@ def test_a_hub_whose_hull_does_not_close_is_refused_before_building():
 
 
 def test_segment_counts_a_mesh_cannot_hold_are_refused_at_once():
+    # past the face budget first; past what a mesh can hold with the budget raised
     assert_refused(cube(), lambda m: connect_faces(m, *above(m), 10**30),
+                   "connect_faces would produce more than 10\\^18 faces")
+    assert_refused(cube(), lambda m: connect_faces(m, *above(m), 10**30, max_faces=10**40),
                    f"segments={10**30} would make at least {2 * 10**30:,} corners")
     assert_refused(cube(), lambda m: connect_faces(m, *above(m), True),
                    "segments must be an integer >= 1, got True")

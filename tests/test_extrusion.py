@@ -522,15 +522,18 @@ def test_extruding_a_face_near_the_float_range_prints_no_numpy_warning(kind):
             validate(near)
 
 
-@pytest.mark.parametrize(("kind", "segments", "message"), [
-    ("cubical", 10**30, f"segments={10**30} would make at least {4 * 10**30:,} corners"),
-    ("dodeca", 600_000_000, "would make at least 2,400,000,000 corners, more than a mesh "
-                            "can hold \\(2,147,483,647\\)"),
-    ("doo-sabin", 1.5, "segments must be an integer >= 1, got 1.5"),
-    ("icosa", 0, "segments must be an integer >= 1, got 0"),
+@pytest.mark.parametrize(("kind", "segments", "budget", "message"), [
+    ("cubical", 10**30, None, "cubical extrusion would produce more than 10\\^18 faces"),
+    # past the face budget's first, then past what a mesh can hold
+    ("dodeca", 600_000_000, None, "would produce 24,000,000,024 corners, more than the budget"),
+    ("dodeca", 600_000_000, 10**12, "would make at least 2,400,000,000 corners, more than a "
+                                    "mesh can hold \\(2,147,483,647\\)"),
+    ("doo-sabin", 1.5, None, "segments must be an integer >= 1, got 1.5"),
+    ("icosa", 0, None, "segments must be an integer >= 1, got 0"),
 ])
-def test_segment_counts_a_mesh_cannot_hold_are_refused_at_once(kind, segments, message):
-    assert_refused(cube(), lambda m: extrude(m, 0, kind, 0.5, segments), message)
+def test_segment_counts_a_mesh_cannot_hold_are_refused_at_once(kind, segments, budget, message):
+    assert_refused(cube(), lambda m: extrude(m, 0, kind, 0.5, segments, max_faces=budget),
+                   message)
 
 
 # -- hole faces --------------------------------------------------------------------

@@ -9,7 +9,25 @@ from typing import TypeGuard
 
 import numpy as np
 
-from .errors import DLFLError
+from .errors import InvalidArgumentError, UnknownIdError
+
+# ids are int64 in the element tables and their dense snapshots: an integer
+# outside this range names no element (and numpy could not even hold it)
+ID_RANGE = range(-2**63, 2**63)
+
+
+def shown(value: object) -> str:
+    """``repr(value)`` for a message, at most 80 characters: a huge int or a long
+    list would otherwise fill the screen, or (past 4,300 digits) fail to print."""
+    if isinstance(value, int) and value.bit_length() > 200:
+        # str() of over 4,300 digits raises ValueError (sys.set_int_max_str_digits)
+        digits = f"{len(str(value)):,}" if value.bit_length() < 14_000 else "over 4,000"
+        return f"an integer of {digits} digits"
+    try:
+        text = repr(value)
+    except ValueError:  # a number too long to print, inside a container
+        return f"a {type(value).__name__} holding a number too long to print"
+    return text if len(text) <= 80 else text[:77] + "..."
 
 
 def finite_number(value: object, name: str) -> float:
@@ -18,17 +36,21 @@ def finite_number(value: object, name: str) -> float:
     Python and numpy ints and floats are numbers; bools and strings are not.
 
     Raises:
-        DLFLError: ``value`` is not a number, or is NaN or infinite; the message
-            names ``name`` and shows the value.
+        InvalidArgumentError: ``value`` is not a number, or is NaN or infinite
+            (an int beyond the float range too); the message names ``name`` and
+            shows the value.
     """
     kind = type(value)
     # float and int first: the ABC check costs more than the rest of this
     if kind is not float and kind is not int and (
             isinstance(value, bool) or not isinstance(value, numbers.Real)):
-        raise DLFLError(f"{name} must be a number, got {value!r}")
-    number = float(value)  # type: ignore[arg-type]
+        raise InvalidArgumentError(f"{name} must be a number, got {shown(value)}")
+    try:
+        number = float(value)  # type: ignore[arg-type]
+    except OverflowError:  # an int beyond the float range, 10**400
+        number = math.inf
     if not math.isfinite(number):
-        raise DLFLError(f"{name} must be finite, got {value!r}")
+        raise InvalidArgumentError(f"{name} must be finite, got {shown(value)}")
     return number
 
 
@@ -37,17 +59,18 @@ def finite_vector(value: object, name: str, *, repeat_scalar: bool = False) -> n
     number stands for all three).
 
     Raises:
-        DLFLError: anything else, naming ``name`` (numpy's own ValueError for
+        InvalidArgumentError: anything else, naming ``name`` (numpy's own ValueError for
             strings or ragged rows would not say which argument was wrong).
     """
     try:
         arr = np.asarray(value, dtype=np.float64)
-    except (TypeError, ValueError):
-        raise DLFLError(f"{name} must be three finite numbers, got {value!r}") from None
+    except (TypeError, ValueError, OverflowError):  # OverflowError: 10**400
+        raise InvalidArgumentError(f"{name} must be three finite numbers, got "
+                                   f"{shown(value)}") from None
     if repeat_scalar and arr.shape == ():
         arr = np.full(3, float(arr))
     if arr.shape != (3,) or not np.isfinite(arr).all():
-        raise DLFLError(f"{name} must be three finite numbers, got {value!r}")
+        raise InvalidArgumentError(f"{name} must be three finite numbers, got {shown(value)}")
     return arr
 
 
@@ -63,16 +86,23 @@ def id_list(values: object, name: str) -> list[int]:
     float would otherwise be truncated to some other element's id).
 
     Raises:
-        DLFLError: ``values`` is not iterable, or holds something that is not an
-            integer; the message names ``name`` and shows the value.
+        InvalidArgumentError: ``values`` is not iterable, or holds something that
+            is not an integer; the message names ``name`` and shows the value.
+        UnknownIdError: an integer outside the int64 range of ids, which no
+            element has (and no id array could hold).
     """
     if isinstance(values, str | bytes) or not isinstance(values, Iterable):
-        raise DLFLError(f"{name} must be a list of ids, got {values!r}")
+        raise InvalidArgumentError(f"{name} must be a list of ids, got {shown(values)}")
     ids = list(values)
     for value in ids:
         if isinstance(value, bool) or not isinstance(value, numbers.Integral):
-            raise DLFLError(f"{name} must hold ids (integers), got {value!r}")
-    return [int(value) for value in ids]
+            raise InvalidArgumentError(f"{name} must hold ids (integers), got {shown(value)}")
+    out = [int(value) for value in ids]
+    for value in out:
+        if value not in ID_RANGE:
+            raise UnknownIdError(f"{name}: no element has the id {shown(value)} (ids lie "
+                                 "below 2**63)")
+    return out
 
 
 def flag(value: object, name: str) -> bool:
@@ -83,24 +113,24 @@ def flag(value: object, name: str) -> bool:
     ``"False"`` would silently mean True.
 
     Raises:
-        DLFLError: ``value`` is not one of those; the message names ``name``.
+        InvalidArgumentError: ``value`` is not one of those; the message names ``name``.
     """
     if value is True or value is False:
         return value
     if isinstance(value, np.bool_ | numbers.Integral) and value in (0, 1):
         return bool(value)
-    raise DLFLError(f"{name} must be True or False, got {value!r}")
+    raise InvalidArgumentError(f"{name} must be True or False, got {shown(value)}")
 
 
 def positive_number(value: object, name: str) -> float:
     """``value`` as a float greater than 0.
 
     Raises:
-        DLFLError: not a finite number (see :func:`finite_number`), or not > 0.
+        InvalidArgumentError: not a finite number (see :func:`finite_number`), or not > 0.
     """
     number = finite_number(value, name)
     if number <= 0:
-        raise DLFLError(f"{name} must be a positive number, got {value!r}")
+        raise InvalidArgumentError(f"{name} must be a positive number, got {shown(value)}")
     return number
 
 
@@ -110,21 +140,24 @@ MAX_ELEMENTS = 2**31 - 1
 
 def whole_count(value: object, name: str, *, least: int = 1, each: int = 1) -> int:
     """``value`` as an int of at least ``least``, for an operation that makes at
-    least ``each`` new corners per unit of it.
+    least ``each`` new corners per unit of it (0: the caller checks the face
+    budget first, then calls again with its ``each``).
 
     Raises:
-        DLFLError: not an integer (bools are not), below ``least``, or so large
-            that ``value * each`` corners would not fit in a mesh (a count like
-            ``10**30`` would otherwise run until memory ran out).
+        InvalidArgumentError: not an integer (bools are not), below ``least``, or so
+            large that ``value * each`` corners would not fit in a mesh (a count
+            like ``10**30`` would otherwise run until memory ran out).
     """
     if isinstance(value, bool) or not isinstance(value, numbers.Integral):
-        raise DLFLError(f"{name} must be an integer >= {least}, got {value!r}")
+        raise InvalidArgumentError(f"{name} must be an integer >= {least}, got {shown(value)}")
     count = int(value)
     if count < least:
-        raise DLFLError(f"{name} must be an integer >= {least}, got {count}")
+        raise InvalidArgumentError(f"{name} must be an integer >= {least}, got {shown(count)}")
     if count * each > MAX_ELEMENTS:
-        raise DLFLError(f"{name}={count} would make at least {count * each:,} corners, more "
-                        f"than a mesh can hold ({MAX_ELEMENTS:,})")
+        made = count * each
+        raise InvalidArgumentError(f"{name}={shown(count)} would make at least "
+                                   f"{f'{made:,}' if made.bit_length() <= 200 else shown(made)} "
+                                   f"corners, more than a mesh can hold ({MAX_ELEMENTS:,})")
     return count
 
 

@@ -22,6 +22,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from ._checks import shown
 from .errors import DLFLError
 
 # dtype and trailing shape of every field, per kind
@@ -176,7 +177,7 @@ class Table:
     def _as_int(self, eid: Any) -> int:
         if isinstance(eid, (bool, np.bool_)) or not hasattr(eid, "__index__"):
             article = "an" if self.kind[0] in "aeiou" else "a"
-            raise DLFLError(f"expected {article} {self.kind} id (an integer), got {eid!r}")
+            raise DLFLError(f"expected {article} {self.kind} id (an integer), got {shown(eid)}")
         return int(eid.__index__())
 
     def _missing_message(self, eid: int) -> str:
@@ -188,7 +189,7 @@ class Table:
         if 0 <= eid < self.floor:
             return (f"{self.kind} {eid} was deleted or never existed (this mesh was built "
                     f"with {self.kind} ids from {self.floor})")
-        return f"{self.kind} {eid} does not exist"
+        return f"{self.kind} {shown(eid)} does not exist"
 
     def is_live(self, eid: Any) -> bool:
         """True when ``eid`` names a live element of this kind (False for non-integers)."""

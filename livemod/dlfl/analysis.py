@@ -14,6 +14,7 @@ import numpy as np
 from ._graph import component_labels
 from ._vectors import (
     RingVectors,
+    centroid,
     face_ring_vectors,
     group_sum,
     newell,
@@ -245,5 +246,6 @@ def face_points(mesh: Mesh, face: int) -> np.ndarray:
 
 
 def face_centroid(mesh: Mesh, face: int) -> np.ndarray:
-    """``(3,)`` mean of one face's corner positions."""
-    return face_points(mesh, face).mean(axis=0)
+    """``(3,)`` mean of one face's corner positions (no overflow near the float
+    maximum: see :func:`._vectors.centroid`)."""
+    return centroid(face_points(mesh, face))

@@ -81,7 +81,7 @@ def _two_faces(mesh: Mesh, corner1: int, corner2: int, op: str) -> tuple[int, in
 def _check_segments(segments: int, max_connections: int = -1) -> None:
     """Raises DLFLError unless ``segments`` is a count >= 1 and ``max_connections``
     an integer (:func:`_check_budget` checks that its corners fit)."""
-    whole_count(segments, "segments")
+    whole_count(segments, "segments", each=0)
     if isinstance(max_connections, bool) or not isinstance(max_connections, int | np.integer):
         raise DLFLError(f"max_connections must be an integer, got {max_connections!r}")
 

@@ -28,10 +28,10 @@ from functools import lru_cache
 
 import numpy as np
 
-from ._checks import finite_number, first_not_finite, flag, whole_count
+from ._checks import finite_number, first_not_finite, flag, shown, whole_count
 from .budget import check_growth
 from .connect import _quad_band, _triangle_band
-from .errors import DLFLError
+from .errors import DLFLError, GeometryError
 from .mesh import Mesh
 
 __all__ = [
@@ -60,7 +60,7 @@ class Options:
 
 # -- local geometry ------------------------------------------------------------------
 
-class _GeometryError(DLFLError):
+class _GeometryError(GeometryError):
     """A step cannot be built: the face it extrudes has no normal, or a point it
     makes is not finite. The message names the face or point; ``reason`` says
     the same without ids, for a rehearsal (:func:`_rehearse`), whose ids are
@@ -535,7 +535,7 @@ def _check_face(mesh: Mesh, face: int) -> None:
     if isinstance(face, bool) or not isinstance(face, int | np.integer):
         raise DLFLError(f"face must be a face id (int), got {face!r}")
     if not mesh.has_face(int(face)):
-        raise DLFLError(f"face {face} does not exist (deleted or never made)")
+        raise DLFLError(f"face {shown(int(face))} does not exist (deleted or never made)")
     if mesh.is_hole(int(face)):
         raise DLFLError(f"face {face} is a hole (a boundary loop of an open mesh, not part of "
                         "the surface); it cannot be extruded")
@@ -567,7 +567,7 @@ def _prepare(mesh: Mesh, face: int, kind: str, segments: int, opts: Options,
     if spec.simple_face:
         _check_simple(mesh, int(face), name)
     sides = mesh.face_size(int(face))
-    count = whole_count(segments, "segments")
+    count = whole_count(segments, "segments", each=0)
     faces, corners = spec.growth
     check_growth(mesh, f"{name} extrusion", faces=count * faces * sides,
                  corners=count * corners * sides, max_faces=max_faces)

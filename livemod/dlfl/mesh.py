@@ -27,7 +27,7 @@ from typing import Any
 
 import numpy as np
 
-from ._checks import flag, whole_count
+from ._checks import flag, shown, whole_count
 from ._table import FieldSpec, Table
 from .errors import DLFLError
 
@@ -70,16 +70,16 @@ def _as_point(position: Any) -> tuple[float, float, float]:
     # a string unpacks into digits ("123" -> 1, 2, 3; b"123" -> 49, 50, 51): refuse
     # it, testing the common tuple and list first to keep create_vertex fast
     if kind is not tuple and kind is not list and isinstance(position, (str, bytes, bytearray)):
-        raise DLFLError(f"expected a position (x, y, z) of three numbers, got {position!r}")
+        raise DLFLError(f"expected a position (x, y, z) of three numbers, got {shown(position)}")
     try:
         x, y, z = (float(v) for v in position)
-    except (TypeError, ValueError):
+    except (TypeError, ValueError, OverflowError):  # OverflowError: an int like 10**400
         raise DLFLError(
-            f"expected a position (x, y, z) of three numbers, got {position!r}"
+            f"expected a position (x, y, z) of three numbers, got {shown(position)}"
         ) from None
     if not (isfinite(x) and isfinite(y) and isfinite(z)):
         raise DLFLError(f"expected a position (x, y, z) of three finite numbers, got "
-                        f"{position!r}")
+                        f"{shown(position)}")
     return x, y, z
 
 

@@ -14,7 +14,8 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
-from .errors import DLFLError
+from ._checks import finite_number, positive_number, shown
+from .errors import DLFLError, InvalidArgumentError
 
 KINDS = ("bool", "int", "float", "choice", "str")
 
@@ -137,10 +138,17 @@ def make_spec(
             on a non-number, or min > max.
     """
     if not isinstance(name, str) or not name.isidentifier():
-        raise DLFLError(f"a parameter name must be a Python identifier, got {name!r}")
+        raise InvalidArgumentError(f"a parameter name must be a Python identifier, got "
+                                   f"{shown(name)}")
     kind = _kind_of(name, default, choices)
     if (min is not None or max is not None or step is not None) and kind not in ("int", "float"):
         raise DLFLError(f"parameter {name!r}: min, max and step need a numeric default")
+    # numbers (kept as given), or the range checks would compare a value with a string
+    for bound, label in ((min, "min"), (max, "max")):
+        if bound is not None:
+            finite_number(bound, f"parameter {name!r}: {label}")
+    if step is not None:
+        positive_number(step, f"parameter {name!r}: step")
     if min is not None and max is not None and min > max:
         raise DLFLError(f"parameter {name!r}: min {min} is above max {max}")
     spec = ParamSpec(name, default, kind, min, max, step,
@@ -151,8 +159,9 @@ def make_spec(
 
 def _kind_of(name: str, default: Any, choices: Sequence[Any] | None) -> str:
     if choices is not None:
-        if isinstance(choices, str) or len(choices) == 0:
-            raise DLFLError(f"parameter {name!r}: choices must be a non-empty list")
+        if isinstance(choices, str | bytes) or not isinstance(choices, Sequence) or not choices:
+            raise InvalidArgumentError(f"parameter {name!r}: choices must be a non-empty list, "
+                                       f"got {shown(choices)}")
         return "choice"
     if isinstance(default, bool):
         return "bool"

@@ -17,7 +17,9 @@ import numpy as np
 
 from .. import geometry as _geometry
 from .. import transform as _transform
-from .._checks import flag, is_id, whole_count
+from .._checks import flag, is_id, shown, whole_count
+from .._vectors import centroid as _centroid
+from .._vectors import lengths
 from ..analysis import face_centroid, face_normal
 from ..analysis import genus as _genus
 from ..budget import CORNERS_PER_FACE, check_growth, face_budget
@@ -326,7 +328,7 @@ def getCorner(edgeid: int, faceid: int) -> tuple[int, int]:
     for c in sides:
         if m.corner_face(c) == faceid:
             return corner_tuple(m, c)
-    raise DLFLError(f"edge {edgeid} does not border face {faceid}")
+    raise DLFLError(f"edge {edgeid} does not border face {shown(faceid)}")
 
 
 def saveCorner(c: Any) -> int:
@@ -435,9 +437,12 @@ def edgeInfo(edgeid: int) -> dict[str, Any]:
     ca, cb, cc, cd = _edge_corner_tuples(m, edgeid)
     n = face_normal(m, ca[0]) + face_normal(m, cb[0])
     n = n / max(float(np.linalg.norm(n)), 1e-300)
-    return {"id": edgeid, "type": "normal", "midpoint": _vec((pa + pb) / 2),
+    with np.errstate(over="ignore"):  # ends near the float maximum: a length of inf
+        length = float(lengths((pb - pa)[None])[0])
+    # halves first: the sum of two far-apart points can overflow, their mean cannot
+    return {"id": edgeid, "type": "normal", "midpoint": _vec(pa * 0.5 + pb * 0.5),
             "normal": _vec(n), "cornerA": ca, "cornerB": cb, "cornerC": cc,
-            "cornerD": cd, "length": float(np.linalg.norm(pb - pa))}
+            "cornerD": cd, "length": length}
 
 
 def faceInfo(faceid: int) -> dict[str, Any]:
@@ -468,7 +473,7 @@ def centroid(vertexids: Iterable[int] | None = None) -> tuple[float, float, floa
     ids = m.vertex_ids().tolist() if vertexids is None else _id_list(vertexids, "centroid")
     if not ids:
         raise DLFLError("centroid needs at least one vertex id")
-    return _vec(np.mean([m.position(v) for v in ids], axis=0))
+    return _vec(_centroid(np.array([m.position(v) for v in ids])))
 
 
 def _id_list(ids: Any, command: str) -> list[Any]:

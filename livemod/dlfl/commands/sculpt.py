@@ -18,7 +18,7 @@ from .. import geometry, hull, multihandle, sponge
 from .. import rind as _rind
 from .. import sierpinsky as _sierpinsky
 from .. import wireframe as _wire
-from .._checks import finite_number, flag
+from .._checks import finite_number, flag, shown
 from ..errors import DLFLError
 from ._base import id_arguments, mesh, modeling_command, scene
 
@@ -207,7 +207,7 @@ def _check_multi_options(method: Any, given: dict[str, Any]) -> None:
     for name, value in given.items():
         if name not in _MULTI_METHODS[method] and not _is_default(value, _MULTI_DEFAULTS[name]):
             raise DLFLError(f"multiConnectFaces method {method!r} does not use {name} "
-                            f"(got {value!r})")
+                            f"(got {shown(value)})")
 
 
 def _is_default(value: Any, default: Any) -> bool:
