@@ -76,10 +76,13 @@ def scaled_mean(values: np.ndarray, index: np.ndarray, count: int,
 def centroid(points: np.ndarray) -> np.ndarray:
     """``(3,)`` mean of ``(n, 3)`` ``points``, taken scaled by one power of two when
     they leave the band: the sum of coordinates near the float maximum overflows
-    though their mean does not. Inside the band, ``points.mean(axis=0)`` itself."""
+    though their mean does not. Inside the band, ``points.mean(axis=0)`` itself.
+    Points with a NaN or infinite coordinate (a caller's overflow, for it to
+    refuse) give a non-finite mean, quietly."""
     exponent = range_exponent(points)
     if exponent == 0:
-        return points.mean(axis=0)
+        with np.errstate(over="ignore", invalid="ignore"):  # only with NaN or inf in it
+            return points.mean(axis=0)
     return np.ldexp(np.ldexp(points, -exponent).mean(axis=0), exponent)
 
 
@@ -130,22 +133,24 @@ class RingVectors(NamedTuple):
     Attributes:
         points: ``(C, 3)`` the corner points, times 1/4 when scaled (so that a
             difference of two cannot overflow), else the input itself.
-        rel: ``(C, 3)`` each point minus its ring's origin, times ``factor``.
-        factor: ``(C, 1)`` power of two per corner (its ring's), or None for 1.
+        rel: ``(C, 3)`` each point minus its ring's origin, times ``2**shift``.
+        shift: ``(C, 1)`` int power of two per corner (its ring's), or None for 0.
+            Applied with ``ldexp``: a ring of denormal coordinates needs a shift
+            past 1024, whose power of two alone is no float.
         exponent: ``(R,)`` int: the true ``rel`` of ring r is ``rel * 2**exponent[r]``;
             None when 0.
     """
 
     points: np.ndarray
     rel: np.ndarray
-    factor: np.ndarray | None
+    shift: np.ndarray | None
     exponent: np.ndarray | None
 
     def along(self, other: np.ndarray) -> np.ndarray:
         """``(C, 3)`` the point of corner ``other[c]`` (same ring) minus that of
         ``c``, scaled like ``rel``. ``other``: ``(C,)`` corner indices."""
         d = np.take(self.points, other, axis=0) - self.points
-        return d if self.factor is None else d * self.factor
+        return d if self.shift is None else np.ldexp(d, self.shift)
 
 
 def ring_vectors(points: np.ndarray, origin: np.ndarray, ring: np.ndarray,
@@ -163,8 +168,8 @@ def ring_vectors(points: np.ndarray, origin: np.ndarray, ring: np.ndarray,
     top = np.zeros(count)
     np.maximum.at(top, ring, np.abs(rel).max(axis=1))
     exponent = np.frexp(top)[1]
-    factor = np.ldexp(1.0, -exponent)[ring][:, None]
-    return RingVectors(points, rel * factor, factor, exponent + 2)
+    shift = -exponent[ring][:, None]
+    return RingVectors(points, np.ldexp(rel, shift), shift, exponent + 2)
 
 
 def face_ring_vectors(positions: np.ndarray, corner_vertex: np.ndarray,

@@ -346,8 +346,16 @@ def _turned_plane(pts: np.ndarray, a: int, axis: np.ndarray, normal: np.ndarray,
 
 
 def _unit3(v: np.ndarray) -> np.ndarray:
-    """``(3,)`` ``v`` scaled to length 1 (``v`` must not be zero)."""
-    return v / math.sqrt(v @ v)
+    """``(3,)`` ``v`` scaled to length 1.
+
+    Raises:
+        DLFLError: ``v`` is zero (or not finite): the points are too degenerate
+            to turn a plane about (two that coincide, a line through them).
+    """
+    length = math.sqrt(v @ v)
+    if not 0.0 < length < math.inf:
+        raise _not_closed()
+    return v / length
 
 
 def _cross3(a: np.ndarray, b: np.ndarray) -> np.ndarray:

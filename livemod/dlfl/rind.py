@@ -19,12 +19,12 @@ from dataclasses import dataclass
 import numpy as np
 
 from ._checks import finite_number, first_not_finite, id_list
-from ._vectors import face_ring_vectors, lengths, newell, unit
+from ._vectors import centroid, face_ring_vectors, lengths, newell, unit
 from .analysis import corner_normals, face_normals
 from .arrays import MeshArrays, mesh_arrays
 from .budget import check_size
 from .build import from_corner_arrays
-from .errors import DLFLError
+from .errors import DLFLError, GeometryError
 from .mesh import Mesh
 
 __all__ = ["Shell", "crust", "crust_offsets", "rind", "shell_arrays"]
@@ -412,12 +412,17 @@ def _shell_positions(
                   "scale" if scale is not None else "thickness")
     if scale is not None:
         s = _checked_scale(a, scale)
-        centre = p.mean(axis=0)
+        centre = centroid(p)
+        with np.errstate(over="ignore", invalid="ignore"):  # refused just below
+            moved = (p - centre) * (s if s > 0 else -1.0 / s) + centre
+        v = first_not_finite(moved)
+        if v is not None:
+            raise GeometryError(f"scale {scale} would put vertex {int(a.vertex_ids[v])} "
+                                "beyond the float range; use a scale nearer 1 or a smaller mesh")
         if s > 0:
-            moved = (p - centre) * s + centre
             check_not_inverted(a, moved, f"scale {scale}")
             return p, moved
-        return (p - centre) * (-1.0 / s) + centre, p
+        return moved, p
     assert thickness is not None
     if thickness == 0.0:
         raise DLFLError("thickness 0 gives a crust with no thickness; use a nonzero value")

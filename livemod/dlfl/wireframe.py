@@ -22,7 +22,7 @@ from .analysis import face_centroids
 from .arrays import MeshArrays, mesh_arrays
 from .budget import check_size
 from .build import from_corner_arrays
-from .errors import DLFLError
+from .errors import DLFLError, GeometryError
 from .hull import hull_polygons
 from .mesh import Mesh
 from .rind import shell_arrays
@@ -373,7 +373,12 @@ def column_rings(a: MeshArrays, thickness: float, segments: int) -> np.ndarray:
             ring is beyond the float range (the thickness overflows).
     """
     p, cv = a.positions, a.corner_vertex
-    axis = _unit(p[cv[a.corner_next]] - p[cv])
+    with np.errstate(over="ignore", invalid="ignore"):  # refused just below
+        along = p[cv[a.corner_next]] - p[cv]
+    if not np.isfinite(along).all():
+        raise GeometryError("columns need edges shorter than the float range; an edge's "
+                            "ends lie too far apart (coordinates near 1e308)")
+    axis = _unit(along)
     # TopMod's extra 1e-4 is for its GUI thickness 0.25: kept in proportion
     # (4e-4 t), or on a mesh 1e-150 across the rings, 1e-4 away, round to points
     length = _joint_lengths(a, axis, thickness)[cv] + 4e-4 * thickness
