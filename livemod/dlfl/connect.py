@@ -31,7 +31,7 @@ from collections.abc import Callable
 
 import numpy as np
 
-from ._checks import MAX_ELEMENTS, finite_number, first_not_finite, is_id, whole_count
+from ._checks import MAX_ELEMENTS, finite_number, first_not_finite, is_id, shown, whole_count
 from ._vectors import centroid, lengths, together_in_range, unit
 from .analysis import face_points, polygon_normal
 from .budget import check_growth
@@ -349,7 +349,7 @@ def closest_corners(mesh: Mesh, face1: int, face2: int) -> tuple[int, int]:
     _face_ids(face1, face2)
     for face in (face1, face2):
         if not mesh.has_face(face):
-            raise DLFLError(f"face {face} does not exist (deleted or never made)")
+            raise DLFLError(f"face {shown(face)} does not exist (deleted or never made)")
     p1, p2 = face_points(mesh, face1), face_points(mesh, face2)
     # quarters cannot overflow in a difference, and one common power of two
     # keeps the squares in range without changing which pair is closest
@@ -374,7 +374,8 @@ def connect_faces_closest(
     """
     _face_ids(face1, face2)  # before the equality test: 0 == 0.0
     if face1 == face2:
-        raise DLFLError(f"connect_faces_closest needs two different faces, got face {face1} twice")
+        raise DLFLError(f"connect_faces_closest needs two different faces, got face "
+                        f"{shown(face1)} twice")
     c1, c2 = closest_corners(mesh, face1, face2)
     return connect_faces(mesh, c1, c2, segments, max_connections=max_connections,
                          max_faces=max_faces)
