@@ -23,7 +23,9 @@ from livemod.dlfl import (
     validate,
 )
 from livemod.dlfl.analysis import face_normals, face_points, polygon_normal
+from livemod.dlfl.build import point_cloud
 from livemod.dlfl.shapes import cube, dodecahedron, grid, icosahedron, octahedron, torus
+from livemod.dlfl.subdivision import subdivide
 from tests.meshes import assert_refused_quietly, assert_scales, point_sphere
 from tests.meshes import tetrahedron as unit_tetrahedron
 from tests.meshes import triangle as open_triangle
@@ -525,3 +527,50 @@ def test_the_tolerance_is_relative_to_the_extent_at_every_scale(height, sizes, s
 def test_convex_hull_and_its_dual_are_the_same_at_every_scale(op, counts, sizes, scale):
     m = assert_scales(cube, lambda mesh, _: op(mesh), scale, rtol=1e-12)
     assert checked(m) == counts and face_size_histogram(m) == sizes
+
+
+# -- walking a batched quickhull (over hull._LARGE points) gives what turning gives -------
+
+
+def hull_walked(points: np.ndarray, large: int, monkeypatch: pytest.MonkeyPatch) -> object:
+    """:func:`hull_with` with no triple lookup, and the quickhull walked above
+    ``large`` points."""
+    monkeypatch.setattr(hull, "_LARGE", large)
+    return hull_with(points, 0, monkeypatch)
+
+
+def larger_sets() -> list[np.ndarray]:
+    """A few hundred points: spheres, clouds, lattices (squares, points on every
+    edge), a rotated lattice, a smooth mesh and a subdivided cube's flat faces."""
+    rng = np.random.default_rng(8)
+    smooth, flat = cube(), cube()
+    subdivide(smooth, "catmull-clark", levels=2)
+    for _ in range(2):
+        subdivide(flat, "linear-vertex")
+    return [unit_sphere(300, 1), rng.uniform(-1, 1, size=(300, 3)), lattice(6, 5, 4),
+            rotated(lattice(5, 5, 5), 3), smooth.positions_view(), flat.positions_view()]
+
+
+@pytest.mark.parametrize("name", [*sorted(POINT_SETS), "larger"])
+def test_walking_the_quickhull_gives_what_turning_gives(name, monkeypatch):
+    sets = larger_sets() if name == "larger" else POINT_SETS[name]()
+    for points in sets:
+        turned = hull_walked(points, 10**9, monkeypatch)
+        walked = hull_walked(points, 3, monkeypatch)
+        if isinstance(turned, str) and not isinstance(walked, str):
+            continue  # turning could not close up; see the next test
+        assert walked == turned
+
+
+def test_where_turning_cannot_close_up_the_quickhull_triangles_are_the_hull(monkeypatch):
+    # a lattice shaken by about the tolerance: turning finds faces that do not fit
+    points = lattice(3, 3, 3) + np.random.default_rng(5).normal(size=(27, 3)) * 2e-9
+    assert isinstance(hull_walked(points, 10**9, monkeypatch), str)
+    monkeypatch.setattr(hull, "_LARGE", 3)
+    polygons = hull_polygons(points)
+    assert all(len(p) == 3 for p in polygons)
+    hull._check_closed(polygons)
+    mesh = point_cloud(points)
+    convex_hull(mesh)
+    validate(mesh)
+    assert mesh.counts()[2] == len(polygons)

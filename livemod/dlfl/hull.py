@@ -17,6 +17,16 @@ result is the same, polygon for polygon, in the same order, with the same
 normals bit for bit (a looked-up triangle's is computed as turning computes it,
 when needed).
 
+For more than ``_LARGE`` points (a mesh's vertices: turning took 38 s for
+24,600 of them), a batched quickhull (:mod:`._quickhull`, numpy rounds) builds
+a triangulated hull first and checks each of its triangles the way the lookup
+checks triples, against the points near it; the wrapping then walks those
+triangles depth first, in turning's order, and turns only to the faces across
+the sides of the others. The result is again the same, polygon for polygon.
+Where turning cannot close up (points too nearly on one plane for the
+tolerance: four nearly on one circle, which grows likely with thousands of
+points), the quickhull's triangles are the result instead of a refusal.
+
 **Coplanar rule** (the same for every caller):
 
 * a point on the hull's surface is a polygon vertex when it is a corner of a
@@ -43,6 +53,7 @@ from typing import NamedTuple, TypeAlias
 import numpy as np
 
 from ._hull_table import triangle_table as _triangle_table
+from ._quickhull import convex, quickhull, verified_triangles
 from ._vectors import range_exponent, shifted_in_range
 from .budget import check_size
 from .build import from_polygons
@@ -66,6 +77,9 @@ _X, _Y, _Z = _AXES
 
 # up to this many points, the hull's triangles are looked up (_triangle_table)
 _SMALL = 32
+# above this many, the faces are walked over a batched quickhull (_quickhull): below
+# it, turning is as fast (a cloud's few hull faces, a lattice's squares)
+_LARGE = 1000
 
 class _Hull(NamedTuple):
     """A wrapped hull. ``points`` are the input moved and scaled by a power of two
@@ -184,9 +198,121 @@ def _wrap_hull(points: np.ndarray, tolerance: float = 1e-9) -> _Hull:
     extent = float(np.ptp(pts, axis=0).max())
     eps = tolerance * extent
     _check_not_flat(pts, eps)
+    quick = _quick(pts, eps, extent) if len(pts) > _LARGE else None
+    if quick is not None:
+        try:
+            return _Hull(pts, origin, exponent, eps, *_walked(pts, eps, quick))
+        except DLFLError:
+            # points too nearly on one plane for the tolerance (four nearly on one
+            # circle): turning does not close up, the quickhull's triangles do
+            if not convex(pts, quick.tri, 4.0 * eps, extent):
+                raise
+            return _Hull(pts, origin, exponent, eps, quick.tri.tolist(),
+                         [(q, p, r) for p, q, r in quick.tri.tolist()])
     polygons, normals = _wrapped(pts, eps, _across(pts, eps, extent))
     _check_closed(polygons)
     return _Hull(pts, origin, exponent, eps, polygons, normals)
+
+
+class _Quick(NamedTuple):
+    """The batched quickhull's triangles (:func:`._quickhull.quickhull`), each
+    from its least index as turning lists a triangle, with the triangle across
+    each side (side ``j`` from corner ``j`` to ``j + 1``), and which of them
+    turning would reach as they are (:func:`._quickhull.verified_triangles`)."""
+
+    tri: np.ndarray  # (F, 3) int
+    nbr: np.ndarray  # (F, 3) int
+    verified: np.ndarray  # (F,) bool
+
+
+def _quick(pts: np.ndarray, eps: float, extent: float) -> _Quick | None:
+    """The :class:`_Quick` hull of ``(n, 3)`` ``pts``, or None when it gave up."""
+    found = quickhull(pts, eps)
+    if found is None:
+        return None
+    tri, nbr = found
+    turn = (np.argmin(tri, axis=1)[:, None] + np.arange(3)) % 3
+    tri, nbr = np.take_along_axis(tri, turn, axis=1), np.take_along_axis(nbr, turn, axis=1)
+    return _Quick(tri, nbr, verified_triangles(pts, tri, eps, extent))
+
+
+def _walked(pts: np.ndarray, eps: float, quick: _Quick
+            ) -> tuple[list[list[int]], list[_Normal]]:
+    """``(polygons, normals)`` as :func:`_wrapped` finds them, walking the
+    triangles of ``quick`` instead of looking sides up: depth first from
+    :func:`_first_face`, each verified triangle taken as it is, the face across
+    any other side turned to (:func:`_face_beyond`: the few triangles with a
+    fourth point within the tolerance of their plane, or faces with points on
+    their edges), its sides claimed by name.
+
+    Raises:
+        DLFLError: the faces do not close up (as :func:`_wrapped`).
+    """
+    turned = _across(pts, eps, 0.0)  # more than _SMALL points: no lookup
+    walk = _Walk(quick, len(pts))
+    walk.add(*_first_face(pts, eps, turned))
+    tri, nbr, verified, taken, named = walk.tri, walk.nbr, walk.verified, walk.taken, walk.named
+    while walk.todo:
+        k = walk.todo.pop()
+        poly, normal, f = walk.polygons[k], walk.normals[k], walk.index[k]
+        for j, u in enumerate(poly):
+            v = poly[(j + 1) % len(poly)]
+            g = nbr[f][j] if f >= 0 else walk.triangle(v, u)
+            if (named and (v, u) in named) or (g >= 0 and taken[g]):
+                continue
+            if g >= 0 and verified[g]:
+                corners = tri[g]
+                walk.add(corners, (u, v, sum(corners) - u - v), g)
+                continue
+            found, plane = turned(u, v, normal)
+            if (v, u) not in _sides(found) or len(walk.polygons) > 2 * len(pts):
+                raise _not_closed()
+            walk.add(found, plane)
+    if named:  # a turned face may not fit the triangles around it
+        _check_closed(walk.polygons)
+    return walk.polygons, walk.normals
+
+
+class _Walk:
+    """The faces :func:`_walked` has found and which sides they claim: a
+    triangle of the quickhull by its index, any other face by its sides."""
+
+    def __init__(self, quick: _Quick, n: int) -> None:
+        self.tri, self.nbr = quick.tri.tolist(), quick.nbr.tolist()
+        self.verified = quick.verified.tolist()
+        self.n = n
+        self.taken = [False] * len(self.tri)
+        self.named: set[tuple[int, int]] = set()  # sides of faces that are no triangle of it
+        self.polygons: list[list[int]] = []
+        self.normals: list[_Normal] = []
+        self.index: list[int] = []  # the quickhull triangle each polygon is, or -1
+        self.todo: list[int] = []
+        keys = (quick.tri * n + np.roll(quick.tri, -1, axis=1)).ravel()
+        self._order = np.argsort(keys)
+        self._keys = keys[self._order]
+
+    def triangle(self, u: int, v: int) -> int:
+        """The quickhull triangle with side ``u -> v``, -1 for none (a turned face
+        can have a side the quickhull's triangles do not)."""
+        key = u * self.n + v
+        at = int(np.searchsorted(self._keys, key))
+        if at == len(self._keys) or self._keys[at] != key:
+            return -1
+        return int(self._order[at]) // 3
+
+    def add(self, poly: list[int], normal: _Normal, index: int = -1) -> None:
+        """Record face ``poly`` (quickhull triangle ``index``, -1: look it up)."""
+        if index < 0 and len(poly) == 3:  # a turned triangle may be one of the quickhull's
+            g = self.triangle(poly[0], poly[1])
+            index = g if g >= 0 and self.tri[g] == poly else -1
+        if index >= 0:
+            self.taken[index] = True
+        else:
+            self.named.update(_sides(poly))
+        self.polygons.append(poly)
+        self.normals.append(normal)
+        self.index.append(index)
+        self.todo.append(len(self.polygons) - 1)
 
 
 def _across(pts: np.ndarray, eps: float, extent: float) -> _Across:
@@ -375,6 +501,23 @@ def _resolved(pts: np.ndarray, normal: _Normal) -> np.ndarray:
     return _unit3(_cross3(pts[c] - pts[u], _unit3(pts[v] - pts[u])))
 
 
+def _resolved_all(pts: np.ndarray, normals: list[_Normal]) -> np.ndarray:
+    """``(F, 3)``: :func:`_resolved` of every normal, the triangles' at once (to
+    the last bit or so: numpy's dot of three may round once differently)."""
+    out = np.empty((len(normals), 3))
+    lazy = [i for i, n in enumerate(normals) if isinstance(n, tuple)]
+    for i, n in enumerate(normals):
+        if not isinstance(n, tuple):
+            out[i] = n
+    if lazy:
+        u, v, c = np.array([normals[i] for i in lazy]).T
+        side = pts[v] - pts[u]
+        side /= np.sqrt(np.einsum("ij,ij->i", side, side))[:, None]
+        turned = np.cross(pts[c] - pts[u], side)
+        out[lazy] = turned / np.sqrt(np.einsum("ij,ij->i", turned, turned))[:, None]
+    return out
+
+
 # -- one face's polygon ----------------------------------------------------------------
 
 
@@ -543,6 +686,8 @@ def _vertex_face_rings(polygons: list[list[int]]) -> dict[int, list[int]]:
 def _ears(pts: np.ndarray, poly: list[int], eps: float) -> list[list[int]]:
     """Triangles of the convex polygon ``poly`` of ``(n, 3)`` ``pts``; see
     :func:`hull_triangles` for the rule."""
+    if len(poly) == 3:  # a hull face is never flat: a triangle stays as it is
+        return [list(poly)]
     ring = list(poly)
     juts = [_juts(pts, ring[i - 1], ring[i], ring[(i + 1) % len(ring)], eps)
             for i in range(len(ring))]
@@ -573,7 +718,7 @@ def _polar_points(hull: _Hull) -> np.ndarray:
     used = np.unique(np.concatenate(hull.polygons))
     centre = hull.points[used].mean(axis=0)
     radius2 = float(np.mean(np.sum((hull.points[used] - centre) ** 2, axis=1)))
-    normals = np.array([_resolved(hull.points, n) for n in hull.normals])
+    normals = _resolved_all(hull.points, hull.normals)
     distance = np.einsum("fk,fk->f", normals, hull.points[[p[0] for p in hull.polygons]] - centre)
     with np.errstate(over="ignore", invalid="ignore"):  # refused just below
         dual = np.ldexp(centre + normals * (radius2 / distance)[:, None], hull.exponent)
@@ -587,8 +732,11 @@ def _polar_points(hull: _Hull) -> np.ndarray:
 def _rebuild(mesh: Mesh, points: np.ndarray, polygons: list[list[int]]) -> None:
     """Replace ``mesh`` by the polygons over the ``(n, 3)`` ``points`` they use
     (in index order), with fresh ids."""
-    used = np.unique(np.concatenate(polygons))
+    flat = np.concatenate(polygons)
+    used = np.unique(flat)
     index = np.full(len(points), -1, dtype=np.int64)
     index[used] = np.arange(len(used))
-    faces = [index[poly].tolist() for poly in polygons]
-    mesh.replace_with(from_polygons(points[used], faces, first_ids=mesh.next_ids()))
+    offsets = np.zeros(len(polygons) + 1, dtype=np.int64)
+    np.cumsum([len(poly) for poly in polygons], out=offsets[1:])
+    mesh.replace_with(from_polygons(points[used], index[flat], offsets,
+                                    first_ids=mesh.next_ids()))

@@ -1,0 +1,482 @@
+"""The triangle lookup of :mod:`.hull` for large point sets: a batched quickhull.
+
+Turning a plane about each hull edge (:mod:`.hull`'s gift wrapping) passes
+over every point once per face: 38 s for 24,600 points. Here a triangulated
+hull is built in rounds, every step a numpy pass:
+
+1. each facet with points above it (more than ``eps``: its *conflicts*) offers
+   the farthest of them;
+2. offers whose visible regions (the facets they are above), with the facets
+   around those, meet no better offer's are taken, all at once;
+3. each taken point replaces its visible facets by a fan to their horizon;
+   the conflicts of a new facet are among those of the two facets beside its
+   horizon edge (the conflict graph of the randomized incremental hull).
+
+Its triangles are then checked as :func:`._hull_table.triangle_table` checks
+the triples it tries, only against the points that can matter (see
+:func:`verified_triangles`), and the ones that pass are what turning would
+reach across their sides: :mod:`.hull` looks them up and turns only to the
+others (faces with coplanar points, points on edges, thin triangles), so the
+result is the same, polygon for polygon, in the same order.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ._hull_table import _WIDE
+
+# a batch round that does not close up (rounding near the tolerance) gives up
+# after this many rounds more than the points would ever need
+_ROUNDS = 64
+# pairs measured at a time in _clear (their temporaries stay in cache)
+_BLOCK = 1 << 15
+
+
+class _Facets:
+    """Triangles with their planes and neighbours, in growable arrays.
+
+    ``tri[f]`` is counter-clockwise seen from outside; ``nbr[f, j]`` is the
+    facet across side ``j`` (from ``tri[f, j]`` to ``tri[f, (j + 1) % 3]``).
+    """
+
+    def __init__(self, pts: np.ndarray, capacity: int) -> None:
+        self.pts = pts
+        self.tri = np.zeros((capacity, 3), np.int64)
+        self.nbr = np.zeros((capacity, 3), np.int64)
+        self.normal = np.zeros((capacity, 3))
+        self.offset = np.zeros(capacity)
+        self.alive = np.zeros(capacity, bool)
+        self.n = 0
+        self.vertices = 4  # the hull's vertices so far
+
+    def add(self, tri: np.ndarray, nbr: np.ndarray) -> np.ndarray:
+        """Append ``(k, 3)`` triangles with their neighbours; their indices."""
+        k = len(tri)
+        if self.n + k > len(self.tri):
+            self._grow(max(2 * len(self.tri), self.n + k))
+        index = np.arange(self.n, self.n + k)
+        self.tri[index], self.nbr[index], self.alive[index] = tri, nbr, True
+        a, b, c = (self.pts[tri[:, j]] for j in range(3))
+        normal = np.cross(b - a, c - a)
+        length = np.sqrt(np.einsum("ij,ij->i", normal, normal))
+        with np.errstate(divide="ignore", invalid="ignore"):  # a flat one: NaN, checked
+            self.normal[index] = normal / length[:, None]
+        self.offset[index] = np.einsum("ij,ij->i", self.normal[index], a)
+        self.n += k
+        return index
+
+    def _grow(self, capacity: int) -> None:
+        for name in ("tri", "nbr", "normal", "offset", "alive"):
+            old = getattr(self, name)
+            new = np.zeros((capacity, *old.shape[1:]), old.dtype)
+            new[: self.n] = old[: self.n]
+            setattr(self, name, new)
+
+    def heights(self, points: np.ndarray, facets: np.ndarray) -> np.ndarray:
+        """``(k,)`` height of point ``points[i]`` over the plane of ``facets[i]``."""
+        return (np.einsum("ij,ij->i", self.pts[points], self.normal[facets])
+                - self.offset[facets])
+
+
+def quickhull(pts: np.ndarray, eps: float) -> tuple[np.ndarray, np.ndarray] | None:
+    """``(tri, nbr)``: ``(F, 3)`` triangles of the convex hull of ``(n, 3)`` ``pts``
+    (framed as :mod:`.hull` frames them, not flat), counter-clockwise seen from
+    outside, with every point at most ``eps`` above each, and ``(F, 3)`` the
+    triangle across each side (side ``j`` runs from corner ``j`` to ``j + 1``);
+    or None when rounding near the tolerance breaks a round (a horizon that is
+    no simple cycle), for the caller to turn every face instead. Points within
+    ``eps`` of a facet are no vertices."""
+    start = _simplex(pts, eps)
+    if start is None:
+        return None
+    facets = _Facets(pts, 8 * len(pts) + 16)
+    first = facets.add(*start)
+    height = (pts @ facets.normal[first].T) - facets.offset[first]
+    state = _Outside(np.where(height.max(axis=1) > eps, first[height.argmax(axis=1)], -1),
+                     height.max(axis=1))
+    rank = np.random.default_rng(len(pts)).permutation(len(pts))
+    for _ in range(_ROUNDS + 8 * int(np.log2(len(pts) + 1))):
+        points = np.flatnonzero(state.facet >= 0)
+        if len(points) == 0:
+            alive = np.flatnonzero(facets.alive[: facets.n])
+            index = np.full(facets.n, -1, np.int64)
+            index[alive] = np.arange(len(alive))
+            return facets.tri[alive], index[facets.nbr[alive]]
+        if not _round(facets, state, points, rank, eps):
+            return None
+    return None
+
+
+class _Outside:
+    """Each point's outside facet (one it lies more than ``eps`` above, or -1 for
+    none: inside, within ``eps`` of the hull, or a vertex) and its height there.
+
+    One facet is enough (quickhull's outside sets): a point above a facet a new
+    point sees is above one of that point's new facets, or inside the grown hull
+    (above the facet's plane and below every new one is within the cone from the
+    new point over the horizon, cut off by that plane, inside the new hull)."""
+
+    def __init__(self, facet: np.ndarray, height: np.ndarray) -> None:
+        self.facet, self.height = facet, height
+
+
+def _simplex(pts: np.ndarray, eps: float) -> tuple[np.ndarray, np.ndarray] | None:
+    """The first tetrahedron: ``(4, 3)`` outward triangles and their neighbours,
+    from four extreme points; None when they are too nearly coplanar."""
+    a = int(np.argmin(pts[:, 0]))
+    b = int(np.argmax(np.einsum("ij,ij->i", pts - pts[a], pts - pts[a])))
+    ab = pts[b] - pts[a]
+    off_line = np.cross(pts - pts[a], ab)
+    c = int(np.argmax(np.einsum("ij,ij->i", off_line, off_line)))
+    normal = np.cross(ab, pts[c] - pts[a])
+    length = float(np.sqrt(normal @ normal))
+    if length == 0.0:
+        return None
+    side = (pts - pts[a]) @ (normal / length)
+    d = int(np.argmax(np.abs(side)))
+    if abs(side[d]) <= eps:
+        return None
+    if side[d] > 0:  # d above (a, b, c): turn that face so that d is below
+        b, c = c, b
+    tri = np.array([[a, b, c], [a, d, b], [b, d, c], [c, d, a]], np.int64)
+    # side j of face f, (tri[f, j], tri[f, j + 1]), meets the face with its reverse
+    nbr = np.array([[1, 2, 3], [3, 2, 0], [1, 3, 0], [2, 1, 0]], np.int64)
+    return tri, nbr
+
+
+def _round(facets: _Facets, state: _Outside, points: np.ndarray, rank: np.ndarray,
+           eps: float) -> bool:
+    """One round: each facet offers its farthest outside point; the offers whose
+    visible regions are apart are taken, their fans built, and the outside
+    points of the facets they replace handed to those fans. False when a
+    horizon is no simple cycle."""
+    facet = state.facet[points]
+    best = np.full(facets.n, -np.inf)
+    np.maximum.at(best, facet, state.height[points])
+    offers = points[state.height[points] == best[facet]]
+    rp, rf = _regions(facets, offers, state.facet[offers], eps)
+    winners, owner = _independent_offers(facets, rp, rf, rank, eps)
+    visible = np.flatnonzero(owner >= 0)
+    horizon = _horizon(facets, visible, owner)
+    if horizon is None:
+        return False
+    facets.alive[visible] = False
+    state.facet[winners] = -1
+    _hand_on(facets, state, points, owner, horizon, eps)
+    return True
+
+
+def _regions(facets: _Facets, offers: np.ndarray, start: np.ndarray, eps: float
+             ) -> tuple[np.ndarray, np.ndarray]:
+    """``(p, f)`` pairs: the facets each offer sees, grown from the one it is
+    outside of through the neighbours it is above (a point sees a connected set),
+    step by step: each step's pairs as sorted keys ``p * n + f``, against which
+    the next step's are looked up."""
+    n = facets.n
+    steps = [np.sort(offers * n + start)]
+    fp, ff = offers, start
+    found_p, found_f = [fp], [ff]
+    while len(fp):
+        cp = np.repeat(fp, 3)
+        cf = facets.nbr[ff].ravel()
+        key, once = np.unique(cp * n + cf, return_index=True)
+        fresh = np.ones(len(key), bool)
+        for known in steps[-2:]:  # a neighbour's neighbour is at most a step back
+            at = np.minimum(np.searchsorted(known, key), len(known) - 1)
+            fresh &= known[at] != key
+        cp, cf, key = cp[once[fresh]], cf[once[fresh]], key[fresh]
+        seen = facets.heights(cp, cf) > eps
+        fp, ff = cp[seen], cf[seen]
+        steps.append(key[seen])
+        found_p.append(fp)
+        found_f.append(ff)
+    return np.concatenate(found_p), np.concatenate(found_f)
+
+
+def _hand_on(facets: _Facets, state: _Outside, points: np.ndarray, owner: np.ndarray,
+             horizon: tuple[np.ndarray, np.ndarray, np.ndarray], eps: float) -> None:
+    """The outside points of the facets a taken point replaced go to a new facet
+    of its fan they lie more than ``eps`` above (first the ones built on their
+    old facet's horizon edges, then the whole fan), or are inside."""
+    orphan = points[state.facet[points] >= 0]
+    orphan = orphan[owner[state.facet[orphan]] >= 0]
+    if len(orphan) == 0:
+        return
+    new, _, inner = horizon
+    order = np.argsort(inner, kind="stable")
+    placed = _place(facets, state, orphan, inner[order], new[order], state.facet[orphan], eps)
+    rest = orphan[~placed]
+    if len(rest) == 0:
+        return
+    apex = facets.tri[new, 2]
+    order = np.argsort(apex, kind="stable")
+    placed = _place(facets, state, rest, apex[order], new[order], owner[state.facet[rest]], eps)
+    state.facet[rest[~placed]] = -1
+
+
+def _place(facets: _Facets, state: _Outside, points: np.ndarray, keys: np.ndarray,
+           candidates: np.ndarray, key: np.ndarray, eps: float) -> np.ndarray:
+    """Move each of ``points`` to the candidate (``candidates`` under sorted
+    ``keys``, those under its ``key``) it lies highest above, if more than
+    ``eps``; ``(k,)`` bool: which were moved."""
+    lo = np.searchsorted(keys, key, side="left")
+    count = np.searchsorted(keys, key, side="right") - lo
+    rows = np.repeat(np.arange(len(points)), count)
+    offsets = np.cumsum(count) - count
+    pf = candidates[lo[rows] + np.arange(int(count.sum())) - offsets[rows]]
+    ph = facets.heights(points[rows], pf)
+    top = np.full(len(points), -np.inf)
+    np.maximum.at(top, rows, ph)
+    up = (ph == top[rows]) & (ph > eps)
+    state.facet[points[rows[up]]] = pf[up]
+    state.height[points[rows[up]]] = ph[up]
+    return top > eps
+
+
+def _independent_offers(facets: _Facets, cp: np.ndarray, cf: np.ndarray, rank: np.ndarray,
+                        eps: float) -> tuple[np.ndarray, np.ndarray]:
+    """``(winners, owner)``: the points taken this round, and per facet the point
+    whose visible region it is in (-1: none).
+
+    ``(cp, cf)`` pairs the offers with the facets they see. An offer is taken
+    when no offer earlier in ``rank`` (a fixed random permutation) sees a facet
+    it sees; offers that lost only to offers that lost too try again, a few
+    times (Luby's independent set). Taken points whose regions meet along an
+    edge keep it only where each lies below the other's new triangle on it (a
+    convex edge, as taking one after the other would make it); where not, the
+    later one is given back.
+    """
+    owner = np.full(facets.n, -1, np.int64)
+    winners: list[np.ndarray] = []
+    for _ in range(4):
+        out = owner[cf] >= 0  # a facet it sees is in a taken region
+        dead = np.zeros(len(rank), bool)
+        dead[cp[out]] = True
+        keep = ~dead[cp]
+        cp, cf = cp[keep], cf[keep]
+        if len(cp) == 0:
+            break
+        r = rank[cp]
+        seen = np.full(facets.n, len(rank), np.int64)  # least rank seeing each facet
+        np.minimum.at(seen, cf, r)
+        lost = np.zeros(len(rank), bool)
+        lost[cp[seen[cf] < r]] = True
+        won = ~lost[cp]
+        trial = owner.copy()
+        trial[cf[won]] = cp[won]
+        committed = np.zeros(len(rank), bool)  # taken in an earlier pass: kept
+        for earlier in winners:
+            committed[earlier] = True
+        back = _concave_meetings(facets, cp[won], cf[won], trial, rank, committed, eps)
+        won &= ~back[cp]
+        owner[cf[won]] = cp[won]
+        winners.append(np.unique(cp[won]))
+    return np.concatenate(winners) if winners else np.zeros(0, np.int64), owner
+
+
+def _concave_meetings(facets: _Facets, wp: np.ndarray, wf: np.ndarray, owner: np.ndarray,
+                      rank: np.ndarray, committed: np.ndarray, eps: float) -> np.ndarray:
+    """``(n,)`` bool: the taken points ``wp`` (seeing ``wf``) to give back where
+    their region meets another's (``owner``) along an edge ``(a, b)`` with one
+    lying above the other's new triangle (``a, b``, itself): the later of the
+    two, or the new one when the other was ``committed`` in an earlier pass."""
+    f = np.repeat(wf, 3)
+    j = np.tile(np.arange(3), len(wf))
+    p = np.repeat(wp, 3)
+    q = owner[facets.nbr[f, j]]
+    meet = (q >= 0) & (q != p)
+    f, j, p, q = f[meet], j[meet], p[meet], q[meet]
+    back = np.zeros(len(rank), bool)
+    if len(f) == 0:
+        return back
+    a, b = facets.pts[facets.tri[f, j]], facets.pts[facets.tri[f, (j + 1) % 3]]
+    pp, qq = facets.pts[p], facets.pts[q]
+    normal = np.cross(b - a, pp - a)
+    with np.errstate(invalid="ignore", divide="ignore"):  # a flat new triangle: given back
+        normal /= np.sqrt(np.einsum("ij,ij->i", normal, normal))[:, None]
+        above = ~(np.einsum("ij,ij->i", qq - a, normal) <= eps)
+    later = np.where(committed[q] | (rank[p] > rank[q]), p, q)
+    back[later[above]] = True
+    return back
+
+
+def _horizon(facets: _Facets, visible: np.ndarray, owner: np.ndarray
+             ) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
+    """Build the fan of every taken point over its horizon: ``(new facets, the
+    facet outside each one's horizon edge, the visible one inside it)``, or None
+    when a horizon is no simple cycle."""
+    f = np.repeat(visible, 3)
+    j = np.tile(np.arange(3), len(visible))
+    g = facets.nbr[f, j]
+    edge = owner[g] != owner[f]
+    f, j, g = f[edge], j[edge], g[edge]
+    apex = owner[f]
+    a, b = facets.tri[f, j], facets.tri[f, (j + 1) % 3]
+    n = len(facets.pts)
+    # where two fans meet (g is in another taken region) they meet each other
+    shared = owner[g] >= 0
+    # the fan of apex p: the facet on edge (a, b) meets the one from b and the one to a
+    start_key, end_key = apex * n + a, apex * n + b
+    order = np.argsort(start_key, kind="stable")
+    sorted_keys = start_key[order]
+    if len(sorted_keys) > 1 and (sorted_keys[1:] == sorted_keys[:-1]).any():
+        return None  # two horizon edges leave one vertex: no simple cycle
+    after = np.searchsorted(sorted_keys, end_key)
+    if (after >= len(sorted_keys)).any() or (sorted_keys[np.minimum(after, len(sorted_keys) - 1)]
+                                           != end_key).any():
+        return None
+    base = facets.n
+    next_fan = base + order[after]
+    before = np.empty(len(f), np.int64)
+    before[order[after]] = np.arange(len(f))
+    across = g.copy()
+    if shared.any():
+        edge_key = a * n + b
+        by_edge = np.argsort(edge_key, kind="stable")
+        mate = by_edge[np.searchsorted(edge_key[by_edge], b[shared] * n + a[shared])]
+        across[shared] = base + mate
+    tri = np.stack([a, b, apex], axis=1)
+    nbr = np.stack([across, next_fan, base + before], axis=1)
+    new = facets.add(tri, nbr)
+    # the outer facet's side (b, a) now meets the new facet
+    outer, new_outer = g[~shared], new[~shared]
+    k = np.argmax((facets.tri[outer] == b[~shared][:, None])
+                  & (np.roll(facets.tri[outer], -1, axis=1) == a[~shared][:, None]), axis=1)
+    facets.nbr[outer, k] = new_outer
+    if not np.isfinite(facets.normal[new]).all():
+        return None
+    return new, g, f
+
+
+def verified_triangles(pts: np.ndarray, tri: np.ndarray, eps: float, extent: float
+                       ) -> np.ndarray:
+    """``(F,)`` bool: which of the hull's ``tri`` turning would reach as they are.
+
+    A triangle passes as :func:`._hull_table.triangle_table` lets a triple in: no
+    point but its three within ``eps`` of its plane or above it, wide (its third
+    corner more than ``_WIDE`` tolerances off the line of the other two), no
+    side nearly in line with another point. Only the points that can matter are
+    measured: the vertices joined to its corners (the highest vertex off a face
+    of a convex hull is joined to one of its corners: when those lie more than
+    ``eps`` below, every vertex does), and the points that are no vertex in the
+    box of those, grown by the tolerance (the part of the hull within ``eps`` of
+    the plane is the hull of the triangle and of the edges leaving it).
+    """
+    thin = _WIDE * 2.0 * eps * extent
+    a, b, c = (pts[tri[:, j]] for j in range(3))
+    area2 = np.cross(b - a, c - a)
+    wide = np.einsum("ij,ij->i", area2, area2) > thin * thin
+    heads, starts = _joined(tri, len(pts))
+    ring_t, ring_p = _ring_pairs(tri, heads, starts)
+    ok = wide & _clear(pts, tri, ring_t, ring_p, eps, thin)
+    loose = np.ones(len(pts), bool)
+    loose[tri.ravel()] = False
+    if loose.any():
+        lo, hi = _boxes(pts, tri, ring_t, ring_p)
+        box_t, box_p = _box_points(pts, np.flatnonzero(loose), lo, hi, 2.0 * eps)
+        ok &= _clear(pts, tri, box_t, box_p, eps, thin)
+    return ok
+
+
+def convex(pts: np.ndarray, tri: np.ndarray, eps: float, extent: float) -> bool:
+    """Whether no vertex lies more than ``eps`` above a triangle of ``tri``
+    joined to it, slivers aside (a triangle whose corners are within ``_WIDE``
+    tolerances of one line has no plane to be above): every edge convex, to
+    the tolerance (pass a few: a vertex may end up up to twice the tolerance
+    its planes were built with above a neighbour's)."""
+    heads, starts = _joined(tri, len(pts))
+    t, p = _ring_pairs(tri, heads, starts)
+    a, b, c = (pts[tri[:, j]] for j in range(3))
+    normal = np.cross(b - a, c - a)
+    length = np.sqrt(np.einsum("ij,ij->i", normal, normal))
+    wide = length > _WIDE * 2.0 * eps * extent
+    normal /= np.where(wide, length, 1.0)[:, None]
+    height = np.einsum("ij,ij->i", pts[p] - a[t], normal[t])
+    return bool((height[wide[t]] <= eps).all())
+
+
+def _joined(tri: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
+    """``(heads, starts)``: vertex ``v``'s edges lead to ``heads[starts[v]:starts[v + 1]]``."""
+    tails = tri.ravel()
+    order = np.argsort(tails, kind="stable")
+    heads = np.roll(tri, -1, axis=1).ravel()[order]
+    return heads, np.searchsorted(tails[order], np.arange(n + 1))
+
+
+def _ring_pairs(tri: np.ndarray, heads: np.ndarray, starts: np.ndarray
+                ) -> tuple[np.ndarray, np.ndarray]:
+    """``(t, p)`` pairs: every vertex joined to a corner of triangle ``t``, in
+    triangle order."""
+    corner = tri.ravel()
+    count = starts[corner + 1] - starts[corner]
+    rows = np.repeat(np.arange(len(corner)), count)
+    offsets = np.cumsum(count) - count
+    p = heads[starts[corner][rows] + np.arange(int(count.sum())) - offsets[rows]]
+    return rows // 3, p
+
+
+def _boxes(pts: np.ndarray, tri: np.ndarray, ring_t: np.ndarray, ring_p: np.ndarray
+           ) -> tuple[np.ndarray, np.ndarray]:
+    """``(lo, hi)`` ``(F, 3)``: the box of each triangle's ring (which holds its
+    corners: each corner is joined to the next)."""
+    runs = np.flatnonzero(np.r_[True, ring_t[1:] != ring_t[:-1]])
+    around = pts[ring_p]
+    return np.minimum.reduceat(around, runs, axis=0), np.maximum.reduceat(around, runs, axis=0)
+
+
+def _clear(pts: np.ndarray, tri: np.ndarray, t: np.ndarray, p: np.ndarray, eps: float,
+           thin: float) -> np.ndarray:
+    """``(F,)`` bool: no pair ``(t, p)`` (point ``p`` other than triangle ``t``'s
+    three) lies within ``eps`` of the triangle's plane or above it, or nearly in
+    line (``thin``) with one of its sides (``|side x (p - corner)| <= thin``, as
+    ``|side|^2 |p - corner|^2 - (side . (p - corner))^2``)."""
+    corners = [pts[tri[:, j]] for j in range(3)]
+    normal = np.cross(corners[1] - corners[0], corners[2] - corners[0])
+    normal /= np.sqrt(np.einsum("ij,ij->i", normal, normal))[:, None]
+    # per triangle, as columns: normal, offset; per side its start, direction, length^2
+    columns = [*normal.T, np.einsum("ij,ij->i", normal, corners[0])]
+    for j in range(3):
+        side = corners[(j + 1) % 3] - corners[j]
+        columns += [*corners[j].T, *side.T, np.einsum("ij,ij->i", side, side)]
+    coordinates = [np.ascontiguousarray(axis) for axis in pts.T]
+    failed = np.zeros(len(tri), bool)
+    for block in range(0, len(t), _BLOCK):
+        bt, bp = t[block : block + _BLOCK], p[block : block + _BLOCK]
+        m = [column[bt] for column in columns]
+        x, y, z = (axis[bp] for axis in coordinates)
+        bad = x * m[0] + y * m[1] + z * m[2] - m[3] >= -eps
+        for j in range(4, 25, 7):
+            wx, wy, wz = x - m[j], y - m[j + 1], z - m[j + 2]
+            along = wx * m[j + 3] + wy * m[j + 4] + wz * m[j + 5]
+            bad |= m[j + 6] * (wx * wx + wy * wy + wz * wz) - along * along <= thin * thin
+        own = (bp == tri[bt, 0]) | (bp == tri[bt, 1]) | (bp == tri[bt, 2])
+        failed[bt[bad & ~own]] = True
+    return ~failed
+
+
+def _box_points(pts: np.ndarray, points: np.ndarray, lo: np.ndarray, hi: np.ndarray,
+                margin: float) -> tuple[np.ndarray, np.ndarray]:
+    """``(t, p)`` pairs: each of ``points`` in the box ``lo[t]``, ``hi[t]`` grown by
+    ``margin``, found through a uniform grid of about one of them a cell."""
+    low = pts.min(axis=0)
+    size = float(np.ptp(pts, axis=0).max()) / max(round(len(points) ** (1 / 3)), 1)
+    cells = np.maximum(np.ceil(np.ptp(pts, axis=0) / size).astype(np.int64), 1)
+    cell = np.minimum(((pts[points] - low) / size).astype(np.int64), cells - 1)
+    flat = (cell[:, 0] * cells[1] + cell[:, 1]) * cells[2] + cell[:, 2]
+    by_cell = np.argsort(flat, kind="stable")
+    bounds = np.searchsorted(flat[by_cell], np.arange(int(np.prod(cells)) + 1))
+    c0 = np.clip(((lo - margin - low) / size).astype(np.int64), 0, cells - 1)
+    c1 = np.clip(((hi + margin - low) / size).astype(np.int64), 0, cells - 1)
+    span = c1 - c0 + 1
+    per = span.prod(axis=1)
+    t = np.repeat(np.arange(len(lo)), per)
+    k = np.arange(int(per.sum())) - np.repeat(np.cumsum(per) - per, per)
+    sy, sz = span[t, 1], span[t, 2]
+    box = ((c0[t, 0] + k // (sy * sz)) * cells[1] + c0[t, 1] + (k // sz) % sy) * cells[2] \
+        + c0[t, 2] + k % sz
+    count = bounds[box + 1] - bounds[box]
+    rows = np.repeat(np.arange(len(box)), count)
+    offsets = np.cumsum(count) - count
+    p = points[by_cell[bounds[box][rows] + np.arange(int(count.sum())) - offsets[rows]]]
+    return t[rows], p
