@@ -145,7 +145,8 @@ def test_the_message_states_the_budget_and_how_to_raise_it():
         budget.check_size("loop", 30, 80, max_faces=20)
     message = str(refused.value)
     assert message.startswith("loop would produce 30 faces, more than the budget of 20 faces")
-    for way in ("max_faces=N", "scene.face_budget = N", "--face-budget N", "LIVEMOD_FACE_BUDGET=N"):
+    for way in ("max_faces=N", "current_scene().face_budget = N", "--face-budget N",
+                "LIVEMOD_FACE_BUDGET=N"):
         assert way in message
     assert (refused.value.needed, refused.value.budget) == (30, 20)
 

@@ -18,7 +18,8 @@ at the budget within about 6 GB and a refused operation costs nothing.
 Where the budget comes from, first found first:
 
 * ``max_faces=`` on a library call (:func:`face_budget`);
-* ``Scene.face_budget`` for the thesis commands, which pass it on;
+* ``Scene.face_budget`` for the thesis commands, which pass it on (a script
+  sets it with ``current_scene().face_budget = N``);
 * the session's default: :func:`set_default_face_budget`, else the environment
   variable ``LIVEMOD_FACE_BUDGET`` (what ``livemod run/view/batch --face-budget
   N`` sets, so the processes a batch starts share it), else
@@ -149,8 +150,8 @@ def check_size(operation: str, faces: int, corners: int = 0, *,
                 f"allows ({CORNERS_PER_FACE} corners a face: {budget * CORNERS_PER_FACE:,})")
     raise BudgetExceededError(
         f"{operation} would produce {what}; nothing was changed. To allow it, raise "
-        f"the budget: max_faces=N on the call, scene.face_budget = N in a script, "
-        f"livemod run/view/batch --face-budget N, or {ENVIRONMENT_VARIABLE}=N",
+        f"the budget: max_faces=N on the call, current_scene().face_budget = N in a "
+        f"script, livemod run/view/batch --face-budget N, or {ENVIRONMENT_VARIABLE}=N",
         needed=min(needed, SATURATED), budget=budget)
 
 
