@@ -1,7 +1,11 @@
 """Benchmarks of the convex hull (``livemod.dlfl.hull``) and of ``columns``, its
 main caller (one small hull per mesh vertex); figures go to docs/performance.md.
 
-Run: ``python bench/bench_hull.py [--repeat N] [--before REV]``. Each figure is the
+Run: ``python bench/bench_hull.py [--repeat N] [--before REV] [--large [--large-before]]``.
+``--large`` times instead ``convex_hull`` and ``dual_convex_hull`` of 1,500, 6,000
+and 24,600 points on a sphere (issue 30: 0.5 s, 2.0 s and 38 s; target: 24,600
+well under a second), CPU medians, with ``--large-before`` the hull.py of
+``--before`` too (minutes at 24,600 points). Each figure is the
 median of ``--repeat`` runs in one process, wall and CPU time. The same cases are
 timed with ``livemod/dlfl/hull.py`` as of git revision ``--before`` (default: the
 gift-wrapping routine as first committed, before small hulls looked their
@@ -27,6 +31,7 @@ from unittest import mock
 import numpy as np
 from timing import median_times
 
+from livemod.dlfl.build import point_cloud
 from livemod.dlfl.shapes import torus
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -128,11 +133,44 @@ def columns(hull_polygons: Hull | None = None) -> None:
         wireframe.columns(torus(30, 30), 0.1, 4)
 
 
+LARGE = (1500, 6000, 24600)
+
+
+def large_rows(old: types.ModuleType | None, repeat: int) -> None:
+    """The hulls of issue 30, now and (``old``) before: seed 1, on which gift
+    wrapping closes up at every size (on some seeds it refuses: four points
+    within the tolerance of one circle)."""
+    print("| operation | before wall / CPU | now wall / CPU |")
+    print("|---|---|---|")
+    for n in LARGE:
+        points = unit_sphere(n, 1)
+        for name in ("convex_hull", "dual_convex_hull"):
+            now = getattr(hull, name)
+            then = None if old is None else getattr(old, name)
+            label = f"{name}, {n:,} points on a sphere"
+            before = "—" if then is None else timed_on(then, points, 1)
+            print(f"| {label} | {before} | {timed_on(now, points, repeat)} |", flush=True)
+
+
+def timed_on(op: Callable[..., None], points: np.ndarray, repeat: int) -> str:
+    """:func:`timed` of ``op`` on a fresh point cloud of ``points`` each run."""
+    wall, cpu = median_times(op, repeat, setup=lambda: point_cloud(points))
+    return f"{wall:.3f} s / {cpu:.3f} s"
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--repeat", type=int, default=5)
     parser.add_argument("--before", default=BEFORE, help="git revision to compare with")
+    parser.add_argument("--large", action="store_true", help="time the large hulls only")
+    parser.add_argument("--large-before", action="store_true",
+                        help="with --large, time the revision --before too (minutes)")
     args = parser.parse_args()
+    if args.large:
+        print(f"cpus: {os.cpu_count()}, load: {os.getloadavg()[0]:.1f}, repeat: {args.repeat} "
+              "(median; before: one run)\n")
+        large_rows(load_revision(args.before) if args.large_before else None, args.repeat)
+        return
     old = load_revision(args.before)
     print(f"cpus: {os.cpu_count()}, load: {os.getloadavg()[0]:.1f}, repeat: {args.repeat} "
           f"(median), before: {args.before if old is not None else 'not found'}\n")
