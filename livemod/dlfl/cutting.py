@@ -190,21 +190,27 @@ def truncate(mesh: Mesh, offset: float = DEFAULT_OFFSET, *,
     spheres = mesh.num_corners - 2 * e  # they stay as they are
     check_size("truncate", f + v - spheres, 6 * e + spheres, max_faces=max_faces)
     a = mesh_arrays(mesh)
-    check_truncatable(a)
+    nxt = a.corner_next
+    check_truncatable(a, nxt)
     if not e:  # nothing but point-spheres: nothing to cut, every id kept
         return []
-    cut = truncation(a, t)
+    cut = truncation(a, nxt, t)
     first = mesh.next_ids()
-    ids = (_numbered(cut.vertex_ids, first[0]), None, _numbered(cut.face_ids, first[2]),
+    face_ids = cut.face_ids.copy()
+    face_ids[face_ids < 0] = first[2] + np.arange(len(cut.caps))  # the caps, in vertex order
+    ids = (_numbered(cut.vertex_ids, first[0]), None, face_ids,
            _numbered(cut.corner_ids, first[3]))
     mesh.replace_with(from_corner_arrays(cut.positions, cut.offsets, cut.corner_vertex,
                                          cut.corner_mate, cut.face_hole, first_ids=first,
                                          ids=ids))
-    return ids[2][cut.caps].tolist()
+    return face_ids[cut.caps].tolist()
 
 
-def _numbered(ids: np.ndarray, first: int) -> np.ndarray:
-    """``ids`` with each -1 replaced by the next fresh id from ``first``, in order."""
+def _numbered(ids: np.ndarray | None, first: int) -> np.ndarray | None:
+    """``ids`` with each -1 replaced by the next fresh id from ``first``, in order
+    (None: all fresh, numbered by the builder)."""
+    if ids is None:
+        return None
     fresh = ids < 0
     out = ids.copy()
     out[fresh] = first + np.arange(int(np.count_nonzero(fresh)))
