@@ -171,3 +171,10 @@ def test_a_budget_refusal_is_a_refusal_like_any_other():
     scene.face_budget = 10
     refused(lambda: commands.subdivide("catmull-clark"), BudgetExceededError,
             "budget of 10 faces", scene)
+
+
+def test_loading_a_folder_is_a_refusal(tmp_path):
+    """The readers raise IsADirectoryError for a folder; the command says so as a
+    DLFLError, as ``save`` does for what the system refuses."""
+    refused(lambda: commands.load(str(tmp_path)), InvalidArgumentError,
+            "cannot load .*is a folder, not a mesh file")

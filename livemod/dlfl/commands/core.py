@@ -348,7 +348,9 @@ def load(filename: str) -> int:
     (``load("soccerball")``); push it as the current object and return its id.
 
     Raises:
-        DLFLError: the file cannot be read or names no built-in shape.
+        DLFLError: the file cannot be read (InvalidArgumentError for a folder or
+            a file the system will not open, as ``save`` does) or names no
+            built-in shape.
     """
     from ..io import open_mesh
 
@@ -356,7 +358,10 @@ def load(filename: str) -> int:
     name = os.fspath(filename)
     if os.path.isfile(path):  # before reading: a file that fails to load is watched too
         scene().files_read.append(os.path.abspath(path))
-    loaded = open_mesh(path, shape_name=name)
+    try:
+        loaded = open_mesh(path, shape_name=name)
+    except OSError as exc:  # only the project's errors leave a command
+        raise InvalidArgumentError(f"cannot load {path!r}: {exc.strerror or exc}") from None
     oid = scene().add(loaded, os.path.basename(name))
     scene().record_step(f"load {name}")
     return oid
