@@ -291,6 +291,12 @@ def test_an_interrupt_landing_as_the_script_ends_cancels_the_run_cleanly(tmp_pat
     assert sys.path == path and current_scene() is scene
 
 
+def _innermost(thread: threading.Thread) -> str | None:
+    """The name of the function ``thread`` runs now (its innermost Python frame)."""
+    frame = sys._current_frames().get(thread.ident)  # type: ignore[arg-type]
+    return None if frame is None else frame.f_code.co_name
+
+
 @pytest.mark.timeout(60)
 def test_an_interrupt_sent_as_the_run_leaves_user_code_is_raised_by_the_leaving():
     """The supervisor sends under the lock the worker leaves by: an exception it sent
@@ -320,7 +326,8 @@ def test_an_interrupt_sent_as_the_run_leaves_user_code_is_raised_by_the_leaving(
         ready.wait()
         with execute_module._INTERRUPT_LOCK:
             go.set()
-            time.sleep(0.002)  # the worker now waits for the lock
+            # the worker is in _leave_user_code now, waiting for the lock (or about to)
+            wait_until(lambda thread=thread: _innermost(thread) == "_leave_user_code")
             ctypes.pythonapi.PyThreadState_SetAsyncExc(
                 ctypes.c_ulong(thread.ident), ctypes.py_object(Cancelled))
         thread.join(10)
