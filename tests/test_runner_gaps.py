@@ -25,6 +25,7 @@ from livemod.runner import (
 )
 from livemod.runner.errors import Cancelled
 from livemod.runner.execute import interrupt_user_code
+from livemod.runner.process import ProcessState
 
 from .runner_scripts.support import (
     closing_session,
@@ -240,16 +241,16 @@ def _cancelled_once(real):  # noqa: ANN001, ANN202
     return step
 
 
-@pytest.mark.parametrize("step", ["_remove_run_modules", "_remove_folder"])
+@pytest.mark.parametrize("owner,step", [(execute_module._HostState, "_remove_run_modules"),
+                                        (ProcessState, "restore")])
 def test_an_interrupt_landing_in_the_cleanup_still_gives_back_path_and_modules(
-        tmp_path, monkeypatch, step):
+        tmp_path, monkeypatch, owner, step):
     host_copy = _host_imports(tmp_path, monkeypatch, "helper_late", "VALUE = 1\n")
     (tmp_path / "other_late.py").write_text("OTHER = 1\n")
     script = tmp_path / "late.py"
     script.write_text("import helper_late, other_late\ncreateVertex((0, 0, 0))\n")
     path = list(sys.path)
-    monkeypatch.setattr(execute_module._HostState, step,
-                        _cancelled_once(getattr(execute_module._HostState, step)))
+    monkeypatch.setattr(owner, step, _cancelled_once(getattr(owner, step)))
     outcome = execute(str(script))
     assert outcome.status == "cancelled"  # it was being cancelled: that still shows
     assert outcome.error is not None and outcome.error.line == 2  # its last step
@@ -313,7 +314,7 @@ def test_an_interrupt_sent_as_the_run_leaves_user_code_is_raised_by_the_leaving(
                 execute_module._leave_user_code()  # waits for the lock the sender holds
             except Cancelled:
                 where.append("leaving")
-                execute_module._leave_user_code()  # as _HostState.leave does after it
+                execute_module._leave_user_code()  # as _exec does after it
                 return
             try:
                 for _ in range(1000):  # bytecodes enough for a pending exception
@@ -365,6 +366,24 @@ def test_code_of_a_script_s_file_inside_a_run_is_interrupted(tmp_path):
     while not interrupt_user_code(thread, str(script)):
         assert time.monotonic() < deadline
         time.sleep(0.01)
+    thread.join(10)
+    assert [o.status for o in outcomes] == ["cancelled"]
+
+
+@pytest.mark.timeout(60)
+def test_an_interrupt_asked_for_another_run_is_not_sent(tmp_path):
+    # an abandoned run's thread id may be a newer run's once it has ended: the
+    # interrupt names its run, and a thread running any other is left alone
+    (tmp_path / "spin_in_run.py").write_text("def spin():\n    while True:\n        pass\n")
+    script = tmp_path / "model.py"
+    script.write_text("import spin_in_run\nspin_in_run.spin()\n")
+    running, other, outcomes = RunControl(), RunControl(), []
+    thread = threading.Thread(target=lambda: outcomes.append(
+        execute(str(script), control=running)))
+    thread.start()
+    wait_until(lambda: _innermost(thread) == "spin")  # in the run's own code, interruptible
+    assert interrupt_user_code(thread, str(script), other) is False
+    assert interrupt_user_code(thread, str(script), running) is True
     thread.join(10)
     assert [o.status for o in outcomes] == ["cancelled"]
 
