@@ -3,8 +3,12 @@
 Threads (none of them the caller's):
 
 * the watcher's debounce thread calls :meth:`LiveSession._files_changed`;
-* the supervisor thread takes run requests, cancels the running run, waits for
-  it to stop and starts the next one (latest wins: queued requests coalesce);
+* the supervisor thread takes run requests, cancels the running run, waits a
+  short grace for it to stop and starts the next one (latest wins: queued
+  requests coalesce). A run that does not stop in the grace (blocked in a call
+  no interrupt reaches, or swallowing the interrupt) is abandoned: its results
+  are never posted, the process state is given back on its behalf, and its
+  thread is left to end in the background (:attr:`LiveSession.background_runs`);
 * one worker thread per run executes the script and posts results;
 * the preview thread smooths finished meshes.
 
@@ -18,7 +22,6 @@ caller can show a run a save started before its first result arrives.
 from __future__ import annotations
 
 import dataclasses
-import enum
 import hashlib
 import logging
 import os
@@ -36,10 +39,11 @@ from livemod.dlfl.scene import Scene, Selection
 
 from .declarations import check_values, fitting_values, literal_declarations
 from .errors import Cancelled, cancelled_error, exception_error, syntax_error
-from .execute import RunControl, RunOutcome, base_scene, execute, interrupt_user_code
+from .execute import RunControl, RunLease, RunOutcome, base_scene, capture_process, execute
 from .instrument import decode_script
 from .playback import Action, Playback, PlaybackView, RunPosition, Show
 from .preview import PreviewWorker, preview_arrays
+from .process import ProcessState
 from .results import (
     RunResult,
     RunStatus,
@@ -53,13 +57,12 @@ from .results import (
     snapshot_scene,
 )
 from .snapshots import DEFAULT_BUDGET, SnapshotCache
+from .stopping import CancelReason, RunStopper
+from .stopping import Run as _Run
 from .watch import FileWatcher, Notifier
 
 _LOG = logging.getLogger("livemod.session")
-_JOIN_POLL = 0.02  # seconds between checks while waiting for a cancelled run
-# seconds a cancelled run may ignore its checks before it is interrupted: short
-# enough that code without checks (a comprehension) still stops within 200 ms
-_FORCE_AFTER = 0.1
+_WAKE = object()  # queued by cancel(): the supervisor minds the cancelled run
 
 
 @dataclass
@@ -68,30 +71,6 @@ class _Request:
 
     script: str
     source: str | None
-
-
-class CancelReason(enum.StrEnum):
-    """Why a run was cancelled."""
-
-    USER = "user"  # LiveSession.cancel(): its "cancelled" result shows
-    SUPERSEDED = "superseded"  # a newer run (or closing) replaced it: nothing of it shows
-
-
-@dataclass
-class _Run:
-    """One run of the script, as the supervisor and the worker share it."""
-
-    run_id: int
-    script: str
-    control: RunControl
-    thread: threading.Thread | None = None
-    cancel_reason: CancelReason | None = None
-    started: float = 0.0  # perf_counter() when the supervisor started it
-    ended: bool = False  # its end was published (or dropped): it works no more
-
-    def working(self) -> float:
-        """Seconds it has worked since it started, its pauses left out."""
-        return max(time.perf_counter() - self.started - self.control.waited, 0.0)
 
 
 @dataclass(frozen=True)
@@ -132,6 +111,7 @@ class LiveSession:
     Attributes:
         results: :class:`RunResult` snapshots; drain with ``get_nowait()``.
         activity: the run at work now, or None (see :class:`RunActivity`); poll it.
+        background_runs: ids of abandoned runs still working; poll it.
         empty_script: the script's path while a save left it empty (and ran
             nothing), or None; poll it.
     """
@@ -146,7 +126,9 @@ class LiveSession:
         self.results: queue.Queue[RunResult] = queue.Queue()
         self.mesh_path = mesh_path
         self.seed = seed
-        self.output = output
+        # both resolved now: a run's os.chdir must not move them
+        self._mesh_absolute = None if mesh_path is None else os.path.abspath(mesh_path)
+        self.output = None if output is None else os.path.abspath(output)
         self.all_objects = all_objects
         self._parameters = dict(parameters or {})
         self._declarations: dict[str, ParamSpec] = {}  # of the newest script text
@@ -154,9 +136,12 @@ class LiveSession:
         self._playback = Playback()
         self._snapshots = SnapshotCache(snapshot_budget)
         self._lock = threading.RLock()
-        self._requests: queue.Queue[_Request | None] = queue.Queue()
+        self._requests: queue.Queue[_Request | object | None] = queue.Queue()
         self._run_id = 0
         self._current: _Run | None = None
+        self._stopper = RunStopper(self._lock, self._before_abandoning)
+        self._process: ProcessState | None = None  # what the first run saw (see start)
+        self._save_lock = threading.Lock()  # one output save at a time, the newest last
         self._last_good: RunResult | None = None
         self._last_posted: RunResult | None = None
         # the newest run's end (ok, error, cancelled), posted or not: see _post_locked
@@ -177,6 +162,7 @@ class LiveSession:
 
     def start(self) -> None:
         """Start watching and run the script once."""
+        self._process = capture_process()  # every run starts from the process as it is now
         self._watcher.start()
         self._watcher.set_files(self._own_files())
         self._supervisor.start()
@@ -339,13 +325,16 @@ class LiveSession:
         return self._act(Action.GOTO, int(k))
 
     def cancel(self) -> bool:
-        """Stop the running run; a ``"cancelled"`` result keeps the last good mesh."""
+        """Stop the running run; a ``"cancelled"`` result keeps the last good mesh
+        (also for a run that does not stop: it is abandoned after a short grace)."""
         with self._lock:
             run = self._current
             if self._act(Action.CANCEL):
                 assert run is not None  # a live run, by the transition
                 run.cancel_reason = CancelReason.USER
+                run.cancelled_at = time.perf_counter()
                 run.control.cancel()
+                self._requests.put(_WAKE)  # the supervisor minds it from now on
                 return True
             return False
 
@@ -369,7 +358,7 @@ class LiveSession:
         run, final = self._current, self._final
         if final is not None and not self._is_newest(final):
             final = None
-        if run is None or final is not None or run.ended or self._closed:
+        if run is None or final is not None or run.stopped or self._closed:
             return RunPosition(final=final is not None,
                                done=len(final.steps) if final is not None else 0,
                                cached=self._snapshots.indexes())
@@ -383,9 +372,25 @@ class LiveSession:
         ever reported, so a superseded run cannot stand for a newer one."""
         with self._lock:
             run = self._current
-            if run is None or run.ended or self._closed or run.control.paused_at is not None:
+            if (run is None or run.stopped or self._closed
+                    or run.control.paused_at is not None):
                 return None
             return RunActivity(run.run_id, run.script, run.working())
+
+    @property
+    def background_runs(self) -> tuple[int, ...]:
+        """Ids of the runs that did not stop when asked and still work in the
+        background, oldest first (empty almost always).
+
+        Such a run is blocked in a call no interrupt reaches (``time.sleep``, a
+        wait, a read, one long library or numpy operation) or swallows the
+        interrupt. It was abandoned after a grace of
+        :data:`~livemod.runner.stopping.GRACE` seconds: what it does is never
+        shown nor saved, and the runs after it start at once. Its thread ends
+        when its call returns (or with the process), and it leaves this tuple
+        then. The window and ``run --watch`` say so meanwhile.
+        """
+        return self._stopper.background
 
     @property
     def empty_script(self) -> str | None:
@@ -449,35 +454,46 @@ class LiveSession:
         self._watcher.close()
         if self._previews is not None:
             self._previews.close()
+        if self._process is not None:
+            self._process.close()  # no run holds it now: the last one gave it back
 
     def _next_request(self) -> _Request | None:
-        """The newest queued request (older ones coalesce); None means close."""
-        request = self._requests.get()
-        while request is not None:
+        """The newest queued request (older ones coalesce); None means close. While
+        it waits it minds the runs asked to stop (see :meth:`RunStopper.mind`)."""
+        while True:
+            with self._lock:
+                current = self._current
+            request = self._take(self._stopper.mind_interval(current))
+            if request is not _WAKE:
+                return request  # type: ignore[return-value]
+            self._stopper.mind(current)
+
+    def _take(self, timeout: float | None) -> _Request | object | None:
+        """The newest queued item (a close wins), or ``_WAKE`` when only wake-ups
+        came, or nothing within ``timeout`` seconds."""
+        try:
+            newest = self._requests.get(timeout=timeout)
+        except queue.Empty:
+            return _WAKE
+        while newest is not None:
             try:
-                request = self._requests.get_nowait()
+                item = self._requests.get_nowait()
             except queue.Empty:
-                return request
-        return None
+                break
+            if item is not _WAKE:
+                newest = item
+        return newest
 
     def _stop_current(self, reason: CancelReason) -> None:
-        """Cancel the running run and wait until its thread is done with the script."""
-        run = self._current
-        if run is None:
-            return
-        if not run.control.finished:
-            with self._lock:  # _is_newest reads it: the run's results are stale from now
-                run.cancel_reason = run.cancel_reason or reason
-            run.control.cancel()
-        waited = 0.0
-        while run.thread is not None and run.thread.is_alive():
-            run.thread.join(_JOIN_POLL)
-            waited += _JOIN_POLL
-            # (not once the script has ended: the worker is only publishing then)
-            if waited >= _FORCE_AFTER and run.control.cancelled and not run.control.finished:
-                # e.g. a loop in a helper module, or a comprehension (no checks there)
-                interrupt_user_code(run.thread, run.script)
-                waited = 0.0
+        """Cancel the running run; wait until its thread is done with the script,
+        or abandon it (see :class:`RunStopper`)."""
+        if self._current is not None:
+            self._stopper.stop(self._current, reason)
+
+    def _before_abandoning(self, run: _Run) -> None:
+        """A run the user cancelled says so now, as it is abandoned (under the lock)."""
+        if run.cancel_reason is CancelReason.USER:
+            self._post_locked(self._cancelled_result(run))
 
     def _start_run(self, request: _Request) -> None:
         with self._lock:
@@ -485,7 +501,7 @@ class LiveSession:
                 return  # queued before open() switched scripts
             self._run_id += 1
             run = _Run(self._run_id, request.script, RunControl(self._playback),
-                       started=time.perf_counter())
+                       RunLease(self._process), started=time.perf_counter())
             run.control.on_pause = lambda index, steps, scene: self._post_paused(
                 run, index, steps, scene)
             run.thread = threading.Thread(target=self._run_body, args=(run, request.source),
@@ -506,7 +522,7 @@ class LiveSession:
             _LOG.exception("run %d of %s failed after the script", run.run_id, run.script)
             self._publish_failure(run, exc, time.perf_counter() - run.started, run.script)
         finally:
-            run.ended = True  # after the publishing: the caller sees no gap between
+            self._stopper.ended(run)  # after the publishing: the caller sees no gap between
 
     def _run_script(self, run: _Run, source: str | None) -> None:
         """Run the script once (in the worker) and publish what came out."""
@@ -520,13 +536,15 @@ class LiveSession:
             parameters = self._fit_parameters(run.script, source, parameters)
         try:
             outcome = execute(run.script, source=source, base=base, seed=self.seed,
-                              parameters=parameters, selection=selection, control=run.control)
+                              parameters=parameters, selection=selection, control=run.control,
+                              lease=run.lease)
         except Cancelled:  # a forced interrupt that arrived after the script ended
             run.control.finished = True
             self._publish_cancelled(run)
             return
         run.control.finished = True
-        self._watch_files(run.script, outcome.modules + outcome.files_read)
+        if not run.abandoned:  # (an abandoned run read old files: nothing to watch)
+            self._watch_files(run.script, outcome.modules + outcome.files_read)
         self._publish(run, outcome, parameter_items(parameters))
 
     def _inputs(self, run: _Run, source: str | None) -> tuple[str, Scene | None] | None:
@@ -580,7 +598,7 @@ class LiveSession:
         return [self.script] if mesh_file is None else [self.script, mesh_file]
 
     def _mesh_file(self) -> str | None:
-        return None if self.mesh_path is None else os.path.abspath(self.mesh_path)
+        return self._mesh_absolute
 
     def _base_scene(self) -> Scene | None:
         """The ``--mesh`` scene, loaded in the worker (never on the caller's thread)
@@ -605,8 +623,7 @@ class LiveSession:
         """Watch the local modules and mesh files a run read, remembering their
         content now (the session's own ``output`` is never watched: it changes
         because a run ended)."""
-        output = None if self.output is None else os.path.abspath(self.output)
-        paths = tuple(p for p in paths if p != output)
+        paths = tuple(p for p in paths if p != self.output)
         with self._lock:
             if script != self.script:
                 return
@@ -622,14 +639,20 @@ class LiveSession:
 
     def _publish(self, run: _Run, outcome: RunOutcome, values: tuple) -> None:
         """Worker, at the end of a run: save ``output`` and post the result (a
-        superseded run, even one that ended, posts nothing: it ran older inputs)."""
+        superseded or abandoned run, even one that ended, posts and saves nothing:
+        it ran older inputs)."""
         with self._lock:
-            if run.cancel_reason is CancelReason.SUPERSEDED:
+            if run.superseded:
                 return
             if outcome.status == "ok" and run.script == self.script:
                 # as the run computed them (a param() may compute its arguments)
                 self._declarations = dict(outcome.scene.declarations)
-        save_error = self._save_output(outcome) if outcome.status == "ok" else None
+        save_error = None
+        if outcome.status == "ok":
+            with self._save_lock:  # a newer run's save waits for this one, so it comes last
+                if run.superseded:
+                    return
+                save_error = self._save_output(outcome)
         if outcome.status == "ok" and save_error is None:
             self._publish_ok(run, outcome, values)
             return
@@ -665,9 +688,14 @@ class LiveSession:
         if run.cancel_reason is not CancelReason.USER:
             return  # superseded: the newer run's result is what shows
         with self._lock:
-            last = self._last_good
-        self._post(RunResult.failed(run.run_id, run.script, RunStatus.CANCELLED, (),
-                                    cancelled_error(run.script), run.working(), last_good=last))
+            self._post_locked(self._cancelled_result(run))
+
+    def _cancelled_result(self, run: _Run) -> RunResult:
+        """The ``"cancelled"`` result of a run the user stopped, over the last good
+        mesh (caller holds the lock)."""
+        return RunResult.failed(run.run_id, run.script, RunStatus.CANCELLED, (),
+                                cancelled_error(run.script), run.working(),
+                                last_good=self._last_good)
 
     def _publish_failure(self, run: _Run, exc: Exception, elapsed: float, file: str) -> None:
         """A run that could not start (script unreadable or not text, ``--mesh``
@@ -719,7 +747,7 @@ class LiveSession:
         that run was not superseded, nor the session closed (caller holds the lock)."""
         run = self._current
         return (run is not None and result.run_id == run.run_id
-                and result.script == self.script and run.cancel_reason is not CancelReason.SUPERSEDED
+                and result.script == self.script and not run.superseded
                 and not self._closed)
 
     def _post(self, result: RunResult) -> None:
