@@ -8,10 +8,12 @@ exit code. :func:`main` is a stand-alone entry point over the same parsers.
 from __future__ import annotations
 
 import argparse
+import contextlib
 import os
 import queue
 import select
 import sys
+import threading
 from collections.abc import Callable, Sequence
 from typing import Any, TextIO
 
@@ -25,6 +27,7 @@ from livemod.commandline import (
     check_writable,
     describe,
     error,
+    note,
     usage_errors,
 )
 from livemod.dlfl.analysis import summarize
@@ -261,21 +264,51 @@ def cmd_run(args: argparse.Namespace) -> int:
     """``livemod run``: 0 on success, 1 when the script fails or leaves nothing to
     write, 2 for a parameter the run did not declare, 130 when interrupted.
 
+    The output's path is resolved before the script runs (which may change the
+    working directory). Threads the script leaves running do not hold the
+    command up: see :func:`_end_past_script_threads`.
+
     Raises:
         UsageError, OSError, DLFLError: see :func:`check_run_files` and
             :func:`script_values`; all before the script runs.
     """
     check_run_files(args.script, args.mesh, args.output)
     params = script_values(args.script, args.set)
+    ours = set(threading.enumerate())
     if args.watch:
-        return _watch(args, params)
-    outcome = run_outcome(args.script, mesh_path=args.mesh, seed=args.seed,
-                          parameters=params, selection=selection_of(args))
-    return _finish_run(args, outcome, params)
+        code = _watch(args, params)
+    else:
+        output = None if args.output is None else os.path.abspath(args.output)
+        outcome = run_outcome(args.script, mesh_path=args.mesh, seed=args.seed,
+                              parameters=params, selection=selection_of(args))
+        code = _finish_run(args, outcome, params, output)
+    _end_past_script_threads(code, ours)
+    return code
 
 
-def _finish_run(args: argparse.Namespace, outcome: Any, params: dict[str, Any]) -> int:
-    """Report a headless run (steps, error or summary) and save its mesh; the exit code."""
+def _end_past_script_threads(code: int, ours: set[threading.Thread]) -> None:
+    """End the process now, with ``code``, when the script left threads running
+    that Python would wait for at exit (not daemon ones, not in ``ours``): the
+    command's work is done and written. A note names them. Only from the main
+    thread, as the command's last act (it runs no ``atexit`` function)."""
+    left = [t for t in threading.enumerate()
+            if t not in ours and t.is_alive() and not t.daemon]
+    if not left or threading.current_thread() is not threading.main_thread():
+        return
+    names = ", ".join(t.name for t in left)
+    them = "them" if len(left) > 1 else "it"
+    note(f"the script left {len(left)} thread{'s' if len(left) > 1 else ''} running "
+         f"({names}); livemod exits without waiting for {them}")
+    for stream in (sys.stdout, sys.stderr):
+        with contextlib.suppress(OSError, ValueError):  # a reader gone: nothing to say
+            stream.flush()
+    os._exit(code)
+
+
+def _finish_run(args: argparse.Namespace, outcome: Any, params: dict[str, Any],
+                output: str | None) -> int:
+    """Report a headless run (steps, error or summary) and save its mesh to
+    ``output`` (absolute; ``args.output`` is how it is named); the exit code."""
     if args.steps:
         print_steps(outcome.steps)
     report_selection(outcome.scene)
@@ -293,7 +326,7 @@ def _finish_run(args: argparse.Namespace, outcome: Any, params: dict[str, Any]) 
     mesh = result_mesh(outcome.scene, args.all_objects)
     # written before anything is printed: a reader that leaves early (`| head -1`)
     # closes our output, and OUT must not depend on it
-    code = _save(mesh, args.output)
+    code = _save(mesh, output)
     print_summary(args.script, mesh, len(outcome.steps), outcome.elapsed)
     _print_objects(outcome.scene, args)
     if code == 0 and args.output is not None:
@@ -384,20 +417,36 @@ def _watch(args: argparse.Namespace, params: dict[str, Any]) -> int:
     session.start()
     print(f"watching {session.script} (Ctrl-C to stop)", file=sys.stderr)
     seen = 0
+    background: tuple[int, ...] = ()  # the runs said to go on in the background
     try:
         while args.max_runs is None or seen < args.max_runs:
             try:
                 result = session.results.get(timeout=0.2)
             except queue.Empty:
-                continue
-            seen += 1
-            _report(result, args.output)
+                result = None
+            background = _report_background(session.background_runs, background)
+            if result is not None:
+                seen += 1
+                _report(result, args.output)
     except KeyboardInterrupt:  # the way to stop watching, but still an interruption
         return INTERRUPTED
     finally:
         session.close()
         session.join(5.0)
     return DONE
+
+
+def _report_background(now: tuple[int, ...], before: tuple[int, ...]) -> tuple[int, ...]:
+    """Say which runs went on in the background (they did not stop when a newer
+    one started) and which of those ended since ``before``; returns ``now``."""
+    for run_id in now:
+        if run_id not in before:
+            note(f"run {run_id} did not stop when asked; it goes on in the background, "
+                 f"and its result will be discarded")
+    for run_id in before:
+        if run_id not in now:
+            note(f"run {run_id} ended in the background")
+    return now
 
 
 def _report(result: RunResult, output: str | None) -> None:
