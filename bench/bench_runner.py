@@ -9,10 +9,17 @@
 2. Save-to-result latency for a 20-command script on a 10,000-face mesh, through
    a real LiveSession and watchdog: time from ``os.replace`` to the result in the
    queue, minus the debounce. Target: at most 100 ms plus the debounce.
-3. Cancel latency of ``while True: pass`` after the next save (minus debounce).
+3. Cancel latency of ``while True: pass`` after the next save (minus debounce),
+   and save-to-result latency while the old run is blocked in ``time.sleep`` or
+   ``Event.wait``, where it is abandoned after the grace (minus debounce).
+   Target: the next result within 1 s plus its own run time.
 4. A batch of 32 variants on 2 processes against one after another. Target: 1.7x.
 5. Stepping back from step 999 of a 1,000-step script on a 100,000-face mesh:
    seconds per step back (cache hit, and replay) and the growth of peak memory.
+6. What giving the process back costs a run, timed in pairs: a one-line script
+   run with the process state restored against the same run with a state that
+   restores nothing, as a live session's runs (one restore a run) and as
+   headless runs (a picture taken and restored a run).
 """
 
 from __future__ import annotations
@@ -32,6 +39,8 @@ import timeit
 from livemod.dlfl import from_polygons
 from livemod.dlfl.scene import Scene, use_scene
 from livemod.runner import LiveSession, execute
+from livemod.runner.execute import RunLease, capture_process
+from livemod.runner.process import ProcessState
 
 # the step-overhead workloads, their loops ``{n}`` long (bench_step_instructions.py
 # runs the same scripts under callgrind)
@@ -328,6 +337,82 @@ def bench_cancel_latency(folder: str, saves: int, debounce: float) -> float:
         session.join()
 
 
+STUCK = {
+    "time.sleep(10**6)": "import time\ntime.sleep(10**6)\n",
+    "threading.Event().wait()": "import threading\nthreading.Event().wait()\n",
+}
+
+
+def bench_stuck_latency(folder: str, saves: int, debounce: float) -> dict[str, float]:
+    """Median seconds from a save to the new result while the old run is blocked
+    for ever (each left behind in the background), minus the debounce, by block."""
+    path = os.path.join(folder, "stuck.py")
+    with open(path, "w") as handle:
+        handle.write("createVertex((0, 0, 0))\n")
+    session = LiveSession(path, debounce=debounce, preview=False)
+    session.start()
+    medians = {}
+    try:
+        _wait_ok(session)
+        for name, block in STUCK.items():
+            latencies = []
+            for i in range(saves):
+                _save(path, f"# {i}\n{block}")
+                time.sleep(0.5)  # the run is blocked now
+                saved = _save(path, f"# {i}\ncreateVertex((0, 0, 0))\n")
+                result = _wait_ok(session)
+                assert result.status == "ok", result
+                latencies.append(time.perf_counter() - saved - debounce)
+            medians[name] = statistics.median(latencies)
+        return medians
+    finally:
+        session.close()
+        session.join()
+
+
+class _NoState(ProcessState):
+    """A process state that pictures and restores nothing (the other half of a pair)."""
+
+    def __init__(self) -> None:  # noqa: D107  (no picture at all)
+        self._local = {}
+        self.abandoned, self.dirty = 0, False
+
+    def restore(self) -> None:
+        pass
+
+    def close(self) -> None:
+        pass
+
+
+def bench_restore_pairs(folder: str, pairs: int) -> dict[str, tuple[float, float]]:
+    """Per run, ``(median extra seconds, median extra fraction)`` of giving the
+    process back, timed in pairs of a one-line script (CPU time; the order
+    within a pair alternates): ``"session"`` runs share one state and restore it
+    once each, ``"headless"`` runs picture the process and restore it."""
+    path = os.path.join(folder, "tiny.py")
+    with open(path, "w") as handle:
+        handle.write("createVertex((0, 0, 0))\n")
+    shared, none = capture_process(), _NoState()
+    ways = {"session": lambda: execute(path, lease=RunLease(shared)),
+            "headless": lambda: execute(path)}
+    bare = lambda: execute(path, lease=RunLease(none))  # noqa: E731
+    found = {}
+    for name, restored in ways.items():
+        extra, ratios = [], []
+        for i in range(pairs):
+            order = (restored, bare) if i % 2 else (bare, restored)
+            times = {}
+            for run in order:
+                started = time.process_time()
+                run()
+                times[run] = time.process_time() - started
+            extra.append(times[restored] - times[bare])
+            ratios.append(times[restored] / times[bare] - 1.0)
+        found[name] = statistics.median(extra), statistics.median(ratios)
+    shared.close()
+    return found
+
+
 BATCH_CHILD = """
 import sys, time
 from livemod.runner.batch import ProcessPoolVariantExecutor, SerialExecutor, make_variants, run_batch
@@ -451,6 +536,14 @@ def main(argv: list[str] | None = None) -> int:
         cancel = bench_cancel_latency(folder, repeats, debounce)
         print(f"save -> result while `while True: pass` runs: {cancel * 1e3:.0f} ms + "
               f"{debounce * 1e3:.0f} ms debounce (median of {repeats})")
+        for block, stuck in bench_stuck_latency(folder, repeats, debounce).items():
+            print(f"save -> result while the old run is blocked in `{block}`: "
+                  f"{stuck * 1e3:.0f} ms + {debounce * 1e3:.0f} ms debounce (median of "
+                  f"{repeats}; the old run goes on in the background)")
+        for way, (extra, ratio) in bench_restore_pairs(folder, 40 * repeats).items():
+            print(f"giving the process back, {way} runs of a one-line script: "
+                  f"{extra * 1e6:+.0f} us a run ({100 * ratio:+.0f} %; medians of "
+                  f"{40 * repeats} pairs, CPU time)")
         cached, replayed, grown, faces = bench_step_back(folder)
         print(f"step back at step 999 of 1,000 on {faces:,} faces: {cached * 1e3:.0f} ms "
               f"from the snapshot cache, {replayed:.2f} s by replay; peak memory "
