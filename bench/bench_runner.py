@@ -313,9 +313,16 @@ def bench_save_latency(folder: str, saves: int, debounce: float) -> tuple[float,
         session.join()
 
 
-def bench_cancel_latency(folder: str, saves: int, debounce: float) -> float:
-    """Median seconds from a save to the new result while ``while True: pass`` runs,
-    minus the debounce."""
+SPIN = "while True:\n    pass\n"
+STUCK = {  # blocks a cancel cannot stop: the run is abandoned after the grace
+    "time.sleep(10**6)": "import time\ntime.sleep(10**6)\n",
+    "threading.Event().wait()": "import threading\nthreading.Event().wait()\n",
+}
+
+
+def bench_cancel_latency(folder: str, saves: int, debounce: float, block: str = SPIN) -> float:
+    """Median seconds from a save to the new result while the old run is in
+    ``block`` (a blocked one left behind in the background), minus the debounce."""
     path = os.path.join(folder, "spin.py")
     with open(path, "w") as handle:
         handle.write("createVertex((0, 0, 0))\n")
@@ -325,46 +332,13 @@ def bench_cancel_latency(folder: str, saves: int, debounce: float) -> float:
         _wait_ok(session)
         latencies = []
         for i in range(saves):
-            _save(path, f"# {i}\nwhile True:\n    pass\n")
-            time.sleep(0.5)  # the loop is running now
+            _save(path, f"# {i}\n{block}")
+            time.sleep(0.5)  # the run is in the block now
             saved = _save(path, f"# {i}\ncreateVertex((0, 0, 0))\n")
             result = _wait_ok(session)
             assert result.status == "ok", result
             latencies.append(time.perf_counter() - saved - debounce)
         return statistics.median(latencies)
-    finally:
-        session.close()
-        session.join()
-
-
-STUCK = {
-    "time.sleep(10**6)": "import time\ntime.sleep(10**6)\n",
-    "threading.Event().wait()": "import threading\nthreading.Event().wait()\n",
-}
-
-
-def bench_stuck_latency(folder: str, saves: int, debounce: float) -> dict[str, float]:
-    """Median seconds from a save to the new result while the old run is blocked
-    for ever (each left behind in the background), minus the debounce, by block."""
-    path = os.path.join(folder, "stuck.py")
-    with open(path, "w") as handle:
-        handle.write("createVertex((0, 0, 0))\n")
-    session = LiveSession(path, debounce=debounce, preview=False)
-    session.start()
-    medians = {}
-    try:
-        _wait_ok(session)
-        for name, block in STUCK.items():
-            latencies = []
-            for i in range(saves):
-                _save(path, f"# {i}\n{block}")
-                time.sleep(0.5)  # the run is blocked now
-                saved = _save(path, f"# {i}\ncreateVertex((0, 0, 0))\n")
-                result = _wait_ok(session)
-                assert result.status == "ok", result
-                latencies.append(time.perf_counter() - saved - debounce)
-            medians[name] = statistics.median(latencies)
-        return medians
     finally:
         session.close()
         session.join()
@@ -536,7 +510,8 @@ def main(argv: list[str] | None = None) -> int:
         cancel = bench_cancel_latency(folder, repeats, debounce)
         print(f"save -> result while `while True: pass` runs: {cancel * 1e3:.0f} ms + "
               f"{debounce * 1e3:.0f} ms debounce (median of {repeats})")
-        for block, stuck in bench_stuck_latency(folder, repeats, debounce).items():
+        for block, text in STUCK.items():
+            stuck = bench_cancel_latency(folder, repeats, debounce, text)
             print(f"save -> result while the old run is blocked in `{block}`: "
                   f"{stuck * 1e3:.0f} ms + {debounce * 1e3:.0f} ms debounce (median of "
                   f"{repeats}; the old run goes on in the background)")

@@ -373,16 +373,20 @@ def test_a_parameter_named_index_clashes_with_the_pattern_field():
 
 
 @pytest.mark.timeout(120)
-def test_a_variant_that_kills_its_worker_fails_alone(tmp_path, capsys):
+@pytest.mark.parametrize(("ending", "said"), [
+    ("os.kill(os.getpid(), 9)", "its worker process died"),
+    # a script's os._exit ends its run, not its worker
+    ("os._exit(5)", "dies.py:4: ProcessExit: os._exit(5) ends the run here, not livemod"),
+], ids=["killed", "os._exit"])
+def test_a_variant_that_kills_its_worker_fails_alone(tmp_path, capsys, ending, said):
     script = tmp_path / "dies.py"
-    # (SIGKILL: a script's own os._exit only fails its run)
-    script.write_text("import os\nn = param('n', 0)\nif n == 1:\n    os.kill(os.getpid(), 9)\n"
+    script.write_text(f"import os\nn = param('n', 0)\nif n == 1:\n    {ending}\n"
                       "createVertex((n, 0, 0))\n")
     code = cli.main(["batch", str(script), "--param", "n=0:3:4", "-o",
                      str(tmp_path / "out" / "{n}.obj"), "-j", "2"])
     captured = capsys.readouterr()
     assert code == 1 and "3/4 variants ok" in captured.out
-    assert "variant 1 {'n': 1}: its worker process died" in captured.err
+    assert "variant 1 {'n': 1}: " in captured.err and said in captured.err
     assert sorted(os.listdir(tmp_path / "out")) == ["0.obj", "2.obj", "3.obj", "index.json"]
 
 

@@ -97,15 +97,3 @@ def test_run_watch_says_a_run_goes_on_in_the_background(tmp_path):
     assert ("livemod: note: run 1 did not stop when asked; it goes on in the "
             "background, and its result will be discarded") in err
 
-
-@pytest.mark.timeout(120)
-def test_os_exit_in_a_batch_variant_fails_that_variant_alone(tmp_path, capsys):
-    script = tmp_path / "exits.py"
-    script.write_text("import os\nn = param('n', 0)\nif n == 1:\n    os._exit(5)\n"
-                      "createVertex((n, 0, 0))\n")
-    code = cli.main(["batch", str(script), "--param", "n=0:3:4", "-o",
-                     str(tmp_path / "out" / "{n}.obj"), "-j", "2"])
-    captured = capsys.readouterr()
-    assert code == 1 and "3/4 variants ok" in captured.out
-    assert "exits.py:4: ProcessExit: os._exit(5) ends the run here, not livemod" in captured.err
-    assert sorted(os.listdir(tmp_path / "out")) == ["0.obj", "2.obj", "3.obj", "index.json"]
