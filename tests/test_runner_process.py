@@ -80,6 +80,15 @@ def test_run_watch_output_stays_where_it_was_named_when_a_run_changes_folder(
     assert os.getcwd() == str(tmp_path)
 
 
+@pytest.mark.timeout(60)
+def test_a_folder_the_host_changes_to_between_runs_stands(tmp_path, monkeypatch):
+    (tmp_path / "host").mkdir()
+    with _session_of(tmp_path, vertices_script(1)) as (_, rerun):
+        monkeypatch.chdir(tmp_path / "host")  # the host's own doing, not a script's
+        assert vertex_count(rerun("import os\nos.chdir('..')\n" + vertices_script(2))) == 2
+        assert os.getcwd() == str(tmp_path / "host")
+
+
 # -- warnings, streams, recursion limit --------------------------------------------------
 
 

@@ -160,9 +160,10 @@ _STATE_LOCK = threading.Lock()
 
 
 class RunLease:
-    """One run's hold on the process state: :meth:`enter` puts the script's
-    folder first on ``sys.path``; :meth:`release` gives the process state back
-    (the state the first run saw, in a live session). A run that will not stop
+    """One run's hold on the process state: :meth:`enter` pictures the process's
+    settings (a live session's library is pictured once, for all its runs) and
+    puts the script's folder first on ``sys.path``; :meth:`release` gives the
+    process back as the run found it. A run that will not stop
     is abandoned with :meth:`revoke`, from another thread: the state is given
     back on its behalf, and the run, should it ever get to its own
     :meth:`release`, touches nothing any more. While such a run lives on, and
@@ -196,8 +197,10 @@ class RunLease:
             if self.state is None:
                 self.state = capture_process()
             elif self.state.abandoned or self.state.dirty:
-                self.state.restore()
+                self.state.restore()  # what an abandoned run may have changed since
                 self.state.dirty = False
+            else:
+                self.state.retake()  # the host's own changes since the last run stand
             self._host = _HostState(script, self.state.local_modules(
                 os.path.dirname(script), lambda: _local_modules(script)))
             self._host.enter()

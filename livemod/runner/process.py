@@ -4,7 +4,7 @@ A run executes the user's code in livemod's own process, so whatever the script
 changes process-wide would outlive it: a ``os.chdir`` would move the next
 ``-o`` file, ``warnings.simplefilter("error")`` would fail the next run's mesh
 repair, a replaced ``sys.stdout`` would hide every later report. A
-:class:`ProcessState` is a picture of those parts, taken once;
+:class:`ProcessState` is a picture of those parts;
 :meth:`ProcessState.restore` puts back whatever differs from it (and touches
 nothing that does not, so that it costs little when a script changed nothing).
 
@@ -77,24 +77,23 @@ _SETTINGS: tuple[tuple[Callable[[], Any], Callable[[Any], Any]], ...] = (
 class ProcessState:
     """The parts of the process a script may change, as they are now.
 
-    Taking it imports every module of ``livemod.dlfl`` first (once per
-    process), so that all of the library is in the picture. Call :meth:`close`
-    when done with it: it holds duplicates of the standard descriptors.
+    Two pictures: of the process's settings (:class:`_Settings`: directory,
+    environment, streams, hooks, limits), which :meth:`retake` takes again, so
+    that changes the host makes between runs stand; and of livemod's library
+    (:class:`_Modules`), taken once: the library the first run saw is the one
+    every run gets. Taking it imports every module of ``livemod.dlfl`` first
+    (once per process), so that all of the library is in the picture. Call
+    :meth:`close` when done with it: it holds duplicates of the standard
+    descriptors.
     """
 
     def __init__(self) -> None:
-        self.cwd = os.getcwd()
-        self.environ = _raw_environ()
-        self.attributes = [(owner, name, getattr(owner, name)) for owner, name in _ATTRIBUTES]
-        self.lists = [(getattr(owner, name), list(getattr(owner, name))) for owner, name in _LISTS]
-        self.settings = [(read, write, read()) for read, write in _SETTINGS]
-        self.signals = {number: signal.getsignal(number) for number in _SIGNALS}
-        self.streams = _Streams()
+        self.settings = _Settings()
         self.modules = _Modules()
         self._local: dict[str, dict[str, ModuleType]] = {}  # see local_modules
         # runs abandoned while they held it (or were about to) that may still change
         # it, and whether one of them ended since the last restore: then a run
-        # restores it as it starts, too (see RunLease)
+        # restores it as it starts, instead of retaking it (see RunLease)
         self.abandoned = 0
         self.dirty = False
 
@@ -106,23 +105,49 @@ class ProcessState:
             self._local[folder] = find()
         return self._local[folder]
 
+    def retake(self) -> None:
+        """Picture the process's settings again, as the host has them now."""
+        settings, self.settings = self.settings, _Settings(self.settings.streams)
+        settings.streams.close(keep=self.settings.streams)
+
     def restore(self) -> None:
-        """Put back every part that differs from the picture; safe from any
+        """Put back every part that differs from the pictures; safe from any
         thread (signal handlers are put back from the main thread only)."""
-        self._restore_cwd()
-        _restore_environ(self.environ)
-        if self._restore_attributes():  # maybe the warnings filters: forget what
-            warnings._filters_mutated()  # type: ignore[attr-defined]  # registries say
-        for read, write, value in self.settings:
-            if read() != value:
-                write(value)
-        self._restore_signals()
-        self.streams.restore()
+        self.settings.restore()
         self.modules.restore()
 
     def close(self) -> None:
         """Release the duplicated descriptors (restore() cannot mend them after)."""
-        self.streams.close()
+        self.settings.streams.close()
+
+
+class _Settings:
+    """The process's settings a script may change (all but the library's code).
+
+    Args:
+        streams: the previous picture's standard descriptors, whose duplicates
+            are kept for those still open on the same file.
+    """
+
+    def __init__(self, streams: _Streams | None = None) -> None:
+        self.cwd = os.getcwd()
+        self.environ = _raw_environ()
+        self.attributes = [(owner, name, getattr(owner, name)) for owner, name in _ATTRIBUTES]
+        self.lists = [(getattr(owner, name), list(getattr(owner, name))) for owner, name in _LISTS]
+        self.values = [(read, write, read()) for read, write in _SETTINGS]
+        self.signals = {number: signal.getsignal(number) for number in _SIGNALS}
+        self.streams = _Streams(streams)
+
+    def restore(self) -> None:
+        self._restore_cwd()
+        _restore_environ(self.environ)
+        if self._restore_attributes():  # maybe the warnings filters: forget what
+            warnings._filters_mutated()  # type: ignore[attr-defined]  # registries say
+        for read, write, value in self.values:
+            if read() != value:
+                write(value)
+        self._restore_signals()
+        self.streams.restore()
 
     def _restore_attributes(self) -> bool:
         """Put back the attributes and the lists' contents; True if one differed."""
@@ -178,13 +203,22 @@ def _restore_environ(raw: dict) -> None:
 class _Streams:
     """The standard streams' descriptors: their identity and a duplicate of
     each, to put back one the script closed or pointed elsewhere; and the fd of
-    each ``sys`` stream, to open one the script closed again."""
+    each ``sys`` stream, to open one the script closed again.
 
-    def __init__(self) -> None:
+    Args:
+        previous: an earlier picture, whose duplicates are taken over for the
+            descriptors still open on the same file (see :meth:`close`).
+    """
+
+    def __init__(self, previous: _Streams | None = None) -> None:
         self.saved: dict[int, tuple[tuple[int, int], int]] = {}
         for fd in (0, 1, 2):
             identity = _identity(fd)
-            if identity is not None:
+            if identity is None:
+                continue
+            if previous is not None and previous.saved.get(fd, (None,))[0] == identity:
+                self.saved[fd] = previous.saved[fd]
+            else:
                 self.saved[fd] = (identity, os.dup(fd))
         self.numbers = {name: _fileno(getattr(sys, name)) for name in _STREAMS}
 
@@ -197,9 +231,12 @@ class _Streams:
             if getattr(stream, "closed", False) and number is not None:
                 setattr(sys, name, _reopened(stream, number))
 
-    def close(self) -> None:
+    def close(self, keep: _Streams | None = None) -> None:
+        """Close the duplicates, but those ``keep`` took over."""
+        kept = {copy for _, copy in keep.saved.values()} if keep is not None else set()
         for _, copy in self.saved.values():
-            os.close(copy)
+            if copy not in kept:
+                os.close(copy)
         self.saved = {}
 
 

@@ -140,7 +140,7 @@ class LiveSession:
         self._run_id = 0
         self._current: _Run | None = None
         self._stopper = RunStopper(self._lock, self._before_abandoning)
-        self._process: ProcessState | None = None  # what the first run saw (see start)
+        self._process: ProcessState | None = None  # shared by the runs (see start)
         self._save_lock = threading.Lock()  # one output save at a time, the newest last
         self._last_good: RunResult | None = None
         self._last_posted: RunResult | None = None
@@ -162,7 +162,8 @@ class LiveSession:
 
     def start(self) -> None:
         """Start watching and run the script once."""
-        self._process = capture_process()  # every run starts from the process as it is now
+        # the library every run gets; each run pictures the process's settings anew
+        self._process = capture_process()
         self._watcher.start()
         self._watcher.set_files(self._own_files())
         self._supervisor.start()
