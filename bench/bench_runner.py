@@ -18,8 +18,8 @@
    seconds per step back (cache hit, and replay) and the growth of peak memory.
 6. What giving the process back costs a run, timed in pairs: a one-line script
    run with the process state restored against the same run with a state that
-   restores nothing, as a live session's runs (one restore a run) and as
-   headless runs (a picture taken and restored a run).
+   restores nothing, as a live session's runs (the library pictured once) and
+   as headless runs (the whole process pictured and restored a run).
 """
 
 from __future__ import annotations
@@ -354,6 +354,9 @@ class _NoState(ProcessState):
     def restore(self) -> None:
         pass
 
+    def retake(self) -> None:
+        pass
+
     def close(self) -> None:
         pass
 
@@ -361,8 +364,9 @@ class _NoState(ProcessState):
 def bench_restore_pairs(folder: str, pairs: int) -> dict[str, tuple[float, float]]:
     """Per run, ``(median extra seconds, median extra fraction)`` of giving the
     process back, timed in pairs of a one-line script (CPU time; the order
-    within a pair alternates): ``"session"`` runs share one state and restore it
-    once each, ``"headless"`` runs picture the process and restore it."""
+    within a pair alternates): ``"session"`` runs share one state (each
+    pictures the settings and restores them and the library), ``"headless"``
+    runs picture the whole process and restore it."""
     path = os.path.join(folder, "tiny.py")
     with open(path, "w") as handle:
         handle.write("createVertex((0, 0, 0))\n")
