@@ -6,14 +6,27 @@ to disk and then renamed over the target with :func:`os.replace` (atomic on
 POSIX and Windows). If anything raises before the rename, the temporary file is
 removed and the old target, if any, is untouched. Saving through a symbolic
 link replaces the file it points to and keeps the link.
+
+A process killed mid-save (SIGKILL, a power cut) cannot remove its temporary
+file, so each name says who wrote it: ``.NAME.HOST-PID-START-RANDOM.tmp``, with
+a hash of the host name, the writer's process id and a token of that process's
+start (its start time on Linux, so that a reused process id is told apart).
+The first save into a folder (and again once a minute) removes the temporary
+files there whose writer, on this host, is gone; a live writer's, another
+host's and names of any other form are left alone.
 """
 
 from __future__ import annotations
 
 import contextlib
 import errno
+import hashlib
 import os
+import re
 import secrets
+import socket
+import threading
+import time
 from collections.abc import Iterable, Iterator
 from typing import BinaryIO
 
@@ -39,6 +52,7 @@ def atomic_write(path: str | os.PathLike[str]) -> Iterator[BinaryIO]:
     # the temporary file must sit beside the file finally replaced, for the rename
     target = os.path.realpath(os.path.abspath(os.fspath(path)))
     folder = os.path.dirname(target)
+    remove_abandoned(folder)
     old_mode = _old_mode(target)
     # created with the old file's mode (a private file's new text is never readable
     # by others), or 0o666 less the umask for a new file, as any other new file
@@ -68,7 +82,7 @@ _in_progress: set[str] = set()
 
 
 def _temporary_beside(target: str, mode: int) -> tuple[int, str]:
-    """A new file ``.NAME.XXXXXXXX.tmp`` in ``target``'s folder, open for writing
+    """A new file of :func:`temporary_path` beside ``target``, open for writing
     (``mode`` less the umask), and its path, listed in ``_in_progress`` *before* it exists: a
     worker killed between the two (SIGTERM, see :func:`remove_unfinished`) must
     not leave it behind.
@@ -76,9 +90,8 @@ def _temporary_beside(target: str, mode: int) -> tuple[int, str]:
     Raises:
         OSError: the folder cannot hold it (the message names ``target``).
     """
-    folder, name = os.path.split(target)
     for _ in range(100):
-        tmp_path = os.path.join(folder, f".{name}.{secrets.token_hex(4)}.tmp")
+        tmp_path = temporary_path(target)
         _in_progress.add(tmp_path)
         try:
             return os.open(tmp_path, os.O_WRONLY | os.O_CREAT | os.O_EXCL, mode), tmp_path
@@ -88,6 +101,100 @@ def _temporary_beside(target: str, mode: int) -> tuple[int, str]:
             _in_progress.discard(tmp_path)
             raise _about(target, exc) from None
     raise FileExistsError(errno.EEXIST, f"cannot write {target}: no free temporary name")
+
+
+def temporary_path(target: str) -> str:
+    """A fresh name ``.NAME.HOST-PID-START-RANDOM.tmp`` beside ``target`` (an
+    absolute path) that says this process wrote it (see the module's docstring);
+    nothing is created."""
+    folder, name = os.path.split(target)
+    return os.path.join(folder, f".{name}.{writer_token()}-{secrets.token_hex(4)}.tmp")
+
+
+def writer_token() -> str:
+    """``HOST-PID-START`` of the calling process (worked out once per process: a
+    forked child gets its own)."""
+    pid = os.getpid()
+    if _token[0] != pid:
+        _token[:] = [pid, f"{_host_hash()}-{pid}-{_start_token(pid) or 0}"]
+    return str(_token[1])
+
+
+_token: list = [None, ""]  # [pid it is for, its token]
+
+
+def _host_hash() -> str:
+    return hashlib.blake2b(socket.gethostname().encode(), digest_size=4).hexdigest()
+
+
+def _start_token(pid: int) -> int | None:
+    """When process ``pid`` started, in clock ticks since boot (Linux's
+    ``/proc/PID/stat``); None where that cannot be read (no such process, or no
+    ``/proc``)."""
+    try:
+        with open(f"/proc/{pid}/stat", "rb") as handle:
+            stat = handle.read()
+    except OSError:
+        return None
+    # the fields after the command name, which is in parentheses and may hold any byte
+    fields = stat[stat.rfind(b")") + 2:].split()
+    return int(fields[19]) if len(fields) > 19 else None
+
+
+_TEMPORARY = re.compile(r"\.(?P<name>.+)\.(?P<host>[0-9a-f]{8})-(?P<pid>\d+)-(?P<start>\d+)"
+                        r"-[0-9a-f]{8}\.tmp")
+_SWEEP_INTERVAL = 60.0  # seconds between two sweeps of one folder by one process
+_swept: dict[str, float] = {}  # folder -> when this process last swept it
+_swept_lock = threading.Lock()
+
+
+def remove_abandoned(folder: str) -> list[str]:
+    """Remove the temporary files in ``folder`` whose writer is gone (a killed
+    save's), unless this process swept ``folder`` less than a minute ago; the
+    names removed. Files whose writer lives, runs on another host or cannot be
+    told (names of another form) are kept; nothing here raises."""
+    now = time.monotonic()
+    with _swept_lock:
+        if now - _swept.get(folder, -_SWEEP_INTERVAL) < _SWEEP_INTERVAL:
+            return []
+        _swept[folder] = now
+    try:
+        names = [entry.name for entry in os.scandir(folder)
+                 if entry.name.endswith(".tmp") and entry.name.startswith(".")]
+    except OSError:
+        return []
+    removed = []
+    for name in names:
+        found = _TEMPORARY.fullmatch(name)
+        if found is not None and _writer_gone(found["host"], int(found["pid"]),
+                                              int(found["start"])):
+            with contextlib.suppress(OSError):
+                os.unlink(os.path.join(folder, name))
+                removed.append(name)
+    return removed
+
+
+def _writer_gone(host: str, pid: int, start: int) -> bool:
+    """True when the process that named a temporary file ``host``, ``pid``,
+    ``start`` has surely exited: it ran on this host, and no process ``pid``
+    runs now, or (where start times can be read) the one that does started at
+    another time. Unsure means alive."""
+    if host != _host_hash() or pid == os.getpid():
+        return False
+    now_start = _start_token(pid)
+    if now_start is not None:
+        return start != 0 and now_start != start
+    if os.path.isdir("/proc/self"):  # /proc is there, so no process has that id
+        return True
+    if os.name == "nt":  # os.kill would end the process there, not probe it
+        return False
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return True
+    except OSError:  # it exists (another user's, say), or this platform cannot tell
+        return False
+    return False
 
 
 def _about(target: str, exc: OSError) -> OSError:
