@@ -1,15 +1,23 @@
 """Parameter sweeps: independent variants of one script in a pool of processes.
 
 The pool hides behind :class:`VariantExecutor` (one method, ``map_unordered``),
-so a Dask or Ray client can replace the local process pool without touching
-the rest: variants and their results are small picklable dataclasses, and the
-meshes never travel (each variant writes its own output file).
+so a Dask cluster (:mod:`livemod.runner.cluster`) replaces the local process
+pool without touching the rest: variants and their results are small picklable
+dataclasses.
+
+Only the batch itself (the process that called :func:`run_batch`) puts outputs
+in place, each as its result comes in and is recorded: a local worker writes its
+mesh to a temporary name beside the output (``Variant.staging``), which the
+batch renames; a cluster worker sends the file's bytes back. So whatever stops
+the batch (Ctrl-C, SIGTERM, a lost cluster), the outputs on disk are exactly
+the variants the index lists.
 """
 
 from __future__ import annotations
 
 import concurrent.futures
 import contextlib
+import dataclasses
 import itertools
 import multiprocessing
 import os
@@ -34,7 +42,12 @@ from .declarations import undeclared
 
 @dataclass(frozen=True)
 class Variant:
-    """One run of a sweep: the script, its parameters and where its mesh goes."""
+    """One run of a sweep: the script, its parameters and where its mesh goes.
+
+    ``staging`` is where a worker writes the mesh for the batch to move to
+    ``output`` (a temporary name beside it, see
+    :func:`~livemod.dlfl.io.atomic.temporary_path`); None writes ``output`` itself.
+    """
 
     index: int
     script: str
@@ -44,11 +57,14 @@ class Variant:
     seed: int | None = 0
     selection: Selection | None = None
     all_objects: bool = False
+    staging: str | None = None
 
 
 @dataclass(frozen=True)
 class VariantResult:
-    """What a variant reports back (no mesh: it was written to ``output``)."""
+    """What a variant reports back: its counts, or its error; the mesh is in the
+    file ``staged`` (to be moved to ``output``), in ``data`` (the output file's
+    bytes, from a cluster), or was written to ``output`` already (both None)."""
 
     index: int
     parameters: tuple[tuple[str, Any], ...]
@@ -58,6 +74,8 @@ class VariantResult:
     output: str | None
     elapsed: float
     genus: int | None = None
+    staged: str | None = None
+    data: bytes | None = None
 
 
 def parse_param(text: str) -> tuple[str, list[Any]]:
@@ -178,34 +196,55 @@ def run_variant(variant: Variant) -> VariantResult:
                               seed=variant.seed, parameters=dict(variant.parameters),
                               selection=variant.selection)
     except OSError as exc:
-        return _failed(variant, describe(exc), started)
+        return failed_result(variant, describe(exc), started)
     except DLFLError as exc:  # a --mesh that does not parse: this variant fails, the batch goes on
-        return _failed(variant, str(exc), started)
+        return failed_result(variant, str(exc), started)
     if outcome.error is not None:
-        return _failed(variant, str(outcome.error), started)
+        return failed_result(variant, str(outcome.error), started)
     mesh = result_mesh(outcome.scene, variant.all_objects)
     if variant.output is not None:
-        problem = _written(mesh, variant.output)
+        problem = _written(mesh, variant)
         if problem is not None:
-            return _failed(variant, problem, started)
+            return failed_result(variant, problem, started)
     counts = mesh.counts() if mesh is not None else (0, 0, 0)
     return VariantResult(variant.index, variant.parameters, "ok", counts, None,
                          variant.output, time.perf_counter() - started,
-                         genus(mesh) if mesh is not None else None)
+                         genus(mesh) if mesh is not None else None, variant.staging)
 
 
-def _written(mesh: Any, output: str) -> str | None:
-    """:func:`~.results.save_problem`, with a bug in a writer reported as the
-    variant's failure too: a worker must not die of it."""
+def _written(mesh: Any, variant: Variant) -> str | None:
+    """Write the variant's mesh to its ``staging`` file (in the format of its
+    output's suffix), or to ``output`` without one; None, or what went wrong, said
+    of ``output``. A bug in a writer is the variant's failure too: a worker must
+    not die of it."""
     from .results import save_problem
 
+    output = str(variant.output)
     try:
-        return save_problem(mesh, output)
+        if variant.staging is None or mesh is None:
+            return save_problem(mesh, output)
+        return _staged(mesh, variant.staging, output)
     except Exception as exc:
         return f"cannot write {output}: {type(exc).__name__}: {exc}"
 
 
-def _failed(variant: Variant, message: str, started: float) -> VariantResult:
+def _staged(mesh: Any, staging: str, output: str) -> str | None:
+    """Write ``mesh`` to ``staging`` in ``output``'s format (its folder made if
+    missing); None, or the failure said of ``output``."""
+    from livemod.dlfl.io import save_mesh
+
+    try:
+        os.makedirs(os.path.dirname(staging), exist_ok=True)
+        save_mesh(mesh, staging, format=os.path.splitext(output)[1][1:].lower())
+    except OSError as exc:
+        return describe(exc).replace(staging, output)
+    except DLFLError as exc:  # a writer's refusal
+        return f"cannot write {output}: {exc}".replace(staging, output)
+    return None
+
+
+def failed_result(variant: Variant, message: str, started: float) -> VariantResult:
+    """``variant`` failed with ``message``, ``started`` (a ``perf_counter`` time) ago."""
     return VariantResult(variant.index, variant.parameters, "error", None, message,
                          variant.output, time.perf_counter() - started)
 
@@ -242,7 +281,7 @@ class FuturesVariantExecutor:
         (its worker died, or the cluster lost it) comes back as a failed result."""
         started = time.perf_counter()
         for variant, outcome in _finished(self.executor, fn, variants):
-            yield outcome if isinstance(outcome, VariantResult) else _failed(
+            yield outcome if isinstance(outcome, VariantResult) else failed_result(
                 variant, _lost(outcome), started)
 
 
@@ -294,7 +333,7 @@ class ProcessPoolVariantExecutor:
                     yield outcome
                 else:
                     # its own start is unknown: the map's bounds it, as in the futures pool
-                    yield _failed(variant, _lost(outcome), started)
+                    yield failed_result(variant, _lost(outcome), started)
         for variant in lost:
             with _stoppable_pool(1, context) as alone:
                 yield from FuturesVariantExecutor(alone).map_unordered(fn, [variant])
@@ -432,41 +471,164 @@ def _check_distinct_outputs(variants: list[Variant], pattern: str | None) -> Non
                 f"{dict(variant.parameters)}; put {{index}} or the swept parameters in it")
 
 
-class BatchInterrupted(KeyboardInterrupt):
-    """Ctrl-C stopped :func:`run_batch`; ``results`` are the variants that had
-    finished, sorted by variant index (the others did not run or were ended)."""
+class Stop(KeyboardInterrupt):
+    """SIGINT (Ctrl-C) or SIGTERM came while :func:`run_batch` ran (``signum``)."""
 
-    def __init__(self, results: list[VariantResult]) -> None:
+    def __init__(self, signum: int) -> None:
+        super().__init__(signal.Signals(signum).name)
+        self.signum = signum
+
+
+class BatchInterrupted(KeyboardInterrupt):
+    """Ctrl-C or SIGTERM stopped :func:`run_batch`; ``results`` are the variants
+    that had finished, sorted by variant index (the others did not run or were
+    ended), ``signum`` the signal (SIGINT for a plain KeyboardInterrupt)."""
+
+    def __init__(self, results: list[VariantResult], signum: int = signal.SIGINT) -> None:
         super().__init__(f"interrupted after {len(results)} variants")
+        self.results = results
+        self.signum = signum
+
+
+class ExecutorLost(RuntimeError):
+    """Where the variants ran went away (a cluster's scheduler): no more results
+    will come. Raised by an executor's ``map_unordered``; the message says what."""
+
+
+class BatchLost(RuntimeError):
+    """:func:`run_batch` ended early because its executor was lost (the message
+    says why); ``results`` are the variants that had finished, by index."""
+
+    def __init__(self, results: list[VariantResult], why: str) -> None:
+        super().__init__(why)
         self.results = results
 
 
+class _StopSignals:
+    """While a batch runs, SIGINT and SIGTERM raise :class:`Stop`: at once, or,
+    while :meth:`held` (an output being put in place and recorded), right after,
+    so that no output is ever on disk without its record. Installed only in the
+    main thread, the one signals reach."""
+
+    SIGNALS = (signal.SIGINT, signal.SIGTERM)
+
+    def __init__(self) -> None:
+        self._pending: int | None = None
+        self._holding = False
+        self._previous: dict[int, Any] = {}
+
+    def __enter__(self) -> _StopSignals:
+        if threading.current_thread() is threading.main_thread():
+            for signum in self.SIGNALS:
+                self._previous[signum] = signal.signal(signum, self._handle)
+        return self
+
+    def __exit__(self, *exc_info: object) -> None:
+        for signum, handler in self._previous.items():
+            signal.signal(signum, handler)
+
+    def _handle(self, signum: int, frame: object) -> None:
+        if self._holding:
+            self._pending = signum
+            return
+        raise Stop(signum)
+
+    @contextlib.contextmanager
+    def held(self) -> Iterator[None]:
+        """A block no signal cuts short; one that came meanwhile is raised after it."""
+        self._holding = True
+        try:
+            yield
+        finally:
+            self._holding = False
+        if self._pending is not None:
+            raise Stop(self._pending)
+
+
 def run_batch(variants: list[Variant], executor: VariantExecutor | None = None, *,
-              jobs: int = 1, progress: TextIO | None = None,
-              quiet: bool = False) -> list[VariantResult]:
+              jobs: int = 1, progress: TextIO | None = None, quiet: bool = False,
+              on_result: Callable[[list[VariantResult]], None] | None = None,
+              ) -> list[VariantResult]:
     """Run ``variants`` (on ``executor``, default a pool of ``jobs`` processes) with a
     progress bar on ``progress`` (default: the current ``sys.stderr``; none if
     ``quiet``); results come back sorted by variant index.
 
+    Each result's mesh is put in place (:func:`commit`) as it comes in, then
+    ``on_result`` is called with the results so far (to keep an index current);
+    a signal waits for both. Outputs of variants that did not finish are never
+    left, nor their temporary files.
+
     Raises:
-        BatchInterrupted: Ctrl-C (a KeyboardInterrupt) came; it holds the results
-            of the variants that had finished.
+        BatchInterrupted: Ctrl-C (a KeyboardInterrupt) or SIGTERM came; it holds
+            the results of the variants that had finished.
+        BatchLost: the executor was lost (:class:`ExecutorLost`); likewise.
     """
     bar = None if quiet else ProgressBar("batch", progress)
     if executor is None:
         executor = ProcessPoolVariantExecutor(jobs) if jobs > 1 else SerialExecutor()
+    staged = [_with_staging(v) for v in variants]
     results: list[VariantResult] = []
-    try:
-        for result in executor.map_unordered(run_variant, variants):
-            results.append(result)
-            if bar is not None:
-                bar(len(results), len(variants), "" if result.status == "ok"
-                    else f"variant {result.index} failed")
-    except KeyboardInterrupt:
-        if bar is not None:  # a note ends the bar's line: what follows starts afresh
-            bar(len(results), len(variants), "interrupted")
-        raise BatchInterrupted(sorted(results, key=lambda r: r.index)) from None
+    with _StopSignals() as signals:
+        try:
+            for result in executor.map_unordered(run_variant, staged):
+                with signals.held():
+                    results.append(commit(result))
+                    if on_result is not None:
+                        on_result(results)
+                if bar is not None:
+                    bar(len(results), len(variants), "" if results[-1].status == "ok"
+                        else f"variant {result.index} failed")
+        except (KeyboardInterrupt, ExecutorLost) as exc:
+            if bar is not None:  # a note ends the bar's line: what follows starts afresh
+                bar(len(results), len(variants), "interrupted")
+            done = sorted(results, key=lambda r: r.index)
+            if isinstance(exc, ExecutorLost):
+                raise BatchLost(done, str(exc)) from None
+            raise BatchInterrupted(done, getattr(exc, "signum", signal.SIGINT)) from None
+        finally:
+            _remove_staging(staged)
     return sorted(results, key=lambda r: r.index)
+
+
+def _with_staging(variant: Variant) -> Variant:
+    """``variant`` with a temporary name beside its output, made by this process
+    (a later save removes it if this process dies before it is put in place)."""
+    from livemod.dlfl.io.atomic import temporary_path
+
+    if variant.output is None or variant.staging is not None:
+        return variant
+    target = os.path.realpath(os.path.abspath(variant.output))
+    return dataclasses.replace(variant, staging=temporary_path(target))
+
+
+def commit(result: VariantResult) -> VariantResult:
+    """Put a finished variant's mesh at its output (the ``staged`` file renamed
+    over it, or ``data`` written to it, atomically, its folder made if missing);
+    the result without the mesh, or failed with what went wrong."""
+    from livemod.dlfl.io.atomic import move_into_place, write_atomically
+
+    bare = dataclasses.replace(result, staged=None, data=None)
+    if result.status != "ok" or result.output is None:
+        return bare
+    try:
+        if result.data is not None:
+            os.makedirs(os.path.dirname(os.path.abspath(result.output)), exist_ok=True)
+            write_atomically(result.output, result.data)
+        elif result.staged is not None:
+            move_into_place(result.staged, result.output)
+    except OSError as exc:
+        return dataclasses.replace(bare, status="error", counts=None, genus=None,
+                                   error=describe(exc))
+    return bare
+
+
+def _remove_staging(variants: list[Variant]) -> None:
+    """Remove the staging files left (variants that failed, were ended or not put
+    in place: a put in place one is no longer there)."""
+    for variant in variants:
+        if variant.staging is not None:
+            with contextlib.suppress(OSError):
+                os.unlink(variant.staging)
 
 
 def index_rows(results: list[VariantResult]) -> list[dict[str, Any]]:
@@ -493,11 +655,14 @@ def index_path(variants: list[Variant], given: str | None) -> str | None:
 
 def write_index(path: str, script: str, specs: dict[str, ParamSpec],
                 results: list[VariantResult], *, planned: int | None = None,
-                interrupted: bool = False) -> None:
+                interrupted: bool = False, running: bool = False,
+                reason: str | None = None) -> None:
     """Write the sweep's index atomically (a reader never sees half of it): the
     script, its declarations, ``planned`` (the number of variants of the sweep,
-    default ``len(results)``), ``interrupted`` (true when Ctrl-C stopped the batch:
-    ``variants`` then lists only those that finished) and one record per variant.
+    default ``len(results)``), ``running`` (true while the sweep goes on),
+    ``interrupted`` (true when Ctrl-C, SIGTERM or a lost cluster stopped the
+    batch, ``reason`` saying which: ``variants`` then lists only those that
+    finished) and one record per variant.
 
     Raises:
         OSError: the file cannot be written.
@@ -510,7 +675,9 @@ def write_index(path: str, script: str, specs: dict[str, ParamSpec],
                         "max": s.max, "choices": list(s.choices) if s.choices else None,
                         "doc": s.doc} for s in specs.values()],
         "planned": len(results) if planned is None else planned,
+        "running": running,
         "interrupted": interrupted,
+        "reason": reason,
         "variants": index_rows(results),
     }
     from livemod.dlfl.io.atomic import write_atomically
@@ -518,3 +685,36 @@ def write_index(path: str, script: str, specs: dict[str, ParamSpec],
     os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
     text = json.dumps(document, indent=2, default=str) + "\n"
     write_atomically(path, text.encode("utf-8"))
+
+
+class LiveIndex:
+    """A sweep's index kept current while it runs (a :func:`run_batch`
+    ``on_result``): rewritten as results come in, at most every ``interval``
+    seconds (``"running": true``), then once more by :meth:`write` at the end. A
+    rewrite that fails mid-sweep is left for the last one to report."""
+
+    def __init__(self, path: str, script: str, specs: dict[str, ParamSpec], planned: int,
+                 interval: float = 2.0) -> None:
+        self.path, self.script, self.specs = path, script, specs
+        self.planned, self.interval = planned, interval
+        self._written_at = time.monotonic()
+
+    def __call__(self, results: list[VariantResult]) -> None:
+        """Rewrite the index if the last write is ``interval`` seconds old."""
+        now = time.monotonic()
+        if now - self._written_at < self.interval:
+            return
+        self._written_at = now
+        with contextlib.suppress(OSError):
+            self.write(results, running=True)
+
+    def write(self, results: list[VariantResult], *, running: bool = False,
+              interrupted: bool = False, reason: str | None = None) -> None:
+        """Write the index of ``results`` (see :func:`write_index`).
+
+        Raises:
+            OSError: the file cannot be written.
+        """
+        write_index(self.path, self.script, self.specs,
+                    sorted(results, key=lambda r: r.index), planned=self.planned,
+                    interrupted=interrupted, running=running, reason=reason)

@@ -12,6 +12,7 @@ import contextlib
 import os
 import queue
 import select
+import signal
 import sys
 import threading
 from collections.abc import Callable, Sequence
@@ -39,6 +40,8 @@ from livemod.dlfl.scene import Selection
 from . import declarations
 from .batch import (
     BatchInterrupted,
+    BatchLost,
+    LiveIndex,
     Variant,
     VariantResult,
     declared_sweep,
@@ -46,7 +49,6 @@ from .batch import (
     make_variants,
     run_batch,
     sweep,
-    write_index,
 )
 from .headless import report_selection, run_outcome
 from .results import RunResult, StepRecord, result_mesh, save_problem
@@ -469,24 +471,48 @@ def run_summary(result: RunResult, output: str | None = None) -> str:
 
 
 def cmd_batch(args: argparse.Namespace) -> int:
-    """``livemod batch``: 0 when every variant succeeded, 1 otherwise, 130 when
-    interrupted (the index then lists the variants that finished).
+    """``livemod batch``: 0 when every variant succeeded, 1 otherwise (or when the
+    executor was lost), 130 when interrupted by Ctrl-C and 143 by SIGTERM (the
+    index then lists the variants that finished).
 
     Raises:
         UsageError, OSError, DLFLError: see :func:`_batch_variants`; all before
             any variant runs.
     """
     specs, variants, index = _batch_variants(args)
+    live = LiveIndex(index, args.script, specs, len(variants)) if index is not None else None
+    return _sweep(args, variants, None, live)
+
+
+def _sweep(args: argparse.Namespace, variants: list[Variant], executor: Any,
+           live: LiveIndex | None) -> int:
+    """Run the batch and report it; the exit code."""
+    planned = len(variants)
     try:
-        results = run_batch(variants, jobs=args.jobs)
+        results = run_batch(variants, executor, jobs=args.jobs, on_result=live)
     except BatchInterrupted as stop:
-        _report_batch(stop.results, len(variants), interrupted=True)
-        _write_batch_index(index, args.script, specs, stop.results, len(variants), True)
-        return INTERRUPTED
-    failed = _report_batch(results, len(variants), interrupted=False)
-    if _write_batch_index(index, args.script, specs, results, len(variants), False) != DONE:
+        _report_batch(stop.results, planned, stopped="interrupted")
+        _write_batch_index(live, stop.results, reason=signal.Signals(stop.signum).name)
+        return 128 + stop.signum
+    except BatchLost as lost:
+        error(str(lost))
+        _report_batch(lost.results, planned, stopped="stopped")
+        _write_batch_index(live, lost.results, reason=str(lost))
+        return FAILED
+    failed = _report_batch(results, planned)
+    if args.output is None:
+        _say_nothing_was_written(args, planned)
+    if _write_batch_index(live, results) != DONE:
         return FAILED
     return FAILED if failed else DONE
+
+
+def _say_nothing_was_written(args: argparse.Namespace, planned: int) -> None:
+    """``batch`` without ``-o``: the variants ran and were checked, and no mesh was
+    kept; say how to keep them."""
+    names = "_".join(f"{{{text.partition('=')[0]}}}" for text in args.param)
+    print(f"ran and checked {planned} variant{'s' * (planned != 1)} but wrote no mesh: "
+          f"give -o with a pattern, e.g. -o 'out/{names}.obj', to write each one")
 
 
 def _batch_variants(args: argparse.Namespace,
@@ -515,30 +541,33 @@ def _batch_variants(args: argparse.Namespace,
     return specs, variants, index
 
 
-def _report_batch(results: list[VariantResult], planned: int, interrupted: bool) -> bool:
-    """Print each failed variant and the tally; True when a variant failed."""
+def _report_batch(results: list[VariantResult], planned: int,
+                  stopped: str | None = None) -> bool:
+    """Print each failed variant and the tally (of a batch ``stopped`` early, if
+    that word is given); True when a variant failed."""
     failed = [r for r in results if r.status != "ok"]
     for r in failed:
         error(f"variant {r.index} {dict(r.parameters)}: {r.error}")
     ok = len(results) - len(failed)
-    if interrupted:
-        print(f"interrupted: {len(results)}/{planned} variants finished, {ok} ok")
+    if stopped is not None:
+        print(f"{stopped}: {len(results)}/{planned} variants finished, {ok} ok")
     else:
         print(f"{ok}/{planned} variants ok")
     return bool(failed)
 
 
-def _write_batch_index(index: str | None, script: str, specs: dict[str, Any],
-                       results: list[VariantResult], planned: int, interrupted: bool) -> int:
-    """Write the batch's index (if it has one) and say so; the exit code."""
-    if index is None:
+def _write_batch_index(live: LiveIndex | None, results: list[VariantResult],
+                       reason: str | None = None) -> int:
+    """Write the batch's index (if it has one; interrupted when a ``reason`` is
+    given) and say so; the exit code."""
+    if live is None:
         return DONE
     try:
-        write_index(index, script, specs, results, planned=planned, interrupted=interrupted)
+        live.write(results, interrupted=reason is not None, reason=reason)
     except OSError as exc:
         error(f"the index was not written: {describe(exc)}")
         return FAILED
-    print(f"wrote {index}")
+    print(f"wrote {live.path}")
     return DONE
 
 

@@ -213,6 +213,26 @@ def remove_unfinished() -> None:
             os.unlink(tmp_path)
 
 
+def move_into_place(staged: str, path: str | os.PathLike[str]) -> None:
+    """Replace ``path`` with the finished file ``staged`` (one of
+    :func:`temporary_path` beside it, which another process may have written), as
+    :func:`atomic_write` ends: with the old file's permission bits, durably, and
+    through a symbolic link to the file it points to.
+
+    Raises:
+        OSError: the rename fails (the message names ``path``); ``staged`` is left.
+    """
+    target = os.path.realpath(os.path.abspath(os.fspath(path)))
+    old_mode = _old_mode(target)
+    try:
+        if old_mode is not None:
+            os.chmod(staged, old_mode)
+        os.replace(staged, target)
+    except OSError as exc:
+        raise _about(target, exc) from None
+    _sync_folder(os.path.dirname(target))
+
+
 def write_atomically(path: str | os.PathLike[str], data: bytes | Iterable[bytes]) -> None:
     """Replace ``path`` with ``data`` through :func:`atomic_write`.
 
