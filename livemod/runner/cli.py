@@ -206,7 +206,12 @@ def _add_batch(subparsers: Any) -> None:
     batch.add_argument("-o", "--output", metavar="PATTERN",
                        help="output file pattern, e.g. 'out/{name}_{index}.obj'")
     batch.add_argument("-j", "--jobs", type=_jobs, default=os.cpu_count() or 1,
-                       help="processes to run variants on (default: one per core)")
+                       help="processes to run variants on (default: one per core; with "
+                            "--cluster local, the cluster's worker processes)")
+    batch.add_argument("--cluster", metavar="ADDRESS",
+                       help="run the variants on a Dask cluster: its scheduler's address "
+                            "(tcp://host:8786) or scheduler file, or 'local' for a Dask "
+                            "cluster of -j processes here (needs livemod[cluster])")
     batch.add_argument("--mesh", metavar="IN", help="mesh every variant starts from")
     add_all_objects_option(batch)
     add_seed_option(batch)
@@ -472,16 +477,29 @@ def run_summary(result: RunResult, output: str | None = None) -> str:
 
 def cmd_batch(args: argparse.Namespace) -> int:
     """``livemod batch``: 0 when every variant succeeded, 1 otherwise (or when the
-    executor was lost), 130 when interrupted by Ctrl-C and 143 by SIGTERM (the
+    cluster was lost), 130 when interrupted by Ctrl-C and 143 by SIGTERM (the
     index then lists the variants that finished).
 
     Raises:
         UsageError, OSError, DLFLError: see :func:`_batch_variants`; all before
-            any variant runs.
+            any variant runs. UsageError also for ``--cluster`` without Dask,
+            OSError for a scheduler that cannot be reached.
     """
     specs, variants, index = _batch_variants(args)
     live = LiveIndex(index, args.script, specs, len(variants)) if index is not None else None
-    return _sweep(args, variants, None, live)
+    if args.cluster is None:
+        return _sweep(args, variants, None, live)
+    from . import cluster
+
+    try:
+        cluster.require_dask()
+    except cluster.DaskMissing as exc:
+        raise UsageError(str(exc)) from None
+    cluster.silence_dask_logs()
+    with cluster.connect(args.cluster, args.jobs) as client:
+        cluster.note(cluster.describe_cluster(client))
+        executor = cluster.DaskVariantExecutor(client, announce=cluster.note)
+        return _sweep(args, variants, executor, live)
 
 
 def _sweep(args: argparse.Namespace, variants: list[Variant], executor: Any,
