@@ -116,3 +116,21 @@ def _an_unused_pid() -> int:
 def _fresh_sweeps(monkeypatch):
     """Each test's folder is swept at its first save, whatever ran before."""
     monkeypatch.setattr("livemod.dlfl.io.atomic._swept", {})
+
+
+def test_a_staged_file_moved_into_place_keeps_the_old_mode_and_the_link(tmp_path):
+    from livemod.dlfl.io.atomic import move_into_place
+
+    real = tmp_path / "real.obj"
+    real.write_bytes(b"old")
+    real.chmod(0o600)
+    link = tmp_path / "link.obj"
+    link.symlink_to(real)
+    staged = Path(temporary_path(str(real)))
+    staged.write_bytes(b"new")
+    move_into_place(str(staged), link)
+    assert link.is_symlink() and real.read_bytes() == b"new"
+    assert real.stat().st_mode & 0o777 == 0o600
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["link.obj", "real.obj"]
+    with pytest.raises(OSError, match=f"cannot write {tmp_path}"):
+        move_into_place(str(tmp_path / "gone.tmp"), tmp_path / "x.obj")
