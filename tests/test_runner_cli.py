@@ -35,9 +35,25 @@ RING = script_path("ring.py")
 
 def test_run_prints_summary_and_steps(capsys):
     assert cli.main(["run", script_path("cube_steps.py"), "--steps"]) == 0
-    out = capsys.readouterr().out
-    assert "V=14 E=18 F=6" in out and "genus=0" in out
-    assert "line   11  cube" in out and "done" in out
+    lines = capsys.readouterr().out.splitlines()
+    assert lines[0] == cli.STEPS_HEADER
+    assert lines[1].startswith("    0     11  cube                         8        12         6")
+    assert any(" done " in line for line in lines[2:])
+    assert "V=14 E=18 F=6 holes=0 components=1 genus=0" in lines
+
+
+def test_steps_give_each_steps_own_time_beside_the_cumulative_one(capsys):
+    from livemod.runner.results import StepRecord
+
+    cli.print_steps([StepRecord(0, "cube", 3, (8, 12, 6), 0.25),
+                     StepRecord(1, "subdivide", None, (26, 48, 24), 1.75)])
+    assert capsys.readouterr().out == (
+        " step   line  command                      V         E         F"
+        "        time  cumulative\n"
+        "    0      3  cube                         8        12         6"
+        "    0.2500 s    0.2500 s\n"
+        "    1      ?  subdivide                   26        48        24"
+        "    1.5000 s    1.7500 s\n")
 
 
 def test_summary_gives_genus_per_component_only_for_several(tmp_path, capsys):

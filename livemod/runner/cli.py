@@ -403,14 +403,22 @@ def print_summary(script: str, mesh: Any, steps: int, elapsed: float,
     print(f"face sizes: {sizes}", file=out)
 
 
+STEPS_HEADER = (f"{'step':>5}  {'line':>5}  {'command':<20} {'V':>9} {'E':>9} {'F':>9}"
+                f"  {'time':>10}  {'cumulative':>10}")
+
+
 def print_steps(steps: Sequence[StepRecord], out: TextIO | None = None) -> None:
-    """One line per step: index, line, label, counts, time since the run started."""
+    """A header, then one line per step: its index, script line, label, the
+    counts after it, the time it took and the time since the run started."""
     out = out or sys.stdout
+    print(STEPS_HEADER, file=out)
+    before = 0.0
     for s in steps:
         line = "?" if s.line is None else str(s.line)
         v, e, f = s.counts
-        print(f"{s.index:5d}  line {line:>4}  {s.label:<20} V={v} E={e} F={f}  "
-              f"{s.elapsed:.4f} s", file=out)
+        print(f"{s.index:5d}  {line:>5}  {s.label:<20} {v:9d} {e:9d} {f:9d}"
+              f"  {s.elapsed - before:8.4f} s  {s.elapsed:8.4f} s", file=out)
+        before = s.elapsed
 
 
 def _watch(args: argparse.Namespace, params: dict[str, Any]) -> int:
