@@ -91,14 +91,46 @@ def parse_yaw(text: str) -> float:
     return degrees
 
 
+def parse_margin(text: str) -> float:
+    """``--margin``: the empty border at each side, a share of the frame from 0 to
+    below 0.5, or a percentage such as ``10%``.
+
+    Raises:
+        argparse.ArgumentTypeError: not a number in that range.
+    """
+    share = _share(text)
+    if not 0.0 <= share < 0.5:
+        raise argparse.ArgumentTypeError(f"the margin is a share of the frame from 0 to "
+                                         f"below 0.5 (or 0% to below 50%), not {text!r}")
+    return share
+
+
+def parse_zoom(text: str) -> float:
+    """``--zoom``: a factor above 0 (2 draws the mesh twice as large).
+
+    Raises:
+        argparse.ArgumentTypeError: not a finite number above 0.
+    """
+    factor = _float_or_nan(text)
+    if not (math.isfinite(factor) and factor > 0.0):
+        raise argparse.ArgumentTypeError(f"the zoom must be a number above 0 (2 draws the "
+                                         f"mesh twice as large), not {text!r}")
+    return factor
+
+
+def _share(text: str) -> float:
+    """``0.02`` or ``2%`` as 0.02; NaN when it is neither."""
+    given = text.strip()
+    return _float_or_nan(given[:-1]) / 100 if given.endswith("%") else _float_or_nan(given)
+
+
 def parse_threshold(text: str) -> float:
     """``--threshold``: a share of pixels from 0 to 1, or a percentage such as ``2%``.
 
     Raises:
         argparse.ArgumentTypeError: not a number, or outside 0 to 1 (0% to 100%).
     """
-    given = text.strip()
-    share = _float_or_nan(given[:-1]) / 100 if given.endswith("%") else _float_or_nan(given)
+    share = _share(text)
     if not 0.0 <= share <= 1.0:
         raise argparse.ArgumentTypeError(f"the threshold is a share of the pixels from 0 to "
                                          f"1 (or 0% to 100%), not {text!r}")
@@ -179,6 +211,16 @@ def _add_render(subparsers: Any) -> None:
     render.add_argument("--yaw", type=parse_yaw, default=30.0, metavar="DEG",
                         help="camera turn around the up axis in degrees (0 looks from +z; "
                              "default 30); a turntable starts there")
+    render.add_argument("--margin", type=parse_margin, default=None, metavar="SHARE",
+                        help="empty border at each side, a share of the frame where the "
+                             "view is tightest, e.g. 0.1 or 10%% (0 fills the frame; "
+                             "default: a thin border)")
+    render.add_argument("--zoom", type=parse_zoom, default=1.0, metavar="FACTOR",
+                        help="draw the mesh FACTOR times as large as framed (what falls "
+                             "outside is cut)")
+    render.add_argument("--refit", action="store_true",
+                        help="with --turntable: frame each frame at its own angle, so the "
+                             "mesh fills every one (default: one framing for the orbit)")
     _add_render_style(render)
     render.add_argument("--reference", metavar="IMAGE",
                         help="compare the picture with this one: exit 1 and write "
@@ -337,7 +379,7 @@ def _render_to(args: argparse.Namespace, offscreen: Any, values: dict[str, Any],
     """Run or load ``livemod render``'s input and draw it into ``offscreen``."""
     from livemod.progress import ProgressBar
 
-    from .headless import render_arrays
+    from .headless import Framing, render_arrays
     from .renderer import BACKGROUNDS, Style
 
     arrays, preview, others = _load_input(args.input, args.mesh, args.preview, values,
@@ -353,7 +395,8 @@ def _render_to(args: argparse.Namespace, offscreen: Any, values: dict[str, Any],
     return render_arrays(arrays, args.output, turntable=args.turntable,
                          elevation=args.elevation, yaw=args.yaw, style=style, preview=preview,
                          progress=progress, ortho=args.ortho, offscreen=offscreen,
-                         others=others, fps=args.fps)
+                         others=others, fps=args.fps,
+                         framing=Framing(args.margin, args.zoom, args.refit))
 
 
 def _render_inputs(args: argparse.Namespace,
@@ -364,8 +407,9 @@ def _render_inputs(args: argparse.Namespace,
     :func:`~livemod.viewer.imagefiles.write_images`).
 
     Raises:
-        UsageError: a bad ``--set``, ``-o``, ``--fps``, ``--labels``, or
-            ``--select`` or ``--mesh`` for a mesh input (the message says which).
+        UsageError: a bad ``--set``, ``-o``, ``--fps``, ``--labels``,
+            ``--refit`` without a turntable, or ``--select`` or ``--mesh`` for a
+            mesh input (the message says which).
         OSError: a script or ``--mesh`` that cannot be read, or an output that
             cannot be written.
         DLFLError: the script's own fault found while checking ``--set``.
@@ -374,6 +418,9 @@ def _render_inputs(args: argparse.Namespace,
     from .renderer import LABEL_KINDS
 
     is_script = Path(args.input).suffix.lower() in SCRIPT_SUFFIXES
+    if args.refit and args.turntable < 2:
+        raise UsageError("--refit frames each turntable frame at its own angle: give "
+                         "--turntable N (a single frame is framed at its angle already)")
     with usage_errors():
         paths = check_output(args.output, max(args.turntable, 1), args.size,
                              transparent=args.background == "transparent", fps=args.fps)

@@ -113,21 +113,52 @@ def _check_target(ctx: moderngl.Context, size: tuple[int, int], samples: int) ->
         raise ValueError(f"--samples {samples}: this GL takes {levels}")
 
 
+@dataclass(frozen=True)
+class Framing:
+    """How a render frames what it draws.
+
+    Attributes:
+        margin: the empty border at each side, as a share of the frame, where the
+            view is tightest (0 to below 0.5: 0.1 leaves a tenth of the height
+            above and below a tall mesh); None: a thin border (a camera 6% farther
+            than the tightest fit).
+        zoom: how much larger than that the mesh is drawn (2: twice; what then
+            falls outside the frame is cut).
+        refit: frame each turntable frame at its own yaw, so that the mesh fills
+            every frame (its size changes as it turns); else one framing holds
+            for the whole orbit.
+    """
+
+    margin: float | None = None
+    zoom: float = 1.0
+    refit: bool = False
+
+    @property
+    def distance_factor(self) -> float:
+        """The camera's distance over the tightest fit's."""
+        farther = 1.06 if self.margin is None else 1.0 / (1.0 - 2.0 * self.margin)
+        return farther / self.zoom
+
+
 def framed_camera(arrays: MeshArrays | None, elevation: float = 25.0, yaw: float = 30.0,
-                  ortho: bool = False, aspect: float = 1.0, frames: int = 1) -> Camera:
-    """A camera at ``yaw``/``elevation`` framing ``arrays`` tightly at every one of the
-    ``frames`` turntable yaws (so the framing holds over the whole orbit)."""
+                  ortho: bool = False, aspect: float = 1.0, frames: int = 1,
+                  framing: Framing | None = None) -> Camera:
+    """A camera at ``yaw``/``elevation`` framing ``arrays`` as ``framing`` says (by
+    default: tightly, with a thin border) at every one of the ``frames`` turntable
+    yaws (so the framing holds over the whole orbit)."""
     positions = np.zeros((0, 3)) if arrays is None else arrays.positions
-    return camera_framing(positions, elevation, yaw, ortho, aspect, frames)
+    return camera_framing(positions, elevation, yaw, ortho, aspect, frames, framing)
 
 
 def camera_framing(positions: np.ndarray, elevation: float = 25.0, yaw: float = 30.0,
-                   ortho: bool = False, aspect: float = 1.0, frames: int = 1) -> Camera:
+                   ortho: bool = False, aspect: float = 1.0, frames: int = 1,
+                   framing: Framing | None = None) -> Camera:
     """:func:`framed_camera` for ``(n, 3)`` ``positions`` (none: the default view)."""
     camera = Camera(yaw=yaw, pitch=elevation, ortho=ortho)
     if len(positions):
         yaws = yaw + 360.0 * np.arange(max(frames, 1)) / max(frames, 1)
-        camera.fit_points(sample_points(positions), aspect, yaws)
+        factor = (framing or Framing()).distance_factor
+        camera.fit_points(sample_points(positions), aspect, yaws, margin=factor)
     return camera
 
 
@@ -142,11 +173,18 @@ def turntable_cameras(camera: Camera, frames: int) -> Iterator[Camera]:
 def render_turntable(offscreen: Offscreen, camera: Camera, style: Style, frames: int,
                      progress: Callable[[int, int], None] | None = None) -> list[np.ndarray]:
     """Render ``frames`` turntable images (each ``(H, W, 3)`` uint8)."""
+    return render_views(offscreen, list(turntable_cameras(camera, frames)), style, progress)
+
+
+def render_views(offscreen: Offscreen, cameras: list[Camera], style: Style,
+                 progress: Callable[[int, int], None] | None = None) -> list[np.ndarray]:
+    """One image (``(H, W, 3)`` uint8) from each camera, ``progress(done, total)``
+    called after each."""
     images = []
-    for index, turned in enumerate(turntable_cameras(camera, frames)):
-        images.append(offscreen.render(turned, style))
+    for index, camera in enumerate(cameras):
+        images.append(offscreen.render(camera, style))
         if progress is not None:
-            progress(index + 1, frames)
+            progress(index + 1, len(cameras))
     return images
 
 
@@ -157,11 +195,13 @@ def render_arrays(arrays: MeshArrays | None, out: str, *, size: tuple[int, int] 
                   progress: Callable[[int, int], None] | None = None,
                   ortho: bool = False, samples: int | None = None,
                   offscreen: Offscreen | None = None,
-                  others: MeshArrays | None = None, fps: float = 25.0) -> list[Path]:
+                  others: MeshArrays | None = None, fps: float = 25.0,
+                  framing: Framing | None = None) -> list[Path]:
     """Render ``arrays`` to ``out`` (one frame, or a ``turntable`` of that many frames).
 
-    The framing is computed once for all the turntable's angles, so it holds at every
-    one. ``samples`` is the MSAA level: by default 4 for one frame and 0 for a
+    ``framing`` sets the border, the zoom and whether each turntable frame is
+    framed at its own angle (see :class:`Framing`); by default one framing,
+    computed for all the turntable's angles, holds at every one. ``samples`` is the MSAA level: by default 4 for one frame and 0 for a
     turntable (edges are anti-aliased in the shader; MSAA triples software GL's cost).
     With ``offscreen`` (made beforehand, so a bad size or GL fails before a long
     run), it is drawn into and left to the caller to release; ``size`` and
@@ -178,7 +218,7 @@ def render_arrays(arrays: MeshArrays | None, out: str, *, size: tuple[int, int] 
         NoOffscreenGL: no offscreen GL context could be made.
     """
     drawn = _Drawn(arrays, preview, others, selection)
-    orbit = _Orbit(max(turntable, 1), elevation, yaw, ortho)
+    orbit = _Orbit(max(turntable, 1), elevation, yaw, ortho, framing or Framing())
     style = style if style is not None else Style()
     # before any GL: a name that cannot take these frames costs no context
     check_output(out, max(turntable, 1), offscreen.size if offscreen is not None else size,
@@ -207,12 +247,24 @@ class _Drawn:
 @dataclass(frozen=True)
 class _Orbit:
     """Where :func:`render_arrays` looks from: ``frames`` turntable views starting at
-    ``yaw`` degrees, ``elevation`` degrees above the horizon, orthographic or not."""
+    ``yaw`` degrees, ``elevation`` degrees above the horizon, orthographic or not,
+    framed as ``framing`` says."""
 
     frames: int
     elevation: float
     yaw: float
     ortho: bool
+    framing: Framing
+
+    def cameras(self, positions: np.ndarray, aspect: float) -> list[Camera]:
+        """The camera of each frame, framing ``(n, 3)`` ``positions``."""
+        shared = camera_framing(positions, self.elevation, self.yaw, self.ortho, aspect,
+                                self.frames, self.framing)
+        turned = list(turntable_cameras(shared, self.frames))
+        if not self.framing.refit:
+            return turned
+        return [camera_framing(positions, self.elevation, camera.yaw, self.ortho, aspect,
+                               1, self.framing) for camera in turned]
 
 
 def _render_into(offscreen: Offscreen, drawn: _Drawn, out: str, orbit: _Orbit,
@@ -226,7 +278,5 @@ def _render_into(offscreen: Offscreen, drawn: _Drawn, out: str, orbit: _Orbit,
     if drawn.selection is not None:
         offscreen.renderer.set_selection(drawn.selection)
     # framed as the window fits: the mesh and the other objects together
-    camera = camera_framing(offscreen.renderer.drawn_positions(), orbit.elevation, orbit.yaw,
-                            orbit.ortho, aspect=size[0] / size[1], frames=orbit.frames)
-    images = render_turntable(offscreen, camera, style, orbit.frames, progress)
-    return write_images(out, images, fps)
+    cameras = orbit.cameras(offscreen.renderer.drawn_positions(), size[0] / size[1])
+    return write_images(out, render_views(offscreen, cameras, style, progress), fps)

@@ -1,0 +1,94 @@
+"""Framing of headless renders (livemod.viewer.headless.Framing, ``livemod render
+--margin/--zoom/--refit``), measured in pixels: the rows and columns a box
+covers on a transparent background, seen orthographically from the side."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from livemod.dlfl import from_polygons, mesh_arrays
+from livemod.viewer.cli import main
+from livemod.viewer.headless import Framing, Offscreen, render_arrays
+from livemod.viewer.renderer import BACKGROUNDS, Style
+
+from .conftest import OFFSCREEN_SIZE
+from .images import read_image
+from .meshes import CUBE_FACES, CUBE_POSITIONS
+
+WIDTH, HEIGHT = OFFSCREEN_SIZE  # 160 x 120: the height is the tighter side of a tower
+
+
+def _box(size: tuple[float, float, float]):  # noqa: ANN202
+    return mesh_arrays(from_polygons((CUBE_POSITIONS - 0.5) * size, CUBE_FACES))
+
+
+def _extent(path: Path) -> tuple[int, int]:
+    """(columns, rows) of the picture the drawing covers (alpha above 0)."""
+    covered = read_image(path)[:, :, 3] > 0
+    columns, rows = np.flatnonzero(covered.any(axis=0)), np.flatnonzero(covered.any(axis=1))
+    return int(columns[-1] - columns[0] + 1), int(rows[-1] - rows[0] + 1)
+
+
+def _render(offscreen: Offscreen, arrays, out: Path, framing: Framing | None,  # noqa: ANN001
+            turntable: int = 0) -> list[Path]:
+    style = Style(background=BACKGROUNDS["transparent"])
+    return render_arrays(arrays, str(out), turntable=turntable, elevation=0.0, yaw=0.0,
+                         style=style, ortho=True, offscreen=offscreen, framing=framing)
+
+
+@pytest.mark.parametrize(("framing", "rows"), [
+    (None, HEIGHT / 1.06),  # the thin border of before
+    (Framing(margin=0.0), HEIGHT),
+    (Framing(margin=0.1), 0.8 * HEIGHT),
+    (Framing(margin=0.25), 0.5 * HEIGHT),
+    (Framing(margin=0.25, zoom=1.5), 0.75 * HEIGHT),
+])
+def test_a_tower_fills_the_share_of_the_frame_the_margin_and_zoom_leave(
+        offscreen, tmp_path, framing, rows):
+    [path] = _render(offscreen, _box((1.0, 4.0, 1.0)), tmp_path / "tower.png", framing)
+    columns, covered = _extent(path)
+    assert abs(covered - rows) <= 2, (covered, rows)
+    assert abs(columns - covered / 4) <= 2  # the side keeps its proportions
+
+
+def test_refit_frames_each_turntable_frame_at_its_own_angle(offscreen, tmp_path):
+    """A 4 x 1 x 1 bar: from its long side it is framed by its width; turned by
+    90 degrees, one framing for the orbit draws it small, a refit fills the height."""
+    bar = _box((4.0, 1.0, 1.0))
+    shared = _render(offscreen, bar, tmp_path / "shared_{frame}.png", Framing(margin=0.1), 4)
+    refit = _render(offscreen, bar, tmp_path / "refit_{frame}.png",
+                    Framing(margin=0.1, refit=True), 4)
+    long_side = 0.8 * WIDTH
+    assert [abs(c - long_side) <= 2 for c, _ in map(_extent, shared[::2])] == [True, True]
+    assert [abs(r - long_side / 4) <= 2 for _, r in map(_extent, shared[1::2])] == [True, True]
+    assert abs(_extent(refit[0])[0] - long_side) <= 2
+    assert [abs(r - 0.8 * HEIGHT) <= 2 for _, r in map(_extent, refit[1::2])] == [True, True]
+
+
+@pytest.mark.parametrize(("option", "message"), [
+    (["--margin", "0.5"], "the margin is a share of the frame from 0 to below 0.5 (or 0% to "
+                          "below 50%), not '0.5'"),
+    (["--zoom", "0"], "the zoom must be a number above 0 (2 draws the mesh twice as large), "
+                      "not '0'"),
+    (["--refit"], "--refit frames each turntable frame at its own angle: give --turntable N "
+                  "(a single frame is framed at its angle already)"),
+])
+def test_render_refuses_framing_it_cannot_do(tmp_path, capsys, option, message):
+    try:
+        code = main(["render", "cube", "-o", str(tmp_path / "x.png"), *option])
+    except SystemExit as stopped:  # argparse's own refusal
+        code = stopped.code
+    assert code == 2
+    assert message in capsys.readouterr().err
+    assert not (tmp_path / "x.png").exists()
+
+
+def test_render_command_takes_a_margin(tmp_path, capsys):
+    out = tmp_path / "cube.png"
+    assert main(["render", "cube", "-o", str(out), "--size", "120x120", "--ortho",
+                 "--elevation", "0", "--yaw", "0", "--background", "transparent",
+                 "--margin", "25%", "--samples", "0"]) == 0
+    assert _extent(out) == (60, 60)
