@@ -568,7 +568,7 @@ def run_batch(variants: list[Variant], executor: VariantExecutor | None = None, 
         executor = ProcessPoolVariantExecutor(jobs) if jobs > 1 else SerialExecutor()
     staged = [_with_staging(v) for v in variants]
     results: list[VariantResult] = []
-    with _StopSignals() as signals:
+    with _StopSignals() as signals, _synced(results):
         try:
             for result in executor.map_unordered(run_variant, staged):
                 with signals.held():
@@ -590,6 +590,24 @@ def run_batch(variants: list[Variant], executor: VariantExecutor | None = None, 
     return sorted(results, key=lambda r: r.index)
 
 
+@contextlib.contextmanager
+def _synced(results: list[VariantResult]) -> Iterator[None]:
+    """Make the outputs of ``results`` durable when the block ends, however it
+    ends (:func:`commit` leaves their folders unsynced)."""
+    try:
+        yield
+    finally:
+        sync_outputs(results)
+
+
+def sync_outputs(results: list[VariantResult]) -> None:
+    """Make the outputs of ``results`` durable: each of their folders synced once
+    (see :func:`commit`)."""
+    from livemod.dlfl.io.atomic import sync_folders
+
+    sync_folders(r.output for r in results if r.status == "ok" and r.output is not None)
+
+
 def _with_staging(variant: Variant) -> Variant:
     """``variant`` with a temporary name beside its output, made by this process
     (a later save removes it if this process dies before it is put in place)."""
@@ -604,7 +622,9 @@ def _with_staging(variant: Variant) -> Variant:
 def commit(result: VariantResult) -> VariantResult:
     """Put a finished variant's mesh at its output (the ``staged`` file renamed
     over it, or ``data`` written to it, atomically, its folder made if missing);
-    the result without the mesh, or failed with what went wrong."""
+    the result without the mesh, or failed with what went wrong. The rename is
+    made durable later, for many outputs at once (:func:`sync_outputs`): one
+    folder sync per output would cost the batch as much again as the output."""
     from livemod.dlfl.io.atomic import move_into_place, write_atomically
 
     bare = dataclasses.replace(result, staged=None, data=None)
@@ -613,9 +633,9 @@ def commit(result: VariantResult) -> VariantResult:
     try:
         if result.data is not None:
             os.makedirs(os.path.dirname(os.path.abspath(result.output)), exist_ok=True)
-            write_atomically(result.output, result.data)
+            write_atomically(result.output, result.data, sync_folder=False)
         elif result.staged is not None:
-            move_into_place(result.staged, result.output)
+            move_into_place(result.staged, result.output, sync_folder=False)
     except OSError as exc:
         return dataclasses.replace(bare, status="error", counts=None, genus=None,
                                    error=describe(exc))
@@ -698,13 +718,17 @@ class LiveIndex:
         self.path, self.script, self.specs = path, script, specs
         self.planned, self.interval = planned, interval
         self._written_at = time.monotonic()
+        self._synced = 0  # results whose outputs are durable
 
     def __call__(self, results: list[VariantResult]) -> None:
-        """Rewrite the index if the last write is ``interval`` seconds old."""
+        """Rewrite the index if the last write is ``interval`` seconds old (the
+        outputs it lists made durable first)."""
         now = time.monotonic()
         if now - self._written_at < self.interval:
             return
         self._written_at = now
+        sync_outputs(results[self._synced:])
+        self._synced = len(results)
         with contextlib.suppress(OSError):
             self.write(results, running=True)
 

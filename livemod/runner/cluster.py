@@ -35,7 +35,6 @@ from .bundle import Bundle, Unpacked, bundle_of, unpack
 
 INSTALL = 'pip install "livemod[cluster]"'
 LOCAL = "local"  # ``--cluster local``: a LocalCluster on this machine
-_POLL = 1.0  # seconds between two looks at the connection while waiting
 _THREADS_REFRESH = 5.0  # seconds between two looks at the cluster's size
 
 
@@ -139,18 +138,22 @@ class DaskVariantExecutor:
         """
         bundles = {key: bundle_of(*key)
                    for key in dict.fromkeys((v.script, v.mesh_path) for v in variants)}
-        run = _Submitter(self.client, fn)
+        from distributed import as_completed
+
+        run, fetch = _Submitter(self.client, fn), _Fetcher(self.client)
         queue, running = iter(variants), dict[Any, tuple[Variant, float]]()
+        # done futures come through it (a cancelled one too: Dask cancels them all
+        # when the connection to the scheduler is lost, so waiting never hangs)
+        completed = as_completed(loop=self.client.loop)
         try:
             self._ship(run, bundles)
-            self._fill(run, queue, running)
+            self._fill(run, queue, running, completed)
             while running:
-                for future in self._finished(running):
-                    variant, submitted = running.pop(future)
-                    self._fill(run, queue, running)  # keep the workers busy first
-                    yield _outcome(future, variant, submitted)
+                done = {future: running.pop(future) for future in completed.next_batch()}
+                self._fill(run, queue, running, completed)  # keep the workers busy first
+                yield from fetch.results(done)
         except OSError:  # a closed connection (CommClosedError) on the way
-            raise ExecutorLost(self._lost()) from None
+            raise ExecutorLost(_lost(self.client)) from None
         finally:
             run.cancel(list(running))
 
@@ -167,13 +170,16 @@ class DaskVariantExecutor:
             run.bundles[key] = name
 
     def _fill(self, run: _Submitter, queue: Iterator[Variant],
-              running: dict[Any, tuple[Variant, float]]) -> None:
-        """Submit variants from ``queue`` until the window is full."""
+              running: dict[Any, tuple[Variant, float]], completed: Any) -> None:
+        """Submit variants from ``queue`` until the window is full, each future
+        added to ``running`` and to the ``as_completed`` ``completed``."""
         while len(running) < self._current_window():
             variant = next(queue, None)
             if variant is None:
                 return
-            running[run.submit(variant)] = (variant, time.perf_counter())
+            future = run.submit(variant)
+            running[future] = (variant, time.perf_counter())
+            completed.add(future)
 
     def _current_window(self) -> int:
         if self._fixed_window is not None:
@@ -184,34 +190,6 @@ class DaskVariantExecutor:
             with contextlib.suppress(Exception):  # keep the last size if it cannot tell
                 self._window = max(2, 2 * sum(self.client.nthreads().values()))
         return self._window
-
-    def _finished(self, running: dict[Any, tuple[Variant, float]]) -> list[Any]:
-        """The futures of ``running`` that are done, waiting for one at least.
-
-        Raises:
-            ExecutorLost: the connection to the scheduler was lost (Dask cancels
-                every future then).
-        """
-        from distributed import wait
-
-        while True:
-            try:
-                done, _ = wait(list(running), timeout=_POLL, return_when="FIRST_COMPLETED")
-            except TimeoutError:
-                self._check_connected()
-                continue
-            except Exception:  # FuturesCancelledError: the scheduler is gone
-                raise ExecutorLost(self._lost()) from None
-            return list(done)
-
-    def _check_connected(self) -> None:
-        if self.client.status not in ("running", "connecting"):
-            raise ExecutorLost(self._lost())
-
-    def _lost(self) -> str:
-        return (f"lost the connection to the Dask scheduler at "
-                f"{self.client.scheduler.address}; the variants not listed did not finish")
-
 
 class _Submitter:
     """Submits one sweep's variants, each naming its bundle's plugin, under keys
@@ -267,7 +245,46 @@ class BundlePlugin(_PluginBase):
             shutil.rmtree(here.root, ignore_errors=True)
 
 
-def _outcome(future: Any, variant: Variant, submitted: float) -> VariantResult:
+class _Fetcher:
+    """Brings finished variants' results to the client: several in one round trip
+    while they are small, one at a time once one was large (so that the client
+    holds one mesh at a time)."""
+
+    SMALL = 1 << 20  # bytes of output below which results are fetched together
+
+    def __init__(self, client: Any) -> None:
+        self.client = client
+        self.largest = 0  # bytes of the largest output fetched so far
+
+    def results(self, done: dict[Any, tuple[Variant, float]]) -> Iterator[VariantResult]:
+        """The results of the futures ``done`` (each with its variant and submit
+        time), as they are fetched; the futures are released.
+
+        Raises:
+            ExecutorLost: a future was cancelled (the scheduler is gone).
+        """
+        finished = [f for f in done if f.status == "finished"]
+        together = finished if self.largest < self.SMALL else []
+        if len(together) > 1:
+            for future, result in zip(together, self.client.gather(together), strict=True):
+                future.release()
+                yield self._seen(result)
+        for future in done:
+            if future not in together or len(together) == 1:
+                yield self._seen(_outcome(future, *done[future], self.client))
+
+    def _seen(self, result: VariantResult) -> VariantResult:
+        self.largest = max(self.largest, len(result.data or b""))
+        return result
+
+
+def _lost(client: Any) -> str:
+    """What to say when the connection to ``client``'s scheduler was lost."""
+    return (f"lost the connection to the Dask scheduler at {client.scheduler.address}; "
+            f"the variants not listed did not finish")
+
+
+def _outcome(future: Any, variant: Variant, submitted: float, client: Any) -> VariantResult:
     """The result of a finished future, or the variant failed with why.
 
     Raises:
@@ -281,9 +298,8 @@ def _outcome(future: Any, variant: Variant, submitted: float) -> VariantResult:
         why = ("its worker died each time it ran it (the script called os._exit, "
                "crashed the interpreter, or ran out of memory)")
     except Exception as exc:
-        if future.cancelled():
-            raise ExecutorLost(f"variant {variant.index} was cancelled on the cluster: "
-                               f"{exc}") from None
+        if future.cancelled():  # by Dask, as the connection was lost (ours come not here)
+            raise ExecutorLost(_lost(client)) from None
         why = f"{type(exc).__name__}: {exc}"
     finally:
         future.release()

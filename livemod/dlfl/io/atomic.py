@@ -32,7 +32,8 @@ from typing import BinaryIO
 
 
 @contextlib.contextmanager
-def atomic_write(path: str | os.PathLike[str]) -> Iterator[BinaryIO]:
+def atomic_write(path: str | os.PathLike[str], *, sync_folder: bool = True,
+                 ) -> Iterator[BinaryIO]:
     """Open a binary file that replaces ``path`` only when the block succeeds.
 
     Args:
@@ -40,6 +41,9 @@ def atomic_write(path: str | os.PathLike[str]) -> Iterator[BinaryIO]:
             link is followed: the file it points to is replaced and the link
             kept, as editors save through links (a dangling link's target is
             created).
+        sync_folder: make the rename durable at once (syncing the folder); a
+            caller that saves many files in a row passes False and calls
+            :func:`sync_folders` once before it records them as saved.
 
     Yields:
         A binary file object open for writing (a temporary file beside ``path``).
@@ -74,7 +78,8 @@ def atomic_write(path: str | os.PathLike[str]) -> Iterator[BinaryIO]:
         raise
     finally:
         _in_progress.discard(tmp_path)
-    _sync_folder(folder)
+    if sync_folder:
+        _sync_folder(folder)
 
 
 # temporary files of the writes under way in this process
@@ -213,11 +218,13 @@ def remove_unfinished() -> None:
             os.unlink(tmp_path)
 
 
-def move_into_place(staged: str, path: str | os.PathLike[str]) -> None:
+def move_into_place(staged: str, path: str | os.PathLike[str], *,
+                    sync_folder: bool = True) -> None:
     """Replace ``path`` with the finished file ``staged`` (one of
     :func:`temporary_path` beside it, which another process may have written), as
-    :func:`atomic_write` ends: with the old file's permission bits, durably, and
-    through a symbolic link to the file it points to.
+    :func:`atomic_write` ends: with the old file's permission bits, durably
+    (``sync_folder``, as there), and through a symbolic link to the file it
+    points to.
 
     Raises:
         OSError: the rename fails (the message names ``path``); ``staged`` is left.
@@ -230,23 +237,34 @@ def move_into_place(staged: str, path: str | os.PathLike[str]) -> None:
         os.replace(staged, target)
     except OSError as exc:
         raise _about(target, exc) from None
-    _sync_folder(os.path.dirname(target))
+    if sync_folder:
+        _sync_folder(os.path.dirname(target))
 
 
-def write_atomically(path: str | os.PathLike[str], data: bytes | Iterable[bytes]) -> None:
+def sync_folders(paths: Iterable[str | os.PathLike[str]]) -> None:
+    """Make the renames into the folders of ``paths`` durable (see
+    ``sync_folder`` of :func:`atomic_write`): each folder once."""
+    folders = {os.path.dirname(os.path.realpath(os.path.abspath(os.fspath(p)))) for p in paths}
+    for folder in sorted(folders):
+        _sync_folder(folder)
+
+
+def write_atomically(path: str | os.PathLike[str], data: bytes | Iterable[bytes], *,
+                     sync_folder: bool = True) -> None:
     """Replace ``path`` with ``data`` through :func:`atomic_write`.
 
     Args:
         path: the file to create or replace.
         data: the contents, or an iterable of pieces written one after another
             (so a large file never has to exist whole in memory).
+        sync_folder: as for :func:`atomic_write`.
 
     Raises:
         OSError: the file cannot be written; an existing file is left intact.
             Whatever iterating ``data`` raises is re-raised, the file likewise
             left intact.
     """
-    with atomic_write(path) as handle:
+    with atomic_write(path, sync_folder=sync_folder) as handle:
         if isinstance(data, bytes | bytearray | memoryview):
             handle.write(data)
             return
