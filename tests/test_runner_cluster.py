@@ -110,9 +110,14 @@ def _patient_dask() -> Iterator[None]:
 
 @pytest.fixture(scope="module")
 def local_cluster(_patient_dask) -> Iterator[Client]:
-    """A LocalCluster of two one-thread worker processes, and a client of it."""
-    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, host="127.0.0.1",
-                      dashboard_address="127.0.0.1:0", silence_logs=50) as cluster, \
+    """A LocalCluster of two one-thread worker processes, and a client of it. A
+    variant whose worker dies is not run again (Dask's allowed-failures is 0 here,
+    3 by default), so that one that kills its worker fails at once."""
+    import dask
+
+    with dask.config.set({"distributed.scheduler.allowed-failures": 0}), \
+            LocalCluster(n_workers=2, threads_per_worker=1, processes=True, host="127.0.0.1",
+                         dashboard_address="127.0.0.1:0", silence_logs=50) as cluster, \
             Client(cluster) as client:
         yield client
 
@@ -255,6 +260,24 @@ def test_a_failing_variant_is_reported_at_its_line_and_the_sweep_goes_on(
     assert f"livemod: error: variant 1 {{'n': 1}}: {script}:4: " in captured.err
     assert captured.out.startswith("2/3 variants ok\n")
     assert sorted(os.listdir(tmp_path / "out")) == ["0.obj", "2.obj", "index.json"]
+
+
+def test_a_variant_that_kills_its_worker_fails_and_the_sweep_goes_on(
+        local_cluster, tmp_path, capsys):
+    script = tmp_path / "exits.py"
+    script.write_text("import os\nn = param('n', 0)\nload('cube')\nif n == 1:\n"
+                      "    os._exit(3)\n")
+    # (the last variant: one queued behind it on its worker would be lost with it,
+    # as Dask may run that again only where allowed-failures allows)
+    code = cli.main(["batch", str(script), "--param", "n=0:1:2", "-o",
+                     str(tmp_path / "out" / "{n}.obj"), "--cluster",
+                     local_cluster.scheduler.address])
+    assert code == 1
+    assert ("livemod: error: variant 1 {'n': 1}: its worker died each time it ran it (the "
+            "script called os._exit, crashed the interpreter, or ran out of memory)"
+            ) in capsys.readouterr().err
+    assert sorted(os.listdir(tmp_path / "out")) == ["0.obj", "index.json"]
+    local_cluster.wait_for_workers(2, timeout=SLOW)  # the nanny starts a new one
 
 
 def test_ctrl_c_cancels_the_sweep_on_the_cluster(local_cluster, tmp_path):

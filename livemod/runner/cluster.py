@@ -140,7 +140,9 @@ class DaskVariantExecutor:
                    for key in dict.fromkeys((v.script, v.mesh_path) for v in variants)}
         from distributed import as_completed
 
-        run, fetch = _Submitter(self.client, fn), _Fetcher(self.client)
+        # said when the connection is lost, when the client no longer knows it
+        lost = _lost(self.client.scheduler.address)
+        run, fetch = _Submitter(self.client, fn), _Fetcher(self.client, lost)
         queue, running = iter(variants), dict[Any, tuple[Variant, float]]()
         # done futures come through it (a cancelled one too: Dask cancels them all
         # when the connection to the scheduler is lost, so waiting never hangs)
@@ -153,7 +155,7 @@ class DaskVariantExecutor:
                 self._fill(run, queue, running, completed)  # keep the workers busy first
                 yield from fetch.results(done)
         except OSError:  # a closed connection (CommClosedError) on the way
-            raise ExecutorLost(_lost(self.client)) from None
+            raise ExecutorLost(lost) from None
         finally:
             run.cancel(list(running))
 
@@ -252,8 +254,8 @@ class _Fetcher:
 
     SMALL = 1 << 20  # bytes of output below which results are fetched together
 
-    def __init__(self, client: Any) -> None:
-        self.client = client
+    def __init__(self, client: Any, lost: str) -> None:
+        self.client, self.lost = client, lost
         self.largest = 0  # bytes of the largest output fetched so far
 
     def results(self, done: dict[Any, tuple[Variant, float]]) -> Iterator[VariantResult]:
@@ -263,28 +265,35 @@ class _Fetcher:
         Raises:
             ExecutorLost: a future was cancelled (the scheduler is gone).
         """
-        finished = [f for f in done if f.status == "finished"]
-        together = finished if self.largest < self.SMALL else []
-        if len(together) > 1:
-            for future, result in zip(together, self.client.gather(together), strict=True):
-                future.release()
-                yield self._seen(result)
+        together = [f for f in done if f.status == "finished"] if self.largest < self.SMALL else []
+        gathered = self._gathered(together) if len(together) > 1 else []
+        for future, result in zip(together, gathered, strict=False):
+            future.release()
+            yield self._seen(result)
         for future in done:
-            if future not in together or len(together) == 1:
-                yield self._seen(_outcome(future, *done[future], self.client))
+            if future not in together or not gathered:
+                yield self._seen(_outcome(future, *done[future], self.lost))
+
+    def _gathered(self, futures: list[Any]) -> list[VariantResult]:
+        """The results of ``futures`` in one round trip, or [] when one of them
+        failed or was cancelled meanwhile (then each is fetched on its own)."""
+        try:
+            return list(self.client.gather(futures))
+        except Exception:
+            return []
 
     def _seen(self, result: VariantResult) -> VariantResult:
         self.largest = max(self.largest, len(result.data or b""))
         return result
 
 
-def _lost(client: Any) -> str:
-    """What to say when the connection to ``client``'s scheduler was lost."""
-    return (f"lost the connection to the Dask scheduler at {client.scheduler.address}; "
+def _lost(address: str) -> str:
+    """What to say when the connection to the scheduler at ``address`` was lost."""
+    return (f"lost the connection to the Dask scheduler at {address}; "
             f"the variants not listed did not finish")
 
 
-def _outcome(future: Any, variant: Variant, submitted: float, client: Any) -> VariantResult:
+def _outcome(future: Any, variant: Variant, submitted: float, lost: str) -> VariantResult:
     """The result of a finished future, or the variant failed with why.
 
     Raises:
@@ -299,7 +308,7 @@ def _outcome(future: Any, variant: Variant, submitted: float, client: Any) -> Va
                "crashed the interpreter, or ran out of memory)")
     except Exception as exc:
         if future.cancelled():  # by Dask, as the connection was lost (ours come not here)
-            raise ExecutorLost(_lost(client)) from None
+            raise ExecutorLost(lost) from None
         why = f"{type(exc).__name__}: {exc}"
     finally:
         future.release()
