@@ -239,10 +239,12 @@ def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="smaller sweeps")
     parser.add_argument("--only", choices=("overhead", "speedup", "memory"))
+    parser.add_argument("--repeats", type=int, default=3,
+                        help="alternated pairs of overhead sweeps (default 3)")
     args = parser.parse_args()
     with tempfile.TemporaryDirectory(prefix="bench-batch-") as folder:
         if args.only in (None, "overhead"):
-            bench_overhead(folder, 200 if args.quick else 1000, 1 if args.quick else 3)
+            bench_overhead(folder, 200 if args.quick else 1000, args.repeats)
         if args.only in (None, "speedup"):
             bench_speedup(folder, 8 if args.quick else 32)
         if args.only in (None, "memory"):
