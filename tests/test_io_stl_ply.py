@@ -178,12 +178,12 @@ def test_a_save_that_fails_midway_leaves_the_old_file(
 
     real_atomic = atomic_write
 
-    def failing(target: str):  # type: ignore[no-untyped-def]
+    def failing(target: str, **options):  # type: ignore[no-untyped-def]
         import contextlib
 
         @contextlib.contextmanager
         def wrapped():  # type: ignore[no-untyped-def]
-            with real_atomic(target) as handle:
+            with real_atomic(target, **options) as handle:
                 yield Exploding(handle)
 
         return wrapped()
