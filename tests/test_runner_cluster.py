@@ -292,7 +292,7 @@ def test_ctrl_c_cancels_the_sweep_on_the_cluster(local_cluster, tmp_path):
     try:
         wait_until(lambda: all((tmp_path / "out" / f"{n}.obj").exists() for n in (0, 1)),
                    timeout=SLOW)
-        wait_until(lambda: len(list(marks.glob("[23]-*"))) == 2, timeout=60)
+        wait_until(lambda: list(marks.glob("2-*")), timeout=SLOW)
         os.killpg(proc.pid, signal.SIGINT)
         printed, error = proc.communicate(timeout=60)
         assert proc.returncode == 130, error
@@ -307,8 +307,8 @@ def test_ctrl_c_cancels_the_sweep_on_the_cluster(local_cluster, tmp_path):
         with contextlib.suppress(ProcessLookupError):
             os.killpg(proc.pid, signal.SIGKILL)
         proc.communicate(timeout=60)
-    wait_until(lambda: not any(local_cluster.run(_executing).values()), timeout=60)
-    assert not list(marks.glob("[4-7]-*"))  # the variants submitted after 0 and 1 never ran
+    wait_until(lambda: not any(local_cluster.run(_executing).values()), timeout=SLOW)
+    assert sorted(os.listdir(tmp_path / "out")) == ["0.obj", "1.obj", "index.json"]
 
 
 def _executing(dask_worker) -> int:  # noqa: ANN001  (a distributed.Worker)

@@ -5,8 +5,10 @@ The client packs what the script needs (:mod:`.bundle`) and sends it once; each
 variant travels as a small :class:`~.batch.Variant` naming the client's paths,
 runs on a worker in a private copy of the script's folder, and comes back with
 its output file's bytes, which the batch writes (:func:`~.batch.commit`). At
-most a window of variants is submitted at a time (twice the cluster's threads),
-so neither the client nor the cluster ever holds the whole sweep's meshes.
+most a window of tasks is submitted at a time (twice the cluster's threads),
+so neither the client nor the cluster ever holds the whole sweep's meshes; a
+task holds one variant, or, once variants are seen to be short and small,
+enough of them to take about 0.2 s.
 
 Dask (``distributed``) is an optional extra: ``pip install "livemod[cluster]"``.
 A worker that dies mid-variant costs only time: the scheduler runs the variant
@@ -16,6 +18,7 @@ again elsewhere, and its output is written once, when its result arrives.
 from __future__ import annotations
 
 import atexit
+import collections
 import contextlib
 import dataclasses
 import logging
@@ -139,22 +142,25 @@ class DaskVariantExecutor:
         bundles = {key: bundle_of(*key)
                    for key in dict.fromkeys((v.script, v.mesh_path) for v in variants)}
         from distributed import as_completed
+        from distributed.client import ClosedClientError
 
         # said when the connection is lost, when the client no longer knows it
         lost = _lost(self.client.scheduler.address)
         run, fetch = _Submitter(self.client, fn), _Fetcher(self.client, lost)
-        queue, running = iter(variants), dict[Any, tuple[Variant, float]]()
+        queue, running = collections.deque(variants), dict[Any, tuple[list[Variant], float]]()
         # done futures come through it (a cancelled one too: Dask cancels them all
         # when the connection to the scheduler is lost, so waiting never hangs)
         completed = as_completed(loop=self.client.loop)
         try:
             self._ship(run, bundles)
-            self._fill(run, queue, running, completed)
+            self._fill(run, queue, running, completed, 1)
             while running:
                 done = {future: running.pop(future) for future in completed.next_batch()}
-                self._fill(run, queue, running, completed)  # keep the workers busy first
+                # keep the workers busy first
+                chunk = fetch.chunk(len(queue), self._current_window())
+                self._fill(run, queue, running, completed, chunk)
                 yield from fetch.results(done)
-        except OSError:  # a closed connection (CommClosedError) on the way
+        except (OSError, ClosedClientError):  # the connection closed on the way
             raise ExecutorLost(lost) from None
         finally:
             run.cancel(list(running))
@@ -171,16 +177,16 @@ class DaskVariantExecutor:
                 self.client.register_plugin(BundlePlugin(bundle, name), name=name)
             run.bundles[key] = name
 
-    def _fill(self, run: _Submitter, queue: Iterator[Variant],
-              running: dict[Any, tuple[Variant, float]], completed: Any) -> None:
-        """Submit variants from ``queue`` until the window is full, each future
-        added to ``running`` and to the ``as_completed`` ``completed``."""
-        while len(running) < self._current_window():
-            variant = next(queue, None)
-            if variant is None:
-                return
-            future = run.submit(variant)
-            running[future] = (variant, time.perf_counter())
+    def _fill(self, run: _Submitter, queue: collections.deque[Variant],
+              running: dict[Any, tuple[list[Variant], float]], completed: Any,
+              chunk: int) -> None:
+        """Submit tasks of ``chunk`` variants from ``queue`` until the window is
+        full, each future added to ``running`` and to the ``as_completed``
+        ``completed``."""
+        while queue and len(running) < self._current_window():
+            variants = [queue.popleft() for _ in range(min(chunk, len(queue)))]
+            future = run.submit(variants)
+            running[future] = (variants, time.perf_counter())
             completed.add(future)
 
     def _current_window(self) -> int:
@@ -194,23 +200,25 @@ class DaskVariantExecutor:
         return self._window
 
 class _Submitter:
-    """Submits one sweep's variants, each naming its bundle's plugin, under keys
-    unique to the sweep (``livemod-variant-INDEX-SWEEP``, as the dashboard shows
-    them). The bundle is no dependency of the task: Dask would then send every
-    variant to the worker holding it. The earlier variant has the higher
-    priority (a worker runs those it holds in order)."""
+    """Submits one sweep's variants, a task of one or more naming its bundle's
+    plugin, under keys unique to the sweep (``livemod-variants-FIRST-SWEEP``, as
+    the dashboard shows them). The bundle is no dependency of the task: Dask
+    would then send every variant to the worker holding it. The earlier variant
+    has the higher priority (a worker runs those it holds in order)."""
 
     def __init__(self, client: Any, fn: Callable[[Variant], VariantResult]) -> None:
         self.client, self.fn = client, fn
         self.bundles: dict[tuple[str, str | None], str] = {}  # plugin names, by script and mesh
         self.sweep = uuid.uuid4().hex[:8]
 
-    def submit(self, variant: Variant) -> Any:
-        """A future of ``run_shipped(fn, variant, its bundle's plugin name)``."""
-        bundle = self.bundles[variant.script, variant.mesh_path]
-        return self.client.submit(run_shipped, self.fn, variant, bundle, pure=False,
-                                  key=f"livemod-variant-{variant.index}-{self.sweep}",
-                                  priority=-variant.index)
+    def submit(self, variants: list[Variant]) -> Any:
+        """A future of ``run_shipped(fn, variants, their bundle's plugin name)``
+        (variants of one script and mesh: those of a sweep)."""
+        first = variants[0]
+        bundle = self.bundles[first.script, first.mesh_path]
+        return self.client.submit(run_shipped, self.fn, variants, bundle, pure=False,
+                                  key=f"livemod-variants-{first.index}-{self.sweep}",
+                                  priority=-first.index)
 
     def cancel(self, futures: list[Any]) -> None:
         """Cancel ``futures`` and take the bundles off the workers (nothing is
@@ -248,18 +256,32 @@ class BundlePlugin(_PluginBase):
 
 
 class _Fetcher:
-    """Brings finished variants' results to the client: several in one round trip
+    """Brings finished tasks' results to the client: several in one round trip
     while they are small, one at a time once one was large (so that the client
-    holds one mesh at a time)."""
+    holds one mesh at a time); and says how many variants a task should hold
+    (:meth:`chunk`)."""
 
     SMALL = 1 << 20  # bytes of output below which results are fetched together
+    TASK_SECONDS = 0.2  # what a task of short variants should take
+    MOST = 64  # variants in one task, at most
 
     def __init__(self, client: Any, lost: str) -> None:
         self.client, self.lost = client, lost
         self.largest = 0  # bytes of the largest output fetched so far
+        self.typical: float | None = None  # seconds a variant takes (a running mean)
 
-    def results(self, done: dict[Any, tuple[Variant, float]]) -> Iterator[VariantResult]:
-        """The results of the futures ``done`` (each with its variant and submit
+    def chunk(self, waiting: int, window: int) -> int:
+        """Variants for the next task: one until a result was seen and while
+        outputs are large; else as many as take about TASK_SECONDS (Dask's own
+        work per task, a few milliseconds, is then shared by them), and few
+        enough that the ``waiting`` variants still fill the ``window``."""
+        if self.typical is None or self.largest >= self.SMALL:
+            return 1
+        by_time = int(self.TASK_SECONDS / max(self.typical, 1e-4))
+        return max(1, min(self.MOST, by_time, waiting // max(window, 1)))
+
+    def results(self, done: dict[Any, tuple[list[Variant], float]]) -> Iterator[VariantResult]:
+        """The results of the futures ``done`` (each with its variants and submit
         time), as they are fetched; the futures are released.
 
         Raises:
@@ -267,14 +289,14 @@ class _Fetcher:
         """
         together = [f for f in done if f.status == "finished"] if self.largest < self.SMALL else []
         gathered = self._gathered(together) if len(together) > 1 else []
-        for future, result in zip(together, gathered, strict=False):
+        for future, results in zip(together, gathered, strict=False):
             future.release()
-            yield self._seen(result)
+            yield from map(self._seen, results)
         for future in done:
             if future not in together or not gathered:
-                yield self._seen(_outcome(future, *done[future], self.lost))
+                yield from map(self._seen, _outcome(future, *done[future], self.lost))
 
-    def _gathered(self, futures: list[Any]) -> list[VariantResult]:
+    def _gathered(self, futures: list[Any]) -> list[list[VariantResult]]:
         """The results of ``futures`` in one round trip, or [] when one of them
         failed or was cancelled meanwhile (then each is fetched on its own)."""
         try:
@@ -284,6 +306,9 @@ class _Fetcher:
 
     def _seen(self, result: VariantResult) -> VariantResult:
         self.largest = max(self.largest, len(result.data or b""))
+        if result.status == "ok":
+            self.typical = result.elapsed if self.typical is None else (
+                0.8 * self.typical + 0.2 * result.elapsed)
         return result
 
 
@@ -293,8 +318,9 @@ def _lost(address: str) -> str:
             f"the variants not listed did not finish")
 
 
-def _outcome(future: Any, variant: Variant, submitted: float, lost: str) -> VariantResult:
-    """The result of a finished future, or the variant failed with why.
+def _outcome(future: Any, variants: list[Variant], submitted: float,
+             lost: str) -> list[VariantResult]:
+    """The results of a finished task, or its variants failed with why.
 
     Raises:
         ExecutorLost: the future was cancelled (the scheduler is gone).
@@ -312,7 +338,7 @@ def _outcome(future: Any, variant: Variant, submitted: float, lost: str) -> Vari
         why = f"{type(exc).__name__}: {exc}"
     finally:
         future.release()
-    return failed_result(variant, why, submitted)
+    return [failed_result(variant, why, submitted) for variant in variants]
 
 
 # -- on a worker ----------------------------------------------------------------
@@ -323,17 +349,23 @@ _unpacked: dict[str, Unpacked] = {}  # plugin name -> its bundle's copy in this 
 _scratch: list[str] = []  # this process's folder for copies and outputs
 
 
-def run_shipped(fn: Callable[[Variant], VariantResult], variant: Variant,
-                bundle: str) -> VariantResult:
-    """On a worker: run ``fn`` on ``variant`` in this process's copy of the bundle
-    the plugin ``bundle`` brought (unpacked at its first variant here); its result
-    as the client knows it: the client's paths in it, and the output file's
-    bytes in ``data``. One variant at a time per process (a worker with several
-    threads runs them in turn).
+def run_shipped(fn: Callable[[Variant], VariantResult], variants: list[Variant],
+                bundle: str) -> list[VariantResult]:
+    """On a worker: run ``fn`` on each of ``variants`` in this process's copy of
+    the bundle the plugin ``bundle`` brought (unpacked at its first variant here);
+    their results as the client knows them: the client's paths in them, and the
+    output file's bytes in ``data``. One variant at a time per process (a worker
+    with several threads runs them in turn).
 
     Raises:
         RuntimeError: no such bundle reached this process.
     """
+    return [_run_one(fn, variant, bundle) for variant in variants]
+
+
+def _run_one(fn: Callable[[Variant], VariantResult], variant: Variant,
+             bundle: str) -> VariantResult:
+    """:func:`run_shipped` of one variant."""
     with _RUN_LOCK:
         here = _unpacked.get(bundle)
         if here is None:
