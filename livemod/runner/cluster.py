@@ -330,8 +330,8 @@ def _outcome(future: Any, variants: list[Variant], submitted: float,
     try:
         return future.result()
     except KilledWorker:
-        why = ("its worker died each time it ran it (the script called os._exit, "
-               "crashed the interpreter, or ran out of memory)")
+        why = ("its worker died each time it ran it (killed, out of memory, or the "
+               "interpreter crashed)")
     except Exception as exc:
         if future.cancelled():  # by Dask, as the connection was lost (ours come not here)
             raise ExecutorLost(lost) from None
