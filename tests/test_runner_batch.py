@@ -126,3 +126,18 @@ def test_batch_without_output_says_it_wrote_nothing_and_how_to(capsys):
         "2/2 variants ok\n"
         "ran and checked 2 variants but wrote no mesh: give -o with a pattern, e.g. "
         "-o 'out/{count}_{radius}.obj', to write each one\n")
+
+
+def test_a_thread_a_script_leaves_running_does_not_hold_the_batch(tmp_path):
+    script = tmp_path / "threads.py"
+    script.write_text("import threading, time\n"
+                      "n = param('n', 0)\n"
+                      "threading.Thread(target=time.sleep, args=(10**6,)).start()\n"
+                      "load('cube')\n")
+    out = tmp_path / "out"
+    # the timeout is a deadline for a hang, not a measure: the thread sleeps for days
+    done = subprocess.run([sys.executable, "-m", "livemod.runner.cli", "batch", str(script),
+                           "--param", "n=0:1:2", "-o", str(out / "{n}.obj"), "-j", "2"],
+                          capture_output=True, text=True, timeout=60)
+    assert done.returncode == 0, done.stderr
+    assert sorted(p.name for p in out.glob("*.obj")) == ["0.obj", "1.obj"]

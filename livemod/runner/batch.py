@@ -300,8 +300,8 @@ def _finished(executor: concurrent.futures.Executor, fn: Callable[[Variant], Var
 def _lost(exc: Exception) -> str:
     """What to say of a variant whose run never reported back."""
     if isinstance(exc, BrokenProcessPool):
-        return ("its worker process died (the script called os._exit, crashed the "
-                "interpreter, or ran out of memory)")
+        return ("its worker process died (the script crashed the interpreter, was "
+                "killed, or ran out of memory)")
     return f"{type(exc).__name__}: {exc}"
 
 
@@ -342,10 +342,11 @@ class ProcessPoolVariantExecutor:
 @contextlib.contextmanager
 def _stoppable_pool(jobs: int, context: multiprocessing.context.BaseContext,
                     ) -> Iterator[concurrent.futures.ProcessPoolExecutor]:
-    """A process pool shut down when the block ends; when it ends in an exception
-    (Ctrl-C, or the caller stopped reading: GeneratorExit) the variants not
-    started are dropped and the running ones ended at once (their workers remove
-    the temporary file of a mesh being written, see :func:`_killed`)."""
+    """A process pool whose workers are ended when the block ends. When it ends in
+    an exception (Ctrl-C, or the caller stopped reading: GeneratorExit) the
+    variants not started are dropped and the running ones ended at once (their
+    workers remove the temporary file of a mesh being written, see
+    :func:`_killed`)."""
     workers = _Workers(context)
     pool = concurrent.futures.ProcessPoolExecutor(
         jobs, mp_context=context, initializer=_worker_started,
@@ -357,7 +358,10 @@ def _stoppable_pool(jobs: int, context: multiprocessing.context.BaseContext,
         workers.terminate()
         raise
     else:
-        pool.shutdown()
+        # every result is in: end the workers rather than wait for them, since a
+        # thread a script left running would keep its worker from ever exiting
+        pool.shutdown(wait=False)
+        workers.terminate()
     finally:
         workers.close()
 
