@@ -232,3 +232,24 @@ def test_a_new_png_never_replaces_a_file(tmp_path: Path) -> None:
     save_new_png(fresh, image)
     assert np.asarray(Image.open(fresh)).shape == (4, 6, 3)
     assert sorted(p.name for p in tmp_path.rglob("*")) == ["new.png", "shot.png", "sub"]
+
+
+def test_a_new_pngs_temporary_file_is_named_for_the_abandoned_sweep(tmp_path: Path,
+                                                                    monkeypatch) -> None:
+    import os
+
+    from livemod.dlfl.io import atomic
+
+    linked = []
+    real_link = os.link
+
+    def link(source, target):
+        linked.append(Path(source).name)
+        real_link(source, target)
+
+    monkeypatch.setattr(os, "link", link)
+    save_new_png(tmp_path / "shot.png", np.zeros((4, 6, 3), np.uint8))
+    # the sweep of atomic saves recognises it as this process's, so it removes it
+    # once this process is gone (a screenshot killed between encode and link)
+    found = atomic._TEMPORARY.fullmatch(linked[0])
+    assert found is not None and found["pid"] == str(os.getpid())

@@ -229,12 +229,15 @@ def save_new_png(path: Path, image: np.ndarray) -> None:
         OSError: the file cannot be written (no partial ``path`` is left).
     """
     import os
-    import secrets
 
     from PIL import Image
 
+    from livemod.dlfl.io.atomic import temporary_path
+
     path.parent.mkdir(parents=True, exist_ok=True)
-    temp = path.with_name(f".{path.name}.{secrets.token_hex(6)}.tmp")
+    # named as atomic saves name theirs, so a later save removes it if this
+    # process is killed before it is unlinked
+    temp = Path(temporary_path(os.path.abspath(path)))
     _write_exclusive(temp, functools.partial(Image.fromarray(image).save, format="PNG"))
     try:
         try:
