@@ -2,15 +2,20 @@
 
 from __future__ import annotations
 
+import dataclasses
 import threading
 
+import numpy as np
 import pytest
 
-from livemod.dlfl import from_polygons
+from livemod.dlfl import MeshArrays, from_polygons, mesh_arrays, shapes
+from livemod.dlfl.errors import InvalidArgumentError
 from livemod.dlfl.mesh import Mesh
 from livemod.runner import LiveSession, ManualNotifier, preview
 from livemod.runner.results import RunResult, snapshot_mesh
+from livemod.viewer.camera import Camera
 
+from .meshes import point_sphere
 from .runner_scripts.support import closing_session, next_result, script_path, started_session
 
 QUAD = ([(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0)], [(0, 1, 2, 3)])
@@ -48,8 +53,8 @@ def test_a_failing_preview_is_logged_and_the_worker_goes_on(caplog):
         done.set()
         return snapshot_mesh(mesh)
 
-    worker = preview.PreviewWorker(lambda result, arrays: posted.append(result.run_id),
-                                   lambda result: True, compute)
+    worker: preview.PreviewWorker[RunResult, Mesh, MeshArrays] = preview.PreviewWorker(
+        lambda result, arrays: posted.append(result.run_id), lambda result: True, compute)
     with caplog.at_level("ERROR", logger="livemod.preview"):
         worker.request(_result(1), from_polygons(*QUAD))
         assert failed.wait(10)
@@ -92,3 +97,148 @@ def test_session_results_carry_the_other_objects(tmp_path):
         assert result.status == "ok"
         assert result.arrays is not None and result.arrays.counts == (4, 6, 4)
         assert result.others is not None and result.others.counts == (8, 12, 6)
+
+
+# -- the patch preview of a scene ------------------------------------------------------
+
+
+def _objects(*meshes: Mesh) -> tuple:
+    return tuple(mesh_arrays(m) for m in meshes)
+
+
+def test_patches_cover_every_object_at_the_density_asked():
+    objects = _objects(shapes.cube(), shapes.torus(6, 4))       # 24 + 96 corners
+    made = preview.make_preview(preview.PreviewRequest(objects, preview.PreviewSettings(
+        density=3)))
+    assert (made.density, made.shown, made.total, made.by_view) == (3, 120, 120, False)
+    assert made.surface.triangles.shape == (120 * 2 * 9, 3)
+    assert made.surface.positions.shape == (120 * 16, 3)
+    assert made.description == "patches, density 3"
+    assert not made.surface.positions.flags.writeable
+    # the torus's patches come after the cube's, its indices shifted past them
+    assert made.surface.triangles[24 * 18:].min() == 24 * 16
+    cube_part = made.surface.positions[:24 * 16]
+    assert np.abs(cube_part).max() <= 1.0 + 1e-6                 # inside the cube (size 2)
+
+
+def test_over_the_budget_the_density_drops_first():
+    objects = _objects(shapes.cube())
+    made = preview.make_preview(preview.PreviewRequest(objects, preview.PreviewSettings(
+        density=4, budget=24 * 2 * 9)))
+    assert made.density == 3 and made.shown == 24
+    assert made.description == "patches, density 3 (of 4: budget)"
+
+
+def test_then_only_the_nearest_faces_in_view_get_patches():
+    near, far = shapes.cube(), shapes.cube()
+    far.set_positions(far.vertex_ids(), mesh_arrays(far).positions + [0.0, 0.0, -20.0])
+    behind = shapes.cube()
+    behind.set_positions(behind.vertex_ids(), mesh_arrays(behind).positions + [0.0, 0.0, 20.0])
+    objects = _objects(far, behind, near)
+    camera = Camera()
+    camera.fit_points(mesh_arrays(near).positions, 1.0)
+    view = preview.View(camera.eye(), camera.view_projection(1.0))
+    assert np.linalg.norm(camera.eye() - [0, 0, 20]) > 5            # not inside "behind"
+    made = preview.make_preview(preview.PreviewRequest(
+        objects, preview.PreviewSettings(budget=2 * 30), view))
+    assert made.by_view and made.density == 1
+    assert made.shown == 28 and made.total == 72                  # 7 whole quads of 4
+    assert made.description == ("patches, density 1 (of 4: budget), 28 of 72 "
+                                "(the nearest in view: budget)")
+    clip = np.c_[made.surface.positions, np.ones(len(made.surface.positions))] @ \
+        camera.view_projection(1.0).T
+    centres = made.surface.positions.reshape(-1, 4, 3).mean(axis=1)
+    assert (clip[:, 3] > 0).all()
+    # the near cube's six faces all, and one more: the far cube's nearest
+    assert (np.abs(centres[:, 2]) <= 1.0 + 1e-6).sum() == 24
+
+
+def test_without_a_view_the_first_faces_get_patches():
+    objects = _objects(shapes.cube(), shapes.cube())
+    made = preview.make_preview(preview.PreviewRequest(objects, preview.PreviewSettings(
+        budget=2 * 26)))
+    assert made.shown == 24 and made.surface.triangles.max() < 24 * 4
+
+
+def test_catmull_clark_keeps_its_levels_and_gives_way_to_patches_over_the_budget():
+    objects = _objects(shapes.cube())
+    settings = preview.PreviewSettings(mode="catmull-clark")
+    made = preview.make_preview(preview.PreviewRequest(objects, settings))
+    assert made.description == "Catmull-Clark, 2 levels" and made.density == 2
+    assert len(made.surface.triangles) == 6 * 16 * 2
+    np.testing.assert_allclose(np.linalg.norm(made.surface.normals, axis=1), 1.0, atol=1e-6)
+    fewer = preview.make_preview(preview.PreviewRequest(
+        objects, dataclasses.replace(settings, budget=2 * 24)))
+    assert fewer.description == "Catmull-Clark, 1 level (of 2: budget)"
+    patches = preview.make_preview(preview.PreviewRequest(
+        objects, dataclasses.replace(settings, budget=2 * 23)))
+    assert patches.description.startswith("Catmull-Clark over the budget: patches, density 1")
+
+
+def test_a_scene_with_nothing_to_smooth_gets_an_empty_preview():
+    for objects in ((), _objects(Mesh()), _objects(point_sphere())):
+        made = preview.make_preview(preview.PreviewRequest(objects))
+        assert made.surface.triangles.shape == (0, 3)
+        assert made.description == "patches: nothing to smooth"
+
+
+@pytest.mark.parametrize("field, value, message", [
+    ("mode", "loop", "preview mode must be one of ('patches', 'catmull-clark'), got 'loop'"),
+    ("density", 0, "preview density must be an int from 1 to 32, got 0"),
+    ("levels", 2.0, "preview levels must be an int from 1 to 4, got 2.0"),
+    ("budget", 1, "preview budget must be an int from 2 to 2147483648, got 1"),
+])
+def test_settings_out_of_range_are_refused(field, value, message):
+    with pytest.raises(InvalidArgumentError) as caught:
+        preview.PreviewSettings(**{field: value})
+    assert str(caught.value) == message
+
+
+@pytest.mark.timeout(60)
+def test_scene_previews_hand_back_the_newest_request_made_off_the_caller_thread():
+    threads, release = [], threading.Event()
+
+    def compute(request: preview.PreviewRequest) -> preview.Preview:
+        threads.append(threading.current_thread())
+        release.wait(10)
+        return preview.make_preview(request)
+
+    previews = preview.ScenePreviews(compute)
+    try:
+        first = previews.ask(preview.PreviewRequest(_objects(shapes.cube())))
+        second = previews.ask(preview.PreviewRequest(_objects(shapes.tetrahedron())))
+        third = previews.ask(preview.PreviewRequest(_objects(shapes.torus(4, 3))))
+        assert previews.take() is None
+        release.set()
+        assert previews.ready.wait(20)
+        number, made = previews.take()  # type: ignore[misc]
+        assert (first, second, number) == (1, 2, third)
+        assert made.total == 48
+        assert previews.take() is None
+        assert threads and threading.main_thread() not in threads
+    finally:
+        previews.close()
+
+
+@pytest.mark.timeout(60)
+def test_a_failing_scene_preview_is_logged_and_the_next_one_comes(caplog):
+    failed = threading.Event()
+
+    def compute(request: preview.PreviewRequest) -> preview.Preview:
+        if len(request.objects) == 2:
+            failed.set()
+            raise RuntimeError("boom")
+        return preview.make_preview(request)
+
+    previews = preview.ScenePreviews(compute)
+    try:
+        with caplog.at_level("ERROR", logger="livemod.preview"):
+            previews.ask(preview.PreviewRequest(_objects(shapes.cube(), shapes.cube())))
+            assert failed.wait(20)
+            number = previews.ask(preview.PreviewRequest(_objects(shapes.cube())))
+            assert previews.ready.wait(20)
+        taken = previews.take()
+        assert taken is not None and taken[0] == number == 2
+        assert "the preview of 1 failed" in caplog.text and "boom" in caplog.text
+    finally:
+        previews.close()

@@ -1,9 +1,17 @@
-"""The patch-smoothed preview, computed in a background thread.
+"""The smoothed preview, computed in a background thread.
 
-TopMod draws a smoothed "patch" version of the control mesh; livemod
-approximates it with two levels of Catmull-Clark (or Doo-Sabin) subdivision
-from :mod:`livemod.dlfl.subdivision`. Above the face budget there is no preview
-(None). A preview that fails is logged (to the logger named "livemod.preview") and the
+The default is TopMod's: one bicubic patch per corner over level-2 Doo-Sabin
+(:mod:`livemod.dlfl.patches`), evaluated on a grid whose density the user
+chooses, with the patches' own normals. The Catmull-Clark limit (two levels of
+:func:`~livemod.dlfl.subdivision.subdivide`, smooth vertex normals) is the
+other mode. A preview covers every object it is given.
+
+Above the triangle budget the preview degrades instead of vanishing: first a
+lower density (patches) or fewer levels (Catmull-Clark, which then gives way to
+patches), then the patches of part of the mesh only: those seen by the view,
+nearest first. :attr:`Preview.description` says what it shows, for the HUD.
+
+A preview that fails is logged (to the logger named "livemod.preview") and the
 session goes on without it: the control mesh is what the user asked for.
 """
 
@@ -12,10 +20,18 @@ from __future__ import annotations
 import logging
 import queue
 import threading
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from typing import Generic, TypeVar
 
+import numpy as np
+
+from livemod.dlfl.analysis import face_centroids, vertex_normals
 from livemod.dlfl.arrays import MeshArrays
+from livemod.dlfl.build import from_corner_arrays
+from livemod.dlfl.errors import DLFLError, InvalidArgumentError
 from livemod.dlfl.mesh import Mesh
+from livemod.dlfl.patches import MAX_DENSITY, CornerPatches, Tessellation
 from livemod.dlfl.subdivision import subdivide
 
 from .results import RunResult, snapshot_mesh
@@ -24,7 +40,13 @@ _LOG = logging.getLogger("livemod.preview")
 
 DEFAULT_SCHEME = "catmull-clark"
 DEFAULT_LEVELS = 2
-DEFAULT_FACE_BUDGET = 2_000_000  # faces of the *preview*; bigger meshes get none
+DEFAULT_FACE_BUDGET = 2_000_000  # faces of a :func:`preview_arrays` preview; bigger: none
+
+PATCHES, CATMULL_CLARK = "patches", "catmull-clark"
+MODES = (PATCHES, CATMULL_CLARK)
+DEFAULT_DENSITY = 4
+# triangles a preview may have: about what software GL draws in a frame's budget
+DEFAULT_TRIANGLE_BUDGET = 1_000_000
 
 
 def preview_arrays(mesh: Mesh, *, scheme: str = DEFAULT_SCHEME, levels: int = DEFAULT_LEVELS,
@@ -44,29 +66,248 @@ def preview_arrays(mesh: Mesh, *, scheme: str = DEFAULT_SCHEME, levels: int = DE
     return snapshot_mesh(smoothed)
 
 
-class PreviewWorker:
-    """One daemon thread computing previews for results, newest first.
+@dataclass(frozen=True)
+class PreviewSettings:
+    """What preview to make.
 
-    Args:
-        post: receives ``(result, preview)``; it decides whether to publish.
-        is_current: tells whether a result is still worth a preview (a newer
-            run makes older requests pointless; they are dropped).
-        compute: the preview function (injectable for tests).
+    Attributes:
+        mode: ``"patches"`` (TopMod's) or ``"catmull-clark"``.
+        density: grid steps along each side of a patch (1 to ``MAX_DENSITY``):
+            ``2 * density**2`` triangles per corner.
+        levels: Catmull-Clark levels (1 to 4): ``2 * 4**levels`` triangles per quad.
+        budget: the most triangles the preview may have (at least 2).
+
+    Raises:
+        InvalidArgumentError: a value out of its range.
     """
 
-    def __init__(self, post: Callable[[RunResult, MeshArrays], None],
-                 is_current: Callable[[RunResult], bool],
-                 compute: Callable[[Mesh], MeshArrays | None] = preview_arrays) -> None:
+    mode: str = PATCHES
+    density: int = DEFAULT_DENSITY
+    levels: int = DEFAULT_LEVELS
+    budget: int = DEFAULT_TRIANGLE_BUDGET
+
+    def __post_init__(self) -> None:
+        if self.mode not in MODES:
+            raise InvalidArgumentError(f"preview mode must be one of {MODES}, got {self.mode!r}")
+        for name, low, high in (("density", 1, MAX_DENSITY), ("levels", 1, 4),
+                                ("budget", 2, 2**31)):
+            value = getattr(self, name)
+            if isinstance(value, bool) or not isinstance(value, int) or not low <= value <= high:
+                raise InvalidArgumentError(
+                    f"preview {name} must be an int from {low} to {high}, got {value!r}")
+
+
+@dataclass(frozen=True)
+class View:
+    """What a camera sees, to choose the patches shown when not all fit.
+
+    Attributes:
+        eye: ``(3,)`` the camera's position.
+        view_projection: ``(4, 4)`` matrix from world to clip coordinates.
+    """
+
+    eye: np.ndarray
+    view_projection: np.ndarray
+
+
+@dataclass(frozen=True)
+class Preview:
+    """A preview ready to draw: every object's smoothed surface as one set of
+    triangles.
+
+    Attributes:
+        surface: positions, normals (float32) and triangles (uint32), read-only.
+        description: what it shows, in a few words for the HUD.
+        settings: the settings it was asked with.
+        density: the density (patches) or levels (Catmull-Clark) it has.
+        shown: patches (or faces subdivided) in it.
+        total: patches (or faces) the objects have.
+        by_view: it holds the part of the objects the view saw (not all fit).
+    """
+
+    surface: Tessellation
+    description: str
+    settings: PreviewSettings
+    density: int
+    shown: int
+    total: int
+    by_view: bool = False
+
+
+@dataclass(frozen=True)
+class PreviewRequest:
+    """A preview to make, of ``objects`` (their arrays) with ``settings``;
+    ``view`` chooses the part shown when not all fit (None: the first in order)."""
+
+    objects: tuple[MeshArrays, ...]
+    settings: PreviewSettings = field(default_factory=PreviewSettings)
+    view: View | None = None
+
+
+def make_preview(request: PreviewRequest) -> Preview:
+    """The preview of ``request`` (see the module): never None, and empty when the
+    objects have nothing to smooth."""
+    if request.settings.mode == CATMULL_CLARK:
+        made, why_not = _catmull_clark(request)
+        if made is not None:
+            return made
+        return _patches(request, note=f"Catmull-Clark {why_not}: ")
+    return _patches(request)
+
+
+def _patches(request: PreviewRequest, note: str = "") -> Preview:
+    """TopMod's patches of every object, at the density the budget allows."""
+    settings = request.settings
+    makers = [CornerPatches(arrays) for arrays in request.objects]
+    corners = [maker.surface_corners() for maker in makers]
+    total = sum(len(c) for c in corners)
+    fits = int(np.sqrt(settings.budget / (2.0 * max(total, 1))))
+    density = max(min(settings.density, fits), 1)
+    by_view = 2 * total * density**2 > settings.budget
+    if by_view:
+        corners = _nearest_patches(request, corners, settings.budget // 2)
+    parts = [maker.tessellate(density, chosen) for maker, chosen in zip(makers, corners,
+                                                                        strict=True)]
+    surface = join_surfaces(parts, density)
+    shown = len(surface.triangles) // (2 * density**2)
+    return Preview(surface, note + _describe_patches(settings, density, shown, total, by_view),
+                   settings, density, shown, total, by_view)
+
+
+def _describe_patches(settings: PreviewSettings, density: int, shown: int, total: int,
+                      by_view: bool) -> str:
+    if total == 0:
+        return "patches: nothing to smooth"
+    text = f"patches, density {density}"
+    if density < settings.density:
+        text += f" (of {settings.density}: budget)"
+    if by_view:
+        text += f", {shown:,} of {total:,} (the nearest in view: budget)"
+    return text
+
+
+def _nearest_patches(request: PreviewRequest, corners: list[np.ndarray],
+                     count: int) -> list[np.ndarray]:
+    """Of each object's ``corners``, those of the faces the view sees nearest
+    (faces whole, ``count`` corners in all at most); without a view, faces in order."""
+    faces = [np.unique(arrays.corner_face[chosen])
+             for arrays, chosen in zip(request.objects, corners, strict=True)]
+    score = np.concatenate([_face_scores(arrays, f, request.view)
+                            for arrays, f in zip(request.objects, faces, strict=True)])
+    size = np.concatenate([arrays.face_sizes[f]
+                           for arrays, f in zip(request.objects, faces, strict=True)])
+    order = np.argsort(score, kind="stable")
+    kept = np.zeros(len(score), dtype=bool)
+    kept[order[np.cumsum(size[order]) <= count]] = True
+    out, start = [], 0
+    for arrays, own_faces, chosen in zip(request.objects, faces, corners, strict=True):
+        shown = np.zeros(len(arrays.face_ids), dtype=bool)
+        shown[own_faces[kept[start:start + len(own_faces)]]] = True
+        start += len(own_faces)
+        out.append(chosen[shown[arrays.corner_face[chosen]]])
+    return out
+
+
+def _face_scores(arrays: MeshArrays, faces: np.ndarray, view: View | None) -> np.ndarray:
+    """``(k,)`` float: lower for faces to show first: in view and near the eye
+    (faces out of view come after all in view); without a view, in order."""
+    if view is None:
+        return np.arange(len(faces), dtype=np.float64)
+    centres = face_centroids(arrays)[faces]
+    clip = np.c_[centres, np.ones(len(centres))] @ np.asarray(view.view_projection).T
+    w = clip[:, 3]
+    inside = (w > 0) & (np.abs(clip[:, 0]) <= w) & (np.abs(clip[:, 1]) <= w)
+    distance = np.linalg.norm(centres - np.asarray(view.eye), axis=1)
+    distance = np.where(np.isfinite(distance), distance, np.inf)
+    return np.where(inside, distance, distance + 1e300)
+
+
+def join_surfaces(parts: Sequence[Tessellation], density: int) -> Tessellation:
+    """One surface of several, their triangles' indices shifted; read-only."""
+    positions = [p.positions for p in parts] or [np.zeros((0, 3), np.float32)]
+    normals = [p.normals for p in parts] or [np.zeros((0, 3), np.float32)]
+    starts = np.cumsum([0] + [len(p.positions) for p in parts])
+    triangles = [p.triangles + np.uint32(start) for p, start in zip(parts, starts,
+                                                                     strict=False)]
+    joined = Tessellation(np.concatenate(positions), np.concatenate(normals),
+                          np.concatenate(triangles or [np.zeros((0, 3), np.uint32)]), density)
+    for array in (joined.positions, joined.normals, joined.triangles):
+        array.flags.writeable = False
+    return joined
+
+
+def _catmull_clark(request: PreviewRequest) -> tuple[Preview | None, str]:
+    """Each object subdivided as many levels as the settings ask and the budget
+    allows (a face of n corners gives n quads at the first level, four times as
+    many at each next); ``(None, why)`` when one level does not fit or a mesh
+    cannot be rebuilt."""
+    settings = request.settings
+    quads = sum(int(a.face_sizes[~a.face_hole].sum()) for a in request.objects)
+    levels = settings.levels
+    while levels > 0 and 2 * quads * 4 ** (levels - 1) > settings.budget:
+        levels -= 1
+    if levels == 0:
+        return None, "over the budget"
+    try:
+        parts = [_subdivided_surface(arrays, levels) for arrays in request.objects]
+    except DLFLError as exc:  # (a position that is not finite, say)
+        _LOG.info("no Catmull-Clark preview (%s): showing patches", exc)
+        return None, "impossible"
+    text = f"Catmull-Clark, {levels} level{'s' if levels > 1 else ''}"
+    if levels < settings.levels:
+        text += f" (of {settings.levels}: budget)"
+    faces = sum(int((~a.face_hole).sum()) for a in request.objects)
+    return Preview(join_surfaces(parts, 0), text, settings, levels, faces, faces), ""
+
+
+def _subdivided_surface(arrays: MeshArrays, levels: int) -> Tessellation:
+    """The Catmull-Clark surface of ``arrays`` after ``levels`` levels, its faces as
+    fans of triangles with the smooth vertex normals."""
+    if not len(arrays.face_ids):
+        return Tessellation(np.zeros((0, 3), np.float32), np.zeros((0, 3), np.float32),
+                            np.zeros((0, 3), np.uint32), 0)
+    mesh = from_corner_arrays(arrays.positions, arrays.face_offsets, arrays.corner_vertex,
+                              arrays.corner_mate, arrays.face_hole)
+    subdivided = preview_arrays(mesh, levels=levels, face_budget=2**62)
+    assert subdivided is not None
+    sizes = subdivided.face_sizes
+    fans = np.where(subdivided.face_hole, 0, np.maximum(sizes - 2, 0))
+    face = np.repeat(np.arange(len(sizes)), fans)
+    k = np.arange(len(face)) - np.repeat(np.cumsum(fans) - fans, fans)
+    head = subdivided.face_offsets[face]
+    corners = np.stack([head, head + k + 1, head + k + 2], axis=1)
+    return Tessellation(subdivided.positions.astype(np.float32),
+                        vertex_normals(subdivided).astype(np.float32),
+                        subdivided.corner_vertex[corners].astype(np.uint32), 0)
+
+
+Key = TypeVar("Key")
+Job = TypeVar("Job")
+Made = TypeVar("Made")
+
+
+class PreviewWorker(Generic[Key, Job, Made]):
+    """One daemon thread computing previews, newest first.
+
+    Args:
+        post: receives ``(key, preview)``; it decides whether to publish.
+        is_current: tells whether a key is still worth a preview (a newer
+            request makes older ones pointless; they are dropped).
+        compute: makes a preview of a job (None: no preview).
+    """
+
+    def __init__(self, post: Callable[[Key, Made], None], is_current: Callable[[Key], bool],
+                 compute: Callable[[Job], Made | None]) -> None:
         self._post = post
         self._is_current = is_current
         self._compute = compute
-        self._requests: queue.Queue[tuple[RunResult, Mesh] | None] = queue.Queue()
+        self._requests: queue.Queue[tuple[Key, Job] | None] = queue.Queue()
         self._thread = threading.Thread(target=self._loop, name="livemod-preview", daemon=True)
         self._thread.start()
 
-    def request(self, result: RunResult, mesh: Mesh) -> None:
-        """Compute a preview of ``mesh`` (which must no longer change) for ``result``."""
-        self._requests.put((result, mesh))
+    def request(self, key: Key, job: Job) -> None:
+        """Compute a preview of ``job`` (which must no longer change) for ``key``."""
+        self._requests.put((key, job))
 
     def close(self) -> None:
         """Stop the thread after the request in progress."""
@@ -77,19 +318,19 @@ class PreviewWorker:
             item = self._latest()
             if item is None:
                 return
-            result, mesh = item
-            if not self._is_current(result):
+            key, job = item
+            if not self._is_current(key):
                 continue
             try:
-                preview = self._compute(mesh)
+                preview = self._compute(job)
             except Exception:  # a failing preview must never take the session down
-                _LOG.exception("the preview of run %d failed; showing the mesh unsmoothed",
-                               result.run_id)
+                _LOG.exception("the preview of %s failed; showing the mesh unsmoothed",
+                               _name(key))
                 preview = None
             if preview is not None:
-                self._post(result, preview)
+                self._post(key, preview)
 
-    def _latest(self) -> tuple[RunResult, Mesh] | None:
+    def _latest(self) -> tuple[Key, Job] | None:
         """The newest pending request (older ones are skipped), None to stop."""
         item = self._requests.get()
         while item is not None:
@@ -99,3 +340,56 @@ class PreviewWorker:
                 return item
             item = newer
         return None
+
+
+def _name(key: object) -> str:
+    return f"run {key.run_id}" if isinstance(key, RunResult) else repr(key)
+
+
+class ScenePreviews:
+    """The viewer's previews: asks for one whenever what it shows changes, and
+    hands back the newest finished one, once (off the caller's thread).
+
+    Args:
+        compute: makes a preview of a request (injectable for tests).
+    """
+
+    def __init__(self, compute: Callable[[PreviewRequest], Preview | None] = make_preview,
+                 ) -> None:
+        self._lock = threading.Lock()
+        self._asked = 0
+        self._done: tuple[int, Preview] | None = None
+        self.ready = threading.Event()  # set when a preview is waiting to be taken
+        self._worker: PreviewWorker[int, PreviewRequest, Preview] = PreviewWorker(
+            self._finished, self._wanted, compute)
+
+    def ask(self, request: PreviewRequest) -> int:
+        """Make the preview of ``request``; it supersedes every earlier request
+        (theirs will never be handed back). Returns the request's number."""
+        with self._lock:
+            self._asked += 1
+            number = self._asked
+        self._worker.request(number, request)
+        return number
+
+    def take(self) -> tuple[int, Preview] | None:
+        """``(request number, preview)`` of the newest request once it is done,
+        or None (not done yet, or taken already)."""
+        with self._lock:
+            done, self._done = self._done, None
+            self.ready.clear()
+        return done
+
+    def close(self) -> None:
+        """Stop the worker after the preview in progress."""
+        self._worker.close()
+
+    def _wanted(self, number: int) -> bool:
+        with self._lock:
+            return number == self._asked
+
+    def _finished(self, number: int, preview: Preview) -> None:
+        with self._lock:
+            if number == self._asked:
+                self._done = (number, preview)
+                self.ready.set()
