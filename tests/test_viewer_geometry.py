@@ -58,20 +58,42 @@ def test_guide_lines_grid_spacing_and_axes() -> None:
     assert float(np.diff(np.unique(big[:, 0].round(6))).min()) == pytest.approx(20.0)
 
 
-def test_vertex_normals_are_unit_sums_of_the_triangles_around() -> None:
-    from livemod.dlfl import mesh_arrays
-    from livemod.viewer.geometry import build_geometry, vertex_normals
+def test_crease_shading_is_flat_across_sharp_edges_and_smooth_across_the_others() -> None:
+    from livemod.dlfl import face_normals, mesh_arrays
+    from livemod.dlfl.shapes import cube, icosahedron
+    from livemod.viewer.geometry import build_geometry, crease_shading
 
-    geometry = build_geometry(mesh_arrays(cube()))
-    normals = vertex_normals(geometry.positions, geometry.triangles)
-    assert normals.dtype == np.float32 and normals.shape == (8, 3)
-    np.testing.assert_allclose(np.linalg.norm(normals, axis=1), 1.0, rtol=1e-6)
-    # each corner of the cube points out along its diagonal, up to the fan's
-    # uneven split of each square into two triangles
-    outward = np.sign(geometry.positions)
-    assert np.all(np.sign(normals) == outward)
-    lonely = vertex_normals(np.zeros((2, 3)), np.zeros((0, 3), dtype=np.uint32))
-    assert np.array_equal(lonely, np.zeros((2, 3), dtype=np.float32))
+    arrays = mesh_arrays(cube())
+    shading = crease_shading(arrays)                   # 90 degrees: every edge is sharp
+    assert shading.normals.dtype == np.float32 and len(shading.positions) == 24
+    faces = build_geometry(arrays).triangle_face
+    normals = face_normals(arrays)[faces]
+    for k in range(3):                                 # each corner has its face's normal
+        np.testing.assert_allclose(shading.normals[shading.triangles[:, k]], normals,
+                                   atol=1e-6)
+    geometry = build_geometry(arrays)
+    np.testing.assert_array_equal(shading.positions[shading.triangles],
+                                  geometry.positions[geometry.triangles])
+    rounded = crease_shading(arrays, crease_angle=91.0)  # no edge sharp: one per vertex
+    assert len(rounded.positions) == 8
+    np.testing.assert_allclose(np.abs(rounded.normals), 1 / np.sqrt(3), atol=1e-6)
+    ball = mesh_arrays(icosahedron())                    # 41.8 degrees apart: smooth
+    smooth = crease_shading(ball)
+    assert len(smooth.positions) == 12
+    np.testing.assert_allclose(np.einsum("ij,ij->i", smooth.normals,
+                                         smooth.positions / np.linalg.norm(
+                                             smooth.positions, axis=1, keepdims=True)),
+                               1.0, atol=1e-6)
+    assert len(crease_shading(ball, crease_angle=40.0).positions) == 60
+
+
+def test_crease_sectors_split_a_vertex_between_its_sharp_edges() -> None:
+    from livemod.viewer.geometry import _sectors
+
+    # rings: 0..3 with one sharp link (1 -> 2), 4..6 all smooth, 7..8 all sharp
+    smooth_to_next = np.array([1, 0, 1, 1, 1, 1, 1, 0, 0], dtype=bool)
+    sectors = _sectors(smooth_to_next, np.array([0, 4, 7, 9]))
+    assert sectors.tolist() == [0, 0, 0, 0, 3, 3, 3, 1, 2]
 
 
 def test_bounds_leave_out_positions_that_are_not_finite() -> None:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 from pathlib import Path
 
 import moderngl
@@ -163,6 +164,59 @@ def test_patch_preview_replaces_the_faces(offscreen: Offscreen) -> None:
     centre = smooth[SIZE[1] // 2, SIZE[0] // 2].astype(int)
     assert centre[2] > centre[0]                       # the preview's blue, not orange
     assert _mask(smooth).mean() < _mask(plain).mean()  # smoothed inside the cage
+
+
+def _kinks(image: np.ndarray, inside: np.ndarray) -> float:
+    """The share of pixels well inside ``inside`` where the brightness bends
+    sharply (a second difference, across or down, above 6 levels): the seams of
+    facets; smooth shading bends gently."""
+    light = image.astype(int).sum(axis=2)
+    core = inside.copy()
+    for axis in (0, 1):
+        for shift in (-2, -1, 1, 2):
+            core &= np.roll(inside, shift, axis=axis)
+    bend = np.maximum(np.abs(np.roll(light, 1, 0) - 2 * light + np.roll(light, -1, 0)),
+                      np.abs(np.roll(light, 1, 1) - 2 * light + np.roll(light, -1, 1)))
+    return float((bend[core] > 18).mean())
+
+
+def test_the_patch_preview_is_drawn_smooth_with_its_own_normals(offscreen: Offscreen) -> None:
+    from livemod.runner.preview import PreviewRequest, make_preview
+
+    arrays = mesh_arrays(cube())
+    made = make_preview(PreviewRequest((arrays,)))
+    camera = framed_camera(arrays)
+    offscreen.renderer.set_mesh(arrays, made)
+    smooth = offscreen.render(camera, Style(preview=True, edges=False))
+    flat_normals = dataclasses.replace(made, surface=dataclasses.replace(
+        made.surface, normals=np.zeros_like(made.surface.normals)))
+    offscreen.renderer.set_preview(flat_normals)
+    faceted = offscreen.render(camera, Style(preview=True, edges=False))
+    inside = _mask(smooth)
+    assert np.array_equal(inside, _mask(faceted))         # the same surface
+    assert _kinks(faceted, inside) > 0.1                   # its facets' seams
+    assert _kinks(smooth, inside) < 0.01
+    centre = smooth[SIZE[1] // 2, SIZE[0] // 2].astype(int)
+    assert centre[2] > centre[0]                           # the preview's blue
+
+
+def test_the_preview_draws_the_other_objects_parts_in_their_colour(
+        offscreen: Offscreen) -> None:
+    from livemod.runner.preview import PreviewRequest, make_preview
+
+    current = mesh_arrays(from_polygons(CUBE_POSITIONS, CUBE_FACES))
+    other = mesh_arrays(from_polygons(np.array(CUBE_POSITIONS) + [3.0, 0.0, 0.0], CUBE_FACES))
+    made = make_preview(PreviewRequest((current, other)))
+    assert len(made.parts) == 2 and made.closed
+    offscreen.renderer.set_mesh(current, made, other)
+    camera = framed_camera(concatenate_arrays([current, other]), elevation=0.0, yaw=0.0)
+    picture = offscreen.render(camera, Style(preview=True, edges=False))
+    plain = offscreen.render(camera, Style(edges=False))
+    right = slice(SIZE[0] // 2 + 8, SIZE[0])
+    # the other cube is smoothed too (rounder: fewer pixels), in the muted colour
+    assert _mask(picture)[:, right].sum() < 0.95 * _mask(plain)[:, right].sum()
+    shown = picture[:, right][_mask(picture)[:, right]].astype(int)
+    assert (shown[:, 0] > shown[:, 2]).mean() > 0.9       # warm (others), not the blue
 
 
 def test_turntable_frames_differ_and_frame_zero_is_stable(offscreen: Offscreen) -> None:
@@ -434,6 +488,30 @@ def test_smooth_shading_changes_the_faces_not_the_picks(offscreen: Offscreen) ->
     offscreen.render(camera, Style(smooth=True))
     again = offscreen.renderer.pick(camera, SIZE, SIZE[0] // 2, SIZE[1] // 4, "face")
     assert hit is not None and again == hit
+
+
+def test_smooth_shading_keeps_the_edges_sharper_than_the_crease_angle(
+        offscreen: Offscreen) -> None:
+    from livemod.dlfl.shapes import soccer_ball
+    from livemod.dlfl.subdivision import subdivide
+
+    arrays = mesh_arrays(cube())
+    offscreen.renderer.set_mesh(arrays)
+    camera = framed_camera(arrays)
+    flat = offscreen.render(camera, Style(edges=False))
+    creased = offscreen.render(camera, Style(edges=False, smooth=True))
+    assert np.abs(flat.astype(int) - creased.astype(int)).max() <= 2   # 90 > 45 degrees
+    rounded = offscreen.render(camera, Style(edges=False, smooth=True, crease_angle=91.0))
+    assert np.abs(flat.astype(int) - rounded.astype(int)).max() > 40
+    ball = soccer_ball()
+    subdivide(ball, "catmull-clark")
+    arrays = mesh_arrays(ball)
+    offscreen.renderer.set_mesh(arrays)
+    camera = framed_camera(arrays)
+    faceted = offscreen.render(camera, Style(edges=False))
+    smooth = offscreen.render(camera, Style(edges=False, smooth=True))
+    inside = _mask(smooth)
+    assert _kinks(smooth, inside) < 0.3 * _kinks(faceted, inside)
 
 
 def test_render_on_a_transparent_background_writes_alpha(tmp_path: Path, capsys) -> None:

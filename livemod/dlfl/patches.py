@@ -67,6 +67,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .analysis import vertex_normals
 from .arrays import MeshArrays, mesh_arrays
 from .errors import InvalidArgumentError
 from .mesh import Mesh
@@ -151,7 +152,8 @@ class Tessellation:
             surface has none).
         triangles: ``(T, 3)`` uint32 indices into ``positions``,
             ``2 * density**2`` per patch, counter-clockwise seen from outside.
-        density: the grid's steps along each side of a patch.
+        density: the grid's steps along each side of a patch (0 for a surface
+            that is not made of patches, see :func:`mesh_surface`).
     """
 
     positions: np.ndarray
@@ -163,6 +165,22 @@ class Tessellation:
     def nbytes(self) -> int:
         """Bytes of the three arrays."""
         return self.positions.nbytes + self.normals.nbytes + self.triangles.nbytes
+
+
+def mesh_surface(mesh: Mesh | MeshArrays) -> Tessellation:
+    """A mesh's own faces as a smooth surface: each face that is not a hole as a fan
+    of triangles from its first corner, with the normalised sum of the face normals
+    around each vertex (how a subdivided preview is drawn; ``density`` 0)."""
+    a = mesh if isinstance(mesh, MeshArrays) else mesh_arrays(mesh)
+    sizes = a.face_sizes
+    fans = np.where(a.face_hole, 0, np.maximum(sizes - 2, 0))
+    face = np.repeat(np.arange(len(sizes)), fans)
+    step = np.arange(len(face)) - np.repeat(np.cumsum(fans) - fans, fans)
+    head = np.take(a.face_offsets, face)
+    corners = np.stack([head, head + step + 1, head + step + 2], axis=1)
+    return Tessellation(a.positions.astype(np.float32),
+                        vertex_normals(a).astype(np.float32),
+                        np.take(a.corner_vertex, corners).astype(np.uint32), 0)
 
 
 def patch_control_points(mesh: Mesh | MeshArrays,

@@ -26,12 +26,12 @@ from typing import Generic, TypeVar
 
 import numpy as np
 
-from livemod.dlfl.analysis import face_centroids, vertex_normals
+from livemod.dlfl.analysis import face_centroids
 from livemod.dlfl.arrays import MeshArrays
 from livemod.dlfl.build import from_corner_arrays
 from livemod.dlfl.errors import DLFLError, InvalidArgumentError
 from livemod.dlfl.mesh import Mesh
-from livemod.dlfl.patches import MAX_DENSITY, CornerPatches, Tessellation
+from livemod.dlfl.patches import MAX_DENSITY, CornerPatches, Tessellation, mesh_surface
 from livemod.dlfl.subdivision import subdivide
 
 from .results import RunResult, snapshot_mesh
@@ -123,6 +123,9 @@ class Preview:
         shown: patches (or faces subdivided) in it.
         total: patches (or faces) the objects have.
         by_view: it holds the part of the objects the view saw (not all fit).
+        parts: triangles of each object in ``surface``, in the request's order.
+        closed: its back faces are never seen: every object is closed (no hole
+            faces) and shown whole.
     """
 
     surface: Tessellation
@@ -132,6 +135,8 @@ class Preview:
     shown: int
     total: int
     by_view: bool = False
+    parts: tuple[int, ...] = ()
+    closed: bool = False
 
 
 @dataclass(frozen=True)
@@ -171,7 +176,14 @@ def _patches(request: PreviewRequest, note: str = "") -> Preview:
     surface = join_surfaces(parts, density)
     shown = len(surface.triangles) // (2 * density**2)
     return Preview(surface, note + _describe_patches(settings, density, shown, total, by_view),
-                   settings, density, shown, total, by_view)
+                   settings, density, shown, total, by_view,
+                   tuple(len(p.triangles) for p in parts),
+                   not by_view and _all_closed(request.objects))
+
+
+def _all_closed(objects: Sequence[MeshArrays]) -> bool:
+    """No object has a hole face (so no patch surface of theirs is seen from behind)."""
+    return not any(bool(a.face_hole.any()) for a in objects)
 
 
 def _describe_patches(settings: PreviewSettings, density: int, shown: int, total: int,
@@ -257,28 +269,19 @@ def _catmull_clark(request: PreviewRequest) -> tuple[Preview | None, str]:
     if levels < settings.levels:
         text += f" (of {settings.levels}: budget)"
     faces = sum(int((~a.face_hole).sum()) for a in request.objects)
-    return Preview(join_surfaces(parts, 0), text, settings, levels, faces, faces), ""
+    return Preview(join_surfaces(parts, 0), text, settings, levels, faces, faces, False,
+                   tuple(len(p.triangles) for p in parts), _all_closed(request.objects)), ""
 
 
 def _subdivided_surface(arrays: MeshArrays, levels: int) -> Tessellation:
-    """The Catmull-Clark surface of ``arrays`` after ``levels`` levels, its faces as
-    fans of triangles with the smooth vertex normals."""
+    """The Catmull-Clark surface of ``arrays`` after ``levels`` levels, smooth."""
     if not len(arrays.face_ids):
-        return Tessellation(np.zeros((0, 3), np.float32), np.zeros((0, 3), np.float32),
-                            np.zeros((0, 3), np.uint32), 0)
+        return mesh_surface(arrays)
     mesh = from_corner_arrays(arrays.positions, arrays.face_offsets, arrays.corner_vertex,
                               arrays.corner_mate, arrays.face_hole)
     subdivided = preview_arrays(mesh, levels=levels, face_budget=2**62)
     assert subdivided is not None
-    sizes = subdivided.face_sizes
-    fans = np.where(subdivided.face_hole, 0, np.maximum(sizes - 2, 0))
-    face = np.repeat(np.arange(len(sizes)), fans)
-    k = np.arange(len(face)) - np.repeat(np.cumsum(fans) - fans, fans)
-    head = subdivided.face_offsets[face]
-    corners = np.stack([head, head + k + 1, head + k + 2], axis=1)
-    return Tessellation(subdivided.positions.astype(np.float32),
-                        vertex_normals(subdivided).astype(np.float32),
-                        subdivided.corner_vertex[corners].astype(np.uint32), 0)
+    return mesh_surface(subdivided)
 
 
 Key = TypeVar("Key")

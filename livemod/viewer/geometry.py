@@ -30,6 +30,27 @@ INDEX_MASK = (1 << KIND_SHIFT) - 1
 SIDE_SHIFT = 29  # triangle_table: face index below, real-side bits (v0v1, v1v2, v2v0) above
 
 
+CREASE_ANGLE = 45.0  # degrees between two faces' normals above which their edge is sharp
+
+
+@dataclass(frozen=True)
+class SmoothShading:
+    """The faces' fans with a normal per corner that is smooth across the edges
+    between faces less than a crease angle apart, and sharp across the others.
+
+    Attributes:
+        positions: ``(S, 3)`` float32: one point per smooth sector (the corners
+            around a vertex between two sharp edges, or all of them).
+        normals: ``(S, 3)`` float32 unit normal of each sector (zero for none).
+        triangles: ``(T, 3)`` uint32 sector indices of the fans, in the order of
+            :func:`fan_triangles` (so a triangle keeps its place in the face tables).
+    """
+
+    positions: np.ndarray
+    normals: np.ndarray
+    triangles: np.ndarray
+
+
 @dataclass(frozen=True)
 class RenderGeometry:
     """Buffers ready for upload.
@@ -49,6 +70,9 @@ class RenderGeometry:
             since they have no faces to show.
         nonfinite: number of vertices whose position is not finite (NaN or inf);
             they are left out of ``bounds``.
+        arrays: the arrays it was built from (for what is made on demand).
+        smooth: the faces' smooth shading creased at ``crease_angle`` degrees
+            (:func:`crease_shading`), when it was prepared with it, else None.
     """
 
     positions: np.ndarray
@@ -60,6 +84,9 @@ class RenderGeometry:
     holes: int = 0
     point_spheres: np.ndarray = field(default_factory=lambda: np.zeros(0, np.uint32))
     nonfinite: int = 0
+    arrays: MeshArrays | None = None
+    smooth: SmoothShading | None = None
+    crease_angle: float = CREASE_ANGLE
 
     @property
     def triangle_face(self) -> np.ndarray:
@@ -99,42 +126,80 @@ def fan_triangles(arrays: MeshArrays) -> tuple[np.ndarray, np.ndarray, np.ndarra
     return triangles, faces.astype(np.uint32), sides
 
 
-def vertex_normals(positions: np.ndarray, triangles: np.ndarray) -> np.ndarray:
-    """``(V, 3)`` float32 unit normals for smooth shading: the sum of the
-    (area-weighted) normals of the triangles at each vertex; zero where a vertex
-    has none or they cancel. A triangle with a vertex that is not finite (NaN or
-    inf) is left out: it is not drawn, and its NaN would take the normal of
-    each of its finite vertices with it.
+def crease_shading(arrays: MeshArrays, crease_angle: float = CREASE_ANGLE) -> SmoothShading:
+    """:class:`SmoothShading` of ``arrays``: around each vertex, the corners between
+    two sharp edges (whose faces' normals are more than ``crease_angle`` degrees
+    apart) share one normal, the area-weighted sum of their faces' normals. Faces
+    whose normal is not finite count as having none."""
+    from livemod.dlfl.analysis import face_areas, face_normals
+    from livemod.dlfl.patches import cycle_layout
 
-    Args:
-        positions: ``(V, 3)`` vertex positions.
-        triangles: ``(T, 3)`` vertex indices.
-    """
-    p = np.asarray(positions, dtype=np.float64)
-    tri = np.asarray(triangles, dtype=np.int64)
-    with np.errstate(invalid="ignore", over="ignore"):  # (inf - inf: dropped below)
-        cross = np.cross(p[tri[:, 1]] - p[tri[:, 0]], p[tri[:, 2]] - p[tri[:, 0]])
-    cross[~np.isfinite(cross).all(axis=1)] = 0.0
-    summed = np.zeros((len(p), 3))
-    for axis in range(3):
-        summed[:, axis] = np.bincount(tri.ravel(), np.repeat(cross[:, axis], 3),
-                                      minlength=len(p))
-    length = np.linalg.norm(summed, axis=1, keepdims=True)
-    return np.divide(summed, length, out=np.zeros_like(summed), where=length > 0).astype(
-        np.float32)
+    corners, _ = arrays.fan_triangles()
+    count = len(arrays.corner_vertex)
+    with np.errstate(invalid="ignore", over="ignore"):  # (faces not finite: no normal)
+        unit = np.nan_to_num(face_normals(arrays), nan=0.0, posinf=0.0, neginf=0.0)
+        area = np.nan_to_num(face_areas(arrays), nan=0.0, posinf=0.0)
+    vnext = arrays.corner_vnext
+    along = np.einsum("ij,ij->i", unit[arrays.corner_face], unit[arrays.corner_face[vnext]])
+    smooth_to_next = along >= np.cos(np.radians(crease_angle))
+    longest = int(np.bincount(arrays.corner_vertex).max()) if count else 1
+    order, offsets = cycle_layout(vnext, longest)
+    sector = np.empty(count, dtype=np.int64)
+    sector[order] = _sectors(smooth_to_next[order], offsets)
+    weighted = unit * area[:, None]
+    sums = np.zeros((int(sector.max()) + 1 if count else 0, 3))
+    np.add.at(sums, sector, weighted[arrays.corner_face])
+    first = np.zeros(len(sums), dtype=np.int64)
+    first[sector[::-1]] = np.arange(count)[::-1]
+    length = np.linalg.norm(sums, axis=1, keepdims=True)
+    normals = np.divide(sums, length, out=np.zeros_like(sums), where=length > 0)
+    return SmoothShading(arrays.positions[arrays.corner_vertex[first]].astype(np.float32),
+                         normals.astype(np.float32), sector[corners].astype(np.uint32))
 
 
-def build_geometry(arrays: MeshArrays) -> RenderGeometry:
-    """Prepare all buffers of ``arrays`` (see the module docstring)."""
+def _sectors(smooth_to_next: np.ndarray, offsets: np.ndarray) -> np.ndarray:
+    """``(N,)`` sector number of each element of rings laid out by ``offsets``:
+    runs of elements joined by smooth links (``smooth_to_next[k]``: element ``k``
+    to the next in its ring, the last to the first). A ring with no sharp link is
+    one sector; elements before a ring's first sharp link belong to its last run."""
+    count = len(smooth_to_next)
+    ring = np.repeat(np.arange(len(offsets) - 1), np.diff(offsets))
+    starts = offsets[:-1]
+    # element k starts a run when the link into it (from the one before, in its
+    # ring) is sharp; a ring's first element's link comes from its last
+    before = np.arange(-1, count - 1)
+    before[starts] = offsets[1:] - 1
+    opens = ~smooth_to_next[before]
+    run = np.cumsum(opens) - 1
+    has_open = np.add.reduceat(opens, starts) > 0 if count else np.zeros(0, bool)
+    # elements before their ring's first opening: the ring's last run (or, for a
+    # ring with no opening, one run of its own)
+    first_open = np.full(len(starts), count)
+    positions = np.flatnonzero(opens)
+    np.minimum.at(first_open, ring[positions], positions)
+    prefix = np.arange(count) < first_open[ring]
+    last = offsets[1:] - 1
+    closed_ring = ~has_open[ring]
+    run = np.where(prefix & ~closed_ring, run[last][ring], run)
+    # rings with no opening get numbers after all the runs
+    run = np.where(closed_ring, int(opens.sum()) + np.cumsum(~has_open)[ring] - 1, run)
+    return run
+
+
+def build_geometry(arrays: MeshArrays, crease_angle: float | None = None) -> RenderGeometry:
+    """Prepare all buffers of ``arrays`` (see the module docstring); with a
+    ``crease_angle``, its smooth shading too (:func:`crease_shading`)."""
     positions = np.ascontiguousarray(arrays.positions, dtype=np.float32)
     triangles, triangle_face, sides = fan_triangles(arrays)
     triangle_table = triangle_face | (sides << np.uint32(SIDE_SHIFT))
     lines = arrays.edge_vertices.astype(np.uint32)
     finite = finite_rows(arrays.positions)
     spheres = arrays.corner_vertex[arrays.corner_edge < 0].astype(np.uint32)
+    smooth = None if crease_angle is None else crease_shading(arrays, crease_angle)
     return RenderGeometry(positions, triangles, triangle_table, lines, finite_bounds(finite),
                           len(arrays.face_ids), int(arrays.face_hole.sum()), spheres,
-                          len(arrays.positions) - len(finite))
+                          len(arrays.positions) - len(finite), arrays, smooth,
+                          CREASE_ANGLE if crease_angle is None else crease_angle)
 
 
 def finite_rows(points: np.ndarray) -> np.ndarray:

@@ -11,24 +11,30 @@ import contextlib
 import math
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import moderngl
 import numpy as np
 
 from livemod.dlfl.arrays import MeshArrays
+from livemod.dlfl.patches import Tessellation, mesh_surface
 from livemod.dlfl.scene import Selection
 
 from . import shaders
 from .camera import Camera
 from .geometry import (
+    CREASE_ANGLE,
     RenderGeometry,
     build_geometry,
     corner_points,
+    crease_shading,
     decode_pick,
     dense_flags,
-    vertex_normals,
 )
 from .text import QUAD_FLOATS, glyph_atlas, layout_labels
+
+if TYPE_CHECKING:
+    from livemod.runner.preview import Preview
 
 TABLE_WIDTH = 4096
 GL_CLIP_DISTANCE0 = 0x3000  # moderngl has no name for it: enable_direct takes the GL enum
@@ -79,14 +85,17 @@ class Style:
 
     Attributes:
         faces, edges, vertices: show these elements.
-        preview: draw the patch-smoothed preview instead of the faces (when present).
+        preview: draw the smoothed preview instead of the faces (when present),
+            with the normals it has.
         labels: which id labels to draw, a subset of ``LABEL_KINDS``.
         labels_selected_only: label only the selected elements.
         point_size: vertex point size in pixels.
         background: RGBA clear colour.
         others: draw the scene's other objects (see :meth:`Renderer.set_mesh`).
         current: draw the current object (hidden, it is neither labelled nor picked).
-        smooth: shade faces with interpolated vertex normals instead of flat.
+        smooth: shade faces with interpolated normals instead of flat, smooth
+            across edges between faces less than ``crease_angle`` degrees apart
+            and sharp across the others.
         grid: draw a ground grid under the scene and the x, y, z axes (red,
             green, blue) from the origin.
         section: ``(axis, at)``: cut away every part of the meshes whose
@@ -106,6 +115,7 @@ class Style:
     current: bool = True
     grid: bool = False
     smooth: bool = False
+    crease_angle: float = CREASE_ANGLE
     section: tuple[int, float] | None = None
 
 
@@ -175,18 +185,34 @@ class _MeshGPU:
         self.ctx, self.edge_program = ctx, programs["edge"]
         self.face_program = programs["face"]
         self.selected_lines: tuple[moderngl.Buffer, moderngl.VertexArray] | None = None
-        self.smooth: tuple[moderngl.Buffer, moderngl.VertexArray] | None = None
+        # the smooth face pass: (crease angle, its buffers, its vertex array)
+        self.smooth: tuple[float, list[moderngl.Buffer], moderngl.VertexArray] | None = None
 
-    def smooth_vao(self) -> moderngl.VertexArray:
-        """The face pass with vertex normals, built on first use (uploads stay lean)."""
-        if self.smooth is None:
-            normals = vertex_normals(self.geometry.positions, self.geometry.triangles)
-            buffer = _buffer(self.ctx, normals)
-            vao = self.ctx.vertex_array(
-                self.face_program, [(self.positions, "3f", "in_position"),
-                                    (buffer, "3f", "in_normal")], self.triangles, 4)
-            self.smooth = (buffer, vao)
-        return self.smooth[1]
+    def smooth_vao(self, crease_angle: float) -> moderngl.VertexArray:
+        """The face pass with smooth normals creased at ``crease_angle`` degrees
+        (:func:`~.geometry.crease_shading`), made on first use and kept for that
+        angle; the geometry's own when it came prepared with it."""
+        if self.smooth is not None and self.smooth[0] == crease_angle:
+            return self.smooth[2]
+        self._release_smooth()
+        shading = self.geometry.smooth
+        if shading is None or self.geometry.crease_angle != crease_angle:
+            assert self.geometry.arrays is not None  # (build_geometry keeps them)
+            shading = crease_shading(self.geometry.arrays, crease_angle)
+        buffers = [_buffer(self.ctx, shading.positions), _buffer(self.ctx, shading.normals),
+                   _buffer(self.ctx, shading.triangles)]
+        vao = self.ctx.vertex_array(
+            self.face_program, [(buffers[0], "3f", "in_position"),
+                                (buffers[1], "3f", "in_normal")], buffers[2], 4)
+        self.smooth = (crease_angle, buffers, vao)
+        return vao
+
+    def _release_smooth(self) -> None:
+        if self.smooth is not None:
+            self.smooth[2].release()
+            for buffer in self.smooth[1]:
+                buffer.release()
+            self.smooth = None
 
     def set_flags(self, face: np.ndarray, edge: np.ndarray, vertex: np.ndarray) -> None:
         """Replace the selection flags; each ``(n,)`` uint8 in dense order."""
@@ -212,15 +238,56 @@ class _MeshGPU:
     def release(self) -> None:
         """Free every GL object of this mesh."""
         self._release_selected_lines()
-        if self.smooth is not None:
-            self.smooth[1].release()
-            self.smooth[0].release()
+        self._release_smooth()
         for obj in (self.face_vao, self.winding_vao, self.edge_vao, self.point_vao,
                     self.sphere_vao, self.spheres, self.positions,
                     self.triangles, self.lines, self.triangle_face, self.face_flags,
                     self.edge_flags, self.vertex_flags, self.triangle_index,
                     self.position_table):
             obj.release()
+
+
+class _SurfaceGPU:
+    """The GL objects of an uploaded smooth surface (the preview): positions,
+    normals and triangles, drawn in ``parts`` (triangle counts: the current
+    object's first, then the other objects'); ``release`` frees them.
+
+    Attributes:
+        closed: its back faces are never seen (all its objects closed, and whole).
+    """
+
+    def __init__(self, ctx: moderngl.Context, programs: dict[str, moderngl.Program],
+                 surface: Tessellation, parts: tuple[int, ...], closed: bool) -> None:
+        self.positions = _buffer(ctx, surface.positions)
+        self.normals = _buffer(ctx, surface.normals)
+        self.triangles = _buffer(ctx, surface.triangles)
+        self.count = len(surface.triangles)
+        self.parts, self.closed = parts, closed
+        self.vao = ctx.vertex_array(programs["surface"], [
+            (self.positions, "3f", "in_position"), (self.normals, "3f", "in_normal")],
+            self.triangles, 4)
+        self.winding_vao = ctx.vertex_array(programs["winding"], [
+            (self.positions, "3f", "in_position")], self.triangles, 4)
+
+    def ranges(self, current: bool) -> list[tuple[int, int]]:
+        """``(first vertex, vertex count)`` of the current object's part, or of the
+        other objects' parts (joined), in the index buffer."""
+        first = 3 * self.parts[0] if self.parts else 0
+        return [(0, first)] if current else [(first, 3 * self.count - first)]
+
+    def release(self) -> None:
+        for obj in (self.vao, self.winding_vao, self.positions, self.normals, self.triangles):
+            obj.release()
+
+
+def _preview_surface(preview: Preview | MeshArrays) -> tuple[Tessellation, tuple[int, ...],
+                                                             bool]:
+    """``(surface, parts, closed)`` of a preview, or of a subdivided mesh's arrays
+    (drawn with its own smooth normals, as one part)."""
+    if isinstance(preview, MeshArrays):
+        surface = mesh_surface(preview)
+        return surface, (len(surface.triangles),), not bool(preview.face_hole.any())
+    return preview.surface, preview.parts, preview.closed
 
 
 class _StreamBuffer:
@@ -356,6 +423,7 @@ def _matrix_bytes(matrix: np.ndarray) -> bytes:
 # each program's (vertex, fragment) shader sources
 PROGRAMS = {
     "face": (shaders.MESH_VERTEX, shaders.FACE_FRAGMENT),
+    "surface": (shaders.MESH_VERTEX, shaders.SURFACE_FRAGMENT),
     "edge": (shaders.MESH_VERTEX, shaders.EDGE_FRAGMENT),
     "point": (shaders.MESH_VERTEX, shaders.POINT_FRAGMENT),
     "line": (shaders.MESH_VERTEX, shaders.LINE_FRAGMENT),
@@ -384,7 +452,7 @@ class Renderer:
         corners = np.array([0, 0, 1, 0, 0, 1, 1, 1], dtype=np.float32)
         self.quad = ctx.buffer(corners.tobytes())
         self.arrays: MeshArrays | None = None
-        self.preview: MeshArrays | None = None
+        self.preview: Preview | MeshArrays | None = None
         self.others: MeshArrays | None = None
         self.selection = Selection()
         self._mesh: _MeshGPU | None = None
@@ -392,7 +460,7 @@ class Renderer:
         self._others_shown = True
         self._current_shown = True
         self._section: tuple[int, float] | None = None  # the last frame's, for picking
-        self._preview: _MeshGPU | None = None
+        self._preview: _SurfaceGPU | None = None
         self._label_cache: tuple[object, np.ndarray] | None = None
         self._pick_fbo: moderngl.Framebuffer | None = None
         self._winding: tuple[moderngl.Framebuffer, moderngl.Texture] | None = None
@@ -434,9 +502,10 @@ class Renderer:
 
     # -- content ---------------------------------------------------------------
 
-    def set_mesh(self, arrays: MeshArrays | None, preview: MeshArrays | None = None,
+    def set_mesh(self, arrays: MeshArrays | None,
+                 preview: Preview | MeshArrays | None = None,
                  others: MeshArrays | None = None) -> None:
-        """Upload ``arrays`` (and its patch ``preview``) in one step, replacing the old.
+        """Upload ``arrays`` (and its smoothed ``preview``) in one step, replacing the old.
 
         ``others``: the scene's other objects, drawn beside it in a muted colour;
         they hide what is behind them but are never picked or labelled.
@@ -455,10 +524,18 @@ class Renderer:
         self.others = others
         self.version += 1
 
-    def set_preview(self, preview: MeshArrays | None) -> None:
-        """Upload (or drop, with None) the patch-smoothed preview mesh."""
-        self._preview = self._replaced(self._preview, preview)
-        self.preview = preview
+    def set_preview(self, preview: Preview | MeshArrays | None) -> None:
+        """Upload (or drop, with None) the smoothed preview: a
+        :class:`~livemod.runner.preview.Preview` (of the current object first, then
+        maybe the other objects), or the arrays of a subdivided mesh (drawn with
+        smooth vertex normals). When it holds parts for the other objects, the
+        preview draws them too in place of their faces."""
+        new = None
+        if preview is not None:
+            new = _SurfaceGPU(self.ctx, self.programs, *_preview_surface(preview))
+        if self._preview is not None:
+            self._preview.release()
+        self._preview, self.preview = new, preview
         self.version += 1
 
     def _replaced(self, old: _MeshGPU | None, arrays: MeshArrays | None) -> _MeshGPU | None:
@@ -626,10 +703,15 @@ class Renderer:
             program.release()
 
     def _draw_scenery(self, others: _MeshGPU, style: Style) -> None:
-        """The other objects: their faces, or their edges when faces are off. Their
-        wireframe is left out so that the object being modelled stands out."""
-        if style.faces or style.preview:
-            self._draw_faces(others, OTHER_COLOR, smooth=style.smooth)
+        """The other objects: their faces (or their part of the preview), or their
+        edges when faces are off. Their wireframe is left out so that the object
+        being modelled stands out."""
+        preview = self._preview
+        if style.preview and preview is not None and len(preview.parts) > 1:
+            self._draw_surface(preview, OTHER_COLOR, current=False)
+        elif style.faces or style.preview:
+            self._draw_faces(others, OTHER_COLOR, smooth=style.smooth,
+                             crease_angle=style.crease_angle)
         elif style.edges:
             self._draw_edges(others)
 
@@ -641,10 +723,11 @@ class Renderer:
         # its edges drawn as lines)
         wire_in_faces = (style.edges and style.faces and not show_preview
                          and len(mesh.geometry.triangles) > 0)
-        if style.faces or show_preview:
-            surface = self._preview if show_preview and self._preview is not None else mesh
-            color = PREVIEW_COLOR if show_preview else BASE_COLOR
-            self._draw_faces(surface, color, wire=wire_in_faces, smooth=style.smooth)
+        if show_preview and self._preview is not None:
+            self._draw_surface(self._preview, PREVIEW_COLOR, current=True)
+        elif style.faces:
+            self._draw_faces(mesh, BASE_COLOR, wire=wire_in_faces, smooth=style.smooth,
+                             crease_angle=style.crease_angle)
         if style.edges and not wire_in_faces:
             self._draw_edges(mesh)
         elif mesh.selected_lines is not None:
@@ -700,8 +783,27 @@ class Renderer:
         cap["hatch_spacing"].value = hatch_spacing(  # type: ignore[union-attr]
             pixel_size, abs(float(basis[2][axis])))
 
+    def _draw_surface(self, surface: _SurfaceGPU, color: tuple[float, float, float],
+                      current: bool) -> None:
+        """The preview's part of the current object (or of the others), lit by its
+        own normals, capped where a section cuts it."""
+        program = self.programs["surface"]
+        program["base_color"].value = color  # type: ignore[union-attr]
+        program["back_color"].value = BACK_COLOR  # type: ignore[union-attr]
+        self.ctx.polygon_offset = (1.0, 1.0)  # the cage's edges, drawn after, win
+        if surface.closed:
+            self.ctx.enable(moderngl.CULL_FACE)
+        for first, count in surface.ranges(current):
+            if count:
+                surface.vao.render(moderngl.TRIANGLES, vertices=count, first=first)
+        self.ctx.polygon_offset = (0.0, 0.0)
+        if surface.closed and self._section is not None:
+            self._draw_cap(surface, color, current)
+        self.ctx.disable(moderngl.CULL_FACE)
+
     def _draw_faces(self, mesh: _MeshGPU, color: tuple[float, float, float],
-                    wire: bool = False, smooth: bool = False) -> None:
+                    wire: bool = False, smooth: bool = False,
+                    crease_angle: float = CREASE_ANGLE) -> None:
         if not len(mesh.geometry.triangles):
             return
         program = self.programs["face"]
@@ -723,20 +825,21 @@ class Renderer:
             # a closed manifold hides its back faces: skip them (about a third of
             # the frame time on software GL); open meshes show them tinted
             self.ctx.enable(moderngl.CULL_FACE)
-        (mesh.smooth_vao() if smooth else mesh.face_vao).render(moderngl.TRIANGLES)
+        (mesh.smooth_vao(crease_angle) if smooth else mesh.face_vao).render(moderngl.TRIANGLES)
         self.ctx.polygon_offset = (0.0, 0.0)
         if mesh.geometry.closed and self._section is not None:
             self._draw_cap(mesh, color)
         self.ctx.disable(moderngl.CULL_FACE)
 
-    def _draw_cap(self, mesh: _MeshGPU, color: tuple[float, float, float]) -> None:
+    def _draw_cap(self, mesh: _MeshGPU | _SurfaceGPU,
+                  color: tuple[float, float, float], current: bool = True) -> None:
         """The section's cap of a cut closed mesh, in a darker ``color``: the mesh's
         cut triangles count the winding of each pixel into an image, then one pass
         over the viewport draws the plane where it is not 0
         (``shaders.CAP_FRAGMENT``), at its own depth. Must follow the mesh's face
         pass, into the framebuffer now in use."""
         target, viewport = self.ctx.fbo, self.ctx.viewport
-        winding = self._count_winding(mesh, (viewport[2], viewport[3]))
+        winding = self._count_winding(mesh, (viewport[2], viewport[3]), current)
         target.use()
         self.ctx.viewport = viewport
         self.ctx.enable(moderngl.DEPTH_TEST)
@@ -746,7 +849,8 @@ class Renderer:
         winding.use(6)
         self._cap_vao.render(moderngl.TRIANGLES, vertices=3)
 
-    def _count_winding(self, mesh: _MeshGPU, size: tuple[int, int]) -> moderngl.Texture:
+    def _count_winding(self, mesh: _MeshGPU | _SurfaceGPU, size: tuple[int, int],
+                       current: bool = True) -> moderngl.Texture:
         """Draw the cut triangles of ``mesh`` into the winding image of ``size``, front
         faces adding 1 and back faces taking 1 away, and return the image. Leaves
         the winding target bound and the depth test and culling off."""
@@ -756,7 +860,11 @@ class Renderer:
         self.ctx.disable(moderngl.DEPTH_TEST | moderngl.CULL_FACE)
         self.ctx.enable(moderngl.BLEND)
         self.ctx.blend_func = moderngl.ONE, moderngl.ONE
-        mesh.winding_vao.render(moderngl.TRIANGLES)
+        if isinstance(mesh, _SurfaceGPU):  # the part of the object capped only
+            for first, count in mesh.ranges(current):
+                mesh.winding_vao.render(moderngl.TRIANGLES, vertices=count, first=first)
+        else:
+            mesh.winding_vao.render(moderngl.TRIANGLES)
         self.ctx.disable(moderngl.BLEND)  # the text pass sets its own blend function
         return image
 

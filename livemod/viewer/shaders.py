@@ -13,6 +13,27 @@ uint fetch(usampler2D table, int i) {
 }
 """
 
+SHADE = """
+vec3 shade(vec3 n, vec3 base) {
+    // TopMod's warm/cool model with a key light fixed to the camera (up left),
+    // plus a weak fill from the lower right so no side goes flat black.
+    vec3 key = normalize(vec3(-0.45, 0.55, 0.7));
+    vec3 fill = normalize(vec3(0.6, -0.3, 0.75));
+    float cf = pow((1.0 + dot(key, n)) * 0.5, 2.0);
+    vec3 lit = mix(vec3(0.11, 0.10, 0.09), vec3(1.0, 0.98, 0.89), cf);
+    lit += 0.18 * max(dot(fill, n), 0.0);
+    return clamp(0.75 * lit * base + 0.25 * base * 0.55, 0.0, 1.0);
+}
+vec3 facing_normal(vec3 view_point, vec3 normal) {
+    // the interpolated normal, turned to the side the flat normal (from the
+    // screen-space derivatives) shows: toward the viewer on front faces
+    vec3 flat_normal = normalize(cross(dFdx(view_point), dFdy(view_point)));
+    if (dot(normal, normal) <= 0.0) return flat_normal;
+    vec3 s = normalize(normal);
+    return dot(s, flat_normal) < 0.0 ? -s : s;
+}
+"""
+
 MESH_VERTEX = """
 #version 330
 uniform mat4 mvp;
@@ -55,17 +76,7 @@ uniform vec3 edge_color;
 in vec3 v_view;
 layout(location = 0) out vec4 color;
 layout(location = 1) out uint pick;
-""" + FETCH + """
-vec3 shade(vec3 n, vec3 base) {
-    // TopMod's warm/cool model with a key light fixed to the camera (up left),
-    // plus a weak fill from the lower right so no side goes flat black.
-    vec3 key = normalize(vec3(-0.45, 0.55, 0.7));
-    vec3 fill = normalize(vec3(0.6, -0.3, 0.75));
-    float cf = pow((1.0 + dot(key, n)) * 0.5, 2.0);
-    vec3 lit = mix(vec3(0.11, 0.10, 0.09), vec3(1.0, 0.98, 0.89), cf);
-    lit += 0.18 * max(dot(fill, n), 0.0);
-    return clamp(0.75 * lit * base + 0.25 * base * 0.55, 0.0, 1.0);
-}
+""" + FETCH + SHADE + """
 vec2 screen_of_vertex(int i) {
     uint v = fetch(triangle_index, i);
     int w = textureSize(position_table, 0).x;
@@ -92,18 +103,31 @@ float wire_coverage(uint sides) {
 void main() {
     uint entry = fetch(triangle_face, gl_PrimitiveID);
     uint face = entry & 0x1FFFFFFFu;
-    vec3 n = normalize(cross(dFdx(v_view), dFdy(v_view)));
-    if (smooth_shading != 0 && dot(v_normal, v_normal) > 0.0) {
-        // the flat normal faces the viewer on front faces; keep that side
-        vec3 s = normalize(v_normal);
-        n = dot(s, n) < 0.0 ? -s : s;
-    }
+    vec3 n = facing_normal(v_view, smooth_shading != 0 ? v_normal : vec3(0.0));
     bool selected = fetch(face_flags, int(face)) != 0u;
     vec3 base = selected ? selected_color : (gl_FrontFacing ? base_color : back_color);
     vec3 rgb = shade(n, base);
     if (wire != 0) rgb = mix(rgb, edge_color, wire_coverage(entry >> 29));
     color = vec4(rgb, 1.0);
     pick = pickable != 0 ? (1u << 28) | (face + 1u) : 0u;
+}
+"""
+
+SURFACE_FRAGMENT = """
+#version 330
+// A smooth surface with normals of its own (the patch preview): lit per pixel
+// from its interpolated normals; it is never picked.
+uniform vec3 base_color;
+uniform vec3 back_color;
+in vec3 v_normal;
+in vec3 v_view;
+layout(location = 0) out vec4 color;
+layout(location = 1) out uint pick;
+""" + SHADE + """
+void main() {
+    color = vec4(shade(facing_normal(v_view, v_normal),
+                       gl_FrontFacing ? base_color : back_color), 1.0);
+    pick = 0u;
 }
 """
 
