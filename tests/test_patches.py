@@ -416,6 +416,20 @@ def test_tessellate_is_evaluate_of_the_nets_and_leaves_the_mesh_alone() -> None:
     np.testing.assert_array_equal(mesh_arrays(mesh).positions, before)
 
 
+def test_the_vertex_surface_runs_through_the_patches_vertex_points() -> None:
+    mesh = shape_torus(8, 6)
+    patches = CornerPatches(mesh)
+    net = patches.nets()
+    surface = patches.vertex_surface()
+    assert surface.triangles.shape == (48 * 2, 3) and surface.density == 0
+    corner_points = net.points[:, 0, 0]
+    nearest = np.linalg.norm(surface.positions[:, None] - corner_points[None], axis=2)
+    assert len(surface.positions) == 48 and (nearest.min(axis=1) < 1e-6).all()
+    np.testing.assert_allclose(np.linalg.norm(surface.normals, axis=1), 1.0, atol=1e-6)
+    some = patches.vertex_surface(np.arange(0, 8))         # the corners of two faces
+    assert some.triangles.shape == (4, 3) and len(some.positions) == 6
+
+
 # -- degenerate meshes: decided, and never a failure -----------------------------------
 
 

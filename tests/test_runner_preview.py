@@ -139,25 +139,29 @@ def test_then_only_the_nearest_faces_in_view_get_patches():
     camera.fit_points(mesh_arrays(near).positions, 1.0)
     view = preview.View(camera.eye(), camera.view_projection(1.0))
     assert np.linalg.norm(camera.eye() - [0, 0, 20]) > 5            # not inside "behind"
+    everything = preview.make_preview(preview.PreviewRequest(
+        objects, preview.PreviewSettings(budget=2 * 18), view))
+    assert (everything.density, everything.by_view) == (0, False)   # 18 quads, 2 each
+    assert everything.description == "patches at their vertex points (of 4: budget)"
     made = preview.make_preview(preview.PreviewRequest(
-        objects, preview.PreviewSettings(budget=2 * 30), view))
-    assert made.by_view and made.density == 1
+        objects, preview.PreviewSettings(budget=2 * 7 + 1), view))
+    assert made.by_view and made.density == 0
     assert made.shown == 28 and made.total == 72                  # 7 whole quads of 4
-    assert made.description == ("patches, density 1 (of 4: budget), 28 of 72 "
+    assert made.description == ("patches at their vertex points (of 4: budget), 28 of 72 "
                                 "(the nearest in view: budget)")
-    clip = np.c_[made.surface.positions, np.ones(len(made.surface.positions))] @ \
+    triangles = made.surface.positions[made.surface.triangles]
+    clip = np.c_[triangles.reshape(-1, 3), np.ones(len(triangles) * 3)] @ \
         camera.view_projection(1.0).T
-    centres = made.surface.positions.reshape(-1, 4, 3).mean(axis=1)
     assert (clip[:, 3] > 0).all()
     # the near cube's six faces all, and one more: the far cube's nearest
-    assert (np.abs(centres[:, 2]) <= 1.0 + 1e-6).sum() == 24
+    assert (np.abs(triangles.mean(axis=1)[:, 2]) <= 1.0).sum() == 12
 
 
 def test_without_a_view_the_first_faces_get_patches():
     objects = _objects(shapes.cube(), shapes.cube())
     made = preview.make_preview(preview.PreviewRequest(objects, preview.PreviewSettings(
-        budget=2 * 26)))
-    assert made.shown == 24 and made.surface.triangles.max() < 24 * 4
+        budget=13)))
+    assert made.shown == 24 and made.parts == (12, 0)
 
 
 def test_catmull_clark_keeps_its_levels_and_gives_way_to_patches_over_the_budget():
@@ -172,7 +176,8 @@ def test_catmull_clark_keeps_its_levels_and_gives_way_to_patches_over_the_budget
     assert fewer.description == "Catmull-Clark, 1 level (of 2: budget)"
     patches = preview.make_preview(preview.PreviewRequest(
         objects, dataclasses.replace(settings, budget=2 * 23)))
-    assert patches.description.startswith("Catmull-Clark over the budget: patches, density 1")
+    assert patches.description == ("Catmull-Clark over the budget: patches at their vertex "
+                                   "points (of 4: budget)")
 
 
 def test_a_scene_with_nothing_to_smooth_gets_an_empty_preview():

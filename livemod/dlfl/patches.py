@@ -172,15 +172,21 @@ def mesh_surface(mesh: Mesh | MeshArrays) -> Tessellation:
     of triangles from its first corner, with the normalised sum of the face normals
     around each vertex (how a subdivided preview is drawn; ``density`` 0)."""
     a = mesh if isinstance(mesh, MeshArrays) else mesh_arrays(mesh)
-    sizes = a.face_sizes
-    fans = np.where(a.face_hole, 0, np.maximum(sizes - 2, 0))
-    face = np.repeat(np.arange(len(sizes)), fans)
-    step = np.arange(len(face)) - np.repeat(np.cumsum(fans) - fans, fans)
-    head = np.take(a.face_offsets, face)
-    corners = np.stack([head, head + step + 1, head + step + 2], axis=1)
+    corners = fan_corners(a, ~a.face_hole)
     return Tessellation(a.positions.astype(np.float32),
                         vertex_normals(a).astype(np.float32),
                         np.take(a.corner_vertex, corners).astype(np.uint32), 0)
+
+
+def fan_corners(arrays: MeshArrays, faces: np.ndarray) -> np.ndarray:
+    """``(T, 3)`` int64 dense corners of the fans of the faces where ``faces``
+    ``(F,)`` bool is True: ``n - 2`` triangles ``(head, head + k + 1, head + k + 2)``
+    from each face's head, in face order (fewer than 3 corners: none)."""
+    fans = np.where(faces, np.maximum(arrays.face_sizes - 2, 0), 0)
+    face = np.repeat(np.arange(len(fans)), fans)
+    step = np.arange(len(face)) - np.repeat(np.cumsum(fans) - fans, fans)
+    head = np.take(arrays.face_offsets, face)
+    return np.stack([head, head + step + 1, head + step + 2], axis=1)
 
 
 def patch_control_points(mesh: Mesh | MeshArrays,
@@ -622,6 +628,24 @@ class CornerPatches:
             grid.evaluate(columns, control_normals, positions[part], normals[part])
         return Tessellation(positions.reshape(-1, 3), normals.reshape(-1, 3),
                             grid_triangles(len(corners), steps), steps)
+
+    def vertex_surface(self, corners: np.ndarray | None = None) -> Tessellation:
+        """The patch surface at its coarsest: the faces of ``corners`` (all drawn
+        faces when None; whole faces, as fans) with their corners at the patches'
+        vertex points, which lie on the surface, and the patches' normals there.
+        About a quarter of the triangles of density 1 (``density`` 0)."""
+        a = self.arrays
+        faces = np.zeros(len(a.face_ids), dtype=bool)
+        faces[np.take(a.corner_face, self._drawn(corners))] = True
+        fans = np.take(self.ring_of, fan_corners(a, faces))           # (T, 3) rings
+        used, index = np.unique(fans, return_inverse=True)
+        with np.errstate(invalid="ignore", over="ignore"):
+            points = self.snapped_vertex[:, used].T * self.scale + self.center
+        finite = np.isfinite(points).all(axis=1)
+        keep = finite[index.reshape(-1, 3)].all(axis=1)
+        return Tessellation(points.astype(np.float32),
+                            self.vertex_normal[:, used].T.astype(np.float32),
+                            index.reshape(-1, 3)[keep].astype(np.uint32), 0)
 
     def _columns(self, corners: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """``(16, 3, k)`` control points (in the mesh's coordinates) and unit

@@ -7,9 +7,11 @@ chooses, with the patches' own normals. The Catmull-Clark limit (two levels of
 other mode. A preview covers every object it is given.
 
 Above the triangle budget the preview degrades instead of vanishing: first a
-lower density (patches) or fewer levels (Catmull-Clark, which then gives way to
-patches), then the patches of part of the mesh only: those seen by the view,
-nearest first. :attr:`Preview.description` says what it shows, for the HUD.
+lower density (patches; at the lowest, 0, the faces are drawn through the
+patches' vertex points, which lie on the surface, with the patches' normals) or
+fewer levels (Catmull-Clark, which then gives way to patches), then the patches
+of part of the mesh only: those seen by the view, nearest first.
+:attr:`Preview.description` says what it shows, for the HUD.
 
 A preview that fails is logged (to the logger named "livemod.preview") and the
 session goes on without it: the control mesh is what the user asked for.
@@ -45,8 +47,10 @@ DEFAULT_FACE_BUDGET = 2_000_000  # faces of a :func:`preview_arrays` preview; bi
 PATCHES, CATMULL_CLARK = "patches", "catmull-clark"
 MODES = (PATCHES, CATMULL_CLARK)
 DEFAULT_DENSITY = 4
-# triangles a preview may have: about what software GL draws in a frame's budget
-DEFAULT_TRIANGLE_BUDGET = 1_000_000
+# triangles a preview may have: about what software GL (llvmpipe) draws in a
+# frame's 50 ms; a GPU takes ten times as many
+DEFAULT_TRIANGLE_BUDGET = 500_000
+GPU_TRIANGLE_BUDGET = 5_000_000
 
 
 def preview_arrays(mesh: Mesh, *, scheme: str = DEFAULT_SCHEME, levels: int = DEFAULT_LEVELS,
@@ -161,24 +165,41 @@ def make_preview(request: PreviewRequest) -> Preview:
 
 
 def _patches(request: PreviewRequest, note: str = "") -> Preview:
-    """TopMod's patches of every object, at the density the budget allows."""
+    """TopMod's patches of every object, at the density the budget allows (0: the
+    patches' vertex points only), then of the faces nearest in view."""
     settings = request.settings
     makers = [CornerPatches(arrays) for arrays in request.objects]
     corners = [maker.surface_corners() for maker in makers]
     total = sum(len(c) for c in corners)
-    fits = int(np.sqrt(settings.budget / (2.0 * max(total, 1))))
-    density = max(min(settings.density, fits), 1)
-    by_view = 2 * total * density**2 > settings.budget
+    density = _density(settings, total)
+    cost = _triangles_per_face(density)
+    drawn = sum(int(cost(a.face_sizes[np.unique(a.corner_face[c])]).sum())
+                for a, c in zip(request.objects, corners, strict=True))
+    by_view = drawn > settings.budget
     if by_view:
-        corners = _nearest_patches(request, corners, settings.budget // 2)
-    parts = [maker.tessellate(density, chosen) for maker, chosen in zip(makers, corners,
-                                                                        strict=True)]
-    surface = join_surfaces(parts, density)
-    shown = len(surface.triangles) // (2 * density**2)
-    return Preview(surface, note + _describe_patches(settings, density, shown, total, by_view),
+        corners = _nearest_patches(request, corners, settings.budget, cost)
+    parts = [maker.tessellate(density, chosen) if density else maker.vertex_surface(chosen)
+             for maker, chosen in zip(makers, corners, strict=True)]
+    shown = sum(len(c) for c in corners)
+    return Preview(join_surfaces(parts, density),
+                   note + _describe_patches(settings, density, shown, total, by_view),
                    settings, density, shown, total, by_view,
                    tuple(len(p.triangles) for p in parts),
                    not by_view and _all_closed(request.objects))
+
+
+def _density(settings: PreviewSettings, patches: int) -> int:
+    """The highest density up to the one asked whose ``2 density**2`` triangles a
+    patch fit in the budget; 0 (vertex points only) when not even 1 does."""
+    fits = int(np.sqrt(settings.budget / (2.0 * max(patches, 1))))
+    return min(settings.density, fits)
+
+
+def _triangles_per_face(density: int) -> Callable[[np.ndarray], np.ndarray]:
+    """Triangles a face of each size gets at ``density``."""
+    if density == 0:
+        return lambda sizes: np.maximum(sizes - 2, 0)
+    return lambda sizes: 2 * density**2 * sizes
 
 
 def _all_closed(objects: Sequence[MeshArrays]) -> bool:
@@ -190,7 +211,7 @@ def _describe_patches(settings: PreviewSettings, density: int, shown: int, total
                       by_view: bool) -> str:
     if total == 0:
         return "patches: nothing to smooth"
-    text = f"patches, density {density}"
+    text = f"patches, density {density}" if density else "patches at their vertex points"
     if density < settings.density:
         text += f" (of {settings.density}: budget)"
     if by_view:
@@ -198,19 +219,23 @@ def _describe_patches(settings: PreviewSettings, density: int, shown: int, total
     return text
 
 
-def _nearest_patches(request: PreviewRequest, corners: list[np.ndarray],
-                     count: int) -> list[np.ndarray]:
+def _nearest_patches(request: PreviewRequest, corners: list[np.ndarray], budget: int,
+                     cost: Callable[[np.ndarray], np.ndarray]) -> list[np.ndarray]:
     """Of each object's ``corners``, those of the faces the view sees nearest
-    (faces whole, ``count`` corners in all at most); without a view, faces in order."""
+    (faces whole, whose triangles, ``cost(face sizes)``, fit in ``budget``);
+    without a view, faces in order."""
     faces = [np.unique(arrays.corner_face[chosen])
              for arrays, chosen in zip(request.objects, corners, strict=True)]
-    score = np.concatenate([_face_scores(arrays, f, request.view)
-                            for arrays, f in zip(request.objects, faces, strict=True)])
-    size = np.concatenate([arrays.face_sizes[f]
-                           for arrays, f in zip(request.objects, faces, strict=True)])
+    if request.view is None:  # object after object, faces in order
+        score = np.arange(sum(len(f) for f in faces), dtype=np.float64)
+    else:
+        score = np.concatenate([_face_scores(arrays, f, request.view)
+                                for arrays, f in zip(request.objects, faces, strict=True)])
+    triangles = np.concatenate([cost(arrays.face_sizes[f])
+                                for arrays, f in zip(request.objects, faces, strict=True)])
     order = np.argsort(score, kind="stable")
     kept = np.zeros(len(score), dtype=bool)
-    kept[order[np.cumsum(size[order]) <= count]] = True
+    kept[order[np.cumsum(triangles[order]) <= budget]] = True
     out, start = [], 0
     for arrays, own_faces, chosen in zip(request.objects, faces, corners, strict=True):
         shown = np.zeros(len(arrays.face_ids), dtype=bool)
@@ -220,11 +245,9 @@ def _nearest_patches(request: PreviewRequest, corners: list[np.ndarray],
     return out
 
 
-def _face_scores(arrays: MeshArrays, faces: np.ndarray, view: View | None) -> np.ndarray:
+def _face_scores(arrays: MeshArrays, faces: np.ndarray, view: View) -> np.ndarray:
     """``(k,)`` float: lower for faces to show first: in view and near the eye
-    (faces out of view come after all in view); without a view, in order."""
-    if view is None:
-        return np.arange(len(faces), dtype=np.float64)
+    (faces out of view come after all in view)."""
     centres = face_centroids(arrays)[faces]
     clip = np.c_[centres, np.ones(len(centres))] @ np.asarray(view.view_projection).T
     w = clip[:, 3]
