@@ -168,25 +168,14 @@ class Tessellation:
 
 
 def mesh_surface(mesh: Mesh | MeshArrays) -> Tessellation:
-    """A mesh's own faces as a smooth surface: each face that is not a hole as a fan
-    of triangles from its first corner, with the normalised sum of the face normals
+    """A mesh's own faces as a smooth surface: the fans of
+    :meth:`MeshArrays.fan_triangles`, with the normalised sum of the face normals
     around each vertex (how a subdivided preview is drawn; ``density`` 0)."""
     a = mesh if isinstance(mesh, MeshArrays) else mesh_arrays(mesh)
-    corners = fan_corners(a, ~a.face_hole)
+    corners, _ = a.fan_triangles()
     return Tessellation(a.positions.astype(np.float32),
                         vertex_normals(a).astype(np.float32),
                         np.take(a.corner_vertex, corners).astype(np.uint32), 0)
-
-
-def fan_corners(arrays: MeshArrays, faces: np.ndarray) -> np.ndarray:
-    """``(T, 3)`` int64 dense corners of the fans of the faces where ``faces``
-    ``(F,)`` bool is True: ``n - 2`` triangles ``(head, head + k + 1, head + k + 2)``
-    from each face's head, in face order (fewer than 3 corners: none)."""
-    fans = np.where(faces, np.maximum(arrays.face_sizes - 2, 0), 0)
-    face = np.repeat(np.arange(len(fans)), fans)
-    step = np.arange(len(face)) - np.repeat(np.cumsum(fans) - fans, fans)
-    head = np.take(arrays.face_offsets, face)
-    return np.stack([head, head + step + 1, head + step + 2], axis=1)
 
 
 def patch_control_points(mesh: Mesh | MeshArrays,
@@ -635,9 +624,10 @@ class CornerPatches:
         vertex points, which lie on the surface, and the patches' normals there.
         About a quarter of the triangles of density 1 (``density`` 0)."""
         a = self.arrays
-        faces = np.zeros(len(a.face_ids), dtype=bool)
-        faces[np.take(a.corner_face, self._drawn(corners))] = True
-        fans = np.take(self.ring_of, fan_corners(a, faces))           # (T, 3) rings
+        shown = np.zeros(len(a.face_ids), dtype=bool)
+        shown[np.take(a.corner_face, self._drawn(corners))] = True
+        fan, face = a.fan_triangles()
+        fans = np.take(self.ring_of, fan[shown[face]])               # (T, 3) rings
         used, index = np.unique(fans, return_inverse=True)
         with np.errstate(invalid="ignore", over="ignore"):
             points = self.snapped_vertex[:, used].T * self.scale + self.center
