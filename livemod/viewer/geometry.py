@@ -202,6 +202,26 @@ def build_geometry(arrays: MeshArrays, crease_angle: float | None = None) -> Ren
                           CREASE_ANGLE if crease_angle is None else crease_angle)
 
 
+@dataclass(frozen=True)
+class PreparedMeshes:
+    """The render buffers of a mesh and of the other objects beside it, built off
+    the window's thread (see :func:`prepare_meshes`); None where there is none."""
+
+    arrays: MeshArrays | None
+    others: MeshArrays | None
+    mesh: RenderGeometry | None
+    other: RenderGeometry | None
+
+
+def prepare_meshes(arrays: MeshArrays | None, others: MeshArrays | None = None,
+                   crease_angle: float | None = None) -> PreparedMeshes:
+    """:func:`build_geometry` of ``arrays`` and ``others`` (GL-free, any thread);
+    with a ``crease_angle``, their smooth shading too."""
+    return PreparedMeshes(arrays, others,
+                          None if arrays is None else build_geometry(arrays, crease_angle),
+                          None if others is None else build_geometry(others, crease_angle))
+
+
 def finite_rows(points: np.ndarray) -> np.ndarray:
     """The rows of ``(n, 3)`` ``points`` whose three coordinates are finite, as
     ``(k, 3)``. A script may leave NaN or inf in a position (say, a division by a

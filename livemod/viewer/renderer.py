@@ -17,29 +17,27 @@ import moderngl
 import numpy as np
 
 from livemod.dlfl.arrays import MeshArrays
-from livemod.dlfl.patches import Tessellation, mesh_surface
 from livemod.dlfl.scene import Selection
 
 from . import shaders
 from .camera import Camera
 from .geometry import (
     CREASE_ANGLE,
-    RenderGeometry,
+    PreparedMeshes,
     build_geometry,
     corner_points,
-    crease_shading,
     decode_pick,
     dense_flags,
 )
 from .text import QUAD_FLOATS, glyph_atlas, layout_labels
+from .uploads import GLObject, MeshGPU, Steps, SurfaceGPU, Upload
 
 if TYPE_CHECKING:
     from livemod.runner.preview import Preview
 
-TABLE_WIDTH = 4096
+UPLOAD_SECONDS = 0.02  # of a frame an upload in progress takes by default
 GL_CLIP_DISTANCE0 = 0x3000  # moderngl has no name for it: enable_direct takes the GL enum
 NO_CUT = (0.0, 0.0, 0.0, 1.0)  # a clip plane every point is in front of
-_NUMPY_DTYPES = {"u1": np.uint8, "u4": np.uint32}
 MAX_LABELS = 20000
 LABEL_KINDS = ("faces", "edges", "vertices")
 
@@ -126,168 +124,6 @@ class Pick:
     kind: str
     dense_index: int
     element_id: int
-
-
-def _uint_table(ctx: moderngl.Context, values: np.ndarray, dtype: str) -> moderngl.Texture:
-    """Upload ``(n,)`` integers as a 2D integer texture read by ``fetch`` in GLSL."""
-    n = max(len(values), 1)
-    width = min(n, TABLE_WIDTH)
-    height = (n + width - 1) // width
-    padded = np.zeros(width * height, dtype=_NUMPY_DTYPES[dtype])
-    padded[: len(values)] = values
-    texture = ctx.texture((width, height), 1, padded.tobytes(), dtype=dtype)
-    texture.filter = (moderngl.NEAREST, moderngl.NEAREST)
-    return texture
-
-
-def _float3_table(ctx: moderngl.Context, points: np.ndarray) -> moderngl.Texture:
-    """Upload ``(n, 3)`` float32 points as an RGB32F texture read with ``texelFetch``."""
-    n = max(len(points), 1)
-    width = min(n, TABLE_WIDTH)
-    height = (n + width - 1) // width
-    padded = np.zeros((width * height, 3), dtype=np.float32)
-    padded[: len(points)] = points
-    texture = ctx.texture((width, height), 3, padded.tobytes(), dtype="f4")
-    texture.filter = (moderngl.NEAREST, moderngl.NEAREST)
-    return texture
-
-
-def _buffer(ctx: moderngl.Context, data: np.ndarray) -> moderngl.Buffer:
-    """A GL buffer holding ``data``. GL buffers cannot be empty, so an empty array
-    gets a small zeroed one, which the draws never read (they skip what is empty)."""
-    return ctx.buffer(data.tobytes()) if data.size else ctx.buffer(reserve=16)
-
-
-class _MeshGPU:
-    """The GL objects of one uploaded mesh; ``release`` frees them. A mesh may have
-    no triangles (only point-spheres and 2-gons, as while a script builds one from
-    createVertex and insertEdge), no edges or no vertices."""
-
-    def __init__(self, ctx: moderngl.Context, programs: dict[str, moderngl.Program],
-                 geometry: RenderGeometry) -> None:
-        self.geometry = geometry
-        self.positions = _buffer(ctx, geometry.positions)
-        self.triangles = _buffer(ctx, geometry.triangles)
-        self.lines = _buffer(ctx, geometry.lines)
-        self.triangle_face = _uint_table(ctx, geometry.triangle_table, "u4")
-        self.triangle_index = _uint_table(ctx, geometry.triangles.reshape(-1), "u4")
-        self.position_table = _float3_table(ctx, geometry.positions)
-        self.face_flags = _uint_table(ctx, np.zeros(geometry.face_count, np.uint8), "u1")
-        self.edge_flags = _uint_table(ctx, np.zeros(len(geometry.lines), np.uint8), "u1")
-        self.vertex_flags = _uint_table(ctx, np.zeros(len(geometry.positions), np.uint8), "u1")
-        content = [(self.positions, "3f", "in_position")]
-        self.face_vao = ctx.vertex_array(programs["face"], content, self.triangles, 4)
-        self.winding_vao = ctx.vertex_array(programs["winding"], content, self.triangles, 4)
-        self.edge_vao = ctx.vertex_array(programs["edge"], content, self.lines, 4)
-        self.point_vao = ctx.vertex_array(programs["point"], content)
-        self.spheres = _buffer(ctx, geometry.point_spheres)
-        self.sphere_vao = ctx.vertex_array(programs["point"], content, self.spheres, 4)
-        self.ctx, self.edge_program = ctx, programs["edge"]
-        self.face_program = programs["face"]
-        self.selected_lines: tuple[moderngl.Buffer, moderngl.VertexArray] | None = None
-        # the smooth face pass: (crease angle, its buffers, its vertex array)
-        self.smooth: tuple[float, list[moderngl.Buffer], moderngl.VertexArray] | None = None
-
-    def smooth_vao(self, crease_angle: float) -> moderngl.VertexArray:
-        """The face pass with smooth normals creased at ``crease_angle`` degrees
-        (:func:`~.geometry.crease_shading`), made on first use and kept for that
-        angle; the geometry's own when it came prepared with it."""
-        if self.smooth is not None and self.smooth[0] == crease_angle:
-            return self.smooth[2]
-        self._release_smooth()
-        shading = self.geometry.smooth
-        if shading is None or self.geometry.crease_angle != crease_angle:
-            assert self.geometry.arrays is not None  # (build_geometry keeps them)
-            shading = crease_shading(self.geometry.arrays, crease_angle)
-        buffers = [_buffer(self.ctx, shading.positions), _buffer(self.ctx, shading.normals),
-                   _buffer(self.ctx, shading.triangles)]
-        vao = self.ctx.vertex_array(
-            self.face_program, [(buffers[0], "3f", "in_position"),
-                                (buffers[1], "3f", "in_normal")], buffers[2], 4)
-        self.smooth = (crease_angle, buffers, vao)
-        return vao
-
-    def _release_smooth(self) -> None:
-        if self.smooth is not None:
-            self.smooth[2].release()
-            for buffer in self.smooth[1]:
-                buffer.release()
-            self.smooth = None
-
-    def set_flags(self, face: np.ndarray, edge: np.ndarray, vertex: np.ndarray) -> None:
-        """Replace the selection flags; each ``(n,)`` uint8 in dense order."""
-        for texture, flags in ((self.face_flags, face), (self.edge_flags, edge),
-                               (self.vertex_flags, vertex)):
-            padded = np.zeros(texture.width * texture.height, dtype=np.uint8)
-            padded[: len(flags)] = flags
-            texture.write(padded.tobytes())
-        self._release_selected_lines()
-        picked = self.geometry.lines[np.flatnonzero(edge)]
-        if len(picked):
-            buffer = self.ctx.buffer(np.ascontiguousarray(picked).tobytes())
-            vao = self.ctx.vertex_array(self.edge_program, [(self.positions, "3f", "in_position")],
-                                        buffer, 4)
-            self.selected_lines = (buffer, vao)
-
-    def _release_selected_lines(self) -> None:
-        if self.selected_lines is not None:
-            self.selected_lines[1].release()
-            self.selected_lines[0].release()
-            self.selected_lines = None
-
-    def release(self) -> None:
-        """Free every GL object of this mesh."""
-        self._release_selected_lines()
-        self._release_smooth()
-        for obj in (self.face_vao, self.winding_vao, self.edge_vao, self.point_vao,
-                    self.sphere_vao, self.spheres, self.positions,
-                    self.triangles, self.lines, self.triangle_face, self.face_flags,
-                    self.edge_flags, self.vertex_flags, self.triangle_index,
-                    self.position_table):
-            obj.release()
-
-
-class _SurfaceGPU:
-    """The GL objects of an uploaded smooth surface (the preview): positions,
-    normals and triangles, drawn in ``parts`` (triangle counts: the current
-    object's first, then the other objects'); ``release`` frees them.
-
-    Attributes:
-        closed: its back faces are never seen (all its objects closed, and whole).
-    """
-
-    def __init__(self, ctx: moderngl.Context, programs: dict[str, moderngl.Program],
-                 surface: Tessellation, parts: tuple[int, ...], closed: bool) -> None:
-        self.positions = _buffer(ctx, surface.positions)
-        self.normals = _buffer(ctx, surface.normals)
-        self.triangles = _buffer(ctx, surface.triangles)
-        self.count = len(surface.triangles)
-        self.parts, self.closed = parts, closed
-        self.vao = ctx.vertex_array(programs["surface"], [
-            (self.positions, "3f", "in_position"), (self.normals, "3f", "in_normal")],
-            self.triangles, 4)
-        self.winding_vao = ctx.vertex_array(programs["winding"], [
-            (self.positions, "3f", "in_position")], self.triangles, 4)
-
-    def ranges(self, current: bool) -> list[tuple[int, int]]:
-        """``(first vertex, vertex count)`` of the current object's part, or of the
-        other objects' parts (joined), in the index buffer."""
-        first = 3 * self.parts[0] if self.parts else 0
-        return [(0, first)] if current else [(first, 3 * self.count - first)]
-
-    def release(self) -> None:
-        for obj in (self.vao, self.winding_vao, self.positions, self.normals, self.triangles):
-            obj.release()
-
-
-def _preview_surface(preview: Preview | MeshArrays) -> tuple[Tessellation, tuple[int, ...],
-                                                             bool]:
-    """``(surface, parts, closed)`` of a preview, or of a subdivided mesh's arrays
-    (drawn with its own smooth normals, as one part)."""
-    if isinstance(preview, MeshArrays):
-        surface = mesh_surface(preview)
-        return surface, (len(surface.triangles),), not bool(preview.face_hole.any())
-    return preview.surface, preview.parts, preview.closed
 
 
 class _StreamBuffer:
@@ -455,13 +291,14 @@ class Renderer:
         self.preview: Preview | MeshArrays | None = None
         self.others: MeshArrays | None = None
         self.selection = Selection()
-        self._mesh: _MeshGPU | None = None
-        self._others: _MeshGPU | None = None
+        self._mesh: MeshGPU | None = None
+        self._others: MeshGPU | None = None
         self._others_shown = True
         self._current_shown = True
         self._section: tuple[int, float] | None = None  # the last frame's, for picking
-        self._preview: _SurfaceGPU | None = None
+        self._preview: SurfaceGPU | None = None
         self._label_cache: tuple[object, np.ndarray] | None = None
+        self._uploads: dict[str, Upload] = {}  # "mesh", "preview": uploads in progress
         self._pick_fbo: moderngl.Framebuffer | None = None
         self._winding: tuple[moderngl.Framebuffer, moderngl.Texture] | None = None
         self._cap_vao = ctx.vertex_array(self.programs["cap"], [])
@@ -510,42 +347,111 @@ class Renderer:
         ``others``: the scene's other objects, drawn beside it in a muted colour;
         they hide what is behind them but are never picked or labelled.
         """
-        # built before the old one is released: a failed upload leaves the old drawn
-        self._mesh = self._replaced(self._mesh, arrays)
-        self.arrays = arrays
-        self.version += 1
-        self.set_others(others)
-        self.set_preview(preview)
-        self.set_selection(self.selection)
+        self.stage(arrays, preview, others)
+        self.advance(math.inf)
 
-    def set_others(self, others: MeshArrays | None) -> None:
-        """Upload (or drop, with None) the other objects alone, keeping the mesh."""
-        self._others = self._replaced(self._others, others)
-        self.others = others
-        self.version += 1
+    def stage(self, arrays: MeshArrays | None, preview: Preview | MeshArrays | None = None,
+              others: MeshArrays | None = None, prepared: PreparedMeshes | None = None,
+              ) -> None:
+        """Start uploading ``arrays``, its ``preview`` and the ``others`` (see
+        :meth:`set_mesh`); what is drawn changes once :meth:`advance` has uploaded
+        them all, so each frame can give the upload a slice of its time. Their
+        render buffers come ``prepared`` off the thread (for these same arrays),
+        or are built here. An upload in progress is given up: the newer content
+        supersedes it. When the upload fails, what was drawn stays."""
+        self._abandon(mesh=True)
+        if prepared is None or prepared.arrays is not arrays or prepared.others is not others:
+            prepared = PreparedMeshes(arrays, others, *(
+                None if part is None else build_geometry(part) for part in (arrays, others)))
+        ctx, programs = self.ctx, self.programs
+
+        def start(made: list[GLObject]) -> Steps[tuple]:
+            mesh = other = surface = None
+            if prepared.mesh is not None:
+                mesh = yield from MeshGPU.steps(ctx, programs, prepared.mesh, made)
+            if prepared.other is not None:
+                other = yield from MeshGPU.steps(ctx, programs, prepared.other, made)
+            if preview is not None:
+                surface = yield from SurfaceGPU.steps(ctx, programs, preview, made)
+            return mesh, other, surface
+
+        def done(made: tuple) -> None:
+            for old in (self._mesh, self._others, self._preview):
+                if old is not None:
+                    old.release()
+            self._mesh, self._others, self._preview = made
+            self.arrays, self.others, self.preview = arrays, others, preview
+            self.version += 1
+            self.set_selection(self.selection)
+
+        self._uploads["mesh"] = Upload(start, done)
+
+    def stage_preview(self, preview: Preview | MeshArrays | None) -> None:
+        """Start uploading (or drop, with None) the smoothed preview alone, as
+        :meth:`stage` does; it supersedes a preview upload in progress."""
+        self._abandon(mesh=False)
+        ctx, programs = self.ctx, self.programs
+
+        def start(made: list[GLObject]) -> Steps[SurfaceGPU | None]:
+            if preview is None:
+                return None
+            return (yield from SurfaceGPU.steps(ctx, programs, preview, made))
+
+        def done(surface: SurfaceGPU | None) -> None:
+            if self._preview is not None:
+                self._preview.release()
+            self._preview, self.preview = surface, preview
+            self.version += 1
+
+        self._uploads["preview"] = Upload(start, done)
 
     def set_preview(self, preview: Preview | MeshArrays | None) -> None:
-        """Upload (or drop, with None) the smoothed preview: a
+        """Upload (or drop, with None) the smoothed preview now: a
         :class:`~livemod.runner.preview.Preview` (of the current object first, then
         maybe the other objects), or the arrays of a subdivided mesh (drawn with
         smooth vertex normals). When it holds parts for the other objects, the
         preview draws them too in place of their faces."""
-        new = None
-        if preview is not None:
-            new = _SurfaceGPU(self.ctx, self.programs, *_preview_surface(preview))
-        if self._preview is not None:
-            self._preview.release()
-        self._preview, self.preview = new, preview
-        self.version += 1
+        self.stage_preview(preview)
+        self.advance(math.inf)
 
-    def _replaced(self, old: _MeshGPU | None, arrays: MeshArrays | None) -> _MeshGPU | None:
-        """The upload of ``arrays`` (None for none), with ``old`` released once it is
-        done; when the upload raises, ``old`` is kept as it was."""
-        new = None if arrays is None else _MeshGPU(self.ctx, self.programs,
-                                                   build_geometry(arrays))
-        if old is not None:
-            old.release()
-        return new
+    def advance(self, seconds: float = UPLOAD_SECONDS) -> bool:
+        """Give the uploads in progress about ``seconds`` (at least one step each;
+        the mesh's first); True when none is left. An upload that fails is given
+        up (what it made is freed) and its error raised; what was drawn stays."""
+        for name in ("mesh", "preview"):
+            upload = self._uploads.get(name)
+            if upload is None:
+                continue
+            try:
+                upload.advance(seconds)
+            except BaseException:
+                upload.abandon()
+                del self._uploads[name]
+                raise
+            if upload.finished:
+                del self._uploads[name]
+        return not self._uploads
+
+    @property
+    def uploading(self) -> bool:
+        """An upload is in progress (:meth:`advance` has work to do)."""
+        return bool(self._uploads)
+
+    def _abandon(self, mesh: bool) -> None:
+        """Give up the preview's upload in progress (and with ``mesh``, the mesh's)."""
+        for name in (("mesh", "preview") if mesh else ("preview",)):
+            upload = self._uploads.pop(name, None)
+            if upload is not None:
+                upload.abandon()
+
+    def set_others(self, others: MeshArrays | None) -> None:
+        """Upload (or drop, with None) the other objects alone, keeping the mesh."""
+        new = None if others is None else MeshGPU.made(self.ctx, self.programs,
+                                                        build_geometry(others))
+        if self._others is not None:
+            self._others.release()
+        self._others, self.others = new, others
+        self.version += 1
 
     def set_selection(self, selection: Selection) -> None:
         """Highlight ``selection`` (ids; ids missing from the mesh are ignored)."""
@@ -559,7 +465,7 @@ class Renderer:
                              dense_flags(arrays.edge_ids, selection.edges),
                              dense_flags(arrays.vertex_ids, selection.vertices))
 
-    def _placed(self) -> list[_MeshGPU]:
+    def _placed(self) -> list[MeshGPU]:
         """The mesh and the other objects uploaded that have a finite position."""
         return [m for m in (self._mesh, self._others)
                 if m is not None and len(m.geometry.positions) > m.geometry.nonfinite]
@@ -702,7 +608,7 @@ class Renderer:
         for program in self.programs.values():
             program.release()
 
-    def _draw_scenery(self, others: _MeshGPU, style: Style) -> None:
+    def _draw_scenery(self, others: MeshGPU, style: Style) -> None:
         """The other objects: their faces (or their part of the preview), or their
         edges when faces are off. Their wireframe is left out so that the object
         being modelled stands out."""
@@ -715,7 +621,7 @@ class Renderer:
         elif style.edges:
             self._draw_edges(others)
 
-    def _draw_current(self, mesh: _MeshGPU, style: Style) -> None:
+    def _draw_current(self, mesh: MeshGPU, style: Style) -> None:
         """The current object with its preview, selection and points (labels apart)."""
         show_preview = style.preview and self._preview is not None
         # the wireframe over the mesh's own faces is drawn inside the face pass
@@ -783,7 +689,7 @@ class Renderer:
         cap["hatch_spacing"].value = hatch_spacing(  # type: ignore[union-attr]
             pixel_size, abs(float(basis[2][axis])))
 
-    def _draw_surface(self, surface: _SurfaceGPU, color: tuple[float, float, float],
+    def _draw_surface(self, surface: SurfaceGPU, color: tuple[float, float, float],
                       current: bool) -> None:
         """The preview's part of the current object (or of the others), lit by its
         own normals, capped where a section cuts it."""
@@ -801,7 +707,7 @@ class Renderer:
             self._draw_cap(surface, color, current)
         self.ctx.disable(moderngl.CULL_FACE)
 
-    def _draw_faces(self, mesh: _MeshGPU, color: tuple[float, float, float],
+    def _draw_faces(self, mesh: MeshGPU, color: tuple[float, float, float],
                     wire: bool = False, smooth: bool = False,
                     crease_angle: float = CREASE_ANGLE) -> None:
         if not len(mesh.geometry.triangles):
@@ -831,7 +737,7 @@ class Renderer:
             self._draw_cap(mesh, color)
         self.ctx.disable(moderngl.CULL_FACE)
 
-    def _draw_cap(self, mesh: _MeshGPU | _SurfaceGPU,
+    def _draw_cap(self, mesh: MeshGPU | SurfaceGPU,
                   color: tuple[float, float, float], current: bool = True) -> None:
         """The section's cap of a cut closed mesh, in a darker ``color``: the mesh's
         cut triangles count the winding of each pixel into an image, then one pass
@@ -849,7 +755,7 @@ class Renderer:
         winding.use(6)
         self._cap_vao.render(moderngl.TRIANGLES, vertices=3)
 
-    def _count_winding(self, mesh: _MeshGPU | _SurfaceGPU, size: tuple[int, int],
+    def _count_winding(self, mesh: MeshGPU | SurfaceGPU, size: tuple[int, int],
                        current: bool = True) -> moderngl.Texture:
         """Draw the cut triangles of ``mesh`` into the winding image of ``size``, front
         faces adding 1 and back faces taking 1 away, and return the image. Leaves
@@ -860,7 +766,7 @@ class Renderer:
         self.ctx.disable(moderngl.DEPTH_TEST | moderngl.CULL_FACE)
         self.ctx.enable(moderngl.BLEND)
         self.ctx.blend_func = moderngl.ONE, moderngl.ONE
-        if isinstance(mesh, _SurfaceGPU):  # the part of the object capped only
+        if isinstance(mesh, SurfaceGPU):  # the part of the object capped only
             for first, count in mesh.ranges(current):
                 mesh.winding_vao.render(moderngl.TRIANGLES, vertices=count, first=first)
         else:
@@ -881,7 +787,7 @@ class Renderer:
         self._winding = (self.ctx.framebuffer([texture]), texture)
         return self._winding
 
-    def _draw_edges(self, mesh: _MeshGPU, selected_only: bool = False) -> None:
+    def _draw_edges(self, mesh: MeshGPU, selected_only: bool = False) -> None:
         program = self.programs["edge"]
         program["edge_color"].value = EDGE_COLOR  # type: ignore[union-attr]
         program["selected_color"].value = SELECTED_COLOR  # type: ignore[union-attr]
@@ -892,7 +798,7 @@ class Renderer:
         elif len(mesh.geometry.lines):
             mesh.edge_vao.render(moderngl.LINES)
 
-    def _draw_points(self, mesh: _MeshGPU, size: float, only_selected: bool = False,
+    def _draw_points(self, mesh: MeshGPU, size: float, only_selected: bool = False,
                      point_spheres: bool = False) -> None:
         """The vertices as points: all of them, the selected ones only, or only the
         point-spheres (which no face shows)."""
