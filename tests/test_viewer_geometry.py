@@ -105,3 +105,22 @@ def test_bounds_leave_out_positions_that_are_not_finite() -> None:
     assert np.isfinite(geometry.center).all() and geometry.radius == pytest.approx(3 ** 0.5)
     assert finite_bounds(np.full((3, 3), np.nan)).tolist() == [[0.0] * 3, [0.0] * 3]
     assert build_geometry(mesh_arrays(cube())).nonfinite == 0
+
+
+def test_visible_labels_are_those_in_view_nearest_the_eye_first() -> None:
+    from livemod.viewer.camera import Camera
+    from livemod.viewer.geometry import visible_labels
+
+    camera = Camera(yaw=0.0, pitch=0.0)
+    camera.fit_points(np.array([[-1.0, -1.0, 0.0], [1.0, 1.0, 0.0]]), 1.0)
+    view = camera.view_projection(1.0)
+    eye = camera.eye()
+    anchors = np.array([[0.0, 0.0, 0.0],                 # in view
+                        [0.5, 0.5, 0.5],                 # in view, nearer the eye
+                        [50.0, 0.0, 0.0],                # beside the view
+                        eye + (eye - [0.0, 0.0, 0.0]),   # behind the eye
+                        [-0.5, 0.2, -0.5]])              # in view, farther
+    assert visible_labels(anchors, view, 10).tolist() == [0, 1, 4]
+    assert visible_labels(anchors, view, 2).tolist() == [0, 1]
+    assert visible_labels(anchors, None, 2).tolist() == [0, 1]
+    assert visible_labels(np.zeros((0, 3)), view, 5).tolist() == []

@@ -682,6 +682,32 @@ def test_a_section_leaves_out_the_labels_of_what_it_cut_away(offscreen: Offscree
     assert (labelled(None), labelled((0, 0.0)), labelled((0, -0.5))) == (6, 5, 1)
 
 
+def test_only_labels_on_screen_are_laid_out_the_nearest_first(offscreen: Offscreen) -> None:
+    from livemod.dlfl.shapes import grid
+    from livemod.viewer.renderer import MAX_LABELS
+
+    arrays = mesh_arrays(grid(80, 80))                 # 6,400 faces
+    renderer = offscreen.renderer
+    renderer.set_mesh(arrays)
+    style = Style(labels=frozenset({"faces"}))
+    camera = framed_camera(arrays, elevation=60.0)
+    view = camera.view_projection(SIZE[0] / SIZE[1])
+
+    def labelled(quads: np.ndarray) -> np.ndarray:
+        """The anchors of the label boxes (kind 9: a face label's box)."""
+        return quads[quads[:, 11] == 9][:, :3]
+
+    whole = labelled(renderer._label_quads(style, view))
+    assert len(whole) == MAX_LABELS
+    camera.distance *= 0.2                             # closer: fewer faces in view
+    near = labelled(renderer._label_quads(style, camera.view_projection(SIZE[0] / SIZE[1])))
+    assert 0 < len(near) < MAX_LABELS
+    clip = np.c_[near, np.ones(len(near))] @ camera.view_projection(SIZE[0] / SIZE[1]).T
+    assert (np.abs(clip[:, :2]) <= clip[:, 3:]).all() and (clip[:, 3] > 0).all()
+    picture = offscreen.render(camera, style)
+    assert (picture != offscreen.render(camera, Style())).any()
+
+
 def test_render_section_option(tmp_path: Path, capsys) -> None:
     script = tmp_path / "cube.py"
     script.write_text(CUBE_SCRIPT)

@@ -18,6 +18,7 @@ means background.
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -205,21 +206,57 @@ def build_geometry(arrays: MeshArrays, crease_angle: float | None = None) -> Ren
 @dataclass(frozen=True)
 class PreparedMeshes:
     """The render buffers of a mesh and of the other objects beside it, built off
-    the window's thread (see :func:`prepare_meshes`); None where there is none."""
+    the window's thread (see :func:`prepare_meshes`); None where there is none.
+    ``anchors``: the mesh's label anchors of the kinds asked (see :func:`label_anchors`)."""
 
     arrays: MeshArrays | None
     others: MeshArrays | None
     mesh: RenderGeometry | None
     other: RenderGeometry | None
+    anchors: dict[str, np.ndarray] = field(default_factory=dict)
 
 
 def prepare_meshes(arrays: MeshArrays | None, others: MeshArrays | None = None,
-                   crease_angle: float | None = None) -> PreparedMeshes:
+                   crease_angle: float | None = None,
+                   labels: Iterable[str] = ()) -> PreparedMeshes:
     """:func:`build_geometry` of ``arrays`` and ``others`` (GL-free, any thread);
-    with a ``crease_angle``, their smooth shading too."""
+    with a ``crease_angle``, their smooth shading too; the anchors of the
+    ``labels`` kinds ("faces", "edges", "vertices") of ``arrays``."""
     return PreparedMeshes(arrays, others,
                           None if arrays is None else build_geometry(arrays, crease_angle),
-                          None if others is None else build_geometry(others, crease_angle))
+                          None if others is None else build_geometry(others, crease_angle),
+                          {} if arrays is None else label_anchors(arrays, labels))
+
+
+def label_anchors(arrays: MeshArrays, kinds: Iterable[str]) -> dict[str, np.ndarray]:
+    """``{kind: (n, 3) float64}`` where the id labels of each of ``kinds`` sit:
+    face centroids, edge midpoints, vertex positions."""
+    from livemod.dlfl.analysis import face_centroids
+
+    makers = {"faces": lambda: face_centroids(arrays),
+              "edges": lambda: arrays.positions[arrays.edge_vertices].mean(axis=1),
+              "vertices": lambda: np.asarray(arrays.positions)}
+    return {kind: makers[kind]() for kind in kinds}
+
+
+def visible_labels(anchors: np.ndarray, view: np.ndarray | None, limit: int) -> np.ndarray:
+    """``(k,)`` int64 indices of the ``(n, 3)`` ``anchors`` to label, in order: of
+    those in front of the eye and inside the ``(4, 4)`` view-projection ``view``,
+    the ``limit`` nearest the eye (without a view: the first ``limit``). A
+    million labels are never readable at once; this keeps the layout and the draw
+    of the labels to what the screen can show."""
+    if view is None:
+        return np.arange(min(len(anchors), limit))
+    view = np.asarray(view, dtype=np.float64)
+    with np.errstate(invalid="ignore", over="ignore"):
+        clip = anchors @ view[:, :3].T + view[:, 3]
+        w = clip[:, 3]
+        inside = (w > 0) & (np.abs(clip[:, 0]) <= w) & (np.abs(clip[:, 1]) <= w)
+    index = np.flatnonzero(inside)
+    if len(index) > limit:
+        nearest = np.argpartition(w[index], limit - 1)[:limit]
+        index = np.sort(index[nearest])
+    return index
 
 
 def finite_rows(points: np.ndarray) -> np.ndarray:

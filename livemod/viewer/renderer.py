@@ -28,6 +28,8 @@ from .geometry import (
     corner_points,
     decode_pick,
     dense_flags,
+    label_anchors,
+    visible_labels,
 )
 from .text import QUAD_FLOATS, glyph_atlas, layout_labels
 from .uploads import GLObject, MeshGPU, Steps, SurfaceGPU, Upload
@@ -38,7 +40,7 @@ if TYPE_CHECKING:
 UPLOAD_SECONDS = 0.02  # of a frame an upload in progress takes by default
 GL_CLIP_DISTANCE0 = 0x3000  # moderngl has no name for it: enable_direct takes the GL enum
 NO_CUT = (0.0, 0.0, 0.0, 1.0)  # a clip plane every point is in front of
-MAX_LABELS = 20000
+MAX_LABELS = 2000  # id labels on screen at once, of each kind: the nearest the eye
 LABEL_KINDS = ("faces", "edges", "vertices")
 
 PALETTE = np.array([
@@ -298,6 +300,8 @@ class Renderer:
         self._section: tuple[int, float] | None = None  # the last frame's, for picking
         self._preview: SurfaceGPU | None = None
         self._label_cache: tuple[object, np.ndarray] | None = None
+        self._label_candidates_cache: dict[str, tuple[object, tuple]] = {}
+        self._anchors: dict[str, np.ndarray] = {}  # the current mesh's label anchors
         self._uploads: dict[str, Upload] = {}  # "mesh", "preview": uploads in progress
         self._pick_fbo: moderngl.Framebuffer | None = None
         self._winding: tuple[moderngl.Framebuffer, moderngl.Texture] | None = None
@@ -361,8 +365,9 @@ class Renderer:
         supersedes it. When the upload fails, what was drawn stays."""
         self._abandon(mesh=True)
         if prepared is None or prepared.arrays is not arrays or prepared.others is not others:
-            prepared = PreparedMeshes(arrays, others, *(
-                None if part is None else build_geometry(part) for part in (arrays, others)))
+            prepared = PreparedMeshes(
+                arrays, others, None if arrays is None else build_geometry(arrays),
+                None if others is None else build_geometry(others))
         ctx, programs = self.ctx, self.programs
 
         def start(made: list[GLObject]) -> Steps[tuple]:
@@ -381,6 +386,8 @@ class Renderer:
                     old.release()
             self._mesh, self._others, self._preview = made
             self.arrays, self.others, self.preview = arrays, others, preview
+            self._anchors = dict(prepared.anchors)
+            self._label_candidates_cache = {}
             self.version += 1
             self.set_selection(self.selection)
 
@@ -844,44 +851,67 @@ class Renderer:
 
     # -- text ------------------------------------------------------------------
 
-    def _label_quads(self, style: Style) -> np.ndarray:
-        """``(n, QUAD_FLOATS)`` label quads for ``style``, cached until content changes."""
-        key = (style.labels, style.labels_selected_only, style.section, id(self.arrays))
+    def _label_quads(self, style: Style, view: np.ndarray | None = None) -> np.ndarray:
+        """``(n, QUAD_FLOATS)`` label quads for ``style``: of the elements a
+        ``view`` (a ``(4, 4)`` view-projection matrix) sees, the ``MAX_LABELS``
+        nearest the eye (without a view, the first ``MAX_LABELS`` of each kind).
+        Kept until the content, the labels asked or the view change."""
+        key = (style.labels, style.labels_selected_only, style.section, id(self.arrays),
+               None if view is None else np.asarray(view, np.float64).tobytes())
         if self._label_cache is not None and self._label_cache[0] == key:
             return self._label_cache[1]
         arrays = self.arrays
         assert arrays is not None
-        from livemod.dlfl.analysis import face_centroids
-
-        sources = {
-            "faces": (1, lambda: face_centroids(arrays), arrays.face_ids, ~arrays.face_hole,
-                      self.selection.faces),
-            "edges": (2, lambda: arrays.positions[arrays.edge_vertices].mean(axis=1),
-                      arrays.edge_ids, None, self.selection.edges),
-            "vertices": (3, lambda: arrays.positions, arrays.vertex_ids, None,
-                         self.selection.vertices),
-        }
         parts = [np.zeros((0, QUAD_FLOATS), dtype=np.float32)]
-        for name in LABEL_KINDS:
+        for name, (kind, ids, picked) in self._label_sources(arrays).items():
             if name not in style.labels:
                 continue
-            kind, anchors_of, ids, keep, picked = sources[name]
-            selected = dense_flags(ids, picked).astype(bool)
-            show = selected.copy() if style.labels_selected_only else np.ones(len(ids), bool)
-            if keep is not None:
-                show &= keep
-            every_anchor = np.asarray(anchors_of())
-            if style.section is not None:  # no labels on what the cut took away
-                show &= every_anchor[:, style.section[0]] <= style.section[1]
-            index = np.flatnonzero(show)[:MAX_LABELS]
-            anchors = every_anchor[index]
-            parts.append(layout_labels(self.atlas, anchors, ids[index], kind, selected[index]))
+            anchors, candidates, selected = self._label_candidates(name, ids, picked, style)
+            shown = candidates[visible_labels(anchors[candidates], view, MAX_LABELS)]
+            parts.append(layout_labels(self.atlas, anchors[shown], ids[shown], kind,
+                                       selected[shown]))
         quads = np.concatenate(parts)
         self._label_cache = (key, quads)
         return quads
 
+    def _label_sources(self, arrays: MeshArrays) -> dict[str, tuple[int, np.ndarray, tuple]]:
+        """Each label kind's ``(colour key, ids, selected ids)``."""
+        return {"faces": (1, arrays.face_ids, self.selection.faces),
+                "edges": (2, arrays.edge_ids, self.selection.edges),
+                "vertices": (3, arrays.vertex_ids, self.selection.vertices)}
+
+    def _label_candidates(self, name: str, ids: np.ndarray, picked: tuple, style: Style,
+                          ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """``(anchors (n, 3), candidate indices (k,), selected (n,) bool)`` of the
+        labels of kind ``name`` the style lets show (holes, what a section cut away
+        and, when asked, the unselected ones left out), before the view chooses."""
+        key = (name, style.labels_selected_only, style.section, id(self.arrays),
+               self.selection)
+        cached = self._label_candidates_cache.get(name)
+        if cached is not None and cached[0] == key:
+            return cached[1]
+        assert self.arrays is not None
+        anchors = self._anchors_of(name)
+        selected = dense_flags(ids, picked).astype(bool)
+        show = selected.copy() if style.labels_selected_only else np.ones(len(ids), bool)
+        if name == "faces":
+            show &= ~self.arrays.face_hole
+        if style.section is not None:  # no labels on what the cut took away
+            show &= anchors[:, style.section[0]] <= style.section[1]
+        made = (anchors, np.flatnonzero(show), selected)
+        self._label_candidates_cache[name] = (key, made)
+        return made
+
+    def _anchors_of(self, name: str) -> np.ndarray:
+        """``(n, 3)`` anchors of the current mesh's labels of kind ``name``: as
+        prepared with the mesh (off the thread), or made now and kept."""
+        if name not in self._anchors:
+            assert self.arrays is not None
+            self._anchors.update(label_anchors(self.arrays, (name,)))
+        return self._anchors[name]
+
     def _draw_labels(self, camera: Camera, style: Style, size: tuple[int, int]) -> None:
-        quads = self._label_quads(style)
+        quads = self._label_quads(style, camera.view_projection(size[0] / max(size[1], 1)))
         eye_to_center = float(np.linalg.norm(camera.eye() - self._scene_center()))
         radius = self._mesh.geometry.radius if self._mesh is not None else 1.0
         self.programs["text"]["fade_range"].value = (  # type: ignore[union-attr]
