@@ -1076,3 +1076,53 @@ def test_render_refuses_mesh_for_a_mesh_input(tmp_path: Path, capsys) -> None:
     out = tmp_path / "out.png"
     assert main(["render", "cube", "-o", str(out), "--mesh", "tetrahedron"]) == 2
     assert "--mesh needs a script" in capsys.readouterr().err and not out.exists()
+
+
+def test_new_content_is_drawn_in_slices_to_the_same_picture(offscreen: Offscreen) -> None:
+    from livemod.dlfl.shapes import torus
+
+    renderer = offscreen.renderer
+    first, second = mesh_arrays(torus(12, 8)), mesh_arrays(torus(20, 14))
+    renderer.set_mesh(first)
+    camera = framed_camera(second)
+    style = Style(smooth=True)
+    renderer.set_selection(Selection(faces=(3, 40, 200), edges=(7, 300)))
+    assert renderer.draw(offscreen.target, camera, style, budget=100)   # first content
+    renderer.set_mesh(second)
+    renderer.set_selection(Selection(faces=(3, 40, 200), edges=(7, 300)))
+    calls = 1
+    while not renderer.draw(offscreen.target, camera, style, budget=100):
+        calls += 1
+    # 560 triangles (the wireframe drawn in them) and the marks, 100 a call
+    assert calls == 6
+    sliced = np.frombuffer(offscreen.target.read(components=3), np.uint8)
+    assert renderer.draw(offscreen.target, camera, style, budget=100)  # whole: nothing new
+    whole = np.frombuffer(offscreen.target.read(components=3), np.uint8)
+    assert np.array_equal(sliced, whole)
+    renderer.set_mesh(first)
+    assert not renderer.draw(offscreen.target, camera, style, budget=50)
+    camera.yaw += 10.0                               # the view turns: all at once
+    assert renderer.draw(offscreen.target, camera, style, budget=50)
+    renderer.set_selection(Selection())
+
+
+def test_a_preview_and_its_cage_drawn_in_slices_match_the_whole(offscreen: Offscreen) -> None:
+    from livemod.dlfl.shapes import torus
+    from livemod.runner.preview import PreviewRequest, PreviewSettings, make_preview
+
+    renderer = offscreen.renderer
+    current, other = mesh_arrays(torus(10, 6)), mesh_arrays(cube())
+    made = make_preview(PreviewRequest((current, other), PreviewSettings(density=2)))
+    camera = framed_camera(concatenate_arrays([current, other]))
+    style = Style(preview=True)
+    renderer.set_mesh(other)
+    assert renderer.draw(offscreen.target, camera, style, budget=64)
+    renderer.set_mesh(current, made, other)
+    calls = 1
+    while not renderer.draw(offscreen.target, camera, style, budget=64):
+        calls += 1
+    # the others' part (24 corners * 8) and the torus's (240 * 8), 120 cage edges, marks
+    assert calls == -(-(24 * 8 + 240 * 8 + 120 + 1) // 64)
+    sliced = np.frombuffer(offscreen.target.read(components=3), np.uint8)
+    renderer.draw(offscreen.target, camera, style)
+    assert np.array_equal(sliced, np.frombuffer(offscreen.target.read(components=3), np.uint8))

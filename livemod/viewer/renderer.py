@@ -271,6 +271,20 @@ PROGRAMS = {
 }
 
 
+# a pass of a frame: (primitives, draw(first, count))
+_Pass = tuple[int, Callable[[int, int], None]]
+
+
+@dataclass
+class _Progress:
+    """A picture drawn a slice at a time: for ``key`` (content version and view),
+    into ``target``, ``done`` primitives so far."""
+
+    key: tuple
+    target: moderngl.Framebuffer
+    done: int = 0
+
+
 class Renderer:
     """Draws meshes, selections, labels and screen text with one set of programs."""
 
@@ -303,6 +317,10 @@ class Renderer:
         self._label_candidates_cache: dict[str, tuple[object, tuple]] = {}
         self._anchors: dict[str, np.ndarray] = {}  # the current mesh's label anchors
         self._uploads: dict[str, Upload] = {}  # "mesh", "preview": uploads in progress
+        # the picture drawn in slices, its target, and (version, view) of the last whole one
+        self._progress: _Progress | None = None
+        self._slices: moderngl.Framebuffer | None = None
+        self._drawn: tuple[int, object] = (-1, None)
         self._pick_fbo: moderngl.Framebuffer | None = None
         self._winding: tuple[moderngl.Framebuffer, moderngl.Texture] | None = None
         self._cap_vao = ctx.vertex_array(self.programs["cap"], [])
@@ -501,31 +519,122 @@ class Renderer:
     # -- drawing ---------------------------------------------------------------
 
     def draw(self, fbo: moderngl.Framebuffer, camera: Camera, style: Style,
-             size: tuple[int, int] | None = None) -> None:
+             size: tuple[int, int] | None = None, budget: int | None = None) -> bool:
         """Clear ``fbo`` and draw the scene seen by ``camera`` in ``style``, over
         ``size`` pixels (default ``fbo.size``; a window's screen framebuffer keeps its
-        first size after a resize, so the window says the size)."""
-        fbo.use()
+        first size after a resize, so the window says the size).
+
+        With a ``budget`` (primitives a call may draw), new content seen from an
+        unchanged view is drawn over several calls when it holds more than that:
+        each call draws the next slice into a target of the renderer's own and
+        copies it to ``fbo`` (the content appears a slice at a time, and no call
+        holds the thread for a whole big frame). Returns False while such a picture
+        is unfinished (call again with the same view), True once it is whole. A
+        changed view or style draws everything at once: a turning view would
+        never finish."""
         width, height = size or fbo.size
         self.ctx.viewport = (0, 0, width, height)
-        fbo.clear(*style.background)
         if self._mesh is None and self._others is None:
-            return
+            fbo.use()
+            fbo.clear(*style.background)
+            return True
         self._others_shown = style.others  # picking hides what the frame hid
         self._current_shown = style.current
         self._section = style.section  # (before the view: the cap's hatch depends on it)
         self._set_view(camera, (width, height))
+        # the camera's own state: its clip planes follow the content's reach
+        view_key = (tuple(np.asarray(camera.target, np.float64).tolist()), camera.distance,
+                    camera.yaw, camera.pitch, camera.fov, camera.ortho, style, (width, height))
+        passes = self._passes(style)
+        progress = self._progress_of(fbo, (width, height), view_key, passes, budget, style)
+        if progress is None:
+            self._draw_whole(fbo, camera, style, passes, (width, height))
+            self._drawn = (self.version, view_key)
+            return True
+        return self._draw_slice(fbo, camera, style, passes, progress, budget or 0)
+
+    def _draw_whole(self, fbo: moderngl.Framebuffer, camera: Camera, style: Style,
+                    passes: list[_Pass], size: tuple[int, int]) -> None:
+        fbo.use()
+        fbo.clear(*style.background)
+        self._begin_scene(style)
+        with self._cut(style.section):
+            for count, draw in passes:
+                draw(0, count)
+        if self._mesh is not None and style.current and style.labels:
+            self._draw_labels(camera, style, size)
+
+    def _begin_scene(self, style: Style) -> None:
         self.ctx.enable(moderngl.DEPTH_TEST | moderngl.PROGRAM_POINT_SIZE)
         self.ctx.disable(moderngl.CULL_FACE | moderngl.BLEND)
         if style.grid:
             self._draw_guides()
-        with self._cut(style.section):
-            if self._others is not None and style.others:
-                self._draw_scenery(self._others, style)
-            if self._mesh is not None and style.current:
-                self._draw_current(self._mesh, style)
-        if self._mesh is not None and style.current and style.labels:
-            self._draw_labels(camera, style, (width, height))
+
+    def _progress_of(self, fbo: moderngl.Framebuffer, size: tuple[int, int], view_key: tuple,
+                     passes: list[_Pass], budget: int | None,
+                     style: Style) -> _Progress | None:
+        """The picture to go on drawing a slice at a time, or None to draw it whole:
+        new content, the view of the last picture, more than ``budget`` to draw,
+        no section (its cap needs the whole mesh at once) and a ``fbo`` of ``size``."""
+        key = (self.version, view_key)
+        if self._progress is not None and self._progress.key == key:
+            return self._progress
+        self._progress = None
+        if (budget is None or style.section is not None or tuple(fbo.size) != size
+                or self._drawn[0] == self.version or self._drawn[1] != view_key
+                or sum(count for count, _ in passes) <= budget):
+            return None
+        self._progress = _Progress(key, self._slice_target(size, fbo.samples))
+        return self._progress
+
+    def _draw_slice(self, fbo: moderngl.Framebuffer, camera: Camera, style: Style,
+                    passes: list[_Pass], progress: _Progress, budget: int) -> bool:
+        """The next ``budget`` primitives of ``passes`` into the progress's target,
+        copied to ``fbo``; True once they are all drawn (the labels with the last)."""
+        target = progress.target
+        target.use()
+        if progress.done == 0:
+            target.clear(*style.background)
+        self._begin_scene(style)
+        start, stop, offset = progress.done, progress.done + budget, 0
+        for count, draw in passes:
+            first, last = max(start - offset, 0), min(stop - offset, count)
+            if first < last:
+                draw(first, last - first)
+            offset += count
+        progress.done = min(stop, offset)
+        finished = progress.done >= offset
+        if finished:
+            if self._mesh is not None and style.current and style.labels:
+                self._draw_labels(camera, style, target.size)
+            self._drawn, self._progress = progress.key, None
+        self.ctx.copy_framebuffer(fbo, target)
+        fbo.use()
+        return finished
+
+    def _slice_target(self, size: tuple[int, int], samples: int) -> moderngl.Framebuffer:
+        """A framebuffer of ``size`` and ``samples`` to draw a picture in slices
+        (kept for the next picture of that size)."""
+        if self._slices is not None and self._slices.size == size \
+                and self._slices.samples == samples:
+            return self._slices
+        if self._slices is not None:
+            release_framebuffer(self._slices)
+        self._slices = self.ctx.framebuffer(
+            [self.ctx.renderbuffer(size, 4, samples=samples)],
+            self.ctx.depth_renderbuffer(size, samples=samples))
+        return self._slices
+
+    def _passes(self, style: Style) -> list[_Pass]:
+        """The passes of a frame in order, each ``(primitives, draw(first, count))``:
+        the other objects, then the current one; a pass draws any range of its
+        primitives (state set each time)."""
+        passes: list[_Pass] = []
+        if self._others is not None and style.others:
+            passes += self._scenery_passes(self._others, style)
+        if self._mesh is not None and style.current:
+            passes += self._current_passes(self._mesh, style)
+        return passes
 
     @contextlib.contextmanager
     def _cut(self, section: tuple[int, float] | None) -> Iterator[None]:
@@ -609,41 +718,59 @@ class Renderer:
         if self._winding is not None:
             release_framebuffer(self._winding[0])
             self._winding = None
+        if self._slices is not None:
+            release_framebuffer(self._slices)
+            self._slices = self._progress = None
         self._cap_vao.release()  # (the arrays before the programs they use)
         self.quad.release()
         self.atlas_texture.release()
         for program in self.programs.values():
             program.release()
 
-    def _draw_scenery(self, others: MeshGPU, style: Style) -> None:
+    def _scenery_passes(self, others: MeshGPU, style: Style) -> list[_Pass]:
         """The other objects: their faces (or their part of the preview), or their
         edges when faces are off. Their wireframe is left out so that the object
         being modelled stands out."""
         preview = self._preview
         if style.preview and preview is not None and len(preview.parts) > 1:
-            self._draw_surface(preview, OTHER_COLOR, current=False)
-        elif style.faces or style.preview:
-            self._draw_faces(others, OTHER_COLOR, smooth=style.smooth,
-                             crease_angle=style.crease_angle)
-        elif style.edges:
-            self._draw_edges(others)
+            return [(preview.part(False)[1], lambda first, count: self._draw_surface(
+                preview, OTHER_COLOR, False, first, count))]
+        if style.faces or style.preview:
+            return [(len(others.geometry.triangles), lambda first, count: self._draw_faces(
+                others, OTHER_COLOR, smooth=style.smooth, crease_angle=style.crease_angle,
+                first=first, count=count))]
+        if style.edges:
+            return [(len(others.geometry.lines),
+                     lambda first, count: self._draw_edges(others, False, first, count))]
+        return []
 
-    def _draw_current(self, mesh: MeshGPU, style: Style) -> None:
+    def _current_passes(self, mesh: MeshGPU, style: Style) -> list[_Pass]:
         """The current object with its preview, selection and points (labels apart)."""
-        show_preview = style.preview and self._preview is not None
+        preview = self._preview if style.preview else None
         # the wireframe over the mesh's own faces is drawn inside the face pass
         # (a mesh with no triangles yet, a segment of createVertex and insertEdge, has
         # its edges drawn as lines)
-        wire_in_faces = (style.edges and style.faces and not show_preview
+        wire_in_faces = (style.edges and style.faces and preview is None
                          and len(mesh.geometry.triangles) > 0)
-        if show_preview and self._preview is not None:
-            self._draw_surface(self._preview, PREVIEW_COLOR, current=True)
+        passes: list[_Pass] = []
+        if preview is not None:
+            passes.append((preview.part(True)[1], lambda first, count: self._draw_surface(
+                preview, PREVIEW_COLOR, True, first, count)))
         elif style.faces:
-            self._draw_faces(mesh, BASE_COLOR, wire=wire_in_faces, smooth=style.smooth,
-                             crease_angle=style.crease_angle)
+            passes.append((len(mesh.geometry.triangles), lambda first, count: self._draw_faces(
+                mesh, BASE_COLOR, wire=wire_in_faces, smooth=style.smooth,
+                crease_angle=style.crease_angle, first=first, count=count)))
         if style.edges and not wire_in_faces:
-            self._draw_edges(mesh)
-        elif mesh.selected_lines is not None:
+            passes.append((len(mesh.geometry.lines),
+                           lambda first, count: self._draw_edges(mesh, False, first, count)))
+        lines = style.edges and not wire_in_faces
+        passes.append((1, lambda first, count: self._draw_marks(mesh, style, lines)))
+        return passes
+
+    def _draw_marks(self, mesh: MeshGPU, style: Style, lines: bool) -> None:
+        """The selected edges (when the edges are not drawn as ``lines``), the
+        points, point-spheres and selected corners."""
+        if not lines and mesh.selected_lines is not None:
             self._draw_edges(mesh, selected_only=True)
         if style.vertices or self.selection.vertices:
             self._draw_points(mesh, style.point_size, only_selected=not style.vertices)
@@ -697,18 +824,20 @@ class Renderer:
             pixel_size, abs(float(basis[2][axis])))
 
     def _draw_surface(self, surface: SurfaceGPU, color: tuple[float, float, float],
-                      current: bool) -> None:
-        """The preview's part of the current object (or of the others), lit by its
-        own normals, capped where a section cuts it."""
+                      current: bool, first: int = 0, count: int | None = None) -> None:
+        """Triangles ``first .. first + count`` (all by default) of the preview's part
+        of the current object (or of the others), lit by its own normals, capped
+        where a section cuts it."""
         program = self.programs["surface"]
         program["base_color"].value = color  # type: ignore[union-attr]
         program["back_color"].value = BACK_COLOR  # type: ignore[union-attr]
         self.ctx.polygon_offset = (1.0, 1.0)  # the cage's edges, drawn after, win
         if surface.closed:
             self.ctx.enable(moderngl.CULL_FACE)
-        for first, count in surface.ranges(current):
-            if count:
-                surface.vao.render(moderngl.TRIANGLES, vertices=count, first=first)
+        start, total = surface.part(current)
+        count = total - first if count is None else count
+        if count > 0:
+            surface.vao.render(moderngl.TRIANGLES, vertices=3 * count, first=3 * (start + first))
         self.ctx.polygon_offset = (0.0, 0.0)
         if surface.closed and self._section is not None:
             self._draw_cap(surface, color, current)
@@ -716,10 +845,14 @@ class Renderer:
 
     def _draw_faces(self, mesh: MeshGPU, color: tuple[float, float, float],
                     wire: bool = False, smooth: bool = False,
-                    crease_angle: float = CREASE_ANGLE) -> None:
-        if not len(mesh.geometry.triangles):
+                    crease_angle: float = CREASE_ANGLE, first: int = 0,
+                    count: int | None = None) -> None:
+        """Triangles ``first .. first + count`` (all by default) of ``mesh``'s faces."""
+        count = len(mesh.geometry.triangles) - first if count is None else count
+        if count <= 0:
             return
         program = self.programs["face"]
+        program["primitive_base"].value = first  # type: ignore[union-attr]
         program["smooth_shading"].value = int(smooth)  # type: ignore[union-attr]
         program["wire"].value = int(wire)  # type: ignore[union-attr]
         program["pickable"].value = int(mesh is not self._others)  # type: ignore[union-attr]
@@ -738,7 +871,8 @@ class Renderer:
             # a closed manifold hides its back faces: skip them (about a third of
             # the frame time on software GL); open meshes show them tinted
             self.ctx.enable(moderngl.CULL_FACE)
-        (mesh.smooth_vao(crease_angle) if smooth else mesh.face_vao).render(moderngl.TRIANGLES)
+        (mesh.smooth_vao(crease_angle) if smooth else mesh.face_vao).render(
+            moderngl.TRIANGLES, vertices=3 * count, first=3 * first)
         self.ctx.polygon_offset = (0.0, 0.0)
         if mesh.geometry.closed and self._section is not None:
             self._draw_cap(mesh, color)
@@ -774,8 +908,8 @@ class Renderer:
         self.ctx.enable(moderngl.BLEND)
         self.ctx.blend_func = moderngl.ONE, moderngl.ONE
         if isinstance(mesh, SurfaceGPU):  # the part of the object capped only
-            for first, count in mesh.ranges(current):
-                mesh.winding_vao.render(moderngl.TRIANGLES, vertices=count, first=first)
+            first, count = mesh.part(current)
+            mesh.winding_vao.render(moderngl.TRIANGLES, vertices=3 * count, first=3 * first)
         else:
             mesh.winding_vao.render(moderngl.TRIANGLES)
         self.ctx.disable(moderngl.BLEND)  # the text pass sets its own blend function
@@ -794,16 +928,22 @@ class Renderer:
         self._winding = (self.ctx.framebuffer([texture]), texture)
         return self._winding
 
-    def _draw_edges(self, mesh: MeshGPU, selected_only: bool = False) -> None:
+    def _draw_edges(self, mesh: MeshGPU, selected_only: bool = False, first: int = 0,
+                    count: int | None = None) -> None:
+        """Edges ``first .. first + count`` (all by default) of ``mesh``, or its
+        selected ones."""
         program = self.programs["edge"]
         program["edge_color"].value = EDGE_COLOR  # type: ignore[union-attr]
         program["selected_color"].value = SELECTED_COLOR  # type: ignore[union-attr]
         program["all_selected"].value = int(selected_only)  # type: ignore[union-attr]
+        program["primitive_base"].value = first  # type: ignore[union-attr]
         mesh.edge_flags.use(2)
+        count = len(mesh.geometry.lines) - first if count is None else count
         if selected_only and mesh.selected_lines is not None:
+            program["primitive_base"].value = 0  # type: ignore[union-attr]
             mesh.selected_lines[1].render(moderngl.LINES)
-        elif len(mesh.geometry.lines):
-            mesh.edge_vao.render(moderngl.LINES)
+        elif count > 0:
+            mesh.edge_vao.render(moderngl.LINES, vertices=2 * count, first=2 * first)
 
     def _draw_points(self, mesh: MeshGPU, size: float, only_selected: bool = False,
                      point_spheres: bool = False) -> None:

@@ -68,6 +68,7 @@ uniform vec2 viewport;
 uniform int wire;
 uniform int pickable;  // 0: the scene's other objects, which hide but are not picked
 uniform int smooth_shading;  // 1: interpolated vertex normals instead of the face's
+uniform int primitive_base;  // the first triangle drawn (a frame may draw a range)
 in vec3 v_normal;
 uniform vec3 base_color;
 uniform vec3 selected_color;
@@ -91,9 +92,10 @@ float segment_distance(vec2 p, vec2 a, vec2 b) {
 }
 float wire_coverage(uint sides) {
     // distance in pixels to the triangle's real sides (fan diagonals are skipped)
-    vec2 s0 = screen_of_vertex(3 * gl_PrimitiveID);
-    vec2 s1 = screen_of_vertex(3 * gl_PrimitiveID + 1);
-    vec2 s2 = screen_of_vertex(3 * gl_PrimitiveID + 2);
+    int primitive = primitive_base + gl_PrimitiveID;
+    vec2 s0 = screen_of_vertex(3 * primitive);
+    vec2 s1 = screen_of_vertex(3 * primitive + 1);
+    vec2 s2 = screen_of_vertex(3 * primitive + 2);
     float d = 1e9;
     if ((sides & 1u) != 0u) d = min(d, segment_distance(gl_FragCoord.xy, s0, s1));
     if ((sides & 2u) != 0u) d = min(d, segment_distance(gl_FragCoord.xy, s1, s2));
@@ -101,7 +103,8 @@ float wire_coverage(uint sides) {
     return 1.0 - smoothstep(0.35, 0.95, d);
 }
 void main() {
-    uint entry = fetch(triangle_face, gl_PrimitiveID);
+    int primitive = primitive_base + gl_PrimitiveID;
+    uint entry = fetch(triangle_face, primitive);
     uint face = entry & 0x1FFFFFFFu;
     vec3 n = facing_normal(v_view, smooth_shading != 0 ? v_normal : vec3(0.0));
     bool selected = fetch(face_flags, int(face)) != 0u;
@@ -204,15 +207,17 @@ EDGE_FRAGMENT = """
 #version 330
 uniform usampler2D edge_flags;
 uniform int all_selected;
+uniform int primitive_base;  // the first edge drawn (a frame may draw a range)
 uniform vec3 edge_color;
 uniform vec3 selected_color;
 layout(location = 0) out vec4 color;
 layout(location = 1) out uint pick;
 """ + FETCH + """
 void main() {
-    bool selected = all_selected != 0 || fetch(edge_flags, gl_PrimitiveID) != 0u;
+    int primitive = primitive_base + gl_PrimitiveID;
+    bool selected = all_selected != 0 || fetch(edge_flags, primitive) != 0u;
     color = vec4(selected ? selected_color : edge_color, 1.0);
-    pick = (2u << 28) | uint(gl_PrimitiveID + 1);
+    pick = (2u << 28) | uint(primitive + 1);
 }
 """
 

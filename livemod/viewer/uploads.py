@@ -237,11 +237,11 @@ class SurfaceGPU:
             objects[name] = yield from buffer_steps(ctx, getattr(surface, name), made)
         return cls(ctx, programs, objects, len(surface.triangles), parts, closed)
 
-    def ranges(self, current: bool) -> list[tuple[int, int]]:
-        """``(first vertex, vertex count)`` of the current object's part, or of the
-        other objects' parts (joined), in the index buffer."""
-        first = 3 * self.parts[0] if self.parts else 0
-        return [(0, first)] if current else [(first, 3 * self.count - first)]
+    def part(self, current: bool) -> tuple[int, int]:
+        """``(first triangle, triangles)`` of the current object's part, or of the
+        other objects' parts (joined)."""
+        first = self.parts[0] if self.parts else 0
+        return (0, first) if current else (first, self.count - first)
 
     def release(self) -> None:
         for obj in (self.vao, self.winding_vao, self.positions, self.normals, self.triangles):
