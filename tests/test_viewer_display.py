@@ -2,10 +2,15 @@
 
 from __future__ import annotations
 
+import time
 from types import SimpleNamespace
 
+import pytest
+
+import livemod.viewer.display as display_module
+import livemod.viewer.uploads as uploads
 from livemod.dlfl import mesh_arrays
-from livemod.dlfl.shapes import cube, octahedron, tetrahedron
+from livemod.dlfl.shapes import cube, octahedron, tetrahedron, torus
 from livemod.viewer.camera import Camera
 from livemod.viewer.display import MeshDisplay
 from livemod.viewer.look import Look
@@ -21,7 +26,7 @@ def _display(renderer) -> tuple[MeshDisplay, Camera, list[str]]:
     camera, said = Camera(), []
     objects = SceneObjects(RunTracker(), Look(), said.append, renderer.set_others)
     display = MeshDisplay(renderer, camera, WholeMeshMeasurer(), Picking(lambda: None, print),
-                          objects, lambda: OFFSCREEN_SIZE, said.append)
+                          objects, Look(), lambda: OFFSCREEN_SIZE, said.append)
     return display, camera, said
 
 
@@ -65,3 +70,35 @@ def test_e_shows_the_failed_runs_mesh_and_back(offscreen) -> None:
         "showing the mesh as the failed run left it", "showing the last good mesh"]
     display.forget()
     assert not display.show_partial and display.fit_bounds is None
+
+
+def test_a_big_mesh_is_prepared_off_the_thread_and_uploaded_over_frames(
+        offscreen, monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setattr(display_module, "PREPARED_CORNERS", 100)
+    monkeypatch.setattr(uploads, "SLICE_BYTES", 8192)
+    renderer = offscreen.renderer
+    display, camera, _ = _display(renderer)
+    try:
+        small = mesh_arrays(cube())                    # 24 corners: at once
+        display.show(_result(small))
+        assert renderer.arrays is small and not display.pending
+        big = mesh_arrays(torus(30, 20))               # 2,400 corners: over frames
+        display.show(_result(big))
+        assert display.content[0] is big and display.pending and renderer.arrays is small
+        frames, deadline = 0, time.monotonic() + 30
+        while display.pending and time.monotonic() < deadline:
+            assert renderer.arrays is small             # the old mesh until the new is whole
+            display.advance()
+            frames += 1
+        assert renderer.arrays is big and frames > 2
+        assert display.fit_bounds is not None and display.fit_bounds[1][0] > 2.0
+        # a newer result supersedes one still on its way
+        display.show(_result(mesh_arrays(torus(20, 20))))
+        newest = mesh_arrays(octahedron())
+        display.show(_result(newest))
+        assert renderer.arrays is newest and not display.pending
+        for _ in range(20):
+            display.advance()
+        assert renderer.arrays is newest
+    finally:
+        display.close()

@@ -372,34 +372,34 @@ def _name(key: object) -> str:
     return f"run {key.run_id}" if isinstance(key, RunResult) else repr(key)
 
 
-class ScenePreviews:
-    """The viewer's previews: asks for one whenever what it shows changes, and
-    hands back the newest finished one, once (off the caller's thread).
+class NewestJob(Generic[Job, Made]):
+    """Work done on a thread of its own for a window, newest request first: ask
+    for it whenever what it depends on changes, and take the newest finished
+    result, once, without waiting.
 
     Args:
-        compute: makes a preview of a request (injectable for tests).
+        compute: does the work of a request (None: nothing to hand back).
     """
 
-    def __init__(self, compute: Callable[[PreviewRequest], Preview | None] = make_preview,
-                 ) -> None:
+    def __init__(self, compute: Callable[[Job], Made | None]) -> None:
         self._lock = threading.Lock()
         self._asked = 0
-        self._done: tuple[int, Preview] | None = None
-        self.ready = threading.Event()  # set when a preview is waiting to be taken
-        self._worker: PreviewWorker[int, PreviewRequest, Preview] = PreviewWorker(
+        self._done: tuple[int, Made] | None = None
+        self.ready = threading.Event()  # set when a result is waiting to be taken
+        self._worker: PreviewWorker[int, Job, Made] = PreviewWorker(
             self._finished, self._wanted, compute)
 
-    def ask(self, request: PreviewRequest) -> int:
-        """Make the preview of ``request``; it supersedes every earlier request
-        (theirs will never be handed back). Returns the request's number."""
+    def ask(self, request: Job) -> int:
+        """Do ``request``; it supersedes every earlier request (theirs will never be
+        handed back). Returns the request's number."""
         with self._lock:
             self._asked += 1
             number = self._asked
         self._worker.request(number, request)
         return number
 
-    def take(self) -> tuple[int, Preview] | None:
-        """``(request number, preview)`` of the newest request once it is done,
+    def take(self) -> tuple[int, Made] | None:
+        """``(request number, result)`` of the newest request once it is done,
         or None (not done yet, or taken already)."""
         with self._lock:
             done, self._done = self._done, None
@@ -407,15 +407,24 @@ class ScenePreviews:
         return done
 
     def close(self) -> None:
-        """Stop the worker after the preview in progress."""
+        """Stop the worker after the request in progress."""
         self._worker.close()
 
     def _wanted(self, number: int) -> bool:
         with self._lock:
             return number == self._asked
 
-    def _finished(self, number: int, preview: Preview) -> None:
+    def _finished(self, number: int, made: Made) -> None:
         with self._lock:
             if number == self._asked:
-                self._done = (number, preview)
+                self._done = (number, made)
                 self.ready.set()
+
+
+class ScenePreviews(NewestJob[PreviewRequest, Preview]):
+    """The viewer's previews (see :class:`NewestJob`), made by ``compute``
+    (:func:`make_preview` by default)."""
+
+    def __init__(self, compute: Callable[[PreviewRequest], Preview | None] = make_preview,
+                 ) -> None:
+        super().__init__(compute)

@@ -52,7 +52,7 @@ class Binding:
                 "SPACE": "Space", "RIGHT": "Right", "LEFT": "Left", "PERIOD": ".",
                 "COMMA": ",", "END": "End", "HOME": "Home", "ESCAPE": "Esc", "TAB": "Tab",
                 "LEFT_BRACKET": "[", "RIGHT_BRACKET": "]", "MINUS": "-",
-                "EQUAL": "="}.get(self.key, self.key)
+                "EQUAL": "=", "PAGE_UP": "PgUp", "PAGE_DOWN": "PgDn"}.get(self.key, self.key)
         prefix = {"": "", "shift": "Shift+", "ctrl": "Ctrl+"}[self.modifiers]
         return prefix + name
 
@@ -64,7 +64,10 @@ KEY_BINDINGS: tuple[Binding, ...] = (
     Binding("S", "", "toggle_faces", "solid faces on/off"),
     Binding("W", "", "toggle_edges", "wireframe (edges) on/off"),
     Binding("V", "", "toggle_vertices", "vertices on/off"),
-    Binding("P", "", "toggle_preview", "patch-smoothed preview on/off"),
+    Binding("P", "", "toggle_preview", "smoothed preview (TopMod's patches) on/off"),
+    Binding("P", "shift", "preview_mode", "preview: TopMod's patches / Catmull-Clark limit"),
+    Binding("PAGE_UP", "", "preview_denser", "a denser patch preview"),
+    Binding("PAGE_DOWN", "", "preview_coarser", "a coarser patch preview"),
     Binding("A", "", "toggle_others", "the scene's other objects on/off"),
     Binding("TAB", "", "cycle_others", "the other objects one at a time, then all again"),
     Binding("L", "", "toggle_object_list",
@@ -76,7 +79,8 @@ KEY_BINDINGS: tuple[Binding, ...] = (
     Binding("RIGHT_BRACKET", "", "section_forward",
             "move the section plane forward (1/20 of the size)"),
     Binding("B", "", "toggle_background", "dark / light background"),
-    Binding("N", "", "toggle_smooth", "flat / smooth shading"),
+    Binding("N", "", "toggle_smooth",
+            "flat / smooth shading (edges between faces over 45 degrees apart stay sharp)"),
     Binding("F", "ctrl", "labels_faces", "face id labels on/off"),
     Binding("E", "ctrl", "labels_edges", "edge id labels on/off"),
     Binding("V", "ctrl", "labels_vertices", "vertex id labels on/off"),

@@ -74,6 +74,8 @@ def hud_lines(state: ViewState) -> list[tuple[str, int]]:
     lines += _count_lines(state)
     lines.append((_run_of_steps(state) + step_line(state.result, state.total_steps), TEXT))
     lines.append((_mode_line(state), LABEL_DIM))
+    if state.preview:
+        lines.append((state.preview, LABEL_DIM))
     lines += [(line, LABEL_DIM) for line in state.selection[:4]]
     lines += [(line, WARN_TEXT) for line in state.missing]
     lines += [(line, TEXT) for line in state.measures[:4]]

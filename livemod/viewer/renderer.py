@@ -374,14 +374,19 @@ class Renderer:
 
     def stage(self, arrays: MeshArrays | None, preview: Preview | MeshArrays | None = None,
               others: MeshArrays | None = None, prepared: PreparedMeshes | None = None,
-              ) -> None:
+              keep_preview: bool = False) -> None:
         """Start uploading ``arrays``, its ``preview`` and the ``others`` (see
         :meth:`set_mesh`); what is drawn changes once :meth:`advance` has uploaded
         them all, so each frame can give the upload a slice of its time. Their
         render buffers come ``prepared`` off the thread (for these same arrays),
-        or are built here. An upload in progress is given up: the newer content
-        supersedes it. When the upload fails, what was drawn stays."""
-        self._abandon(mesh=True)
+        or are built here. With ``keep_preview`` the preview drawn stays (until
+        :meth:`stage_preview` gives the new content's). An upload in progress is
+        given up: the newer content supersedes it. When the upload fails, what
+        was drawn stays."""
+        if keep_preview:
+            self._abandon_mesh()
+        else:
+            self._abandon(mesh=True)
         if prepared is None or prepared.arrays is not arrays or prepared.others is not others:
             prepared = PreparedMeshes(
                 arrays, others, None if arrays is None else build_geometry(arrays),
@@ -394,16 +399,19 @@ class Renderer:
                 mesh = yield from MeshGPU.steps(ctx, programs, prepared.mesh, made)
             if prepared.other is not None:
                 other = yield from MeshGPU.steps(ctx, programs, prepared.other, made)
-            if preview is not None:
+            if preview is not None and not keep_preview:
                 surface = yield from SurfaceGPU.steps(ctx, programs, preview, made)
             return mesh, other, surface
 
         def done(made: tuple) -> None:
-            for old in (self._mesh, self._others, self._preview):
+            replaced = (self._mesh, self._others) + (() if keep_preview else (self._preview,))
+            for old in replaced:
                 if old is not None:
                     old.release()
-            self._mesh, self._others, self._preview = made
-            self.arrays, self.others, self.preview = arrays, others, preview
+            self._mesh, self._others = made[:2]
+            self.arrays, self.others = arrays, others
+            if not keep_preview:
+                self._preview, self.preview = made[2], preview
             self._anchors = dict(prepared.anchors)
             self._label_candidates_cache = {}
             self.version += 1
@@ -468,6 +476,17 @@ class Renderer:
             upload = self._uploads.pop(name, None)
             if upload is not None:
                 upload.abandon()
+
+    def _abandon_mesh(self) -> None:
+        """Give up the mesh's upload in progress (the preview's goes on)."""
+        upload = self._uploads.pop("mesh", None)
+        if upload is not None:
+            upload.abandon()
+
+    @property
+    def unfinished(self) -> bool:
+        """A picture drawn in slices is not whole yet: draw again (see :meth:`draw`)."""
+        return self._progress is not None
 
     def set_others(self, others: MeshArrays | None) -> None:
         """Upload (or drop, with None) the other objects alone, keeping the mesh."""
@@ -542,9 +561,8 @@ class Renderer:
         self._current_shown = style.current
         self._section = style.section  # (before the view: the cap's hatch depends on it)
         self._set_view(camera, (width, height))
-        # the camera's own state: its clip planes follow the content's reach
-        view_key = (tuple(np.asarray(camera.target, np.float64).tolist()), camera.distance,
-                    camera.yaw, camera.pitch, camera.fov, camera.ortho, style, (width, height))
+        # the camera's pose, not its matrices: its clip planes follow the content's reach
+        view_key = (camera.pose(), style, (width, height))
         passes = self._passes(style)
         progress = self._progress_of(fbo, (width, height), view_key, passes, budget, style)
         if progress is None:

@@ -59,6 +59,7 @@ class ViewState:
         others_note: which other objects are drawn ("" for all).
         current_hidden: the current object is not drawn.
         style: what the renderer draws.
+        preview: the HUD's line about the smoothed preview ("" when it is not drawn).
         ortho: the camera is orthographic.
         playback: the session's playback state: running, playing, paused, finished.
         rate: the play rate in steps a second.
@@ -91,6 +92,7 @@ class ViewState:
     others_note: str = ""
     current_hidden: bool = False
     style: Style = field(default_factory=Style)
+    preview: str = ""
     ortho: bool = False
     playback: PlaybackState = PlaybackState.FINISHED
     rate: float = 2.0

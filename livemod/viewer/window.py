@@ -52,6 +52,7 @@ from .renderer import Renderer, Style, read_image, release_framebuffer
 from .runs import RunTracker
 from .section import SectionPlane
 from .session import Session
+from .smoothing import PreviewControl
 from .stepping import Stepping
 from .view_state import ViewState
 
@@ -59,6 +60,9 @@ if TYPE_CHECKING:
     from livemod.runner.results import RunResult
 
 IDLE_WAIT = 0.01  # seconds an idle glfw loop waits for input between frames
+# primitives a frame draws of new content (software GL: some 40 ms); the rest
+# follows in the next frames (see Renderer.draw)
+FRAME_PRIMITIVES = 250_000
 SCRIPT_SUFFIXES = (".py",)
 
 
@@ -109,9 +113,11 @@ def _default_factory(options: ViewOptions) -> Callable[[str, str | None], Sessio
     from livemod.runner import LiveSession
 
     def create(script: str, mesh_path: str | None) -> Session:
+        # (no preview of the session's own: the window asks for its own, of every
+        # object drawn, at the density shown; see PreviewControl)
         return LiveSession(script, mesh_path=mesh_path, poll=options.poll, seed=options.seed,
                            parameters=options.parameters, output=options.output,
-                           all_objects=options.all_objects)
+                           all_objects=options.all_objects, preview=False)
 
     return create
 
@@ -158,6 +164,7 @@ class LiveViewer(mglw.WindowConfig):
         self.whole = WholeMeshMeasurer()  # genus and volume of the mesh shown, off-thread
         self.session: Session | None = None
         self._compose()
+        self._slices = 0  # counts the frames of pictures drawn in slices (see on_render)
         self.renderer.set_selection(self.picking.selection)
         self.screenshots: list[Path] = []
         self._key_names = _key_names(self.wnd.keys)
@@ -175,11 +182,15 @@ class LiveViewer(mglw.WindowConfig):
         self.stepping = Stepping(self.runs, session, echo)
         self.parameters = Parameters(self.runs, session, echo)
         self.picking = Picking(session, echo, self.options.selection)
-        self.objects = SceneObjects(self.runs, self.look, echo, self.renderer.set_others)
+        self.objects = SceneObjects(self.runs, self.look, echo,
+                                    lambda others: self.display.show_others(others))
         self.section = SectionPlane(self.look, lambda: self.renderer.bounds, echo)
         self.overlay = Overlay(self.look, self.runs, self.parameters, self.objects)
         self.display = MeshDisplay(self.renderer, self.camera, self.whole, self.picking,
-                                   self.objects, lambda: self.screen_size, echo)
+                                   self.objects, self.look, lambda: self.screen_size, echo)
+        self.smoothing = PreviewControl(
+            self.renderer, self.look, self.camera, lambda: self.display.content,
+            lambda: self.screen_size[0] / max(self.screen_size[1], 1), echo)
         self.pointer = Pointer(self.overlay, self.parameters, self.objects, self.stepping,
                                self.camera, self._framebuffer)
         self.actions = window_actions(self)
@@ -282,13 +293,17 @@ class LiveViewer(mglw.WindowConfig):
         self.parameters.flush()
         self.stepping.flush_scrub()
         self._take_results()
+        self.display.advance()
+        self.smoothing.update()
         self.stepping.repeat_held()
         self.runs.poll(self._live_session())
         state = self.view_state()
         screen = self.wnd.fbo
         overlay = state.without_fps() if state.hud or state.help else None
+        if self.renderer.unfinished:  # a picture drawn in slices: draw its next one
+            self._slices += 1
         key = (self.renderer.version, self.camera.pose(), state.style, overlay, state.size,
-               screen.samples)
+               screen.samples, self._slices)
         self.frames.present(screen, state.size, key, partial(self._draw_frame, state=state),
                             idle_ok=self.wnd.name in ("glfw", "headless"))
 
@@ -309,14 +324,15 @@ class LiveViewer(mglw.WindowConfig):
             selection=tuple(selection), missing=tuple(missing),
             measures=tuple(self.picking.measures), others=self.renderer.others,
             others_note=self.objects.note(), current_hidden=not self.look.style.current,
-            style=self.look.style, ortho=self.camera.ortho, playback=playback.state,
+            style=self.look.style, preview=self.smoothing.hud_line(),
+            ortho=self.camera.ortho, playback=playback.state,
             rate=playback.rate, hud=self.look.show_hud, help=self.look.show_help,
             panels=self.overlay.state(), size=size, bottom=self.overlay.error_room(size))
 
     def _draw_frame(self, fbo: Any, state: ViewState) -> None:
         """Draw the scene and the overlay of ``state`` into ``fbo`` (the screen or
         the kept frame, both of the state's size)."""
-        self.renderer.draw(fbo, self.camera, state.style, state.size)
+        self.renderer.draw(fbo, self.camera, state.style, state.size, budget=FRAME_PRIMITIVES)
         if state.hud or state.help:
             self.renderer.draw_overlay(fbo, self.overlay.quads(state), state.size)
 
@@ -366,8 +382,15 @@ class LiveViewer(mglw.WindowConfig):
         self.renderer.release()
 
     def on_close(self) -> None:
-        """The window closes: stop the session's threads (moderngl-window's callback)."""
+        """The window closes: stop the session's threads and the window's own
+        (moderngl-window's callback)."""
         self._close_session()
+        self.close_workers()
+
+    def close_workers(self) -> None:
+        """Stop the threads that prepare meshes and previews (again: nothing)."""
+        self.display.close()
+        self.smoothing.close()
 
     # -- keys ---------------------------------------------------------------------------
 
@@ -600,6 +623,7 @@ def _present_or_wait(viewer: LiveViewer) -> None:
 def close_viewer(viewer: LiveViewer) -> None:
     """Stop the session, free the window's GL objects and destroy the window."""
     viewer._close_session()
+    viewer.close_workers()
     viewer.release_gl()
     viewer.wnd.destroy()
 
