@@ -120,7 +120,8 @@ def test_visible_labels_are_those_in_view_nearest_the_eye_first() -> None:
                         [50.0, 0.0, 0.0],                # beside the view
                         eye + (eye - [0.0, 0.0, 0.0]),   # behind the eye
                         [-0.5, 0.2, -0.5]])              # in view, farther
-    assert visible_labels(anchors, view, 10).tolist() == [0, 1, 4]
-    assert visible_labels(anchors, view, 2).tolist() == [0, 1]
-    assert visible_labels(anchors, None, 2).tolist() == [0, 1]
-    assert visible_labels(np.zeros((0, 3)), view, 5).tolist() == []
+    columns = anchors.T.astype(np.float32)
+    assert visible_labels(columns, view, 10).tolist() == [0, 1, 4]
+    assert visible_labels(columns, view, 2).tolist() == [0, 1]
+    assert visible_labels(columns, None, 2).tolist() == [0, 1]
+    assert visible_labels(np.zeros((3, 0), np.float32), view, 5).tolist() == []

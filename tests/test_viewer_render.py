@@ -1126,3 +1126,27 @@ def test_a_preview_and_its_cage_drawn_in_slices_match_the_whole(offscreen: Offsc
     sliced = np.frombuffer(offscreen.target.read(components=3), np.uint8)
     renderer.draw(offscreen.target, camera, style)
     assert np.array_equal(sliced, np.frombuffer(offscreen.target.read(components=3), np.uint8))
+
+
+def test_a_big_scene_drawn_again_unchanged_is_copied(offscreen: Offscreen,
+                                                     monkeypatch: pytest.MonkeyPatch) -> None:
+    import livemod.viewer.renderer as renderer_module
+    from livemod.dlfl.shapes import torus
+
+    monkeypatch.setattr(renderer_module, "CACHED_PRIMITIVES", 100)
+    renderer = offscreen.renderer
+    renderer.set_mesh(mesh_arrays(torus(20, 14)))
+    camera, style = framed_camera(renderer.arrays), Style()
+    assert renderer.draw(offscreen.target, camera, style, budget=10_000)
+    drawn = np.frombuffer(offscreen.target.read(components=3), np.uint8)
+    offscreen.target.clear(0.0, 0.0, 0.0, 1.0)
+
+    def never(*args, **kwargs):
+        raise AssertionError("drawn again")
+
+    monkeypatch.setattr(renderer, "_draw_whole", never)
+    assert renderer.draw(offscreen.target, camera, style, budget=10_000)   # copied
+    assert np.array_equal(np.frombuffer(offscreen.target.read(components=3), np.uint8), drawn)
+    camera.yaw += 5.0
+    with pytest.raises(AssertionError, match="drawn again"):
+        renderer.draw(offscreen.target, camera, style, budget=10_000)

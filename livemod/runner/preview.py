@@ -249,7 +249,9 @@ def _face_scores(arrays: MeshArrays, faces: np.ndarray, view: View) -> np.ndarra
     """``(k,)`` float: lower for faces to show first: in view and near the eye
     (faces out of view come after all in view)."""
     centres = face_centroids(arrays)[faces]
-    clip = np.c_[centres, np.ones(len(centres))] @ np.asarray(view.view_projection).T
+    # (einsum: BLAS's threads cost more than they give on a busy machine)
+    clip = np.einsum("ij,kj->ik", centres, np.asarray(view.view_projection)[:, :3]) \
+        + np.asarray(view.view_projection)[:, 3]
     w = clip[:, 3]
     inside = (w > 0) & (np.abs(clip[:, 0]) <= w) & (np.abs(clip[:, 1]) <= w)
     distance = np.linalg.norm(centres - np.asarray(view.eye), axis=1)

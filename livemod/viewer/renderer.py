@@ -38,6 +38,7 @@ if TYPE_CHECKING:
     from livemod.runner.preview import Preview
 
 UPLOAD_SECONDS = 0.02  # of a frame an upload in progress takes by default
+CACHED_PRIMITIVES = 100_000  # a bigger scene is kept whole between frames (see draw)
 GL_CLIP_DISTANCE0 = 0x3000  # moderngl has no name for it: enable_direct takes the GL enum
 NO_CUT = (0.0, 0.0, 0.0, 1.0)  # a clip plane every point is in front of
 MAX_LABELS = 2000  # id labels on screen at once, of each kind: the nearest the eye
@@ -321,6 +322,7 @@ class Renderer:
         self._progress: _Progress | None = None
         self._slices: moderngl.Framebuffer | None = None
         self._drawn: tuple[int, object] = (-1, None)
+        self._cached: tuple | None = None  # the key of the whole picture kept in _slices
         self._pick_fbo: moderngl.Framebuffer | None = None
         self._winding: tuple[moderngl.Framebuffer, moderngl.Texture] | None = None
         self._cap_vao = ctx.vertex_array(self.programs["cap"], [])
@@ -550,7 +552,9 @@ class Renderer:
         holds the thread for a whole big frame). Returns False while such a picture
         is unfinished (call again with the same view), True once it is whole. A
         changed view or style draws everything at once: a turning view would
-        never finish."""
+        never finish. With a budget too, a scene of more than ``CACHED_PRIMITIVES``
+        is kept whole in that target: drawn again unchanged (only the window's HUD
+        changed, say), it is copied instead of drawn."""
         width, height = size or fbo.size
         self.ctx.viewport = (0, 0, width, height)
         if self._mesh is None and self._others is None:
@@ -563,13 +567,28 @@ class Renderer:
         self._set_view(camera, (width, height))
         # the camera's pose, not its matrices: its clip planes follow the content's reach
         view_key = (camera.pose(), style, (width, height))
+        key = (self.version, view_key)
         passes = self._passes(style)
-        progress = self._progress_of(fbo, (width, height), view_key, passes, budget, style)
-        if progress is None:
-            self._draw_whole(fbo, camera, style, passes, (width, height))
-            self._drawn = (self.version, view_key)
+        kept = (budget is not None and tuple(fbo.size) == (width, height)
+                and sum(count for count, _ in passes) > CACHED_PRIMITIVES)
+        if kept and self._cached == key and self._slices is not None \
+                and self._slices.samples == fbo.samples:
+            self.ctx.copy_framebuffer(fbo, self._slices)
+            fbo.use()
             return True
-        return self._draw_slice(fbo, camera, style, passes, progress, budget or 0)
+        progress = self._progress_of(fbo, (width, height), view_key, passes, budget, style)
+        if progress is not None:
+            self._cached = None  # (the target is drawn over)
+            finished = self._draw_slice(fbo, camera, style, passes, progress, budget or 0)
+            self._cached = key if finished else None
+            return finished
+        target = self._slice_target((width, height), fbo.samples) if kept else fbo
+        self._draw_whole(target, camera, style, passes, (width, height))
+        self._drawn, self._cached = key, key if kept else self._cached
+        if kept:
+            self.ctx.copy_framebuffer(fbo, target)
+            fbo.use()
+        return True
 
     def _draw_whole(self, fbo: moderngl.Framebuffer, camera: Camera, style: Style,
                     passes: list[_Pass], size: tuple[int, int]) -> None:
@@ -638,6 +657,7 @@ class Renderer:
             return self._slices
         if self._slices is not None:
             release_framebuffer(self._slices)
+        self._cached = None
         self._slices = self.ctx.framebuffer(
             [self.ctx.renderbuffer(size, 4, samples=samples)],
             self.ctx.depth_renderbuffer(size, samples=samples))
@@ -1024,8 +1044,9 @@ class Renderer:
         for name, (kind, ids, picked) in self._label_sources(arrays).items():
             if name not in style.labels:
                 continue
-            anchors, candidates, selected = self._label_candidates(name, ids, picked, style)
-            shown = candidates[visible_labels(anchors[candidates], view, MAX_LABELS)]
+            anchors, candidates, columns, selected = self._label_candidates(
+                name, ids, picked, style)
+            shown = candidates[visible_labels(columns, view, MAX_LABELS)]
             parts.append(layout_labels(self.atlas, anchors[shown], ids[shown], kind,
                                        selected[shown]))
         quads = np.concatenate(parts)
@@ -1039,10 +1060,11 @@ class Renderer:
                 "vertices": (3, arrays.vertex_ids, self.selection.vertices)}
 
     def _label_candidates(self, name: str, ids: np.ndarray, picked: tuple, style: Style,
-                          ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """``(anchors (n, 3), candidate indices (k,), selected (n,) bool)`` of the
-        labels of kind ``name`` the style lets show (holes, what a section cut away
-        and, when asked, the unselected ones left out), before the view chooses."""
+                          ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """``(anchors (n, 3), candidate indices (k,), their anchors (3, k) float32,
+        selected (n,) bool)`` of the labels of kind ``name`` the style lets show
+        (holes, what a section cut away and, when asked, the unselected ones left
+        out), before the view chooses."""
         key = (name, style.labels_selected_only, style.section, id(self.arrays),
                self.selection)
         cached = self._label_candidates_cache.get(name)
@@ -1056,7 +1078,9 @@ class Renderer:
             show &= ~self.arrays.face_hole
         if style.section is not None:  # no labels on what the cut took away
             show &= anchors[:, style.section[0]] <= style.section[1]
-        made = (anchors, np.flatnonzero(show), selected)
+        candidates = np.flatnonzero(show)
+        columns = np.ascontiguousarray(anchors[candidates].T, dtype=np.float32)
+        made = (anchors, candidates, columns, selected)
         self._label_candidates_cache[name] = (key, made)
         return made
 
