@@ -1150,3 +1150,19 @@ def test_a_big_scene_drawn_again_unchanged_is_copied(offscreen: Offscreen,
     camera.yaw += 5.0
     with pytest.raises(AssertionError, match="drawn again"):
         renderer.draw(offscreen.target, camera, style, budget=10_000)
+
+
+def test_render_preview_draws_the_patches_of_every_object(tmp_path: Path) -> None:
+    script = tmp_path / "two.py"
+    script.write_text(CUBE_SCRIPT + "P = [(x + 4, y, z) for x, y, z in P]\n"
+                      "current_scene().add(from_polygons(P, F))\n")
+    pictures = {}
+    for name, extra in (("plain", []), ("preview", ["--preview"])):
+        out = tmp_path / f"{name}.png"
+        assert main(["render", str(script), "-o", str(out), "--size", "160x120",
+                     "--samples", "0", "--elevation", "0", "--yaw", "0", "--no-edges",
+                     *extra]) == 0
+        pictures[name] = read_image(out)
+    for half in (slice(0, SIZE[0] // 2), slice(SIZE[0] // 2, SIZE[0])):  # both objects
+        assert _mask(pictures["preview"][:, half]).sum() < \
+            0.95 * _mask(pictures["plain"][:, half]).sum()

@@ -234,7 +234,8 @@ def _add_render(subparsers: Any) -> None:
 
 def _add_render_style(render: argparse.ArgumentParser) -> None:
     """``livemod render``'s options of what is drawn and how."""
-    render.add_argument("--preview", action="store_true", help="draw the patch preview")
+    render.add_argument("--preview", action="store_true",
+                        help="draw TopMod's patch preview of every object")
     render.add_argument("--labels", nargs="?", const="faces,edges,vertices", default="",
                         help="id labels: comma list of faces, edges, vertices (all if bare)")
     render.add_argument("--ortho", action="store_true", help="orthographic projection")
@@ -246,7 +247,8 @@ def _add_render_style(render: argparse.ArgumentParser) -> None:
                         default="dark", help="background (default: dark; transparent: "
                                              "PNG with alpha)")
     render.add_argument("--smooth", action="store_true",
-                        help="smooth shading (vertex normals) instead of flat faces")
+                        help="smooth shading instead of flat faces (edges between faces "
+                             "over 45 degrees apart stay sharp)")
     render.add_argument("--section", type=parse_section, default=None, metavar="AXIS[=AT]",
                         help="cut the meshes at a plane and cap the cut solids: x=0.5 cuts "
                              "away what lies beyond x = 0.5; a bare x, y or z cuts "
@@ -461,13 +463,22 @@ def _load_input(path: str, mesh_path: str | None, want_preview: bool,
         return _run_for_render(path, mesh_path, want_preview, values, selection, seed)
     from livemod.dlfl import mesh_arrays
 
-    mesh = open_mesh(path)
-    preview = None
-    if want_preview:
-        from livemod.runner.preview import preview_arrays
+    arrays = mesh_arrays(open_mesh(path))
+    return arrays, _patch_preview(arrays, None) if want_preview else None, None
 
-        preview = preview_arrays(mesh)
-    return mesh_arrays(mesh), preview, None
+
+def _patch_preview(arrays: Any, others: Any) -> Any:
+    """The patch preview of ``arrays`` and the ``others`` (a picture has no frame
+    time to keep: a GPU's triangle budget)."""
+    from livemod.runner.preview import (
+        GPU_TRIANGLE_BUDGET,
+        PreviewRequest,
+        PreviewSettings,
+        make_preview,
+    )
+
+    objects = (arrays,) if others is None else (arrays, others)
+    return make_preview(PreviewRequest(objects, PreviewSettings(budget=GPU_TRIANGLE_BUDGET)))
 
 
 def _run_for_render(path: str, mesh_path: str | None, want_preview: bool,
@@ -485,7 +496,6 @@ def _run_for_render(path: str, mesh_path: str | None, want_preview: bool,
     from livemod.runner import run_outcome
     from livemod.runner.declarations import undeclared
     from livemod.runner.headless import report_selection
-    from livemod.runner.preview import preview_arrays
     from livemod.runner.results import current_mesh, snapshot_others
 
     outcome = run_outcome(path, mesh_path=mesh_path, parameters=values, selection=selection,
@@ -500,7 +510,8 @@ def _run_for_render(path: str, mesh_path: str | None, want_preview: bool,
     mesh, others = current_mesh(outcome.scene), snapshot_others(outcome.scene)
     if mesh is None:
         return None, None, others
-    return mesh_arrays(mesh), preview_arrays(mesh) if want_preview else None, others
+    arrays = mesh_arrays(mesh)
+    return arrays, _patch_preview(arrays, others) if want_preview else None, others
 
 
 def main(argv: Sequence[str] | None = None) -> int:

@@ -9,6 +9,7 @@ from __future__ import annotations
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import moderngl
 import numpy as np
@@ -20,6 +21,9 @@ from .camera import Camera
 from .geometry import sample_points
 from .imagefiles import check_output, write_images
 from .renderer import Renderer, Style, read_image
+
+if TYPE_CHECKING:
+    from livemod.runner.preview import Preview
 
 
 class NoOffscreenGL(RuntimeError):
@@ -191,7 +195,8 @@ def render_views(offscreen: Offscreen, cameras: list[Camera], style: Style,
 def render_arrays(arrays: MeshArrays | None, out: str, *, size: tuple[int, int] = (800, 600),
                   turntable: int = 0, elevation: float = 25.0, yaw: float = 30.0,
                   style: Style | None = None,
-                  preview: MeshArrays | None = None, selection: Selection | None = None,
+                  preview: Preview | MeshArrays | None = None,
+                  selection: Selection | None = None,
                   progress: Callable[[int, int], None] | None = None,
                   ortho: bool = False, samples: int | None = None,
                   offscreen: Offscreen | None = None,
@@ -239,7 +244,7 @@ class _Drawn:
     """What :func:`render_arrays` draws: the mesh, its preview, the other objects."""
 
     arrays: MeshArrays | None
-    preview: MeshArrays | None
+    preview: Preview | MeshArrays | None
     others: MeshArrays | None
     selection: Selection | None
 

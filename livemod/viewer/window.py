@@ -60,9 +60,9 @@ if TYPE_CHECKING:
     from livemod.runner.results import RunResult
 
 IDLE_WAIT = 0.01  # seconds an idle glfw loop waits for input between frames
-# primitives a frame draws of new content (software GL: some 40 ms); the rest
+# primitives a frame draws of new content (software GL: some 60 ms at 4x MSAA); the rest
 # follows in the next frames (see Renderer.draw)
-FRAME_PRIMITIVES = 250_000
+FRAME_PRIMITIVES = 150_000
 SCRIPT_SUFFIXES = (".py",)
 
 
