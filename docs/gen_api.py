@@ -36,7 +36,7 @@ LIBRARY_MODULES = [
     "livemod.dlfl.wireframe", "livemod.dlfl.sierpinsky", "livemod.dlfl.sponge", "livemod.dlfl.hull",
     "livemod.dlfl.cutting",
     "livemod.dlfl.geometry", "livemod.dlfl.transform", "livemod.dlfl.selection",
-    "livemod.dlfl.shapes", "livemod.dlfl.params", "livemod.dlfl.io",
+    "livemod.dlfl.shapes", "livemod.dlfl.params", "livemod.dlfl.io", "livemod.dlfl.patches",
 ]
 
 HEADER = """# Scripting API reference

@@ -72,6 +72,9 @@ from .arrays import MeshArrays, mesh_arrays
 from .errors import InvalidArgumentError
 from .mesh import Mesh
 
+__all__ = ["CornerPatches", "PatchNet", "Tessellation", "evaluate_patches", "mesh_surface",
+           "patch_control_points"]
+
 PUSH = 4.0 / 3.0
 MAX_DENSITY = 32
 # corners worked on at a time where the work is a long chain of array operations:
@@ -499,7 +502,7 @@ class CornerPatches:
         self.vertex_point = rings.centroids(points)
         self.vertex_normal = -rings.normals(points, self.vertex_point)
 
-    def corner_frame(self, corners: np.ndarray, snapped: bool = False,
+    def _corner_frame(self, corners: np.ndarray, snapped: bool = False,
                      ) -> tuple[dict[str, np.ndarray], dict[str, np.ndarray]]:
         """The points and normals of the patch corners (V, E, F, D: ``(3, k)``
         each) of dense ``corners`` ``(k,)``, before or after the passes that make
@@ -535,7 +538,7 @@ class CornerPatches:
     def _sides_of(self, corners: np.ndarray, side: np.ndarray, inner: np.ndarray) -> None:
         """:meth:`_sides` of ``corners`` ``(k,)``, into ``side`` and ``inner``
         ``(4, 3, k)``."""
-        point, normal = self.corner_frame(corners)
+        point, normal = self._corner_frame(corners)
         own = np.take(self.level2, corners, axis=2)
         vnext, nxt = np.take(self.vnext, corners), np.take(self.next, corners)
         side[0] = _side(point["V"], point["E"], own[0], np.take(self.level2[0], vnext, axis=1),
@@ -641,7 +644,7 @@ class CornerPatches:
         """``(16, 3, k)`` control points (in the mesh's coordinates) and unit
         control normals of the patches of ``corners`` ``(k,)``."""
         columns = np.empty((16, 3, len(corners)))
-        point, normal = self.corner_frame(corners, snapped=True)
+        point, normal = self._corner_frame(corners, snapped=True)
         for name, row in _CORNER_ROWS.items():
             columns[row] = point[name]
         vprev, prev = np.take(self.vprev, corners), np.take(self.prev, corners)
