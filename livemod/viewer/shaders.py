@@ -13,6 +13,16 @@ uint fetch(usampler2D table, int i) {
 }
 """
 
+# what a lit surface's fragment shader takes and gives
+LIT = """
+uniform vec3 base_color;
+uniform vec3 back_color;
+in vec3 v_normal;
+in vec3 v_view;
+layout(location = 0) out vec4 color;
+layout(location = 1) out uint pick;
+"""
+
 SHADE = """
 vec3 shade(vec3 n, vec3 base) {
     // TopMod's warm/cool model with a key light fixed to the camera (up left),
@@ -69,15 +79,9 @@ uniform int wire;
 uniform int pickable;  // 0: the scene's other objects, which hide but are not picked
 uniform int smooth_shading;  // 1: interpolated vertex normals instead of the face's
 uniform int primitive_base;  // the first triangle drawn (a frame may draw a range)
-in vec3 v_normal;
-uniform vec3 base_color;
 uniform vec3 selected_color;
-uniform vec3 back_color;
 uniform vec3 edge_color;
-in vec3 v_view;
-layout(location = 0) out vec4 color;
-layout(location = 1) out uint pick;
-""" + FETCH + SHADE + """
+""" + LIT + FETCH + SHADE + """
 vec2 screen_of_vertex(int i) {
     uint v = fetch(triangle_index, i);
     int w = textureSize(position_table, 0).x;
@@ -120,13 +124,7 @@ SURFACE_FRAGMENT = """
 #version 330
 // A smooth surface with normals of its own (the patch preview): lit per pixel
 // from its interpolated normals; it is never picked.
-uniform vec3 base_color;
-uniform vec3 back_color;
-in vec3 v_normal;
-in vec3 v_view;
-layout(location = 0) out vec4 color;
-layout(location = 1) out uint pick;
-""" + SHADE + """
+""" + LIT + SHADE + """
 void main() {
     color = vec4(shade(facing_normal(v_view, v_normal),
                        gl_FrontFacing ? base_color : back_color), 1.0);
