@@ -1,6 +1,6 @@
 """Viewer and rendering benchmarks (plain python; prints medians of several runs).
 
-    python bench/bench_viewer.py [--quick]
+    python bench/bench_viewer.py [--quick | --preview]
 
 1. Upload of a 1,000,000-face mesh (a 1000x1000 quad torus) to GPU buffers over
    EGL: the numpy part (:func:`build_geometry`) and the whole ``set_mesh``
@@ -11,6 +11,19 @@
 3. Frame times of the live window (headless backend, 640x480) while a 5-second
    pure-Python script runs in the runner: median and 90th percentile.
    Target: under 50 ms.
+
+``--preview`` takes the figures of issue 29 instead, at 1280x800 (they run on an
+older tree too, given by PYTHONPATH, for figures side by side):
+
+4. The first frame with the smooth preview of a 10,000- and a 99,856-face torus,
+   from the result's arrays (targets 0.3 s and 2 s).
+5. Frame times with the preview of the 99,856-face torus on screen, the view
+   turning, drawn by the renderer (MSAA 0 and 4), and in the live window, idle
+   and turning (target: median 50 ms).
+6. Save -> first whole frame of a 1,000,000-face result in the live window, face
+   labels on, and the longest frame meanwhile (targets 1.0 s and 100 ms).
+7. The patches evaluated by numpy against GL 4.5 tessellation shaders on llvmpipe
+   (this tree only).
 """
 
 from __future__ import annotations
@@ -22,6 +35,8 @@ import sys
 import tempfile
 import time
 from pathlib import Path
+
+import numpy as np
 
 from livemod.dlfl import mesh_arrays
 from livemod.dlfl.shapes import torus
@@ -189,6 +204,155 @@ def bench_preview_frames(size: int, frames: int, samples: int) -> None:
           f"turning: wall {_median(walls)}; CPU {_median(cpus)}")
 
 
+def bench_window_preview_frames(rings: int, samples: int) -> None:
+    """Frame times of the live window (headless, 1280x800) with the preview of a
+    torus of ``rings`` x ``rings`` faces on screen: idle (the picture unchanged:
+    the kept frame) and while the view turns (drawn every frame), paced at 60 Hz."""
+    from livemod.viewer.window import ViewOptions, close_viewer, create_viewer, run_frames
+
+    with tempfile.TemporaryDirectory() as folder:
+        script = Path(folder) / "torus.py"
+        script.write_text(SWAP_SCRIPT.format(rings=rings, major=2.0).replace(
+            ", 1000,", f", {rings},"))
+        viewer = create_viewer(ViewOptions(str(script), backend="headless", size=PREVIEW_SIZE,
+                                           samples=samples, vsync=False,
+                                           echo=open(os.devnull, "w")))  # noqa: SIM115
+        try:
+            _frames_until(viewer, lambda: viewer.renderer.arrays is not None, run_frames)
+            viewer.handle_key("P")
+            _frames_until(viewer, lambda: viewer.renderer.preview is not None
+                          and not getattr(viewer.renderer, "uploading", False), run_frames)
+            run_frames(viewer, 3)
+            idle = _paced_frames(viewer, run_frames, 60, lambda: None)
+            turning = _paced_frames(viewer, run_frames, 15,
+                                    lambda: viewer.camera.orbit(2.0, 0.0))
+        finally:
+            close_viewer(viewer)
+    for name, (walls, cpus) in (("idle", idle), ("turning", turning)):
+        print(f"window frames, {rings * rings:,}-face preview on screen, MSAA {samples}, "
+              f"{name}: median {statistics.median(walls) * 1000:.1f} ms "
+              f"(CPU {statistics.median(cpus) * 1000:.1f} ms), "
+              f"max {max(walls) * 1000:.1f} ms ({len(walls)} frames)")
+
+
+def _paced_frames(viewer, run_frames, count: int,  # noqa: ANN001
+                  before) -> tuple[list[float], list[float]]:  # noqa: ANN001
+    """Wall and CPU times of ``count`` frames run at most 60 a second, ``before()``
+    each."""
+    walls, cpus = [], []
+    for _ in range(count):
+        before()
+        start, cpu = time.perf_counter(), time.process_time()
+        run_frames(viewer, 1)
+        walls.append(time.perf_counter() - start)
+        cpus.append(time.process_time() - cpu)
+        time.sleep(max(1 / 60 - walls[-1], 0.0))
+    return walls, cpus
+
+
+# GPU evaluation of the patches: tessellation shaders (GL 4.0+; Mesa's llvmpipe
+# has them in its GL 4.5 core context), 16 control points and normals a patch
+_TESS = {
+    "vertex_shader": """#version 450
+in vec3 in_position; in vec3 in_normal; out vec3 c_pos; out vec3 c_nrm;
+void main() { c_pos = in_position; c_nrm = in_normal; }""",
+    "tess_control_shader": """#version 450
+layout(vertices = 16) out;
+in vec3 c_pos[]; in vec3 c_nrm[]; out vec3 e_pos[]; out vec3 e_nrm[];
+uniform float level;
+void main() {
+    e_pos[gl_InvocationID] = c_pos[gl_InvocationID];
+    e_nrm[gl_InvocationID] = c_nrm[gl_InvocationID];
+    if (gl_InvocationID == 0) {
+        for (int k = 0; k < 4; ++k) gl_TessLevelOuter[k] = level;
+        gl_TessLevelInner[0] = level; gl_TessLevelInner[1] = level;
+    }
+}""",
+    "tess_evaluation_shader": """#version 450
+layout(quads, equal_spacing, ccw) in;
+in vec3 e_pos[]; in vec3 e_nrm[]; out vec3 v_normal; uniform mat4 mvp;
+vec4 bernstein(float t) { float s = 1.0 - t; return vec4(s*s*s, 3.0*t*s*s, 3.0*t*t*s, t*t*t); }
+void main() {
+    vec4 bu = bernstein(gl_TessCoord.x), bv = bernstein(gl_TessCoord.y);
+    vec3 p = vec3(0.0), n = vec3(0.0);
+    for (int i = 0; i < 4; ++i) for (int j = 0; j < 4; ++j) {
+        float w = bu[i] * bv[j]; p += w * e_pos[4 * i + j]; n += w * e_nrm[4 * i + j];
+    }
+    v_normal = n; gl_Position = mvp * vec4(p, 1.0);
+}""",
+    "fragment_shader": """#version 450
+in vec3 v_normal; out vec4 color;
+void main() {
+    float lit = 0.2 + 0.8 * max(dot(normalize(v_normal), normalize(vec3(-0.45, 0.55, 0.7))), 0.0);
+    color = vec4(lit * vec3(0.62, 0.78, 0.95), 1.0);
+}""",
+}
+_NUMPY_VERTEX = """#version 450
+in vec3 in_position; in vec3 in_normal; out vec3 v_normal; uniform mat4 mvp;
+void main() { v_normal = in_normal; gl_Position = mvp * vec4(in_position, 1.0); }"""
+
+
+def bench_gpu_tessellation(size: int, density: int, frames: int) -> None:
+    """The patches evaluated by numpy (once, then drawn as triangles) against the GPU's
+    tessellation shaders (evaluated in every frame), on llvmpipe at 1280x800: the
+    first frame from the arrays, then frames of a turning view."""
+    import moderngl
+
+    from livemod.dlfl.patches import CornerPatches
+
+    arrays = mesh_arrays(torus(size, size))
+    ctx = moderngl.create_standalone_context(backend="egl", require=450)
+    fbo = ctx.framebuffer([ctx.renderbuffer(PREVIEW_SIZE, 4)],
+                          ctx.depth_renderbuffer(PREVIEW_SIZE))
+    camera = framed_camera(arrays, elevation=25.0, aspect=1.6)
+
+    def frame(program, vao, mode) -> None:  # noqa: ANN001
+        camera.yaw += 2.0
+        program["mvp"].write(camera.view_projection(1.6).T.astype("f4").tobytes())
+        fbo.use()
+        fbo.clear()
+        ctx.enable(moderngl.DEPTH_TEST)
+        vao.render(mode)
+        ctx.finish()
+
+    def by_numpy():  # noqa: ANN202
+        tessellation = CornerPatches(arrays).tessellate(density)
+        program = ctx.program(vertex_shader=_NUMPY_VERTEX,
+                              fragment_shader=_TESS["fragment_shader"])
+        rows = np.hstack([tessellation.positions, tessellation.normals])
+        vao = ctx.vertex_array(program, [(ctx.buffer(rows.tobytes()), "3f 3f", "in_position",
+                                          "in_normal")], ctx.buffer(tessellation.triangles))
+        frame(program, vao, moderngl.TRIANGLES)
+        return program, vao, moderngl.TRIANGLES
+
+    def by_gpu():  # noqa: ANN202
+        net = CornerPatches(arrays).nets()
+        rows = np.hstack([net.columns.transpose(2, 0, 1).reshape(-1, 3),
+                          net.normal_columns.transpose(2, 0, 1).reshape(-1, 3)]).astype("f4")
+        program = ctx.program(**_TESS)
+        program["level"].value = float(density)
+        vao = ctx.vertex_array(program, [(ctx.buffer(rows.tobytes()), "3f 3f", "in_position",
+                                          "in_normal")])
+        ctx.patch_vertices = 16
+        frame(program, vao, moderngl.PATCHES)
+        return program, vao, moderngl.PATCHES
+
+    for name, make in (("numpy", by_numpy), ("GPU tessellation", by_gpu)):
+        start, cpu = time.perf_counter(), time.process_time()
+        program, vao, mode = make()
+        first = (time.perf_counter() - start, time.process_time() - cpu)
+        walls, cpus = [], []
+        for _ in range(frames):
+            start, cpu = time.perf_counter(), time.process_time()
+            frame(program, vao, mode)
+            walls.append(time.perf_counter() - start)
+            cpus.append(time.process_time() - cpu)
+        print(f"patches of {size * size:,} faces at density {density} by {name}: first frame "
+              f"wall {first[0]:.3f} s (CPU {first[1]:.3f} s); frames {_median(walls)}; "
+              f"CPU {_median(cpus)}")
+    ctx.release()
+
+
 SWAP_SCRIPT = (
     "from livemod.dlfl.shapes import torus\n"
     "from livemod.dlfl import current_scene\n"
@@ -274,6 +438,9 @@ def main(argv: list[str] | None = None) -> int:
         bench_preview_first_frame(316, 3, 0)
         bench_preview_frames(316, 9, 0)
         bench_preview_frames(316, 9, 4)
+        bench_window_preview_frames(316, 4)
+        bench_gpu_tessellation(100, 3, 5)
+        bench_gpu_tessellation(316, 1, 3)
         bench_swap(1000, 4)
     elif args.quick:
         bench_upload(1, 100)

@@ -1137,7 +1137,8 @@ def test_a_big_scene_drawn_again_unchanged_is_copied(offscreen: Offscreen,
     renderer = offscreen.renderer
     renderer.set_mesh(mesh_arrays(torus(20, 14)))
     camera, style = framed_camera(renderer.arrays), Style()
-    assert renderer.draw(offscreen.target, camera, style, budget=10_000)
+    assert renderer.draw(offscreen.target, camera, style, budget=10_000)  # a new view:
+    assert renderer.draw(offscreen.target, camera, style, budget=10_000)  # it rests: kept
     drawn = np.frombuffer(offscreen.target.read(components=3), np.uint8)
     offscreen.target.clear(0.0, 0.0, 0.0, 1.0)
 

@@ -553,8 +553,9 @@ class Renderer:
         is unfinished (call again with the same view), True once it is whole. A
         changed view or style draws everything at once: a turning view would
         never finish. With a budget too, a scene of more than ``CACHED_PRIMITIVES``
-        is kept whole in that target: drawn again unchanged (only the window's HUD
-        changed, say), it is copied instead of drawn."""
+        seen again from the view of the last picture is kept whole in that target:
+        drawn again unchanged (only the window's HUD changed, say), it is copied
+        instead of drawn."""
         width, height = size or fbo.size
         self.ctx.viewport = (0, 0, width, height)
         if self._mesh is None and self._others is None:
@@ -569,7 +570,10 @@ class Renderer:
         view_key = (camera.pose(), style, (width, height))
         key = (self.version, view_key)
         passes = self._passes(style)
+        # kept whole for the next frames once the view rests (a turning view would
+        # only pay for the copy)
         kept = (budget is not None and tuple(fbo.size) == (width, height)
+                and self._drawn[1] == view_key
                 and sum(count for count, _ in passes) > CACHED_PRIMITIVES)
         if kept and self._cached == key and self._slices is not None \
                 and self._slices.samples == fbo.samples:
