@@ -393,13 +393,29 @@ class _Rings:
         zero for a ring with no area to speak of (fewer than three points, or a
         Newell vector below ``FLAT`` times the sum of its squared distances from
         the centroid: rounding noise, with no direction worth having)."""
-        following = np.arange(1, points.shape[1] + 1)
-        following[self.offsets[1:] - 1] = self.offsets[:-1]
-        rel = points - np.take(centroids, self.ring, axis=1)
-        newell = self._sums(_cross(rel, np.take(rel, following, axis=1)))
-        spread = self._sums(rel * rel).sum(axis=0)
+        sizes = self.sizes
+        if len(sizes) and sizes[0] == sizes.min() == sizes.max() and sizes[0] in (3, 4):
+            newell, spread = _small_newell(points.reshape(3, len(sizes), -1), centroids)
+        else:
+            following = np.arange(1, points.shape[1] + 1)
+            following[self.offsets[1:] - 1] = self.offsets[:-1]
+            rel = points - np.take(centroids, self.ring, axis=1)
+            newell = self._sums(_cross(rel, np.take(rel, following, axis=1)))
+            spread = self._sums(rel * rel).sum(axis=0)
         newell[:, np.sqrt(_dot(newell, newell)) <= FLAT * spread] = 0.0
         return _unit(newell)
+
+
+def _small_newell(rings: np.ndarray, centroids: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The Newell vectors ``(3, R)`` of triangles or quads ``rings`` ``(3, R, n)``
+    and their points' squared distances from their ``centroids``, summed ``(R,)``:
+    a triangle's is the cross product of two sides, a quad's that of its diagonals
+    (each equals the Newell sum, with one product instead of n)."""
+    first, second = (rings[:, :, 1] - rings[:, :, 0], rings[:, :, 2] - rings[:, :, 0]) \
+        if rings.shape[2] == 3 else (rings[:, :, 2] - rings[:, :, 0],
+                                     rings[:, :, 3] - rings[:, :, 1])
+    rel = rings - centroids[:, :, None]
+    return _cross(first, second), (rel * rel).sum(axis=(0, 2))
 
 
 def cycle_layout(successor: np.ndarray, longest: int) -> tuple[np.ndarray, np.ndarray]:
@@ -631,7 +647,7 @@ class CornerPatches:
         shown[np.take(a.corner_face, self._drawn(corners))] = True
         fan, face = a.fan_triangles()
         fans = np.take(self.ring_of, fan[shown[face]])               # (T, 3) rings
-        used, index = np.unique(fans, return_inverse=True)
+        used, index = _compact(fans.ravel(), len(self.vertex_point[0]))
         with np.errstate(invalid="ignore", over="ignore"):
             points = self.snapped_vertex[:, used].T * self.scale + self.center
         finite = np.isfinite(points).all(axis=1)
@@ -674,6 +690,18 @@ class CornerPatches:
         vprev, prev = np.take(self.vprev, corners), np.take(self.prev, corners)
         return (np.take(own, corners) & np.take(side[0] & side[1], vprev)
                 & np.take(side[2] & side[3], prev))
+
+
+def _compact(values: np.ndarray, count: int) -> tuple[np.ndarray, np.ndarray]:
+    """``(used, index)``: the distinct ``values`` (all below ``count``) in order,
+    and where each value is in ``used`` (``np.unique`` with ``return_inverse``, in
+    linear time)."""
+    has = np.zeros(count, dtype=bool)
+    has[values] = True
+    used = np.flatnonzero(has)
+    place = np.zeros(count, dtype=np.int64)
+    place[used] = np.arange(len(used))
+    return used, place[values]
 
 
 def _frame(positions: np.ndarray) -> tuple[np.ndarray, float]:

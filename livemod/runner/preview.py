@@ -173,7 +173,7 @@ def _patches(request: PreviewRequest, note: str = "") -> Preview:
     total = sum(len(c) for c in corners)
     density = _density(settings, total)
     cost = _triangles_per_face(density)
-    drawn = sum(int(cost(a.face_sizes[np.unique(a.corner_face[c])]).sum())
+    drawn = sum(int(cost(a.face_sizes[faces_of(a, c)]).sum())
                 for a, c in zip(request.objects, corners, strict=True))
     by_view = drawn > settings.budget
     if by_view:
@@ -224,7 +224,7 @@ def _nearest_patches(request: PreviewRequest, corners: list[np.ndarray], budget:
     """Of each object's ``corners``, those of the faces the view sees nearest
     (faces whole, whose triangles, ``cost(face sizes)``, fit in ``budget``);
     without a view, faces in order."""
-    faces = [np.unique(arrays.corner_face[chosen])
+    faces = [faces_of(arrays, chosen)
              for arrays, chosen in zip(request.objects, corners, strict=True)]
     if request.view is None:  # object after object, faces in order
         score = np.arange(sum(len(f) for f in faces), dtype=np.float64)
@@ -243,6 +243,14 @@ def _nearest_patches(request: PreviewRequest, corners: list[np.ndarray], budget:
         start += len(own_faces)
         out.append(chosen[shown[arrays.corner_face[chosen]]])
     return out
+
+
+def faces_of(arrays: MeshArrays, corners: np.ndarray) -> np.ndarray:
+    """``(k,)`` int64 the faces of dense ``corners``, each once, in order (a mask,
+    not a sort: linear)."""
+    has = np.zeros(len(arrays.face_ids), dtype=bool)
+    has[arrays.corner_face[corners]] = True
+    return np.flatnonzero(has)
 
 
 def _face_scores(arrays: MeshArrays, faces: np.ndarray, view: View) -> np.ndarray:
