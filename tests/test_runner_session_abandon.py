@@ -212,6 +212,20 @@ def test_closing_a_session_does_not_wait_for_a_blocked_run(tmp_path):
         assert live.join(WAIT)  # the supervisor did not wait for the sleeping run
 
 
+def test_closing_a_session_gives_the_process_state_back_before_it_returns(tmp_path):
+    # a give-back after close() returned would undo what the host changed since
+    script, marker, elsewhere = tmp_path / "model.py", tmp_path / "started", tmp_path / "away"
+    elsewhere.mkdir()
+    block = f"os.chdir({str(elsewhere)!r})\n" + FOREVER["sleep"][0]
+    script.write_text(STUCK.format(marker=str(marker), block=block))
+    cwd = os.getcwd()
+    with manual_session(script) as (live, _):
+        wait_until(lambda: os.getcwd() == str(elsewhere))
+        live.close()
+        assert os.getcwd() == cwd  # the stuck run was abandoned and its change undone
+        assert live.background_runs != ()
+
+
 @pytest.mark.timeout(60)
 def test_the_interrupt_of_an_abandoned_run_never_reaches_the_next_one(tmp_path):
     # the abandoned run swallows interrupts in a helper; the next one spends its

@@ -57,7 +57,7 @@ from .results import (
     snapshot_scene,
 )
 from .snapshots import DEFAULT_BUDGET, SnapshotCache
-from .stopping import CancelReason, RunStopper
+from .stopping import GRACE, CancelReason, RunStopper
 from .stopping import Run as _Run
 from .watch import FileWatcher, Notifier
 
@@ -152,6 +152,9 @@ class LiveSession:
         self._base: Scene | None = base.copy() if base is not None else None
         self._base_version = 0  # counts changes of the --mesh file (see _base_scene)
         self._closed = False
+        # set once closing has stopped (or abandoned) the last run: no run of the
+        # session holds the process state any more (see close)
+        self._let_go = threading.Event()
         self._watcher = FileWatcher(self._files_changed, debounce=debounce,
                                     notifier=notifier, poll=poll)
         self._previews = _preview_worker(preview, self._post_preview, self._is_latest)
@@ -170,13 +173,23 @@ class LiveSession:
         self.reload()
 
     def close(self) -> None:
-        """Stop watching, cancel the run; threads wind down in the background."""
+        """Stop watching and cancel the run; the other threads wind down in the
+        background.
+
+        Returns once the run has stopped or been abandoned (within
+        :data:`~livemod.runner.stopping.GRACE` seconds and a little more), so that
+        no run of the session gives the process state back after it: a late
+        give-back would undo what the host changed since (its directory, the
+        streams a test or a notebook put in place)."""
         with self._lock:
             self._closed = True
             started = self._supervisor.ident is not None
         self._requests.put(None)
-        if not started and self._previews is not None:
-            self._previews.close()  # the supervisor would have closed it
+        if not started:
+            if self._previews is not None:
+                self._previews.close()  # the supervisor would have closed it
+        elif threading.current_thread() is not self._supervisor:
+            self._let_go.wait(GRACE + 1.0)
 
     def join(self, timeout: float = 10.0) -> bool:
         """Wait (up to ``timeout`` s) for the session's threads after :meth:`close`."""
@@ -450,6 +463,7 @@ class LiveSession:
             request = self._next_request()
             self._stop_current(CancelReason.SUPERSEDED)
             if request is None:
+                self._let_go.set()
                 break
             self._start_run(request)
         self._watcher.close()
