@@ -3,12 +3,14 @@
 from __future__ import annotations
 
 from collections.abc import Iterator
+from pathlib import Path
 from typing import Any
 
 import pytest
 
 from livemod.dlfl import Scene, use_scene
 from livemod.dlfl.shapes import cube
+from tests.topmod_samples import write_samples
 
 
 @pytest.fixture
@@ -18,6 +20,13 @@ def scene() -> Iterator[Scene]:
     bound.add(cube(), "cube")
     with use_scene(bound):
         yield bound
+
+
+@pytest.fixture(scope="session")
+def topmod_samples(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """A folder holding a stand-in for each of TopMod's sample OBJ files under the
+    sample's name (``cube.obj`` ...; :mod:`tests.topmod_samples` says what each is)."""
+    return write_samples(tmp_path_factory.mktemp("topmod-objs"))
 
 
 # the size of the offscreen target the viewer tests share (their pixel checks use it)
