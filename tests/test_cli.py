@@ -12,8 +12,6 @@ import pytest
 
 from livemod.cli import build_parser, main
 
-SAMPLES = Path(__file__).resolve().parents[2] / "shared" / "data" / "topmod-objs"
-
 
 def test_info_prints_counts_genus_and_sizes_of_a_shape(capsys: pytest.CaptureFixture[str]) -> None:
     assert main(["info", "cube"]) == 0
@@ -41,8 +39,9 @@ def test_info_says_what_volume_an_open_or_inside_out_mesh_has(tmp_path: Path, ca
     assert "Volume : -1 (inside out: the faces point inward)" in capsys.readouterr().out
 
 
-def test_info_reports_genus_of_a_sample_torus(capsys: pytest.CaptureFixture[str]) -> None:
-    assert main(["info", str(SAMPLES / "donuthexa1.obj")]) == 0
+def test_info_reports_genus_of_a_sample_torus(
+        topmod_samples: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["info", str(topmod_samples / "donuthexa1.obj")]) == 0
     out = capsys.readouterr().out
     assert "Number of vertices : 100" in out
     assert "Genus : 1" in out
@@ -94,9 +93,10 @@ def test_help_states_the_exit_codes(capsys: pytest.CaptureFixture[str]) -> None:
         "are one line: livemod: error: <what>: <why>.")
 
 
-def test_convert_round_trips_through_dlfl(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+def test_convert_round_trips_through_dlfl(
+        tmp_path: Path, topmod_samples: Path, capsys: pytest.CaptureFixture[str]) -> None:
     out = tmp_path / "cube.dlfl"
-    assert main(["convert", str(SAMPLES / "cube.obj"), str(out)]) == 0
+    assert main(["convert", str(topmod_samples / "cube.obj"), str(out)]) == 0
     assert "8 vertices, 12 edges, 6 faces" in capsys.readouterr().out
     assert main(["info", str(out)]) == 0
     assert "Number of faces : 6" in capsys.readouterr().out

@@ -17,9 +17,9 @@ from livemod.dlfl.io._dlfl_build import DlflRecords, build_dlfl
 from livemod.dlfl.io._lines import leading_uints
 from livemod.dlfl.io._numtext import format_floats, format_rounded
 from livemod.dlfl.io.dlflfile import dlfl_bytes, parse_dlfl
+from livemod.dlfl.shapes import donut_hexa
 from tests.meshes import torus, two_cubes
-
-SAMPLES = Path(__file__).resolve().parents[2] / "shared" / "data" / "topmod-objs"
+from tests.topmod_samples import sample_bytes
 
 # TOPMOD.md section 6, verbatim: TopMod's own writer output for its cube
 TOPMOD_CUBE = b"""DLFL
@@ -143,7 +143,7 @@ def round_trip(mesh: Mesh) -> Mesh:
 
 def test_round_trip_of_samples() -> None:
     for name in ("soccerballdual.obj", "genus3hexa1.obj", "donuthexa1.obj"):
-        mesh = read_obj(SAMPLES / name)
+        mesh = read_obj(sample_bytes(name))
         assert_same_mesh(mesh, round_trip(mesh))
 
 
@@ -192,7 +192,7 @@ def test_round_trip_of_point_spheres_and_holes() -> None:
 
 
 def test_reverse_flips_every_face() -> None:
-    mesh = read_obj(SAMPLES / "donuthexa1.obj")
+    mesh = donut_hexa(1)
     flipped = read_dlfl(dlfl_bytes(mesh, reverse=True))
     validate(flipped)
     assert flipped.counts() == mesh.counts()
@@ -354,7 +354,7 @@ def zoo() -> Mesh:
 
 
 def zoo_files() -> list[bytes]:
-    meshes = [zoo(), two_cubes(), torus(5, 4), read_obj(SAMPLES / "donuthexa1.obj")]
+    meshes = [zoo(), two_cubes(), torus(5, 4), donut_hexa(1)]
     files = [TOPMOD_CUBE] + [dlfl_bytes(m, reverse=r) for m in meshes for r in (False, True)]
     return files + [TOPMOD_CUBE.replace(b"\n", b"\r\n")]
 
@@ -522,7 +522,7 @@ def test_fast_reader_agrees_with_the_reference_on_edited_files(
 
 
 def test_writer_normals_are_the_rounded_face_normals() -> None:
-    mesh = read_obj(SAMPLES / "soccerballdual.obj")
+    mesh = read_obj(sample_bytes("soccerballdual.obj"))  # with 2-gons
     a = mesh_arrays(mesh)
     fields = format_floats(np.round(face_normals(a), 6).ravel() + 0.0).reshape(len(a.face_ids), 3, -1)
     text = [b" ".join(bytes(f[f != 0]) for f in row) for row in fields]

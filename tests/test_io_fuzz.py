@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import contextlib
 import warnings
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -20,14 +19,14 @@ from livemod.dlfl import DLFLError, DLFLRepairWarning, validate
 from livemod.dlfl.io import read_dlfl, read_obj
 from livemod.dlfl.io.dlflfile import dlfl_bytes
 from livemod.dlfl.io.obj import parse_obj
+from tests.topmod_samples import sample_bytes
 
-SAMPLES = Path(__file__).resolve().parents[2] / "shared" / "data" / "topmod-objs"
-CUBE_OBJ = (SAMPLES / "cube.obj").read_bytes()
-DUAL_OBJ = (SAMPLES / "soccerballdual.obj").read_bytes()[:3000]
+CUBE_OBJ = sample_bytes("cube.obj")
+DUAL_OBJ = sample_bytes("soccerballdual.obj")[:3000]
 with warnings.catch_warnings():
     warnings.simplefilter("ignore", DLFLRepairWarning)
     CUBE_DLFL = dlfl_bytes(read_obj(CUBE_OBJ), "cube")
-    BEVEL_DLFL = dlfl_bytes(read_obj(SAMPLES / "beveledcube.obj"), "bevel")
+    BEVEL_DLFL = dlfl_bytes(read_obj(sample_bytes("beveledcube.obj")), "bevel")
 
 FUZZ = settings(max_examples=150, deadline=None,
                 suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
@@ -201,7 +200,9 @@ def test_fast_parser_on_a_big_regular_block_matches_reference() -> None:
 def test_every_truncation_of_a_crlf_file_is_refused_cleanly() -> None:
     # regression: a number cut right after its exponent mark at the very end of
     # the buffer made the vectorized scanner read past it (IndexError)
-    for cut in range(960, 1010):
+    mark = DUAL_OBJ.index(b"e-0")  # the first three-digit exponent ("4.2e-018")
+    assert b"\r\n" in DUAL_OBJ[:mark]
+    for cut in range(mark - 25, mark + 25):
         with contextlib.suppress(DLFLError):
             read_obj(DUAL_OBJ[:cut])
 

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 import warnings
 from pathlib import Path
 
@@ -14,27 +15,7 @@ from livemod.dlfl import DLFLError, DLFLRepairWarning, Mesh, from_polygons, genu
 from livemod.dlfl.io import _numtext, load_mesh, read_obj, save_mesh, write_obj
 from livemod.dlfl.io._numtext import decimal_to_float, format_floats, format_uints
 from livemod.dlfl.io.obj import obj_bytes, parse_obj
-
-SAMPLES = Path(__file__).resolve().parents[2] / "shared" / "data" / "topmod-objs"
-
-# name -> (V, E, F, genus)
-SAMPLE_COUNTS = {
-    "cube.obj": (8, 12, 6, 0),
-    "tetrahedron.obj": (4, 6, 4, 0),
-    "octahedron.obj": (6, 12, 8, 0),
-    "dodecahedron.obj": (20, 30, 12, 0),
-    "icosahedron.obj": (12, 30, 20, 0),
-    "soccerball.obj": (60, 90, 32, 0),
-    "geodesicdome.obj": (272, 810, 540, 0),
-    "buckminister.obj": (540, 810, 272, 0),
-    "sphericalcube.obj": (98, 192, 96, 0),
-    "donuthexa1.obj": (100, 150, 50, 1),
-    "donuthexa3.obj": (1600, 2400, 800, 1),
-    "genus3hexa1.obj": (161, 247, 82, 3),
-    "genus3hexa3.obj": (2631, 3952, 1317, 3),
-    "beveledcube.obj": (24, 48, 26, 0),
-    "soccerballdual.obj": (309, 500, 193, 0),
-}
+from tests.topmod_samples import SAMPLE_COUNTS, sample_bytes
 
 CUBE = b"""# a unit cube
 v 1.0, 1.0, 1.0
@@ -64,8 +45,8 @@ def load_quietly(source: Path | bytes) -> Mesh:
 
 
 @pytest.mark.parametrize("name", sorted(SAMPLE_COUNTS))
-def test_every_topmod_sample_loads_with_its_counts(name: str) -> None:
-    mesh = load_quietly(SAMPLES / name)
+def test_every_topmod_sample_loads_with_its_counts(name: str, topmod_samples: Path) -> None:
+    mesh = load_quietly(topmod_samples / name)
     validate(mesh)
     v, e, f, g = SAMPLE_COUNTS[name]
     assert mesh.counts() == (v, e, f)
@@ -75,7 +56,7 @@ def test_every_topmod_sample_loads_with_its_counts(name: str) -> None:
 
 @pytest.mark.parametrize("name", sorted(SAMPLE_COUNTS))
 def test_fast_parser_agrees_with_reference_parser_on_samples(name: str) -> None:
-    data = (SAMPLES / name).read_bytes()
+    data = sample_bytes(name)
     fast, slow = parse_obj(data, name), parse_obj(data, name, fast=False)
     assert np.array_equal(fast.positions, slow.positions)
     assert np.array_equal(fast.indices, slow.indices)
@@ -108,9 +89,9 @@ def test_many_small_passes_on_threads_read_and_write_as_one_pass_does(
 ) -> None:
     import livemod.dlfl.io.obj as obj_module
 
-    data = (SAMPLES / name).read_bytes()
+    data = sample_bytes(name)
     slow = parse_obj(data, fast=False)
-    mesh = load_quietly(SAMPLES / name)
+    mesh = load_quietly(data)
     text_in_one_piece = obj_bytes(mesh)
     monkeypatch.setattr(obj_module, "_LINES_PER_PASS", 37)  # dozens of passes, threaded
     fast = parse_obj(data)
@@ -121,27 +102,46 @@ def test_many_small_passes_on_threads_read_and_write_as_one_pass_does(
     assert obj_bytes(mesh) == text_in_one_piece
 
 
-def test_beveledcube_is_reoriented_with_a_note() -> None:
-    with pytest.warns(DLFLRepairWarning, match="re-oriented"):
-        mesh = read_obj(SAMPLES / "beveledcube.obj")
+def test_beveledcube_is_reoriented_with_a_note(topmod_samples: Path) -> None:
+    with pytest.warns(DLFLRepairWarning, match="re-oriented 4 faces"):
+        mesh = read_obj(topmod_samples / "beveledcube.obj")
     assert any("re-oriented" in note and "beveledcube.obj" in note for note in mesh.notes)
     sizes = sorted(mesh.face_size(f) for f in mesh.face_ids())
     assert sizes == [3] * 8 + [4] * 18
 
 
-def test_soccerballdual_crlf_and_two_2gons() -> None:
-    data = (SAMPLES / "soccerballdual.obj").read_bytes()
-    assert b"\r\n" in data
-    mesh = read_obj(SAMPLES / "soccerballdual.obj")
+def test_soccerballdual_crlf_and_two_2gons(topmod_samples: Path) -> None:
+    data = (topmod_samples / "soccerballdual.obj").read_bytes()
+    assert b"\r\n" in data and b" \r\n" in data  # CRLF, and trailing spaces before it
+    mesh = read_obj(topmod_samples / "soccerballdual.obj")
     validate(mesh)
     assert [mesh.face_size(f) for f in mesh.face_ids()].count(2) == 2
     assert genus(mesh) == 0
 
 
 def test_topmod_cube_with_commas() -> None:
-    mesh = read_obj(SAMPLES / "cube.obj")
+    data = sample_bytes("cube.obj")
+    assert b"v -1.0, 1.0, -1.0\n" in data
+    mesh = read_obj(data)
     assert mesh.counts() == (8, 12, 6)
     assert np.array_equal(mesh.position(mesh.vertex_ids()[2]), [-1.0, 1.0, -1.0])
+
+
+# what each stand-in must hold for the tests above to read what TopMod's sample holds
+SAMPLE_FORMS = [
+    ("tetrahedron.obj", rb"\nvt [\d.]+ [\d.]+\nvt .*\ns off\ng pCone1\nusemtl \w+\nf 1/1/1 "),
+    ("dodecahedron.obj", rb"^# .*\n#\n(# .*\n)+#\n\ng dodecahedron\nv .*\n\ng\nf "),
+    ("genus3hexa1.obj", rb"^# .*\n\nmtllib genus3hexa1.mtl\ng default\nv [-\d.]+ .*\nvn .*\n"
+                        rb"s off\ng Mesh1\nusemtl \w+\nf \d+//1 \d+//2 "),
+    ("octahedron.obj", rb"\nv [-\d.]+ [-\d.]+ [-\d.]+\n# 6 vertices\n# 8 faces\n\nf \d+ \d+ \d+\n"),
+    ("beveledcube.obj", rb"\no Cube_Cube\nv [-\d.]+ .*\nusemtl \(null\)\ns off\nf .*\n1 14\n$"),
+    ("soccerballdual.obj", rb"\nv [-\d.]+e-0\d\d .*\r\n.*\r\nvn .*\r\nf \d+//\d+ \d+//\d+ \r\n"),
+]
+
+
+@pytest.mark.parametrize(("name", "form"), SAMPLE_FORMS)
+def test_the_stand_ins_spell_obj_as_the_samples_do(name: str, form: bytes) -> None:
+    assert re.search(form, sample_bytes(name), re.DOTALL)
 
 
 # ------------------------------------------------------------- edge cases
@@ -299,8 +299,8 @@ def assert_same_mesh(a: Mesh, b: Mesh) -> None:
 
 @pytest.mark.parametrize("name", ["cube.obj", "soccerballdual.obj", "genus3hexa1.obj",
                                   "beveledcube.obj", "donuthexa1.obj"])
-def test_sample_round_trip(name: str, tmp_path: Path) -> None:
-    mesh = load_quietly(SAMPLES / name)
+def test_sample_round_trip(name: str, tmp_path: Path, topmod_samples: Path) -> None:
+    mesh = load_quietly(topmod_samples / name)
     assert_same_mesh(mesh, round_trip(mesh, tmp_path))
 
 

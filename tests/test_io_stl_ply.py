@@ -13,20 +13,17 @@ from livemod.dlfl import Mesh, from_polygons
 from livemod.dlfl.io import (
     atomic_write,
     load_mesh,
-    read_obj,
     save_mesh,
     write_atomically,
     write_ply,
     write_stl,
 )
-from livemod.dlfl.shapes import cube
-
-SAMPLES = Path(__file__).resolve().parents[2] / "shared" / "data" / "topmod-objs"
+from livemod.dlfl.shapes import cube, soccer_ball
 
 
 def open_box() -> Mesh:
     """A cube without its top: 5 quads, one hole, plus a point-sphere."""
-    mesh = read_obj(SAMPLES / "cube.obj")
+    mesh = cube()  # TopMod's cube.obj: face 0 is the top (+y)
     top = mesh.face_ids()[0]
     mesh.set_hole(top)
     mesh.create_vertex((4.0, 5.0, 6.0))
@@ -55,7 +52,7 @@ def test_stl_has_fans_of_the_drawn_faces_with_face_normals(tmp_path: Path) -> No
 
 def test_stl_of_pentagons_and_hexagons(tmp_path: Path) -> None:
     path = tmp_path / "ball.stl"
-    save_mesh(read_obj(SAMPLES / "soccerball.obj"), path)
+    save_mesh(soccer_ball(), path)
     _, triangles = read_stl(path)
     assert len(triangles) == 12 * 3 + 20 * 4
 
@@ -191,7 +188,7 @@ def test_a_save_that_fails_midway_leaves_the_old_file(
     # every writer goes through write_atomically, which opens atomic_write
     monkeypatch.setattr("livemod.dlfl.io.atomic.atomic_write", failing)
     with pytest.raises(OSError, match="no space"):
-        save_mesh(read_obj(SAMPLES / "soccerball.obj"), path)
+        save_mesh(soccer_ball(), path)
     assert path.read_bytes() == before
     assert os.listdir(tmp_path) == [path.name]
 

@@ -17,10 +17,10 @@ from livemod.dlfl.arrays import mesh_arrays
 from livemod.dlfl.io import load_mesh, read_obj, read_stl, save_mesh
 from livemod.dlfl.io import stl as stl_module
 from livemod.dlfl.io.stl import drop_collapsed, parse_stl, stl_bytes, weld_positions
-from livemod.dlfl.shapes import torus
+from livemod.dlfl.shapes import cube, soccer_ball, torus
 
 from .test_io_fuzz import FUZZ, only_dlfl_errors
-from .test_io_stl_ply import SAMPLES, open_box
+from .test_io_stl_ply import open_box
 
 SQUARE = b"""solid square
 facet normal 0 0 1
@@ -68,8 +68,8 @@ def triangle_normals(mesh: Mesh) -> np.ndarray:
 
 
 @pytest.mark.parametrize(("mesh", "counts", "handles"), [
-    (read_obj(SAMPLES / "cube.obj"), (8, 18, 12), 0),
-    (read_obj(SAMPLES / "soccerball.obj"), (60, 174, 116), 0),
+    (cube(), (8, 18, 12), 0),
+    (soccer_ball(), (60, 174, 116), 0),
     (torus(12, 8), (96, 288, 192), 1),
 ])
 def test_binary_round_trip_welds_the_fans_back_into_one_manifold(mesh, counts, handles) -> None:
@@ -233,7 +233,7 @@ def test_a_non_manifold_stl_names_the_facet_line() -> None:
 
 def test_load_mesh_and_the_cli_read_stl(tmp_path: Path, capsys) -> None:
     path = tmp_path / "ball.stl"
-    save_mesh(read_obj(SAMPLES / "soccerball.obj"), path)
+    save_mesh(soccer_ball(), path)
     assert load_mesh(path).counts() == (60, 174, 116)
     assert cli.main(["info", str(path)]) == 0
     assert "Genus : 0" in capsys.readouterr().out
