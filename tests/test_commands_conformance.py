@@ -21,8 +21,6 @@ from livemod.dlfl import DLFLError, Scene, face_size_histogram, genus, use_scene
 from livemod.dlfl.shapes import cube
 from tests.meshes import counts, snapshot
 
-OBJS = Path(__file__).resolve().parents[2] / "shared" / "data" / "topmod-objs"
-
 # every command the appendix (and API.md) lists, with its optional arguments'
 # defaults in the documented order ("*" marks a variadic tail livemod parses)
 DOCUMENTED: dict[str, tuple[tuple[str, Any], ...]] = {
@@ -74,20 +72,22 @@ VARIADIC = ("next", "prev", "getCorner", "vertexEdges", "translate", "scale", "m
 
 
 @pytest.fixture()
-def cube_scene() -> Iterator[Scene]:
-    """TopMod's cube (edge 2, 8/12/6) as the current object; files from OBJS."""
+def cube_scene(topmod_samples: Path) -> Iterator[Scene]:
+    """TopMod's cube (edge 2, 8/12/6) as the current object; files read from a folder
+    of stand-ins for TopMod's samples."""
     bound = Scene()
     bound.add(cube(), "cube")
-    bound.directory = str(OBJS)
+    bound.directory = str(topmod_samples)
     with use_scene(bound):
         yield bound
 
 
 @pytest.fixture()
-def empty_scene() -> Iterator[Scene]:
-    """A scene with no object, reading files from OBJS."""
+def empty_scene(topmod_samples: Path) -> Iterator[Scene]:
+    """A scene with no object, reading files from a folder of stand-ins for TopMod's
+    samples."""
     bound = Scene()
-    bound.directory = str(OBJS)
+    bound.directory = str(topmod_samples)
     with use_scene(bound):
         yield bound
 

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import builtins
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -49,8 +48,6 @@ from livemod.dlfl.commands.core import (
     walk,
 )
 from tests.meshes import counts, cube, snapshot
-
-OBJS = Path(__file__).resolve().parents[2] / "shared" / "data" / "topmod-objs"
 
 
 @pytest.fixture()
@@ -383,12 +380,12 @@ def test_step_hook_called_once_per_outermost_command(cube_scene):
     assert labels == ["insertEdge", "collapseEdge", "checkpoint"]
 
 
-def test_objects_load_switch_kill(scene, tmp_path):
-    first = load(str(OBJS / "cube.obj"))
+def test_objects_load_switch_kill(scene, tmp_path, topmod_samples):
+    first = load(str(topmod_samples / "cube.obj"))
     assert counts(scene) == (8, 12, 6)
     (_, second) = createVertex((0, 0, 0))
     assert second == first
-    other = load(str(OBJS / "cube.obj"))
+    other = load(str(topmod_samples / "cube.obj"))
     assert other != first and scene.current == other
     deleteEdge(0)
     assert switch(first) == first and counts(scene) == (9, 12, 7)

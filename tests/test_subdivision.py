@@ -3,15 +3,13 @@
 from __future__ import annotations
 
 import warnings
-from pathlib import Path
 
 import numpy as np
 import pytest
 
 from livemod.dlfl import DLFLError, Mesh, budget, mesh_arrays, validate
 from livemod.dlfl.analysis import face_size_histogram, genus, num_components
-from livemod.dlfl.io.obj import read_obj
-from livemod.dlfl.shapes import cube, grid, torus
+from livemod.dlfl.shapes import cube, grid, load_shape, torus
 from livemod.dlfl.subdivision import SCHEMES, subdivide, subdivide_faces
 from tests.meshes import (
     assert_refused_quietly,
@@ -22,8 +20,6 @@ from tests.meshes import (
     two_cubes,
 )
 from tests.meshes import torus as small_torus
-
-OBJS = Path(__file__).resolve().parents[2] / "shared" / "data" / "topmod-objs"
 
 # TOPMOD.md section 3, row by row: scheme -> (V, E, F, {face size: count})
 CUBE_TABLE = {
@@ -136,7 +132,8 @@ FORMULAS = {
 
 
 def topmod_mesh(name: str) -> Mesh:
-    return read_obj(OBJS / f"{name}.obj")
+    """The built-in shape with the counts and genus of TopMod's sample ``name``.obj."""
+    return load_shape(name)
 
 
 TEST_MESHES = {

@@ -4,18 +4,14 @@ from __future__ import annotations
 
 import itertools
 import math
-from pathlib import Path
 
 import numpy as np
 import pytest
 
 from livemod.dlfl import Mesh, mesh_arrays, validate
-from livemod.dlfl.io.obj import read_obj
-from livemod.dlfl.shapes import cube, grid
+from livemod.dlfl.shapes import cube, grid, load_shape
 from livemod.dlfl.subdivision import subdivide
 from tests.meshes import assert_scales
-
-OBJS = Path(__file__).resolve().parents[2] / "shared" / "data" / "topmod-objs"
 
 
 def positions(mesh: Mesh) -> np.ndarray:
@@ -107,7 +103,7 @@ def test_doo_sabin_keeps_a_regular_grid_planar():
 
 
 def test_loop_on_the_octahedron():
-    m = read_obj(OBJS / "octahedron.obj")
+    m = load_shape("octahedron")  # TopMod's: vertices on the axes at distance 1
     # valence 4: beta = (5/8 - (3/8)^2)/4 = 31/256, neighbours sum to 0: v' = (1 - 4 beta) v
     # edge point: 3/8 of both ends + 1/8 of both opposite vertices (which cancel)
     assert same_points(run("loop", m), orbit(33 / 64, 0, 0), orbit(0.375, 0.375, 0))
@@ -235,7 +231,7 @@ def test_dome_end_faces_rise_by_the_summed_distances():
 def test_catmull_clark_on_an_ngon_is_the_rule():
     # a lone pentagon prism check: every face point is its centroid, every old
     # vertex follows (Q + 2R + (n - 3) v) / n with n = 3
-    m = read_obj(OBJS / "dodecahedron.obj")
+    m = load_shape("dodecahedron")
     a = mesh_arrays(m)
     subdivide(m, "catmull-clark")
     pos = positions(m)
@@ -256,7 +252,7 @@ SOLIDS = ["tetrahedron", "octahedron", "dodecahedron", "icosahedron"]
 
 
 def _faces_and_points(name: str) -> tuple[Mesh, list[list[int]], np.ndarray]:
-    m = read_obj(OBJS / f"{name}.obj")
+    m = load_shape(name)
     a = mesh_arrays(m)
     faces = [a.corner_vertex[a.face_offsets[f]:a.face_offsets[f + 1]].tolist()
              for f in range(len(a.face_ids))]
