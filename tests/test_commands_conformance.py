@@ -2,7 +2,7 @@
 
 Names, argument order and defaults, result forms, argument errors that name the
 argument and keep the mesh, and the thesis's example scripts run end to end
-(Python 3 forms; see /work/notes/api_audit.md for the audit these come from).
+(Python 3 forms).
 """
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""Regression tests for the bugs found in the I/O review (/work/notes/io_review.md)."""
+"""Regression tests for the bugs found in the I/O review."""
 
 from __future__ import annotations
 

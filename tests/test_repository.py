@@ -1,0 +1,206 @@
+"""The repository's own hygiene: tests read only what is in it or what they make.
+
+A test that reads a file beside the checkout (``../shared/data/...``) passes where that
+file happens to be and fails in every fresh clone. :func:`outside_paths` finds the ways
+a module can name such a path, and every module under tests/ must have none:
+
+- a path built from ``__file__`` (``Path(__file__).parents[2]``, ``.parent`` chains,
+  ``os.path.dirname``, ``/ ".."``, names assigned from these) that climbs above the
+  repository root, even if it comes back down;
+- a path relative to the working directory (the repository root, where pytest runs) that
+  starts by climbing out of it: ``"../shared/data"``;
+- an absolute path under a folder where data lives (``/work/``, ``/home/``, ``/root/``,
+  ``/Users/``, ``/mnt/``, ``/media/``, ``/srv/``, ``/opt/``), ``~/`` or ``C:\\Users``,
+  in code, docstrings or comments;
+- the user's home folder (``Path.home()``, ``expanduser``).
+
+Made-up absolute paths that nothing reads (``"/virtual/script.py"``,
+``"/nonexistent-dir/x.obj"``) and temporary folders (``tmp_path``) are not flagged.
+"""
+
+from __future__ import annotations
+
+import ast
+import io
+import re
+import tokenize
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+TESTS = ROOT / "tests"
+
+ABSOLUTE = re.compile(
+    r"(?<![\w.:/\\])(?:/(?:work|home|root|Users|mnt|media|srv|opt)(?![\w.-])|~/"
+    r"|[A-Za-z]:[\\/]+Users\b)"
+)
+CLIMBS_OUT = re.compile(r"^\.\.(?:[/\\]|$)")
+UP_ONLY = {"resolve", "absolute", "abspath", "realpath", "normpath", "Path", "PurePath",
+           "PosixPath", "fspath", "str"}
+
+
+class _Climbs(ast.NodeVisitor):
+    """Track paths built from ``__file__``: how many folders above the module's file
+    each leads (``__file__`` 0, its folder 1, ...), and the highest point on the way."""
+
+    def __init__(self, depth: int) -> None:
+        self.depth = depth  # the repository root is this many folders above the file
+        self.names: dict[str, tuple[int, int]] = {}
+        self.used: set[int] = set()  # ids of the string constants a __file__ path took
+        self.found: list[tuple[int, str]] = []
+
+    def climb(self, node: ast.AST) -> tuple[int, int] | None:
+        """(where it ends, highest point) of a path from ``__file__``, else None."""
+        if isinstance(node, ast.Name):
+            return (0, 0) if node.id == "__file__" else self.names.get(node.id)
+        if isinstance(node, ast.Attribute) and node.attr == "parent":
+            return self._up(self.climb(node.value), 1)
+        if (isinstance(node, ast.Subscript) and isinstance(node.value, ast.Attribute)
+                and node.value.attr == "parents" and isinstance(node.slice, ast.Constant)
+                and isinstance(node.slice.value, int)):
+            return self._up(self.climb(node.value.value), node.slice.value + 1)
+        if isinstance(node, ast.Call):
+            return self._call(node)
+        if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Div):
+            return self._join(self.climb(node.left), [node.right])
+        return None
+
+    def _call(self, node: ast.Call) -> tuple[int, int] | None:
+        name = _called(node)
+        if name == "dirname" and node.args:
+            return self._up(self.climb(node.args[0]), 1)
+        if name == "join" and node.args:
+            return self._join(self.climb(node.args[0]), node.args[1:])
+        if name in UP_ONLY:
+            if node.args:
+                return self.climb(node.args[0])
+            if isinstance(node.func, ast.Attribute):  # Path(__file__).resolve()
+                return self.climb(node.func.value)
+        return None
+
+    @staticmethod
+    def _up(at: tuple[int, int] | None, steps: int) -> tuple[int, int] | None:
+        return None if at is None else (at[0] + steps, max(at[1], at[0] + steps))
+
+    def _join(self, at: tuple[int, int] | None, parts: list[ast.expr]) -> tuple[int, int] | None:
+        if at is None:
+            return None
+        level, highest = at
+        for part in parts:
+            if not (isinstance(part, ast.Constant) and isinstance(part.value, str)):
+                return level, highest
+            self.used.add(id(part))
+            for segment in re.split(r"[/\\]", part.value):
+                level += 1 if segment == ".." else -1 if segment not in ("", ".") else 0
+                highest = max(highest, level)
+        return level, highest
+
+    def visit_Assign(self, node: ast.Assign) -> None:
+        at = self.climb(node.value)
+        for target in node.targets:
+            if isinstance(target, ast.Name) and at is not None:
+                self.names[target.id] = at
+        self.generic_visit(node)
+
+    def generic_visit(self, node: ast.AST) -> None:
+        at = self.climb(node) if isinstance(node, ast.expr) else None
+        if at is not None and at[1] > self.depth:
+            self.found.append((node.lineno, "climbs above the repository root from __file__"))
+            return
+        if isinstance(node, ast.Call) and _called(node) in ("home", "expanduser"):
+            self.found.append((node.lineno, "reads the user's home folder"))
+        super().generic_visit(node)
+
+
+def _called(node: ast.Call) -> str:
+    """The name a call calls: ``dirname`` of ``os.path.dirname(x)``, ``Path`` of ``Path(x)``."""
+    func = node.func
+    return func.attr if isinstance(func, ast.Attribute) else getattr(func, "id", "")
+
+
+def outside_paths(source: str, depth: int) -> list[tuple[int, str]]:
+    """``(line, what)`` for every path outside the repository ``source`` names.
+
+    Args:
+        source: the text of a Python module.
+        depth: how many folders the module's file is below the repository root
+            (``tests/test_x.py``: 2).
+    """
+    climbs = _Climbs(depth)
+    tree = ast.parse(source)
+    climbs.visit(tree)
+    found = climbs.found
+    for node in ast.walk(tree):
+        if (isinstance(node, ast.Constant) and isinstance(node.value, str)
+                and id(node) not in climbs.used and CLIMBS_OUT.match(node.value)):
+            found.append((node.lineno, f"climbs out of the working folder: {node.value!r}"))
+    for token in tokenize.generate_tokens(io.StringIO(source).readline):
+        if token.type in (tokenize.STRING, tokenize.COMMENT) and ABSOLUTE.search(token.string):
+            found.append((token.start[0], f"names an absolute path: {token.string.strip()[:60]}"))
+    return sorted(set(found))
+
+
+def test_no_test_module_names_a_path_outside_the_repository() -> None:
+    offences = []
+    for path in sorted(TESTS.rglob("*.py")):
+        if path == Path(__file__).resolve():
+            continue  # this module: its planted examples below name outside paths on purpose
+        depth = len(path.relative_to(ROOT).parts)
+        for line, what in outside_paths(path.read_text(encoding="utf-8"), depth):
+            offences.append(f"{path.relative_to(ROOT)}:{line}: {what}")
+    assert offences == []
+
+
+PLANTED = [
+    'SAMPLES = Path(__file__).resolve().parents[2] / "shared" / "data" / "topmod-objs"',
+    "DATA = Path(__file__).parent.parent.parent / 'shared'",
+    'ROOT = Path(__file__).resolve().parents[1]\nDATA = ROOT.parent / "shared"',
+    'ROOT = Path(__file__).parents[1]\nDATA = ROOT / ".." / "shared"',
+    'DATA = Path(__file__).parents[1] / "../shared/data"',
+    'DATA = Path(__file__).parents[1] / "../livemod/docs"',  # out and back in: still out
+    'DATA = os.path.join(os.path.dirname(__file__), "..", "..", "shared")',
+    "DATA = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))",
+    'read_obj("../shared/data/topmod-objs/cube.obj")',
+    'read_obj("/work/shared/data/topmod-objs/cube.obj")',
+    'mesh = load_mesh(Path("/home/someone/models/cube.obj"))',
+    'mesh = load_mesh("C:\\\\Users\\\\someone\\\\cube.obj")',
+    'mesh = load_mesh("D:/Users/someone/cube.obj")',
+    '"""Regression tests (see /work/notes/io_review.md)."""',
+    "x = 1  # the file from /root/samples/cube.obj",
+    'path = Path.home() / "cube.obj"',
+    'path = os.path.expanduser("~/cube.obj")',
+]
+
+
+@pytest.mark.parametrize("source", PLANTED)
+def test_the_guard_flags_a_planted_path_outside(source: str) -> None:
+    last_line = source.count("\n") + 1
+    assert {line for line, _ in outside_paths(source, depth=2)} == {last_line}
+
+
+INSIDE = [
+    'DOC = Path(__file__).resolve().parents[1] / "docs" / "extrusions.md"',
+    'root = Path(__file__).resolve().parent.parent\nscript = root / "scripts" / "tower.py"',
+    'DOCS = Path(__file__).parent / ".." / "docs"',
+    'HERE = os.path.dirname(os.path.abspath(__file__))\nDATA = os.path.join(HERE, "data")',
+    'run("/virtual/script.py")',
+    'save("/nonexistent-dir/x.obj")',
+    'locked = Path("/sys")',
+    'path = tmp_path / "a" / "b.obj"',
+    'url = "https://example.com/home/index.html"',
+    'text = "v 0 0 0\\nf 1 /2 1\\n"',
+    'message = "step 3/5 ... done"',
+    'script = "if n:\\n    load(\\"cube\\")\\n"',
+]
+
+
+@pytest.mark.parametrize("source", INSIDE)
+def test_the_guard_passes_paths_inside_or_made_up(source: str) -> None:
+    assert outside_paths(source, depth=2) == []
+
+
+def test_a_deeper_module_may_climb_further() -> None:
+    source = 'ROOT = Path(__file__).resolve().parents[2]\nDOC = ROOT / "docs"'
+    assert outside_paths(source, depth=3) == []
+    assert [line for line, _ in outside_paths(source, depth=2)] == [1, 2]
