@@ -42,6 +42,12 @@ if faces(True):   # a picked face moves the cube: the selection reached the run
     translate(2.0, 0.0, 0.0)
 """
 
+SPINNING = """
+while True:   # pure Python on the GIL until the run is cancelled
+    total = sum(i * i for i in range(2000))
+"""
+
+
 def _wait(viewer: LiveViewer, done: Callable[[LiveViewer], bool], timeout: float = 20.0,
           nap: float = 0.005) -> None:
     """Draw frames until ``done`` (napping between frames so the worker gets a core)."""
@@ -563,6 +569,19 @@ def test_dropping_a_script_or_a_mesh_opens_it(headless, tmp_path: Path) -> None:
     _wait(viewer, lambda v: v.result is not None and v.result.arrays is not None)
     assert viewer.result.arrays.counts == (4, 6, 4)   # the script ran on the dropped mesh
     assert "opened" in echo.getvalue()
+
+
+def test_frames_are_drawn_while_a_script_spins_on_the_gil(headless) -> None:
+    # how long those frames take is measured by bench/bench_viewer.py, not asserted here
+    viewer, script, _ = headless
+    _wait(viewer, _has_run(1))
+    script.write_text(SPINNING)
+    viewer.handle_key("R")
+    _wait(viewer, lambda v: v.runs.activity is not None and v.runs.activity.run_id == 2)
+    run_frames(viewer, 30)
+    # thirty frames later the run is still at work and run 1's cube still shown
+    assert viewer.runs.activity is not None and viewer.runs.activity.run_id == 2
+    assert viewer.result.run_id == 1 and viewer.result.arrays.counts == (8, 12, 6)
 
 
 # -- a real glfw window under Xvfb --------------------------------------------------
