@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import re
 import runpy
+import subprocess
 from pathlib import Path
 
 import pytest
@@ -40,6 +41,17 @@ def test_readme_example_runs() -> None:
     validate(scene.mesh)
     assert scene.mesh.num_faces > 100
     assert genus(scene.mesh) == 0
+
+
+def test_ci_runs_the_readme_test_command() -> None:
+    readme = (ROOT / "README.md").read_text(encoding="utf-8")
+    test_commands = [block for block in re.findall(r"```sh\n(.*?)\n```", readme, flags=re.S)
+                     if "pytest" in block]
+    assert len(test_commands) == 1, "README has one test command"
+    printed = subprocess.run(["bash", str(ROOT / ".ci" / "run"), "--print-test-command"],
+                             capture_output=True, text=True, check=True).stdout
+    assert printed == test_commands[0] + "\n"
+    assert 'pip install -e ".[test]"' in printed and printed.endswith("python -m pytest -n 2\n")
 
 
 def _python_blocks() -> list[tuple[str, int, str]]:
