@@ -200,7 +200,7 @@ def test_fast_parser_on_a_big_regular_block_matches_reference() -> None:
 def test_every_truncation_of_a_crlf_file_is_refused_cleanly() -> None:
     # regression: a number cut right after its exponent mark at the very end of
     # the buffer made the vectorized scanner read past it (IndexError)
-    mark = DUAL_OBJ.index(b"e-0")  # the first three-digit exponent ("4.2e-018")
+    mark = DUAL_OBJ.index(b"e-0")  # the first three-digit exponent (as in "6.1e-017")
     assert b"\r\n" in DUAL_OBJ[:mark]
     for cut in range(mark - 25, mark + 25):
         with contextlib.suppress(DLFLError):

@@ -3,14 +3,15 @@
 livemod's readers were first checked on the sample meshes TopMod ships (``cube.obj`` ...
 ``soccerballdual.obj``). Those files are TopMod's, so they are not in this repository.
 What the tests need from them is their shapes and the ways they spell OBJ, and both are
-made here: each stand-in is a built-in shape of :mod:`livemod.dlfl.shapes` (which have
-the samples' counts and genus) written the way its sample writes, with the same
-statements around the records (comments with counts, ``mtllib``/``g``/``o``/``s``/
-``usemtl``, a stray line of two numbers), ``vt``/``vn`` records and ``f v/t/n`` or
-``f v//n`` corners where the sample has them, commas between coordinates, CRLF line ends
-trailing spaces, and three-digit exponents (``6.1e-017``, Windows' ``%g``), faces that disagree with
-their neighbours on orientation, and 2-gons. The lines are formatted here, not by
-livemod's writers, so a reader test reads text its writer did not make.
+made here. Each stand-in is a built-in shape of :mod:`livemod.dlfl.shapes` (they have the
+samples' counts and genus) written the way its sample writes: the same statements around
+the records (comments with counts, ``mtllib``, ``g``, ``o``, ``s``, ``usemtl``, a stray
+line of two numbers), ``vt``/``vn`` records and ``f v/t/n`` or ``f v//n`` corners where
+the sample has them, commas between coordinates, CRLF line ends, three-digit exponents
+(``6.1e-017``, as Windows' ``%g`` prints them), faces that disagree with their
+neighbours on orientation, and 2-gons; also trailing spaces, which no sample has but
+other writers leave. The lines are formatted here, not by livemod's writers, so a reader
+test reads text its writer did not make.
 
 Two samples are not built-in shapes: ``beveledcube.obj`` stands in as the Doo-Sabin
 refinement of the cube (TopMod's counts, 24/48/26: a cube with bevelled edges and
@@ -50,9 +51,9 @@ SAMPLE_COUNTS: dict[str, tuple[int, int, int, int]] = {
     "beveledcube.obj": (24, 48, 26, 0),
     "soccerballdual.obj": (540, 812, 274, 0),
 }
-# the faces (by file order) the beveledcube stand-in writes backwards: the big quad on
-# top, a bevel quad and two corner triangles, none beside another
-BEVELED_REVERSED = (0, 9, 20, 25)
+# the faces (by file order) the beveledcube stand-in writes backwards: the cube's top,
+# a bevel quad and two corner triangles, no two of them beside each other
+BEVELED_REVERSED = (0, 10, 20, 25)
 
 
 @dataclass(frozen=True)
@@ -169,12 +170,10 @@ def _records(positions: np.ndarray, faces: list[list[int]], layout: Layout) -> l
     if "{n}" in layout.corner:
         lines += ["vn " + " ".join(_numbers(normal, layout)) for normal in _normals(positions, faces)]
     lines += layout.middle.format(vertices=len(positions), faces=len(faces)).splitlines()
-    k = 0
+    k = 0  # corners before this face: its vt/vn records follow theirs
     for face in faces:
-        spelled = []
-        for v in face:
-            k += 1
-            spelled.append(layout.corner.format(v=v + 1, t=k, n=k))
+        spelled = [layout.corner.format(v=v + 1, t=k + i, n=k + i) for i, v in enumerate(face, 1)]
+        k += len(face)
         lines.append("f " + " ".join(spelled) + layout.face_end)
     return lines
 
