@@ -12,6 +12,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from livemod.dlfl import DLFLError, DLFLRepairWarning, Mesh, from_polygons, genus, validate
+from livemod.dlfl.errors import DLFLSkippedLinesWarning
 from livemod.dlfl.io import _numtext, load_mesh, read_obj, save_mesh, write_obj
 from livemod.dlfl.io._numtext import decimal_to_float, format_floats, format_uints
 from livemod.dlfl.io.obj import obj_bytes, parse_obj
@@ -103,9 +104,11 @@ def test_many_small_passes_on_threads_read_and_write_as_one_pass_does(
 
 
 def test_beveledcube_is_reoriented_with_a_note(topmod_samples: Path) -> None:
-    with pytest.warns(DLFLRepairWarning, match="re-oriented 4 faces"):
+    with pytest.warns(DLFLRepairWarning, match="re-oriented 4 faces"), \
+            pytest.warns(DLFLSkippedLinesWarning, match=r"line 56 '1 14'$"):
         mesh = read_obj(topmod_samples / "beveledcube.obj")
     assert any("re-oriented" in note and "beveledcube.obj" in note for note in mesh.notes)
+    assert mesh.notes[-1].endswith("beveledcube.obj: ignored 1 line not understood: line 56 '1 14'")
     sizes = sorted(mesh.face_size(f) for f in mesh.face_ids())
     assert sizes == [3] * 8 + [4] * 18
 
