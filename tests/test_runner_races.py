@@ -313,7 +313,8 @@ def test_a_user_cancel_whose_interrupt_lands_after_the_script_still_says_cancell
 
 @pytest.mark.timeout(60)
 def test_an_endless_generator_expression_is_stopped_by_the_next_save(tmp_path):
-    # no check can be compiled into a comprehension: the forced interrupt stops it
+    # no check can be compiled into a comprehension: the forced interrupt stops it (how
+    # soon is bench/bench_responsiveness.py's to time)
     script = tmp_path / "model.py"
     script.write_text("any(False for _ in iter(int, 1))\n")
     with closing_session(LiveSession(str(script), notifier=ManualNotifier(),
@@ -321,7 +322,6 @@ def test_an_endless_generator_expression_is_stopped_by_the_next_save(tmp_path):
         live.start()
         wait_until(lambda: live.activity is not None)
         script.write_text(vertices_script(2))
-        saved = time.perf_counter()
         live.reload()
         assert vertex_count(next_result(live, is_ok)) == 2
-        assert time.perf_counter() - saved < 2.0
+        wait_until(lambda: not live.background_runs)  # stopped, not left looping
