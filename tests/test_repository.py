@@ -8,7 +8,8 @@ a module can name such a path, and every module under tests/ must have none:
   ``os.path.dirname``, ``/ ".."``, names assigned from these) that climbs above the
   repository root, even if it comes back down;
 - a path relative to the working directory (the repository root, where pytest runs) that
-  starts by climbing out of it: ``"../shared/data"``;
+  starts by climbing out of it, given to a call or joined with ``/``:
+  ``read_obj("../shared/data/cube.obj")``;
 - an absolute path under a folder where data lives (``/work/``, ``/home/``, ``/root/``,
   ``/Users/``, ``/mnt/``, ``/media/``, ``/srv/``, ``/opt/``), ``~/`` or ``C:\\Users``,
   in code, docstrings or comments;
@@ -119,6 +120,18 @@ def _called(node: ast.Call) -> str:
     return func.attr if isinstance(func, ast.Attribute) else getattr(func, "id", "")
 
 
+def _path_operands(tree: ast.AST) -> list[ast.expr]:
+    """The expressions used as paths: the arguments of every call and both sides of
+    every ``/`` (a string merely compared or written into a file is no path read)."""
+    operands: list[ast.expr] = []
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Call):
+            operands += [*node.args, *(keyword.value for keyword in node.keywords)]
+        elif isinstance(node, ast.BinOp) and isinstance(node.op, ast.Div):
+            operands += [node.left, node.right]
+    return operands
+
+
 def outside_paths(source: str, depth: int) -> list[tuple[int, str]]:
     """``(line, what)`` for every path outside the repository ``source`` names.
 
@@ -131,7 +144,7 @@ def outside_paths(source: str, depth: int) -> list[tuple[int, str]]:
     tree = ast.parse(source)
     climbs.visit(tree)
     found = climbs.found
-    for node in ast.walk(tree):
+    for node in _path_operands(tree):
         if (isinstance(node, ast.Constant) and isinstance(node.value, str)
                 and id(node) not in climbs.used and CLIMBS_OUT.match(node.value)):
             found.append((node.lineno, f"climbs out of the working folder: {node.value!r}"))
@@ -192,6 +205,10 @@ INSIDE = [
     'text = "v 0 0 0\\nf 1 /2 1\\n"',
     'message = "step 3/5 ... done"',
     'script = "if n:\\n    load(\\"cube\\")\\n"',
+    # a script in a temporary folder loads a file beside that folder: the test checks
+    # the name it gives, and writes the script's text (no path the test reads)
+    'assert names == ["main.py", "../shared/up.obj"]',
+    'main.write_text("load(\'../shared/up.obj\')\\n")',
 ]
 
 
