@@ -15,7 +15,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from livemod.dlfl import DLFLError, DLFLRepairWarning, validate
+from livemod.dlfl import DLFLError, DLFLRepairWarning, DLFLSkippedLinesWarning, validate
 from livemod.dlfl.io import read_dlfl, read_obj
 from livemod.dlfl.io.dlflfile import dlfl_bytes
 from livemod.dlfl.io.obj import parse_obj
@@ -25,6 +25,7 @@ CUBE_OBJ = sample_bytes("cube.obj")
 DUAL_OBJ = sample_bytes("soccerballdual.obj")[:3000]
 with warnings.catch_warnings():
     warnings.simplefilter("ignore", DLFLRepairWarning)
+    warnings.simplefilter("ignore", DLFLSkippedLinesWarning)
     CUBE_DLFL = dlfl_bytes(read_obj(CUBE_OBJ), "cube")
     BEVEL_DLFL = dlfl_bytes(read_obj(sample_bytes("beveledcube.obj")), "bevel")
 
@@ -38,6 +39,7 @@ def only_dlfl_errors(reader, data: bytes) -> None:  # type: ignore[no-untyped-de
     """Run ``reader``; a result must validate, a failure must be a DLFLError."""
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", DLFLRepairWarning)
+        warnings.simplefilter("ignore", DLFLSkippedLinesWarning)
         try:
             mesh = reader(data)
         except DLFLError:

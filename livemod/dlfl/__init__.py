@@ -35,6 +35,7 @@ from .errors import (
     BudgetExceededError,
     DLFLError,
     DLFLRepairWarning,
+    DLFLSkippedLinesWarning,
     FileFormatError,
     GeometryError,
     InvalidArgumentError,
@@ -49,7 +50,7 @@ __all__ = [*commands.__all__, "DLFLError"]
 
 LIBRARY_API = [
     "Mesh", "MeshArrays", "MeshSummary", "Polygons", "Scene", "Selection", "DLFLError",
-    "DLFLRepairWarning", "bounds", "component_genera", "current_scene", "enclosed_volume",
+    "DLFLRepairWarning", "DLFLSkippedLinesWarning", "bounds", "component_genera", "current_scene", "enclosed_volume",
     "euler_characteristic", "face_centroids", "face_normals", "face_size_histogram",
     "from_corner_arrays", "from_polygons", "genus", "mesh_arrays", "num_components",
     "summarize", "surface_area", "use_scene", "validate", "vertex_normals",
