@@ -424,10 +424,19 @@ class LiveSession:
     # -- triggering runs ---------------------------------------------------------------
 
     def _request(self, source: str | None) -> None:
-        """Queue a run of the current script (``source`` None: read it from disk)."""
+        """Queue a run of the current script (``source`` None: read it from disk).
+
+        The current run, unless it has finished, is superseded at once: what it
+        posts from now on is dropped, also before the supervisor gets to stopping
+        it (a run that ends in that moment would otherwise show, and then the
+        new run's result)."""
         with self._lock:
-            if not self._closed:
-                self._requests.put(_Request(self.script, source))
+            if self._closed:
+                return
+            self._requests.put(_Request(self.script, source))
+            run = self._current
+            if run is not None and not run.control.finished:
+                run.cancel_reason = run.cancel_reason or CancelReason.SUPERSEDED
 
     def _files_changed(self) -> None:
         """Watcher callback: queue a run when a watched file's content changed."""
