@@ -6,7 +6,15 @@ import numpy as np
 import pytest
 
 from livemod.dlfl import Mesh, from_corner_arrays, from_polygons, mesh_arrays, validate
-from tests.meshes import CUBE_FACES, CUBE_POSITIONS, corner_structure, cube, path_face, torus
+from tests.meshes import (
+    CUBE_FACES,
+    CUBE_OUTWARD,
+    CUBE_POSITIONS,
+    corner_structure,
+    cube,
+    path_face,
+    torus,
+)
 
 
 def test_fresh_cube_layout():
@@ -186,4 +194,31 @@ def test_fan_triangles_of_an_edited_torus_cover_each_face_once():
     first = corners[:, 1] == corners[:, 0] + 1
     last = corners[:, 2] == a.face_offsets[faces + 1] - 1
     assert first.sum() == last.sum() == len(a.face_ids)  # one first and one last per face
+    validate(m)
+
+
+def test_triangles_name_the_vertices_and_the_face_of_each_fan_triangle():
+    a = mesh_arrays(cube())
+    vertices, faces = a.triangles()
+    expected = [[[f[0], f[1], f[2]], [f[0], f[2], f[3]]] for f in CUBE_FACES]
+    assert vertices.tolist() == [t for pair in expected for t in pair]
+    assert faces.tolist() == np.repeat(np.arange(6), 2).tolist()
+    assert vertices.dtype == faces.dtype == np.int64
+    corners, fan_faces = a.fan_triangles()  # the same triangulation, by vertex
+    assert np.array_equal(vertices, a.corner_vertex[corners]) and np.array_equal(faces, fan_faces)
+    p = a.positions[vertices]
+    normals = np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0])
+    outward = np.repeat(np.array(CUBE_OUTWARD, dtype=float), 2, axis=0)
+    assert np.allclose(normals, outward)  # counter-clockwise from outside, area 1/2 each
+
+
+def test_triangles_of_an_edited_mesh_are_counted_per_face_and_leave_out_holes():
+    m = from_polygons([(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0)], [(0, 1, 2, 3)])
+    c0 = m.face_corners(m.face_ids()[0])[0]
+    m.insert_edge(c0, m.corner_next(m.corner_next(c0)))  # two triangles, ids moved
+    a = mesh_arrays(m)
+    vertices, faces = a.triangles()
+    assert np.bincount(faces, minlength=len(a.face_ids)).tolist() == [
+        0 if hole else size - 2 for hole, size in zip(a.face_hole, a.face_sizes, strict=True)]
+    assert sorted(map(sorted, vertices.tolist())) == [[0, 1, 2], [0, 2, 3]]
     validate(m)

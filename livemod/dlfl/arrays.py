@@ -118,6 +118,18 @@ class MeshArrays:
         corners[:, 2] = second + 1
         return corners, faces
 
+    def triangles(self) -> tuple[np.ndarray, np.ndarray]:
+        """The triangles of :meth:`fan_triangles` by vertex, for other mesh libraries.
+
+        Returns:
+            ``(vertices, faces)``: ``(T, 3)`` int64 dense vertex indices of each
+            triangle (rows of :attr:`positions`; counter-clockwise seen from outside)
+            and ``(T,)`` int64 dense index of the face it came from
+            (``face_ids[faces]`` are the faces' ids).
+        """
+        corners, faces = self.fan_triangles()
+        return self.corner_vertex[corners], faces
+
     @property
     def corner_next(self) -> np.ndarray:
         """``(C,)`` int64 dense index of the next corner in the same face."""
