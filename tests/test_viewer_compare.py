@@ -44,6 +44,15 @@ def test_an_rgb_picture_is_opaque_against_an_rgba_one() -> None:
     assert image_difference(rgba, _picture()).share == 1 / 20
 
 
+def test_the_summary_names_the_share_the_threshold_and_the_largest_difference() -> None:
+    changed = _picture()
+    changed[0, :2] = 0  # 2 of 20 pixels, each channel off by 100 of 255
+    difference = image_difference(changed, _picture())
+    assert difference.summary("ref.png", 0.02) == (
+        "10.00% of the pixels differ from ref.png (threshold 2.00%; largest difference 39%)")
+    assert difference.summary("ref.png").endswith("(threshold 1.00%; largest difference 39%)")
+
+
 def test_pictures_of_other_sizes_are_refused() -> None:
     with pytest.raises(ValueError, match="the picture is 5x4 pixels, the reference 4x5"):
         image_difference(_picture(4, 5), _picture(5, 4))

@@ -365,8 +365,7 @@ def _check_against(reference: np.ndarray, reference_path: str, rendered: Path,
 
     limit = THRESHOLD if threshold is None else threshold
     difference = image_difference(read_picture(rendered), reference)
-    summary = (f"{difference.share:.2%} of the pixels differ from {reference_path} "
-               f"(threshold {limit:.2%}; largest difference {difference.largest:.0%})")
+    summary = difference.summary(reference_path, limit)
     if difference.matches(limit):
         print(f"matches: {summary}")
         return DONE

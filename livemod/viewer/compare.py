@@ -40,6 +40,12 @@ class ImageDifference:
         """True when at most ``threshold`` of the pixels differ."""
         return self.share <= threshold
 
+    def summary(self, reference: str, threshold: float = THRESHOLD) -> str:
+        """How much differs, naming the ``reference``: ``"2.10% of the pixels differ
+        from REF (threshold 1.00%; largest difference 80%)"``."""
+        return (f"{self.share:.2%} of the pixels differ from {reference} "
+                f"(threshold {threshold:.2%}; largest difference {self.largest:.0%})")
+
 
 def image_difference(image: np.ndarray, reference: np.ndarray,
                      tolerance: float = PIXEL_TOLERANCE) -> ImageDifference:
