@@ -144,6 +144,12 @@ class Mesh:
         v, e, f = self.counts()
         return f"<Mesh V={v} E={e} F={f}>"
 
+    def _repr_png_(self) -> bytes | None:
+        """A picture of the mesh for Jupyter (see :mod:`livemod.dlfl.display`)."""
+        from .display import picture_png
+
+        return picture_png(self)
+
     # ------------------------------------------------------------- id listings
 
     def vertex_ids(self) -> np.ndarray:

@@ -233,6 +233,12 @@ class Scene:
         self._next_object = 0
         self._command_depth = 0
 
+    def _repr_png_(self) -> bytes | None:
+        """A picture of the scene's objects for Jupyter (see :mod:`livemod.dlfl.display`)."""
+        from .display import picture_png
+
+        return picture_png(self)
+
     # -- objects -------------------------------------------------------------
 
     def add(self, mesh: Mesh, name: str = "") -> int:

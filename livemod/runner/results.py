@@ -257,6 +257,13 @@ class RunResult:
             others=last_good.others, other_objects=last_good.other_objects,
             current_object=last_good.current_object)
 
+    def _repr_png_(self) -> bytes | None:
+        """A picture of the run's mesh and other objects for Jupyter (see
+        :mod:`livemod.dlfl.display`)."""
+        from livemod.dlfl.display import picture_png
+
+        return picture_png(self)
+
 
 def freeze_arrays(arrays: MeshArrays, copy: bool = True) -> MeshArrays:
     """A copy of ``arrays`` whose numpy arrays are private and read-only.
