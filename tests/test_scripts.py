@@ -1,5 +1,5 @@
 """Every example in scripts/ runs headless with the counts its operations imply, and
-renders a thumbnail through the headless renderer.
+matches its stored snapshot (the livemod_snapshot fixture of livemod's pytest plugin).
 
 Expected counts are derived from the rules of the operations the script uses (so
 a wrong operation fails here), e.g. a cubical extrusion of a quad adds 4 vertices,
@@ -10,6 +10,7 @@ a wrong operation fails here), e.g. a cubical extrusion of a quad adds 4 vertice
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import pytest
@@ -19,8 +20,6 @@ from livemod.dlfl.analysis import component_genera
 from livemod.dlfl.shapes import cube
 from livemod.dlfl.subdivision import subdivide
 from livemod.runner.execute import execute
-from livemod.runner.results import snapshot_others
-from livemod.viewer.headless import render_arrays
 from tests.images import read_image
 
 SCRIPTS = Path(__file__).resolve().parents[1] / "scripts"
@@ -151,18 +150,23 @@ def test_user_mesh_starts_from_the_given_mesh() -> None:
     assert genus(mesh) == 1
 
 
-@pytest.mark.parametrize("name", sorted(p.name for p in SCRIPTS.glob("*.py")))
-def test_every_script_renders_a_thumbnail(name: str, tmp_path: Path) -> None:
-    parameters = {"count": 2} if name == "wireframe_soccerballs.py" else None
-    outcome = execute(SCRIPTS / name, parameters=parameters)
-    assert outcome.error is None, outcome.error
-    out = tmp_path / "thumb.png"
-    render_arrays(mesh_arrays(outcome.scene.mesh), str(out), size=(96, 96), samples=0,
-                  others=snapshot_others(outcome.scene))
-    image = read_image(out, "RGB").astype(int)
-    background = image[0, 0]
-    covered = np.any(np.abs(image - background) > 12, axis=2).mean()
-    assert 0.02 < covered < 0.95
+SCRIPT_NAMES = sorted(p.name for p in SCRIPTS.glob("*.py"))
+SNAPSHOTS = Path(__file__).resolve().parent / "__snapshots__" / "test_scripts"
+SNAPSHOT_PARAMETERS = {"wireframe_soccerballs.py": {"count": 2}}
+
+
+@pytest.mark.parametrize("name", SCRIPT_NAMES)
+def test_every_script_matches_its_snapshot(name: str, livemod_snapshot: Any) -> None:
+    # counts, genus per component, face sizes, box and picture, stored in
+    # tests/__snapshots__/test_scripts/ (pytest --livemod-update after a meant change)
+    livemod_snapshot.assert_script(SCRIPTS / name, parameters=SNAPSHOT_PARAMETERS.get(name))
+
+
+@pytest.mark.parametrize("name", SCRIPT_NAMES)
+def test_every_stored_snapshot_picture_shows_its_model(name: str) -> None:
+    image = read_image(SNAPSHOTS / f"test_every_script_matches_its_snapshot[{name}].png", "RGB")
+    covered = np.any(np.abs(image.astype(int) - image[0, 0]) > 12, axis=2).mean()
+    assert image.shape == (180, 240, 3) and 0.02 < covered < 0.95
 
 
 def test_relative_file_names_are_read_and_written_next_to_the_script(
