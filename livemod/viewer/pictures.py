@@ -124,8 +124,8 @@ def render_model(model: object, view: View | None = None, frames: int = 1,
     """
     parts = model if isinstance(model, ModelParts) else model_parts(model)
     view = view or View()
-    with _LOCK:
-        target = _target(view.size, 4 if frames == 1 else 0)
+    with GL_LOCK:
+        target = kept_target(view.size, 4 if frames == 1 else 0)
         target.activate()
         target.renderer.set_mesh(parts.arrays, None, parts.others)
         try:
@@ -239,13 +239,19 @@ _NO_GL_SAID: list[bool] = []
 
 # -- the offscreen targets kept for the process --------------------------------------
 
-_LOCK = threading.RLock()  # GL calls go to one current context at a time
+GL_LOCK = threading.RLock()  # GL calls go to one current context at a time
 _TARGETS: dict[tuple[tuple[int, int], int], Offscreen] = {}
 
 
-def _target(size: tuple[int, int], samples: int) -> Offscreen:
+def kept_target(size: tuple[int, int], samples: int) -> Offscreen:
     """The kept target of ``size`` and ``samples`` (made on first use, sharing the
-    first target's GL context). Caller holds :data:`_LOCK`."""
+    first target's GL context), for drawing pictures in memory. The caller holds
+    :data:`GL_LOCK` while it draws.
+
+    Raises:
+        ValueError: a size or MSAA level this GL cannot make.
+        NoOffscreenGL: no offscreen GL context could be made.
+    """
     key = ((int(size[0]), int(size[1])), samples)
     if key not in _TARGETS:
         shared = next(iter(_TARGETS.values()), None)
@@ -256,7 +262,7 @@ def _target(size: tuple[int, int], samples: int) -> Offscreen:
 @atexit.register
 def release_targets() -> None:
     """Free the kept targets and their GL context (done at exit)."""
-    with _LOCK:
+    with GL_LOCK:
         contexts = {id(target.ctx): target.ctx for target in _TARGETS.values()}
         _TARGETS.clear()
         for ctx in contexts.values():
