@@ -17,7 +17,7 @@ from livemod.dlfl.io import save_mesh
 from livemod.dlfl.shapes import cube, tetrahedron
 from livemod.runner import run_script
 from livemod.viewer import pictures
-from livemod.viewer.headless import NoOffscreenGL
+from livemod.viewer.headless import NoOffscreenGL, Offscreen
 from livemod.viewer.pictures import Animation, model_parts, picture, png_of, turntable
 from tests.images import read_image
 
@@ -123,3 +123,14 @@ def test_pictures_of_two_sizes_share_one_gl_context():
     picture(cube(), size=(48, 64))
     contexts = {id(target.ctx) for target in pictures._TARGETS.values()}
     assert len(pictures._TARGETS) >= 2 and len(contexts) == 1
+
+
+def test_a_new_size_after_another_context_was_current_draws_in_the_kept_one(tmp_path: Path):
+    picture(cube(), size=(40, 30))  # the kept context exists
+    other = Offscreen((16, 16), samples=0)  # another current context (a render command's)
+    other.release()
+    made = picture(cube(), size=(50, 30))  # a new target in the kept context
+    drawn = picture(cube(), size=(40, 30))
+    again = picture(cube(), size=(50, 30))
+    assert np.array_equal(made.image, again.image) and made.image[0, 0].tolist() == \
+        drawn.image[0, 0].tolist()

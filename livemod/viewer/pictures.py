@@ -255,6 +255,8 @@ def kept_target(size: tuple[int, int], samples: int) -> Offscreen:
     key = ((int(size[0]), int(size[1])), samples)
     if key not in _TARGETS:
         shared = next(iter(_TARGETS.values()), None)
+        if shared is not None:  # GL objects are made in the current context, not ctx's
+            shared.activate()
         _TARGETS[key] = Offscreen(key[0], samples, ctx=shared.ctx if shared else None)
     return _TARGETS[key]
 
