@@ -64,6 +64,19 @@ def report_selection(scene: Scene) -> None:
         note(unselected)
 
 
+def run_problem(outcome: RunOutcome, values: dict | None = None) -> str | None:
+    """Why a headless run's result is not to be shown or written: its error
+    (``FILE:LINE: message``), or a name in ``values`` (``--set``) the run did not
+    declare (a script whose declarations are computed is checked only as it runs);
+    None for a run that went well."""
+    from .declarations import undeclared
+
+    failure = outcome.error
+    if failure is not None:
+        return f"{failure.file}:{failure.line}: {failure.message}"
+    return undeclared(outcome.declarations, values or {}, ran=True)
+
+
 def result_of(outcome: RunOutcome, script: str, parameters: dict | None,
               run_id: int = 1) -> RunResult:
     """The immutable :class:`RunResult` of a headless outcome."""

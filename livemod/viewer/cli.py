@@ -54,6 +54,7 @@ def parse_size(text: str) -> tuple[int, int]:
 
 
 parse_frames = whole_number_option("the frame count", 0)  # ``--turntable``
+parse_step = whole_number_option("the step", 0)  # ``--step``, 0-based as run --steps counts
 
 
 def _float_or_nan(text: str) -> float:
@@ -79,7 +80,7 @@ def parse_elevation(text: str) -> float:
     return degrees
 
 
-def parse_yaw(text: str) -> float:
+def parse_yaw(text: str, what: str = "the yaw") -> float:
     """``--yaw`` in degrees around the up axis (any finite number; 0 looks from +z).
 
     Raises:
@@ -87,7 +88,7 @@ def parse_yaw(text: str) -> float:
     """
     degrees = _float_or_nan(text)
     if not math.isfinite(degrees):
-        raise argparse.ArgumentTypeError(f"the yaw must be a number of degrees, not {text!r}")
+        raise argparse.ArgumentTypeError(f"{what} must be a number of degrees, not {text!r}")
     return degrees
 
 
@@ -122,6 +123,12 @@ def _share(text: str) -> float:
     """``0.02`` or ``2%`` as 0.02; NaN when it is neither."""
     given = text.strip()
     return _float_or_nan(given[:-1]) / 100 if given.endswith("%") else _float_or_nan(given)
+
+
+def parse_turn(text: str) -> float:
+    """``--turn``: degrees the camera turns around the up axis from one frame of a
+    film to the next (any finite number). Raises ArgumentTypeError otherwise."""
+    return parse_yaw(text, "the turn")
 
 
 def parse_threshold(text: str) -> float:
@@ -221,6 +228,7 @@ def _add_render(subparsers: Any) -> None:
     render.add_argument("--refit", action="store_true",
                         help="with --turntable: frame each frame at its own angle, so the "
                              "mesh fills every one (default: one framing for the orbit)")
+    _add_render_steps(render)
     _add_render_style(render)
     render.add_argument("--reference", metavar="IMAGE",
                         help="compare the picture with this one: exit 1 and write "
@@ -230,6 +238,21 @@ def _add_render(subparsers: Any) -> None:
                              "(by more than 10%% in a channel), e.g. 0.02 or 2%% "
                              "(default: 1%%)")
     render.set_defaults(handler=_render)
+
+
+def _add_render_steps(render: argparse.ArgumentParser) -> None:
+    """``livemod render``'s options that film a script's steps."""
+    render.add_argument("--steps", action="store_true",
+                        help="film the build: one frame per modeling step of the script "
+                             "(a GIF, WebP, MP4, folder or PNG pattern)")
+    render.add_argument("--step", type=parse_step, default=None, metavar="K",
+                        help="draw the scene as step K left it (0-based, as run --steps "
+                             "numbers the steps)")
+    render.add_argument("--turn", type=parse_turn, default=0.0, metavar="DEG",
+                        help="with --steps: turn the camera DEG degrees each frame")
+    render.add_argument("--captions", action="store_true",
+                        help="with --steps or --step: draw each step's number, label and "
+                             "script line into its frame")
 
 
 def _add_render_style(render: argparse.ArgumentParser) -> None:
@@ -381,23 +404,82 @@ def _render_to(args: argparse.Namespace, offscreen: Any, values: dict[str, Any],
     from livemod.progress import ProgressBar
 
     from .headless import Framing, render_arrays
-    from .renderer import BACKGROUNDS, Style
 
+    if args.steps or args.step is not None:
+        return _film_to(args, offscreen, values, _render_style(args, labels, None, None),
+                        selection)
     arrays, preview, others = _load_input(args.input, args.mesh, args.preview, values,
                                           selection, args.seed)
     if arrays is None and others is None:
         warning(f"{args.input} left no mesh; the picture shows an empty scene")
     elif args.preview and preview is None:
         warning("no patch preview available; drawing the mesh")
-    style = Style(edges=not args.no_edges, vertices=args.vertices, preview=args.preview,
-                  labels=labels, grid=args.grid, background=BACKGROUNDS[args.background],
-                  smooth=args.smooth, section=section_through(args.section, (arrays, others)))
+    style = _render_style(args, labels, arrays, others)
     progress = ProgressBar("rendering") if args.turntable > 1 else None
     return render_arrays(arrays, args.output, turntable=args.turntable,
                          elevation=args.elevation, yaw=args.yaw, style=style, preview=preview,
                          progress=progress, ortho=args.ortho, offscreen=offscreen,
                          others=others, fps=args.fps,
                          framing=Framing(args.margin, args.zoom, args.refit))
+
+
+def _render_style(args: argparse.Namespace, labels: frozenset[str], arrays: Any,
+                  others: Any) -> Any:
+    """The :class:`~.renderer.Style` of ``livemod render``'s options (a bare
+    ``--section`` cuts through the middle of ``arrays`` and ``others``)."""
+    from .renderer import BACKGROUNDS, Style
+
+    return Style(edges=not args.no_edges, vertices=args.vertices, preview=args.preview,
+                 labels=labels, grid=args.grid, background=BACKGROUNDS[args.background],
+                 smooth=args.smooth, section=section_through(args.section, (arrays, others)))
+
+
+def _film_to(args: argparse.Namespace, offscreen: Any, values: dict[str, Any], style: Any,
+             selection: Selection | None) -> list[Path]:
+    """``render --steps`` (a frame per step) or ``--step K`` (one): run the script,
+    draw the shots into ``offscreen`` and write them.
+
+    Raises:
+        DLFLError: the script failed, or has no step K (or none at all).
+    """
+    from livemod.progress import ProgressBar
+    from livemod.runner.headless import report_selection
+
+    from .film import render_film, script_shots
+    from .imagefiles import write_images
+    from .pictures import View
+
+    shots = script_shots(args.input, which=None if args.steps else {args.step},
+                         mesh_path=args.mesh, seed=args.seed, parameters=values,
+                         selection=selection)
+    report_selection(shots.outcome.scene)
+    frames = render_film(offscreen, shots, View(offscreen.size, args.elevation, args.yaw, style),
+                         turn=args.turn, captions=args.captions,
+                         progress=ProgressBar("rendering") if args.steps else None)
+    return write_images(args.output, frames, args.fps)
+
+
+def _check_film(args: argparse.Namespace, is_script: bool) -> None:
+    """Refuse film options that do not go together (see :func:`_render_inputs`)."""
+    filming = args.steps or args.step is not None
+    if args.steps and args.step is not None:
+        raise UsageError("--steps films every step and --step K draws one: give one of them")
+    if filming and not is_script:
+        raise UsageError(f"--steps and --step need a script, not {args.input!r}")
+    if filming and (args.turntable or args.preview):
+        raise UsageError("--steps and --step draw the steps as they are: leave out "
+                         "--turntable and --preview (--turn DEG turns the camera per frame)")
+    if args.steps and args.reference is not None:
+        raise UsageError("--reference compares one picture: give --step K, not --steps")
+    output = args.output
+    if args.steps and Path(output).suffix.lower() == ".png" and not ("{" in output
+                                                                      or "%" in output):
+        raise UsageError(f"--steps films a frame per step: write a .gif, .webp or .mp4, a "
+                         f"folder, or a name with {{frame}}, not one PNG ({output})")
+    if args.turn and not args.steps:
+        raise UsageError("--turn turns the camera from frame to frame of --steps")
+    if args.captions and not filming:
+        raise UsageError("--captions needs --steps or --step")
 
 
 def _render_inputs(args: argparse.Namespace,
@@ -409,8 +491,11 @@ def _render_inputs(args: argparse.Namespace,
 
     Raises:
         UsageError: a bad ``--set``, ``-o``, ``--fps``, ``--labels``,
-            ``--refit`` without a turntable, or ``--select`` or ``--mesh`` for a
-            mesh input (the message says which).
+            ``--refit`` without a turntable, film options that do not go together
+            (``--steps`` with ``--step``, ``--turntable``, ``--preview`` or
+            ``--reference``; ``--turn`` or ``--captions`` alone), or ``--select``,
+            ``--mesh``, ``--steps`` or ``--step`` for a mesh input (the message says
+            which).
         OSError: a script or ``--mesh`` that cannot be read, or an output that
             cannot be written.
         DLFLError: the script's own fault found while checking ``--set``.
@@ -422,8 +507,10 @@ def _render_inputs(args: argparse.Namespace,
     if args.refit and args.turntable < 2:
         raise UsageError("--refit frames each turntable frame at its own angle: give "
                          "--turntable N (a single frame is framed at its angle already)")
+    _check_film(args, is_script)
+    frames = 2 if args.steps else max(args.turntable, 1)  # a film: several, count unknown
     with usage_errors():
-        paths = check_output(args.output, max(args.turntable, 1), args.size,
+        paths = check_output(args.output, frames, args.size,
                              transparent=args.background == "transparent", fps=args.fps)
     if is_script:
         check_run_files(args.input, args.mesh, None)
@@ -445,10 +532,10 @@ def _render_inputs(args: argparse.Namespace,
 
 
 def _samples(args: argparse.Namespace) -> int:
-    """The MSAA level: as given, or 4 for one frame and 0 for turntable frames."""
+    """The MSAA level: as given, or 4 for one frame and 0 for turntable and film frames."""
     if args.samples is not None:
         return int(args.samples)
-    return 0 if args.turntable > 1 else 4
+    return 0 if args.turntable > 1 or args.steps else 4
 
 
 def _load_input(path: str, mesh_path: str | None, want_preview: bool,
@@ -493,18 +580,14 @@ def _run_for_render(path: str, mesh_path: str | None, want_preview: bool,
     from livemod.dlfl import mesh_arrays
     from livemod.dlfl.errors import DLFLError
     from livemod.runner import run_outcome
-    from livemod.runner.declarations import undeclared
-    from livemod.runner.headless import report_selection
+    from livemod.runner.headless import report_selection, run_problem
     from livemod.runner.results import current_mesh, snapshot_others
 
     outcome = run_outcome(path, mesh_path=mesh_path, parameters=values, selection=selection,
                           seed=seed)
     report_selection(outcome.scene)
-    if outcome.error is not None:
-        failure = outcome.error  # (not ``error``: that is the message printer here)
-        raise DLFLError(f"{failure.file}:{failure.line}: {failure.message}")
-    problem = undeclared(outcome.declarations, values or {}, ran=True)
-    if problem is not None:  # a script whose declarations are computed
+    problem = run_problem(outcome, values)
+    if problem is not None:
         raise DLFLError(problem)
     mesh, others = current_mesh(outcome.scene), snapshot_others(outcome.scene)
     if mesh is None:

@@ -127,13 +127,17 @@ def script_shots(script: str | os.PathLike[str], **run: Any) -> StepShots:
             was taken (naming the steps it took).
     """
     from livemod.dlfl.errors import DLFLError
+    from livemod.runner.headless import run_problem
 
     shots = shoot_steps(script, **run)
-    failure = shots.outcome.error
-    if failure is not None:
-        raise DLFLError(f"{failure.file}:{failure.line}: {failure.message}")
+    problem = run_problem(shots.outcome, run.get("parameters"))
+    if problem is not None:
+        raise DLFLError(problem)
     if not shots.shots:
         taken = len(shots.outcome.steps)
         have = f"steps 0 to {taken - 1}" if taken else "no steps"
-        raise DLFLError(f"{os.fspath(script)} has {have}; nothing to film")
+        asked = run.get("which")
+        missing = "nothing to film" if asked is None else \
+            f"no step {', '.join(str(k) for k in sorted(asked))}"
+        raise DLFLError(f"{os.fspath(script)} has {have}; {missing}")
     return shots
