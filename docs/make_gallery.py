@@ -3,9 +3,11 @@
     python docs/make_gallery.py
 
 writes docs/images/tower.gif (a turntable of scripts/tower.py),
-docs/images/gallery.png (one thumbnail per script in scripts/, labelled) and
-docs/images/section.png (scripts/rind_soccerball.py whole and cut open at x = 0, as
-``livemod render --section x`` draws it), through the same headless renderer as
+docs/images/build.gif (a film of the tower's build, a frame per step, as
+``livemod render scripts/tower.py --set storeys=12 --steps --turn 4 --captions``
+draws it), docs/images/gallery.png (one thumbnail per script in scripts/, labelled)
+and docs/images/section.png (scripts/rind_soccerball.py whole and cut open at x = 0,
+as ``livemod render --section x`` draws it), through the same headless renderer as
 ``livemod render``.
 """
 
@@ -20,6 +22,7 @@ from PIL import Image, ImageDraw
 from livemod.dlfl import mesh_arrays
 from livemod.runner.execute import execute
 from livemod.runner.results import snapshot_others
+from livemod.viewer.film import film
 from livemod.viewer.headless import render_arrays
 from livemod.viewer.renderer import Style
 
@@ -79,11 +82,13 @@ def main() -> int:
     arrays, others = script_arrays(ROOT / "scripts" / "tower.py")
     render_arrays(arrays, str(IMAGES / "tower.gif"), size=(360, 360), turntable=36,
                   elevation=20.0, samples=0, others=others)
+    film(ROOT / "scripts" / "tower.py", parameters={"storeys": 12}, turn=4.0, captions=True,
+         size=(320, 320), fps=6.0).save(IMAGES / "build.gif")
     with tempfile.TemporaryDirectory() as tmp:
         section_pair(ROOT / "scripts" / "rind_soccerball.py", Path(tmp)).save(
             IMAGES / "section.png", optimize=True)
-    print(f"wrote {IMAGES / 'gallery.png'}, {IMAGES / 'tower.gif'} and "
-          f"{IMAGES / 'section.png'}", file=sys.stderr)
+    print(f"wrote {IMAGES / 'gallery.png'}, {IMAGES / 'tower.gif'}, {IMAGES / 'build.gif'} "
+          f"and {IMAGES / 'section.png'}", file=sys.stderr)
     return 0
 
 
