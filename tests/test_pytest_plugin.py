@@ -221,3 +221,22 @@ def test_the_entry_point_loads_the_plugin_once_with_or_without_p(
         result = pytester.runpytest_subprocess(*extra, "-p", "no:cacheprovider",
                                                "--livemod-update")
         result.assert_outcomes(passed=1)
+
+
+def test_without_offscreen_gl_the_failure_says_so(pytester: pytest.Pytester):
+    pytester.makeconftest("""
+        import pytest
+        from livemod.viewer import pictures
+        from livemod.viewer.headless import NoOffscreenGL
+
+        @pytest.fixture(autouse=True)
+        def no_gl(monkeypatch):
+            def refuse(*args, **kwargs):
+                raise NoOffscreenGL("no EGL here")
+            monkeypatch.setattr(pictures, "render_model", refuse)
+        """)
+    cube_test(pytester)
+    result = run(pytester, "--livemod-update")
+    result.assert_outcomes(failed=1)
+    result.stdout.fnmatch_lines(["*the snapshot's picture cannot be drawn: no EGL here (or "
+                                 "compare the numbers only: image=False)"])
