@@ -222,8 +222,8 @@ def render_arrays(arrays: MeshArrays | None, out: str, *, size: tuple[int, int] 
             checked before rendering).
         NoOffscreenGL: no offscreen GL context could be made.
     """
-    drawn = _Drawn(arrays, preview, others, selection)
-    orbit = _Orbit(max(turntable, 1), elevation, yaw, ortho, framing or Framing())
+    drawn = Drawn(arrays, preview, others, selection)
+    orbit = Orbit(max(turntable, 1), elevation, yaw, ortho, framing or Framing())
     style = style if style is not None else Style()
     # before any GL: a name that cannot take these frames costs no context
     check_output(out, max(turntable, 1), offscreen.size if offscreen is not None else size,
@@ -240,26 +240,26 @@ def render_arrays(arrays: MeshArrays | None, out: str, *, size: tuple[int, int] 
 
 
 @dataclass(frozen=True)
-class _Drawn:
+class Drawn:
     """What :func:`render_arrays` draws: the mesh, its preview, the other objects."""
 
     arrays: MeshArrays | None
-    preview: Preview | MeshArrays | None
-    others: MeshArrays | None
-    selection: Selection | None
+    preview: Preview | MeshArrays | None = None
+    others: MeshArrays | None = None
+    selection: Selection | None = None
 
 
 @dataclass(frozen=True)
-class _Orbit:
+class Orbit:
     """Where :func:`render_arrays` looks from: ``frames`` turntable views starting at
     ``yaw`` degrees, ``elevation`` degrees above the horizon, orthographic or not,
     framed as ``framing`` says."""
 
-    frames: int
-    elevation: float
-    yaw: float
-    ortho: bool
-    framing: Framing
+    frames: int = 1
+    elevation: float = 25.0
+    yaw: float = 30.0
+    ortho: bool = False
+    framing: Framing = Framing()
 
     def cameras(self, positions: np.ndarray, aspect: float) -> list[Camera]:
         """The camera of each frame, framing ``(n, 3)`` ``positions``."""
@@ -272,11 +272,19 @@ class _Orbit:
                                1, self.framing) for camera in turned]
 
 
-def _render_into(offscreen: Offscreen, drawn: _Drawn, out: str, orbit: _Orbit,
+def _render_into(offscreen: Offscreen, drawn: Drawn, out: str, orbit: Orbit,
                  style: Style, progress: Callable[[int, int], None] | None,
                  fps: float) -> list[Path]:
     """:func:`render_arrays` into an existing target (which stays open), its output
     name already checked."""
+    return write_images(out, render_frames(offscreen, drawn, orbit, style, progress), fps)
+
+
+def render_frames(offscreen: Offscreen, drawn: Drawn, orbit: Orbit, style: Style,
+                  progress: Callable[[int, int], None] | None = None) -> list[np.ndarray]:
+    """The images (each ``(H, W, 3)`` uint8, or RGBA for a transparent background)
+    of ``drawn`` seen along ``orbit``, drawn into ``offscreen`` (which stays open,
+    ``drawn`` uploaded to it); ``progress(done, total)`` after each."""
     size = offscreen.size
     offscreen.activate()
     offscreen.renderer.set_mesh(drawn.arrays, drawn.preview, drawn.others)
@@ -284,4 +292,4 @@ def _render_into(offscreen: Offscreen, drawn: _Drawn, out: str, orbit: _Orbit,
         offscreen.renderer.set_selection(drawn.selection)
     # framed as the window fits: the mesh and the other objects together
     cameras = orbit.cameras(offscreen.renderer.drawn_positions(), size[0] / size[1])
-    return write_images(out, render_views(offscreen, cameras, style, progress), fps)
+    return render_views(offscreen, cameras, style, progress)

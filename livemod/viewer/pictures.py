@@ -7,7 +7,7 @@ scene) or a run's :class:`~livemod.runner.results.RunResult` (its mesh, or the m
 failed run left, and its other objects). Models are drawn headless by the renderer
 of ``livemod render`` (:mod:`.headless`), framed and lit as it frames them, into
 offscreen targets kept for the rest of the process, one per size and MSAA level:
-making the GL context is the slow part of a first picture.
+making a GL context is the slow part of a first picture.
 
 Importing this module registers :func:`png_of` as the picture renderer of
 :mod:`livemod.dlfl.display`, so that meshes, scenes and results show as pictures in
@@ -33,7 +33,7 @@ from livemod.dlfl.scene import Scene
 
 # GL at import: where moderngl is missing, the import fails and the library's
 # lookup (livemod.dlfl.display) finds no renderer
-from .headless import NoOffscreenGL, Offscreen, camera_framing, render_turntable
+from .headless import Drawn, Framing, NoOffscreenGL, Offscreen, Orbit, render_frames
 from .renderer import Style
 
 PICTURE_SIZE = (480, 360)  # a notebook picture's (width, height) in pixels
@@ -101,12 +101,20 @@ class View:
         elevation, yaw: the camera's degrees above the horizon and around the up
             axis (``livemod render``'s ``--elevation`` and ``--yaw``).
         style: what is drawn (None: ``livemod render``'s default).
+        ortho: an orthographic projection (``--ortho``).
+        framing: the border and zoom (``--margin``, ``--zoom``; None: the default).
     """
 
     size: tuple[int, int] = PICTURE_SIZE
     elevation: float = 25.0
     yaw: float = 30.0
     style: Style | None = None
+    ortho: bool = False
+    framing: Framing | None = None
+
+    def orbit(self, frames: int = 1) -> Orbit:
+        """The :class:`~.headless.Orbit` of ``frames`` turntable views from here."""
+        return Orbit(frames, self.elevation, self.yaw, self.ortho, self.framing or Framing())
 
 
 def render_model(model: object, view: View | None = None, frames: int = 1,
@@ -126,14 +134,11 @@ def render_model(model: object, view: View | None = None, frames: int = 1,
     view = view or View()
     with GL_LOCK:
         target = kept_target(view.size, 4 if frames == 1 else 0)
-        target.activate()
-        target.renderer.set_mesh(parts.arrays, None, parts.others)
         try:
-            camera = camera_framing(target.renderer.drawn_positions(), view.elevation,
-                                    view.yaw, aspect=view.size[0] / view.size[1],
-                                    frames=frames)
-            return render_turntable(target, camera, view.style or Style(), frames)
+            return render_frames(target, Drawn(parts.arrays, others=parts.others),
+                                 view.orbit(frames), view.style or Style())
         finally:  # the model is not kept alive on the GPU between pictures
+            target.activate()
             target.renderer.set_mesh(None)
 
 
@@ -244,9 +249,10 @@ _TARGETS: dict[tuple[tuple[int, int], int], Offscreen] = {}
 
 
 def kept_target(size: tuple[int, int], samples: int) -> Offscreen:
-    """The kept target of ``size`` and ``samples`` (made on first use, sharing the
-    first target's GL context), for drawing pictures in memory. The caller holds
-    :data:`GL_LOCK` while it draws.
+    """The kept target of ``size`` and ``samples`` (made on first use, with a GL
+    context of its own: renderers bind their buffers to the context's shared
+    binding points, so two in one context would draw with each other's), for
+    drawing pictures in memory. The caller holds :data:`GL_LOCK` while it draws.
 
     Raises:
         ValueError: a size or MSAA level this GL cannot make.
@@ -254,21 +260,17 @@ def kept_target(size: tuple[int, int], samples: int) -> Offscreen:
     """
     key = ((int(size[0]), int(size[1])), samples)
     if key not in _TARGETS:
-        shared = next(iter(_TARGETS.values()), None)
-        if shared is not None:  # GL objects are made in the current context, not ctx's
-            shared.activate()
-        _TARGETS[key] = Offscreen(key[0], samples, ctx=shared.ctx if shared else None)
+        _TARGETS[key] = Offscreen(key[0], samples)
     return _TARGETS[key]
 
 
 @atexit.register
 def release_targets() -> None:
-    """Free the kept targets and their GL context (done at exit)."""
+    """Free the kept targets and their GL contexts (done at exit)."""
     with GL_LOCK:
-        contexts = {id(target.ctx): target.ctx for target in _TARGETS.values()}
+        for target in _TARGETS.values():
+            target.release()
         _TARGETS.clear()
-        for ctx in contexts.values():
-            ctx.release()
 
 
 register_picture_renderer(png_of)
