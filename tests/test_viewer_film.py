@@ -16,6 +16,7 @@ from livemod.dlfl.shapes import cube
 from livemod.runner.stepshots import shoot_steps
 from livemod.view import Animation, film
 from livemod.viewer.film import film_cameras, render_film, shot_captions
+from livemod.viewer.headless import Framing
 from livemod.viewer.pictures import View
 from tests.images import read_image
 
@@ -42,6 +43,16 @@ def test_one_framing_holds_the_whole_build_and_the_camera_turns_per_frame():
     assert len({camera.distance for camera in cameras}) == 1
     assert all(np.array_equal(camera.target, cameras[0].target) for camera in cameras)
     assert {camera.pitch for camera in cameras} == {20.0}
+
+
+def test_the_film_s_framing_takes_the_view_s_zoom_margin_and_projection():
+    shots = shoot_steps(SCRIPTS / "steps_demo.py", which={0, 11})
+    plain = film_cameras(shots, View((160, 120)))[0]
+    zoomed = film_cameras(shots, View((160, 120), framing=Framing(zoom=2.0)))[0]
+    tight = film_cameras(shots, View((160, 120), framing=Framing(margin=0.0)))[0]
+    assert zoomed.distance == pytest.approx(plain.distance / 2)
+    assert tight.distance == pytest.approx(plain.distance / 1.06)  # the default border
+    assert film_cameras(shots, View((160, 120), ortho=True))[0].ortho and not plain.ortho
 
 
 def test_every_frame_shows_its_step_inside_the_frame(offscreen: Any):

@@ -446,6 +446,7 @@ def _film_to(args: argparse.Namespace, offscreen: Any, values: dict[str, Any], s
     from livemod.runner.headless import report_selection
 
     from .film import render_film, script_shots
+    from .headless import Framing
     from .imagefiles import write_images
     from .pictures import View
 
@@ -453,8 +454,9 @@ def _film_to(args: argparse.Namespace, offscreen: Any, values: dict[str, Any], s
                          mesh_path=args.mesh, seed=args.seed, parameters=values,
                          selection=selection)
     report_selection(shots.outcome.scene)
-    frames = render_film(offscreen, shots, View(offscreen.size, args.elevation, args.yaw, style),
-                         turn=args.turn, captions=args.captions,
+    view = View(offscreen.size, args.elevation, args.yaw, style, args.ortho,
+                Framing(args.margin, args.zoom))
+    frames = render_film(offscreen, shots, view, turn=args.turn, captions=args.captions,
                          progress=ProgressBar("rendering") if args.steps else None)
     return write_images(args.output, frames, args.fps)
 

@@ -10,6 +10,7 @@ gives one to show in a notebook.
 
 from __future__ import annotations
 
+import dataclasses
 import os
 from collections.abc import Callable
 from typing import Any, NamedTuple
@@ -38,16 +39,18 @@ class _Shown(NamedTuple):
 
 def film_cameras(shots: StepShots, view: View, turn: float = 0.0) -> list[Camera]:
     """A camera per shot: at ``view``'s elevation, starting at its yaw and turning
-    ``turn`` degrees a frame, at one distance that frames every shot at its yaw."""
+    ``turn`` degrees a frame, at one distance that frames every shot at its yaw
+    (with ``view``'s margin and zoom; orthographic when it says so)."""
     count = max(len(shots.shots), 1)
     parts = [part.positions for shot in shots.shots for part in (shot.arrays, shot.others)
              if part is not None]
     yaws = view.yaw + turn * np.arange(count)
-    camera = Camera(yaw=view.yaw, pitch=view.elevation)
+    camera = Camera(yaw=view.yaw, pitch=view.elevation, ortho=view.ortho)
     if parts:
         points = np.concatenate([sample_points(p, max(FIT_POINTS // len(parts), 1))
                                  for p in parts])
-        camera.fit_points(points, view.size[0] / view.size[1], yaws)
+        camera.fit_points(points, view.size[0] / view.size[1], yaws,
+                          margin=view.orbit().framing.distance_factor)
     cameras = []
     for yaw in yaws:
         turned = camera.copy()
@@ -80,7 +83,7 @@ def render_film(offscreen: Offscreen, shots: StepShots, view: View, *, turn: flo
     """A frame (``(H, W, 3)`` uint8, or RGBA for a transparent background) per shot,
     drawn into ``offscreen`` (its size, not ``view.size``, is the frames'), with the
     step's caption when ``captions``; ``progress(done, total)`` after each."""
-    view = View(offscreen.size, view.elevation, view.yaw, view.style)
+    view = dataclasses.replace(view, size=offscreen.size)
     style = view.style or Style()
     frames = []
     cameras = film_cameras(shots, view, turn)
