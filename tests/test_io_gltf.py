@@ -125,3 +125,10 @@ def test_the_glb_layout_is_aligned_and_sized(tmp_path: Path) -> None:
     json_length = int(np.frombuffer(data[12:16], "<u4")[0])
     assert json_length % 4 == 0 and data[16:20] == b"JSON"
     assert data[20 + json_length + 4 : 20 + json_length + 8] == b"BIN\0"
+
+
+def test_glb_named_by_format_is_binary_whatever_the_file_s_name(tmp_path: Path) -> None:
+    mesh = torus(5, 4)
+    save_mesh(mesh, tmp_path / "staged.tmp", format="glb")  # as a batch stages it
+    assert (tmp_path / "staged.tmp").read_bytes() == glb_bytes(mesh)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["staged.tmp"]  # no .bin

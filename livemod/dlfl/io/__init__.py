@@ -17,7 +17,7 @@ from ..errors import InvalidArgumentError
 from ..mesh import Mesh
 from .atomic import atomic_write, write_atomically
 from .dlflfile import read_dlfl, write_dlfl
-from .gltf import write_gltf
+from .gltf import write_glb, write_gltf
 from .obj import read_obj, write_obj
 from .off import read_off, write_off
 from .ply import read_ply, write_ply
@@ -26,9 +26,10 @@ from .stl import read_stl, write_stl
 from .threemf import write_3mf
 
 __all__ = [
-    "atomic_write", "load_mesh", "open_mesh", "read_dlfl", "read_obj", "read_off", "read_ply",
-    "read_stl", "save_mesh", "save_objects", "write_3mf", "write_atomically", "write_dlfl", "write_gltf",
-    "write_obj", "write_off", "write_ply", "write_stl",
+    "atomic_write", "load_mesh", "open_mesh", "read_dlfl", "read_obj", "read_off",
+    "read_ply", "read_stl", "save_mesh", "save_objects", "write_3mf", "write_atomically",
+    "write_dlfl", "write_glb", "write_gltf", "write_obj", "write_off", "write_ply",
+    "write_stl",
 ]
 
 READERS: dict[str, Callable[[str], Mesh]] = {
@@ -36,7 +37,7 @@ READERS: dict[str, Callable[[str], Mesh]] = {
 }
 WRITERS: dict[str, Callable[[Mesh, str], None]] = {
     "obj": write_obj, "dlfl": write_dlfl, "stl": write_stl, "ply": write_ply, "off": write_off,
-    "glb": write_gltf, "gltf": write_gltf, "3mf": write_3mf,
+    "glb": write_glb, "gltf": write_gltf, "3mf": write_3mf,
 }
 
 
@@ -95,7 +96,7 @@ def save_mesh(mesh: Mesh, path: str | os.PathLike[str], *, format: str | None = 
 
 # the formats that keep a scene's objects apart: one node or object each
 SCENE_WRITERS: dict[str, Callable[[Sequence[tuple[str, Mesh]], str], None]] = {
-    "glb": write_gltf, "gltf": write_gltf, "3mf": write_3mf,
+    "glb": write_glb, "gltf": write_gltf, "3mf": write_3mf,
 }
 
 

@@ -43,13 +43,21 @@ def write_gltf(objects: Objects, path: str | os.PathLike[str], *, smooth: bool =
     """
     name = os.fspath(path)
     if name.lower().endswith(".glb"):
-        write_atomically(name, glb_pieces(objects, smooth=smooth, face_colors=face_colors))
+        write_glb(objects, name, smooth=smooth, face_colors=face_colors)
         return
     stem = os.path.splitext(os.path.basename(name))[0] or "mesh"
     document, chunks = gltf_document(objects, smooth=smooth, face_colors=face_colors,
                                      uri=f"{stem}.bin")
     write_atomically(os.path.join(os.path.dirname(name), f"{stem}.bin"), chunks)
     write_atomically(name, json.dumps(document, indent=1).encode())
+
+
+def write_glb(objects: Objects, path: str | os.PathLike[str], *, smooth: bool = False,
+              face_colors: object = None) -> None:
+    """:func:`write_gltf` as ``.glb`` whatever ``path``'s extension (a temporary
+    name, say)."""
+    write_atomically(os.fspath(path), glb_pieces(objects, smooth=smooth,
+                                                 face_colors=face_colors))
 
 
 def glb_bytes(objects: Objects, *, smooth: bool = False, face_colors: object = None) -> bytes:
