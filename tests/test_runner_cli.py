@@ -513,7 +513,7 @@ def test_run_says_which_object_of_several_it_counted_and_wrote(tmp_path, capsys)
     out = capsys.readouterr().out
     assert "V=4 E=6 F=4" in out
     assert ("objects: 2 in the scene; the counts above and -o are the current one's "
-            "(object 1; --all-objects joins them all)") in out
+            "(object 1; --all-objects takes them all)") in out
     single = tmp_path / "one.py"
     single.write_text("load('cube')\n")
     assert cli.main(["run", str(single)]) == 0
@@ -542,6 +542,41 @@ def test_all_objects_joins_the_scene_for_run_watch_and_batch(tmp_path, capsys):
     result = run_variant(variant)
     assert result.status == "ok" and result.counts == load_mesh(tmp_path / "v.obj").counts()
     assert sorted(component_genera(load_mesh(tmp_path / "v.obj"))) == [0, 1]
+
+
+def test_all_objects_keeps_each_object_apart_in_gltf_and_3mf(tmp_path, capsys):
+    import pygltflib
+    import trimesh
+
+    from livemod.runner.batch import make_variants, run_variant
+    from tests.test_io_threemf import lib3mf_model
+
+    script = tmp_path / "two.py"
+    script.write_text("load('cube')\nload('soccerball')\ntranslate(5, 0, 0)\n")
+    out = tmp_path / "scene.glb"
+    assert cli.main(["run", str(script), "--all-objects", "-o", str(out)]) == 0
+    assert "objects: 2, joined into one mesh for the counts above; -o keeps them apart" \
+        in capsys.readouterr().out
+    document = pygltflib.GLTF2().load(str(out))
+    assert [node.name for node in document.nodes] == ["cube", "soccerball"]
+    assert document.scenes[0].nodes == [0, 1]
+    read = trimesh.load(out, process=False)  # a trimesh Scene of the two
+    faces = {name: len(geometry.faces) for name, geometry in read.geometry.items()}
+    assert sorted(faces.values()) == [12, 116]  # the ball: 12 pentagons, 20 hexagons
+    assert read.geometry[document.meshes[1].name].bounds[0][0] > 3.0  # moved apart
+    watched = tmp_path / "watched.3mf"
+    assert cli.main(["run", "--watch", str(script), "--all-objects", "-o", str(watched),
+                     "--max-runs", "1"]) == 0
+    _, parts = lib3mf_model(watched)
+    assert [(p.GetName(), p.GetTriangleCount()) for p in parts] == \
+        [("cube", 12), ("soccerball", 116)]
+    assert all(p.IsManifoldAndOriented() for p in parts)
+    variant, = make_variants(str(script), [{}], str(tmp_path / "v.3mf"), all_objects=True)
+    assert run_variant(variant).status == "ok"
+    assert [p.GetName() for p in lib3mf_model(tmp_path / "v.3mf")[1]] == ["cube", "soccerball"]
+    alone = tmp_path / "alone.glb"
+    assert cli.main(["run", str(script), "-o", str(alone)]) == 0
+    assert [node.name for node in pygltflib.GLTF2().load(str(alone)).nodes] == ["soccerball"]
 
 
 @pytest.mark.parametrize("stopping", [False, True])

@@ -1,15 +1,21 @@
-"""RunResult's named constructors and RunStatus."""
+"""RunResult's named constructors, RunStatus, and what a run's output writes."""
 
 from __future__ import annotations
 
 import json
 import pickle
 
+from livemod.dlfl.io import save_mesh
 from livemod.dlfl.scene import Scene
 from livemod.dlfl.shapes import cube
 from livemod.runner import RunResult, RunStatus
 from livemod.runner.errors import cancelled_error
-from livemod.runner.results import object_fields, snapshot_mesh
+from livemod.runner.results import (
+    object_fields,
+    save_problem,
+    save_result,
+    snapshot_mesh,
+)
 
 
 def _scene_of_two() -> Scene:
@@ -55,3 +61,13 @@ def test_a_failed_result_shows_the_last_good_one_stale():
     first = RunResult.failed(1, "s.py", RunStatus.ERROR, (), error, 0.2, last_good=None)
     assert (first.arrays, first.preview, first.stale, first.current_object) == (
         None, None, False, None)
+
+
+def test_a_run_s_output_makes_its_folder_and_is_not_written_without_an_object(tmp_path):
+    mesh = cube()
+    save_result([("cube", mesh)], str(tmp_path / "run" / "m.obj"))
+    save_mesh(mesh, tmp_path / "m.obj")
+    assert (tmp_path / "run" / "m.obj").read_bytes() == (tmp_path / "m.obj").read_bytes()
+    assert save_problem([], str(tmp_path / "none.obj")) == \
+        f"the script left no mesh; {tmp_path / 'none.obj'} was not written"
+    assert not (tmp_path / "none.obj").exists()

@@ -24,7 +24,7 @@ import os
 import signal
 import threading
 import time
-from collections.abc import Callable, Iterable, Iterator
+from collections.abc import Callable, Iterable, Iterator, Sequence
 from concurrent.futures.process import BrokenProcessPool
 from dataclasses import dataclass
 from typing import Any, Protocol, TextIO
@@ -186,6 +186,7 @@ def run_variant(variant: Variant) -> VariantResult:
     so process pools can pickle it). Never raises for the script's or a file's
     failure: the result says it."""
     from livemod.dlfl.analysis import genus
+    from livemod.dlfl.io import scene_objects
 
     from .headless import run_outcome
     from .results import result_mesh
@@ -203,7 +204,7 @@ def run_variant(variant: Variant) -> VariantResult:
         return failed_result(variant, str(outcome.error), started)
     mesh = result_mesh(outcome.scene, variant.all_objects)
     if variant.output is not None:
-        problem = _written(mesh, variant)
+        problem = _written(scene_objects(outcome.scene, variant.all_objects), variant)
         if problem is not None:
             return failed_result(variant, problem, started)
     counts = mesh.counts() if mesh is not None else (0, 0, 0)
@@ -212,30 +213,29 @@ def run_variant(variant: Variant) -> VariantResult:
                          genus(mesh) if mesh is not None else None, variant.staging)
 
 
-def _written(mesh: Any, variant: Variant) -> str | None:
-    """Write the variant's mesh to its ``staging`` file (in the format of its
-    output's suffix), or to ``output`` without one; None, or what went wrong, said
-    of ``output``. A bug in a writer is the variant's failure too: a worker must
-    not die of it."""
+def _written(objects: Sequence[tuple[str, Any]], variant: Variant) -> str | None:
+    """Write the variant's ``(name, mesh)`` objects to its ``staging`` file (in the
+    format of its output's suffix), or to ``output`` without one; None, or what
+    went wrong, said of ``output``. A bug in a writer is the variant's failure
+    too: a worker must not die of it."""
     from .results import save_problem
 
     output = str(variant.output)
     try:
-        if variant.staging is None or mesh is None:
-            return save_problem(mesh, output)
-        return _staged(mesh, variant.staging, output)
+        if variant.staging is None or not objects:
+            return save_problem(objects, output)
+        return _staged(objects, variant.staging, output)
     except Exception as exc:
         return f"cannot write {output}: {type(exc).__name__}: {exc}"
 
 
-def _staged(mesh: Any, staging: str, output: str) -> str | None:
-    """Write ``mesh`` to ``staging`` in ``output``'s format (its folder made if
+def _staged(objects: Sequence[tuple[str, Any]], staging: str, output: str) -> str | None:
+    """Write ``objects`` to ``staging`` in ``output``'s format (its folder made if
     missing); None, or the failure said of ``output``."""
-    from livemod.dlfl.io import save_mesh
+    from .results import save_result
 
     try:
-        os.makedirs(os.path.dirname(staging), exist_ok=True)
-        save_mesh(mesh, staging, format=os.path.splitext(output)[1][1:].lower())
+        save_result(objects, staging, format=os.path.splitext(output)[1][1:].lower())
     except OSError as exc:
         return describe(exc).replace(staging, output)
     except DLFLError as exc:  # a writer's refusal

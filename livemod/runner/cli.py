@@ -33,7 +33,7 @@ from livemod.commandline import (
 )
 from livemod.dlfl.analysis import summarize
 from livemod.dlfl.budget import DEFAULT_FACE_BUDGET, ENVIRONMENT_VARIABLE
-from livemod.dlfl.io import WRITERS
+from livemod.dlfl.io import WRITERS, keeps_objects, scene_objects
 from livemod.dlfl.io.source import show_path
 from livemod.dlfl.scene import Selection
 
@@ -165,10 +165,12 @@ def _select_text(text: str) -> str:
 
 
 def add_all_objects_option(parser: argparse.ArgumentParser) -> None:
-    """``--all-objects``: write (and count) every object of the scene, joined."""
+    """``--all-objects``: write (and count) every object of the scene."""
     parser.add_argument("--all-objects", action="store_true",
-                        help="write and count every object of the scene joined into one "
-                             "mesh (default: the current object)")
+                        help="write and count every object of the scene (default: the "
+                             "current object): .glb, .gltf and .3mf keep each apart, as a "
+                             "node or object under its name; other formats join them into "
+                             "one mesh")
 
 
 def selection_of(args: argparse.Namespace) -> Selection | None:
@@ -333,7 +335,7 @@ def _finish_run(args: argparse.Namespace, outcome: Any, params: dict[str, Any],
     mesh = result_mesh(outcome.scene, args.all_objects)
     # written before anything is printed: a reader that leaves early (`| head -1`)
     # closes our output, and OUT must not depend on it
-    code = _save(mesh, output)
+    code = _save(scene_objects(outcome.scene, args.all_objects), output)
     print_summary(args.script, mesh, len(outcome.steps), outcome.elapsed)
     _print_objects(outcome.scene, args)
     if code == 0 and args.output is not None:
@@ -366,20 +368,24 @@ def _print_objects(scene: Any, args: argparse.Namespace) -> None:
     if count <= 1:
         return
     covered = "the counts above and -o" if args.output else "the counts above"
-    if args.all_objects:
+    if args.all_objects and args.output and keeps_objects(args.output):
+        print(f"objects: {count}, joined into one mesh for the counts above; -o keeps "
+              f"them apart")
+    elif args.all_objects:
         print(f"objects: {count}, joined into one mesh for {covered}")
-        return
-    print(f"objects: {count} in the scene; {covered} are the current one's (object "
-          f"{scene.current}; --all-objects joins them all)")
+    else:
+        print(f"objects: {count} in the scene; {covered} are the current one's (object "
+              f"{scene.current}; --all-objects takes them all)")
 
 
-def _save(mesh: Any, output: str | None) -> int:
-    """Write ``mesh`` to ``output`` (its folder made if missing), saying only what
-    failed (on standard error); the exit code. The name was checked before the
-    run, so a failure here is the disk's (full, or changed since)."""
+def _save(objects: Sequence[tuple[str, Any]], output: str | None) -> int:
+    """Write the ``(name, mesh)`` ``objects`` to ``output`` (its folder made if
+    missing), saying only what failed (on standard error); the exit code. The
+    name was checked before the run, so a failure here is the disk's (full, or
+    changed since)."""
     if output is None:
         return DONE
-    problem = save_problem(mesh, output)
+    problem = save_problem(objects, output)
     if problem is not None:
         error(problem)
         return FAILED

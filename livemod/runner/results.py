@@ -22,7 +22,7 @@ import numpy as np
 
 from livemod.dlfl.arrays import MeshArrays, concatenate_arrays, mesh_arrays
 from livemod.dlfl.errors import DLFLError
-from livemod.dlfl.io import save_mesh
+from livemod.dlfl.io import save_objects
 from livemod.dlfl.mesh import Mesh
 from livemod.dlfl.scene import SELECTION_READERS, STEP_FIELDS, Scene, StepLog
 
@@ -302,27 +302,32 @@ def result_mesh(scene: Scene, all_objects: bool = False) -> Mesh | None:
     return join_meshes([obj.mesh for obj in scene.objects.values()])
 
 
-def save_result(mesh: Mesh, path: str) -> None:
-    """Write a run's mesh to ``path`` (format by suffix, atomically), making its
-    folder if missing, as ``run -o``, ``run --watch -o`` and batch outputs do.
+def save_result(objects: Sequence[tuple[str, Mesh]], path: str,
+                format: str | None = None) -> None:  # noqa: A002
+    """Write a run's objects (see :func:`~livemod.dlfl.io.scene_objects`) to ``path`` as
+    :func:`~livemod.dlfl.io.save_objects` does (format by suffix unless
+    ``format``, atomically: glTF and 3MF keep the objects apart, other formats
+    join several into one mesh), making its folder if missing, as ``run -o``,
+    ``run --watch -o`` and batch outputs do.
 
     Raises:
-        OSError, DLFLError: the file cannot be written, or its suffix is unknown.
+        OSError, DLFLError: the file cannot be written, its suffix is unknown, or
+            there is no object.
     """
     os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
-    save_mesh(mesh, path)
+    save_objects(objects, path, format=format)
 
 
-def save_problem(mesh: Mesh | None, path: str) -> str | None:
-    """:func:`save_result` for a command line: write ``mesh`` (None: the script
-    left none) to ``path`` and return what went wrong as one message (no
-    ``[Errno N]``), or None when it was written."""
+def save_problem(objects: Sequence[tuple[str, Mesh]], path: str) -> str | None:
+    """:func:`save_result` for a command line: write ``objects`` (none: the
+    script left no mesh) to ``path`` and return what went wrong as one message
+    (no ``[Errno N]``), or None when it was written."""
     from livemod.commandline import describe
 
-    if mesh is None:  # whatever waits for the file must not take an old one
+    if not objects:  # whatever waits for the file must not take an old one
         return f"the script left no mesh; {path} was not written"
     try:
-        save_result(mesh, path)
+        save_result(objects, path)
     except OSError as exc:
         return describe(exc)
     except DLFLError as exc:  # a writer's refusal

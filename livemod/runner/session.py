@@ -33,6 +33,7 @@ from dataclasses import dataclass
 
 from livemod.dlfl.arrays import MeshArrays
 from livemod.dlfl.errors import DLFLError
+from livemod.dlfl.io import scene_objects
 from livemod.dlfl.mesh import Mesh
 from livemod.dlfl.params import ParamSpec
 from livemod.dlfl.scene import Scene, Selection
@@ -52,7 +53,6 @@ from .results import (
     current_mesh,
     object_fields,
     parameter_items,
-    result_mesh,
     save_result,
     snapshot_scene,
 )
@@ -738,11 +738,11 @@ class LiveSession:
         """Write the mesh to ``output`` (``run --watch -o``); an error if that fails."""
         if self.output is None:
             return None
-        mesh = result_mesh(outcome.scene, self.all_objects)  # joining costs: only to save
-        if mesh is None:
+        objects = scene_objects(outcome.scene, self.all_objects)
+        if not objects:
             return None
         try:
-            save_result(mesh, self.output)
+            save_result(objects, self.output)
         except Exception as exc:
             error = exception_error(exc, self.script)
             return dataclasses.replace(error, file=self.output)

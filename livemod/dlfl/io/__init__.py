@@ -15,6 +15,7 @@ from collections.abc import Callable, Mapping, Sequence
 
 from ..errors import InvalidArgumentError
 from ..mesh import Mesh
+from ..scene import Scene
 from .atomic import atomic_write, write_atomically
 from .dlflfile import read_dlfl, write_dlfl
 from .gltf import write_glb, write_gltf
@@ -26,10 +27,10 @@ from .stl import read_stl, write_stl
 from .threemf import write_3mf
 
 __all__ = [
-    "atomic_write", "load_mesh", "open_mesh", "read_dlfl", "read_obj", "read_off",
-    "read_ply", "read_stl", "save_mesh", "save_objects", "write_3mf", "write_atomically",
-    "write_dlfl", "write_glb", "write_gltf", "write_obj", "write_off", "write_ply",
-    "write_stl",
+    "atomic_write", "keeps_objects", "load_mesh", "open_mesh", "read_dlfl", "read_obj",
+    "read_off", "read_ply", "read_stl", "save_mesh", "save_objects", "scene_objects", "write_3mf",
+    "write_atomically", "write_dlfl", "write_glb", "write_gltf", "write_obj", "write_off",
+    "write_ply", "write_stl",
 ]
 
 READERS: dict[str, Callable[[str], Mesh]] = {
@@ -100,14 +101,35 @@ SCENE_WRITERS: dict[str, Callable[[Sequence[tuple[str, Mesh]], str], None]] = {
 }
 
 
-def save_objects(objects: Sequence[tuple[str, Mesh]], path: str | os.PathLike[str], *,
-                 format: str | None = None) -> None:  # noqa: A002
+def scene_objects(scene: Scene, all_objects: bool = True) -> list[tuple[str, Mesh]]:
+    """``(name, mesh)`` of every object of ``scene`` in creation order (an unnamed
+    one called ``object <id>``), or without ``all_objects`` of its current object
+    alone; none for an empty scene (or a current id the script killed)."""
+    if all_objects:
+        chosen = list(scene.objects.items())
+    elif scene.current in scene.objects:
+        chosen = [(scene.current, scene.objects[scene.current])]
+    else:
+        chosen = []
+    return [(obj.name or f"object {oid}", obj.mesh) for oid, obj in chosen]
+
+
+def keeps_objects(path: str | os.PathLike[str], *, format: str | None = None) -> bool:  # noqa: A002
+    """True when :func:`save_objects` keeps a scene's objects apart in ``path``'s
+    format (``format`` overriding its extension): glTF and 3MF."""
+    return (format or os.path.splitext(os.fspath(path))[1]).lower().lstrip(".") in SCENE_WRITERS
+
+
+def save_objects(objects: Sequence[tuple[str, Mesh]] | Scene,
+                 path: str | os.PathLike[str], *, format: str | None = None) -> None:  # noqa: A002
     """Write a scene's objects: glTF gives each a node and 3MF an object, under its
-    name; the other formats hold one mesh, so the objects are joined into one
-    (each a component).
+    name; the other formats hold one mesh, so several objects are joined into one
+    (each a component, numbered anew) and one object is written as
+    :func:`save_mesh` writes it.
 
     Args:
-        objects: ``(name, mesh)`` pairs, at least one.
+        objects: ``(name, mesh)`` pairs, at least one, or a scene (its objects,
+            named as :func:`scene_objects` names them).
         path, format: as for :func:`save_mesh`.
 
     Raises:
@@ -116,10 +138,15 @@ def save_objects(objects: Sequence[tuple[str, Mesh]], path: str | os.PathLike[st
     """
     name = os.fspath(path)
     key = _format_of(name, format, WRITERS, "write")
+    if isinstance(objects, Scene):
+        objects = scene_objects(objects)
     if not objects:
         raise InvalidArgumentError(f"cannot write {show_path(name)}: no object")
     if key in SCENE_WRITERS:
         SCENE_WRITERS[key](list(objects), name)
+        return
+    if len(objects) == 1:  # as it is: joining would renumber its ids
+        WRITERS[key](objects[0][1], name)
         return
     from ..build import join_meshes
 

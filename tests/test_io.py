@@ -1,0 +1,51 @@
+"""Choosing a format and writing a scene's objects (livemod.dlfl.io)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import trimesh
+
+from livemod.dlfl.io import keeps_objects, save_mesh, save_objects, scene_objects
+from livemod.dlfl.scene import Scene
+from livemod.dlfl.shapes import cube, torus
+
+
+def _scene() -> tuple[Scene, int]:
+    scene = Scene()
+    scene.add(cube(), "base")
+    ring = scene.add(torus(4, 3))  # unnamed
+    return scene, ring
+
+
+def test_a_scene_s_objects_are_named_and_in_creation_order():
+    scene, ring = _scene()
+    assert [name for name, _ in scene_objects(scene)] == ["base", f"object {ring}"]
+    assert scene_objects(scene, all_objects=False) == \
+        [(f"object {ring}", scene.objects[ring].mesh)]  # the current one
+    scene.kill(ring)
+    scene.current = ring  # a script may leave current on an object it killed
+    assert scene_objects(scene, all_objects=False) == [] and len(scene_objects(scene)) == 1
+    assert scene_objects(Scene()) == []
+
+
+def test_a_scene_is_written_an_object_each_or_joined(tmp_path: Path):
+    scene, ring = _scene()
+    save_objects(scene, tmp_path / "s.glb")
+    read = trimesh.load(tmp_path / "s.glb", process=False)
+    assert sorted(len(g.faces) for g in read.geometry.values()) == [12, 2 * 12]
+    save_objects(scene, tmp_path / "s.obj")
+    joined = trimesh.load(tmp_path / "s.obj", process=False)
+    assert len(joined.vertices) == 8 + 12 and len(joined.faces) == 12 + 2 * 12
+    assert [keeps_objects(name) for name in ("a.GLB", "a.gltf", "a.3mf", "a.obj", "a.ply")] \
+        == [True, True, True, False, False]
+    assert keeps_objects("a.tmp", format="3mf")
+
+
+def test_one_object_is_written_as_it_is_its_ids_kept(tmp_path: Path):
+    mesh = cube()
+    mesh.delete_edge(mesh.edge_ids()[0])  # a face gone: the ids are no longer dense
+    (tmp_path / "one").mkdir()
+    save_objects([("base", mesh)], tmp_path / "one" / "m.dlfl")
+    save_mesh(mesh, tmp_path / "m.dlfl")
+    assert (tmp_path / "one" / "m.dlfl").read_bytes() == (tmp_path / "m.dlfl").read_bytes()
