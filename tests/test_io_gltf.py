@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
@@ -10,7 +11,7 @@ import pygltflib
 import pytest
 import trimesh
 
-from livemod.dlfl import mesh_arrays
+from livemod.dlfl import Mesh, from_polygons, mesh_arrays
 from livemod.dlfl.analysis import face_areas, face_normals
 from livemod.dlfl.errors import InvalidArgumentError
 from livemod.dlfl.io import save_mesh, save_objects
@@ -50,10 +51,21 @@ def test_trimesh_loads_the_glb_with_the_same_surface(shape: str, tmp_path: Path)
     assert np.isclose(merged.area, peer.area)
 
 
-@pytest.mark.parametrize("shape", ["cube", "soccerball"])
-def test_flat_normals_are_each_faces_and_smooth_ones_each_vertexs(shape: str,
+def _house() -> Mesh:
+    """A triangle-capped pentagonal prism on a quad: faces of 3, 4 and 5 corners."""
+    angles = 2 * np.pi * np.arange(5) / 5
+    ring = np.stack([np.cos(angles), np.sin(angles), np.zeros(5)], axis=1)
+    positions = np.concatenate([ring, ring + (0, 0, 2), [(0, 0, 3)]])
+    sides = [[k, (k + 1) % 5, 5 + (k + 1) % 5, 5 + k] for k in range(5)]
+    roof = [[5 + k, 5 + (k + 1) % 5, 10] for k in range(5)]
+    return from_polygons(positions, [[4, 3, 2, 1, 0], *sides, *roof])
+
+
+@pytest.mark.parametrize("make", [lambda: load_shape("cube"), lambda: load_shape("soccerball"),
+                                  _house], ids=["quads", "pentagons-hexagons", "mixed"])
+def test_flat_normals_are_each_faces_and_smooth_ones_each_vertexs(make: Callable[[], Mesh],
                                                                   tmp_path: Path) -> None:
-    mesh = load_shape(shape)
+    mesh = make()
     a = mesh_arrays(mesh)
     vector_area = face_normals(a) * face_areas(a)[:, None]  # normal times area
     around = np.stack([np.bincount(a.corner_vertex, vector_area[a.corner_face, k]) for k in range(3)], 1)
@@ -67,9 +79,11 @@ def test_flat_normals_are_each_faces_and_smooth_ones_each_vertexs(shape: str,
         normals = accessor(doc, attributes.NORMAL)
         assert np.allclose(normals, expected.astype(np.float32))
         assert np.allclose(np.linalg.norm(normals, axis=1), 1.0, atol=1e-6)
-        position = doc.accessors[attributes.POSITION]
-        low, high = a.positions.min(axis=0), a.positions.max(axis=0)
-        assert np.allclose(position.min, low) and np.allclose(position.max, high)
+        position = doc.accessors[attributes.POSITION]  # bounds exactly those written
+        written = accessor(doc, attributes.POSITION)
+        assert position.min == written.min(axis=0).tolist()
+        assert position.max == written.max(axis=0).tolist()
+        assert np.allclose(position.min, a.positions.min(axis=0))
 
 
 def test_face_colours_become_each_corners_colour(tmp_path: Path) -> None:

@@ -66,12 +66,19 @@ def parts(objects: Objects, face_colors: object = None) -> list[Part]:
     return [_part(name, mesh, rgba) for (name, mesh), rgba in zip(pairs, colors, strict=True)]
 
 
+def drawn_faces(arrays: MeshArrays) -> np.ndarray:
+    """``(F,)`` bool: the faces written, those with fan triangles (not holes,
+    three corners or more)."""
+    return ~arrays.face_hole & (arrays.face_sizes >= 3)
+
+
 def _part(name: str, mesh: Mesh, colors: object) -> Part:
     a = mesh_arrays(mesh)
     corners, faces = a.fan_triangles()
-    drawn = np.zeros(len(a.face_ids), dtype=bool)
-    drawn[faces] = True
+    rgba = face_rgba(colors, len(a.face_ids))
+    drawn = drawn_faces(a)
+    if drawn.all():  # (most meshes) every corner written, numbered as it is
+        return Part(name, a, rgba, np.arange(len(a.corner_vertex)), corners, faces)
     used = np.repeat(drawn, a.face_sizes)
     renumber = np.cumsum(used) - 1
-    return Part(name, a, face_rgba(colors, len(a.face_ids)), np.flatnonzero(used),
-                renumber[corners], faces)
+    return Part(name, a, rgba, np.flatnonzero(used), renumber[corners], faces)

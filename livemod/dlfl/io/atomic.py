@@ -249,7 +249,7 @@ def sync_folders(paths: Iterable[str | os.PathLike[str]]) -> None:
         _sync_folder(folder)
 
 
-def write_atomically(path: str | os.PathLike[str], data: bytes | Iterable[bytes], *,
+def write_atomically(path: str | os.PathLike[str], data: bytes | Iterable[bytes | memoryview], *,
                      sync_folder: bool = True) -> None:
     """Replace ``path`` with ``data`` through :func:`atomic_write`.
 
