@@ -4,9 +4,19 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import pytest
 import trimesh
 
-from livemod.dlfl.io import keeps_objects, save_mesh, save_objects, scene_objects
+from livemod.dlfl import genus, validate
+from livemod.dlfl.io import (
+    READERS,
+    WRITERS,
+    keeps_objects,
+    load_mesh,
+    save_mesh,
+    save_objects,
+    scene_objects,
+)
 from livemod.dlfl.scene import Scene
 from livemod.dlfl.shapes import cube, torus
 
@@ -49,3 +59,30 @@ def test_one_object_is_written_as_it_is_its_ids_kept(tmp_path: Path):
     save_objects([("base", mesh)], tmp_path / "one" / "m.dlfl")
     save_mesh(mesh, tmp_path / "m.dlfl")
     assert (tmp_path / "one" / "m.dlfl").read_bytes() == (tmp_path / "m.dlfl").read_bytes()
+
+
+# -- the format registries: every format is whole -------------------------------------
+
+FORMATS_DOC = (Path(__file__).resolve().parents[1] / "docs" / "formats.md").read_text()
+
+
+@pytest.mark.parametrize("key", sorted(set(READERS) | set(WRITERS)))
+def test_every_format_is_documented_and_named_where_it_is_chosen(key: str):
+    sections = [line for line in FORMATS_DOC.splitlines() if line.startswith("## ")]
+    functions = [f"`{table[key].__name__}`" for table in (READERS, WRITERS) if key in table]
+    assert any(all(name in line for name in functions) for line in sections), (key, functions)
+    for table, chooser in ((READERS, load_mesh), (WRITERS, save_mesh)):
+        if key in table:
+            assert f"``.{key}``" in (chooser.__doc__ or ""), (key, chooser.__name__)
+
+
+@pytest.mark.parametrize("key", sorted(READERS))
+def test_every_format_read_is_written_too_and_comes_back(key: str, tmp_path: Path):
+    mesh = torus(6, 4)  # quads: a format without polygons gives two triangles each
+    path = tmp_path / f"torus.{key}"
+    save_mesh(mesh, path)
+    back = load_mesh(path)
+    validate(back)
+    v, e, f = mesh.counts()
+    assert back.counts() in ((v, e, f), (v, e + f, 2 * f))
+    assert genus(back) == 1
