@@ -16,15 +16,14 @@ from ._vectors import (
     RingVectors,
     centroid,
     face_ring_vectors,
-    group_sum,
     newell,
-    ring_vectors,
     scaled_mean,
     true_lengths,
 )
 from ._vectors import unit as _normalize
 from .arrays import MeshArrays, mesh_arrays
 from .mesh import Mesh
+from .normals import RingNormals, polygon_normal, ring_normals
 
 
 def _arrays(mesh: Mesh | MeshArrays) -> MeshArrays:
@@ -39,35 +38,31 @@ def face_centroids(mesh: Mesh | MeshArrays) -> np.ndarray:
 
 
 def corner_normals(mesh: Mesh | MeshArrays) -> np.ndarray:
-    """``(C, 3)`` float64 unit normal of each corner, as TopMod computes it.
+    """``(C, 3)`` float64 unit normal of each corner: TopMod's rule
+    (:mod:`.normals`): ``normalize((next - p) x (prev - p))``, flipped at a
+    concave corner; a straight ("winged") corner copies the nearest other
+    one's. Point-spheres, 2-gons and corners of faces that have no normal get
+    zero. Any scale and offset of the mesh gives the same."""
+    return _ring_normals(_arrays(mesh)).corner
 
-    ``normalize((next - p) x (prev - p))``, flipped where it points against the
-    face's Newell normal (a concave corner). Straight ("winged") corners and
-    point-spheres get zero. Any scale and offset of the mesh gives the same.
-    """
-    a = _arrays(mesh)
-    r = _ring_vectors(a)
-    ahead = r.along(a.corner_next)
-    cross = np.cross(ahead, r.along(a.corner_prev))
-    sums = newell(r, ahead, a.corner_face, len(a.face_ids))
-    flip = np.einsum("ij,ij->i", cross, np.take(sums, a.corner_face, axis=0)) < 0
-    cross[flip] *= -1
-    return _normalize(cross)
+
+def _ring_normals(a: MeshArrays) -> RingNormals:
+    return ring_normals(a.positions, a.corner_vertex, a.face_offsets)
 
 
 def _ring_vectors(a: MeshArrays) -> RingVectors:
-    """The corner positions of ``a`` relative to their face's first corner, in range."""
+    """The corner points of ``a`` relative to their face's first corner, in range."""
     return face_ring_vectors(a.positions, a.corner_vertex, a.face_offsets, a.corner_face)
 
 
 def face_normals(mesh: Mesh | MeshArrays) -> np.ndarray:
-    """``(F, 3)`` float64 unit face normals: the normalised sum of corner normals.
+    """``(F, 3)`` float64 unit face normals: the normalised sum of the corner
+    normals (TopMod's rule, :mod:`.normals`).
 
     Faces are counter-clockwise seen from outside, so on a closed mesh the
     normals point out. Degenerate faces (point-spheres, 2-gons) get zero.
     """
-    a = _arrays(mesh)
-    return _normalize(group_sum(a.corner_face, corner_normals(a), len(a.face_ids)))
+    return _ring_normals(_arrays(mesh)).face
 
 
 def face_areas(mesh: Mesh | MeshArrays) -> np.ndarray:
@@ -217,21 +212,6 @@ def summarize(mesh: Mesh | MeshArrays) -> MeshSummary:
         genus=sum(genera), component_genera=genera,
         face_sizes=face_size_histogram(a),
     )
-
-
-def polygon_normal(points: np.ndarray) -> np.ndarray:
-    """``(3,)`` unit normal of one polygon given as ``(k, 3)`` points, the rule of
-    :func:`face_normals` (zero for fewer than three distinct directions)."""
-    pts = np.asarray(points, dtype=np.float64)
-    if len(pts) < 3:
-        return np.zeros(3)
-    k = len(pts)
-    ring = np.zeros(k, dtype=np.int64)
-    r = ring_vectors(pts, np.broadcast_to(pts[0], pts.shape), ring, 1)
-    ahead = r.along(np.roll(np.arange(k), -1))
-    cross = np.cross(ahead, r.along(np.roll(np.arange(k), 1)))
-    cross[cross @ newell(r, ahead, ring, 1)[0] < 0] *= -1
-    return _normalize(_normalize(cross).sum(axis=0))
 
 
 def face_normal(mesh: Mesh, face: int) -> np.ndarray:

@@ -13,7 +13,7 @@ and touches only the elements next to it, so a chain of extrusions costs the
 same per step however large the mesh is.
 
 The direction of every extrusion is TopMod's face normal (the normalised sum of
-the corner normals, :func:`livemod.dlfl.analysis.polygon_normal`). Rotations are
+the corner normals, :mod:`livemod.dlfl.normals`). Rotations are
 in degrees, right-handed about that normal, about the new polygon's centroid;
 scales are about the new polygon's centroid, by ``|scale|``, skipped for 0 and 1
 as TopMod does.
@@ -33,6 +33,7 @@ from .budget import check_growth
 from .connect import _quad_band, _triangle_band
 from .errors import DLFLError, GeometryError
 from .mesh import Mesh
+from .normals import inset_offsets, small_polygon_normal
 
 __all__ = [
     "KINDS", "Kind", "Options", "extrude", "extrude_fan", "kind_names", "resolve_kind",
@@ -106,98 +107,6 @@ def _finite(points: np.ndarray) -> np.ndarray:
             "use a smaller distance or scale",
             "a point it makes on the way overflows (use a smaller distance or scale)")
     return points
-
-
-_NO_NORMAL = (0.0, 0.0, 0.0)
-# corner cross products whose length lies strictly between these are measured
-# exactly: below 1e-150 the squares fall among the subnormals (or to zero), and
-# a square beyond the float range makes the length inf
-_EXACT = (1e-150, math.inf)
-
-
-def small_polygon_normal(points: list[list[float]]) -> tuple[float, float, float]:
-    """:func:`livemod.dlfl.analysis.polygon_normal` in plain Python floats.
-
-    The same rule (normalised sum of the unit corner normals, each flipped to
-    agree with the Newell normal), several times faster than numpy on the
-    handful of points of one face, which is what chained extrusions need.
-    ``points``: ``k`` lists ``[x, y, z]``. When a corner's cross product is too
-    large or too small to measure (a huge or tiny face, or a straight corner),
-    the face is measured again from its first point scaled by a power of two,
-    as :mod:`._vectors` does, so that its scale never decides its normal.
-    """
-    if len(points) < 3:
-        return _NO_NORMAL
-    normal = _corner_normal(points, _EXACT)
-    if normal is None:
-        scaled = _rescaled(points)
-        normal = _NO_NORMAL if scaled is None else _corner_normal(scaled, (1e-300, math.inf))
-    return _NO_NORMAL if normal is None else normal
-
-
-def _rescaled(points: list[list[float]]) -> list[list[float]] | None:
-    """The ``k`` differences ``points[i] - points[0]`` (of a quarter of the points
-    when the full ones overflow) times the power of two that brings their largest
-    magnitude into [0.5, 1); None when they are all zero or not finite."""
-    ox, oy, oz = points[0]
-    rel = [[x - ox, y - oy, z - oz] for x, y, z in points]
-    top = max(max(map(max, rel)), -min(map(min, rel)))
-    if top == math.inf:  # coordinates near the float limit, of opposite signs
-        q = 0.25
-        rel = [[q * x - q * ox, q * y - q * oy, q * z - q * oz] for x, y, z in points]
-        top = max(max(map(max, rel)), -min(map(min, rel)))
-    if not 0.0 < top < math.inf:  # NaN fails too
-        return None
-    e = -math.frexp(top)[1]
-    # per coordinate: for a subnormal top, 2**-e alone is beyond the float range
-    return [[math.ldexp(x, e), math.ldexp(y, e), math.ldexp(z, e)] for x, y, z in rel]
-
-
-def _corner_normal(points: list[list[float]], keep: tuple[float, float]
-                   ) -> tuple[float, float, float] | None:
-    """The rule of :func:`small_polygon_normal` on ``k`` points ``[x, y, z]``,
-    counting the corners whose cross product's length lies strictly inside
-    ``keep``; None when another corner's does (with the first bound above 1e-300,
-    which is where it would be left out)."""
-    k = len(points)
-    ox, oy, oz = points[0]
-    newell = [0.0, 0.0, 0.0]
-    corners = []
-    for i in range(k):
-        px, py, pz = points[i]
-        nx, ny, nz = points[(i + 1) % k]
-        qx, qy, qz = points[i - 1]
-        ax, ay, az, bx, by, bz = nx - px, ny - py, nz - pz, qx - px, qy - py, qz - pz
-        # sum (p_i - p_0) x (p_{i+1} - p_i): the Newell vector without the
-        # cancellation of raw coordinates far from the origin
-        rx, ry, rz = px - ox, py - oy, pz - oz
-        newell[0] += ry * az - rz * ay
-        newell[1] += rz * ax - rx * az
-        newell[2] += rx * ay - ry * ax
-        corners.append((ay * bz - az * by, az * bx - ax * bz, ax * by - ay * bx))
-    return _unit_sum(corners, newell, keep)
-
-
-def _unit_sum(corners: list[tuple[float, float, float]], newell: list[float],
-              keep: tuple[float, float]) -> tuple[float, float, float] | None:
-    """The normalised sum of the unit ``corners`` (cross products), each flipped
-    to agree with ``newell``; see :func:`_corner_normal` for ``keep``."""
-    low, high = keep
-    total = [0.0, 0.0, 0.0]
-    for cx, cy, cz in corners:
-        length = math.sqrt(cx * cx + cy * cy + cz * cz)
-        if not low < length < high:  # NaN fails too
-            if low > 1e-300:
-                return None
-            continue
-        sign = -1.0 if cx * newell[0] + cy * newell[1] + cz * newell[2] < 0 else 1.0
-        total[0] += sign * cx / length
-        total[1] += sign * cy / length
-        total[2] += sign * cz / length
-    length = math.sqrt(total[0] ** 2 + total[1] ** 2 + total[2] ** 2)
-    if length <= 1e-300:
-        return _NO_NORMAL
-    return (total[0] / length, total[1] / length, total[2] / length)
 
 
 @lru_cache(maxsize=64)
@@ -310,28 +219,16 @@ def planar_offset_step(mesh: Mesh, face: int, opts: Options) -> int:
     and ``distance`` along the normal."""
     points, normal = _face_geometry(mesh, face)
     with np.errstate(over="ignore", invalid="ignore"):  # _bridge refuses what overflows
-        inset = points + _inset_offsets(points, normal, opts)
+        inset = points + _inset_offsets(points, opts)
         inset = _transformed(inset, normal, 1.0, opts.rotation) + opts.distance * normal
     return _bridge(mesh, face, inset)
 
 
-def _inset_offsets(points: np.ndarray, normal: np.ndarray, opts: Options) -> np.ndarray:
+def _inset_offsets(points: np.ndarray, opts: Options) -> np.ndarray:
     """``(k, 3)`` in-plane move of each corner of a planar-offset step."""
-    pvec = points[_before(len(points))] - points
-    nvec = points[_after(len(points))] - points
-    if not opts.fractional:
-        pvec, nvec = _unit_rows(pvec), _unit_rows(nvec)
-    cross = np.cross(nvec, pvec)
-    offset = opts.thickness * (pvec + nvec)
-    offset[cross @ normal < 0] *= -1.0
-    straight = np.linalg.norm(cross, axis=1) < 1e-9 * (1 + np.linalg.norm(nvec, axis=1) ** 2)
-    offset[straight] = opts.thickness * _unit_rows(np.cross(normal, nvec[straight]))
-    return offset
-
-
-def _unit_rows(vectors: np.ndarray) -> np.ndarray:
-    length = np.linalg.norm(vectors, axis=1, keepdims=True)
-    return np.divide(vectors, length, out=np.zeros_like(vectors), where=length > TINY)
+    k = len(points)
+    return inset_offsets(points, np.arange(k), np.array([0, k]), opts.thickness,
+                         opts.fractional)
 
 
 # -- compound kinds ----------------------------------------------------------------

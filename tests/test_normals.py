@@ -1,0 +1,215 @@
+"""TopMod's normals (livemod.dlfl.normals): the rule on non-planar faces, and the
+operations that move along a normal landing where the rule puts them."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from livemod.dlfl import shapes
+from livemod.dlfl.analysis import corner_normals, face_normals, genus
+from livemod.dlfl.arrays import mesh_arrays
+from livemod.dlfl.build import from_polygons
+from livemod.dlfl.extrusion import extrude, extrude_fan
+from livemod.dlfl.mesh import Mesh
+from livemod.dlfl.normals import (
+    polygon_normal,
+    reversed_rings,
+    ring_normals,
+    small_polygon_normal,
+)
+from livemod.dlfl.validate import validate
+
+# a unit square with corner 2 lifted by 1: no two corners share a plane
+LIFTED_QUAD = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 1.0], [0.0, 1.0, 0.0]]
+# (next - p) x (prev - p) at each corner, worked out by hand
+LIFTED_QUAD_CROSSES = [(0, 0, 1), (0, -1, 1), (-1, -1, 1), (-1, 0, 1)]
+
+
+def unit(v: object) -> np.ndarray:
+    arr = np.asarray(v, dtype=float)
+    return arr / np.linalg.norm(arr)
+
+
+def rule(points: list[list[float]]) -> tuple[np.ndarray, np.ndarray]:
+    """TopMod's rule written out corner by corner for the tests: ``(corner
+    normals (k, 3), face normal (3,))`` of one polygon."""
+    p = np.asarray(points, dtype=float)
+    k = len(p)
+    newell = sum(np.cross(p[i], p[(i + 1) % k]) for i in range(k))
+    normals, winged = [], []
+    for i in range(k):
+        ahead, behind = p[(i + 1) % k] - p[i], p[i - 1] - p[i]
+        ua, ub = unit(ahead), unit(behind)
+        winged.append(k > 3 and np.linalg.norm(ua + ub) < 1e-5)
+        cross = np.cross(ahead, behind)
+        n = unit(cross) if np.linalg.norm(cross) > 0 else np.zeros(3)
+        if k > 3 and np.linalg.norm(np.cross(ua, ub)) >= 1e-5 and cross @ newell < 0:
+            n = -n
+        normals.append(n)
+    for i in (i for i in range(k) if winged[i]):
+        for step in range(1, k // 2 + 1):
+            near = [j for j in ((i - step) % k, (i + step) % k) if not winged[j]]
+            if near:
+                normals[i] = normals[near[0]]
+                break
+    return np.array(normals), unit(sum(normals))
+
+
+def polygon_mesh(points: list[list[float]]) -> Mesh:
+    """A two-sided polygon: the front face is face 0."""
+    return from_polygons(np.array(points), [list(range(len(points))),
+                                            list(range(len(points)))[::-1]])
+
+
+def all_forms(points: list[list[float]]) -> list[np.ndarray]:
+    """The face normal of ``points`` by every entry point livemod has."""
+    k = len(points)
+    mesh = polygon_mesh(points)
+    return [np.array(small_polygon_normal(points)), polygon_normal(np.array(points)),
+            ring_normals(np.array(points), np.arange(k), np.array([0, k])).face[0],
+            face_normals(mesh)[0]]
+
+
+# -- the rule, pinned by hand ---------------------------------------------------------
+
+def test_a_non_planar_quad_has_the_normalised_sum_of_its_corner_normals() -> None:
+    expected_corners = np.array([unit(c) for c in LIFTED_QUAD_CROSSES])
+    s2, s3 = 1 / math.sqrt(2), 1 / math.sqrt(3)
+    expected_face = unit([-(s2 + s3), -(s2 + s3), 1 + 2 * s2 + s3])
+    np.testing.assert_allclose(corner_normals(polygon_mesh(LIFTED_QUAD))[:4],
+                               expected_corners, atol=1e-15)
+    for normal in all_forms(LIFTED_QUAD):
+        np.testing.assert_allclose(normal, expected_face, atol=1e-15)
+    # not the Newell normal (-1, -1, 2) / sqrt 6, which this face would give
+    assert np.linalg.norm(expected_face - unit([-1, -1, 2])) > 0.05
+
+
+def test_a_concave_corner_is_flipped_and_only_it() -> None:
+    # an L-shaped hexagon with its inner corner (3) lifted by 0.5
+    ell = [[0, 0, 0], [2, 0, 0], [2, 1, 0], [1, 1, 0.5], [1, 2, 0], [0, 2, 0]]
+    rn = ring_normals(np.array(ell, dtype=float), np.arange(6), np.array([0, 6]))
+    assert rn.concave.tolist() == [False, False, False, True, False, False]
+    # at (1, 1, .5): next - p = (0, 1, -.5), prev - p = (1, 0, -.5), cross (-.5, -.5, -1)
+    np.testing.assert_allclose(rn.corner[3], unit([0.5, 0.5, 1]), atol=1e-15)
+    np.testing.assert_allclose(rn.corner[0], [0, 0, 1], atol=1e-15)
+    for normal in all_forms(ell):
+        np.testing.assert_allclose(normal, unit(rn.corner.sum(axis=0)), atol=1e-15)
+
+
+def test_a_flat_l_shape_has_one_normal_everywhere() -> None:
+    ell = [[0, 0, 0], [2, 0, 0], [2, 1, 0], [1, 1, 0], [1, 2, 0], [0, 2, 0]]
+    rn = ring_normals(np.array(ell, dtype=float), np.arange(6), np.array([0, 6]))
+    np.testing.assert_allclose(rn.corner, np.tile([0.0, 0.0, 1.0], (6, 1)), atol=1e-15)
+    assert rn.concave.tolist() == [False, False, False, True, False, False]
+
+
+def test_a_straight_corner_copies_its_nearest_neighbour_the_previous_on_a_tie() -> None:
+    # a square 2 across, lifted at (2, 2), with a point half way along its first side
+    pts = [[0, 0, 0], [1, 0, 0], [2, 0, 0], [2, 2, 1], [0, 2, 0]]
+    rn = ring_normals(np.array(pts, dtype=float), np.arange(5), np.array([0, 5]))
+    assert rn.winged.tolist() == [False, True, False, False, False]
+    np.testing.assert_allclose(rn.corner[1], [0, 0, 1], atol=1e-15)  # corner 0's
+    # at (2, 0, 0): next - p = (0, 2, 1), prev - p = (-1, 0, 0): cross (0, -1, 2)
+    np.testing.assert_allclose(rn.corner[2], unit([0, -1, 2]), atol=1e-15)
+    for normal in all_forms(pts):
+        np.testing.assert_allclose(normal, unit(rn.corner.sum(axis=0)), atol=1e-15)
+    # walked the other way round, the previous neighbour is the lifted side's corner
+    back = pts[::-1]
+    rb = ring_normals(np.array(back, dtype=float), np.arange(5), np.array([0, 5]))
+    np.testing.assert_allclose(rb.corner[3], rb.corner[2], atol=0)
+    np.testing.assert_allclose(rb.corner[3], -unit([0, -1, 2]), atol=1e-15)
+
+
+def test_two_straight_corners_in_a_row_copy_their_own_nearest() -> None:
+    pts = [[0, 0, 0], [1, 0, 0], [2, 0, 0], [3, 0, 0], [3, 2, 1], [0, 2, 0]]
+    rn = ring_normals(np.array(pts, dtype=float), np.arange(6), np.array([0, 6]))
+    assert rn.source.tolist() == [0, 0, 3, 3, 4, 5]
+    assert all(np.allclose(n, rule(pts)[1]) for n in all_forms(pts))
+
+
+def test_a_triangle_is_never_concave_and_a_straight_one_has_no_normal() -> None:
+    assert all_forms([[0, 0, 0], [1, 0, 0], [0, 1, 0]])[0].tolist() == [0, 0, 1]
+    for normal in all_forms([[0, 0, 0], [1, 0, 0], [2, 0, 0]]):
+        assert normal.tolist() == [0, 0, 0]
+
+
+@pytest.mark.parametrize("scale, offset", [(1e-150, 0.0), (1e150, 0.0), (1.0, 1e9),
+                                           (2.0**-1060, 0.0)])
+def test_scale_and_offset_do_not_change_the_normal(scale: float, offset: float) -> None:
+    for pts in (LIFTED_QUAD, [[0, 0, 0], [1, 0, 0], [2, 0, 0], [2, 2, 1], [0, 2, 0]]):
+        moved = (np.array(pts, dtype=float) * scale + offset).tolist()
+        for normal in all_forms(moved):
+            np.testing.assert_allclose(normal, rule(pts)[1], atol=1e-12)
+
+
+def test_turning_the_mesh_turns_its_normals() -> None:
+    # TopMod's concave test projected each face on a coordinate plane, so turning
+    # a warped face could flip corners; livemod's does not depend on the axes
+    mesh = shapes.genus3_hexa(1)
+    a = mesh_arrays(mesh)
+    turn, _ = np.linalg.qr(np.random.default_rng(3).normal(size=(3, 3)))
+    turned = ring_normals(a.positions @ turn.T, a.corner_vertex, a.face_offsets)
+    np.testing.assert_allclose(turned.face, face_normals(a) @ turn.T, atol=1e-12)
+    assert (turned.concave == ring_normals(a.positions, a.corner_vertex,
+                                           a.face_offsets).concave).all()
+
+
+def split_spherical_cube() -> Mesh:
+    """The spherical cube with every third edge split at its midpoint: warped
+    quads and pentagons with straight corners."""
+    mesh = shapes.spherical_cube()
+    for edge in mesh.edge_ids().tolist()[::3]:
+        mesh.subdivide_edge(edge)
+    return mesh
+
+
+@pytest.mark.parametrize("make", [split_spherical_cube, lambda: shapes.genus3_hexa(1)])
+def test_every_form_agrees_with_the_rule_on_every_face(make: object) -> None:
+    a = mesh_arrays(make())  # type: ignore[operator]
+    faces = face_normals(a)
+    corners = corner_normals(a)
+    for f in range(len(a.face_ids)):
+        ring = slice(a.face_offsets[f], a.face_offsets[f + 1])
+        points = a.positions[a.corner_vertex[ring]].tolist()
+        want_corners, want_face = rule(points)
+        np.testing.assert_allclose(corners[ring], want_corners, atol=1e-12)
+        np.testing.assert_allclose(faces[f], want_face, atol=1e-12)
+        np.testing.assert_allclose(small_polygon_normal(points), want_face, atol=1e-12)
+
+
+def test_reversed_rings_reverse_every_ring() -> None:
+    back = reversed_rings(np.array([0, 3, 4, 8]))
+    assert back.tolist() == [2, 1, 0, 3, 7, 6, 5, 4]
+    assert back[back].tolist() == list(range(8))
+
+
+# -- operations land where the rule puts them --------------------------------------
+
+def face_points(mesh: Mesh, face: int) -> list[list[float]]:
+    return [mesh.position(v).tolist() for v in mesh.face_vertices(face)]
+
+
+def has_point(mesh: Mesh, point: np.ndarray, tol: float = 1e-12) -> bool:
+    a = mesh_arrays(mesh)
+    return bool(np.linalg.norm(a.positions - point, axis=1).min() < tol)
+
+
+@pytest.mark.parametrize("face", [0, 17, 40])
+def test_stellate_and_cubical_extrusions_move_along_the_rule(face: int) -> None:
+    mesh = shapes.spherical_cube()
+    points = np.array(face_points(mesh, face))
+    normal = rule(points.tolist())[1]
+    fan = extrude_fan(mesh, face, "stellate", 0.5)
+    validate(mesh)
+    apex = set.intersection(*(set(mesh.face_vertices(f)) for f in fan)).pop()
+    np.testing.assert_allclose(mesh.position(apex), points.mean(axis=0) + 0.5 * normal,
+                               atol=1e-15)
+
+    mesh = shapes.spherical_cube()
+    end = extrude(mesh, face, "cubical", 0.5)
+    validate(mesh)
+    np.testing.assert_allclose(face_points(mesh, end), points + 0.5 * normal, atol=1e-15)
+    assert genus(mesh) == 0
