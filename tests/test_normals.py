@@ -15,11 +15,13 @@ from livemod.dlfl.build import from_polygons
 from livemod.dlfl.extrusion import extrude, extrude_fan
 from livemod.dlfl.mesh import Mesh
 from livemod.dlfl.normals import (
+    inset_offsets,
     polygon_normal,
     reversed_rings,
     ring_normals,
     small_polygon_normal,
 )
+from livemod.dlfl.subdivision import subdivide
 from livemod.dlfl.validate import validate
 
 # a unit square with corner 2 lifted by 1: no two corners share a plane
@@ -212,4 +214,46 @@ def test_stellate_and_cubical_extrusions_move_along_the_rule(face: int) -> None:
     end = extrude(mesh, face, "cubical", 0.5)
     validate(mesh)
     np.testing.assert_allclose(face_points(mesh, end), points + 0.5 * normal, atol=1e-15)
+    assert genus(mesh) == 0
+
+
+def test_star_lifts_each_face_centre_along_the_rule() -> None:
+    mesh = shapes.spherical_cube()
+    centres = [np.mean(face_points(mesh, f), axis=0) + 0.3 * rule(face_points(mesh, f))[1]
+               for f in mesh.face_ids().tolist()]
+    subdivide(mesh, "star", offset=0.3)
+    validate(mesh)
+    assert mesh.counts() == (98 + 96 + 384, 192 * 9, 96 * 12) and genus(mesh) == 0
+    assert all(has_point(mesh, c) for c in centres)
+
+
+def test_fractal_lifts_each_face_centre_along_the_rule() -> None:
+    mesh = shapes.spherical_cube()
+    expected = []
+    for f in mesh.face_ids().tolist():
+        p = np.array(face_points(mesh, f))
+        mids = (p + np.roll(p, -1, axis=0)) / 2  # the split face's corners 1, 3, 5, 7
+        l1 = np.linalg.norm(mids[0] - mids[2]) / 2  # to the opposite midpoint
+        l2 = np.linalg.norm(mids[0] - mids[1])
+        expected.append(p.mean(axis=0) + math.sqrt(l2 * l2 - l1 * l1) * rule(p.tolist())[1])
+    subdivide(mesh, "fractal", offset=1.0)
+    validate(mesh)
+    assert mesh.counts() == (98 + 192 + 96, 192 * 6, 96 * 8)
+    assert all(has_point(mesh, c) for c in expected)
+
+
+def test_the_checker_inset_moves_a_straight_corner_square_to_its_next_edge() -> None:
+    mesh = shapes.cube()
+    edge = mesh.face_edges(0)[0]
+    mid = mesh.subdivide_edge(edge)[0]
+    a = mesh_arrays(mesh)
+    move = inset_offsets(a.positions, a.corner_vertex, a.face_offsets, 0.25)
+    for c in np.flatnonzero(a.corner_vertex == list(a.vertex_ids).index(mid)):
+        f = a.corner_face[c]
+        nxt = c + 1 if c + 1 < a.face_offsets[f + 1] else a.face_offsets[f]
+        along = a.positions[a.corner_vertex[nxt]] - a.positions[a.corner_vertex[c]]
+        np.testing.assert_allclose(move[c], 0.25 * unit(np.cross(face_normals(a)[f], along)),
+                                   atol=1e-15)
+    subdivide(mesh, "checker", thickness=0.25)
+    validate(mesh)
     assert genus(mesh) == 0

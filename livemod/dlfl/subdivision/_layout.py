@@ -27,13 +27,13 @@ import numpy as np
 
 from .._checks import finite_number
 from .._graph import cycle_layout, walk_rings
-from .._vectors import face_ring_vectors, group_sum, newell
-from .._vectors import unit as normalize
+from .._vectors import group_sum
 from ..arrays import mesh_arrays
 from ..budget import check_size, fits
 from ..build import from_corner_arrays
 from ..errors import DLFLError, InvalidArgumentError
 from ..mesh import Mesh
+from ..normals import ring_normals
 
 # ``size(counts)``: a scheme's result ``(faces, corners)`` from the counts of its
 # input without point-spheres (``nv``, ``ne``, ``nf``, ``nc`` of a Counts or a
@@ -188,9 +188,11 @@ class Topology:
         return vertex_mean(self, rows(self.pos, self.cv[self.nxt]))
 
     def face_normals(self) -> np.ndarray:
-        """``(F, 3)`` unit Newell normal of each face (zero when degenerate)."""
-        r = face_ring_vectors(self.pos, self.cv, self.offsets, self.face)
-        return normalize(newell(r, r.along(self.nxt), self.face, self.nf))
+        """``(F, 3)`` TopMod's unit face normal of each face (zero when degenerate;
+        :mod:`livemod.dlfl.normals`)."""
+        if "normals" not in self._cache:
+            self._cache["normals"] = ring_normals(self.pos, self.cv, self.offsets).face
+        return self._cache["normals"]
 
     def vertex_rings(self) -> tuple[np.ndarray, np.ndarray]:
         """Corners grouped by vertex, counter-clockwise (``vprev`` order).

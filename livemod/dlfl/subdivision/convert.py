@@ -15,6 +15,7 @@ import numpy as np
 
 from .._checks import id_list
 from .._vectors import in_range, lengths, range_exponent
+from .._vectors import unit as normalize
 from ..errors import DLFLError
 from ..mesh import Mesh
 from ._blocks import (
@@ -35,7 +36,6 @@ from ._layout import (
     check_number,
     cos_weights,
     face_weighted,
-    normalize,
     read_topology,
     rows,
     vertex_mean,

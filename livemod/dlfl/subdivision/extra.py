@@ -11,9 +11,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._vectors import in_range, newell, ring_vectors
 from ..errors import DLFLError
 from ..mesh import Mesh
+from ..normals import inset_offsets, ring_normals
 from ._layout import (
     Faces,
     Topology,
@@ -22,7 +22,6 @@ from ._layout import (
     build_paired,
     check_number,
     cos_weights,
-    normalize,
     read_topology,
     ring_sums,
     ring_weighted,
@@ -50,7 +49,9 @@ def checker(mesh: Mesh, *, thickness: float = 0.33, max_faces: int | None = None
     """Checkerboard remeshing (TopMod ``checkerBoardRemeshing(t)``, "checker").
 
     Rule: each face gets an inset copy whose corner p moves by
-    t * ((prev - p) + (next - p)) (flipped at concave corners); each edge gets
+    t * ((prev - p) + (next - p)) (flipped at concave corners; a straight
+    corner moves t square to its next edge, TopMod's planar offset,
+    :func:`livemod.dlfl.normals.inset_offsets`); each edge gets
     the points at t * its length from both ends; around every old vertex the
     corners are cut and the inset spokes removed. An n-gon becomes its inset
     n-gon, n quads along its sides and, with its neighbours, one quad per corner
@@ -63,15 +64,10 @@ def checker(mesh: Mesh, *, thickness: float = 0.33, max_faces: int | None = None
     """
     thickness = _checker_thickness(thickness)
     t = budgeted_topology(mesh, "checker", max_faces, SIZES["checker"])
-    p, prev_p, next_p = rows(t.pos, t.cv), rows(t.pos, t.cv[t.prv]), rows(t.pos, t.cv[t.nxt])
+    p, next_p = rows(t.pos, t.cv), rows(t.pos, t.cv[t.nxt])
     with np.errstate(over="ignore", invalid="ignore"):  # build refuses what overflows
-        inward = (prev_p - p) + (next_p - p)
-        # in range: only the sign of the product matters, and raw ones overflow
-        concave = np.einsum("ij,ij->i", np.cross(in_range(next_p - p), in_range(prev_p - p)),
-                            t.face_normals()[t.face]) < 0
-    inward[concave] *= -1
-    inset = p + thickness * inward
-    near = p + thickness * (next_p - p)
+        inset = p + inset_offsets(t.pos, t.cv, t.offsets, thickness)
+        near = p + thickness * (next_p - p)
     positions = np.concatenate([t.pos, near, inset])
     _checker_faces(mesh, t, positions, t.hole)
 
@@ -109,23 +105,17 @@ def _checker_on_dual(t: Topology, thickness: float) -> tuple[np.ndarray, np.ndar
     """``(C, 3)`` inset and near points of :func:`checker` on the dual of ``t``.
 
     The dual's corner of mesh corner c sits at the centroid of face(c); its
-    face is c's vertex ring, its next corner ``mate(prev c)`` and its previous
-    one ``next(mate c)`` (whose face is face(mate c)).
+    face is c's vertex ring (:meth:`Topology.vertex_rings`, in the dual's ring
+    order: its next corner is ``mate(prev c)``, its previous one ``next(mate c)``).
     """
     cen = t.centroids()
     p = rows(cen, t.face)
-    prev_p = rows(cen, t.face[t.mate])
     next_p = rows(cen, t.face[t.mate[t.prv]])
-    # the dual's face normals: Newell sums over each vertex ring (about the
-    # vertex, in range; its ring-next corner is mate(prev c))
+    order, offsets = t.vertex_rings()
+    move = np.empty((t.nc, 3))
     with np.errstate(over="ignore", invalid="ignore"):  # build refuses what overflows
-        r = ring_vectors(p, rows(t.pos, t.cv), t.cv, t.nv)
-        normals = normalize(newell(r, r.along(t.mate[t.prv]), t.cv, t.nv))
-        inward = (prev_p - p) + (next_p - p)
-        concave = np.einsum("ij,ij->i", np.cross(in_range(next_p - p), in_range(prev_p - p)),
-                            rows(normals, t.cv)) < 0
-    inward[concave] *= -1
-    return p + thickness * inward, p + thickness * (next_p - p)
+        move[order] = inset_offsets(cen, t.face[order], offsets, thickness)
+        return p + move, p + thickness * (next_p - p)
 
 
 def _checker_faces(mesh: Mesh, t: Topology, positions: np.ndarray, hole: np.ndarray) -> None:
@@ -167,7 +157,7 @@ def _ring_centroids(values: np.ndarray, offsets: np.ndarray) -> np.ndarray:
     return np.repeat(means, sizes, axis=0)
 
 
-def _ds_ring(values: np.ndarray, offsets: np.ndarray, shift: np.ndarray,
+def _ds_ring(values: np.ndarray, offsets: np.ndarray, shift: np.ndarray | float,
              scale: float) -> np.ndarray:
     """TopMod's ``extrudeFaceDS`` ring: shift, Doo-Sabin weights, scale about centroid."""
     moved = values + shift
@@ -231,9 +221,7 @@ def dome(mesh: Mesh, *, length: float = 1.0, scale: float = 1.0,
     (distance d along the face normal, Doo-Sabin weights, scale s about the
     centroid) with d = (0, .3, .18, .1, .05, .025, .01) * length and
     s = (1.6, 1.7, 1.6, 1.4, 1.2, 1.1, .01) * scale. GUI defaults 1, 1.
-    Differences from TopMod: the extrusion direction is the original face's unit
-    normal at every step (TopMod recomputed it from the end face, the same
-    direction for planar faces).
+    Each step moves along the normal of the ring it extrudes, as TopMod's.
     Cube: 716/1392/678 (672 quads, 6 16-gons).
 
     Raises:
@@ -259,12 +247,19 @@ def _dome_rings(t: Topology, first: np.ndarray, offsets: np.ndarray, length: flo
     """``(steps, N, 3)``: the point of every split corner on every extruded ring.
 
     ``first`` ``(N, 3)``: the split faces' corners; ``offsets`` their ring starts.
+    Each step moves along its own ring's normal (TopMod extruded the end face of
+    the step before, whose normal it computed afresh).
     """
     rings = np.empty((len(DOME_DISTANCES), len(first), 3))
-    normals = np.repeat(t.face_normals(), np.diff(offsets), axis=0)
+    corners = np.arange(len(first))
+    sizes = np.diff(offsets)
     previous = first
     for k, (d, s) in enumerate(zip(DOME_DISTANCES, DOME_SCALES, strict=True)):
-        rings[k] = _ds_ring(previous, offsets, d * length * normals, s * scale)
+        shift: np.ndarray | float = 0.0
+        if d:
+            normals = ring_normals(previous, corners, offsets).face
+            shift = np.repeat(d * length * normals, sizes, axis=0)
+        rings[k] = _ds_ring(previous, offsets, shift, s * scale)
         previous = rings[k]
     return rings
 
