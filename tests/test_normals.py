@@ -21,6 +21,7 @@ from livemod.dlfl.normals import (
     ring_normals,
     small_polygon_normal,
 )
+from livemod.dlfl.rind import crust
 from livemod.dlfl.subdivision import subdivide
 from livemod.dlfl.validate import validate
 
@@ -257,3 +258,25 @@ def test_the_checker_inset_moves_a_straight_corner_square_to_its_next_edge() -> 
     subdivide(mesh, "checker", thickness=0.25)
     validate(mesh)
     assert genus(mesh) == 0
+
+
+def test_the_crust_moves_a_split_edge_point_by_its_reversed_faces_normals() -> None:
+    mesh = split_spherical_cube()
+    a = mesh_arrays(mesh)
+    mid = int(np.flatnonzero(np.bincount(a.corner_vertex) == 2)[0])
+    # the inner copy is the mesh reversed: its corner normals, turned back out
+    back = reversed_rings(a.face_offsets)
+    rings = [a.corner_vertex[back][a.face_offsets[f]:a.face_offsets[f + 1]]
+             for f in range(len(a.face_ids))]
+    normals = []
+    for ring in rings:
+        if mid in ring.tolist():
+            corner_normal = rule(a.positions[ring].tolist())[0][ring.tolist().index(mid)]
+            normals.append(-corner_normal)
+    m = np.mean(normals, axis=0)
+    expected = a.positions[mid] - m * np.mean([0.05 / (m @ n) for n in normals])
+    crust(mesh, 0.05)
+    validate(mesh)
+    assert genus(mesh) == 0 and mesh.counts() == (2 * a.counts[0], 2 * a.counts[1],
+                                                   2 * a.counts[2])
+    assert has_point(mesh, expected)

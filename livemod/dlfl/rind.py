@@ -26,6 +26,7 @@ from .budget import check_size
 from .build import from_corner_arrays
 from .errors import DLFLError, GeometryError
 from .mesh import Mesh
+from .normals import reversed_rings, ring_normals
 
 __all__ = ["Shell", "crust", "crust_offsets", "rind", "shell_arrays"]
 
@@ -62,14 +63,17 @@ def crust_offsets(a: MeshArrays, thickness: float, uniform: bool = True) -> np.n
     TopMod's rule: with the corner normals ``n_i`` at a vertex and their raw
     mean ``m``, the displacement is ``m * mean(t / (m . n_i))`` when ``uniform``
     (an exact offset ``t`` from every face plane of a cube corner), otherwise
-    ``t * normalize(m)``. Straight ("winged") corners, whose normal is zero, are
-    left out of the means (TopMod copied a neighbour's normal into them); a
-    vertex whose corners are all straight takes its faces' normals instead.
+    ``t * normalize(m)``. The corner normals are TopMod's (:mod:`.normals`): a
+    straight ("winged") corner copies its nearest neighbour's, the previous one
+    on a tie. For ``thickness > 0`` the moved copy is the reversed inner shell,
+    whose normals TopMod computed on its reversed faces, where that tie goes to
+    the other neighbour: so do these. A vertex none of whose corners has a
+    normal takes its faces' normals instead.
 
     Raises:
         DLFLError: a vertex with no normal at all (its faces have no area).
     """
-    return _scaled_offsets(a, _normal_means(a), thickness, uniform)
+    return _scaled_offsets(a, _normal_means(a, thickness > 0), thickness, uniform)
 
 
 @dataclass(frozen=True)
@@ -82,8 +86,9 @@ class _NormalMeans:
     mean: np.ndarray  # (V, 3) their raw mean
 
 
-def _normal_means(a: MeshArrays) -> _NormalMeans:
-    """The corner normals of ``a`` and their means at each vertex.
+def _normal_means(a: MeshArrays, reverse: bool) -> _NormalMeans:
+    """The corner normals of ``a`` and their means at each vertex; with
+    ``reverse``, those of the reversed faces, turned back (see :func:`crust_offsets`).
 
     A vertex all of whose corners are straight (one added on an edge, as
     ``subdivideEdge`` does) takes its faces' normals instead, so that it moves
@@ -92,7 +97,11 @@ def _normal_means(a: MeshArrays) -> _NormalMeans:
     Raises:
         DLFLError: a vertex with no normal at all: its faces have no area.
     """
-    normals = corner_normals(a)
+    if reverse:
+        back = reversed_rings(a.face_offsets)
+        normals = -ring_normals(a.positions, a.corner_vertex[back], a.face_offsets).corner[back]
+    else:
+        normals = corner_normals(a)
     # hole faces (boundaries of open meshes) face the other way: leave them out
     solid = ~a.face_hole[a.corner_face]
     has = (np.linalg.norm(normals, axis=1) > 0.5) & solid
@@ -159,7 +168,7 @@ def offset_shell(a: MeshArrays, thickness: float, uniform: bool) -> np.ndarray:
     Raises:
         DLFLError: ``thickness`` is so large that a moved coordinate overflows.
     """
-    means = _normal_means(a)  # outside the errstate: its overflows are not checked here
+    means = _normal_means(a, thickness > 0)  # outside the errstate: its overflows are not checked here
     with np.errstate(over="ignore", invalid="ignore"):  # refused just below
         moved = a.positions - _scaled_offsets(a, means, thickness, uniform)
     i = first_not_finite(moved)
