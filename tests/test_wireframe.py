@@ -9,7 +9,17 @@ import pytest
 
 from livemod.dlfl import DLFLError, face_size_histogram, genus, num_components, validate
 from livemod.dlfl.arrays import mesh_arrays
-from livemod.dlfl.shapes import cube, dodecahedron, icosahedron, tetrahedron, torus
+from livemod.dlfl.cutting import truncate
+from livemod.dlfl.shapes import (
+    cube,
+    dodecahedron,
+    genus_torus,
+    icosahedron,
+    octahedron,
+    soccer_ball,
+    tetrahedron,
+    torus,
+)
 from livemod.dlfl.wireframe import (
     columns,
     modified_corner_cut,
@@ -118,6 +128,74 @@ def test_columns_six_segments_match_topmod():
     m = cube()
     columns(m, 0.25, 6)
     assert summary(m) == ((144, 312, 160), {3: 16, 4: 144}, 5)
+
+
+# A joint's faces by TopMod's rule (the hull of its rings cut into triangles, the
+# parity rule, faces in one plane merged), counted by hand per kind of vertex:
+# a valence-3 joint has 2 triangles (each touching the three rings) and, between
+# each two rings, a band of 4 triangles the parity rule pairs into 2 quads. With
+# its E tubes of 4 quads a mesh of valence-3 vertices gets
+# V' = 8E, F' = 8V + 4E, {3: 2V, 4: 6V + 4E}, genus E - V + 1.
+def valence3_columns(v: int, e: int) -> tuple[tuple[int, int, int], dict[int, int], int]:
+    faces = {3: 2 * v, 4: 6 * v + 4 * e}
+    corners = 3 * faces[3] + 4 * faces[4]
+    return (8 * e, corners // 2, sum(faces.values())), faces, e - v + 1
+
+
+def test_columns_on_a_soccer_ball_pair_each_joints_triangles_into_quads():
+    m = soccer_ball()
+    columns(m, 0.1, 4)
+    assert summary(m) == valence3_columns(60, 90) == ((720, 1620, 840), {3: 120, 4: 720}, 31)
+
+
+def test_columns_on_a_genus3_mesh_of_valence_3_vertices():
+    m = genus_torus(3)  # 64/136/68: a slab with three holes
+    truncate(m, 0.25)  # 272/408/132, every vertex of valence 3
+    assert genus(m) == 3
+    columns(m, 0.05, 4)
+    assert summary(m) == valence3_columns(272, 408) == ((3264, 7344, 3808),
+                                                         {3: 544, 4: 3264}, 137)
+
+
+def test_columns_on_a_four_by_four_torus_give_topmods_faces():
+    # TopMod's run on this torus: 256/560/272, {4: 248, 5: 16, 6: 8}. Per joint,
+    # by the rule: the 4 joints on the outer equator 10 quads (their hull's planar
+    # quads); the 4 on the inner equator 4 quads and 4 pentagons; the 8 off the
+    # equator 8 quads and a hexagon
+    m = torus(4, 4)
+    columns(m, 0.25, 4)
+    tubes = 32 * 4
+    quads = 4 * 10 + 4 * 4 + 8 * 8 + tubes
+    assert summary(m) == ((256, 560, 272), {4: quads, 5: 4 * 4, 6: 8 * 1}, 17)
+
+
+@pytest.mark.parametrize("make, segments, expected", [
+    # TopMod's counts, each run on TopMod's own sample solid
+    (tetrahedron, 4, ((48, 108, 56), {3: 8, 4: 48})),
+    (octahedron, 4, ((96, 216, 108), {4: 108})),
+    (icosahedron, 4, ((240, 540, 264), {4: 240, 5: 24})),
+    (dodecahedron, 6, ((360, 780, 400), {3: 40, 4: 360})),
+])
+def test_columns_on_the_platonic_solids_give_topmods_counts(make, segments, expected):
+    m = make()
+    v, e, _ = m.counts()
+    columns(m, 0.1, segments)
+    assert summary(m) == (*expected, e - v + 1)
+
+
+def test_columns_of_an_odd_segment_count_keep_the_merged_hull():
+    # the parity of a place in a ring does not go round an odd ring: TopMod's rule
+    # merged whole bands into 9-gons (300/570/250, {4: 210, 6: 20, 9: 20});
+    # livemod keeps the hull with its faces in one plane merged: each joint of
+    # three 5-point rings a triangle, 6 quads and a hexagon, every face planar
+    m = dodecahedron()
+    columns(m, 0.1, 5)
+    counts, sizes, g = summary(m)
+    assert (counts, sizes, g) == ((300, 630, 310), {3: 20, 4: 20 * 6 + 30 * 5, 6: 20}, 11)
+    for f in m.face_ids().tolist():
+        points = np.array([m.position(v) for v in m.face_vertices(f)])
+        centred = points - points.mean(axis=0)
+        assert np.linalg.svd(centred, compute_uv=False)[-1] < 1e-9  # every face planar
 
 
 def test_column_rings_have_the_thickness_as_radius():

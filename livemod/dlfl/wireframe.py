@@ -16,6 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ._checks import first_not_finite, positive_number
+from ._column_joints import joint_polygons
 from ._vectors import in_range, lengths, together_in_range
 from ._vectors import unit as _unit
 from .analysis import face_centroids
@@ -23,7 +24,6 @@ from .arrays import MeshArrays, mesh_arrays
 from .budget import check_size
 from .build import from_corner_arrays
 from .errors import DLFLError, GeometryError
-from .hull import hull_polygons
 from .mesh import Mesh
 from .rind import shell_arrays
 
@@ -437,16 +437,20 @@ def columns(mesh: Mesh, thickness: float = 0.25, segments: int = 4, *,
             max_faces: object = None) -> None:
     """TopMod's ``makeWireframeWithColumns(t=0.25, segs=4)``: a tube of ``segments``
     quads around every edge, joined at every vertex by the convex hull of the
-    tube ends (:func:`.hull.hull_polygons`: coplanar hull triangles merged, as
-    TopMod's ``edgeCleanup``).
+    tube ends, its faces as TopMod's hull cleanup leaves them
+    (:mod:`._column_joints`: the hull cut into triangles, for an even
+    ``segments`` TopMod's parity rule pairing them into quads, then faces in one
+    plane merged).
 
     Rings as :func:`column_rings` (pi, not TopMod's 3.15); the tube of an edge
     pairs its two rings at their closest rotation (TopMod's ``connectFaces`` with
     closest corners). A valence-1 vertex ends its tube with a flat cap. Cube: 4
-    segments 96/216/112, 6 segments 144/312/160, genus 5. livemod keeps every hull
-    face; TopMod also deleted some joint edges by an index-parity rule, which on
-    its 3.15 rings merged near-coplanar triangles that pi makes exactly coplanar.
-    The mesh is rebuilt (fresh ids).
+    segments 96/216/112, 6 segments 144/312/160, genus 5; a 4 x 4 torus
+    256/560/272 ({4: 248, 5: 16, 6: 8}); the soccer ball 720/1620/840; TopMod's
+    counts on each. A mesh whose vertices all have valence 3 gets ``8E``
+    vertices and ``{3: 2V, 4: 6V + 4E}`` faces. For an odd ``segments`` the
+    joints keep their hull's planar faces (TopMod's parity rule merged whole
+    bands into 9- to 15-gons there). The mesh is rebuilt (fresh ids).
 
     Raises:
         DLFLError: ``thickness`` not positive, ``segments`` below 3, point-spheres,
@@ -496,12 +500,14 @@ def _check_columns_input(mesh: Mesh, thickness: float, segments: int,
 
 
 def _joint(points: np.ndarray, starts: list[int], segments: int) -> list[list[int]]:
-    """The faces joining the rings that start at ``starts``: the hull without the
-    ring caps, or a flat end cap for a single ring."""
+    """The faces joining the rings that start at ``starts``: TopMod's joint
+    (:mod:`._column_joints`) without the ring caps, or a flat end cap for a
+    single ring."""
     if len(starts) == 1:
         return [list(range(starts[0] + segments - 1, starts[0] - 1, -1))]
     members = np.concatenate([np.arange(s, s + segments) for s in starts])
-    faces = [[int(members[i]) for i in f] for f in hull_polygons(points[members])]
+    polygons = joint_polygons(points[members], len(starts), segments)
+    faces = [[int(members[i]) for i in f] for f in polygons]
     caps = {frozenset(range(s, s + segments)) for s in starts}
     joint = [f for f in faces if frozenset(f) not in caps]
     if len(faces) - len(joint) != len(starts):
