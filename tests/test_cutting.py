@@ -1,19 +1,39 @@
-"""Sculpting cuts (livemod.dlfl.cutting) and their commands: cut vertices, edges, faces; truncate."""
+"""Sculpting cuts (livemod.dlfl.cutting) and their commands: cut vertices, edges, faces
+at an offset and by planes, peeling by a plane; truncate."""
 
 from __future__ import annotations
+
+from functools import partial
 
 import numpy as np
 import pytest
 
 import livemod.dlfl as dlfl
-from livemod.dlfl import Mesh, Selection, face_size_histogram, genus, validate
+from livemod.dlfl import Mesh, Selection, cutting, face_size_histogram, genus, validate
+from livemod.dlfl.analysis import corner_normals, face_normals, face_points
+from livemod.dlfl.arrays import mesh_arrays
+from livemod.dlfl.build import from_polygons
 from livemod.dlfl.commands import cutEdges, cutFaces, cutVertices, truncate
-from livemod.dlfl.cutting import cut_edges, cut_faces, cut_vertices
 from livemod.dlfl.cutting import truncate as truncate_mesh
-from livemod.dlfl.shapes import cube, grid, icosahedron, torus
+from livemod.dlfl.errors import GeometryError
+from livemod.dlfl.shapes import cube, grid, icosahedron, spherical_cube, torus
 from livemod.dlfl.subdivision import vertex_cut
-from tests.meshes import assert_refused, canonical, counts, euler_ok, path_face, point_sphere
+from tests.meshes import (
+    assert_refused,
+    canonical,
+    counts,
+    euler_ok,
+    path_face,
+    point_sphere,
+    snapshot,
+    two_cubes,
+)
 from tests.meshes import triangle as open_triangle
+
+# the cuts with their points offset along the edges (the plane cuts are further down)
+cut_vertices = partial(cutting.cut_vertices, placement="offset")
+cut_edges = partial(cutting.cut_edges, placement="offset")
+cut_faces = partial(cutting.cut_faces, placement="offset")
 
 
 def checked(mesh: Mesh, op, *args) -> list[int]:
@@ -342,10 +362,172 @@ def test_a_whole_component_cannot_be_cut_away():
     assert_refused(m, lambda m: cut_faces(m, [front]), r"only 0 edge\(s\) leave it")
 
 
+# -- plane placement (TopMod's) and peeling -------------------------------------------
+
+def peeled(mesh: Mesh, *args, **kwargs) -> list[int]:
+    """``cutting.cut_plane(mesh, *args, **kwargs)``; the mesh stays valid and
+    Euler-consistent (its genus may fall: the plane can cut a handle)."""
+    caps = cutting.cut_plane(mesh, *args, **kwargs)
+    validate(mesh)
+    assert euler_ok(mesh)
+    return caps
+
+
+def on_plane(mesh: Mesh, vertices: list[int], point: object, normal: object) -> bool:
+    n = np.asarray(normal, dtype=float) / np.linalg.norm(normal)
+    return all(abs(float((mesh.position(v) - np.asarray(point)) @ n)) < 1e-12 for v in vertices)
+
+
+def new_vertices(before: Mesh, after: Mesh) -> list[int]:
+    return sorted(set(after.vertex_ids().tolist()) - set(before.vertex_ids().tolist()))
+
+
+@pytest.mark.parametrize("op, ids, expected", [
+    (cutting.cut_vertices, [0], ((10, 15, 7), {3: 1, 4: 3, 5: 3})),
+    (cutting.cut_edges, [0], ((10, 15, 7), {4: 5, 5: 2})),
+    (cutting.cut_faces, [0], ((8, 12, 6), {4: 6})),
+])
+def test_plane_cuts_of_the_cube_are_topmods(op, ids, expected):
+    # each plane passes through the points 0.25 along the edges: the same points
+    m, offset_cut = cube(), cube()
+    caps = checked(m, op, ids)
+    op(offset_cut, ids, placement="offset")
+    assert (m.counts(), face_size_histogram(m)) == expected and len(caps) == 1
+    assert canonical(m) == canonical(offset_cut)
+
+
+def test_a_vertex_cut_of_a_warped_mesh_ends_on_its_plane():
+    m = spherical_cube()
+    v = next(v for v in m.vertex_ids().tolist() if m.valence(v) == 4)
+    before = m.copy()
+    far = neighbours(m, v)
+    a = mesh_arrays(m)
+    corners = np.flatnonzero(a.vertex_ids[a.corner_vertex] == v)
+    normal = corner_normals(a)[corners].mean(axis=0)
+    point = np.mean([m.position(v) + 0.3 * (m.position(w) - m.position(v)) for w in far], axis=0)
+    caps = checked(m, cutting.cut_vertices, [v], 0.3)
+    new = new_vertices(before, m)
+    assert m.counts() == (98 + 3, 192 + 4, 96 + 1) and len(new) == 4
+    assert on_plane(m, new, point, normal)
+    assert sorted(m.face_vertices(caps[0])) == new
+    for w in far:  # each new point on the edge to a neighbour, between the two
+        p, q = before.position(v), before.position(w)
+        assert any(np.linalg.norm(np.cross(m.position(x) - p, q - p)) < 1e-12 for x in new)
+
+
+def test_an_offset_past_the_neighbours_cuts_the_cube_through_its_centre():
+    m = cube()
+    corner = next(v for v in m.vertex_ids().tolist() if (m.position(v) > 0).all())
+    # the points 1.5 along the corner's edges average to the centre: plane x + y + z = 0
+    caps = checked(m, cutting.cut_vertices, [corner], 1.5)
+    assert m.counts() == (10, 15, 7) and face_size_histogram(m) == {3: 3, 5: 3, 6: 1}
+    assert on_plane(m, m.face_vertices(caps[0]), (0, 0, 0), (1, 1, 1))
+    assert sorted(np.abs(face_points(m, caps[0])).sum(axis=1).round(12).tolist()) == [2.0] * 6
+
+
+def test_peeling_the_cube_by_a_plane():
+    m = cube()
+    before = m.copy()
+    caps = peeled(m, (0, 0.5, 0), (0, 1, 0))
+    assert m.counts() == (8, 12, 6) and face_size_histogram(m) == {4: 6}
+    assert on_plane(m, m.face_vertices(caps[0]), (0, 0.5, 0), (0, 1, 0))
+    assert len(new_vertices(before, m)) == 4
+
+
+def test_peeling_a_torus_through_two_rings_of_its_vertices():
+    # torus(8, 6) about the y axis: rings 2 and 6 lie on x = 0 and become the caps;
+    # rings 7, 0, 1 (18 vertices, 42 edges, 24 quads with rings 2 and 6) go
+    m = torus(8, 6)
+    before = m.copy()
+    caps = peeled(m, (0, 0, 0), (1, 0, 0))
+    assert m.counts() == (48 - 18, 96 - 42, 48 - 24 + 2) and genus(m) == 0
+    assert [m.face_size(f) for f in caps] == [6, 6] and new_vertices(before, m) == []
+
+
+def test_peeling_the_top_off_a_torus_leaves_two_caps():
+    # the 16 vertices above y = 0.3 go with their 24 edges and 8 quads; the 16
+    # edges down to y = 0 are cut, and 16 quads get a new side each: two loops
+    m = torus(8, 6)
+    caps = peeled(m, (0, 0.3, 0), (0, 1, 0))
+    assert m.counts() == (48, 96 - 24 + 16, 48 - 8 + 2) and genus(m) == 0
+    assert sorted(m.face_size(f) for f in caps) == [8, 8]
+    assert all(on_plane(m, m.face_vertices(f), (0, 0.3, 0), (0, 1, 0)) for f in caps)
+
+
+def u_prism() -> Mesh:
+    """A U-shaped prism, 16/24/10: its top and bottom are U-shaped octagons."""
+    u = [(0, 0), (3, 0), (3, 2), (2, 2), (2, 1), (1, 1), (1, 2), (0, 2)]
+    pos = [(x, y, z) for z in (0, 1) for x, y in u]
+    sides = [[i, (i + 1) % 8, 8 + (i + 1) % 8, 8 + i] for i in range(8)]
+    return from_polygons(np.array(pos, dtype=float), [list(range(8))[::-1], list(range(8, 16)),
+                                                      *sides])
+
+
+def test_a_face_crossed_four_times_loses_each_piece_on_its_own():
+    # y = 1.5 crosses the U's top and bottom four times each: both arm tips go
+    m = u_prism()
+    caps = peeled(m, (0, 1.5, 0), (0, 1, 0))
+    assert m.counts() == (16, 24, 10) and face_size_histogram(m) == {4: 8, 8: 2}
+    assert len(caps) == 2 and all(m.face_size(f) == 4 for f in caps)
+    assert all(on_plane(m, m.face_vertices(f), (0, 1.5, 0), (0, 1, 0)) for f in caps)
+
+
+def test_a_seed_limits_the_cut_to_its_own_part():
+    m = two_cubes()  # unit cubes at x = 0 and x = 3
+    seed = next(v for v in m.vertex_ids().tolist() if (m.position(v) == 1).all())
+    peeled(m, (0, 0.5, 0), (0, 1, 0), seed=seed)
+    assert m.counts() == (16, 24, 12)
+    assert sorted(set(m.positions_view()[:, 1].round(12).tolist())) == [0.0, 0.5, 1.0]
+
+
+def test_peel_cuts_the_whole_mesh_by_each_plane():
+    # the plane of cube 0's face x = 1 (offset 0.25: x = 0.75) leaves the other cube
+    # wholly beyond it: peeled, it goes (without a cap); cut locally, it stays
+    face = next(f for f in range(6) if (face_points(two_cubes(), f)[:, 0] == 1).all())
+    local, peeled = two_cubes(), two_cubes()
+    checked(local, cutting.cut_faces, [face])
+    cutting.cut_faces(peeled, [face], peel=True)
+    validate(peeled)
+    assert local.counts() == (16, 24, 12) and peeled.counts() == (8, 12, 6)
+    assert peeled.positions_view()[:, 0].max() == 0.75
+
+
+def test_plane_cut_refusals():
+    m = cube()
+    m.set_position(0, (0.2, 0.2, 0.2))  # pushed in: it lies before its own plane
+    assert_refused(m, lambda m: cutting.cut_vertices(m, [0]), "near side of its cutting plane",
+                   GeometryError)
+    assert_refused(cube(), lambda m: cutting.cut_vertices(m, [0], 0), "offset must be a number > 0")
+    assert_refused(cube(), lambda m: cutting.cut_vertices(m, [0], placement="edge"),
+                   "placement must be one of 'plane', 'offset'")
+    assert_refused(cube(), lambda m: cutting.cut_edges(m, [0], placement="offset", peel=True),
+                   "needs placement='plane'")
+    assert_refused(cube(), lambda m: cutting.cut_plane(m, (0, 0, 0), (0, 0, 0)),
+                   "normal must not be zero")
+    assert_refused(cube(), lambda m: cutting.cut_plane(m, (0, 0), (0, 1, 0)),
+                   "point must be three finite numbers")
+    low = next(v for v in cube().vertex_ids().tolist() if cube().position(v)[1] < 0)
+    assert_refused(cube(), lambda m: cutting.cut_plane(m, (0, 0.5, 0), (0, 1, 0), seed=low),
+                   f"seed vertex {low} lies on the near side")
+
+
+def test_a_plane_beyond_the_mesh_cuts_nothing():
+    m = cube()
+    before = snapshot(m)
+    assert cutting.cut_plane(m, (0, 2, 0), (0, 1, 0)) == [] and snapshot(m) == before
+
+
+def test_the_plane_through_a_face_is_its_centroid_and_normal():
+    m = spherical_cube()
+    point, normal = cutting.plane_of_face(m, 5)
+    np.testing.assert_allclose(point, face_points(m, 5).mean(axis=0), atol=1e-15)
+    np.testing.assert_allclose(normal, face_normals(m)[list(m.face_ids()).index(5)], atol=1e-15)
+
+
 # -- commands --------------------------------------------------------------------------
 
 def test_star_import_gives_the_cutting_commands():
-    for name in ("cutVertices", "cutEdges", "cutFaces", "truncate"):
+    for name in ("cutVertices", "cutEdges", "cutFaces", "cutPlane", "truncate"):
         assert name in dlfl.__all__ and callable(getattr(dlfl, name))
 
 
@@ -374,8 +556,25 @@ def test_truncate_command_records_one_step(scene):
     assert counts(scene) == (24, 36, 14) and labels == ["truncate"]
 
 
+def test_cut_plane_command_takes_a_plane_or_a_face(scene):
+    caps = dlfl.cutPlane((0, 0.5, 0), (0, 1, 0))
+    assert counts(scene) == (8, 12, 6) and len(caps) == 1
+    assert dlfl.cutPlane(faceid=caps[0]) == []  # nothing lies beyond the new top
+    assert counts(scene) == (8, 12, 6)
+    validate(scene.mesh)
+
+
+def test_cutting_commands_take_placement_and_peel(scene):
+    cutVertices(0, 0.25, "offset")
+    assert counts(scene) == (10, 15, 7)
+    cutFaces([1], 0.25, peel=True)
+    validate(scene.mesh)
+
+
 def test_refused_command_leaves_the_object(scene):
     mesh = scene.mesh
-    assert_refused(mesh, lambda _: cutFaces([0, 1]), "share vertex")
-    assert_refused(mesh, lambda _: cutVertices(0, 2.0), "offset")
+    assert_refused(mesh, lambda _: cutFaces([0, 1], placement="offset"), "share vertex")
+    assert_refused(mesh, lambda _: cutVertices(0, 2.0, "offset"), "offset")
     assert_refused(mesh, lambda _: cutVertices("0"), "vertexids must be a list of ids")
+    assert_refused(mesh, lambda _: dlfl.cutPlane((0, 0, 0)), "needs point and normal, or faceid")
+    assert_refused(mesh, lambda _: dlfl.cutPlane((0, 0, 0), (0, 1, 0), faceid=0), "not both")
