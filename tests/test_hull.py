@@ -343,11 +343,11 @@ def column_joints() -> list[np.ndarray]:
 
     def record(points: np.ndarray, tolerance: float = 1e-9) -> list[list[int]]:
         recorded.append(np.array(points))
-        return hull_triangles(points, tolerance)
+        return hull_polygons(points, tolerance)
 
     wireframe = importlib.import_module("livemod.dlfl.wireframe")
     joints = importlib.import_module("livemod.dlfl._column_joints")
-    with mock.patch.object(joints, "hull_triangles", record):
+    with mock.patch.object(joints, "hull_polygons", record):
         for make, segments in [(lambda: torus(6, 5), 4), (cube, 5), (icosahedron, 3),
                                (octahedron, 6), (lambda: torus(5, 4), 8)]:
             wireframe.columns(make(), 0.1, segments)

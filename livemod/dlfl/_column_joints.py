@@ -1,4 +1,4 @@
-"""The joint at a vertex of :func:`livemod.dlfl.wireframe.columns`, as TopMod builds it.
+"""The joint at a vertex of :func:`.wireframe.columns`, as TopMod builds it.
 
 TopMod's ``createWireframeWithSegments`` takes the convex hull of the rings of
 ``s`` points around a vertex's edges, runs ``edgeCleanup`` on it (merging hull
@@ -10,8 +10,10 @@ whose ``i - j`` has the other parity goes. On its rings (turned by
 triangles are coplanar, so the parity rule meets a triangulated hull.
 
 livemod's rings are exact, so faces of the hull are truly coplanar. The rule
-here is TopMod's on a triangulated hull: the hull of the rings cut into
-triangles (:func:`.hull.hull_triangles`), the parity rule for an even ``s``,
+here is TopMod's on a triangulated hull: the hull of the rings with every
+face but the ring caps cut into a fan of triangles (or, where a point lies on a
+hull edge, cut ear by ear, :func:`.hull.hull_triangles`), the parity rule for
+an even ``s``,
 then every two faces that lie in one plane (every point within
 :data:`FLAT` times the joint's extent of it) merged. On the platonic solids,
 the cube, a 4 x 4 torus and the soccer ball this gives TopMod's counts
@@ -23,10 +25,12 @@ the merged hull (triangles and planar polygons).
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
-from ._vectors import shifted_in_range, unit
-from .hull import hull_triangles
+from ._vectors import shifted_in_range
+from .hull import hull_polygons, hull_triangles
 from .normals import small_polygon_normal
 
 FLAT = 1e-5
@@ -54,71 +58,112 @@ def joint_polygons(points: np.ndarray, rings: int, segments: int) -> list[list[i
         DLFLError: as :func:`.hull.hull_triangles` (the rings lie in one plane).
     """
     points = shifted_in_range(points)  # the same faces at any scale and offset
-    triangles = hull_triangles(points)
-    edges = _Edges(np.array(triangles), segments)
+    # a joint has a few dozen points: plain floats beat numpy's per-call cost
+    pts = points.tolist()
+    extent = max(max(axis) - min(axis) for axis in zip(*pts, strict=True))
+    triangles = _fans(hull_polygons(points), segments)
+    edges = _Edges(pts, triangles, segments)
+    if not all(a > 1e-9 * extent * extent for a in edges.area):  # a point on a hull edge
+        triangles = hull_triangles(points)  # cut by ears: no flat triangle
+        edges = _Edges(pts, triangles, segments)
     faces = _Faces(triangles)
     # the caps first, as TopMod's edgeCleanup merged them before its parity rule
-    for u, v in edges.pairs(edges.chord):
+    for u, v in edges.chords():
         faces.merge_across(u, v)
-    across = ~edges.same_ring
     if segments % 2 == 0:
-        for u, v in edges.pairs(across & edges.other_parity(points)):
+        for u, v in edges.other_parity():
             faces.merge_across(u, v)
-    tol = FLAT * float(np.ptp(points, axis=0).max())
-    faces.merge_flat(points, edges.pairs(across & edges.flat(points, tol)), tol)
+    tol = FLAT * extent
+    faces.merge_flat(points, edges.flat(tol), tol)
     return faces.polygons()
 
 
+def _fans(polygons: list[list[int]], segments: int) -> list[list[int]]:
+    """Each polygon but a ring cap cut into a fan of triangles from its last
+    corner, in the order and turn :func:`.hull.hull_triangles` gives a polygon
+    none of whose corners lies in line with its neighbours. A cap stays whole:
+    its triangles would only be merged again, as TopMod's edgeCleanup merged
+    them."""
+    out: list[list[int]] = []
+    for p in polygons:
+        k = len(p)
+        if k == segments and p[0] // segments == p[1] // segments == p[2] // segments \
+                and len({i // segments for i in p}) == 1:
+            out.append(p)
+            continue
+        out.extend([p[-1], p[i], p[i + 1]] for i in range(k - 3))
+        out.append(p[-3:] if k > 3 else list(p))
+    return out
+
+
 class _Edges:
-    """The edges of a triangulated joint hull ``tri`` (``(T, 3)`` point indices),
-    each once as ``(u, v)`` with ``u < v``, in order of ``(u, v)``."""
+    """The edges of the triangles of a joint hull (``triangles``: point indices
+    into ``pts``, a list of ``[x, y, z]``; longer polygons, the ring caps, are
+    left out), each once as ``(u, v)`` with ``u < v``, in order of ``(u, v)``.
+    The ring of point ``i`` is ``i // segments``."""
 
-    def __init__(self, tri: np.ndarray, segments: int) -> None:
-        head, tail = tri.ravel(), tri[:, [1, 2, 0]].ravel()
-        size = int(tri.max()) + 1
-        key = head * size + tail
-        order = np.argsort(key)
-        mate = order[np.searchsorted(key[order], tail * size + head)]
-        lower = np.flatnonzero(head < tail)
-        lower = lower[np.argsort(key[lower])]
-        self.tri = tri
-        self.u, self.v = head[lower], tail[lower]
-        # the two triangles beside each edge, and the point of each off the edge
-        third = tri[:, [2, 0, 1]].ravel()
-        self.sides = (lower // 3, mate[lower] // 3)
-        self.thirds = (third[lower], third[mate[lower]])
-        self.same_ring = self.u // segments == self.v // segments
-        step = (self.v - self.u) % segments
-        self.chord = self.same_ring & (step != 1) & (step != segments - 1)
-        self.segments = segments
+    def __init__(self, pts: list[list[float]], triangles: list[list[int]],
+                 segments: int) -> None:
+        self.pts, self.segments = pts, segments
+        # per side u -> v: its triangle and that triangle's point off the side
+        self.third: dict[tuple[int, int], tuple[int, int]] = {}
+        self.corner: list[list[float]] = []
+        self.normal: list[tuple[float, float, float]] = []
+        self.area: list[float] = []  # twice each triangle's area
+        third = self.third
+        for t, (a, b, c) in enumerate(p for p in triangles if len(p) == 3):
+            third[(a, b)], third[(b, c)], third[(c, a)] = (t, c), (t, a), (t, b)
+            normal, area = _unit_cross(pts[a], pts[b], pts[c])
+            self.corner.append(pts[a])
+            self.normal.append(normal)
+            self.area.append(area)
+        self.edges = sorted(e for e in self.third if e[0] < e[1])
 
-    def pairs(self, mask: np.ndarray) -> list[tuple[int, int]]:
-        """The edges of ``mask`` (``(E,)`` bool) as ``(u, v)`` pairs."""
-        return list(zip(self.u[mask].tolist(), self.v[mask].tolist(), strict=True))
+    def chords(self) -> list[tuple[int, int]]:
+        """The edges joining two points of one ring that are not neighbours in it."""
+        s = self.segments
+        return [(u, v) for u, v in self.edges
+                if u // s == v // s and (v - u) % s not in (1, s - 1)]
 
-    def other_parity(self, points: np.ndarray) -> np.ndarray:
-        """``(E,)`` bool: the edges TopMod's parity rule deletes. Of the edges
-        between two rings, those whose ends' places in their rings differ in
-        parity from those of the shortest such edge (the first in order of their
-        ends among equal shortest)."""
-        across = np.flatnonzero(~self.same_ring)
-        length = np.linalg.norm(points[self.u[across]] - points[self.v[across]], axis=1)
-        first = across[np.flatnonzero(length <= length.min() * (1.0 + _TIE))[0]]
-        parity = (self.u % self.segments - self.v % self.segments) % 2
-        return ~self.same_ring & (parity != parity[first])
+    def other_parity(self) -> list[tuple[int, int]]:
+        """The edges TopMod's parity rule deletes. Of the edges between two rings,
+        those whose ends' places in their rings differ in parity from those of the
+        shortest such edge (the first in order of their ends among equal
+        shortest)."""
+        s = self.segments
+        across = [(u, v) for u, v in self.edges if u // s != v // s]
+        length = [math.dist(self.pts[u], self.pts[v]) for u, v in across]
+        least = min(length) * (1.0 + _TIE)
+        u0, v0 = next(e for e, d in zip(across, length, strict=True) if d <= least)
+        parity = (u0 % s - v0 % s) % 2
+        return [(u, v) for u, v in across if (u % s - v % s) % 2 != parity]
 
-    def flat(self, points: np.ndarray, tol: float) -> np.ndarray:
-        """``(E,)`` bool: the edges whose two triangles each have the other's
+    def flat(self, tol: float) -> list[tuple[int, int]]:
+        """The edges between two rings whose two triangles each have the other's
         third point within ``tol`` of their plane."""
-        a, b, c = (points[self.tri[:, k]] for k in range(3))
-        normal = unit(np.cross(b - a, c - a))
-        near, far = self.sides
-        near_third, far_third = self.thirds
+        s = self.segments
+        return [(u, v) for u, v in self.edges
+                if u // s != v // s and self._off(u, v) <= tol and self._off(v, u) <= tol]
 
-        def off(tri: np.ndarray, point: np.ndarray) -> np.ndarray:
-            return np.abs(np.einsum("ij,ij->i", points[point] - a[tri], normal[tri]))
+    def _off(self, u: int, v: int) -> float:
+        """How far the point of the triangle beyond side ``u -> v`` off that side
+        lies from the plane of the triangle of ``u -> v``."""
+        t, _ = self.third[(u, v)]
+        _, far = self.third[(v, u)]
+        p, q, n = self.pts[far], self.corner[t], self.normal[t]
+        return abs((p[0] - q[0]) * n[0] + (p[1] - q[1]) * n[1] + (p[2] - q[2]) * n[2])
 
-        return (off(near, far_third) <= tol) & (off(far, near_third) <= tol)
+
+def _unit_cross(a: list[float], b: list[float], c: list[float]
+                ) -> tuple[tuple[float, float, float], float]:
+    """The unit normal of triangle ``a b c`` (zero when it has no area) and the
+    length of ``(b - a) x (c - a)``."""
+    ux, uy, uz = b[0] - a[0], b[1] - a[1], b[2] - a[2]
+    vx, vy, vz = c[0] - a[0], c[1] - a[1], c[2] - a[2]
+    nx, ny, nz = uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx
+    area = math.sqrt(nx * nx + ny * ny + nz * nz)
+    scale = 1.0 / max(area, 1e-300)
+    return (nx * scale, ny * scale, nz * scale), area
 
 
 class _Faces:
@@ -127,8 +172,12 @@ class _Faces:
     def __init__(self, polygons: list[list[int]]) -> None:
         self.rings = dict(enumerate(polygons))
         self.side: dict[tuple[int, int], int] = {}
-        for i, p in self.rings.items():
-            self.side.update(zip(zip(p, p[1:] + p[:1], strict=True), (i,) * len(p), strict=True))
+        side = self.side
+        for i, p in enumerate(polygons):
+            u = p[-1]
+            for v in p:
+                side[(u, v)] = i
+                u = v
 
     def merge_across(self, u: int, v: int) -> bool:
         """Delete edge ``u v``, merging its two faces; False (nothing done) when
@@ -136,12 +185,14 @@ class _Faces:
         a, b = self.side.get((u, v)), self.side.get((v, u))
         if a is None or b is None or a == b:
             return False
-        merged = _opened(self.rings[a], u, v) + _opened(self.rings[b], v, u)[1:-1]
-        del self.side[(u, v)], self.side[(v, u)], self.rings[b]
-        self.rings[a] = merged
-        for j, w in enumerate(merged):
-            if (w, merged[(j + 1) % len(merged)]) in self.side:
-                self.side[(w, merged[(j + 1) % len(merged)])] = a
+        ring = self.rings.pop(b)
+        self.rings[a] = _opened(self.rings[a], u, v) + _opened(ring, v, u)[1:-1]
+        del self.side[(u, v)], self.side[(v, u)]
+        w = ring[-1]
+        for x in ring:  # b's other sides now bound a
+            if (w, x) in self.side:
+                self.side[(w, x)] = a
+            w = x
         return True
 
     def merge_flat(self, points: np.ndarray, hinges: list[tuple[int, int]], tol: float) -> None:
