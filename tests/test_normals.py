@@ -280,3 +280,124 @@ def test_the_crust_moves_a_split_edge_point_by_its_reversed_faces_normals() -> N
     assert genus(mesh) == 0 and mesh.counts() == (2 * a.counts[0], 2 * a.counts[1],
                                                    2 * a.counts[2])
     assert has_point(mesh, expected)
+
+
+# -- dome, the fans and checker on TopMod's kinds of warped meshes ------------------
+
+WARPED = {"spherical cube": shapes.spherical_cube, "genus-3 hexagons": lambda: shapes.genus3_hexa(1),
+          "hexagon donut": lambda: shapes.donut_hexa(1)}
+
+
+def ds_step(points: np.ndarray, distance: float, scale: float) -> np.ndarray:
+    """One Doo-Sabin extrusion ring as TopMod builds it, written out: the points
+    moved ``distance`` along the rule's face normal, the Doo-Sabin weights, then
+    scaled by ``scale`` about their centroid."""
+    k = len(points)
+    i = np.arange(k)
+    weights = (3 + 2 * np.cos(2 * np.pi * (i[:, None] - i[None, :]) / k)) / (4 * k)
+    np.fill_diagonal(weights, 0.25 + 5 / (4 * k))
+    moved = points + (distance * rule(points.tolist())[1] if distance else 0.0)
+    ring = weights @ moved
+    centre = ring.mean(axis=0)
+    return centre + scale * (ring - centre)
+
+
+def warped_faces(mesh: Mesh) -> list[int]:
+    """The faces of ``mesh`` whose corners do not lie in one plane (at 1e-6)."""
+    out = []
+    for f in mesh.face_ids().tolist():
+        p = np.array(face_points(mesh, f))
+        if np.linalg.svd(p - p.mean(axis=0), compute_uv=False)[-1] > 1e-6:
+            out.append(f)
+    return out
+
+
+@pytest.mark.parametrize("name", sorted(WARPED))
+def test_the_dome_extrusion_steps_along_each_rings_own_normal(name: str) -> None:
+    mesh = WARPED[name]()
+    face = warped_faces(mesh)[len(warped_faces(mesh)) // 2]
+    points = np.array(face_points(mesh, face))
+    for d, s in zip((0.3, 0.18, 0.1, 0.05, 0.025), (1.7, 1.6, 1.4, 1.2, 1.1), strict=True):
+        points = ds_step(points, 2.0 * d, s)
+    apex = points.mean(axis=0) + 0.02 * rule(points.tolist())[1]
+    v, e, f = mesh.counts()
+    k = len(points)
+    fan = extrude_fan(mesh, face, "dome", 2.0)
+    validate(mesh)
+    assert mesh.counts() == (v + 5 * k + 1, e + 11 * k, f + 5 * k + k - 1) and len(fan) == k
+    assert has_point(mesh, apex) and has_point(mesh, points[0]) and has_point(mesh, points[-1])
+
+
+def split_in_four(points: np.ndarray) -> np.ndarray:
+    """A polygon's corners with the points 1/4, 1/2 and 3/4 along each side: every
+    point but the corners is a straight (180 degree) corner."""
+    ahead = np.roll(points, -1, axis=0)
+    return np.concatenate([points[:, None] + t * (ahead - points)[:, None]
+                           for t in (0.0, 0.25, 0.5, 0.75)], axis=1).reshape(-1, 3)
+
+
+@pytest.mark.parametrize("name", sorted(WARPED))
+def test_the_dome_scheme_extrudes_each_split_face_along_the_rule(name: str) -> None:
+    mesh = WARPED[name]()
+    rings = []
+    for face in mesh.face_ids().tolist()[::7]:  # each face's rings are its own
+        points = split_in_four(np.array(face_points(mesh, face)))
+        for d, s in zip((0, 0.3, 0.18, 0.1, 0.05, 0.025, 0.01),
+                        (1.6, 1.7, 1.6, 1.4, 1.2, 1.1, 0.01), strict=True):
+            points = ds_step(points, 0.5 * d, s)
+        rings.append(points)
+    v, e, f = mesh.counts()
+    subdivide(mesh, "dome", length=0.5)
+    validate(mesh)
+    split = 8 * e  # the split faces' corners; each gets a quad on each of 7 rings
+    assert mesh.counts() == (v + 3 * e + 7 * split, 4 * e + 14 * split, f + 7 * split)
+    assert genus(mesh) == genus(WARPED[name]())
+    assert all_present(mesh, np.concatenate(rings), 1e-12)
+
+
+def all_present(mesh: Mesh, points: np.ndarray, tol: float) -> bool:
+    """Whether every one of ``points`` ``(n, 3)`` is within ``tol`` of a vertex."""
+    positions = mesh_arrays(mesh).positions
+    return all(
+        bool((np.linalg.norm(chunk[:, None] - positions[None], axis=2).min(axis=1) < tol).all())
+        for chunk in np.array_split(points, max(1, len(points) // 100)))
+
+
+@pytest.mark.parametrize("name", sorted(WARPED))
+def test_the_fans_move_along_the_rule_on_warped_faces(name: str) -> None:
+    mesh = WARPED[name]()
+    faces = warped_faces(mesh)
+    for face in faces[:: max(1, len(faces) // 4)]:
+        points = np.array(face_points(mesh, face))
+        normal = rule(points.tolist())[1]
+        for kind, count in (("stellate", 1), ("double-stellate", 3)):
+            work = WARPED[name]()
+            fan = extrude_fan(work, face, kind, 0.4)
+            validate(work)
+            assert len(fan) == count * len(points)
+            apex = set.intersection(*(set(work.face_vertices(f)) for f in fan)) \
+                if kind == "stellate" else {work.num_vertices - 1 - len(points)}
+            np.testing.assert_allclose(work.position(apex.pop()),
+                                       points.mean(axis=0) + 0.4 * normal, atol=1e-14)
+
+
+def test_checker_on_the_genus_3_mesh_flips_the_inset_at_its_concave_corners() -> None:
+    mesh = shapes.genus3_hexa(1)
+    a = mesh_arrays(mesh)
+    expected, unflipped = [], []
+    for f in range(len(a.face_ids)):
+        p = a.positions[a.corner_vertex[a.face_offsets[f]:a.face_offsets[f + 1]]]
+        newell = sum(np.cross(p[i], p[(i + 1) % len(p)]) for i in range(len(p)))
+        for i in range(len(p)):
+            ahead, behind = p[(i + 1) % len(p)] - p[i], p[i - 1] - p[i]
+            move = 0.25 * (ahead + behind)
+            if np.cross(ahead, behind) @ newell < 0:  # concave: TopMod turns it round
+                unflipped.append(p[i] + move)
+                move = -move
+            expected.append(p[i] + move)
+    assert len(unflipped) == 2  # the mesh's two concave corners
+    subdivide(mesh, "checker", thickness=0.25)
+    validate(mesh)
+    assert genus(mesh) == 3 and mesh.counts() == (161 + 2 * 494, 9 * 494 // 2, 82 + 2 * 494)
+    assert all_present(mesh, np.array(expected), 1e-13)
+    assert not any(has_point(mesh, q, 1e-3) for q in unflipped)
