@@ -35,12 +35,14 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 
-from ._vectors import face_ring_vectors, group_sum, unit
+from ._vectors import cross_rows, face_ring_vectors, group_sum, unit
+from ._vectors import newell as newell_sums
 
-__all__ = ["WINGED", "RingNormals", "ring_normals", "ring_neighbours", "reversed_rings",
+__all__ = ["WINGED", "RingNormals", "RingLayout", "ring_layout", "ring_normals", "ring_neighbours", "reversed_rings",
            "nearest_unwinged", "polygon_normal", "small_polygon_normal", "inset_offsets"]
 
 WINGED = 1e-5
@@ -98,8 +100,25 @@ def reversed_rings(offsets: np.ndarray) -> np.ndarray:
             - np.arange(int(offsets[-1]), dtype=np.int64))
 
 
-def ring_normals(positions: np.ndarray, corner_vertex: np.ndarray,
-                 offsets: np.ndarray) -> RingNormals:
+class RingLayout(NamedTuple):
+    """Where every corner of rings laid out one after another sits: ``ring``,
+    ``next`` and ``prev``, each ``(C,)`` int64 (:func:`ring_layout`)."""
+
+    ring: np.ndarray
+    next: np.ndarray
+    prev: np.ndarray
+
+
+def ring_layout(offsets: np.ndarray) -> RingLayout:
+    """The :class:`RingLayout` of the rings of ``offsets`` (``(R + 1,)``, as
+    :func:`ring_neighbours`): for a caller that asks for the normals of rings of
+    one layout several times."""
+    ring = np.repeat(np.arange(len(offsets) - 1, dtype=np.int64), np.diff(offsets))
+    return RingLayout(ring, *ring_neighbours(offsets))
+
+
+def ring_normals(positions: np.ndarray, corner_vertex: np.ndarray, offsets: np.ndarray,
+                 layout: RingLayout | None = None) -> RingNormals:
     """TopMod's normals of every ring (see the module's rule).
 
     Args:
@@ -107,6 +126,7 @@ def ring_normals(positions: np.ndarray, corner_vertex: np.ndarray,
         corner_vertex: ``(C,)`` int index into ``positions`` of each corner.
         offsets: ``(R + 1,)`` int, ring ``r`` owns corners
             ``offsets[r]:offsets[r + 1]`` in ring order (none empty).
+        layout: :func:`ring_layout` of ``offsets``, when the caller has it.
 
     Returns:
         The :class:`RingNormals` of the rings.
@@ -114,14 +134,14 @@ def ring_normals(positions: np.ndarray, corner_vertex: np.ndarray,
     positions = np.asarray(positions, dtype=np.float64)
     sizes = np.diff(offsets)
     count = len(sizes)
-    ring = np.repeat(np.arange(count, dtype=np.int64), sizes)
-    nxt, prv = ring_neighbours(offsets)
+    ring, nxt, prv = ring_layout(offsets) if layout is None else layout
     r = face_ring_vectors(positions, corner_vertex, offsets, ring)
     ahead = r.along(nxt)
     behind = -np.take(ahead, prv, axis=0)  # prev - p, exactly
-    cross = np.cross(ahead, behind)
-    newell = group_sum(ring, np.cross(r.rel, ahead), count)
-    big = np.repeat(sizes > 3, sizes)
+    cross = cross_rows(ahead, behind)
+    newell = newell_sums(r, ahead, ring, count)
+    # triangles are never concave nor winged (no mask at all on a mesh without them)
+    big = np.repeat(sizes > 3, sizes) if count and sizes.min() <= 3 else True
     square = np.einsum("ij,ij->i", cross, cross)
     dot = np.einsum("ij,ij->i", ahead, behind)
     # sin^2 = |a x b|^2 / (|a x b|^2 + (a . b)^2): only near-straight corners pass
@@ -131,9 +151,9 @@ def ring_normals(positions: np.ndarray, corner_vertex: np.ndarray,
     winged_mask = np.zeros(len(ring), dtype=bool)
     winged_mask[near[winged]] = True
     winged_mask &= big
-    turned = np.ones(len(ring), dtype=bool)
-    turned[near[flat]] = False
-    concave = (np.einsum("ij,ij->i", cross, np.take(newell, ring, axis=0)) < 0) & big & turned
+    concave = np.einsum("ij,ij->i", cross, np.take(newell, ring, axis=0)) < 0
+    concave[near[flat]] = False  # a corner of 0 or 180 degrees does not turn
+    concave &= big
     normal = unit(cross)
     normal[concave] *= -1.0
     source = np.arange(len(ring), dtype=np.int64)

@@ -13,7 +13,7 @@ import numpy as np
 
 from ..errors import DLFLError
 from ..mesh import Mesh
-from ..normals import inset_offsets, ring_normals
+from ..normals import inset_offsets, ring_layout, ring_normals
 from ._layout import (
     Faces,
     Topology,
@@ -253,11 +253,12 @@ def _dome_rings(t: Topology, first: np.ndarray, offsets: np.ndarray, length: flo
     rings = np.empty((len(DOME_DISTANCES), len(first), 3))
     corners = np.arange(len(first))
     sizes = np.diff(offsets)
+    layout = ring_layout(offsets)  # the same rings at every step
     previous = first
     for k, (d, s) in enumerate(zip(DOME_DISTANCES, DOME_SCALES, strict=True)):
         shift: np.ndarray | float = 0.0
         if d:
-            normals = ring_normals(previous, corners, offsets).face
+            normals = ring_normals(previous, corners, offsets, layout).face
             shift = np.repeat(d * length * normals, sizes, axis=0)
         rings[k] = _ds_ring(previous, offsets, shift, s * scale)
         previous = rings[k]
