@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 from livemod.dlfl import shapes
+from livemod.dlfl._vectors import cross_rows
 from livemod.dlfl.analysis import corner_normals, face_normals, genus
 from livemod.dlfl.arrays import mesh_arrays
 from livemod.dlfl.build import from_polygons
@@ -401,3 +402,12 @@ def test_checker_on_the_genus_3_mesh_flips_the_inset_at_its_concave_corners() ->
     assert genus(mesh) == 3 and mesh.counts() == (161 + 2 * 494, 9 * 494 // 2, 82 + 2 * 494)
     assert all_present(mesh, np.array(expected), 1e-13)
     assert not any(has_point(mesh, q, 1e-3) for q in unflipped)
+
+
+def test_cross_rows_is_np_cross_bit_for_bit() -> None:
+    rng = np.random.default_rng(7)
+    a = rng.normal(size=(500, 3)) * 10.0 ** rng.integers(-200, 200, size=(500, 1))
+    b = rng.normal(size=(500, 3)) * 10.0 ** rng.integers(-200, 200, size=(500, 1))
+    a[:3] = [[np.inf, 1, 0], [np.nan, 0, 0], [0, 0, 0]]
+    with np.errstate(over="ignore", invalid="ignore", under="ignore"):
+        assert np.array_equal(cross_rows(a, b), np.cross(a, b), equal_nan=True)
