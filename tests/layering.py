@@ -1,0 +1,137 @@
+"""Who reaches into whom: the mesh's private storage and private names across modules.
+
+    python -m tests.layering        # print the counts and every offending line
+
+Read from the source with :mod:`ast` (nothing is imported), so the counts are exact:
+
+* **storage reads**: ``x._c``, ``x._e``, ``x._f`` or ``x._v`` (a :class:`Mesh`'s
+  tables), or a private method of ``Mesh`` called on anything but ``self``, in a
+  module that is not one of :data:`STORAGE_MODULES`;
+* **private imports**: ``from m import _name`` for any module ``m``;
+* **cross-module private imports**: those of them whose ``m`` is a livemod module
+  that is not a private module (``_x.py``) of the importer's own package. A private
+  module exists to share helpers within its package; any other private name is its
+  module's own business.
+"""
+
+from __future__ import annotations
+
+import ast
+import sys
+from dataclasses import dataclass
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+PACKAGE = ROOT / "livemod"
+MESH_TABLES = frozenset({"_c", "_e", "_f", "_v"})
+
+# the modules that are the storage's own (see livemod/dlfl/mesh.py's docstring)
+STORAGE_MODULES = frozenset({
+    "livemod/dlfl/mesh.py", "livemod/dlfl/validate.py", "livemod/dlfl/arrays.py",
+})
+
+
+@dataclass(frozen=True)
+class Finding:
+    """One offending line: ``path`` relative to the repository root."""
+
+    path: str
+    line: int
+    text: str
+
+
+def modules() -> list[Path]:
+    """Every Python file of the package, sorted."""
+    return sorted(PACKAGE.rglob("*.py"))
+
+
+def _relative(path: Path) -> str:
+    return path.relative_to(ROOT).as_posix()
+
+
+def mesh_private_members() -> frozenset[str]:
+    """Names of the private methods and attributes of ``Mesh`` (``_x``, not dunders)."""
+    tree = ast.parse((PACKAGE / "dlfl" / "mesh.py").read_text())
+    mesh = next(node for node in tree.body
+                if isinstance(node, ast.ClassDef) and node.name == "Mesh")
+    names = set(MESH_TABLES)
+    for node in ast.walk(mesh):
+        if isinstance(node, ast.FunctionDef):
+            names.add(node.name)
+        elif (isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name)
+              and node.value.id == "self"):
+            names.add(node.attr)
+    return frozenset(n for n in names if n.startswith("_") and not n.startswith("__"))
+
+
+def storage_reads() -> list[Finding]:
+    """Reads of a mesh's tables or private members outside :data:`STORAGE_MODULES`."""
+    private = mesh_private_members()
+    found = []
+    for path in modules():
+        rel = _relative(path)
+        if rel in STORAGE_MODULES:
+            continue
+        for node in ast.walk(ast.parse(path.read_text())):
+            if (isinstance(node, ast.Attribute) and node.attr in private
+                    and not (isinstance(node.value, ast.Name)
+                             and node.value.id in ("self", "cls"))):
+                found.append(Finding(rel, node.lineno, ast.unparse(node)))
+    return found
+
+
+def private_imports() -> list[tuple[Finding, bool]]:
+    """Every ``from m import _name``, with True where it crosses modules (see above)."""
+    found = []
+    for path in modules():
+        rel = _relative(path)
+        for node in ast.walk(ast.parse(path.read_text())):
+            if not isinstance(node, ast.ImportFrom):
+                continue
+            source = _source_module(path, node)
+            for alias in node.names:
+                if alias.name.startswith("_") and not alias.name.startswith("__"):
+                    text = f"from {'.' * node.level}{node.module or ''} import {alias.name}"
+                    found.append((Finding(rel, node.lineno, text), _crosses(path, source)))
+    return found
+
+
+def _source_module(importer: Path, node: ast.ImportFrom) -> Path | None:
+    """The livemod file (``x.py`` or ``x/__init__.py``) ``node`` imports from, or
+    None for a module outside livemod."""
+    if node.level:
+        base = importer.parent
+        for _ in range(node.level - 1):
+            base = base.parent
+        parts = (node.module or "").split(".") if node.module else []
+    elif node.module and node.module.split(".")[0] == "livemod":
+        base, parts = ROOT, node.module.split(".")
+    else:
+        return None
+    target = base.joinpath(*parts)
+    return target / "__init__.py" if target.is_dir() else target.with_suffix(".py")
+
+
+def _crosses(importer: Path, source: Path | None) -> bool:
+    if source is None:
+        return False
+    shares_helpers = source.name.startswith("_") and source.name != "__init__.py"
+    return not (shares_helpers and source.parent == importer.parent)
+
+
+def main() -> int:
+    reads = storage_reads()
+    imports = private_imports()
+    crossing = [finding for finding, crosses in imports if crosses]
+    print(f"storage reads outside {sorted(STORAGE_MODULES)}: {len(reads)} in "
+          f"{len({f.path for f in reads})} modules")
+    for f in reads:
+        print(f"  {f.path}:{f.line}: {f.text}")
+    print(f"private-name imports: {len(imports)}; across modules: {len(crossing)}")
+    for f in crossing:
+        print(f"  {f.path}:{f.line}: {f.text}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
