@@ -661,3 +661,110 @@ def test_subdividing_into_more_parts_than_a_mesh_holds_is_refused():
     assert_refused(cube(), lambda m: m.subdivide_edge(0, 2**30),
                    "divisions=1073741824 would make at least 2,147,483,648 corners")
     assert_refused(cube(), lambda m: m.subdivide_edge(0, 0), "divisions must be an integer >= 1")
+
+
+# -- bulk accessors ----------------------------------------------------------------
+
+def test_positions_of_ids_follow_their_order_from_a_list_or_an_array():
+    m = cube()
+    m.set_positions([5, 2], [[5, 5, 5], [2, 2, 2]])
+    for ids in ([5, 2, 5], np.array([5, 2, 5]), np.array([5, 2, 5], dtype=np.int32)):
+        got = m.positions(ids)
+        assert got.shape == (3, 3) and got.dtype == np.float64
+        np.testing.assert_array_equal(got, [[5, 5, 5], [2, 2, 2], [5, 5, 5]])
+    got[0] = 0  # a copy: the mesh does not move
+    np.testing.assert_array_equal(m.position(5), [5, 5, 5])
+    assert m.positions([]).shape == (0, 3)
+    assert m.positions(np.array([], dtype=np.int64)).shape == (0, 3)
+
+
+def test_positions_find_ids_in_reused_slots():
+    m, vertices = three_point_spheres()
+    m.remove_vertex(vertices[1])
+    fresh = m.create_vertex((7.0, 8.0, 9.0))  # lands in the freed slot: a moved id
+    np.testing.assert_array_equal(m.positions(np.array([fresh, vertices[2]])),
+                                  [[7, 8, 9], [2, 0, 0]])
+
+
+@pytest.mark.parametrize("ids", [[0, 99, 98], np.array([0, 99, 98])])
+def test_positions_name_the_first_id_that_is_not_a_vertex(ids):
+    m = cube()
+    with pytest.raises(DLFLError, match="^vertex 99 does not exist$"):
+        m.positions(ids)
+
+
+def test_positions_name_a_deleted_vertex_and_refuse_non_integers():
+    m, vertices = three_point_spheres()
+    m.remove_vertex(vertices[0])
+    with pytest.raises(DLFLError, match=f"^vertex {vertices[0]} was deleted$"):
+        m.positions(np.array(vertices))
+    with pytest.raises(DLFLError, match=r"expected a vertex id \(an integer\), got 1.0"):
+        m.positions([vertices[1], 1.0])
+
+
+def test_face_points_follow_the_ring_from_the_head():
+    m = cube()
+    for face in m.face_ids().tolist():
+        expected = [m.position(v) for v in m.face_vertices(face)]
+        np.testing.assert_array_equal(m.face_points(face), expected)
+    m.insert_edge(0, 2)  # the new face's ring starts at a copied corner
+    face = m.corner_face(1)
+    np.testing.assert_array_equal(m.face_points(face),
+                                  m.positions(m.face_vertices(face)))
+    with pytest.raises(DLFLError, match="^face 99 does not exist$"):
+        m.face_points(99)
+
+
+def test_face_points_repeat_a_vertex_the_face_visits_twice():
+    m = path_face()  # vertices 0, 1, 2, 1 at x = 0, 1, 2
+    face = int(m.face_ids()[0])
+    assert m.face_vertices(face) == [0, 1, 2, 1]
+    assert m.face_points(face)[:, 0].tolist() == [0, 1, 2, 1]
+
+
+def test_hole_mask_follows_face_ids():
+    m = triangle()
+    mask = m.hole_mask()
+    assert mask.dtype == bool and mask.shape == (m.num_faces,)
+    assert mask.tolist() == [m.is_hole(f) for f in m.face_ids().tolist()]
+    assert mask.sum() == 1
+    m.set_hole(int(m.face_ids()[0]))
+    assert m.hole_mask().sum() == 2
+    assert Mesh().hole_mask().shape == (0,)
+
+
+def test_from_tables_adopts_the_tables_of_a_two_sided_edge():
+    """A 2-gon: front face 0 (corners 0, 1), back face 1 (corners 2, 3), a hole."""
+    m = Mesh.from_tables(
+        corners={"next": np.array([1, 0, 3, 2]), "prev": np.array([1, 0, 3, 2]),
+                 "face": np.array([0, 0, 1, 1]), "vertex": np.array([0, 1, 1, 0]),
+                 "edge": np.array([0, 1, 0, 1])},
+        edges={"c0": np.array([0, 1]), "c1": np.array([2, 3])},
+        faces={"corner": np.array([0, 2]), "hole": np.array([0, 1])},
+        vertices={"corner": np.array([0, 1]), "position": np.eye(3)[:2]},
+        first_ids=(10, 20, 30, 40))
+    assert checked(m) == (2, 2, 2)
+    assert m.vertex_ids().tolist() == [10, 11] and m.edge_ids().tolist() == [20, 21]
+    assert m.face_ids().tolist() == [30, 31] and m.corner_ids().tolist() == [40, 41, 42, 43]
+    assert m.face_vertices(30) == [10, 11] and m.hole_mask().tolist() == [False, True]
+    assert m.next_ids() == (12, 22, 32, 44)
+    assert m.edge_corners(20) == (40, 42)
+    with pytest.raises(DLFLError, match="vertex 3 was deleted or never existed"):
+        m.position(3)
+
+
+def test_from_tables_refuses_missing_fields_and_ragged_tables():
+    def tables(**changed: dict) -> dict:
+        empty = {"corners": dict.fromkeys(("next", "prev", "face", "vertex", "edge"),
+                                          np.zeros(0)),
+                 "edges": {"c0": np.zeros(0), "c1": np.zeros(0)},
+                 "faces": {"corner": np.zeros(0), "hole": np.zeros(0)},
+                 "vertices": {"corner": np.zeros(0), "position": np.zeros((0, 3))}}
+        return empty | changed
+
+    assert Mesh.from_tables(**tables()).counts() == (0, 0, 0)
+    with pytest.raises(DLFLError, match=r"^the edge table needs the fields \['c0', 'c1'\], "
+                                        r"got \['c0'\]$"):
+        Mesh.from_tables(**tables(edges={"c0": np.zeros(0)}))
+    with pytest.raises(DLFLError, match="^the face table's fields differ in length: "):
+        Mesh.from_tables(**tables(faces={"corner": np.zeros(2), "hole": np.zeros(1)}))

@@ -11,7 +11,16 @@ vertex with a one-corner face and no edge), one- and two-sided faces, faces that
 visit a vertex twice, multi-edges, self-loops and several components.
 
 Only the methods of :class:`Mesh` touch the linked structure. Every other
-operation is a free function in the module of its family.
+operation is a free function in the module of its family, and reads the mesh
+through its public queries and bulk accessors (:meth:`Mesh.positions`,
+:meth:`Mesh.face_points`, :meth:`Mesh.hole_mask`, :meth:`Mesh.vertex_ids`,
+:meth:`Mesh.has_vertex`, ...). The element tables (``_c``, ``_e``, ``_f``,
+``_v``: one :class:`~livemod.dlfl._table.Table` per kind, laid out by the
+``*_SPEC`` field lists below) are read by this module and by the two that are
+the storage's own: :mod:`~livemod.dlfl.validate` (checks every link) and
+:mod:`~livemod.dlfl.arrays` (lays the tables out densely for bulk work). Bulk
+builders hand their arrays to :meth:`Mesh.from_tables`. ``tests/layering.py``
+counts the reads, and a test keeps every other module off the tables.
 
 Elements are named by integer ids, handed out per kind and never reused within a
 mesh; using a deleted id raises :class:`DLFLError` naming it. Bulk operations that
@@ -89,6 +98,17 @@ def _between(p0: list[float], p1: list[float], t: float) -> list[float]:
     the ends, since the rounded sum may step just past one of them."""
     return [min(max(a * (1.0 - t) + b * t, min(a, b)), max(a, b))
             for a, b in zip(p0, p1, strict=True)]
+
+
+def _adopt(kind: str, spec: FieldSpec, first_id: int, fields: dict[str, np.ndarray]) -> Table:
+    """:meth:`Table.from_arrays` of ``fields``, once they are checked to be the
+    fields of ``spec``, all of one length (see :meth:`Mesh.from_tables`)."""
+    if fields.keys() != spec.keys():
+        raise DLFLError(f"the {kind} table needs the fields {sorted(spec)}, got {sorted(fields)}")
+    lengths = {name: len(array) for name, array in fields.items()}
+    if len(set(lengths.values())) > 1:
+        raise DLFLError(f"the {kind} table's fields differ in length: {lengths}")
+    return Table.from_arrays(kind, spec, first_id, fields)
 
 
 class Mesh:
@@ -311,6 +331,11 @@ class Mesh:
         edge = self._c.edge
         return sum(1 for s in self._rotation_slots(self._v.slot(vertex)) if edge[s] >= 0)
 
+    def hole_mask(self) -> np.ndarray:
+        """``(F,)`` bool, True for the hole faces, in the order of :meth:`face_ids`."""
+        F = self._f
+        return F.arrays["hole"][F.live_slots()].astype(bool)
+
     def is_point_sphere(self, vertex: int) -> bool:
         """True when ``vertex`` is isolated: a one-corner face with no edge."""
         s = self._v.corner[self._v.slot(vertex)]
@@ -319,6 +344,30 @@ class Mesh:
     def position(self, vertex: int) -> np.ndarray:
         """``(3,)`` float64 copy of the position of ``vertex``."""
         return self._v.arrays["position"][self._v.slot(vertex)].copy()
+
+    def positions(self, vertices: Iterable[int] | np.ndarray) -> np.ndarray:
+        """``(k, 3)`` float64 copy of the positions of ``vertices``, in their order.
+
+        Args:
+            vertices: ``(k,)`` vertex ids (a list, or an int array: one vectorized
+                lookup however many there are).
+
+        Raises:
+            DLFLError: an entry is not an integer or not a live vertex id (the
+                first such, in order).
+        """
+        return self._v.arrays["position"][self._v.slots(vertices)]
+
+    def face_points(self, face: int) -> np.ndarray:
+        """``(k, 3)`` float64 copy of the positions of ``face``'s corners, in ring
+        order from its head (a vertex the face visits twice appears twice).
+
+        Raises:
+            DLFLError: ``face`` is not a live face id.
+        """
+        # vertex slots straight from the ring: extrusion reads every face it grows here
+        vert = self._c.vertex
+        return self._v.arrays["position"][[vert[s] for s in self._ring_slots(self._f.slot(face))]]
 
     def set_position(self, vertex: int, position: Any) -> None:
         """Move ``vertex`` to ``position`` (three numbers)."""
@@ -973,6 +1022,41 @@ class Mesh:
         self._f.hole[face_slot] = 0
 
     # ------------------------------------------------------------ whole mesh
+
+    @classmethod
+    def from_tables(
+        cls,
+        corners: dict[str, np.ndarray],
+        edges: dict[str, np.ndarray],
+        faces: dict[str, np.ndarray],
+        vertices: dict[str, np.ndarray],
+        first_ids: tuple[int, int, int, int] = (0, 0, 0, 0),
+    ) -> Mesh:
+        """A mesh adopting ready-made element tables: the bulk builders' constructor.
+
+        Each argument maps every field of its kind's spec (:data:`CORNER_SPEC`,
+        :data:`EDGE_SPEC`, :data:`FACE_SPEC`, :data:`VERTEX_SPEC`) to an array with
+        one row per element; every reference (a corner's ``next``, ``face``, ...,
+        an edge's ``c0``/``c1``, a face's or a vertex's ``corner``) is a row index
+        of the table it refers to. Element ``i`` of a kind gets the id
+        ``first_ids[k] + i``, in the order vertex, edge, face, corner. Arrays whose
+        dtype already matches are adopted, not copied.
+
+        The links are trusted, not checked (this is the fast path of every bulk
+        operation); run :func:`livemod.dlfl.validate` on the result in tests.
+
+        Raises:
+            DLFLError: a field missing or unknown, or fields of one kind of
+                different lengths.
+        """
+        mesh = cls.__new__(cls)
+        mesh.notes = []
+        vid, eid, fid, cid = first_ids
+        mesh._c = _adopt("corner", CORNER_SPEC, cid, corners)
+        mesh._e = _adopt("edge", EDGE_SPEC, eid, edges)
+        mesh._f = _adopt("face", FACE_SPEC, fid, faces)
+        mesh._v = _adopt("vertex", VERTEX_SPEC, vid, vertices)
+        return mesh
 
     def copy(self) -> Mesh:
         """A deep copy with the same ids."""
