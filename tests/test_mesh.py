@@ -753,6 +753,21 @@ def test_from_tables_adopts_the_tables_of_a_two_sided_edge():
         m.position(3)
 
 
+def test_from_tables_gives_the_ids_a_kind_is_given():
+    m = Mesh.from_tables(
+        corners={"next": np.array([1, 0, 3, 2]), "prev": np.array([1, 0, 3, 2]),
+                 "face": np.array([0, 0, 1, 1]), "vertex": np.array([0, 1, 1, 0]),
+                 "edge": np.array([0, 1, 0, 1])},
+        edges={"c0": np.array([0, 1]), "c1": np.array([2, 3])},
+        faces={"corner": np.array([0, 2]), "hole": np.array([0, 0])},
+        vertices={"corner": np.array([0, 1]), "position": np.eye(3)[:2]},
+        first_ids=(10, 20, 30, 40), ids=(np.array([7, 3]), None, np.array([5, 9]), None))
+    assert checked(m) == (2, 2, 2)
+    assert m.vertex_ids().tolist() == [3, 7] and m.face_ids().tolist() == [5, 9]
+    assert m.edge_ids().tolist() == [20, 21] and m.face_vertices(5) == [7, 3]
+    assert m.create_vertex() == 10  # past both the first id and the largest given
+
+
 def test_from_tables_refuses_missing_fields_and_ragged_tables():
     def tables(**changed: dict) -> dict:
         empty = {"corners": dict.fromkeys(("next", "prev", "face", "vertex", "edge"),

@@ -220,9 +220,8 @@ def face_normal(mesh: Mesh, face: int) -> np.ndarray:
 
 
 def face_points(mesh: Mesh, face: int) -> np.ndarray:
-    """``(k, 3)`` positions of a face's corners in ring order."""
-    slots = [mesh._v.slot(v) for v in mesh.face_vertices(face)]
-    return mesh._v.arrays["position"][slots]
+    """``(k, 3)`` positions of a face's corners in ring order (:meth:`Mesh.face_points`)."""
+    return mesh.face_points(face)
 
 
 def face_centroid(mesh: Mesh, face: int) -> np.ndarray:

@@ -22,9 +22,8 @@ import numpy as np
 from ._checks import first_not_finite
 from ._graph import cycle_labels, one_cycle_each
 from ._multi_edges import pair_multi_edges
-from ._table import Table
 from .errors import DLFLError, DLFLRepairWarning
-from .mesh import CORNER_SPEC, EDGE_SPEC, FACE_SPEC, VERTEX_SPEC, Mesh
+from .mesh import Mesh
 
 
 @dataclass
@@ -574,19 +573,12 @@ def from_corner_arrays(
     lower, upper, edge = _edge_links(mate)
     num_f = len(offsets) - 1
     hole = np.zeros(num_f, np.uint8) if face_hole is None else np.asarray(face_hole, np.uint8)
-    vid, eid, fid, cid = first_ids
-    vids, eids, fids, cids = ids or (None, None, None, None)
-    mesh = Mesh.__new__(Mesh)
-    mesh.notes = []
-    mesh._c = Table.from_arrays("corner", CORNER_SPEC, cid, {
-        "next": nxt, "prev": prv, "face": face, "vertex": cvert, "edge": edge}, cids)
-    mesh._e = Table.from_arrays("edge", EDGE_SPEC, eid, {"c0": lower, "c1": upper}, eids)
-    mesh._f = Table.from_arrays("face", FACE_SPEC, fid, {"corner": offsets[:-1], "hole": hole},
-                                fids)
-    mesh._v = Table.from_arrays("vertex", VERTEX_SPEC, vid, {
-        "corner": _lowest_corners(cvert, len(positions)),
-        "position": positions}, vids)
-    return mesh
+    return Mesh.from_tables(
+        corners={"next": nxt, "prev": prv, "face": face, "vertex": cvert, "edge": edge},
+        edges={"c0": lower, "c1": upper},
+        faces={"corner": offsets[:-1], "hole": hole},
+        vertices={"corner": _lowest_corners(cvert, len(positions)), "position": positions},
+        first_ids=first_ids, ids=ids)
 
 
 def _check_finite_result(positions: np.ndarray) -> None:

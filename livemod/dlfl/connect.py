@@ -223,7 +223,7 @@ def _end_rings(mesh: Mesh, corner1: int, corner2: int) -> tuple[np.ndarray, np.n
     ``corner2`` backwards (face 2 reversed, so vertex ``i`` faces vertex ``i``)."""
     ring1 = [mesh.corner_vertex(c) for c in _ring_from(mesh, corner1, mesh.corner_next)]
     ring2 = [mesh.corner_vertex(c) for c in _ring_from(mesh, corner2, mesh.corner_prev)]
-    return _positions(mesh, ring1), _positions(mesh, ring2)
+    return mesh.positions(ring1), mesh.positions(ring2)
 
 
 def _ring_from(mesh: Mesh, corner: int, step: Callable[[int], int]) -> list[int]:
@@ -232,11 +232,6 @@ def _ring_from(mesh: Mesh, corner: int, step: Callable[[int], int]) -> list[int]
         out.append(c)
         c = step(c)
     return out
-
-
-def _positions(mesh: Mesh, vertices: list[int]) -> np.ndarray:
-    slot = mesh._v.slot
-    return mesh._v.arrays["position"][[slot(v) for v in vertices]]
 
 
 def _scale_about_centroid(points: np.ndarray, factor: float) -> np.ndarray:

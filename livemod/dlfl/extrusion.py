@@ -82,10 +82,7 @@ def _face_geometry(mesh: Mesh, face: int) -> tuple[np.ndarray, np.ndarray]:
     Raises:
         _GeometryError: the face has no normal (collinear or coincident points).
     """
-    # vertex slots straight from the ring: no id round trip on the hot path
-    vertex_slot = mesh._c.vertex
-    ring = mesh._ring_slots(mesh._f.slot(face))
-    points = mesh._v.arrays["position"][[vertex_slot[c] for c in ring]]
+    points = mesh.face_points(face)
     normal = small_polygon_normal(points.tolist())
     if normal == (0.0, 0.0, 0.0):
         raise _GeometryError(f"face {face} is degenerate (no normal); it cannot be extruded",

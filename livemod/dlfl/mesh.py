@@ -100,15 +100,16 @@ def _between(p0: list[float], p1: list[float], t: float) -> list[float]:
             for a, b in zip(p0, p1, strict=True)]
 
 
-def _adopt(kind: str, spec: FieldSpec, first_id: int, fields: dict[str, np.ndarray]) -> Table:
-    """:meth:`Table.from_arrays` of ``fields``, once they are checked to be the
-    fields of ``spec``, all of one length (see :meth:`Mesh.from_tables`)."""
+def _adopt(kind: str, spec: FieldSpec, first_id: int, fields: dict[str, np.ndarray],
+           ids: np.ndarray | None) -> Table:
+    """:meth:`Table.from_arrays` of ``fields`` (and ``ids``), once they are checked
+    to be the fields of ``spec``, all of one length (see :meth:`Mesh.from_tables`)."""
     if fields.keys() != spec.keys():
         raise DLFLError(f"the {kind} table needs the fields {sorted(spec)}, got {sorted(fields)}")
     lengths = {name: len(array) for name, array in fields.items()}
     if len(set(lengths.values())) > 1:
         raise DLFLError(f"the {kind} table's fields differ in length: {lengths}")
-    return Table.from_arrays(kind, spec, first_id, fields)
+    return Table.from_arrays(kind, spec, first_id, fields, ids)
 
 
 class Mesh:
@@ -1031,6 +1032,8 @@ class Mesh:
         faces: dict[str, np.ndarray],
         vertices: dict[str, np.ndarray],
         first_ids: tuple[int, int, int, int] = (0, 0, 0, 0),
+        ids: tuple[np.ndarray | None, np.ndarray | None, np.ndarray | None,
+                   np.ndarray | None] | None = None,
     ) -> Mesh:
         """A mesh adopting ready-made element tables: the bulk builders' constructor.
 
@@ -1039,8 +1042,10 @@ class Mesh:
         one row per element; every reference (a corner's ``next``, ``face``, ...,
         an edge's ``c0``/``c1``, a face's or a vertex's ``corner``) is a row index
         of the table it refers to. Element ``i`` of a kind gets the id
-        ``first_ids[k] + i``, in the order vertex, edge, face, corner. Arrays whose
-        dtype already matches are adopted, not copied.
+        ``first_ids[k] + i``, in the order vertex, edge, face, corner, or, where
+        ``ids`` gives that kind's ``(n,)`` distinct ids, ``ids[k][i]`` (later
+        elements then get ids past the largest). Arrays whose dtype already
+        matches are adopted, not copied.
 
         The links are trusted, not checked (this is the fast path of every bulk
         operation); run :func:`livemod.dlfl.validate` on the result in tests.
@@ -1052,10 +1057,11 @@ class Mesh:
         mesh = cls.__new__(cls)
         mesh.notes = []
         vid, eid, fid, cid = first_ids
-        mesh._c = _adopt("corner", CORNER_SPEC, cid, corners)
-        mesh._e = _adopt("edge", EDGE_SPEC, eid, edges)
-        mesh._f = _adopt("face", FACE_SPEC, fid, faces)
-        mesh._v = _adopt("vertex", VERTEX_SPEC, vid, vertices)
+        vids, eids, fids, cids = ids or (None, None, None, None)
+        mesh._c = _adopt("corner", CORNER_SPEC, cid, corners, cids)
+        mesh._e = _adopt("edge", EDGE_SPEC, eid, edges, eids)
+        mesh._f = _adopt("face", FACE_SPEC, fid, faces, fids)
+        mesh._v = _adopt("vertex", VERTEX_SPEC, vid, vertices, vids)
         return mesh
 
     def copy(self) -> Mesh:

@@ -220,8 +220,7 @@ def spherical_cube(divisions: int = 4) -> Mesh:
     faces = []
     n = divisions
     for f in base.face_ids():
-        corners = base._v.arrays["position"][[base._v.slot(v) for v in base.face_vertices(f)]]
-        faces.extend(_face_grid(corners, n, points))
+        faces.extend(_face_grid(base.face_points(f), n, points))
     positions = np.array(list(points), dtype=np.float64) / n
     return from_polygons(_on_sphere(positions), faces)
 

@@ -31,18 +31,10 @@ def _selected(mesh: Mesh, vertices: Iterable[int] | None) -> tuple[np.ndarray, n
         DLFLError: an entry that is not an integer, or an id that is not a vertex
             of the mesh.
     """
-    all_ids, all_positions = mesh.vertex_ids(), mesh.positions_view()
     if vertices is None:
-        return all_ids, all_positions
+        return mesh.vertex_ids(), mesh.positions_view()
     ids = np.asarray(id_list(vertices, "vertices"), dtype=np.int64).reshape(-1)
-    order = np.argsort(all_ids)
-    where = np.minimum(np.searchsorted(all_ids[order], ids), max(len(all_ids) - 1, 0))
-    found = order[where] if len(all_ids) else where
-    missing = (all_ids[found] != ids) if len(all_ids) else np.ones(len(ids), bool)
-    if missing.any():
-        # the table's wording: "was deleted" for an id the mesh once had
-        raise DLFLError(mesh._v._missing_message(int(ids[missing][0])))
-    return ids, all_positions[found]
+    return ids, mesh.positions(ids)
 
 
 def transform(

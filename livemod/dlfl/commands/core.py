@@ -257,9 +257,7 @@ def faces(selected: bool = False) -> tuple[int, ...]:
     m = mesh()
     if flag(selected, "selected"):
         return _picked("faces", m.has_face)
-    ids = m.face_ids()
-    holes = m._f.arrays["hole"][m._f.live_slots()].astype(bool)
-    return tuple(ids[~holes].tolist())
+    return tuple(m.face_ids()[~m.hole_mask()].tolist())
 
 
 def edges(selected: bool = False) -> tuple[int, ...]:
