@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-import itertools
-
 import numpy as np
 import pytest
 
@@ -18,7 +16,6 @@ from livemod.dlfl import (
     validate,
 )
 from livemod.dlfl.analysis import component_genera, enclosed_volume
-from livemod.dlfl.build import _next_in_face
 from tests.meshes import CUBE_FACES, CUBE_POSITIONS, euler_ok, torus_polygons
 
 SQUARE = [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]]
@@ -273,15 +270,6 @@ def test_each_component_keeps_the_orientation_of_most_of_its_faces():
         m = from_polygons(pos, faces)
     validate(m)
     assert m.face_vertices(6) == [v + 8 for v in CUBE_FACES[0][::-1]]
-
-
-@pytest.mark.parametrize("offsets", [[0, 4, 8, 12], [0, 3, 7, 8, 10], [0, 1, 2], [0, 2, 2, 5], [0]])
-def test_next_in_face_wraps_every_face(offsets):
-    # the all-k-gons shortcut and the general path must agree with a plain walk
-    off = np.array(offsets, dtype=np.int64)
-    expected = [start + (c - start + 1) % (end - start)
-                for start, end in itertools.pairwise(offsets) for c in range(start, end)]
-    assert _next_in_face(off).tolist() == expected
 
 
 @pytest.mark.parametrize("lunes", [2, 3, 7, 11])

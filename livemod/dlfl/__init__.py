@@ -29,7 +29,7 @@ from .analysis import (
     vertex_normals,
 )
 from .arrays import MeshArrays, mesh_arrays
-from .build import Polygons, from_corner_arrays, from_polygons
+from .build import from_corner_arrays, from_polygons
 from .commands import *  # noqa: F403
 from .errors import (
     BudgetExceededError,
@@ -44,6 +44,7 @@ from .errors import (
 )
 from .mesh import Mesh
 from .scene import Scene, Selection, current_scene, use_scene
+from .soup import Polygons
 from .validate import validate
 
 __all__ = [*commands.__all__, "DLFLError"]

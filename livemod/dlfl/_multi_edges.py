@@ -18,12 +18,12 @@ import numpy as np
 from .errors import DLFLError
 
 if TYPE_CHECKING:
-    from .build import Polygons, _Where
+    from .soup import Polygons, SoupNames
 
 
 def pair_multi_edges(
     soup: Polygons, mate: np.ndarray, order: np.ndarray, starts: np.ndarray,
-    counts: np.ndarray, u: np.ndarray, w: np.ndarray, nxt: np.ndarray, where: _Where,
+    counts: np.ndarray, u: np.ndarray, w: np.ndarray, nxt: np.ndarray, where: SoupNames,
 ) -> None:
     """Pair the sides of vertex pairs joined by several edges (2-gons, multi-edges).
 
@@ -66,7 +66,7 @@ def pair_multi_edges(
                             None if outcome == "impossible" else rings.walk_budget(cluster))
 
 
-def _unpaired(where: _Where, u: np.ndarray, w: np.ndarray, fwd: list[int], cluster_size: int,
+def _unpaired(where: SoupNames, u: np.ndarray, w: np.ndarray, fwd: list[int], cluster_size: int,
               steps: int | None) -> DLFLError:
     """The error for a cluster of groups left unpaired, named by its first group
     (sides ``fwd``): proven impossible when ``steps`` is None, else the search

@@ -10,11 +10,8 @@ path used by bulk operations that already know how corners pair up.
 
 from __future__ import annotations
 
-import functools
-import itertools
 import warnings
 from collections.abc import Sequence
-from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -24,92 +21,7 @@ from ._graph import cycle_labels, one_cycle_each
 from ._multi_edges import pair_multi_edges
 from .errors import DLFLError, DLFLRepairWarning
 from .mesh import Mesh
-
-
-@dataclass
-class Polygons:
-    """A polygon soup in flat form.
-
-    Attributes:
-        positions: ``(V, 3)`` float64 vertex positions.
-        indices: ``(C,)`` int64 vertex index of every corner, face after face.
-        offsets: ``(F + 1,)`` int64; face ``i`` uses ``indices[offsets[i]:offsets[i+1]]``.
-    """
-
-    positions: np.ndarray
-    indices: np.ndarray
-    offsets: np.ndarray
-
-    @property
-    def sizes(self) -> np.ndarray:
-        """``(F,)`` int64 number of corners of each face."""
-        return np.diff(self.offsets)
-
-    @functools.cached_property
-    def single_corners(self) -> np.ndarray:
-        """``(C,)`` bool, True for the corner of a one-corner face (a point-sphere)."""
-        sizes = self.sizes
-        if len(sizes) == 0 or sizes.min() > 1:
-            return np.zeros(len(self.indices), dtype=bool)
-        return np.repeat(sizes, sizes) == 1
-
-    @functools.cached_property
-    def next_corner(self) -> np.ndarray:
-        """``(C,)`` int64 index of the next corner in the same face (computed once)."""
-        return _next_in_face(self.offsets)
-
-
-def as_polygons(positions: Any, faces: Any, offsets: Any = None) -> Polygons:
-    """Normalise a polygon soup to :class:`Polygons`.
-
-    Args:
-        positions: ``(V, 3)`` numbers.
-        faces: a sequence of vertex-index sequences, a ``(F, k)`` int array, or,
-            with ``offsets``, the flat ``(C,)`` index array.
-        offsets: ``(F + 1,)`` face start offsets into a flat ``faces``.
-    """
-    # a copy: the mesh owns its positions and must not alias the caller's array
-    pos = np.array(positions, dtype=np.float64).reshape(-1, 3)
-    if offsets is not None:
-        idx = np.asarray(faces, dtype=np.int64).ravel()
-        off = np.asarray(offsets, dtype=np.int64).ravel()
-    elif isinstance(faces, np.ndarray) and faces.ndim == 2:
-        idx = faces.astype(np.int64).ravel()
-        off = np.arange(0, idx.size + 1, max(faces.shape[1], 1), dtype=np.int64)
-        if faces.shape[0] == 0:
-            off = np.zeros(1, dtype=np.int64)
-    else:
-        lists = [list(f) for f in faces]
-        sizes = np.array([len(f) for f in lists], dtype=np.int64)
-        off = np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64)
-        idx = np.fromiter(itertools.chain.from_iterable(lists), dtype=np.int64, count=int(off[-1]))
-    return Polygons(pos, idx, off)
-
-
-class _Where:
-    """Names faces in error messages by OBJ/.dlfl line when known, and vertices
-    as the source numbers them (OBJ from 1)."""
-
-    def __init__(self, source: str | None, face_lines: np.ndarray | None,
-                 vertex_base: int = 0) -> None:
-        self.source = source
-        self.lines = face_lines
-        self.vertex_base = vertex_base
-
-    def vertex(self, v: int) -> int:
-        """The number the source gives vertex index ``v``."""
-        return int(v) + self.vertex_base
-
-    def face(self, f: int) -> str:
-        if self.lines is not None:
-            return f"line {int(self.lines[f])}"
-        return f"face {f}"
-
-    def prefix(self, faces: Sequence[int] = ()) -> str:
-        src = self.source or "polygons"
-        if faces and self.lines is not None:
-            return f"{src}:{int(self.lines[faces[0]])}: "
-        return f"{src}: "
+from .soup import Polygons, SoupNames, as_polygons
 
 
 def from_polygons(
@@ -147,7 +59,7 @@ def from_polygons(
             non-manifold vertex, or a non-orientable component.
     """
     soup = as_polygons(positions, faces, offsets)
-    where = _Where(source, None if face_lines is None else np.asarray(face_lines), vertex_base)
+    where = SoupNames(source, None if face_lines is None else np.asarray(face_lines), vertex_base)
     far = _check_soup(soup, where)
     notes: list[str] = []
     soup, mate = _pair_sides(soup, where, notes, far)
@@ -167,7 +79,7 @@ def from_polygons(
     return mesh
 
 
-def _check_soup(soup: Polygons, where: _Where) -> np.ndarray:
+def _check_soup(soup: Polygons, where: SoupNames) -> np.ndarray:
     """Refuse empty faces, indices out of range, positions that are not finite and
     zero-length sides; returns the ``(C,)`` far vertex of every corner's side
     (``indices[next_corner]``), which the pairing needs too."""
@@ -200,27 +112,13 @@ def _check_soup(soup: Polygons, where: _Where) -> np.ndarray:
     return far
 
 
-def _next_in_face(offsets: np.ndarray) -> np.ndarray:
-    """``(C,)`` index of the next corner in the same face, wrapping around."""
-    count = int(offsets[-1])
-    nxt = np.arange(1, count + 1, dtype=np.int64)
-    sizes = np.diff(offsets)
-    k = int(sizes[0]) if len(sizes) else 0
-    if k > 0 and sizes.min() == k == sizes.max():
-        nxt[k - 1 :: k] -= k  # all faces k-gons (an (F, k) array): a strided step, no masks
-        return nxt
-    ends = offsets[1:][sizes > 0] - 1
-    nxt[ends] = offsets[:-1][sizes > 0]
-    return nxt
-
-
 def _face_of_corner(offsets: np.ndarray) -> np.ndarray:
     sizes = np.diff(offsets)
     return np.repeat(np.arange(len(sizes), dtype=np.int64), sizes)
 
 
 def _pair_sides(
-    soup: Polygons, where: _Where, notes: list[str], far: np.ndarray | None = None
+    soup: Polygons, where: SoupNames, notes: list[str], far: np.ndarray | None = None
 ) -> tuple[Polygons, np.ndarray]:
     """Pair each side ``u -> w`` with a side ``w -> u``; -1 where none exists.
 
@@ -311,7 +209,7 @@ def _pair_simple(
 
 def _refuse_crowded_edges(
     soup: Polygons, order: np.ndarray, starts: np.ndarray, counts: np.ndarray,
-    fwd_count: np.ndarray, real: np.ndarray, where: _Where,
+    fwd_count: np.ndarray, real: np.ndarray, where: SoupNames,
 ) -> None:
     """Refuse an undirected edge whose sides cannot all be paired up."""
     unbalanced = real & (counts > 2) & (2 * fwd_count != counts)
@@ -331,7 +229,7 @@ def _refuse_crowded_edges(
 
 
 
-def _reorient(soup: Polygons, where: _Where, notes: list[str]) -> Polygons:
+def _reorient(soup: Polygons, where: SoupNames, notes: list[str]) -> Polygons:
     """Flip faces so that each component is consistently oriented.
 
     Each component keeps the orientation most of its faces have (so one flipped
@@ -362,7 +260,7 @@ def _flip_order(soup: Polygons, flip: np.ndarray) -> np.ndarray:
     return np.where(reverse, start + size - local, start + local)
 
 
-def _orientation_flips(soup: Polygons, where: _Where) -> np.ndarray:
+def _orientation_flips(soup: Polygons, where: SoupNames) -> np.ndarray:
     """``(F,)`` int8: 1 for the faces to reverse, by breadth-first search per component,
     the fewer faces of each component reversed (see :func:`_reorient`).
 
@@ -390,7 +288,7 @@ def _orientation_flips(soup: Polygons, where: _Where) -> np.ndarray:
 
 def _search_level(
     frontier: np.ndarray, first: np.ndarray, dst: np.ndarray, same: np.ndarray,
-    flip: np.ndarray, where: _Where,
+    flip: np.ndarray, where: SoupNames,
 ) -> np.ndarray:
     """Orient the neighbours of ``frontier``; return the faces reached for the first time."""
     counts = first[frontier + 1] - first[frontier]
@@ -437,7 +335,7 @@ def _face_adjacency(soup: Polygons) -> tuple[np.ndarray, np.ndarray, np.ndarray]
 
 
 def _close_boundaries(
-    soup: Polygons, mate: np.ndarray, where: _Where
+    soup: Polygons, mate: np.ndarray, where: SoupNames
 ) -> tuple[Polygons, np.ndarray, int]:
     """Add one hole face per boundary loop; returns soup, mate and hole count."""
     single = soup.single_corners
@@ -503,7 +401,7 @@ def _add_point_spheres(
     return Polygons(soup.positions, indices, offsets), mate, len(lonely)
 
 
-def _check_vertex_fans(soup: Polygons, mate: np.ndarray, where: _Where) -> None:
+def _check_vertex_fans(soup: Polygons, mate: np.ndarray, where: SoupNames) -> None:
     """Refuse a vertex whose corners form several fans (a bow-tie)."""
     nxt = soup.next_corner
     has = mate >= 0

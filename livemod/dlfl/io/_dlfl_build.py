@@ -14,9 +14,10 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .._graph import cycle_labels, one_cycle_each
-from ..build import _next_in_face, from_corner_arrays
+from ..build import from_corner_arrays
 from ..errors import DLFLError
 from ..mesh import Mesh
+from ..soup import next_in_face
 from ..validate import validate
 from .source import file_error
 
@@ -100,7 +101,7 @@ def _fan_error(records: DlflRecords, vertex_of: np.ndarray, mate: np.ndarray,
     fans (a bow-tie); return when there is none (the error path of
     :func:`_one_fan_each`, same arguments)."""
     num_v = len(records.positions)
-    nxt = _next_in_face(offsets)
+    nxt = next_in_face(offsets)
     labels = cycle_labels(np.where(mate >= 0, nxt[np.maximum(mate, 0)], np.arange(len(mate))))
     fans = np.bincount(vertex_of[labels == np.arange(len(labels))], minlength=num_v)
     bad = np.flatnonzero(fans > 1)
@@ -217,7 +218,7 @@ def _check_pairing(records: DlflRecords, mate: np.ndarray, new_index: np.ndarray
     label, cvert, order = records.label, records.corner_vertex, records.face_corners
     offsets = records.face_offsets
     sizes = np.diff(offsets)
-    dense_next = _next_in_face(offsets)
+    dense_next = next_in_face(offsets)
     nxt = np.empty_like(order)
     nxt[order] = order[dense_next]  # next corner in file numbering
     size_of = np.repeat(sizes, sizes)[new_index]
@@ -264,7 +265,7 @@ def _one_fan_each(vertex_of: np.ndarray, mate: np.ndarray, offsets: np.ndarray,
     records may still break (a bow-tie vertex), at a fraction of its cost.
     ``vertex_of`` and ``mate`` are ``(C,)`` in face order, ``offsets`` ``(F + 1,)``.
     """
-    nxt = _next_in_face(offsets)
+    nxt = next_in_face(offsets)
     vnext = np.where(mate >= 0, nxt[np.maximum(mate, 0)], np.arange(len(mate)))
     valence = np.bincount(vertex_of, minlength=num_v)
     quick = one_cycle_each(vnext, vertex_of, valence)
