@@ -32,6 +32,7 @@ LIBRARY_MODULES = [
     "livemod.dlfl.validate", "livemod.dlfl.budget",
     "livemod.dlfl.analysis", "livemod.dlfl.normals", "livemod.dlfl.scene", "livemod.dlfl.subdivision",
     "livemod.dlfl.extrusion", "livemod.dlfl.connect", "livemod.dlfl.multihandle",
+    "livemod.dlfl.bands",
     "livemod.dlfl.rind",
     "livemod.dlfl.wireframe", "livemod.dlfl.sierpinsky", "livemod.dlfl.sponge", "livemod.dlfl.hull",
     "livemod.dlfl.cutting",

@@ -34,6 +34,7 @@ import numpy as np
 from ._checks import MAX_ELEMENTS, finite_number, first_not_finite, is_id, shown, whole_count
 from ._vectors import centroid, lengths, together_in_range, unit
 from .analysis import face_points, polygon_normal
+from .bands import edges_since, quad_band, triangle_band
 from .budget import check_growth
 from .errors import DLFLError
 from .mesh import Mesh
@@ -141,42 +142,7 @@ def _same_size(mesh: Mesh, face1: int, face2: int, op: str) -> None:
         )
 
 
-def _new_edges(mesh: Mesh, first_id: int) -> list[int]:
-    """Live edges created since the edge counter stood at ``first_id`` (ids never reuse)."""
-    return [e for e in range(first_id, mesh.next_ids()[1]) if mesh.has_edge(e)]
-
-
 # -- single connections ------------------------------------------------------------
-
-def _quad_band(mesh: Mesh, corner1: int, corner2: int) -> None:
-    """TopMod's ``connectFaces``: one merging edge, then quads cut off while > 4 sides."""
-    mesh.insert_edge(corner1, corner2)
-    side = corner1
-    # each cut moves two corners of the merged face into a quad; counting them
-    # saves a walk around the merged face per cut
-    size = mesh.face_size(mesh.corner_face(side))
-    while size > 4:
-        before = mesh.corner_prev(side)
-        mesh.insert_edge(before, mesh.corner_next(mesh.corner_next(side)))
-        side = before
-        size -= 2
-
-
-def _triangle_band(mesh: Mesh, corner1: int, corner2: int) -> None:
-    """TopMod's ``dualConnectFaces``: one merging edge, then triangles, alternating sides."""
-    mesh.insert_edge(corner1, corner2)
-    side, parity = corner1, True
-    size = mesh.face_size(mesh.corner_face(side))  # each cut takes one corner away
-    while size > 3:
-        size -= 1
-        if parity:
-            mesh.insert_edge(side, mesh.corner_next(mesh.corner_next(side)))
-        else:
-            before = mesh.corner_prev(side)
-            mesh.insert_edge(before, mesh.corner_next(side))
-            side = before
-        parity = not parity
-
 
 def dual_connect_faces(mesh: Mesh, corner1: int, corner2: int) -> list[int]:
     """Join two faces with a zig-zag band of triangles (TopMod's ``dualConnectFaces``).
@@ -193,8 +159,8 @@ def dual_connect_faces(mesh: Mesh, corner1: int, corner2: int) -> list[int]:
     """
     _two_faces(mesh, corner1, corner2, "dual_connect_faces")
     first = mesh.next_ids()[1]
-    _triangle_band(mesh, corner1, corner2)
-    return _new_edges(mesh, first)
+    triangle_band(mesh, corner1, corner2)
+    return edges_since(mesh, first)
 
 
 # -- multi-segment connections -------------------------------------------------------
@@ -319,8 +285,8 @@ def connect_faces(
     first = mesh.next_ids()[1]
     if segments == 1:
         if max_connections != 0:
-            _quad_band(mesh, corner1, corner2)
-        return _new_edges(mesh, first)
+            quad_band(mesh, corner1, corner2)
+        return edges_since(mesh, first)
     _same_size(mesh, face1, face2, "connect_faces")
     start, end = _end_rings(mesh, corner1, corner2)
     rings = []
@@ -329,8 +295,8 @@ def connect_faces(
         with np.errstate(over="ignore", invalid="ignore"):  # refused by _chain_rings
             ring = start + (end - start) * t
         rings.append(_scale_about_centroid(ring, _pinch_scale(t, pinch, pinch_center, bubble)))
-    _chain_rings(mesh, corner1, corner2, rings, _quad_band, max_connections)
-    return _new_edges(mesh, first)
+    _chain_rings(mesh, corner1, corner2, rings, quad_band, max_connections)
+    return edges_since(mesh, first)
 
 
 def closest_corners(mesh: Mesh, face1: int, face2: int) -> tuple[int, int]:
@@ -400,8 +366,8 @@ def connect_corners(
     start, end = _end_rings(mesh, corner1, corner2)
     with np.errstate(over="ignore", invalid="ignore"):  # refused by _chain_rings
         rings = [start + (end - start) * (i / segments) for i in range(1, segments)]
-    _chain_rings(mesh, corner1, corner2, rings, _triangle_band, max_connections)
-    return _new_edges(mesh, first)
+    _chain_rings(mesh, corner1, corner2, rings, triangle_band, max_connections)
+    return edges_since(mesh, first)
 
 
 def connect_edges(
@@ -640,8 +606,8 @@ def hermite_handle(
     rings = hermite_rings(start, end, n1, n2, segments, weight1, weight2, turns,
                           (pinch, pinch_center, bubble))
     first = mesh.next_ids()[1]
-    _chain_rings(mesh, corner1, corner2, rings, _quad_band, max_connections)
-    return _new_edges(mesh, first)
+    _chain_rings(mesh, corner1, corner2, rings, quad_band, max_connections)
+    return edges_since(mesh, first)
 
 
 def bezier_rings(start: np.ndarray, end: np.ndarray, n1: np.ndarray, n2: np.ndarray,
@@ -675,8 +641,8 @@ def bezier_handle(
                                       max_faces)
     rings = bezier_rings(start, end, n1, n2, segments, weight1, weight2)
     first = mesh.next_ids()[1]
-    _chain_rings(mesh, corner1, corner2, rings, _quad_band, -1)
-    return _new_edges(mesh, first)
+    _chain_rings(mesh, corner1, corner2, rings, quad_band, -1)
+    return edges_since(mesh, first)
 
 
 # the multi-face family (multihandle.py) builds on the connections above; these

@@ -29,8 +29,8 @@ from functools import lru_cache
 import numpy as np
 
 from ._checks import finite_number, first_not_finite, flag, shown, whole_count
+from .bands import quad_band, triangle_band
 from .budget import check_growth
-from .connect import _quad_band, _triangle_band
 from .errors import DLFLError, GeometryError
 from .mesh import Mesh
 from .normals import inset_offsets, small_polygon_normal
@@ -162,7 +162,7 @@ def _bridge(mesh: Mesh, face: int, points: np.ndarray, dual: bool = False) -> in
     """Create ``points`` as a two-sided polygon and join its back to ``face``, head to
     head (quads, or with ``dual`` a band of triangles). Returns the front, the end face."""
     front, back = mesh.create_face(_finite(points).tolist())
-    join = _triangle_band if dual else _quad_band
+    join = triangle_band if dual else quad_band
     join(mesh, mesh.face_corner(face), mesh.face_corner(back))
     return front
 

@@ -27,8 +27,9 @@ import numpy as np
 from ._checks import finite_number, flag, id_list, positive_number
 from ._vectors import centroid, lengths, shifted_in_range, unit
 from .analysis import face_points, polygon_normal
+from .bands import edges_since
 from .budget import check_growth
-from .connect import _new_edges, closest_corners, connect_edge_sides, connect_faces
+from .connect import closest_corners, connect_edge_sides, connect_faces
 from .errors import DLFLError
 from .geometry import edge_cleanup
 from .hull import hull_polygons
@@ -261,7 +262,7 @@ def _join_hub(mesh: Mesh, faces: list[int], points: np.ndarray, polygons: list[l
     hull_faces = add_polyhedron(mesh, points, polygons)
     for face, poly in zip(faces, partner or [], strict=False):
         connect_faces(mesh, *closest_corners(mesh, face, hull_faces[poly]))
-    return _new_edges(mesh, first)
+    return edges_since(mesh, first)
 
 
 # -- convex-hull handle ------------------------------------------------------------------
@@ -565,8 +566,8 @@ def multi_face_handle_closest_edges(mesh: Mesh, faces: list[int], *,
             continue
         joined |= {edge1, edge2}
         connect_edge_sides(mesh, _side_from(mesh, edge1, start1), _side_from(mesh, edge2, start2))
-    edge_cleanup(mesh, _new_edges(mesh, first))  # TopMod's cleanup, of the new edges only
-    return _new_edges(mesh, first)
+    edge_cleanup(mesh, edges_since(mesh, first))  # TopMod's cleanup, of the new edges only
+    return edges_since(mesh, first)
 
 
 def _half_edges(mesh: Mesh, faces: list[int]) -> list[tuple[int, int, int]]:
