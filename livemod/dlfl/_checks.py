@@ -5,7 +5,8 @@ from __future__ import annotations
 import math
 import numbers
 from collections.abc import Iterable
-from typing import TypeGuard
+from math import isfinite
+from typing import Any, TypeGuard
 
 import numpy as np
 
@@ -72,6 +73,31 @@ def finite_vector(value: object, name: str, *, repeat_scalar: bool = False) -> n
     if arr.shape != (3,) or not np.isfinite(arr).all():
         raise InvalidArgumentError(f"{name} must be three finite numbers, got {shown(value)}")
     return arr
+
+
+def as_point(position: Any) -> tuple[float, float, float]:
+    """``position`` (three finite numbers: a tuple, a list, a ``(3,)`` array) as
+    three floats.
+
+    Raises:
+        InvalidArgumentError: not three numbers, or one of them is NaN or infinite.
+    """
+    kind = type(position)
+    # a string unpacks into digits ("123" -> 1, 2, 3; b"123" -> 49, 50, 51): refuse
+    # it, testing the common tuple and list first to keep create_vertex fast
+    if kind is not tuple and kind is not list and isinstance(position, (str, bytes, bytearray)):
+        raise InvalidArgumentError(
+            f"expected a position (x, y, z) of three numbers, got {shown(position)}")
+    try:
+        x, y, z = (float(v) for v in position)
+    except (TypeError, ValueError, OverflowError):  # OverflowError: an int like 10**400
+        raise InvalidArgumentError(
+            f"expected a position (x, y, z) of three numbers, got {shown(position)}"
+        ) from None
+    if not (isfinite(x) and isfinite(y) and isfinite(z)):
+        raise InvalidArgumentError(f"expected a position (x, y, z) of three finite numbers, got "
+                                   f"{shown(position)}")
+    return x, y, z
 
 
 def is_id(value: object) -> TypeGuard[numbers.Integral]:

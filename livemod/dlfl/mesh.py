@@ -31,12 +31,12 @@ docstrings say so.
 from __future__ import annotations
 
 from collections.abc import Iterable, Sequence
-from math import isfinite, isinf
+from math import isinf
 from typing import Any
 
 import numpy as np
 
-from ._checks import flag, shown, whole_count
+from ._checks import as_point, flag, whole_count
 from ._table import FieldSpec, Table
 from .errors import DLFLError
 
@@ -67,29 +67,6 @@ def _alloc(table: Table) -> int:
     table.idv[slot] = eid
     table._sorted_cache = None
     return slot
-
-
-def _as_point(position: Any) -> tuple[float, float, float]:
-    """``position`` as three floats.
-
-    Raises:
-        DLFLError: not three numbers, or one of them is NaN or infinite.
-    """
-    kind = type(position)
-    # a string unpacks into digits ("123" -> 1, 2, 3; b"123" -> 49, 50, 51): refuse
-    # it, testing the common tuple and list first to keep create_vertex fast
-    if kind is not tuple and kind is not list and isinstance(position, (str, bytes, bytearray)):
-        raise DLFLError(f"expected a position (x, y, z) of three numbers, got {shown(position)}")
-    try:
-        x, y, z = (float(v) for v in position)
-    except (TypeError, ValueError, OverflowError):  # OverflowError: an int like 10**400
-        raise DLFLError(
-            f"expected a position (x, y, z) of three numbers, got {shown(position)}"
-        ) from None
-    if not (isfinite(x) and isfinite(y) and isfinite(z)):
-        raise DLFLError(f"expected a position (x, y, z) of three finite numbers, got "
-                        f"{shown(position)}")
-    return x, y, z
 
 
 def _between(p0: list[float], p1: list[float], t: float) -> list[float]:
@@ -372,7 +349,7 @@ class Mesh:
 
     def set_position(self, vertex: int, position: Any) -> None:
         """Move ``vertex`` to ``position`` (three numbers)."""
-        xyz = _as_point(position)
+        xyz = as_point(position)
         self._v.arrays["position"][self._v.slot(vertex)] = xyz
 
     def corner_at(self, face: int, vertex: int) -> int:
@@ -434,7 +411,7 @@ class Mesh:
         Returns:
             The new vertex id (its face is ``corner_face(vertex_corner(v))``).
         """
-        xyz = _as_point(position)
+        xyz = as_point(position)
         C, F, V = self._c, self._f, self._v
         C.reserve(1)
         F.reserve(1)
@@ -982,7 +959,7 @@ class Mesh:
         """
         if isinstance(points, (str, bytes)) or not hasattr(points, "__iter__"):
             raise DLFLError(f"create_face needs a sequence of (x, y, z) points, got {points!r}")
-        pts = [_as_point(p) for p in points]
+        pts = [as_point(p) for p in points]
         n = len(pts)
         if n < 2:
             raise DLFLError(f"create_face needs at least 2 points, got {n}")

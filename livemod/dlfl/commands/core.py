@@ -17,14 +17,14 @@ import numpy as np
 
 from .. import geometry as _geometry
 from .. import transform as _transform
-from .._checks import flag, is_id, shown, whole_count
+from .._checks import as_point, flag, is_id, shown, whole_count
 from .._vectors import centroid as _centroid
 from .._vectors import lengths
 from ..analysis import face_centroid, face_normal
 from ..analysis import genus as _genus
 from ..budget import CORNERS_PER_FACE, check_growth, face_budget
 from ..errors import DLFLError, InvalidArgumentError
-from ..mesh import Mesh, _as_point
+from ..mesh import Mesh
 from ._base import corner_tuple, mesh, modeling_command, resolve_corner, scene
 
 __all__ = [
@@ -491,9 +491,9 @@ def _id_list(ids: Any, command: str) -> list[Any]:
 def _xyz(args: tuple[Any, ...], name: str) -> tuple[np.ndarray, tuple[Any, ...]]:
     """Accept both ``f(x, y, z, ...)`` and ``f((x, y, z), ...)``."""
     if args and isinstance(args[0], Sequence | np.ndarray):
-        return np.array(_as_point(args[0])), args[1:]
+        return np.array(as_point(args[0])), args[1:]
     if len(args) >= 3:
-        return np.array(_as_point(args[:3])), args[3:]
+        return np.array(as_point(args[:3])), args[3:]
     raise DLFLError(f"{name} takes (x, y, z) or ((x, y, z)), got {args!r}")
 
 
