@@ -53,7 +53,7 @@ from ._lines import (
 from ._numtext import format_rounded, format_uints, join_columns
 from ._parallel import map_in_order
 from .atomic import write_atomically
-from .obj import _merge_face_blocks, index_lines, vertex_lines
+from .obj import index_lines, merge_face_blocks, vertex_lines
 from .source import file_error, lf_line_ends, read_source, report_skipped, show_token
 
 HOLE_MATERIAL = "hole"
@@ -414,7 +414,7 @@ class _Collected:
         blocks = [*self.blocks[_FACE], (py_lines, py_counts, py_corners)]
         if len(items) == 0:
             return tuple(np.concatenate([b[i] for b in blocks]) for i in range(3))  # type: ignore[return-value]
-        return _merge_face_blocks(blocks)  # type: ignore[arg-type]
+        return merge_face_blocks(blocks)  # type: ignore[arg-type]
 
     def _holes(self, f_lines: np.ndarray) -> np.ndarray:
         """``(F,)`` bool: the face on each of ``f_lines`` follows ``usemtl hole``."""

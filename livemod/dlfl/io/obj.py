@@ -311,13 +311,21 @@ class _Parsed:
         blocks = [*self.face_blocks, (py_lines, py_counts, py_raw)]
         if len(py_lines) == 0:  # the fast blocks come in file order
             return tuple(np.concatenate([b[i] for b in blocks]) for i in range(3))  # type: ignore[return-value]
-        return _merge_face_blocks(blocks)
+        return merge_face_blocks(blocks)
 
 
-def _merge_face_blocks(
+def merge_face_blocks(
     blocks: list[tuple[np.ndarray, np.ndarray, np.ndarray]],
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Interleave face blocks by line number: ``(lines, counts, raw indices)``."""
+    """Interleave face blocks by line number (the readers parse faces in blocks).
+
+    Args:
+        blocks: per block ``(lines (k,), counts (k,), raw (sum of counts,))``:
+            each face's line, its corner count and its corners' raw indices.
+
+    Returns:
+        The same three arrays over all blocks, faces in line order (stable).
+    """
     lines = np.concatenate([b[0] for b in blocks])
     counts = np.concatenate([b[1] for b in blocks])
     raw = np.concatenate([b[2] for b in blocks])
