@@ -70,7 +70,7 @@ def test_summary_gives_genus_per_component_only_for_several(tmp_path, capsys):
 def test_run_failure_exits_non_zero_with_file_and_line(capsys):
     assert cli.main(["run", script_path("error_at_line_7.py")]) == 1
     err = capsys.readouterr().err
-    assert f"{script_path('error_at_line_7.py')}:7: DLFLError" in err
+    assert f"{script_path('error_at_line_7.py')}:7: UnknownIdError: edge 12345" in err
 
 
 def test_a_missing_script_exits_1_and_an_output_no_writer_takes_2(capsys, tmp_path):

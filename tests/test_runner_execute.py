@@ -122,10 +122,10 @@ def test_errors_carry_the_script_line_and_trim_library_frames():
     assert result.status == "error" and error is not None
     assert error.kind == "exception"
     assert error.file == script_path("error_at_line_7.py") and error.line == 7
-    assert error.message.startswith("DLFLError")
+    assert error.message == "UnknownIdError: edge 12345 does not exist"
     assert "livemod" + os.sep not in error.traceback.replace(script_path(""), "")
     assert 'line 10, in <module>' in error.traceback
-    assert str(error).startswith(f"{script_path('error_at_line_7.py')}:7: DLFLError")
+    assert str(error).startswith(f"{script_path('error_at_line_7.py')}:7: UnknownIdError")
     assert [s.label for s in result.steps] == ["createVertex", "createVertex"]
     assert result.partial is not None and result.partial.counts == (2, 0, 2)
 

@@ -1,4 +1,7 @@
-"""Argument checks shared by the operations, so one mistake reads the same everywhere."""
+"""Argument checks shared by the operations, so one mistake reads the same everywhere.
+
+The checks raise :class:`InvalidArgumentError` naming the argument and showing the value.
+"""
 
 from __future__ import annotations
 

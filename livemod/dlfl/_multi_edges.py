@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .errors import DLFLError
+from .errors import NonManifoldError
 
 if TYPE_CHECKING:
     from .soup import Polygons, SoupNames
@@ -67,7 +67,7 @@ def pair_multi_edges(
 
 
 def _unpaired(where: SoupNames, u: np.ndarray, w: np.ndarray, fwd: list[int], cluster_size: int,
-              steps: int | None) -> DLFLError:
+              steps: int | None) -> NonManifoldError:
     """The error for a cluster of groups left unpaired, named by its first group
     (sides ``fwd``): proven impossible when ``steps`` is None, else the search
     of that many steps gave up, which does not prove there is no pairing."""
@@ -75,8 +75,8 @@ def _unpaired(where: SoupNames, u: np.ndarray, w: np.ndarray, fwd: list[int], cl
     joined = (f"{where.prefix()}vertices {where.vertex(a)} and {where.vertex(b)} are "
               f"joined by {len(fwd)} edges")
     if steps is None:
-        return DLFLError(f"{joined} that cannot be arranged into a manifold")
-    return DLFLError(
+        return NonManifoldError(f"{joined} that cannot be arranged into a manifold")
+    return NonManifoldError(
         f"{joined}, which share vertices with {cluster_size - 1} other groups of parallel "
         f"edges; the search for a manifold arrangement of them gave up after {steps} steps "
         "(one may still exist)")

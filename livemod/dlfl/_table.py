@@ -23,7 +23,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from ._checks import shown
-from .errors import DLFLError
+from .errors import InvalidArgumentError, UnknownIdError
 
 # dtype and trailing shape of every field, per kind
 FieldSpec = dict[str, tuple[Any, tuple[int, ...]]]
@@ -162,7 +162,8 @@ class Table:
         """Return the slot of the live element ``eid``.
 
         Raises:
-            DLFLError: ``eid`` is not an integer, or names no live element.
+            InvalidArgumentError: ``eid`` is not an integer.
+            UnknownIdError: ``eid`` names no live element.
         """
         if type(eid) is not int:
             eid = self._as_int(eid)
@@ -171,7 +172,7 @@ class Table:
             return s
         found = self.moved.get(eid)
         if found is None:
-            raise DLFLError(self._missing_message(eid))
+            raise UnknownIdError(self._missing_message(eid))
         return found
 
     def slots(self, eids: Any) -> np.ndarray | list[int]:
@@ -181,8 +182,9 @@ class Table:
         any other iterable id by id (a list), which is faster for a few ids.
 
         Raises:
-            DLFLError: an entry is not an integer, or names no live element (the
-                first such, in order).
+            InvalidArgumentError: an entry is not an integer.
+            UnknownIdError: an entry names no live element (the first such, in
+                order).
         """
         if not (isinstance(eids, np.ndarray) and eids.dtype.kind in "iu"):
             slot = self.slot
@@ -198,7 +200,8 @@ class Table:
     def _as_int(self, eid: Any) -> int:
         if isinstance(eid, (bool, np.bool_)) or not hasattr(eid, "__index__"):
             article = "an" if self.kind[0] in "aeiou" else "a"
-            raise DLFLError(f"expected {article} {self.kind} id (an integer), got {shown(eid)}")
+            raise InvalidArgumentError(
+                f"expected {article} {self.kind} id (an integer), got {shown(eid)}")
         return int(eid.__index__())
 
     def _missing_message(self, eid: int) -> str:

@@ -19,7 +19,12 @@ import numpy as np
 from ._checks import first_not_finite
 from ._graph import cycle_labels, one_cycle_each
 from ._multi_edges import pair_multi_edges
-from .errors import DLFLError, DLFLRepairWarning
+from .errors import (
+    DLFLRepairWarning,
+    GeometryError,
+    InvalidArgumentError,
+    NonManifoldError,
+)
 from .mesh import Mesh
 from .soup import Polygons, SoupNames, as_polygons
 
@@ -54,9 +59,11 @@ def from_polygons(
         first_ids: first vertex, edge, face and corner id to hand out.
 
     Raises:
-        DLFLError: an index out of range, a face with fewer than one corner or a
-            repeated consecutive vertex, an edge used by more than two faces, a
-            non-manifold vertex, or a non-orientable component.
+        InvalidArgumentError: an index out of range, a position that is not
+            finite, a face with fewer than one corner or a repeated consecutive
+            vertex.
+        NonManifoldError: an edge used by more than two faces, a non-manifold
+            vertex, or a non-orientable component.
     """
     soup = as_polygons(positions, faces, offsets)
     where = SoupNames(source, None if face_lines is None else np.asarray(face_lines), vertex_base)
@@ -87,17 +94,18 @@ def _check_soup(soup: Polygons, where: SoupNames) -> np.ndarray:
     sizes = soup.sizes
     if (sizes < 1).any():
         f = int(np.flatnonzero(sizes < 1)[0])
-        raise DLFLError(f"{where.prefix([f])}{where.face(f)} has no vertices")
+        raise InvalidArgumentError(f"{where.prefix([f])}{where.face(f)} has no vertices")
     if len(soup.indices) and (soup.indices.min() < 0 or soup.indices.max() >= nv):
         c = int(np.flatnonzero((soup.indices < 0) | (soup.indices >= nv))[0])
         f = int(np.searchsorted(soup.offsets, c, side="right") - 1)
-        raise DLFLError(
+        raise InvalidArgumentError(
             f"{where.prefix([f])}{where.face(f)} uses vertex index {where.vertex(soup.indices[c])}, "
             f"but there are {nv} vertices"
         )
     v = first_not_finite(soup.positions)
     if v is not None:
-        raise DLFLError(f"{where.prefix()}vertex {where.vertex(v)} has a position that is not finite")
+        raise InvalidArgumentError(
+            f"{where.prefix()}vertex {where.vertex(v)} has a position that is not finite")
     far = soup.indices[soup.next_corner]
     same = soup.indices == far
     if len(sizes) and sizes.min() == 1:
@@ -105,7 +113,7 @@ def _check_soup(soup: Polygons, where: SoupNames) -> np.ndarray:
     if same.any():
         c = int(np.flatnonzero(same)[0])
         f = int(np.searchsorted(soup.offsets, c, side="right") - 1)
-        raise DLFLError(
+        raise InvalidArgumentError(
             f"{where.prefix([f])}{where.face(f)} visits vertex {where.vertex(soup.indices[c])} "
             "twice in a row (a zero-length side)"
         )
@@ -221,7 +229,7 @@ def _refuse_crowded_edges(
     u = int(soup.indices[corners[0]])
     w = int(soup.indices[soup.next_corner[corners[0]]])
     used = ", ".join(where.face(f) for f in faces)
-    raise DLFLError(
+    raise NonManifoldError(
         f"{where.prefix(faces)}edge ({where.vertex(u)}, {where.vertex(w)}) is used by {int(counts[g])} face sides "
         f"({used}); a manifold edge has two"
     )
@@ -237,7 +245,7 @@ def _reorient(soup: Polygons, where: SoupNames, notes: list[str]) -> Polygons:
     of its first face in soup order.
 
     Raises:
-        DLFLError: a component is non-orientable (a Moebius band, say).
+        NonManifoldError: a component is non-orientable (a Moebius band, say).
     """
     flip = _orientation_flips(soup, where)
     flipped = np.flatnonzero(flip == 1)
@@ -302,7 +310,7 @@ def _search_level(
     clash = flip[neighbour] != want
     if clash.any():
         f, g = int(origin[clash][0]), int(neighbour[clash][0])
-        raise DLFLError(
+        raise NonManifoldError(
             f"{where.prefix([g])}{where.face(g)} cannot be oriented "
             f"consistently with {where.face(f)}: the surface is not orientable"
         )
@@ -348,7 +356,7 @@ def _close_boundaries(
     if (incoming > 1).any():
         v = int(np.flatnonzero(incoming > 1)[0])
         f = int(_face_of_corner(soup.offsets)[open_sides[end == v][0]])
-        raise DLFLError(
+        raise NonManifoldError(
             f"{where.prefix([f])}vertex {where.vertex(v)} is non-manifold: {int(incoming[v])} boundary "
             "loops pass through it"
         )
@@ -419,7 +427,7 @@ def _check_vertex_fans(soup: Polygons, mate: np.ndarray, where: SoupNames) -> No
     if (fans > 1).any():
         v = int(np.flatnonzero(fans > 1)[0])
         f = int(_face_of_corner(soup.offsets)[np.flatnonzero(soup.indices == v)[0]])
-        raise DLFLError(
+        raise NonManifoldError(
             f"{where.prefix([f])}vertex {where.vertex(v)} is non-manifold: its faces form "
             f"{int(fans[v])} separate fans (a bow-tie)"
         )
@@ -459,7 +467,7 @@ def from_corner_arrays(
         numbered in order of their lower corner. A vertex's corner is its lowest.
 
     Raises:
-        DLFLError: a position is NaN or infinite.
+        GeometryError: a position is NaN or infinite.
     """
     positions = np.asarray(positions, dtype=np.float64)
     _check_finite_result(positions)
@@ -487,12 +495,12 @@ def _check_finite_result(positions: np.ndarray) -> None:
     when their numbers overflow or degenerate geometry divides by zero.
 
     Raises:
-        DLFLError: naming the first such vertex (its index in ``positions``).
+        GeometryError: naming the first such vertex (its index in ``positions``).
     """
     v = first_not_finite(positions)
     if v is None:
         return
-    raise DLFLError(
+    raise GeometryError(
         f"the result would put vertex {v} at {positions[v].tolist()}, which is not finite: "
         "the arguments are too large, or the mesh's geometry is degenerate (coincident "
         "points, zero-length edges, zero-area faces); the mesh is unchanged")

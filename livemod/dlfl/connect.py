@@ -36,7 +36,11 @@ from ._vectors import centroid, lengths, together_in_range, unit
 from .analysis import face_points, polygon_normal
 from .bands import edges_since, quad_band, triangle_band
 from .budget import check_growth
-from .errors import DLFLError
+from .errors import (
+    GeometryError,
+    InvalidArgumentError,
+    UnknownIdError,
+)
 from .mesh import Mesh
 
 __all__ = [
@@ -58,14 +62,14 @@ def _face_ids(face1: object, face2: object) -> None:
     hash lookup, or compare equal to a different kind of id)."""
     for what, face in (("face1", face1), ("face2", face2)):
         if not is_id(face):
-            raise DLFLError(f"{what} must be a face id (int), got {face!r}")
+            raise InvalidArgumentError(f"{what} must be a face id (int), got {face!r}")
 
 
 def _live_corner(mesh: Mesh, corner: int, what: str) -> int:
     if not is_id(corner):
-        raise DLFLError(f"{what} must be a corner id (int), got {corner!r}")
+        raise InvalidArgumentError(f"{what} must be a corner id (int), got {corner!r}")
     if not mesh.has_corner(int(corner)):
-        raise DLFLError(f"{what}: corner {corner} does not exist (deleted or never made)")
+        raise UnknownIdError(f"{what}: corner {corner} does not exist (deleted or never made)")
     return int(corner)
 
 
@@ -75,7 +79,8 @@ def _two_faces(mesh: Mesh, corner1: int, corner2: int, op: str) -> tuple[int, in
     c2 = _live_corner(mesh, corner2, "corner2")
     face1, face2 = mesh.corner_face(c1), mesh.corner_face(c2)
     if face1 == face2:
-        raise DLFLError(f"{op} needs corners of two different faces, both are in face {face1}")
+        raise InvalidArgumentError(
+            f"{op} needs corners of two different faces, both are in face {face1}")
     return face1, face2
 
 
@@ -84,7 +89,7 @@ def _check_segments(segments: int, max_connections: int = -1) -> None:
     an integer (:func:`_check_budget` checks that its corners fit)."""
     whole_count(segments, "segments", each=0)
     if isinstance(max_connections, bool) or not isinstance(max_connections, int | np.integer):
-        raise DLFLError(f"max_connections must be an integer, got {max_connections!r}")
+        raise InvalidArgumentError(f"max_connections must be an integer, got {max_connections!r}")
 
 
 def _check_budget(mesh: Mesh, corner1: int, corner2: int, segments: int, op: str,
@@ -119,10 +124,11 @@ def _check_twists(twists: object) -> int:
         isinstance(twists, float | np.floating) and math.isfinite(twists)
         and float(twists).is_integer())
     if isinstance(twists, bool | np.bool_) or not whole:
-        raise DLFLError(f"twists must be a whole number of turns, got {twists!r}")
+        raise InvalidArgumentError(f"twists must be a whole number of turns, got {twists!r}")
     turns = int(twists)  # type: ignore[call-overload]
     if abs(turns) > MAX_ELEMENTS:  # 2 pi turns must be a float (10**400 is not)
-        raise DLFLError(f"twists must be at most {MAX_ELEMENTS:,} turns either way, got {turns}")
+        raise InvalidArgumentError(
+            f"twists must be at most {MAX_ELEMENTS:,} turns either way, got {turns}")
     return turns
 
 
@@ -135,7 +141,7 @@ def _check_weights(weight1: float, weight2: float) -> None:
 def _same_size(mesh: Mesh, face1: int, face2: int, op: str) -> None:
     n1, n2 = mesh.face_size(face1), mesh.face_size(face2)
     if n1 != n2:
-        raise DLFLError(
+        raise InvalidArgumentError(
             f"{op} with segments needs faces of equal size; face {face1} has {n1} "
             f"corners and face {face2} has {n2} (connect them with segments=1, "
             "which ends in a triangle or larger polygon)"
@@ -179,9 +185,10 @@ def _check_pinch(pinch: float, center: float, bubble: float) -> None:
     center = finite_number(center, "pinch_center")
     bubble = finite_number(bubble, "bubble")
     if not 0.0 < center < 1.0:
-        raise DLFLError(f"pinch_center must lie strictly between 0 and 1, got {center!r}")
+        raise InvalidArgumentError(
+            f"pinch_center must lie strictly between 0 and 1, got {center!r}")
     if not bubble > 0.0:
-        raise DLFLError(f"bubble must be > 0, got {bubble!r}")
+        raise InvalidArgumentError(f"bubble must be > 0, got {bubble!r}")
 
 
 def _end_rings(mesh: Mesh, corner1: int, corner2: int) -> tuple[np.ndarray, np.ndarray]:
@@ -218,8 +225,8 @@ def _check_finite_rings(rings: list[np.ndarray]) -> None:
     for ring in rings:
         bad = first_not_finite(ring)
         if bad is not None:
-            raise DLFLError(f"the handle would put a point at {ring[bad].tolist()}: its "
-                            "numbers overflow; use a smaller pinch, bubble or weight")
+            raise GeometryError(f"the handle would put a point at {ring[bad].tolist()}: its "
+                                "numbers overflow; use a smaller pinch, bubble or weight")
 
 
 def _chain_rings(
@@ -310,7 +317,7 @@ def closest_corners(mesh: Mesh, face1: int, face2: int) -> tuple[int, int]:
     _face_ids(face1, face2)
     for face in (face1, face2):
         if not mesh.has_face(face):
-            raise DLFLError(f"face {shown(face)} does not exist (deleted or never made)")
+            raise UnknownIdError(f"face {shown(face)} does not exist (deleted or never made)")
     p1, p2 = face_points(mesh, face1), face_points(mesh, face2)
     # quarters cannot overflow in a difference, and one common power of two
     # keeps the squares in range without changing which pair is closest
@@ -335,8 +342,8 @@ def connect_faces_closest(
     """
     _face_ids(face1, face2)  # before the equality test: 0 == 0.0
     if face1 == face2:
-        raise DLFLError(f"connect_faces_closest needs two different faces, got face "
-                        f"{shown(face1)} twice")
+        raise InvalidArgumentError(f"connect_faces_closest needs two different faces, got face "
+                                   f"{shown(face1)} twice")
     c1, c2 = closest_corners(mesh, face1, face2)
     return connect_faces(mesh, c1, c2, segments, max_connections=max_connections,
                          max_faces=max_faces)
@@ -389,7 +396,8 @@ def connect_edges(
     c1 = _side_in_face(mesh, edge1, face1, "edge1")
     c2 = _side_in_face(mesh, edge2, face2, "edge2")
     if c1 == c2:
-        raise DLFLError(f"connect_edges needs two different half-edges, got edge {edge1} twice")
+        raise InvalidArgumentError(
+            f"connect_edges needs two different half-edges, got edge {edge1} twice")
     return connect_edge_sides(mesh, c1, c2, check)
 
 
@@ -407,7 +415,8 @@ def connect_edge_sides(mesh: Mesh, side1: int, side2: int, check: bool = True) -
     c1 = _live_corner(mesh, side1, "side1")
     c2 = _live_corner(mesh, side2, "side2")
     if c1 == c2:
-        raise DLFLError(f"connect_edge_sides needs two different corners, got corner {c1} twice")
+        raise InvalidArgumentError(
+            f"connect_edge_sides needs two different corners, got corner {c1} twice")
     c1n, c2n = mesh.corner_next(c1), mesh.corner_next(c2)
     made = []
     for a, b in ((c1, c2n), (c1n, c2)):
@@ -419,13 +428,14 @@ def connect_edge_sides(mesh: Mesh, side1: int, side2: int, check: bool = True) -
 
 def _side_in_face(mesh: Mesh, edge: int, face: int, what: str) -> int:
     if not mesh.has_edge(edge):
-        raise DLFLError(f"{what}: edge {edge} does not exist (deleted or never made)")
+        raise UnknownIdError(f"{what}: edge {edge} does not exist (deleted or never made)")
     if not mesh.has_face(face):
-        raise DLFLError(f"{what}: face {face} does not exist (deleted or never made)")
+        raise UnknownIdError(f"{what}: face {face} does not exist (deleted or never made)")
     for side in mesh.edge_corners(edge):
         if mesh.corner_face(side) == face:
             return side
-    raise DLFLError(f"{what}: edge {edge} is not on face {face} (its faces: {mesh.edge_faces(edge)})")
+    raise InvalidArgumentError(
+        f"{what}: edge {edge} is not on face {face} (its faces: {mesh.edge_faces(edge)})")
 
 
 # -- curved handles --------------------------------------------------------------------
@@ -471,7 +481,7 @@ def _handle_ends(mesh: Mesh, corner1: int, corner2: int, segments: int, op: str,
     start, end = _end_rings(mesh, corner1, corner2)
     n1, n2 = polygon_normal(start), polygon_normal(end)
     if not (np.any(n1) and np.any(n2)):
-        raise DLFLError(f"{op} needs faces with a normal (not 2-gons or degenerate faces)")
+        raise GeometryError(f"{op} needs faces with a normal (not 2-gons or degenerate faces)")
     return start, end, n1, n2
 
 
@@ -549,11 +559,11 @@ def _handle_axis(c1: np.ndarray, c2: np.ndarray, n1: np.ndarray, n2: np.ndarray,
     # quarters: the difference of two huge centroids cannot overflow
     axis = c2 * 0.25 - c1 * 0.25
     if float(lengths(axis[None])[0]) < 0.25e-12 * size:
-        raise DLFLError("a Hermite handle needs faces with different centroids")
+        raise GeometryError("a Hermite handle needs faces with different centroids")
     axis = unit(axis[None])[0]
     if min(float(n1 @ axis), float(n2 @ axis)) < -1.0 + 1e-9:
-        raise DLFLError("a face normal points exactly against the handle's axis; "
-                        "TopMod cannot build this handle either (use a bezier handle)")
+        raise GeometryError("a face normal points exactly against the handle's axis; "
+                            "TopMod cannot build this handle either (use a bezier handle)")
     return axis
 
 

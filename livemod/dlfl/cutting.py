@@ -70,7 +70,7 @@ from ._truncation import check_truncatable, truncation
 from .arrays import mesh_arrays
 from .budget import check_growth, check_size
 from .build import from_corner_arrays
-from .errors import DLFLError, GeometryError, InvalidArgumentError
+from .errors import GeometryError, InvalidArgumentError
 from .mesh import Mesh
 
 __all__ = ["DEFAULT_OFFSET", "PLACEMENTS", "cut_vertices", "cut_edges", "cut_faces",
@@ -288,8 +288,9 @@ def truncate(mesh: Mesh, offset: float = DEFAULT_OFFSET, *,
     """
     t = _offset(offset)
     if t >= 0.5:
-        raise DLFLError(f"truncate cuts every edge from both ends: offset must be below 0.5, "
-                        f"got {offset!r}")
+        raise InvalidArgumentError(
+                                   f"truncate cuts every edge from both ends: offset must be below 0.5, "
+            f"got {offset!r}")
     v, e, f = mesh.counts()
     spheres = mesh.num_corners - 2 * e  # they stay as they are
     check_size("truncate", f + v - spheres, 6 * e + spheres, max_faces=max_faces)
@@ -368,11 +369,13 @@ def _check_cuttable(mesh: Mesh, vertex: int) -> None:
         DLFLError: naming the vertex (or its missing id).
     """
     if mesh.is_point_sphere(vertex):
-        raise DLFLError(f"vertex {vertex} is a point-sphere (no edges): there is nothing to cut")
+        raise InvalidArgumentError(
+            f"vertex {vertex} is a point-sphere (no edges): there is nothing to cut")
     for c in mesh.vertex_corners(vertex):
         if mesh.corner_vertex(mesh.corner_next(c)) == vertex:
-            raise DLFLError(f"vertex {vertex} has a self-loop (edge {mesh.corner_edge(c)}); "
-                            "a cut needs edges to other vertices")
+            raise InvalidArgumentError(
+                                       f"vertex {vertex} has a self-loop (edge {mesh.corner_edge(c)}); "
+                "a cut needs edges to other vertices")
 
 
 def _edge_regions(mesh: Mesh, edges: list[int]) -> list[_Region]:
@@ -386,13 +389,15 @@ def _edge_regions(mesh: Mesh, edges: list[int]) -> list[_Region]:
     for e in edges:
         a, b = mesh.edge_vertices(e)
         if a == b:
-            raise DLFLError(f"edge {e} is a self-loop (both ends at vertex {a}); it cannot be cut")
+            raise InvalidArgumentError(
+                f"edge {e} is a self-loop (both ends at vertex {a}); it cannot be cut")
         _join(group, members, a, b, e)
     regions = []
     for verts, inner in (m for m in members if m[1]):
         if len(inner) != len(verts) - 1:
-            raise DLFLError(f"edges {', '.join(map(str, inner))} close a cycle: a cut of edges "
-                            "needs them to form paths or trees (cut the face inside instead)")
+            raise InvalidArgumentError(
+                                       f"edges {', '.join(map(str, inner))} close a cycle: a cut of edges "
+                "needs them to form paths or trees (cut the face inside instead)")
         for v in verts:
             _check_cuttable(mesh, v)
         name = f"edge {inner[0]}" if len(inner) == 1 else f"edges {', '.join(map(str, inner))}"
@@ -448,8 +453,9 @@ def _check_disjoint(regions: list[_Region]) -> None:
     for r in regions:
         for v in r.vertices:
             if v in owner:
-                raise DLFLError(f"{owner[v].name} and {r.name} share vertex {v}: cut them in "
-                                "separate calls")
+                raise InvalidArgumentError(
+                                           f"{owner[v].name} and {r.name} share vertex {v}: cut them in "
+                    "separate calls")
             owner[v] = r
 
 

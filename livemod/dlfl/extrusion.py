@@ -31,7 +31,12 @@ import numpy as np
 from ._checks import finite_number, first_not_finite, flag, shown, whole_count
 from .bands import quad_band, triangle_band
 from .budget import check_growth
-from .errors import DLFLError, GeometryError
+from .errors import (
+    DLFLError,
+    GeometryError,
+    InvalidArgumentError,
+    UnknownIdError,
+)
 from .mesh import Mesh
 from .normals import inset_offsets, small_polygon_normal
 
@@ -61,15 +66,15 @@ class Options:
 
 # -- local geometry ------------------------------------------------------------------
 
-class _GeometryError(GeometryError):
-    """A step cannot be built: the face it extrudes has no normal, or a point it
-    makes is not finite. The message names the face or point; ``reason`` says
-    the same without ids, for a rehearsal (:func:`_rehearse`), whose ids are
-    those of a scratch mesh."""
-
-    def __init__(self, message: str, reason: str) -> None:
-        super().__init__(message)
-        self.reason = reason
+def _step_failure(message: str, reason: str) -> GeometryError:
+    """The error of a step that cannot be built: the face it extrudes has no
+    normal, or a point it makes is not finite. ``message`` names the face or
+    point; the error's ``reason`` says the same without ids, for a rehearsal
+    (:func:`_rehearse`), whose ids are those of a scratch mesh. A plain
+    :class:`GeometryError`, so that is the name a script's error line shows."""
+    error = GeometryError(message)
+    error.reason = reason  # type: ignore[attr-defined]
+    return error
 
 
 def _face_geometry(mesh: Mesh, face: int) -> tuple[np.ndarray, np.ndarray]:
@@ -80,13 +85,13 @@ def _face_geometry(mesh: Mesh, face: int) -> tuple[np.ndarray, np.ndarray]:
     geometry twice per extrusion, a sixth of a chained step's time).
 
     Raises:
-        _GeometryError: the face has no normal (collinear or coincident points).
+        GeometryError: the face has no normal (collinear or coincident points).
     """
     points = mesh.face_points(face)
     normal = small_polygon_normal(points.tolist())
     if normal == (0.0, 0.0, 0.0):
-        raise _GeometryError(f"face {face} is degenerate (no normal); it cannot be extruded",
-                             "a face it makes on the way is degenerate (no normal)")
+        raise _step_failure(f"face {face} is degenerate (no normal); it cannot be extruded",
+                            "a face it makes on the way is degenerate (no normal)")
     return points, np.array(normal)
 
 
@@ -94,12 +99,12 @@ def _finite(points: np.ndarray) -> np.ndarray:
     """``points`` (``(k, 3)`` or ``(3,)``), checked before they reach the mesh.
 
     Raises:
-        _GeometryError: a coordinate overflowed to infinity (or is NaN).
+        GeometryError: a coordinate overflowed to infinity (or is NaN).
     """
     rows = np.atleast_2d(points)
     row = first_not_finite(rows)
     if row is not None:
-        raise _GeometryError(
+        raise _step_failure(
             f"the extrusion would put a point at {rows[row].tolist()}: its numbers overflow; "
             "use a smaller distance or scale",
             "a point it makes on the way overflows (use a smaller distance or scale)")
@@ -405,7 +410,8 @@ def resolve_kind(name: str) -> str:
         DLFLError: unknown or ambiguous, listing the valid kinds.
     """
     if not isinstance(name, str):
-        raise DLFLError(f"extrusion kind must be a string, got {name!r}; kinds: {', '.join(KINDS)}")
+        raise InvalidArgumentError(
+            f"extrusion kind must be a string, got {name!r}; kinds: {', '.join(KINDS)}")
     key = name.strip().lower().replace("_", "-")
     if key in KINDS:
         return key
@@ -415,7 +421,7 @@ def resolve_kind(name: str) -> str:
     if len(matches) == 1:
         return matches[0]
     what = "ambiguous" if matches else "unknown"
-    raise DLFLError(f"{what} extrusion kind {name!r}; valid kinds: {', '.join(KINDS)}")
+    raise InvalidArgumentError(f"{what} extrusion kind {name!r}; valid kinds: {', '.join(KINDS)}")
 
 
 def _check_face(mesh: Mesh, face: int) -> None:
@@ -427,15 +433,16 @@ def _check_face(mesh: Mesh, face: int) -> None:
             hole walls), or has fewer than 3 corners.
     """
     if isinstance(face, bool) or not isinstance(face, int | np.integer):
-        raise DLFLError(f"face must be a face id (int), got {face!r}")
+        raise InvalidArgumentError(f"face must be a face id (int), got {face!r}")
     if not mesh.has_face(int(face)):
-        raise DLFLError(f"face {shown(int(face))} does not exist (deleted or never made)")
+        raise UnknownIdError(f"face {shown(int(face))} does not exist (deleted or never made)")
     if mesh.is_hole(int(face)):
-        raise DLFLError(f"face {face} is a hole (a boundary loop of an open mesh, not part of "
-                        "the surface); it cannot be extruded")
+        raise InvalidArgumentError(
+                                   f"face {face} is a hole (a boundary loop of an open mesh, not part of "
+            "the surface); it cannot be extruded")
     if mesh.face_size(int(face)) < 3:
-        raise DLFLError(f"face {face} has {mesh.face_size(int(face))} corner(s); "
-                        "only faces of 3 or more corners can be extruded")
+        raise InvalidArgumentError(f"face {face} has {mesh.face_size(int(face))} corner(s); "
+                                   "only faces of 3 or more corners can be extruded")
 
 
 def _checked_numbers(opts: Options) -> Options:
@@ -476,9 +483,10 @@ def _check_simple(mesh: Mesh, face: int, kind: str) -> None:
     vertices = mesh.face_vertices(face)
     if len(set(vertices)) < len(vertices):
         twice = next(v for v in vertices if vertices.count(v) > 1)
-        raise DLFLError(f"face {face} visits vertex {twice} more than once (an edge dangles "
-                        f"into it, or a loop): {kind} extrusion needs a face whose corners "
-                        "are distinct vertices")
+        raise InvalidArgumentError(
+                                   f"face {face} visits vertex {twice} more than once (an edge dangles "
+                                   f"into it, or a loop): {kind} extrusion needs a face whose corners "
+            "are distinct vertices")
 
 
 def extrude(
@@ -530,8 +538,9 @@ def extrude(
         max_faces)
     step = spec.step
     if step is None:
-        raise DLFLError(f"extrusion kind {resolve_kind(kind)!r} ends in a fan of triangles, "
-                        "not an end face; use extrude_fan()")
+        raise InvalidArgumentError(
+                                   f"extrusion kind {resolve_kind(kind)!r} ends in a fan of triangles, "
+            "not an end face; use extrude_fan()")
     count = int(segments)
 
     def run(m: Mesh, f: int) -> int:
@@ -568,7 +577,8 @@ def extrude_fan(
                           Options(distance=distance, rotation=rotation, scale=scale), max_faces)
     fan = spec.fan
     if fan is None:
-        raise DLFLError(f"extrusion kind {resolve_kind(kind)!r} ends in a face; use extrude()")
+        raise InvalidArgumentError(
+            f"extrusion kind {resolve_kind(kind)!r} ends in a face; use extrude()")
     if not spec.single_build:
         _rehearse(mesh, int(face), resolve_kind(kind), lambda m, f: fan(m, f, opts))
     return fan(mesh, int(face), opts)
@@ -594,9 +604,7 @@ def _rehearse(mesh: Mesh, face: int, kind: str, run: Callable[[Mesh, int], objec
     front, _ = scratch.create_face(points.tolist())
     try:
         run(scratch, front)
-    except _GeometryError as exc:
-        raise DLFLError(f"{kind} extrusion of face {face} cannot be built: {exc.reason}; "
-                        "the mesh is unchanged") from None
-    except DLFLError as exc:
-        raise DLFLError(f"{kind} extrusion of face {face} cannot be built: {exc}; "
+    except DLFLError as exc:  # the same kind of failure, said of the face given
+        why = getattr(exc, "reason", exc)  # a step's reason names no scratch ids
+        raise type(exc)(f"{kind} extrusion of face {face} cannot be built: {why}; "
                         "the mesh is unchanged") from None

@@ -19,7 +19,7 @@ from ._vectors import centroid, lengths, range_exponent, scaled_mean
 from ._vectors import unit as _unit
 from .analysis import face_centroids, face_normals
 from .arrays import MeshArrays, mesh_arrays
-from .errors import DLFLError
+from .errors import GeometryError, InvalidArgumentError
 from .mesh import Mesh
 
 __all__ = [
@@ -43,8 +43,8 @@ def _write(mesh: Mesh, a: MeshArrays, positions: np.ndarray, what: str) -> None:
     """
     i = first_not_finite(positions)
     if i is not None:
-        raise DLFLError(f"{what} would move vertex {int(a.vertex_ids[i])} to "
-                        f"{positions[i].tolist()}: its numbers overflow; the mesh is unchanged")
+        raise GeometryError(f"{what} would move vertex {int(a.vertex_ids[i])} to "
+                            f"{positions[i].tolist()}: its numbers overflow; the mesh is unchanged")
     mesh.set_positions(a.vertex_ids, positions)
 
 
@@ -247,9 +247,9 @@ def _pushed(v: int, origin: np.ndarray, size: float, toward: np.ndarray) -> np.n
     with np.errstate(over="ignore", invalid="ignore"):  # refused just below
         point = origin + size * _unit(toward)
     if not np.isfinite(point).all():
-        raise DLFLError(f"splitting valence-2 vertex {v} by {size} would put a vertex at "
-                        f"{point.tolist()}, which is not finite: its numbers overflow; use a "
-                        "smaller offset; the mesh is unchanged")
+        raise GeometryError(f"splitting valence-2 vertex {v} by {size} would put a vertex at "
+                            f"{point.tolist()}, which is not finite: its numbers overflow; use a "
+                            "smaller offset; the mesh is unchanged")
     return point
 
 
@@ -293,8 +293,8 @@ def trisect_edge(mesh: Mesh, edge: int, num: float, scale: bool) -> list[int]:
     p0, p1 = (mesh.position(v) for v in mesh.edge_vertices(edge))
     points = _scaled_trisection(p0, p1, num) if scale else _offset_trisection(edge, p0, p1, num)
     if first_not_finite(points) is not None:  # rounding at the float maximum
-        raise DLFLError(f"trisecting edge {edge} would put a vertex at {points.tolist()}: its "
-                        "numbers overflow; the mesh is unchanged")
+        raise GeometryError(f"trisecting edge {edge} would put a vertex at {points.tolist()}: its "
+                            "numbers overflow; the mesh is unchanged")
     new = mesh.subdivide_edge(edge, 3)
     mesh.set_positions(new, points)
     return new
@@ -318,9 +318,9 @@ def _offset_trisection(edge: int, p0: np.ndarray, p1: np.ndarray, num: float) ->
     half = p1 * 0.5 - p0 * 0.5  # p1 - p0 itself can overflow
     length = 2.0 * float(lengths(half[None])[0])
     if length <= 0.04:
-        raise DLFLError(f"edge {edge} is {length:.3g} long: an offset trisection needs an edge "
-                        "longer than 0.04 (offsets are clamped to [0.01, length/2 - 0.01]); "
-                        "use scale=True; the mesh is unchanged")
+        raise GeometryError(f"edge {edge} is {length:.3g} long: an offset trisection needs an edge "
+                            "longer than 0.04 (offsets are clamped to [0.01, length/2 - 0.01]); "
+                            "use scale=True; the mesh is unchanged")
     offset = min(max(num, 0.01), length / 2.0 - 0.01)
     step = offset * _unit(half[None])[0]
     return np.array([p0 + step, p1 - step])
@@ -344,6 +344,6 @@ def splice_corners(mesh: Mesh, corner1: int, corner2: int) -> int:
     """
     v1, v2 = mesh.corner_vertex(corner1), mesh.corner_vertex(corner2)
     if v1 == v2:
-        raise DLFLError(f"corners {corner1} and {corner2} are both at vertex {v1}: "
-                        "splicing needs corners at two different vertices")
+        raise InvalidArgumentError(f"corners {corner1} and {corner2} are both at vertex {v1}: "
+                                   "splicing needs corners at two different vertices")
     return mesh.collapse_edge(mesh.insert_edge(corner1, corner2))

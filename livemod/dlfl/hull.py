@@ -57,7 +57,7 @@ from ._quickhull import convex, quickhull, verified_triangles
 from ._vectors import range_exponent, shifted_in_range
 from .budget import check_size
 from .build import from_polygons
-from .errors import DLFLError
+from .errors import DLFLError, GeometryError, InvalidArgumentError
 from .mesh import Mesh
 
 __all__ = ["hull_polygons", "hull_triangles", "convex_hull", "dual_convex_hull"]
@@ -374,14 +374,14 @@ def _frame(points: np.ndarray) -> tuple[np.ndarray, np.ndarray, int]:
     """
     pts = np.asarray(points, dtype=np.float64)
     if pts.ndim != 2 or pts.shape[1] != 3:
-        raise DLFLError(f"a convex hull needs (n, 3) points, got shape {pts.shape}")
+        raise InvalidArgumentError(f"a convex hull needs (n, 3) points, got shape {pts.shape}")
     if len(pts) < 4:
-        raise DLFLError(f"a convex hull needs at least 4 points, got {len(pts)}")
+        raise InvalidArgumentError(f"a convex hull needs at least 4 points, got {len(pts)}")
     framed = shifted_in_range(pts)
     # before LAPACK: it prints its own complaint about NaN to stderr
     if not (np.isfinite(pts).all() and np.isfinite(framed).all()):
-        raise DLFLError("a convex hull needs finite points whose differences are finite; "
-                        "these overflow")
+        raise GeometryError("a convex hull needs finite points whose differences are finite; "
+                            "these overflow")
     if framed is pts:
         return pts, np.zeros(3), 0
     return framed, pts[0], range_exponent(pts - pts[0])
@@ -406,14 +406,14 @@ def _check_not_flat(pts: np.ndarray, eps: float) -> None:
         return
     normal = np.linalg.svd(centred, full_matrices=False)[2][-1]
     if not np.abs(centred @ normal).max() > eps:
-        raise DLFLError("a convex hull needs at least 4 points not all in one plane; "
-                        f"these {len(pts)} points are coplanar")
+        raise GeometryError("a convex hull needs at least 4 points not all in one plane; "
+                            f"these {len(pts)} points are coplanar")
 
 
-def _not_closed() -> DLFLError:
+def _not_closed() -> GeometryError:
     """The error for faces that do not make a closed surface."""
-    return DLFLError("the convex hull does not close up (its points are too nearly "
-                     "coplanar for the tolerance)")
+    return GeometryError("the convex hull does not close up (its points are too nearly "
+                         "coplanar for the tolerance)")
 
 
 def _sides(poly: list[int]) -> list[tuple[int, int]]:
@@ -724,8 +724,8 @@ def _polar_points(hull: _Hull) -> np.ndarray:
         dual = np.ldexp(centre + normals * (radius2 / distance)[:, None], hull.exponent)
         dual = hull.origin + dual
     if not np.isfinite(dual).all():
-        raise DLFLError("the dual convex hull would put a vertex beyond the float range "
-                        "(the hull is too flat)")
+        raise GeometryError("the dual convex hull would put a vertex beyond the float range "
+                            "(the hull is too flat)")
     return dual
 
 

@@ -23,9 +23,9 @@ builders hand their arrays to :meth:`Mesh.from_tables`. ``tests/layering.py``
 counts the reads, and a test keeps every other module off the tables.
 
 Elements are named by integer ids, handed out per kind and never reused within a
-mesh; using a deleted id raises :class:`DLFLError` naming it. Bulk operations that
-rebuild the mesh (subdivision, dual, loading) give all elements fresh ids; their
-docstrings say so.
+mesh; using a deleted id raises :class:`UnknownIdError` (a :class:`DLFLError` and a
+:class:`LookupError`) naming it. Bulk operations that rebuild the mesh (subdivision,
+dual, loading) give all elements fresh ids; their docstrings say so.
 """
 
 from __future__ import annotations
@@ -38,7 +38,7 @@ import numpy as np
 
 from ._checks import as_point, flag, whole_count
 from ._table import FieldSpec, Table
-from .errors import DLFLError
+from .errors import InvalidArgumentError, UnknownIdError
 
 CORNER_SPEC: FieldSpec = {
     "next": (np.int32, ()),
@@ -82,10 +82,11 @@ def _adopt(kind: str, spec: FieldSpec, first_id: int, fields: dict[str, np.ndarr
     """:meth:`Table.from_arrays` of ``fields`` (and ``ids``), once they are checked
     to be the fields of ``spec``, all of one length (see :meth:`Mesh.from_tables`)."""
     if fields.keys() != spec.keys():
-        raise DLFLError(f"the {kind} table needs the fields {sorted(spec)}, got {sorted(fields)}")
+        raise InvalidArgumentError(
+            f"the {kind} table needs the fields {sorted(spec)}, got {sorted(fields)}")
     lengths = {name: len(array) for name, array in fields.items()}
     if len(set(lengths.values())) > 1:
-        raise DLFLError(f"the {kind} table's fields differ in length: {lengths}")
+        raise InvalidArgumentError(f"the {kind} table's fields differ in length: {lengths}")
     return Table.from_arrays(kind, spec, first_id, fields, ids)
 
 
@@ -271,8 +272,9 @@ class Mesh:
         """Flag ``face`` as a hole (not drawn, written out as a boundary) or not.
 
         Raises:
-            DLFLError: ``face`` is not live, or ``hole`` is not a flag (a string
-                such as ``"False"`` would otherwise mean True).
+            UnknownIdError: ``face`` is not live.
+            InvalidArgumentError: ``hole`` is not a flag (a string such as
+                ``"False"`` would otherwise mean True).
         """
         slot = self._f.slot(face)
         self._f.hole[slot] = 1 if flag(hole, "hole") else 0
@@ -331,8 +333,9 @@ class Mesh:
                 lookup however many there are).
 
         Raises:
-            DLFLError: an entry is not an integer or not a live vertex id (the
-                first such, in order).
+            InvalidArgumentError: an entry is not an integer.
+            UnknownIdError: an entry is not a live vertex id (the first such, in
+                order).
         """
         return self._v.arrays["position"][self._v.slots(vertices)]
 
@@ -341,7 +344,7 @@ class Mesh:
         order from its head (a vertex the face visits twice appears twice).
 
         Raises:
-            DLFLError: ``face`` is not a live face id.
+            UnknownIdError: ``face`` is not a live face id.
         """
         # vertex slots straight from the ring: extrusion reads every face it grows here
         vert = self._c.vertex
@@ -356,8 +359,10 @@ class Mesh:
         """The corner of ``face`` at ``vertex`` (the thesis's ``(faceid, vertexid)``).
 
         Raises:
-            DLFLError: the face does not visit the vertex, or visits it more than
-                once (the message lists the corner ids to use instead).
+            UnknownIdError: either id is not live, or the face does not visit the
+                vertex.
+            InvalidArgumentError: the face visits the vertex more than once (the
+                message lists the corner ids to use instead).
         """
         fs = self._f.slot(face)
         vs = self._v.slot(vertex)
@@ -366,9 +371,9 @@ class Mesh:
         if len(found) == 1:
             return self._c.idv[found[0]]
         if not found:
-            raise DLFLError(f"face {face} has no corner at vertex {vertex}")
+            raise UnknownIdError(f"face {face} has no corner at vertex {vertex}")
         ids = ", ".join(str(self._c.idv[s]) for s in found)
-        raise DLFLError(
+        raise InvalidArgumentError(
             f"corner ({face}, {vertex}) is ambiguous: face {face} visits vertex "
             f"{vertex} {len(found)} times; use one of the corner ids {ids}"
         )
@@ -432,12 +437,14 @@ class Mesh:
         """Remove a point-sphere vertex together with its face and corner.
 
         Raises:
-            DLFLError: ``vertex`` still has edges (only point-spheres can go).
+            UnknownIdError: ``vertex`` is not live.
+            InvalidArgumentError: ``vertex`` still has edges (only point-spheres
+                can go).
         """
         vs = self._v.slot(vertex)
         c = self._v.corner[vs]
         if self._c.edge[c] >= 0:
-            raise DLFLError(
+            raise InvalidArgumentError(
                 f"vertex {vertex} has {self.valence(vertex)} edge end(s); only a "
                 "point-sphere (a vertex with no edges) can be removed"
             )
@@ -458,7 +465,8 @@ class Mesh:
         ``corner_next`` are the two copies made at the far ends.
 
         Raises:
-            DLFLError: a corner id is not live, or both are the same corner.
+            UnknownIdError: a corner id is not live.
+            InvalidArgumentError: both are the same corner.
         """
         C = self._c
         # Table.slot inlined for ids at their home slot (the common case)
@@ -470,7 +478,7 @@ class Mesh:
         if not (0 <= s2 < n and idv[s2] == corner2):
             s2 = C.slot(corner2)
         if s1 == s2:
-            raise DLFLError(
+            raise InvalidArgumentError(
                 f"insert_edge needs two different corners, got corner {corner1} twice"
             )
         E, F = self._e, self._f
@@ -601,7 +609,7 @@ class Mesh:
         inserting between the old sides again undoes the deletion.
 
         Raises:
-            DLFLError: ``edge`` is not a live edge id.
+            UnknownIdError: ``edge`` is not a live edge id.
         """
         E, F = self._e, self._f
         # Table.slot inlined: an id at its home slot, else one in a reused slot
@@ -808,8 +816,9 @@ class Mesh:
         the first part (from ``p0``); each further part is a new edge.
 
         Raises:
-            DLFLError: ``edge`` is not live, or ``divisions`` is not an integer >= 1
-                (or makes more corners than a mesh holds).
+            UnknownIdError: ``edge`` is not live.
+            InvalidArgumentError: ``divisions`` is not an integer >= 1 (or makes
+                more corners than a mesh holds).
         """
         divisions = whole_count(divisions, "divisions", each=2)  # 2 corners per new vertex
         es = self._e.slot(edge)
@@ -868,7 +877,7 @@ class Mesh:
         degenerate face remains.
 
         Raises:
-            DLFLError: ``edge`` is not a live edge id.
+            UnknownIdError: ``edge`` is not a live edge id.
         """
         E, C, V = self._e, self._c, self._v
         es = E.slot(edge)
@@ -955,14 +964,16 @@ class Mesh:
         (V+n, E+n, F+2).
 
         Raises:
-            DLFLError: fewer than two points, or a point is not three numbers.
+            InvalidArgumentError: fewer than two points, or a point is not three
+                finite numbers.
         """
         if isinstance(points, (str, bytes)) or not hasattr(points, "__iter__"):
-            raise DLFLError(f"create_face needs a sequence of (x, y, z) points, got {points!r}")
+            raise InvalidArgumentError(
+                f"create_face needs a sequence of (x, y, z) points, got {points!r}")
         pts = [as_point(p) for p in points]
         n = len(pts)
         if n < 2:
-            raise DLFLError(f"create_face needs at least 2 points, got {n}")
+            raise InvalidArgumentError(f"create_face needs at least 2 points, got {n}")
         C, E, F, V = self._c, self._e, self._f, self._v
         C.reserve(2 * n)
         E.reserve(n)
@@ -1028,8 +1039,8 @@ class Mesh:
         operation); run :func:`livemod.dlfl.validate` on the result in tests.
 
         Raises:
-            DLFLError: a field missing or unknown, or fields of one kind of
-                different lengths.
+            InvalidArgumentError: a field missing or unknown, or fields of one
+                kind of different lengths.
         """
         mesh = cls.__new__(cls)
         mesh.notes = []
@@ -1072,20 +1083,22 @@ class Mesh:
             positions: ``(k, 3)`` floats, or ``(3,)`` for all of them.
 
         Raises:
-            DLFLError: an id that is not a live vertex, positions of another shape,
-                or a NaN or infinite coordinate (nothing is moved then).
+            UnknownIdError: an id that is not a live vertex.
+            InvalidArgumentError: positions of another shape, or a NaN or
+                infinite coordinate (nothing is moved then).
         """
         if not hasattr(vertices, "__iter__"):
-            raise DLFLError(f"set_positions needs a sequence of vertex ids, got {vertices!r}")
+            raise InvalidArgumentError(
+                f"set_positions needs a sequence of vertex ids, got {vertices!r}")
         slots = [self._v.slot(v) for v in vertices]
         try:
             values = np.asarray(positions, dtype=np.float64)
         except (TypeError, ValueError):
-            raise DLFLError(f"positions must be numbers, got {positions!r}") from None
+            raise InvalidArgumentError(f"positions must be numbers, got {positions!r}") from None
         if values.shape not in ((3,), (len(slots), 3)):
-            raise DLFLError(
+            raise InvalidArgumentError(
                 f"positions must have shape (3,) or ({len(slots)}, 3), got {values.shape}"
             )
         if not np.isfinite(values).all():
-            raise DLFLError("positions must be finite numbers (NaN or infinity given)")
+            raise InvalidArgumentError("positions must be finite numbers (NaN or infinity given)")
         self._v.arrays["position"][slots] = values

@@ -30,7 +30,12 @@ from .analysis import face_points, polygon_normal
 from .bands import edges_since
 from .budget import check_growth
 from .connect import closest_corners, connect_edge_sides, connect_faces
-from .errors import DLFLError
+from .errors import (
+    DLFLError,
+    GeometryError,
+    InvalidArgumentError,
+    UnknownIdError,
+)
 from .geometry import edge_cleanup
 from .hull import hull_polygons
 from .mesh import Mesh
@@ -55,12 +60,12 @@ def _check_handle_faces(mesh: Mesh, faces: list[int], op: str = "multi_face_hand
     """Raises DLFLError unless ``faces`` holds two or more different live faces,
     each with a normal."""
     if len(faces) < 2 or len(set(faces)) != len(faces):
-        raise DLFLError(f"{op} needs two or more different faces, got {faces}")
+        raise InvalidArgumentError(f"{op} needs two or more different faces, got {faces}")
     for f in faces:
         if not mesh.has_face(f):
-            raise DLFLError(f"face {f} does not exist (deleted or never made)")
+            raise UnknownIdError(f"face {f} does not exist (deleted or never made)")
         if mesh.face_size(f) < 3 or not np.any(polygon_normal(face_points(mesh, f))):
-            raise DLFLError(f"face {f} has no normal (fewer than 3 corners or degenerate)")
+            raise GeometryError(f"face {f} has no normal (fewer than 3 corners or degenerate)")
 
 
 def _check_budget(mesh: Mesh, faces: list[int], op: str, growth: tuple[int, int],
@@ -230,8 +235,8 @@ def _check_every_point_used(polygons: list[list[int]], count: int) -> None:
     """
     unused = sorted(set(range(count)) - {p for poly in polygons for p in poly})
     if unused:
-        raise DLFLError(f"hub point {unused[0]} lies inside the hub's convex hull (or "
-                        "inside one of its faces); try another extrude or scale")
+        raise GeometryError(f"hub point {unused[0]} lies inside the hub's convex hull (or "
+                            "inside one of its faces); try another extrude or scale")
 
 
 def _facing_polygons(points: np.ndarray, polygons: list[list[int]], faces: list[int],
@@ -249,7 +254,7 @@ def _facing_polygons(points: np.ndarray, polygons: list[list[int]], faces: list[
         match = [i for i, n in enumerate(hull_normals) if abs(1.0 + float(n @ normal)) < 1e-6]
         free = [i for i in match if i not in partner]
         if not free:
-            raise DLFLError(f"face {f} has no hull face facing it; {hint}")
+            raise GeometryError(f"face {f} has no hull face facing it; {hint}")
         partner.append(free[0])
     return partner
 
@@ -425,8 +430,8 @@ def fitted_factor(fits: Callable[[float], bool], min_factor: float = 0.01,
                 return factor
             step = min_factor
         factor = factor + step if ok else factor - step
-    raise DLFLError(f"no hub that keeps every point found in {iterations} steps (last "
-                    f"factor {previous:g}); try another min_factor")
+    raise GeometryError(f"no hub that keeps every point found in {iterations} steps (last "
+                        f"factor {previous:g}); try another min_factor")
 
 
 def multi_face_handle_fitted(mesh: Mesh, faces: list[int], min_factor: float = 0.01, *,
@@ -513,8 +518,8 @@ def _check_convex_position(points: np.ndarray) -> None:
     used = {p for poly in hull_polygons(distinct) for p in poly}
     inside = sorted(set(range(len(distinct))) - used)
     if inside:
-        raise DLFLError(f"the faces' point {distinct[inside[0]].tolist()} lies inside the "
-                        "convex hull of their points: no hub can keep it")
+        raise GeometryError(f"the faces' point {distinct[inside[0]].tolist()} lies inside the "
+                            "convex hull of their points: no hub can keep it")
 
 
 # -- closest edges ------------------------------------------------------------------------
@@ -556,8 +561,8 @@ def multi_face_handle_closest_edges(mesh: Mesh, faces: list[int], *,
     halves = _half_edges(mesh, faces)
     pairs = _edge_pairs(mesh, faces, halves)
     if not pairs:
-        raise DLFLError(f"no two edges of faces {faces} make a nearly planar quad across "
-                        "the handle; use multi_face_handle")
+        raise GeometryError(f"no two edges of faces {faces} make a nearly planar quad across "
+                            "the handle; use multi_face_handle")
     first = mesh.next_ids()[1]
     joined: set[int] = set()
     for a, b in pairs:

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from ._checks import finite_number, positive_number, shown
-from .errors import DLFLError, InvalidArgumentError
+from .errors import InvalidArgumentError
 
 KINDS = ("bool", "int", "float", "choice", "str")
 
@@ -67,7 +67,8 @@ class ParamSpec:
                 return True
             if lowered in ("0", "false", "no", "off"):
                 return False
-            raise DLFLError(f"parameter {self.name!r} is a bool; got {text!r} (use true or false)")
+            raise InvalidArgumentError(
+                f"parameter {self.name!r} is a bool; got {text!r} (use true or false)")
         if self.kind == "choice":
             for choice in self.choices or ():
                 if str(choice) == text:
@@ -76,7 +77,7 @@ class ParamSpec:
         try:
             return int(text) if self.kind == "int" else float(text)
         except ValueError:
-            raise DLFLError(
+            raise InvalidArgumentError(
                 f"parameter {self.name!r} is {_article(self.kind)}; got {text!r}"
             ) from None
 
@@ -96,18 +97,22 @@ class ParamSpec:
             if value in (self.choices or ()):
                 return value
             valid = ", ".join(repr(c) for c in self.choices or ())
-            raise DLFLError(f"parameter {self.name!r} must be one of {valid}; got {value!r}")
+            raise InvalidArgumentError(
+                f"parameter {self.name!r} must be one of {valid}; got {value!r}")
         elif isinstance(value, str):
             return value
-        raise DLFLError(f"parameter {self.name!r} is {_article(self.kind)}; got {value!r}")
+        raise InvalidArgumentError(
+            f"parameter {self.name!r} is {_article(self.kind)}; got {value!r}")
 
     def _check_range(self, value: Any) -> None:
         if self.kind not in ("int", "float"):
             return
         if self.min is not None and value < self.min:
-            raise DLFLError(f"parameter {self.name!r} = {value} is below its minimum {self.min}")
+            raise InvalidArgumentError(
+                f"parameter {self.name!r} = {value} is below its minimum {self.min}")
         if self.max is not None and value > self.max:
-            raise DLFLError(f"parameter {self.name!r} = {value} is above its maximum {self.max}")
+            raise InvalidArgumentError(
+                f"parameter {self.name!r} = {value} is above its maximum {self.max}")
 
     def as_python(self, value: Any) -> str:
         """A ``param(...)`` call with ``value`` as its default, for baking into a script."""
@@ -142,7 +147,7 @@ def make_spec(
                                    f"{shown(name)}")
     kind = _kind_of(name, default, choices)
     if (min is not None or max is not None or step is not None) and kind not in ("int", "float"):
-        raise DLFLError(f"parameter {name!r}: min, max and step need a numeric default")
+        raise InvalidArgumentError(f"parameter {name!r}: min, max and step need a numeric default")
     # numbers (kept as given), or the range checks would compare a value with a string
     for bound, label in ((min, "min"), (max, "max")):
         if bound is not None:
@@ -150,7 +155,7 @@ def make_spec(
     if step is not None:
         positive_number(step, f"parameter {name!r}: step")
     if min is not None and max is not None and min > max:
-        raise DLFLError(f"parameter {name!r}: min {min} is above max {max}")
+        raise InvalidArgumentError(f"parameter {name!r}: min {min} is above max {max}")
     spec = ParamSpec(name, default, kind, min, max, step,
                      tuple(choices) if choices is not None else None, str(doc))
     spec.check(default)
@@ -171,6 +176,6 @@ def _kind_of(name: str, default: Any, choices: Sequence[Any] | None) -> str:
         return "float"
     if isinstance(default, str):
         return "str"
-    raise DLFLError(
+    raise InvalidArgumentError(
         f"parameter {name!r}: the default must be a number, a bool or a string, got {default!r}"
     )

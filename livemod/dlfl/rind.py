@@ -24,7 +24,11 @@ from .analysis import corner_normals, face_normals
 from .arrays import MeshArrays, mesh_arrays
 from .budget import check_size
 from .build import from_corner_arrays
-from .errors import DLFLError, GeometryError
+from .errors import (
+    GeometryError,
+    InvalidArgumentError,
+    UnknownIdError,
+)
 from .mesh import Mesh
 from .normals import reversed_rings, ring_normals
 
@@ -131,9 +135,9 @@ def _straight_vertex_normals(a: MeshArrays, normals: np.ndarray, has: np.ndarray
     count = np.bincount(a.corner_vertex[has], minlength=len(count)).astype(np.float64)
     if (count == 0).any():
         v = int(a.vertex_ids[np.flatnonzero(count == 0)[0]])
-        raise DLFLError(f"vertex {v} has no face normal to offset it along: the faces at it "
-                        "have no area (their corners are collinear or coincident); the "
-                        "crust would have no thickness there")
+        raise GeometryError(f"vertex {v} has no face normal to offset it along: the faces at it "
+                            "have no area (their corners are collinear or coincident); the "
+                            "crust would have no thickness there")
     return normals, has, count
 
 
@@ -173,9 +177,9 @@ def offset_shell(a: MeshArrays, thickness: float, uniform: bool) -> np.ndarray:
         moved = a.positions - _scaled_offsets(a, means, thickness, uniform)
     i = first_not_finite(moved)
     if i is not None:
-        raise DLFLError(f"thickness {thickness} would move vertex {int(a.vertex_ids[i])} to "
-                        f"{moved[i].tolist()}: its numbers overflow; "
-                        "use a smaller value")
+        raise GeometryError(f"thickness {thickness} would move vertex {int(a.vertex_ids[i])} to "
+                            f"{moved[i].tolist()}: its numbers overflow; "
+                            "use a smaller value")
     return moved
 
 
@@ -194,11 +198,11 @@ def check_not_inverted(a: MeshArrays, moved: np.ndarray, what: str) -> None:
     with np.errstate(over="ignore", invalid="ignore"):  # an overflow is refused below
         bad = _inverted_faces(a, moved)
     if bad is None:
-        raise DLFLError(f"{what} gives a crust too large to check for faces turning over "
-                        "(its edge products overflow); use a smaller value or a smaller mesh")
+        raise GeometryError(f"{what} gives a crust too large to check for faces turning over "
+                            "(its edge products overflow); use a smaller value or a smaller mesh")
     if bad.any():
         f = int(a.face_ids[np.flatnonzero(bad)[0]])
-        raise DLFLError(
+        raise GeometryError(
             f"{what} would invert the crust: the moved copy of face {f} "
             f"(and {int(bad.sum()) - 1} more) collapses or turns over; use a smaller value"
         )
@@ -399,7 +403,7 @@ def _dense_faces(a: MeshArrays, faces: Iterable[int]) -> np.ndarray:
     where = np.minimum(where, len(a.face_ids) - 1)
     missing = a.face_ids[where] != wanted
     if missing.any():
-        raise DLFLError(f"face {int(wanted[missing][0])} is not a face of this mesh")
+        raise UnknownIdError(f"face {int(wanted[missing][0])} is not a face of this mesh")
     mask[where] = True
     return mask
 
@@ -407,9 +411,9 @@ def _dense_faces(a: MeshArrays, faces: Iterable[int]) -> np.ndarray:
 def _check_shell_input(a: MeshArrays) -> None:
     if (a.corner_edge < 0).any():
         v = int(a.vertex_ids[a.corner_vertex[np.flatnonzero(a.corner_edge < 0)[0]]])
-        raise DLFLError(f"a crust needs a mesh without point-spheres; vertex {v} is one")
+        raise InvalidArgumentError(f"a crust needs a mesh without point-spheres; vertex {v} is one")
     if len(a.face_ids) == 0:
-        raise DLFLError("a crust needs a mesh with faces; this one is empty")
+        raise InvalidArgumentError("a crust needs a mesh with faces; this one is empty")
 
 
 def _shell_positions(
@@ -434,7 +438,8 @@ def _shell_positions(
         return moved, p
     assert thickness is not None
     if thickness == 0.0:
-        raise DLFLError("thickness 0 gives a crust with no thickness; use a nonzero value")
+        raise InvalidArgumentError(
+            "thickness 0 gives a crust with no thickness; use a nonzero value")
     moved = offset_shell(a, thickness, uniform)
     # outward (thickness < 0) turns over too where the mesh is concave: the
     # floor of a slot narrower than twice the thickness reverses
@@ -453,19 +458,22 @@ def _checked_scale(a: MeshArrays, scale: float) -> float:
     """
     s = float(scale)
     if s == 0.0:
-        raise DLFLError("scale 0 would collapse the inner shell to a point; use 0 < |scale| < 1")
+        raise InvalidArgumentError(
+            "scale 0 would collapse the inner shell to a point; use 0 < |scale| < 1")
     if abs(s) > 1.0:
-        raise DLFLError(f"scale {scale} is beyond +-1: a scaled crust needs 0 < |scale| < 1 "
-                        "(the inner copy smaller than the mesh, or with a negative scale "
-                        "the outer one larger)")
+        raise InvalidArgumentError(
+                                   f"scale {scale} is beyond +-1: a scaled crust needs 0 < |scale| < 1 "
+                                   "(the inner copy smaller than the mesh, or with a negative scale "
+            "the outer one larger)")
     if abs(s) == 1.0:  # TopMod clamps to [-1, 1] and builds two coincident shells
-        raise DLFLError(f"scale {scale} leaves no thickness between the shells (an inner "
-                        f"copy of the same size); use 0 < |scale| < 1")
+        raise InvalidArgumentError(
+                                   f"scale {scale} leaves no thickness between the shells (an inner "
+            f"copy of the same size); use 0 < |scale| < 1")
     solid = ~a.face_hole
     if not (np.linalg.norm(face_normals(a)[solid], axis=1) > 0.5).any():
-        raise DLFLError("a crust needs a face with an area; every face of this mesh has "
-                        "collinear or coincident corners, so the shells would have no "
-                        "thickness")
+        raise GeometryError("a crust needs a face with an area; every face of this mesh has "
+                            "collinear or coincident corners, so the shells would have no "
+                            "thickness")
     return s
 
 
@@ -527,7 +535,7 @@ def rind(
     )
     shell = shell_arrays(a, outer, inner, punched, cleanup)
     if len(shell.corner_vertex) == 0:
-        raise DLFLError("punching every face with cleanup leaves nothing of the mesh")
+        raise InvalidArgumentError("punching every face with cleanup leaves nothing of the mesh")
     mesh.replace_with(shell.build(mesh))
 
 

@@ -19,7 +19,7 @@ from ._checks import finite_number, finite_vector, id_list, is_id
 from ._vectors import unit
 from .analysis import face_areas, face_normals
 from .arrays import mesh_arrays
-from .errors import DLFLError
+from .errors import InvalidArgumentError
 from .mesh import Mesh
 
 __all__ = [
@@ -77,7 +77,7 @@ def _direction(direction: Any) -> np.ndarray:
     """
     d = finite_vector(direction, "direction")
     if not np.abs(d).max() > 0.0:
-        raise DLFLError("direction must not be zero")
+        raise InvalidArgumentError("direction must not be zero")
     return unit(d[None])[0]  # brought into range first: (1e308, 1e308, 0) has a norm
 
 

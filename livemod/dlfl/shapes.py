@@ -14,7 +14,7 @@ import numpy as np
 from .analysis import face_centroids
 from .arrays import MeshArrays, mesh_arrays
 from .build import from_polygons
-from .errors import DLFLError
+from .errors import InvalidArgumentError
 from .mesh import Mesh
 from .wireframe import vertex_rings
 
@@ -94,7 +94,8 @@ def torus(rings: int = 8, sides: int = 6, major: float = 2.0, minor: float = 0.5
         DLFLError: ``rings`` or ``sides`` below 3.
     """
     if rings < 3 or sides < 3:
-        raise DLFLError(f"torus needs at least 3 rings and 3 sides, got {rings} and {sides}")
+        raise InvalidArgumentError(
+            f"torus needs at least 3 rings and 3 sides, got {rings} and {sides}")
     u = np.arange(rings) * (2 * np.pi / rings)
     v = np.arange(sides) * (2 * np.pi / sides)
     uu, vv = np.meshgrid(u, v, indexing="ij")
@@ -113,7 +114,7 @@ def grid(nx: int = 4, ny: int = 4, size: float = 1.0) -> Mesh:
         DLFLError: fewer than 1 cell along a side.
     """
     if nx < 1 or ny < 1:
-        raise DLFLError(f"grid needs at least 1x1 cells, got {nx}x{ny}")
+        raise InvalidArgumentError(f"grid needs at least 1x1 cells, got {nx}x{ny}")
     x, z = np.meshgrid(np.linspace(0, size * nx, nx + 1), np.linspace(0, size * ny, ny + 1),
                        indexing="ij")
     positions = np.stack([x, np.zeros_like(x), z], -1).reshape(-1, 3)
@@ -214,7 +215,7 @@ def spherical_cube(divisions: int = 4) -> Mesh:
         DLFLError: ``divisions`` below 1.
     """
     if divisions < 1:
-        raise DLFLError(f"spherical_cube needs at least 1 division, got {divisions}")
+        raise InvalidArgumentError(f"spherical_cube needs at least 1 division, got {divisions}")
     base = cube()
     points: dict[tuple[int, int, int], int] = {}
     faces = []
@@ -309,7 +310,7 @@ def donut_hexa(level: int = 1) -> Mesh:
         DLFLError: ``level`` not 1, 2 or 3.
     """
     if level not in (1, 2, 3):
-        raise DLFLError(f"donut_hexa level must be 1, 2 or 3, got {level}")
+        raise InvalidArgumentError(f"donut_hexa level must be 1, 2 or 3, got {level}")
     mesh = hex_torus()
     for _ in range(level - 1):
         mesh = hex_refine(mesh)
@@ -330,7 +331,7 @@ def genus3_hexa(level: int = 1) -> Mesh:
         DLFLError: ``level`` is not 1, 2 or 3.
     """
     if level not in (1, 2, 3):
-        raise DLFLError(f"genus3_hexa level must be 1, 2 or 3, got {level}")
+        raise InvalidArgumentError(f"genus3_hexa level must be 1, 2 or 3, got {level}")
     mesh = _vertex_split(_glued_tori([(7, 4), (10, 3), (7, 4)]))
     for _ in range(level - 1):
         mesh = hex_refine(mesh)
@@ -429,7 +430,8 @@ def genus_torus(genus: int = 2, thickness: float = 0.5) -> Mesh:
         DLFLError: ``genus`` negative or ``thickness`` not positive.
     """
     if genus < 0 or thickness <= 0:
-        raise DLFLError(f"genus_torus needs genus >= 0 and thickness > 0, got {genus}, {thickness}")
+        raise InvalidArgumentError(
+            f"genus_torus needs genus >= 0 and thickness > 0, got {genus}, {thickness}")
     nx, ny = 2 * genus + 1, 3
     kept = [(i, j) for i in range(nx) for j in range(ny) if not (j == 1 and i % 2 == 1)]
     row = ny + 1
@@ -495,7 +497,7 @@ def load_shape(name: str) -> Mesh:
     """
     key = name.lower().removesuffix(".obj")
     if key not in SHAPES:
-        raise DLFLError(
+        raise InvalidArgumentError(
             f"no file {name!r} and no built-in shape of that name; shapes: {', '.join(SHAPES)}"
         )
     return SHAPES[key]()

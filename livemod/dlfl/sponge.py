@@ -33,7 +33,7 @@ from .analysis import face_centroids
 from .arrays import MeshArrays, mesh_arrays
 from .budget import check_size
 from .build import from_corner_arrays
-from .errors import DLFLError
+from .errors import DLFLError, GeometryError, InvalidArgumentError
 from .mesh import Mesh
 from .rind import check_not_inverted, crust_offsets, offset_shell
 
@@ -80,10 +80,11 @@ def sponge(mesh: Mesh, thickness: float | None = None, *, keep_2gons: bool = Tru
 
 def _check_input(a: MeshArrays) -> None:
     if (a.corner_edge < 0).any():
-        raise DLFLError("sponge needs a mesh without point-spheres")
+        raise InvalidArgumentError("sponge needs a mesh without point-spheres")
     if (a.face_sizes < 3).any():
         f = int(a.face_ids[np.flatnonzero(a.face_sizes < 3)[0]])
-        raise DLFLError(f"sponge needs faces of at least three sides; face {f} has fewer")
+        raise InvalidArgumentError(
+            f"sponge needs faces of at least three sides; face {f} has fewer")
 
 
 def _inner_shell(a: MeshArrays, thickness: float | None) -> tuple[float, np.ndarray]:
@@ -106,7 +107,7 @@ def _inner_shell(a: MeshArrays, thickness: float | None) -> tuple[float, np.ndar
         limit = shell_limit(a)
         if thickness < limit:
             raise
-        raise DLFLError(
+        raise GeometryError(
             f"thickness {thickness} is too large for this mesh: its inner shell "
             f"collapses or turns over from thickness {limit:.6g} on; use a smaller "
             f"value (the default here is {_default_thickness(limit):.6g})"

@@ -13,7 +13,7 @@ from typing import Any
 import numpy as np
 
 from ._checks import finite_number, finite_vector, first_not_finite, flag, id_list
-from .errors import DLFLError
+from .errors import GeometryError, InvalidArgumentError
 from .mesh import Mesh
 
 __all__ = ["move_vertices", "rotate", "rotation_matrix", "scale", "transform", "translate"]
@@ -51,9 +51,9 @@ def transform(
     try:
         m = np.asarray(matrix, dtype=np.float64)
     except (TypeError, ValueError):  # strings, ragged rows
-        raise DLFLError(f"matrix must be a finite 3x3 array, got {matrix!r}") from None
+        raise InvalidArgumentError(f"matrix must be a finite 3x3 array, got {matrix!r}") from None
     if m.shape != (3, 3) or not np.isfinite(m).all():
-        raise DLFLError(f"matrix must be a finite 3x3 array, got shape {m.shape}")
+        raise InvalidArgumentError(f"matrix must be a finite 3x3 array, got shape {m.shape}")
     c = _vector(center, "center")
     ids, p = _selected(mesh, vertices)
     with np.errstate(over="ignore", invalid="ignore"):  # refused by _finite_moved
@@ -70,8 +70,8 @@ def _finite_moved(ids: np.ndarray, moved: np.ndarray) -> np.ndarray:
     k = first_not_finite(moved)
     if k is None:
         return moved
-    raise DLFLError(f"the transform would move vertex {int(ids[k])} to {moved[k].tolist()}: "
-                    "its numbers overflow; use smaller factors or offsets (nothing is moved)")
+    raise GeometryError(f"the transform would move vertex {int(ids[k])} to {moved[k].tolist()}: "
+                        "its numbers overflow; use smaller factors or offsets (nothing is moved)")
 
 
 def translate(mesh: Mesh, offset: Any, *, vertices: Iterable[int] | None = None) -> None:
@@ -101,7 +101,7 @@ def rotation_matrix(axis: Any, degrees: float) -> np.ndarray:
     k = _vector(axis, "axis")
     largest = float(np.abs(k).max())
     if largest == 0.0:
-        raise DLFLError("rotation axis must not be zero")
+        raise InvalidArgumentError("rotation axis must not be zero")
     # to at most 1 first: the squares in the norm of (1e308, 1e308, 0) overflow,
     # and those of (1e-200, 1e-200, 0) vanish
     k = k / largest

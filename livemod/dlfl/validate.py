@@ -24,7 +24,9 @@ def validate(mesh: Mesh) -> None:
     each vertex's corners forming one rotation cycle, finite positions.
 
     Raises:
-        DLFLError: the first broken invariant, naming the elements by id.
+        DLFLError: the first broken invariant, naming the elements by id (the
+            base class itself: a broken mesh is a bug in whatever built it, none
+            of the kinds of bad input its subclasses name).
     """
     for table in (mesh._v, mesh._e, mesh._f, mesh._c):
         _check_table(table)

@@ -23,7 +23,7 @@ from .analysis import face_centroids
 from .arrays import MeshArrays, mesh_arrays
 from .budget import check_size
 from .build import from_corner_arrays
-from .errors import DLFLError, GeometryError
+from .errors import GeometryError, InvalidArgumentError, NonManifoldError
 from .mesh import Mesh
 from .rind import shell_arrays
 
@@ -81,7 +81,8 @@ def vertex_rings(a: MeshArrays) -> tuple[np.ndarray, np.ndarray]:
     size = counts[a.corner_vertex]
     cycles = np.bincount(a.corner_vertex[last], minlength=len(counts))
     if (dist >= size).any() or not np.array_equal(cycles, (counts > 0).astype(np.int64)):
-        raise DLFLError("a vertex's corners form several fans; the mesh is not manifold there")
+        raise NonManifoldError(
+            "a vertex's corners form several fans; the mesh is not manifold there")
     order = np.empty(n, np.int64)
     order[offsets[a.corner_vertex] + (dist + 1) % size] = np.arange(n)
     return order, offsets
@@ -156,9 +157,9 @@ def _finite_cut(a: MeshArrays, points: np.ndarray, thickness: float) -> np.ndarr
     if c is None:
         return points
     v = int(a.vertex_ids[a.corner_vertex[c]])
-    raise DLFLError(f"cutting corners by {thickness} would put a point at vertex {v} at "
-                    f"{points[c].tolist()}: its numbers overflow; use a smaller thickness "
-                    "(or width)")
+    raise GeometryError(f"cutting corners by {thickness} would put a point at vertex {v} at "
+                        f"{points[c].tolist()}: its numbers overflow; use a smaller thickness "
+                        "(or width)")
 
 
 def corner_cut_arrays(a: MeshArrays, thickness: float) -> CornerCut:
@@ -201,10 +202,11 @@ def corner_cut_arrays(a: MeshArrays, thickness: float) -> CornerCut:
 def _check_cut_input(a: MeshArrays, thickness: float) -> None:
     positive_number(thickness, "thickness")
     if len(a.face_ids) == 0:
-        raise DLFLError("corner cutting needs a mesh with faces; this one is empty")
+        raise InvalidArgumentError("corner cutting needs a mesh with faces; this one is empty")
     if (a.corner_edge < 0).any():
         v = int(a.vertex_ids[a.corner_vertex[np.flatnonzero(a.corner_edge < 0)[0]]])
-        raise DLFLError(f"corner cutting needs a mesh without point-spheres; vertex {v} is one")
+        raise InvalidArgumentError(
+            f"corner cutting needs a mesh without point-spheres; vertex {v} is one")
 
 
 def modified_corner_cut(mesh: Mesh, thickness: float = 0.25, *,
@@ -255,7 +257,8 @@ def wireframe_inner_positions(a: MeshArrays, front: np.ndarray, thickness: float
     on_front = np.flatnonzero(front[a.corner_face])
     c0[cv[on_front]] = on_front
     if (c0 < 0).any():
-        raise DLFLError("every vertex must lie on a front face (run modified_corner_cut first)")
+        raise InvalidArgumentError(
+            "every vertex must lie on a front face (run modified_corner_cut first)")
     p = a.positions
     v0 = p[cv[c0]]
     # a huge cut puts points whose differences overflow: inf / NaN, refused below
@@ -270,9 +273,9 @@ def wireframe_inner_positions(a: MeshArrays, front: np.ndarray, thickness: float
         inner = v0 - thickness * _unit(np.cross(_unit(n2), _unit(n4)))
     v = first_not_finite(inner)
     if v is not None:
-        raise DLFLError(f"a crust {thickness} thick would put the inner copy of vertex "
-                        f"{int(a.vertex_ids[v])} at {inner[v].tolist()}: its numbers "
-                        "overflow; use a smaller thickness")
+        raise GeometryError(f"a crust {thickness} thick would put the inner copy of vertex "
+                            f"{int(a.vertex_ids[v])} at {inner[v].tolist()}: its numbers "
+                            "overflow; use a smaller thickness")
     return inner
 
 
@@ -391,8 +394,8 @@ def column_rings(a: MeshArrays, thickness: float, segments: int) -> np.ndarray:
                                                   + np.sin(angle)[None, :, None] * w[:, None, :])
     # beyond half the float range the differences the joints' hulls take overflow
     if not np.abs(rings).max(initial=0.0) <= _HALF_MAX:  # NaN fails too
-        raise DLFLError(f"the thickness overflows: columns of thickness {thickness!r} would "
-                        "put points beyond the float range; use a smaller thickness")
+        raise GeometryError(f"the thickness overflows: columns of thickness {thickness!r} would "
+                            "put points beyond the float range; use a smaller thickness")
     return rings
 
 
@@ -409,7 +412,7 @@ def _joint_lengths(a: MeshArrays, axis: np.ndarray, t: float) -> np.ndarray:
     pair = valid[:, :, None] & valid[:, None, :] & ~np.eye(width, dtype=bool)[None]
     half = np.arccos(cos) / 2
     if (pair & (half < 1e-9)).any():
-        raise DLFLError("two edges at one vertex point the same way; no column fits")
+        raise GeometryError("two edges at one vertex point the same way; no column fits")
     # a huge t overflows to inf here, which column_rings refuses
     with np.errstate(divide="ignore", over="ignore", invalid="ignore"):
         need = t / np.tan(np.where(pair, half, 1.0)) + np.abs(cos) * t + 0.001 * t
@@ -486,16 +489,18 @@ def _check_columns_input(mesh: Mesh, thickness: float, segments: int,
     whole = isinstance(segments, int | np.integer) or (
         isinstance(segments, float) and segments.is_integer())
     if isinstance(segments, bool) or not whole or segments < 3:
-        raise DLFLError(f"segments must be a whole number of at least 3, got {segments!r}")
+        raise InvalidArgumentError(
+            f"segments must be a whole number of at least 3, got {segments!r}")
     tubes = mesh.num_edges * int(segments)
     check_size("columns", 5 * tubes, 14 * tubes, max_faces=max_faces)
     for v in mesh.vertex_ids().tolist():
         if mesh.is_point_sphere(v):
-            raise DLFLError(f"columns need a mesh without point-spheres; vertex {v} is one")
+            raise InvalidArgumentError(
+                f"columns need a mesh without point-spheres; vertex {v} is one")
     for e in mesh.edge_ids().tolist():
         u, w = mesh.edge_vertices(e)
         if u == w:
-            raise DLFLError(f"columns cannot follow the self-loop edge {e}")
+            raise InvalidArgumentError(f"columns cannot follow the self-loop edge {e}")
     return thickness, int(segments)
 
 
@@ -511,7 +516,7 @@ def _joint(points: np.ndarray, starts: list[int], segments: int) -> list[list[in
     caps = {frozenset(range(s, s + segments)) for s in starts}
     joint = [f for f in faces if frozenset(f) not in caps]
     if len(faces) - len(joint) != len(starts):
-        raise DLFLError("the column rings at a vertex overlap; use a smaller thickness")
+        raise GeometryError("the column rings at a vertex overlap; use a smaller thickness")
     return joint
 
 

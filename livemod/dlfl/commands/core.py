@@ -81,7 +81,7 @@ def _vertex_of(m: Mesh, value: Any) -> Any:
         return m.corner_vertex(resolve_corner(m, value, "vertexid"))
     except DLFLError as exc:
         if len(value) == 2 and _is_point_sphere_corner(m, value[1], value[0]):
-            raise DLFLError(f"{exc}; removeVertex takes (faceid, vertexid), as createVertex "
+            raise type(exc)(f"{exc}; removeVertex takes (faceid, vertexid), as createVertex "
                             "returns it, not TopMod's (vertexid, faceid): write "
                             f"({value[1]}, {value[0]})") from None
         raise
@@ -109,7 +109,8 @@ def insertEdge(c1: Any, c2: Any, check: bool = True) -> tuple[Any, ...]:
     a = resolve_corner(m, c1, "c1")
     b = resolve_corner(m, c2, "c2")
     if a == b:
-        raise DLFLError(f"insertEdge needs two different corners, c1 and c2 are both {c1!r}")
+        raise InvalidArgumentError(
+            f"insertEdge needs two different corners, c1 and c2 are both {c1!r}")
     e = m.insert_edge(a, b)
     return (e, *_edge_corner_tuples(m, e))
 
@@ -300,7 +301,7 @@ def next(c: Any, *default: Any) -> Any:  # noqa: A001  (the thesis's name)
     """
     if not isinstance(c, tuple | int) or isinstance(c, bool):
         if not hasattr(c, "__next__"):
-            raise DLFLError(f"next takes a corner or an iterator, got {c!r}")
+            raise InvalidArgumentError(f"next takes a corner or an iterator, got {c!r}")
         iterator: Any = c
         return builtins.next(iterator, *default)
     m = mesh()
@@ -322,11 +323,11 @@ def getCorner(edgeid: int, faceid: int) -> tuple[int, int]:
     m = mesh()
     sides = m.edge_corners(edgeid)
     if not is_id(faceid):  # True == 1 would otherwise pick face 1
-        raise DLFLError(f"faceid must be a face id (an integer), got {faceid!r}")
+        raise InvalidArgumentError(f"faceid must be a face id (an integer), got {faceid!r}")
     for c in sides:
         if m.corner_face(c) == faceid:
             return corner_tuple(m, c)
-    raise DLFLError(f"edge {edgeid} does not border face {shown(faceid)}")
+    raise InvalidArgumentError(f"edge {edgeid} does not border face {shown(faceid)}")
 
 
 def saveCorner(c: Any) -> int:
@@ -385,7 +386,7 @@ def _path(filename: Any, command: str) -> str:
     when the runner runs it), as if the script ran from where it lives.
     """
     if not isinstance(filename, str | os.PathLike):
-        raise DLFLError(f"{command} takes a file name, got {filename!r}")
+        raise InvalidArgumentError(f"{command} takes a file name, got {filename!r}")
     path = os.fspath(filename)
     folder = scene().directory
     if folder is not None and not os.path.isabs(path):
@@ -475,14 +476,14 @@ def centroid(vertexids: Iterable[int] | None = None) -> tuple[float, float, floa
     m = mesh()
     ids = m.vertex_ids().tolist() if vertexids is None else _id_list(vertexids, "centroid")
     if not ids:
-        raise DLFLError("centroid needs at least one vertex id")
+        raise InvalidArgumentError("centroid needs at least one vertex id")
     return _vec(_centroid(np.array([m.position(v) for v in ids])))
 
 
 def _id_list(ids: Any, command: str) -> list[Any]:
     """``ids`` as a list, or a DLFLError when it is not a sequence of ids."""
     if isinstance(ids, str | bytes) or not hasattr(ids, "__iter__"):
-        raise DLFLError(f"{command} takes a list of vertex ids, got {ids!r}")
+        raise InvalidArgumentError(f"{command} takes a list of vertex ids, got {ids!r}")
     return list(ids)
 
 
@@ -494,7 +495,7 @@ def _xyz(args: tuple[Any, ...], name: str) -> tuple[np.ndarray, tuple[Any, ...]]
         return np.array(as_point(args[0])), args[1:]
     if len(args) >= 3:
         return np.array(as_point(args[:3])), args[3:]
-    raise DLFLError(f"{name} takes (x, y, z) or ((x, y, z)), got {args!r}")
+    raise InvalidArgumentError(f"{name} takes (x, y, z) or ((x, y, z)), got {args!r}")
 
 
 @modeling_command

@@ -12,7 +12,7 @@ from typing import Any
 from .. import connect as _connect
 from .. import extrusion as _extrusion
 from .._checks import finite_number, flag, id_list, is_id, whole_count
-from ..errors import DLFLError
+from ..errors import InvalidArgumentError
 from ..mesh import Mesh
 from ._base import mesh, modeling_command, resolve_corner, scene
 
@@ -50,7 +50,8 @@ def _kind(name: Any) -> str:
         for kind in PREFIX_ORDER:
             if key and kind.startswith(key):
                 return kind
-    raise DLFLError(f"unknown extrusion type {name!r}; valid types: {', '.join(PREFIX_ORDER)}")
+    raise InvalidArgumentError(
+        f"unknown extrusion type {name!r}; valid types: {', '.join(PREFIX_ORDER)}")
 
 
 # TopMod's own argument names (TOPMOD.md §8) accepted as keywords too; ``rot`` is
@@ -70,14 +71,15 @@ def _options(kind: str, options: tuple[Any, ...], keywords: dict[str, Any]) -> d
     """
     order = OPTION_ORDER[kind]
     if len(options) > len(order):
-        raise DLFLError(f"extrude('{kind}', faceid, ...) takes at most {len(order)} options "
-                        f"({', '.join(order)}), got {len(options)}")
+        raise InvalidArgumentError(
+                                   f"extrude('{kind}', faceid, ...) takes at most {len(order)} options "
+            f"({', '.join(order)}), got {len(options)}")
     given = dict(zip(order, options, strict=False))
     for name, value in keywords.items():
         option = _keyword(kind, name)
         if option in given:
             said = repr(option) if option == name else f"{name!r} (= {option!r})"
-            raise DLFLError(f"extrude('{kind}'): option {said} given twice")
+            raise InvalidArgumentError(f"extrude('{kind}'): option {said} given twice")
         given[option] = value
     return given
 
@@ -90,8 +92,8 @@ def _keyword(kind: str, name: str) -> str:
     """
     option = KIND_KEYWORD_ALIASES.get(kind, {}).get(name) or KEYWORD_ALIASES.get(name, name)
     if option not in OPTION_ORDER[kind]:
-        raise DLFLError(f"extrude('{kind}') has no option {name!r}; options: "
-                        f"{', '.join(OPTION_ORDER[kind])}")
+        raise InvalidArgumentError(f"extrude('{kind}') has no option {name!r}; options: "
+                                   f"{', '.join(OPTION_ORDER[kind])}")
     return option
 
 
@@ -152,7 +154,7 @@ def _half_edge(value: Any, what: str) -> tuple[int, int]:
         DLFLError: not a pair, or an entry that is not an integer id.
     """
     if not (isinstance(value, tuple | list) and len(value) == 2):
-        raise DLFLError(f"{what} must be an (edgeid, faceid) pair, got {value!r}")
+        raise InvalidArgumentError(f"{what} must be an (edgeid, faceid) pair, got {value!r}")
     edge, face = id_list(value, what)
     return edge, face
 
@@ -164,14 +166,15 @@ def connectEdges(e1: Any, e2: Any, loopCheck: bool = False) -> None:
     edge1, face1 = _half_edge(e1, "e1")
     edge2, face2 = _half_edge(e2, "e2")
     if edge1 == edge2:
-        raise DLFLError(f"connectEdges needs two different edges, e1 and e2 are both on edge {edge1}")
+        raise InvalidArgumentError(
+            f"connectEdges needs two different edges, e1 and e2 are both on edge {edge1}")
     _connect.connect_edges(mesh(), edge1, face1, edge2, face2, check=flag(loopCheck, "loopCheck"))
 
 
 def _is_dual(value: Any) -> bool:
     if isinstance(value, str):
         if value.lower() != "dual":
-            raise DLFLError(f"connectCorners' last option must be 'dual', got {value!r}")
+            raise InvalidArgumentError(f"connectCorners' last option must be 'dual', got {value!r}")
         return True
     return flag(value, "dual")
 
@@ -197,7 +200,8 @@ def connectFaces(f1: int, f2: int, numsegs: int = 1, maxconn: int = -1) -> None:
     _face_id(f1, "f1")
     _face_id(f2, "f2")
     if f1 == f2:
-        raise DLFLError(f"connectFaces needs two different faces, f1 and f2 are both face {f1}")
+        raise InvalidArgumentError(
+            f"connectFaces needs two different faces, f1 and f2 are both face {f1}")
     segments, limit = _segments(numsegs, maxconn)
     _connect.connect_faces_closest(mesh(), f1, f2, segments, max_connections=limit,
                                    max_faces=scene().face_budget)
@@ -220,17 +224,19 @@ def addHandle(interp: str, c1: Any, c2: Any, numsegs: int, w1: float = 25.0,
                                 twists=twists, max_faces=scene().face_budget)
     elif kind == "bezier":
         if maxconn != -1 or twists != 0:
-            raise DLFLError("a bezier handle takes no maxconn or twists (TopMod's has none); "
-                            "use 'hermite'")
+            raise InvalidArgumentError(
+                                       "a bezier handle takes no maxconn or twists (TopMod's has none); "
+                "use 'hermite'")
         _connect.bezier_handle(m, a, b, segments, w1, w2, max_faces=scene().face_budget)
     else:
-        raise DLFLError(f"addHandle interp must be 'hermite' or 'bezier', got {interp!r}")
+        raise InvalidArgumentError(
+            f"addHandle interp must be 'hermite' or 'bezier', got {interp!r}")
 
 
 def _face_id(value: Any, name: str) -> None:
     """Raises DLFLError naming ``name`` unless ``value`` is an integer id (not a bool)."""
     if not is_id(value):
-        raise DLFLError(f"{name} must be a face id (an integer), got {value!r}")
+        raise InvalidArgumentError(f"{name} must be a face id (an integer), got {value!r}")
 
 
 def _segments(numsegs: Any, maxconn: Any) -> tuple[int, int]:
@@ -238,7 +244,7 @@ def _segments(numsegs: Any, maxconn: Any) -> tuple[int, int]:
     own messages call them segments and max_connections)."""
     segments = whole_count(numsegs, "numsegs", each=2)
     if not is_id(maxconn):
-        raise DLFLError(f"maxconn must be an integer (-1 for all), got {maxconn!r}")
+        raise InvalidArgumentError(f"maxconn must be an integer (-1 for all), got {maxconn!r}")
     return segments, int(maxconn)
 
 
@@ -246,6 +252,6 @@ def _two_faces_corners(m: Mesh, c1: Any, c2: Any, command: str) -> tuple[int, in
     """The corner ids of ``c1`` and ``c2``, which must lie in two different faces."""
     a, b = resolve_corner(m, c1, "c1"), resolve_corner(m, c2, "c2")
     if m.corner_face(a) == m.corner_face(b):
-        raise DLFLError(f"{command} needs c1 and c2 in two different faces, both are in "
-                        f"face {m.corner_face(a)}")
+        raise InvalidArgumentError(f"{command} needs c1 and c2 in two different faces, both are in "
+                                   f"face {m.corner_face(a)}")
     return a, b

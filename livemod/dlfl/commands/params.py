@@ -5,7 +5,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import Any
 
-from ..errors import DLFLError
+from ..errors import InvalidArgumentError
 from ..params import make_spec
 from ._base import scene
 
@@ -32,7 +32,7 @@ def param(
     sc = scene()
     earlier = sc.declarations.get(name)
     if earlier is not None and earlier != spec:
-        raise DLFLError(f"parameter {name!r} is declared twice with different settings")
+        raise InvalidArgumentError(f"parameter {name!r} is declared twice with different settings")
     sc.declarations[name] = spec
     if name in sc.parameters:
         return spec.check(sc.parameters[name])

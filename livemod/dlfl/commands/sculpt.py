@@ -19,7 +19,7 @@ from .. import rind as _rind
 from .. import sierpinsky as _sierpinsky
 from .. import wireframe as _wire
 from .._checks import finite_number, flag, shown
-from ..errors import DLFLError
+from ..errors import InvalidArgumentError
 from ._base import id_arguments, mesh, modeling_command, scene
 
 __all__ = [
@@ -85,7 +85,7 @@ def column(thickness: float, segments: Any) -> None:
     if isinstance(segments, float) and segments.is_integer():
         segments = int(segments)
     if not isinstance(segments, int) or isinstance(segments, bool):
-        raise DLFLError(f"segments must be a whole number, got {segments!r}")
+        raise InvalidArgumentError(f"segments must be a whole number, got {segments!r}")
     _wire.columns(mesh(), finite_number(thickness, "thickness"), segments,
                   max_faces=scene().face_budget)
 
@@ -202,12 +202,12 @@ def _check_multi_options(method: Any, given: dict[str, Any]) -> None:
     """Raises DLFLError unless ``method`` is known and every option of ``given``
     it does not read keeps its default (a value it would silently ignore)."""
     if not isinstance(method, str) or method not in _MULTI_METHODS:
-        raise DLFLError(f"method must be one of {', '.join(map(repr, _MULTI_METHODS))}, "
-                        f"got {method!r}")
+        raise InvalidArgumentError(f"method must be one of {', '.join(map(repr, _MULTI_METHODS))}, "
+                                   f"got {method!r}")
     for name, value in given.items():
         if name not in _MULTI_METHODS[method] and not _is_default(value, _MULTI_DEFAULTS[name]):
-            raise DLFLError(f"multiConnectFaces method {method!r} does not use {name} "
-                            f"(got {shown(value)})")
+            raise InvalidArgumentError(f"multiConnectFaces method {method!r} does not use {name} "
+                                       f"(got {shown(value)})")
 
 
 def _is_default(value: Any, default: Any) -> bool:

@@ -13,7 +13,7 @@ from typing import Any
 
 from .. import subdivision as _subdivision
 from .._checks import flag, is_id
-from ..errors import DLFLError
+from ..errors import InvalidArgumentError
 from ._base import id_arguments, mesh, modeling_command, scene
 
 __all__ = ["subdivide", "subdivideFace", "subdivideFaces", "dual"]
@@ -38,15 +38,15 @@ def subdivide(scheme: str, *options: Any, **keywords: Any) -> None:
     order = _subdivision.scheme_options(scheme)
     if len(options) > len(order):
         names = ", ".join(order) or "none"
-        raise DLFLError(f"subdivide({scheme!r}, ...) takes at most {len(order)} options "
-                        f"({names}), got {len(options)}")
+        raise InvalidArgumentError(f"subdivide({scheme!r}, ...) takes at most {len(order)} options "
+                                   f"({names}), got {len(options)}")
     given = dict(zip(order, options, strict=False))
     aliases = THESIS_KEYWORDS.get(scheme, {}) if isinstance(scheme, str) else {}
     for name, value in keywords.items():
         option = aliases.get(name, name)
         if option in given:
             said = repr(option) if option == name else f"{name!r} (= {option!r})"
-            raise DLFLError(f"subdivide({scheme!r}): option {said} given twice")
+            raise InvalidArgumentError(f"subdivide({scheme!r}): option {said} given twice")
         given[option] = value
     given.setdefault("max_faces", scene().face_budget)
     _subdivision.subdivide(mesh(), scheme, **given)
@@ -60,7 +60,7 @@ def subdivideFace(faceid: int, usequads: bool = True) -> None:
         DLFLError: ``faceid`` is not a face.
     """
     if not is_id(faceid):
-        raise DLFLError(f"faceid must be a face id, got {faceid!r}")
+        raise InvalidArgumentError(f"faceid must be a face id, got {faceid!r}")
     _subdivision.subdivide_faces(mesh(), [int(faceid)], usequads=flag(usequads, "usequads"),
                                  max_faces=scene().face_budget)
 

@@ -48,7 +48,7 @@ from collections.abc import Callable
 from typing import Any
 
 from ..budget import face_budget
-from ..errors import DLFLError
+from ..errors import InvalidArgumentError
 from ..mesh import Mesh
 from ._sizes import check_steps
 from .composites import (
@@ -193,7 +193,7 @@ def scheme_options(scheme: str) -> list[str]:
 def _lookup(scheme: object) -> Scheme:
     if not isinstance(scheme, str) or scheme not in SCHEMES:
         names = ", ".join(sorted(SCHEMES))
-        raise DLFLError(f"unknown subdivision scheme {scheme!r}; valid schemes: {names}")
+        raise InvalidArgumentError(f"unknown subdivision scheme {scheme!r}; valid schemes: {names}")
     return SCHEMES[scheme]
 
 
@@ -216,7 +216,7 @@ def subdivide(mesh: Mesh, scheme: str, **options: Any) -> None:
     for name in options:
         if name not in allowed and name != "max_faces":
             valid = ", ".join(allowed) or "none"
-            raise DLFLError(
+            raise InvalidArgumentError(
                 f"scheme {scheme!r} has no option {name!r}; its options: {valid} (and max_faces)"
             )
     func(mesh, **options)

@@ -31,7 +31,7 @@ from .._vectors import group_sum
 from ..arrays import mesh_arrays
 from ..budget import check_size, fits
 from ..build import from_corner_arrays
-from ..errors import DLFLError, InvalidArgumentError
+from ..errors import InvalidArgumentError
 from ..mesh import Mesh
 from ..normals import ring_normals
 
@@ -511,5 +511,5 @@ def check_number(name: str, value: object, low: float | None = None,
     """
     number = finite_number(value, f"option {name}")
     if (low is not None and number < low) or (high is not None and number > high):
-        raise DLFLError(f"option {name} must be in [{low}, {high}], got {value!r}")
+        raise InvalidArgumentError(f"option {name} must be in [{low}, {high}], got {value!r}")
     return number

@@ -16,7 +16,7 @@ import numpy as np
 from .._checks import id_list
 from .._vectors import in_range, lengths, range_exponent
 from .._vectors import unit as normalize
-from ..errors import DLFLError
+from ..errors import UnknownIdError
 from ..mesh import Mesh
 from ._blocks import (
     corner_triangles,
@@ -70,7 +70,7 @@ def _selected_faces(t: Topology, face_ids: Iterable[int]) -> np.ndarray:
     where = np.searchsorted(t.face_ids, ids)
     for f, w in zip(ids, where.tolist(), strict=True):
         if w >= len(t.face_ids) or t.face_ids[w] != f:
-            raise DLFLError(f"face id {f} is not a face of the mesh (or is a point-sphere)")
+            raise UnknownIdError(f"face id {f} is not a face of the mesh (or is a point-sphere)")
     mask = np.zeros(t.nf, dtype=bool)
     mask[where] = True
     return mask

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..errors import DLFLError
+from ..errors import InvalidArgumentError
 from ..mesh import Mesh
 from ..normals import inset_offsets, ring_layout, ring_normals
 from ._layout import (
@@ -40,8 +40,9 @@ def _checker_thickness(thickness: object) -> float:
     """
     checked = check_number("thickness", thickness, 0.0, 0.5)
     if checked == 0.0:
-        raise DLFLError("option thickness must be in (0, 0.5]: 0 puts the new corners on "
-                        "the old vertices")
+        raise InvalidArgumentError(
+                                   "option thickness must be in (0, 0.5]: 0 puts the new corners on "
+            "the old vertices")
     return checked
 
 
