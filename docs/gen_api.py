@@ -50,7 +50,10 @@ The user guide is [guide.md](guide.md).
 current object of the current scene. Corners are `(faceid, vertexid)` tuples (or corner
 ids); the corners commands return also carry their corner id, so they stay unambiguous
 where a face visits a vertex twice. The star import also brings `DLFLError` (a
-`ValueError`), which every command raises on bad input, so a script can catch it.
+`ValueError`), which every command raises on bad input, so a script can catch it, and
+its subclasses, which say what kind of failure it was: `UnknownIdError` (also a
+`LookupError`), `InvalidArgumentError`, `NonManifoldError`, `BudgetExceededError`,
+`FileFormatError` and `GeometryError`.
 """
 
 

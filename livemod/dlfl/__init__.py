@@ -6,8 +6,9 @@ Two layers over one implementation:
   family (:func:`from_polygons`, :func:`validate`, :func:`mesh_arrays`, ...);
 * the thesis commands (``createVertex``, ``insertEdge``, ``extrude``, ...), which
   act on the current scene. ``from livemod.dlfl import *`` brings the thesis
-  commands into a script, and :class:`DLFLError`, the error they raise, so that a
-  script can catch it by the name the documentation gives.
+  commands into a script, and :class:`DLFLError`, the error they raise, with its
+  subclasses (:mod:`livemod.dlfl.errors`), so that a script can catch them by the
+  names the documentation gives.
 """
 
 from __future__ import annotations
@@ -47,7 +48,12 @@ from .scene import Scene, Selection, current_scene, use_scene
 from .soup import Polygons
 from .validate import validate
 
-__all__ = [*commands.__all__, "DLFLError"]
+# the errors, so that a script can catch them by the names the documentation gives
+ERRORS = [
+    "DLFLError", "UnknownIdError", "InvalidArgumentError", "NonManifoldError",
+    "BudgetExceededError", "FileFormatError", "GeometryError",
+]
+__all__ = [*commands.__all__, *ERRORS]
 
 LIBRARY_API = [
     "Mesh", "MeshArrays", "MeshSummary", "Polygons", "Scene", "Selection", "DLFLError",
