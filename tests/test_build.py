@@ -6,7 +6,6 @@ import numpy as np
 import pytest
 
 from livemod.dlfl import (
-    DLFLError,
     DLFLRepairWarning,
     from_corner_arrays,
     from_polygons,
@@ -16,6 +15,7 @@ from livemod.dlfl import (
     validate,
 )
 from livemod.dlfl.analysis import component_genera, enclosed_volume
+from livemod.dlfl.errors import InvalidArgumentError, NonManifoldError
 from tests.meshes import CUBE_FACES, CUBE_POSITIONS, euler_ok, torus_polygons
 
 SQUARE = [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]]
@@ -107,7 +107,7 @@ def test_two_gon_pair_is_a_sphere():
 def test_edge_used_by_three_faces_is_refused_naming_them():
     pos = SQUARE + [[0.5, 0.5, 1], [0.5, 0.5, -1]]
     faces = [[0, 1, 4], [1, 0, 5], [0, 1, 2]]
-    with pytest.raises(DLFLError) as info:
+    with pytest.raises(NonManifoldError) as info:
         from_polygons(pos, faces)
     message = str(info.value)
     assert "edge (0, 1)" in message and "3 face sides" in message
@@ -117,13 +117,13 @@ def test_edge_used_by_three_faces_is_refused_naming_them():
 def test_error_names_source_and_lines():
     pos = SQUARE + [[0.5, 0.5, 1], [0.5, 0.5, -1]]
     faces = [[0, 1, 4], [1, 0, 5], [0, 1, 2]]
-    with pytest.raises(DLFLError, match=r"^model\.obj:12: .*line 12, line 13, line 15"):
+    with pytest.raises(NonManifoldError, match=r"^model\.obj:12: .*line 12, line 13, line 15"):
         from_polygons(pos, faces, source="model.obj", face_lines=[12, 13, 15])
 
 
 def test_bow_tie_vertex_is_refused():
     pos = [[0, 0, 0], [1, 0, 0], [1, 1, 0], [-1, 0, 0], [-1, -1, 0]]
-    with pytest.raises(DLFLError, match="vertex 0 is non-manifold"):
+    with pytest.raises(NonManifoldError, match="vertex 0 is non-manifold"):
         from_polygons(pos, [[0, 1, 2], [0, 3, 4]])
 
 
@@ -131,7 +131,7 @@ def test_closed_bow_tie_of_two_tetrahedra_is_refused():
     tet = [[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]]
     other = [[v if v == 0 else v + 3 for v in f] for f in tet]
     pos = np.random.default_rng(1).normal(size=(7, 3))
-    with pytest.raises(DLFLError, match="vertex 0 is non-manifold.*2 separate fans"):
+    with pytest.raises(NonManifoldError, match="vertex 0 is non-manifold.*2 separate fans"):
         from_polygons(pos, tet + other)
 
 
@@ -153,7 +153,7 @@ def test_moebius_band_is_refused():
     pos = np.concatenate([inner, inner * 1.5])
     quads = [[i, (i + 1) % n, n + (i + 1) % n, n + i] for i in range(n - 1)]
     quads.append([n - 1, n, 0, 2 * n - 1])  # the half twist
-    with pytest.raises(DLFLError, match="not orientable"):
+    with pytest.raises(NonManifoldError, match="not orientable"):
         from_polygons(pos, quads)
 
 
@@ -163,14 +163,14 @@ def test_moebius_band_is_refused():
     ([[0, 1, 1, 2]], "visits vertex 1 twice in a row"),
 ])
 def test_bad_indices_are_refused(faces, pattern):
-    with pytest.raises(DLFLError, match=pattern):
+    with pytest.raises(InvalidArgumentError, match=pattern):
         from_polygons(SQUARE, faces)
 
 
 def test_empty_face_and_bad_positions_are_refused():
-    with pytest.raises(DLFLError, match="face 0 has no vertices"):
+    with pytest.raises(InvalidArgumentError, match="face 0 has no vertices"):
         from_polygons(SQUARE, [0, 1, 2], offsets=[0, 0, 3])
-    with pytest.raises(DLFLError, match="vertex 2 has a position that is not finite"):
+    with pytest.raises(InvalidArgumentError, match="vertex 2 has a position that is not finite"):
         from_polygons([[0, 0, 0], [1, 0, 0], [0, np.nan, 0]], [[0, 1, 2]])
 
 
@@ -212,7 +212,7 @@ def test_mesh_does_not_alias_the_input_positions():
 
 def test_bow_tie_error_names_the_file_line():
     pos = [[0, 0, 0], [1, 0, 0], [1, 1, 0], [-1, 0, 0], [-1, -1, 0]]
-    with pytest.raises(DLFLError, match=r"^shape\.obj:7: vertex 0 is non-manifold"):
+    with pytest.raises(NonManifoldError, match=r"^shape\.obj:7: vertex 0 is non-manifold"):
         from_polygons(pos, [[0, 1, 2], [0, 3, 4]], source="shape.obj", face_lines=[7, 9])
 
 
@@ -223,7 +223,7 @@ def test_moebius_error_names_the_file_line():
     quads = [[i, (i + 1) % n, n + (i + 1) % n, n + i] for i in range(n - 1)]
     quads.append([n - 1, n, 0, 2 * n - 1])
     lines = [20 + i for i in range(n)]
-    with pytest.raises(DLFLError, match=r"^band\.obj:2\d: line 2\d cannot be oriented"):
+    with pytest.raises(NonManifoldError, match=r"^band\.obj:2\d: line 2\d cannot be oriented"):
         from_polygons(np.concatenate([inner, inner * 1.5]), quads, source="band.obj",
                       face_lines=lines)
 

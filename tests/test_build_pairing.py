@@ -14,7 +14,7 @@ import pytest
 
 import livemod.dlfl._multi_edges as multi_edges
 from livemod.dlfl import from_polygons, validate
-from livemod.dlfl.errors import DLFLError
+from livemod.dlfl.errors import NonManifoldError
 
 # every pairing of these leaves a vertex split, yet neither exact obstruction
 # (parity, separation) sees it: only the search can say, and it gives up
@@ -58,7 +58,7 @@ def work(monkeypatch: pytest.MonkeyPatch) -> Work:
 
 def _refuse(faces: list[list[int]]) -> str:
     """The message from_polygons refuses ``faces`` with (it must)."""
-    with pytest.raises(DLFLError) as err:
+    with pytest.raises(NonManifoldError) as err:
         from_polygons(np.zeros((max(map(max, faces)) + 1, 3)), faces)
     return str(err.value)
 
@@ -130,7 +130,7 @@ def test_one_face_going_round_two_vertices_many_times_is_paired_quickly(
         validate(mesh)
         assert (mesh.num_vertices, mesh.num_edges, mesh.num_faces) == (2, rounds, 1)
     else:  # an even number of rounds is the parity obstruction
-        with pytest.raises(DLFLError, match=f"joined by {rounds} edges that cannot be arranged"):
+        with pytest.raises(NonManifoldError, match=f"joined by {rounds} edges that cannot be arranged"):
             from_polygons(np.eye(3)[:2], faces)
     # a seeded random order leaves about ln(3000) = 8 cycles: a few passes, not 1,500
     assert work.passes <= 12
@@ -147,7 +147,7 @@ def test_a_bow_tie_beside_parallel_edges_is_named_not_the_vertex_pairing_mends(
     # (the three edges alone build), which was named instead
     faces = [[1, 0, 1, 0, 1, 0]] + touching
     validate(from_polygons(np.eye(3)[:2], faces[:1]))
-    with pytest.raises(DLFLError) as err:
+    with pytest.raises(NonManifoldError) as err:
         from_polygons(np.zeros((5, 3)), faces)
     assert str(err.value) == (
         "polygons: vertex 1 is non-manifold: its faces form 2 separate fans (a bow-tie)")

@@ -17,7 +17,8 @@ from typing import Any
 import pytest
 
 import livemod.dlfl as dlfl
-from livemod.dlfl import DLFLError, Scene, face_size_histogram, genus, use_scene, validate
+from livemod.dlfl import Scene, face_size_histogram, genus, use_scene, validate
+from livemod.dlfl.errors import InvalidArgumentError
 from livemod.dlfl.shapes import cube
 from tests.meshes import counts, snapshot
 
@@ -188,7 +189,7 @@ def test_info_keys_match_the_thesis(cube_scene):
 ])
 def test_bad_arguments_are_named_and_the_mesh_kept(cube_scene, call, message):
     before = snapshot(cube_scene.mesh)
-    with pytest.raises(DLFLError, match=message):
+    with pytest.raises(InvalidArgumentError, match=message):
         call(dlfl)
     assert snapshot(cube_scene.mesh) == before
 
@@ -214,7 +215,7 @@ def test_root4_takes_the_thesis_option_name_a(cube_scene):
         other.add(cube(), "cube")
         dlfl.subdivide("root4", weight=0.1, twist=0.2)
         assert snapshot(other.mesh)[:-1] == by_a[:-1]
-    with pytest.raises(DLFLError, match=r"^subdivide\('root4'\): option 'a' \(= 'weight'\) given twice$"):
+    with pytest.raises(InvalidArgumentError, match=r"^subdivide\('root4'\): option 'a' \(= 'weight'\) given twice$"):
         dlfl.subdivide("root4", 0.1, a=0.1)
 
 

@@ -47,6 +47,7 @@ from livemod.dlfl.commands.core import (
     verts,
     walk,
 )
+from livemod.dlfl.errors import GeometryError, InvalidArgumentError, UnknownIdError
 from tests.meshes import counts, cube, snapshot
 
 
@@ -101,6 +102,26 @@ def test_star_import_gives_the_error_commands_raise_so_scripts_can_catch_it():
     assert "99" in str(names["caught"])
 
 
+def test_a_script_can_catch_a_deleted_id_by_its_kind(cube_scene):
+    names: dict[str, object] = {}
+    exec("from livemod.dlfl import *\n"
+         "deleteEdge(0)\n"
+         "try:\n"
+         "    deleteEdge(0)\n"
+         "except UnknownIdError as exc:\n"
+         "    caught = exc\n"
+         "try:\n"
+         "    deleteEdge('zero')\n"
+         "except InvalidArgumentError as exc:\n"
+         "    refused = exc\n", names)
+    assert str(names["caught"]) == "edge 0 was deleted"
+    assert isinstance(names["caught"], LookupError) and isinstance(names["caught"], DLFLError)
+    assert str(names["refused"]) == "expected an edge id (an integer), got 'zero'"
+    assert isinstance(names["refused"], ValueError)
+    assert {"UnknownIdError", "InvalidArgumentError", "NonManifoldError", "GeometryError",
+            "BudgetExceededError", "FileFormatError"} <= set(dlfl.__all__)
+
+
 def test_insert_edge_returns_its_corners_in_edge_info_order(cube_scene):
     e, ca, cb, cc, cd = insertEdge((0, 0), (0, 2))
     assert counts(cube_scene) == (8, 13, 7)
@@ -117,7 +138,7 @@ def test_ambiguous_corner_names_the_corner_ids(cube_scene):
     insertEdge((0, 0), (1, 4))  # top to bottom: the merged face visits 0 and 4 twice
     (face,) = {f for f in faces() if 0 in walk(f)[0] and walk(f)[0].count(0) == 2}
     ids = [c for c in cube_scene.mesh.face_corners(face) if cube_scene.mesh.corner_vertex(c) == 0]
-    with pytest.raises(DLFLError, match=f"ambiguous.*{ids[0]}, {ids[1]}"):
+    with pytest.raises(InvalidArgumentError, match=f"ambiguous.*{ids[0]}, {ids[1]}"):
         insertEdge((face, 0), (2, 1))
     # a corner a command returned carries its id and stays usable
     first = [c for c in cornerWalk(face) if c[1] == 0][0]
@@ -144,18 +165,18 @@ def test_remove_vertex_takes_the_corner_create_vertex_returns(cube_scene):
 def test_remove_vertex_refuses_topmods_reversed_pair(cube_scene):
     (corner, _) = createVertex((5, 0, 0))
     before = snapshot(cube_scene.mesh)
-    with pytest.raises(DLFLError, match=r"face 8 does not exist; removeVertex takes "
+    with pytest.raises(UnknownIdError, match=r"face 8 does not exist; removeVertex takes "
                        r"\(faceid, vertexid\).*write \(6, 8\)"):
         removeVertex((8, 6))
-    with pytest.raises(DLFLError, match="vertex 0 has 3 edge end"):
+    with pytest.raises(InvalidArgumentError, match="vertex 0 has 3 edge end"):
         removeVertex((0, 0))  # a corner of the cube: not a point-sphere
-    with pytest.raises(DLFLError, match="expected a vertex id \\(an integer\\), got 'x'"):
+    with pytest.raises(InvalidArgumentError, match="expected a vertex id \\(an integer\\), got 'x'"):
         removeVertex("x")
     assert snapshot(cube_scene.mesh) == before
 
 
 def test_remove_vertex_with_edges_is_refused(cube_scene):
-    with pytest.raises(DLFLError, match="only a point-sphere"):
+    with pytest.raises(InvalidArgumentError, match="only a point-sphere"):
         removeVertex(0)
     assert counts(cube_scene) == (8, 12, 6)
 
@@ -167,7 +188,7 @@ def test_delete_subdivide_collapse(cube_scene):
     survivor = collapseEdge(e)
     assert survivor == 0 and counts(cube_scene) == (10, 14, 6)
     assert len(deleteEdge(int(edges()[-1]))) == 1 and counts(cube_scene) == (10, 13, 5)
-    with pytest.raises(DLFLError, match="subdivideEdge takes"):
+    with pytest.raises(InvalidArgumentError, match="subdivideEdge takes"):
         subdivideEdge(1, 2, 3)
 
 
@@ -211,7 +232,7 @@ def test_trisect_edge_by_scale(cube_scene):
 def test_trisect_edge_refuses_an_offset_on_a_short_edge(cube_scene):
     move([3], (0, 0.03, 0), False)  # edge 0 is now 0.03 long
     before = snapshot(cube_scene.mesh)
-    with pytest.raises(DLFLError, match="edge 0 is 0.03 long: an offset trisection needs"):
+    with pytest.raises(GeometryError, match="edge 0 is 0.03 long: an offset trisection needs"):
         trisectEdge(0, 0.01, False)
     assert snapshot(cube_scene.mesh) == before
     trisectEdge(0, 0.5, True)  # a scale factor always fits
@@ -239,19 +260,20 @@ def test_splice_corners_with_point_spheres(cube_scene):
     assert counts(cube_scene) == (8, 12, 6) and vertexInfo(0)["coords"] == (2.5, 0, 0)
 
 
-@pytest.mark.parametrize(("command", "args", "message"), [
-    (trisectEdge, (99, 0.3, True), "edge 99 does not exist"),
-    (trisectEdge, (0, "x", True), "num must be a number, got 'x'"),
-    (trisectEdge, (0, float("nan"), False), "num must be finite"),
-    (trisectEdge, (0, 0.3, "yes"), "scale must be True or False, got 'yes'"),
-    (spliceCorners, ((0, 0), (2, 0)), "both at vertex 0: splicing needs corners at two"),
-    (spliceCorners, ((0, 0), (0, 0)), "both at vertex 0"),
-    (spliceCorners, ((0, 0), (0, 6)), "face 0 has no corner at vertex 6"),
-    (spliceCorners, ((0, 0), "x"), "c2 must be a \\(faceid, vertexid\\) tuple"),
+@pytest.mark.parametrize(("command", "args", "error", "message"), [
+    (trisectEdge, (99, 0.3, True), UnknownIdError, "edge 99 does not exist"),
+    (trisectEdge, (0, "x", True), InvalidArgumentError, "num must be a number, got 'x'"),
+    (trisectEdge, (0, float("nan"), False), InvalidArgumentError, "num must be finite"),
+    (trisectEdge, (0, 0.3, "yes"), InvalidArgumentError, "scale must be True or False, got 'yes'"),
+    (spliceCorners, ((0, 0), (2, 0)), InvalidArgumentError,
+     "both at vertex 0: splicing needs corners at two"),
+    (spliceCorners, ((0, 0), (0, 0)), InvalidArgumentError, "both at vertex 0"),
+    (spliceCorners, ((0, 0), (0, 6)), UnknownIdError, "face 0 has no corner at vertex 6"),
+    (spliceCorners, ((0, 0), "x"), DLFLError, "c2 must be a \\(faceid, vertexid\\) tuple"),
 ])
-def test_trisect_and_splice_refuse_bad_arguments(cube_scene, command, args, message):
+def test_trisect_and_splice_refuse_bad_arguments(cube_scene, command, args, error, message):
     before = snapshot(cube_scene.mesh)
-    with pytest.raises(DLFLError, match=message):
+    with pytest.raises(error, match=message):
         command(*args)
     assert snapshot(cube_scene.mesh) == before
 
@@ -315,12 +337,12 @@ def test_picks_the_mesh_lacks_are_left_out_and_noted(cube_scene):
 def test_get_save_restore_corner(cube_scene):
     e = cube_scene.mesh.corner_edge(0)
     assert getCorner(e, 0) == (0, 0)
-    with pytest.raises(DLFLError, match=f"edge {e} does not border face 3"):
+    with pytest.raises(InvalidArgumentError, match=f"edge {e} does not border face 3"):
         getCorner(e, 3)
     cid = saveCorner((0, 3))
     insertEdge((0, 0), (0, 2))  # face 0 splits; the corner moves on with its id
     assert restoreCorner(cid)[1] == 3
-    with pytest.raises(DLFLError, match="does not exist"):
+    with pytest.raises(UnknownIdError, match="does not exist"):
         restoreCorner(10_000)
 
 
@@ -337,16 +359,16 @@ def test_info_commands(cube_scene, capsys):
     assert len(vertexEdges(0)) == 3
     assert centroid() == (0.5, 0.5, 0.5)
     assert centroid([0, 1]) == (0.5, 0.0, 0.0)
-    with pytest.raises(DLFLError, match="at least one vertex"):
+    with pytest.raises(InvalidArgumentError, match="at least one vertex"):
         centroid([])
 
 
 def test_bad_corner_arguments(cube_scene):
     with pytest.raises(DLFLError, match="c1 must be a \\(faceid, vertexid\\) tuple"):
         insertEdge("x", (0, 2))
-    with pytest.raises(DLFLError, match="face 0 has no corner at vertex 6"):
+    with pytest.raises(UnknownIdError, match="face 0 has no corner at vertex 6"):
         insertEdge((0, 6), (0, 2))
-    with pytest.raises(DLFLError, match="face 42 does not exist"):
+    with pytest.raises(UnknownIdError, match="face 42 does not exist"):
         next((42, 0))
     assert counts(cube_scene) == (8, 12, 6)
 
@@ -366,7 +388,7 @@ def test_transforms(cube_scene):
     freezeTrans()
     translate((0, 0, 0), relative=False)  # the frozen placement is the new origin
     np.testing.assert_allclose(vertexInfo(0)["coords"], [5, 0, 0])
-    with pytest.raises(DLFLError, match="translate takes"):
+    with pytest.raises(InvalidArgumentError, match="translate takes"):
         translate(1, 2)
 
 
@@ -398,19 +420,19 @@ def test_objects_load_switch_kill(scene, tmp_path, topmod_samples):
     assert load(str(path)) != other and counts(scene) == (8, 11, 5)
 
 
-@pytest.mark.parametrize(("command", "args", "message"), [
-    (load, (None,), "load takes a file name"),
-    (load, (5,), "load takes a file name"),
-    (save, (None,), "save takes a file name"),
-    (save, ("/nonexistent-dir/x.obj",), "cannot save '/nonexistent-dir/x.obj'"),
-    (move, (None, (1, 2, 3)), "move takes a list of vertex ids"),
-    (centroid, (5,), "centroid takes a list of vertex ids"),
-    (next, (None,), "next takes a corner or an iterator"),
-    (vertexInfo, ("x",), "expected a vertex id"),
-    (kill, ("x",), "object 'x' does not exist"),
+@pytest.mark.parametrize(("command", "args", "error", "message"), [
+    (load, (None,), InvalidArgumentError, "load takes a file name"),
+    (load, (5,), InvalidArgumentError, "load takes a file name"),
+    (save, (None,), InvalidArgumentError, "save takes a file name"),
+    (save, ("/nonexistent-dir/x.obj",), DLFLError, "cannot save '/nonexistent-dir/x.obj'"),
+    (move, (None, (1, 2, 3)), InvalidArgumentError, "move takes a list of vertex ids"),
+    (centroid, (5,), InvalidArgumentError, "centroid takes a list of vertex ids"),
+    (next, (None,), InvalidArgumentError, "next takes a corner or an iterator"),
+    (vertexInfo, ("x",), InvalidArgumentError, "expected a vertex id"),
+    (kill, ("x",), DLFLError, "object 'x' does not exist"),
 ])
-def test_junk_arguments_raise_dlfl_errors(cube_scene, command, args, message):
-    with pytest.raises(DLFLError, match=message):
+def test_junk_arguments_raise_dlfl_errors(cube_scene, command, args, error, message):
+    with pytest.raises(error, match=message):
         command(*args)
     assert counts(cube_scene) == (8, 12, 6)
 
@@ -436,7 +458,7 @@ NAN, INF = float("nan"), float("inf")
 ])
 def test_numbers_that_are_not_finite_are_refused_and_the_mesh_kept(cube_scene, call, message):
     before = snapshot(cube_scene.mesh)
-    with pytest.raises(DLFLError, match=message):
+    with pytest.raises(InvalidArgumentError, match=message):
         call(dlfl)
     assert snapshot(cube_scene.mesh) == before
 
@@ -447,7 +469,7 @@ def test_numbers_that_are_not_finite_are_refused_and_the_mesh_kept(cube_scene, c
 def test_moves_that_overflow_to_infinity_are_refused(cube_scene, command, args):
     getattr(dlfl, command)(*args)  # far, but finite
     before = snapshot(cube_scene.mesh)
-    with pytest.raises(DLFLError, match=r"would move vertex \d+ to \[.*inf.*nothing is moved"):
+    with pytest.raises(GeometryError, match=r"would move vertex \d+ to \[.*inf.*nothing is moved"):
         getattr(dlfl, command)(*args)
     assert snapshot(cube_scene.mesh) == before
 
@@ -466,7 +488,7 @@ def test_moves_that_overflow_to_infinity_are_refused(cube_scene, command, args):
 def test_an_on_off_option_that_is_not_a_flag_is_refused(cube_scene, call):
     """A string such as "no" would otherwise mean True."""
     before = snapshot(cube_scene.mesh)
-    with pytest.raises(DLFLError, match=r"must be True or False, got"):
+    with pytest.raises(InvalidArgumentError, match=r"must be True or False, got"):
         call()
     assert snapshot(cube_scene.mesh) == before
 

@@ -7,9 +7,10 @@ import math
 import pytest
 
 import livemod.dlfl as dlfl
-from livemod.dlfl import DLFLError, Scene, face_size_histogram, genus, use_scene
+from livemod.dlfl import Scene, face_size_histogram, genus, use_scene
 from livemod.dlfl import extrusion as _extrusion
 from livemod.dlfl.commands import addHandle, connectCorners, connectEdges, connectFaces, extrude
+from livemod.dlfl.errors import GeometryError, InvalidArgumentError, UnknownIdError
 from livemod.dlfl.shapes import cube
 from tests.meshes import counts, snapshot
 
@@ -127,7 +128,7 @@ def test_octa_segments_build_the_same_mesh_every_way(scene):
 def test_too_many_options_are_refused_for_every_kind(scene, kind):
     count = len(MAPPINGS[kind])
     before = snapshot(scene.mesh)
-    with pytest.raises(DLFLError, match=f"takes at most {count} options .* got {count + 1}"):
+    with pytest.raises(InvalidArgumentError, match=f"takes at most {count} options .* got {count + 1}"):
         extrude(kind, 0, *([1] * (count + 1)))
     assert snapshot(scene.mesh) == before
 
@@ -142,13 +143,13 @@ def test_too_many_options_are_refused_for_every_kind(scene, kind):
 ])
 def test_unknown_and_repeated_keywords_are_refused(scene, kind, keywords, message):
     before = snapshot(scene.mesh)
-    with pytest.raises(DLFLError, match=message):
+    with pytest.raises(InvalidArgumentError, match=message):
         extrude(kind, 0, **keywords)
     assert snapshot(scene.mesh) == before
 
 
 def test_octa_segments_given_twice(scene):
-    with pytest.raises(DLFLError, match="option 'num' \\(= 'segments'\\) given twice"):
+    with pytest.raises(InvalidArgumentError, match="option 'num' \\(= 'segments'\\) given twice"):
         extrude("octa", 0, 2, 3, num=3)
     assert counts(scene) == (8, 12, 6)
 
@@ -183,24 +184,26 @@ def test_type_prefixes(scene, name, expected):
     assert counts(scene) == expected
 
 
-@pytest.mark.parametrize(("call", "message"), [
-    (lambda: extrude("twirl", 0), "valid types: doo-sabin, dodeca, icosa, octa"),
-    (lambda: extrude("stellate", 0, 1, 2), "at most 1 options"),
-    (lambda: extrude("cubical", 0, spin=3), "no option 'spin'"),
-    (lambda: extrude("cubical", 0, 2, distance=3), "given twice"),
-    (lambda: extrude("cubical", 42), "face 42 does not exist"),
-    (lambda: extrude("cubical", 0, 2, 0), "segments"),
-    (lambda: connectFaces(0, 0), "two different faces"),
-    (lambda: connectCorners((0, 0), (5, 0)), "no corner at vertex 0"),
-    (lambda: connectCorners((0, 0), (5, 4), 1, -1, "duel"), "'dual'"),
-    (lambda: addHandle("spline", (0, 0), (1, 0), 4), "'hermite' or 'bezier'"),
-    (lambda: addHandle("bezier", (0, 0), (1, 0), 4, 1, 1, -1, 2), "no maxconn or twists"),
-    (lambda: connectEdges((0, 5), (1, 0)), "is not on face"),
-    (lambda: connectEdges(3, (1, 0)), "edgeid, faceid"),
+@pytest.mark.parametrize(("call", "message", "error"), [
+    (lambda: extrude("twirl", 0), "valid types: doo-sabin, dodeca, icosa, octa",
+     InvalidArgumentError),
+    (lambda: extrude("stellate", 0, 1, 2), "at most 1 options", InvalidArgumentError),
+    (lambda: extrude("cubical", 0, spin=3), "no option 'spin'", InvalidArgumentError),
+    (lambda: extrude("cubical", 0, 2, distance=3), "given twice", InvalidArgumentError),
+    (lambda: extrude("cubical", 42), "face 42 does not exist", UnknownIdError),
+    (lambda: extrude("cubical", 0, 2, 0), "segments", InvalidArgumentError),
+    (lambda: connectFaces(0, 0), "two different faces", InvalidArgumentError),
+    (lambda: connectCorners((0, 0), (5, 0)), "no corner at vertex 0", UnknownIdError),
+    (lambda: connectCorners((0, 0), (5, 4), 1, -1, "duel"), "'dual'", InvalidArgumentError),
+    (lambda: addHandle("spline", (0, 0), (1, 0), 4), "'hermite' or 'bezier'", InvalidArgumentError),
+    (lambda: addHandle("bezier", (0, 0), (1, 0), 4, 1, 1, -1, 2), "no maxconn or twists",
+     InvalidArgumentError),
+    (lambda: connectEdges((0, 5), (1, 0)), "is not on face", InvalidArgumentError),
+    (lambda: connectEdges(3, (1, 0)), "edgeid, faceid", InvalidArgumentError),
 ])
-def test_bad_arguments_raise_and_change_nothing(scene, call, message):
+def test_bad_arguments_raise_and_change_nothing(scene, call, message, error):
     before = snapshot(scene.mesh)
-    with pytest.raises(DLFLError, match=message):
+    with pytest.raises(error, match=message):
         call()
     assert snapshot(scene.mesh) == before
 
@@ -253,7 +256,7 @@ def test_each_command_is_one_step(scene):
 
 def test_extrude_failing_in_a_later_segment_changes_nothing(scene):
     before = snapshot(scene.mesh)
-    with pytest.raises(DLFLError, match="dodeca extrusion of face 0 cannot be built: "
+    with pytest.raises(GeometryError, match="dodeca extrusion of face 0 cannot be built: "
                        "a point it makes on the way overflows"):
         extrude("dodeca", 0, 1e308, 2)
     assert snapshot(scene.mesh) == before
@@ -262,6 +265,6 @@ def test_extrude_failing_in_a_later_segment_changes_nothing(scene):
 @pytest.mark.parametrize("pair", [(None, 0), (0, None), (1.5, 0), ("0", 0)])
 def test_connect_edges_refuses_a_half_edge_that_is_not_two_ids(scene, pair):
     before = snapshot(scene.mesh)
-    with pytest.raises(DLFLError, match="must hold ids"):
+    with pytest.raises(InvalidArgumentError, match="must hold ids"):
         connectEdges(pair, (1, 1))
     assert snapshot(scene.mesh) == before

@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 
 import livemod.dlfl as dlfl
-from livemod.dlfl import DLFLError, Scene, face_size_histogram, genus, use_scene, validate
+from livemod.dlfl import Scene, face_size_histogram, genus, use_scene, validate
 from livemod.dlfl.commands import (
     column,
     convexHull,
@@ -23,6 +23,7 @@ from livemod.dlfl.commands import (
     spheralize,
     wireframe,
 )
+from livemod.dlfl.errors import GeometryError, InvalidArgumentError, UnknownIdError
 from tests.meshes import counts, snapshot
 
 
@@ -80,7 +81,7 @@ def test_menger_without_a_thickness_fits_it_to_the_mesh(scene):
     assert menger() == pytest.approx(0.67 / 3)
     validate(scene.mesh)
     load("tetrahedron")
-    with pytest.raises(DLFLError, match="thickness 0.67 is too large for this mesh"):
+    with pytest.raises(GeometryError, match="thickness 0.67 is too large for this mesh"):
         menger(0.67)
 
 
@@ -109,12 +110,12 @@ def test_hulls_of_too_few_or_coplanar_vertices_are_refused_unchanged(op):
         for p in [(0, 0, 0), (1, 0, 0), (0, 1, 0)]:
             createVertex(p)
         before = snapshot(sc.mesh)
-        with pytest.raises(DLFLError, match="at least 4 points, got 3"):
+        with pytest.raises(InvalidArgumentError, match="at least 4 points, got 3"):
             op()
         assert snapshot(sc.mesh) == before
         createVertex((1, 1, 0))
         before = snapshot(sc.mesh)
-        with pytest.raises(DLFLError, match="not all in one plane"):
+        with pytest.raises(GeometryError, match="not all in one plane"):
             op()
         assert snapshot(sc.mesh) == before
 
@@ -125,21 +126,21 @@ def test_load_a_sample_by_name_then_wireframe(scene):
     assert genus(scene.mesh) == 90 - 60 + 1
 
 
-@pytest.mark.parametrize("call", [
-    lambda: rind([99], False, 0.5),
-    lambda: rind(["a"], False, 0.5),
-    lambda: rind(None, False, 0.5),
-    lambda: rind([0], False, 5.0),
-    lambda: rind([0], True, 0.0),
-    lambda: wireframe(-1.0),
-    lambda: column(0.25, 0),
-    lambda: column(0.25, "four"),
-    lambda: column(0.0, 4),
-    lambda: menger(0.0),
+@pytest.mark.parametrize(("call", "error"), [
+    (lambda: rind([99], False, 0.5), UnknownIdError),
+    (lambda: rind(["a"], False, 0.5), InvalidArgumentError),
+    (lambda: rind(None, False, 0.5), InvalidArgumentError),
+    (lambda: rind([0], False, 5.0), GeometryError),
+    (lambda: rind([0], True, 0.0), InvalidArgumentError),
+    (lambda: wireframe(-1.0), InvalidArgumentError),
+    (lambda: column(0.25, 0), InvalidArgumentError),
+    (lambda: column(0.25, "four"), InvalidArgumentError),
+    (lambda: column(0.0, 4), InvalidArgumentError),
+    (lambda: menger(0.0), InvalidArgumentError),
 ])
-def test_bad_arguments_raise_and_leave_the_object_unchanged(scene, call):
+def test_bad_arguments_raise_and_leave_the_object_unchanged(scene, call, error):
     before = snapshot(scene.mesh)
-    with pytest.raises(DLFLError):
+    with pytest.raises(error):
         call()
     assert snapshot(scene.mesh) == before
 
@@ -184,22 +185,25 @@ def test_multi_connect_faces_is_one_step(scene):
     assert labels == ["multiConnectFaces", "multiConnectFaces"]
 
 
-@pytest.mark.parametrize(("call", "message"), [
-    (lambda: multiConnectFaces([0, 5], method="convex"), "method must be one of 'hull'"),
+@pytest.mark.parametrize(("call", "message", "error"), [
+    (lambda: multiConnectFaces([0, 5], method="convex"), "method must be one of 'hull'",
+     InvalidArgumentError),
     (lambda: multiConnectFaces([0, 5], extrude=1.0, method="closest-edge"),
-     "method 'closest-edge' does not use extrude"),
+     "method 'closest-edge' does not use extrude", InvalidArgumentError),
     (lambda: multiConnectFaces([0, 5], maxOffsets=True, method="fitted"),
-     "method 'fitted' does not use maxOffsets"),
-    (lambda: multiConnectFaces([0, 5], minFactor=0.1), "method 'hull' does not use minFactor"),
-    (lambda: multiConnectFaces([0]), "needs two or more different faces"),
-    (lambda: multiConnectFaces([0, 99]), "face 99 does not exist"),
-    (lambda: multiConnectFaces("0, 5"), "faces must be a list of ids"),
-    (lambda: multiConnectFaces([0, 5], maxOffsets="no"), "max_offsets must be True or False"),
+     "method 'fitted' does not use maxOffsets", InvalidArgumentError),
+    (lambda: multiConnectFaces([0, 5], minFactor=0.1), "method 'hull' does not use minFactor",
+     InvalidArgumentError),
+    (lambda: multiConnectFaces([0]), "needs two or more different faces", InvalidArgumentError),
+    (lambda: multiConnectFaces([0, 99]), "face 99 does not exist", UnknownIdError),
+    (lambda: multiConnectFaces("0, 5"), "faces must be a list of ids", InvalidArgumentError),
+    (lambda: multiConnectFaces([0, 5], maxOffsets="no"), "max_offsets must be True or False",
+     InvalidArgumentError),
     (lambda: multiConnectFaces([0, 5], method="fitted", minFactor=-1.0),
-     "min_factor must be a positive number"),
+     "min_factor must be a positive number", InvalidArgumentError),
 ])
-def test_multi_connect_faces_bad_arguments_leave_the_object_unchanged(scene, call, message):
+def test_multi_connect_faces_bad_arguments_leave_the_object_unchanged(scene, call, message, error):
     before = snapshot(scene.mesh)
-    with pytest.raises(DLFLError, match=message):
+    with pytest.raises(error, match=message):
         call()
     assert snapshot(scene.mesh) == before

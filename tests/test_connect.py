@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from livemod.dlfl import DLFLError, Mesh, face_size_histogram, genus, validate
+from livemod.dlfl import Mesh, face_size_histogram, genus, validate
 from livemod.dlfl.analysis import face_points
 from livemod.dlfl.connect import (
     bezier_handle,
@@ -20,6 +20,12 @@ from livemod.dlfl.connect import (
     hermite_point,
     multi_face_handle,
     rotation_between,
+)
+from livemod.dlfl.errors import (
+    BudgetExceededError,
+    GeometryError,
+    InvalidArgumentError,
+    UnknownIdError,
 )
 from livemod.dlfl.extrusion import extrude
 from livemod.dlfl.shapes import cube
@@ -168,8 +174,10 @@ def test_connect_edge_sides_picks_the_side_of_an_edge_whose_sides_share_a_face()
     # (side, next(other)) and (next(side), other): from v, not from the top's corner
     assert [set(m.edge_vertices(e)) for e in made] == [{v, b1}, {u, b0}]
     assert_refused(cube(), lambda m: connect_edge_sides(m, 0, 0),
-                   "connect_edge_sides needs two different corners, got corner 0 twice")
-    assert_refused(cube(), lambda m: connect_edge_sides(m, 0, 999), "side2: corner 999 does not exist")
+                   "connect_edge_sides needs two different corners, got corner 0 twice",
+                   error=InvalidArgumentError)
+    assert_refused(cube(), lambda m: connect_edge_sides(m, 0, 999), "side2: corner 999 does not exist",
+                   error=UnknownIdError)
 
 
 def test_connect_edges_check_skips_adjacent_corners():
@@ -256,25 +264,31 @@ def pentagon_cube() -> Mesh:
 
 
 BAD = [
-    (lambda m: connect_faces(m, head(m, TOP), m.corner_next(head(m, TOP))), "two different faces"),
-    (lambda m: connect_faces(m, 999, head(m, BOTTOM)), "corner 999 does not exist"),
-    (lambda m: connect_faces(m, *above(m), 0), "segments"),
-    (lambda m: connect_faces(m, *above(m), 2, pinch_center=1.0), "pinch_center"),
-    (lambda m: dual_connect_faces(m, head(m, TOP), head(m, TOP)), "two different faces"),
-    (lambda m: connect_faces_closest(m, TOP, 77), "face 77 does not exist"),
-    (lambda m: connect_edges(m, m.face_edges(TOP)[0], BOTTOM, 0, TOP), "is not on face"),
-    (lambda m: connect_edges(m, 500, TOP, 0, TOP), "edge 500 does not exist"),
-    (lambda m: hermite_handle(m, head(m, TOP), head(m, BOTTOM), 4), "against the handle's axis"),
-    (lambda m: bezier_handle(m, head(m, TOP), head(m, BOTTOM), 0), "segments"),
+    (lambda m: connect_faces(m, head(m, TOP), m.corner_next(head(m, TOP))),
+     InvalidArgumentError, "two different faces"),
+    (lambda m: connect_faces(m, 999, head(m, BOTTOM)), UnknownIdError, "corner 999 does not exist"),
+    (lambda m: connect_faces(m, *above(m), 0), InvalidArgumentError, "segments"),
+    (lambda m: connect_faces(m, *above(m), 2, pinch_center=1.0), InvalidArgumentError,
+     "pinch_center"),
+    (lambda m: dual_connect_faces(m, head(m, TOP), head(m, TOP)), InvalidArgumentError,
+     "two different faces"),
+    (lambda m: connect_faces_closest(m, TOP, 77), UnknownIdError, "face 77 does not exist"),
+    (lambda m: connect_edges(m, m.face_edges(TOP)[0], BOTTOM, 0, TOP), InvalidArgumentError,
+     "is not on face"),
+    (lambda m: connect_edges(m, 500, TOP, 0, TOP), UnknownIdError, "edge 500 does not exist"),
+    (lambda m: hermite_handle(m, head(m, TOP), head(m, BOTTOM), 4), GeometryError,
+     "against the handle's axis"),
+    (lambda m: bezier_handle(m, head(m, TOP), head(m, BOTTOM), 0), InvalidArgumentError,
+     "segments"),
 ]
 
 
 @pytest.mark.parametrize("case", range(len(BAD)))
 def test_bad_input_raises_and_leaves_the_mesh_unchanged(case):
     m = cube()
-    call, message = BAD[case]
+    call, error, message = BAD[case]
     before = snapshot(m)
-    with pytest.raises(DLFLError, match=message):
+    with pytest.raises(error, match=message):
         call(m)
     assert snapshot(m) == before
 
@@ -288,7 +302,7 @@ def test_bad_input_raises_and_leaves_the_mesh_unchanged(case):
 def test_faces_of_different_sizes_are_refused_with_segments(op):
     m = pentagon_cube()
     before = snapshot(m)
-    with pytest.raises(DLFLError, match="equal size; face 0 has 4 corners and face 5 has 5"):
+    with pytest.raises(InvalidArgumentError, match="equal size; face 0 has 4 corners and face 5 has 5"):
         op(m)
     assert snapshot(m) == before
 
@@ -331,15 +345,15 @@ def test_add_polyhedron_builds_a_hull_with_a_point_on_an_edge():
         assert centre @ normal > 0  # outward
 
 
-@pytest.mark.parametrize(("faces", "message"), [
-    ([0], "two or more different faces"),
-    ([0, 0], "two or more different faces"),
-    ([0, 99], "face 99 does not exist"),
+@pytest.mark.parametrize(("faces", "message", "error"), [
+    ([0], "two or more different faces", InvalidArgumentError),
+    ([0, 0], "two or more different faces", InvalidArgumentError),
+    ([0, 99], "face 99 does not exist", UnknownIdError),
 ])
-def test_multi_face_handle_bad_input(faces, message):
+def test_multi_face_handle_bad_input(faces, message, error):
     from livemod.dlfl.connect import multi_face_handle
 
-    assert_refused(cube(), lambda m: multi_face_handle(m, faces), message)
+    assert_refused(cube(), lambda m: multi_face_handle(m, faces), message, error=error)
 
 
 def test_multi_face_handle_refuses_coplanar_points():
@@ -348,7 +362,7 @@ def test_multi_face_handle_refuses_coplanar_points():
     m = Mesh()
     front, back = m.create_face([(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0)])
     before = snapshot(m)
-    with pytest.raises(DLFLError, match="not all in one plane"):
+    with pytest.raises(GeometryError, match="not all in one plane"):
         multi_face_handle(m, [front, back], extrude=0.0)
     assert snapshot(m) == before
 
@@ -381,7 +395,7 @@ def test_one_segment_hermite_handle_is_connect_faces_even_for_unequal_faces():
      "pinch must be a number"),
 ])
 def test_arguments_of_the_wrong_type_are_refused(call, message):
-    assert_refused(cube(), call, message)
+    assert_refused(cube(), call, message, error=InvalidArgumentError)
 
 
 def test_a_hub_whose_hull_does_not_close_is_refused_before_building():
@@ -392,7 +406,7 @@ def test_a_hub_whose_hull_does_not_close_is_refused_before_building():
     subdivide(m, "pentagon-preserve", scale=-0.9999)
     before = snapshot(m)
     # pushed 720 out, these faces' points are nearly coplanar at the hull's scale
-    with pytest.raises(DLFLError, match="convex hull does not close up"):
+    with pytest.raises(GeometryError, match="convex hull does not close up"):
         multi_face_handle(m, [37, 40, 34], 1.0, 720.0)
     assert snapshot(m) == before
 
@@ -400,18 +414,21 @@ def test_a_hub_whose_hull_does_not_close_is_refused_before_building():
 def test_segment_counts_a_mesh_cannot_hold_are_refused_at_once():
     # past the face budget first; past what a mesh can hold with the budget raised
     assert_refused(cube(), lambda m: connect_faces(m, *above(m), 10**30),
-                   "connect_faces would produce more than 10\\^18 faces")
+                   "connect_faces would produce more than 10\\^18 faces",
+                   error=BudgetExceededError)
     assert_refused(cube(), lambda m: connect_faces(m, *above(m), 10**30, max_faces=10**40),
-                   f"segments={10**30} would make at least {2 * 10**30:,} corners")
+                   f"segments={10**30} would make at least {2 * 10**30:,} corners",
+                   error=InvalidArgumentError)
     assert_refused(cube(), lambda m: connect_faces(m, *above(m), True),
-                   "segments must be an integer >= 1, got True")
+                   "segments must be an integer >= 1, got True", error=InvalidArgumentError)
 
 
 def test_a_hub_that_overflows_is_refused_before_lapack_sees_it(capfd):
     from livemod.dlfl.connect import multi_face_handle
 
     assert_refused(cube(), lambda m: multi_face_handle(m, [TOP, BOTTOM, 2], 1e308, 1.0),
-                   "a convex hull needs finite points whose differences are finite")
+                   "a convex hull needs finite points whose differences are finite",
+                   error=GeometryError)
     assert "DLASCL" not in capfd.readouterr().err  # LAPACK's own complaint about NaN
 
 

@@ -10,6 +10,7 @@ from __future__ import annotations
 import pytest
 
 from livemod.dlfl import DLFLError, Mesh, validate
+from livemod.dlfl.errors import InvalidArgumentError, UnknownIdError
 from livemod.dlfl.geometry import cleanup_2gons, edge_cleanup
 from livemod.dlfl.selection import checkerboard, faces_by_area, faces_by_normal
 from livemod.dlfl.transform import move_vertices, transform, translate
@@ -19,14 +20,18 @@ from tests.meshes import assert_refused, cube
 @pytest.mark.parametrize("text", ["123", b"123", bytearray(b"123")])
 def test_a_string_is_not_a_position(text):
     # "123" unpacked into the point (1, 2, 3) and b"123" into (49, 50, 51)
-    assert_refused(Mesh(), lambda m: m.create_vertex(text), "expected a position")
-    assert_refused(cube(), lambda m: m.set_position(0, text), "expected a position")
-    assert_refused(Mesh(), lambda m: m.create_face([text, (0, 0, 0)]), "expected a position")
+    assert_refused(Mesh(), lambda m: m.create_vertex(text), "expected a position",
+                   error=InvalidArgumentError)
+    assert_refused(cube(), lambda m: m.set_position(0, text), "expected a position",
+                   error=InvalidArgumentError)
+    assert_refused(Mesh(), lambda m: m.create_face([text, (0, 0, 0)]), "expected a position",
+                   error=InvalidArgumentError)
 
 
 def test_set_hole_refuses_a_string_flag():
     # "False" is truthy: the face became a hole
-    assert_refused(cube(), lambda m: m.set_hole(0, "False"), "hole must be True or False")
+    assert_refused(cube(), lambda m: m.set_hole(0, "False"), "hole must be True or False",
+                   error=InvalidArgumentError)
     m = cube()
     m.set_hole(0, 1)
     assert m.is_hole(0)
@@ -48,17 +53,19 @@ def test_validate_names_a_free_slot_outside_the_table():
 @pytest.mark.parametrize("edges", [5, "01", [0, 1.5]])
 def test_edge_cleanup_refuses_edges_that_are_not_ids(edges):
     # 5 raised TypeError; 1.5 was skipped as if it were a deleted edge
-    assert_refused(cube(), lambda m: edge_cleanup(m, edges), "edges must")
+    assert_refused(cube(), lambda m: edge_cleanup(m, edges), "edges must",
+                   error=InvalidArgumentError)
 
 
 @pytest.mark.parametrize("matrix", ["abc", [[1, 2], [3]]])
 def test_transform_refuses_a_matrix_that_is_not_numbers(matrix):
-    assert_refused(cube(), lambda m: transform(m, matrix), "matrix must be a finite 3x3 array")
+    assert_refused(cube(), lambda m: transform(m, matrix), "matrix must be a finite 3x3 array",
+                   error=InvalidArgumentError)
 
 
 def test_move_vertices_refuses_a_string_flag():
     assert_refused(cube(), lambda m: move_vertices(m, [0], (1, 1, 1), relative="False"),
-                   "relative must be True or False")
+                   "relative must be True or False", error=InvalidArgumentError)
 
 
 def test_transform_of_a_deleted_vertex_says_it_was_deleted():
@@ -66,8 +73,9 @@ def test_transform_of_a_deleted_vertex_says_it_was_deleted():
     m.collapse_edge(0)
     gone = next(v for v in range(8) if not m.has_vertex(v))
     assert_refused(m, lambda m: translate(m, (1, 0, 0), vertices=[gone]),
-                   f"vertex {gone} was deleted")
-    assert_refused(m, lambda m: translate(m, (1, 0, 0), vertices=[99]), "vertex 99 does not exist")
+                   f"vertex {gone} was deleted", error=UnknownIdError)
+    assert_refused(m, lambda m: translate(m, (1, 0, 0), vertices=[99]), "vertex 99 does not exist",
+                   error=UnknownIdError)
 
 
 @pytest.mark.parametrize(("call", "message"), [
@@ -81,7 +89,7 @@ def test_transform_of_a_deleted_vertex_says_it_was_deleted():
     (lambda m: checkerboard(m, 1.0), "expected a face id"),
 ])
 def test_selection_refuses_bad_arguments(call, message):
-    assert_refused(cube(), call, message)
+    assert_refused(cube(), call, message, error=InvalidArgumentError)
 
 
 def test_selection_of_a_deleted_face_says_it_was_deleted():
@@ -89,7 +97,8 @@ def test_selection_of_a_deleted_face_says_it_was_deleted():
     m.delete_edge(0)  # the second face of edge 0 goes
     gone = next(f for f in range(6) if not m.has_face(f))
     for call in (faces_by_area, checkerboard):
-        assert_refused(m, lambda m, call=call: call(m, gone), f"face {gone} was deleted")
+        assert_refused(m, lambda m, call=call: call(m, gone), f"face {gone} was deleted",
+                       error=UnknownIdError)
 
 
 def test_faces_by_normal_takes_a_huge_direction():

@@ -15,7 +15,7 @@ from livemod.dlfl.arrays import mesh_arrays
 from livemod.dlfl.build import from_polygons
 from livemod.dlfl.commands import cutEdges, cutFaces, cutVertices, truncate
 from livemod.dlfl.cutting import truncate as truncate_mesh
-from livemod.dlfl.errors import GeometryError
+from livemod.dlfl.errors import GeometryError, InvalidArgumentError, UnknownIdError
 from livemod.dlfl.shapes import cube, grid, icosahedron, spherical_cube, torus
 from livemod.dlfl.subdivision import vertex_cut
 from tests.meshes import (
@@ -299,31 +299,42 @@ def dangling_cube() -> tuple[Mesh, int]:
 ])
 def test_offsets_out_of_range(offset, message):
     for op in (cut_vertices, cut_edges, cut_faces):
-        assert_refused(cube(), lambda m, op=op: op(m, [0], offset), f"offset .*{message}")
-    assert_refused(cube(), lambda m: truncate_mesh(m, offset), f"offset .*{message}")
+        assert_refused(cube(), lambda m, op=op: op(m, [0], offset), f"offset .*{message}",
+                       error=InvalidArgumentError)
+    assert_refused(cube(), lambda m: truncate_mesh(m, offset), f"offset .*{message}",
+                   error=InvalidArgumentError)
 
 
 def test_offsets_that_would_cross_on_a_shared_edge():
     a, b = cube().edge_vertices(0)
     assert_refused(cube(), lambda m: cut_vertices(m, [a, b], 0.5),
-                   r"edge 0 is cut from both ends: offset must be below 0.5")
-    assert_refused(cube(), lambda m: truncate_mesh(m, 0.5), "offset must be below 0.5")
+                   r"edge 0 is cut from both ends: offset must be below 0.5",
+                   error=InvalidArgumentError)
+    assert_refused(cube(), lambda m: truncate_mesh(m, 0.5), "offset must be below 0.5",
+                   error=InvalidArgumentError)
 
 
 def test_missing_and_deleted_ids():
-    assert_refused(cube(), lambda m: cut_vertices(m, [0, 99]), "vertex 99 does not exist")
-    assert_refused(cube(), lambda m: cut_edges(m, [99]), "edge 99 does not exist")
-    assert_refused(cube(), lambda m: cut_faces(m, [99]), "face 99 does not exist")
+    assert_refused(cube(), lambda m: cut_vertices(m, [0, 99]), "vertex 99 does not exist",
+                   error=UnknownIdError)
+    assert_refused(cube(), lambda m: cut_edges(m, [99]), "edge 99 does not exist",
+                   error=UnknownIdError)
+    assert_refused(cube(), lambda m: cut_faces(m, [99]), "face 99 does not exist",
+                   error=UnknownIdError)
     m = cube()
     cut_vertices(m, [0])
-    assert_refused(m, lambda m: cut_vertices(m, [0]), "vertex 0 was deleted")
-    assert_refused(cube(), lambda m: cut_vertices(m, [0.5]), "vertices must hold ids")
-    assert_refused(cube(), lambda m: cut_faces(m, 3), "faces must be a list of ids")
+    assert_refused(m, lambda m: cut_vertices(m, [0]), "vertex 0 was deleted", error=UnknownIdError)
+    assert_refused(cube(), lambda m: cut_vertices(m, [0.5]), "vertices must hold ids",
+                   error=InvalidArgumentError)
+    assert_refused(cube(), lambda m: cut_faces(m, 3), "faces must be a list of ids",
+                   error=InvalidArgumentError)
 
 
 def test_point_spheres():
-    assert_refused(point_sphere(), lambda m: cut_vertices(m, [0]), "vertex 0 is a point-sphere")
-    assert_refused(point_sphere(), lambda m: cut_faces(m, [0]), "face of point-sphere 0")
+    assert_refused(point_sphere(), lambda m: cut_vertices(m, [0]), "vertex 0 is a point-sphere",
+                   error=InvalidArgumentError)
+    assert_refused(point_sphere(), lambda m: cut_faces(m, [0]), "face of point-sphere 0",
+                   error=InvalidArgumentError)
     m = point_sphere()
     assert checked(m, truncate_mesh) == [] and m.counts() == (1, 0, 1)
 
@@ -331,35 +342,44 @@ def test_point_spheres():
 def test_hole_faces():
     m = open_triangle()
     hole = next(f for f in m.face_ids().tolist() if m.is_hole(f))
-    assert_refused(m, lambda m: cut_faces(m, [hole]), f"face {hole} is a hole")
+    assert_refused(m, lambda m: cut_faces(m, [hole]), f"face {hole} is a hole",
+                   error=InvalidArgumentError)
 
 
 def test_self_loops_and_lone_edges():
-    assert_refused(self_loop_cube(), lambda m: cut_vertices(m, [0]), "vertex 0 has a self-loop")
+    assert_refused(self_loop_cube(), lambda m: cut_vertices(m, [0]), "vertex 0 has a self-loop",
+                   error=InvalidArgumentError)
     loop = int(self_loop_cube().edge_ids()[-1])  # the last edge made
-    assert_refused(self_loop_cube(), lambda m: cut_edges(m, [loop]), f"edge {loop} is a self-loop")
-    assert_refused(self_loop_cube(), lambda m: truncate_mesh(m), "self-loop")
+    assert_refused(self_loop_cube(), lambda m: cut_edges(m, [loop]), f"edge {loop} is a self-loop",
+                   error=InvalidArgumentError)
+    assert_refused(self_loop_cube(), lambda m: truncate_mesh(m), "self-loop",
+                   error=InvalidArgumentError)
     m, v = dangling_cube()
-    assert_refused(m, lambda m: cut_vertices(m, [v]), f"vertex {v}: only 1 edge")
+    assert_refused(m, lambda m: cut_vertices(m, [v]), f"vertex {v}: only 1 edge",
+                   error=InvalidArgumentError)
 
 
 def test_edges_closing_a_cycle():
     m = cube()
-    assert_refused(m, lambda m: cut_edges(m, m.face_edges(0)), "close a cycle")
+    assert_refused(m, lambda m: cut_edges(m, m.face_edges(0)), "close a cycle",
+                   error=InvalidArgumentError)
 
 
 def test_faces_sharing_a_vertex():
-    assert_refused(cube(), lambda m: cut_faces(m, [0, 1]), "face 0 and face 1 share vertex")
+    assert_refused(cube(), lambda m: cut_faces(m, [0, 1]), "face 0 and face 1 share vertex",
+                   error=InvalidArgumentError)
 
 
 def test_a_face_visiting_a_vertex_twice():
-    assert_refused(path_face(), lambda m: cut_faces(m, [0]), "visits vertex 1 more than once")
+    assert_refused(path_face(), lambda m: cut_faces(m, [0]), "visits vertex 1 more than once",
+                   error=InvalidArgumentError)
 
 
 def test_a_whole_component_cannot_be_cut_away():
     m = Mesh()
     front, _ = m.create_face([(0, 0, 0), (1, 0, 0), (0, 1, 0)])
-    assert_refused(m, lambda m: cut_faces(m, [front]), r"only 0 edge\(s\) leave it")
+    assert_refused(m, lambda m: cut_faces(m, [front]), r"only 0 edge\(s\) leave it",
+                   error=InvalidArgumentError)
 
 
 # -- plane placement (TopMod's) and peeling -------------------------------------------
@@ -573,8 +593,13 @@ def test_cutting_commands_take_placement_and_peel(scene):
 
 def test_refused_command_leaves_the_object(scene):
     mesh = scene.mesh
-    assert_refused(mesh, lambda _: cutFaces([0, 1], placement="offset"), "share vertex")
-    assert_refused(mesh, lambda _: cutVertices(0, 2.0, "offset"), "offset")
-    assert_refused(mesh, lambda _: cutVertices("0"), "vertexids must be a list of ids")
-    assert_refused(mesh, lambda _: dlfl.cutPlane((0, 0, 0)), "needs point and normal, or faceid")
-    assert_refused(mesh, lambda _: dlfl.cutPlane((0, 0, 0), (0, 1, 0), faceid=0), "not both")
+    assert_refused(mesh, lambda _: cutFaces([0, 1], placement="offset"), "share vertex",
+                   error=InvalidArgumentError)
+    assert_refused(mesh, lambda _: cutVertices(0, 2.0, "offset"), "offset",
+                   error=InvalidArgumentError)
+    assert_refused(mesh, lambda _: cutVertices("0"), "vertexids must be a list of ids",
+                   error=InvalidArgumentError)
+    assert_refused(mesh, lambda _: dlfl.cutPlane((0, 0, 0)), "needs point and normal, or faceid",
+                   error=InvalidArgumentError)
+    assert_refused(mesh, lambda _: dlfl.cutPlane((0, 0, 0), (0, 1, 0), faceid=0), "not both",
+                   error=InvalidArgumentError)

@@ -7,6 +7,7 @@ from pathlib import Path
 import pytest
 
 from livemod.dlfl import DLFLError
+from livemod.dlfl.errors import InvalidArgumentError
 from livemod.runner.declarations import check_values, declared_parameters, describe
 
 LITERAL = '''from livemod.dlfl import *
@@ -56,7 +57,7 @@ def test_values_are_checked_against_the_declarations(tmp_path: Path) -> None:
     assert check_values(specs, {"count": "4", "thickness": 0.2}) == {"count": 4, "thickness": 0.2}
     with pytest.raises(DLFLError, match=r"declares no parameter 'cuont' \(it declares: thickness, count, scheme\)"):
         check_values(specs, {"cuont": 4})
-    with pytest.raises(DLFLError, match="above its maximum 0.5"):
+    with pytest.raises(InvalidArgumentError, match="above its maximum 0.5"):
         check_values(specs, {"thickness": 0.9})
 
 

@@ -31,6 +31,12 @@ from livemod.dlfl.connect import (
     dual_connect_faces,
     hermite_handle,
 )
+from livemod.dlfl.errors import (
+    BudgetExceededError,
+    GeometryError,
+    InvalidArgumentError,
+    UnknownIdError,
+)
 from livemod.dlfl.extrusion import (
     KINDS,
     doo_sabin_weights,
@@ -301,7 +307,7 @@ def test_kind_names_resolve_exactly_then_by_prefix():
     assert resolve_kind("dual") == "octa"
     assert resolve_kind("double") == "double-stellate"
     assert resolve_kind("ico") == "icosa"
-    with pytest.raises(DLFLError, match="ambiguous.*cubical"):
+    with pytest.raises(InvalidArgumentError, match="ambiguous.*cubical"):
         resolve_kind("cub")
 
 
@@ -310,23 +316,23 @@ def test_kind_names_resolve_exactly_then_by_prefix():
 def bad_cases(m: Mesh):
     gone_face = int(m.next_ids()[2]) + 5
     return [
-        (lambda: extrude(m, gone_face, "cubical"), "does not exist"),
-        (lambda: extrude(m, TOP, "twirl"), "valid kinds: cubical, doo-sabin"),
-        (lambda: extrude(m, TOP, "cubical", segments=0), "segments"),
-        (lambda: extrude(m, TOP, "cubical", segments=1.5), "segments"),
-        (lambda: extrude(m, TOP, "cubical", distance=math.nan), "finite"),
-        (lambda: extrude(m, TOP, "stellate"), "extrude_fan"),
-        (lambda: extrude_fan(m, TOP, "cubical"), "use extrude"),
-        (lambda: extrude(m, "0", "cubical"), "face id"),
+        (lambda: extrude(m, gone_face, "cubical"), UnknownIdError, "does not exist"),
+        (lambda: extrude(m, TOP, "twirl"), InvalidArgumentError, "valid kinds: cubical, doo-sabin"),
+        (lambda: extrude(m, TOP, "cubical", segments=0), InvalidArgumentError, "segments"),
+        (lambda: extrude(m, TOP, "cubical", segments=1.5), InvalidArgumentError, "segments"),
+        (lambda: extrude(m, TOP, "cubical", distance=math.nan), InvalidArgumentError, "finite"),
+        (lambda: extrude(m, TOP, "stellate"), InvalidArgumentError, "extrude_fan"),
+        (lambda: extrude_fan(m, TOP, "cubical"), InvalidArgumentError, "use extrude"),
+        (lambda: extrude(m, "0", "cubical"), InvalidArgumentError, "face id"),
     ]
 
 
 @pytest.mark.parametrize("case", range(8))
 def test_bad_input_raises_and_leaves_the_mesh_unchanged(case):
     m = cube()
-    call, message = bad_cases(m)[case]
+    call, error, message = bad_cases(m)[case]
     before = snapshot(m)
-    with pytest.raises(DLFLError, match=message):
+    with pytest.raises(error, match=message):
         call()
     assert snapshot(m) == before
 
@@ -339,12 +345,12 @@ def test_deleted_face_and_point_sphere_are_refused():
     (kept,) = m.delete_edge(edge)  # the two faces merge; one id is gone for good
     (gone,) = both - {kept}
     before = snapshot(m)
-    with pytest.raises(DLFLError, match=f"face {gone} does not exist"):
+    with pytest.raises(UnknownIdError, match=f"face {gone} does not exist"):
         extrude(m, gone, "doo-sabin")
     assert snapshot(m) == before
     p = Mesh()
     v = p.create_vertex((0, 0, 0))
-    with pytest.raises(DLFLError, match="corner"):
+    with pytest.raises(InvalidArgumentError, match="corner"):
         extrude(p, p.corner_face(p.vertex_corner(v)), "cubical")
 
 
@@ -354,7 +360,7 @@ def test_degenerate_face_is_refused_by_every_kind(kind):
     front, _ = m.create_face([(0, 0, 0), (1, 0, 0), (2, 0, 0)])  # collinear: no normal
     before = snapshot(m)
     run = extrude_fan if KINDS[kind].fan is not None else extrude
-    with pytest.raises(DLFLError, match="degenerate"):
+    with pytest.raises(GeometryError, match="degenerate"):
         run(m, front, kind)
     assert snapshot(m) == before
 
@@ -425,7 +431,7 @@ def _face_with_a_dangling_edge() -> tuple[Mesh, int]:
 def test_kinds_that_need_a_simple_face_refuse_one_with_a_dangling_edge(kind, run) -> None:
     m, top = _face_with_a_dangling_edge()
     before = snapshot(m)
-    with pytest.raises(DLFLError, match=f"face {top} visits vertex .* more than once .*{kind}"):
+    with pytest.raises(InvalidArgumentError, match=f"face {top} visits vertex .* more than once .*{kind}"):
         run(m, top, kind)
     assert snapshot(m) == before  # was left half-extruded before the check
     extrude(m, top, "cubical")     # the other kinds take such a face
@@ -473,7 +479,7 @@ def test_an_extrusion_failing_part_way_leaves_the_mesh_unchanged(kind, options, 
     m = shifted_cube()
     before = snapshot(m)
     run = extrude_fan if KINDS[kind].fan is not None else extrude
-    with pytest.raises(DLFLError, match=f"{kind} extrusion of face {TOP} cannot be built: .*"
+    with pytest.raises(GeometryError, match=f"{kind} extrusion of face {TOP} cannot be built: .*"
                        f"{cause}.*the mesh is unchanged"):
         run(m, TOP, kind, **options)
     assert snapshot(m) == before
@@ -482,7 +488,7 @@ def test_an_extrusion_failing_part_way_leaves_the_mesh_unchanged(kind, options, 
 def test_double_stellate_refuses_a_face_whose_stellation_is_degenerate():
     m = zero_edge_cube()
     before = snapshot(m)
-    with pytest.raises(DLFLError, match="double-stellate extrusion of face 0 cannot be built: "
+    with pytest.raises(GeometryError, match="double-stellate extrusion of face 0 cannot be built: "
                        "a face it makes on the way is degenerate"):
         extrude_fan(m, 0, "double-stellate", 1.0)
     assert snapshot(m) == before
@@ -492,7 +498,7 @@ def test_a_first_step_that_overflows_names_the_point():
     m = cube()
     m.set_positions(m.vertex_ids(), m.positions_view() * 4.0)  # corners 4 from the centroid
     before = snapshot(m)
-    with pytest.raises(DLFLError, match=r"would put a point at \[.*inf.*overflow"):
+    with pytest.raises(GeometryError, match=r"would put a point at \[.*inf.*overflow"):
         extrude(m, TOP, "cubical", scale=1e308)
     assert snapshot(m) == before
 
@@ -522,18 +528,21 @@ def test_extruding_a_face_near_the_float_range_prints_no_numpy_warning(kind):
             validate(near)
 
 
-@pytest.mark.parametrize(("kind", "segments", "budget", "message"), [
-    ("cubical", 10**30, None, "cubical extrusion would produce more than 10\\^18 faces"),
+@pytest.mark.parametrize(("kind", "segments", "budget", "error", "message"), [
+    ("cubical", 10**30, None, BudgetExceededError,
+     "cubical extrusion would produce more than 10\\^18 faces"),
     # past the face budget's first, then past what a mesh can hold
-    ("dodeca", 600_000_000, None, "would produce 24,000,000,024 corners, more than the budget"),
-    ("dodeca", 600_000_000, 10**12, "would make at least 2,400,000,000 corners, more than a "
-                                    "mesh can hold \\(2,147,483,647\\)"),
-    ("doo-sabin", 1.5, None, "segments must be an integer >= 1, got 1.5"),
-    ("icosa", 0, None, "segments must be an integer >= 1, got 0"),
+    ("dodeca", 600_000_000, None, BudgetExceededError,
+     "would produce 24,000,000,024 corners, more than the budget"),
+    ("dodeca", 600_000_000, 10**12, InvalidArgumentError,
+     "would make at least 2,400,000,000 corners, more than a mesh can hold \\(2,147,483,647\\)"),
+    ("doo-sabin", 1.5, None, InvalidArgumentError, "segments must be an integer >= 1, got 1.5"),
+    ("icosa", 0, None, InvalidArgumentError, "segments must be an integer >= 1, got 0"),
 ])
-def test_segment_counts_a_mesh_cannot_hold_are_refused_at_once(kind, segments, budget, message):
+def test_segment_counts_a_mesh_cannot_hold_are_refused_at_once(kind, segments, budget, error,
+                                                              message):
     assert_refused(cube(), lambda m: extrude(m, 0, kind, 0.5, segments, max_faces=budget),
-                   message)
+                   message, error=error)
 
 
 # -- hole faces --------------------------------------------------------------------
@@ -551,17 +560,19 @@ def test_a_hole_face_is_refused_by_every_kind(kind):
     # before: a cap detached from the surface, its walls holes too
     m, hole = open_box()
     run = extrude_fan if KINDS[kind].fan is not None else extrude
-    assert_refused(m, lambda m: run(m, hole, kind), f"face {hole} is a hole")
+    assert_refused(m, lambda m: run(m, hole, kind), f"face {hole} is a hole",
+                   error=InvalidArgumentError)
 
 
 def test_a_hole_face_is_refused_with_segments_and_by_the_thesis_command():
     m, hole = open_box()
     assert_refused(m, lambda m: extrude(m, hole, "dodeca", segments=3, hexagonalize=True),
-                   f"face {hole} is a hole .* cannot be extruded")
+                   f"face {hole} is a hole .* cannot be extruded", error=InvalidArgumentError)
     scene = Scene()
     scene.add(m, "box")
     with use_scene(scene):
-        assert_refused(m, lambda _: commands.extrude("cubical", hole), f"face {hole} is a hole")
+        assert_refused(m, lambda _: commands.extrude("cubical", hole), f"face {hole} is a hole",
+                       error=InvalidArgumentError)
 
 
 def test_a_face_next_to_a_hole_still_extrudes_and_the_hole_stays():
@@ -710,6 +721,6 @@ def test_the_documented_figures_are_exactly_those_checked():
 def test_an_on_off_option_that_is_not_a_flag_is_refused(option):
     m = cube()
     before = snapshot(m)
-    with pytest.raises(DLFLError, match=f"{option} must be True or False, got 'no'"):
+    with pytest.raises(InvalidArgumentError, match=f"{option} must be True or False, got 'no'"):
         extrude(m, 0, "octa", **{option: "no"})
     assert snapshot(m) == before

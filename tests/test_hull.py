@@ -24,6 +24,7 @@ from livemod.dlfl import (
 )
 from livemod.dlfl.analysis import face_normals, face_points, polygon_normal
 from livemod.dlfl.build import point_cloud
+from livemod.dlfl.errors import GeometryError, InvalidArgumentError
 from livemod.dlfl.shapes import cube, dodecahedron, grid, icosahedron, octahedron, torus
 from livemod.dlfl.subdivision import subdivide
 from tests.meshes import assert_refused_quietly, assert_scales, point_sphere
@@ -139,20 +140,22 @@ def test_hull_polygons_do_not_depend_on_a_far_offset():
     assert cycles(hull_polygons(points + 1e6)) == cycles(hull_polygons(points))
 
 
-@pytest.mark.parametrize(("points", "message"), [
-    (CORNERS[:3], "at least 4 points, got 3"),
-    (np.zeros((0, 3)), "at least 4 points, got 0"),
-    (CORNERS[[0, 2, 4, 6]], "not all in one plane; these 4 points are coplanar"),
-    (np.array([[0, 0, 0], [1, 1, 1], [2, 2, 2], [3, 3, 3.0]]), "not all in one plane"),
-    (np.ones((5, 3)), "not all in one plane"),
-    (np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, np.nan]]), "finite points"),
-    (np.array([[-1.7e308, 0, 0], [1.7e308, 0, 0], [0, 1, 0], [0, 0, 1]]), "finite points"),
-    (np.zeros((4, 2)), r"\(n, 3\) points"),
+@pytest.mark.parametrize(("points", "message", "error"), [
+    (CORNERS[:3], "at least 4 points, got 3", InvalidArgumentError),
+    (np.zeros((0, 3)), "at least 4 points, got 0", InvalidArgumentError),
+    (CORNERS[[0, 2, 4, 6]], "not all in one plane; these 4 points are coplanar", GeometryError),
+    (np.array([[0, 0, 0], [1, 1, 1], [2, 2, 2], [3, 3, 3.0]]), "not all in one plane",
+     GeometryError),
+    (np.ones((5, 3)), "not all in one plane", GeometryError),
+    (np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, np.nan]]), "finite points", GeometryError),
+    (np.array([[-1.7e308, 0, 0], [1.7e308, 0, 0], [0, 1, 0], [0, 0, 1]]), "finite points",
+     GeometryError),
+    (np.zeros((4, 2)), r"\(n, 3\) points", InvalidArgumentError),
 ])
-def test_degenerate_points_are_refused_by_name(points, message):
+def test_degenerate_points_are_refused_by_name(points, message, error):
     with warnings.catch_warnings():
         warnings.simplefilter("error")
-        with pytest.raises(DLFLError, match=message):
+        with pytest.raises(error, match=message):
             hull_polygons(points)
 
 
@@ -449,7 +452,7 @@ def test_a_side_in_line_with_a_point_is_left_to_turning():
 ])
 def test_polygons_that_are_no_closed_sphere_are_refused(polygons):
     hull._check_closed([[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]])  # a tetrahedron
-    with pytest.raises(DLFLError, match="does not close up"):
+    with pytest.raises(GeometryError, match="does not close up"):
         hull._check_closed(polygons)
 
 
@@ -465,7 +468,7 @@ def test_flat_points_are_told_as_by_their_least_squares_plane(thickness):
         normal = np.linalg.svd(centred, full_matrices=False)[2][-1]
         flat = not np.abs(centred @ normal).max() > eps
         if flat:
-            with pytest.raises(DLFLError, match="coplanar"):
+            with pytest.raises(GeometryError, match="coplanar"):
                 hull._check_not_flat(points, eps)
         else:
             hull._check_not_flat(points, eps)

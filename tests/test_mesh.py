@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 from livemod.dlfl import DLFLError, Mesh, genus, num_components, validate
+from livemod.dlfl.errors import InvalidArgumentError, UnknownIdError
 from tests.meshes import (
     assert_refused,
     corner_structure,
@@ -78,7 +79,7 @@ def test_merged_face_visits_a_vertex_twice_and_corner_at_is_ambiguous():
     face = m.edge_faces(e)[0]
     assert m.face_vertices(face).count(0) == 2
     at_zero = [c for c in m.face_corners(face) if m.corner_vertex(c) == 0]
-    with pytest.raises(DLFLError) as info:
+    with pytest.raises(InvalidArgumentError) as info:
         m.corner_at(face, 0)
     message = str(info.value)
     assert "ambiguous" in message
@@ -161,7 +162,7 @@ def test_point_sphere_joined_to_a_cube_corner():
 def test_insert_same_corner_twice_is_refused():
     m = cube()
     before = snapshot(m)
-    with pytest.raises(DLFLError, match="corner 3 twice"):
+    with pytest.raises(InvalidArgumentError, match="corner 3 twice"):
         m.insert_edge(3, 3)
     assert snapshot(m) == before
 
@@ -273,7 +274,7 @@ def test_subdivide_edge_one_division_is_a_no_op():
 def test_subdivide_edge_refuses_bad_divisions(bad):
     m = cube()
     before = snapshot(m)
-    with pytest.raises(DLFLError, match="divisions"):
+    with pytest.raises(InvalidArgumentError, match="divisions"):
         m.subdivide_edge(m.corner_edge(0), bad)
     assert snapshot(m) == before
 
@@ -361,7 +362,7 @@ def test_create_and_remove_a_point_sphere():
 def test_remove_vertex_with_edges_is_refused():
     m = cube()
     before = snapshot(m)
-    with pytest.raises(DLFLError, match="vertex 0 has 3 edge end"):
+    with pytest.raises(InvalidArgumentError, match="vertex 0 has 3 edge end"):
         m.remove_vertex(0)
     assert snapshot(m) == before
 
@@ -381,7 +382,7 @@ def test_create_face_makes_a_two_sided_polygon():
 def test_create_face_refuses_bad_points(points):
     m = cube()
     before = snapshot(m)
-    with pytest.raises(DLFLError):
+    with pytest.raises(InvalidArgumentError):
         m.create_face(points)
     assert snapshot(m) == before
 
@@ -418,29 +419,43 @@ def test_deleted_ids_raise_naming_them():
     m = cube()
     e = m.corner_edge(0)
     m.delete_edge(e)
-    with pytest.raises(DLFLError, match=f"edge {e} was deleted"):
+    with pytest.raises(UnknownIdError, match=f"edge {e} was deleted"):
         m.delete_edge(e)
-    with pytest.raises(DLFLError, match="edge 99 does not exist"):
+    with pytest.raises(UnknownIdError, match="edge 99 does not exist"):
         m.edge_corners(99)
     v = m.create_vertex()
     m.remove_vertex(v)
-    with pytest.raises(DLFLError, match=f"vertex {v} was deleted"):
+    with pytest.raises(UnknownIdError, match=f"vertex {v} was deleted"):
         m.position(v)
-    with pytest.raises(DLFLError, match="face 999 does not exist"):
+    with pytest.raises(UnknownIdError, match="face 999 does not exist"):
         m.face_corners(999)
-    with pytest.raises(DLFLError, match="corner -1 does not exist"):
+    with pytest.raises(UnknownIdError, match="corner -1 does not exist"):
         m.corner_next(-1)
+
+
+def test_a_deleted_id_is_a_lookup_error():
+    m = cube()
+    e, v = m.corner_edge(0), m.create_vertex()
+    m.delete_edge(e)
+    m.remove_vertex(v)
+    for call, message in [(lambda: m.edge_corners(e), f"^edge {e} was deleted$"),
+                          (lambda: m.position(v), f"^vertex {v} was deleted$"),
+                          (lambda: m.positions(np.array([0, v])), f"^vertex {v} was deleted$"),
+                          (lambda: m.face_points(99), "^face 99 does not exist$")]:
+        with pytest.raises(LookupError, match=message) as info:
+            call()
+        assert type(info.value) is UnknownIdError and isinstance(info.value, DLFLError)
 
 
 @pytest.mark.parametrize("bad", [1.0, "2", None, (0, 1), True, [3]])
 def test_wrong_kind_of_argument_is_refused(bad):
     m = cube()
     before = snapshot(m)
-    with pytest.raises(DLFLError, match="expected a corner id"):
+    with pytest.raises(InvalidArgumentError, match="expected a corner id"):
         m.insert_edge(bad, 2)
-    with pytest.raises(DLFLError, match="expected a edge id|expected an edge id"):
+    with pytest.raises(InvalidArgumentError, match="expected a edge id|expected an edge id"):
         m.delete_edge(bad)
-    with pytest.raises(DLFLError, match="expected a vertex id"):
+    with pytest.raises(InvalidArgumentError, match="expected a vertex id"):
         m.remove_vertex(bad)
     assert snapshot(m) == before
 
@@ -469,20 +484,20 @@ def test_failing_operators_leave_the_mesh_unchanged():
     m.delete_edge(dead)
     before = snapshot(m)
     attempts = [
-        lambda: m.insert_edge(0, 10_000),
-        lambda: m.insert_edge(1, 1),
-        lambda: m.delete_edge(dead),
-        lambda: m.collapse_edge(dead),
-        lambda: m.subdivide_edge(dead, 3),
-        lambda: m.subdivide_edge(e, 0),
-        lambda: m.remove_vertex(0),
-        lambda: m.create_vertex((1, 2)),
-        lambda: m.create_face([(0, 0, 0)]),
-        lambda: m.set_position(0, (1, 2, "x")),
-        lambda: m.corner_at(0, 11),
+        (lambda: m.insert_edge(0, 10_000), UnknownIdError),
+        (lambda: m.insert_edge(1, 1), InvalidArgumentError),
+        (lambda: m.delete_edge(dead), UnknownIdError),
+        (lambda: m.collapse_edge(dead), UnknownIdError),
+        (lambda: m.subdivide_edge(dead, 3), UnknownIdError),
+        (lambda: m.subdivide_edge(e, 0), InvalidArgumentError),
+        (lambda: m.remove_vertex(0), InvalidArgumentError),
+        (lambda: m.create_vertex((1, 2)), InvalidArgumentError),
+        (lambda: m.create_face([(0, 0, 0)]), InvalidArgumentError),
+        (lambda: m.set_position(0, (1, 2, "x")), InvalidArgumentError),
+        (lambda: m.corner_at(0, 11), UnknownIdError),
     ]
-    for attempt in attempts:
-        with pytest.raises(DLFLError):
+    for attempt, error in attempts:
+        with pytest.raises(error):
             attempt()
         assert snapshot(m) == before
 
@@ -563,11 +578,11 @@ def test_set_positions_checks_shape():
     np.testing.assert_allclose(m.position(1), [8, 8, 8])
     m.set_positions([2, 3], (1, 1, 1))
     np.testing.assert_allclose(m.position(3), [1, 1, 1])
-    with pytest.raises(DLFLError, match="shape"):
+    with pytest.raises(InvalidArgumentError, match="shape"):
         m.set_positions([0, 1], [[1, 2, 3]])
-    with pytest.raises(DLFLError, match="positions must be numbers"):
+    with pytest.raises(InvalidArgumentError, match="positions must be numbers"):
         m.set_positions([0], ["a", "b", "c"])
-    with pytest.raises(DLFLError, match="sequence of vertex ids"):
+    with pytest.raises(InvalidArgumentError, match="sequence of vertex ids"):
         m.set_positions(3, (1, 1, 1))
 
 
@@ -659,8 +674,10 @@ def test_subdivide_between_far_out_ends_stays_finite():
 
 def test_subdividing_into_more_parts_than_a_mesh_holds_is_refused():
     assert_refused(cube(), lambda m: m.subdivide_edge(0, 2**30),
-                   "divisions=1073741824 would make at least 2,147,483,648 corners")
-    assert_refused(cube(), lambda m: m.subdivide_edge(0, 0), "divisions must be an integer >= 1")
+                   "divisions=1073741824 would make at least 2,147,483,648 corners",
+                   error=InvalidArgumentError)
+    assert_refused(cube(), lambda m: m.subdivide_edge(0, 0), "divisions must be an integer >= 1",
+                   error=InvalidArgumentError)
 
 
 # -- bulk accessors ----------------------------------------------------------------
@@ -689,16 +706,16 @@ def test_positions_find_ids_in_reused_slots():
 @pytest.mark.parametrize("ids", [[0, 99, 98], np.array([0, 99, 98])])
 def test_positions_name_the_first_id_that_is_not_a_vertex(ids):
     m = cube()
-    with pytest.raises(DLFLError, match="^vertex 99 does not exist$"):
+    with pytest.raises(UnknownIdError, match="^vertex 99 does not exist$"):
         m.positions(ids)
 
 
 def test_positions_name_a_deleted_vertex_and_refuse_non_integers():
     m, vertices = three_point_spheres()
     m.remove_vertex(vertices[0])
-    with pytest.raises(DLFLError, match=f"^vertex {vertices[0]} was deleted$"):
+    with pytest.raises(UnknownIdError, match=f"^vertex {vertices[0]} was deleted$"):
         m.positions(np.array(vertices))
-    with pytest.raises(DLFLError, match=r"expected a vertex id \(an integer\), got 1.0"):
+    with pytest.raises(InvalidArgumentError, match=r"expected a vertex id \(an integer\), got 1.0"):
         m.positions([vertices[1], 1.0])
 
 
@@ -711,7 +728,7 @@ def test_face_points_follow_the_ring_from_the_head():
     face = m.corner_face(1)
     np.testing.assert_array_equal(m.face_points(face),
                                   m.positions(m.face_vertices(face)))
-    with pytest.raises(DLFLError, match="^face 99 does not exist$"):
+    with pytest.raises(UnknownIdError, match="^face 99 does not exist$"):
         m.face_points(99)
 
 
@@ -749,7 +766,7 @@ def test_from_tables_adopts_the_tables_of_a_two_sided_edge():
     assert m.face_vertices(30) == [10, 11] and m.hole_mask().tolist() == [False, True]
     assert m.next_ids() == (12, 22, 32, 44)
     assert m.edge_corners(20) == (40, 42)
-    with pytest.raises(DLFLError, match="vertex 3 was deleted or never existed"):
+    with pytest.raises(UnknownIdError, match="vertex 3 was deleted or never existed"):
         m.position(3)
 
 
@@ -778,8 +795,8 @@ def test_from_tables_refuses_missing_fields_and_ragged_tables():
         return empty | changed
 
     assert Mesh.from_tables(**tables()).counts() == (0, 0, 0)
-    with pytest.raises(DLFLError, match=r"^the edge table needs the fields \['c0', 'c1'\], "
+    with pytest.raises(InvalidArgumentError, match=r"^the edge table needs the fields \['c0', 'c1'\], "
                                         r"got \['c0'\]$"):
         Mesh.from_tables(**tables(edges={"c0": np.zeros(0)}))
-    with pytest.raises(DLFLError, match="^the face table's fields differ in length: "):
+    with pytest.raises(InvalidArgumentError, match="^the face table's fields differ in length: "):
         Mesh.from_tables(**tables(faces={"corner": np.zeros(2), "hole": np.zeros(1)}))

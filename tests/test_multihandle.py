@@ -10,8 +10,9 @@ import warnings
 import numpy as np
 import pytest
 
-from livemod.dlfl import DLFLError, Mesh, face_size_histogram, from_polygons, genus, validate
+from livemod.dlfl import Mesh, face_size_histogram, from_polygons, genus, validate
 from livemod.dlfl.analysis import num_components
+from livemod.dlfl.errors import GeometryError, InvalidArgumentError, UnknownIdError
 from livemod.dlfl.multihandle import (
     face_max_offsets,
     fitted_factor,
@@ -179,7 +180,7 @@ def test_closest_edges_delete_new_edges_between_coplanar_quads():
 def test_closest_edges_refuse_faces_with_no_qualifying_pair():
     # opposite octahedron faces: their parallel edges run the same way (crossed quads)
     assert_refused(octahedron(), lambda m: multi_face_handle_closest_edges(m, [0, 6]),
-                   r"no two edges of faces \[0, 6\] make a nearly planar quad")
+                   r"no two edges of faces \[0, 6\] make a nearly planar quad", error=GeometryError)
 
 
 # -- fitted hub ---------------------------------------------------------------------------------
@@ -201,7 +202,7 @@ def test_fitted_factor_follows_topmods_search():
 
 def test_fitted_factor_gives_up_after_ten_tries():
     tried: list[float] = []
-    with pytest.raises(DLFLError, match="no hub that keeps every point found in 10 steps"):
+    with pytest.raises(GeometryError, match="no hub that keeps every point found in 10 steps"):
         fitted_factor(lambda f: tried.append(f) is not None)
     assert len(tried) == 10
 
@@ -231,7 +232,8 @@ def test_fitted_hub_inside_a_cube_joins_top_and_bottom():
 
 def test_fitted_hub_refuses_faces_it_cannot_face():
     assert_refused(cube(), lambda m: multi_face_handle_fitted(m, [0, 2, 4]),
-                   "face 2 has no hull face facing it; the fitted hub suits faces that face")
+                   "face 2 has no hull face facing it; the fitted hub suits faces that face",
+                   error=GeometryError)
 
 
 def test_fitted_hub_refuses_points_inside_the_faces_hull():
@@ -239,24 +241,34 @@ def test_fitted_hub_refuses_points_inside_the_faces_hull():
     m = from_polygons(np.concatenate([CUBE_POSITIONS, inner]),
                       CUBE_FACES + [[v + 8 for v in f] for f in CUBE_FACES])
     assert_refused(m, lambda m: multi_face_handle_fitted(m, [0, TOP, 6 + TOP]),
-                   r"the faces' point \[0.4, 0.4, 0.6.*\] lies inside the convex hull")
+                   r"the faces' point \[0.4, 0.4, 0.6.*\] lies inside the convex hull",
+                   error=GeometryError)
 
 
 # -- bad input ------------------------------------------------------------------------------------
 
-@pytest.mark.parametrize(("call", "message"), [
-    (lambda m: multi_face_handle(m, [0, 1], max_offsets="yes"), "max_offsets must be True or False"),
-    (lambda m: face_max_offsets(m, [0, 1], float("nan")), "fallback must be finite"),
-    (lambda m: face_max_offsets(m, [0]), "face_max_offsets needs two or more different faces"),
-    (lambda m: multi_face_handle_closest_edges(m, [0, 0]), "needs two or more different faces"),
-    (lambda m: multi_face_handle_closest_edges(m, [0, 99]), "face 99 does not exist"),
-    (lambda m: multi_face_handle_closest_edges(m, [0, 1.0]), "faces must hold ids"),
-    (lambda m: multi_face_handle_fitted(m, [0, 1], 0.0), "min_factor must be a positive number"),
-    (lambda m: multi_face_handle_fitted(m, [0, 1], connect=2), "connect must be True or False"),
-    (lambda m: multi_face_handle_fitted(m, [3]), "multi_face_handle_fitted needs two or more"),
+@pytest.mark.parametrize(("call", "message", "error"), [
+    (lambda m: multi_face_handle(m, [0, 1], max_offsets="yes"), "max_offsets must be True or False",
+     InvalidArgumentError),
+    (lambda m: face_max_offsets(m, [0, 1], float("nan")), "fallback must be finite",
+     InvalidArgumentError),
+    (lambda m: face_max_offsets(m, [0]), "face_max_offsets needs two or more different faces",
+     InvalidArgumentError),
+    (lambda m: multi_face_handle_closest_edges(m, [0, 0]), "needs two or more different faces",
+     InvalidArgumentError),
+    (lambda m: multi_face_handle_closest_edges(m, [0, 99]), "face 99 does not exist",
+     UnknownIdError),
+    (lambda m: multi_face_handle_closest_edges(m, [0, 1.0]), "faces must hold ids",
+     InvalidArgumentError),
+    (lambda m: multi_face_handle_fitted(m, [0, 1], 0.0), "min_factor must be a positive number",
+     InvalidArgumentError),
+    (lambda m: multi_face_handle_fitted(m, [0, 1], connect=2), "connect must be True or False",
+     InvalidArgumentError),
+    (lambda m: multi_face_handle_fitted(m, [3]), "multi_face_handle_fitted needs two or more",
+     InvalidArgumentError),
 ])
-def test_bad_input_is_refused_unchanged(call, message):
-    assert_refused(cube(), call, message)
+def test_bad_input_is_refused_unchanged(call, message, error):
+    assert_refused(cube(), call, message, error=error)
 
 
 def test_faces_without_a_normal_are_refused():
@@ -264,7 +276,7 @@ def test_faces_without_a_normal_are_refused():
     v = m.create_vertex((5.0, 5.0, 5.0))  # a point-sphere: a one-corner face
     lone = m.corner_face(m.vertex_corner(v))
     assert_refused(m, lambda m: multi_face_handle_closest_edges(m, [0, lone]),
-                   f"face {lone} has no normal")
+                   f"face {lone} has no normal", error=GeometryError)
 
 
 # -- huge and tiny meshes ---------------------------------------------------------------------

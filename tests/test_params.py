@@ -4,8 +4,9 @@ from __future__ import annotations
 
 import pytest
 
-from livemod.dlfl import DLFLError, Scene, use_scene
+from livemod.dlfl import Scene, use_scene
 from livemod.dlfl.commands.params import param
+from livemod.dlfl.errors import InvalidArgumentError
 from livemod.dlfl.params import make_spec
 
 
@@ -44,7 +45,7 @@ def test_given_values_are_checked_and_converted() -> None:
     ],
 )
 def test_bad_values_and_declarations_are_clear_errors(values, declare, message) -> None:
-    with use_scene(run_with(values)), pytest.raises(DLFLError, match=message):
+    with use_scene(run_with(values)), pytest.raises(InvalidArgumentError, match=message):
         declare()
 
 
@@ -52,7 +53,7 @@ def test_conflicting_redeclaration_is_refused_but_repeats_are_fine() -> None:
     with use_scene(run_with({})):
         assert param("k", 2, min=0) == 2
         assert param("k", 2, min=0) == 2
-        with pytest.raises(DLFLError, match="declared twice"):
+        with pytest.raises(InvalidArgumentError, match="declared twice"):
             param("k", 3)
 
 

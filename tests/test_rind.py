@@ -5,8 +5,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from livemod.dlfl import DLFLError, face_size_histogram, genus, num_components, validate
+from livemod.dlfl import face_size_histogram, genus, num_components, validate
 from livemod.dlfl.arrays import mesh_arrays
+from livemod.dlfl.errors import GeometryError, InvalidArgumentError, UnknownIdError
 from livemod.dlfl.rind import crust, crust_offsets, rind
 from livemod.dlfl.selection import faces_by_size
 from livemod.dlfl.shapes import cube, icosahedron, soccer_ball, torus
@@ -100,7 +101,7 @@ def test_negative_scale_grows_the_outer_shell():
 def test_a_scale_of_magnitude_one_is_refused(scale):
     # TopMod clamped it to [-1, 1] and built an inner shell on the outer one
     m = cube()
-    with pytest.raises(DLFLError, match=f"scale {scale} leaves no thickness between the shells"):
+    with pytest.raises(InvalidArgumentError, match=f"scale {scale} leaves no thickness between the shells"):
         rind(m, [0], use_scaling=True, scale=scale)
     assert snapshot(m) == snapshot(cube())
 
@@ -111,7 +112,7 @@ def test_a_scale_of_magnitude_one_is_refused(scale):
 ])
 def test_non_finite_thickness_or_scale_is_refused(given, message):
     m = cube()
-    with pytest.raises(DLFLError, match=message):
+    with pytest.raises(InvalidArgumentError, match=message):
         rind(m, [0], **given)
     assert snapshot(m) == snapshot(cube())
 
@@ -147,20 +148,22 @@ def test_ids_are_fresh_after_the_rebuild():
 
 
 @pytest.mark.parametrize(
-    "faces, thickness",
-    [([99], 0.5), ([TOP, 42], 0.5), ([TOP], 0.0), ([TOP], 1.0), ([TOP], 1.5), ([TOP], 7.0)],
+    ("faces", "thickness", "error"),
+    [([99], 0.5, UnknownIdError), ([TOP, 42], 0.5, UnknownIdError),
+     ([TOP], 0.0, InvalidArgumentError),
+     ([TOP], 1.0, GeometryError), ([TOP], 1.5, GeometryError), ([TOP], 7.0, GeometryError)],
 )
-def test_bad_input_leaves_the_mesh_unchanged(faces, thickness):
+def test_bad_input_leaves_the_mesh_unchanged(faces, thickness, error):
     m = cube()
     before = snapshot(m)
-    with pytest.raises(DLFLError):
+    with pytest.raises(error):
         rind(m, faces, thickness)
     assert snapshot(m) == before
 
 
 def test_zero_scale_is_refused():
     m = cube()
-    with pytest.raises(DLFLError, match="scale 0"):
+    with pytest.raises(InvalidArgumentError, match="scale 0"):
         rind(m, [TOP], use_scaling=True, scale=0.0)
 
 
@@ -176,13 +179,13 @@ def test_a_vertex_whose_faces_are_all_punched_goes_with_cleanup():
 def test_punching_every_face_with_cleanup_is_refused():
     m = cube()
     before = snapshot(m)
-    with pytest.raises(DLFLError, match="leaves nothing"):
+    with pytest.raises(InvalidArgumentError, match="leaves nothing"):
         rind(m, range(6), 0.5)
     assert snapshot(m) == before
 
 
 def test_point_spheres_are_refused():
-    with pytest.raises(DLFLError, match="point-sphere"):
+    with pytest.raises(InvalidArgumentError, match="point-sphere"):
         rind(point_sphere(), [], 0.5)
 
 
@@ -232,7 +235,7 @@ def test_sculpted_solids_face_outward():
 def test_rind_refuses_face_lists_holding_no_ids(faces):
     m = cube()
     before = snapshot(m)
-    with pytest.raises(DLFLError, match="faces must hold ids"):
+    with pytest.raises(InvalidArgumentError, match="faces must hold ids"):
         rind(m, faces, 0.2)
     assert snapshot(m) == before
 
@@ -240,7 +243,7 @@ def test_rind_refuses_face_lists_holding_no_ids(faces):
 def test_a_thickness_that_overflows_is_refused():
     m = cube()
     before = snapshot(m)
-    with pytest.raises(DLFLError, match=r"would move vertex 0 to \[-?inf.*its numbers overflow"):
+    with pytest.raises(GeometryError, match=r"would move vertex 0 to \[-?inf.*its numbers overflow"):
         crust(m, -1e308)  # the outer copy moves outward past the float range
     assert snapshot(m) == before
 
@@ -260,7 +263,7 @@ def test_a_crust_too_large_to_check_says_so_not_that_it_turns_over():
     # the edge products that tell a copy pushed through overflow past ~1e154
     m = cube()
     m.set_positions(m.vertex_ids(), m.positions_view() * 1e160)
-    with pytest.raises(DLFLError, match="too large to check for faces turning over"):
+    with pytest.raises(GeometryError, match="too large to check for faces turning over"):
         crust(m, 1e159)
 
 

@@ -9,9 +9,10 @@ import re
 import numpy as np
 import pytest
 
-from livemod.dlfl import DLFLError, from_polygons, validate
+from livemod.dlfl import from_polygons, validate
 from livemod.dlfl.arrays import mesh_arrays
 from livemod.dlfl.connect import closest_corners, connect_faces_closest
+from livemod.dlfl.errors import GeometryError, InvalidArgumentError, UnknownIdError
 from livemod.dlfl.rind import crust_offsets, rind
 from livemod.dlfl.shapes import cube
 from livemod.dlfl.sponge import sponge
@@ -56,16 +57,17 @@ def _split_edge_cube():
 def test_a_crust_of_a_mesh_with_no_face_normal_is_refused(make, call):
     mesh = make()
     validate(mesh)
-    assert_refused(mesh, call, NO_NORMAL)
+    assert_refused(mesh, call, NO_NORMAL, error=GeometryError)
 
 
 @pytest.mark.parametrize("make", [_collinear_sliver, _coincident_sliver])
 def test_a_scaled_crust_of_a_mesh_with_no_face_area_is_refused(make):
-    assert_refused(make(), lambda m: rind(m, [], use_scaling=True, scale=0.5), NO_AREA)
+    assert_refused(make(), lambda m: rind(m, [], use_scaling=True, scale=0.5), NO_AREA,
+                   error=GeometryError)
 
 
 def test_crust_offsets_of_a_mesh_with_no_face_normal_are_refused():
-    with pytest.raises(DLFLError, match=NO_NORMAL):
+    with pytest.raises(GeometryError, match=NO_NORMAL):
         crust_offsets(mesh_arrays(_collinear_sliver()), 0.1)
 
 
@@ -116,13 +118,15 @@ def test_the_sponge_of_a_cube_with_a_split_edge_takes_the_default_thickness():
 @pytest.mark.parametrize("scale", [1.5, -5, 5.0, 1.0000001, -1e300])
 def test_a_scale_beyond_one_is_refused_naming_the_value_given(scale):
     message = re.escape(f"scale {scale} is beyond +-1: a scaled crust needs 0 < |scale| < 1")
-    assert_refused(cube(), lambda m: rind(m, [0], use_scaling=True, scale=scale), message)
+    assert_refused(cube(), lambda m: rind(m, [0], use_scaling=True, scale=scale), message,
+                   error=InvalidArgumentError)
 
 
 @pytest.mark.parametrize("scale", [1, -1.0])
 def test_a_scale_of_one_still_says_there_is_no_thickness(scale):
     message = re.escape(f"scale {scale} leaves no thickness between the shells")
-    assert_refused(cube(), lambda m: rind(m, [], use_scaling=True, scale=scale), message)
+    assert_refused(cube(), lambda m: rind(m, [], use_scaling=True, scale=scale), message,
+                   error=InvalidArgumentError)
 
 
 # ------------------------------------------------------------ connect_faces_closest ids
@@ -136,8 +140,9 @@ def test_a_scale_of_one_still_says_there_is_no_thickness(scale):
     ("0", 5, "face1 must be a face id (int), got '0'"),
 ])
 def test_connect_faces_closest_says_face_ids_are_ints(face1, face2, message):
-    assert_refused(cube(), lambda m: connect_faces_closest(m, face1, face2), re.escape(message))
-    with pytest.raises(DLFLError, match=re.escape(message)):
+    assert_refused(cube(), lambda m: connect_faces_closest(m, face1, face2), re.escape(message),
+                   error=InvalidArgumentError)
+    with pytest.raises(InvalidArgumentError, match=re.escape(message)):
         closest_corners(cube(), face1, face2)
 
 
@@ -150,4 +155,4 @@ def test_connect_faces_closest_takes_numpy_ints():
 
 def test_connect_faces_closest_on_a_missing_face_still_says_so():
     message = re.escape("face 99 does not exist (deleted or never made)")
-    assert_refused(cube(), lambda m: connect_faces_closest(m, 0, 99), message)
+    assert_refused(cube(), lambda m: connect_faces_closest(m, 0, 99), message, error=UnknownIdError)

@@ -8,6 +8,7 @@ import pytest
 
 from livemod.dlfl import Mesh, from_polygons, genus, validate
 from livemod.dlfl.connect import hermite_handle
+from livemod.dlfl.errors import GeometryError, InvalidArgumentError
 from livemod.dlfl.rind import rind
 from livemod.dlfl.shapes import cube, icosahedron
 from livemod.dlfl.sponge import sponge
@@ -44,7 +45,8 @@ def test_hermite_twists_that_are_not_a_whole_number_of_turns_are_refused(twists)
     # int(twists) truncated 1.5 to 1 unseen and raised ValueError/OverflowError on the rest
     m = cube()
     c1, c2 = _ends(m)
-    assert_refused(m, lambda m: hermite_handle(m, c1, c2, 4, twists=twists), "twists")
+    assert_refused(m, lambda m: hermite_handle(m, c1, c2, 4, twists=twists), "twists",
+                   error=InvalidArgumentError)
 
 
 @pytest.mark.parametrize("twists", [2.0, np.int64(-1), -3])
@@ -63,7 +65,8 @@ def test_a_one_segment_hermite_handle_still_checks_its_options(option, message):
     # one segment is a plain connect_faces, which silently ignored bad options
     m = cube()
     c1, c2 = _ends(m)
-    assert_refused(m, lambda m: hermite_handle(m, c1, c2, 1, **option), message)
+    assert_refused(m, lambda m: hermite_handle(m, c1, c2, 1, **option), message,
+                   error=InvalidArgumentError)
 
 
 def test_the_hermite_handle_of_a_tiny_mesh_is_the_scaled_unit_one():
@@ -83,13 +86,15 @@ def test_a_rind_that_inverts_a_tiny_mesh_is_refused(scale, thickness):
     # absolute cut-offs (edges 1e-24 squared, areas 1e-12) left out every edge
     # and face of a tiny mesh, so a copy pushed through the middle passed
     m = _scaled_cube(scale)
-    assert_refused(m, lambda m: rind(m, [m.face_ids()[0]], thickness * scale), "invert")
+    assert_refused(m, lambda m: rind(m, [m.face_ids()[0]], thickness * scale), "invert",
+                   error=GeometryError)
 
 
 @pytest.mark.parametrize("scale", [1e-13, 1e-150])
 def test_a_sponge_too_thick_for_a_tiny_mesh_is_refused(scale):
     m = _scaled_cube(scale)
-    assert_refused(m, lambda m: sponge(m, 1.5 * scale), "too large for this mesh")
+    assert_refused(m, lambda m: sponge(m, 1.5 * scale), "too large for this mesh",
+                   error=GeometryError)
 
 
 def test_the_rind_of_a_tiny_mesh_still_works():
@@ -101,7 +106,8 @@ def test_the_rind_of_a_tiny_mesh_still_works():
 
 def test_a_negative_thickness_that_turns_a_slot_floor_over_is_refused():
     # outward, the U's slot walls (1 apart) meet at 0.5: its floor reversed unchecked
-    assert_refused(_u_prism(), lambda m: rind(m, [], -0.6), "-0.6 would invert")
+    assert_refused(_u_prism(), lambda m: rind(m, [], -0.6), "-0.6 would invert",
+                   error=GeometryError)
 
 
 def test_a_negative_thickness_that_fits_the_slot_works():

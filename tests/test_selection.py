@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from livemod.dlfl import DLFLError
+from livemod.dlfl.errors import InvalidArgumentError, UnknownIdError
 from livemod.dlfl.selection import (
     checkerboard,
     edge_loop,
@@ -49,7 +49,7 @@ def test_faces_by_normal():
     assert faces_by_normal(c, (0, 1, 0)) == [0]
     assert faces_by_normal(c, (0, -5, 0)) == [5]
     assert faces_by_normal(c, (1, 1, 0), max_angle=46) == [0, 1]
-    with pytest.raises(DLFLError):
+    with pytest.raises(InvalidArgumentError):
         faces_by_normal(c, (0, 0, 0))
 
 
@@ -72,7 +72,7 @@ def test_faces_by_area():
     assert faces_by_area(c, 0) == list(range(6))
     c.set_position(0, (2, 2, 2))
     assert 0 not in faces_by_area(c, 5, delta=0.01)
-    with pytest.raises(DLFLError):
+    with pytest.raises(UnknownIdError):
         faces_by_area(c, 99)
 
 
@@ -82,7 +82,7 @@ def test_checkerboard_on_a_grid_and_a_torus():
     assert len(picked) == 8
     t = torus(8, 6)
     assert len(checkerboard(t, 0)) == 24
-    with pytest.raises(DLFLError):
+    with pytest.raises(UnknownIdError):
         checkerboard(t, 999)
 
 

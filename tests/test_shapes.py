@@ -8,7 +8,8 @@ from collections import Counter
 import numpy as np
 import pytest
 
-from livemod.dlfl import DLFLError, face_size_histogram, genus, num_components, validate
+from livemod.dlfl import face_size_histogram, genus, num_components, validate
+from livemod.dlfl.errors import InvalidArgumentError
 from livemod.dlfl.io import read_obj
 from livemod.dlfl.shapes import (
     SHAPES,
@@ -124,7 +125,7 @@ def test_spherical_cube_divisions():
     lambda: genus3_hexa(0), lambda: load_shape("teapot"),
 ])
 def test_bad_arguments_raise(call):
-    with pytest.raises(DLFLError):
+    with pytest.raises(InvalidArgumentError):
         call()
 
 

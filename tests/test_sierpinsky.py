@@ -5,7 +5,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from livemod.dlfl import DLFLError, face_size_histogram, from_polygons, genus, validate
+from livemod.dlfl import face_size_histogram, from_polygons, genus, validate
+from livemod.dlfl.errors import InvalidArgumentError
 from livemod.dlfl.shapes import cube, octahedron, tetrahedron, torus
 from livemod.dlfl.sierpinsky import sierpinsky
 from tests.meshes import point_sphere, snapshot
@@ -59,7 +60,7 @@ def two_gons():
 def test_bad_input_leaves_the_mesh_unchanged(make):
     m = make()
     before = snapshot(m)
-    with pytest.raises(DLFLError):
+    with pytest.raises(InvalidArgumentError):
         sierpinsky(m)
     assert snapshot(m) == before
 

@@ -9,6 +9,12 @@ import pytest
 
 from livemod.dlfl import DLFLError, Mesh, budget, mesh_arrays, validate
 from livemod.dlfl.analysis import face_size_histogram, genus, num_components
+from livemod.dlfl.errors import (
+    BudgetExceededError,
+    GeometryError,
+    InvalidArgumentError,
+    UnknownIdError,
+)
 from livemod.dlfl.shapes import cube, grid, load_shape, torus
 from livemod.dlfl.subdivision import SCHEMES, subdivide, subdivide_faces
 from tests.meshes import (
@@ -342,7 +348,7 @@ def test_shared_edge_is_split_once():
 def test_subdivide_faces_refuses_unknown_face_and_keeps_the_mesh():
     m = cube()
     before = snapshot(m)
-    with pytest.raises(DLFLError, match="face id 999"):
+    with pytest.raises(UnknownIdError, match="face id 999"):
         subdivide_faces(m, [999])
     assert snapshot(m) == before
 
@@ -352,29 +358,31 @@ def test_subdivide_faces_refuses_unknown_face_and_keeps_the_mesh():
 def test_unknown_scheme_lists_the_valid_names():
     m = cube()
     before = snapshot(m)
-    with pytest.raises(DLFLError, match="unknown subdivision scheme 'catmul'.*catmull-clark"):
+    with pytest.raises(InvalidArgumentError, match="unknown subdivision scheme 'catmul'.*catmull-clark"):
         subdivide(m, "catmul")
     assert snapshot(m) == before
 
 
-@pytest.mark.parametrize(("scheme", "options", "message"), [
-    ("catmull-clark", {"depth": 2}, "no option 'depth'"),
-    ("catmull-clark", {"levels": 0}, "levels must be a positive integer"),
-    ("catmull-clark", {"levels": 1.5}, "levels must be a positive integer"),
-    ("checker", {"thickness": 0.7}, "thickness must be in"),
-    ("checker", {"thickness": 0}, "thickness must be in \\(0, 0.5\\]: 0 puts"),
-    ("dual-checkerboard", {"thickness": 0}, "thickness must be in \\(0, 0.5\\]: 0 puts"),
-    ("checker", {"thickness": "thin"}, "thickness must be a number"),
-    ("corner-cut", {"alpha": 0.1}, "alpha must be in"),
-    ("vertex-cut", {"offset": float("nan")}, "offset must be finite"),
-    ("root-3", {"scale": 2}, "no option 'scale'"),
-    ("dual-loop", {"max_faces": 20}, "would produce"),
-    ("star", {"offset": True}, "offset must be a number"),
+@pytest.mark.parametrize(("scheme", "options", "message", "error"), [
+    ("catmull-clark", {"depth": 2}, "no option 'depth'", InvalidArgumentError),
+    ("catmull-clark", {"levels": 0}, "levels must be a positive integer", InvalidArgumentError),
+    ("catmull-clark", {"levels": 1.5}, "levels must be a positive integer", InvalidArgumentError),
+    ("checker", {"thickness": 0.7}, "thickness must be in", InvalidArgumentError),
+    ("checker", {"thickness": 0}, "thickness must be in \\(0, 0.5\\]: 0 puts",
+     InvalidArgumentError),
+    ("dual-checkerboard", {"thickness": 0}, "thickness must be in \\(0, 0.5\\]: 0 puts",
+     InvalidArgumentError),
+    ("checker", {"thickness": "thin"}, "thickness must be a number", InvalidArgumentError),
+    ("corner-cut", {"alpha": 0.1}, "alpha must be in", InvalidArgumentError),
+    ("vertex-cut", {"offset": float("nan")}, "offset must be finite", InvalidArgumentError),
+    ("root-3", {"scale": 2}, "no option 'scale'", InvalidArgumentError),
+    ("dual-loop", {"max_faces": 20}, "would produce", BudgetExceededError),
+    ("star", {"offset": True}, "offset must be a number", InvalidArgumentError),
 ])
-def test_bad_options_raise_and_keep_the_mesh(scheme, options, message):
+def test_bad_options_raise_and_keep_the_mesh(scheme, options, message, error):
     m = cube()
     before = snapshot(m)
-    with pytest.raises(DLFLError, match=message):
+    with pytest.raises(error, match=message):
         subdivide(m, scheme, **options)
     assert snapshot(m) == before
 
@@ -382,7 +390,7 @@ def test_bad_options_raise_and_keep_the_mesh(scheme, options, message):
 def test_face_budget_names_the_count_before_building():
     m = cube()
     before = snapshot(m)
-    with pytest.raises(DLFLError, match="would produce 24 faces, more than the budget of 10"):
+    with pytest.raises(BudgetExceededError, match="would produce 24 faces, more than the budget of 10"):
         subdivide(m, "catmull-clark", max_faces=10)
     assert snapshot(m) == before
 
@@ -393,7 +401,7 @@ def test_session_budget_setting(monkeypatch):
     m = cube()
     subdivide(m, "catmull-clark")
     subdivide(m, "catmull-clark")
-    with pytest.raises(DLFLError, match="would produce 384 faces"):
+    with pytest.raises(BudgetExceededError, match="would produce 384 faces"):
         subdivide(m, "catmull-clark")
     assert m.counts() == (98, 192, 96)
 
@@ -422,7 +430,7 @@ def test_catmull_clark_levels_equal_repeated_steps():
 
 def test_catmull_clark_levels_budget_counts_the_last_level():
     m = cube()
-    with pytest.raises(DLFLError, match="would produce 1,536 faces"):
+    with pytest.raises(BudgetExceededError, match="would produce 1,536 faces"):
         subdivide(m, "catmull-clark", levels=4, max_faces=1000)
 
 
@@ -559,7 +567,7 @@ def test_options_that_overflow_are_refused_before_the_mesh_changes(scheme, optio
     m.set_positions(m.vertex_ids(), m.positions_view() * size)
     before = snapshot(m)
     # the corner cut names its own overflow; the others are caught as the mesh is built
-    with pytest.raises(DLFLError, match="not finite: the arguments are too large|numbers overflow"):
+    with pytest.raises(GeometryError, match="not finite: the arguments are too large|numbers overflow"):
         subdivide(m, scheme, **options)
     assert snapshot(m) == before
 
@@ -611,6 +619,6 @@ def test_a_huge_mesh_fractalizes_like_the_scaled_unit_one(scale):
 def test_subdivide_faces_refuses_entries_that_are_not_ids(faces):
     m = cube()
     before = snapshot(m)
-    with pytest.raises(DLFLError, match="face_ids must"):
+    with pytest.raises(InvalidArgumentError, match="face_ids must"):
         subdivide_faces(m, faces)
     assert snapshot(m) == before

@@ -4,8 +4,9 @@ from __future__ import annotations
 
 import pytest
 
-from livemod.dlfl import DLFLError, face_size_histogram, validate
+from livemod.dlfl import face_size_histogram, validate
 from livemod.dlfl.commands import dual, subdivide, subdivideFace, subdivideFaces
+from livemod.dlfl.errors import InvalidArgumentError, UnknownIdError
 from livemod.dlfl.scene import Selection
 from livemod.dlfl.subdivision import scheme_options
 from tests.meshes import counts, snapshot
@@ -44,13 +45,13 @@ def test_keyword_options(scene):
 
 def test_too_many_options_is_an_error(scene):
     before = snapshot(scene.mesh)
-    with pytest.raises(DLFLError, match="at most 0 options"):
+    with pytest.raises(InvalidArgumentError, match="at most 0 options"):
         subdivide("loop", 1)
-    with pytest.raises(DLFLError, match=r"at most 1 options \(levels\)"):
+    with pytest.raises(InvalidArgumentError, match=r"at most 1 options \(levels\)"):
         subdivide("catmull-clark", 1, 2)
-    with pytest.raises(DLFLError, match="given twice"):
+    with pytest.raises(InvalidArgumentError, match="given twice"):
         subdivide("checker", 0.2, thickness=0.3)
-    with pytest.raises(DLFLError, match="unknown subdivision scheme"):
+    with pytest.raises(InvalidArgumentError, match="unknown subdivision scheme"):
         subdivide("catmull")
     assert snapshot(scene.mesh) == before
 
@@ -81,11 +82,11 @@ def test_subdivide_faces_uses_the_selection(scene):
 
 
 def test_subdivide_faces_refuses_bad_ids(scene):
-    with pytest.raises(DLFLError, match="face id"):
+    with pytest.raises(UnknownIdError, match="face id"):
         subdivideFaces([12345])
-    with pytest.raises(DLFLError, match="faceids must be"):
+    with pytest.raises(InvalidArgumentError, match="faceids must be"):
         subdivideFaces("0")  # type: ignore[arg-type]
-    with pytest.raises(DLFLError, match="faceid must be"):
+    with pytest.raises(InvalidArgumentError, match="faceid must be"):
         subdivideFace(1.5)  # type: ignore[arg-type]
 
 

@@ -7,9 +7,10 @@ import warnings
 import numpy as np
 import pytest
 
-from livemod.dlfl import DLFLError, face_size_histogram, genus, num_components, validate
+from livemod.dlfl import face_size_histogram, genus, num_components, validate
 from livemod.dlfl.arrays import mesh_arrays
 from livemod.dlfl.cutting import truncate
+from livemod.dlfl.errors import GeometryError, InvalidArgumentError
 from livemod.dlfl.shapes import (
     cube,
     dodecahedron,
@@ -108,13 +109,13 @@ def test_wireframe_genus_is_the_cycle_rank_of_the_edge_graph():
 def test_wireframe_bad_thickness_leaves_the_mesh_unchanged(t):
     m = cube()
     before = snapshot(m)
-    with pytest.raises(DLFLError):
+    with pytest.raises(InvalidArgumentError):
         wireframe(m, t)
     assert snapshot(m) == before
 
 
 def test_wireframe_refuses_point_spheres():
-    with pytest.raises(DLFLError, match="point-sphere"):
+    with pytest.raises(InvalidArgumentError, match="point-sphere"):
         wireframe(point_sphere(), 0.1)
 
 
@@ -222,14 +223,14 @@ def test_columns_on_other_meshes():
 def test_columns_refuse_too_few_segments(segments):
     m = cube()
     before = snapshot(m)
-    with pytest.raises(DLFLError, match="segments"):
+    with pytest.raises(InvalidArgumentError, match="segments"):
         columns(m, 0.25, segments)
     assert snapshot(m) == before
 
 
 def test_columns_refuse_a_bad_thickness():
     m = cube()
-    with pytest.raises(DLFLError, match="thickness"):
+    with pytest.raises(InvalidArgumentError, match="thickness"):
         columns(m, 0.0, 4)
 
 
@@ -260,7 +261,7 @@ def test_wireframe_with_a_separate_width():
     assert summary(m) == ((48, 120, 64), {3: 16, 4: 48}, 5)
     outer = m.positions_view()[:24]
     assert np.isclose(np.abs(outer).min(), 0.85)
-    with pytest.raises(DLFLError):
+    with pytest.raises(InvalidArgumentError):
         wireframe(cube(), 0.1, width=0.0)
 
 
@@ -280,17 +281,17 @@ def test_corner_cut_points_are_half_the_thickness_from_both_edge_lines():
             np.testing.assert_allclose(dist, 0.1, atol=1e-12)
 
 
-@pytest.mark.parametrize(("call", "message"), [
-    (lambda m: wireframe(m, 1.7e308), r"a crust 1.7e\+308 thick .*numbers overflow"),
-    (lambda m: wireframe(m, None), "thickness must be a number"),
-    (lambda m: wireframe(m, 0.1, width="1"), "width must be a number"),
-    (lambda m: modified_corner_cut(m, (1.0,)), "thickness must be a number"),
-    (lambda m: columns(m, None, 4), "thickness must be a number"),
-    (lambda m: columns(m, 0.25, "4"), "segments must be a whole number"),
-    (lambda m: columns(m, 0.25, 3.5), "segments must be a whole number"),
+@pytest.mark.parametrize(("call", "message", "error"), [
+    (lambda m: wireframe(m, 1.7e308), r"a crust 1.7e\+308 thick .*numbers overflow", GeometryError),
+    (lambda m: wireframe(m, None), "thickness must be a number", InvalidArgumentError),
+    (lambda m: wireframe(m, 0.1, width="1"), "width must be a number", InvalidArgumentError),
+    (lambda m: modified_corner_cut(m, (1.0,)), "thickness must be a number", InvalidArgumentError),
+    (lambda m: columns(m, None, 4), "thickness must be a number", InvalidArgumentError),
+    (lambda m: columns(m, 0.25, "4"), "segments must be a whole number", InvalidArgumentError),
+    (lambda m: columns(m, 0.25, 3.5), "segments must be a whole number", InvalidArgumentError),
 ])
-def test_bad_input_is_refused_and_changes_nothing(call, message):
-    assert_refused(cube(), call, message)
+def test_bad_input_is_refused_and_changes_nothing(call, message, error):
+    assert_refused(cube(), call, message, error=error)
 
 
 # a unit cube's cut points stay below the thickness (no thickness overflows them):
