@@ -10,7 +10,7 @@ import pytest
 from livemod.dlfl import face_size_histogram, genus, num_components, validate
 from livemod.dlfl.arrays import mesh_arrays
 from livemod.dlfl.cutting import truncate
-from livemod.dlfl.errors import GeometryError, InvalidArgumentError
+from livemod.dlfl.errors import GeometryError, InvalidArgumentError, NonManifoldError
 from livemod.dlfl.shapes import (
     cube,
     dodecahedron,
@@ -243,6 +243,18 @@ def test_vertex_rings_walk_against_vnext():
         ring = order[offsets[v]:offsets[v + 1]]
         for i in range(3):
             assert vnext[ring[(i + 1) % 3]] == ring[i]
+
+
+def test_vertex_rings_refuse_a_vertex_with_two_fans():
+    from dataclasses import replace
+
+    from tests.meshes import two_cubes
+
+    a = mesh_arrays(two_cubes())
+    bow_tie = replace(a, corner_vertex=np.where(a.corner_vertex == 8, 0, a.corner_vertex))
+    with pytest.raises(NonManifoldError, match="^a vertex's corners form several fans; the "
+                                               "mesh is not manifold there$"):
+        vertex_rings(bow_tie)
 
 
 def test_open_grids_become_wire_grids():

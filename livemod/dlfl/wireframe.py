@@ -90,16 +90,22 @@ def vertex_rings(a: MeshArrays) -> tuple[np.ndarray, np.ndarray]:
 
 def _distance_to_cycle_end(succ: np.ndarray, is_root: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Steps along ``succ`` from each element to the one just before a root, and
-    which elements are those (pointer doubling, O(n log cycle length))."""
+    which elements are those (pointer doubling, O(n log cycle length)).
+
+    An element on a cycle without a root gets a distance beyond every cycle's
+    length (its doubling never settles, so it stops after as many rounds as any
+    path to a root can need).
+    """
     last = is_root[succ]
     succ = np.where(last, np.arange(len(succ)), succ)
     dist = (~last).astype(np.int64)
-    while True:
+    for _ in range(len(succ).bit_length() + 1):
         dist += dist[succ]
         jumped = succ[succ]
         if np.array_equal(jumped, succ):
-            return dist, last
+            break
         succ = jumped
+    return dist, last
 
 
 def _cut_points(a: MeshArrays, thickness: float) -> np.ndarray:
