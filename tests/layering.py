@@ -7,7 +7,9 @@ Read from the source with :mod:`ast` (nothing is imported), so the counts are ex
 * **storage reads**: ``x._c``, ``x._e``, ``x._f`` or ``x._v`` (a :class:`Mesh`'s
   tables), or a private method of ``Mesh`` called on anything but ``self``, in a
   module that is not one of :data:`STORAGE_MODULES`;
-* **private imports**: ``from m import _name`` for any module ``m``;
+* **private imports**: ``from m import _name`` for any module ``m``, and
+  ``m._name`` read through a name an import bound to module ``m``
+  (``import m``, ``from pkg import m as alias``);
 * **cross-module private imports**: those of them whose ``m`` is a livemod module
   that is not a private module (``_x.py``) of the importer's own package. A private
   module exists to share helpers within its package; any other private name is its
@@ -81,19 +83,57 @@ def storage_reads() -> list[Finding]:
 
 
 def private_imports() -> list[tuple[Finding, bool]]:
-    """Every ``from m import _name``, with True where it crosses modules (see above)."""
+    """Every ``from m import _name`` and ``m._name``, with True where it crosses
+    modules (see above)."""
     found = []
     for path in modules():
         rel = _relative(path)
-        for node in ast.walk(ast.parse(path.read_text())):
-            if not isinstance(node, ast.ImportFrom):
-                continue
-            source = _source_module(path, node)
-            for alias in node.names:
-                if alias.name.startswith("_") and not alias.name.startswith("__"):
-                    text = f"from {'.' * node.level}{node.module or ''} import {alias.name}"
-                    found.append((Finding(rel, node.lineno, text), _crosses(path, source)))
+        tree = ast.parse(path.read_text())
+        imported: dict[str, Path | None] = {}  # expression -> the module it names
+        for node in ast.walk(tree):
+            if isinstance(node, ast.ImportFrom):
+                source = _source_module(path, node)
+                for alias in node.names:
+                    module = _submodule(source, alias.name)
+                    if module is not None:
+                        imported[alias.asname or alias.name] = module
+                    elif alias.name.startswith("_") and not alias.name.startswith("__"):
+                        text = f"from {'.' * node.level}{node.module or ''} import {alias.name}"
+                        found.append((Finding(rel, node.lineno, text), _crosses(path, source)))
+            elif isinstance(node, ast.Import):
+                for alias in node.names:
+                    imported[alias.asname or alias.name] = _absolute_module(alias.name)
+        found += [(Finding(rel, node.lineno, ast.unparse(node)), _crosses(path, module))
+                  for node, module in _module_attributes(tree, imported)]
     return found
+
+
+def _submodule(package: Path | None, name: str) -> Path | None:
+    """The livemod module ``name`` of ``package`` (an ``__init__.py``), or None
+    when ``name`` is not a module of it."""
+    if package is None or package.name != "__init__.py":
+        return None
+    target = package.parent / name
+    if target.is_dir():
+        return target / "__init__.py"
+    return target.with_suffix(".py") if target.with_suffix(".py").is_file() else None
+
+
+def _absolute_module(name: str) -> Path | None:
+    """The file of livemod module ``name`` (dotted), or None outside livemod."""
+    if name.split(".")[0] != "livemod":
+        return None
+    target = ROOT.joinpath(*name.split("."))
+    return target / "__init__.py" if target.is_dir() else target.with_suffix(".py")
+
+
+def _module_attributes(tree: ast.AST, imported: dict[str, Path | None]
+                       ) -> list[tuple[ast.Attribute, Path | None]]:
+    """Every ``m._name`` (not a dunder) of ``tree`` whose ``m`` is a key of
+    ``imported``, with the module it names (None outside livemod)."""
+    return [(node, imported[ast.unparse(node.value)]) for node in ast.walk(tree)
+            if isinstance(node, ast.Attribute) and node.attr.startswith("_")
+            and not node.attr.startswith("__") and ast.unparse(node.value) in imported]
 
 
 def _source_module(importer: Path, node: ast.ImportFrom) -> Path | None:

@@ -47,7 +47,9 @@ def test_private_modules_share_their_names_only_within_their_package(tmp_path, m
     (package / "a" / "user.py").write_text(
         "import sys\nfrom ._shared import _helper\nfrom sys import _getframe\n")
     (package / "b" / "other.py").write_text(
-        "from ..a._shared import _helper\nfrom livemod.a.public import _own\n")
+        "from ..a._shared import _helper\nfrom livemod.a.public import _own\n"
+        "import os\nimport livemod.a.public\nfrom ..a import public as pub\n"
+        "pub._own(os._exit, livemod.a.public._own, pub.own, os.__name__)\n")
     monkeypatch.setattr(layering, "ROOT", tmp_path)
     monkeypatch.setattr(layering, "PACKAGE", package)
     found = sorted((f.path, f.text, crosses) for f, crosses in layering.private_imports())
@@ -56,4 +58,7 @@ def test_private_modules_share_their_names_only_within_their_package(tmp_path, m
         ("livemod/a/user.py", "from sys import _getframe", False),
         ("livemod/b/other.py", "from ..a._shared import _helper", True),
         ("livemod/b/other.py", "from livemod.a.public import _own", True),
+        ("livemod/b/other.py", "livemod.a.public._own", True),
+        ("livemod/b/other.py", "os._exit", False),
+        ("livemod/b/other.py", "pub._own", True),
     ]
