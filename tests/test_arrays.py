@@ -5,7 +5,14 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from livemod.dlfl import Mesh, from_corner_arrays, from_polygons, mesh_arrays, validate
+from livemod.dlfl import (
+    InvalidArgumentError,
+    Mesh,
+    from_corner_arrays,
+    from_polygons,
+    mesh_arrays,
+    validate,
+)
 from tests.meshes import (
     CUBE_FACES,
     CUBE_OUTWARD,
@@ -140,11 +147,9 @@ def test_concatenated_arrays_are_the_disjoint_union_of_the_parts():
 
 
 def test_concatenate_arrays_needs_a_part():
-    import pytest
-
     from livemod.dlfl.arrays import concatenate_arrays
 
-    with pytest.raises(ValueError, match="at least one"):
+    with pytest.raises(InvalidArgumentError, match="at least one"):
         concatenate_arrays([])
 
 

@@ -269,7 +269,7 @@ def test_splice_corners_with_point_spheres(cube_scene):
      "both at vertex 0: splicing needs corners at two"),
     (spliceCorners, ((0, 0), (0, 0)), InvalidArgumentError, "both at vertex 0"),
     (spliceCorners, ((0, 0), (0, 6)), UnknownIdError, "face 0 has no corner at vertex 6"),
-    (spliceCorners, ((0, 0), "x"), DLFLError, "c2 must be a \\(faceid, vertexid\\) tuple"),
+    (spliceCorners, ((0, 0), "x"), InvalidArgumentError, "c2 must be a \\(faceid, vertexid\\) tuple"),
 ])
 def test_trisect_and_splice_refuse_bad_arguments(cube_scene, command, args, error, message):
     before = snapshot(cube_scene.mesh)
@@ -364,7 +364,7 @@ def test_info_commands(cube_scene, capsys):
 
 
 def test_bad_corner_arguments(cube_scene):
-    with pytest.raises(DLFLError, match="c1 must be a \\(faceid, vertexid\\) tuple"):
+    with pytest.raises(InvalidArgumentError, match="c1 must be a \\(faceid, vertexid\\) tuple"):
         insertEdge("x", (0, 2))
     with pytest.raises(UnknownIdError, match="face 0 has no corner at vertex 6"):
         insertEdge((0, 6), (0, 2))

@@ -9,7 +9,16 @@ import time
 import numpy as np
 import pytest
 
-from livemod.dlfl import DLFLError, Mesh, Scene, Selection, createVertex, current_scene, use_scene
+from livemod.dlfl import (
+    DLFLError,
+    Mesh,
+    Scene,
+    Selection,
+    UnknownIdError,
+    createVertex,
+    current_scene,
+    use_scene,
+)
 from livemod.dlfl.commands._base import modeling_command
 from livemod.dlfl.scene import (
     NO_STEP_LOG,
@@ -39,9 +48,9 @@ def test_objects_and_current():
 def test_unknown_objects_are_refused():
     s = Scene()
     s.add(cube())
-    with pytest.raises(DLFLError, match=r"object 5 does not exist \(objects: 0\)"):
+    with pytest.raises(UnknownIdError, match=r"object 5 does not exist \(objects: 0\)"):
         s.switch(5)
-    with pytest.raises(DLFLError, match="object '0' does not exist"):
+    with pytest.raises(UnknownIdError, match="object '0' does not exist"):
         s.kill("0")  # type: ignore[arg-type]
     assert Scene().current_object.mesh.counts() == (0, 0, 0)
 

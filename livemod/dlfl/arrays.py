@@ -15,6 +15,7 @@ from dataclasses import dataclass, fields
 import numpy as np
 
 from ._table import Table
+from .errors import InvalidArgumentError
 from .mesh import Mesh
 
 
@@ -207,10 +208,10 @@ def concatenate_arrays(parts: Sequence[MeshArrays]) -> MeshArrays:
         parts: one or more snapshots (see :func:`mesh_arrays`).
 
     Raises:
-        ValueError: ``parts`` is empty.
+        InvalidArgumentError: ``parts`` is empty.
     """
     if not parts:
-        raise ValueError("concatenate_arrays needs at least one MeshArrays")
+        raise InvalidArgumentError("concatenate_arrays needs at least one MeshArrays")
     sizes = np.array([(len(p.positions), len(p.face_ids), len(p.corner_ids), len(p.edge_ids))
                       for p in parts], dtype=np.int64)
     v0, f0, c0, e0 = (np.concatenate([[0], np.cumsum(sizes[:, k])[:-1]]) for k in range(4))

@@ -18,7 +18,7 @@ from typing import Any
 import numpy as np
 
 from ._checks import is_id, shown
-from .errors import DLFLError
+from .errors import UnknownIdError
 from .mesh import Mesh
 
 
@@ -280,7 +280,7 @@ class Scene:
     def _check_object(self, oid: object) -> None:
         if not is_id(oid) or oid not in self.objects:
             have = ", ".join(str(k) for k in self.objects) or "none"
-            raise DLFLError(f"object {shown(oid)} does not exist (objects: {have})")
+            raise UnknownIdError(f"object {shown(oid)} does not exist (objects: {have})")
 
     def copy(self) -> Scene:
         """A deep copy: meshes copied with their ids, selection and objects kept."""

@@ -9,7 +9,7 @@ from time import perf_counter
 from typing import Any, TypeVar, cast
 
 from .._checks import id_list, is_id
-from ..errors import DLFLError
+from ..errors import InvalidArgumentError
 from ..mesh import Mesh
 from ..scene import NO_MESH, Scene, current_scene
 
@@ -108,7 +108,7 @@ def resolve_corner(m: Mesh, corner: Any, what: str = "corner") -> int:
     if is_id(corner):
         m.corner_face(int(corner))  # raises DLFLError when not live
         return int(corner)
-    raise DLFLError(
+    raise InvalidArgumentError(
         f"{what} must be a (faceid, vertexid) tuple or a corner id, got {corner!r}"
     )
 
