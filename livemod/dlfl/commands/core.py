@@ -477,7 +477,7 @@ def centroid(vertexids: Iterable[int] | None = None) -> tuple[float, float, floa
     ids = m.vertex_ids().tolist() if vertexids is None else _id_list(vertexids, "centroid")
     if not ids:
         raise InvalidArgumentError("centroid needs at least one vertex id")
-    return _vec(_centroid(np.array([m.position(v) for v in ids])))
+    return _vec(_centroid(m.positions(ids)))
 
 
 def _id_list(ids: Any, command: str) -> list[Any]:

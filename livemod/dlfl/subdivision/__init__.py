@@ -122,7 +122,7 @@ def _point_spheres_aside(mesh: Mesh, scheme: Callable[[Mesh], Any]) -> None:
     if not spheres:
         scheme(mesh)
         return
-    places = [mesh.position(v) for v in spheres]
+    places = mesh.positions(spheres)
     work = mesh.copy()
     for v in spheres:
         work.remove_vertex(v)
