@@ -413,7 +413,7 @@ def test_objects_load_switch_kill(scene, tmp_path, topmod_samples):
     assert switch(first) == first and counts(scene) == (9, 12, 7)
     kill(first)
     assert scene.current == other and counts(scene) == (8, 11, 5)
-    with pytest.raises(DLFLError, match=f"object {first} does not exist"):
+    with pytest.raises(UnknownIdError, match=f"object {first} does not exist"):
         switch(first)
     path = tmp_path / "out.obj"
     assert save(str(path)) is True

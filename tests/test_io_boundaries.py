@@ -23,7 +23,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from livemod.dlfl import DLFLError, Mesh, from_polygons, mesh_arrays, validate
+from livemod.dlfl import FileFormatError, Mesh, from_polygons, mesh_arrays, validate
 from livemod.dlfl.io import (
     _lines,
     _ply_ascii,
@@ -266,5 +266,5 @@ def test_a_309_digit_coordinate_is_refused_on_its_line_on_every_path() -> None:
                        (b"v 0 0 0\nv " + huge + b" 0 0 # c\n", 2),
                        (b"DLFL\n#\nv 0 0 0\nv " + huge + b" 0 0\n", 4)]:
         reader = read_dlfl if data.startswith(b"DLFL") else read_obj
-        with pytest.raises(DLFLError, match=f"^<(obj|dlfl)>:{line}: .*not (a )?finite"):
+        with pytest.raises(FileFormatError, match=f"^<(obj|dlfl)>:{line}: .*not (a )?finite"):
             reader(data)

@@ -14,6 +14,7 @@ from hypothesis import strategies as st
 from livemod.dlfl import (
     DLFLError,
     DLFLSkippedLinesWarning,
+    FileFormatError,
     Mesh,
     from_polygons,
     genus,
@@ -246,7 +247,7 @@ def test_empty_file_body() -> None:
 )
 def test_errors_name_file_and_line(old: bytes, new: bytes, message: str) -> None:
     assert old in TOPMOD_CUBE
-    with pytest.raises(DLFLError, match=message):
+    with pytest.raises(FileFormatError, match=message):
         read_dlfl(TOPMOD_CUBE.replace(old, new, 1))
 
 
@@ -259,7 +260,7 @@ def test_non_manifold_result_is_refused_with_the_file_name(tmp_path: Path) -> No
     fixed = [b"fv 0" + ln[4:] if ln.startswith(b"fv 3") else ln for ln in lines]
     path = tmp_path / "bowtie.dlfl"
     path.write_bytes(b"\n".join(fixed))
-    with pytest.raises(DLFLError, match=r"bowtie\.dlfl"):
+    with pytest.raises(FileFormatError, match=r"bowtie\.dlfl"):
         read_dlfl(path)
 
 
@@ -469,7 +470,7 @@ def test_error_lines_from_the_fast_path_of_a_big_file() -> None:
         edited = list(lines)
         at = first_line(edited, prefix, skip)
         edited[at] = change(edited[at])
-        with pytest.raises(DLFLError) as caught:
+        with pytest.raises(FileFormatError) as caught:
             read_dlfl(b"\n".join(edited))
         assert str(caught.value).startswith(f"<dlfl>:{at + 1}: {message}"), str(caught.value)
 
@@ -479,12 +480,12 @@ def test_the_first_bad_record_wins_and_parse_errors_come_first() -> None:
     edited = list(lines)
     for skip in (300, 100):  # two bad v lines: the earlier is named
         edited[first_line(lines, b"v ", skip)] = b"v 1 2"
-    with pytest.raises(DLFLError, match=f"^<dlfl>:{first_line(lines, b'v ', 100) + 1}: a v"):
+    with pytest.raises(FileFormatError, match=f"^<dlfl>:{first_line(lines, b'v ', 100) + 1}: a v"):
         read_dlfl(b"\n".join(edited))
     edited = list(lines)
     edited[first_line(lines, b"fv ", 5)] = b"fv 99999 [0 0 1] [0 0] "  # a topology error...
     edited[first_line(lines, b"f ", 10000)] = b"f"  # ...after which a malformed line
-    with pytest.raises(DLFLError, match=f"^<dlfl>:{first_line(lines, b'f ', 10000) + 1}: empty"):
+    with pytest.raises(FileFormatError, match=f"^<dlfl>:{first_line(lines, b'f ', 10000) + 1}: empty"):
         read_dlfl(b"\n".join(edited))
 
 

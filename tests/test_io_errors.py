@@ -15,11 +15,12 @@ from pathlib import Path
 
 import pytest
 
-from livemod.dlfl import DLFLError, validate
+from livemod.dlfl import validate
 from livemod.dlfl.errors import (
     DLFLSkippedLinesWarning,
     FileFormatError,
     InvalidArgumentError,
+    NonManifoldError,
 )
 from livemod.dlfl.io import load_mesh, open_mesh, read_dlfl, read_obj, read_ply, read_stl
 from livemod.dlfl.io.source import show_path
@@ -73,7 +74,7 @@ def test_binary_files_name_the_record_and_no_line() -> None:
 
 def test_topology_errors_are_no_format_errors_and_name_the_line() -> None:
     data = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 2 4\nf 3 2 1\nf 1 2 4\n"
-    with pytest.raises(DLFLError, match=r"^'t 1\.obj':5: edge \(1, 2\) is used by 4 face sides") as caught:
+    with pytest.raises(NonManifoldError, match=r"^'t 1\.obj':5: edge \(1, 2\) is used by 4 face sides") as caught:
         read_obj(data, name="t 1.obj")
     assert not isinstance(caught.value, FileFormatError)  # the file reads: its surface is wrong
 

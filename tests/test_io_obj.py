@@ -12,10 +12,12 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from livemod.dlfl import (
-    DLFLError,
     DLFLRepairWarning,
     DLFLSkippedLinesWarning,
+    FileFormatError,
+    InvalidArgumentError,
     Mesh,
+    NonManifoldError,
     from_polygons,
     genus,
     validate,
@@ -214,7 +216,7 @@ def test_numbers_without_integer_part_only() -> None:
     # no number with an integer run at all once sent the fast path out of bounds
     soup = parse_obj(b"v .5 .25 -.75\nv .1 .2 .3\nv .0 .0 .0\nf 1 2 3\n")
     assert soup.positions.tolist() == [[0.5, 0.25, -0.75], [0.1, 0.2, 0.3], [0.0, 0.0, 0.0]]
-    with pytest.raises(DLFLError, match="<obj>:1: a v line needs 3 coordinates, got 1"):
+    with pytest.raises(FileFormatError, match="<obj>:1: a v line needs 3 coordinates, got 1"):
         read_obj(b"v .0")
 
 
@@ -254,7 +256,7 @@ def test_open_mesh_gets_a_hole_and_unused_vertices_become_point_spheres() -> Non
     ],
 )
 def test_errors_name_file_and_line(text: bytes, message: str) -> None:
-    with pytest.raises(DLFLError, match=message):
+    with pytest.raises(FileFormatError, match=message):
         read_obj(text)
 
 
@@ -268,7 +270,7 @@ def test_a_blank_or_vertexless_obj_file_is_an_empty_mesh(text: bytes) -> None:
 def test_error_names_the_path(tmp_path: Path) -> None:
     path = tmp_path / "broken.obj"
     path.write_bytes(b"v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 4\nf 1 2 3\n")
-    with pytest.raises(DLFLError, match=r"broken\.obj:\d+: .*edge"):
+    with pytest.raises(NonManifoldError, match=r"broken\.obj:\d+: .*edge"):
         read_obj(path)
 
 
@@ -277,18 +279,18 @@ def test_non_manifold_error_names_the_line(tmp_path: Path) -> None:
     path.write_bytes(b"v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\n"
                      b"f 1 2 3\nf 2 1 4\nf 1 2 5\n")
     # vertices as the f lines number them (from 1), not livemod's indices
-    with pytest.raises(DLFLError, match=r"fin\.obj:6: edge \(1, 2\) is used by 3"):
+    with pytest.raises(NonManifoldError, match=r"fin\.obj:6: edge \(1, 2\) is used by 3"):
         read_obj(path)
 
 
 def test_errors_number_vertices_as_the_obj_file_does(tmp_path: Path) -> None:
     path = tmp_path / "twice.obj"
     path.write_bytes(b"v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 2 3\n")
-    with pytest.raises(DLFLError, match=r"line 5 visits vertex 2 twice in a row"):
+    with pytest.raises(InvalidArgumentError, match=r"line 5 visits vertex 2 twice in a row"):
         read_obj(path)
     path.write_bytes(b"v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 0 0 2\n"
                      b"f 1 2 3\nf 1 3 4\nf 1 5 6\n")  # two fans meet at vertex 1
-    with pytest.raises(DLFLError, match=r"vertex 1 is non-manifold"):
+    with pytest.raises(NonManifoldError, match=r"vertex 1 is non-manifold"):
         read_obj(path)
 
 
@@ -361,9 +363,9 @@ def test_load_and_save_dispatch_by_extension(tmp_path: Path) -> None:
         assert load_mesh(tmp_path / f"c.{ext}").counts() == (8, 12, 6)
     save_mesh(mesh, tmp_path / "c.txt", format="obj")
     assert load_mesh(tmp_path / "c.txt", format="OBJ").counts() == (8, 12, 6)
-    with pytest.raises(DLFLError, match=r"cannot write .*c\.xyz: unknown extension '\.xyz'; use one of \.obj, \.dlfl, \.stl, \.ply"):
+    with pytest.raises(InvalidArgumentError, match=r"cannot write .*c\.xyz: unknown extension '\.xyz'; use one of \.obj, \.dlfl, \.stl, \.ply"):
         save_mesh(mesh, tmp_path / "c.xyz")
-    with pytest.raises(DLFLError, match=r"cannot read .*c\.xyz: unknown extension '\.xyz'; "
+    with pytest.raises(InvalidArgumentError, match=r"cannot read .*c\.xyz: unknown extension '\.xyz'; "
                                          r"use one of \.obj, \.dlfl, \.stl"):
         load_mesh(tmp_path / "c.xyz")
 

@@ -13,7 +13,17 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from livemod.dlfl import DLFLError, DLFLRepairWarning, Mesh, from_polygons, genus, validate
+from livemod.dlfl import (
+    DLFLError,
+    DLFLRepairWarning,
+    FileFormatError,
+    InvalidArgumentError,
+    Mesh,
+    NonManifoldError,
+    from_polygons,
+    genus,
+    validate,
+)
 from livemod.dlfl.io.ply import parse_ply, ply_bytes, read_ply
 from tests.meshes import CUBE_FACES, CUBE_POSITIONS, cube, torus
 from tests.test_io_fuzz import edit_lists, mutate, only_dlfl_errors
@@ -139,9 +149,9 @@ def test_a_path_and_a_name_are_used_in_messages(tmp_path: Path) -> None:
     path.write_bytes(ply_bytes(cube()))
     assert read_ply(path).counts() == (8, 12, 6)
     path.write_bytes(b"ply\nformat ascii 1.0\nend_header\n")
-    with pytest.raises(DLFLError, match=r"model\.ply:3: no 'vertex' element"):
+    with pytest.raises(FileFormatError, match=r"model\.ply:3: no 'vertex' element"):
         read_ply(path)
-    with pytest.raises(DLFLError, match=r"^other\.ply:3: no 'vertex'"):
+    with pytest.raises(FileFormatError, match=r"^other\.ply:3: no 'vertex'"):
         read_ply(path, name="other.ply")
     with pytest.raises(OSError):
         read_ply(tmp_path / "missing.ply")
@@ -414,14 +424,25 @@ def binary_cube_with(fmt: str, values: tuple[float, ...], list_type: str = "ucha
     (binary_cube_with("B4i", (4, 0, 1, 2, 8)), r"face 0: vertex index 8 is out of range"),
     (binary_cube_with("B4f", (4, 0, 1, 2, 0.5), "uchar float"),
      r"face 0: vertex index 0\.5 is not a whole number"),
-    (binary_cube_with("B0i", (0,)), r"^model\.ply: face 0 has no vertices$"),
-    (ascii_ply(f"{V8}element face 3\n{TRIANGLE_FACES}", CUBE_ROWS + ["3 0 1 2"] * 3),
-     r"^model\.ply: edge \(0, 1\) is used by 3 face sides"),
-    (ascii_ply(f"{V8}element face 1\n{TRIANGLE_FACES}", CUBE_ROWS + ["3 0 0 1"]),
-     r"face 0 visits vertex 0 twice in a row"),
 ], ids=lambda value: "" if isinstance(value, bytes) else value.strip("^$")[:50])
 def test_errors_name_the_file_and_what_is_wrong(data: bytes, message: str) -> None:
-    with pytest.raises(DLFLError, match=message):
+    with pytest.raises(FileFormatError, match=message):
+        read_ply(data, name="model.ply")
+
+
+# well-formed files whose polygons the builder refuses: not format errors, but
+# the file's name still leads the message
+@pytest.mark.parametrize(("data", "error", "message"), [
+    (binary_cube_with("B0i", (0,)), InvalidArgumentError,
+     r"^model\.ply: face 0 has no vertices$"),
+    (ascii_ply(f"{V8}element face 3\n{TRIANGLE_FACES}", CUBE_ROWS + ["3 0 1 2"] * 3),
+     NonManifoldError, r"^model\.ply: edge \(0, 1\) is used by 3 face sides"),
+    (ascii_ply(f"{V8}element face 1\n{TRIANGLE_FACES}", CUBE_ROWS + ["3 0 0 1"]),
+     InvalidArgumentError, r"face 0 visits vertex 0 twice in a row"),
+], ids=["no vertices", "three sides", "twice in a row"])
+def test_polygons_the_builder_refuses_name_the_file(data: bytes, error: type[Exception],
+                                                    message: str) -> None:
+    with pytest.raises(error, match=message):
         read_ply(data, name="model.ply")
 
 
@@ -429,11 +450,11 @@ def test_a_huge_declared_count_fails_before_anything_is_allocated() -> None:
     tracemalloc.start()  # numpy reports its buffers to tracemalloc too
     for count in (99999999999, 10**30 - 1):
         data = binary_ply(f"element vertex {count}\n{XYZ}", "<", [("ddd", (0, 0, 0))])
-        with pytest.raises(DLFLError, match="ends inside"):
+        with pytest.raises(FileFormatError, match="ends inside"):
             read_ply(data)
         data = binary_ply(f"element vertex 1\n{XYZ}element face {count}\n{TRIANGLE_FACES}",
                           "<", [("ddd", (0, 0, 0)), ("B3i", (3, 0, 0, 0))])
-        with pytest.raises(DLFLError, match="rows, more than"):
+        with pytest.raises(FileFormatError, match="rows, more than"):
             read_ply(data)
     _, peak = tracemalloc.get_traced_memory()
     tracemalloc.stop()
@@ -497,7 +518,7 @@ def test_truncated_and_mutated_files(base: bytes, cut: int, edits: list[tuple[in
 def test_every_truncation_of_a_binary_and_an_ascii_file_is_refused_cleanly() -> None:
     for base in (mixed_binary(), ASCII_CUBE):
         for cut in range(len(base) - 1):
-            with pytest.raises(DLFLError):
+            with pytest.raises(FileFormatError):
                 quiet_read(base[:cut])
 
 
@@ -714,7 +735,7 @@ def test_the_line_path_leaves_refusals_to_the_token_path(
     line_path_for_small_files(monkeypatch)
     data = ascii_cube_with(row, text)
     assert outcome(data) == token_path_outcome(data)
-    with pytest.raises(DLFLError, match=message):
+    with pytest.raises(FileFormatError, match=message):
         read_ply(data)
 
 
@@ -745,5 +766,5 @@ def test_faces_of_many_sizes_few_of_each(monkeypatch: pytest.MonkeyPatch) -> Non
 def test_a_list_count_past_any_integer_type_ends_inside_the_element(count: int) -> None:
     data = ascii_ply(f"element vertex 3\n{XYZ}element face 1\n{TRIANGLE_FACES}",
                      ["0 0 0", "1 0 0", "0 1 0", f"{count} 0 1 2"])
-    with pytest.raises(DLFLError, match=r"the file ends inside element 'face' \(row 1 of 1\)"):
+    with pytest.raises(FileFormatError, match=r"the file ends inside element 'face' \(row 1 of 1\)"):
         read_ply(data)

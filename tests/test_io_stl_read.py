@@ -12,7 +12,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from livemod import cli
-from livemod.dlfl import DLFLError, DLFLRepairWarning, Mesh, genus, validate
+from livemod.dlfl import DLFLRepairWarning, FileFormatError, Mesh, NonManifoldError, genus, validate
 from livemod.dlfl.arrays import mesh_arrays
 from livemod.dlfl.io import load_mesh, read_obj, read_stl, save_mesh
 from livemod.dlfl.io import stl as stl_module
@@ -219,15 +219,15 @@ def test_ascii_numbers_read_exactly() -> None:
                                              "finite"),
 ])
 def test_bad_files_are_refused_naming_what_is_wrong(data: bytes, message: str) -> None:
-    with pytest.raises(DLFLError, match=message):
+    with pytest.raises(FileFormatError, match=message):
         read_stl(data, name="t.stl")
 
 
 def test_a_non_manifold_stl_names_the_facet_line() -> None:
     fin = np.concatenate([tetra_triangles(), [[[0, 0, 0], [1, 0, 0], [0.5, -1, 0.5]]]])
-    with pytest.raises(DLFLError, match=r"^fin.stl:"):
+    with pytest.raises(NonManifoldError, match=r"^fin.stl:"):
         read_stl(ascii_stl(fin), name="fin.stl")
-    with pytest.raises(DLFLError, match=r"^fin.stl: "):
+    with pytest.raises(NonManifoldError, match=r"^fin.stl: "):
         read_stl(binary_stl(fin), name="fin.stl")
 
 
