@@ -17,17 +17,23 @@ def test_only_the_storage_modules_read_the_mesh_tables():
     assert reads == [], "read the mesh through its public accessors (see mesh.py)"
 
 
-def test_the_counter_sees_table_reads_and_private_mesh_methods(tmp_path, monkeypatch):
+def count_in(tmp_path, monkeypatch, files: dict[str, str]) -> None:
+    """Point the counter at a package of ``files`` (path under livemod/ -> text)."""
     package = tmp_path / "livemod"
-    (package / "dlfl").mkdir(parents=True)
-    (package / "dlfl" / "mesh.py").write_text(
-        (layering.PACKAGE / "dlfl" / "mesh.py").read_text())
-    (package / "dlfl" / "op.py").write_text(
-        "def op(mesh, table):\n"
-        "    a = mesh._v.n + len(mesh._ring_slots(0))\n"
-        "    return a + table._sorted_cache + mesh.num_faces\n")
+    for name, text in files.items():
+        (package / name).parent.mkdir(parents=True, exist_ok=True)
+        (package / name).write_text(text)
     monkeypatch.setattr(layering, "ROOT", tmp_path)
     monkeypatch.setattr(layering, "PACKAGE", package)
+
+
+def test_the_counter_sees_table_reads_and_private_mesh_methods(tmp_path, monkeypatch):
+    count_in(tmp_path, monkeypatch, {
+        "dlfl/mesh.py": (layering.PACKAGE / "dlfl" / "mesh.py").read_text(),
+        "dlfl/op.py": "def op(mesh, table):\n"
+                      "    a = mesh._v.n + len(mesh._ring_slots(0))\n"
+                      "    return a + table._sorted_cache + mesh.num_faces\n",
+    })
     found = [(f.path, f.line, f.text) for f in layering.storage_reads()]
     assert sorted(found) == [("livemod/dlfl/op.py", 2, "mesh._ring_slots"),
                              ("livemod/dlfl/op.py", 2, "mesh._v")]
@@ -39,19 +45,14 @@ def test_no_module_imports_a_private_name_of_another():
 
 
 def test_private_modules_share_their_names_only_within_their_package(tmp_path, monkeypatch):
-    package = tmp_path / "livemod"
-    for folder in ("a", "b"):
-        (package / folder).mkdir(parents=True)
-    (package / "a" / "_shared.py").write_text("def _helper(): pass\n")
-    (package / "a" / "public.py").write_text("def _own(): pass\n")
-    (package / "a" / "user.py").write_text(
-        "import sys\nfrom ._shared import _helper\nfrom sys import _getframe\n")
-    (package / "b" / "other.py").write_text(
-        "from ..a._shared import _helper\nfrom livemod.a.public import _own\n"
-        "import os\nimport livemod.a.public\nfrom ..a import public as pub\n"
-        "pub._own(os._exit, livemod.a.public._own, pub.own, os.__name__)\n")
-    monkeypatch.setattr(layering, "ROOT", tmp_path)
-    monkeypatch.setattr(layering, "PACKAGE", package)
+    count_in(tmp_path, monkeypatch, {
+        "a/_shared.py": "def _helper(): pass\n",
+        "a/public.py": "def _own(): pass\n",
+        "a/user.py": "import sys\nfrom ._shared import _helper\nfrom sys import _getframe\n",
+        "b/other.py": "from ..a._shared import _helper\nfrom livemod.a.public import _own\n"
+                      "import os\nimport livemod.a.public\nfrom ..a import public as pub\n"
+                      "pub._own(os._exit, livemod.a.public._own, pub.own, os.__name__)\n",
+    })
     found = sorted((f.path, f.text, crosses) for f, crosses in layering.private_imports())
     assert found == [
         ("livemod/a/user.py", "from ._shared import _helper", False),

@@ -750,16 +750,21 @@ def test_hole_mask_follows_face_ids():
     assert Mesh().hole_mask().shape == (0,)
 
 
+def two_gon_tables(back_is_hole: bool) -> dict[str, dict[str, np.ndarray]]:
+    """The tables of a 2-gon: front face 0 (corners 0, 1), back face 1 (corners
+    2, 3), one edge a side of each; the back face a hole or not."""
+    return {
+        "corners": {"next": np.array([1, 0, 3, 2]), "prev": np.array([1, 0, 3, 2]),
+                    "face": np.array([0, 0, 1, 1]), "vertex": np.array([0, 1, 1, 0]),
+                    "edge": np.array([0, 1, 0, 1])},
+        "edges": {"c0": np.array([0, 1]), "c1": np.array([2, 3])},
+        "faces": {"corner": np.array([0, 2]), "hole": np.array([0, int(back_is_hole)])},
+        "vertices": {"corner": np.array([0, 1]), "position": np.eye(3)[:2]},
+    }
+
+
 def test_from_tables_adopts_the_tables_of_a_two_sided_edge():
-    """A 2-gon: front face 0 (corners 0, 1), back face 1 (corners 2, 3), a hole."""
-    m = Mesh.from_tables(
-        corners={"next": np.array([1, 0, 3, 2]), "prev": np.array([1, 0, 3, 2]),
-                 "face": np.array([0, 0, 1, 1]), "vertex": np.array([0, 1, 1, 0]),
-                 "edge": np.array([0, 1, 0, 1])},
-        edges={"c0": np.array([0, 1]), "c1": np.array([2, 3])},
-        faces={"corner": np.array([0, 2]), "hole": np.array([0, 1])},
-        vertices={"corner": np.array([0, 1]), "position": np.eye(3)[:2]},
-        first_ids=(10, 20, 30, 40))
+    m = Mesh.from_tables(**two_gon_tables(back_is_hole=True), first_ids=(10, 20, 30, 40))
     assert checked(m) == (2, 2, 2)
     assert m.vertex_ids().tolist() == [10, 11] and m.edge_ids().tolist() == [20, 21]
     assert m.face_ids().tolist() == [30, 31] and m.corner_ids().tolist() == [40, 41, 42, 43]
@@ -771,14 +776,8 @@ def test_from_tables_adopts_the_tables_of_a_two_sided_edge():
 
 
 def test_from_tables_gives_the_ids_a_kind_is_given():
-    m = Mesh.from_tables(
-        corners={"next": np.array([1, 0, 3, 2]), "prev": np.array([1, 0, 3, 2]),
-                 "face": np.array([0, 0, 1, 1]), "vertex": np.array([0, 1, 1, 0]),
-                 "edge": np.array([0, 1, 0, 1])},
-        edges={"c0": np.array([0, 1]), "c1": np.array([2, 3])},
-        faces={"corner": np.array([0, 2]), "hole": np.array([0, 0])},
-        vertices={"corner": np.array([0, 1]), "position": np.eye(3)[:2]},
-        first_ids=(10, 20, 30, 40), ids=(np.array([7, 3]), None, np.array([5, 9]), None))
+    m = Mesh.from_tables(**two_gon_tables(back_is_hole=False), first_ids=(10, 20, 30, 40),
+                         ids=(np.array([7, 3]), None, np.array([5, 9]), None))
     assert checked(m) == (2, 2, 2)
     assert m.vertex_ids().tolist() == [3, 7] and m.face_ids().tolist() == [5, 9]
     assert m.edge_ids().tolist() == [20, 21] and m.face_vertices(5) == [7, 3]
