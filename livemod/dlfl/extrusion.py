@@ -438,7 +438,7 @@ def _check_face(mesh: Mesh, face: int) -> None:
         raise UnknownIdError(f"face {shown(int(face))} does not exist (deleted or never made)")
     if mesh.is_hole(int(face)):
         raise InvalidArgumentError(
-                                   f"face {face} is a hole (a boundary loop of an open mesh, not part of "
+            f"face {face} is a hole (a boundary loop of an open mesh, not part of "
             "the surface); it cannot be extruded")
     if mesh.face_size(int(face)) < 3:
         raise InvalidArgumentError(f"face {face} has {mesh.face_size(int(face))} corner(s); "
@@ -484,8 +484,8 @@ def _check_simple(mesh: Mesh, face: int, kind: str) -> None:
     if len(set(vertices)) < len(vertices):
         twice = next(v for v in vertices if vertices.count(v) > 1)
         raise InvalidArgumentError(
-                                   f"face {face} visits vertex {twice} more than once (an edge dangles "
-                                   f"into it, or a loop): {kind} extrusion needs a face whose corners "
+            f"face {face} visits vertex {twice} more than once (an edge dangles "
+            f"into it, or a loop): {kind} extrusion needs a face whose corners "
             "are distinct vertices")
 
 
@@ -539,7 +539,7 @@ def extrude(
     step = spec.step
     if step is None:
         raise InvalidArgumentError(
-                                   f"extrusion kind {resolve_kind(kind)!r} ends in a fan of triangles, "
+            f"extrusion kind {resolve_kind(kind)!r} ends in a fan of triangles, "
             "not an end face; use extrude_fan()")
     count = int(segments)
 

@@ -462,12 +462,12 @@ def _checked_scale(a: MeshArrays, scale: float) -> float:
             "scale 0 would collapse the inner shell to a point; use 0 < |scale| < 1")
     if abs(s) > 1.0:
         raise InvalidArgumentError(
-                                   f"scale {scale} is beyond +-1: a scaled crust needs 0 < |scale| < 1 "
-                                   "(the inner copy smaller than the mesh, or with a negative scale "
+            f"scale {scale} is beyond +-1: a scaled crust needs 0 < |scale| < 1 "
+            "(the inner copy smaller than the mesh, or with a negative scale "
             "the outer one larger)")
     if abs(s) == 1.0:  # TopMod clamps to [-1, 1] and builds two coincident shells
         raise InvalidArgumentError(
-                                   f"scale {scale} leaves no thickness between the shells (an inner "
+            f"scale {scale} leaves no thickness between the shells (an inner "
             f"copy of the same size); use 0 < |scale| < 1")
     solid = ~a.face_hole
     if not (np.linalg.norm(face_normals(a)[solid], axis=1) > 0.5).any():

@@ -72,7 +72,7 @@ def _options(kind: str, options: tuple[Any, ...], keywords: dict[str, Any]) -> d
     order = OPTION_ORDER[kind]
     if len(options) > len(order):
         raise InvalidArgumentError(
-                                   f"extrude('{kind}', faceid, ...) takes at most {len(order)} options "
+            f"extrude('{kind}', faceid, ...) takes at most {len(order)} options "
             f"({', '.join(order)}), got {len(options)}")
     given = dict(zip(order, options, strict=False))
     for name, value in keywords.items():
@@ -225,7 +225,7 @@ def addHandle(interp: str, c1: Any, c2: Any, numsegs: int, w1: float = 25.0,
     elif kind == "bezier":
         if maxconn != -1 or twists != 0:
             raise InvalidArgumentError(
-                                       "a bezier handle takes no maxconn or twists (TopMod's has none); "
+                "a bezier handle takes no maxconn or twists (TopMod's has none); "
                 "use 'hermite'")
         _connect.bezier_handle(m, a, b, segments, w1, w2, max_faces=scene().face_budget)
     else:

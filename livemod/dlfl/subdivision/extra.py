@@ -41,7 +41,7 @@ def _checker_thickness(thickness: object) -> float:
     checked = check_number("thickness", thickness, 0.0, 0.5)
     if checked == 0.0:
         raise InvalidArgumentError(
-                                   "option thickness must be in (0, 0.5]: 0 puts the new corners on "
+            "option thickness must be in (0, 0.5]: 0 puts the new corners on "
             "the old vertices")
     return checked
 
