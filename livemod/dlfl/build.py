@@ -19,12 +19,7 @@ import numpy as np
 from ._checks import first_not_finite
 from ._graph import cycle_labels, one_cycle_each
 from ._multi_edges import pair_multi_edges
-from .errors import (
-    DLFLRepairWarning,
-    GeometryError,
-    InvalidArgumentError,
-    NonManifoldError,
-)
+from .errors import DLFLRepairWarning, GeometryError, InvalidArgumentError, NonManifoldError
 from .mesh import Mesh
 from .soup import Polygons, SoupNames, as_polygons
 

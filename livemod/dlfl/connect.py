@@ -36,11 +36,7 @@ from ._vectors import centroid, lengths, together_in_range, unit
 from .analysis import face_points, polygon_normal
 from .bands import edges_since, quad_band, triangle_band
 from .budget import check_growth
-from .errors import (
-    GeometryError,
-    InvalidArgumentError,
-    UnknownIdError,
-)
+from .errors import GeometryError, InvalidArgumentError, UnknownIdError
 from .mesh import Mesh
 
 __all__ = [

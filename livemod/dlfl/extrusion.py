@@ -31,12 +31,7 @@ import numpy as np
 from ._checks import finite_number, first_not_finite, flag, shown, whole_count
 from .bands import quad_band, triangle_band
 from .budget import check_growth
-from .errors import (
-    DLFLError,
-    GeometryError,
-    InvalidArgumentError,
-    UnknownIdError,
-)
+from .errors import DLFLError, GeometryError, InvalidArgumentError, UnknownIdError
 from .mesh import Mesh
 from .normals import inset_offsets, small_polygon_normal
 

@@ -30,12 +30,7 @@ from .analysis import face_points, polygon_normal
 from .bands import edges_since
 from .budget import check_growth
 from .connect import closest_corners, connect_edge_sides, connect_faces
-from .errors import (
-    DLFLError,
-    GeometryError,
-    InvalidArgumentError,
-    UnknownIdError,
-)
+from .errors import DLFLError, GeometryError, InvalidArgumentError, UnknownIdError
 from .geometry import edge_cleanup
 from .hull import hull_polygons
 from .mesh import Mesh

@@ -24,11 +24,7 @@ from .analysis import corner_normals, face_normals
 from .arrays import MeshArrays, mesh_arrays
 from .budget import check_size
 from .build import from_corner_arrays
-from .errors import (
-    GeometryError,
-    InvalidArgumentError,
-    UnknownIdError,
-)
+from .errors import GeometryError, InvalidArgumentError, UnknownIdError
 from .mesh import Mesh
 from .normals import reversed_rings, ring_normals
 
