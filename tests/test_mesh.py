@@ -710,6 +710,16 @@ def test_positions_name_the_first_id_that_is_not_a_vertex(ids):
         m.positions(ids)
 
 
+@pytest.mark.parametrize("big", [2**63, 2**64 - 1])
+def test_positions_name_an_unsigned_id_past_int64_as_it_is(big):
+    # a cast to int64 would wrap it to a negative id and name that one
+    m = cube()
+    with pytest.raises(UnknownIdError, match=f"^vertex {big} does not exist$"):
+        m.positions(np.array([0, big], dtype=np.uint64))
+    np.testing.assert_array_equal(m.positions(np.array([3, 0], dtype=np.uint64)),
+                                  m.positions([3, 0]))
+
+
 def test_positions_name_a_deleted_vertex_and_refuse_non_integers():
     m, vertices = three_point_spheres()
     m.remove_vertex(vertices[0])

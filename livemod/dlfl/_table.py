@@ -189,6 +189,8 @@ class Table:
         if not (isinstance(eids, np.ndarray) and eids.dtype.kind in "iu"):
             slot = self.slot
             return [slot(eid) for eid in eids]
+        if _past_int64(eids):
+            return [self.slot(int(eid)) for eid in eids.reshape(-1)]
         ids = eids.astype(np.int64).reshape(-1)
         slots = ids - self.base
         home = (slots >= 0) & (slots < self.n)
@@ -316,3 +318,9 @@ class Table:
         self.moved = dict(zip(ids[off].tolist(), off.tolist(), strict=True))
         self.next_id = max(self.next_id - len(ids), int(ids.max()) + 1)
         self.floor = min(self.floor, int(ids.min()))
+
+
+def _past_int64(ids: np.ndarray) -> bool:
+    """True when the unsigned ``ids`` hold one past int64's range, which a cast
+    would wrap to a negative id (the error would name another id)."""
+    return ids.dtype.kind == "u" and ids.size > 0 and int(ids.max()) > np.iinfo(np.int64).max
