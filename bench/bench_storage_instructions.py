@@ -4,8 +4,9 @@
 
 Each workload runs in a child under ``valgrind --tool=callgrind`` at two sizes;
 the difference of the totals over the difference of the sizes is what one unit
-costs (an insert/delete pair, one chained extrusion, one quad of a bulk build,
-one face laid out for the renderer), startup cancelled out. ``--tree`` runs the
+costs (an insert/delete pair, one chained extrusion, one quad of a bulk build
+alone or followed by Catmull-Clark, one face laid out for the renderer), startup
+cancelled out. ``--tree`` runs the
 same children against other source trees (e.g. a checkout of ``main``), so that
 a change to the storage can be compared with the code before it, unit by unit,
 without the noise of wall-clock times on a shared machine (see
@@ -90,6 +91,11 @@ mesh = from_polygons(pos, quads)
 mesh.delete_edge(int(mesh.edge_ids()[0]))  # a free slot: the general layout path
 arrays = mesh_arrays(mesh)
 build_geometry(arrays)
+""", 100 ** 2, 400 ** 2),
+    Workload("build + catmull-clark", "quad", TORUS + """
+from livemod.dlfl.subdivision import subdivide
+mesh = from_polygons(pos, quads)
+subdivide(mesh, "catmull-clark")
 """, 100 ** 2, 400 ** 2),
 )
 
