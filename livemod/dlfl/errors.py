@@ -75,7 +75,17 @@ class FileFormatError(DLFLError):
 
 class GeometryError(DLFLError):
     """The geometry makes the operation impossible: a face with no normal, a crust
-    that turns inside out, a coordinate that overflows."""
+    that turns inside out, a coordinate that overflows.
+
+    Attributes:
+        reason: what failed, said without element ids, or None. Set where the
+            ids would mislead: an extrusion rehearsed on a scratch mesh reports
+            the reason against the face it was given.
+    """
+
+    def __init__(self, message: str, *, reason: str | None = None) -> None:
+        super().__init__(message)
+        self.reason = reason
 
 
 class DLFLRepairWarning(UserWarning):

@@ -65,11 +65,8 @@ def _step_failure(message: str, reason: str) -> GeometryError:
     """The error of a step that cannot be built: the face it extrudes has no
     normal, or a point it makes is not finite. ``message`` names the face or
     point; the error's ``reason`` says the same without ids, for a rehearsal
-    (:func:`_rehearse`), whose ids are those of a scratch mesh. A plain
-    :class:`GeometryError`, so that is the name a script's error line shows."""
-    error = GeometryError(message)
-    error.reason = reason  # type: ignore[attr-defined]
-    return error
+    (:func:`_rehearse`), whose ids are those of a scratch mesh."""
+    return GeometryError(message, reason=reason)
 
 
 def _face_geometry(mesh: Mesh, face: int) -> tuple[np.ndarray, np.ndarray]:
@@ -600,6 +597,7 @@ def _rehearse(mesh: Mesh, face: int, kind: str, run: Callable[[Mesh, int], objec
     try:
         run(scratch, front)
     except DLFLError as exc:  # the same kind of failure, said of the face given
-        why = getattr(exc, "reason", exc)  # a step's reason names no scratch ids
+        # a step's reason names no scratch ids
+        why = exc.reason if isinstance(exc, GeometryError) and exc.reason else exc
         raise type(exc)(f"{kind} extrusion of face {face} cannot be built: {why}; "
                         "the mesh is unchanged") from None
