@@ -5,8 +5,9 @@
 Read from the source with :mod:`ast` (nothing is imported), so the counts are exact:
 
 * **storage reads**: ``x._c``, ``x._e``, ``x._f`` or ``x._v`` (a :class:`Mesh`'s
-  tables), or a private method of ``Mesh`` called on anything but ``self``, in a
-  module that is not one of :data:`STORAGE_MODULES`;
+  tables), or a private method of ``Mesh`` (not a ``_hook_`` such as IPython's
+  ``_repr_png_``) called on anything but ``self``, in a module that is not one of
+  :data:`STORAGE_MODULES`;
 * **private imports**: ``from m import _name`` for any module ``m``, and
   ``m._name`` read through a name an import bound to module ``m``
   (``import m``, ``from pkg import m as alias``);
@@ -63,7 +64,10 @@ def mesh_private_members() -> frozenset[str]:
         elif (isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name)
               and node.value.id == "self"):
             names.add(node.attr)
-    return frozenset(n for n in names if n.startswith("_") and not n.startswith("__"))
+    # not dunders, nor protocol hooks that end in one underscore too (IPython's
+    # ``_repr_png_``): other objects define and get called by those names
+    return frozenset(n for n in names
+                     if n.startswith("_") and not n.startswith("__") and not n.endswith("_"))
 
 
 def storage_reads() -> list[Finding]:

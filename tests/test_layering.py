@@ -32,7 +32,7 @@ def test_the_counter_sees_table_reads_and_private_mesh_methods(tmp_path, monkeyp
         "dlfl/mesh.py": (layering.PACKAGE / "dlfl" / "mesh.py").read_text(),
         "dlfl/op.py": "def op(mesh, table):\n"
                       "    a = mesh._v.n + len(mesh._ring_slots(0))\n"
-                      "    return a + table._sorted_cache + mesh.num_faces\n",
+                      "    return a + table._sorted_cache + mesh.num_faces + picture._repr_png_\n",
     })
     found = [(f.path, f.line, f.text) for f in layering.storage_reads()]
     assert sorted(found) == [("livemod/dlfl/op.py", 2, "mesh._ring_slots"),
