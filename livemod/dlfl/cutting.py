@@ -289,7 +289,7 @@ def truncate(mesh: Mesh, offset: float = DEFAULT_OFFSET, *,
     t = _offset(offset)
     if t >= 0.5:
         raise InvalidArgumentError(
-                                   f"truncate cuts every edge from both ends: offset must be below 0.5, "
+            f"truncate cuts every edge from both ends: offset must be below 0.5, "
             f"got {offset!r}")
     v, e, f = mesh.counts()
     spheres = mesh.num_corners - 2 * e  # they stay as they are
@@ -374,7 +374,7 @@ def _check_cuttable(mesh: Mesh, vertex: int) -> None:
     for c in mesh.vertex_corners(vertex):
         if mesh.corner_vertex(mesh.corner_next(c)) == vertex:
             raise InvalidArgumentError(
-                                       f"vertex {vertex} has a self-loop (edge {mesh.corner_edge(c)}); "
+                f"vertex {vertex} has a self-loop (edge {mesh.corner_edge(c)}); "
                 "a cut needs edges to other vertices")
 
 
@@ -396,7 +396,7 @@ def _edge_regions(mesh: Mesh, edges: list[int]) -> list[_Region]:
     for verts, inner in (m for m in members if m[1]):
         if len(inner) != len(verts) - 1:
             raise InvalidArgumentError(
-                                       f"edges {', '.join(map(str, inner))} close a cycle: a cut of edges "
+                f"edges {', '.join(map(str, inner))} close a cycle: a cut of edges "
                 "needs them to form paths or trees (cut the face inside instead)")
         for v in verts:
             _check_cuttable(mesh, v)
@@ -454,7 +454,7 @@ def _check_disjoint(regions: list[_Region]) -> None:
         for v in r.vertices:
             if v in owner:
                 raise InvalidArgumentError(
-                                           f"{owner[v].name} and {r.name} share vertex {v}: cut them in "
+                    f"{owner[v].name} and {r.name} share vertex {v}: cut them in "
                     "separate calls")
             owner[v] = r
 
