@@ -114,19 +114,30 @@ def scheme_table() -> list[str]:
 
 def extrusion_table() -> list[str]:
     from livemod.dlfl import extrusion
-    from livemod.dlfl.commands.extrusion import OPTION_ORDER
 
     defaults = {name: p.default for name, p in inspect.signature(extrusion.extrude).parameters.items()}
-    defaults["mesh"] = defaults.get("dual_mesh", False)
     lines = ["## Extrusion kinds", "",
              "`extrude(type, faceid, *options)` in a script, "
-             "`livemod.dlfl.extrusion.extrude(mesh, face, kind=..., ...)` in the library.", "",
+             "`livemod.dlfl.extrusion.extrude(mesh, face, kind=..., ...)` in the library. "
+             "The options are positional in the thesis appendix's order, or keywords; "
+             "those after the semicolon only by keyword.", "",
              "| kind | options in order (defaults) | TopMod |", "|---|---|---|"]
-    for kind, order in OPTION_ORDER.items():
-        options = ", ".join(f"{o}={defaults.get(o)!r}" for o in order)
-        lines.append(f"| `{kind}` | {options} | `{extrusion.KINDS[kind].topmod}` |")
+    for kind, spec in extrusion.KINDS.items():
+        options = ", ".join(_with_default(spec, o, defaults) for o in spec.options)
+        extra = [_with_default(spec, o, defaults) for o in spec.keyword_options]
+        if spec.shape is not None:
+            extra += [f"{name}={getattr(spec.shape, name)!r}" for name in ("angle", "l1", "l2", "l3")]
+        if extra:
+            options += "; " + ", ".join(extra)
+        lines.append(f"| `{kind}` | {options} | `{spec.topmod}` |")
     aliases = ", ".join(f"`{a}` = `{k}`" for a, k in sorted(extrusion.ALIASES.items()))
-    return [*lines, "", f"Aliases: {aliases}. Unique prefixes work too, as in TopMod.", ""]
+    return [*lines, "", f"Aliases: {aliases}. A prefix works too: the first kind in this "
+            "table's order that starts with it, as in TopMod.", ""]
+
+
+def _with_default(spec: Any, option: str, defaults: dict[str, Any]) -> str:
+    """``option=default`` for a script option of extrusion kind ``spec``."""
+    return f"{option}={defaults.get(spec.library_names.get(option, option))!r}"
 
 
 def _public_functions(module: Any) -> Iterable[tuple[str, Any]]:

@@ -479,7 +479,7 @@ def test_moves_that_overflow_to_infinity_are_refused(cube_scene, command, args):
     lambda: dlfl.corners(None), lambda: dlfl.deleteEdge(0, "False"),
     lambda: dlfl.translate(1, 0, 0, "absolute"), lambda: dlfl.move([0], (1, 0, 0), 0.5),
     lambda: dlfl.subdivideFace(0, "quads"), lambda: dlfl.dual("accurate"),
-    lambda: dlfl.extrude("octa", 0, 1, 1, 0, 1, "no"),
+    lambda: dlfl.extrude("octa", 0, 1, 0, 1, mesh="no"),
     lambda: dlfl.extrude("dodeca", 0, 1, 2, 0, 1, [True]),
     lambda: dlfl.connectEdges((0, 0), (1, 1), "check"),
     lambda: dlfl.rind([0], "no", 0.1), lambda: dlfl.rind([0], False, 0.1, "no"),

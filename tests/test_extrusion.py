@@ -317,11 +317,13 @@ def bad_cases(m: Mesh):
     gone_face = int(m.next_ids()[2]) + 5
     return [
         (lambda: extrude(m, gone_face, "cubical"), UnknownIdError, "does not exist"),
-        (lambda: extrude(m, TOP, "twirl"), InvalidArgumentError, "valid kinds: cubical, doo-sabin"),
+        (lambda: extrude(m, TOP, "twirl"), InvalidArgumentError,
+         "valid kinds: doo-sabin, dodeca, icosa, octa"),
         (lambda: extrude(m, TOP, "cubical", segments=0), InvalidArgumentError, "segments"),
         (lambda: extrude(m, TOP, "cubical", segments=1.5), InvalidArgumentError, "segments"),
         (lambda: extrude(m, TOP, "cubical", distance=math.nan), InvalidArgumentError, "finite"),
-        (lambda: extrude(m, TOP, "stellate"), InvalidArgumentError, "extrude_fan"),
+        (lambda: extrude(m, TOP, "stellate", segments=2), InvalidArgumentError,
+         "stellate extrusion ends in a fan of triangles: it has no segments, got segments=2"),
         (lambda: extrude_fan(m, TOP, "cubical"), InvalidArgumentError, "use extrude"),
         (lambda: extrude(m, "0", "cubical"), InvalidArgumentError, "face id"),
     ]
@@ -724,3 +726,135 @@ def test_an_on_off_option_that_is_not_a_flag_is_refused(option):
     with pytest.raises(InvalidArgumentError, match=f"{option} must be True or False, got 'no'"):
         extrude(m, 0, "octa", **{option: "no"})
     assert snapshot(m) == before
+
+
+# -- TopMod's GUI shapes of the dodecahedral and icosahedral extrusions ------------
+
+def _unit(v: np.ndarray) -> np.ndarray:
+    return v / np.linalg.norm(v)
+
+
+def _planar(points: list[np.ndarray]) -> np.ndarray:
+    """The unit normal of ``points``, asserting they lie in one plane."""
+    p = np.array(points)
+    normal = _unit(np.cross(p[1] - p[0], p[2] - p[0]))
+    np.testing.assert_allclose((p - p[0]) @ normal, 0.0, atol=1e-12)
+    return normal
+
+
+def test_gui_dodeca_shape_tilts_every_pentagon_by_the_angle():
+    from livemod.dlfl.extrusion import DODECA_SHAPE, Shape
+
+    m = cube()
+    base = face_points(m, TOP)
+    end = extrude(m, TOP, "dodeca", shape=Shape(35.0, 0.5, 1.0, 1.0))
+    assert checked(m) == (20, 32, 14) and face_size_histogram(m) == {4: 6, 5: 8}
+    pentagons = [f for f in m.face_ids().tolist() if m.face_size(f) == 5]
+    lower = [f for f in pentagons if len(set(m.face_vertices(f)) & set(range(8))) == 2]
+    assert len(lower) == 4
+    for f in pentagons:
+        normal = _planar([m.position(v) for v in m.face_vertices(f)])
+        if f in lower:  # a side face over a base edge, 35 degrees from upright
+            assert normal[1] == pytest.approx(-math.sin(math.radians(35.0)))
+    top = np.array([m.position(v) for v in m.face_vertices(end)])
+    assert _planar(list(top))[1] == pytest.approx(1.0)
+    # base side 2: the first ring 2 l1 from the base corners, the end face a square
+    # turned by 45 degrees about the axis
+    first = [m.position(v) for v in range(8, 12)]
+    assert [float(np.linalg.norm(p - b)) for p, b in zip(first, base, strict=True)] == \
+        pytest.approx([1.0] * 4)
+    assert all(min(abs(p[0]), abs(p[2])) == pytest.approx(0.0, abs=1e-12) for p in top)
+    assert Shape(40.0, 0.5, 1.0, 1.0) == DODECA_SHAPE
+
+
+def test_gui_icosa_shape_places_the_three_rings_by_its_lengths():
+    from livemod.dlfl.extrusion import ICOSA_SHAPE, icosa_shape_rings
+
+    m = cube()
+    base = face_points(m, TOP)
+    extrude(m, TOP, "icosa", shape=ICOSA_SHAPE)
+    assert checked(m) == (20, 48, 30) and face_size_histogram(m) == {3: 24, 4: 6}
+    rings = icosa_shape_rings(base, np.array([0.0, 1.0, 0.0]), ICOSA_SHAPE)
+    mids, copies, apexes = rings[:4], rings[4:8], rings[8:]
+    sides = base[[1, 2, 3, 0]] - base
+    # each dual point: over its side's midpoint, in the plane through the side
+    # tilted 50 degrees, L l1 sqrt(3)/2 away (L = 2)
+    for i in range(4):
+        offset = mids[i] - (base[i] + sides[i] / 2)
+        assert float(np.linalg.norm(offset)) == pytest.approx(2 * 0.5 * math.sqrt(3) / 2)
+        assert float(offset @ sides[i]) == pytest.approx(0.0, abs=1e-12)
+        normal = _planar([base[i], base[(i + 1) % 4], mids[i]])
+        assert abs(normal[1]) == pytest.approx(math.sin(math.radians(50.0)))
+    assert np.linalg.norm(apexes - base, axis=1) == pytest.approx([2 * 0.7] * 4)
+    assert np.linalg.norm(copies - mids, axis=1) == pytest.approx([2 * 0.8] * 4)
+    placed = {tuple(np.round(m.position(v), 12)) for v in m.vertex_ids().tolist() if v >= 8}
+    assert placed == {tuple(np.round(p, 12)) for p in rings}
+
+
+def test_a_gui_shape_is_refused_where_the_kind_has_none():
+    from livemod.dlfl.extrusion import DODECA_SHAPE
+
+    assert_refused(cube(), lambda m: extrude(m, TOP, "cubical", shape=DODECA_SHAPE),
+                   "a cubical extrusion has no shape options")
+
+
+# -- several faces at once, as TopMod extrudes a selection ---------------------------
+
+def test_extruding_several_faces_is_extruding_each_in_turn():
+    from livemod.dlfl.extrusion import extrude_faces
+
+    together, one_by_one = cube(), cube()
+    ends = extrude_faces(together, [TOP, 1, 5], "cubical", 0.5, 2, 10.0, 0.9)
+    alone = [extrude(one_by_one, f, "cubical", 0.5, 2, 10.0, 0.9) for f in (TOP, 1, 5)]
+    assert ends == alone and snapshot(together) == snapshot(one_by_one)
+    assert checked(together) == (8 + 24, 12 + 48, 6 + 24)
+    assert genus(together) == 0
+
+
+def test_octa_mesh_on_neighbours_deletes_the_old_edges_after_every_face():
+    from livemod.dlfl.extrusion import extrude_faces
+
+    m = cube()
+    shared = set(m.face_edges(TOP)) & set(m.face_edges(1))
+    assert len(shared) == 1
+    extrude_faces(m, [TOP, 1], "octa", 1.0, dual_mesh=True)
+    # two octa steps without mesh (16/36/22), then the 7 old edges deleted
+    assert checked(m) == (16, 29, 15)
+    # of the 16 band triangles, the two over the shared edge merge into a quad and
+    # six merge into the cube's side faces (pentagons; hexagons beside both faces)
+    assert face_size_histogram(m) == {3: 8, 4: 2 + 1, 5: 2, 6: 2}
+    apart = cube()
+    extrude_faces(apart, [TOP, 5], "octa", 1.0, dual_mesh=True)
+    single = cube()
+    extrude(single, TOP, "octa", 1.0, dual_mesh=True)
+    extrude(single, 5, "octa", 1.0, dual_mesh=True)
+    assert checked(apart) == (16, 28, 14) == checked(single)
+
+
+def test_several_fans_and_their_triangles():
+    from livemod.dlfl.extrusion import extrude_faces
+
+    m = cube()
+    fans = extrude_faces(m, [TOP, 5], "stellate", 1.0, fans=True)
+    assert checked(m) == (10, 20, 12) and [len(fan) for fan in fans] == [4, 4]
+    assert extrude_faces(cube(), [TOP, 5], "stellate", 1.0) == [fan[0] for fan in fans]
+
+
+def _collinear_bottom() -> Mesh:
+    """TopMod's cube with its bottom face (5) squashed onto a line."""
+    m = cube()
+    for x, v in zip((-1.5, -0.5, 0.5, 1.5), m.face_vertices(5), strict=True):
+        m.set_position(v, (x, -1.0, 0.0))
+    return m
+
+
+@pytest.mark.parametrize(("faces", "message"), [
+    ([TOP, TOP], "face 0 is given twice"),
+    ([TOP, 99], "face 99 does not exist"),
+    ([TOP, 5], "face 5 is degenerate"),
+    ([TOP, "5"], "must hold ids"),
+])
+def test_several_faces_are_all_checked_before_any_is_extruded(faces, message):
+    from livemod.dlfl.extrusion import extrude_faces
+
+    assert_refused(_collinear_bottom(), lambda m: extrude_faces(m, faces, "cubical"), message)

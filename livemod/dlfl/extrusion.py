@@ -23,12 +23,13 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from functools import lru_cache
+from typing import Any
 
 import numpy as np
 
-from ._checks import finite_number, first_not_finite, flag, shown, whole_count
+from ._checks import finite_number, first_not_finite, flag, id_list, shown, whole_count
 from .bands import quad_band, triangle_band
 from .budget import check_growth
 from .errors import DLFLError, GeometryError, InvalidArgumentError, UnknownIdError
@@ -36,7 +37,9 @@ from .mesh import Mesh
 from .normals import inset_offsets, small_polygon_normal
 
 __all__ = [
-    "KINDS", "Kind", "Options", "extrude", "extrude_fan", "kind_names", "resolve_kind",
+    "DODECA_SHAPE", "ICOSA_SHAPE", "KINDS", "TOPMOD_KEYWORDS", "Kind", "Options", "Shape",
+    "dodeca_shape_rings", "extrude", "extrude_faces", "extrude_fan", "icosa_shape_rings",
+    "kind_names", "resolve_kind",
     "cubical_step", "doo_sabin_step", "dual_step", "planar_offset_step", "dodeca_step",
     "hex_tile_step", "icosa_step", "cuboctahedral_step", "stellate_fan",
     "double_stellate_fan", "dome_fan", "doo_sabin_weights", "small_polygon_normal",
@@ -57,6 +60,30 @@ class Options:
     hexagonalize: bool = False
     thickness: float = 0.25
     fractional: bool = True
+    shape: Shape | None = None
+
+
+@dataclass(frozen=True)
+class Shape:
+    """The shape options of TopMod's GUI dodecahedral and icosahedral extrusions.
+
+    With a shape, a dodeca or icosa step places its new rings by TopMod's GUI
+    rules (:func:`dodeca_shape_rings`, :func:`icosa_shape_rings`) instead of
+    moving along the normal: ``angle`` in degrees tilts the side faces, and
+    ``l1``, ``l2``, ``l3`` scale the three rings' offsets by the base face's mean
+    edge length. :data:`DODECA_SHAPE` and :data:`ICOSA_SHAPE` are the GUI's defaults.
+    """
+
+    angle: float
+    l1: float
+    l2: float
+    l3: float
+
+
+#: TopMod's GUI defaults of the dodecahedral extrusion (angle 40, l1-l3 .5, 1, 1)
+DODECA_SHAPE = Shape(40.0, 0.5, 1.0, 1.0)
+#: TopMod's GUI defaults of the icosahedral extrusion (angle 50, l1-l3 .5, .7, .8)
+ICOSA_SHAPE = Shape(50.0, 0.5, 0.7, 0.8)
 
 
 # -- local geometry ------------------------------------------------------------------
@@ -234,9 +261,30 @@ def dodeca_step(mesh: Mesh, face: int, opts: Options) -> int:
     leaving pentagons (cube: 20/32/14). (TopMod takes the square root of the
     scale per step, then the cube root per sub-step, so a step scales by
     ``sqrt(scale)``.)"""
+    if opts.shape is not None:
+        return _dodeca_shaped(mesh, face, opts.shape)
     third = replace(opts, distance=opts.distance / 3.0, scale=abs(opts.scale) ** (1.0 / 6.0))
     face = cubical_step(mesh, face, replace(third, rotation=0.0))
     return _dual_then_cubical(mesh, face, third)
+
+
+def _dodeca_shaped(mesh: Mesh, face: int, shape: Shape) -> int:
+    """TopMod's GUI ``extrudeFaceDodeca(angle, l1, l2, l3)``: the dodeca step's
+    topology (cubical, dual with ``dual_mesh``, cubical, the dual face's edges
+    deleted), then its three rings placed by :func:`dodeca_shape_rings`."""
+    base, normal = _face_geometry(mesh, face)
+    unit_step = Options(distance=1.0)
+    first = cubical_step(mesh, face, unit_step)
+    ring1 = mesh.face_vertices(first)
+    end, ring2 = _dual_then_cubical_rings(mesh, first, unit_step)
+    rings = dodeca_shape_rings(base, normal, shape)
+    _place(mesh, [*ring1, *ring2, *mesh.face_vertices(end)], rings)
+    return end
+
+
+def _place(mesh: Mesh, vertices: list[int], points: np.ndarray) -> None:
+    """Move ``vertices`` to ``points`` (``(k, 3)``), checked finite first."""
+    mesh.set_positions(vertices, _finite(points))
 
 
 def hex_tile_step(mesh: Mesh, face: int, opts: Options) -> int:
@@ -251,11 +299,18 @@ def hex_tile_step(mesh: Mesh, face: int, opts: Options) -> int:
 def _dual_then_cubical(mesh: Mesh, face: int, step: Options) -> int:
     """A dual step with ``dual_mesh``, a cubical step, then the dual face's edges
     deleted (the shared tail of dodeca and hex-tile); returns the end face."""
+    return _dual_then_cubical_rings(mesh, face, step)[0]
+
+
+def _dual_then_cubical_rings(mesh: Mesh, face: int, step: Options) -> tuple[int, list[int]]:
+    """:func:`_dual_then_cubical`, also returning the dual face's vertices from its
+    head (vertex ``i`` on the side from ``face``'s corner ``i``)."""
     face = dual_step(mesh, face, replace(step, dual_mesh=True))
+    dual_vertices = mesh.face_vertices(face)
     dual_edges = mesh.face_edges(face)
     face = cubical_step(mesh, face, replace(step, rotation=0.0))
     _delete_edges(mesh, dual_edges)
-    return face
+    return face, dual_vertices
 
 
 def icosa_step(mesh: Mesh, face: int, opts: Options) -> int:
@@ -266,17 +321,36 @@ def icosa_step(mesh: Mesh, face: int, opts: Options) -> int:
     Differs from TopMod: the positions are those of these steps; TopMod then
     re-placed three rings by angle rules, which its Python binding fed with
     misbound parameters (angle = distance, ...)."""
+    if opts.shape is not None:
+        base, normal = _face_geometry(mesh, face)
+        end, rings = _icosa_build(mesh, face, replace(opts, distance=3.0))
+        _place(mesh, rings, icosa_shape_rings(base, normal, opts.shape))
+        return end
+    return _icosa_build(mesh, face, opts)[0]
+
+
+def _icosa_build(mesh: Mesh, face: int, opts: Options) -> tuple[int, list[int]]:
+    """The icosa step of :func:`icosa_step`; returns the end face and its new
+    vertices as :func:`icosa_shape_rings` orders them: the dual step's points
+    (``i`` on the side from corner ``i``), the cubical copies of those, then the
+    apex of the side face at each corner of ``face``."""
+    base = mesh.face_vertices(face)
     face = dual_step(mesh, face, replace(opts, distance=opts.distance / 3.0, dual_mesh=False))
+    mids = mesh.face_vertices(face)
     dual_edges = mesh.face_edges(face)
     face = cubical_step(mesh, face, Options(distance=2.0 * opts.distance / 3.0))
+    copies = mesh.face_vertices(face)
     _delete_edges(mesh, dual_edges)
     sides = []
     for edge in mesh.face_edges(face):
         f0, f1 = mesh.edge_faces(edge)
         sides.append(f1 if f0 == face else f0)
+    apex_at = {}
     for side in sides:
-        stellate_fan(mesh, side, 0.0)
-    return face
+        corner = (set(mesh.face_vertices(side)) & set(base)).pop()
+        fan = stellate_fan(mesh, side, 0.0)
+        apex_at[corner] = mesh.corner_vertex(_shared_corner(mesh, fan))
+    return face, [*mids, *copies, *(apex_at[v] for v in base)]
 
 
 def cuboctahedral_step(mesh: Mesh, face: int, opts: Options) -> int:
@@ -293,10 +367,112 @@ def cuboctahedral_step(mesh: Mesh, face: int, opts: Options) -> int:
     return face
 
 
+# -- the GUI's dodecahedral and icosahedral shapes ------------------------------------
+
+def _tilted(axis: np.ndarray, toward: np.ndarray, alpha: float) -> np.ndarray:
+    """``(k, 3)`` ``normalize(cos(alpha) normalize(axis) + sin(alpha) toward)``: a
+    side-face normal tilted from ``axis`` (``(k, 3)``) toward ``toward``
+    (``(3,)`` or ``(k, 3)``, unit) by ``alpha`` radians, TopMod's construction."""
+    return _unit_rows(math.cos(alpha) * _unit_rows(axis) + math.sin(alpha) * toward)
+
+
+def _ring_frame(base: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
+    """``(after, before, mean edge length)`` of the ``(k, 3)`` base ring: the next
+    and previous points of each and the mean length of its sides."""
+    after, before = base[_after(len(base))], base[_before(len(base))]
+    return after, before, float(np.linalg.norm(after - base, axis=1).mean())
+
+
+def dodeca_shape_rings(base: np.ndarray, normal: np.ndarray, shape: Shape) -> np.ndarray:
+    """``(3k, 3)`` TopMod's GUI placement of a dodecahedral step's three rings.
+
+    ``base`` is the extruded face's ``(k, 3)`` points, ``normal`` its ``(3,)`` unit
+    normal; with ``a = -angle``, ``L`` the mean base side and ``e_i`` the unit
+    side from point ``i`` to ``i + 1``, ``fn_i`` tilts ``e_i x n`` toward ``n`` by
+    ``a`` (the side face over ``e_i``) and ``fp_i`` tilts ``n x e_{i-1}`` back:
+
+    * ring 1, point ``i`` (the first cubical copy): ``b_i + L l1 normalize(fp_i x fn_i)``;
+    * ring 2 (the dual points): the midpoint of ring 1's points ``i, i + 1``
+      plus ``L cos 54° l2 normalize(fn_i x e_i)``;
+    * ring 3 (the second cubical copy): ring 2's point ``i`` plus
+      ``l3^2 (|b_{i-1} - b_i| + |b_{i+1} - b_i|) / 2`` along the cross product of
+      the normals of the planes (ring 2 ``i - 1``, ring 1 ``i``, ring 2 ``i``) and
+      (ring 2 ``i``, ring 1 ``i + 1``, ring 2 ``i + 1``).
+    """
+    alpha = -math.radians(shape.angle)
+    after, before, mean_side = _ring_frame(base)
+    e_next = _unit_rows(after - base)
+    fn = _tilted(np.cross(e_next, normal), normal, alpha)
+    fp = _tilted(np.cross(normal, _unit_rows(before - base)), normal, alpha)
+    ring1 = base + mean_side * shape.l1 * _unit_rows(np.cross(fp, fn))
+    k = len(base)
+    ring2 = (ring1 + ring1[_after(k)]) * 0.5 + (
+        mean_side * math.cos(math.radians(54.0)) * shape.l2) * _unit_rows(np.cross(fn, e_next))
+    reach = (np.linalg.norm(before - base, axis=1) + np.linalg.norm(after - base, axis=1)) * 0.5
+    prev_plane = _plane_normal(ring2[_before(k)], ring1, ring2)
+    next_plane = _plane_normal(ring2, ring1[_after(k)], ring2[_after(k)])
+    ring3 = ring2 + (reach * shape.l3 * shape.l3)[:, None] * _unit_rows(
+        np.cross(prev_plane, next_plane))
+    return np.concatenate([ring1, ring2, ring3])
+
+
+def _plane_normal(first: np.ndarray, middle: np.ndarray, last: np.ndarray) -> np.ndarray:
+    """``(k, 3)`` unit normal of each plane through ``first, middle, last`` (each
+    ``(k, 3)``): ``normalize(normalize(last - middle) x normalize(first - middle))``."""
+    return _unit_rows(np.cross(_unit_rows(last - middle), _unit_rows(first - middle)))
+
+
+def icosa_shape_rings(base: np.ndarray, normal: np.ndarray, shape: Shape) -> np.ndarray:
+    """``(3k, 3)`` TopMod's GUI placement of an icosahedral step's three rings.
+
+    With ``base``, ``normal``, ``a``, ``L``, ``e_i`` and ``fn_i`` as in
+    :func:`dodeca_shape_rings`:
+
+    * the dual points ``m_i``: the midpoint of side ``i`` plus
+      ``L l1 sqrt(3)/2 normalize(fn_i x e_i)``;
+    * the cubical copies ``c_i`` (the end face): ``m_i + L l3 d_i``;
+    * the apex ``p_i`` of the side face at base point ``i``: ``b_i + L l2 d'_i``;
+
+    where ``d'_i`` and ``d_i`` are TopMod's cross products of two side-face
+    normals each tilted by ``a`` about the edges from ``b_i`` to ``m_i``,
+    ``m_{i-1}`` (for the apex) and from ``m_i`` to ``b_i``, ``b_{i+1}`` against
+    the triangles toward the apexes (for the copies). The result lists ``m``,
+    then ``c``, then ``p``.
+    """
+    alpha = -math.radians(shape.angle)
+    after, before, mean_side = _ring_frame(base)
+    k = len(base)
+    e_next = _unit_rows(after - base)
+    fn = _tilted(np.cross(e_next, normal), normal, alpha)
+    fp = _tilted(np.cross(normal, _unit_rows(before - base)), normal, alpha)
+    mids = (base + (after - base) * 0.5
+            + (mean_side * shape.l1 * math.sqrt(3.0) * 0.5) * _unit_rows(np.cross(fn, e_next)))
+    apexes = base + mean_side * shape.l2 * _cross_tilted(
+        mids[_before(k)] - base, -fp, mids - base, -fn, alpha)
+    to_prev_apex, to_next_apex = _unit_rows(apexes - mids), _unit_rows(apexes[_after(k)] - mids)
+    to_base, to_next_base = _unit_rows(base - mids), _unit_rows(after - mids)
+    copies = mids + mean_side * shape.l3 * _cross_tilted(
+        to_base, -_unit_rows(np.cross(to_prev_apex, to_base)),
+        to_next_base, -_unit_rows(np.cross(to_next_base, to_next_apex)), alpha)
+    return np.concatenate([mids, copies, apexes])
+
+
+def _cross_tilted(prev_edge: np.ndarray, prev_face: np.ndarray, next_edge: np.ndarray,
+                  next_face: np.ndarray, alpha: float) -> np.ndarray:
+    """``(k, 3)`` TopMod's direction between two tilted faces:
+    ``normalize(tilt(prev_face x prev_edge, prev_face) x tilt(next_edge x next_face,
+    next_face))``, each tilt by ``alpha`` (all ``(k, 3)``)."""
+    before = _tilted(np.cross(prev_face, prev_edge), prev_face, alpha)
+    after = _tilted(np.cross(next_edge, next_face), next_face, alpha)
+    return _unit_rows(np.cross(before, after))
+
+
 def stellate_fan(mesh: Mesh, face: int, distance: float) -> list[int]:
     """TopMod's ``stellateFace``: a point at centroid + ``distance`` n joined to every
-    corner (a cone of triangles). Returns the triangles' ids around the apex."""
+    corner (a cone of triangles). Returns the triangles' ids around the apex, the
+    one over the face's first side (from its head corner) first."""
     points, normal = _face_geometry(mesh, face)
+    first_side = mesh.face_edges(face)[0]
     with np.errstate(over="ignore", invalid="ignore"):  # refused by _finite
         apex_point = points.mean(axis=0) + distance * normal
     apex = mesh.create_vertex(_finite(apex_point))
@@ -304,14 +480,22 @@ def stellate_fan(mesh: Mesh, face: int, distance: float) -> list[int]:
     mesh.insert_edge(tip, mesh.face_corner(face))
     while mesh.face_size(mesh.corner_face(tip)) > 3:
         mesh.insert_edge(tip, mesh.corner_next(mesh.corner_next(tip)))
-    return mesh.vertex_faces(apex)
+    return _starting_over(mesh, mesh.vertex_faces(apex), first_side)
+
+
+def _starting_over(mesh: Mesh, triangles: list[int], side: int) -> list[int]:
+    """``triangles`` rotated to start with the one ``side`` (an edge) borders."""
+    first = next(i for i, t in enumerate(triangles) if side in mesh.face_edges(t))
+    return triangles[first:] + triangles[:first]
 
 
 def double_stellate_fan(mesh: Mesh, face: int, distance: float) -> list[int]:
     """TopMod's ``doubleStellateFace``: stellate at 0, stellate each new triangle at 0,
     then move the first apex ``distance`` along the face's normal (cube: 13/28/17).
-    Returns the ``3n`` triangles that replace the face."""
+    Returns the ``3n`` triangles that replace the face, the one over its first
+    side first."""
     _, normal = _face_geometry(mesh, face)
+    first_side = mesh.face_edges(face)[0]
     first = stellate_fan(mesh, face, 0.0)
     apex = mesh.corner_vertex(_shared_corner(mesh, first))
     triangles = []
@@ -320,7 +504,7 @@ def double_stellate_fan(mesh: Mesh, face: int, distance: float) -> list[int]:
     with np.errstate(over="ignore", invalid="ignore"):  # refused by _finite
         moved = mesh.position(apex) + distance * normal
     mesh.set_position(apex, _finite(moved))
-    return triangles
+    return _starting_over(mesh, triangles, first_side)
 
 
 def _shared_corner(mesh: Mesh, faces: list[int]) -> int:
@@ -340,7 +524,8 @@ def dome_fan(mesh: Mesh, face: int, opts: Options) -> list[int]:
     """TopMod's ``extrudeFaceDome``: five Doo-Sabin steps with distances
     (.3, .18, .1, .05, .025) x ``distance``, twist ``rotation / 5`` and scales
     (1.7, 1.6, 1.4, 1.2, 1.1) x ``scale``, then a stellation at .01 x ``distance``
-    (cube: 29/56/29). Returns the apex triangles."""
+    (cube: 29/56/29). Returns the apex triangles, the one over the last
+    Doo-Sabin face's first side first."""
     for d, s in zip(DOME_DISTANCES, DOME_SCALES, strict=True):
         step = Options(distance=d * opts.distance, twist=opts.rotation / 5.0, scale=s * opts.scale)
         face = doo_sabin_step(mesh, face, step)
@@ -349,16 +534,36 @@ def dome_fan(mesh: Mesh, face: int, opts: Options) -> list[int]:
 
 # -- the registry -------------------------------------------------------------------
 
+#: an extrusion's options in a script, positionally, where the thesis lists none
+TOWER_OPTIONS = ("distance", "segments", "rotation", "scale")
+
+
 @dataclass(frozen=True)
 class Kind:
-    """One extrusion kind: its step, whether it ends in a fan, TopMod's name,
-    whether it needs a face that visits each of its vertices once (kinds whose
-    later sub-steps work on faces the first one made, which come out degenerate
-    from a face with a dangling edge or a loop inside it), and whether one step
-    is a single build (one polygon or apex, every point checked before the mesh
-    changes), which needs no rehearsal on a scratch copy to fail cleanly.
-    ``growth``: at most how many faces and corners one step adds per corner of
-    the face (for the face budget)."""
+    """One extrusion kind: how it is built and how a script names its options.
+
+    Building: ``step`` (one segment, returns the end face) or ``fan`` (ends in a
+    fan of triangles around an apex, returns them, the one over the face's first
+    side first); ``topmod``, TopMod's function; ``growth``, at most how many
+    faces and corners one step adds per corner of the face (for the face
+    budget); ``simple_face``, whether it needs a face that visits each of its
+    vertices once (kinds whose later sub-steps work on faces the first one
+    made, which come out degenerate from a face with a dangling edge or a loop
+    inside it); ``single_build``, whether one step is a single build (one
+    polygon or apex, every point checked before the mesh changes), which needs
+    no rehearsal on a scratch copy to fail cleanly.
+
+    Script options (``extrude(type, faceid, *options, **keywords)``):
+    ``options``, the positional options in the thesis appendix's order;
+    ``keyword_options``, options only a keyword sets (those TopMod's module
+    or GUI had and the thesis leaves out); ``library_names``, the argument of
+    :func:`extrude` a script option sets where the names differ; ``topmod_names``,
+    TopMod's argument names this kind reads differently from
+    :data:`TOPMOD_KEYWORDS`; ``aliases``, other exact names of the kind;
+    ``shape``, the GUI's shape defaults where the kind has them (the keywords
+    ``angle``, ``l1``, ``l2``, ``l3``). :data:`KINDS` lists TopMod's seven Python
+    types first, in the order its module matched a type by prefix.
+    """
 
     step: Callable[[Mesh, int, Options], int] | None
     fan: Callable[[Mesh, int, Options], list[int]] | None
@@ -366,27 +571,57 @@ class Kind:
     growth: tuple[int, int]
     simple_face: bool = False
     single_build: bool = False
+    options: tuple[str, ...] = TOWER_OPTIONS
+    keyword_options: tuple[str, ...] = ()
+    library_names: dict[str, str] = field(default_factory=dict)
+    topmod_names: dict[str, str] = field(default_factory=dict)
+    aliases: tuple[str, ...] = ()
+    shape: Shape | None = None
+
+
+#: TopMod's Python argument names (``extrude(type, fid, dist, num, rot, sf, flag)``),
+#: accepted as keywords by every kind that has the option they name
+TOPMOD_KEYWORDS = {"dist": "distance", "num": "segments", "numsegs": "segments",
+                   "rot": "rotation", "sf": "scale"}
+
+
+def _stellate(m: Mesh, f: int, opts: Options) -> list[int]:
+    return stellate_fan(m, f, opts.distance)
+
+
+def _double_stellate(m: Mesh, f: int, opts: Options) -> list[int]:
+    return double_stellate_fan(m, f, opts.distance)
 
 
 KINDS: dict[str, Kind] = {
+    "doo-sabin": Kind(doo_sabin_step, None, "extrudeFaceDS", (1, 4), single_build=True,
+                      library_names={"rotation": "twist"}, aliases=("ds",)),
+    "dodeca": Kind(dodeca_step, None, "extrudeFaceDodeca", (2, 10),
+                   options=("distance", "segments", "twist", "scale", "hexagonalize"),
+                   library_names={"twist": "rotation"},
+                   topmod_names={"rot": "twist", "flag": "hexagonalize"}, shape=DODECA_SHAPE),
+    "icosa": Kind(icosa_step, None, "extrudeFaceIcosa", (6, 18), simple_face=True,
+                  shape=ICOSA_SHAPE),
+    "octa": Kind(dual_step, None, "extrudeDualFace", (2, 6), single_build=True,
+                 options=("distance", "rotation", "scale"), keyword_options=("segments", "mesh"),
+                 library_names={"mesh": "dual_mesh"}, topmod_names={"flag": "mesh"},
+                 aliases=("dual",)),
+    "stellate": Kind(None, _stellate, "stellateFace", (1, 2), single_build=True,
+                     options=("distance",)),
+    "double-stellate": Kind(None, _double_stellate, "doubleStellateFace", (3, 8),
+                            simple_face=True, options=("distance",)),
     "cubical": Kind(cubical_step, None, "extrudeFace", (1, 4), single_build=True),
-    "doo-sabin": Kind(doo_sabin_step, None, "extrudeFaceDS", (1, 4), single_build=True),
-    "octa": Kind(dual_step, None, "extrudeDualFace", (2, 6), single_build=True),
-    "dodeca": Kind(dodeca_step, None, "extrudeFaceDodeca", (2, 10)),
-    "icosa": Kind(icosa_step, None, "extrudeFaceIcosa", (6, 18), simple_face=True),
-    "cuboctahedral": Kind(cuboctahedral_step, None, "extrudeFaceCubOcta", (3, 10)),
-    "hex-tile": Kind(hex_tile_step, None, "extrudeHexTileFace", (1, 6)),
+    "dome": Kind(None, dome_fan, "extrudeFaceDome", (6, 22),
+                 options=("distance", "rotation", "scale")),
+    "cuboctahedral": Kind(cuboctahedral_step, None, "extrudeFaceCubOcta", (3, 10),
+                          aliases=("cubocta",)),
+    "hex-tile": Kind(hex_tile_step, None, "extrudeHexTileFace", (1, 6), aliases=("hextile",)),
     "planar-offset": Kind(planar_offset_step, None, "extrudeFacePlanarOffset", (1, 4),
-                          single_build=True),
-    "stellate": Kind(None, lambda m, f, opts: stellate_fan(m, f, opts.distance), "stellateFace",
-                     (1, 2), single_build=True),
-    "double-stellate": Kind(
-        None, lambda m, f, opts: double_stellate_fan(m, f, opts.distance), "doubleStellateFace",
-        (3, 8), simple_face=True),
-    "dome": Kind(None, dome_fan, "extrudeFaceDome", (6, 22)),
+                          single_build=True,
+                          options=("distance", "rotation", "thickness", "fractional"),
+                          aliases=("inset",)),
 }
-ALIASES = {"dual": "octa", "inset": "planar-offset", "cubocta": "cuboctahedral",
-           "hextile": "hex-tile", "ds": "doo-sabin"}
+ALIASES = {alias: name for name, kind in KINDS.items() for alias in kind.aliases}
 
 
 def kind_names() -> list[str]:
@@ -447,27 +682,66 @@ def _checked_numbers(opts: Options) -> Options:
     return Options(finite_number(opts.distance, "distance"),
                    finite_number(opts.rotation, "rotation"), finite_number(opts.scale, "scale"),
                    finite_number(opts.twist, "twist"), opts.dual_mesh, opts.hexagonalize,
-                   finite_number(opts.thickness, "thickness"), opts.fractional)
+                   finite_number(opts.thickness, "thickness"), opts.fractional,
+                   _checked_shape(opts.shape))
 
 
-def _prepare(mesh: Mesh, face: int, kind: str, segments: int, opts: Options,
-             max_faces: object) -> tuple[Kind, Options]:
-    """The kind's spec and the checked options, or a DLFLError (see :func:`extrude`);
-    the face budget is checked too."""
+def _checked_shape(shape: Shape | None) -> Shape | None:
+    """``shape`` with its numbers as floats (None stays None).
+
+    Raises:
+        InvalidArgumentError: not a :class:`Shape`, or a number that is not finite.
+    """
+    if shape is None:
+        return None
+    if not isinstance(shape, Shape):
+        raise InvalidArgumentError(f"shape must be an extrusion.Shape, got {shape!r}")
+    return Shape(*(finite_number(getattr(shape, name), name)
+                   for name in ("angle", "l1", "l2", "l3")))
+
+
+def _prepare(mesh: Mesh, faces: list[int], kind: str, segments: int, opts: Options,
+             max_faces: object) -> tuple[str, Kind, Options]:
+    """The kind's name and spec and the checked options for extruding ``faces``, or
+    a DLFLError (see :func:`extrude`); the face budget is checked for all of them."""
     name = resolve_kind(kind)
     spec = KINDS[name]
-    _check_face(mesh, face)
-    if spec.simple_face:
-        _check_simple(mesh, int(face), name)
-    sides = mesh.face_size(int(face))
+    for face in faces:
+        _check_face(mesh, face)
+        if spec.simple_face:
+            _check_simple(mesh, int(face), name)
+    sides = sum(mesh.face_size(int(face)) for face in faces)
     count = whole_count(segments, "segments", each=0)
-    faces, corners = spec.growth
-    check_growth(mesh, f"{name} extrusion", faces=count * faces * sides,
+    if spec.fan is not None and count != 1:
+        raise InvalidArgumentError(f"a {name} extrusion ends in a fan of triangles: it has "
+                                   f"no segments, got segments={count}")
+    grown, corners = spec.growth
+    check_growth(mesh, f"{name} extrusion", faces=count * grown * sides,
                  corners=count * corners * sides, max_faces=max_faces)
     # every segment makes at least a new polygon of the face's size (a budget
     # raised past what a mesh can hold)
     whole_count(segments, "segments", each=sides)
-    return spec, _checked_numbers(opts)
+    if opts.shape is not None and spec.shape is None:
+        raise InvalidArgumentError(f"a {name} extrusion has no shape options (angle, l1, l2, "
+                                   "l3); only dodeca and icosa have them")
+    return name, spec, _checked_numbers(opts)
+
+
+def _runner(spec: Kind, opts: Options, count: int) -> Callable[[Mesh, int], list[int]]:
+    """What extrudes one face: returns ``[end face]``, or a fan's triangles."""
+    fan, step = spec.fan, spec.step
+    if fan is not None:
+        return lambda m, f: fan(m, f, opts)
+    assert step is not None
+
+    def run(m: Mesh, f: int) -> list[int]:
+        for i in range(count):
+            previous = m.face_edges(f) if (opts.hexagonalize and i > 0) else []
+            f = step(m, f, opts)
+            _delete_edges(m, previous)
+        return [f]
+
+    return run
 
 
 def _check_simple(mesh: Mesh, face: int, kind: str) -> None:
@@ -485,7 +759,7 @@ def extrude(
     mesh: Mesh, face: int, kind: str = "cubical", distance: float = 2.0, segments: int = 1,
     rotation: float = 0.0, scale: float = 1.0, *, twist: float = 0.0,
     dual_mesh: bool = False, hexagonalize: bool = False, thickness: float = 0.25,
-    fractional: bool = True, max_faces: object = None,
+    fractional: bool = True, shape: Shape | None = None, max_faces: object = None,
 ) -> int:
     """Extrude ``face`` and return the new end face (TopMod's extrusions, TOPMOD.md §4).
 
@@ -494,7 +768,10 @@ def extrude(
     Counts on cube face 0: cubical 12/20/10, doo-sabin 12/20/10, octa 12/24/14
     (``dual_mesh`` 12/20/10), dodeca 20/32/14 (2 segments with ``hexagonalize``
     32/48/18), icosa 20/48/30, cuboctahedral 16/32/18, hex-tile 16/24/10
-    (2 segments 24/36/14), planar-offset 12/20/10.
+    (2 segments 24/36/14), planar-offset 12/20/10. The kinds that end in a fan of
+    triangles (stellate 9/16/9, double-stellate 13/28/17, dome 29/56/29) return
+    the triangle over the face's first side, from its head corner (over the last
+    Doo-Sabin face's for dome); :func:`extrude_fan` returns all of them.
 
     Args:
         kind: a name of :data:`KINDS` (or alias, or unique prefix).
@@ -511,47 +788,121 @@ def extrude(
             one's end face; ``kind="hex-tile"`` alone, 2 segments: 24/36/14).
         thickness, fractional: planar-offset only, the inset (fractional: of the
             edge vectors; else absolute along unit edge vectors).
+        shape: dodeca and icosa only, TopMod's GUI shape (:class:`Shape`): the
+            rings are placed by its angle and lengths, and ``distance``,
+            ``rotation`` and ``scale`` are not used.
         max_faces: the face budget (None: the session's, see
             :mod:`livemod.dlfl.budget`).
 
     Raises:
-        DLFLError: unknown kind (lists the valid ones), a kind that ends in a fan
-            (use :func:`extrude_fan`), a face that is gone, is a hole, has < 3
-            corners or no normal, for icosa a face that visits a vertex twice,
-            ``segments`` not an integer >= 1 or more than a mesh can hold, a
-            non-finite number, or numbers that overflow or make a degenerate
-            face in a later step or segment (checked on a scratch copy first).
-            The mesh is unchanged.
+        DLFLError: unknown kind (lists the valid ones), a face that is gone, is
+            a hole, has < 3 corners or no normal, for icosa and double-stellate
+            a face that visits a vertex twice, ``segments`` not an integer >= 1
+            or more than a mesh can hold (a fan kind takes none), a shape for a
+            kind without one, a non-finite number, or numbers that overflow or
+            make a degenerate face in a later step or segment (checked on a
+            scratch copy first). The mesh is unchanged.
         BudgetExceededError: the segments would pass the face budget.
     """
-    spec, opts = _prepare(mesh, face, kind, segments, Options(
+    return _extrude_all(mesh, [face], kind, segments, Options(
         distance, rotation, scale, twist, flag(dual_mesh, "dual_mesh"),
-        flag(hexagonalize, "hexagonalize"), thickness, flag(fractional, "fractional")),
-        max_faces)
-    step = spec.step
-    if step is None:
-        raise InvalidArgumentError(
-            f"extrusion kind {resolve_kind(kind)!r} ends in a fan of triangles, "
-            "not an end face; use extrude_fan()")
+        flag(hexagonalize, "hexagonalize"), thickness, flag(fractional, "fractional"), shape),
+        max_faces)[0][0]
+
+
+def extrude_faces(
+    mesh: Mesh, faces: list[int], kind: str = "cubical", distance: float = 2.0,
+    segments: int = 1, rotation: float = 0.0, scale: float = 1.0, *, twist: float = 0.0,
+    dual_mesh: bool = False, hexagonalize: bool = False, thickness: float = 0.25,
+    fractional: bool = True, shape: Shape | None = None, fans: bool = False,
+    max_faces: object = None,
+) -> list[Any]:
+    """Extrude several faces, one after another in the order given, as TopMod
+    extrudes a selection (CTRL+X); return their end faces (see :func:`extrude`),
+    or with ``fans`` (kinds that end in a fan) each face's list of triangles as
+    :func:`extrude_fan` gives it.
+
+    Each face gets its own extrusion, as if extruded alone: two faces that share
+    an edge each get a side wall over it. The one kind whose rule reaches past
+    its face is octa with ``dual_mesh``, which deletes the face's old edges:
+    those are deleted once every face is extruded, so an edge between two
+    extruded faces merges their two side triangles into a quad (TopMod deleted
+    them face by face, merging a later selected face with the earlier one's
+    triangle, or freeing it).
+
+    Raises:
+        DLFLError: as :func:`extrude`, for any of the faces, or a face given
+            twice; every face is checked (on a scratch copy where its steps
+            need it) before the mesh changes, so it is unchanged.
+        BudgetExceededError: the extrusions together would pass the face budget.
+    """
+    results = _extrude_all(mesh, _distinct_faces(faces), kind, segments, Options(
+        distance, rotation, scale, twist, flag(dual_mesh, "dual_mesh"),
+        flag(hexagonalize, "hexagonalize"), thickness, flag(fractional, "fractional"), shape),
+        max_faces, fans=flag(fans, "fans"))
+    return results if fans else [made[0] for made in results]
+
+
+def _extrude_all(mesh: Mesh, faces: list[int], kind: str, segments: int, options: Options,
+                 max_faces: object, *, fans: bool = False) -> list[list[int]]:
+    """:func:`extrude_faces` once its flags are read (and :func:`extrude`): for each
+    face ``[end face]``, or a fan's triangles.
+
+    Raises:
+        InvalidArgumentError: ``fans`` for a kind that ends in a face; see
+            :func:`extrude`.
+    """
+    name, spec, opts = _prepare(mesh, faces, kind, segments, options, max_faces)
+    if fans and spec.fan is None:
+        raise InvalidArgumentError(f"a {name} extrusion ends in a face, not a fan of triangles")
+    ids = [int(f) for f in faces]
     count = int(segments)
+    deferred: list[int] = []
+    if opts.dual_mesh and len(ids) > 1 and spec.step is dual_step:
+        deferred = [e for f in ids for e in mesh.face_edges(f)]
+        run = _octa_keeping_first_edges(opts, count)
+    else:
+        run = _runner(spec, opts, count)
+    if len(ids) > 1 or count > 1 or not spec.single_build:
+        for face in ids:
+            _rehearse(mesh, face, name, run)
+    made = [run(mesh, face) for face in ids]
+    _delete_edges(mesh, deferred)
+    return made
 
-    def run(m: Mesh, f: int) -> int:
+
+def _distinct_faces(faces: object) -> list[int]:
+    """``faces`` as a list of ints, each once.
+
+    Raises:
+        InvalidArgumentError: not a list of integer ids, or an id given twice.
+    """
+    ids = id_list(faces, "faces")
+    twice = next((f for i, f in enumerate(ids) if f in ids[:i]), None)
+    if twice is not None:
+        raise InvalidArgumentError(f"face {twice} is given twice; each face is extruded once")
+    return ids
+
+
+def _octa_keeping_first_edges(opts: Options, count: int) -> Callable[[Mesh, int], list[int]]:
+    """Octa with ``dual_mesh`` whose first segment keeps the face's old edges
+    (:func:`extrude_faces` deletes them after every face)."""
+    first, later = replace(opts, dual_mesh=False), opts
+
+    def run(m: Mesh, f: int) -> list[int]:
         for i in range(count):
-            previous = m.face_edges(f) if (opts.hexagonalize and i > 0) else []
-            f = step(m, f, opts)
-            _delete_edges(m, previous)
-        return f
+            f = dual_step(m, f, later if i else first)
+        return [f]
 
-    if count > 1 or not spec.single_build:
-        _rehearse(mesh, int(face), resolve_kind(kind), run)
-    return run(mesh, int(face))
+    return run
 
 
 def extrude_fan(
     mesh: Mesh, face: int, kind: str = "stellate", distance: float = 2.0,
     rotation: float = 0.0, scale: float = 1.0, *, max_faces: object = None,
 ) -> list[int]:
-    """Run an extrusion that ends in a fan of triangles; return the triangles' ids.
+    """Run an extrusion that ends in a fan of triangles; return all the triangles' ids,
+    the one over the face's first side first (:func:`extrude` returns that one).
 
     Kinds: stellate (apex at centroid + ``distance`` n; cube face: 9/16/9),
     double-stellate (13/28/17, returns all ``3n`` triangles), dome (``distance`` is
@@ -565,15 +916,15 @@ def extrude_fan(
             double-stellate; checked on a scratch copy first). The mesh is
             unchanged.
     """
-    spec, opts = _prepare(mesh, face, kind, 1,
-                          Options(distance=distance, rotation=rotation, scale=scale), max_faces)
-    fan = spec.fan
-    if fan is None:
-        raise InvalidArgumentError(
-            f"extrusion kind {resolve_kind(kind)!r} ends in a face; use extrude()")
+    name, spec, opts = _prepare(mesh, [face], kind, 1,
+                                Options(distance=distance, rotation=rotation, scale=scale),
+                                max_faces)
+    if spec.fan is None:
+        raise InvalidArgumentError(f"extrusion kind {name!r} ends in a face; use extrude()")
+    run = _runner(spec, opts, 1)
     if not spec.single_build:
-        _rehearse(mesh, int(face), resolve_kind(kind), lambda m, f: fan(m, f, opts))
-    return fan(mesh, int(face), opts)
+        _rehearse(mesh, int(face), name, run)
+    return run(mesh, int(face))
 
 
 def _rehearse(mesh: Mesh, face: int, kind: str, run: Callable[[Mesh, int], object]) -> None:

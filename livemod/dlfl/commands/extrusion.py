@@ -7,6 +7,7 @@ positionally in its order per extrusion type, or by keyword.
 
 from __future__ import annotations
 
+from dataclasses import replace
 from typing import Any
 
 from .. import connect as _connect
@@ -18,58 +19,43 @@ from ._base import mesh, modeling_command, resolve_corner, scene
 
 __all__ = ["extrude", "connectEdges", "connectCorners", "connectFaces", "addHandle"]
 
-# positional options after the face id, per kind. TopMod's binding read every one of
-# its seven types as (dist, num, rot, sf, flag), ignoring what a type does not use; the
-# thesis lists each type's options in that order (for octa it leaves out segments,
-# which the binding passed second). The kinds TopMod's binding lacks follow its C++
-# parameter order.
-OPTION_ORDER: dict[str, tuple[str, ...]] = {
-    "doo-sabin": ("distance", "segments", "rotation", "scale"),
-    "dodeca": ("distance", "segments", "twist", "scale", "hexagonalize"),
-    "icosa": ("distance", "segments", "rotation", "scale"),
-    "octa": ("distance", "segments", "rotation", "scale", "mesh"),
-    "stellate": ("distance",),
-    "double-stellate": ("distance",),
-    "cubical": ("distance", "segments", "rotation", "scale"),
-    "dome": ("distance", "rotation", "scale"),
-    "cuboctahedral": ("distance", "segments", "rotation", "scale"),
-    "hex-tile": ("distance", "segments", "rotation", "scale"),
-    "planar-offset": ("distance", "rotation", "thickness", "fractional"),
-}
-# TopMod's prefix order for its seven Python types, then livemod's additions
-PREFIX_ORDER = ("doo-sabin", "dodeca", "icosa", "octa", "stellate", "double-stellate",
-                "cubical", "dome", "cuboctahedral", "hex-tile", "planar-offset")
+# the keywords of TopMod's GUI shape (dodeca and icosa): fields of extrusion.Shape
+SHAPE_KEYWORDS = ("angle", "l1", "l2", "l3")
+# the options a shape replaces (the rings are placed by its angle and lengths)
+SHAPE_REPLACES = ("distance", "rotation", "twist", "scale")
 
 
 def _kind(name: Any) -> str:
-    """Exact names and aliases first, then TopMod's first prefix match in its order."""
+    """Exact names and aliases first, then TopMod's first prefix match, in the
+    registry's order (TopMod's seven types first, as its module matched them)."""
     if isinstance(name, str):
         key = name.strip().lower().replace("_", "-")
-        if key in OPTION_ORDER or key in _extrusion.ALIASES:
+        if key in _extrusion.KINDS or key in _extrusion.ALIASES:
             return _extrusion.resolve_kind(key)
-        for kind in PREFIX_ORDER:
+        for kind in _extrusion.KINDS:
             if key and kind.startswith(key):
                 return kind
-    raise InvalidArgumentError(
-        f"unknown extrusion type {name!r}; valid types: {', '.join(PREFIX_ORDER)}")
+    raise InvalidArgumentError(f"unknown extrusion type {name!r}; valid types: "
+                               f"{', '.join(_extrusion.KINDS)}")
 
 
-# TopMod's own argument names (TOPMOD.md §8) accepted as keywords too; ``rot`` is
-# TopMod's rotTwist, dodeca's twist; ``flag`` is octa's mesh and dodeca's hexagonalize
-KEYWORD_ALIASES = {"dist": "distance", "num": "segments", "numsegs": "segments",
-                   "rot": "rotation", "sf": "scale"}
-KIND_KEYWORD_ALIASES = {"dodeca": {"rot": "twist", "flag": "hexagonalize"},
-                        "octa": {"flag": "mesh"}}
+def kind_keywords(kind: str) -> tuple[str, ...]:
+    """Every option of ``kind`` a script can set: its positional options in the
+    thesis's order, then those only a keyword sets (and its GUI shape's)."""
+    spec = _extrusion.KINDS[kind]
+    shape = SHAPE_KEYWORDS if spec.shape is not None else ()
+    return (*spec.options, *spec.keyword_options, *shape)
 
 
 def _options(kind: str, options: tuple[Any, ...], keywords: dict[str, Any]) -> dict[str, Any]:
     """The options of an ``extrude(kind, faceid, *options, **keywords)`` call by name.
 
     Raises:
-        DLFLError: more positional options than ``kind`` takes, a keyword that is
-            none of its options (nor TopMod's name for one), or an option given twice.
+        InvalidArgumentError: more positional options than ``kind`` takes, a
+            keyword that is none of its options (nor TopMod's name for one), or
+            an option given twice.
     """
-    order = OPTION_ORDER[kind]
+    order = _extrusion.KINDS[kind].options
     if len(options) > len(order):
         raise InvalidArgumentError(
             f"extrude('{kind}', faceid, ...) takes at most {len(order)} options "
@@ -88,63 +74,107 @@ def _keyword(kind: str, name: str) -> str:
     """The option of ``kind`` that keyword ``name`` sets (TopMod's names mapped).
 
     Raises:
-        DLFLError: ``kind`` has no such option.
+        InvalidArgumentError: ``kind`` has no such option.
     """
-    option = KIND_KEYWORD_ALIASES.get(kind, {}).get(name) or KEYWORD_ALIASES.get(name, name)
-    if option not in OPTION_ORDER[kind]:
+    spec = _extrusion.KINDS[kind]
+    option = spec.topmod_names.get(name) or _extrusion.TOPMOD_KEYWORDS.get(name, name)
+    accepted = kind_keywords(kind)
+    if option not in accepted:
         raise InvalidArgumentError(f"extrude('{kind}') has no option {name!r}; options: "
-                                   f"{', '.join(OPTION_ORDER[kind])}")
+                                   f"{', '.join(accepted)}")
     return option
 
 
 def _library_arguments(kind: str, given: dict[str, Any]) -> dict[str, Any]:
-    """Map the thesis's option names to :func:`livemod.dlfl.extrusion.extrude`'s."""
-    out = dict(given)
-    if kind == "doo-sabin" and "rotation" in out:
-        out["twist"] = out.pop("rotation")  # TopMod passes rot as the Doo-Sabin twist
-    if kind == "dodeca" and "twist" in out:
-        out["rotation"] = out.pop("twist")  # the dual step's rotation angle
-    if "mesh" in out:
-        out["dual_mesh"] = flag(out.pop("mesh"), "mesh")
-    if "hexagonalize" in out:
-        out["hexagonalize"] = flag(out["hexagonalize"], "hexagonalize")
+    """Map the script's option names to :func:`livemod.dlfl.extrusion.extrude`'s;
+    the GUI shape keywords become one ``shape``.
+
+    Raises:
+        InvalidArgumentError: a shape keyword together with an option the shape
+            replaces.
+    """
+    spec = _extrusion.KINDS[kind]
+    shape = {name: given.pop(name) for name in SHAPE_KEYWORDS if name in given}
+    out = {spec.library_names.get(name, name): value for name, value in given.items()}
+    if shape:
+        clash = [name for name in SHAPE_REPLACES if name in given]
+        if clash:
+            raise InvalidArgumentError(
+                f"extrude('{kind}'): the GUI shape ({', '.join(shape)}) places the rings "
+                f"itself; it takes no {', '.join(clash)}")
+        assert spec.shape is not None
+        out["shape"] = replace(spec.shape, **shape)
     return out
 
 
 @modeling_command
-def extrude(type: str, faceid: int, *options: Any, **keywords: Any) -> int | list[int]:  # noqa: A002
+def extrude(type: str, faceid: Any, *options: Any, fan: bool = False,  # noqa: A002
+            **keywords: Any) -> Any:
     """``extrude(type, faceid[, ...])``: extrude a face; return the new end face id.
 
-    Types and their options (positional in this order, or by keyword):
-    doo-sabin [distance, segments, rotation, scale] (rotation is TopMod's twist
-    fraction), dodeca [distance, segments, twist, scale, hexagonalize], icosa,
-    cubical, cuboctahedral and hex-tile [distance, segments, rotation, scale],
-    octa [distance, segments, rotation, scale, mesh], stellate and
-    double-stellate [distance], dome [distance, rotation, scale], planar-offset
-    [distance, rotation, thickness, fractional]. Defaults: distance 2, segments
-    1, rotation 0, scale 1. These are the positions of TopMod's binding, which
-    read every type as (dist, num, rot, sf, flag); the thesis's list for octa
-    leaves out segments, which livemod takes second as TopMod did. A type may be
-    abbreviated (TopMod's prefix order); TopMod's names ``dist``, ``num``,
-    ``rot`` (dodeca: twist) and ``sf`` work as keywords, and ``flag`` for octa's
-    mesh and dodeca's hexagonalize.
+    Types and their options, positional in the thesis appendix's order or by
+    keyword (keyword-only options after the semicolon):
+
+    * doo-sabin [distance, segments, rotation, scale] (rotation is TopMod's
+      twist fraction)
+    * dodeca [distance, segments, twist, scale, hexagonalize; angle, l1, l2, l3]
+    * icosa [distance, segments, rotation, scale; angle, l1, l2, l3]
+    * octa [distance, rotation, scale; segments, mesh]
+    * stellate and double-stellate [distance]
+    * cubical, cuboctahedral and hex-tile [distance, segments, rotation, scale]
+    * dome [distance, rotation, scale]
+    * planar-offset [distance, rotation, thickness, fractional]
+
+    Defaults: distance 2, segments 1, rotation 0, scale 1. ``angle``, ``l1``,
+    ``l2``, ``l3`` are the shape options of TopMod's GUI (dodeca 40, .5, 1, 1;
+    icosa 50, .5, .7, .8, the ones not given): they place the rings instead of
+    distance, rotation and scale. A type may be abbreviated (the first match in
+    TopMod's order doo-sabin, dodeca, icosa, octa, stellate, double-stellate,
+    cubical, then livemod's kinds); TopMod's argument names ``dist``, ``num``,
+    ``rot`` (dodeca: twist), ``sf`` and ``flag`` (octa: mesh, dodeca:
+    hexagonalize) work as keywords, so TopMod's ``extrude("octa", f, d, num,
+    rot, sf, flag)`` is written with ``num=``, ``rot=``, ``sf=``, ``flag=``.
+
+    ``faceid`` may be a list of faces: each is extruded in turn, as TopMod
+    extrudes a selection (see :func:`livemod.dlfl.extrusion.extrude_faces`), and
+    the list of end faces comes back.
 
     Returns:
-        The end face id; for stellate, double-stellate and dome, which end in a
-        fan of triangles, the list of those triangles' ids (TopMod returned -1).
+        The end face id. Stellate, double-stellate and dome end in a fan of
+        triangles: they return the triangle over the first side of the face
+        (from its head corner), and with ``fan=True`` the list of all the
+        fan's triangles, that one first (TopMod returned -1).
 
     Raises:
         DLFLError: unknown type (lists the valid ones), unknown option, too many
-            options, or see :func:`livemod.dlfl.extrusion.extrude`.
+            options, ``fan`` for a type without a fan, or see
+            :func:`livemod.dlfl.extrusion.extrude`; the mesh is unchanged.
     """
     kind = _kind(type)
     arguments = _library_arguments(kind, _options(kind, options, keywords))
-    _face_id(faceid, "faceid")
-    m = mesh()
-    budget = scene().face_budget
-    if _extrusion.KINDS[kind].fan is not None:
-        return _extrusion.extrude_fan(m, faceid, kind, **arguments, max_faces=budget)
-    return _extrusion.extrude(m, faceid, kind, **arguments, max_faces=budget)
+    whole_fan = flag(fan, "fan")
+    if whole_fan and _extrusion.KINDS[kind].fan is None:
+        raise InvalidArgumentError(f"extrude('{kind}') ends in a face, not a fan of triangles: "
+                                   "fan=True is for stellate, double-stellate and dome")
+    m, budget = mesh(), scene().face_budget
+    if not is_id(faceid):
+        return _extrude_list(m, faceid, kind, whole_fan, arguments, budget)
+    if whole_fan:
+        return _extrusion.extrude_fan(m, int(faceid), kind, **arguments, max_faces=budget)
+    return _extrusion.extrude(m, int(faceid), kind, **arguments, max_faces=budget)
+
+
+def _extrude_list(m: Mesh, faceids: Any, kind: str, fan: bool, arguments: dict[str, Any],
+                  budget: int | None) -> list[Any]:
+    """``extrude`` of a list of faces: their end faces (with ``fan``, their fans).
+
+    Raises:
+        InvalidArgumentError: ``faceids`` is neither a face id nor a list of them.
+    """
+    if isinstance(faceids, str | bytes) or not hasattr(faceids, "__iter__"):
+        raise InvalidArgumentError(f"faceid must be a face id or a list of face ids, "
+                                   f"got {faceids!r}")
+    return _extrusion.extrude_faces(m, faceids, kind, **arguments, fans=fan, max_faces=budget)
 
 
 def _half_edge(value: Any, what: str) -> tuple[int, int]:
