@@ -24,9 +24,46 @@ def test_subdivide_by_thesis_name(scene):
     assert counts(scene) == (26, 48, 24)
 
 
+# the appendix of Tett (2007): subdivide's schemes and their options, in its order
+THESIS_SCHEMES = {
+    "loop": (), "checker": ("thickness",), "simplest": (), "vertex-cut": ("offset",),
+    "pentagon": ("offset",), "dual-pentagon": ("scale",), "honeycomb": (),
+    "doo-sabin": ("check",), "doo-sabin-bc": ("check",), "doo-sabin-bc-new": ("length",),
+    "corner-cut": (), "modified-corner-cut": ("thickness",), "root4": ("a", "twist"),
+    "catmull-clark": (), "star": ("offset",), "sqrt3": (), "fractal": ("offset",),
+    "stellate": (), "double-stellate": ("offset", "curve"), "dome": ("length", "scale"),
+    "dual-12.6.4": ("scale",), "loop-style": ("length",), "linear-vertex": ("usequads",),
+}
+
+
+@pytest.mark.parametrize("scheme", list(THESIS_SCHEMES))
+def test_every_thesis_scheme_reads_its_options_in_the_thesiss_order(scheme, monkeypatch):
+    from livemod.dlfl import subdivision
+    from livemod.dlfl.commands.subdivision import THESIS_KEYWORDS
+
+    aliases = THESIS_KEYWORDS.get(scheme, {})
+    thesis = [aliases.get(name, name) for name in THESIS_SCHEMES[scheme]]
+    assert scheme_options(scheme)[:len(thesis)] == thesis
+    calls: list[dict] = []
+    monkeypatch.setattr(subdivision, "subdivide", lambda mesh, name, **o: calls.append(o))
+    values = [0.25 + i for i in range(len(scheme_options(scheme)))]
+    subdivide(scheme, *values)
+    assert calls == [{**dict(zip(scheme_options(scheme), values, strict=True)),
+                      "max_faces": None}]
+
+
+def test_doo_sabin_bc_new_reads_its_one_thesis_option_as_the_length(scene):
+    from livemod.dlfl.shapes import cube
+    from livemod.dlfl.subdivision import subdivide as library_subdivide
+
+    subdivide("doo-sabin-bc-new", 0.5)
+    library = cube()
+    library_subdivide(library, "doo-sabin-bc-new", length=0.5)
+    assert snapshot(scene.mesh) == snapshot(library)
+
+
 def test_positional_options_in_topmod_order(scene):
     assert scheme_options("double-stellate") == ["offset", "curve"]
-    assert scheme_options("doo-sabin-bc-new") == ["scale", "length"]
     assert scheme_options("dome") == ["length", "scale"]
     subdivide("checker", 0.25)
     assert counts(scene) == (56, 108, 54)
@@ -95,3 +132,11 @@ def test_dual_both_methods(scene):
     assert counts(scene) == (6, 12, 8)
     dual(True)
     assert counts(scene) == (8, 12, 6)
+
+
+def test_modified_corner_cut_takes_topmods_second_variant(scene):
+    subdivide("modified-corner-cut", 0.25, 2)
+    assert counts(scene) == (24, 48, 26)
+    assert sorted(set(abs(scene.mesh.positions_view()).ravel().round(12))) == [0.75, 1.0]
+    with pytest.raises(DLFLError, match="variant must be 1"):
+        subdivide("modified-corner-cut", 0.25, 0)

@@ -366,3 +366,23 @@ def test_the_columns_of_a_huge_mesh_are_the_scaled_unit_ones(scale):
         columns(big, 0.1 * scale, 4)
     assert summary(big) == summary(small)
     np.testing.assert_allclose(big.positions_view() / scale, small.positions_view(), atol=2e-4)
+
+
+def test_modified_corner_cut_variant_2_moves_each_corner_along_both_edges():
+    m = cube()
+    front = modified_corner_cut(m, 0.25, 2)
+    validate(m)
+    assert m.counts() == (24, 48, 26) and face_size_histogram(m) == {3: 8, 4: 18}
+    # cube corner (1, 1, 1) on the top face: 0.25 along both edges, (0.75, 1, 0.75)
+    points = np.abs(np.array([m.position(v) for f in front for v in m.face_vertices(f)]))
+    assert sorted(set(points.ravel().round(12))) == [0.75, 1.0]
+    assert ((points == 1.0).sum(axis=1) == 1).all()
+
+
+def test_modified_corner_cut_variants_differ_and_others_are_refused():
+    first, second = cube(), cube()
+    modified_corner_cut(first, 0.25)
+    modified_corner_cut(second, 0.25, 2)
+    assert not np.allclose(first.positions_view(), second.positions_view())
+    assert_refused(cube(), lambda m: modified_corner_cut(m, 0.25, 3),
+                   r"variant must be 1 \(TopMod's modifiedCornerCuttingSubdivide\) or 2")

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._checks import first_not_finite, positive_number
+from ._checks import first_not_finite, positive_number, shown
 from ._column_joints import joint_polygons
 from ._vectors import in_range, lengths, together_in_range
 from ._vectors import unit as _unit
@@ -108,13 +108,16 @@ def _distance_to_cycle_end(succ: np.ndarray, is_root: np.ndarray) -> tuple[np.nd
     return dist, last
 
 
-def _cut_points(a: MeshArrays, thickness: float) -> np.ndarray:
+def _cut_points(a: MeshArrays, thickness: float, variant: int = 1) -> np.ndarray:
     """``(C, 3)`` TopMod's corner-cut point: ``t/2`` from both edges at the corner.
 
     ``v + x (n1 + n2)`` with ``n1, n2`` unit vectors to the previous and next
     corner and ``x = sqrt(t^2 / (1 - (n1.n2)^2))``, ``t = thickness / 2``. When the
     neighbours coincide (a 2-gon) the corner after next stands in for the next;
     at a straight corner the point moves ``t`` toward the face centroid.
+    ``variant`` 2 is TopMod's ``modifiedCornerCuttingSubdivide2``: ``x = thickness``
+    at every corner, so the point moves ``thickness |n1 + n2|`` along the
+    bisector (not at all at a straight corner).
 
     Raises:
         DLFLError: ``thickness`` is so large that a point's coordinates overflow.
@@ -135,6 +138,8 @@ def _cut_points(a: MeshArrays, thickness: float) -> np.ndarray:
         n1, n2 = _unit(v1 - v0), _unit(v2 - v0)
         dot = np.einsum("ij,ij->i", n1, n2)
         denom = 1.0 - dot * dot
+        if variant == 2:
+            return _finite_cut(a, v0 + thickness * (n1 + n2), thickness)
         straight = denom < 1e-12
         toward = _unit(face_centroids(a)[a.corner_face[straight]] - v0[straight])
         x = _cut_distance(t, np.where(straight, 1.0, denom))
@@ -168,8 +173,9 @@ def _finite_cut(a: MeshArrays, points: np.ndarray, thickness: float) -> np.ndarr
                         "(or width)")
 
 
-def corner_cut_arrays(a: MeshArrays, thickness: float) -> CornerCut:
-    """Modified corner cutting of ``a`` as corner arrays (see :class:`CornerCut`).
+def corner_cut_arrays(a: MeshArrays, thickness: float, variant: int = 1) -> CornerCut:
+    """Modified corner cutting of ``a`` as corner arrays (see :class:`CornerCut`);
+    ``variant`` picks the corner points' rule (see :func:`modified_corner_cut`).
 
     Edge ``e`` with sides ``c0`` (in face f0) and ``c1`` (in f1) becomes the quad
     ``[q(next c0), q(c0), q(next c1), q(c1)]``; vertex ``v`` becomes the polygon
@@ -201,7 +207,7 @@ def corner_cut_arrays(a: MeshArrays, thickness: float) -> CornerCut:
     offsets = np.zeros(len(sizes) + 1, np.int64)
     np.cumsum(sizes, out=offsets[1:])
     hole = np.concatenate([a.face_hole, np.zeros(ne + len(a.vertex_ids), bool)])
-    return CornerCut(_cut_points(a, thickness), offsets, corner_vertex, mate, hole,
+    return CornerCut(_cut_points(a, thickness, variant), offsets, corner_vertex, mate, hole,
                      len(a.face_ids))
 
 
@@ -215,7 +221,7 @@ def _check_cut_input(a: MeshArrays, thickness: float) -> None:
             f"corner cutting needs a mesh without point-spheres; vertex {v} is one")
 
 
-def modified_corner_cut(mesh: Mesh, thickness: float = 0.25, *,
+def modified_corner_cut(mesh: Mesh, thickness: float = 0.25, variant: int = 1, *,
                         max_faces: object = None) -> list[int]:
     """TopMod's ``modifiedCornerCuttingSubdivide(thickness)`` (GUI 0.25).
 
@@ -223,6 +229,11 @@ def modified_corner_cut(mesh: Mesh, thickness: float = 0.25, *,
     both edges at that corner; every edge becomes a quad and every vertex a
     polygon of its valence. Cube: 24/48/26 (8x3, 18x4). The mesh is rebuilt
     (fresh ids). livemod computes in double precision (TopMod used floats).
+    ``variant=2`` is TopMod's ``modifiedCornerCuttingSubdivide2(thickness)``
+    (in neither its GUI nor its Python module): the corner at ``v`` between
+    unit edge directions ``n1, n2`` goes to ``v + thickness (n1 + n2)``, the
+    same distance along both edges whatever the corner's angle (cube, 0.25:
+    the same counts, points 0.25 from the corner along each edge).
 
     Returns:
         The ids of the inner polygons (TopMod's front copies, typed FTHole), in
@@ -235,7 +246,10 @@ def modified_corner_cut(mesh: Mesh, thickness: float = 0.25, *,
     """
     v, e, f = mesh.counts()
     check_size("modified corner cut", f + e + v, 4 * mesh.num_corners, max_faces=max_faces)
-    cut = corner_cut_arrays(mesh_arrays(mesh), thickness)
+    if variant not in (1, 2) or isinstance(variant, bool):
+        raise InvalidArgumentError(f"variant must be 1 (TopMod's modifiedCornerCutting"
+                                   f"Subdivide) or 2 (...Subdivide2), got {shown(variant)}")
+    cut = corner_cut_arrays(mesh_arrays(mesh), thickness, variant)
     first = mesh.next_ids()
     new = from_corner_arrays(cut.positions, cut.offsets, cut.corner_vertex, cut.corner_mate,
                              cut.face_hole, first_ids=first)

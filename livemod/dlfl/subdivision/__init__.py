@@ -85,20 +85,21 @@ from .smooth import catmull_clark, corner_cut, doo_sabin, doo_sabin_bc, loop, lo
 Scheme = Callable[..., None]
 
 
-def modified_corner_cut(mesh: Mesh, *, thickness: float = 0.25,
+def modified_corner_cut(mesh: Mesh, *, thickness: float = 0.25, variant: int = 1,
                         max_faces: int | None = None) -> None:
     """Modified corner cutting (TopMod ``modifiedCornerCuttingSubdivide``,
     "modified-corner-cut"): delegates to the wireframe family's
     ``from livemod.dlfl.wireframe import modified_corner_cut``. GUI default 0.25.
-    Cube: 24/48/26.
+    Cube: 24/48/26. ``variant=2``: TopMod's ``modifiedCornerCuttingSubdivide2``,
+    every corner point ``thickness (n1 + n2)`` from its vertex.
 
     Raises:
-        DLFLError: a bad ``thickness`` or the face budget.
+        DLFLError: a bad ``thickness`` or ``variant``, or the face budget.
     """
     from ..wireframe import modified_corner_cut as cut
 
     check_steps(mesh, ("modified-corner-cut",), max_faces)
-    _point_spheres_aside(mesh, lambda work: cut(work, thickness))
+    _point_spheres_aside(mesh, lambda work: cut(work, thickness, variant))
 
 
 def sierpinsky(mesh: Mesh, *, max_faces: int | None = None) -> None:

@@ -169,9 +169,12 @@ def _ds_ring(values: np.ndarray, offsets: np.ndarray, shift: np.ndarray | float,
     return ring
 
 
-def doo_sabin_bc_new(mesh: Mesh, *, scale: float = 1.0, length: float = 1.0,
+def doo_sabin_bc_new(mesh: Mesh, *, length: float = 1.0, scale: float = 1.0,
                      max_faces: int | None = None) -> None:
     """Doo-Sabin BC New (TopMod ``dooSabinSubdivideBCNew(sf, len)``, "doo-sabin-bc-new").
+
+    The options come in the thesis's order, length first (TopMod's module passed
+    its first number to ``sf``).
 
     Rule: split every edge at its midpoint; every (split) face gets a Doo-Sabin
     extrusion of distance 0 scaled by ``scale``; the old edges and the midpoints
