@@ -513,3 +513,29 @@ def test_numpy_integers_are_ids_like_python_ints(cube_scene):
     assert dlfl.faceInfo(np.int64(dlfl.faces()[3])) == dlfl.faceInfo(dlfl.faces()[3])
     vertex = dlfl.verts()[0]
     assert dlfl.vertexEdges(np.int64(vertex)) == dlfl.vertexEdges(vertex)
+
+
+def _run_as_script(source: str) -> dict:
+    """Run ``source`` as a script's module body (``__main__``), as livemod runs it."""
+    namespace = {"__name__": "__main__"}
+    exec(compile(source, "script.py", "exec"), namespace)  # noqa: S102
+    return namespace
+
+
+def test_walk_prints_the_thesiss_walk_at_a_scripts_top_level(cube_scene, capsys):
+    m = cube_scene.mesh
+    vertices, edges = m.face_vertices(0), m.face_edges(0)
+    ran = _run_as_script("from livemod.dlfl import *\nvs, es = walk(0)\n")
+    assert (ran["vs"], ran["es"]) == (vertices, edges)
+    line = "DLFLFace 0 (4) : " + "".join(
+        f"{v}--({e})-->" for v, e in zip(vertices, edges, strict=True)) + f"{vertices[0]}\n"
+    assert capsys.readouterr().out == line
+    _run_as_script("from livemod.dlfl import *\ndef quiet():\n    return walk(0)\nquiet()\n")
+    dlfl.walk(0)  # from a test module, not a script's top level
+    assert capsys.readouterr().out == ""
+
+
+def test_walk_of_a_point_sphere_prints_its_one_vertex(cube_scene, capsys):
+    (face, vertex), _ = dlfl.createVertex((5, 0, 0))
+    _run_as_script(f"from livemod.dlfl import *\nwalk({face})\n")
+    assert capsys.readouterr().out == f"DLFLFace {face} (1) : {vertex}\n"

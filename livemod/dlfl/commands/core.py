@@ -11,6 +11,8 @@ import builtins
 import itertools
 import os
 from collections.abc import Callable, Iterable, Sequence
+from sys import _getframe
+from types import FrameType
 from typing import Any
 
 import numpy as np
@@ -282,9 +284,33 @@ def corners(selected: bool = False) -> tuple[tuple[int, int], ...]:
 
 
 def walk(faceid: int) -> tuple[list[int], list[int]]:
-    """Walk a face's boundary: ``([vertexid, ...], [edgeid, ...])``."""
+    """Walk a face's boundary: ``([vertexid, ...], [edgeid, ...])``.
+
+    Called at the top level of a script (not inside a function of it), it also
+    prints the walk as the thesis shows it, ``DLFLFace 6 (4) :
+    8--(24)-->9--(25)-->10--(26)-->11--(27)-->8``: the face id, its size, then
+    each vertex and the edge to the next, back to the first vertex. TopMod's
+    ``[backface]`` flag after each vertex is left out (livemod has none).
+    """
     m = mesh()
-    return m.face_vertices(faceid), m.face_edges(faceid)
+    vertices, edges = m.face_vertices(faceid), m.face_edges(faceid)
+    if _at_script_top_level(_getframe(1)):
+        print(walk_text(faceid, vertices, edges))
+    return vertices, edges
+
+
+def walk_text(faceid: int, vertices: Sequence[int], edges: Sequence[int]) -> str:
+    """The thesis's printed walk of face ``faceid`` with these vertices and edges
+    (see :func:`walk`); a point-sphere is its one vertex."""
+    steps = "".join(f"{v}--({e})-->" for v, e in zip(vertices, edges, strict=False))
+    tail = vertices[0] if edges else ""
+    return f"DLFLFace {faceid} ({len(vertices)}) : {steps or vertices[0]}{tail}"
+
+
+def _at_script_top_level(frame: FrameType) -> bool:
+    """True when ``frame`` runs a script's module body: ``python script.py`` or a
+    livemod run, both of which name the script's module ``__main__``."""
+    return frame.f_code.co_name == "<module>" and frame.f_globals.get("__name__") == "__main__"
 
 
 def cornerWalk(faceid: int) -> list[tuple[int, int]]:
