@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
 import pytest
 
 import livemod.dlfl as dlfl
@@ -419,3 +420,31 @@ def test_bad_face_lists_and_fan_requests_change_nothing(scene, call, message):
     with pytest.raises(DLFLError, match=message):
         call()
     assert snapshot(scene.mesh) == before
+
+
+def test_connect_faces_takes_topmods_pinch_profile(scene):
+    connectFaces(0, 5, 4, pinch=0.5)
+    assert counts(scene) == (20, 40, 20) and genus(scene.mesh) == 1
+    middle = [p for p in scene.mesh.positions_view() if abs(p[1]) < 1e-12]
+    assert len(middle) == 4 and np.allclose(np.abs(middle), [0.5, 0.0, 0.5])
+    other = Scene()
+    other.add(cube())
+    with use_scene(other):
+        connectFaces(0, 5, 4, pinch=0.5, pinchCenter=0.25, bubble=2.0)
+    library = cube()
+    from livemod.dlfl.connect import connect_faces_closest
+
+    connect_faces_closest(library, 0, 5, 4, pinch=0.5, pinch_center=0.25, bubble=2.0)
+    assert snapshot(other.mesh) == snapshot(library) != snapshot(scene.mesh)
+
+
+def test_connect_corners_takes_the_pinch_but_not_on_a_dual_band(scene):
+    connectCorners((0, 0), (5, 4), 4, pinch=0.5)
+    assert counts(scene) == (20, 40, 20)
+    other = Scene()
+    other.add(cube())
+    with use_scene(other):
+        before = snapshot(other.mesh)
+        with pytest.raises(DLFLError, match="a dual \\(triangle\\) band takes no pinch"):
+            connectCorners((0, 0), (5, 4), 4, -1, "dual", bubble=2.0)
+        assert snapshot(other.mesh) == before

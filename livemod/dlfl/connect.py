@@ -325,12 +325,15 @@ def closest_corners(mesh: Mesh, face1: int, face2: int) -> tuple[int, int]:
 
 def connect_faces_closest(
     mesh: Mesh, face1: int, face2: int, segments: int = 1, *, max_connections: int = -1,
+    pinch: float = 1.0, pinch_center: float = 0.5, bubble: float = 1.0,
     max_faces: object = None,
 ) -> list[int]:
     """:func:`connect_faces` from two face ids, joining their closest corners.
 
     TopMod's ``connectFaces(f1, f2, numsegs)`` ("Add Hole/Handle CV"); livemod
-    also honours ``max_connections``, which TopMod's Python binding ignored.
+    also honours ``max_connections``, which TopMod's Python binding ignored, and
+    the pinch profile (``pinch``, ``pinch_center``, ``bubble``), which its GUI
+    never passed.
 
     Raises:
         DLFLError: as :func:`connect_faces`, or a face id that is not an int,
@@ -341,25 +344,32 @@ def connect_faces_closest(
         raise InvalidArgumentError(f"connect_faces_closest needs two different faces, got face "
                                    f"{shown(face1)} twice")
     c1, c2 = closest_corners(mesh, face1, face2)
-    return connect_faces(mesh, c1, c2, segments, max_connections=max_connections,
-                         max_faces=max_faces)
+    return connect_faces(mesh, c1, c2, segments, max_connections=max_connections, pinch=pinch,
+                         pinch_center=pinch_center, bubble=bubble, max_faces=max_faces)
 
 
 def connect_corners(
     mesh: Mesh, corner1: int, corner2: int, segments: int = 1, *,
-    max_connections: int = -1, dual: bool = False, max_faces: object = None,
+    max_connections: int = -1, dual: bool = False, pinch: float = 1.0,
+    pinch_center: float = 0.5, bubble: float = 1.0, max_faces: object = None,
 ) -> list[int]:
     """Join the faces of two corners: :func:`connect_faces`, or with ``dual`` a band of
     triangles (:func:`dual_connect_faces`) between every pair of consecutive rings.
 
-    TopMod's ``connectCorners(c1, c2, numsegs, maxconn, 'dual')``.
+    TopMod's ``connectCorners(c1, c2, numsegs, maxconn, 'dual')``. The pinch
+    profile (``pinch``, ``pinch_center``, ``bubble``) shapes the quad tube; a
+    dual band takes none (TopMod's has none).
 
     Raises:
-        DLFLError: as :func:`connect_faces`.
+        DLFLError: as :func:`connect_faces`; a pinch profile with ``dual``.
     """
     if not dual:
         return connect_faces(mesh, corner1, corner2, segments, max_connections=max_connections,
+                             pinch=pinch, pinch_center=pinch_center, bubble=bubble,
                              max_faces=max_faces)
+    if (pinch, pinch_center, bubble) != (1.0, 0.5, 1.0):
+        raise InvalidArgumentError("a dual (triangle) band takes no pinch, pinch_center or "
+                                   "bubble (TopMod's dualConnectFaces has none)")
     face1, face2 = _two_faces(mesh, corner1, corner2, "connect_corners")
     _check_segments(segments, max_connections)
     _check_budget(mesh, corner1, corner2, segments, "connect_corners", max_faces)

@@ -211,22 +211,34 @@ def _is_dual(value: Any) -> bool:
 
 @modeling_command
 def connectCorners(c1: Any, c2: Any, numsegs: int = 1, maxconn: int = -1,
-                   dual: Any = False) -> None:
+                   dual: Any = False, *, pinch: float = 1.0, pinchCenter: float = 0.5,
+                   bubble: float = 1.0) -> None:
     """``connectCorners(c1, c2[, numsegs, maxconn, 'dual'])``: join the faces of two
     corners with ``numsegs`` segments (at most ``maxconn`` joins, -1 for all);
-    ``'dual'`` makes bands of triangles instead of quads."""
+    ``'dual'`` makes bands of triangles instead of quads. ``pinch``,
+    ``pinchCenter`` and ``bubble`` shape the quad tube as for :func:`connectFaces`."""
     m = mesh()
     a, b = _two_faces_corners(m, c1, c2, "connectCorners")
     segments, limit = _segments(numsegs, maxconn)
     _connect.connect_corners(m, a, b, segments, max_connections=limit, dual=_is_dual(dual),
+                             pinch=pinch, pinch_center=pinchCenter, bubble=bubble,
                              max_faces=scene().face_budget)
 
 
 @modeling_command
-def connectFaces(f1: int, f2: int, numsegs: int = 1, maxconn: int = -1) -> None:
+def connectFaces(f1: int, f2: int, numsegs: int = 1, maxconn: int = -1, *,
+                 pinch: float = 1.0, pinchCenter: float = 0.5, bubble: float = 1.0) -> None:
     """``connectFaces(faceid, faceid[, numsegs, maxconn])``: join two faces at their
     closest corners; intermediate rings by linear interpolation. ``maxconn`` is
-    honoured (TopMod ignored it)."""
+    honoured (TopMod ignored it).
+
+    TopMod's pinch profile (its GUI's spin boxes, never passed on): each
+    intermediate ring is scaled about its centroid, 1 at both ends and
+    ``pinch`` at ``pinchCenter`` (0 to 1 along the tube), the curve sharpened
+    by ``bubble`` (a quadratic Bezier (1, pinch, pinch) in
+    ``(t / pinchCenter) ^ (1 / bubble)``, mirrored past the centre). They need
+    ``numsegs`` > 1 to show.
+    """
     _face_id(f1, "f1")
     _face_id(f2, "f2")
     if f1 == f2:
@@ -234,6 +246,7 @@ def connectFaces(f1: int, f2: int, numsegs: int = 1, maxconn: int = -1) -> None:
             f"connectFaces needs two different faces, f1 and f2 are both face {f1}")
     segments, limit = _segments(numsegs, maxconn)
     _connect.connect_faces_closest(mesh(), f1, f2, segments, max_connections=limit,
+                                   pinch=pinch, pinch_center=pinchCenter, bubble=bubble,
                                    max_faces=scene().face_budget)
 
 
