@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import numpy as np
 import pytest
 
 import livemod.dlfl as dlfl
@@ -18,12 +19,15 @@ from livemod.dlfl.commands import (
     meshsmooth,
     multiConnectFaces,
     planarize,
+    punch,
     rind,
     sierpinsky,
     spheralize,
     wireframe,
 )
 from livemod.dlfl.errors import GeometryError, InvalidArgumentError, UnknownIdError
+from livemod.dlfl.scene import Selection
+from livemod.dlfl.shapes import cube
 from tests.meshes import counts, snapshot
 
 
@@ -207,3 +211,65 @@ def test_multi_connect_faces_bad_arguments_leave_the_object_unchanged(scene, cal
     with pytest.raises(error, match=message):
         call()
     assert snapshot(scene.mesh) == before
+
+
+def test_a_crust_is_punched_in_later_steps(scene):
+    crust(0.5)
+    outer = faces()[:6]
+    labels: list[str] = []
+    scene.step_hook = labels.append
+    tube = punch([outer[0]])
+    assert counts(scene) == (16, 28, 14) and len(tube) == 4
+    punch(outer[5])
+    assert counts(scene) == (16, 32, 16) and genus(scene.mesh) == 1
+    assert labels == ["punch", "punch"]
+    validate(scene.mesh)
+
+
+def test_punch_takes_the_selection_and_rinds_leftover_faces(scene):
+    rind([0], False, 0.5)
+    rest = faces()[:5]
+    scene.selection = Selection(faces=(rest[0],))
+    punch()
+    assert counts(scene) == (16, 28, 14)  # the two holes share an edge: one opening
+
+
+def test_rind_and_punch_without_cleanup_keep_the_double_walls(scene):
+    rind([0, 1], False, 0.5, cleanup=False)
+    walls = counts(scene)
+    other = Scene()
+    other.add(cube())
+    with use_scene(other):
+        crust(0.5)
+        outer = faces()[:6]
+        punch([outer[0], outer[1]], cleanup=False)
+    assert counts(other) == walls == (16, 32, 16)
+
+
+@pytest.mark.parametrize(("call", "message"), [
+    (lambda: punch([0]), "punch needs a crust: make one on this object"),
+    (lambda: (crust(0.5), punch([0])), "face 0 is not a face of the crust still to punch"),
+    (lambda: (crust(0.5), punch(faces()[:1]), punch(faces()[:1])), "still to punch"),
+])
+def test_punching_without_a_crust_or_twice_is_refused(scene, call, message):
+    with pytest.raises(InvalidArgumentError, match=message):
+        call()
+
+
+def test_crust_by_scaling_and_wireframe_by_width(scene):
+    crust(scale=0.5)
+    assert counts(scene) == (16, 24, 12)
+    inner = [scene.mesh.position(v) for v in scene.mesh.vertex_ids().tolist()[8:]]
+    assert abs(np.array(inner)).max() == 0.5
+    load("cube")
+    wireframe(0.1, width=0.4)
+    wide = snapshot(scene.mesh)
+    assert counts(scene) == (48, 120, 64)
+    load("cube")
+    wireframe(0.1)
+    assert snapshot(scene.mesh) != wide
+
+
+def test_menger_keeps_or_drops_topmods_two_gons(scene):
+    menger(keep2gons=False)
+    assert counts(scene) == (64, 144, 72) and genus(scene.mesh) == 5

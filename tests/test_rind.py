@@ -8,7 +8,7 @@ import pytest
 from livemod.dlfl import face_size_histogram, genus, num_components, validate
 from livemod.dlfl.arrays import mesh_arrays
 from livemod.dlfl.errors import GeometryError, InvalidArgumentError, UnknownIdError
-from livemod.dlfl.rind import crust, crust_offsets, rind
+from livemod.dlfl.rind import crust, crust_offsets, punch, rind
 from livemod.dlfl.selection import faces_by_size
 from livemod.dlfl.shapes import cube, icosahedron, soccer_ball, torus
 from tests.meshes import assert_refused_quietly, assert_scales, point_sphere, snapshot
@@ -270,3 +270,89 @@ def test_a_crust_too_large_to_check_says_so_not_that_it_turns_over():
 def test_a_crust_of_a_huge_mesh_is_the_scaled_crust_of_the_unit_one():
     # the face-area check once squared raw Newell sums, which overflowed past 1e77
     assert_scales(cube, lambda m, s: crust(m, 0.1 * s), rtol=1e-12)
+
+
+# -- punching a crust made earlier (TopMod's cmMakeHole) ------------------------------
+
+def _polygons(mesh) -> list[tuple[tuple[float, ...], ...]]:
+    """The faces as sorted tuples of their rounded points: the geometry, not the ids."""
+    return sorted(tuple(sorted(tuple(np.round(mesh.position(v), 12))
+                               for v in mesh.face_vertices(f)))
+                  for f in mesh.face_ids().tolist())
+
+
+@pytest.mark.parametrize("punched", [[0], [0, 5], [0, 1], [0, 1, 2], [0, 1, 2, 3, 4]])
+@pytest.mark.parametrize("cleanup", [True, False])
+def test_punching_later_is_punching_at_once(punched, cleanup):
+    at_once = cube()
+    rind(at_once, punched, 0.5, cleanup=cleanup)
+    one_by_one, together = cube(), cube()
+    twins_1, twins_2 = crust(one_by_one, 0.5), crust(together, 0.5)
+    outer = list(twins_1.faces)
+    for i in punched:
+        punch(one_by_one, twins_1, [outer[i]], cleanup=cleanup)
+    punch(together, twins_2, [list(twins_2.faces)[i] for i in punched], cleanup=cleanup)
+    for mesh in (one_by_one, together):
+        validate(mesh)
+        assert mesh.counts() == at_once.counts() and genus(mesh) == genus(at_once)
+        assert _polygons(mesh) == _polygons(at_once)
+    assert len(twins_1.faces) == len(twins_2.faces) == 6 - len(punched)
+
+
+def test_a_punch_keeps_every_other_id_and_either_copy_names_the_pair():
+    m = cube()
+    twins = crust(m, 0.5)
+    outer, inner = next(iter(twins.faces.items()))
+    others = [f for f in m.face_ids().tolist() if f not in (outer, inner)]
+    tube = punch(m, twins, [inner])
+    assert m.counts() == (16, 28, 14) and len(tube) == 4
+    assert all(m.has_face(f) for f in others) and outer not in twins.faces
+    assert all(m.face_size(f) == 4 for f in tube)
+
+
+def test_the_twins_pair_every_outer_vertex_with_its_offset_copy():
+    m = cube()
+    twins = crust(m, 0.5)
+    for outer, inner in twins.vertices.items():
+        np.testing.assert_allclose(m.position(inner), m.position(outer) * 0.5)
+    assert len(twins.faces) == 6 and len(twins.vertices) == 8
+
+
+def test_rind_returns_the_twins_of_the_faces_it_left_to_punch():
+    m = cube()
+    twins = rind(m, [0, 1, 2], 0.5)
+    assert len(twins.faces) == 3
+    before = snapshot(m)
+    with pytest.raises(InvalidArgumentError, match="punching every face of a crust with "
+                       "cleanup leaves nothing"):
+        punch(m, twins, list(twins.faces))
+    assert snapshot(m) == before
+    punch(m, twins, list(twins.faces)[:2])
+    five = cube()
+    rind(five, [0, 1, 2, 3, 4], 0.5)
+    assert m.counts() == five.counts() == (8, 12, 6)
+    validate(m)
+
+
+@pytest.mark.parametrize(("faces", "message"), [
+    (["0"], "must hold ids"),
+    ([99], "face 99 is not a face of the crust still to punch"),
+])
+def test_punching_what_is_no_unpunched_face_of_the_crust_is_refused(faces, message):
+    m = cube()
+    twins = crust(m, 0.5)
+    before = snapshot(m)
+    with pytest.raises(InvalidArgumentError, match=message):
+        punch(m, twins, [list(twins.faces)[0], *faces])
+    assert snapshot(m) == before and len(twins.faces) == 6
+
+
+def test_punching_faces_changed_since_the_crust_is_refused():
+    m = cube()
+    twins = crust(m, 0.5)
+    outer, _ = next(iter(twins.faces.items()))
+    m.subdivide_edge(m.face_edges(outer)[0])
+    before = snapshot(m)
+    with pytest.raises(InvalidArgumentError, match=f"faces {outer} and .* are no longer twins"):
+        punch(m, twins, [outer])
+    assert snapshot(m) == before

@@ -18,7 +18,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._checks import finite_number, first_not_finite, id_list
+from ._checks import finite_number, first_not_finite, id_list, shown
 from ._vectors import centroid, face_ring_vectors, lengths, newell, unit
 from .analysis import corner_normals, face_normals
 from .arrays import MeshArrays, mesh_arrays
@@ -28,7 +28,7 @@ from .errors import GeometryError, InvalidArgumentError, UnknownIdError
 from .mesh import Mesh
 from .normals import reversed_rings, ring_normals
 
-__all__ = ["Shell", "crust", "crust_offsets", "rind", "shell_arrays"]
+__all__ = ["CrustTwins", "Shell", "crust", "crust_offsets", "punch", "rind", "shell_arrays"]
 
 
 @dataclass(frozen=True)
@@ -483,7 +483,7 @@ def rind(
     uniform: bool = True,
     cleanup: bool = True,
     max_faces: object = None,
-) -> None:
+) -> CrustTwins:
     """Make ``mesh`` a crust and punch the listed faces open (rind modeling).
 
     TopMod's ``createCrust(t, uniform)`` / ``createCrustWithScaling(s)`` followed by
@@ -502,6 +502,9 @@ def rind(
     rind of an open sheet is a closed slab. Cube: crust 16/24/12 (two
     components); one hole 16/28/14; two opposite holes 16/32/16, genus 1. The
     mesh is rebuilt (fresh ids).
+
+    Returns:
+        The twins of the faces left unpunched, for :func:`punch` to open later.
 
     Raises:
         DLFLError: a face id that is not in the mesh, a zero or non-finite
@@ -532,10 +535,143 @@ def rind(
     shell = shell_arrays(a, outer, inner, punched, cleanup)
     if len(shell.corner_vertex) == 0:
         raise InvalidArgumentError("punching every face with cleanup leaves nothing of the mesh")
+    first = mesh.next_ids()
     mesh.replace_with(shell.build(mesh))
+    return _crust_twins(shell, int(np.count_nonzero(~punched)), first)
 
 
-def crust(mesh: Mesh, thickness: float = 0.5, *, uniform: bool = True,
-          max_faces: object = None) -> None:
-    """TopMod's ``createCrust``: :func:`rind` with no face punched (two components)."""
-    rind(mesh, (), thickness, uniform=uniform, max_faces=max_faces)
+def crust(mesh: Mesh, thickness: float = 0.5, *, uniform: bool = True, use_scaling: bool = False,
+          scale: float = 0.9, max_faces: object = None) -> CrustTwins:
+    """TopMod's ``createCrust`` (or with ``use_scaling`` ``createCrustWithScaling``):
+    :func:`rind` with no face punched (two components); returns the twins that
+    :func:`punch` opens later."""
+    return rind(mesh, (), thickness, uniform=uniform, use_scaling=use_scaling, scale=scale,
+                max_faces=max_faces)
+
+
+@dataclass
+class CrustTwins:
+    """Which face and vertex of a crust's inner shell copies which of its outer one.
+
+    :func:`rind` and :func:`crust` return it; :func:`punch` reads it to open an
+    outer face and its twin into a tube later, and forgets the pairs it opened
+    (TopMod kept the same table in globals for its last crust).
+
+    Attributes:
+        faces: outer face id -> inner face id, for the faces not punched yet.
+        vertices: outer vertex id -> inner vertex id.
+    """
+
+    faces: dict[int, int]
+    vertices: dict[int, int]
+
+    def pair(self, face: int) -> tuple[int, int]:
+        """``(outer, inner)`` for ``face``, either side of the pair.
+
+        Raises:
+            InvalidArgumentError: ``face`` is neither side of an unpunched pair.
+        """
+        if face in self.faces:
+            return face, self.faces[face]
+        for outer, inner in self.faces.items():
+            if inner == face:
+                return outer, inner
+        raise InvalidArgumentError(
+            f"face {shown(face)} is not a face of the crust still to punch (neither "
+            "shell's copy of an unpunched face; punched already, or made after the crust)")
+
+
+def _crust_twins(shell: Shell, kept: int, first: tuple[int, int, int, int]) -> CrustTwins:
+    """The :class:`CrustTwins` of a mesh built from ``shell`` with ids from ``first``:
+    its first ``kept`` faces are the outer shell, the next ``kept`` their reversed
+    copies, each from the copy of the same head corner."""
+    sizes = np.diff(shell.offsets)[:kept]
+    outer_start, inner_start = shell.offsets[:kept], shell.offsets[kept:2 * kept]
+    rank = np.arange(int(sizes.sum())) - np.repeat(np.cumsum(sizes) - sizes, sizes)
+    size = np.repeat(sizes, sizes)
+    outer = shell.corner_vertex[np.repeat(outer_start, sizes) + rank]
+    inner = shell.corner_vertex[np.repeat(inner_start, sizes) + (size - rank) % size]
+    v0, _, f0, _ = first
+    faces = dict(zip(range(f0, f0 + kept), range(f0 + kept, f0 + 2 * kept), strict=True))
+    vertices = dict(zip((outer + v0).tolist(), (inner + v0).tolist(), strict=True))
+    return CrustTwins(faces, vertices)
+
+
+def punch(mesh: Mesh, twins: CrustTwins, faces: Iterable[int], *,
+          cleanup: bool = True) -> list[int]:
+    """Open faces of a crust made earlier into tubes: TopMod's ``cmMakeHole``.
+
+    Each face (either shell's copy) is joined to its twin by a tube of quads
+    (:func:`livemod.dlfl.connect.connect_faces`, from the copies of one
+    vertex); with ``cleanup``, a wall of no thickness left where the tube meets
+    an earlier one (two punched faces sharing an edge) is removed, as
+    :func:`rind` does when punching the two at once. The other elements keep
+    their ids, so a crust made once can be punched in later steps. Cube crust,
+    one face: 16/28/14; two opposite faces: 16/32/16, genus 1. The pairs
+    punched leave ``twins``.
+
+    Returns:
+        The ids of the tubes' faces left after cleanup, face after face.
+
+    Raises:
+        InvalidArgumentError: a face that is no unpunched face of this crust
+            (punched already, or not of it), faces no longer shaped as their
+            twins (changed since the crust was made), or with ``cleanup`` the
+            last faces of the crust (nothing would be left); nothing is
+            punched then.
+    """
+    pairs = list(dict.fromkeys(twins.pair(f) for f in id_list(faces, "faces")))
+    for outer, inner in pairs:
+        _check_twins(mesh, twins, outer, inner)
+    if cleanup and pairs and len(pairs) == len(twins.faces):
+        raise InvalidArgumentError("punching every face of a crust with cleanup leaves nothing "
+                                   "of the mesh (as rind refuses it)")
+    made: list[int] = []
+    for outer, inner in pairs:
+        made.extend(_punch_one(mesh, twins, outer, inner, cleanup))
+        del twins.faces[outer]
+    return [f for f in made if mesh.has_face(f)]
+
+
+def _check_twins(mesh: Mesh, twins: CrustTwins, outer: int, inner: int) -> None:
+    """Raises InvalidArgumentError unless ``outer`` and ``inner`` still are twins:
+    both live, and every vertex of ``outer`` has its twin in ``inner``."""
+    for face in (outer, inner):
+        if not mesh.has_face(face):
+            raise InvalidArgumentError(f"face {face} of the crust is gone (changed since the "
+                                       "crust was made); it cannot be punched")
+    copies = [twins.vertices.get(v, -1) for v in mesh.face_vertices(outer)]
+    if sorted(copies) != sorted(mesh.face_vertices(inner)):
+        raise InvalidArgumentError(f"faces {outer} and {inner} are no longer twins (changed "
+                                   "since the crust was made); they cannot be punched")
+
+
+def _punch_one(mesh: Mesh, twins: CrustTwins, outer: int, inner: int,
+               cleanup: bool) -> list[int]:
+    """Join ``outer`` to ``inner`` by a tube and clean up double walls; returns the
+    tube's faces."""
+    from .connect import connect_faces
+
+    head = mesh.face_corner(outer)
+    copy = mesh.corner_at(inner, twins.vertices[mesh.corner_vertex(head)])
+    sides = list(zip(mesh.face_edges(outer), _twin_edges(mesh, twins, outer, inner),
+                     strict=True))
+    new_edges = connect_faces(mesh, head, copy)
+    tube = list(dict.fromkeys(f for e in new_edges for f in mesh.edge_faces(e)))
+    if cleanup:
+        for edge, twin in sides:
+            if mesh.has_edge(edge) and mesh.has_edge(twin) and \
+                    set(mesh.edge_faces(edge)) == set(mesh.edge_faces(twin)):
+                for wall_edge in mesh.face_edges(mesh.edge_faces(edge)[0]):
+                    if mesh.has_edge(wall_edge):
+                        mesh.delete_edge(wall_edge, cleanup=True)
+    return tube
+
+
+def _twin_edges(mesh: Mesh, twins: CrustTwins, outer: int, inner: int) -> list[int]:
+    """For each edge of ``outer`` (from its head), the edge of ``inner`` between the
+    twins of its ends."""
+    by_ends = {frozenset(mesh.edge_vertices(e)): e for e in mesh.face_edges(inner)}
+    ring = mesh.face_vertices(outer)
+    return [by_ends[frozenset((twins.vertices[a], twins.vertices[b]))]
+            for a, b in zip(ring, ring[1:] + ring[:1], strict=True)]

@@ -4,7 +4,8 @@
 The extras are livemod additions, named after TopMod's menu entries (its
 Python module had ``sierpinsky`` and ``menger`` commented out): ``sierpinsky()``,
 ``menger([thickness])``, ``meshsmooth()``, ``planarize()``, ``spheralize()``,
-``crust(thickness[, uniform])``, ``convexHull()`` and ``dualConvexHull()``
+``crust(thickness[, uniform])`` and ``punch([faceids])`` (its crust mode),
+``convexHull()`` and ``dualConvexHull()``
 (TopMod's sculpting menu), and ``multiConnectFaces(...)`` (its multi-face
 handle). Every one but ``multiConnectFaces`` rebuilds or reshapes the current
 object; those that rebuild it give all its elements fresh ids.
@@ -13,6 +14,7 @@ object; those that rebuild it give all its elements fresh ids.
 from __future__ import annotations
 
 from typing import Any
+from weakref import WeakKeyDictionary
 
 from .. import geometry, hull, multihandle, sponge
 from .. import rind as _rind
@@ -20,10 +22,11 @@ from .. import sierpinsky as _sierpinsky
 from .. import wireframe as _wire
 from .._checks import finite_number, flag, shown
 from ..errors import InvalidArgumentError
+from ..mesh import Mesh
 from ._base import id_arguments, mesh, modeling_command, scene
 
 __all__ = [
-    "rind", "wireframe", "column", "crust", "sierpinsky", "menger", "meshsmooth",
+    "rind", "wireframe", "column", "crust", "punch", "sierpinsky", "menger", "meshsmooth",
     "planarize", "spheralize", "convexHull", "dualConvexHull", "multiConnectFaces",
 ]
 
@@ -33,8 +36,14 @@ _MULTI_METHODS = {"hull": ("scale", "extrude", "maxOffsets"), "closest-edge": ()
 _MULTI_DEFAULTS = {"scale": 1.0, "extrude": 0.5, "maxOffsets": False, "minFactor": 0.01}
 
 
+# the faces a crust() or rind() of each mesh left to punch (TopMod kept its last
+# crust's in globals); weak, so a mesh that goes takes its twins with it
+_CRUST_TWINS: WeakKeyDictionary[Mesh, _rind.CrustTwins] = WeakKeyDictionary()
+
+
 @modeling_command
-def rind(facelist: Any, useScaling: bool, percent: float, uniform: bool = True) -> None:
+def rind(facelist: Any, useScaling: bool, percent: float, uniform: bool = True, *,
+         cleanup: bool = True) -> None:
     """``rind(facelist, useScaling, percent[, uniform])``: crust, then punch the faces.
 
     ``percent`` is the thickness when ``useScaling`` is false, otherwise the
@@ -42,7 +51,9 @@ def rind(facelist: Any, useScaling: bool, percent: float, uniform: bool = True) 
     where +-1 gave two coincident shells). ``uniform`` keeps the
     thickness exact at corners (TopMod parsed this bool as a double; livemod
     takes a bool). Punching ``k`` faces of a closed genus-0 object gives genus
-    ``k - 1``; faces that share an edge open into one hole.
+    ``k - 1``; faces that share an edge open into one hole, unless ``cleanup``
+    (TopMod's GUI checkbox, on by default) is off, which keeps the wall of no
+    thickness between them. The faces left can be punched later by :func:`punch`.
 
     Raises:
         DLFLError: a face id that is gone, a zero or inverting thickness/scale,
@@ -50,28 +61,73 @@ def rind(facelist: Any, useScaling: bool, percent: float, uniform: bool = True) 
     """
     faces = id_arguments(facelist, "facelist")
     value = finite_number(percent, "percent")
-    budget = scene().face_budget
+    budget, m, tidy = scene().face_budget, mesh(), flag(cleanup, "cleanup")
     if flag(useScaling, "useScaling"):
-        _rind.rind(mesh(), faces, use_scaling=True, scale=value, max_faces=budget)
+        twins = _rind.rind(m, faces, use_scaling=True, scale=value, cleanup=tidy,
+                           max_faces=budget)
     else:
-        _rind.rind(mesh(), faces, value, uniform=flag(uniform, "uniform"), max_faces=budget)
+        twins = _rind.rind(m, faces, value, uniform=flag(uniform, "uniform"), cleanup=tidy,
+                           max_faces=budget)
+    _CRUST_TWINS[m] = twins
 
 
 @modeling_command
-def crust(thickness: float = 0.5, uniform: bool = True) -> None:
-    """``crust([thickness, uniform])``: TopMod's createCrust; two shells (livemod extra)."""
-    _rind.crust(mesh(), finite_number(thickness, "thickness"), uniform=flag(uniform, "uniform"),
-                max_faces=scene().face_budget)
+def crust(thickness: float = 0.5, uniform: bool = True, *, scale: float | None = None) -> None:
+    """``crust([thickness, uniform])``: TopMod's createCrust; two shells (livemod
+    extra), to :func:`punch` later. With ``scale``, TopMod's createCrustWithScaling
+    (GUI "Rind Modeling Scaling", 0.9): the inner shell is the object scaled by
+    ``scale`` about its vertex centroid (``0 < |scale| < 1``) instead of moved
+    ``thickness`` inward."""
+    m, budget = mesh(), scene().face_budget
+    if scale is None:
+        twins = _rind.crust(m, finite_number(thickness, "thickness"),
+                            uniform=flag(uniform, "uniform"), max_faces=budget)
+    else:
+        twins = _rind.crust(m, use_scaling=True, scale=finite_number(scale, "scale"),
+                            max_faces=budget)
+    _CRUST_TWINS[m] = twins
 
 
 @modeling_command
-def wireframe(thickness: float = 0.1, split: bool = True) -> None:
+def punch(faceids: Any = None, cleanup: bool = True) -> list[int]:
+    """``punch([faceids, cleanup])``: open faces of a crust made earlier (by
+    :func:`crust` or :func:`rind`) into tubes to their twins on the other shell,
+    TopMod's makeHole (clicking a face in its crust mode); the ids default to the
+    selection. Either shell's copy of a face names the pair. Everything else
+    keeps its id, so a crust is made once and punched in later steps:
+    ``crust(0.2)``, then ``punch(face_loop(e))``. TopMod's shift-click punched
+    every outer face of the clicked one's size: ``punch(similar_faces(f))``.
+    With ``cleanup`` the wall of no thickness where two punched faces share an
+    edge goes, as in :func:`rind`. Cube crust, one face: 16/28/14.
+
+    Returns:
+        The ids of the tubes' faces.
+
+    Raises:
+        DLFLError: no crust made on this object, or a face that is not an
+            unpunched face of it (punched already, made since, or changed); the
+            mesh is unchanged.
+    """
+    m = mesh()
+    twins = _CRUST_TWINS.get(m)
+    if twins is None:
+        raise InvalidArgumentError("punch needs a crust: make one on this object with crust() "
+                                   "or rind() first")
+    return _rind.punch(m, twins, id_arguments(faceids, "faceids", "faces"),
+                       cleanup=flag(cleanup, "cleanup"))
+
+
+@modeling_command
+def wireframe(thickness: float = 0.1, split: bool = True, *, width: float | None = None) -> None:
     """``wireframe([thickness, split])``: a solid wire of ``thickness`` along every edge.
 
-    Cube: 48/120/64, genus 5.
+    With ``width``, TopMod's makeWireframe2 (GUI "Wireframe Modeling 2"): the
+    wires are ``width`` wide on the surface and ``thickness`` deep. Cube:
+    48/120/64, genus 5.
     """
+    given = None if width is None else finite_number(width, "width")
     _wire.wireframe(mesh(), finite_number(thickness, "thickness"), flag(split, "split"),
-                    max_faces=scene().face_budget)
+                    width=given, max_faces=scene().face_budget)
 
 
 @modeling_command
@@ -97,11 +153,13 @@ def sierpinsky() -> None:
 
 
 @modeling_command
-def menger(thickness: float | None = None) -> float:
+def menger(thickness: float | None = None, *, keep2gons: bool = True) -> float:
     """``menger([thickness])``: TopMod's Menger sponge remeshing (cube 64/156/84).
 
     Without ``thickness``, TopMod's 0.67, scaled down on meshes whose inner shell
-    collapses sooner (see :func:`livemod.dlfl.sponge.sponge`).
+    collapses sooner (see :func:`livemod.dlfl.sponge.sponge`). ``keep2gons``
+    keeps the 2-gons TopMod's edge collapses leave along the inner shell's
+    edges; ``keep2gons=False`` gives the clean sponge (cube 64/144/72).
 
     Returns:
         The thickness used (TopMod returned nothing).
@@ -110,7 +168,8 @@ def menger(thickness: float | None = None) -> float:
         DLFLError: see :func:`livemod.dlfl.sponge.sponge`; the mesh is unchanged.
     """
     given = None if thickness is None else finite_number(thickness, "thickness")
-    return sponge.sponge(mesh(), given, max_faces=scene().face_budget)
+    return sponge.sponge(mesh(), given, keep_2gons=flag(keep2gons, "keep2gons"),
+                         max_faces=scene().face_budget)
 
 
 @modeling_command
