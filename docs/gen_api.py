@@ -24,6 +24,7 @@ COMMAND_MODULES = {
     "Extrusion and connection commands": "livemod.dlfl.commands.extrusion",
     "Sculpting commands": "livemod.dlfl.commands.sculpt",
     "Cutting commands": "livemod.dlfl.commands.cutting",
+    "Cleanup and orientation commands": "livemod.dlfl.commands.cleanup",
     "Script parameters": "livemod.dlfl.commands.params",
 }
 
@@ -36,7 +37,8 @@ LIBRARY_MODULES = [
     "livemod.dlfl.rind",
     "livemod.dlfl.wireframe", "livemod.dlfl.sierpinsky", "livemod.dlfl.sponge", "livemod.dlfl.hull",
     "livemod.dlfl.cutting",
-    "livemod.dlfl.geometry", "livemod.dlfl.transform", "livemod.dlfl.selection",
+    "livemod.dlfl.geometry", "livemod.dlfl.orientation", "livemod.dlfl.transform",
+    "livemod.dlfl.selection",
     "livemod.dlfl.shapes", "livemod.dlfl.params", "livemod.dlfl.io", "livemod.dlfl.patches",
 ]
 

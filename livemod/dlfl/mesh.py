@@ -999,6 +999,40 @@ class Mesh:
             V.corner[v] = fc[i]
         return F.idv[front], F.idv[back]
 
+    def reverse_faces(self, faces: Iterable[int] | None = None) -> None:
+        """Reverse the corner order of ``faces`` (None: every face), flipping their
+        normals; ids, heads and positions stay.
+
+        Each corner's edge becomes the one to its new next corner (its old
+        previous one's), and each edge's sides move along with it, so the sides
+        still sit at opposite ends. ``faces`` must hold both sides of every edge
+        of theirs, as whole components do: one face alone cannot turn over on an
+        oriented surface.
+
+        Raises:
+            DLFLError: an id that is not a live face, or an edge with one side in
+                ``faces`` and the other not (named); nothing changes.
+        """
+        C, E = self._c, self._e
+        if faces is None:
+            corners = C.live_slots()
+        else:
+            rings = [self._ring_slots(self._f.slot(f)) for f in faces]
+            corners = np.array([c for ring in rings for c in ring], dtype=np.int64)
+        nxt, prv, edge = C.arrays["next"], C.arrays["prev"], C.arrays["edge"]
+        c0, c1 = E.arrays["c0"], E.arrays["c1"]
+        sides = np.unique(edge[corners][edge[corners] >= 0]).astype(np.int64)
+        inside = np.zeros(C.n, bool)
+        inside[corners] = True
+        half = sides[inside[c0[sides]] != inside[c1[sides]]]
+        if len(half):
+            raise DLFLError(f"edge {E.idv[int(half[0])]} has one side in the faces to reverse "
+                            "and one outside; reverse whole components")
+        old_next, old_prev = nxt[corners], prv[corners]
+        new_edge = edge[old_prev]
+        c0[sides], c1[sides] = nxt[c0[sides]], nxt[c1[sides]]
+        nxt[corners], prv[corners], edge[corners] = old_prev, old_next, new_edge
+
     def _link_ring(self, corners: list[int], face_slot: int, verts: list[int]) -> None:
         C = self._c
         n = len(corners)

@@ -160,9 +160,14 @@ def subdivideEdge(*args: int) -> list[int]:
 
 
 @modeling_command
-def collapseEdge(edgeid: int) -> int:
-    """Collapse an edge to its midpoint; return the surviving vertex id."""
-    return mesh().collapse_edge(edgeid)
+def collapseEdge(edgeid: int, cleanup: bool = True) -> int:
+    """Collapse an edge to its midpoint; return the surviving vertex id.
+
+    With ``cleanup`` (TopMod's default) a face the collapse leaves with one or
+    two sides loses an edge, so no degenerate face remains; ``cleanup=False``
+    keeps such 2-gons (as TopMod's ``collapseEdge(e, false)``).
+    """
+    return mesh().collapse_edge(edgeid, flag(cleanup, "cleanup"))
 
 
 @modeling_command
