@@ -2,10 +2,14 @@
 
 from __future__ import annotations
 
+from collections import Counter
+
 import pytest
 
+from livemod.dlfl import DLFLError, mesh_arrays
 from livemod.dlfl.errors import InvalidArgumentError, UnknownIdError
 from livemod.dlfl.selection import (
+    KINDS,
     checkerboard,
     edge_loop,
     edge_ring,
@@ -15,12 +19,18 @@ from livemod.dlfl.selection import (
     faces_by_size,
     faces_by_vertex_valence,
     faces_where,
+    grow,
+    invert,
     matching_edges,
     matching_faces,
     matching_vertices,
+    select_all,
+    shrink,
+    similar_faces,
     vertex_valences,
 )
 from livemod.dlfl.shapes import cube, genus3_hexa, grid, soccer_ball, torus
+from livemod.dlfl.subdivision import catmull_clark
 
 
 def test_faces_by_size_on_the_soccer_ball():
@@ -101,3 +111,108 @@ def test_loops_stop_at_other_valences_and_rings_at_other_sizes():
     assert len(ring) == 4 and len(face_loop(c, 0)) == 4
     g = grid(4, 1)
     assert len(edge_ring(g, int(g.edge_ids()[0]))) == 5
+
+
+def quad_sphere():
+    """The cube after one Catmull-Clark step: 26/48/24 quads, 8 vertices of
+    valence 3 (the cube's corners) and 18 of valence 4."""
+    m = cube()
+    catmull_clark(m)
+    return m
+
+
+def test_loops_and_rings_on_a_quad_sphere():
+    m = quad_sphere()
+    valence = vertex_valences(m)
+    found = Counter()
+    for e in m.edge_ids().tolist():
+        ends = tuple(sorted(valence[v] for v in m.edge_vertices(e)))
+        found[ends, len(edge_loop(m, e)), len(edge_ring(m, e)), len(face_loop(m, e))] += 1
+    # a loop from a face centre closes round the cube through 4 faces (8 edges);
+    # one from a corner (valence 3) stops at the next corner, 2 edges on; every
+    # ring and face loop circles a band of 8 quads
+    assert found == {((4, 4), 8, 8, 8): 24, ((3, 4), 2, 8, 8): 24}
+
+
+def test_a_closed_loop_is_the_same_from_every_edge_of_it():
+    m = quad_sphere()
+    edge = next(e for e in m.edge_ids().tolist() if len(edge_loop(m, e)) == 8)
+    loop = edge_loop(m, edge)
+    assert all(sorted(edge_loop(m, e)) == sorted(loop) for e in loop)
+    assert len(set(loop)) == 8
+
+
+def test_checkerboard_spreads_over_a_quad_sphere():
+    # faces across a cube edge share just its midpoint: the rule reaches all 24
+    m = quad_sphere()
+    assert checkerboard(m, int(m.face_ids()[0])) == m.face_ids().tolist()
+    assert checkerboard(cube(), 0) == [0]  # the cube's faces share edges or nothing
+
+
+@pytest.mark.parametrize(("make", "counts"), [
+    # faces grown once and twice from the first face, twice then shrunk; edges grown
+    # from the first edge, vertices from the first vertex
+    (cube, (5, 6, 6, 5, 4)),
+    (lambda: torus(8, 6), (5, 13, 5, 7, 5)),
+    (quad_sphere, (5, 12, 5, 6, 4)),  # its first face, edge and vertex touch a valence 3
+])
+def test_grow_and_shrink_count_exactly(make, counts):
+    m = make()
+    face, edge, vertex = (int(ids[0]) for ids in (m.face_ids(), m.edge_ids(), m.vertex_ids()))
+    once = grow(m, [face])
+    twice = grow(m, once)
+    assert (len(once), len(twice), len(shrink(m, twice)), len(grow(m, [edge], "edges")),
+            len(grow(m, [vertex], "vertices"))) == counts
+    assert shrink(m, once) == [face]
+    assert shrink(m, select_all(m)) == select_all(m)
+
+
+def test_grow_and_shrink_follow_topmods_neighbours():
+    t = torus(8, 6)
+    once = grow(t, [0])
+    assert once == sorted({0, *(f for e in t.face_edges(0) for f in t.edge_faces(e))})
+    edges = grow(t, [0], "edges")
+    assert edges == sorted({e for v in t.edge_vertices(0) for e in t.vertex_edges(v)})
+    assert shrink(t, once) == [0] and shrink(t, [0]) == []
+
+
+def test_select_all_and_invert_count_every_kind():
+    t = torus(8, 6)
+    assert [len(select_all(t, kind)) for kind in KINDS] == [48, 96, 48, 192]
+    assert len(invert(t, [0, 1, 999])) == 46
+    assert invert(t, select_all(t, "verts"), "vertices") == []
+    g = grid(2, 2)  # its hole face is never selected
+    assert len(select_all(g)) == 4 and len(invert(g, [])) == 4
+
+
+def test_similar_faces_by_size_and_area_and_no_colours_yet():
+    m = soccer_ball()
+    pentagon = faces_by_size(m, 5)[0]
+    assert len(similar_faces(m, pentagon)) == 12
+    assert similar_faces(m, pentagon, "area", 1e-9) == faces_by_size(m, 5)
+    with pytest.raises(InvalidArgumentError, match="not 'colour' \\(livemod meshes carry no "
+                       "face colours yet\\)"):
+        similar_faces(m, pentagon, "colour")
+
+
+@pytest.mark.parametrize("rule", [
+    lambda m, a: edge_loop(a, 5), lambda m, a: edge_ring(a, 5), lambda m, a: face_loop(a, 5),
+    lambda m, a: checkerboard(a, 3), lambda m, a: matching_edges(a, 5),
+    lambda m, a: matching_vertices(a, 3), lambda m, a: matching_faces(a, 3),
+    lambda m, a: grow(a, [3]), lambda m, a: shrink(a, [3, 4]), lambda m, a: invert(a, [3]),
+])
+def test_a_mesh_and_its_arrays_give_the_same_selection(rule):
+    m = torus(8, 6)
+    assert rule(m, m) == rule(m, mesh_arrays(m))
+
+
+@pytest.mark.parametrize(("call", "error", "message"), [
+    (lambda a: edge_loop(a, 999), UnknownIdError, "edge 999 does not exist"),
+    (lambda a: checkerboard(a, 1.5), InvalidArgumentError, "expected a face id"),
+    (lambda a: grow(a, [0], "corners"), InvalidArgumentError, "corners neither grow"),
+    (lambda a: select_all(a, "loops"), InvalidArgumentError, "kind must be one of"),
+    (lambda a: invert(a, "0"), DLFLError, "ids"),
+])
+def test_bad_selections_are_refused_on_arrays(call, error, message):
+    with pytest.raises(error, match=message):
+        call(mesh_arrays(cube()))
