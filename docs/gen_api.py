@@ -25,6 +25,7 @@ COMMAND_MODULES = {
     "Sculpting commands": "livemod.dlfl.commands.sculpt",
     "Cutting commands": "livemod.dlfl.commands.cutting",
     "Cleanup and orientation commands": "livemod.dlfl.commands.cleanup",
+    "Selection commands": "livemod.dlfl.commands.selection",
     "Script parameters": "livemod.dlfl.commands.params",
 }
 
