@@ -62,3 +62,48 @@ def test_every_key_runs_through_the_windows_key_handling(window, tmp_path) -> No
     assert viewer.wnd.is_closing
     assert sorted(p.name for p in tmp_path.glob("model_*.png")) == ["model_000.png",
                                                                     "model_001.png"]
+
+
+@pytest.fixture
+def quad_sphere_window(tmp_path: Path) -> Iterator[tuple[LiveViewer, io.StringIO]]:
+    script = tmp_path / "sphere.py"
+    script.write_text("load('cube')\nsubdivide('catmull-clark')\n")
+    echo = io.StringIO()
+    viewer = create_viewer(ViewOptions(str(script), backend="headless", size=(240, 160),
+                                       samples=0, vsync=False, echo=echo))
+    frames_until(viewer, lambda v: v.result is not None and not v.waiting)
+    yield viewer, echo
+    close_viewer(viewer)
+
+
+def test_topmods_selection_keys_edit_the_picks_and_echo_them(quad_sphere_window) -> None:
+    from livemod.dlfl import selection as rules
+    from livemod.dlfl.scene import Selection
+
+    viewer, echo = quad_sphere_window
+    arrays = viewer.renderer.arrays
+    valence = rules.vertex_valences(arrays)
+    # an edge between two valence-4 vertices: its loop closes round the cube (8 edges)
+    edge = next(int(e) for e, (u, v) in zip(arrays.edge_ids, arrays.edge_vertices, strict=True)
+                if valence[int(arrays.vertex_ids[u])] == valence[int(arrays.vertex_ids[v])] == 4)
+    viewer.set_selection(Selection(edges=(edge,)))
+    press_key(viewer, "L", shift=True)
+    loop = viewer.picking.selection.edges
+    assert sorted(loop) == sorted(rules.edge_loop(arrays, edge)) and len(loop) == 8
+    assert f"--select edges={','.join(map(str, loop))}" in echo.getvalue()
+    press_key(viewer, "ESCAPE")
+    viewer.set_selection(Selection(edges=(edge,)))
+    press_key(viewer, "P", shift=True)
+    assert viewer.picking.selection == Selection(faces=tuple(rules.face_loop(arrays, edge)),
+                                                 edges=(edge,))
+    assert len(viewer.picking.selection.faces) == 8
+    viewer.set_selection(Selection(faces=(int(arrays.face_ids[0]),)))
+    press_key(viewer, "EQUAL", ctrl=True)
+    assert len(viewer.picking.selection.faces) == 5
+    press_key(viewer, "MINUS", ctrl=True)
+    assert viewer.picking.selection.faces == (int(arrays.face_ids[0]),)
+    press_key(viewer, "I", ctrl=True)
+    assert len(viewer.picking.selection.faces) == 23
+    press_key(viewer, "A", ctrl=True)
+    assert len(viewer.picking.selection.faces) == 24
+    assert viewer.renderer.selection == viewer.picking.selection  # drawn as picked

@@ -66,3 +66,46 @@ def test_the_hud_tells_picks_held_from_picks_missing() -> None:
     picking.forget()
     assert picking.hud_lines(arrays, ("faces",)) == (
         [], ["faces(True) found nothing picked: M to face mode, click a face"])
+
+
+def _quad_torus_arrays():
+    from livemod.dlfl.shapes import torus
+
+    return mesh_arrays(torus(8, 6))
+
+
+def test_selection_tools_act_on_the_picks_as_topmods_keys_do() -> None:
+    from livemod.dlfl import selection as rules
+
+    arrays = _quad_torus_arrays()
+    picking = Picking(lambda: None, print, Selection(faces=(5,), edges=(0,)))
+    loop = picking.tool("edge_loop", arrays)
+    assert loop == Selection(faces=(5,), edges=tuple(rules.edge_loop(arrays, 0)))
+    assert len(loop.edges) == 6
+    faces = picking.tool("face_loop", arrays).faces
+    assert faces == (5, *rules.face_loop(arrays, 0)) and len(faces) == 1 + 8
+    assert len(picking.tool("checkerboard", arrays).faces) == 24
+    assert picking.tool("similar", arrays).faces == tuple(range(48))  # face mode: all quads
+    assert len(picking.tool("grow", arrays).faces) == 5
+    assert picking.tool("shrink", arrays).faces == ()
+    assert len(picking.tool("invert", arrays).faces) == 47
+    picking.set_mode(PickMode.EDGE)
+    assert len(picking.tool("grow", arrays).edges) == 7
+    assert len(picking.tool("all", arrays).edges) == 96
+    assert picking.tool("all", arrays).faces == (5,)  # other kinds stay
+
+
+def test_a_tool_without_picks_or_a_mesh_says_so_and_changes_nothing() -> None:
+    said: list[str] = []
+    picking = Picking(lambda: None, said.append, Selection(faces=(40,)))
+    arrays = mesh_arrays(cube())
+    assert picking.tool("edge_loop", arrays) is None
+    assert picking.tool("checkerboard", arrays) is None  # face 40 is not in the cube
+    assert picking.tool("grow", None) is None
+    picking.set_mode(PickMode.CORNER)
+    assert picking.tool("similar", arrays) is None
+    assert said == ["edge loop: pick an edge first (M to edge mode, click an edge)",
+                    "checkerboard: pick a face first (M to face mode, click a face)",
+                    "grow: no mesh shown yet",
+                    "similar: corners have no similar ones (pick faces, edges or vertices)"]
+    assert picking.selection == Selection(faces=(40,))

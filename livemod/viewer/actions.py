@@ -18,6 +18,7 @@ from livemod.dlfl.scene import Selection
 
 from .controls import KEY_BINDINGS, Binding, PickMode
 from .look import TOGGLED_FIELDS
+from .picking import SELECTION_TOOLS
 
 if TYPE_CHECKING:
     from .window import LiveViewer
@@ -64,9 +65,17 @@ def window_actions(viewer: LiveViewer) -> dict[str, Action]:
         "next_pick_mode": picking.next_mode,
         **{f"pick_{mode}": partial(picking.set_mode, mode) for mode in PickMode},
         "clear_selection": partial(viewer.set_selection, Selection()),
+        **{f"select_{name}": partial(use_tool, viewer, name) for name in SELECTION_TOOLS},
         "copy_parameters": viewer.copy_parameters,
         "quit": viewer.wnd.close,
     }
+
+
+def use_tool(viewer: LiveViewer, name: str) -> None:
+    """Apply TopMod's selection tool ``name`` to the picks on the mesh shown."""
+    selection = viewer.picking.tool(name, viewer.renderer.arrays)
+    if selection is not None:
+        viewer.set_selection(selection)
 
 
 def check_bindings(actions: Mapping[str, Action],

@@ -10,8 +10,11 @@ the Python a script would see.
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
+from dataclasses import replace
 from typing import TYPE_CHECKING
 
+from livemod.dlfl import selection as rules
+from livemod.dlfl.errors import DLFLError
 from livemod.dlfl.scene import Selection
 
 from .controls import (
@@ -104,3 +107,92 @@ class Picking:
             self._lines = cached
         held, missing = cached[2]
         return held, missing + unpicked
+
+    def tool(self, name: str, arrays: MeshArrays | None) -> Selection | None:
+        """The selection after TopMod's selection tool ``name`` (a key of
+        :data:`SELECTION_TOOLS`) on the picks ``arrays`` holds; None, with a line
+        in the terminal saying why, when there is nothing to act on."""
+        if arrays is None:
+            self._echo(f"{name.replace('_', ' ')}: no mesh shown yet")
+            return None
+        present, _ = split_picks(self.selection, arrays)
+        needs, make = SELECTION_TOOLS[name]
+        seeds_of = needs or self.mode.selection_field
+        try:
+            made = make(arrays, present, seeds_of)
+        except DLFLError as exc:
+            self._echo(f"{name.replace('_', ' ')}: {exc}")
+            return None
+        if made is None:
+            one, mode = _WHAT[seeds_of]
+            self._echo(f"{name.replace('_', ' ')}: pick {one} first (M to {mode} mode, click "
+                       f"{one})")
+        return made
+
+
+# what each kind of pick is called in the terminal's hints
+_WHAT = {"faces": ("a face", "face"), "edges": ("an edge", "edge"),
+         "vertices": ("a vertex", "vertex"), "corners": ("a corner", "corner")}
+
+
+def _union(rule: Callable[[MeshArrays, int], list[int]], arrays: MeshArrays,
+           seeds: Sequence[int]) -> tuple[int, ...] | None:
+    """The ids ``rule`` gives from each seed, each once in the order found; None
+    without seeds."""
+    if not seeds:
+        return None
+    found: dict[int, None] = {}
+    for seed in seeds:
+        found.update(dict.fromkeys(rule(arrays, seed)))
+    return tuple(found)
+
+
+def _from_seeds(rule: Callable[[MeshArrays, int], list[int]], into: str, keep: bool = False,
+                ) -> Callable[[MeshArrays, Selection, str], Selection | None]:
+    """A tool that applies ``rule`` to each pick of the kind it reads and puts the
+    union into the ``into`` field (after what it held, with ``keep``)."""
+    def tool(arrays: MeshArrays, picks: Selection, seeds_of: str) -> Selection | None:
+        found = _union(rule, arrays, getattr(picks, seeds_of))
+        if found is None:
+            return None
+        held: tuple[int, ...] = getattr(picks, into) if keep else ()
+        return replace(picks, **{into: tuple(dict.fromkeys((*held, *found)))})
+    return tool
+
+
+def _similar(arrays: MeshArrays, picks: Selection, kind: str) -> Selection | None:
+    """SHIFT+S: faces of the picked faces' sizes, edges of their end valences,
+    vertices of their valences (the pick mode's kind)."""
+    rule = {"faces": rules.matching_faces, "edges": rules.matching_edges,
+            "vertices": rules.matching_vertices}.get(kind)
+    if rule is None:
+        raise DLFLError("corners have no similar ones (pick faces, edges or vertices)")
+    return _from_seeds(rule, kind)(arrays, picks, kind)
+
+
+def _whole(rule: Callable[[MeshArrays, list[int], str], list[int]], needs_picks: bool,
+           ) -> Callable[[MeshArrays, Selection, str], Selection | None]:
+    """A tool that replaces the pick mode's kind of picks by ``rule`` of them."""
+    def tool(arrays: MeshArrays, picks: Selection, kind: str) -> Selection | None:
+        ids: tuple[int, ...] = getattr(picks, kind)
+        if needs_picks and not ids:
+            return None
+        return replace(picks, **{kind: tuple(rule(arrays, list(ids), kind))})
+    return tool
+
+
+#: TopMod's selection tools in the window: name -> (the kind of picks it reads,
+#: None for the pick mode's; what it makes of them, None without picks to act on)
+SELECTION_TOOLS: dict[str, tuple[str | None,
+                                 Callable[[MeshArrays, Selection, str], Selection | None]]] = {
+    "edge_loop": ("edges", _from_seeds(rules.edge_loop, "edges")),
+    "edge_ring": ("edges", _from_seeds(rules.edge_ring, "edges")),
+    "face_loop": ("edges", _from_seeds(rules.face_loop, "faces", keep=True)),
+    "checkerboard": ("faces", _from_seeds(rules.checkerboard, "faces")),
+    "similar": (None, _similar),
+    "similar_area": ("faces", _from_seeds(rules.faces_by_area, "faces")),
+    "grow": (None, _whole(rules.grow, True)),
+    "shrink": (None, _whole(rules.shrink, True)),
+    "invert": (None, _whole(rules.invert, False)),
+    "all": (None, _whole(lambda arrays, ids, kind: rules.select_all(arrays, kind), False)),
+}
