@@ -8,7 +8,7 @@ import math
 import numpy as np
 import pytest
 
-from livemod.dlfl import Mesh, mesh_arrays, validate
+from livemod.dlfl import Mesh, from_polygons, mesh_arrays, validate
 from livemod.dlfl.shapes import cube, grid, load_shape
 from livemod.dlfl.subdivision import subdivide
 from tests.meshes import assert_scales
@@ -107,6 +107,24 @@ def test_loop_on_the_octahedron():
     # valence 4: beta = (5/8 - (3/8)^2)/4 = 31/256, neighbours sum to 0: v' = (1 - 4 beta) v
     # edge point: 3/8 of both ends + 1/8 of both opposite vertices (which cancel)
     assert same_points(run("loop", m), orbit(33 / 64, 0, 0), orbit(0.375, 0.375, 0))
+
+
+def test_loop_moves_every_old_vertex_from_the_old_positions():
+    """TopMod's quirk (docs/topmod.md): its loopSubdivide moved the old vertices in
+    place one after another, so on this tetrahedron vertex 1 averaged vertex 0's
+    new place and went to (0.109, -0.391, -0.391). Loop's rule on the old
+    positions keeps the tetrahedron's symmetry."""
+    corners = np.array([[1, 1, 1], [1, -1, -1], [-1, 1, -1], [-1, -1, 1]], dtype=np.float64)
+    m = from_polygons(corners, [[0, 1, 2], [0, 3, 1], [0, 2, 3], [1, 3, 2]])
+    got = run("loop", m)
+    # valence 3: beta = (5/8 - (3/8 + cos(2 pi/3)/4)^2)/3 = 3/16 and the three
+    # neighbours sum to -v: v' = (1 - 9/16) v - 3/16 v = v/4; edge points: 3/8 of
+    # both ends + 1/8 of the two others (-(ends)): (ends)/4
+    old = corners / 4
+    edges = np.array([(corners[i] + corners[j]) / 4 for i, j in itertools.combinations(range(4), 2)])
+    assert len(got) == 10 and same_points(got, old, edges)
+    assert sorted(np.round(np.linalg.norm(got, axis=1), 12)) == sorted(
+        [round(math.sqrt(3) / 4, 12)] * 4 + [0.5] * 6)
 
 
 def test_loop_style_length():

@@ -101,12 +101,17 @@ def _is_point_sphere_corner(m: Mesh, face: Any, vertex: Any) -> bool:
 def insertEdge(c1: Any, c2: Any, check: bool = True) -> tuple[Any, ...]:
     """Insert an edge between two corners.
 
+    ``check`` is TopMod's flag: False skipped its test that the corners differ,
+    which corrupted the face given one corner twice; livemod refuses the same
+    corner either way, so the flag changes nothing.
+
     Returns:
         ``(edgeid, cA, cB, cC, cD)``: the new edge and its four corners as
         ``(faceid, vertexid)`` tuples, always in the order of :func:`edgeInfo`:
         the two ends as they are now (``c1``'s, then ``c2``'s), then the corners
         after them.
     """
+    flag(check, "check")
     m = mesh()
     a = resolve_corner(m, c1, "c1")
     b = resolve_corner(m, c2, "c2")
