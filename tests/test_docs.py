@@ -32,6 +32,27 @@ def test_api_reference_lists_every_thesis_command() -> None:
     assert missing == []
 
 
+def test_every_command_module_is_star_exported_and_has_an_api_section() -> None:
+    """The commands registry: each module of livemod/dlfl/commands (but _base) gives
+    its names to ``from livemod.dlfl import *`` and has a section of api.md."""
+    import importlib
+
+    import livemod.dlfl as dlfl
+
+    generator = runpy.run_path(str(ROOT / "docs" / "gen_api.py"))
+    documented = set(generator["COMMAND_MODULES"].values())
+    modules = sorted(p.stem for p in (ROOT / "livemod" / "dlfl" / "commands").glob("*.py")
+                     if not p.stem.startswith("_"))
+    names: list[str] = []
+    for stem in modules:
+        module = importlib.import_module(f"livemod.dlfl.commands.{stem}")
+        assert module.__name__ in documented, stem
+        names += module.__all__
+        assert all(getattr(dlfl, name) is getattr(module, name) for name in module.__all__)
+    assert sorted(names) == sorted(dlfl.commands.__all__)
+    assert len(set(names)) == len(names)  # no command in two modules
+
+
 def test_readme_example_runs() -> None:
     readme = (ROOT / "README.md").read_text(encoding="utf-8")
     blocks = re.findall(r"```python\n(.*?)```", readme, flags=re.S)
