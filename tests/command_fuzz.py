@@ -186,6 +186,10 @@ class Fuzzer:
             keywords["bogus"] = 1
         return keywords
 
+    def kind(self) -> Any:
+        """A kind of element a selection holds, now and then a wrong one."""
+        return self.rng.choice(["faces", "edges", "vertices", "verts", "corners", "loops", 3])
+
     def filename(self) -> Any:
         return self.rng.choice([*SHAPES, "nope", "missing.obj", f"{self.directory}/out.obj",
                                 f"{self.directory}/out.dlfl", f"{self.directory}/out.stl",
@@ -210,7 +214,7 @@ class Fuzzer:
             "insertEdge": lambda: [self.corner(), self.corner(), *self.maybe(self.flag)],
             "deleteEdge": lambda: [self.edge(), *self.maybe(self.flag)],
             "subdivideEdge": lambda: r.choice([[self.edge()], [self.count(), self.edge()], []]),
-            "collapseEdge": lambda: [self.edge()],
+            "collapseEdge": lambda: [self.edge(), *self.maybe(self.flag)],
             "trisectEdge": lambda: [self.edge(), self.number(), self.flag()],
             "spliceCorners": lambda: [self.corner(), self.corner()],
             "createFace": lambda: [self.points(), *self.maybe(self.flag)],
@@ -276,6 +280,22 @@ class Fuzzer:
             "cutEdges": lambda: self.maybe(lambda: self.ids(self.edge), self.number),
             "cutFaces": lambda: self.maybe(lambda: self.ids(self.face), self.number),
             "truncate": lambda: self.maybe(self.number),
+            "punch": lambda: self.maybe(lambda: self.ids(self.face), self.flag),
+            "edgeCleanup": lambda: self.maybe(lambda: self.ids(self.edge)),
+            "splitValence2Vertices": lambda: self.maybe(self.number),
+            "reverseOrientation": lambda: self.maybe(lambda: self.ids(self.face)),
+            "edge_loop": lambda: [r.choice([self.edge(), self.ids(self.edge)])],
+            "edge_ring": lambda: [self.edge()],
+            "face_loop": lambda: [self.edge()],
+            "checkerboard": lambda: [r.choice([self.face(), self.ids(self.face)])],
+            "similar_faces": lambda: [self.face(), *self.maybe(
+                lambda: r.choice(["size", "area", "colour", 3]), self.number)],
+            "similar_edges": lambda: [self.edge()],
+            "similar_vertices": lambda: [self.vertex()],
+            "grow_selection": lambda: self.maybe(lambda: self.ids(self.face), self.kind),
+            "shrink_selection": lambda: self.maybe(lambda: self.ids(self.edge), self.kind),
+            "invert_selection": lambda: self.maybe(lambda: self.ids(self.vertex), self.kind),
+            "select_all": lambda: self.maybe(self.kind),
         }
         args = table[name]() if name in table else []
         keywords: dict[str, Any] = {}

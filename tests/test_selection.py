@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import warnings
 from collections import Counter
 
 import pytest
@@ -216,3 +217,11 @@ def test_a_mesh_and_its_arrays_give_the_same_selection(rule):
 def test_bad_selections_are_refused_on_arrays(call, error, message):
     with pytest.raises(error, match=message):
         call(mesh_arrays(cube()))
+
+
+def test_faces_of_infinite_area_match_each_other_without_a_warning():
+    m = cube()
+    m.set_positions(m.vertex_ids(), m.positions_view() * 1e200)  # areas overflow to inf
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert faces_by_area(m, 0) == list(range(6))

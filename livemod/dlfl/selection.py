@@ -184,7 +184,9 @@ def faces_by_area(mesh: Source, face: int, delta: float = 0.05) -> list[int]:
     a = _arrays(mesh)
     areas = face_areas(a)
     target = areas[_live_face(mesh, a, face)]
-    keep = (np.abs(areas - target) <= delta) & ~a.face_hole
+    with np.errstate(invalid="ignore", over="ignore"):  # areas past the float range: inf
+        near = (np.abs(areas - target) <= delta) | (areas == target)
+    keep = near & ~a.face_hole
     return a.face_ids[keep].tolist()
 
 
