@@ -15,6 +15,16 @@ from livemod.viewer.window import LiveViewer, ViewOptions, close_viewer, create_
 from .viewer_support import frames_until, press_key
 
 
+def _window_on(script: Path, source: str) -> Iterator[tuple[LiveViewer, io.StringIO]]:
+    """A headless window watching ``script`` (written with ``source``) and its echo."""
+    script.write_text(source)
+    echo = io.StringIO()
+    viewer = create_viewer(ViewOptions(str(script), backend="headless", size=(240, 160),
+                                       samples=0, vsync=False, echo=echo))
+    yield viewer, echo
+    close_viewer(viewer)
+
+
 @pytest.fixture
 def window(tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
            ) -> Iterator[tuple[LiveViewer, io.StringIO]]:
@@ -22,13 +32,8 @@ def window(tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
     # screenshots there): under load a first run may be abandoned, and while it lives
     # every run gives back the folder the session first saw (docs/guide.md)
     monkeypatch.chdir(tmp_path)
-    script = tmp_path / "model.py"
-    script.write_text("load('cube')\nload('tetrahedron')\nsubdivide('catmull-clark')\n")
-    echo = io.StringIO()
-    viewer = create_viewer(ViewOptions(str(script), backend="headless", size=(240, 160),
-                                       samples=0, vsync=False, echo=echo))
-    yield viewer, echo
-    close_viewer(viewer)
+    yield from _window_on(tmp_path / "model.py",
+                          "load('cube')\nload('tetrahedron')\nsubdivide('catmull-clark')\n")
 
 
 def test_every_binding_has_a_handler_and_every_handler_a_binding(window) -> None:
@@ -66,14 +71,11 @@ def test_every_key_runs_through_the_windows_key_handling(window, tmp_path) -> No
 
 @pytest.fixture
 def quad_sphere_window(tmp_path: Path) -> Iterator[tuple[LiveViewer, io.StringIO]]:
-    script = tmp_path / "sphere.py"
-    script.write_text("load('cube')\nsubdivide('catmull-clark')\n")
-    echo = io.StringIO()
-    viewer = create_viewer(ViewOptions(str(script), backend="headless", size=(240, 160),
-                                       samples=0, vsync=False, echo=echo))
-    frames_until(viewer, lambda v: v.result is not None and not v.waiting)
-    yield viewer, echo
-    close_viewer(viewer)
+    """A window showing the cube after one Catmull-Clark step (24 quads), run."""
+    for viewer, echo in _window_on(tmp_path / "sphere.py",
+                                   "load('cube')\nsubdivide('catmull-clark')\n"):
+        frames_until(viewer, lambda v: v.result is not None and not v.waiting)
+        yield viewer, echo
 
 
 def test_topmods_selection_keys_edit_the_picks_and_echo_them(quad_sphere_window) -> None:
