@@ -683,17 +683,15 @@ def _checked_numbers(opts: Options) -> Options:
                    finite_number(opts.rotation, "rotation"), finite_number(opts.scale, "scale"),
                    finite_number(opts.twist, "twist"), opts.dual_mesh, opts.hexagonalize,
                    finite_number(opts.thickness, "thickness"), opts.fractional,
-                   _checked_shape(opts.shape))
+                   None if opts.shape is None else _checked_shape(opts.shape))
 
 
-def _checked_shape(shape: Shape | None) -> Shape | None:
-    """``shape`` with its numbers as floats (None stays None).
+def _checked_shape(shape: Shape) -> Shape:
+    """``shape`` with its numbers as floats.
 
     Raises:
         InvalidArgumentError: not a :class:`Shape`, or a number that is not finite.
     """
-    if shape is None:
-        return None
     if not isinstance(shape, Shape):
         raise InvalidArgumentError(f"shape must be an extrusion.Shape, got {shape!r}")
     return Shape(*(finite_number(getattr(shape, name), name)
@@ -706,11 +704,12 @@ def _prepare(mesh: Mesh, faces: list[int], kind: str, segments: int, opts: Optio
     a DLFLError (see :func:`extrude`); the face budget is checked for all of them."""
     name = resolve_kind(kind)
     spec = KINDS[name]
+    sides = 0
     for face in faces:
         _check_face(mesh, face)
         if spec.simple_face:
             _check_simple(mesh, int(face), name)
-    sides = sum(mesh.face_size(int(face)) for face in faces)
+        sides += mesh.face_size(int(face))
     count = whole_count(segments, "segments", each=0)
     if spec.fan is not None and count != 1:
         raise InvalidArgumentError(f"a {name} extrusion ends in a fan of triangles: it has "
@@ -804,10 +803,16 @@ def extrude(
             scratch copy first). The mesh is unchanged.
         BudgetExceededError: the segments would pass the face budget.
     """
-    return _extrude_all(mesh, [face], kind, segments, Options(
+    name, spec, opts = _prepare(mesh, [face], kind, segments, Options(
         distance, rotation, scale, twist, flag(dual_mesh, "dual_mesh"),
         flag(hexagonalize, "hexagonalize"), thickness, flag(fractional, "fractional"), shape),
-        max_faces)[0][0]
+        max_faces)
+    # one face: the path of chained extrusions, kept lean (extrude_faces does the rest)
+    count, start = int(segments), int(face)
+    run = _runner(spec, opts, count)
+    if count > 1 or not spec.single_build:
+        _rehearse(mesh, start, name, run)
+    return run(mesh, start)[0]
 
 
 def extrude_faces(

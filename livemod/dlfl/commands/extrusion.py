@@ -94,8 +94,10 @@ def _library_arguments(kind: str, given: dict[str, Any]) -> dict[str, Any]:
             replaces.
     """
     spec = _extrusion.KINDS[kind]
-    shape = {name: given.pop(name) for name in SHAPE_KEYWORDS if name in given}
-    out = {spec.library_names.get(name, name): value for name, value in given.items()}
+    shape = ({name: given.pop(name) for name in SHAPE_KEYWORDS if name in given}
+             if spec.shape is not None else None)
+    renamed = spec.library_names
+    out = {renamed.get(name, name): value for name, value in given.items()} if renamed else given
     if shape:
         clash = [name for name in SHAPE_REPLACES if name in given]
         if clash:
@@ -152,7 +154,7 @@ def extrude(type: str, faceid: Any, *options: Any, fan: bool = False,  # noqa: A
     """
     kind = _kind(type)
     arguments = _library_arguments(kind, _options(kind, options, keywords))
-    whole_fan = flag(fan, "fan")
+    whole_fan = fan is not False and flag(fan, "fan")  # (the chained path: no call)
     if whole_fan and _extrusion.KINDS[kind].fan is None:
         raise InvalidArgumentError(f"extrude('{kind}') ends in a face, not a fan of triangles: "
                                    "fan=True is for stellate, double-stellate and dome")
