@@ -94,6 +94,7 @@ def test_similar_faces_by_area(torus_scene):
     (lambda: similar_faces(0, "colour"), "no face colours yet"),
     (lambda: grow_selection([0], "corners"), "corners neither grow"),
     (lambda: select_all("loops"), "kind must be one of"),
+    (lambda: invert_selection(kind="loops"), "kind must be one of"),
 ])
 def test_bad_selections_are_refused_and_change_nothing(torus_scene, call, message):
     before = snapshot(torus_scene.mesh)

@@ -24,6 +24,7 @@ from .analysis import corner_normals, face_normals
 from .arrays import MeshArrays, mesh_arrays
 from .budget import check_size
 from .build import from_corner_arrays
+from .connect import connect_faces
 from .errors import GeometryError, InvalidArgumentError, UnknownIdError
 from .mesh import Mesh
 from .normals import reversed_rings, ring_normals
@@ -650,8 +651,6 @@ def _punch_one(mesh: Mesh, twins: CrustTwins, outer: int, inner: int,
                cleanup: bool) -> list[int]:
     """Join ``outer`` to ``inner`` by a tube and clean up double walls; returns the
     tube's faces."""
-    from .connect import connect_faces
-
     head = mesh.face_corner(outer)
     copy = mesh.corner_at(inner, twins.vertices[mesh.corner_vertex(head)])
     sides = list(zip(mesh.face_edges(outer), _twin_edges(mesh, twins, outer, inner),

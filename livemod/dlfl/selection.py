@@ -31,7 +31,7 @@ from .mesh import Mesh
 __all__ = [
     "KINDS", "SIMILAR_FACES", "checkerboard", "edge_loop", "edge_ring", "face_loop",
     "faces_by_area", "faces_by_normal", "faces_by_size", "faces_by_vertex_valence",
-    "faces_where", "grow", "invert", "matching_edges", "matching_faces", "matching_vertices",
+    "faces_where", "grow", "invert", "kind_field", "matching_edges", "matching_faces", "matching_vertices",
     "select_all", "shrink", "similar_faces", "vertex_valences",
 ]
 
@@ -355,8 +355,9 @@ def _ring(a: MeshArrays, edge: int) -> tuple[list[int], list[int]]:
 
 # -- whole selections: grow, shrink, invert, all --------------------------------------
 
-def _kind(kind: Any) -> str:
-    """``kind`` if it names a kind of element ("verts" for "vertices" too).
+def kind_field(kind: Any) -> str:
+    """The :data:`KINDS` entry (a :class:`~livemod.dlfl.scene.Selection` field) that
+    ``kind`` names: itself, or ``"vertices"`` for ``"verts"``.
 
     Raises:
         InvalidArgumentError: anything else.
@@ -381,7 +382,7 @@ def select_all(mesh: Source, kind: str = "faces") -> list[int]:
     Raises:
         InvalidArgumentError: an unknown kind.
     """
-    return _all_ids(_arrays(mesh), _kind(kind)).tolist()
+    return _all_ids(_arrays(mesh), kind_field(kind)).tolist()
 
 
 def invert(mesh: Source, ids: Iterable[int], kind: str = "faces") -> list[int]:
@@ -391,7 +392,7 @@ def invert(mesh: Source, ids: Iterable[int], kind: str = "faces") -> list[int]:
     Raises:
         InvalidArgumentError: an unknown kind, or ``ids`` not a list of ids.
     """
-    everything = _all_ids(_arrays(mesh), _kind(kind))
+    everything = _all_ids(_arrays(mesh), kind_field(kind))
     return everything[~np.isin(everything, id_list(ids, "ids"))].tolist()
 
 
@@ -452,7 +453,7 @@ def shrink(mesh: Source, ids: Iterable[int], kind: str = "faces") -> list[int]:
 
 def _grown_kind(kind: Any) -> str:
     """``kind`` for :func:`grow` and :func:`shrink`, which have no rule for corners."""
-    name = _kind(kind)
+    name = kind_field(kind)
     if name == "corners":
         raise InvalidArgumentError("corners neither grow nor shrink (TopMod's had no rule for "
                                    "them); use faces, edges or vertices")

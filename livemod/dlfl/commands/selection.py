@@ -152,7 +152,9 @@ def select_all(kind: str = "faces") -> list[int]:
 
 
 def _ids(ids: Any, kind: str) -> list[int]:
-    """The ids a whole-selection command acts on: ``ids``, or the picks of ``kind``."""
-    field = {"verts": "vertices"}.get(kind, kind)
-    picked = field if field in _selection.KINDS else None
-    return id_arguments(ids, "ids", picked)
+    """The ids a whole-selection command acts on: ``ids``, or the picks of ``kind``.
+
+    Raises:
+        DLFLError: an unknown kind, or ids that are not ids.
+    """
+    return id_arguments(ids, "ids", _selection.kind_field(kind))
