@@ -95,7 +95,7 @@ def test_topmods_selection_keys_edit_the_picks_and_echo_them(quad_sphere_window)
     assert f"--select edges={','.join(map(str, loop))}" in echo.getvalue()
     press_key(viewer, "ESCAPE")
     viewer.set_selection(Selection(edges=(edge,)))
-    press_key(viewer, "P", shift=True)
+    press_key(viewer, "P", ctrl=True)
     assert viewer.picking.selection == Selection(faces=tuple(rules.face_loop(arrays, edge)),
                                                  edges=(edge,))
     assert len(viewer.picking.selection.faces) == 8

@@ -116,7 +116,7 @@ KEY_BINDINGS: tuple[Binding, ...] = (
     Binding("L", "shift", "select_edge_loop",
             "edge loops of the picked edges (on through valence-4 vertices)"),
     Binding("R", "shift", "select_edge_ring", "edge rings of the picked edges (across quads)"),
-    Binding("P", "shift", "select_face_loop", "add the face loops across the picked edges"),
+    Binding("P", "ctrl", "select_face_loop", "add the face loops across the picked edges"),
     Binding("K", "shift", "select_checkerboard", "checkerboard from the picked faces"),
     Binding("S", "shift", "select_similar",
             "similar: faces of the picked sizes, edges of their end valences, vertices of "

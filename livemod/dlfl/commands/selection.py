@@ -4,7 +4,8 @@ livemod additions (TopMod had them in its GUI only): each returns a list of ids
 of the current object, so a script passes them on, as in
 ``rind(face_loop(e), False, 0.1)`` or ``extrude("cubical", checkerboard(f), 0.5)``.
 Thin wrappers over :mod:`livemod.dlfl.selection`; the window has them on keys
-(SHIFT+L, SHIFT+R, SHIFT+P, SHIFT+K, SHIFT+S, CTRL+=, CTRL+-, CTRL+I, CTRL+A).
+(SHIFT+L, SHIFT+R, CTRL+P for TopMod's SHIFT+P, SHIFT+K, SHIFT+S, CTRL+=, CTRL+-,
+CTRL+I, CTRL+A).
 Where a command takes one element (a loop's edge, a checkerboard's face), it
 takes a list too and returns the union, each id once, in the order found. The
 ones that read a selection (grow, shrink, invert) default to the picks of
