@@ -8,7 +8,15 @@ import numpy as np
 import pytest
 
 import livemod.dlfl as dlfl
-from livemod.dlfl import DLFLError, Scene, face_size_histogram, genus, use_scene, validate
+from livemod.dlfl import (
+    DLFLError,
+    InvalidArgumentError,
+    Scene,
+    face_size_histogram,
+    genus,
+    use_scene,
+    validate,
+)
 from livemod.dlfl import extrusion as _extrusion
 from livemod.dlfl.commands import addHandle, connectCorners, connectEdges, connectFaces, extrude
 from livemod.dlfl.errors import GeometryError, InvalidArgumentError, UnknownIdError
@@ -233,7 +241,7 @@ def test_type_prefixes(scene, name, expected):
     (lambda: connectCorners((0, 0), (5, 0)), "no corner at vertex 0", UnknownIdError),
     (lambda: connectCorners((0, 0), (5, 4), 1, -1, "duel"), "'dual'", InvalidArgumentError),
     (lambda: addHandle("spline", (0, 0), (1, 0), 4), "'hermite' or 'bezier'", InvalidArgumentError),
-    (lambda: addHandle("bezier", (0, 0), (1, 0), 4, 1, 1, -1, 2), "no maxconn or twists",
+    (lambda: addHandle("bezier", (0, 0), (1, 0), 4, 1, 1, -1, 2), "takes no maxconn, twists",
      InvalidArgumentError),
     (lambda: connectEdges((0, 5), (1, 0)), "is not on face", InvalidArgumentError),
     (lambda: connectEdges(3, (1, 0)), "edgeid, faceid", InvalidArgumentError),
@@ -445,6 +453,39 @@ def test_connect_corners_takes_the_pinch_but_not_on_a_dual_band(scene):
     other.add(cube())
     with use_scene(other):
         before = snapshot(other.mesh)
-        with pytest.raises(DLFLError, match="a dual \\(triangle\\) band takes no pinch"):
+        with pytest.raises(InvalidArgumentError,
+                           match="a 'dual' \\(triangle\\) band takes no pinch"):
             connectCorners((0, 0), (5, 4), 4, -1, "dual", bubble=2.0)
         assert snapshot(other.mesh) == before
+
+
+def test_add_handle_takes_the_pinch_profile_of_topmods_gui(scene):
+    """Add Handle SI's pinch spin boxes: the Hermite rings scale as a tube's do."""
+    addHandle("hermite", (0, 0), (1, 0), 4, 5, 5, pinch=0.5, pinchCenter=0.25, bubble=2.0)
+    assert counts(scene) == (20, 40, 20) and genus(scene.mesh) == 1
+    validate(scene.mesh)
+    from livemod.dlfl.connect import hermite_handle
+
+    plain, pinched = cube(), cube()
+    hermite_handle(plain, plain.corner_at(0, 0), plain.corner_at(1, 0), 4, 5, 5)
+    hermite_handle(pinched, pinched.corner_at(0, 0), pinched.corner_at(1, 0), 4, 5, 5,
+                   pinch=0.5, pinch_center=0.25, bubble=2.0)
+    assert snapshot(scene.mesh) == snapshot(pinched) != snapshot(plain)
+
+
+@pytest.mark.parametrize(("call", "error", "message"), [
+    (lambda: addHandle("bezier", (0, 0), (1, 0), 4, pinch=0.5), InvalidArgumentError,
+     "a bezier handle takes no maxconn, twists, pinch"),
+    (lambda: addHandle("hermite", (0, 0), (1, 0), 4, pinch=np.array([1.0, 2.0])),
+     InvalidArgumentError, "pinch must be a"),
+    (lambda: connectFaces(0, 5, 4, pinchCenter=float("nan")), InvalidArgumentError,
+     "pinchCenter"),
+    (lambda: connectCorners((0, 0), (5, 4), 4, -1, "dual", pinch="1"), InvalidArgumentError,
+     "pinch must be a"),
+    (lambda: connectFaces(0, 5, 4, pinchCenter=1.0), DLFLError, "pinch_center must lie"),
+])
+def test_bad_pinch_profiles_are_refused_by_type(scene, call, error, message):
+    before = snapshot(scene.mesh)
+    with pytest.raises(error, match=message):
+        call()
+    assert snapshot(scene.mesh) == before

@@ -363,11 +363,12 @@ def connect_corners(
     Raises:
         DLFLError: as :func:`connect_faces`; a pinch profile with ``dual``.
     """
+    _check_pinch(pinch, pinch_center, bubble)
     if not dual:
         return connect_faces(mesh, corner1, corner2, segments, max_connections=max_connections,
                              pinch=pinch, pinch_center=pinch_center, bubble=bubble,
                              max_faces=max_faces)
-    if (pinch, pinch_center, bubble) != (1.0, 0.5, 1.0):
+    if (float(pinch), float(pinch_center), float(bubble)) != (1.0, 0.5, 1.0):
         raise InvalidArgumentError("a dual (triangle) band takes no pinch, pinch_center or "
                                    "bubble (TopMod's dualConnectFaces has none)")
     face1, face2 = _two_faces(mesh, corner1, corner2, "connect_corners")

@@ -222,8 +222,16 @@ def connectCorners(c1: Any, c2: Any, numsegs: int = 1, maxconn: int = -1,
     m = mesh()
     a, b = _two_faces_corners(m, c1, c2, "connectCorners")
     segments, limit = _segments(numsegs, maxconn)
-    _connect.connect_corners(m, a, b, segments, max_connections=limit, dual=_is_dual(dual),
-                             pinch=pinch, pinch_center=pinchCenter, bubble=bubble,
+    profile = _pinch_profile(pinch, pinchCenter, bubble)
+    if _is_dual(dual):
+        if profile != NO_PINCH:
+            raise InvalidArgumentError("a 'dual' (triangle) band takes no pinch, pinchCenter "
+                                       "or bubble (TopMod's dualConnectFaces has none)")
+        _connect.connect_corners(m, a, b, segments, max_connections=limit, dual=True,
+                                 max_faces=scene().face_budget)
+        return
+    _connect.connect_corners(m, a, b, segments, max_connections=limit, pinch=profile[0],
+                             pinch_center=profile[1], bubble=profile[2],
                              max_faces=scene().face_budget)
 
 
@@ -247,35 +255,63 @@ def connectFaces(f1: int, f2: int, numsegs: int = 1, maxconn: int = -1, *,
         raise InvalidArgumentError(
             f"connectFaces needs two different faces, f1 and f2 are both face {f1}")
     segments, limit = _segments(numsegs, maxconn)
+    profile = _pinch_profile(pinch, pinchCenter, bubble)
     _connect.connect_faces_closest(mesh(), f1, f2, segments, max_connections=limit,
-                                   pinch=pinch, pinch_center=pinchCenter, bubble=bubble,
-                                   max_faces=scene().face_budget)
+                                   pinch=profile[0], pinch_center=profile[1],
+                                   bubble=profile[2], max_faces=scene().face_budget)
 
 
 @modeling_command
 def addHandle(interp: str, c1: Any, c2: Any, numsegs: int, w1: float = 25.0,
-              w2: float = 25.0, maxconn: int = -1, twists: int = 0) -> None:
+              w2: float = 25.0, maxconn: int = -1, twists: int = 0, *, pinch: float = 1.0,
+              pinchCenter: float = 0.5, bubble: float = 1.0) -> None:
     """``addHandle(interp, c1, c2, numsegs[, w1, w2, maxconn, twists])``: a curved
     handle, ``interp`` ``"hermite"`` (centroid on a Hermite curve, rings twisted
     ``twists`` extra turns) or ``"bezier"`` (every vertex on its own curve; takes
-    no ``maxconn`` or ``twists``). Weights default to TopMod's GUI values (25)."""
+    no ``maxconn``, ``twists`` or pinch). Weights default to TopMod's GUI values
+    (25). ``pinch``, ``pinchCenter`` and ``bubble`` shape a Hermite handle's
+    rings as :func:`connectFaces` shapes a tube's (TopMod's "Add Handle SI" spin
+    boxes of those names, which it never passed on).
+
+    Raises:
+        DLFLError: an unknown ``interp``, a bad number or corner, an option the
+            bezier handle has not, or see
+            :func:`livemod.dlfl.connect.hermite_handle`; the mesh is unchanged.
+    """
     m = mesh()
     a, b = _two_faces_corners(m, c1, c2, "addHandle")
     segments, limit = _segments(numsegs, maxconn)
     w1, w2 = finite_number(w1, "w1"), finite_number(w2, "w2")
+    profile = _pinch_profile(pinch, pinchCenter, bubble)
     kind = interp.lower() if isinstance(interp, str) else interp
     if kind == "hermite":
         _connect.hermite_handle(m, a, b, segments, w1, w2, max_connections=limit,
-                                twists=twists, max_faces=scene().face_budget)
+                                twists=twists, pinch=profile[0], pinch_center=profile[1],
+                                bubble=profile[2], max_faces=scene().face_budget)
     elif kind == "bezier":
-        if maxconn != -1 or twists != 0:
-            raise InvalidArgumentError(
-                "a bezier handle takes no maxconn or twists (TopMod's has none); "
-                "use 'hermite'")
+        if limit != -1 or not (is_id(twists) and twists == 0) or profile != NO_PINCH:
+            raise InvalidArgumentError("a bezier handle takes no maxconn, twists, pinch, "
+                                       "pinchCenter or bubble (TopMod's has none); use "
+                                       "'hermite'")
         _connect.bezier_handle(m, a, b, segments, w1, w2, max_faces=scene().face_budget)
     else:
-        raise InvalidArgumentError(
-            f"addHandle interp must be 'hermite' or 'bezier', got {interp!r}")
+        raise InvalidArgumentError(f"addHandle interp must be 'hermite' or 'bezier', "
+                                   f"got {interp!r}")
+
+
+# the pinch profile that leaves a tube's rings as they are: TopMod's GUI defaults
+NO_PINCH = (1.0, 0.5, 1.0)
+
+
+def _pinch_profile(pinch: Any, center: Any, bubble: Any) -> tuple[float, float, float]:
+    """``(pinch, pinchCenter, bubble)`` as floats, checked under the commands' names
+    (the library checks their ranges).
+
+    Raises:
+        InvalidArgumentError: one is not a finite number.
+    """
+    return (finite_number(pinch, "pinch"), finite_number(center, "pinchCenter"),
+            finite_number(bubble, "bubble"))
 
 
 def _face_id(value: Any, name: str) -> None:
