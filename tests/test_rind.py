@@ -7,7 +7,12 @@ import pytest
 
 from livemod.dlfl import face_size_histogram, genus, num_components, validate
 from livemod.dlfl.arrays import mesh_arrays
-from livemod.dlfl.errors import GeometryError, InvalidArgumentError, UnknownIdError
+from livemod.dlfl.errors import (
+    BudgetExceededError,
+    GeometryError,
+    InvalidArgumentError,
+    UnknownIdError,
+)
 from livemod.dlfl.rind import crust, crust_offsets, punch, rind
 from livemod.dlfl.selection import faces_by_size
 from livemod.dlfl.shapes import cube, icosahedron, soccer_ball, torus
@@ -356,3 +361,17 @@ def test_punching_faces_changed_since_the_crust_is_refused():
     with pytest.raises(InvalidArgumentError, match=f"faces {outer} and .* are no longer twins"):
         punch(m, twins, [outer])
     assert snapshot(m) == before
+
+
+def test_punch_checks_the_face_budget_before_any_tube():
+    """Two cube faces: 8 tube quads on the crust's 12 faces; 19 faces refuse both."""
+    m = cube()
+    twins = crust(m, 0.5)
+    two = list(twins.faces)[:2]
+    before = snapshot(m)
+    with pytest.raises(BudgetExceededError, match="punch would produce 20 faces"):
+        punch(m, twins, two, max_faces=19)
+    assert snapshot(m) == before and len(twins.faces) == 6
+    punch(m, twins, two, max_faces=20)
+    validate(m)
+

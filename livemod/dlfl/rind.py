@@ -22,7 +22,7 @@ from ._checks import finite_number, first_not_finite, id_list, shown
 from ._vectors import centroid, face_ring_vectors, lengths, newell, unit
 from .analysis import corner_normals, face_normals
 from .arrays import MeshArrays, mesh_arrays
-from .budget import check_size
+from .budget import check_growth, check_size
 from .build import from_corner_arrays
 from .connect import connect_faces
 from .errors import GeometryError, InvalidArgumentError, UnknownIdError
@@ -599,7 +599,7 @@ def _crust_twins(shell: Shell, kept: int, first: tuple[int, int, int, int]) -> C
 
 
 def punch(mesh: Mesh, twins: CrustTwins, faces: Iterable[int], *,
-          cleanup: bool = True) -> list[int]:
+          cleanup: bool = True, max_faces: object = None) -> list[int]:
     """Open faces of a crust made earlier into tubes: TopMod's ``cmMakeHole``.
 
     Each face (either shell's copy) is joined to its twin by a tube of quads
@@ -615,6 +615,8 @@ def punch(mesh: Mesh, twins: CrustTwins, faces: Iterable[int], *,
         The ids of the tubes' faces left after cleanup, face after face.
 
     Raises:
+        BudgetExceededError: the tubes would pass the face budget (``max_faces``;
+            None: the session's, see :mod:`livemod.dlfl.budget`).
         InvalidArgumentError: a face that is no unpunched face of this crust
             (punched already, or not of it), faces no longer shaped as their
             twins (changed since the crust was made), or with ``cleanup`` the
@@ -627,6 +629,8 @@ def punch(mesh: Mesh, twins: CrustTwins, faces: Iterable[int], *,
     if cleanup and pairs and len(pairs) == len(twins.faces):
         raise InvalidArgumentError("punching every face of a crust with cleanup leaves nothing "
                                    "of the mesh (as rind refuses it)")
+    sides = sum(mesh.face_size(outer) for outer, _ in pairs)  # a quad per side
+    check_growth(mesh, "punch", faces=sides, corners=4 * sides, max_faces=max_faces)
     made: list[int] = []
     for outer, inner in pairs:
         made.extend(_punch_one(mesh, twins, outer, inner, cleanup))

@@ -108,13 +108,13 @@ def punch(faceids: Any = None, cleanup: bool = True) -> list[int]:
             unpunched face of it (punched already, made since, or changed); the
             mesh is unchanged.
     """
+    faces, tidy = id_arguments(faceids, "faceids", "faces"), flag(cleanup, "cleanup")
     m = mesh()
     twins = _CRUST_TWINS.get(m)
     if twins is None:
         raise InvalidArgumentError("punch needs a crust: make one on this object with crust() "
                                    "or rind() first")
-    return _rind.punch(m, twins, id_arguments(faceids, "faceids", "faces"),
-                       cleanup=flag(cleanup, "cleanup"))
+    return _rind.punch(m, twins, faces, cleanup=tidy, max_faces=scene().face_budget)
 
 
 @modeling_command
