@@ -379,6 +379,25 @@ def test_modified_corner_cut_variant_2_moves_each_corner_along_both_edges():
     assert ((points == 1.0).sum(axis=1) == 1).all()
 
 
+def test_modified_corner_cut_variant_2_ignores_the_corners_angle():
+    """Subdivide2's x = thickness: on the tetrahedron's 60-degree corners each
+    point lies on the bisector, thickness * |n1 + n2| = thickness * sqrt(3) away."""
+    m = tetrahedron()
+    old = m.positions_view().copy()
+    front = modified_corner_cut(m, 0.1, 2)
+    validate(m)
+    assert m.counts() == (12, 24, 14) and face_size_histogram(m) == {3: 8, 4: 6}
+    points = np.array([m.position(v) for f in front for v in m.face_vertices(f)])
+    nearest = np.linalg.norm(points[:, None] - old[None], axis=2).min(axis=1)
+    np.testing.assert_allclose(nearest, 0.1 * np.sqrt(3.0))
+
+
+@pytest.mark.parametrize("variant", [3, 0, True, 2.0, "2", None])
+def test_a_bad_variant_is_refused_before_the_budget(variant):
+    assert_refused(cube(), lambda m: modified_corner_cut(m, 0.25, variant, max_faces=1),
+                   "variant must be 1", InvalidArgumentError)
+
+
 def test_modified_corner_cut_variants_differ_and_others_are_refused():
     first, second = cube(), cube()
     modified_corner_cut(first, 0.25)

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._checks import first_not_finite, positive_number, shown
+from ._checks import first_not_finite, is_id, positive_number, shown
 from ._column_joints import joint_polygons
 from ._vectors import in_range, lengths, together_in_range
 from ._vectors import unit as _unit
@@ -244,12 +244,12 @@ def modified_corner_cut(mesh: Mesh, thickness: float = 0.25, variant: int = 1, *
         BudgetExceededError: the result would pass the face budget
             (``max_faces``; None: the session's, see :mod:`livemod.dlfl.budget`).
     """
-    v, e, f = mesh.counts()
-    check_size("modified corner cut", f + e + v, 4 * mesh.num_corners, max_faces=max_faces)
-    if variant not in (1, 2) or isinstance(variant, bool):
+    if not is_id(variant) or variant not in (1, 2):
         raise InvalidArgumentError(f"variant must be 1 (TopMod's modifiedCornerCutting"
                                    f"Subdivide) or 2 (...Subdivide2), got {shown(variant)}")
-    cut = corner_cut_arrays(mesh_arrays(mesh), thickness, variant)
+    v, e, f = mesh.counts()
+    check_size("modified corner cut", f + e + v, 4 * mesh.num_corners, max_faces=max_faces)
+    cut = corner_cut_arrays(mesh_arrays(mesh), thickness, int(variant))
     first = mesh.next_ids()
     new = from_corner_arrays(cut.positions, cut.offsets, cut.corner_vertex, cut.corner_mate,
                              cut.face_hole, first_ids=first)
