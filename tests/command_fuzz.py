@@ -186,6 +186,20 @@ class Fuzzer:
             keywords["bogus"] = 1
         return keywords
 
+    def keyword_options(self, name: str) -> dict[str, Any]:
+        """Now and then some of the options of ``name`` that only a keyword sets
+        (TopMod's GUI options), drawn good or bad."""
+        pinch = {"pinch": self.number, "pinchCenter": self.number, "bubble": self.number}
+        shape = {"angle": self.number, "l1": self.number, "l2": self.number, "l3": self.number}
+        table: dict[str, dict[str, Callable[[], Any]]] = {
+            "extrude": {"fan": self.flag, "segments": self.count, "mesh": self.flag, **shape},
+            "connectFaces": pinch, "connectCorners": pinch, "addHandle": pinch,
+            "wireframe": {"width": self.number}, "crust": {"scale": self.number},
+            "menger": {"keep2gons": self.flag}, "rind": {"cleanup": self.flag},
+        }
+        options = table.get(name, {})
+        return {key: make() for key, make in options.items() if self.rng.random() < 0.25}
+
     def kind(self) -> Any:
         """A kind of element a selection holds, now and then a wrong one."""
         return self.rng.choice(["faces", "edges", "vertices", "verts", "corners", "loops", 3])
@@ -248,7 +262,8 @@ class Fuzzer:
             "subdivideFaces": lambda: self.maybe(lambda: self.ids(self.face), self.flag),
             "dual": lambda: self.maybe(self.flag),
             "extrude": lambda: [self.pick(lambda: r.choice(kind_names()), BAD_STRINGS, 0.15),
-                                self.face(), *self.maybe(self.number, self.count, self.number,
+                                r.choice([self.face(), self.face(), self.ids(self.face)]),
+                                *self.maybe(self.number, self.count, self.number,
                                                          self.number, self.flag)],
             "connectEdges": lambda: [(self.edge(), self.face()), (self.edge(), self.face()),
                                      *self.maybe(self.flag)],
@@ -298,7 +313,7 @@ class Fuzzer:
             "select_all": lambda: self.maybe(self.kind),
         }
         args = table[name]() if name in table else []
-        keywords: dict[str, Any] = {}
+        keywords = self.keyword_options(name)
         if name == "subdivide":
             keywords = self.scheme_keywords(args[0])
         if name in ("faces", "edges", "verts", "corners"):
