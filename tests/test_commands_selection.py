@@ -9,6 +9,7 @@ from livemod.dlfl import DLFLError, Scene, genus, num_components, use_scene, val
 from livemod.dlfl import selection as library
 from livemod.dlfl.commands import (
     checkerboard,
+    clear_selection,
     edge_loop,
     edge_ring,
     face_loop,
@@ -39,7 +40,7 @@ def torus_scene():
 def test_star_import_gives_the_commands():
     for name in ("edge_loop", "edge_ring", "face_loop", "checkerboard", "similar_faces",
                  "similar_edges", "similar_vertices", "grow_selection", "shrink_selection",
-                 "invert_selection", "select_all"):
+                 "invert_selection", "select_all", "clear_selection"):
         assert name in dlfl.__all__
 
 
@@ -79,6 +80,14 @@ def test_grow_shrink_invert_and_all_read_the_picks(torus_scene):
     assert [len(select_all(kind)) for kind in ("faces", "edges", "verts", "corners")] == \
         [48, 96, 48, 192]
     assert select_all() == list(faces())
+
+
+def test_clear_selection_forgets_the_picks_of_every_kind(torus_scene):
+    torus_scene.selection = Selection(faces=(0, 1), edges=(0,), vertices=(2,))
+    grown = grow_selection()
+    assert clear_selection() == [] and torus_scene.selection == Selection()
+    assert faces(True) == () and grow_selection() == [] and len(grown) == 8
+    assert invert_selection(kind="vertices") == select_all("vertices")
 
 
 def test_similar_faces_by_area(torus_scene):

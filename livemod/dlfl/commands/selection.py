@@ -5,11 +5,11 @@ of the current object, so a script passes them on, as in
 ``rind(face_loop(e), False, 0.1)`` or ``extrude("cubical", checkerboard(f), 0.5)``.
 Thin wrappers over :mod:`livemod.dlfl.selection`; the window has them on keys
 (SHIFT+L, SHIFT+R, CTRL+P for TopMod's SHIFT+P, SHIFT+K, SHIFT+S, CTRL+=, CTRL+-,
-CTRL+I, CTRL+A).
+CTRL+I, CTRL+A, Esc).
 Where a command takes one element (a loop's edge, a checkerboard's face), it
 takes a list too and returns the union, each id once, in the order found. The
 ones that read a selection (grow, shrink, invert) default to the picks of
-their kind.
+their kind; ``clear_selection`` empties the picks themselves.
 """
 
 from __future__ import annotations
@@ -19,11 +19,13 @@ from typing import Any
 
 from .. import selection as _selection
 from ..mesh import Mesh
-from ._base import id_arguments, mesh
+from ..scene import Selection
+from ._base import id_arguments, mesh, scene
 
 __all__ = [
     "edge_loop", "edge_ring", "face_loop", "checkerboard", "similar_faces", "similar_edges",
     "similar_vertices", "grow_selection", "shrink_selection", "invert_selection", "select_all",
+    "clear_selection",
 ]
 
 
@@ -150,6 +152,16 @@ def select_all(kind: str = "faces") -> list[int]:
         DLFLError: an unknown kind.
     """
     return _selection.select_all(mesh(), kind)
+
+
+def clear_selection() -> list[int]:
+    """``clear_selection()``: forget the picks (TopMod's Esc), so ``faces(True)``
+    and the commands that default to the picks see none for the rest of the
+    run; returns the empty list, a selection to build on.
+    ``s = grow_selection(faces(True)); clear_selection()`` keeps the grown ids in
+    ``s`` and no picks."""
+    scene().selection = Selection()
+    return []
 
 
 def _ids(ids: Any, kind: str) -> list[int]:
