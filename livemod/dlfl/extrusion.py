@@ -30,6 +30,7 @@ from typing import Any
 import numpy as np
 
 from ._checks import finite_number, first_not_finite, flag, id_list, shown, whole_count
+from ._vectors import unit as unit_rows
 from .bands import quad_band, triangle_band
 from .budget import check_growth
 from .errors import DLFLError, GeometryError, InvalidArgumentError, UnknownIdError
@@ -373,7 +374,7 @@ def _tilted(axis: np.ndarray, toward: np.ndarray, alpha: float) -> np.ndarray:
     """``(k, 3)`` ``normalize(cos(alpha) normalize(axis) + sin(alpha) toward)``: a
     side-face normal tilted from ``axis`` (``(k, 3)``) toward ``toward``
     (``(3,)`` or ``(k, 3)``, unit) by ``alpha`` radians, TopMod's construction."""
-    return _unit_rows(math.cos(alpha) * _unit_rows(axis) + math.sin(alpha) * toward)
+    return unit_rows(math.cos(alpha) * unit_rows(axis) + math.sin(alpha) * toward)
 
 
 def _ring_frame(base: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
@@ -401,17 +402,17 @@ def dodeca_shape_rings(base: np.ndarray, normal: np.ndarray, shape: Shape) -> np
     """
     alpha = -math.radians(shape.angle)
     after, before, mean_side = _ring_frame(base)
-    e_next = _unit_rows(after - base)
+    e_next = unit_rows(after - base)
     fn = _tilted(np.cross(e_next, normal), normal, alpha)
-    fp = _tilted(np.cross(normal, _unit_rows(before - base)), normal, alpha)
-    ring1 = base + mean_side * shape.l1 * _unit_rows(np.cross(fp, fn))
+    fp = _tilted(np.cross(normal, unit_rows(before - base)), normal, alpha)
+    ring1 = base + mean_side * shape.l1 * unit_rows(np.cross(fp, fn))
     k = len(base)
     ring2 = (ring1 + ring1[_after(k)]) * 0.5 + (
-        mean_side * math.cos(math.radians(54.0)) * shape.l2) * _unit_rows(np.cross(fn, e_next))
+        mean_side * math.cos(math.radians(54.0)) * shape.l2) * unit_rows(np.cross(fn, e_next))
     reach = (np.linalg.norm(before - base, axis=1) + np.linalg.norm(after - base, axis=1)) * 0.5
     prev_plane = _plane_normal(ring2[_before(k)], ring1, ring2)
     next_plane = _plane_normal(ring2, ring1[_after(k)], ring2[_after(k)])
-    ring3 = ring2 + (reach * shape.l3 * shape.l3)[:, None] * _unit_rows(
+    ring3 = ring2 + (reach * shape.l3 * shape.l3)[:, None] * unit_rows(
         np.cross(prev_plane, next_plane))
     return np.concatenate([ring1, ring2, ring3])
 
@@ -419,7 +420,7 @@ def dodeca_shape_rings(base: np.ndarray, normal: np.ndarray, shape: Shape) -> np
 def _plane_normal(first: np.ndarray, middle: np.ndarray, last: np.ndarray) -> np.ndarray:
     """``(k, 3)`` unit normal of each plane through ``first, middle, last`` (each
     ``(k, 3)``): ``normalize(normalize(last - middle) x normalize(first - middle))``."""
-    return _unit_rows(np.cross(_unit_rows(last - middle), _unit_rows(first - middle)))
+    return unit_rows(np.cross(unit_rows(last - middle), unit_rows(first - middle)))
 
 
 def icosa_shape_rings(base: np.ndarray, normal: np.ndarray, shape: Shape) -> np.ndarray:
@@ -442,18 +443,18 @@ def icosa_shape_rings(base: np.ndarray, normal: np.ndarray, shape: Shape) -> np.
     alpha = -math.radians(shape.angle)
     after, before, mean_side = _ring_frame(base)
     k = len(base)
-    e_next = _unit_rows(after - base)
+    e_next = unit_rows(after - base)
     fn = _tilted(np.cross(e_next, normal), normal, alpha)
-    fp = _tilted(np.cross(normal, _unit_rows(before - base)), normal, alpha)
+    fp = _tilted(np.cross(normal, unit_rows(before - base)), normal, alpha)
     mids = (base + (after - base) * 0.5
-            + (mean_side * shape.l1 * math.sqrt(3.0) * 0.5) * _unit_rows(np.cross(fn, e_next)))
+            + (mean_side * shape.l1 * math.sqrt(3.0) * 0.5) * unit_rows(np.cross(fn, e_next)))
     apexes = base + mean_side * shape.l2 * _cross_tilted(
         mids[_before(k)] - base, -fp, mids - base, -fn, alpha)
-    to_prev_apex, to_next_apex = _unit_rows(apexes - mids), _unit_rows(apexes[_after(k)] - mids)
-    to_base, to_next_base = _unit_rows(base - mids), _unit_rows(after - mids)
+    to_prev_apex, to_next_apex = unit_rows(apexes - mids), unit_rows(apexes[_after(k)] - mids)
+    to_base, to_next_base = unit_rows(base - mids), unit_rows(after - mids)
     copies = mids + mean_side * shape.l3 * _cross_tilted(
-        to_base, -_unit_rows(np.cross(to_prev_apex, to_base)),
-        to_next_base, -_unit_rows(np.cross(to_next_base, to_next_apex)), alpha)
+        to_base, -unit_rows(np.cross(to_prev_apex, to_base)),
+        to_next_base, -unit_rows(np.cross(to_next_base, to_next_apex)), alpha)
     return np.concatenate([mids, copies, apexes])
 
 
@@ -464,7 +465,7 @@ def _cross_tilted(prev_edge: np.ndarray, prev_face: np.ndarray, next_edge: np.nd
     next_face))``, each tilt by ``alpha`` (all ``(k, 3)``)."""
     before = _tilted(np.cross(prev_face, prev_edge), prev_face, alpha)
     after = _tilted(np.cross(next_edge, next_face), next_face, alpha)
-    return _unit_rows(np.cross(before, after))
+    return unit_rows(np.cross(before, after))
 
 
 def stellate_fan(mesh: Mesh, face: int, distance: float) -> list[int]:
