@@ -19,7 +19,7 @@ from livemod.dlfl import (
 )
 from livemod.dlfl import extrusion as _extrusion
 from livemod.dlfl.commands import addHandle, connectCorners, connectEdges, connectFaces, extrude
-from livemod.dlfl.errors import GeometryError, InvalidArgumentError, UnknownIdError
+from livemod.dlfl.errors import GeometryError, UnknownIdError
 from livemod.dlfl.shapes import cube
 from tests.meshes import counts, snapshot
 

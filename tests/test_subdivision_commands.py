@@ -138,5 +138,5 @@ def test_modified_corner_cut_takes_topmods_second_variant(scene):
     subdivide("modified-corner-cut", 0.25, 2)
     assert counts(scene) == (24, 48, 26)
     assert sorted(set(abs(scene.mesh.positions_view()).ravel().round(12))) == [0.75, 1.0]
-    with pytest.raises(DLFLError, match="variant must be 1"):
+    with pytest.raises(InvalidArgumentError, match="variant must be 1"):
         subdivide("modified-corner-cut", 0.25, 0)

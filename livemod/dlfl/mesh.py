@@ -1026,8 +1026,9 @@ class Mesh:
         inside[corners] = True
         half = sides[inside[c0[sides]] != inside[c1[sides]]]
         if len(half):
-            raise DLFLError(f"edge {E.idv[int(half[0])]} has one side in the faces to reverse "
-                            "and one outside; reverse whole components")
+            raise InvalidArgumentError(
+                f"edge {E.idv[int(half[0])]} has one side in the faces to reverse and one "
+                "outside; reverse whole components")
         old_next, old_prev = nxt[corners], prv[corners]
         new_edge = edge[old_prev]
         c0[sides], c1[sides] = nxt[c0[sides]], nxt[c1[sides]]
