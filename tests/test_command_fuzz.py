@@ -18,6 +18,7 @@ import pytest
 from livemod.dlfl import (
     BudgetExceededError,
     DLFLError,
+    GeometryError,
     InvalidArgumentError,
     Scene,
     UnknownIdError,
@@ -178,3 +179,14 @@ def test_loading_a_folder_is_a_refusal(tmp_path):
     DLFLError, as ``save`` does for what the system refuses."""
     refused(lambda: commands.load(str(tmp_path)), InvalidArgumentError,
             "cannot load .*is a folder, not a mesh file")
+
+
+def test_a_scale_whose_running_total_overflows_is_refused():
+    """A point-sphere at the origin never overflows, but the object's total scale
+    did, with a numpy warning (the fuzz's seed 1 found it)."""
+    scene = Scene()
+    with use_scene(scene):
+        commands.createVertex((0, 0, 0))
+        commands.scale((1e200, 1e200, 1e200))
+    refused(lambda: commands.scale((1e200, 1.0, 1.0)), GeometryError,
+            r"total scale overflow: \[inf, 1e\+200, 1e\+200\]", scene)

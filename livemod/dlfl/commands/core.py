@@ -25,7 +25,7 @@ from .._vectors import lengths
 from ..analysis import face_centroid, face_normal
 from ..analysis import genus as _genus
 from ..budget import CORNERS_PER_FACE, check_growth, face_budget
-from ..errors import DLFLError, InvalidArgumentError
+from ..errors import DLFLError, GeometryError, InvalidArgumentError
 from ..mesh import Mesh
 from ._base import corner_tuple, mesh, modeling_command, resolve_corner, scene
 
@@ -555,8 +555,16 @@ def scale(*args: Any) -> None:
     """``scale((x, y, z))``: scale the current object about its origin, per axis."""
     factors, _ = _xyz(args, "scale")
     obj = scene().current_object
+    with np.errstate(over="ignore"):
+        factor = obj.factor * factors
+    if not np.isfinite(factor).all():
+        # a vertex the scale would lose is the better answer (a trial on a copy: this
+        # path is rare); a mesh too small to overflow still has a total that does
+        _transform.scale(obj.mesh.copy(), factors, center=obj.origin)
+        raise GeometryError(f"scale{shown(tuple(factors.tolist()))} would make the "
+                            f"object's total scale overflow: {factor.tolist()}")
     _transform.scale(obj.mesh, factors, center=obj.origin)
-    obj.factor = obj.factor * factors
+    obj.factor = factor
 
 
 @modeling_command
