@@ -41,7 +41,7 @@ def test_pick_ids_decode() -> None:
 
 
 def test_guide_lines_grid_spacing_and_axes() -> None:
-    from livemod.viewer.renderer import AXIS_COLORS, GRID_COLOR, guide_lines
+    from livemod.viewer.guides import AXIS_COLORS, GRID_COLOR, guide_lines
 
     bounds = np.array([[-1.0, -2.0, -1.0], [1.0, 3.0, 1.0]])
     (grid, grid_color), *axes = guide_lines(bounds)

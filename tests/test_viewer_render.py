@@ -19,14 +19,14 @@ from livemod.dlfl.subdivision.smooth import catmull_clark
 from livemod.viewer.camera import Camera
 from livemod.viewer.cli import main
 from livemod.viewer.headless import Offscreen, camera_framing, framed_camera, render_turntable
+from livemod.viewer.id_pass import nearest_corner
 from livemod.viewer.renderer import (
     BASE_COLOR,
     OTHER_COLOR,
     Renderer,
     Style,
-    hatch_spacing,
-    nearest_corner,
 )
+from livemod.viewer.section_cap import hatch_spacing
 from tests.images import read_image
 
 from .conftest import OFFSCREEN_SIZE

@@ -160,7 +160,7 @@ def test_e_shows_the_mesh_a_failed_run_left(tmp_path: Path) -> None:
 
 def test_a_result_the_window_cannot_show_is_reported_and_the_old_mesh_stays(
         tmp_path: Path, monkeypatch, capsys) -> None:
-    import livemod.viewer.renderer as renderer_module
+    import livemod.viewer.content as content_module
 
     script = tmp_path / "model.py"
     script.write_text("load('cube')\n")
@@ -170,7 +170,7 @@ def test_a_result_the_window_cannot_show_is_reported_and_the_old_mesh_stays(
 
         def broken(*args, **kwargs):
             raise RuntimeError("GL said no")
-        monkeypatch.setattr(renderer_module, "build_geometry", broken)
+        monkeypatch.setattr(content_module, "build_geometry", broken)
         script.write_text("load('tetrahedron')\n")
         viewer.session.reload()
         _wait(viewer, lambda v: v.runs.viewer_error is not None)
