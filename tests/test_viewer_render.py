@@ -26,7 +26,6 @@ from livemod.viewer.renderer import (
     Renderer,
     Style,
 )
-from livemod.viewer.section_cap import hatch_spacing
 from tests.images import read_image
 
 from .conftest import OFFSCREEN_SIZE
@@ -660,13 +659,6 @@ def test_the_other_objects_are_capped_in_their_own_colour(offscreen: Offscreen) 
     band = slice(rows.min() + 2, rows.max() - 1)
     _assert_hatched_cap(image[band, cols.min() + 2:left - 2], BASE_COLOR)
     _assert_hatched_cap(image[band, right + 3:cols.max() - 1], OTHER_COLOR)
-
-
-def test_hatch_spacing_is_a_power_of_two_near_eight_pixels() -> None:
-    assert hatch_spacing(0.01, 1.0) == 0.0625  # 8 pixels of 0.01: 0.08, nearest 2^-4
-    assert hatch_spacing(0.01, 0.5) == 0.125  # seen aslant: spread out
-    assert hatch_spacing(0.01, 0.01) == hatch_spacing(0.01, 0.25) == 0.25  # by at most 4x
-    assert hatch_spacing(1e100, 1.0) == 2.0 ** round(np.log2(8e100))
 
 
 def test_a_section_leaves_out_the_labels_of_what_it_cut_away(offscreen: Offscreen) -> None:
