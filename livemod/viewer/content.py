@@ -54,11 +54,13 @@ class DrawnContent:
         self._uploads: dict[str, Upload] = {}  # "mesh", "preview": uploads in progress
 
     def _new_mesh(self, anchors: dict[str, np.ndarray]) -> None:
-        """Called once a new mesh is drawn, with its label ``anchors`` of each kind
-        (``(n, 3)``, as prepared off the thread): what was kept of the old goes."""
+        """Hook, called once a new mesh is drawn with its label ``anchors`` of each
+        kind (``(n, 3)``, as prepared off the thread): a subclass drops what it kept
+        of the old mesh (here, nothing is kept)."""
 
     def _new_selection(self) -> None:
-        """Called once the selection changed, before its flags are uploaded."""
+        """Hook, called once the selection changed, before its flags are uploaded: a
+        subclass drops what it kept of the old selection."""
 
     def set_mesh(self, arrays: MeshArrays | None,
                  preview: Preview | MeshArrays | None = None,
