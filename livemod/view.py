@@ -235,6 +235,10 @@ class ShownSession:
         return None
 
     @property
+    def background_runs(self) -> tuple[int, ...]:
+        return ()  # it runs no script
+
+    @property
     def playback(self) -> PlaybackView:
         return PlaybackView(PlaybackState.FINISHED, None, self._rate)
 

@@ -177,3 +177,14 @@ def test_the_hud_says_how_many_vertices_are_not_finite() -> None:
         "1 vertex not finite (NaN or inf): left out of the framing"
     assert nonfinite_lines(3)[0][0] == \
         "3 vertices not finite (NaN or inf): left out of the framing"
+
+
+def test_the_hud_says_which_runs_still_finish_in_the_background() -> None:
+    result = _result()
+    state = ViewState(script="/x/tower.py", result=result, arrays=result.arrays)
+    assert not any("background" in line for line, _ in hud_lines(state))
+    lines = hud_lines(replace(state, background=(3,)))
+    assert lines[2] == ("run 3 is still finishing in the background", WARN_TEXT)
+    several = hud_lines(replace(state, background=(3, 5, 8)))
+    assert several[2] == ("runs 3, 5 and 8 are still finishing in the background", WARN_TEXT)
+    assert replace(state, background=(3,)) != state  # a new frame's overlay says it

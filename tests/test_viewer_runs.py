@@ -52,10 +52,10 @@ def test_the_step_count_is_the_last_ended_runs() -> None:
 def test_a_run_at_work_is_the_newest_or_the_paused_one_going_on() -> None:
     runs = RunTracker()
     session = SimpleNamespace(activity=SimpleNamespace(run_id=1, working=0.7),
-                              empty_script="/x/model.py")
+                              empty_script="/x/model.py", background_runs=(0,))
     runs.poll(session)
     assert runs.activity.run_id == 1 and runs.working() == 0.5  # in half seconds
-    assert runs.empty_script == "/x/model.py"
+    assert runs.empty_script == "/x/model.py" and runs.background == (0,)
     runs.take(_result(1))
     runs.poll(session)
     assert runs.activity is None  # its end is shown
@@ -66,9 +66,9 @@ def test_a_run_at_work_is_the_newest_or_the_paused_one_going_on() -> None:
     runs.take(_result(1))
     runs.poll(session)
     assert runs.activity.run_id == 2 and runs.working() == 1.0
-    session.activity = None
+    session.activity, session.background_runs = None, ()
     runs.poll(session)
-    assert runs.activity is None and runs.working() is None
+    assert runs.activity is None and runs.working() is None and runs.background == ()
 
 
 def test_the_last_good_run_is_named_while_its_mesh_is_shown() -> None:

@@ -795,6 +795,30 @@ def test_a_finished_run_the_session_still_reports_is_not_running(headless) -> No
         viewer.session = session
 
 
+def test_the_hud_names_the_runs_the_session_left_in_the_background(headless) -> None:
+    viewer, _, _ = headless
+    _wait(viewer, _has_run(1))
+    session = viewer.session
+
+    class Reporting:
+        """The session, saying that run 1 still works in the background."""
+
+        background_runs: tuple[int, ...] = (1,)
+
+        def __getattr__(self, name: str) -> Any:
+            return getattr(session, name)
+
+    viewer.session = Reporting()
+    try:
+        run_frames(viewer, 1)
+        assert "run 1 is still finishing in the background" in _hud_text(viewer)
+        Reporting.background_runs = ()
+        run_frames(viewer, 1)
+        assert "background" not in _hud_text(viewer)
+    finally:
+        viewer.session = session
+
+
 TEN_STEPS = "for i in range(10):\n    createVertex((i, 0, 0))\n"
 
 

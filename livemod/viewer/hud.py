@@ -66,6 +66,8 @@ def step_line(result: Any, total: int = 0) -> str:
 def hud_lines(state: ViewState) -> list[tuple[str, int]]:
     """The HUD's ``(text, colour kind)`` lines of ``state``."""
     lines = [(Path(state.script).name, TEXT), _state_line(state)]
+    if state.background:  # a run that would not stop: it may still hold a core
+        lines.append((background_line(state.background), WARN_TEXT))
     if state.viewer_error:
         lines.append((state.viewer_error, ERROR_TEXT))
     if state.empty_script:  # a save emptied it: nothing ran, the last mesh stays
@@ -81,6 +83,15 @@ def hud_lines(state: ViewState) -> list[tuple[str, int]]:
     lines += [(line, TEXT) for line in state.measures[:4]]
     lines.append((f"{state.fps:.0f} fps   H: help", LABEL_DIM))
     return lines
+
+
+def background_line(run_ids: tuple[int, ...]) -> str:
+    """``run 3 is still finishing in the background`` for the ids of abandoned runs
+    that still work (``runs 3 and 5 are ...`` for several)."""
+    if len(run_ids) == 1:
+        return f"run {run_ids[0]} is still finishing in the background"
+    named = ", ".join(map(str, run_ids[:-1])) + f" and {run_ids[-1]}"
+    return f"runs {named} are still finishing in the background"
 
 
 def _mode_line(state: ViewState) -> str:

@@ -36,6 +36,8 @@ class RunTracker:
         total_steps: the step count of the last run that ended.
         viewer_error: why the window could not show the last result, or None.
         empty_script: the session's: a save left the script empty, or None.
+        background: the session's: ids of abandoned runs still working (they
+            did not stop when a newer run began), oldest first.
     """
 
     def __init__(self) -> None:
@@ -49,6 +51,7 @@ class RunTracker:
         self.total_steps = 0
         self.viewer_error: str | None = None
         self.empty_script: str | None = None
+        self.background: tuple[int, ...] = ()
         self._good: tuple[int, Any] | None = None  # (run id, arrays) of the last ok run
         self._summarized = 0  # the newest run whose end was summarized
 
@@ -95,13 +98,15 @@ class RunTracker:
     # -- polled each frame -----------------------------------------------------------
 
     def poll(self, session: Session) -> None:
-        """Read the session's run at work and its empty-script note. A run whose end
-        is already shown, or one older than the result shown, is at work no more:
-        its result arrived before the session marked it ended."""
+        """Read the session's run at work, its empty-script note and its runs left
+        in the background. A run whose end is already shown, or one older than the
+        result shown, is at work no more: its result arrived before the session
+        marked it ended."""
         activity, shown = session.activity, self.result
         self.activity = activity if activity is None or shown is None or _newer(
             activity.run_id, shown) else None
         self.empty_script = session.empty_script
+        self.background = session.background_runs
 
     def working(self) -> float | None:
         """Seconds the run at work has worked, in :data:`RUNNING_TICK` steps (None

@@ -107,6 +107,10 @@ class Session(PlaybackControls, ParameterInputs, SelectionInput, Protocol):
     def empty_script(self) -> str | None:
         """The script's path while a save left it empty (and ran nothing), else None."""
 
+    @property
+    def background_runs(self) -> tuple[int, ...]:
+        """Ids of abandoned runs still working in the background, oldest first."""
+
     def start(self) -> None:
         """Start watching and run the script once."""
 

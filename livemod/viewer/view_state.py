@@ -41,6 +41,7 @@ class ViewState:
         waiting: the window asked the session for a result that has not come.
         working: seconds the run at work has worked (None when none works).
         running_run: the id of the run at work (newer than ``result``), or None.
+        background: ids of abandoned runs still working in the background.
         good_run: the id of the run whose mesh a failed result shows (the last
             good one), when the window saw it; else None.
         total_steps: the step count of the last run that ended.
@@ -75,6 +76,7 @@ class ViewState:
     waiting: bool = False
     working: float | None = None
     running_run: int | None = None
+    background: tuple[int, ...] = ()
     good_run: int | None = None
     total_steps: int = 0
     arrays: MeshArrays | None = _same()

@@ -317,6 +317,7 @@ class LiveViewer(mglw.WindowConfig):
         return ViewState(
             script=self.script, result=result, waiting=runs.waiting, working=runs.working(),
             running_run=None if runs.activity is None else runs.activity.run_id,
+            background=runs.background,
             good_run=runs.good_run, total_steps=runs.total_steps, arrays=self.renderer.arrays,
             partial=self.display.show_partial, nonfinite=self.renderer.nonfinite,
             viewer_error=runs.viewer_error, empty_script=runs.empty_script,
