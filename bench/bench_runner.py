@@ -176,8 +176,8 @@ def bench_hook_cost(repeats: int, n: int = 20000) -> dict[str, float]:
     """Least seconds per command over ``repeats`` interleaved timings (load inflates
     the least least) of createVertex called from a loop compiled as the script, as
     in a run. Keys: "none" (no hook), and the extra seconds of "runner" (the
-    recorder installed as a straight run installs it: the command wrapper records
-    a known caller's steps), "hook" (every step through the runner's hook, as in
+    recorder installed as a straight run installs it: its lean hook records a
+    known caller's steps), "hook" (every step through the runner's full hook, as in
     runs that may pause) and "noop" (a hook that does nothing); "read" is reading
     one recorded step back as a StepRecord."""
     from livemod.dlfl import createVertex

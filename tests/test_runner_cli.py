@@ -43,7 +43,7 @@ def test_run_prints_summary_and_steps(capsys):
 
 
 def test_steps_give_each_steps_own_time_beside_the_cumulative_one(capsys):
-    from livemod.runner.results import StepRecord
+    from livemod.runner import StepRecord
 
     cli.print_steps([StepRecord(0, "cube", 3, (8, 12, 6), 0.25),
                      StepRecord(1, "subdivide", None, (26, 48, 24), 1.75)])

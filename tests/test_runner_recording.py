@@ -15,13 +15,14 @@ from types import CodeType
 
 import pytest
 
+from livemod.dlfl import DLFLError, Mesh, current_scene
+from livemod.dlfl.commands._base import modeling_command
 from livemod.dlfl.scene import Scene, use_scene
 from livemod.runner import RunControl, StepRecord, execute
 from livemod.runner.execute import script_namespace
 from livemod.runner.instrument import CANCEL_FLAG, compile_script
 from livemod.runner.playback import Playback
-from livemod.runner.recording import StepRecorder
-from livemod.runner.results import StepList
+from livemod.runner.recording import STEP_FIELDS, StepList, StepLog, StepRecorder
 
 HELPER = '''\
 from livemod.dlfl import createVertex, step
@@ -247,7 +248,7 @@ def test_top_level_loops_read_the_cancel_flag_as_a_global():
 
 def hook_calls(run) -> int:
     """How many times ``run()`` calls a runner step hook (counted by a profiler)."""
-    hook_code = next(c for c in StepRecorder._make_hook.__code__.co_consts
+    hook_code = next(c for c in StepRecorder._make_hooks.__code__.co_consts
                      if isinstance(c, CodeType) and c.co_name == "hook")
     calls = 0
 
@@ -309,3 +310,56 @@ def test_a_command_with_no_python_caller_is_recorded_without_a_line():
     recorder.release()
     steps = recorder.steps
     assert [(s.label, s.line, s.counts) for s in steps] == [("createVertex", None, (1, 0, 1))]
+
+
+def test_the_lean_hook_records_a_seen_caller_and_gives_the_others_to_the_full_hook():
+    scene = Scene()
+    recorder = StepRecorder(__file__, scene, None)  # this file stands for the script
+    recorder.install()
+    from livemod.dlfl import createVertex
+
+    def three() -> None:
+        createVertex((0, 0, 0))  # a new caller: the full hook
+        createVertex((1, 0, 0))  # the same caller: the lean hook
+        (lambda: createVertex((2, 0, 0)))()  # another caller: the full hook
+
+    with use_scene(scene):
+        assert hook_calls(three) == 2
+    first = three.__code__.co_firstlineno
+    assert [(s.label, s.line, s.counts) for s in recorder.steps] == [
+        ("createVertex", first + 1, (1, 0, 1)), ("createVertex", first + 2, (2, 0, 2)),
+        ("createVertex", first + 3, (3, 0, 3))]
+    recorder.release()
+    assert scene.step_hook is None
+
+
+@modeling_command
+def _drop_current() -> None:
+    sc = current_scene()
+    sc.kill(sc.current)  # type: ignore[arg-type]
+
+
+def test_a_step_counts_nothing_when_no_object_is_left():
+    scene = Scene()
+    scene.add(Mesh())
+    recorder = StepRecorder(__file__, scene, None)
+    recorder.install()
+    with use_scene(scene):
+        _drop_current()
+        with pytest.raises(DLFLError):
+            _drop_current()  # nothing to kill: fails, records no step
+    assert scene.current is None
+    assert [(s.label, s.counts) for s in recorder.steps] == [("_drop_current", (0, 0, 0))]
+
+
+def test_a_step_log_tells_each_step_s_code():
+    log = StepLog()
+    first, second = test_steps_are_the_records_they_always_were.__code__, write.__code__
+    log.follow(None, None, first)
+    log.facts.extend([0] * 2 * STEP_FIELDS)  # two steps with `first`
+    log.follow(object(), None, first)  # another caller, same code: no change
+    log.facts.extend([0] * STEP_FIELDS)
+    log.follow(None, None, second)
+    log.facts.extend([0] * STEP_FIELDS)
+    assert [log.code_of(k) for k in range(4)] == [first, first, first, second]
+    assert len(log) == 4 and StepLog().code_of(0) is None

@@ -2,9 +2,7 @@
 
 from __future__ import annotations
 
-import sys
 import threading
-import time
 
 import numpy as np
 import pytest
@@ -15,18 +13,10 @@ from livemod.dlfl import (
     Scene,
     Selection,
     UnknownIdError,
-    createVertex,
     current_scene,
     use_scene,
 )
-from livemod.dlfl.commands._base import modeling_command
-from livemod.dlfl.scene import (
-    NO_STEP_LOG,
-    STEP_FIELDS,
-    StepLog,
-    default_scene,
-    reset_default_scene,
-)
+from livemod.dlfl.scene import default_scene, reset_default_scene
 from tests.meshes import cube
 
 
@@ -159,66 +149,3 @@ def test_reset_default_scene():
     old = default_scene()
     new = reset_default_scene()
     assert new is not old and default_scene() is new and new.objects == {}
-
-
-def _count_steps(log: StepLog, k: int) -> tuple[int, int, int]:
-    """(V, E, F) recorded for step ``k`` of ``log``."""
-    nv, fv, ne, fe, nf, ff = log.facts[k * STEP_FIELDS + 2:k * STEP_FIELDS + 8]
-    return nv - fv, ne - fe, nf - ff
-
-
-def test_the_wrapper_records_the_steps_of_the_log_s_caller_itself():
-    s = Scene()
-    hooked: list[str] = []
-    s.step_hook = hooked.append
-    log = StepLog()
-    here = sys._getframe()
-    log.follow(here, here, here.f_code)
-    s.step_log = log
-    with use_scene(s):
-        createVertex((0, 0, 0))  # called from `here`: recorded by the wrapper
-        (lambda: createVertex((1, 0, 0)))()  # another caller: left to the hook
-    assert hooked == ["createVertex"] and len(log.facts) == STEP_FIELDS
-    label, lasti = log.facts[:2]
-    assert label == "createVertex" and 0 <= lasti < len(here.f_code.co_code)
-    assert _count_steps(log, 0) == (1, 0, 1) and log.code_of(0) is here.f_code
-    assert 0 < log.facts[STEP_FIELDS - 1] <= time.perf_counter()
-    s.step_log = NO_STEP_LOG  # sends every step to the hook again
-    with use_scene(s):
-        createVertex((2, 0, 0))
-    assert hooked == ["createVertex"] * 2 and len(log.facts) == STEP_FIELDS
-
-
-@modeling_command
-def _drop_current() -> None:
-    sc = current_scene()
-    sc.kill(sc.current)
-
-
-def test_the_wrapper_counts_nothing_when_no_object_is_left():
-    s = Scene()
-    s.add(cube())
-    s.step_hook = lambda label: None
-    log = StepLog()
-    here = sys._getframe()
-    log.follow(here, here, None)
-    s.step_log = log
-    with use_scene(s):
-        _drop_current()
-        with pytest.raises(DLFLError):
-            _drop_current()  # nothing to kill: fails, records no step
-    assert s.current is None and _count_steps(log, 0) == (0, 0, 0)
-    assert len(log.facts) == STEP_FIELDS and log.code_of(0) is None
-
-
-def test_a_step_log_tells_each_step_s_code():
-    log = StepLog()
-    first, second = test_objects_and_current.__code__, test_copy_is_deep.__code__
-    log.follow(None, None, first)
-    log.facts.extend([0] * 2 * STEP_FIELDS)  # two steps with `first`
-    log.follow(object(), None, first)  # another caller, same code: no change
-    log.facts.extend([0] * STEP_FIELDS)
-    log.follow(None, None, second)
-    log.facts.extend([0] * STEP_FIELDS)
-    assert [log.code_of(k) for k in range(4)] == [first, first, first, second]
-    assert StepLog().code_of(0) is None

@@ -7,7 +7,6 @@ plain ``python script.py`` uses one process-wide default scene.
 
 from __future__ import annotations
 
-import bisect
 import contextlib
 import contextvars
 import operator
@@ -117,69 +116,8 @@ StepHook = Callable[[str], None]
 
 # Frames from a step hook up to the code that called the modeling command, when
 # the command's wrapper calls the hook (``sys._getframe(STEP_HOOK_CALLER_DEPTH)``
-# in the hook). Hooks called through record_step sit deeper.
+# in the hook). Hooks called through record_step sit one frame deeper.
 STEP_HOOK_CALLER_DEPTH = 2
-
-# a step in a StepLog is this many items: label, f_lasti, then n and len(free)
-# of the vertex, edge and face tables (V = n - len(free), as Mesh.counts()
-# says), then time.perf_counter(); its code is the log's code at the time
-STEP_FIELDS = 9
-
-
-class StepLog:
-    """Where the raw facts of recorded steps go: ``facts``, ``STEP_FIELDS`` items a step.
-
-    A step hook that records steps (the runner's) may give the scene one as
-    :attr:`Scene.step_log`. The modeling-command wrapper then appends a step's
-    facts itself, without calling the hook, when the command was called from
-    :attr:`caller`: the ``f_lasti`` of :attr:`frame`, which the hook found to be
-    the script's frame for that caller. Any other caller goes to the hook, which
-    may :meth:`follow` a new caller. Giving the scene ``NO_STEP_LOG`` instead
-    sends every later step to the hook (that is how a run is cancelled).
-
-    Attributes:
-        facts: the flat list of facts (a plain list: CPython specializes
-            ``facts.extend`` only for exactly that type).
-        caller: the frame whose commands the wrapper records, or any object that
-            is no frame (then none does).
-        frame: has the ``f_lasti`` to record (usually the script's frame).
-        code: the code steps recorded now ran (None: not the script's).
-    """
-
-    __slots__ = ("facts", "caller", "frame", "code", "_codes")
-
-    def __init__(self) -> None:
-        self.facts: list = []
-        self.caller: object = None
-        self.frame: Any = None
-        self.code: Any = None
-        # (first step, code) each time the code changes: a step's facts leave it
-        # out, since it changes only when the hook follows another caller
-        self._codes: list[tuple[int, Any]] = [(0, None)]
-
-    def follow(self, caller: object, frame: Any, code: Any) -> None:
-        """From now on, record steps at ``frame``'s ``f_lasti`` in ``code``, and let
-        the wrapper record the steps of the commands ``caller`` calls."""
-        if code is not self.code:
-            self._codes.append((len(self.facts) // STEP_FIELDS, code))
-        self.caller, self.frame, self.code = caller, frame, code
-
-    def code_of(self, step: int) -> Any:
-        """The code step ``step`` (0-based) was recorded with."""
-        return self._codes[bisect.bisect_right(self._codes, step, key=_first) - 1][1]
-
-
-def _first(item: tuple[int, Any]) -> int:
-    """The first step of a ``(first step, code)`` pair."""
-    return item[0]
-
-
-# the step log of scenes whose steps all go to the hook (its caller, None, is no frame)
-NO_STEP_LOG = StepLog()
-
-# what a recorded step counts when the scene has no current object (never changed)
-NO_MESH = Mesh()
-
 
 class Scene:
     """Several meshes (objects by integer id), the current one and the selection.
@@ -198,9 +136,6 @@ class Scene:
             installs one to record steps and to pause or cancel a run); the
             modeling-command wrapper calls it directly, see
             ``STEP_HOOK_CALLER_DEPTH``.
-        step_log: where the modeling-command wrapper may record a step itself
-            instead of calling ``step_hook`` (see :class:`StepLog`; the default
-            ``NO_STEP_LOG`` records none); read only while ``step_hook`` is set.
         parameters: values for ``param()`` declarations (set by the runner).
         declarations: the :class:`~livemod.dlfl.params.ParamSpec` of every
             ``param()`` call of the current run, by name, in call order.
@@ -220,7 +155,6 @@ class Scene:
         self.missing_picks = Selection()
         self.unselected_reads: set[str] = set()
         self.step_hook: StepHook | None = None
-        self.step_log = NO_STEP_LOG
         self.parameters: dict[str, object] = {}
         # name -> ParamSpec of the param() calls of the current run, in order
         self.declarations: dict[str, Any] = {}

@@ -33,7 +33,8 @@ from .execute import RunControl, RunOutcome, execute
 from .headless import run_outcome, run_script
 from .playback import Playback, PlaybackState, PlaybackView
 from .preview import preview_arrays
-from .results import RunResult, RunStatus, ScriptError, StepRecord
+from .recording import StepRecord
+from .results import RunResult, RunStatus, ScriptError
 from .session import LiveSession, RunActivity
 from .watch import FileWatcher, ManualNotifier, WatchdogNotifier
 

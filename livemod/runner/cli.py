@@ -51,7 +51,8 @@ from .batch import (
     sweep,
 )
 from .headless import report_selection, run_outcome
-from .results import RunResult, StepRecord, result_mesh, save_problem
+from .recording import StepRecord
+from .results import RunResult, result_mesh, save_problem
 
 OUTPUT_SUFFIXES = tuple(f".{key}" for key in WRITERS)
 

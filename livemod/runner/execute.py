@@ -30,8 +30,8 @@ from livemod.dlfl.scene import Scene, Selection, use_scene
 from .errors import Cancelled, cancelled_error, exception_error, is_user_file, syntax_error
 from .instrument import CANCEL_FLAG, STOP_FUNCTION, compile_script, read_script
 from .process import ProcessState
-from .recording import RunControl, StepRecorder
-from .results import ScriptError, StepRecord
+from .recording import RunControl, StepRecord, StepRecorder
+from .results import ScriptError
 
 
 @dataclass

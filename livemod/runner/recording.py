@@ -1,34 +1,207 @@
-"""The step hook: what the runner notes after every modeling command.
+"""Step recording: the step record, and the hook that writes it after every command.
 
-It runs once per command, so it does as little as it can: it appends the raw
-facts of the step (label, the script frame's instruction offset, ``V``/``E``/``F``
-and the clock) to the run's :class:`~livemod.dlfl.scene.StepLog`, and a
+The runner owns everything of a step's record. The library's commands only
+announce that a step happened, by calling the scene's ``step_hook`` with a
+label; :class:`StepRecorder` is the hook the runner installs. It runs once per command, so it does as little as it can: it
+appends the raw facts of the step to the run's :class:`StepLog` (the layout is
+written down there, and only here is it written or read), and a
 :class:`StepList` turns them into :class:`StepRecord` objects when they are
-read. Everything it reads is bound to closure variables, and the script's frame
-is cached by the identity of the frame that called the command (see
-:func:`script_frame`). In runs that never pause, the modeling-command wrapper
-reads that cache as well and records the steps of a cached caller itself: the
-hook then runs only when the caller changes, and on every step once cancelled.
+read. Everything the hook reads is bound to closure variables, and the script's
+frame is cached by the identity of the frame that called the command (see
+:func:`script_frame`). In runs that never pause the scene's hook is the
+recorder's lean one, which records the steps of a cached caller and nothing
+else; every other step (a new caller, a run that may pause, any step once the
+run is cancelled) goes to the full one.
 
-:class:`RunControl` lives here too: the hook reads its cancel flag every step.
+:class:`RunControl` lives here too: the full hook reads its cancel flag every step.
 """
 
 from __future__ import annotations
 
 import bisect
 import dataclasses
+import functools
 import inspect
+import operator
 import sys
+import threading
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
+from dataclasses import dataclass
 from types import CodeType, FrameType
+from typing import Any, overload
 
-from livemod.dlfl.scene import NO_MESH, NO_STEP_LOG, STEP_HOOK_CALLER_DEPTH, Scene, StepLog
+from livemod.dlfl.scene import STEP_HOOK_CALLER_DEPTH, Scene, StepHook
 
 from .errors import Cancelled
 from .instrument import CANCEL_FLAG
 from .playback import Playback
-from .results import STEP_FIELDS, StepList, StepRecord
+
+
+@dataclass(frozen=True)
+class StepRecord:
+    """One finished modeling step of a run.
+
+    Attributes:
+        index: 0-based position of the step in the run.
+        label: the command name, or the label given to ``step()``.
+        line: the script line that issued the command (None when the command
+            was not called from the script's own code, e.g. from a bare thread).
+        counts: ``(V, E, F)`` of the current object after the step.
+        elapsed: seconds since the run started, taken when the step finished.
+    """
+
+    index: int
+    label: str
+    line: int | None
+    counts: tuple[int, int, int]
+    elapsed: float
+
+
+# a step in a StepLog is this many facts: its label, the f_lasti of the script's
+# frame, V, E and F of the current mesh (Mesh.counts(); NO_COUNTS without one) and
+# time.perf_counter(); its code is the log's code at the time. The counts are
+# facts of their own, not one tuple: a tuple kept per step is a container the
+# garbage collector walks, and costs the run more than unpacking it
+STEP_FIELDS = 6
+NO_COUNTS = (0, 0, 0)
+
+
+class StepLog:
+    """The raw facts of a run's steps: ``facts``, :data:`STEP_FIELDS` items a step.
+
+    The recorder's hooks append to it; :class:`StepList` reads it. The steps of
+    a caller the hook has seen are recorded at the ``f_lasti`` of :attr:`frame`,
+    which the hook found to be the script's frame for :attr:`caller`.
+
+    Attributes:
+        facts: the flat list of facts (a plain list: CPython specializes
+            ``facts.extend`` only for exactly that type).
+        caller: the frame whose commands are recorded at :attr:`frame`, or any
+            object that is no frame (then none is).
+        frame: has the ``f_lasti`` to record (usually the script's frame).
+        code: the code steps recorded now ran (None: not the script's).
+    """
+
+    __slots__ = ("facts", "caller", "frame", "code", "_codes")
+
+    def __init__(self) -> None:
+        self.facts: list = []
+        self.caller: object = None
+        self.frame: Any = None
+        self.code: Any = None
+        # (first step, code) each time the code changes: a step's facts leave it
+        # out, since it changes only when the hook follows another caller
+        self._codes: list[tuple[int, Any]] = [(0, None)]
+
+    def __len__(self) -> int:
+        """Steps recorded."""
+        return len(self.facts) // STEP_FIELDS
+
+    def follow(self, caller: object, frame: Any, code: Any) -> None:
+        """From now on, record the steps of the commands ``caller`` calls at
+        ``frame``'s ``f_lasti`` in ``code``."""
+        if code is not self.code:
+            self._codes.append((len(self), code))
+        self.caller, self.frame, self.code = caller, frame, code
+
+    def code_of(self, step: int) -> Any:
+        """The code step ``step`` (0-based) was recorded with."""
+        return self._codes[bisect.bisect_right(self._codes, step, key=_first) - 1][1]
+
+    def record(self, k: int, started: float) -> StepRecord:
+        """The record of step ``k`` (0-based), its ``elapsed`` counted from ``started``."""
+        at = k * STEP_FIELDS
+        label, lasti, v, e, f, clock = self.facts[at:at + STEP_FIELDS]
+        return StepRecord(k, label, code_line(self.code_of(k), lasti), (v, e, f), clock - started)
+
+
+def _first(item: tuple[int, Any]) -> int:
+    """The first step of a ``(first step, code)`` pair."""
+    return item[0]
+
+
+class StepList(Sequence[StepRecord]):
+    """The steps of a run: an immutable sequence of :class:`StepRecord`.
+
+    The runner's step hook only appends the raw facts of each step to a
+    :class:`StepLog`; a record is built, and the script line looked up from the
+    code and instruction offset, when the step is read. A run of thousands of
+    commands thus pays for the records someone looks at. The log may grow on (a
+    paused run goes on); this view keeps its first ``count`` steps.
+
+    It compares equal to a tuple of the same records and pickles as one.
+    """
+
+    __slots__ = ("_log", "_count", "_started")
+
+    def __init__(self, log: StepLog, count: int, started: float) -> None:
+        self._log = log
+        self._count = count
+        self._started = started
+
+    def __len__(self) -> int:
+        return self._count
+
+    @overload
+    def __getitem__(self, index: int) -> StepRecord: ...
+
+    @overload
+    def __getitem__(self, index: slice) -> tuple[StepRecord, ...]: ...
+
+    def __getitem__(self, index: int | slice) -> StepRecord | tuple[StepRecord, ...]:
+        """The record of step ``index`` (negative counts from the end), or a tuple
+        of records for a slice.
+
+        Raises:
+            IndexError: no such step.
+        """
+        if isinstance(index, slice):
+            return tuple(self._record(k) for k in range(*index.indices(self._count)))
+        k = operator.index(index)
+        k += self._count if k < 0 else 0
+        if not 0 <= k < self._count:
+            raise IndexError(f"step {index} of {self._count}")
+        return self._record(k)
+
+    def __iter__(self) -> Iterator[StepRecord]:
+        return (self._record(k) for k in range(self._count))
+
+    def __eq__(self, other: object) -> bool:
+        if isinstance(other, StepList | tuple):
+            return len(self) == len(other) and tuple(self) == tuple(other)
+        return NotImplemented
+
+    def __hash__(self) -> int:
+        return hash(tuple(self))
+
+    def __reduce__(self) -> tuple:
+        return tuple, (tuple(self),)
+
+    def __repr__(self) -> str:
+        return f"StepList({list(self)!r})"
+
+    def _record(self, k: int) -> StepRecord:
+        return self._log.record(k, self._started)
+
+
+def code_line(code: CodeType | None, lasti: int) -> int | None:
+    """The source line of byte offset ``lasti`` in ``code`` (what ``frame.f_lineno``
+    says for a frame of ``code`` at ``f_lasti == lasti``); None without code."""
+    if code is None:
+        return None
+    if lasti < 0:
+        return code.co_firstlineno
+    starts, lines = _line_table(code)
+    return lines[bisect.bisect_right(starts, lasti) - 1]
+
+
+@functools.lru_cache(maxsize=64)
+def _line_table(code: CodeType) -> tuple[list[int], list[int | None]]:
+    """Start offsets of ``code``'s line ranges, and their lines (for bisection)."""
+    ranges = list(code.co_lines())
+    return [start for start, _, _ in ranges], [line for _, _, line in ranges]
+
 
 PauseCallback = Callable[[int, Sequence[StepRecord], Scene], None]
 
@@ -94,7 +267,7 @@ class RunControl:
     def cancel(self) -> None:
         """Ask the run to stop at its next step or next loop iteration of the script."""
         self.cancel_requested = True
-        # after the flag: a step that finds the scene's log gone finds the flag set
+        # after the flag: a step that goes to the full hook finds the flag set
         self._to_hook()
         if self._namespace is not None:
             self._namespace[CANCEL_FLAG] = True  # read by the checks compile_script adds
@@ -127,15 +300,18 @@ _NOWHERE = _Nowhere()
 
 
 class StepRecorder:
-    """Records steps, pauses and cancels a run; :attr:`hook` is the scene's ``step_hook``.
+    """Records steps, pauses and cancels a run: the step hook of its scene.
 
-    :meth:`install` also gives the scene the recorder's :class:`StepLog`, so
-    that the modeling-command wrapper records the steps of callers the hook has
-    seen itself, for runs that never pause; a cancel takes it away again.
+    Args:
+        script: the script's absolute path (the frame whose line a step records).
+        scene: the run's scene (a step records its current object's counts).
+        control: steers the run; None for one that never pauses nor is cancelled.
 
     Attributes:
-        hook: the step hook; call it only from the modeling-command wrapper or
-            :meth:`Scene.record_step` (it finds the script's line from there).
+        hook: the full step hook: it checks the cancel flag, finds the script's
+            frame of a new caller, records, and pauses. Call it only from the
+            modeling-command wrapper or :meth:`Scene.record_step` (it finds the
+            script's line from there).
         started: ``perf_counter()`` when the run started (steps' ``elapsed`` is from it).
     """
 
@@ -147,23 +323,25 @@ class StepRecorder:
         self._log = StepLog()
         # (step index, seconds paused up to and including the pause after it), in order
         self._pauses: list[tuple[int, float]] = []
-        self.hook: Callable[[str], None] = self._make_hook()
+        self._swapping = threading.Lock()  # a cancel's swap never outlives release()
+        self.hook, self._lean = self._make_hooks()
 
     def install(self) -> None:
-        """Make the scene record its steps here: its ``step_hook``, and its
-        ``step_log`` unless the run may pause (the wrapper does not pause)."""
-        self.scene.step_hook = self.hook
-        if self.control is None or self.control.playback is None:
-            self.scene.step_log = self._log
+        """Make the scene record its steps here: with the lean hook for a
+        run that may not pause (the lean hook does not pause), else with the full one."""
+        may_pause = self.control is not None and self.control.playback is not None
+        self.scene.step_hook = self.hook if may_pause else self._lean
 
     def every_step_to_hook(self) -> None:
-        """Take the log away from the scene: from the next step on, the hook records
-        every step (and so checks the cancel flag). Safe from any thread."""
-        self.scene.step_log = NO_STEP_LOG
+        """Give every step from the next on to the full hook (which checks the
+        cancel flag). Safe from any thread; nothing once released."""
+        with self._swapping:
+            if self.scene.step_hook is not None:
+                self.scene.step_hook = self.hook
 
     def step_count(self) -> int:
         """Steps recorded so far."""
-        return len(self._log.facts) // STEP_FIELDS
+        return len(self._log)
 
     @property
     def steps(self) -> StepList:
@@ -173,14 +351,16 @@ class StepRecorder:
         return StepList(self._log, self.step_count(), self.started)
 
     def release(self) -> None:
-        """End the recording: uninstalls the hook and the log, and drops the
-        frames they cache, which keep their locals alive."""
-        self.scene.step_hook = None
-        self.scene.step_log = NO_STEP_LOG
-        self.hook = _ended
+        """End the recording: uninstalls the hook and drops the frames the log
+        caches, which keep their locals alive."""
+        with self._swapping:
+            self.scene.step_hook = None
+        self.hook = self._lean = _ended
         self._log.follow(_UNCACHED, _NOWHERE, self._log.code)
 
-    def _make_hook(self) -> Callable[[str], None]:
+    def _make_hooks(self) -> tuple[Callable[..., None], StepHook]:
+        """The full hook and the lean one. The lean one records the step of a
+        caller the full one has seen, and gives any other step to it."""
         log, scene, objects, clock = self._log, self.scene, self.scene.objects, time.perf_counter
         facts = log.facts
         extend = facts.extend
@@ -188,26 +368,37 @@ class StepRecorder:
         playback, step_done = control.playback, self._step_done
         log.follow(_UNCACHED, _NOWHERE, None)
 
-        def hook(label: str) -> None:
+        def hook(label: str, depth: int = STEP_HOOK_CALLER_DEPTH) -> None:
             if control.cancel_requested:
                 raise Cancelled
             try:
-                here: FrameType | None = getframe(STEP_HOOK_CALLER_DEPTH)
+                here: FrameType | None = getframe(depth)
             except ValueError:  # called from near the bottom of a thread's stack
                 here = None
-            if here is not log.caller:  # the cache the command wrapper reads, too
+            if here is not log.caller:
                 log.follow(*script_frame(here, script))
             try:
-                m = objects[scene.current].mesh  # type: ignore[index]
+                v, e, f = objects[scene.current].mesh.counts()  # type: ignore[index]
             except KeyError:  # no current object
-                m = NO_MESH
-            # Mesh.counts() inlined, its subtractions left to StepList: this is per step
-            extend((label, log.frame.f_lasti, m._v.n, len(m._v.free), m._e.n,
-                    len(m._e.free), m._f.n, len(m._f.free), clock()))
+                v, e, f = NO_COUNTS
+            extend((label, log.frame.f_lasti, v, e, f, clock()))  # the layout: STEP_FIELDS
             if playback is not None and len(facts) // STEP_FIELDS > playback.hold_from:
                 step_done(control, playback)
 
-        return hook
+        def lean(label: str) -> None:
+            try:
+                if getframe(STEP_HOOK_CALLER_DEPTH) is log.caller:
+                    try:
+                        v, e, f = objects[scene.current].mesh.counts()  # type: ignore[index]
+                    except KeyError:
+                        v, e, f = NO_COUNTS
+                    extend((label, log.frame.f_lasti, v, e, f, clock()))  # as hook does
+                    return
+            except ValueError:  # no Python caller (the bottom of a thread's stack)
+                pass
+            hook(label, STEP_HOOK_CALLER_DEPTH + 1)
+
+        return hook, lean
 
     def _step_done(self, control: RunControl, playback: Playback) -> None:
         """Pause after the step just recorded if playback says so.

@@ -1,4 +1,5 @@
-"""What a run hands back: step records, errors and immutable result snapshots.
+"""What a run hands back: errors and immutable result snapshots (the step
+records are :mod:`livemod.runner.recording`'s).
 
 Everything here is frozen and holds read-only numpy copies, so a result can
 cross from the worker thread to the caller's thread (or to another process)
@@ -7,16 +8,12 @@ without sharing anything mutable with the run that made it.
 
 from __future__ import annotations
 
-import bisect
 import dataclasses
 import enum
-import functools
-import operator
 import os
-from collections.abc import Iterator, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass
-from types import CodeType
-from typing import Any, overload
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -24,113 +21,10 @@ from livemod.dlfl.arrays import MeshArrays, concatenate_arrays, mesh_arrays
 from livemod.dlfl.errors import DLFLError
 from livemod.dlfl.io import save_objects
 from livemod.dlfl.mesh import Mesh
-from livemod.dlfl.scene import SELECTION_READERS, STEP_FIELDS, Scene, StepLog
+from livemod.dlfl.scene import SELECTION_READERS, Scene
 
-
-@dataclass(frozen=True)
-class StepRecord:
-    """One finished modeling step of a run.
-
-    Attributes:
-        index: 0-based position of the step in the run.
-        label: the command name, or the label given to ``step()``.
-        line: the script line that issued the command (None when the command
-            was not called from the script's own code, e.g. from a bare thread).
-        counts: ``(V, E, F)`` of the current object after the step.
-        elapsed: seconds since the run started, taken when the step finished.
-    """
-
-    index: int
-    label: str
-    line: int | None
-    counts: tuple[int, int, int]
-    elapsed: float
-
-
-class StepList(Sequence[StepRecord]):
-    """The steps of a run: an immutable sequence of :class:`StepRecord`.
-
-    The runner's step hook (or the modeling-command wrapper) only appends the
-    raw facts of each step to a :class:`~livemod.dlfl.scene.StepLog`; a record
-    is built, and the script line looked up from the code and instruction
-    offset, when the step is read. A run of thousands of commands thus pays for
-    the records someone looks at. The log may grow on (a paused run goes on);
-    this view keeps its first ``count`` steps.
-
-    It compares equal to a tuple of the same records and pickles as one.
-    """
-
-    __slots__ = ("_log", "_count", "_started")
-
-    def __init__(self, log: StepLog, count: int, started: float) -> None:
-        self._log = log
-        self._count = count
-        self._started = started
-
-    def __len__(self) -> int:
-        return self._count
-
-    @overload
-    def __getitem__(self, index: int) -> StepRecord: ...
-
-    @overload
-    def __getitem__(self, index: slice) -> tuple[StepRecord, ...]: ...
-
-    def __getitem__(self, index: int | slice) -> StepRecord | tuple[StepRecord, ...]:
-        """The record of step ``index`` (negative counts from the end), or a tuple
-        of records for a slice.
-
-        Raises:
-            IndexError: no such step.
-        """
-        if isinstance(index, slice):
-            return tuple(self._record(k) for k in range(*index.indices(self._count)))
-        k = operator.index(index)
-        k += self._count if k < 0 else 0
-        if not 0 <= k < self._count:
-            raise IndexError(f"step {index} of {self._count}")
-        return self._record(k)
-
-    def __iter__(self) -> Iterator[StepRecord]:
-        return (self._record(k) for k in range(self._count))
-
-    def __eq__(self, other: object) -> bool:
-        if isinstance(other, StepList | tuple):
-            return len(self) == len(other) and tuple(self) == tuple(other)
-        return NotImplemented
-
-    def __hash__(self) -> int:
-        return hash(tuple(self))
-
-    def __reduce__(self) -> tuple:
-        return tuple, (tuple(self),)
-
-    def __repr__(self) -> str:
-        return f"StepList({list(self)!r})"
-
-    def _record(self, k: int) -> StepRecord:
-        at = k * STEP_FIELDS
-        label, lasti, nv, fv, ne, fe, nf, ff, clock = self._log.facts[at:at + STEP_FIELDS]
-        return StepRecord(k, label, code_line(self._log.code_of(k), lasti),
-                          (nv - fv, ne - fe, nf - ff), clock - self._started)
-
-
-def code_line(code: CodeType | None, lasti: int) -> int | None:
-    """The source line of byte offset ``lasti`` in ``code`` (what ``frame.f_lineno``
-    says for a frame of ``code`` at ``f_lasti == lasti``); None without code."""
-    if code is None:
-        return None
-    if lasti < 0:
-        return code.co_firstlineno
-    starts, lines = _line_table(code)
-    return lines[bisect.bisect_right(starts, lasti) - 1]
-
-
-@functools.lru_cache(maxsize=64)
-def _line_table(code: CodeType) -> tuple[list[int], list[int | None]]:
-    """Start offsets of ``code``'s line ranges, and their lines (for bisection)."""
-    ranges = list(code.co_lines())
-    return [start for start, _, _ in ranges], [line for _, _, line in ranges]
+if TYPE_CHECKING:
+    from .recording import StepRecord
 
 
 @dataclass(frozen=True)

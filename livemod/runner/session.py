@@ -45,11 +45,11 @@ from .instrument import decode_script
 from .playback import Action, Playback, PlaybackView, RunPosition, Show
 from .preview import PreviewWorker, preview_arrays
 from .process import ProcessState
+from .recording import StepRecord
 from .results import (
     RunResult,
     RunStatus,
     ScriptError,
-    StepRecord,
     current_mesh,
     object_fields,
     parameter_items,

@@ -18,8 +18,8 @@ from livemod.dlfl.scene import Scene, Selection
 
 from .execute import RunOutcome, base_scene, execute
 from .playback import Playback
-from .recording import RunControl
-from .results import StepRecord, snapshot_others, snapshot_scene
+from .recording import RunControl, StepRecord
+from .results import snapshot_others, snapshot_scene
 
 
 @dataclass(frozen=True)

@@ -1,17 +1,15 @@
-"""Shared machinery of the thesis commands: corner resolution and step recording."""
+"""Shared machinery of the thesis commands: corner resolution and announcing steps."""
 
 from __future__ import annotations
 
 import functools
 from collections.abc import Callable
-from sys import _getframe
-from time import perf_counter
 from typing import Any, TypeVar, cast
 
 from .._checks import id_list, is_id
 from ..errors import InvalidArgumentError
 from ..mesh import Mesh
-from ..scene import NO_MESH, Scene, current_scene
+from ..scene import Scene, current_scene
 
 F = TypeVar("F", bound=Callable[..., Any])
 
@@ -31,8 +29,10 @@ def mesh() -> Mesh:
 def modeling_command(func: F) -> F:
     """Mark a thesis command that changes the mesh: it records one step when done.
 
-    Commands called from inside another command record no step of their own.
-    The wrapper returns what the command returns and lets its errors through.
+    When the command returns, the wrapper calls the scene's ``step_hook`` with
+    the command's name; commands called from inside another command record no
+    step of their own, nor does a command that raises. The wrapper returns what
+    the command returns and lets its errors through.
     """
 
     label = func.__name__
@@ -51,21 +51,6 @@ def modeling_command(func: F) -> F:
         if not sc._command_depth:
             hook = sc.step_hook
             if hook is not None:
-                log = sc.step_log
-                try:
-                    if log.caller is _getframe(1):
-                        # the hook's work for a caller it has seen, done here: it
-                        # saves a Python call per step (bench_step_instructions.py)
-                        try:
-                            m = sc.objects[sc.current].mesh  # type: ignore[index]
-                        except KeyError:
-                            m = NO_MESH
-                        log.facts.extend((label, log.frame.f_lasti, m._v.n, len(m._v.free),
-                                          m._e.n, len(m._e.free), m._f.n, len(m._f.free),
-                                          perf_counter()))
-                        return result
-                except ValueError:  # no Python caller (the bottom of a thread's stack)
-                    pass
                 hook(label)
         return result
 
