@@ -37,6 +37,7 @@ import time
 import timeit
 
 from livemod.dlfl import from_polygons
+from livemod.dlfl.run_context import RunContext, use_run
 from livemod.dlfl.scene import Scene, use_scene
 from livemod.runner import LiveSession, execute
 from livemod.runner.execute import RunLease, capture_process
@@ -138,8 +139,7 @@ def bench_step_overhead(folder: str, repeats: int, source: str = SMALL_COMMANDS,
     def bare(hook=None) -> None:
         code = compile(source, path, "exec")
         scene = base.copy() if base is not None else Scene()
-        scene.step_hook = hook
-        with use_scene(scene):
+        with use_scene(scene), use_run(RunContext(step_hook=hook)):
             exec(code, {"__name__": "__main__"})
 
     ways = {"runner": runner, "bare": bare, "noop hook": lambda: bare(lambda label: None)}
@@ -189,24 +189,26 @@ def bench_hook_cost(repeats: int, n: int = 20000) -> dict[str, float]:
     exec(compile("def loop(n):\n    for i in range(n):\n        createVertex((0.0, 0.0, 0.0))\n",
                  script, "exec"), namespace)
 
-    def noop(scene: Scene) -> None:
-        scene.step_hook = lambda label: None
+    def recorded(scene: Scene, control: RunControl | None) -> RunContext:
+        recorder = StepRecorder(script, scene, control)
+        recorder.install()
+        return recorder.run
 
-    setups = {"none": lambda scene: None, "noop": noop,
-              "runner": lambda scene: StepRecorder(script, scene, None).install(),
-              "hook": lambda scene: StepRecorder(script, scene, RunControl(Playback())).install()}
+    setups = {"none": lambda scene: RunContext(),
+              "noop": lambda scene: RunContext(step_hook=lambda label: None),
+              "runner": lambda scene: recorded(scene, None),
+              "hook": lambda scene: recorded(scene, RunControl(Playback()))}
     best = dict.fromkeys(setups, float("inf"))
     for _ in range(repeats):
         for name, setup in setups.items():
             scene = Scene()
-            setup(scene)
-            with use_scene(scene):
+            with use_scene(scene), use_run(setup(scene)):
                 cpu = time.process_time()
                 namespace["loop"](n)
                 best[name] = min(best[name], (time.process_time() - cpu) / n)
     recorder = StepRecorder(script, Scene(), None)
     recorder.install()
-    with use_scene(recorder.scene):
+    with use_scene(recorder.scene), use_run(recorder.run):
         namespace["loop"](1000)
     read = min(timeit.repeat(lambda: list(recorder.steps), number=1, repeat=repeats)) / 1000
     extra = {name: best[name] - best["none"] for name in ("runner", "hook", "noop")}
@@ -240,9 +242,10 @@ def bench_hook_pairs(pairs: int, n: int = 20000, body: str = CREATE_VERTEX_BODY,
 
     def timed(recorded: bool) -> float:
         scene = Scene()
+        recorder = StepRecorder(script, scene, None)
         if recorded:
-            StepRecorder(script, scene, None).install()
-        with use_scene(scene):
+            recorder.install()
+        with use_scene(scene), use_run(recorder.run):
             namespace["loop"](1)  # the first step finds the script's frame
             started = time.perf_counter()
             namespace["loop"](n)

@@ -5,7 +5,8 @@
 Wall and CPU times on the shared development machines vary by +-15 % from run
 to run, too much to tell 8 % from 10 %; callgrind's instruction counts do not
 vary. Each workload runs in child processes under ``valgrind --tool=callgrind``
-at two sizes, both bare (compiled and exec'd with the scene bound, no step hook,
+at two sizes, both bare (compiled and exec'd with the scene bound, no step hook
+in the run context,
 none of the runner's cancel checks) and through ``livemod.runner.execute``.
 Everything but the loop is the same at both sizes, so the difference of the two
 totals over the difference of the step counts is what one step costs, startup
@@ -37,7 +38,7 @@ from bench_runner import EXTRUSION_TEMPLATE, MIXED_TEMPLATE, SMALL_TEMPLATE, TRI
 CHILD = """
 import os
 import sys
-from livemod.dlfl import from_polygons
+from livemod.dlfl import current_run, from_polygons
 from livemod.dlfl.scene import Scene, use_scene
 from livemod.runner import execute
 
@@ -56,7 +57,7 @@ if mode == "bare":
     scene = base.copy() if base is not None else Scene()
     with use_scene(scene):
         exec(code, {"__name__": "__main__"})
-    assert scene.step_hook is None
+    assert current_run().step_hook is None
 else:
     outcome = execute(path, source=source, base=base)
     assert outcome.status == "ok" and len(outcome.steps) == steps, outcome.error

@@ -32,7 +32,8 @@ COMMAND_MODULES = {
 LIBRARY_MODULES = [
     "livemod.dlfl.mesh", "livemod.dlfl.build", "livemod.dlfl.soup", "livemod.dlfl.arrays",
     "livemod.dlfl.validate", "livemod.dlfl.budget",
-    "livemod.dlfl.analysis", "livemod.dlfl.normals", "livemod.dlfl.scene", "livemod.dlfl.subdivision",
+    "livemod.dlfl.analysis", "livemod.dlfl.normals", "livemod.dlfl.scene",
+    "livemod.dlfl.run_context", "livemod.dlfl.subdivision",
     "livemod.dlfl.extrusion", "livemod.dlfl.connect", "livemod.dlfl.multihandle",
     "livemod.dlfl.bands",
     "livemod.dlfl.rind",

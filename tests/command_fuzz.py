@@ -39,6 +39,7 @@ from livemod.dlfl import DLFLError, DLFLRepairWarning, Scene, commands, mesh_arr
 from livemod.dlfl._checks import shown
 from livemod.dlfl.commands._base import Corner
 from livemod.dlfl.extrusion import kind_names
+from livemod.dlfl.run_context import RunContext, use_run
 from livemod.dlfl.scene import Selection, use_scene
 from livemod.dlfl.subdivision import SCHEMES, scheme_options
 
@@ -107,7 +108,7 @@ class Fuzzer:
         self.directory = directory
         self.scene = Scene()
         self.scene.face_budget = SCENE_BUDGET
-        self.scene.directory = directory
+        self.run = RunContext(directory=directory)  # file names are relative to it
 
     # -- values -------------------------------------------------------------------
 
@@ -328,7 +329,7 @@ class Fuzzer:
         :data:`MAX_OBJECTS` objects are kept, the oldest killed first."""
         scene = self.scene
         if not scene.objects or scene.mesh.counts()[2] > RESET_FACES or self.rng.random() < 0.02:
-            with use_scene(scene):
+            with use_scene(scene), use_run(self.run):
                 commands.load(self.rng.choice(SHAPES))
             scene.selection = self.selection()
         while len(scene.objects) > MAX_OBJECTS:
@@ -348,7 +349,7 @@ class Fuzzer:
         before = scene_state(self.scene)
         start = time.perf_counter()
         try:
-            with use_scene(self.scene), warnings.catch_warnings(), \
+            with use_scene(self.scene), use_run(self.run), warnings.catch_warnings(), \
                     contextlib.redirect_stdout(io.StringIO()):
                 warnings.simplefilter("ignore", DLFLRepairWarning)  # a loader's note
                 warnings.simplefilter("error", RuntimeWarning)
@@ -391,7 +392,6 @@ def _public_type(error: DLFLError) -> str:
 def _fresh(fuzzer: Fuzzer) -> Scene:
     scene = Scene()
     scene.face_budget = SCENE_BUDGET
-    scene.directory = fuzzer.directory
     return scene
 
 

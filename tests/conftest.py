@@ -8,14 +8,23 @@ from typing import Any
 
 import pytest
 
-from livemod.dlfl import Scene, use_scene
+from livemod.dlfl import RunContext, Scene, use_run, use_scene
 from livemod.dlfl.shapes import cube
 from tests.topmod_samples import write_samples
 
 
 @pytest.fixture
-def scene() -> Iterator[Scene]:
-    """A scene holding TopMod's cube as its current object, bound for the commands."""
+def run() -> Iterator[RunContext]:
+    """A fresh run context, bound for the commands (as a run of the runner binds
+    one): what they report goes here, not to the process-wide one."""
+    with use_run(RunContext()) as bound:
+        yield bound
+
+
+@pytest.fixture
+def scene(run: RunContext) -> Iterator[Scene]:
+    """A scene holding TopMod's cube as its current object, bound for the commands
+    (with the fresh :func:`run` context)."""
     bound = Scene()
     bound.add(cube(), "cube")
     with use_scene(bound):

@@ -17,7 +17,15 @@ from typing import Any
 import pytest
 
 import livemod.dlfl as dlfl
-from livemod.dlfl import Scene, face_size_histogram, genus, use_scene, validate
+from livemod.dlfl import (
+    RunContext,
+    Scene,
+    face_size_histogram,
+    genus,
+    use_run,
+    use_scene,
+    validate,
+)
 from livemod.dlfl.errors import InvalidArgumentError
 from livemod.dlfl.shapes import cube
 from tests.meshes import counts, snapshot
@@ -78,8 +86,7 @@ def cube_scene(topmod_samples: Path) -> Iterator[Scene]:
     of stand-ins for TopMod's samples."""
     bound = Scene()
     bound.add(cube(), "cube")
-    bound.directory = str(topmod_samples)
-    with use_scene(bound):
+    with use_scene(bound), use_run(RunContext(directory=str(topmod_samples))):
         yield bound
 
 
@@ -88,8 +95,7 @@ def empty_scene(topmod_samples: Path) -> Iterator[Scene]:
     """A scene with no object, reading files from a folder of stand-ins for TopMod's
     samples."""
     bound = Scene()
-    bound.directory = str(topmod_samples)
-    with use_scene(bound):
+    with use_scene(bound), use_run(RunContext(directory=str(topmod_samples))):
         yield bound
 
 

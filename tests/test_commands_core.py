@@ -278,10 +278,10 @@ def test_trisect_and_splice_refuse_bad_arguments(cube_scene, command, args, erro
     assert snapshot(cube_scene.mesh) == before
 
 
-def test_trisect_and_splice_are_commands(cube_scene):
+def test_trisect_and_splice_are_commands(cube_scene, run):
     assert {"trisectEdge", "spliceCorners"} <= set(dlfl.__all__)
     labels: list[str] = []
-    cube_scene.step_hook = labels.append
+    run.step_hook = labels.append
     trisectEdge(0, 0.3, True)
     spliceCorners((0, 0), (0, 2))
     assert labels == ["trisectEdge", "spliceCorners"]
@@ -313,25 +313,25 @@ def test_holes_are_not_listed_as_faces(scene):
     assert faceInfo(1)["type"] == "hole"
 
 
-def test_selection(cube_scene):
+def test_selection(cube_scene, run):
     cube_scene.selection = dlfl.Selection(faces=(2, 99), edges=(1,), vertices=(3,),
                                           corners=(5,))
     assert faces(True) == (2,) and edges(True) == (1,) and verts(True) == (3,)
     assert corners(True) == ((1, 5),)
-    assert cube_scene.unselected_reads == set()
+    assert run.unselected_reads == set()
     cube_scene.selection = dlfl.Selection()
     assert faces(True) == () and corners(True) == ()
-    assert cube_scene.unselected_reads == {"faces", "corners"}  # the run's note names them
-    assert cube_scene.copy().unselected_reads == set()
+    assert run.unselected_reads == {"faces", "corners"}  # the run's note names them
+    assert dlfl.RunContext().unselected_reads == set()
 
 
-def test_picks_the_mesh_lacks_are_left_out_and_noted(cube_scene):
+def test_picks_the_mesh_lacks_are_left_out_and_noted(cube_scene, run):
     cube_scene.selection = dlfl.Selection(faces=(2, 99, 98), vertices=(3, 50), corners=(500,))
     assert faces(True) == (2,) and verts(True) == (3,) and corners(True) == ()
     assert faces(True) == (2,)  # asked again: noted once
-    assert cube_scene.missing_picks == dlfl.Selection(faces=(99, 98), vertices=(50,),
-                                                      corners=(500,))
-    assert cube_scene.copy().missing_picks == dlfl.Selection()  # a run's own record
+    assert run.missing_picks == dlfl.Selection(faces=(99, 98), vertices=(50,),
+                                               corners=(500,))
+    assert dlfl.RunContext().missing_picks == dlfl.Selection()  # a run's own record
 
 
 def test_get_save_restore_corner(cube_scene):
@@ -392,9 +392,9 @@ def test_transforms(cube_scene):
         translate(1, 2)
 
 
-def test_step_hook_called_once_per_outermost_command(cube_scene):
+def test_step_hook_called_once_per_outermost_command(cube_scene, run):
     labels: list[str] = []
-    cube_scene.step_hook = labels.append
+    run.step_hook = labels.append
     insertEdge((0, 0), (0, 2))
     collapseEdge(int(edges()[-1]))  # collapse deletes edges internally: still one step
     step("checkpoint")

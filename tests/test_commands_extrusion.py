@@ -291,9 +291,9 @@ def test_connect_edges(scene):
     assert counts(scene) == (8, 14, 6)
 
 
-def test_each_command_is_one_step(scene):
+def test_each_command_is_one_step(scene, run):
     labels: list[str] = []
-    scene.step_hook = labels.append
+    run.step_hook = labels.append
     extrude("dodeca", 0)
     connectFaces(1, 3)
     assert labels == ["extrude", "connectFaces"]

@@ -181,9 +181,9 @@ def test_multi_connect_faces_fitted(scene):
     assert hub == {-0.015625, 0.015625}  # 0.984375 of the way to the centre
 
 
-def test_multi_connect_faces_is_one_step(scene):
+def test_multi_connect_faces_is_one_step(scene, run):
     labels: list[str] = []
-    scene.step_hook = labels.append
+    run.step_hook = labels.append
     multiConnectFaces([0, 5], method="closest-edge")
     multiConnectFaces([1, 3])
     assert labels == ["multiConnectFaces", "multiConnectFaces"]

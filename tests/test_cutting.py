@@ -569,9 +569,9 @@ def test_commands_take_ids(scene):
     validate(scene.mesh)
 
 
-def test_truncate_command_records_one_step(scene):
+def test_truncate_command_records_one_step(scene, run):
     labels: list[str] = []
-    scene.step_hook = labels.append
+    run.step_hook = labels.append
     assert len(truncate()) == 8
     assert counts(scene) == (24, 36, 14) and labels == ["truncate"]
 

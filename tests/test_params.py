@@ -4,27 +4,25 @@ from __future__ import annotations
 
 import pytest
 
-from livemod.dlfl import Scene, use_scene
+from livemod.dlfl import RunContext, use_run
 from livemod.dlfl.commands.params import param
 from livemod.dlfl.errors import InvalidArgumentError
 from livemod.dlfl.params import make_spec
 
 
-def run_with(values: dict) -> Scene:
-    scene = Scene()
-    scene.parameters = dict(values)
-    return scene
+def run_with(values: dict) -> RunContext:
+    return RunContext(parameters=values)
 
 
 def test_default_is_returned_and_declaration_recorded() -> None:
-    with use_scene(run_with({})) as scene:
+    with use_run(run_with({})) as run:
         assert param("thickness", 0.1, min=0.01, max=0.5, doc="rod radius") == 0.1
-    spec = scene.declarations["thickness"]
+    spec = run.declarations["thickness"]
     assert (spec.kind, spec.min, spec.max, spec.doc) == ("float", 0.01, 0.5, "rod radius")
 
 
 def test_given_values_are_checked_and_converted() -> None:
-    with use_scene(run_with({"n": "12", "on": "false", "scheme": "loop", "r": 2})):
+    with use_run(run_with({"n": "12", "on": "false", "scheme": "loop", "r": 2})):
         assert param("n", 4, min=1, max=20) == 12
         assert param("on", True) is False
         assert param("scheme", "doo-sabin", choices=["doo-sabin", "loop"]) == "loop"
@@ -45,12 +43,12 @@ def test_given_values_are_checked_and_converted() -> None:
     ],
 )
 def test_bad_values_and_declarations_are_clear_errors(values, declare, message) -> None:
-    with use_scene(run_with(values)), pytest.raises(InvalidArgumentError, match=message):
+    with use_run(run_with(values)), pytest.raises(InvalidArgumentError, match=message):
         declare()
 
 
 def test_conflicting_redeclaration_is_refused_but_repeats_are_fine() -> None:
-    with use_scene(run_with({})):
+    with use_run(run_with({})):
         assert param("k", 2, min=0) == 2
         assert param("k", 2, min=0) == 2
         with pytest.raises(InvalidArgumentError, match="declared twice"):

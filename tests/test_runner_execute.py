@@ -57,24 +57,24 @@ def test_the_scripts_own_helper_wins_over_a_same_named_module_earlier_on_the_pat
     monkeypatch.delitem(sys.modules, "shapes_helper", raising=False)
     path = write(project, "main.py", (
         "import shapes_helper\n"
-        "from livemod.dlfl import current_scene\n"
-        "current_scene().parameters['who'] = shapes_helper.WHO\n"))
+        "from livemod.dlfl import current_run\n"
+        "current_run().parameters['who'] = shapes_helper.WHO\n"))
     outcome = execute(path)
     assert outcome.status == "ok", outcome.error
-    assert outcome.scene.parameters["who"] == "project"
+    assert outcome.run.parameters["who"] == "project"
     assert sys.path[0] == str(elsewhere) and sys.path[-1] == str(project)  # as it was
 
 
 def test_namespace_has_commands_file_and_name(tmp_path):
     path = write(tmp_path, "ns.py", (
-        "from livemod.dlfl import current_scene\n"
-        "current_scene().parameters['seen'] = (__name__, __file__, callable(createFace))\n"
+        "from livemod.dlfl import current_run\n"
+        "current_run().parameters['seen'] = (__name__, __file__, callable(createFace))\n"
         "import sys, os\n"
-        "current_scene().parameters['on_path'] = os.path.dirname(__file__) in sys.path\n"))
+        "current_run().parameters['on_path'] = os.path.dirname(__file__) in sys.path\n"))
     outcome = execute(path)
     assert outcome.status == "ok", outcome.error
-    assert outcome.scene.parameters["seen"] == ("__main__", path, True)
-    assert outcome.scene.parameters["on_path"] is True
+    assert outcome.run.parameters["seen"] == ("__main__", path, True)
+    assert outcome.run.parameters["on_path"] is True
     assert str(tmp_path) not in sys.path
 
 
@@ -103,7 +103,7 @@ def test_numpy_random_is_seeded(tmp_path):
     assert same_mesh(a.arrays, b.arrays)
 
 
-def test_parameters_are_globals_and_scene_parameters():
+def test_parameters_are_globals_and_run_parameters():
     result = run_script(script_path("uses_params.py"), parameters={"count": 5, "height": 2.0})
     assert result.arrays is not None and result.arrays.counts == (5, 0, 5)
     assert np.allclose(result.arrays.positions[:, 1], 2.0)
@@ -113,7 +113,7 @@ def test_parameters_are_globals_and_scene_parameters():
 def test_selection_is_what_faces_true_returns():
     outcome = execute(script_path("selected_faces.py"), selection=Selection(faces=(3, 5)))
     assert outcome.status == "ok", outcome.error
-    assert outcome.scene.parameters["picked"] == (3, 5)
+    assert outcome.run.parameters["picked"] == (3, 5)
 
 
 def test_errors_carry_the_script_line_and_trim_library_frames():
@@ -168,8 +168,8 @@ def test_scripts_are_decoded_as_python_decodes_them(tmp_path):
     declared = tmp_path / "declared.py"
     declared.write_bytes(b"# -*- coding: latin-1 -*-\nname = param('name', 'caf\xe9')\n")
     outcome = execute(str(declared))
-    assert outcome.status == "ok" and outcome.scene.parameters == {} \
-        and outcome.scene.declarations["name"].default == "caf\u00e9"
+    assert outcome.status == "ok" and outcome.run.parameters == {} \
+        and outcome.declarations["name"].default == "caf\u00e9"
 
 
 def test_a_script_that_is_not_text_in_its_encoding_is_a_syntax_error(tmp_path):

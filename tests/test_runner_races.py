@@ -96,7 +96,7 @@ def test_a_base_exception_the_script_raises_is_its_error(tmp_path):
     outcome = execute(str(path), base=scene_before)
     assert outcome.status == "error" and outcome.error is not None
     assert outcome.error.line == 4 and outcome.error.message == "Stop: halt"
-    assert outcome.scene.step_hook is None  # the recording was released
+    assert outcome.run.step_hook is None  # the recording was released
 
 
 def test_a_keyboard_interrupt_in_the_main_thread_still_propagates(tmp_path):

@@ -17,6 +17,7 @@ import pytest
 
 from livemod.dlfl import DLFLError, Mesh, current_scene
 from livemod.dlfl.commands._base import modeling_command
+from livemod.dlfl.run_context import RunContext, use_run
 from livemod.dlfl.scene import Scene, use_scene
 from livemod.runner import RunControl, StepRecord, execute
 from livemod.runner.execute import script_namespace
@@ -25,7 +26,10 @@ from livemod.runner.playback import Playback
 from livemod.runner.recording import STEP_FIELDS, StepList, StepLog, StepRecorder
 
 HELPER = '''\
-from livemod.dlfl import createVertex, step
+import contextlib
+
+from livemod.dlfl import createVertex, current_run, step
+from livemod.dlfl.run_context import announce_step
 
 
 def ring(n):
@@ -42,6 +46,18 @@ def points(n):
 def call_back(fn):
     createVertex((9, 9, 9))
     fn()
+
+
+@contextlib.contextmanager
+def grouped(label):
+    """The commands in the block are one step, announced as the block ends."""
+    run = current_run()
+    run.command_depth += 1
+    try:
+        yield
+    finally:
+        run.command_depth -= 1
+    announce_step(label)
 '''
 
 SCRIPT = '''\
@@ -81,12 +97,12 @@ total = sum(helper_rec.points(2))
 [createVertex((j, 5, 0)) for j in range(2)]
 list(map(createVertex, [(0, 6, 0), (1, 6, 0)]))
 step("marked")
-with current_scene().command("grouped"):
+with helper_rec.grouped("grouped"):
     createVertex((0, 7, 0))
 '''
 
 
-def reference_hook(scene: Scene, script: str, seen: list) -> None:
+def reference_hook(run: RunContext, scene: Scene, script: str, seen: list) -> None:
     """A step hook the obvious way: walk to the script's frame, ask f_lineno and counts()."""
 
     def hook(label: str) -> None:
@@ -97,7 +113,7 @@ def reference_hook(scene: Scene, script: str, seen: list) -> None:
         counts = obj.mesh.counts() if obj is not None else (0, 0, 0)
         seen.append((label, None if frame is None else frame.f_lineno, counts))
 
-    scene.step_hook = hook
+    run.step_hook = hook
 
 
 def write(tmp_path, name: str, text: str) -> str:
@@ -110,11 +126,11 @@ def reference_steps(path: str) -> list:
     """(label, line, counts) of each step of the script at ``path``, by reference_hook."""
     with open(path, encoding="utf-8") as handle:
         code = compile_script(handle.read(), path)
-    scene, seen = Scene(), []
-    reference_hook(scene, path, seen)
+    run, scene, seen = RunContext(), Scene(), []
+    reference_hook(run, scene, path, seen)
     sys.path.insert(0, str(path).rsplit("/", 1)[0])
     try:
-        with use_scene(scene):
+        with use_scene(scene), use_run(run):
             exec(code, script_namespace(path, None))  # noqa: S102
     finally:
         sys.path.pop(0)
@@ -204,8 +220,8 @@ def test_steps_are_the_records_they_always_were(tmp_path):
 def test_a_view_of_the_steps_keeps_its_length_while_the_run_goes_on():
     scene = Scene()
     recorder = StepRecorder("/virtual/script.py", scene, None)
-    scene.step_hook = recorder.hook
-    with use_scene(scene):
+    recorder.run.step_hook = recorder.hook
+    with use_scene(scene), use_run(recorder.run):
         from livemod.dlfl import createVertex
 
         createVertex((0, 0, 0))
@@ -218,14 +234,14 @@ def test_a_view_of_the_steps_keeps_its_length_while_the_run_goes_on():
 def test_the_run_does_not_keep_a_script_frame_alive(tmp_path):
     path = write(tmp_path, "frames.py", """\
         import weakref
-        from livemod.dlfl import current_scene
+        from livemod.dlfl import current_run
 
         class Big:
             pass
 
         def make():
             big = Big()
-            current_scene().parameters["big"] = weakref.ref(big)
+            current_run().parameters["big"] = weakref.ref(big)
             createVertex((0, 0, 0))
 
         make()
@@ -233,7 +249,7 @@ def test_the_run_does_not_keep_a_script_frame_alive(tmp_path):
     control = RunControl()
     outcome = execute(path, control=control)
     gc.collect()
-    assert outcome.status == "ok" and outcome.scene.parameters["big"]() is None
+    assert outcome.status == "ok" and outcome.run.parameters["big"]() is None
 
 
 def test_top_level_loops_read_the_cancel_flag_as_a_global():
@@ -298,7 +314,7 @@ def test_a_command_with_no_python_caller_is_recorded_without_a_line():
     scene = Scene()
     recorder = StepRecorder("/virtual/script.py", scene, None)
     recorder.install()
-    with use_scene(scene):
+    with use_scene(scene), use_run(recorder.run):
         context = contextvars.copy_context()
     from livemod.dlfl import createVertex
 
@@ -323,14 +339,14 @@ def test_the_lean_hook_records_a_seen_caller_and_gives_the_others_to_the_full_ho
         createVertex((1, 0, 0))  # the same caller: the lean hook
         (lambda: createVertex((2, 0, 0)))()  # another caller: the full hook
 
-    with use_scene(scene):
+    with use_scene(scene), use_run(recorder.run):
         assert hook_calls(three) == 2
     first = three.__code__.co_firstlineno
     assert [(s.label, s.line, s.counts) for s in recorder.steps] == [
         ("createVertex", first + 1, (1, 0, 1)), ("createVertex", first + 2, (2, 0, 2)),
         ("createVertex", first + 3, (3, 0, 3))]
     recorder.release()
-    assert scene.step_hook is None
+    assert recorder.run.step_hook is None
 
 
 @modeling_command
@@ -344,7 +360,7 @@ def test_a_step_counts_nothing_when_no_object_is_left():
     scene.add(Mesh())
     recorder = StepRecorder(__file__, scene, None)
     recorder.install()
-    with use_scene(scene):
+    with use_scene(scene), use_run(recorder.run):
         _drop_current()
         with pytest.raises(DLFLError):
             _drop_current()  # nothing to kill: fails, records no step

@@ -1,4 +1,4 @@
-"""Tests of livemod.dlfl.scene: objects, the current object, steps and binding."""
+"""Tests of livemod.dlfl.scene: objects, the current object, the selection and binding."""
 
 from __future__ import annotations
 
@@ -8,7 +8,6 @@ import numpy as np
 import pytest
 
 from livemod.dlfl import (
-    DLFLError,
     Mesh,
     Scene,
     Selection,
@@ -49,37 +48,15 @@ def test_copy_is_deep():
     s = Scene()
     s.add(cube(), "c")
     s.selection = Selection(faces=(1,))
+    s.face_budget = 50
     dup = s.copy()
     s.mesh.insert_edge(0, 2)
     s.current_object.origin[0] = 4.0
     assert dup.mesh.counts() == (8, 12, 6)
     assert dup.current_object.origin[0] == 0.0
     assert dup.selection.faces == (1,) and dup.objects[0].name == "c"
+    assert dup.face_budget == 50
     assert dup.add(Mesh()) == 1
-
-
-def test_steps_are_recorded_for_outermost_commands_only():
-    s = Scene()
-    seen: list[str] = []
-    s.step_hook = seen.append
-    with s.command("outer"):
-        with s.command("inner"):
-            pass
-        s.record_step("nested record")
-    s.record_step("plain")
-    assert seen == ["outer", "plain"]
-
-
-def test_failed_command_records_no_step_and_unwinds():
-    s = Scene()
-    seen: list[str] = []
-    s.step_hook = seen.append
-    with pytest.raises(DLFLError), s.command("broken"):
-        raise DLFLError("boom")
-    assert seen == [] and s._command_depth == 0
-    with s.command("after"):
-        pass
-    assert seen == ["after"]
 
 
 def test_selection_is_empty():

@@ -44,6 +44,7 @@ from .errors import (
     UnknownIdError,
 )
 from .mesh import Mesh
+from .run_context import RunContext, current_run, use_run
 from .scene import Scene, Selection, current_scene, use_scene
 from .soup import Polygons
 from .validate import validate
@@ -56,9 +57,10 @@ ERRORS = [
 __all__ = [*commands.__all__, *ERRORS]
 
 LIBRARY_API = [
-    "Mesh", "MeshArrays", "MeshSummary", "Polygons", "Scene", "Selection", "DLFLError",
-    "DLFLRepairWarning", "DLFLSkippedLinesWarning", "bounds", "component_genera", "current_scene", "enclosed_volume",
+    "Mesh", "MeshArrays", "MeshSummary", "Polygons", "RunContext", "Scene", "Selection",
+    "DLFLError", "DLFLRepairWarning", "DLFLSkippedLinesWarning", "bounds",
+    "component_genera", "current_run", "current_scene", "enclosed_volume",
     "euler_characteristic", "face_centroids", "face_normals", "face_size_histogram",
     "from_corner_arrays", "from_polygons", "genus", "mesh_arrays", "num_components",
-    "summarize", "surface_area", "use_scene", "validate", "vertex_normals",
+    "summarize", "surface_area", "use_run", "use_scene", "validate", "vertex_normals",
 ]

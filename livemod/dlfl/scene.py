@@ -2,7 +2,9 @@
 
 Thesis commands act on the *current scene*, held in a context variable so that
 each run of the runner binds its own copy (two runs never share meshes) while a
-plain ``python script.py`` uses one process-wide default scene.
+plain ``python script.py`` uses one process-wide default scene. What a run
+does with the scene (its steps, files, parameters and declarations) is the
+run's: see :mod:`livemod.dlfl.run_context`.
 """
 
 from __future__ import annotations
@@ -10,15 +12,17 @@ from __future__ import annotations
 import contextlib
 import contextvars
 import operator
-from collections.abc import Callable, Iterable, Iterator
+from collections.abc import Iterable, Iterator
 from dataclasses import dataclass, field, replace
-from typing import Any
+from typing import TypeVar
 
 import numpy as np
 
 from ._checks import is_id, shown
 from .errors import UnknownIdError
 from .mesh import Mesh
+
+T = TypeVar("T")
 
 
 @dataclass(frozen=True)
@@ -112,38 +116,17 @@ class SceneObject:
     factor: np.ndarray = field(default_factory=lambda: np.ones(3))
 
 
-StepHook = Callable[[str], None]
-
-# Frames from a step hook up to the code that called the modeling command, when
-# the command's wrapper calls the hook (``sys._getframe(STEP_HOOK_CALLER_DEPTH)``
-# in the hook). Hooks called through record_step sit one frame deeper.
-STEP_HOOK_CALLER_DEPTH = 2
-
 class Scene:
     """Several meshes (objects by integer id), the current one and the selection.
+
+    What a run of a script does with the scene (its steps, the files it reads,
+    its parameters) is the run's, not the scene's: see
+    :mod:`livemod.dlfl.run_context`.
 
     Attributes:
         objects: object id -> :class:`SceneObject`, in creation order.
         current: id of the current object, or None when the scene is empty.
         selection: the viewer's selection, applied to the current object.
-        missing_picks: the ids of ``selection`` that ``faces(True)`` and the like
-            left out because the current mesh had no such element then (a pick
-            from an older result, or a mistyped ``--select``).
-        unselected_reads: the selection fields (``"faces"``, ``"edges"``,
-            ``"vertices"``, ``"corners"``) a ``faces(True)`` or the like asked for
-            while nothing of that kind was selected (a headless run's note says so).
-        step_hook: called with a label after every modeling command (the runner
-            installs one to record steps and to pause or cancel a run); the
-            modeling-command wrapper calls it directly, see
-            ``STEP_HOOK_CALLER_DEPTH``.
-        parameters: values for ``param()`` declarations (set by the runner).
-        declarations: the :class:`~livemod.dlfl.params.ParamSpec` of every
-            ``param()`` call of the current run, by name, in call order.
-        directory: the folder relative file names in ``load``/``save`` refer to
-            (the runner sets the script's folder); None for the working directory.
-        files_read, files_written: absolute paths of the mesh files ``load`` read
-            (or tried to) and ``save`` wrote in this scene, in order; a live
-            session re-runs the script when one it read changes (not copied).
         face_budget: the face budget of the commands acting on this scene (see
             :mod:`livemod.dlfl.budget`); None for the session's default.
     """
@@ -152,20 +135,8 @@ class Scene:
         self.objects: dict[int, SceneObject] = {}
         self.current: int | None = None
         self.selection = Selection()
-        self.missing_picks = Selection()
-        self.unselected_reads: set[str] = set()
-        self.step_hook: StepHook | None = None
-        self.parameters: dict[str, object] = {}
-        # name -> ParamSpec of the param() calls of the current run, in order
-        self.declarations: dict[str, Any] = {}
-        # folder that relative file names in load()/save() are read from (the
-        # script's folder in a runner run; None: the working directory)
-        self.directory: str | None = None
-        self.files_read: list[str] = []
-        self.files_written: list[str] = []
         self.face_budget: int | None = None
         self._next_object = 0
-        self._command_depth = 0
 
     def _repr_png_(self) -> bytes | None:
         """A picture of the scene's objects for Jupyter (see :mod:`livemod.dlfl.display`)."""
@@ -225,36 +196,9 @@ class Scene:
             )
         other.current = self.current
         other.selection = replace(self.selection)
-        other.parameters = dict(self.parameters)
-        other.directory = self.directory
         other.face_budget = self.face_budget
         other._next_object = self._next_object
         return other
-
-    # -- steps ---------------------------------------------------------------
-
-    def record_step(self, label: str) -> None:
-        """Report a finished modeling step to the hook (outermost commands only)."""
-        if self.step_hook is not None and self._command_depth == 0:
-            self.step_hook(label)
-
-    @contextlib.contextmanager
-    def command(self, label: str) -> Iterator[None]:
-        """Run a modeling command: nested commands record no steps of their own."""
-        self._command_depth += 1
-        try:
-            yield
-        except BaseException:
-            self.leave_command(None)
-            raise
-        self.leave_command(label)
-
-    def leave_command(self, label: str | None) -> None:
-        """End a command begun by raising ``_command_depth``: record its step
-        (``label``) when it was outermost, or nothing when it failed (None)."""
-        self._command_depth -= 1
-        if label is not None:
-            self.record_step(label)
 
 
 _default_scene = Scene()
@@ -273,13 +217,19 @@ def default_scene() -> Scene:
 
 
 @contextlib.contextmanager
-def use_scene(scene: Scene) -> Iterator[Scene]:
-    """Bind ``scene`` as the current scene for the calling context (thread)."""
-    token = _scene_var.set(scene)
+def binding(var: contextvars.ContextVar[T], value: T) -> Iterator[T]:
+    """Set ``var`` to ``value`` in the calling context (thread) while the block runs,
+    then back to what it was; the block gets ``value``."""
+    token = var.set(value)
     try:
-        yield scene
+        yield value
     finally:
-        _scene_var.reset(token)
+        var.reset(token)
+
+
+def use_scene(scene: Scene) -> contextlib.AbstractContextManager[Scene]:
+    """Bind ``scene`` as the current scene for the calling context (thread)."""
+    return binding(_scene_var, scene)
 
 
 def reset_default_scene() -> Scene:

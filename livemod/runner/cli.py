@@ -321,7 +321,7 @@ def _finish_run(args: argparse.Namespace, outcome: Any, params: dict[str, Any],
     ``output`` (absolute; ``args.output`` is how it is named); the exit code."""
     if args.steps:
         print_steps(outcome.steps)
-    report_selection(outcome.scene)
+    report_selection(outcome.run)
     problem = (declarations.undeclared(outcome.declarations, params, ran=True)
                if outcome.error is None else None)
     if problem is not None:  # only for scripts whose declarations are computed

@@ -136,7 +136,7 @@ def _run_for_declarations(path: Path) -> dict[str, ParamSpec]:
     outcome = run_outcome(str(path))
     if outcome.error is not None:
         raise DLFLError(f"running {path} to find its parameters failed: {outcome.error}")
-    return dict(outcome.scene.declarations)
+    return outcome.declarations
 
 
 def check_values(specs: dict[str, ParamSpec], values: dict[str, Any]) -> dict[str, Any]:

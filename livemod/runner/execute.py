@@ -1,7 +1,8 @@
 """Run one user script against a fresh copy of the base scene.
 
 :func:`execute` is the whole life of one run: read, compile (syntax errors
-stop here), bind a copy of the base scene, seed the random generators, ``exec``
+stop here), bind a copy of the base scene and a fresh run context (the run's
+parameters and folder, and what its commands report), seed the random generators, ``exec``
 the script in a fresh namespace with the thesis commands in it, record a
 :class:`StepRecord` after every modeling command, and report what happened. It
 runs in whatever thread calls it; the session calls it from a worker thread.
@@ -17,7 +18,7 @@ import sys
 import threading
 import time
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from types import CodeType, ModuleType
 from typing import NoReturn
 
@@ -25,6 +26,7 @@ import numpy as np
 
 import livemod.dlfl as dlfl
 from livemod.dlfl.io import load_mesh
+from livemod.dlfl.run_context import RunContext, use_run
 from livemod.dlfl.scene import Scene, Selection, use_scene
 
 from .errors import Cancelled, cancelled_error, exception_error, is_user_file, syntax_error
@@ -41,6 +43,8 @@ class RunOutcome:
     Attributes:
         status: ``"ok"``, ``"error"`` or ``"cancelled"``.
         scene: the run's scene as the script left it.
+        run: the run's context: its parameters and folder, and what the
+            commands told it (declarations, files, picks).
         steps: the steps that finished.
         error: the error for ``"error"``/``"cancelled"``.
         elapsed: seconds from the start of compilation to the end.
@@ -55,18 +59,19 @@ class RunOutcome:
     elapsed: float
     modules: tuple[str, ...] = ()
     source: str = ""
+    run: RunContext = field(default_factory=RunContext)
 
     @property
     def files_read(self) -> tuple[str, ...]:
         """The mesh files the script loaded and did not also save, in order (to be
         watched: a run that rewrites its own input must not start the next one)."""
-        written = set(self.scene.files_written)
-        return tuple(dict.fromkeys(p for p in self.scene.files_read if p not in written))
+        written = set(self.run.files_written)
+        return tuple(dict.fromkeys(p for p in self.run.files_read if p not in written))
 
     @property
     def declarations(self) -> dict:
         """``name -> ParamSpec`` the script declared with ``param()``, in order."""
-        return dict(self.scene.declarations)
+        return dict(self.run.declarations)
 
 
 def _raise_cancelled() -> None:
@@ -327,13 +332,11 @@ def base_scene(mesh_path: str | None) -> Scene:
     return scene
 
 
-def prepare_scene(base: Scene | None, selection: Selection | None,
-                  parameters: dict | None) -> Scene:
-    """A private copy of ``base`` with the caller's selection and parameters."""
+def prepare_scene(base: Scene | None, selection: Selection | None) -> Scene:
+    """A private copy of ``base`` with the caller's selection."""
     scene = base.copy() if base is not None else Scene()
     if selection is not None:
         scene.selection = selection
-    scene.parameters = dict(parameters or {})
     return scene
 
 
@@ -355,7 +358,8 @@ def execute(
         source: the text to run; read from ``path`` when None.
         base: the scene the run starts from (copied, never changed); empty if None.
         seed: seeds ``random`` and ``numpy.random`` first; None leaves them alone.
-        parameters: globals for the script, also put in ``scene.parameters``.
+        parameters: globals for the script, also the run context's ``parameters``
+            (what ``param()`` returns).
         selection: what ``faces(True)`` and friends return.
         control: lets other threads cancel or pause the run.
         lease: the run's hold on the process (a session's, to start from its
@@ -369,16 +373,16 @@ def execute(
     """
     script = os.path.abspath(os.fspath(path))
     started = time.perf_counter()
-    scene = prepare_scene(base, selection, parameters)
-    scene.directory = os.path.dirname(script)
+    scene = prepare_scene(base, selection)
+    run = RunContext(directory=os.path.dirname(script), parameters=parameters)
     try:
         if source is None:
             source = read_script(script)
         code = compile_script(source, script)
     except SyntaxError as exc:
         return RunOutcome("error", scene, (), syntax_error(exc, script), time.perf_counter() - started,
-                          source=source or "")
-    recorder = StepRecorder(script, scene, control)
+                          source=source or "", run=run)
+    recorder = StepRecorder(script, scene, control, run)
     recorder.install()
     try:
         status, error, modules = _exec(code, parameters, recorder, seed, control,
@@ -386,13 +390,13 @@ def execute(
     finally:  # also for a Ctrl-C: the hook and the frames it caches must not outlive the run
         recorder.release()
     return RunOutcome(status, scene, recorder.steps, error,
-                      time.perf_counter() - started, tuple(modules), source)
+                      time.perf_counter() - started, tuple(modules), source, run)
 
 
 def _exec(code: CodeType, parameters: dict | None, recorder: StepRecorder, seed: int | None,
           control: RunControl | None, lease: RunLease,
           ) -> tuple[str, ScriptError | None, list[str]]:
-    """``exec`` with the scene bound; returns ``(status, error, local module files)``.
+    """``exec`` with the scene and the run context bound; returns ``(status, error, local module files)``.
 
     The script's namespace is made once the process state is taken (so that it
     holds the library's own functions). The state is given back in every case,
@@ -436,7 +440,7 @@ def _run_code(code: CodeType, namespace: dict, recorder: StepRecorder, seed: int
     """``exec`` the script in ``namespace``; ``(status, error)``, errors caught."""
     script = recorder.script
     try:
-        with use_scene(recorder.scene):
+        with use_scene(recorder.scene), use_run(recorder.run):
             try:
                 _enter_user_code(token, script)
                 seed_generators(seed)

@@ -5,7 +5,8 @@ from __future__ import annotations
 import dataclasses
 import os
 
-from livemod.dlfl.scene import SELECTION_READERS, Scene, Selection
+from livemod.dlfl.run_context import RunContext
+from livemod.dlfl.scene import SELECTION_READERS, Selection
 
 from .execute import RunOutcome, base_scene, execute
 from .results import RunResult, RunStatus, object_fields, parameter_items, snapshot_scene
@@ -25,11 +26,11 @@ def run_outcome(path: str | os.PathLike[str], *, mesh_path: str | None = None,
     return execute(path, base=base, seed=seed, parameters=parameters, selection=selection)
 
 
-def missing_picks_note(scene: Scene) -> str | None:
+def missing_picks_note(run: RunContext) -> str | None:
     """One line naming the selected ids a run's ``faces(True)`` and the like left out
     (the mesh had no such element then), for ``livemod: warning: ...``; None when
     there were none."""
-    missing = scene.missing_picks
+    missing = run.missing_picks
     named = [f"{field.name} {', '.join(map(str, ids))}" for field in dataclasses.fields(missing)
              if (ids := getattr(missing, field.name))]
     if not named:
@@ -38,12 +39,12 @@ def missing_picks_note(scene: Scene) -> str | None:
             f"the selection; those picks were left out")
 
 
-def unselected_note(scene: Scene) -> str | None:
+def unselected_note(run: RunContext) -> str | None:
     """One line for ``livemod: note: ...`` when the script asked for a selection
     (``faces(True)`` and the like) that had nothing in it, as a headless run
     without ``--select`` has: a rind of no faces is a closed double shell, not the
     crust with an opening its author picked in the window. None otherwise."""
-    asked = [kind for name, kind in SELECTION_READERS.items() if name in scene.unselected_reads]
+    asked = [kind for name, kind in SELECTION_READERS.items() if name in run.unselected_reads]
     if not asked:
         return None
     calls = " and ".join(f"{kind}(True)" for kind in asked)
@@ -52,12 +53,12 @@ def unselected_note(scene: Scene) -> str | None:
             f"{example}, or pick in `livemod view`")
 
 
-def report_selection(scene: Scene) -> None:
+def report_selection(run: RunContext) -> None:
     """Print, on stderr, the warning of :func:`missing_picks_note` and the note of
-    :func:`unselected_note` for a headless run's ``scene`` (each when it has one)."""
+    :func:`unselected_note` for a headless run (each when it has one)."""
     from livemod.commandline import note, warning
 
-    left_out, unselected = missing_picks_note(scene), unselected_note(scene)
+    left_out, unselected = missing_picks_note(run), unselected_note(run)
     if left_out is not None:
         warning(left_out)
     if unselected is not None:
@@ -82,11 +83,11 @@ def result_of(outcome: RunOutcome, script: str, parameters: dict | None,
     """The immutable :class:`RunResult` of a headless outcome."""
     script = os.path.abspath(script)
     arrays, values = snapshot_scene(outcome.scene), parameter_items(parameters)
-    specs = tuple(outcome.scene.declarations.values())
+    specs = tuple(outcome.declarations.values())
     if outcome.status == RunStatus.OK:
         return RunResult.finished(run_id, script, outcome.steps, arrays, outcome.elapsed,
                                   parameters=specs, values=values,
-                                  **object_fields(outcome.scene))
+                                  **object_fields(outcome.scene, outcome.run))
     return RunResult.failed(run_id, script, RunStatus(outcome.status), outcome.steps,
                             outcome.error, outcome.elapsed, last_good=None,
                             parameters=specs, partial=arrays, values=values)

@@ -1,14 +1,15 @@
 """Step recording: the step record, and the hook that writes it after every command.
 
 The runner owns everything of a step's record. The library's commands only
-announce that a step happened, by calling the scene's ``step_hook`` with a
-label; :class:`StepRecorder` is the hook the runner installs. It runs once per command, so it does as little as it can: it
+announce that a step happened, by calling the run's ``step_hook`` with a label
+(see :mod:`livemod.dlfl.run_context`); :class:`StepRecorder` is the hook the
+runner installs. It runs once per command, so it does as little as it can: it
 appends the raw facts of the step to the run's :class:`StepLog` (the layout is
 written down there, and only here is it written or read), and a
 :class:`StepList` turns them into :class:`StepRecord` objects when they are
 read. Everything the hook reads is bound to closure variables, and the script's
 frame is cached by the identity of the frame that called the command (see
-:func:`script_frame`). In runs that never pause the scene's hook is the
+:func:`script_frame`). In runs that never pause the run's hook is the
 recorder's lean one, which records the steps of a cached caller and nothing
 else; every other step (a new caller, a run that may pause, any step once the
 run is cancelled) goes to the full one.
@@ -31,7 +32,8 @@ from dataclasses import dataclass
 from types import CodeType, FrameType
 from typing import Any, overload
 
-from livemod.dlfl.scene import STEP_HOOK_CALLER_DEPTH, Scene, StepHook
+from livemod.dlfl.run_context import STEP_HOOK_CALLER_DEPTH, RunContext, StepHook
+from livemod.dlfl.scene import Scene
 
 from .errors import Cancelled
 from .instrument import CANCEL_FLAG
@@ -203,7 +205,7 @@ def _line_table(code: CodeType) -> tuple[list[int], list[int | None]]:
     return [start for start, _, _ in ranges], [line for _, _, line in ranges]
 
 
-PauseCallback = Callable[[int, Sequence[StepRecord], Scene], None]
+PauseCallback = Callable[[int, Sequence[StepRecord], Scene, RunContext], None]
 
 _UNCACHED = object()  # a caller no frame is: the next step looks afresh
 # code flags of generators and coroutines, whose frames change callers when resumed
@@ -236,8 +238,8 @@ class RunControl:
 
     Args:
         playback: the session's playback state, or None for runs that never pause.
-        on_pause: called in the worker with ``(step index, steps, scene)`` just
-            before the run blocks at a step.
+        on_pause: called in the worker with ``(step index, steps, scene, run
+            context)`` just before the run blocks at a step.
     """
 
     def __init__(self, playback: Playback | None = None,
@@ -300,25 +302,29 @@ _NOWHERE = _Nowhere()
 
 
 class StepRecorder:
-    """Records steps, pauses and cancels a run: the step hook of its scene.
+    """Records steps, pauses and cancels a run: the step hook of its run context.
 
     Args:
         script: the script's absolute path (the frame whose line a step records).
         scene: the run's scene (a step records its current object's counts).
         control: steers the run; None for one that never pauses nor is cancelled.
+        run: the run context the hook goes into (a fresh one when None).
 
     Attributes:
         hook: the full step hook: it checks the cancel flag, finds the script's
             frame of a new caller, records, and pauses. Call it only from the
-            modeling-command wrapper or :meth:`Scene.record_step` (it finds the
+            modeling-command wrapper or ``announce_step`` (it finds the
             script's line from there).
+        run: the run context :meth:`install` gives the hook.
         started: ``perf_counter()`` when the run started (steps' ``elapsed`` is from it).
     """
 
-    def __init__(self, script: str, scene: Scene, control: RunControl | None) -> None:
+    def __init__(self, script: str, scene: Scene, control: RunControl | None,
+                 run: RunContext | None = None) -> None:
         self.script = script
         self.scene = scene
         self.control = control
+        self.run = run if run is not None else RunContext()
         self.started = time.perf_counter()
         self._log = StepLog()
         # (step index, seconds paused up to and including the pause after it), in order
@@ -327,17 +333,17 @@ class StepRecorder:
         self.hook, self._lean = self._make_hooks()
 
     def install(self) -> None:
-        """Make the scene record its steps here: with the lean hook for a
+        """Make the run context record its steps here: with the lean hook for a
         run that may not pause (the lean hook does not pause), else with the full one."""
         may_pause = self.control is not None and self.control.playback is not None
-        self.scene.step_hook = self.hook if may_pause else self._lean
+        self.run.step_hook = self.hook if may_pause else self._lean
 
     def every_step_to_hook(self) -> None:
         """Give every step from the next on to the full hook (which checks the
         cancel flag). Safe from any thread; nothing once released."""
         with self._swapping:
-            if self.scene.step_hook is not None:
-                self.scene.step_hook = self.hook
+            if self.run.step_hook is not None:
+                self.run.step_hook = self.hook
 
     def step_count(self) -> int:
         """Steps recorded so far."""
@@ -354,7 +360,7 @@ class StepRecorder:
         """End the recording: uninstalls the hook and drops the frames the log
         caches, which keep their locals alive."""
         with self._swapping:
-            self.scene.step_hook = None
+            self.run.step_hook = None
         self.hook = self._lean = _ended
         self._log.follow(_UNCACHED, _NOWHERE, self._log.code)
 
@@ -412,7 +418,7 @@ class StepRecorder:
         control.paused_at = index
         paused = time.perf_counter()
         if control.on_pause is not None:
-            control.on_pause(index, self.steps, self.scene)
+            control.on_pause(index, self.steps, self.scene, self.run)
         playback.wait(index, lambda: control.cancel_requested)
         # the snapshot and the wait are the viewer's time, not the script's
         spent = time.perf_counter() - paused

@@ -21,6 +21,7 @@ from livemod.dlfl.arrays import MeshArrays, concatenate_arrays, mesh_arrays
 from livemod.dlfl.errors import DLFLError
 from livemod.dlfl.io import save_objects
 from livemod.dlfl.mesh import Mesh
+from livemod.dlfl.run_context import RunContext
 from livemod.dlfl.scene import SELECTION_READERS, Scene
 
 if TYPE_CHECKING:
@@ -260,14 +261,16 @@ def join_others(objects: Sequence[tuple[int, str, MeshArrays]]) -> MeshArrays | 
     return freeze_arrays(concatenate_arrays([arrays for _, _, arrays in objects]), copy=False)
 
 
-def object_fields(scene: Scene) -> dict[str, Any]:
+def object_fields(scene: Scene, run: RunContext | None = None) -> dict[str, Any]:
     """The ``others``, ``other_objects``, ``current_object`` and ``unselected``
-    fields of a :class:`RunResult` of ``scene``."""
+    fields of a :class:`RunResult` of ``scene``, left by ``run`` (None: a run
+    that found every selection it asked for)."""
     objects = snapshot_other_objects(scene)
     current = scene.current
     # a script may set ``current`` to an id it never made (or killed)
     named = (current, scene.objects[current].name) if current in scene.objects else None
-    unselected = tuple(name for name in SELECTION_READERS if name in scene.unselected_reads)
+    asked = run.unselected_reads if run is not None else ()
+    unselected = tuple(name for name in SELECTION_READERS if name in asked)
     return {"others": join_others(objects), "other_objects": objects, "current_object": named,
             "unselected": unselected}
 

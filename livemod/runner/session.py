@@ -36,6 +36,7 @@ from livemod.dlfl.errors import DLFLError
 from livemod.dlfl.io import scene_objects
 from livemod.dlfl.mesh import Mesh
 from livemod.dlfl.params import ParamSpec
+from livemod.dlfl.run_context import RunContext
 from livemod.dlfl.scene import Scene, Selection
 
 from .declarations import check_values, fitting_values, literal_declarations
@@ -103,7 +104,7 @@ class LiveSession:
         notifier: the file-event source (tests inject a ManualNotifier).
         output: save the mesh here after every successful run (``run --watch -o``).
         all_objects: save every object of the scene joined, not just the current one.
-        parameters: initial script parameters (globals and ``scene.parameters``).
+        parameters: initial script parameters (globals, and what ``param()`` returns).
         base: a scene every run starts from (copied per run), instead of ``mesh_path``.
         snapshot_budget: bytes of paused snapshots kept for stepping back without a
             replay.
@@ -225,7 +226,7 @@ class LiveSession:
             self._selection = selection
 
     def set_parameters(self, values: dict) -> None:
-        """Update script parameters (globals and ``scene.parameters``) and re-run.
+        """Update script parameters (globals, and what ``param()`` returns) and re-run.
 
         The values are kept for later runs (saves of the script included) while
         their declarations still fit them.
@@ -526,8 +527,8 @@ class LiveSession:
             self._run_id += 1
             run = _Run(self._run_id, request.script, RunControl(self._playback),
                        RunLease(self._process), started=time.perf_counter())
-            run.control.on_pause = lambda index, steps, scene: self._post_paused(
-                run, index, steps, scene)
+            run.control.on_pause = lambda index, steps, scene, context: self._post_paused(
+                run, index, steps, scene, context)
             run.thread = threading.Thread(target=self._run_body, args=(run, request.source),
                                           name=f"livemod-run-{run.run_id}", daemon=True)
             self._current = run
@@ -593,12 +594,12 @@ class LiveSession:
             return None
         return source, base
 
-    def _specs(self, scene: Scene) -> tuple[ParamSpec, ...]:
+    def _specs(self, context: RunContext) -> tuple[ParamSpec, ...]:
         """The declarations to show with a result: the script's, as known in full
         (a failed or paused run may not have reached every ``param()``)."""
         with self._lock:
             known = tuple(self._declarations.values())
-        return known or tuple(scene.declarations.values())
+        return known or tuple(context.declarations.values())
 
     def _fit_parameters(self, script: str, source: str, parameters: dict) -> dict:
         """The values that still fit the declarations of ``source`` (caller holds the
@@ -670,7 +671,7 @@ class LiveSession:
                 return
             if outcome.status == "ok" and run.script == self.script:
                 # as the run computed them (a param() may compute its arguments)
-                self._declarations = dict(outcome.scene.declarations)
+                self._declarations = outcome.declarations
         save_error = None
         if outcome.status == "ok":
             with self._save_lock:  # a newer run's save waits for this one, so it comes last
@@ -686,7 +687,7 @@ class LiveSession:
             last = self._last_good
         result = RunResult.failed(
             run.run_id, run.script, status, outcome.steps, error, _working(run, outcome),
-            last_good=last, parameters=self._specs(outcome.scene),
+            last_good=last, parameters=self._specs(outcome.run),
             partial=snapshot_scene(outcome.scene), values=values)
         with self._lock:
             self._post_locked(result)
@@ -696,8 +697,8 @@ class LiveSession:
         its preview."""
         result = RunResult.finished(
             run.run_id, run.script, outcome.steps, snapshot_scene(outcome.scene),
-            _working(run, outcome), parameters=self._specs(outcome.scene), values=values,
-            **object_fields(outcome.scene))
+            _working(run, outcome), parameters=self._specs(outcome.run), values=values,
+            **object_fields(outcome.scene, outcome.run))
         with self._lock:
             if self._is_newest(result):
                 self._last_good = result
@@ -749,12 +750,12 @@ class LiveSession:
         return None
 
     def _post_paused(self, run: _Run, index: int, steps: Sequence[StepRecord],
-                     scene: Scene) -> None:
+                     scene: Scene, context: RunContext) -> None:
         """Worker, at a pause: post the mesh as it is after step ``index``."""
         result = RunResult.paused(
             run.run_id, run.script, steps, index, snapshot_scene(scene),
-            steps[-1].elapsed if steps else 0.0, parameters=self._specs(scene),
-            values=parameter_items(scene.parameters), **object_fields(scene))
+            steps[-1].elapsed if steps else 0.0, parameters=self._specs(context),
+            values=parameter_items(context.parameters), **object_fields(scene, context))
         with self._lock:
             self._snapshots.put(result)
             if not self._is_newest(result) or not self._playback.arrived(index):

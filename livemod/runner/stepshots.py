@@ -84,7 +84,7 @@ def shoot_steps(path: str | os.PathLike[str], *, which: Collection[int] | None =
     wanted = None if which is None else frozenset(which)
     shots: list[StepShot] = []
 
-    def keep(index: int, steps: object, scene: Scene) -> None:
+    def keep(index: int, steps: object, scene: Scene, run: object) -> None:
         if wanted is None or index in wanted:
             shots.append(StepShot(index, snapshot_scene(scene), snapshot_others(scene)))
 

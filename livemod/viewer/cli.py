@@ -453,7 +453,7 @@ def _film_to(args: argparse.Namespace, offscreen: Any, values: dict[str, Any], s
     shots = script_shots(args.input, which=None if args.steps else {args.step},
                          mesh_path=args.mesh, seed=args.seed, parameters=values,
                          selection=selection)
-    report_selection(shots.outcome.scene)
+    report_selection(shots.outcome.run)
     view = View(offscreen.size, args.elevation, args.yaw, style, args.ortho,
                 Framing(args.margin, args.zoom))
     frames = render_film(offscreen, shots, view, turn=args.turn, captions=args.captions,
@@ -587,7 +587,7 @@ def _run_for_render(path: str, mesh_path: str | None, want_preview: bool,
 
     outcome = run_outcome(path, mesh_path=mesh_path, parameters=values, selection=selection,
                           seed=seed)
-    report_selection(outcome.scene)
+    report_selection(outcome.run)
     problem = run_problem(outcome, values)
     if problem is not None:
         raise DLFLError(problem)

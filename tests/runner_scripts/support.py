@@ -96,7 +96,7 @@ def straight_snapshots(path: str, seed: int = 0) -> tuple[list[MeshArrays | None
     playback.apply(Action.PLAY)  # no run yet: playing from step 0 ...
     playback.apply(Action.NEW_RUN)  # ... in the run started below
     snaps: list[MeshArrays | None] = []
-    control = RunControl(playback, lambda index, steps, scene: snaps.append(
+    control = RunControl(playback, lambda index, steps, scene, run: snaps.append(
         snapshot_scene(scene)))
     outcome = execute(path, seed=seed, control=control)
     assert outcome.status == "ok", outcome.error

@@ -9,11 +9,15 @@ from typing import Any, TypeVar, cast
 from .._checks import id_list, is_id
 from ..errors import InvalidArgumentError
 from ..mesh import Mesh
+from ..run_context import RUN, STANDALONE_RUN
 from ..scene import Scene, current_scene
 
 F = TypeVar("F", bound=Callable[..., Any])
 
 CornerRef = tuple[int, int] | int
+
+# the current run context, as current_run() reads it, in one C call
+_get_run = RUN.get
 
 
 def scene() -> Scene:
@@ -27,29 +31,29 @@ def mesh() -> Mesh:
 
 
 def modeling_command(func: F) -> F:
-    """Mark a thesis command that changes the mesh: it records one step when done.
+    """Mark a thesis command that changes the mesh: it is one step when done.
 
-    When the command returns, the wrapper calls the scene's ``step_hook`` with
-    the command's name; commands called from inside another command record no
-    step of their own, nor does a command that raises. The wrapper returns what
-    the command returns and lets its errors through.
+    When the command returns it announces its step to the current run
+    (:func:`livemod.dlfl.run_context.announce_step`, which it inlines); commands
+    called from inside another command announce none of their own, nor does a
+    command that raises. The wrapper returns what the command returns and lets
+    its errors through.
     """
 
     label = func.__name__
 
     @functools.wraps(func)
     def wrapper(*args: Any, **kwargs: Any) -> Any:
-        # Scene.command and Scene.record_step inlined: this wraps every modeling
-        # command, and the runner's step hook finds the script's line fastest
-        # when it is called straight from here (see STEP_HOOK_CALLER_DEPTH)
-        sc = current_scene()
-        sc._command_depth += 1
+        # announce_step inlined: the run's step hook finds the command's caller
+        # fastest when it is called straight from here (STEP_HOOK_CALLER_DEPTH)
+        run = _get_run(STANDALONE_RUN)
+        run.command_depth += 1
         try:
             result = func(*args, **kwargs)
         finally:
-            sc._command_depth -= 1
-        if not sc._command_depth:
-            hook = sc.step_hook
+            run.command_depth -= 1
+        if not run.command_depth:
+            hook = run.step_hook
             if hook is not None:
                 hook(label)
         return result

@@ -27,6 +27,7 @@ from ..analysis import genus as _genus
 from ..budget import CORNERS_PER_FACE, check_growth, face_budget
 from ..errors import DLFLError, GeometryError, InvalidArgumentError
 from ..mesh import Mesh
+from ..run_context import announce_step, current_run
 from ._base import corner_tuple, mesh, modeling_command, resolve_corner, scene
 
 __all__ = [
@@ -249,16 +250,16 @@ def _within_budget(m: Mesh, points: Iterable[Any], budget: int | None) -> Sequen
 
 def _picked(name: str, is_live: Callable[[int], bool]) -> tuple[int, ...]:
     """The ids of selection field ``name`` that ``is_live`` in the current mesh; the
-    others are noted in the scene's ``missing_picks``, and a field with nothing
+    others are noted in the run's ``missing_picks``, and a field with nothing
     selected in its ``unselected_reads``."""
-    sc = scene()
-    picked: tuple[int, ...] = getattr(sc.selection, name)
+    picked: tuple[int, ...] = getattr(scene().selection, name)
+    run = current_run()
     if not picked:
-        sc.unselected_reads.add(name)
+        run.unselected_reads.add(name)
         return ()
     kept = tuple(i for i in picked if is_live(i))
     if len(kept) < len(picked):
-        sc.missing_picks = sc.missing_picks.adding(name, (i for i in picked if i not in kept))
+        run.missing_picks = run.missing_picks.adding(name, (i for i in picked if i not in kept))
     return kept
 
 
@@ -392,13 +393,13 @@ def load(filename: str) -> int:
     path = _path(filename, "load")
     name = os.fspath(filename)
     if os.path.isfile(path):  # before reading: a file that fails to load is watched too
-        scene().files_read.append(os.path.abspath(path))
+        current_run().files_read.append(os.path.abspath(path))
     try:
         loaded = open_mesh(path, shape_name=name)
     except OSError as exc:  # only the project's errors leave a command
         raise InvalidArgumentError(f"cannot load {path!r}: {exc.strerror or exc}") from None
     oid = scene().add(loaded, os.path.basename(name))
-    scene().record_step(f"load {name}")
+    announce_step(f"load {name}")
     return oid
 
 
@@ -407,7 +408,7 @@ def save(filename: str) -> bool:
     from ..io import save_mesh
 
     path = _path(filename, "save")
-    scene().files_written.append(os.path.abspath(path))
+    current_run().files_written.append(os.path.abspath(path))
     try:
         save_mesh(mesh(), path)
     except OSError as exc:
@@ -418,13 +419,13 @@ def save(filename: str) -> bool:
 def _path(filename: Any, command: str) -> str:
     """``filename`` as a string path, or a DLFLError naming the command.
 
-    A relative name is taken relative to the scene's folder (the script's folder
+    A relative name is taken relative to the run's folder (the script's folder
     when the runner runs it), as if the script ran from where it lives.
     """
     if not isinstance(filename, str | os.PathLike):
         raise InvalidArgumentError(f"{command} takes a file name, got {filename!r}")
     path = os.fspath(filename)
-    folder = scene().directory
+    folder = current_run().directory
     if folder is not None and not os.path.isabs(path):
         return os.path.join(folder, path)
     return path
@@ -593,4 +594,4 @@ def freezeTrans() -> None:
 
 def step(label: str = "step") -> None:
     """Mark a playback checkpoint with a label (a livemod addition)."""
-    scene().record_step(str(label))
+    announce_step(str(label))

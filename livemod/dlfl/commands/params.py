@@ -7,7 +7,7 @@ from typing import Any
 
 from ..errors import InvalidArgumentError
 from ..params import make_spec
-from ._base import scene
+from ..run_context import current_run
 
 __all__ = ["param"]
 
@@ -29,11 +29,11 @@ def param(
             does not fit the declaration.
     """
     spec = make_spec(name, default, min, max, step, choices, doc)
-    sc = scene()
-    earlier = sc.declarations.get(name)
+    run = current_run()
+    earlier = run.declarations.get(name)
     if earlier is not None and earlier != spec:
         raise InvalidArgumentError(f"parameter {name!r} is declared twice with different settings")
-    sc.declarations[name] = spec
-    if name in sc.parameters:
-        return spec.check(sc.parameters[name])
+    run.declarations[name] = spec
+    if name in run.parameters:
+        return spec.check(run.parameters[name])
     return default
