@@ -213,11 +213,11 @@ def test_multi_connect_faces_bad_arguments_leave_the_object_unchanged(scene, cal
     assert snapshot(scene.mesh) == before
 
 
-def test_a_crust_is_punched_in_later_steps(scene):
+def test_a_crust_is_punched_in_later_steps(scene, run):
     crust(0.5)
     outer = faces()[:6]
     labels: list[str] = []
-    scene.step_hook = labels.append
+    run.step_hook = labels.append
     tube = punch([outer[0]])
     assert counts(scene) == (16, 28, 14) and len(tube) == 4
     punch(outer[5])

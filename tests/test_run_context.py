@@ -161,12 +161,18 @@ def test_the_record_names_are_the_runner_s():
     assert RECORD_NAMES.issubset(used) and {"f_lasti", "f_back", "f_code", "_getframe"}.issubset(used)
 
 
+# the one frame read the library keeps, and why: walk() echoes the thesis's printed
+# walk when a script's module body calls it, as TopMod's console echoed it; it asks
+# whether its caller is that body, which is no step record
+ECHOING_WALK = {"commands/core.py": ["_getframe", "f_code"]}
+
+
 def test_the_library_names_nothing_of_the_step_record_nor_reads_frames():
     knowing = {path.relative_to(DLFL).as_posix(): sorted(names)
                for path in _dlfl_modules()
                if (names := _names(ast.parse(path.read_text(encoding="utf-8")))
                    & (RECORD_NAMES | FRAME_NAMES))}
-    assert knowing == {}
+    assert knowing == ECHOING_WALK
 
 
 def _imported_modules(path: Path) -> list[str]:
