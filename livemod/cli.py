@@ -26,9 +26,9 @@ SUBCOMMAND_MODULES = ("livemod.runner.cli", "livemod.viewer.cli")
 
 def build_parser() -> argparse.ArgumentParser:
     """The top-level parser with every subcommand registered."""
-    from livemod.commandline import EXIT_CODES_HELP
+    from livemod.commandline import EXIT_CODES_HELP, Parser
 
-    parser = argparse.ArgumentParser(
+    parser = Parser(
         prog="livemod",
         description="Procedural manifold mesh modeling: run, watch, view and render "
         "DLFL scripts.",

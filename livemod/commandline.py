@@ -18,6 +18,7 @@ This module imports neither the runner nor the viewer (both use it).
 
 from __future__ import annotations
 
+import argparse
 import contextlib
 import errno
 import os
@@ -26,6 +27,7 @@ import tempfile
 from collections.abc import Iterable, Iterator
 from typing import TextIO
 
+from livemod.dlfl.errors import close_match
 from livemod.dlfl.io.source import show_path
 
 DONE, FAILED, USAGE, INTERRUPTED, READER_LEFT = 0, 1, 2, 130, 141
@@ -33,6 +35,23 @@ DONE, FAILED, USAGE, INTERRUPTED, READER_LEFT = 0, 1, 2, 130, 141
 EXIT_CODES_HELP = ("exit codes: 0 done; 1 the script, a file or a variant failed; 2 the "
                    "command line is wrong; 130 interrupted (Ctrl-C); 141 the reader of the "
                    "output left (| head)")
+
+
+class Parser(argparse.ArgumentParser):
+    """argparse's parser, whose invalid choice (a subcommand, ``--background``) also
+    says which choice was likely meant: ``invalid choice: 'rn'; did you mean
+    'run'? (choose from ...)``. Subcommands' parsers are of this class too."""
+
+    def _check_value(self, action: argparse.Action, value: object) -> None:
+        choices = action.choices
+        if choices is None or value in choices:
+            return
+        names = [str(choice) for choice in choices]
+        guess = close_match(value, names)
+        hint = f"; did you mean {guess!r}?" if guess is not None else ""
+        listed = ", ".join(map(repr, names))
+        raise argparse.ArgumentError(action, f"invalid choice: {value!r}{hint} "
+                                             f"(choose from {listed})")
 
 
 class UsageError(ValueError):

@@ -128,8 +128,8 @@ class ModelSnapshot:
         outcome = run_outcome(path, mesh_path=None if mesh is None else str(self._beside(mesh)),
                               seed=seed, parameters=parameters, selection=select)
         if outcome.error is not None:
-            pytest.fail(f"{path} failed: {outcome.error}\n{outcome.error.traceback}",
-                        pytrace=False)
+            trace = "\n".join(outcome.error.trace_lines())
+            pytest.fail(f"{path} failed: {outcome.error}\n{trace}", pytrace=False)
         problem = undeclared(outcome.declarations, parameters or {}, ran=True)
         if problem is not None:
             pytest.fail(f"{path}: {problem}", pytrace=False)

@@ -270,3 +270,29 @@ def test_messages_quote_a_file_name_only_where_a_shell_needs_it(tmp_path: Path) 
     assert done.stderr == "livemod: error: 'my mesh.obj':2: bad number 'x'\n"
     done = _livemod(["info", "no such.obj"], tmp_path)
     assert done.stderr == f"livemod: error: no file 'no such.obj' in {tmp_path}\n"
+
+
+@pytest.mark.parametrize(("argv", "said"), [
+    (["rn", "x.py"], "argument COMMAND: invalid choice: 'rn'; did you mean 'run'? (choose from "
+                     "'info', 'convert', 'run', "),
+    (["render", "x.py", "--background", "drak"],
+     "argument --background: invalid choice: 'drak'; did you mean 'dark'? (choose from 'dark', "
+     "'light', 'transparent')"),
+])
+def test_a_misspelt_choice_gets_the_likely_one(argv, said, capsys) -> None:
+    with pytest.raises(SystemExit) as stop:
+        main(argv)
+    assert stop.value.code == 2
+    assert said in capsys.readouterr().err
+
+
+def test_a_script_error_shows_its_message_once(tmp_path: Path, capsys) -> None:
+    script = tmp_path / "typo.py"
+    script.write_text("load('cube')\nsubdivide('catmul-clark')\n")
+    assert main(["run", str(script)]) == 1
+    err = capsys.readouterr().err
+    assert err.count("valid schemes:") == 1 and err.count("InvalidArgumentError") == 1
+    assert err.splitlines()[-1].startswith(
+        f"livemod: error: {script}:2: InvalidArgumentError: unknown subdivision scheme "
+        "'catmul-clark'; did you mean 'catmull-clark'? valid schemes: 12.6.4, ")
+    assert "    subdivide('catmul-clark')" in err  # the traceback's line of the script

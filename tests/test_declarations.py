@@ -55,7 +55,7 @@ def test_a_literal_declaration_the_run_does_not_reach_is_listed_too(tmp_path: Pa
 def test_values_are_checked_against_the_declarations(tmp_path: Path) -> None:
     specs = declared_parameters(write(tmp_path, LITERAL))
     assert check_values(specs, {"count": "4", "thickness": 0.2}) == {"count": 4, "thickness": 0.2}
-    with pytest.raises(DLFLError, match=r"declares no parameter 'cuont' \(it declares: thickness, count, scheme\)"):
+    with pytest.raises(DLFLError, match=r"declares no parameter 'cuont'; did you mean 'count'\? \(it declares: thickness, count, scheme\)"):
         check_values(specs, {"cuont": 4})
     with pytest.raises(InvalidArgumentError, match="above its maximum 0.5"):
         check_values(specs, {"thickness": 0.9})

@@ -3,7 +3,9 @@ the subclasses carry."""
 
 from __future__ import annotations
 
-from livemod.dlfl import errors
+import pytest
+
+from livemod.dlfl import Scene, commands, errors, use_scene
 from livemod.dlfl.errors import (
     BudgetExceededError,
     DLFLError,
@@ -13,6 +15,7 @@ from livemod.dlfl.errors import (
     NonManifoldError,
     UnknownIdError,
 )
+from livemod.dlfl.extrusion import resolve_kind
 
 
 def test_every_error_is_a_dlfl_error_and_a_value_error():
@@ -36,3 +39,48 @@ def test_the_subclasses_carry_their_fields():
     assert GeometryError("face 3 has no normal", reason="a face has no normal").reason == (
         "a face has no normal")
 
+
+
+# -- a misspelt name: the likely one, and the valid ones once ------------------------
+
+def test_close_match_folds_case_and_underscores_and_needs_a_close_name():
+    names = ["catmull-clark", "doo-sabin", "loop"]
+    assert errors.close_match("Catmul_Clark", names) == "catmull-clark"
+    assert errors.close_match("lop", names) == "loop"
+    assert errors.close_match("zzz", names) is None
+    assert errors.close_match(3, names) is None
+
+
+def test_unknown_name_says_the_likely_name_and_lists_once():
+    message = errors.unknown_name("unknown scheme", "lop", ["loop", "dual"], "valid schemes")
+    assert message == "unknown scheme 'lop'; did you mean 'loop'? valid schemes: loop, dual"
+    plain = errors.unknown_name("unknown scheme", "zz", ["loop", "dual"], "valid schemes")
+    assert plain == "unknown scheme 'zz'; valid schemes: loop, dual"
+    unlisted = errors.unknown_name("interp must be 'a' or 'b', got", "aa", ["a", "b"], None)
+    assert unlisted == "interp must be 'a' or 'b', got 'aa'; did you mean 'a'?"
+
+
+MISSPELT = [
+    (lambda c: c.subdivide("catmul-clark"), "did you mean 'catmull-clark'?", "valid schemes"),
+    (lambda c: c.extrude("cubicle", 0), "did you mean 'cubical'?", "valid types"),
+    (lambda c: c.load("soccerbal"), "did you mean 'soccerball'?", "shapes"),
+    (lambda c: c.addHandle("hermit", (0, 0), (1, 0), 4), "did you mean 'hermite'?", None),
+]
+
+
+@pytest.mark.parametrize(("call", "hint", "listed"), MISSPELT,
+                         ids=["scheme", "extrusion", "shape", "handle"])
+def test_a_misspelt_name_in_a_command_gets_the_likely_one(call, hint, listed):
+    scene = Scene()
+    with use_scene(scene):
+        commands.load("cube")
+        with pytest.raises(InvalidArgumentError) as caught:
+            call(commands)
+    message = str(caught.value)
+    assert hint in message
+    assert listed is None or message.count(f"{listed}:") == 1
+
+
+def test_a_misspelt_library_extrusion_kind_gets_the_likely_one():
+    with pytest.raises(InvalidArgumentError, match="did you mean 'doo-sabin'\\? valid kinds"):
+        resolve_kind("do-sabin")

@@ -57,7 +57,7 @@ def test_declarations_are_recorded_and_values_applied():
 
 
 @pytest.mark.parametrize("setting, message", [
-    ("cuont=5", "declares no parameter 'cuont' (it declares: count, radius)"),
+    ("cuont=5", "declares no parameter 'cuont'; did you mean 'count'? (it declares: count, radius)"),
     ("count=0", "below its minimum 1"),
     ("count=abc", "is an integer; got 'abc'"),
     ("radius", "expects name=value"),

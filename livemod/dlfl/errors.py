@@ -18,6 +18,9 @@ An operation that raises leaves the mesh exactly as it was.
 
 from __future__ import annotations
 
+import difflib
+from collections.abc import Iterable
+
 
 class DLFLError(ValueError):
     """A DLFL operation was given input it cannot act on.
@@ -112,3 +115,45 @@ class DLFLSkippedLinesWarning(UserWarning):
         self.count = count
         self.first_line = first_line
         self.first_text = first_text
+
+
+def close_match(name: object, valid: Iterable[str]) -> str | None:
+    """The one of ``valid`` that ``name`` most likely misspells (compared in lower
+    case, ``_`` as ``-``), or None when none is close or ``name`` is no string."""
+    if not isinstance(name, str):
+        return None
+    names = list(valid)
+    key = name.strip().lower().replace("_", "-")
+    folded = {n.lower().replace("_", "-"): n for n in names}
+    close = difflib.get_close_matches(key, list(folded), n=1, cutoff=0.6)
+    return folded[close[0]] if close else None
+
+
+def unknown_name(what: str, name: object, valid: Iterable[str], listed: str | None) -> str:
+    """The message for a ``name`` that is none of ``valid``: what it is not, the
+    likely intended name, and the valid ones once, e.g. ``unknown subdivision scheme
+    'catmul-clark'; did you mean 'catmull-clark'? valid schemes: ...``.
+
+    Args:
+        what: the message's start, e.g. ``"unknown subdivision scheme"``.
+        name: what was given.
+        valid: every valid name, in the order to list them.
+        listed: how the list is introduced, e.g. ``"valid schemes"``; None lists
+            none (``what`` names them already).
+    """
+    names = list(valid)
+    guess = close_match(name, names)
+    parts = [f"{what} {_shown(name)}"]
+    if guess is not None:
+        parts.append(f"did you mean {guess!r}?")
+    message = "; ".join(parts)
+    if listed is not None:
+        message += f"{'' if guess is not None else ';'} {listed}: {', '.join(names)}"
+    return message
+
+
+def _shown(value: object) -> str:
+    """``repr(value)``, at most 80 characters (see ``_checks.shown``, which the
+    argument checks use; a name is short, or cut here)."""
+    text = repr(value) if not isinstance(value, int) or value.bit_length() < 200 else "an integer"
+    return text if len(text) <= 80 else text[:77] + "..."

@@ -29,11 +29,18 @@ from typing import Any
 
 import numpy as np
 
-from ._checks import finite_number, first_not_finite, flag, id_list, shown, whole_count
+from ._checks import (
+    finite_number,
+    first_not_finite,
+    flag,
+    id_list,
+    shown,
+    whole_count,
+)
 from ._vectors import unit as unit_rows
 from .bands import quad_band, triangle_band
 from .budget import check_growth
-from .errors import DLFLError, GeometryError, InvalidArgumentError, UnknownIdError
+from .errors import DLFLError, GeometryError, InvalidArgumentError, UnknownIdError, unknown_name
 from .mesh import Mesh
 from .normals import inset_offsets, small_polygon_normal
 
@@ -648,8 +655,12 @@ def resolve_kind(name: str) -> str:
     matches = [k for k in KINDS if key and k.startswith(key)]
     if len(matches) == 1:
         return matches[0]
-    what = "ambiguous" if matches else "unknown"
-    raise InvalidArgumentError(f"{what} extrusion kind {name!r}; valid kinds: {', '.join(KINDS)}")
+    if matches:
+        raise InvalidArgumentError(f"ambiguous extrusion kind {name!r}: it starts "
+                                   f"{', '.join(map(repr, matches))}; valid kinds: "
+                                   f"{', '.join(KINDS)}")
+    raise InvalidArgumentError(unknown_name("unknown extrusion kind", name, KINDS,
+                                            "valid kinds"))
 
 
 def _check_face(mesh: Mesh, face: int) -> None:

@@ -14,7 +14,7 @@ import numpy as np
 from .analysis import face_centroids
 from .arrays import MeshArrays, mesh_arrays
 from .build import from_polygons
-from .errors import InvalidArgumentError
+from .errors import InvalidArgumentError, unknown_name
 from .mesh import Mesh
 from .wireframe import vertex_rings
 
@@ -497,7 +497,6 @@ def load_shape(name: str) -> Mesh:
     """
     key = name.lower().removesuffix(".obj")
     if key not in SHAPES:
-        raise InvalidArgumentError(
-            f"no file {name!r} and no built-in shape of that name; shapes: {', '.join(SHAPES)}"
-        )
+        raise InvalidArgumentError(unknown_name("no file and no built-in shape named", name,
+                                                SHAPES, "shapes"))
     return SHAPES[key]()

@@ -330,7 +330,7 @@ def _finish_run(args: argparse.Namespace, outcome: Any, params: dict[str, Any],
     if outcome.error is not None and _script_output_went_away(outcome.error):
         raise BrokenPipeError  # `livemod run script | head`: end quietly, as for our own output
     if outcome.error is not None:
-        print(outcome.error.traceback.rstrip(), file=sys.stderr)
+        print("\n".join(outcome.error.trace_lines()), file=sys.stderr)
         error(str(outcome.error))
         return FAILED
     mesh = result_mesh(outcome.scene, args.all_objects)

@@ -12,7 +12,7 @@ from collections.abc import Iterable
 from pathlib import Path
 from typing import Any
 
-from livemod.dlfl.errors import DLFLError
+from livemod.dlfl.errors import DLFLError, close_match
 from livemod.dlfl.params import ParamSpec, make_spec
 
 from .instrument import read_script
@@ -206,11 +206,13 @@ def undeclared(specs: dict[str, ParamSpec], values: dict[str, Any],
     for name in values:
         if name not in specs:
             known = ", ".join(specs) or "none"
+            guess = close_match(name, specs)
+            hint = f"; did you mean {guess!r}?" if guess is not None else ""
             if ran:
-                return (f"the run declared no parameter {name!r} (it declared: {known}); "
+                return (f"the run declared no parameter {name!r}{hint} (it declared: {known}); "
                         f"a param() call declares it only when it runs (not in an if "
                         f"branch or a function that did not run)")
-            return f"the script declares no parameter {name!r} (it declares: {known})"
+            return f"the script declares no parameter {name!r}{hint} (it declares: {known})"
     return None
 
 

@@ -51,6 +51,13 @@ class ScriptError:
         where = f"{self.file}:{self.line}" if self.line is not None else self.file
         return f"{where}: {self.message}"
 
+    def trace_lines(self) -> list[str]:
+        """The traceback's lines without the one that repeats :attr:`message`
+        (shown on its own line, after them) and without blank ones."""
+        said = self.message.strip()
+        return [line for line in self.traceback.splitlines()
+                if line.strip() and line.strip() != said]
+
 
 class RunStatus(enum.StrEnum):
     """How a run ended, or that it is paused; the values are what the HUD, the

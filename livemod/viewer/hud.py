@@ -217,9 +217,7 @@ def error_lines(error: Any, max_lines: int = 8, run_id: int | None = None,
     elif run_id is not None:
         head = f"run {run_id}: {head}"
     lines = [(head, ERROR_TEXT), (error.message, TEXT)]
-    trace = [line for line in str(error.traceback).splitlines()
-             if line.strip() and line.strip() != error.message.strip()]
-    lines += [(line, LABEL_DIM) for line in trace[-max_lines:]]
+    lines += [(line, LABEL_DIM) for line in error.trace_lines()[-max_lines:]]
     return lines
 
 

@@ -13,7 +13,7 @@ from typing import Any
 from .. import connect as _connect
 from .. import extrusion as _extrusion
 from .._checks import finite_number, flag, id_list, is_id, whole_count
-from ..errors import InvalidArgumentError
+from ..errors import InvalidArgumentError, unknown_name
 from ..mesh import Mesh
 from ._base import mesh, modeling_command, resolve_corner, scene
 
@@ -35,8 +35,8 @@ def _kind(name: Any) -> str:
         for kind in _extrusion.KINDS:
             if key and kind.startswith(key):
                 return kind
-    raise InvalidArgumentError(f"unknown extrusion type {name!r}; valid types: "
-                               f"{', '.join(_extrusion.KINDS)}")
+    raise InvalidArgumentError(unknown_name("unknown extrusion type", name, _extrusion.KINDS,
+                                            "valid types"))
 
 
 def kind_keywords(kind: str) -> tuple[str, ...]:
@@ -295,8 +295,9 @@ def addHandle(interp: str, c1: Any, c2: Any, numsegs: int, w1: float = 25.0,
                                        "'hermite'")
         _connect.bezier_handle(m, a, b, segments, w1, w2, max_faces=scene().face_budget)
     else:
-        raise InvalidArgumentError(f"addHandle interp must be 'hermite' or 'bezier', "
-                                   f"got {interp!r}")
+        raise InvalidArgumentError(unknown_name("addHandle interp must be 'hermite' or "
+                                                "'bezier', got", interp, ("hermite", "bezier"),
+                                                None))
 
 
 # the pinch profile that leaves a tube's rings as they are: TopMod's GUI defaults

@@ -13,7 +13,7 @@ import errno
 import os
 from collections.abc import Callable, Mapping, Sequence
 
-from ..errors import InvalidArgumentError
+from ..errors import InvalidArgumentError, close_match
 from ..mesh import Mesh
 from ..scene import Scene
 from .atomic import atomic_write, write_atomically
@@ -180,8 +180,10 @@ def open_mesh(name: str | os.PathLike[str], *, shape_name: str | None = None) ->
     where = f"no file {show_path(os.path.basename(path))} in {show_path(_folder_of(path))}"
     if os.path.splitext(shape)[1]:
         raise InvalidArgumentError(where)
+    guess = close_match(shape, SHAPES)
+    hint = f"; did you mean {guess!r}?" if guess is not None else ";"
     raise InvalidArgumentError(f"{where}, and no built-in shape "
-                               f"{show_path(os.path.basename(shape))}; shapes: "
+                               f"{show_path(os.path.basename(shape))}{hint} shapes: "
                                f"{', '.join(SHAPES)}")
 
 

@@ -48,7 +48,7 @@ from collections.abc import Callable
 from typing import Any
 
 from ..budget import face_budget
-from ..errors import InvalidArgumentError
+from ..errors import InvalidArgumentError, unknown_name
 from ..mesh import Mesh
 from ._sizes import check_steps
 from .composites import (
@@ -193,8 +193,8 @@ def scheme_options(scheme: str) -> list[str]:
 
 def _lookup(scheme: object) -> Scheme:
     if not isinstance(scheme, str) or scheme not in SCHEMES:
-        names = ", ".join(sorted(SCHEMES))
-        raise InvalidArgumentError(f"unknown subdivision scheme {scheme!r}; valid schemes: {names}")
+        raise InvalidArgumentError(unknown_name("unknown subdivision scheme", scheme,
+                                                sorted(SCHEMES), "valid schemes"))
     return SCHEMES[scheme]
 
 
