@@ -189,7 +189,7 @@ def test_a_failing_script_or_an_undeclared_parameter_fails_the_test(pytester: py
     result = run(pytester, "--livemod-update")
     result.assert_outcomes(failed=2)
     result.stdout.fnmatch_lines([
-        "*tower.py: the run declared no parameter 'storys' (it declared: storeys)*",
+        "*tower.py: the run declared no parameter 'storys'; did you mean 'storeys'? (it declared: storeys)*",
         "*broken.py failed: *broken.py:3: *"])
     assert not (pytester.path / "__snapshots__").exists()
 
@@ -224,10 +224,16 @@ def test_the_entry_point_loads_the_plugin_once_with_or_without_p(
 
 
 def test_without_offscreen_gl_the_failure_says_so(pytester: pytest.Pytester):
+    # the module the plugin will import, from sys.modules: an earlier in-process run's
+    # copy may still be bound on the package after pytester took it out of sys.modules
     pytester.makeconftest("""
+        import sys
+
         import pytest
-        from livemod.viewer import pictures
+        import livemod.viewer.pictures
         from livemod.viewer.headless import NoOffscreenGL
+
+        pictures = sys.modules["livemod.viewer.pictures"]
 
         @pytest.fixture(autouse=True)
         def no_gl(monkeypatch):

@@ -177,7 +177,7 @@ def test_a_loop_that_swallows_the_interrupt_is_abandoned(tmp_path):
 @pytest.mark.timeout(120)
 def test_a_long_numpy_call_is_left_to_finish_in_the_background(tmp_path):
     done = tmp_path / "done"
-    block = (f"np.linalg.eigvals(np.random.default_rng(0).random((800, 800)))\n"
+    block = (f"np.linalg.eigvals(np.random.default_rng(0).random((1600, 1600)))\n"
              f"open({str(done)!r}, 'w').close()")
     with _superseding(tmp_path) as (live, save):
         stuck, result = _stuck_then_saved(live, save, tmp_path / "started", block,
