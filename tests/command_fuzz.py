@@ -96,7 +96,8 @@ def scene_state(scene: Scene) -> tuple[Any, ...]:
 
 def _mesh_bytes(mesh: Any) -> tuple[Any, ...]:
     a = mesh_arrays(mesh)
-    return (*(getattr(a, name).tobytes() for name in a.__dataclass_fields__), mesh.next_ids())
+    arrays = (getattr(a, name) for name in a.__dataclass_fields__)
+    return (*(None if x is None else x.tobytes() for x in arrays), mesh.next_ids())
 
 
 class Fuzzer:
@@ -165,6 +166,10 @@ class Fuzzer:
         return self.pick(good, ["abc", None, 5, np.zeros((3, 2)), np.zeros((4, 3)),
                                 np.broadcast_to(np.ones(3), (10**8, 3)), iter([(0, 0, 0)] * 3),
                                 [(0, 0, 0)] * 3, [[0, 0]] * 3], 0.3)
+
+    def color(self) -> Any:
+        return self.pick(lambda: tuple(self.rng.choice([0, 0.25, 1.0]) for _ in range(3)),
+                         [*BAD_POINTS, None, (255, 0, 0), (-0.1, 0, 0), (1.5, 0.5, 0.5)])
 
     def maybe(self, *makers: Callable[[], Any]) -> list[Any]:
         """A prefix of the optional arguments ``makers`` make, each drawn."""
@@ -312,6 +317,10 @@ class Fuzzer:
             "shrink_selection": lambda: self.maybe(lambda: self.ids(self.edge), self.kind),
             "invert_selection": lambda: self.maybe(lambda: self.ids(self.vertex), self.kind),
             "select_all": lambda: self.maybe(self.kind),
+            "setFaceColor": lambda: [r.choice([self.face(), self.ids(self.face), None]),
+                                     self.color()],
+            "selectFacesByColor": lambda: [r.choice([self.color(), self.face()]),
+                                           *self.maybe(self.number)],
         }
         args = table[name]() if name in table else []
         keywords = self.keyword_options(name)

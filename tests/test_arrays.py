@@ -13,6 +13,7 @@ from livemod.dlfl import (
     mesh_arrays,
     validate,
 )
+from livemod.dlfl.arrays import concatenate_arrays
 from tests.meshes import (
     CUBE_FACES,
     CUBE_OUTWARD,
@@ -227,3 +228,33 @@ def test_triangles_of_an_edited_mesh_are_counted_per_face_and_leave_out_holes():
         0 if hole else size - 2 for hole, size in zip(a.face_hole, a.face_sizes, strict=True)]
     assert sorted(map(sorted, vertices.tolist())) == [[0, 1, 2], [0, 2, 3]]
     validate(m)
+
+
+def test_face_colors_follow_the_face_order_and_are_read_only():
+    m = cube()
+    m.set_face_color(4, (0.0, 1.0, 0.0))
+    a = mesh_arrays(m)
+    assert a.face_colors is not None and not a.face_colors.flags.writeable
+    assert a.face_colors[4].tolist() == [0.0, 1.0, 0.0]
+    assert np.isnan(np.delete(a.face_colors, 4, axis=0)).all()
+    assert mesh_arrays(cube()).face_colors is None
+
+
+def test_face_colors_after_edits_follow_the_ids():
+    m = cube()
+    m.set_face_color(2, (0.5, 0.5, 0.5))
+    e = m.insert_edge(8, 10)  # splits face 2; the new face (id 6) takes its colour
+    m.delete_edge(m.insert_edge(0, 2))
+    a = mesh_arrays(m)
+    colored = a.face_ids[~np.isnan(a.face_colors[:, 0])].tolist()
+    assert colored == sorted(m.edge_faces(e))
+
+
+def test_concatenated_arrays_pad_parts_without_colours():
+    coloured = cube()
+    coloured.set_face_color(0, (1.0, 0.0, 0.0))
+    joined = concatenate_arrays([mesh_arrays(cube()), mesh_arrays(coloured)])
+    assert joined.face_colors is not None and joined.face_colors.shape == (12, 3)
+    assert np.isnan(joined.face_colors[:6]).all()
+    assert joined.face_colors[6].tolist() == [1.0, 0.0, 0.0]
+    assert concatenate_arrays([mesh_arrays(cube())] * 2).face_colors is None

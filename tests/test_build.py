@@ -15,8 +15,9 @@ from livemod.dlfl import (
     validate,
 )
 from livemod.dlfl.analysis import component_genera, enclosed_volume
+from livemod.dlfl.build import join_meshes
 from livemod.dlfl.errors import InvalidArgumentError, NonManifoldError
-from tests.meshes import CUBE_FACES, CUBE_POSITIONS, euler_ok, torus_polygons
+from tests.meshes import CUBE_FACES, CUBE_POSITIONS, cube, euler_ok, torus_polygons
 
 SQUARE = [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]]
 
@@ -283,7 +284,6 @@ def test_a_bouquet_of_two_gons_between_two_vertices_builds_a_sphere(lunes: int) 
 
 
 def test_join_meshes_keeps_each_mesh_as_a_component_holes_included():
-    from livemod.dlfl.build import join_meshes
 
     box = from_polygons(CUBE_POSITIONS, CUBE_FACES[1:])  # open: its top is a hole
     ring = from_polygons(*torus_polygons(5, 3))
@@ -294,3 +294,23 @@ def test_join_meshes_keeps_each_mesh_as_a_component_holes_included():
     assert sorted(component_genera(joined)) == [0, 0, 1]
     assert sum(joined.is_hole(int(f)) for f in joined.face_ids()) == 2
     assert join_meshes([]).counts() == (0, 0, 0)
+
+
+def test_from_corner_arrays_takes_face_colours_with_nan_for_none():
+    a = mesh_arrays(cube())
+    colors = np.full((6, 3), np.nan, np.float32)
+    colors[5] = (0.25, 0.5, 1.0)
+    m = from_corner_arrays(a.positions, a.face_offsets, a.corner_vertex, a.corner_mate,
+                           face_colors=colors)
+    validate(m)
+    assert m.face_color(5) == (0.25, 0.5, 1.0)
+    assert [m.face_color(f) for f in range(5)] == [None] * 5
+
+
+def test_joined_meshes_keep_their_colours():
+    first, second = cube(), cube((3.0, 0.0, 0.0))
+    second.set_face_color(1, (0.0, 0.0, 1.0))
+    joined = join_meshes([first, second])
+    validate(joined)
+    assert joined.face_color(7) == (0.0, 0.0, 1.0)
+    assert sum(joined.face_color(f) is not None for f in joined.face_ids().tolist()) == 1

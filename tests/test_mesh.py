@@ -809,3 +809,94 @@ def test_from_tables_refuses_missing_fields_and_ragged_tables():
         Mesh.from_tables(**tables(edges={"c0": np.zeros(0)}))
     with pytest.raises(InvalidArgumentError, match="^the face table's fields differ in length: "):
         Mesh.from_tables(**tables(faces={"corner": np.zeros(2), "hole": np.zeros(1)}))
+
+
+# -- face colours --------------------------------------------------------------
+
+RED, BLUE = (1.0, 0.0, 0.0), (0.0, 0.0, 1.0)
+
+
+def test_a_face_has_no_colour_until_given_one():
+    m = cube()
+    assert m.face_color(0) is None
+    assert m.face_colors() is None
+    m.set_face_color(0, (1, 0.5, 0.25))
+    assert m.face_color(0) == (1.0, 0.5, 0.25)
+    colors = m.face_colors()
+    assert colors is not None and colors.shape == (6, 3) and colors.dtype == np.float32
+    assert colors[0].tolist() == [1.0, 0.5, 0.25]
+    assert np.isnan(colors[1:]).all()
+    m.set_face_color(0, None)
+    assert m.face_color(0) is None and m.face_colors() is None
+
+
+@pytest.mark.parametrize("bad", [(1, 0), (1, 0, 0, 1), "red", None.__class__, (255, 0, 0),
+                                 (-0.1, 0, 0), (float("nan"), 0, 0), (True, 0, 0), 5])
+def test_a_bad_colour_is_refused_and_changes_nothing(bad):
+    m = cube()
+    m.set_face_color(1, BLUE)
+    assert_refused(m, lambda mesh: mesh.set_face_color(1, bad), "colour must be", DLFLError)
+    assert m.face_color(1) == BLUE
+
+
+def test_a_dead_face_has_no_colour_to_set():
+    m = cube()
+    with pytest.raises(DLFLError, match="face 99 does not exist"):
+        m.set_face_color(99, RED)
+    with pytest.raises(DLFLError, match="face 99 does not exist"):
+        m.face_color(99)
+
+
+def test_a_split_face_gives_its_colour_to_the_new_face():
+    m = cube()
+    m.set_face_color(0, RED)
+    e = m.insert_edge(0, 2)
+    new = [f for f in m.edge_faces(e) if f != 0]
+    assert len(new) == 1 and m.face_color(new[0]) == RED
+    checked(m)
+    assert m.delete_edge(e) == [0]  # merged back into the coloured face
+    assert m.face_color(0) == RED and np.isnan(m.face_colors()[1:]).all()
+
+
+def test_deleting_an_edge_with_one_face_on_both_sides_colours_both_parts():
+    m = cube()
+    e = m.insert_edge(0, 4)  # faces 0 and 1 merge into face 0: a handle
+    m.set_face_color(0, RED)
+    parts = m.delete_edge(e)
+    assert len(parts) == 2 and [m.face_color(f) for f in parts] == [RED, RED]
+    checked(m)
+
+
+def test_a_merge_keeps_the_first_face_colour_or_else_the_second():
+    m = cube()
+    m.set_face_color(1, BLUE)
+    # corner 0 is in face 0 (no colour), corner 4 in face 1 (blue): a handle merge
+    m.insert_edge(0, 4)
+    assert m.face_color(0) == BLUE
+    m2 = cube()
+    m2.set_face_color(0, RED)
+    m2.set_face_color(1, BLUE)
+    m2.insert_edge(0, 4)
+    assert m2.face_color(0) == RED
+    checked(m2)
+
+
+def test_new_faces_of_create_vertex_and_create_face_have_no_colour_in_reused_slots():
+    m = cube()
+    m.set_face_color(0, RED)
+    m.insert_edge(0, 2)
+    e = m.edge_ids()[-1]
+    m.delete_edge(int(e))  # frees the coloured new face's slot
+    v = m.create_vertex((5, 5, 5))
+    assert m.face_color(m.corner_face(m.vertex_corner(v))) is None
+    front, back = m.create_face([(0, 0, 3), (1, 0, 3), (0, 1, 3)])
+    assert m.face_color(front) is None and m.face_color(back) is None
+
+
+def test_copies_carry_the_colours_and_stay_apart():
+    m = cube()
+    m.set_face_color(3, RED)
+    other = m.copy()
+    assert other.face_color(3) == RED
+    other.set_face_color(3, BLUE)
+    assert m.face_color(3) == RED

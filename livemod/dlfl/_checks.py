@@ -103,6 +103,25 @@ def as_point(position: Any) -> tuple[float, float, float]:
     return x, y, z
 
 
+def rgb(value: object, name: str = "colour") -> tuple[float, float, float]:
+    """``value`` as a colour: three numbers ``(r, g, b)``, each in ``[0, 1]``.
+
+    Raises:
+        InvalidArgumentError: not three numbers, or one outside ``[0, 1]`` (the
+            message suggests dividing 0-255 values by 255).
+    """
+    wanted = f"{name} must be three numbers (r, g, b) in [0, 1], got {shown(value)}"
+    if isinstance(value, (str, bytes)) or not isinstance(value, Iterable):
+        raise InvalidArgumentError(wanted)
+    parts = list(value)
+    if len(parts) != 3:
+        raise InvalidArgumentError(wanted)
+    red, green, blue = (finite_number(v, name) for v in parts)
+    if not all(0.0 <= v <= 1.0 for v in (red, green, blue)):
+        raise InvalidArgumentError(f"{wanted} (divide 0-255 values by 255)")
+    return red, green, blue
+
+
 def is_id(value: object) -> TypeGuard[numbers.Integral]:
     """True for a Python or numpy integer (an id); bools are not ids."""
     return isinstance(value, numbers.Integral) and not isinstance(value, bool)

@@ -45,6 +45,8 @@ class MeshArrays:
             that edge, -1 for a point-sphere.
         edge_ids: ``(E,)`` int64 id of each edge.
         edge_corners: ``(E, 2)`` int64 dense indices of each edge's sides (c0, c1).
+        face_colors: ``(F, 3)`` float32 colour of each face in ``[0, 1]``, a row
+            of NaN for a face without one; None when no face has a colour.
     """
 
     positions: np.ndarray
@@ -59,10 +61,13 @@ class MeshArrays:
     corner_mate: np.ndarray
     edge_ids: np.ndarray
     edge_corners: np.ndarray
+    face_colors: np.ndarray | None = None
 
     def __post_init__(self) -> None:
         for field in fields(self):
-            getattr(self, field.name).flags.writeable = False
+            value = getattr(self, field.name)
+            if value is not None:
+                value.flags.writeable = False
 
     @property
     def face_sizes(self) -> np.ndarray:
@@ -192,6 +197,7 @@ def mesh_arrays(mesh: Mesh) -> MeshArrays:
         corner_mate=_mates(edge_corners, num_c),
         edge_ids=_rows(E.ids, eslots, E.count),
         edge_corners=edge_corners,
+        face_colors=mesh.face_colors(),
     )
 
 
@@ -230,7 +236,18 @@ def concatenate_arrays(parts: Sequence[MeshArrays]) -> MeshArrays:
         face_hole=joined("face_hole"), corner_ids=joined("corner_ids"),
         corner_vertex=joined("corner_vertex", v0), corner_face=joined("corner_face", f0),
         corner_edge=joined("corner_edge", e0), corner_mate=joined("corner_mate", c0),
-        edge_ids=joined("edge_ids"), edge_corners=joined("edge_corners", c0))
+        edge_ids=joined("edge_ids"), edge_corners=joined("edge_corners", c0),
+        face_colors=_joined_colors(parts))
+
+
+def _joined_colors(parts: Sequence[MeshArrays]) -> np.ndarray | None:
+    """The parts' face colours one after the other (NaN rows for a part without
+    any), or None when no part has any."""
+    if all(p.face_colors is None for p in parts):
+        return None
+    return np.concatenate([
+        np.full((len(p.face_ids), 3), np.nan, np.float32) if p.face_colors is None
+        else p.face_colors for p in parts])
 
 
 def _slots(table: Table) -> np.ndarray | None:

@@ -435,6 +435,7 @@ def from_corner_arrays(
     corner_mate: np.ndarray,
     face_hole: np.ndarray | None = None,
     *,
+    face_colors: np.ndarray | None = None,
     first_ids: tuple[int, int, int, int] = (0, 0, 0, 0),
     ids: tuple[np.ndarray | None, np.ndarray | None, np.ndarray | None,
                np.ndarray | None] | None = None,
@@ -450,6 +451,8 @@ def from_corner_arrays(
         corner_mate: ``(C,)`` int, the corner on the other side of each corner's
             edge (the corner's edge runs to the next corner); -1 for a point-sphere.
         face_hole: ``(F,)`` bool hole flags.
+        face_colors: ``(F, 3)`` float colours in ``[0, 1]``, a row of NaN for a
+            face without one (see :meth:`Mesh.face_colors`); None for none.
         first_ids: first vertex, edge, face and corner id.
         ids: per kind (vertex, edge, face, corner), the distinct ids of its
             elements in their order, for an operation that keeps some ids
@@ -474,12 +477,25 @@ def from_corner_arrays(
     lower, upper, edge = _edge_links(mate)
     num_f = len(offsets) - 1
     hole = np.zeros(num_f, np.uint8) if face_hole is None else np.asarray(face_hole, np.uint8)
+    colored, color = face_color_fields(face_colors, num_f)
     return Mesh.from_tables(
         corners={"next": nxt, "prev": prv, "face": face, "vertex": cvert, "edge": edge},
         edges={"c0": lower, "c1": upper},
-        faces={"corner": offsets[:-1], "hole": hole},
+        faces={"corner": offsets[:-1], "hole": hole, "colored": colored, "color": color},
         vertices={"corner": _lowest_corners(cvert, len(positions)), "position": positions},
         first_ids=first_ids, ids=ids)
+
+
+def face_color_fields(face_colors: np.ndarray | None,
+                      num_f: int) -> tuple[np.ndarray, np.ndarray]:
+    """The face table's ``colored`` ``(F,)`` uint8 and ``color`` ``(F, 3)`` float32
+    fields for ``face_colors`` (see :func:`from_corner_arrays`); zeros, which
+    cost nothing until touched, when it is None."""
+    if face_colors is None:
+        return np.zeros(num_f, np.uint8), np.zeros((num_f, 3), np.float32)
+    color = np.asarray(face_colors, dtype=np.float32).reshape(num_f, 3)
+    colored = ~np.isnan(color[:, 0])
+    return colored.view(np.uint8), np.where(colored[:, None], color, np.float32(0))
 
 
 def _check_finite_result(positions: np.ndarray) -> None:
@@ -582,7 +598,8 @@ def join_meshes(meshes: Sequence[Mesh]) -> Mesh:
         return Mesh()
     joined = concatenate_arrays(parts)
     return from_corner_arrays(joined.positions, joined.face_offsets, joined.corner_vertex,
-                              joined.corner_mate, joined.face_hole)
+                              joined.corner_mate, joined.face_hole,
+                              face_colors=joined.face_colors)
 
 
 def point_cloud(positions: Any) -> Mesh:

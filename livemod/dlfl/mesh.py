@@ -36,7 +36,7 @@ from typing import Any
 
 import numpy as np
 
-from ._checks import as_point, flag, whole_count
+from ._checks import as_point, flag, rgb, whole_count
 from ._table import FieldSpec, Table
 from .errors import InvalidArgumentError, UnknownIdError
 
@@ -48,7 +48,10 @@ CORNER_SPEC: FieldSpec = {
     "edge": (np.int32, ()),
 }
 EDGE_SPEC: FieldSpec = {"c0": (np.int32, ()), "c1": (np.int32, ())}
-FACE_SPEC: FieldSpec = {"corner": (np.int32, ()), "hole": (np.uint8, ())}
+# a face's colour is ``color`` when ``colored`` is 1; 0 means the default modelling
+# colour (zeros, the value of every fresh slot, mean "no colour")
+FACE_SPEC: FieldSpec = {"corner": (np.int32, ()), "hole": (np.uint8, ()),
+                        "colored": (np.uint8, ()), "color": (np.float32, (3,))}
 VERTEX_SPEC: FieldSpec = {"corner": (np.int32, ()), "position": (np.float64, (3,))}
 
 NO_EDGE = -1
@@ -77,10 +80,20 @@ def _between(p0: list[float], p1: list[float], t: float) -> list[float]:
             for a, b in zip(p0, p1, strict=True)]
 
 
+# fields a bulk builder may leave out: zeros (no colour) are what they hold then
+OPTIONAL_FIELDS = frozenset({"colored", "color"})
+
+
 def _adopt(kind: str, spec: FieldSpec, first_id: int, fields: dict[str, np.ndarray],
            ids: np.ndarray | None) -> Table:
     """:meth:`Table.from_arrays` of ``fields`` (and ``ids``), once they are checked
-    to be the fields of ``spec``, all of one length (see :meth:`Mesh.from_tables`)."""
+    to be the fields of ``spec``, all of one length (see :meth:`Mesh.from_tables`);
+    the :data:`OPTIONAL_FIELDS` left out are zeros."""
+    missing = [name for name in spec.keys() - fields.keys() if name in OPTIONAL_FIELDS]
+    if missing and fields:
+        rows = len(next(iter(fields.values())))
+        fields = fields | {name: np.zeros((rows, *spec[name][1]), spec[name][0])
+                           for name in missing}
     if fields.keys() != spec.keys():
         raise InvalidArgumentError(
             f"the {kind} table needs the fields {sorted(spec)}, got {sorted(fields)}")
@@ -279,6 +292,54 @@ class Mesh:
         slot = self._f.slot(face)
         self._f.hole[slot] = 1 if flag(hole, "hole") else 0
 
+    def face_color(self, face: int) -> tuple[float, float, float] | None:
+        """The colour ``(r, g, b)`` of ``face`` (floats in ``[0, 1]``), or None when
+        it has none (it is drawn and written in the default modelling colour).
+
+        Raises:
+            UnknownIdError: ``face`` is not live.
+        """
+        F = self._f
+        slot = F.slot(face)
+        if not F.colored[slot]:
+            return None
+        red, green, blue = F.arrays["color"][slot].tolist()
+        return red, green, blue
+
+    def set_face_color(self, face: int, color: Any) -> None:
+        """Give ``face`` the colour ``(r, g, b)`` (three numbers in ``[0, 1]``, kept as
+        float32), or take its colour away with None.
+
+        Faces an operation makes from ``face`` take its colour (a split's new face,
+        subdivision's children, an extrusion's sides and end).
+
+        Raises:
+            UnknownIdError: ``face`` is not live.
+            InvalidArgumentError: ``color`` is neither None nor three numbers in
+                ``[0, 1]``; the mesh is unchanged.
+        """
+        F = self._f
+        slot = F.slot(face)
+        if color is None:
+            F.colored[slot] = 0
+            return
+        F.arrays["color"][slot] = rgb(color)
+        F.colored[slot] = 1
+
+    def face_colors(self) -> np.ndarray | None:
+        """``(F, 3)`` float32 colours of the faces in the order of :meth:`face_ids`,
+        a row of NaN for a face without one; None when no face has a colour."""
+        F = self._f
+        if not F.arrays["colored"][: F.n].any():  # the common case, without the slots
+            return None
+        slots = F.live_slots()
+        colored = F.arrays["colored"][slots].astype(bool)
+        if not colored.any():
+            return None
+        colors = F.arrays["color"][slots]
+        colors[~colored] = np.nan
+        return colors
+
     def vertex_corner(self, vertex: int) -> int:
         """Id of one corner at ``vertex``."""
         v = self._v
@@ -429,6 +490,7 @@ class Mesh:
         C.edge[c] = NO_EDGE
         F.corner[f] = c
         F.hole[f] = 0
+        F.colored[f] = 0
         V.corner[v] = c
         V.arrays["position"][v] = xyz
         return V.idv[v]
@@ -518,6 +580,9 @@ class Mesh:
         a1, b1 = nxt[s1], nxt[s2]
         fn, e = _alloc(F), _alloc(E)
         F.hole[fn] = F.hole[f]
+        colored = F.colored[fn] = F.colored[f]
+        if colored:
+            F.arrays["color"][fn] = F.arrays["color"][f]
         c1p, c2p = C.alloc_pair()
         ec0, ec1, vert = E.c0, E.c1, C.vertex
         # the copies take over the old edges of corner1 and corner2
@@ -562,6 +627,8 @@ class Mesh:
         f1, f2 = face[s1], face[s2]
         # the merged face's boundary runs along the hole's loop: the union is open
         F.hole[f1] |= F.hole[f2]
+        if F.colored[f2] and not F.colored[f1]:
+            self._take_color(f1, f2)
         a, b = nxt[s1], nxt[s2]
         # a point-sphere side is never copied; a one-corner face with a loop is
         lone1, lone2 = C.edge[s1] < 0, C.edge[s2] < 0
@@ -638,6 +705,8 @@ class Mesh:
             face[s2] = f1
             self._drop_after_sides(s1, s2)
             F.hole[f1] |= F.hole[f2]  # a face merged into a hole opens: the union is a hole
+            if F.colored[f2] and not F.colored[f1]:
+                self._take_color(f1, f2)
             F.release(f2)
             result = [fidv[f1]]
         # E.release(es), inlined for the interactive hot path
@@ -677,6 +746,8 @@ class Mesh:
             vc[vert[s2]] = b if empty1 else a
         F.corner[f1] = head
         F.hole[f1] |= F.hole[f2]
+        if F.colored[f2] and not F.colored[f1]:
+            self._take_color(f1, f2)
         C.release(s1)
         C.release(s2)
         F.release(f2)
@@ -767,6 +838,9 @@ class Mesh:
         a, b = nxt[s1], nxt[s2]
         fn = F.alloc()
         F.hole[fn] = F.hole[f]
+        colored = F.colored[fn] = F.colored[f]
+        if colored:
+            F.arrays["color"][fn] = F.arrays["color"][f]
         head = F.corner[f]
         head_moves = head in (s2, b)
         x = a
@@ -789,6 +863,13 @@ class Mesh:
                 self._make_point_sphere(side, fs)
             result.append(fs)
         return result[::-1]
+
+    def _take_color(self, face_slot: int, source_slot: int) -> None:
+        """Give face ``face_slot`` the colour of ``source_slot`` (a merge whose
+        surviving face has none keeps the other face's)."""
+        F = self._f
+        F.colored[face_slot] = 1
+        F.arrays["color"][face_slot] = F.arrays["color"][source_slot]
 
     def _remove_lone_corner(self, s: int, face_slot: int) -> None:
         """Remove corner ``s``, its now isolated vertex and, if given, its face."""
@@ -1044,6 +1125,7 @@ class Mesh:
             C.vertex[c] = verts[i]
         self._f.corner[face_slot] = corners[0]
         self._f.hole[face_slot] = 0
+        self._f.colored[face_slot] = 0
 
     # ------------------------------------------------------------ whole mesh
 
@@ -1062,7 +1144,8 @@ class Mesh:
 
         Each argument maps every field of its kind's spec (:data:`CORNER_SPEC`,
         :data:`EDGE_SPEC`, :data:`FACE_SPEC`, :data:`VERTEX_SPEC`) to an array with
-        one row per element; every reference (a corner's ``next``, ``face``, ...,
+        one row per element (a face's ``colored`` and ``color`` may be left out:
+        no colour); every reference (a corner's ``next``, ``face``, ...,
         an edge's ``c0``/``c1``, a face's or a vertex's ``corner``) is a row index
         of the table it refers to. Element ``i`` of a kind gets the id
         ``first_ids[k] + i``, in the order vertex, edge, face, corner, or, where
