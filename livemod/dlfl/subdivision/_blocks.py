@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._layout import Faces, Topology
+from ._layout import NO_ORIGIN, Faces, Topology
 
 
 def split_quads(t: Topology, corners: np.ndarray, edge_point: np.ndarray,
@@ -23,7 +23,7 @@ def split_quads(t: Topology, corners: np.ndarray, edge_point: np.ndarray,
     verts = np.stack([t.cv[c], edge_point[t.edge[c]], face_point[t.face[c]],
                       edge_point[t.edge[p]]], axis=1)
     labels = np.stack([c, t.nc + c, t.nc + p, t.mate[p]], axis=1)
-    faces.add(verts, labels, t.hole[t.face[c]])
+    faces.add(verts, labels, t.origin[t.face[c]])
 
 
 def fan_triangles(t: Topology, corners: np.ndarray, face_point: np.ndarray,
@@ -36,7 +36,7 @@ def fan_triangles(t: Topology, corners: np.ndarray, face_point: np.ndarray,
     c, n = corners, t.nxt[corners]
     verts = np.stack([t.cv[c], t.cv[n], face_point[t.face[c]]], axis=1)
     labels = np.stack([t.edge[c], t.ne + n, t.ne + c], axis=1)
-    faces.add(verts, labels, t.hole[t.face[c]])
+    faces.add(verts, labels, t.origin[t.face[c]])
 
 
 def corner_triangles(t: Topology, edge_base: int, faces: Faces) -> None:
@@ -47,12 +47,12 @@ def corner_triangles(t: Topology, edge_base: int, faces: Faces) -> None:
     c, p = np.arange(t.nc), t.prv
     verts = np.stack([t.cv, edge_base + t.edge, edge_base + t.edge[p]], axis=1)
     labels = np.stack([c, t.nc + c, t.mate[p]], axis=1)
-    faces.add(verts, labels, t.hole[t.face])
+    faces.add(verts, labels, t.origin[t.face])
 
 
 def inner_polygons(t: Topology, edge_base: int, faces: Faces) -> None:
     """Per old face, the polygon of its edge points (label of a side: ``C + next``)."""
-    faces.add(edge_base + t.edge, t.nc + t.nxt, t.hole, t.sizes)
+    faces.add(edge_base + t.edge, t.nc + t.nxt, t.origin, t.sizes)
 
 
 def face_rings(t: Topology, base: int, label_base: int, faces: Faces) -> None:
@@ -61,7 +61,7 @@ def face_rings(t: Topology, base: int, label_base: int, faces: Faces) -> None:
     The side from corner ``c``'s point to the next one has label ``label_base + c``.
     """
     corners = np.arange(t.nc)
-    faces.add(base + corners, label_base + corners, t.hole, t.sizes)
+    faces.add(base + corners, label_base + corners, t.origin, t.sizes)
 
 
 def vertex_rings(t: Topology, point_of: np.ndarray, label_of: np.ndarray, faces: Faces,
@@ -76,7 +76,7 @@ def vertex_rings(t: Topology, point_of: np.ndarray, label_of: np.ndarray, faces:
     ring_sizes = np.diff(offsets)
     keep = np.repeat(ring_sizes >= min_size, ring_sizes)
     kept = order[keep]
-    faces.add(point_of[kept], label_of[kept], np.False_,
+    faces.add(point_of[kept], label_of[kept], NO_ORIGIN,
               ring_sizes[ring_sizes >= min_size])
 
 
@@ -114,6 +114,6 @@ def doo_sabin_faces(t: Topology, faces: Faces) -> None:
     drop[:, 0], drop[:, 2] = na == b, nb == a
     labels[drop[:, 0], 3] = labels[drop[:, 0], 0]
     labels[drop[:, 2], 1] = labels[drop[:, 2], 2]
-    faces.add(verts[~drop], labels[~drop], np.False_, 4 - drop.sum(axis=1))
+    faces.add(verts[~drop], labels[~drop], NO_ORIGIN, 4 - drop.sum(axis=1))
     corners = np.arange(t.nc)
     vertex_rings(t, corners, t.nc + corners, faces, min_size=3)

@@ -12,6 +12,12 @@ Every scheme follows one pattern:
    point-spheres, builds the mesh in one step with ``from_corner_arrays`` and
    swaps it in. Ids are never reused: every element of the result gets a fresh id.
 
+Each new face records its *origin*: the input face it is made inside (a child
+of that face, its inset, its shrunk copy), or :data:`NO_ORIGIN` for a face made
+around an old vertex or edge, which has no single source. The build gives every
+face its origin's hole flag and colour (:class:`FaceSource`), so one rule carries
+both through every scheme, and through every step of a composite.
+
 A scheme checks the face budget (:mod:`livemod.dlfl.budget`) from the mesh's
 counts before it allocates (:func:`budgeted_topology`).
 """
@@ -34,6 +40,43 @@ from ..build import from_corner_arrays
 from ..errors import InvalidArgumentError
 from ..mesh import Mesh
 from ..normals import ring_normals
+
+# the origin of a face made around an old vertex or edge: no hole, no colour
+NO_ORIGIN = -1
+
+
+def no_origin(count: int) -> np.ndarray:
+    """``(count,)`` int32 :data:`NO_ORIGIN`: faces without a source face."""
+    return np.full(count, NO_ORIGIN, dtype=np.int32)
+
+
+class FaceSource(NamedTuple):
+    """What a new face takes from its origin, an input face of the scheme.
+
+    Attributes:
+        hole: ``(R,)`` bool hole flags of the input faces.
+        colors: ``(R, 3)`` float32 colours (NaN rows: none), or None.
+    """
+
+    hole: np.ndarray
+    colors: np.ndarray | None
+
+    def of(self, origin: np.ndarray) -> tuple[np.ndarray, np.ndarray | None]:
+        """The ``(F,)`` hole flags and ``(F, 3)`` colours (or None) of faces whose
+        ``(F,)`` int origins are ``origin`` (:data:`NO_ORIGIN`: no hole, no colour)."""
+        has = origin >= 0
+        every = bool(has.all())
+        safe = origin if every else np.where(has, origin, 0)
+        if len(self.hole) == 0:
+            return np.zeros(len(origin), dtype=bool), None
+        hole = self.hole[safe] if every else self.hole[safe] & has
+        if self.colors is None:
+            return hole, None
+        colors = rows(self.colors, safe)
+        if not every:
+            colors[~has] = np.nan
+        return hole, colors
+
 
 # ``size(counts)``: a scheme's result ``(faces, corners)`` from the counts of its
 # input without point-spheres (``nv``, ``ne``, ``nf``, ``nc`` of a Counts or a
@@ -80,9 +123,11 @@ class Topology:
         pos: ``(V, 3)`` positions. cv: ``(C,)`` vertex of each corner.
         mate: ``(C,)`` the corner on the other side of the corner's edge (at the
             other end). offsets: ``(F + 1,)`` face starts (corners are laid out
-            face after face). hole: ``(F,)`` hole flags.
+            face after face). origin: ``(F,)`` int32 the input face each face
+            comes from, :data:`NO_ORIGIN` for none (see the module docstring).
         spheres: ``(S, 3)`` positions of the point-spheres set aside.
         face_ids: ``(F,)`` id of each (kept) face.
+        source: the hole flags and colours of the input faces ``origin`` names.
 
     Derived on first use and kept (a step reads only what it needs; the middle
     steps of a composite never need some of them): ``nxt``, ``prv`` ``(C,)``
@@ -92,10 +137,11 @@ class Topology:
     """
 
     def __init__(self, pos: np.ndarray, cv: np.ndarray, mate: np.ndarray, offsets: np.ndarray,
-                 hole: np.ndarray, spheres: np.ndarray, face_ids: np.ndarray,
-                 edge_corners: np.ndarray | None = None) -> None:
+                 origin: np.ndarray, spheres: np.ndarray, face_ids: np.ndarray,
+                 source: FaceSource, edge_corners: np.ndarray | None = None) -> None:
         self.pos, self.cv, self.mate, self.offsets = pos, cv, mate, offsets
-        self.hole, self.spheres, self.face_ids = hole, spheres, face_ids
+        self.origin, self.spheres, self.face_ids = origin, spheres, face_ids
+        self.source = source
         if edge_corners is not None:
             self.__dict__["edge_corners"] = edge_corners
         self._cache: dict[str, np.ndarray] = {}
@@ -302,6 +348,8 @@ def read_topology(mesh: Mesh) -> Topology:
     positions, hole, edge_corners = a.positions, a.face_hole, a.edge_corners
     spheres = np.zeros((0, 3))
     face_ids = a.face_ids
+    source = FaceSource(hole, a.face_colors)
+    origin = np.arange(len(hole), dtype=np.int32)
     sphere_corner = mate < 0
     if sphere_corner.any():
         keep_face = np.ones(len(hole), dtype=bool)
@@ -315,19 +363,21 @@ def read_topology(mesh: Mesh) -> Topology:
         offsets = np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64)
         mate = cmap[mate[~sphere_corner]]
         cv = vmap[cv[~sphere_corner]]
-        positions, hole = positions[keep_vertex], hole[keep_face]
+        positions, origin = positions[keep_vertex], origin[keep_face]
         face_ids = face_ids[keep_face]
         edge_corners = cmap[edge_corners]
-    return Topology(positions, cv, mate, offsets, hole, spheres, face_ids, edge_corners)
+    return Topology(positions, cv, mate, offsets, origin, spheres, face_ids, source,
+                    edge_corners)
 
 
 def topology_of(positions: np.ndarray, cv: np.ndarray, mate: np.ndarray, sizes: np.ndarray,
-                hole: np.ndarray, spheres: np.ndarray) -> Topology:
-    """The :class:`Topology` of a scheme's output arrays (for repeated levels)."""
+                origin: np.ndarray, t: Topology) -> Topology:
+    """The :class:`Topology` of a scheme's output arrays (for repeated levels);
+    ``origin`` names faces of ``t``'s input, whose point-spheres and source it keeps."""
     offsets = np.zeros(len(sizes) + 1, dtype=np.int64)
     np.cumsum(sizes, out=offsets[1:])
-    return Topology(positions, cv, mate, offsets, hole, spheres,
-                    np.zeros(len(sizes), dtype=np.int64))
+    return Topology(positions, cv, mate, offsets, origin, t.spheres,
+                    np.zeros(len(sizes), dtype=np.int64), t.source)
 
 
 def check_levels(levels: object) -> int:
@@ -379,25 +429,26 @@ class Faces:
 
     A block is either ``k`` faces of ``m`` corners (``(k, m)`` arrays) or faces of
     varying size (flat arrays plus sizes). Each corner holds its new vertex and the
-    label of its outgoing edge.
+    label of its outgoing edge; each face its origin (see the module docstring).
     """
 
     def __init__(self) -> None:
         self.verts: list[np.ndarray] = []
         self.labels: list[np.ndarray] = []
         self.sizes: list[np.ndarray] = []
-        self.holes: list[np.ndarray] = []
+        self.origins: list[np.ndarray] = []
 
-    def add(self, verts: np.ndarray, labels: np.ndarray, hole: np.ndarray | np.bool_,
+    def add(self, verts: np.ndarray, labels: np.ndarray, origin: np.ndarray | int,
             sizes: np.ndarray | None = None) -> None:
-        """Add faces: ``(k, m)`` ``verts``/``labels`` or flat ones with ``sizes``."""
+        """Add faces: ``(k, m)`` ``verts``/``labels`` or flat ones with ``sizes``;
+        ``origin``: ``(k,)`` their origins, or one for all (:data:`NO_ORIGIN`)."""
         if sizes is None:
             k, m = verts.shape
             sizes = np.full(k, m, dtype=np.int64)
         self.verts.append(np.asarray(verts, dtype=np.int64).ravel())
         self.labels.append(np.asarray(labels, dtype=np.int64).ravel())
         self.sizes.append(np.asarray(sizes, dtype=np.int64))
-        self.holes.append(np.broadcast_to(np.asarray(hole, dtype=bool), sizes.shape))
+        self.origins.append(np.broadcast_to(np.asarray(origin, dtype=np.int32), sizes.shape))
 
 
 def pair_by_label(labels: np.ndarray, num_labels: int) -> np.ndarray:
@@ -425,20 +476,22 @@ def build(mesh: Mesh, t: Topology, positions: np.ndarray, faces: Faces) -> None:
     num_labels = int(labels.max()) + 1 if len(labels) else 0
     mate = pair_by_label(labels, num_labels)
     build_paired(mesh, t, positions, cv, mate, np.concatenate(faces.sizes),
-                 np.concatenate(faces.holes))
+                 np.concatenate(faces.origins))
 
 
 def build_paired(mesh: Mesh, t: Topology, positions: np.ndarray, cv: np.ndarray,
-                 mate: np.ndarray, sizes: np.ndarray, hole: np.ndarray) -> None:
+                 mate: np.ndarray, sizes: np.ndarray, origin: np.ndarray) -> None:
     """Append the point-spheres, build the new mesh in one step and swap it in.
 
     Args:
         cv, mate: ``(C',)`` new vertex and mate of every new corner, face by face.
-        sizes, hole: ``(F',)`` size and hole flag of every new face.
+        sizes, origin: ``(F',)`` size and origin of every new face; the face takes
+            its origin's hole flag and colour (:class:`FaceSource`).
     """
     if isinstance(mesh, Pending):
-        mesh.topology = topology_of(positions, cv, mate, sizes, hole, t.spheres)
+        mesh.topology = topology_of(positions, cv, mate, sizes, origin, t)
         return
+    hole, colors = t.source.of(origin)
     s = len(t.spheres)
     if s:
         base_v = len(positions)
@@ -447,9 +500,12 @@ def build_paired(mesh: Mesh, t: Topology, positions: np.ndarray, cv: np.ndarray,
         mate = np.concatenate([mate, np.full(s, -1, dtype=mate.dtype)])
         sizes = np.concatenate([sizes, np.ones(s, dtype=np.int64)])
         hole = np.concatenate([hole, np.zeros(s, dtype=bool)])
+        if colors is not None:
+            colors = np.concatenate([colors, np.full((s, 3), np.nan, np.float32)])
     offsets = np.zeros(len(sizes) + 1, dtype=np.int64)
     np.cumsum(sizes, out=offsets[1:])
-    new = from_corner_arrays(positions, offsets, cv, mate, hole, first_ids=mesh.next_ids())
+    new = from_corner_arrays(positions, offsets, cv, mate, hole, face_colors=colors,
+                             first_ids=mesh.next_ids())
     mesh.replace_with(new)
 
 

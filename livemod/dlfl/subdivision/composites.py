@@ -25,6 +25,7 @@ from ._layout import (
     build_paired,
     check_number,
     cos_weights,
+    no_origin,
     read_topology,
     ring_sums,
     ring_weighted,
@@ -64,7 +65,7 @@ def twelve_six_four(mesh: Mesh, *, scale: float = 0.7, max_faces: int | None = N
         positions = _points_1264(t, s)
     verts, mates = _triangles_1264(t)
     build_paired(mesh, t, positions, verts, mates, np.full(2 * t.nc, 3, dtype=np.int64),
-                 np.zeros(2 * t.nc, dtype=bool))
+                 no_origin(2 * t.nc))
 
 
 def _points_1264(t: Topology, s: float) -> np.ndarray:
@@ -160,7 +161,7 @@ def _dual_pentagon_layout(t: Topology) -> tuple[np.ndarray, np.ndarray, np.ndarr
     Points: vertices, then corner c's at V + c. Layout: face polygons (corner c
     at c), edge quads (edge k at C + 4k: next a, a, next b, b for its sides a, b),
     corner triangles (at 3C + 3c: vertex, c, vprev(c)).
-    Returns the new corners' vertices and mates, the face sizes and hole flags.
+    Returns the new corners' vertices and mates, the face sizes and origins.
     """
     nc, ne, v, c = t.nc, t.ne, t.nv, np.arange(t.nc)
     a, b = t.edge_corners[:, 0], t.edge_corners[:, 1]
@@ -178,7 +179,7 @@ def _dual_pentagon_layout(t: Topology) -> tuple[np.ndarray, np.ndarray, np.ndarr
                             tri_mate.ravel()])
     sizes = np.concatenate([t.sizes, np.full(ne, 4, dtype=np.int64),
                             np.full(nc, 3, dtype=np.int64)])
-    return verts, mates, sizes, np.zeros(t.nf + ne + nc, dtype=bool)
+    return verts, mates, sizes, no_origin(t.nf + ne + nc)
 
 
 def dual_loop(mesh: Mesh, *, max_faces: int | None = None) -> None:
@@ -205,7 +206,7 @@ def dual_loop(mesh: Mesh, *, max_faces: int | None = None) -> None:
     centre = vertex_mean(t, edge_points)
     verts, mates, sizes, _ = root4_layout(t)
     build_paired(mesh, t, np.concatenate([centre, corner_points]), verts, mates, sizes,
-                 np.zeros(len(sizes), dtype=bool))
+                 no_origin(len(sizes)))
 
 
 def _loop_vertices_on_dual(t: Topology, cen: np.ndarray) -> np.ndarray:
@@ -269,7 +270,7 @@ def root3(mesh: Mesh, *, max_faces: int | None = None) -> None:
     positions = np.concatenate([_vertex_centres(t, cen), around])
     verts, mates = _root3_triangles(t)
     build_paired(mesh, t, positions, verts, mates, np.full(t.nc, 3, dtype=np.int64),
-                 np.zeros(t.nc, dtype=bool))
+                 no_origin(t.nc))
 
 
 def _root3_triangles(t: Topology) -> tuple[np.ndarray, np.ndarray]:
@@ -314,7 +315,7 @@ def six_preserving_loop_style(mesh: Mesh, *, weight: float = 0.0, twist: float =
         hexagons = _hexagon_centres(t, moved, inner)
     positions = np.concatenate([_vertex_centres(t, cen), hexagons])
     verts, mates, sizes = corner_cut_layout(t)
-    build_paired(mesh, t, positions, verts, mates, sizes, np.zeros(len(sizes), dtype=bool))
+    build_paired(mesh, t, positions, verts, mates, sizes, no_origin(len(sizes)))
 
 
 def _hexagon_centres(t: Topology, moved: np.ndarray, inner: np.ndarray) -> np.ndarray:
@@ -379,7 +380,7 @@ def _dual_pentagonalization_layout(t: Topology) -> tuple[np.ndarray, np.ndarray,
     Layout: face polygons (corner c at c), triangles (at C + 3c: c, prev c,
     vprev(c)), vertex polygons (ring position q at 4C + q, in
     :meth:`Topology.vertex_rings` order). Returns the new corners' vertices and
-    mates, the face sizes and hole flags.
+    mates, the face sizes and origin flags.
     """
     nc, c, vprev = t.nc, np.arange(t.nc), t.vprev
     order, offsets = t.vertex_rings()
@@ -389,4 +390,4 @@ def _dual_pentagonalization_layout(t: Topology) -> tuple[np.ndarray, np.ndarray,
     tri_mate = np.stack([t.prv, nc + 3 * t.nxt[vprev] + 1, position], axis=1)
     mates = np.concatenate([nc + 3 * t.nxt, tri_mate.ravel(), nc + 3 * order + 2])
     sizes = np.concatenate([t.sizes, np.full(nc, 3, dtype=np.int64), np.diff(offsets)])
-    return verts, mates, sizes, np.zeros(len(sizes), dtype=bool)
+    return verts, mates, sizes, no_origin(len(sizes))

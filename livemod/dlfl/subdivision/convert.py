@@ -27,6 +27,7 @@ from ._blocks import (
     vertex_rings,
 )
 from ._layout import (
+    NO_ORIGIN,
     Faces,
     Pending,
     Topology,
@@ -36,6 +37,7 @@ from ._layout import (
     check_number,
     cos_weights,
     face_weighted,
+    no_origin,
     read_topology,
     rows,
     vertex_mean,
@@ -55,7 +57,7 @@ def subdivide_all_edges(mesh: Mesh, *, max_faces: int | None = None) -> None:
     verts = np.stack([t.cv, t.nv + t.edge], axis=1)
     labels = np.stack([np.arange(t.nc), t.mate], axis=1)
     faces = Faces()
-    faces.add(verts, labels, t.hole, 2 * t.sizes)
+    faces.add(verts, labels, t.origin, 2 * t.sizes)
     build(mesh, t, positions, faces)
 
 
@@ -150,7 +152,7 @@ def _keep_faces(t: Topology, keep: np.ndarray, faces: Faces,
     verts[slots[is_split] + 1] = point[is_split]
     labels[slots[is_split] + 1] = t.mate[corners[is_split]]
     sizes = np.bincount(t.face[corners], weights=1 + extra, minlength=t.nf)[keep]
-    faces.add(verts, labels, t.hole[keep], sizes.astype(np.int64))
+    faces.add(verts, labels, t.origin[keep], sizes.astype(np.int64))
 
 
 def _fan_split(mesh: Mesh, t: Topology, selected: np.ndarray) -> None:
@@ -166,7 +168,7 @@ def _fan_split(mesh: Mesh, t: Topology, selected: np.ndarray) -> None:
 def _keep_faces_edges(t: Topology, keep: np.ndarray, faces: Faces) -> None:
     """Unchanged faces whose sides carry the old edge labels ``[0, E)``."""
     corners = np.flatnonzero(np.repeat(keep, t.sizes))
-    faces.add(t.cv[corners], t.edge[corners], t.hole[keep], t.sizes[keep])
+    faces.add(t.cv[corners], t.edge[corners], t.origin[keep], t.sizes[keep])
 
 
 def linear_vertex(mesh: Mesh, *, usequads: bool = True, max_faces: int | None = None) -> None:
@@ -236,7 +238,7 @@ def vertex_cut(mesh: Mesh, *, offset: float = 0.25, max_faces: int | None = None
     verts = np.stack([corners, t.mate], axis=1)
     labels = np.stack([t.edge, t.ne + t.nxt], axis=1)
     faces = Faces()
-    faces.add(verts, labels, t.hole, 2 * t.sizes)
+    faces.add(verts, labels, t.origin, 2 * t.sizes)
     vertex_rings(t, corners, t.ne + corners, faces)
     build(mesh, t, points, faces)
 
@@ -259,7 +261,7 @@ def honeycomb(mesh: Mesh, *, max_faces: int | None = None) -> None:
     prev = t.prv[order]
     verts = np.stack([order, prev], axis=1)
     labels = np.stack([prev, t.nc + t.edge[prev]], axis=1)
-    faces.add(verts, labels, np.False_, 2 * np.diff(offsets))
+    faces.add(verts, labels, NO_ORIGIN, 2 * np.diff(offsets))
     build(mesh, t, points, faces)
 
 
@@ -295,7 +297,7 @@ def root4_layout(t: Topology) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.nd
     Points: vertices, then corner c's at V + c. Layout: face polygons (corner c
     at c), edge hexagons (edge k at C + 6k: end of a, next a, a, start of a,
     next b, b, for its sides a, b). Also the layout of the GUI's dual-loop.
-    Returns the new corners' vertices and mates, the face sizes and hole flags.
+    Returns the new corners' vertices and mates, the face sizes and origins.
     """
     nc, v, c = t.nc, t.nv, np.arange(t.nc)
     a, b = t.edge_corners[:, 0], t.edge_corners[:, 1]
@@ -307,9 +309,9 @@ def root4_layout(t: Topology) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.nd
     verts = np.stack([t.cv[na], v + na, v + a, t.cv[a], v + nb, v + b], axis=1)
     mates = np.stack([leaving[na], a, arriving[a], leaving[nb], b, arriving[b]], axis=1)
     sizes = np.concatenate([t.sizes, np.full(t.ne, 6, dtype=np.int64)])
-    hole = np.concatenate([t.hole, np.zeros(t.ne, dtype=bool)])
+    origin = np.concatenate([t.origin, no_origin(t.ne)])
     return (np.concatenate([v + c, verts.ravel()]),
-            np.concatenate([hexagon + np.where(is_a, 1, 4), mates.ravel()]), sizes, hole)
+            np.concatenate([hexagon + np.where(is_a, 1, 4), mates.ravel()]), sizes, origin)
 
 
 def pentagon_preserve(mesh: Mesh, *, scale: float = 0.75,
@@ -343,7 +345,7 @@ def _pentagon_preserve_layout(t: Topology) -> tuple[np.ndarray, np.ndarray, np.n
     Points: vertices, edge midpoints at V + e, inner copies at V + E + c. Layout:
     inner faces (corner c at c), then per corner c the pentagon at C + 5c:
     vertex, midpoint(edge c), inner(c), inner(prev c), midpoint(edge prev c).
-    Returns the new corners' vertices and mates, the face sizes and hole flags.
+    Returns the new corners' vertices and mates, the face sizes and origins.
     """
     base, nc, prev, nxt, mate = t.nv + t.ne, t.nc, t.prv, t.nxt, t.mate
     c = np.arange(nc)
@@ -354,8 +356,8 @@ def _pentagon_preserve_layout(t: Topology) -> tuple[np.ndarray, np.ndarray, np.n
     pent[:, 2] = prev  # the inner face's side from inner(prev c) to inner(c)
     mates = np.concatenate([nc + 5 * nxt + 2, pent.ravel()])
     sizes = np.concatenate([t.sizes, np.full(nc, 5, dtype=np.int64)])
-    hole = np.concatenate([t.hole, t.hole[t.face]])
-    return np.concatenate([base + c, verts.ravel()]), mates, sizes, hole
+    origin = np.concatenate([t.origin, t.origin[t.face]])
+    return np.concatenate([base + c, verts.ravel()]), mates, sizes, origin
 
 
 def pentagon(mesh: Mesh, *, offset: float = 0.0, max_faces: int | None = None) -> None:
@@ -388,7 +390,7 @@ def pentagon(mesh: Mesh, *, offset: float = 0.0, max_faces: int | None = None) -
     mates = 5 * np.stack([prev, nxt[mate[prev]], mate[prev], nxt[mate], nxt], axis=1)
     mates += np.array([4, 1, 3, 2, 0])
     build_paired(mesh, t, positions, verts.ravel(), mates.ravel(),
-                 np.full(nc, 5, dtype=np.int64), t.hole[t.face])
+                 np.full(nc, 5, dtype=np.int64), t.origin[t.face])
 
 
 def cubic_pentagonalization(mesh: Mesh, *, offset: float = 0.0,
@@ -407,7 +409,7 @@ def cubic_pentagonalization(mesh: Mesh, *, offset: float = 0.0,
     pentagon(work, offset=offset, max_faces=max_faces)
     x = work.topology
     moved = vertex_mean(x, rows(x.centroids(), x.face))
-    build_paired(mesh, x, moved, x.cv, x.mate, x.sizes, np.zeros(x.nf, dtype=bool))
+    build_paired(mesh, x, moved, x.cv, x.mate, x.sizes, no_origin(x.nf))
 
 
 def dual_1264(mesh: Mesh, *, scale: float = 0.7, max_faces: int | None = None) -> None:
@@ -439,7 +441,7 @@ def _dual_1264_layout(t: Topology) -> tuple[np.ndarray, np.ndarray, np.ndarray, 
     Points: first(c) = c, second(c) = C + c. Layout: 2n-gons (2c, 2c + 1: first(c),
     second(c)), edge quads (2C + 4k: second(a), first(a), second(b), first(b)),
     vertex 2k-gons (2C + 4E + 2q, + 1: first(r), second(prev r) for ring corner r).
-    Returns the new corners' vertices and mates, the face sizes and hole flags.
+    Returns the new corners' vertices and mates, the face sizes and origins.
     """
     nc, c = t.nc, np.arange(t.nc)
     a, b = t.edge_corners[:, 0], t.edge_corners[:, 1]
@@ -460,8 +462,8 @@ def _dual_1264_layout(t: Topology) -> tuple[np.ndarray, np.ndarray, np.ndarray, 
                             np.stack([order, nc + prev], axis=1).ravel()])
     mates = np.concatenate([face_mate.ravel(), quad_mate.ravel(), ring_mate.ravel()])
     sizes = np.concatenate([2 * t.sizes, np.full(t.ne, 4, dtype=np.int64), 2 * np.diff(offsets)])
-    hole = np.concatenate([t.hole, np.zeros(t.ne + len(offsets) - 1, dtype=bool)])
-    return verts, mates, sizes, hole
+    origin = np.concatenate([t.origin, no_origin(t.ne + len(offsets) - 1)])
+    return verts, mates, sizes, origin
 
 
 def _stellate_centres(t: Topology, offset: float) -> np.ndarray:
@@ -483,7 +485,7 @@ def stellate(mesh: Mesh, *, max_faces: int | None = None) -> None:
     verts = np.stack([t.cv[na], v + t.face[a], t.cv[a], v + t.face[b]], axis=1)
     labels = np.stack([na, a, nb, b], axis=1)
     faces = Faces()
-    faces.add(verts, labels, np.zeros(len(a), dtype=bool))
+    faces.add(verts, labels, no_origin(len(a)))
     build(mesh, t, np.concatenate([t.pos, t.centroids()]), faces)
 
 
@@ -501,9 +503,9 @@ def sqrt3(mesh: Mesh, *, max_faces: int | None = None) -> None:
     fa, fb, diagonal = v + t.face[a], v + t.face[b], t.nc + np.arange(t.ne)
     faces = Faces()
     faces.add(np.stack([t.cv[na], fa, fb], axis=1), np.stack([na, diagonal, b], axis=1),
-              np.zeros(len(a), dtype=bool))
+              no_origin(len(a)))
     faces.add(np.stack([fa, t.cv[a], fb], axis=1), np.stack([a, nb, diagonal], axis=1),
-              np.zeros(len(a), dtype=bool))
+              no_origin(len(a)))
     build(mesh, t, np.concatenate([t.pos, t.centroids()]), faces)
 
 
@@ -527,12 +529,12 @@ def star(mesh: Mesh, *, offset: float = 0.0, max_faces: int | None = None) -> No
     e, nc, c, nxt = t.ne, t.nc, np.arange(t.nc), t.nxt
     centre, mid = t.nv + t.face, t.nv + t.nf + c
     k0, k1, k2 = e + nc + c, e + 2 * nc + c, e + 3 * nc + c
-    hole = t.hole[t.face]
+    origin = t.origin[t.face]
     faces = Faces()
-    faces.add(np.stack([t.cv, t.cv[nxt], mid], axis=1), np.stack([t.edge, k1, k0], axis=1), hole)
+    faces.add(np.stack([t.cv, t.cv[nxt], mid], axis=1), np.stack([t.edge, k1, k0], axis=1), origin)
     faces.add(np.stack([t.cv[nxt], centre, mid], axis=1), np.stack([e + nxt, k2, k1], axis=1),
-              hole)
-    faces.add(np.stack([centre, t.cv, mid], axis=1), np.stack([e + c, k0, k2], axis=1), hole)
+              origin)
+    faces.add(np.stack([centre, t.cv, mid], axis=1), np.stack([e + c, k0, k2], axis=1), origin)
     build(mesh, t, positions, faces)
 
 
@@ -564,9 +566,9 @@ def double_stellate(mesh: Mesh, *, offset: float = 0.0, curve: float = 0.0,
     na = t.nxt[a]
     faces = Faces()
     faces.add(np.stack([t.cv[na], base + a, t.cv[a], base + b], axis=1),
-              np.stack([nc + a, a, nc + b, b], axis=1), np.zeros(len(a), dtype=bool))
+              np.stack([nc + a, a, nc + b, b], axis=1), no_origin(len(a)))
     faces.add(np.stack([t.cv, base + c, t.nv + t.face, base + prev], axis=1),
-              np.stack([c, 2 * nc + c, 2 * nc + prev, nc + prev], axis=1), t.hole[t.face])
+              np.stack([c, 2 * nc + c, 2 * nc + prev, nc + prev], axis=1), t.origin[t.face])
     build(mesh, t, positions, faces)
 
 
@@ -596,7 +598,7 @@ def fractal(mesh: Mesh, *, offset: float = 1.0, max_faces: int | None = None) ->
     nc, nxt = t.nc, t.nxt
     verts = np.stack([t.nv + t.edge, t.nv + t.edge[nxt], t.nv + t.ne + t.face], axis=1)
     labels = np.stack([nc + nxt, 2 * nc + nxt, 2 * nc + np.arange(nc)], axis=1)
-    faces.add(verts, labels, t.hole[t.face])
+    faces.add(verts, labels, t.origin[t.face])
     build(mesh, t, positions, faces)
 
 
@@ -644,4 +646,4 @@ def dual(mesh: Mesh, *, accurate: bool = False, max_faces: int | None = None) ->
     after[offsets[1:] - 1] = offsets[:-1]
     mates = position[t.nxt[order[after]]]
     build_paired(mesh, t, t.centroids(), t.face[order], mates, np.diff(offsets),
-                 np.zeros(len(offsets) - 1, dtype=bool))
+                 no_origin(len(offsets) - 1))

@@ -22,6 +22,7 @@ from ._layout import (
     build_paired,
     check_number,
     cos_weights,
+    no_origin,
     read_topology,
     ring_sums,
     ring_weighted,
@@ -70,7 +71,7 @@ def checker(mesh: Mesh, *, thickness: float = 0.33, max_faces: int | None = None
         inset = p + inset_offsets(t.pos, t.cv, t.offsets, thickness)
         near = p + thickness * (next_p - p)
     positions = np.concatenate([t.pos, near, inset])
-    _checker_faces(mesh, t, positions, t.hole)
+    _checker_faces(mesh, t, positions, t.origin)
 
 
 def dual_checkerboard(mesh: Mesh, *, thickness: float = 0.33,
@@ -99,7 +100,7 @@ def dual_checkerboard(mesh: Mesh, *, thickness: float = 0.33,
         at_near = (rows(near, side) + rows(near, nxt) + inset + rows(inset, side)) / 4.0
         at_inset = (rows(t.centroids(), t.face) + near + inset + rows(near, nxt)) / 4.0
     positions = np.concatenate([at_vertex, at_near, at_inset])
-    _checker_faces(mesh, t, positions, np.zeros(t.nf, dtype=bool))
+    _checker_faces(mesh, t, positions, no_origin(t.nf))
 
 
 def _checker_on_dual(t: Topology, thickness: float) -> tuple[np.ndarray, np.ndarray]:
@@ -119,12 +120,12 @@ def _checker_on_dual(t: Topology, thickness: float) -> tuple[np.ndarray, np.ndar
         return p + move, p + thickness * (next_p - p)
 
 
-def _checker_faces(mesh: Mesh, t: Topology, positions: np.ndarray, hole: np.ndarray) -> None:
+def _checker_faces(mesh: Mesh, t: Topology, positions: np.ndarray, origin: np.ndarray) -> None:
     """Inset faces (corner c at c), side quads (at C + 4c: near(c), near(mate c),
     inset(next c), inset(c)) and corner quads (at 5C + 4c: vertex, near(c),
     inset(c), near(mate(prev c)))), their mates computed directly.
 
-    ``hole`` ``(F,)``: the old faces' flags, given to their inset faces and side quads.
+    ``origin`` ``(F,)``: the old faces' origins, given to their inset faces and side quads.
     """
     v, nc, c = t.nv, t.nc, np.arange(t.nc)
     nxt, prv, mate = t.nxt, t.prv, t.mate
@@ -137,8 +138,8 @@ def _checker_faces(mesh: Mesh, t: Topology, positions: np.ndarray, hole: np.ndar
     verts = np.concatenate([inset, side.ravel(), corner.ravel()])
     mates = np.concatenate([nc + 4 * c + 2, side_mate.ravel(), corner_mate.ravel()])
     sizes = np.concatenate([t.sizes, np.full(2 * nc, 4, dtype=np.int64)])
-    holes = np.concatenate([hole, hole[t.face], np.zeros(nc, dtype=bool)])
-    build_paired(mesh, t, positions, verts, mates, sizes, holes)
+    origins = np.concatenate([origin, origin[t.face], no_origin(nc)])
+    build_paired(mesh, t, positions, verts, mates, sizes, origins)
 
 
 def _split_face_values(t: Topology) -> tuple[np.ndarray, np.ndarray]:
@@ -206,10 +207,10 @@ def _bc_new_faces(mesh: Mesh, t: Topology, positions: np.ndarray) -> None:
     # labels: ring sides vertex->mid c, mid->vertex nc + c, spokes 2nc + c,
     # midpoint links 3nc + edge
     faces = Faces()
-    faces.add(np.stack([rv, rm], axis=1), np.stack([c, nc + c], axis=1), t.hole, 2 * t.sizes)
+    faces.add(np.stack([rv, rm], axis=1), np.stack([c, nc + c], axis=1), t.origin, 2 * t.sizes)
     verts = np.stack([t.cv, v + nb, v + nc + b, rm, rv], axis=1)
     labels = np.stack([2 * nc + nb, nc + b, 3 * nc + t.edge, c, 2 * nc + c], axis=1)
-    faces.add(verts, labels, np.zeros(nc, dtype=bool))
+    faces.add(verts, labels, no_origin(nc))
     build(mesh, t, positions, faces)
 
 
@@ -240,10 +241,10 @@ def dome(mesh: Mesh, *, length: float = 1.0, scale: float = 1.0,
         rings = _dome_rings(t, rows(split_pos, corner_vertex), offsets, length, scale)
     positions = np.concatenate([split_pos, rings.reshape(-1, 3)])
     verts, mates = _dome_corners(corner_vertex, across, offsets, len(split_pos), steps)
-    split_hole = np.repeat(t.hole, 4 * t.sizes)
+    split_origin = np.repeat(t.origin, 4 * t.sizes)
     sizes = np.concatenate([np.full(steps * len(across), 4, dtype=np.int64), 4 * t.sizes])
-    hole = np.concatenate([np.tile(split_hole, steps), t.hole])
-    build_paired(mesh, t, positions, verts, mates, sizes, hole)
+    origin = np.concatenate([np.tile(split_origin, steps), t.origin])
+    build_paired(mesh, t, positions, verts, mates, sizes, origin)
 
 
 def _dome_rings(t: Topology, first: np.ndarray, offsets: np.ndarray, length: float,

@@ -25,6 +25,7 @@ from ._layout import (
     check_number,
     cos_weights,
     face_weighted,
+    no_origin,
     topology_of,
 )
 from ._sizes import EXACT, SIZES, catmull_clark_size
@@ -52,11 +53,11 @@ def catmull_clark(mesh: Mesh, *, levels: int = 1, max_faces: int | None = None) 
             positions = _cc_points(t, t.centroids())
         verts, mates = _cc_faces(t)
         sizes = np.full(t.nc, 4, dtype=np.int64)
-        hole = np.repeat(t.hole, t.sizes)
+        origin = np.repeat(t.origin, t.sizes)
         if level == levels - 1:
-            build_paired(mesh, t, positions, verts, mates, sizes, hole)
+            build_paired(mesh, t, positions, verts, mates, sizes, origin)
         else:
-            t = topology_of(positions, verts, mates, sizes, hole, t.spheres)
+            t = topology_of(positions, verts, mates, sizes, origin, t)
 
 
 def _cc_faces(t: Topology) -> tuple[np.ndarray, np.ndarray]:
@@ -129,8 +130,8 @@ def _corner_cut_faces(mesh: Mesh, t: Topology, positions: np.ndarray) -> None:
     face are holes. ``positions``: ``(V + E, 3)``, the old vertices' new points,
     then the edge points."""
     verts, mates, sizes = corner_cut_layout(t)
-    hole = np.concatenate([np.repeat(t.hole, t.sizes), t.hole])
-    build_paired(mesh, t, positions, verts, mates, sizes, hole)
+    origin = np.concatenate([np.repeat(t.origin, t.sizes), t.origin])
+    build_paired(mesh, t, positions, verts, mates, sizes, origin)
 
 
 def corner_cut_layout(t: Topology) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -228,8 +229,8 @@ def _doo_sabin_build(mesh: Mesh, t: Topology, points: np.ndarray, order: np.ndar
     """
     verts, mates = _doo_sabin_paired(t, order)
     sizes = np.concatenate([t.sizes, np.full(t.ne, 4, dtype=np.int64), ring_sizes])
-    hole = np.concatenate([t.hole, np.zeros(t.ne + len(ring_sizes), dtype=bool)])
-    build_paired(mesh, t, points, verts, mates, sizes, hole)
+    origin = np.concatenate([t.origin, no_origin(t.ne + len(ring_sizes))])
+    build_paired(mesh, t, points, verts, mates, sizes, origin)
 
 
 def _doo_sabin_paired(t: Topology, order: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -360,5 +361,5 @@ def _split_edges(t: Topology) -> Topology:
     mate = np.empty(2 * t.nc, dtype=np.int64)
     mate[0::2] = 2 * t.mate + 1
     mate[1::2] = 2 * t.mate
-    return Topology(np.concatenate([t.pos, t.midpoints()]), cv, mate, 2 * t.offsets, t.hole,
-                    t.spheres, np.zeros(t.nf, dtype=np.int64))
+    return Topology(np.concatenate([t.pos, t.midpoints()]), cv, mate, 2 * t.offsets, t.origin,
+                    t.spheres, np.zeros(t.nf, dtype=np.int64), t.source)
