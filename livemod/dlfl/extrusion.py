@@ -192,8 +192,11 @@ def doo_sabin_weights(n: int) -> np.ndarray:
 
 def _bridge(mesh: Mesh, face: int, points: np.ndarray, dual: bool = False) -> int:
     """Create ``points`` as a two-sided polygon and join its back to ``face``, head to
-    head (quads, or with ``dual`` a band of triangles). Returns the front, the end face."""
+    head (quads, or with ``dual`` a band of triangles). Returns the front, the end
+    face, which takes ``face``'s colour (the sides, cut from ``face`` merged with
+    the back, take it too)."""
     front, back = mesh.create_face(_finite(points).tolist())
+    mesh.set_face_color(front, mesh.face_color(face))
     join = triangle_band if dual else quad_band
     join(mesh, mesh.face_corner(face), mesh.face_corner(back))
     return front
