@@ -26,6 +26,7 @@ COMMAND_MODULES = {
     "Cutting commands": "livemod.dlfl.commands.cutting",
     "Cleanup and orientation commands": "livemod.dlfl.commands.cleanup",
     "Selection commands": "livemod.dlfl.commands.selection",
+    "Colour commands": "livemod.dlfl.commands.colors",
     "Script parameters": "livemod.dlfl.commands.params",
 }
 
@@ -40,7 +41,7 @@ LIBRARY_MODULES = [
     "livemod.dlfl.wireframe", "livemod.dlfl.sierpinsky", "livemod.dlfl.sponge", "livemod.dlfl.hull",
     "livemod.dlfl.cutting",
     "livemod.dlfl.geometry", "livemod.dlfl.orientation", "livemod.dlfl.transform",
-    "livemod.dlfl.selection",
+    "livemod.dlfl.selection", "livemod.dlfl.colors",
     "livemod.dlfl.shapes", "livemod.dlfl.params", "livemod.dlfl.io", "livemod.dlfl.patches",
 ]
 

@@ -156,7 +156,7 @@ def test_info_keys_match_the_thesis(cube_scene):
     assert set(dlfl.vertexInfo(0)) == {"id", "type", "coords", "valence"}
     assert set(dlfl.edgeInfo(0)) == {"id", "type", "midpoint", "normal", "cornerA",
                                      "cornerB", "cornerC", "cornerD", "length"}
-    assert set(dlfl.faceInfo(0)) == {"id", "type", "centroid", "normal", "size"}
+    assert set(dlfl.faceInfo(0)) == {"id", "type", "centroid", "normal", "size", "color"}
     assert {"face", "vertex", "edge", "type"} <= set(dlfl.cornerInfo((0, 0)))
     assert dlfl.centroid([0, 1]) == (1.0, 1.0, 0.0)
 

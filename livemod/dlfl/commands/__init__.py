@@ -5,8 +5,9 @@
 
 from __future__ import annotations
 
-from . import cleanup, core, cutting, extrusion, params, sculpt, selection, subdivision
+from . import cleanup, colors, core, cutting, extrusion, params, sculpt, selection, subdivision
 from .cleanup import *  # noqa: F403
+from .colors import *  # noqa: F403
 from .core import *  # noqa: F403
 from .cutting import *  # noqa: F403
 from .extrusion import *  # noqa: F403
@@ -17,5 +18,5 @@ from .subdivision import *  # noqa: F403
 
 __all__ = [
     *core.__all__, *subdivision.__all__, *extrusion.__all__, *sculpt.__all__, *params.__all__,
-    *cutting.__all__, *cleanup.__all__, *selection.__all__,
+    *cutting.__all__, *cleanup.__all__, *selection.__all__, *colors.__all__,
 ]

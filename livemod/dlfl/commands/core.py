@@ -487,11 +487,13 @@ def edgeInfo(edgeid: int) -> dict[str, Any]:
 
 
 def faceInfo(faceid: int) -> dict[str, Any]:
-    """``{'id', 'type', 'centroid', 'normal', 'size'}`` of a face."""
+    """``{'id', 'type', 'centroid', 'normal', 'size', 'color'}`` of a face; its
+    colour is ``(r, g, b)`` in ``[0, 1]``, or None when it has none."""
     m = mesh()
     kind = "hole" if m.is_hole(faceid) else "normal"
     return {"id": faceid, "type": kind, "centroid": _vec(face_centroid(m, faceid)),
-            "normal": _vec(face_normal(m, faceid)), "size": m.face_size(faceid)}
+            "normal": _vec(face_normal(m, faceid)), "size": m.face_size(faceid),
+            "color": m.face_color(faceid)}
 
 
 def cornerInfo(c: Any) -> dict[str, Any]:
