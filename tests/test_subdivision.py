@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from livemod.dlfl import DLFLError, Mesh, budget, mesh_arrays, validate
-from livemod.dlfl.analysis import face_size_histogram, genus, num_components
+from livemod.dlfl.analysis import face_centroid, face_size_histogram, genus, num_components
 from livemod.dlfl.errors import (
     BudgetExceededError,
     GeometryError,
@@ -25,6 +25,7 @@ from tests.meshes import (
     snapshot,
     two_cubes,
 )
+from tests.meshes import cube as unit_cube
 from tests.meshes import torus as small_torus
 
 # TOPMOD.md section 3, row by row: scheme -> (V, E, F, {face size: count})
@@ -622,3 +623,66 @@ def test_subdivide_faces_refuses_entries_that_are_not_ids(faces):
     with pytest.raises(InvalidArgumentError, match="face_ids must"):
         subdivide_faces(m, faces)
     assert snapshot(m) == before
+
+
+# -- face colours ----------------------------------------------------------------
+
+RED, BLUE = (1.0, 0.0, 0.0), (0.0, 0.0, 1.0)
+
+
+def _bottom_red_top_blue() -> Mesh:
+    """The unit cube of tests.meshes with face 0 (z = 0) red and face 1 (z = 1) blue."""
+    m = unit_cube()
+    m.set_face_color(0, RED)
+    m.set_face_color(1, BLUE)
+    return m
+
+
+@pytest.mark.parametrize("scheme", ALL_SCHEMES)
+def test_faces_made_inside_a_coloured_face_take_its_colour(scheme):
+    m = _bottom_red_top_blue()
+    subdivide(m, scheme)
+    validate(m)
+    a = mesh_arrays(m)
+    colors = a.face_colors
+    if colors is None:  # a scheme whose faces all lie around old vertices or edges
+        assert scheme in NO_FACE_ORIGINS
+        return
+    assert scheme not in NO_FACE_ORIGINS
+    centres = np.array([face_centroid(m, f) for f in a.face_ids.tolist()])
+    red = (colors == np.float32(RED)).all(axis=1)
+    blue = (colors == np.float32(BLUE)).all(axis=1)
+    assert (red | blue | np.isnan(colors[:, 0])).all()
+    # children stay near their parent: the red ones low, the blue ones high
+    assert red.any() and blue.any()
+    assert (centres[red, 2] < 0.5).all() and (centres[blue, 2] > 0.5).all()
+
+
+# no face of these has a single source face, as no face of them can be a hole: TopMod's
+# composites through a dual, faces around old vertices or across old edges (stellate,
+# sqrt3), and the two schemes delegated to their own families (corner cut, sierpinsky)
+NO_FACE_ORIGINS = {"dual", "12.6.4", "cubic-pentagonalization", "dual-checkerboard", "dual-loop",
+                   "dual-pentagon-preserving", "dual-pentagonalization", "modified-corner-cut",
+                   "root-3", "root3", "sqrt3", "six-preserving-loop-style", "sierpinsky",
+                   "stellate"}
+
+
+@pytest.mark.parametrize(("scheme", "options", "red"), [
+    ("catmull-clark", {}, 4), ("catmull-clark", {"levels": 2}, 16), ("doo-sabin", {}, 1),
+    ("loop", {}, 5), ("triangulate", {}, 4), ("checker", {}, 5)])
+def test_a_scheme_colours_exactly_the_children_of_a_face(scheme, options, red):
+    m = _bottom_red_top_blue()
+    subdivide(m, scheme, **options)
+    colors = mesh_arrays(m).face_colors
+    assert colors is not None
+    assert int((colors == np.float32(RED)).all(axis=1).sum()) == red
+    assert int((colors == np.float32(BLUE)).all(axis=1).sum()) == red
+
+
+def test_a_coloured_hole_keeps_both_its_flag_and_its_colour():
+    m = unit_cube()
+    m.set_hole(0)
+    m.set_face_color(0, RED)
+    subdivide(m, "catmull-clark")
+    holes = [f for f in m.face_ids().tolist() if m.is_hole(f)]
+    assert len(holes) == 4 and all(m.face_color(f) == RED for f in holes)
