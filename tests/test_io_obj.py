@@ -25,6 +25,7 @@ from livemod.dlfl import (
 from livemod.dlfl.io import _numtext, load_mesh, read_obj, save_mesh, write_obj
 from livemod.dlfl.io._numtext import decimal_to_float, format_floats, format_uints
 from livemod.dlfl.io.obj import obj_bytes, parse_obj
+from tests.meshes import CUBE_FACE_COLORS, coloured_cube, cube, expected_written_colors
 from tests.topmod_samples import SAMPLE_COUNTS, sample_bytes
 
 CUBE = b"""# a unit cube
@@ -442,3 +443,51 @@ def test_decimal_to_float_is_correctly_rounded(pairs: list[tuple[int, int]]) -> 
 def test_uint_text() -> None:
     cells = format_uints(np.array([0, 7, 10, 99999, 1234567890123]))
     assert [bytes(r[r != 0]) for r in cells] == [b"0", b"7", b"10", b"99999", b"1234567890123"]
+
+
+# -- face colours as materials ----------------------------------------------------
+
+def test_colours_round_trip_through_the_material_library(tmp_path: Path) -> None:
+    mesh = coloured_cube()
+    write_obj(mesh, tmp_path / "c.obj")
+    text = (tmp_path / "c.obj").read_text()
+    assert text.splitlines()[1] == "mtllib c.mtl"
+    assert text.count("usemtl") == 5  # red, green, blue-ish, red again, the default run
+    back = read_obj(tmp_path / "c.obj")
+    validate(back)
+    np.testing.assert_array_equal(back.face_colors(), expected_written_colors(mesh))
+
+
+def test_trimesh_reads_the_materials_colours(tmp_path: Path) -> None:
+    import trimesh
+
+    mesh = coloured_cube()
+    write_obj(mesh, tmp_path / "c.obj")
+    peer = trimesh.load(tmp_path / "c.obj", process=False, group_material=False)
+    kd = {tuple(np.round(np.asarray(g.visual.material.diffuse[:3]) / 255, 3))
+          for g in peer.geometry.values()}
+    expected = {tuple(np.round(row, 3)) for row in expected_written_colors(mesh).tolist()}
+    assert kd == expected
+
+
+def test_a_missing_library_is_a_warning_and_leaves_no_colour(tmp_path: Path) -> None:
+    write_obj(coloured_cube(), tmp_path / "c.obj")
+    (tmp_path / "c.mtl").unlink()
+    with pytest.warns(DLFLRepairWarning, match="material library 'c.mtl' not found"):
+        back = read_obj(tmp_path / "c.obj")
+    assert back.face_colors() is None and back.counts() == (8, 12, 6)
+    assert any("c.mtl" in note for note in back.notes)
+
+
+def test_the_library_is_found_beside_the_obj_not_in_the_working_folder(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    (tmp_path / "sub").mkdir()
+    write_obj(coloured_cube(), tmp_path / "sub" / "c.obj")
+    monkeypatch.chdir(tmp_path)
+    assert read_obj(Path("sub") / "c.obj").face_color(2) == CUBE_FACE_COLORS[2]
+
+
+def test_an_obj_without_colours_names_no_library(tmp_path: Path) -> None:
+    write_obj(cube(), tmp_path / "c.obj")
+    assert not (tmp_path / "c.mtl").exists()
+    assert b"mtllib" not in (tmp_path / "c.obj").read_bytes()

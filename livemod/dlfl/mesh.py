@@ -293,8 +293,9 @@ class Mesh:
         self._f.hole[slot] = 1 if flag(hole, "hole") else 0
 
     def face_color(self, face: int) -> tuple[float, float, float] | None:
-        """The colour ``(r, g, b)`` of ``face`` (floats in ``[0, 1]``), or None when
-        it has none (it is drawn and written in the default modelling colour).
+        """The colour ``(r, g, b)`` of ``face`` (floats in ``[0, 1]``, each the
+        shortest decimal of the float32 kept), or None when it has none (it is
+        drawn and written in the default modelling colour).
 
         Raises:
             UnknownIdError: ``face`` is not live.
@@ -303,7 +304,8 @@ class Mesh:
         slot = F.slot(face)
         if not F.colored[slot]:
             return None
-        red, green, blue = F.arrays["color"][slot].tolist()
+        # the shortest decimal of each float32: (0.2, ...) set reads back as 0.2
+        red, green, blue = (float(str(v)) for v in F.arrays["color"][slot])
         return red, green, blue
 
     def set_face_color(self, face: int, color: Any) -> None:
