@@ -186,3 +186,26 @@ def counts(scene: Scene) -> tuple[int, int, int]:
     """``(V, E, F)`` of the scene's current mesh, after checking it is valid."""
     validate(scene.mesh)
     return scene.mesh.counts()
+
+
+# (r, g, b) of faces 0..3 of :func:`coloured_cube`; faces 4 and 5 have none
+CUBE_FACE_COLORS = [(1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.2, 0.4, 1.0), (1.0, 0.0, 0.0)]
+
+
+def coloured_cube() -> Mesh:
+    """:func:`cube` with faces 0..3 in :data:`CUBE_FACE_COLORS` and faces 4, 5 without
+    colour (two faces of one colour, one colour that is no 8-bit value exactly)."""
+    mesh = cube()
+    for face, color in enumerate(CUBE_FACE_COLORS):
+        mesh.set_face_color(face, color)
+    return mesh
+
+
+def expected_written_colors(mesh: Mesh) -> np.ndarray:
+    """``(F, 3)`` float32 colours a format that colours every face writes for
+    ``mesh``: its own, the modelling colour for a face without one."""
+    from livemod.dlfl.colors import filled_colors
+
+    colors = mesh.face_colors()
+    assert colors is not None
+    return filled_colors(colors)

@@ -17,7 +17,7 @@ from livemod.dlfl.errors import InvalidArgumentError
 from livemod.dlfl.io import save_mesh, save_objects
 from livemod.dlfl.io.gltf import glb_bytes, write_gltf
 from livemod.dlfl.shapes import load_shape
-from tests.meshes import torus, triangle
+from tests.meshes import coloured_cube, expected_written_colors, torus, triangle
 
 
 def triangle_count(mesh) -> int:  # type: ignore[no-untyped-def]
@@ -146,3 +146,15 @@ def test_glb_named_by_format_is_binary_whatever_the_file_s_name(tmp_path: Path) 
     save_mesh(mesh, tmp_path / "staged.tmp", format="glb")  # as a batch stages it
     assert (tmp_path / "staged.tmp").read_bytes() == glb_bytes(mesh)
     assert sorted(p.name for p in tmp_path.iterdir()) == ["staged.tmp"]  # no .bin
+
+
+def test_the_meshs_own_colours_are_written_unless_others_are_given(tmp_path: Path) -> None:
+    mesh = coloured_cube()
+    save_mesh(mesh, tmp_path / "c.glb")
+    doc = pygltflib.GLTF2().load(str(tmp_path / "c.glb"))
+    attributes = doc.meshes[0].primitives[0].attributes
+    a = mesh_arrays(mesh)
+    expected = np.rint(expected_written_colors(mesh) * 255).astype(np.uint8)[a.corner_face]
+    assert np.array_equal(accessor(doc, attributes.COLOR_0)[:, :3], expected)
+    peer = trimesh.load(tmp_path / "c.glb", force="mesh", process=False)
+    assert np.array_equal(peer.visual.vertex_colors[:, :3], expected)

@@ -15,7 +15,7 @@ from livemod.dlfl.errors import InvalidArgumentError
 from livemod.dlfl.io import save_mesh, save_objects
 from livemod.dlfl.io.threemf import write_3mf
 from livemod.dlfl.shapes import load_shape
-from tests.meshes import point_sphere, torus
+from tests.meshes import coloured_cube, expected_written_colors, point_sphere, torus
 
 
 def lib3mf_model(path: Path) -> tuple[lib3mf.Model, list[lib3mf.MeshObject]]:
@@ -105,3 +105,18 @@ def test_the_package_holds_the_parts_3mf_asks_for(tmp_path: Path) -> None:
         assert sorted(package.namelist()) == ["3D/3dmodel.model", "[Content_Types].xml",
                                               "_rels/.rels"]
         assert package.getinfo("3D/3dmodel.model").compress_type == zipfile.ZIP_DEFLATED
+
+
+def test_the_meshs_own_colours_become_its_colour_group(tmp_path: Path) -> None:
+    mesh = coloured_cube()
+    save_mesh(mesh, tmp_path / "c.3mf")
+    model, (part,) = lib3mf_model(tmp_path / "c.3mf")
+    groups = model.GetColorGroups()
+    assert groups.MoveNext()
+    group = groups.GetCurrentColorGroup()
+    expected = np.rint(expected_written_colors(mesh) * 255).astype(int)
+    assert group.GetCount() == len(np.unique(expected, axis=0))  # 4: red counts once
+    for face, prop in zip(np.repeat(np.arange(6), 2).tolist(), part.GetAllTriangleProperties(),
+                          strict=True):
+        colour = group.GetColor(prop.PropertyIDs[0])
+        assert [colour.Red, colour.Green, colour.Blue] == expected[face].tolist()

@@ -33,6 +33,7 @@ def from_polygons(
     face_lines: Any = None,
     vertex_base: int = 0,
     first_ids: tuple[int, int, int, int] = (0, 0, 0, 0),
+    face_colors: Any = None,
 ) -> Mesh:
     """Build a DLFL mesh from a polygon soup.
 
@@ -52,6 +53,9 @@ def from_polygons(
         vertex_base: what the source calls vertex index 0, for error messages
             (1 for OBJ, whose ``f`` lines count vertices from 1).
         first_ids: first vertex, edge, face and corner id to hand out.
+        face_colors: ``(F,)`` rows of ``(r, g, b)`` in ``[0, 1]`` for the soup's
+            faces, NaN for a face without one (see :meth:`Mesh.face_colors`);
+            the hole and point-sphere faces added get none.
 
     Raises:
         InvalidArgumentError: an index out of range, a position that is not
@@ -72,8 +76,13 @@ def from_polygons(
     hole_flags = np.zeros(len(soup.offsets) - 1, dtype=bool)
     real = len(hole_flags) - holes - num_ps
     hole_flags[real : real + holes] = True
+    colors = None
+    if face_colors is not None:
+        colors = np.full((len(hole_flags), 3), np.nan, np.float32)
+        colors[:real] = np.asarray(face_colors, dtype=np.float32).reshape(real, 3)
     mesh = from_corner_arrays(
-        soup.positions, soup.offsets, soup.indices, mate, hole_flags, first_ids=first_ids,
+        soup.positions, soup.offsets, soup.indices, mate, hole_flags, face_colors=colors,
+        first_ids=first_ids,
     )
     mesh.notes = notes
     for note in notes:

@@ -23,7 +23,12 @@ from ._checks import finite_number, id_list, is_id, rgb
 from .errors import InvalidArgumentError
 from .mesh import Mesh
 
-__all__ = ["SAME_IN_8_BITS", "faces_by_color", "set_face_colors"]
+__all__ = ["MODELLING_COLOR", "SAME_IN_8_BITS", "faces_by_color", "filled_colors",
+           "set_face_colors"]
+
+# TopMod's render colour (255, 151, 92): what a face without colour is drawn in, and
+# written as by the formats that give every face a colour
+MODELLING_COLOR = (1.0, 151 / 255, 92 / 255)
 
 # half a step of an 8-bit channel: colours an 8-bit file (PLY, 3MF) writes alike
 SAME_IN_8_BITS = 0.5 / 255
@@ -52,6 +57,17 @@ def set_face_colors(mesh: Mesh, faces: int | Iterable[int], color: Any) -> list[
     for face in ids:
         mesh.set_face_color(face, value)
     return ids
+
+
+def filled_colors(colors: np.ndarray) -> np.ndarray:
+    """``(F, 3)`` float32 ``colors`` (NaN rows: no colour, see
+    :meth:`Mesh.face_colors`) with :data:`MODELLING_COLOR` in the NaN rows."""
+    missing = np.isnan(colors[:, 0])
+    if not missing.any():
+        return colors
+    filled = np.array(colors, dtype=np.float32)
+    filled[missing] = MODELLING_COLOR
+    return filled
 
 
 def faces_by_color(mesh: Mesh, color: Any, tolerance: float = SAME_IN_8_BITS) -> list[int]:

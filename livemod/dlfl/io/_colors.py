@@ -1,9 +1,11 @@
-"""Per-face colours as the writers take them (glTF, 3MF and OFF can carry them)."""
+"""Per-face colours as the writers take them and the readers give them."""
 
 from __future__ import annotations
 
 import numpy as np
 
+from ..arrays import MeshArrays
+from ..colors import filled_colors
 from ..errors import InvalidArgumentError
 
 
@@ -37,3 +39,27 @@ def face_rgba(colors: object, num_faces: int) -> np.ndarray | None:
     rgba = np.full((num_faces, 4), 255, dtype=np.uint8)
     rgba[:, : array.shape[1]] = array
     return rgba
+
+
+def face_rgb8(arrays: MeshArrays) -> np.ndarray | None:
+    """``(F, 3)`` uint8 colours of the faces of ``arrays`` (faces without one in the
+    modelling colour), or None when no face has one."""
+    if arrays.face_colors is None:
+        return None
+    return np.rint(filled_colors(arrays.face_colors) * 255).astype(np.uint8)
+
+
+def rgb_from_channels(channels: list[np.ndarray], types: list[str]) -> np.ndarray:
+    """``(F, 3)`` float32 colours in ``[0, 1]`` from the ``(F,)`` channels red, green,
+    blue as a file declares them (numpy type codes, ``"u1"`` for PLY's ``uchar``):
+    integers scaled from their type's range (``uchar``: 0-255), floats clipped
+    to ``[0, 1]``."""
+    out = np.empty((len(channels[0]), 3), dtype=np.float32)
+    for k, (channel, code) in enumerate(zip(channels, types, strict=True)):
+        kind = np.dtype(code)
+        if kind.kind in "iu":
+            top = float(np.iinfo(kind).max)
+            out[:, k] = np.clip(channel, 0, top) / top
+        else:
+            out[:, k] = np.clip(channel, 0.0, 1.0)
+    return out

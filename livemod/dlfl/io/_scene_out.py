@@ -9,6 +9,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..arrays import MeshArrays, mesh_arrays
+from ..colors import filled_colors
 from ..errors import InvalidArgumentError
 from ..mesh import Mesh
 from ._colors import face_rgba
@@ -46,7 +47,9 @@ def parts(objects: Objects, face_colors: object = None) -> list[Part]:
     Args:
         objects: a mesh (one object named ``mesh``), or ``(name, mesh)`` pairs.
         face_colors: for one mesh, None or its ``(F, 3)``/``(F, 4)`` colours;
-            for pairs, None or a sequence of those, one per object.
+            for pairs, None or a sequence of those, one per object. None (for
+            an object) writes the mesh's own face colours, if it has any, faces
+            without one in the modelling colour.
 
     Raises:
         InvalidArgumentError: no object, or colours of the wrong shape or range.
@@ -74,6 +77,8 @@ def drawn_faces(arrays: MeshArrays) -> np.ndarray:
 
 def _part(name: str, mesh: Mesh, colors: object) -> Part:
     a = mesh_arrays(mesh)
+    if colors is None and a.face_colors is not None:
+        colors = filled_colors(a.face_colors)
     corners, faces = a.fan_triangles()
     rgba = face_rgba(colors, len(a.face_ids))
     drawn = drawn_faces(a)

@@ -1,15 +1,18 @@
 """PLY: a reader for ASCII and binary files, a binary little-endian writer.
 
-Reading keeps the ``x``, ``y``, ``z`` properties of element ``vertex`` and the
+Reading keeps the ``x``, ``y``, ``z`` properties of element ``vertex``, the
 ``vertex_indices`` list (or ``vertex_index``, else the first list) of element
-``face``; every other element and property is skipped. Binary elements whose
+``face`` and its ``red``, ``green``, ``blue`` (face colours: integers scaled from
+their type's range, floats taken in ``[0, 1]``); every other element and
+property is skipped. Binary elements whose
 rows all have one layout are read with whole-array numpy steps, others row by
 row (:mod:`._ply_binary`). ASCII elements laid out one row per line, as exporters
 write them, are parsed in blocks of lines by the OBJ reader's vectorized parsers
 (see :mod:`._lines`); any other layout, and every error, goes token by token
 (:mod:`._ply_ascii`). :mod:`._ply_layout` parses the header.
 
-Writing gives polygons as they are, holes left out.
+Writing gives polygons as they are, holes left out, with ``uchar`` face colours
+when the mesh has any (a face without one gets the modelling colour).
 """
 
 from __future__ import annotations
@@ -22,6 +25,7 @@ import numpy as np
 from ..arrays import mesh_arrays
 from ..build import from_polygons, point_cloud
 from ..mesh import Mesh
+from ._colors import face_rgb8, rgb_from_channels
 from ._ply_ascii import _AsciiBody
 from ._ply_binary import _BinaryBody
 from ._ply_layout import _Header, _parse_header, _Table
@@ -35,7 +39,8 @@ def write_ply(mesh: Mesh, path: str | os.PathLike[str]) -> None:
     Vertices as ``double x, y, z`` in id order (point-spheres included, so ids
     map to PLY indices); one polygon per face that is not a hole and not a
     point-sphere, from its head corner, as ``list uchar int`` (``list uint
-    int`` when a face has more than 255 corners).
+    int`` when a face has more than 255 corners), followed by ``uchar red,
+    green, blue`` when the mesh has face colours.
 
     Raises:
         OSError: the file cannot be written; an existing file is left intact.
@@ -48,22 +53,30 @@ def ply_bytes(mesh: Mesh) -> bytes:
     """The binary PLY of ``mesh`` (see :func:`write_ply`)."""
     a = mesh_arrays(mesh)
     sizes, indices = a.surface_polygons()
+    rgb = face_rgb8(a)
+    if rgb is not None:
+        rgb = rgb[a.face_is_surface]
     count_type = "uchar" if len(sizes) == 0 or sizes.max() <= 255 else "uint"
     header = "\n".join([
         "ply", "format binary_little_endian 1.0", "comment written by livemod",
         f"element vertex {len(a.positions)}",
         "property double x", "property double y", "property double z",
         f"element face {len(sizes)}",
-        f"property list {count_type} int vertex_indices", "end_header", "",
+        f"property list {count_type} int vertex_indices",
+        *([] if rgb is None else [f"property uchar {c}" for c in ("red", "green", "blue")]),
+        "end_header", "",
     ]).encode()
     vertices = np.ascontiguousarray(a.positions, dtype="<f8").tobytes()
-    return header + vertices + _face_records(sizes, indices, count_type)
+    return header + vertices + _face_records(sizes, indices, count_type, rgb)
 
 
-def _face_records(sizes: np.ndarray, indices: np.ndarray, count_type: str) -> bytes:
-    """Each face as its corner count followed by its ``int32`` vertex indices."""
+def _face_records(sizes: np.ndarray, indices: np.ndarray, count_type: str,
+                  rgb: np.ndarray | None = None) -> bytes:
+    """Each face as its corner count followed by its ``int32`` vertex indices and,
+    given ``(F, 3)`` uint8 ``rgb``, its colour."""
     count_bytes = 1 if count_type == "uchar" else 4
-    record_sizes = count_bytes + 4 * sizes
+    tail = 0 if rgb is None else 3
+    record_sizes = count_bytes + 4 * sizes + tail
     starts = np.cumsum(record_sizes) - record_sizes
     out = np.empty(int(record_sizes.sum()), dtype=np.uint8)
     is_count = np.zeros(len(out), dtype=bool)
@@ -71,6 +84,10 @@ def _face_records(sizes: np.ndarray, indices: np.ndarray, count_type: str) -> by
     is_count[count_pos] = True
     counts = sizes.astype("<u1" if count_bytes == 1 else "<u4")
     out[count_pos.ravel()] = counts.view(np.uint8)
+    if rgb is not None:
+        color_pos = (starts + record_sizes - tail)[:, None] + np.arange(tail)
+        is_count[color_pos] = True
+        out[color_pos.ravel()] = rgb.ravel()
     out[~is_count] = indices.astype("<i4").view(np.uint8)
     return out.tobytes()
 
@@ -87,11 +104,14 @@ class PlySoup:
         indices: ``(C,)`` int64 0-based vertex index of every face corner.
         offsets: ``(F + 1,)`` int64 face start offsets into ``indices`` (``[0]``
             when the file has no ``face`` element or no face rows).
+        face_colors: ``(F, 3)`` float32 in ``[0, 1]`` from the faces' ``red``,
+            ``green``, ``blue``, or None when they have none.
     """
 
     positions: np.ndarray
     indices: np.ndarray
     offsets: np.ndarray
+    face_colors: np.ndarray | None = None
 
 
 @dataclass(frozen=True)
@@ -102,6 +122,7 @@ class _Roles:
     xyz: tuple[int, int, int]
     face: int | None
     corners: int | None  # the face element's list of vertex indices
+    rgb: tuple[int, int, int] | None = None  # the face element's red, green, blue
 
 
 def read_ply(source: str | os.PathLike[str] | bytes, *, name: str | None = None) -> Mesh:
@@ -127,7 +148,8 @@ def read_ply(source: str | os.PathLike[str] | bytes, *, name: str | None = None)
     soup = parse_ply(data, label)
     if len(soup.offsets) == 1:
         return point_cloud(soup.positions)
-    return from_polygons(soup.positions, soup.indices, soup.offsets, source=show_path(label))
+    return from_polygons(soup.positions, soup.indices, soup.offsets, source=show_path(label),
+                         face_colors=soup.face_colors)
 
 
 def parse_ply(data: bytes, label: str = "<ply>") -> PlySoup:
@@ -140,7 +162,7 @@ def parse_ply(data: bytes, label: str = "<ply>") -> PlySoup:
     roles = _roles(header, label)
     wanted = {roles.vertex: set(roles.xyz)}
     if roles.face is not None and roles.corners is not None:
-        wanted[roles.face] = {roles.corners}
+        wanted[roles.face] = {roles.corners, *(roles.rgb or ())}
     body: _BinaryBody | _AsciiBody
     if header.encoding == "ascii":
         body = _AsciiBody(data[header.body_start :], label, header.body_line)
@@ -158,7 +180,12 @@ def parse_ply(data: bytes, label: str = "<ply>") -> PlySoup:
     except _RowProblem as problem:
         line = body.line_of_row(problem.element, problem.row)
         raise file_error(label, line, str(problem)) from None
-    return PlySoup(positions, indices, offsets)
+    colors = None
+    if roles.rgb is not None:
+        properties = header.elements[roles.face].properties
+        colors = rgb_from_channels([tables[roles.face].scalars[i] for i in roles.rgb],
+                                   [properties[i].code for i in roles.rgb])
+    return PlySoup(positions, indices, offsets, colors)
 
 
 def _roles(header: _Header, label: str) -> _Roles:
@@ -188,7 +215,12 @@ def _roles(header: _Header, label: str) -> _Roles:
         raise file_error(label, header.elements[face].line,
                          "element 'face' has no list property (vertex_indices)")
     corners = lists.index(named[0]) if named else next(i for i, n in enumerate(lists) if n)
-    return _Roles(vertex, xyz, face, corners)
+    face_scalars = [p.name if p.count_code is None else None
+                    for p in header.elements[face].properties]
+    rgb = None
+    if all(c in face_scalars for c in ("red", "green", "blue")):
+        rgb = (face_scalars.index("red"), face_scalars.index("green"), face_scalars.index("blue"))
+    return _Roles(vertex, xyz, face, corners, rgb)
 
 
 class _RowProblem(Exception):
