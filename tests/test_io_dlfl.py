@@ -28,7 +28,7 @@ from livemod.dlfl.io._lines import leading_uints
 from livemod.dlfl.io._numtext import format_floats, format_rounded
 from livemod.dlfl.io.dlflfile import dlfl_bytes, parse_dlfl
 from livemod.dlfl.shapes import donut_hexa
-from tests.meshes import torus, two_cubes
+from tests.meshes import coloured_cube, expected_written_colors, torus, two_cubes
 from tests.topmod_samples import sample_bytes
 
 # TOPMOD.md section 6, verbatim: TopMod's own writer output for its cube
@@ -567,3 +567,25 @@ def test_leading_uints_reads_digit_runs() -> None:
     values, lengths = leading_uints(buf, at)
     assert lengths.tolist() == [2, 0, 1, 18, 0, 1, 0]
     assert values.tolist() == [12, 0, 0, 123456789012345678, 0, 9, 0]
+
+
+def test_colours_go_to_the_materials_as_topmod_writes_them(tmp_path: Path) -> None:
+    mesh = coloured_cube()
+    mesh.set_hole(5)
+    write_dlfl(mesh, tmp_path / "c.dlfl")
+    text = (tmp_path / "c.dlfl").read_text()
+    assert text.splitlines()[1] == "mtllib c.mtl"
+    assert "usemtl hole" in text and "usemtl color_ff0000" in text
+    back = read_dlfl(tmp_path / "c.dlfl")
+    validate(back)
+    assert back.is_hole(5) and back.face_color(5) is None  # a hole is written as one
+    expected = expected_written_colors(mesh)[:5]
+    np.testing.assert_array_equal(back.face_colors()[:5], expected)
+
+
+def test_a_dlfl_without_colours_writes_no_library_and_reads_back_quietly(
+        tmp_path: Path, recwarn: pytest.WarningsRecorder) -> None:
+    write_dlfl(two_cubes(), tmp_path / "t.dlfl")
+    assert not (tmp_path / "t.mtl").exists()
+    back = read_dlfl(tmp_path / "t.dlfl")
+    assert back.face_colors() is None and len(recwarn) == 0

@@ -117,10 +117,13 @@ def test_many_small_passes_on_threads_read_and_write_as_one_pass_does(
 
 
 def test_beveledcube_is_reoriented_with_a_note(topmod_samples: Path) -> None:
+    # the sample names a material library TopMod did not ship: said, not refused
     with pytest.warns(DLFLRepairWarning, match="re-oriented 4 faces"), \
-            pytest.warns(DLFLSkippedLinesWarning, match=r"line 56 '1 14'$"):
+            pytest.warns(DLFLSkippedLinesWarning, match=r"line 56 '1 14'$"), \
+            pytest.warns(DLFLRepairWarning, match="library 'beveledcube.mtl' not found"):
         mesh = read_obj(topmod_samples / "beveledcube.obj")
     assert any("re-oriented" in note and "beveledcube.obj" in note for note in mesh.notes)
+    assert any("library 'beveledcube.mtl' not found" in note for note in mesh.notes)
     assert mesh.notes[-1].endswith("beveledcube.obj: ignored 1 line not understood: line 56 '1 14'")
     sizes = sorted(mesh.face_size(f) for f in mesh.face_ids())
     assert sizes == [3] * 8 + [4] * 18

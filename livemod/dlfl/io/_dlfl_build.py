@@ -19,6 +19,7 @@ from ..errors import DLFLError
 from ..mesh import Mesh
 from ..soup import next_in_face
 from ..validate import validate
+from .mtl import materials_in_force
 from .source import file_error
 
 
@@ -42,6 +43,9 @@ class DlflRecords:
         skipped: ``(K,)`` int64 lines whose first word is no .dlfl record
             (skipped by the reader, and reported).
         first_skipped: the text of the first of them (empty when none).
+        materials: ``(line, name)`` of every ``usemtl`` line.
+        libraries: the header's ``mtllib`` names.
+        face_colors: ``(F,)`` rows of ``(r, g, b)`` (NaN: none), or None.
     """
 
     label: str
@@ -57,6 +61,13 @@ class DlflRecords:
     vertex_lines: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=np.int64))
     skipped: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=np.int64))
     first_skipped: bytes = b""
+    materials: list[tuple[int, str]] = field(default_factory=list)
+    libraries: list[str] = field(default_factory=list)
+    face_colors: np.ndarray | None = None
+
+    def materials_in_force(self) -> list[str | None]:
+        """The ``usemtl`` material of each face (None before the first)."""
+        return materials_in_force(self.materials, self.face_lines)
 
 
 def build_dlfl(records: DlflRecords, *, full_check: bool = False) -> Mesh:
@@ -85,7 +96,12 @@ def build_dlfl(records: DlflRecords, *, full_check: bool = False) -> Mesh:
     dense_mate = np.where(mate >= 0, new_index[np.maximum(mate, 0)], -1)[order]
     vertex_of, dense_mate, offsets, holes = _add_point_spheres(
         num_v, records.corner_vertex[order], dense_mate, records.face_offsets, records.face_hole)
-    mesh = from_corner_arrays(records.positions, offsets, vertex_of, dense_mate, holes)
+    colors = records.face_colors
+    if colors is not None and len(colors) < len(holes):  # the point-spheres: no colour
+        colors = np.concatenate([colors, np.full((len(holes) - len(colors), 3), np.nan,
+                                                 np.float32)])
+    mesh = from_corner_arrays(records.positions, offsets, vertex_of, dense_mate, holes,
+                              face_colors=colors)
     if full_check or not _one_fan_each(vertex_of, dense_mate, offsets, num_v):
         _fan_error(records, vertex_of, dense_mate, offsets)
         try:

@@ -17,7 +17,10 @@ Layout (TopMod's ``writeDLFL``; see docs/formats.md)::
 
 Because ``e`` lines give the pairing, a ``.dlfl`` file carries every state a
 DLFL can be in: 2-gons, multi-edges, self-loops, faces that visit a vertex
-twice, point-spheres. livemod marks hole faces with ``usemtl hole``.
+twice, point-spheres. livemod marks hole faces with ``usemtl hole``. Face colours
+go where TopMod keeps them: each face's ``usemtl`` material, whose ``Kd`` the
+``mtllib`` library beside the file holds (see :mod:`.mtl`; written only for a
+mesh with colours, read back when present).
 
 Reading works like the OBJ reader: the lines are split and sorted by their
 first bytes once, and the usual ``v``, ``fv``, ``e`` and ``f`` lines (what
@@ -53,10 +56,22 @@ from ._lines import (
 from ._numtext import format_rounded, format_uints, join_columns
 from ._parallel import map_in_order
 from .atomic import write_atomically
-from .obj import index_lines, merge_face_blocks, vertex_lines
+from .mtl import (
+    DEFAULT_MATERIAL,
+    HOLE_MATERIAL,
+    face_colors_of,
+    materials_of,
+    mtl_bytes,
+    read_libraries,
+)
+from .obj import (
+    CONTROLS_TO_UNDERSCORE,
+    index_lines,
+    material_face_lines,
+    merge_face_blocks,
+    vertex_lines,
+)
 from .source import file_error, lf_line_ends, read_source, report_skipped, show_token
-
-HOLE_MATERIAL = "hole"
 
 
 def read_dlfl(source: str | os.PathLike[str] | bytes, *, name: str | None = None) -> Mesh:
@@ -64,7 +79,10 @@ def read_dlfl(source: str | os.PathLike[str] | bytes, *, name: str | None = None
 
     Normals and texture coordinates on ``fv`` lines are optional and ignored;
     ``[``, ``]`` and ``,`` count as blanks. Faces after ``usemtl hole`` are hole
-    faces. A vertex that no corner uses becomes a point-sphere.
+    faces; faces after another ``usemtl`` take the colour its ``Kd`` gives in the
+    header's ``mtllib`` library, read beside the file (a library missing is a
+    :class:`~livemod.dlfl.errors.DLFLRepairWarning`). A vertex that no corner
+    uses becomes a point-sphere.
 
     Args:
         source: a path, or the file contents as bytes.
@@ -88,7 +106,14 @@ def read_dlfl(source: str | os.PathLike[str] | bytes, *, name: str | None = None
         word = records.first_skipped.split(None, 1)[0]
         raise file_error(label, skipped[0], f"no geometry, and the line starts with "
                          f"{show_token(word)}, which is no .dlfl record")
+    notes: list[str] = []
+    if records.libraries and not isinstance(source, bytes):
+        folder = os.path.dirname(os.path.abspath(os.fspath(source)))
+        in_force = records.materials_in_force()
+        library = read_libraries(records.libraries, folder, label, in_force, notes)
+        records.face_colors = face_colors_of(in_force, library)
     mesh = build_dlfl(records)
+    mesh.notes += notes
     if skipped:
         report_skipped(mesh, label, skipped, records.first_skipped)
     return mesh
@@ -121,6 +146,7 @@ def parse_dlfl(data: bytes, label: str = "<dlfl>", *, fast: bool = True) -> Dlfl
     _check_header_ends(buf, starts, label)
     kinds = _classify(buf, starts, fast)
     records = _Collected(label)
+    records.libraries = _header_libraries(buf, starts)
     python_lines = [np.flatnonzero(kinds == _OTHER)]
     for kind, block, rejected in _fast_passes(buf, starts, ends, kinds):
         records.blocks[kind].append(block)
@@ -172,6 +198,14 @@ def _body_start(buf: np.ndarray, starts: np.ndarray) -> int:
         if len(hits):
             return i + int(hits[0])
     return len(starts)
+
+
+def _header_libraries(buf: np.ndarray, starts: np.ndarray) -> list[str]:
+    """The names the header's ``mtllib`` lines give (the lines before the first ``#``)."""
+    body = _body_start(buf, starts)
+    head = buf[: starts[body] if body < len(starts) else len(buf)].tobytes()
+    return [name.decode("utf-8", "replace") for line in head.splitlines()
+            if line.split()[:1] == [b"mtllib"] for name in line.split()[1:]]
 
 
 def _check_header_ends(buf: np.ndarray, starts: np.ndarray, label: str) -> None:
@@ -299,8 +333,8 @@ def _python_record(raw: bytes, line: int, label: str) -> tuple[int, object] | No
     reader passes over (blank, comment, ``mtllib``).
 
     Values: ``(x, y, z)`` for ``v``, the vertex index for ``fv``, ``(a, b)`` for
-    ``e``, the list of corner indices for ``f``, whether the material is
-    ``hole`` for ``usemtl``; ``(_UNKNOWN, raw)`` for a line whose first word
+    ``e``, the list of corner indices for ``f``, the material's name for
+    ``usemtl``; ``(_UNKNOWN, raw)`` for a line whose first word
     is none of these (it is skipped and reported).
 
     Raises:
@@ -312,7 +346,7 @@ def _python_record(raw: bytes, line: int, label: str) -> tuple[int, object] | No
         return None
     key, args = words[0], words[1:]
     if key == b"usemtl":
-        return _MATERIAL, len(args) > 0 and args[0] == HOLE_MATERIAL.encode()
+        return _MATERIAL, args[0].decode("utf-8", "replace") if args else ""
     if key not in _NEEDS:
         return _UNKNOWN, raw
     least, what = _NEEDS[key]
@@ -364,6 +398,7 @@ class _Collected:
 
     def __init__(self, label: str) -> None:
         self.label = label
+        self.libraries: list[str] = []
         self.blocks: dict[int, list[_Block]] = {k: [] for k in (_VERTEX, _CORNER, _EDGE, _FACE)}
         self.python: dict[int, list[tuple[int, object]]] = {
             k: [] for k in (_VERTEX, _CORNER, _EDGE, _FACE, _MATERIAL, _UNKNOWN)}
@@ -381,14 +416,18 @@ class _Collected:
         f_lines, counts, corners = self._faces()
         offsets = np.zeros(len(counts) + 1, dtype=np.int64)
         np.cumsum(counts, out=offsets[1:])
-        holes = self._holes(f_lines)
         for lines in (v_lines, c_lines, e_lines, f_lines):
             lines += 1  # 1-based, in place: fresh arrays (a million-face file's 100 MB)
+        materials = [(line + 1, str(name)) for line, name in self.python[_MATERIAL]]
         unknown = self.python[_UNKNOWN]
-        return DlflRecords(self.label, positions, corner_vertex, c_lines, edges, e_lines,
-                           corners, offsets, f_lines, holes, v_lines,
-                           np.array([line + 1 for line, _ in unknown], dtype=np.int64),
-                           bytes(unknown[0][1]) if unknown else b"")  # type: ignore[call-overload]
+        records = DlflRecords(self.label, positions, corner_vertex, c_lines, edges, e_lines,
+                              corners, offsets, f_lines, np.zeros(0, bool), v_lines,
+                              np.array([line + 1 for line, _ in unknown], dtype=np.int64),
+                              bytes(unknown[0][1]) if unknown else b"",  # type: ignore[call-overload]
+                              materials=materials, libraries=self.libraries)
+        records.face_hole = np.array([name == HOLE_MATERIAL for name in
+                                      records.materials_in_force()], dtype=bool)
+        return records
 
     def _fixed(self, kind: int, shape: tuple[int, ...], dtype: type,
                ) -> tuple[np.ndarray, np.ndarray]:
@@ -416,16 +455,6 @@ class _Collected:
             return tuple(np.concatenate([b[i] for b in blocks]) for i in range(3))  # type: ignore[return-value]
         return merge_face_blocks(blocks)  # type: ignore[arg-type]
 
-    def _holes(self, f_lines: np.ndarray) -> np.ndarray:
-        """``(F,)`` bool: the face on each of ``f_lines`` follows ``usemtl hole``."""
-        items = self.python[_MATERIAL]
-        if not items:
-            return np.zeros(len(f_lines), dtype=bool)
-        lines = np.array([line for line, _ in items], dtype=np.int64)
-        hole = np.array([flag for _, flag in items], dtype=bool)
-        last = np.searchsorted(lines, f_lines) - 1  # the usemtl line in force
-        return np.where(last >= 0, hole[np.maximum(last, 0)], False)
-
 
 # --------------------------------------------------------------------- writer
 
@@ -436,7 +465,9 @@ def write_dlfl(mesh: Mesh, path: str | os.PathLike[str], *, reverse: bool = Fals
     Args:
         mesh: the mesh.
         path: the target file; its stem names the ``mtllib`` (TopMod wrote a
-            null pointer there when it had no file name).
+            null pointer there when it had no file name). A mesh with face
+            colours gets that library beside the file, written first: one
+            material per colour, chosen by the faces' ``usemtl`` (see :mod:`.mtl`).
         reverse: write every face backwards (head first, then along ``prev``)
             and each edge as ``(V1.next, V2.next)``, which describes the mesh
             with all faces flipped (TopMod's crust uses it).
@@ -444,8 +475,13 @@ def write_dlfl(mesh: Mesh, path: str | os.PathLike[str], *, reverse: bool = Fals
     Raises:
         OSError: the file cannot be written; an existing file is left intact.
     """
-    stem = os.path.splitext(os.path.basename(os.fspath(path)))[0] or "mesh"
-    write_atomically(path, dlfl_pieces(mesh, stem, reverse=reverse))
+    name = os.fspath(path)
+    stem = os.path.splitext(os.path.basename(name))[0] or "mesh"
+    colors = mesh.face_colors()
+    if colors is not None:  # the library first: the file never names a missing one
+        write_atomically(os.path.join(os.path.dirname(name), f"{stem}.mtl"),
+                         mtl_bytes(materials_of(colors)))
+    write_atomically(name, dlfl_pieces(mesh, stem, reverse=reverse))
 
 
 def dlfl_bytes(mesh: Mesh, mtl_name: str = "mesh", *, reverse: bool = False) -> bytes:
@@ -462,7 +498,7 @@ def dlfl_pieces(mesh: Mesh, mtl_name: str = "mesh", *, reverse: bool = False,
     """
     a = mesh_arrays(mesh)
     # a newline in the name (a file name may hold one) would end the header early
-    name = mtl_name.encode("utf-8", "replace").translate(_CONTROLS_TO_UNDERSCORE)
+    name = mtl_name.encode("utf-8", "replace").translate(CONTROLS_TO_UNDERSCORE)
     header = b"DLFL\nmtllib %s.mtl\n#\n" % name
     return itertools.chain(
         [header], vertex_lines(a.positions, b"v"), [b"#\n"], _corner_lines(a), [b"#\n"],
@@ -470,7 +506,6 @@ def dlfl_pieces(mesh: Mesh, mtl_name: str = "mesh", *, reverse: bool = False,
     )
 
 
-_CONTROLS_TO_UNDERSCORE = bytes.maketrans(bytes([*range(32), 127]), b"_" * 33)
 
 
 def _corner_lines(a: MeshArrays) -> Iterator[bytes]:
@@ -533,12 +568,15 @@ def _face_lines(a: MeshArrays, reverse: bool) -> Iterator[bytes]:
         start = np.repeat(a.face_offsets[:-1], sizes)
         rank = corners - start
         corners = np.where(rank == 0, start, start + sizes[a.corner_face] - rank)
-    runs = np.flatnonzero(np.diff(a.face_hole.astype(np.int8))) + 1
-    bounds = [0, *runs.tolist(), len(sizes)]
-    for lo, hi in zip(bounds[:-1], bounds[1:], strict=True):
-        if hi == lo:
-            continue
-        material = HOLE_MATERIAL if a.face_hole[lo] else "default"
-        c_lo, c_hi = a.face_offsets[lo], a.face_offsets[hi]
-        yield b"usemtl %s\n" % material.encode()
-        yield from index_lines(corners[c_lo:c_hi], sizes[lo:hi], b"f")
+    names, index = _face_materials(a)
+    return material_face_lines(corners, sizes, names, index, b"f")
+
+
+def _face_materials(a: MeshArrays) -> tuple[list[str], np.ndarray]:
+    """The material names and ``(F,)`` material of each face: ``hole`` for holes,
+    one per colour (:func:`.mtl.materials_of`) or ``default`` for the others."""
+    if a.face_colors is None:
+        return [DEFAULT_MATERIAL, HOLE_MATERIAL], a.face_hole.astype(np.int64)
+    materials = materials_of(a.face_colors)
+    names = [*materials.names, HOLE_MATERIAL]
+    return names, np.where(a.face_hole, len(names) - 1, materials.index)

@@ -1,8 +1,9 @@
 """Wavefront OBJ: vectorized reader and writer.
 
-Reading keeps ``v`` positions and ``f`` polygons and ignores everything else
-(``vn``, ``vt``, ``usemtl``, ``mtllib``, ``o``, ``g``, ``s``, ``l``, comments,
-unknown keywords). Faces take the leading index of each ``v``, ``v/t``,
+Reading keeps ``v`` positions, ``f`` polygons and their colours (the ``Kd`` of
+the ``usemtl`` material in force, from the ``mtllib`` libraries beside the file,
+see :mod:`.mtl`) and ignores everything else (``vn``, ``vt``, ``o``, ``g``,
+``s``, ``l``, comments, unknown keywords). Faces take the leading index of each ``v``, ``v/t``,
 ``v//n`` or ``v/t/n`` token; negative indices count back from the last vertex
 read so far. Coordinates may be separated by spaces, tabs or commas (TopMod's
 own files write ``v 1.0, 1.0, 1.0``); numbers after the third are ignored.
@@ -20,11 +21,11 @@ from __future__ import annotations
 import itertools
 import os
 from collections.abc import Iterator
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..arrays import mesh_arrays
+from ..arrays import MeshArrays, mesh_arrays
 from ..build import from_polygons, point_cloud
 from ..errors import DLFLError
 from ..mesh import Mesh
@@ -32,6 +33,15 @@ from ._lines import gather_lines, parse_index_lines, parse_number_lines, split_l
 from ._numtext import format_floats, format_uints, join_columns
 from ._parallel import map_in_order
 from .atomic import write_atomically
+from .mtl import (
+    Materials,
+    face_colors_of,
+    materials_in_force,
+    materials_of,
+    mtl_bytes,
+    read_libraries,
+    runs,
+)
 from .source import file_error, lf_line_ends, read_source, report_skipped, show_path, show_token
 
 
@@ -48,6 +58,8 @@ class ObjSoup:
             statement (nor a comment), which the reader skips.
         first_skipped: the text of the first of them (empty when none).
         binary: the file holds a NUL byte (no text file does).
+        materials: ``(1-based line, name)`` of every ``usemtl`` line.
+        libraries: the names the ``mtllib`` lines give, in file order.
     """
 
     positions: np.ndarray
@@ -57,6 +69,12 @@ class ObjSoup:
     skipped: np.ndarray
     first_skipped: bytes = b""
     binary: bool = False
+    materials: list[tuple[int, str]] = field(default_factory=list)
+    libraries: list[str] = field(default_factory=list)
+
+    def materials_in_force(self) -> list[str | None]:
+        """The ``usemtl`` material of each face (None before the first)."""
+        return materials_in_force(self.materials, self.face_lines)
 
 
 def read_obj(source: str | os.PathLike[str] | bytes, *, name: str | None = None) -> Mesh:
@@ -90,13 +108,28 @@ def read_obj(source: str | os.PathLike[str] | bytes, *, name: str | None = None)
             _check_obj_text(soup, label)
         mesh = point_cloud(soup.positions)
     else:
+        notes: list[str] = []
         mesh = from_polygons(
             soup.positions, soup.indices, soup.offsets, source=show_path(label),
             face_lines=soup.face_lines, vertex_base=1,  # errors name vertices as f lines do
+            face_colors=_face_colors(soup, source, label, notes),
         )
+        mesh.notes += notes
     if len(soup.skipped):
         report_skipped(mesh, label, soup.skipped.tolist(), soup.first_skipped)
     return mesh
+
+
+def _face_colors(soup: ObjSoup, source: str | os.PathLike[str] | bytes, label: str,
+                 notes: list[str]) -> np.ndarray | None:
+    """The faces' colours from the libraries the file names, found beside it (a
+    file given as bytes has no folder to find them in: its faces get none)."""
+    if not soup.materials or not soup.libraries or isinstance(source, bytes):
+        return None
+    folder = os.path.dirname(os.path.abspath(os.fspath(source)))
+    in_force = soup.materials_in_force()
+    library = read_libraries(soup.libraries, folder, label, in_force, notes)
+    return face_colors_of(in_force, library)
 
 
 # every statement of the OBJ specification: a file of no ``v`` line passes when it
@@ -186,12 +219,30 @@ def parse_obj(data: bytes, label: str = "<obj>", *, fast: bool = True) -> ObjSou
     if parsed.errors:
         raise parsed.errors[0][1]  # the first bad line of the file, as a reader would
     soup = parsed.soup(label)
+    soup.materials = [(line + 1, rest.decode("utf-8", "replace"))
+                      for line, rest in _statements(buf, starts, ends, kinds, b"usemtl")]
+    soup.libraries = [name.decode("utf-8", "replace") for _, rest in
+                      _statements(buf, starts, ends, kinds, b"mtllib") for name in rest.split()]
     skipped = _not_understood(buf, starts, ends, kinds)
     if len(skipped):
         soup.skipped = skipped + 1
         soup.first_skipped = _line_bytes(buf, starts, ends, int(skipped[0]))
     soup.binary = b"\0" in data
     return soup
+
+
+def _statements(buf: np.ndarray, starts: np.ndarray, ends: np.ndarray, kinds: np.ndarray,
+                word: bytes) -> list[tuple[int, bytes]]:
+    """``(0-based line, the rest of the line)`` of every line that starts with
+    ``word`` and a blank (comments cut off), found among the lines of kind
+    ``_IGNORED`` in one numpy pass."""
+    lines = np.flatnonzero(kinds == _IGNORED)
+    n = len(word)
+    head = buf[np.minimum(starts[lines, None] + np.arange(n + 1), len(buf) - 1)]
+    hit = (head[:, :n] == np.frombuffer(word, np.uint8)).all(axis=1) & (
+        (head[:, n] == 32) | (head[:, n] == 9))
+    return [(line, _line_bytes(buf, starts, ends, line)[n:].split(b"#", 1)[0].strip())
+            for line in lines[hit].tolist()]
 
 
 def _join_continued(data: bytes) -> bytes:
@@ -457,32 +508,70 @@ def write_obj(mesh: Mesh, path: str | os.PathLike[str]) -> None:
     ``v`` lines in vertex id order with coordinates that parse back to the same
     bits; one ``f`` line per face in face id order, 1-based, from each face's
     head corner. Hole faces are left out (they come back as boundaries) and so
-    are point-sphere faces (their vertices come back as point-spheres).
+    are point-sphere faces (their vertices come back as point-spheres). A mesh
+    with face colours also gets ``<stem>.mtl`` beside the file (written first),
+    one material per colour, named by ``mtllib`` and chosen by ``usemtl`` (see
+    :mod:`.mtl`).
 
     Raises:
-        OSError: the file cannot be written; an existing file is left intact.
+        OSError: a file cannot be written; an existing file is left intact.
     """
-    write_atomically(path, obj_pieces(mesh))
+    name = os.fspath(path)
+    stem = os.path.splitext(os.path.basename(name))[0] or "mesh"
+    a = mesh_arrays(mesh)
+    materials = None if a.face_colors is None else materials_of(a.face_colors)
+    if materials is not None:
+        write_atomically(os.path.join(os.path.dirname(name), f"{stem}.mtl"),
+                         mtl_bytes(materials))
+    write_atomically(name, _obj_text(a, materials, f"{stem}.mtl"))
 
 
-def obj_bytes(mesh: Mesh) -> bytes:
-    """The OBJ text of ``mesh`` (see :func:`write_obj`)."""
-    return b"".join(obj_pieces(mesh))
+def obj_bytes(mesh: Mesh, mtl_name: str = "mesh.mtl") -> bytes:
+    """The OBJ text of ``mesh`` (see :func:`write_obj`; ``mtl_name`` is the
+    library its ``mtllib`` line names when the mesh has face colours)."""
+    return b"".join(obj_pieces(mesh, mtl_name))
 
 
-def obj_pieces(mesh: Mesh) -> Iterator[bytes]:
+def obj_pieces(mesh: Mesh, mtl_name: str = "mesh.mtl") -> Iterator[bytes]:
     """The OBJ text of ``mesh`` in pieces of at most ``_LINES_PER_PASS`` lines
     (for :func:`write_obj`: a million-vertex file is never whole in memory).
 
     Precondition: the mesh is not changed while the pieces are consumed.
     """
     a = mesh_arrays(mesh)
+    return _obj_text(a, None if a.face_colors is None else materials_of(a.face_colors),
+                     mtl_name)
+
+
+def _obj_text(a: MeshArrays, materials: Materials | None, mtl_name: str) -> Iterator[bytes]:
     sizes, vertices = a.surface_polygons()
-    return itertools.chain(
-        [b"# livemod OBJ: %d vertices, %d faces\n" % (len(a.positions), len(sizes))],
-        vertex_lines(a.positions, b"v"),
-        index_lines(vertices + 1, sizes, b"f"),
-    )
+    header = b"# livemod OBJ: %d vertices, %d faces\n" % (len(a.positions), len(sizes))
+    if materials is None:
+        faces = index_lines(vertices + 1, sizes, b"f")
+    else:
+        header += b"mtllib %s\n" % _one_line(mtl_name)
+        faces = material_face_lines(vertices + 1, sizes, materials.names,
+                                    materials.index[a.face_is_surface], b"f")
+    return itertools.chain([header], vertex_lines(a.positions, b"v"), faces)
+
+
+def _one_line(name: str) -> bytes:
+    """``name`` for a line of its own: control characters (a newline in a file
+    name would end the line) become ``_``."""
+    return name.encode("utf-8", "replace").translate(CONTROLS_TO_UNDERSCORE)
+
+
+CONTROLS_TO_UNDERSCORE = bytes.maketrans(bytes([*range(32), 127]), b"_" * 33)
+
+
+def material_face_lines(values: np.ndarray, sizes: np.ndarray, names: list[str],
+                        index: np.ndarray, keyword: bytes) -> Iterator[bytes]:
+    """:func:`index_lines` with a ``usemtl`` line before every run of faces of one
+    material (``names[index[i]]`` is face ``i``'s)."""
+    offsets = np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64)
+    for lo, hi in runs(index):
+        yield b"usemtl %s\n" % _one_line(names[int(index[lo])])
+        yield from index_lines(values[offsets[lo] : offsets[hi]], sizes[lo:hi], keyword)
 
 
 def vertex_lines(positions: np.ndarray, keyword: bytes) -> Iterator[bytes]:
