@@ -209,3 +209,24 @@ def expected_written_colors(mesh: Mesh) -> np.ndarray:
     colors = mesh.face_colors()
     assert colors is not None
     return filled_colors(colors)
+
+
+def rainbow_cube() -> Mesh:
+    """:func:`cube` with face ``f`` in the colour ``(f / 5, 1 - f / 5, 0.5)``."""
+    mesh = cube()
+    for face in range(6):
+        mesh.set_face_color(face, (face / 5, 1 - face / 5, 0.5))
+    return mesh
+
+
+def colour_counts(mesh: Mesh) -> dict[int | None, int]:
+    """How many faces of ``mesh`` have the colour of :func:`rainbow_cube`'s face
+    ``f`` (key ``f``), and how many none (key None)."""
+    colors = mesh.face_colors()
+    if colors is None:
+        return {None: mesh.num_faces}
+    counts: dict[int | None, int] = {}
+    for row in colors.tolist():
+        key = None if row[0] != row[0] else round(row[0] * 5)
+        counts[key] = counts.get(key, 0) + 1
+    return counts

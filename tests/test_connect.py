@@ -482,3 +482,42 @@ def test_a_hub_that_overflows_is_refused_quietly(scale, extrude, message):
     # the pushed points' coincidence test and the hull's products overflowed
     assert_refused_quietly(huge_cube(scale),
                            lambda m: multi_face_handle(m, [0, 2, 4], 1.0, extrude), message)
+
+
+# -- face colours --------------------------------------------------------------------
+
+RED, BLUE = (1.0, 0.0, 0.0), (0.0, 0.0, 1.0)
+
+
+def _new_face_colours(m: Mesh, old: set[int]) -> list[tuple[float, float, float] | None]:
+    return [m.face_color(f) for f in m.face_ids().tolist() if f not in old]
+
+
+@pytest.mark.parametrize("segments", [1, 3])
+def test_a_tube_takes_the_colour_of_the_face_it_starts_from(segments):
+    m = cube()
+    m.set_face_color(TOP, RED)
+    m.set_face_color(BOTTOM, BLUE)
+    old = set(m.face_ids().tolist())
+    connect_faces(m, *above(m), segments)
+    checked(m)
+    tube = [m.face_color(f) for f in m.face_ids().tolist()
+            if f not in old or f in (TOP, BOTTOM)]
+    assert tube == [RED] * 4 * segments
+
+
+def test_a_tube_from_a_face_without_colour_takes_the_other_faces():
+    m = cube()
+    m.set_face_color(BOTTOM, BLUE)
+    old = set(m.face_ids().tolist()) - {TOP, BOTTOM}
+    connect_faces(m, *above(m))
+    assert _new_face_colours(m, old) == [BLUE] * 4
+
+
+def test_a_hermite_handle_is_coloured_along_its_whole_length():
+    m = cube()
+    m.set_face_color(TOP, RED)
+    old = set(m.face_ids().tolist()) - {TOP}
+    hermite_handle(m, m.corner_at(TOP, 0), m.corner_at(RIGHT, 0), 6)
+    checked(m)
+    assert _new_face_colours(m, old - {RIGHT}) == [RED] * 24

@@ -21,10 +21,12 @@ from livemod.dlfl.subdivision import vertex_cut
 from tests.meshes import (
     assert_refused,
     canonical,
+    colour_counts,
     counts,
     euler_ok,
     path_face,
     point_sphere,
+    rainbow_cube,
     snapshot,
     two_cubes,
 )
@@ -603,3 +605,25 @@ def test_refused_command_leaves_the_object(scene):
                    error=InvalidArgumentError)
     assert_refused(mesh, lambda _: dlfl.cutPlane((0, 0, 0), (0, 1, 0), faceid=0), "not both",
                    error=InvalidArgumentError)
+
+
+# -- face colours --------------------------------------------------------------------
+
+def test_a_cap_has_no_colour_and_the_faces_cut_keep_theirs():
+    m = rainbow_cube()
+    (cap,) = cut_vertices(m, [0])
+    validate(m)
+    assert m.face_color(cap) is None
+    assert colour_counts(m) == {**{f: 1 for f in range(6)}, None: 1}
+    m = rainbow_cube()
+    (cap,) = cut_faces(m, [0])
+    assert m.face_color(cap) is None
+    assert colour_counts(m) == {**{f: 1 for f in range(1, 6)}, None: 1}
+
+
+def test_truncate_keeps_every_face_colour_and_gives_the_caps_none():
+    m = rainbow_cube()
+    caps = truncate_mesh(m)
+    validate(m)
+    assert all(m.face_color(cap) is None for cap in caps) and len(caps) == 8
+    assert colour_counts(m) == {**{f: 1 for f in range(6)}, None: 8}

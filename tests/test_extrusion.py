@@ -58,6 +58,7 @@ from tests.meshes import (
     assert_refused_quietly,
     assert_scales,
     euler_ok,
+    rainbow_cube,
     snapshot,
 )
 
@@ -858,3 +859,22 @@ def test_several_faces_are_all_checked_before_any_is_extruded(faces, message):
     from livemod.dlfl.extrusion import extrude_faces
 
     assert_refused(_collinear_bottom(), lambda m: extrude_faces(m, faces, "cubical"), message)
+# -- face colours --------------------------------------------------------------------
+
+GREEN = (0.0, 1.0, 0.5)  # face 0 of rainbow_cube
+
+
+@pytest.mark.parametrize("kind", sorted(KINDS))
+def test_every_face_an_extrusion_makes_takes_the_extruded_faces_colour(kind):
+    m = rainbow_cube()
+    before = set(m.face_ids().tolist())
+    if KINDS[kind].step is None:
+        extrude_fan(m, 0, kind, 1.0)
+    else:
+        assert m.face_color(extrude(m, 0, kind, 1.0)) == GREEN
+    validate(m)
+    made = [f for f in m.face_ids().tolist() if f not in before]
+    assert made and all(m.face_color(f) == GREEN for f in made)
+    original = rainbow_cube()
+    kept = [f for f in before - {0} if m.has_face(f)]
+    assert kept and all(m.face_color(f) == original.face_color(f) for f in kept)

@@ -27,8 +27,10 @@ from tests.meshes import (
     CUBE_POSITIONS,
     assert_refused,
     assert_scales,
+    colour_counts,
     cube,
     euler_ok,
+    rainbow_cube,
     two_cubes,
 )
 
@@ -371,3 +373,11 @@ def test_on_topmods_cube_the_merge_distance_is_its_absolute_hundredth():
     # faces 200 across: 0.5 apart (TopMod: two points) is one point
     big = np.array([[50.0, 50.0, 200.0], [50.0, 50.0, 200.5]])
     np.testing.assert_array_equal(multihandle._merged(big, topmod_cube * 100), big[[0]])
+
+
+def test_each_leg_takes_its_faces_colour_and_the_hub_none():
+    m = rainbow_cube()
+    multi_face_handle(m, [0, 2, 4], max_offsets=True)
+    validate(m)
+    # a leg of four quads per face; the hub, joining three faces, has no one source
+    assert colour_counts(m) == {0: 4, 2: 4, 4: 4, 1: 1, 3: 1, 5: 1, None: 5}

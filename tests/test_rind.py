@@ -16,7 +16,14 @@ from livemod.dlfl.errors import (
 from livemod.dlfl.rind import crust, crust_offsets, punch, rind
 from livemod.dlfl.selection import faces_by_size
 from livemod.dlfl.shapes import cube, icosahedron, soccer_ball, torus
-from tests.meshes import assert_refused_quietly, assert_scales, point_sphere, snapshot
+from tests.meshes import (
+    assert_refused_quietly,
+    assert_scales,
+    colour_counts,
+    point_sphere,
+    rainbow_cube,
+    snapshot,
+)
 
 # TopMod's cube.obj faces: 0 top (+y), 1 +x, 2 -z, 3 -x, 4 +z, 5 bottom (-y)
 TOP, BOTTOM, PLUS_X = 0, 5, 1
@@ -375,3 +382,13 @@ def test_punch_checks_the_face_budget_before_any_tube():
     punch(m, twins, two, max_faces=20)
     validate(m)
 
+def test_both_copies_keep_their_face_colour_and_a_tube_takes_the_punched_one():
+    m = rainbow_cube()
+    crust(m, 0.2)
+    validate(m)
+    assert colour_counts(m) == {f: 2 for f in range(6)}
+    m = rainbow_cube()
+    rind(m, [0], 0.2)
+    validate(m)
+    # face 0 gone, its four tube quads in its colour; the rest outside and inside
+    assert colour_counts(m) == {0: 4, 1: 2, 2: 2, 3: 2, 4: 2, 5: 2}

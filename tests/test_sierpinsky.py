@@ -9,7 +9,7 @@ from livemod.dlfl import face_size_histogram, from_polygons, genus, validate
 from livemod.dlfl.errors import InvalidArgumentError
 from livemod.dlfl.shapes import cube, octahedron, tetrahedron, torus
 from livemod.dlfl.sierpinsky import sierpinsky
-from tests.meshes import point_sphere, snapshot
+from tests.meshes import colour_counts, point_sphere, rainbow_cube, snapshot
 
 
 def test_cube_matches_topmod():
@@ -77,3 +77,11 @@ def test_sculpting_a_mesh_with_self_loops():
         op(m)
         validate(m)
         assert genus(m) == g
+
+
+def test_a_corners_triangle_takes_its_face_colour_and_a_vertex_face_none():
+    m = rainbow_cube()
+    sierpinsky(m)
+    validate(m)
+    # 4 corner triangles per face; 8 vertex faces around old vertices
+    assert colour_counts(m) == {**{f: 4 for f in range(6)}, None: 8}

@@ -18,7 +18,14 @@ from livemod.dlfl.arrays import mesh_arrays
 from livemod.dlfl.errors import GeometryError, InvalidArgumentError
 from livemod.dlfl.shapes import cube, grid, icosahedron, tetrahedron, torus
 from livemod.dlfl.sponge import TOPMOD_THICKNESS, shell_limit, sponge
-from tests.meshes import assert_refused, assert_refused_quietly, point_sphere, snapshot
+from tests.meshes import (
+    assert_refused,
+    assert_refused_quietly,
+    colour_counts,
+    point_sphere,
+    rainbow_cube,
+    snapshot,
+)
 
 
 def test_cube_matches_topmod():
@@ -175,3 +182,11 @@ def test_thickness_of_the_wrong_kind_or_size_is_refused(thickness, message, erro
 ])
 def test_a_thickness_that_overflows_prints_no_numpy_warning(thickness, message):
     assert_refused_quietly(cube(), lambda m: sponge(m, thickness), message)
+
+
+def test_a_corners_faces_take_its_face_colour_and_the_2gons_none():
+    m = rainbow_cube()
+    sponge(m)
+    validate(m)
+    # three quads per corner (4 corners a face); one 2-gon per edge
+    assert colour_counts(m) == {**{f: 12 for f in range(6)}, None: 12}

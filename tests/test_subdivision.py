@@ -660,11 +660,10 @@ def test_faces_made_inside_a_coloured_face_take_its_colour(scheme):
 
 # no face of these has a single source face, as no face of them can be a hole: TopMod's
 # composites through a dual, faces around old vertices or across old edges (stellate,
-# sqrt3), and the two schemes delegated to their own families (corner cut, sierpinsky)
+# sqrt3)
 NO_FACE_ORIGINS = {"dual", "12.6.4", "cubic-pentagonalization", "dual-checkerboard", "dual-loop",
-                   "dual-pentagon-preserving", "dual-pentagonalization", "modified-corner-cut",
-                   "root-3", "root3", "sqrt3", "six-preserving-loop-style", "sierpinsky",
-                   "stellate"}
+                   "dual-pentagon-preserving", "dual-pentagonalization", "root-3", "root3",
+                   "sqrt3", "six-preserving-loop-style", "stellate"}
 
 
 @pytest.mark.parametrize(("scheme", "options", "red"), [

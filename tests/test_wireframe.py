@@ -31,7 +31,9 @@ from tests.meshes import (
     assert_refused,
     assert_refused_quietly,
     assert_scales,
+    colour_counts,
     point_sphere,
+    rainbow_cube,
     snapshot,
 )
 from tests.meshes import tetrahedron as unit_tetrahedron
@@ -405,3 +407,19 @@ def test_modified_corner_cut_variants_differ_and_others_are_refused():
     assert not np.allclose(first.positions_view(), second.positions_view())
     assert_refused(cube(), lambda m: modified_corner_cut(m, 0.25, 3),
                    r"variant must be 1 \(TopMod's modifiedCornerCuttingSubdivide\) or 2")
+def test_a_corner_cut_keeps_each_face_colour_on_its_inner_polygon():
+    m = rainbow_cube()
+    modified_corner_cut(m)
+    validate(m)
+    # an inner polygon per face; 12 edge quads and 8 vertex triangles have no one source
+    assert colour_counts(m) == {**{f: 1 for f in range(6)}, None: 20}
+
+
+def test_a_wireframe_colours_the_tube_around_each_face_opening():
+    m = rainbow_cube()
+    wireframe(m, 0.1)
+    validate(m)
+    # 4 tube quads around each face's opening; the bars' outer and inner faces none
+    counts = colour_counts(m)
+    assert {f: counts[f] for f in range(6)} == {f: 4 for f in range(6)}
+    assert counts[None] == m.num_faces - 24

@@ -69,6 +69,12 @@ class MeshArrays:
             if value is not None:
                 value.flags.writeable = False
 
+    def colors_at(self, faces: np.ndarray) -> np.ndarray | None:
+        """``(k, 3)`` float32 colours of the dense ``(k,)`` ``faces`` (-1: no face,
+        no colour: NaN), for the faces a bulk operation makes from them; None
+        when this mesh has no colours."""
+        return None if self.face_colors is None else colors_at(self.face_colors, faces)
+
     @property
     def face_sizes(self) -> np.ndarray:
         """``(F,)`` int64 number of corners of each face."""
@@ -167,6 +173,18 @@ class MeshArrays:
     def counts(self) -> tuple[int, int, int]:
         """``(V, E, F)``."""
         return len(self.vertex_ids), len(self.edge_ids), len(self.face_ids)
+
+
+def colors_at(colors: np.ndarray, faces: np.ndarray) -> np.ndarray:
+    """``(k, 3)`` float32 rows of the ``(F, 3)`` ``colors`` at the ``(k,)`` int
+    ``faces``, NaN where a face is negative (none)."""
+    faces = np.asarray(faces)
+    has = faces >= 0
+    if has.all():
+        return np.take(colors, faces, axis=0)
+    picked = np.take(colors, np.where(has, faces, 0), axis=0)
+    picked[~has] = np.nan
+    return picked
 
 
 def mesh_arrays(mesh: Mesh) -> MeshArrays:

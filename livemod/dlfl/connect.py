@@ -237,8 +237,13 @@ def _chain_rings(
     _check_finite_rings(rings)
     limit = len(rings) + 1 if max_connections < 0 else max_connections
     made, current = 0, corner1
+    # the rings take face 1's colour (face 2's when it has none): the whole tube is one
+    color = mesh.face_color(mesh.corner_face(corner1)) or mesh.face_color(
+        mesh.corner_face(corner2))
     for points in rings:
         front, back = mesh.create_face(points.tolist())
+        mesh.set_face_color(front, color)
+        mesh.set_face_color(back, color)
         if made < limit:
             connector(mesh, current, mesh.face_corner(back))
             made += 1

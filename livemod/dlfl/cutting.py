@@ -305,9 +305,11 @@ def truncate(mesh: Mesh, offset: float = DEFAULT_OFFSET, *,
     face_ids[face_ids < 0] = first[2] + np.arange(len(cut.caps))  # the caps, in vertex order
     ids = (_numbered(cut.vertex_ids, first[0]), None, face_ids,
            _numbered(cut.corner_ids, first[3]))
+    # a face keeps its id and colour; a cap has none
+    kept = np.where(cut.face_ids >= 0, np.searchsorted(a.face_ids, cut.face_ids), -1)
     mesh.replace_with(from_corner_arrays(cut.positions, cut.offsets, cut.corner_vertex,
                                          cut.corner_mate, cut.face_hole, first_ids=first,
-                                         ids=ids))
+                                         ids=ids, face_colors=a.colors_at(kept)))
     return face_ids[cut.caps].tolist()
 
 
@@ -634,6 +636,7 @@ def _close(mesh: Mesh, inside: frozenset[int], starts: list[int]) -> list[int]:
     caps = list(dict.fromkeys(caps))
     for cap in caps:
         mesh.set_hole(cap, False)
+        mesh.set_face_color(cap, None)  # a cap lies across faces: it has no one source
     return caps
 
 

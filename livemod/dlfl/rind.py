@@ -14,7 +14,7 @@ vertices, edges and faces keep their relative order; the inner copy follows).
 from __future__ import annotations
 
 from collections.abc import Iterable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -42,6 +42,7 @@ class Shell:
         corner_vertex: ``(C,)`` int64 vertex index of each corner.
         corner_mate: ``(C,)`` int64 corner on the other side of each corner's edge.
         face_hole: ``(F,)`` bool hole flags.
+        face_colors: ``(F, 3)`` float32 colours (NaN: none), or None.
     """
 
     positions: np.ndarray
@@ -49,12 +50,13 @@ class Shell:
     corner_vertex: np.ndarray
     corner_mate: np.ndarray
     face_hole: np.ndarray
+    face_colors: np.ndarray | None = None
 
     def build(self, mesh: Mesh) -> Mesh:
         """The mesh these arrays describe, with ids following ``mesh``'s counters."""
         return from_corner_arrays(
             self.positions, self.offsets, self.corner_vertex, self.corner_mate,
-            self.face_hole, first_ids=mesh.next_ids(),
+            self.face_hole, face_colors=self.face_colors, first_ids=mesh.next_ids(),
         )
 
 
@@ -302,7 +304,10 @@ def shell_arrays(
     offsets = np.zeros(len(all_sizes) + 1, np.int64)
     np.cumsum(all_sizes, out=offsets[1:])
     hole = np.concatenate([a.face_hole[keep], a.face_hole[keep], np.zeros(len(tube_c), bool)])
-    shell = Shell(np.concatenate([outer, inner]), offsets, corner_vertex, mate, hole)
+    # both copies of a face take its colour; a tube quad, its punched face's
+    kept_f = np.flatnonzero(keep)
+    colors = a.colors_at(np.concatenate([kept_f, kept_f, a.corner_face[tube_c]]))
+    shell = Shell(np.concatenate([outer, inner]), offsets, corner_vertex, mate, hole, colors)
     return _drop_unused_vertices(shell) if cleanup else shell
 
 
@@ -315,8 +320,8 @@ def _drop_unused_vertices(shell: Shell) -> Shell:
     if used.all():
         return shell
     renumber = np.cumsum(used) - 1
-    return Shell(shell.positions[used], shell.offsets, renumber[shell.corner_vertex],
-                 shell.corner_mate, shell.face_hole)
+    return replace(shell, positions=shell.positions[used],
+                   corner_vertex=renumber[shell.corner_vertex])
 
 
 @dataclass(frozen=True)

@@ -57,9 +57,12 @@ def sierpinsky(mesh: Mesh, *, max_faces: object = None) -> list[int]:
     offsets = np.zeros(len(sizes) + 1, dtype=np.int64)
     np.cumsum(sizes, out=offsets[1:])
     edge_ids = _edge_ids(a, mates, first[1])
+    # a corner's triangle lies in the corner's face; a vertex's face has no one source
+    colors = a.colors_at(np.concatenate([a.corner_face, np.full(len(sizes) - len(verts) // 5,
+                                                                -1)]))
     mesh.replace_with(from_corner_arrays(
         np.concatenate([a.positions, _midpoints(a)]), offsets, verts, mates,
-        first_ids=first, ids=(vertex_ids, edge_ids, None, None)))
+        face_colors=colors, first_ids=first, ids=(vertex_ids, edge_ids, None, None)))
     return vertex_ids[nv:].tolist()
 
 

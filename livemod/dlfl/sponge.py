@@ -73,7 +73,11 @@ def sponge(mesh: Mesh, thickness: float | None = None, *, keep_2gons: bool = Tru
     _check_input(a)
     thickness, inner = _inner_shell(a, thickness)
     positions, corner_vertex, mates, offsets = _sponge_polygons(a, inner, keep_2gons)
+    # the three faces of a corner lie in (or tunnel through) its face; a 2-gon has no one
+    origin = np.concatenate([np.tile(a.corner_face, 3), np.full(len(offsets) - 1 -
+                                                                3 * len(a.corner_face), -1)])
     mesh.replace_with(from_corner_arrays(positions, offsets, corner_vertex, mates,
+                                         face_colors=a.colors_at(origin),
                                          first_ids=mesh.next_ids()))
     return thickness
 

@@ -46,6 +46,8 @@ class CornerCut:
         corner_mate: the other side of each corner's edge.
         face_hole: hole flags (an inner polygon keeps its face's flag).
         num_front: number of front copies: faces ``0..num_front-1``.
+        face_colors: ``(F, 3)`` colours (an inner polygon keeps its face's, the
+            others have none: NaN), or None.
     """
 
     positions: np.ndarray
@@ -54,6 +56,7 @@ class CornerCut:
     corner_mate: np.ndarray
     face_hole: np.ndarray
     num_front: int
+    face_colors: np.ndarray | None = None
 
 
 def vertex_rings(a: MeshArrays) -> tuple[np.ndarray, np.ndarray]:
@@ -207,8 +210,11 @@ def corner_cut_arrays(a: MeshArrays, thickness: float, variant: int = 1) -> Corn
     offsets = np.zeros(len(sizes) + 1, np.int64)
     np.cumsum(sizes, out=offsets[1:])
     hole = np.concatenate([a.face_hole, np.zeros(ne + len(a.vertex_ids), bool)])
+    # an inner polygon keeps its face's colour; edge and vertex faces have no one source
+    colors = a.colors_at(np.concatenate([np.arange(len(a.face_ids)),
+                                         np.full(ne + len(a.vertex_ids), -1)]))
     return CornerCut(_cut_points(a, thickness, variant), offsets, corner_vertex, mate, hole,
-                     len(a.face_ids))
+                     len(a.face_ids), colors)
 
 
 def _check_cut_input(a: MeshArrays, thickness: float) -> None:
@@ -252,7 +258,7 @@ def modified_corner_cut(mesh: Mesh, thickness: float = 0.25, variant: int = 1, *
     cut = corner_cut_arrays(mesh_arrays(mesh), thickness, int(variant))
     first = mesh.next_ids()
     new = from_corner_arrays(cut.positions, cut.offsets, cut.corner_vertex, cut.corner_mate,
-                             cut.face_hole, first_ids=first)
+                             cut.face_hole, face_colors=cut.face_colors, first_ids=first)
     mesh.replace_with(new)
     return list(range(first[2], first[2] + cut.num_front))
 
@@ -331,7 +337,7 @@ def wireframe(
     front[: cut.num_front] = True
     if split and (np.bincount(a.corner_vertex) == 2).any():
         work = from_corner_arrays(cut.positions, cut.offsets, cut.corner_vertex,
-                                  cut.corner_mate, cut.face_hole)
+                                  cut.corner_mate, cut.face_hole, face_colors=cut.face_colors)
         front = _split_valence2(work, a, front)
         a = mesh_arrays(work)
     inner = wireframe_inner_positions(a, front, thickness)
@@ -355,6 +361,7 @@ def _arrays_of(cut: CornerCut) -> MeshArrays:
         corner_face=np.repeat(np.arange(len(sizes)), sizes), corner_edge=corner_edge,
         corner_mate=cut.corner_mate, edge_ids=np.arange(len(lower)),
         edge_corners=np.stack([lower, cut.corner_mate[lower]], axis=1),
+        face_colors=cut.face_colors,
     )
 
 

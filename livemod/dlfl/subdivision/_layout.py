@@ -34,7 +34,7 @@ import numpy as np
 from .._checks import finite_number
 from .._graph import cycle_layout, walk_rings
 from .._vectors import group_sum
-from ..arrays import mesh_arrays
+from ..arrays import colors_at, mesh_arrays
 from ..budget import check_size, fits
 from ..build import from_corner_arrays
 from ..errors import InvalidArgumentError
@@ -64,18 +64,12 @@ class FaceSource(NamedTuple):
     def of(self, origin: np.ndarray) -> tuple[np.ndarray, np.ndarray | None]:
         """The ``(F,)`` hole flags and ``(F, 3)`` colours (or None) of faces whose
         ``(F,)`` int origins are ``origin`` (:data:`NO_ORIGIN`: no hole, no colour)."""
-        has = origin >= 0
-        every = bool(has.all())
-        safe = origin if every else np.where(has, origin, 0)
         if len(self.hole) == 0:
             return np.zeros(len(origin), dtype=bool), None
-        hole = self.hole[safe] if every else self.hole[safe] & has
-        if self.colors is None:
-            return hole, None
-        colors = rows(self.colors, safe)
-        if not every:
-            colors[~has] = np.nan
-        return hole, colors
+        has = origin >= 0
+        # most schemes make every face inside an old one: no mask to apply
+        hole = self.hole[origin] if has.all() else self.hole[np.where(has, origin, 0)] & has
+        return hole, None if self.colors is None else colors_at(self.colors, origin)
 
 
 # ``size(counts)``: a scheme's result ``(faces, corners)`` from the counts of its
