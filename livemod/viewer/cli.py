@@ -272,6 +272,8 @@ def _add_render_style(render: argparse.ArgumentParser) -> None:
     render.add_argument("--smooth", action="store_true",
                         help="smooth shading instead of flat faces (edges between faces "
                              "over 45 degrees apart stay sharp)")
+    render.add_argument("--no-colors", action="store_true",
+                        help="every face in the modelling colour, not in its own colour")
     render.add_argument("--section", type=parse_section, default=None, metavar="AXIS[=AT]",
                         help="cut the meshes at a plane and cap the cut solids: x=0.5 cuts "
                              "away what lies beyond x = 0.5; a bare x, y or z cuts "
@@ -431,7 +433,8 @@ def _render_style(args: argparse.Namespace, labels: frozenset[str], arrays: Any,
 
     return Style(edges=not args.no_edges, vertices=args.vertices, preview=args.preview,
                  labels=labels, grid=args.grid, background=BACKGROUNDS[args.background],
-                 smooth=args.smooth, section=section_through(args.section, (arrays, others)))
+                 smooth=args.smooth, section=section_through(args.section, (arrays, others)),
+                 colors=not args.no_colors)
 
 
 def _film_to(args: argparse.Namespace, offscreen: Any, values: dict[str, Any], style: Any,

@@ -79,6 +79,7 @@ KEY_BINDINGS: tuple[Binding, ...] = (
     Binding("RIGHT_BRACKET", "", "section_forward",
             "move the section plane forward (1/20 of the size)"),
     Binding("B", "", "toggle_background", "dark / light background"),
+    Binding("K", "", "toggle_colors", "faces in their own colours / the flat modelling colour"),
     Binding("N", "", "toggle_smooth",
             "flat / smooth shading (edges between faces over 45 degrees apart stay sharp)"),
     Binding("F", "ctrl", "labels_faces", "face id labels on/off"),

@@ -74,6 +74,9 @@ class RenderGeometry:
         arrays: the arrays it was built from (for what is made on demand).
         smooth: the faces' smooth shading creased at ``crease_angle`` degrees
             (:func:`crease_shading`), when it was prepared with it, else None.
+        face_colors: ``(F,)`` uint32 colour of each face packed as RGBA8 (red in
+            the low byte), alpha 0 for a face without one; empty when no face
+            has one (see :func:`packed_face_colors`).
     """
 
     positions: np.ndarray
@@ -88,6 +91,7 @@ class RenderGeometry:
     arrays: MeshArrays | None = None
     smooth: SmoothShading | None = None
     crease_angle: float = CREASE_ANGLE
+    face_colors: np.ndarray = field(default_factory=lambda: np.zeros(0, np.uint32))
 
     @property
     def triangle_face(self) -> np.ndarray:
@@ -200,7 +204,21 @@ def build_geometry(arrays: MeshArrays, crease_angle: float | None = None) -> Ren
     return RenderGeometry(positions, triangles, triangle_table, lines, finite_bounds(finite),
                           len(arrays.face_ids), int(arrays.face_hole.sum()), spheres,
                           len(arrays.positions) - len(finite), arrays, smooth,
-                          CREASE_ANGLE if crease_angle is None else crease_angle)
+                          CREASE_ANGLE if crease_angle is None else crease_angle,
+                          packed_face_colors(arrays))
+
+
+def packed_face_colors(arrays: MeshArrays) -> np.ndarray:
+    """``(F,)`` uint32 face colours as RGBA8 (red in the low byte, alpha 255) for
+    the faces with one, 0 for the others; ``(0,)`` when no face has one."""
+    colors = arrays.face_colors
+    if colors is None:
+        return np.zeros(0, np.uint32)
+    rgba = np.zeros((len(colors), 4), np.uint8)
+    has = ~np.isnan(colors[:, 0])
+    rgba[has, :3] = np.rint(colors[has] * 255)
+    rgba[has, 3] = 255
+    return rgba.view("<u4").reshape(-1).astype(np.uint32)
 
 
 @dataclass(frozen=True)

@@ -13,7 +13,8 @@ from typing import Any
 from .renderer import DARK_BACKGROUND, LIGHT_BACKGROUND, Style
 
 # the Style fields a key flips on and off (``toggle_<field>`` actions)
-TOGGLED_FIELDS = ("faces", "edges", "vertices", "preview", "others", "grid", "smooth")
+TOGGLED_FIELDS = ("faces", "edges", "vertices", "preview", "others", "grid", "smooth",
+                  "colors")
 
 
 class Look:

@@ -80,6 +80,9 @@ class Style:
         section: ``(axis, at)``: cut away every part of the meshes whose
             coordinate ``axis`` (0, 1, 2 for x, y, z) is greater than ``at``, and
             show the inside through the cut; None draws them whole.
+        colors: draw the current object's faces in their own colours (the
+            colour mode); faces without one, and every face when off, in the
+            flat modelling colour.
     """
 
     faces: bool = True
@@ -96,6 +99,7 @@ class Style:
     smooth: bool = False
     crease_angle: float = CREASE_ANGLE
     section: tuple[int, float] | None = None
+    colors: bool = True
 
 
 def read_image(fbo: moderngl.Framebuffer, style: Style) -> np.ndarray:
@@ -154,7 +158,8 @@ class Renderer(DrawnContent):
     def _bind_samplers(self) -> None:
         """Fix each program's texture units: 0 atlas/triangle_face, 1..3 flags."""
         units = {"triangle_face": 0, "face_flags": 1, "edge_flags": 2, "vertex_flags": 3,
-                 "triangle_index": 4, "position_table": 5, "winding": 6, "atlas": 0}
+                 "triangle_index": 4, "position_table": 5, "winding": 6, "face_colors": 7,
+                 "atlas": 0}
         for program in self.programs.values():
             for name, unit in units.items():
                 if name in program:
@@ -300,7 +305,8 @@ class Renderer(DrawnContent):
         elif style.faces:
             passes.append((len(mesh.geometry.triangles), lambda first, count: self._draw_faces(
                 mesh, BASE_COLOR, wire=wire_in_faces, smooth=style.smooth,
-                crease_angle=style.crease_angle, first=first, count=count)))
+                crease_angle=style.crease_angle, first=first, count=count,
+                own_colors=style.colors)))
         if style.edges and not wire_in_faces:
             passes.append((len(mesh.geometry.lines),
                            lambda first, count: self._draw_edges(mesh, False, first, count)))
@@ -355,8 +361,9 @@ class Renderer(DrawnContent):
     def _draw_faces(self, mesh: MeshGPU, color: tuple[float, float, float],
                     wire: bool = False, smooth: bool = False,
                     crease_angle: float = CREASE_ANGLE, first: int = 0,
-                    count: int | None = None) -> None:
-        """Triangles ``first .. first + count`` (all by default) of ``mesh``'s faces."""
+                    count: int | None = None, own_colors: bool = False) -> None:
+        """Triangles ``first .. first + count`` (all by default) of ``mesh``'s faces,
+        in ``color`` (or, with ``own_colors``, in their own colours where they have one)."""
         count = len(mesh.geometry.triangles) - first if count is None else count
         if count <= 0:
             return
@@ -374,6 +381,9 @@ class Renderer(DrawnContent):
         program["selected_color"].value = SELECTED_COLOR  # type: ignore[union-attr]
         mesh.triangle_face.use(0)
         mesh.face_flags.use(1)
+        use = own_colors and len(mesh.geometry.face_colors) > 0
+        program["use_face_colors"].value = int(use)  # type: ignore[union-attr]
+        mesh.face_colors.use(7)
         # push faces back so edges and points drawn at the same depth win
         self.ctx.polygon_offset = (1.0, 1.0)
         if mesh.geometry.closed:

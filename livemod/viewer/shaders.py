@@ -73,6 +73,8 @@ uniform usampler2D triangle_face;
 uniform usampler2D face_flags;
 uniform usampler2D triangle_index;
 uniform sampler2D position_table;
+uniform usampler2D face_colors;  // RGBA8 packed per face, alpha 0: no colour of its own
+uniform int use_face_colors;  // 1: draw the faces' own colours (the colour mode)
 uniform mat4 mvp;
 uniform vec2 viewport;
 uniform int wire;
@@ -112,7 +114,14 @@ void main() {
     uint face = entry & 0x1FFFFFFFu;
     vec3 n = facing_normal(v_view, smooth_shading != 0 ? v_normal : vec3(0.0));
     bool selected = fetch(face_flags, int(face)) != 0u;
-    vec3 base = selected ? selected_color : (gl_FrontFacing ? base_color : back_color);
+    vec3 front = base_color;
+    if (use_face_colors != 0) {
+        uint rgba = fetch(face_colors, int(face));
+        if ((rgba >> 24) != 0u) {
+            front = vec3(rgba & 255u, (rgba >> 8) & 255u, (rgba >> 16) & 255u) / 255.0;
+        }
+    }
+    vec3 base = selected ? selected_color : (gl_FrontFacing ? front : back_color);
     vec3 rgb = shade(n, base);
     if (wire != 0) rgb = mix(rgb, edge_color, wire_coverage(entry >> 29));
     color = vec4(rgb, 1.0);

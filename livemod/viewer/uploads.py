@@ -107,8 +107,9 @@ class MeshGPU:
         self.triangle_face, self.triangle_index, self.position_table = (
             _texture(objects, name) for name in ("triangle_face", "triangle_index",
                                                  "position_table"))
-        self.face_flags, self.edge_flags, self.vertex_flags = (
-            _texture(objects, name) for name in ("face_flags", "edge_flags", "vertex_flags"))
+        self.face_flags, self.edge_flags, self.vertex_flags, self.face_colors = (
+            _texture(objects, name) for name in ("face_flags", "edge_flags", "vertex_flags",
+                                                 "face_colors"))
         content = [(self.positions, "3f", "in_position")]
         self.face_vao = ctx.vertex_array(programs["face"], content, self.triangles, 4)
         self.winding_vao = ctx.vertex_array(programs["winding"], content, self.triangles, 4)
@@ -136,7 +137,8 @@ class MeshGPU:
                 ("position_table", g.positions, "f4"),
                 ("face_flags", np.zeros(g.face_count, np.uint8), "u1"),
                 ("edge_flags", np.zeros(len(g.lines), np.uint8), "u1"),
-                ("vertex_flags", np.zeros(len(g.positions), np.uint8), "u1")):
+                ("vertex_flags", np.zeros(len(g.positions), np.uint8), "u1"),
+                ("face_colors", g.face_colors, "u4")):
             objects[name] = yield from table_steps(ctx, values, dtype, made)
         return cls(ctx, programs, geometry, objects)
 
@@ -202,7 +204,7 @@ class MeshGPU:
                     self.sphere_vao, self.spheres, self.positions,
                     self.triangles, self.lines, self.triangle_face, self.face_flags,
                     self.edge_flags, self.vertex_flags, self.triangle_index,
-                    self.position_table):
+                    self.position_table, self.face_colors):
             obj.release()
 
 
