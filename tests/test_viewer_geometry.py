@@ -107,3 +107,13 @@ def test_visible_labels_are_those_in_view_nearest_the_eye_first() -> None:
     assert visible_labels(columns, view, 2).tolist() == [0, 1]
     assert visible_labels(columns, None, 2).tolist() == [0, 1]
     assert visible_labels(np.zeros((3, 0), np.float32), view, 5).tolist() == []
+
+
+def test_face_colours_are_packed_as_rgba8_with_alpha_for_the_faces_that_have_one():
+    m = cube()
+    m.set_face_color(1, (1.0, 0.5, 0.0))
+    packed = build_geometry(mesh_arrays(m)).face_colors
+    assert packed.dtype == np.uint32 and len(packed) == 6
+    assert packed[1] == 255 | 128 << 8 | 0 << 16 | 255 << 24
+    assert (np.delete(packed, 1) == 0).all()
+    assert len(build_geometry(mesh_arrays(cube())).face_colors) == 0

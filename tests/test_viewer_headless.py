@@ -92,3 +92,32 @@ def test_render_command_takes_a_margin(tmp_path, capsys):
                  "--elevation", "0", "--yaw", "0", "--background", "transparent",
                  "--margin", "25%", "--samples", "0"]) == 0
     assert _extent(out) == (60, 60)
+
+
+def _reddish(path: Path) -> int:
+    """Pixels drawn in a red (red well above green and blue)."""
+    rgb = read_image(path)[:, :, :3].astype(int)
+    return int(((rgb[:, :, 0] > 90) & (rgb[:, :, 1] < 40) & (rgb[:, :, 2] < 40)).sum())
+
+
+def test_the_colour_mode_draws_the_faces_own_colours(offscreen, tmp_path):
+    mesh = from_polygons(CUBE_POSITIONS - 0.5, CUBE_FACES)
+    for face in range(6):
+        mesh.set_face_color(face, (1.0, 0.0, 0.0))
+    arrays = mesh_arrays(mesh)
+    on, off = tmp_path / "on.png", tmp_path / "off.png"
+    for out, colors in ((on, True), (off, False)):
+        render_arrays(arrays, str(out), style=Style(colors=colors), offscreen=offscreen)
+    # lit red faces where the mesh covers the picture; none in the modelling colour
+    covered = int((read_image(on)[:, :, :3] != read_image(off)[:, :, :3]).any(axis=2).sum())
+    assert _reddish(on) > 0.9 * covered > 1000
+    assert _reddish(off) == 0
+
+
+def test_render_draws_the_colours_unless_told_not_to(tmp_path):
+    script = tmp_path / "s.py"
+    script.write_text("from livemod.dlfl import *\nload('cube')\nsetFaceColor(faces(), (1, 0, 0))\n")
+    assert main(["render", str(script), "-o", str(tmp_path / "a.png"), "--size", "160x120"]) == 0
+    assert main(["render", str(script), "-o", str(tmp_path / "b.png"), "--size", "160x120",
+                 "--no-colors"]) == 0
+    assert _reddish(tmp_path / "a.png") > 1000 and _reddish(tmp_path / "b.png") == 0
