@@ -71,3 +71,14 @@ def test_a_run_s_output_makes_its_folder_and_is_not_written_without_an_object(tm
     assert save_problem([], str(tmp_path / "none.obj")) == \
         f"the script left no mesh; {tmp_path / 'none.obj'} was not written"
     assert not (tmp_path / "none.obj").exists()
+
+
+def test_a_snapshot_carries_the_face_colours_read_only_and_pickles():
+    mesh = cube()
+    mesh.set_face_color(int(mesh.face_ids()[3]), (0.25, 0.5, 1.0))
+    arrays = snapshot_mesh(mesh)
+    assert arrays.face_colors is not None and not arrays.face_colors.flags.writeable
+    assert arrays.face_colors[3].tolist() == [0.25, 0.5, 1.0]
+    back = pickle.loads(pickle.dumps(arrays))
+    assert back.face_colors[3].tolist() == [0.25, 0.5, 1.0]
+    assert snapshot_mesh(cube()).face_colors is None

@@ -175,10 +175,12 @@ def freeze_arrays(arrays: MeshArrays, copy: bool = True) -> MeshArrays:
     """
     copies = {}
     for field in dataclasses.fields(arrays):
-        arr = np.array(getattr(arrays, field.name), copy=copy)
-        arr.flags.writeable = False
-        copies[field.name] = arr
-    return MeshArrays(**copies)
+        value = getattr(arrays, field.name)
+        if value is not None:  # face_colors is None for a mesh without colours
+            arr = np.array(value, copy=copy)
+            arr.flags.writeable = False
+            copies[field.name] = arr
+    return dataclasses.replace(arrays, **copies)
 
 
 def snapshot_mesh(mesh: Mesh) -> MeshArrays:

@@ -11,8 +11,6 @@ from __future__ import annotations
 import dataclasses
 from collections import OrderedDict
 
-import numpy as np
-
 from livemod.dlfl.arrays import MeshArrays
 
 from .results import RunResult
@@ -24,8 +22,8 @@ def arrays_bytes(arrays: MeshArrays | None) -> int:
     """Bytes held by the numpy arrays of ``arrays`` (0 for None)."""
     if arrays is None:
         return 0
-    return sum(int(np.asarray(getattr(arrays, f.name)).nbytes)
-               for f in dataclasses.fields(arrays))
+    return sum(int(getattr(arrays, f.name).nbytes) for f in dataclasses.fields(arrays)
+               if getattr(arrays, f.name) is not None)
 
 
 def result_bytes(result: RunResult) -> int:
