@@ -14,7 +14,7 @@ from livemod.dlfl.errors import FileFormatError, InvalidArgumentError
 from livemod.dlfl.io import load_mesh, read_off, save_mesh
 from livemod.dlfl.io.off import off_bytes
 from livemod.dlfl.shapes import load_shape
-from tests.meshes import torus, triangle
+from tests.meshes import coloured_cube, expected_written_colors, torus, triangle
 
 
 @pytest.mark.parametrize("shape", ["soccerball", "cube", "geodesicdome", "genus3hexa1"])
@@ -94,3 +94,11 @@ def test_a_large_mesh_round_trips_on_the_vectorized_path() -> None:
     back = read_off(off_bytes(mesh))
     assert np.array_equal(mesh_arrays(back).surface_polygons()[1],
                           mesh_arrays(mesh).surface_polygons()[1])
+
+
+def test_the_meshs_own_colours_are_written_after_each_polygon() -> None:
+    mesh = coloured_cube()
+    lines = off_bytes(mesh).decode().splitlines()[11:]  # header, comment, counts, 8 vertices
+    expected = np.rint(expected_written_colors(mesh) * 255).astype(int)
+    assert [[int(v) for v in line.split()[5:]] for line in lines] == \
+        [[*row, 255] for row in expected.tolist()]

@@ -27,6 +27,7 @@ import numpy as np
 
 from ..arrays import mesh_arrays
 from ..build import from_polygons
+from ..colors import filled_colors
 from ..mesh import Mesh
 from ._colors import face_rgba
 from ._lines import gather_lines, parse_index_lines, parse_number_lines, split_lines, token_starts
@@ -49,7 +50,8 @@ def write_off(mesh: Mesh, path: str | os.PathLike[str], *, face_colors: object =
         path: the target file.
         face_colors: optional ``(F, 3)`` or ``(F, 4)`` colours, one row per face
             of ``mesh_arrays(mesh)`` (see :func:`._colors.face_rgba`), written
-            as four integers 0-255 after each polygon's indices.
+            as four integers 0-255 after each polygon's indices; by default the
+            mesh's own, if it has any (faces without one in the modelling colour).
 
     Raises:
         InvalidArgumentError: colours of the wrong shape or range.
@@ -66,6 +68,8 @@ def off_bytes(mesh: Mesh, face_colors: object = None) -> bytes:
 def off_pieces(mesh: Mesh, face_colors: object = None) -> Iterator[bytes]:
     """The OFF text of ``mesh`` in pieces of whole lines (see :func:`write_off`)."""
     a = mesh_arrays(mesh)
+    if face_colors is None and a.face_colors is not None:
+        face_colors = filled_colors(a.face_colors)
     rgba = face_rgba(face_colors, len(a.face_ids))
     sizes, vertices = a.surface_polygons()
     rows = [sizes[:, None]]
