@@ -127,3 +127,16 @@ def test_corners_without_faces():
     m._v.alloc()
     with pytest.raises(DLFLError, match="no corners but has vertices"):
         validate(m)
+
+
+def test_a_face_colour_out_of_range_or_a_bad_flag_is_reported():
+    m = cube()
+    m.set_face_color(2, (0.5, 0.5, 0.5))
+    validate(m)
+    m._f.arrays["color"][m._f.slot(2)] = (0.5, np.nan, 0.5)
+    with pytest.raises(DLFLError, match=r"face 2 has colour flag 1 and colour \[0.5, nan"):
+        validate(m)
+    m = cube()
+    m._f.colored[m._f.slot(4)] = 7
+    with pytest.raises(DLFLError, match="face 4 has colour flag 7"):
+        validate(m)

@@ -21,7 +21,8 @@ def validate(mesh: Mesh) -> None:
     Checked: id maps (unique ids, ``moved`` entries, free slots), every corner's
     next/prev/face/vertex/edge reference, every face ring closed and single, each
     edge's two sides at opposite ends, edgeless corners only in point-spheres,
-    each vertex's corners forming one rotation cycle, finite positions.
+    each vertex's corners forming one rotation cycle, finite positions, face
+    colours (a flag of 0 or 1, and three numbers in ``[0, 1]`` when it is 1).
 
     Raises:
         DLFLError: the first broken invariant, naming the elements by id (the
@@ -30,6 +31,7 @@ def validate(mesh: Mesh) -> None:
     """
     for table in (mesh._v, mesh._e, mesh._f, mesh._c):
         _check_table(table)
+    _check_face_colors(mesh._f)
     corners = mesh._c.live_slots()
     if len(corners) == 0:
         if mesh.num_vertices or mesh.num_edges or mesh.num_faces:
@@ -39,6 +41,17 @@ def validate(mesh: Mesh) -> None:
     _check_face_rings(mesh, corners)
     _check_edges(mesh, corners)
     _check_vertices(mesh, corners)
+
+
+def _check_face_colors(f: Table) -> None:
+    slots = f.live_slots()
+    colored = f.arrays["colored"][slots]
+    color = f.arrays["color"][slots]
+    bad = (colored > 1) | (colored == 1) & ~((color >= 0) & (color <= 1)).all(axis=1)
+    if bad.any():
+        k = int(np.flatnonzero(bad)[0])
+        _fail(f"face {int(f.ids[slots[k]])} has colour flag {int(colored[k])} and colour "
+              f"{color[k].tolist()} (a flag of 0 or 1, three numbers in [0, 1])")
 
 
 def _fail(message: str) -> None:
