@@ -46,8 +46,9 @@ NO_ORIGIN = -1
 
 
 def no_origin(count: int) -> np.ndarray:
-    """``(count,)`` int32 :data:`NO_ORIGIN`: faces without a source face."""
-    return np.full(count, NO_ORIGIN, dtype=np.int32)
+    """``(count,)`` :data:`NO_ORIGIN`: faces without a source face (int8: joined to
+    origins, numpy widens it no further than they need)."""
+    return np.full(count, NO_ORIGIN, dtype=np.int8)
 
 
 class FaceSource(NamedTuple):
@@ -61,10 +62,17 @@ class FaceSource(NamedTuple):
     hole: np.ndarray
     colors: np.ndarray | None
 
+    @property
+    def tracked(self) -> bool:
+        """Whether a face's origin matters: some input face is a hole or has a
+        colour. Untracked, the origins are all 0 (:func:`read_topology`'s uint8
+        placeholder, as cheap to carry as the hole flags it replaced)."""
+        return self.colors is not None or bool(self.hole.any())
+
     def of(self, origin: np.ndarray) -> tuple[np.ndarray, np.ndarray | None]:
         """The ``(F,)`` hole flags and ``(F, 3)`` colours (or None) of faces whose
         ``(F,)`` int origins are ``origin`` (:data:`NO_ORIGIN`: no hole, no colour)."""
-        if len(self.hole) == 0:
+        if not self.tracked:
             return np.zeros(len(origin), dtype=bool), None
         has = origin >= 0
         # most schemes make every face inside an old one: no mask to apply
@@ -343,7 +351,9 @@ def read_topology(mesh: Mesh) -> Topology:
     spheres = np.zeros((0, 3))
     face_ids = a.face_ids
     source = FaceSource(hole, a.face_colors)
-    origin = np.arange(len(hole), dtype=np.int32)
+    # the usual mesh, of no hole and no colour, needs no origins: a 1-byte placeholder
+    origin = (np.arange(len(hole), dtype=np.int32) if source.tracked
+              else np.zeros(len(hole), dtype=np.uint8))
     sphere_corner = mate < 0
     if sphere_corner.any():
         keep_face = np.ones(len(hole), dtype=bool)
@@ -442,7 +452,8 @@ class Faces:
         self.verts.append(np.asarray(verts, dtype=np.int64).ravel())
         self.labels.append(np.asarray(labels, dtype=np.int64).ravel())
         self.sizes.append(np.asarray(sizes, dtype=np.int64))
-        self.origins.append(np.broadcast_to(np.asarray(origin, dtype=np.int32), sizes.shape))
+        one = np.int8(origin) if isinstance(origin, int) else origin  # as no_origin's
+        self.origins.append(np.broadcast_to(one, sizes.shape))
 
 
 def pair_by_label(labels: np.ndarray, num_labels: int) -> np.ndarray:
