@@ -100,7 +100,7 @@ def test_similar_faces_by_area(torus_scene):
 @pytest.mark.parametrize(("call", "message"), [
     (lambda: edge_loop(999), "edge 999 does not exist"),
     (lambda: checkerboard("0"), "faceid"),
-    (lambda: similar_faces(0, "colour"), "no face colours yet"),
+    (lambda: similar_faces(0, "shade"), "faces are compared by 'size', 'area', 'colour'"),
     (lambda: grow_selection([0], "corners"), "corners neither grow"),
     (lambda: select_all("loops"), "kind must be one of"),
     (lambda: invert_selection(kind="loops"), "kind must be one of"),

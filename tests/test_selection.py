@@ -186,14 +186,20 @@ def test_select_all_and_invert_count_every_kind():
     assert len(select_all(g)) == 4 and len(invert(g, [])) == 4
 
 
-def test_similar_faces_by_size_and_area_and_no_colours_yet():
+def test_similar_faces_by_size_area_and_colour():
     m = soccer_ball()
     pentagon = faces_by_size(m, 5)[0]
     assert len(similar_faces(m, pentagon)) == 12
     assert similar_faces(m, pentagon, "area", 1e-9) == faces_by_size(m, 5)
-    with pytest.raises(InvalidArgumentError, match="not 'colour' \\(livemod meshes carry no "
-                       "face colours yet\\)"):
-        similar_faces(m, pentagon, "colour")
+    for face in faces_by_size(m, 5)[:3]:
+        m.set_face_color(face, (0.5, 0.25, 1.0))
+    m.set_face_color(faces_by_size(m, 5)[3], (0.5, 0.25, 0.9))
+    assert similar_faces(m, pentagon, "colour") == faces_by_size(m, 5)[:3]
+    assert similar_faces(m, pentagon, "color", 0.2) == faces_by_size(m, 5)[:4]
+    uncoloured = similar_faces(m, faces_by_size(m, 6)[0], "colour")
+    assert len(uncoloured) == m.num_faces - 4
+    with pytest.raises(InvalidArgumentError, match="not 'shade'"):
+        similar_faces(m, pentagon, "shade")
 
 
 @pytest.mark.parametrize("rule", [

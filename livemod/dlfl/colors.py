@@ -23,8 +23,8 @@ from ._checks import finite_number, id_list, is_id, rgb
 from .errors import InvalidArgumentError
 from .mesh import Mesh
 
-__all__ = ["MODELLING_COLOR", "SAME_IN_8_BITS", "faces_by_color", "filled_colors",
-           "set_face_colors"]
+__all__ = ["MODELLING_COLOR", "SAME_IN_8_BITS", "colored_like", "faces_by_color",
+           "filled_colors", "set_face_colors"]
 
 # TopMod's render colour (255, 151, 92): what a face without colour is drawn in, and
 # written as by the formats that give every face a colour
@@ -90,12 +90,19 @@ def faces_by_color(mesh: Mesh, color: Any, tolerance: float = SAME_IN_8_BITS) ->
         raise InvalidArgumentError(f"tolerance must be >= 0, got {tolerance!r}")
     target = mesh.face_color(int(color)) if is_id(color) else (
         None if color is None else rgb(color))
-    colors, ids = mesh.face_colors(), mesh.face_ids()
-    if colors is None:
-        chosen = np.full(len(ids), target is None)
-    elif target is None:
-        chosen = np.isnan(colors[:, 0])
-    else:
-        # NaN rows (no colour) compare False: never selected
-        chosen = (np.abs(colors - np.asarray(target, np.float32)) <= np.float32(limit)).all(1)
+    ids = mesh.face_ids()
+    chosen = colored_like(mesh.face_colors(), len(ids), target, limit)
     return ids[chosen & ~mesh.hole_mask()].tolist()
+
+
+def colored_like(colors: np.ndarray | None, count: int, target: tuple[float, float, float] | None,
+                 limit: float) -> np.ndarray:
+    """``(count,)`` bool: the faces whose ``(count, 3)`` ``colors`` (NaN rows, or None
+    for all: no colour) are within ``limit`` of ``target`` in each channel, or,
+    for a None ``target``, have no colour."""
+    if colors is None:
+        return np.full(count, target is None)
+    if target is None:
+        return np.isnan(colors[:, 0])
+    # NaN rows (no colour) compare False: never selected
+    return (np.abs(colors - np.asarray(target, np.float32)) <= np.float32(limit)).all(axis=1)

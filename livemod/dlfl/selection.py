@@ -25,6 +25,7 @@ from ._graph import component_labels
 from ._vectors import unit
 from .analysis import face_areas, face_normals
 from .arrays import MeshArrays, mesh_arrays
+from .colors import SAME_IN_8_BITS, colored_like
 from .errors import InvalidArgumentError, UnknownIdError
 from .mesh import Mesh
 
@@ -190,28 +191,46 @@ def faces_by_area(mesh: Source, face: int, delta: float = 0.05) -> list[int]:
     return a.face_ids[keep].tolist()
 
 
+def faces_by_colour(mesh: Source, face: int, delta: float = SAME_IN_8_BITS) -> list[int]:
+    """TopMod's ``selectFacesByColor``: faces whose colour is within ``delta`` of
+    ``face``'s in each channel (the faces without one, when it has none); holes
+    left out (see :mod:`livemod.dlfl.colors`).
+
+    Raises:
+        DLFLError: ``face`` is not a live face, or ``delta`` is not a finite number.
+    """
+    delta = finite_number(delta, "delta")
+    a = _arrays(mesh)
+    i = _live_face(mesh, a, face)
+    row = None if a.face_colors is None else a.face_colors[i]
+    target = None if row is None or np.isnan(row[0]) else (row[0], row[1], row[2])
+    chosen = colored_like(a.face_colors, len(a.face_ids), target, delta)
+    return a.face_ids[chosen & ~a.face_hole].tolist()
+
+
 #: the measures :func:`similar_faces` compares faces by (TopMod's similar-face
-#: selections; by colour comes with face colours, which livemod meshes lack yet)
+#: selections)
 SIMILAR_FACES: dict[str, Callable[[Source, int, float], list[int]]] = {
     "size": lambda mesh, face, delta: matching_faces(mesh, face),
     "area": faces_by_area,
+    "colour": faces_by_colour,
+    "color": faces_by_colour,
 }
 
 
 def similar_faces(mesh: Source, face: int, by: str = "size", delta: float = 0.05) -> list[int]:
     """Faces like ``face`` by a measure of :data:`SIMILAR_FACES`: ``"size"`` (the same
-    number of sides, TopMod's SHIFT+S in face mode) or ``"area"`` (within ``delta``).
+    number of sides, TopMod's SHIFT+S in face mode), ``"area"`` or ``"colour"``
+    (within ``delta``; each channel for a colour).
 
     Raises:
-        InvalidArgumentError: an unknown measure (``"colour"`` too: livemod's
-            meshes carry no face colours yet).
+        InvalidArgumentError: an unknown measure.
         DLFLError: ``face`` is not a live face, or a bad ``delta``.
     """
     measure = SIMILAR_FACES.get(by) if isinstance(by, str) else None
     if measure is None:
         known = ", ".join(map(repr, SIMILAR_FACES))
-        note = " (livemod meshes carry no face colours yet)" if by in ("colour", "color") else ""
-        raise InvalidArgumentError(f"faces are compared by {known}, not {shown(by)}{note}")
+        raise InvalidArgumentError(f"faces are compared by {known}, not {shown(by)}")
     return measure(mesh, face, delta)
 
 

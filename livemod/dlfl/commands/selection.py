@@ -83,8 +83,8 @@ def checkerboard(faceid: Any) -> list[int]:
 def similar_faces(faceid: Any, by: str = "size", delta: float = 0.05) -> list[int]:
     """``similar_faces(faceid[, by, delta])``: faces like a face, TopMod's select
     similar: ``by="size"`` the same number of sides, ``by="area"`` an area within
-    ``delta`` (TopMod's select by area, 0.05). Colour is not a measure yet:
-    livemod's meshes carry no face colours.
+    ``delta`` (TopMod's select by area, 0.05), ``by="colour"`` a colour within
+    ``delta`` in each channel (TopMod's selectFacesByColor).
 
     Raises:
         DLFLError: an id that is not a face, an unknown measure, a bad delta.
