@@ -4,16 +4,9 @@ from __future__ import annotations
 
 from tests import layering
 
-# the step recording inlines V/E/F counts from the tables, in the runner's
-# recorder and the modeling-command wrapper; issue 26 item 2 moves it into the
-# runner behind Mesh.counts(). Drop an entry when its module stops reading them.
-PENDING_STORAGE_READS = frozenset({
-    "livemod/runner/recording.py", "livemod/dlfl/commands/_base.py",
-})
-
 
 def test_only_the_storage_modules_read_the_mesh_tables():
-    reads = [f for f in layering.storage_reads() if f.path not in PENDING_STORAGE_READS]
+    reads = list(layering.storage_reads())
     assert reads == [], "read the mesh through its public accessors (see mesh.py)"
 
 
