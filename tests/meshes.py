@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import random
 import warnings
 from collections import Counter
 from collections.abc import Callable
@@ -10,7 +11,7 @@ from typing import Any
 import numpy as np
 import pytest
 
-from livemod.dlfl import DLFLError, Mesh, Scene, from_polygons, mesh_arrays, validate
+from livemod.dlfl import DLFLError, Mesh, Scene, from_polygons, mesh_arrays, shapes, validate
 from livemod.dlfl.analysis import component_genera
 
 CUBE_POSITIONS = np.array(
@@ -230,3 +231,43 @@ def colour_counts(mesh: Mesh) -> dict[int | None, int]:
         key = None if row[0] != row[0] else round(row[0] * 5)
         counts[key] = counts.get(key, 0) + 1
     return counts
+
+
+# -- parallel edges and meshes for crusts, shared by several modules
+
+# a soup on the tetrahedron's points whose vertices 1 and 2 are joined by ten edges
+PARALLEL_EDGE_SOUP = [[1, 2], [2, 1, 3], [2, 3, 1], [1, 2], [1, 2], [2, 3], [1, 2], [0, 3],
+                      [1, 2], [1, 2], [1, 2], [1, 2], [1, 2], [1, 3, 0, 3]]
+
+
+def stack_parallel_edges(mesh: Mesh, rng: random.Random, pairs: list[tuple[int, int]],
+                         count: int) -> Mesh:
+    """Insert ``count`` edges, each between the corners at two vertices of one of
+    ``pairs`` in one face (a 2-gon or a split face: parallel edges)."""
+    for _ in range(count):
+        a, b = rng.choice(pairs)
+        faces = [f for f in mesh.face_ids().tolist()
+                 if {a, b} <= set(mesh.face_vertices(f))]
+        f = rng.choice(faces)
+        ca = rng.choice([c for c in mesh.face_corners(f) if mesh.corner_vertex(c) == a])
+        cb = rng.choice([c for c in mesh.face_corners(f) if mesh.corner_vertex(c) == b])
+        mesh.insert_edge(ca, cb) if rng.random() < 0.5 else mesh.insert_edge(cb, ca)
+        if rng.random() < 0.2 and mesh.num_edges > 6:
+            mesh.delete_edge(rng.choice(mesh.edge_ids().tolist()), cleanup=False)
+        validate(mesh)
+    return mesh
+
+
+def scaled_cube(scale: float) -> Mesh:
+    """:func:`livemod.dlfl.shapes.cube` (edge 2, about the origin) scaled by ``scale``."""
+    m = shapes.cube()
+    m.set_positions(m.vertex_ids(), m.positions_view() * scale)
+    return m
+
+
+def split_edge_cube() -> Mesh:
+    """:func:`livemod.dlfl.shapes.cube` with edge 0 ((1,1,1)-(1,1,-1)) split at
+    (1,1,0): vertex 8, both of whose corners are straight."""
+    m = shapes.cube()
+    assert m.subdivide_edge(0) == [8]
+    return m

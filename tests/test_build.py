@@ -2,11 +2,17 @@
 
 from __future__ import annotations
 
+import itertools
+import random
+import warnings
+
 import numpy as np
 import pytest
 
 from livemod.dlfl import (
+    DLFLError,
     DLFLRepairWarning,
+    Mesh,
     from_corner_arrays,
     from_polygons,
     genus,
@@ -17,7 +23,18 @@ from livemod.dlfl import (
 from livemod.dlfl.analysis import component_genera, enclosed_volume
 from livemod.dlfl.build import join_meshes
 from livemod.dlfl.errors import InvalidArgumentError, NonManifoldError
-from tests.meshes import CUBE_FACES, CUBE_POSITIONS, cube, euler_ok, torus_polygons
+from tests.meshes import (
+    CUBE_FACES,
+    CUBE_POSITIONS,
+    PARALLEL_EDGE_SOUP,
+    TETRA_POSITIONS,
+    canonical,
+    cube,
+    euler_ok,
+    stack_parallel_edges,
+    tetrahedron,
+    torus_polygons,
+)
 
 SQUARE = [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]]
 
@@ -314,3 +331,162 @@ def test_joined_meshes_keep_their_colours():
     validate(joined)
     assert joined.face_color(7) == (0.0, 0.0, 1.0)
     assert sum(joined.face_color(f) is not None for f in joined.face_ids().tolist()) == 1
+
+
+# -- from_polygons pairs parallel sides whenever a manifold pairing exists
+
+
+def polygons_of(mesh: Mesh) -> tuple[np.ndarray, list[np.ndarray]]:
+    """The mesh's positions and every face (holes included) as a vertex-index list."""
+    a = mesh_arrays(mesh)
+    faces = np.split(a.corner_vertex, a.face_offsets[1:-1]) if len(a.face_ids) else []
+    return a.positions, faces
+
+
+def rebuild(mesh: Mesh) -> Mesh:
+    """mesh -> polygons -> from_polygons, checked by validate()."""
+    rebuilt = from_polygons(*polygons_of(mesh))
+    validate(rebuilt)
+    return rebuilt
+
+
+def assert_same_surface(rebuilt: Mesh, mesh: Mesh) -> None:
+    assert canonical(rebuilt) == canonical(mesh)
+    assert sorted(component_genera(rebuilt)) == sorted(component_genera(mesh))
+    assert euler_ok(rebuilt)
+
+
+def test_a_soup_with_ten_parallel_edges_builds() -> None:
+    mesh = from_polygons(TETRA_POSITIONS, PARALLEL_EDGE_SOUP)
+    validate(mesh)
+    assert mesh.counts() == (4, 16, 14)
+    assert component_genera(mesh) == [0]
+    a = mesh_arrays(mesh)
+    ends = np.sort(a.edge_vertices, axis=1).tolist()
+    assert ends.count([1, 2]) == 10
+
+
+def long_sequence(seed: int, steps: int, start: Mesh) -> Mesh:
+    """A seeded run of co-facial and merging inserts and deletes, checked after each
+    step and round-tripped through polygons every step."""
+    rng = random.Random(seed)
+    m = start
+    for _ in range(steps):
+        corners = m.corner_ids().tolist()
+        roll = rng.random()
+        if roll < 0.5:
+            ring = m.face_corners(m.corner_face(rng.choice(corners)))
+            if len(ring) >= 2:
+                c1, c2 = rng.sample(ring, 2)
+                m.insert_edge(c1, c2)
+        elif roll < 0.65:
+            c1 = rng.choice(corners)
+            others = [c for c in corners if m.corner_face(c) != m.corner_face(c1)]
+            if others:
+                m.insert_edge(c1, rng.choice(others))
+        elif m.num_edges > 1:
+            m.delete_edge(rng.choice(m.edge_ids().tolist()), cleanup=False)
+        validate(m)
+        ends = mesh_arrays(m).edge_vertices
+        if (ends[:, 0] != ends[:, 1]).all():  # a self-loop is no polygon side
+            assert_same_surface(rebuild(m), m)
+    return m
+
+
+def test_a_long_operator_sequence_round_trips_through_polygons() -> None:
+    m = long_sequence(22, 150, tetrahedron())
+    assert m.num_edges > 6
+
+
+@pytest.mark.parametrize("seed", range(40))
+def test_many_parallel_edges_round_trip_through_polygons(seed: int) -> None:
+    rng = random.Random(seed)
+    pairs = [(1, 2)] if seed % 2 else rng.sample(list(itertools.combinations(range(4), 2)), 3)
+    mesh = stack_parallel_edges(tetrahedron(), rng, pairs, rng.randint(20, 40))
+    ends = mesh_arrays(mesh).edge_vertices
+    if (ends[:, 0] == ends[:, 1]).any():
+        return  # a self-loop is no polygon side
+    assert_same_surface(rebuild(mesh), mesh)
+
+
+def test_parallel_edges_on_a_handle_round_trip() -> None:
+    rng = random.Random(7)
+    mesh = cube()
+    # a merging insert between two faces makes a handle (genus 1)
+    mesh.insert_edge(mesh.face_corners(0)[0], mesh.face_corners(1)[0])
+    mesh = stack_parallel_edges(mesh, rng, [(0, 4), (0, 1)], 20)
+    assert component_genera(mesh) == [1]
+    assert_same_surface(rebuild(mesh), mesh)
+
+
+def manifold_pairing_exists(faces: list[list[int]], num_vertices: int) -> bool:
+    """Brute force for a closed soup: some pairing of each edge's sides leaves
+    every vertex one ring of corners (independent of the builder)."""
+    corners = [(f, i) for f, face in enumerate(faces) for i in range(len(face))]
+    index = {c: k for k, c in enumerate(corners)}
+    nxt = [index[(f, (i + 1) % len(faces[f]))] for f, i in corners]
+    vert = [faces[f][i] for f, i in corners]
+    groups: dict[tuple[int, int], tuple[list[int], list[int]]] = {}
+    for k in range(len(corners)):
+        u, w = vert[k], vert[nxt[k]]
+        groups.setdefault((min(u, w), max(u, w)), ([], []))[u > w].append(k)
+    if any(len(fwd) != len(back) for fwd, back in groups.values()):
+        return False
+    per_group = [[(fwd, perm) for perm in itertools.permutations(back)]
+                 for fwd, back in groups.values()]
+    for choice in itertools.product(*per_group):
+        mate = [0] * len(corners)
+        for fwd, back in choice:
+            for f, b in zip(fwd, back, strict=True):
+                mate[f], mate[b] = b, f
+        if all(ring_is_one_cycle(v, vert, nxt, mate) for v in range(num_vertices)):
+            return True
+    return False
+
+
+def ring_is_one_cycle(v: int, vert: list[int], nxt: list[int], mate: list[int]) -> bool:
+    at = [k for k in range(len(vert)) if vert[k] == v]
+    x, length = nxt[mate[at[0]]], 1
+    while x != at[0]:
+        x, length = nxt[mate[x]], length + 1
+    return length == len(at)
+
+
+def builds(faces: list[list[int]], num_vertices: int) -> bool:
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            validate(from_polygons(np.eye(max(num_vertices, 3))[:num_vertices], faces))
+    except DLFLError:
+        return False
+    return True
+
+
+def random_closed_soup(rng: random.Random) -> list[list[int]]:
+    """2-gons and triangles on vertices 0, 1, 2, each edge used as often both ways:
+    parallel edges on all three vertex pairs, sharing vertices."""
+    pool = [[0, 1], [1, 2], [0, 2], [0, 1, 2], [0, 2, 1]]
+    faces = [rng.choice(pool) for _ in range(rng.randint(2, 6))]
+    surplus = faces.count([0, 1, 2]) - faces.count([0, 2, 1])
+    return faces + [[0, 2, 1]] * max(surplus, 0) + [[0, 1, 2]] * max(-surplus, 0)
+
+
+def test_from_polygons_builds_exactly_the_soups_a_brute_force_can_pair() -> None:
+    rng = random.Random(3)
+    seen = [0, 0]
+    for _ in range(120):
+        faces = random_closed_soup(rng)
+        if {v for f in faces for v in f} != {0, 1, 2} or len(faces) > 7:
+            continue
+        expected = manifold_pairing_exists(faces, 3)
+        assert builds(faces, 3) == expected, faces
+        seen[expected] += 1
+    assert min(seen) >= 10  # both answers were exercised
+
+
+def test_a_soup_that_cannot_be_paired_is_refused_by_name() -> None:
+    faces = [[0, 1, 2], [0, 1, 2], [0, 2, 1], [0, 2, 1]]
+    assert not manifold_pairing_exists(faces, 3)
+    with pytest.raises(NonManifoldError, match=r"^polygons: vertices 0 and 1 are joined by 2 edges "
+                       r"that cannot be arranged into a manifold$"):
+        from_polygons(np.eye(3), faces)

@@ -363,3 +363,25 @@ def _diagonal_bumped_cube():
 def test_a_huge_mesh_smooths_and_flattens_like_the_unit_one(op):
     # the face normals of raw products overflowed past ~1e77 and came out zero
     assert_scales(_diagonal_bumped_cube, op)
+
+
+# -- edge_cleanup refuses edges that are not ids; cleanup_2gons keeps a lone edge
+
+
+@pytest.mark.parametrize("edges", [5, "01", [0, 1.5]])
+def test_edge_cleanup_refuses_edges_that_are_not_ids(edges):
+    # 5 raised TypeError; 1.5 was skipped as if it were a deleted edge
+    assert_refused(unit_cube(), lambda m: edge_cleanup(m, edges), "edges must",
+                   error=InvalidArgumentError)
+
+
+def test_cleanup_2gons_keeps_a_lone_edge():
+    # its 2-corner face runs along both sides of one edge: deleting that edge
+    # (with cleanup) removed both vertices, the whole component
+    m = unit_cube()
+    a, b = m.create_vertex((5, 0, 0)), m.create_vertex((6, 0, 0))
+    m.insert_edge(m.vertex_corner(a), m.vertex_corner(b))
+    m.insert_edge(0, 1)  # a 2-gon inside the bottom face of the cube
+    assert cleanup_2gons(m) == 1
+    validate(m)
+    assert m.counts() == (10, 13, 7) and m.has_vertex(a) and m.has_vertex(b)

@@ -5,9 +5,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from livemod.dlfl import DLFLError, Mesh, genus, num_components, validate
+from livemod.dlfl import DLFLError, Mesh, from_polygons, genus, num_components, validate
 from livemod.dlfl.errors import InvalidArgumentError, UnknownIdError
 from tests.meshes import (
+    TETRA_POSITIONS,
     assert_refused,
     corner_structure,
     cube,
@@ -900,3 +901,94 @@ def test_copies_carry_the_colours_and_stay_apart():
     assert other.face_color(3) == RED
     other.set_face_color(3, BLUE)
     assert m.face_color(3) == RED
+
+
+# -- insert_edge between a face and a hole gives a hole, whatever the order
+
+
+def face_and_hole(mesh: Mesh) -> tuple[int, int]:
+    face, hole = sorted(mesh.face_ids().tolist(), key=mesh.is_hole)
+    assert not mesh.is_hole(face) and mesh.is_hole(hole)
+    return face, hole
+
+
+@pytest.mark.parametrize("hole_first", [False, True])
+def test_inserting_between_a_face_and_a_hole_gives_a_hole(hole_first: bool) -> None:
+    m = triangle()
+    face, hole = face_and_hole(m)
+    c_face, c_hole = m.face_corners(face)[0], m.face_corners(hole)[0]
+    args = (c_hole, c_face) if hole_first else (c_face, c_hole)
+    e = m.insert_edge(*args)
+    validate(m)
+    assert m.counts() == (3, 4, 1)
+    (merged,) = m.face_ids().tolist()
+    assert merged == (hole if hole_first else face)  # the first corner's face survives
+    assert m.is_hole(merged)
+    # deleting the edge splits the hole; both parts keep its flag, as delete_edge says
+    assert m.delete_edge(e, cleanup=False) == [merged, m.face_ids().tolist()[-1]]
+    validate(m)
+    assert m.counts() == (3, 3, 2)
+    assert [m.is_hole(f) for f in m.face_ids().tolist()] == [True, True]
+
+
+def test_inserting_between_two_faces_gives_a_face() -> None:
+    m = cube()
+    m.insert_edge(m.face_corners(0)[0], m.face_corners(1)[0])
+    validate(m)
+    assert not any(m.is_hole(f) for f in m.face_ids().tolist())
+
+
+# -- unknown ids: messages for ids below a bulk build's first id
+
+
+def test_an_id_below_the_first_id_of_a_build_is_not_called_deleted() -> None:
+    m = from_polygons(TETRA_POSITIONS, [[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]],
+                      first_ids=(5, 7, 9, 11))
+    with pytest.raises(UnknownIdError, match=r"^vertex 2 was deleted or never existed \(this mesh "
+                       r"was built with vertex ids from 5\)$"):
+        m.position(2)
+    with pytest.raises(UnknownIdError, match=r"^face 0 was deleted or never existed"):
+        m.face_size(0)
+    with pytest.raises(UnknownIdError, match=r"^vertex 9 does not exist$"):
+        m.position(9)
+    e = m.edge_ids().tolist()[0]
+    m.delete_edge(e, cleanup=False)
+    with pytest.raises(UnknownIdError, match=rf"^edge {e} was deleted$"):
+        m.edge_vertices(e)
+    copy = m.copy()
+    with pytest.raises(UnknownIdError, match=r"^vertex 4 was deleted or never existed"):
+        copy.position(4)
+
+
+def test_ids_of_a_mesh_built_from_zero_keep_their_messages() -> None:
+    m = cube()
+    m.delete_edge(3, cleanup=False)
+    with pytest.raises(UnknownIdError, match=r"^edge 3 was deleted$"):
+        m.edge_vertices(3)
+    with pytest.raises(UnknownIdError, match=r"^edge 12 does not exist$"):
+        m.edge_vertices(12)
+
+
+# -- arguments of the wrong type: a string is no position, no hole flag
+
+
+@pytest.mark.parametrize("text", ["123", b"123", bytearray(b"123")])
+def test_a_string_is_not_a_position(text):
+    # "123" unpacked into the point (1, 2, 3) and b"123" into (49, 50, 51)
+    assert_refused(Mesh(), lambda m: m.create_vertex(text), "expected a position",
+                   error=InvalidArgumentError)
+    assert_refused(cube(), lambda m: m.set_position(0, text), "expected a position",
+                   error=InvalidArgumentError)
+    assert_refused(Mesh(), lambda m: m.create_face([text, (0, 0, 0)]), "expected a position",
+                   error=InvalidArgumentError)
+
+
+def test_set_hole_refuses_a_string_flag():
+    # "False" is truthy: the face became a hole
+    assert_refused(cube(), lambda m: m.set_hole(0, "False"), "hole must be True or False",
+                   error=InvalidArgumentError)
+    m = cube()
+    m.set_hole(0, 1)
+    assert m.is_hole(0)
+    m.set_hole(0, False)
+    assert not m.is_hole(0)

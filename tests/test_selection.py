@@ -2,12 +2,13 @@
 
 from __future__ import annotations
 
+import random
 import warnings
 from collections import Counter
 
 import pytest
 
-from livemod.dlfl import DLFLError, mesh_arrays
+from livemod.dlfl import DLFLError, Mesh, from_polygons, mesh_arrays
 from livemod.dlfl.errors import InvalidArgumentError, UnknownIdError
 from livemod.dlfl.selection import (
     KINDS,
@@ -32,6 +33,17 @@ from livemod.dlfl.selection import (
 )
 from livemod.dlfl.shapes import cube, genus3_hexa, grid, soccer_ball, torus
 from livemod.dlfl.subdivision import catmull_clark
+from tests.meshes import (
+    PARALLEL_EDGE_SOUP,
+    TETRA_POSITIONS,
+    assert_refused,
+    path_face,
+    stack_parallel_edges,
+    triangle,
+)
+from tests.meshes import cube as unit_cube
+from tests.meshes import tetrahedron as unit_tetrahedron
+from tests.meshes import torus as unit_torus
 
 
 def test_faces_by_size_on_the_soccer_ball():
@@ -231,3 +243,75 @@ def test_faces_of_infinite_area_match_each_other_without_a_warning():
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         assert faces_by_area(m, 0) == list(range(6))
+
+
+# -- matching_edges: the vectorized version gives what the per-edge one gave
+
+
+def matching_edges_one_by_one(mesh: Mesh, edge: int) -> list[int]:
+    """The former per-edge implementation of selection.matching_edges."""
+    valence = vertex_valences(mesh)
+    u, w = mesh.edge_vertices(edge)
+    key = sorted((valence[u], valence[w]))
+    return [e for e in mesh.edge_ids().tolist()
+            if sorted(valence[v] for v in mesh.edge_vertices(e)) == key]
+
+
+def meshes_for_matching() -> list[Mesh]:
+    odd = unit_cube()
+    odd.insert_edge(odd.face_corners(0)[0], odd.face_corners(0)[2])  # valences 4 and 4
+    odd.delete_edge(5, cleanup=False)  # a gap in the edge ids
+    stacked = stack_parallel_edges(unit_tetrahedron(), random.Random(1), [(1, 2), (0, 3)], 12)
+    built = from_polygons(TETRA_POSITIONS, PARALLEL_EDGE_SOUP, first_ids=(3, 4, 5, 6))
+    looped = path_face()  # its face visits vertex 1 twice: joining those corners is a loop
+    twice = [c for c in looped.face_corners(0) if looped.corner_vertex(c) == 1]
+    looped.insert_edge(*twice)
+    ends = mesh_arrays(looped).edge_vertices
+    assert (ends[:, 0] == ends[:, 1]).any()
+    return [unit_cube(), unit_torus(5, 4), odd, stacked, built, triangle(), looped]
+
+
+def test_matching_edges_gives_what_the_per_edge_version_gave() -> None:
+    for mesh in meshes_for_matching():
+        for e in mesh.edge_ids().tolist():
+            assert matching_edges(mesh, e) == matching_edges_one_by_one(mesh, e)
+
+
+def test_matching_edges_of_a_deleted_edge_says_so() -> None:
+    m = unit_cube()
+    m.delete_edge(0, cleanup=False)
+    with pytest.raises(UnknownIdError, match=r"^edge 0 was deleted$"):
+        matching_edges(m, 0)
+    with pytest.raises(UnknownIdError, match=r"^edge 40 does not exist$"):
+        matching_edges(m, 40)
+
+
+# -- bad arguments and deleted faces are refused by name; huge directions work
+
+
+@pytest.mark.parametrize(("call", "message"), [
+    (lambda m: faces_by_normal(m, "abc"), "direction must be three finite numbers"),
+    (lambda m: faces_by_normal(m, (1, 0)), "direction must be three finite numbers"),
+    (lambda m: faces_by_normal(m, (0, 0, float("nan"))), "direction must be three finite"),
+    (lambda m: faces_by_normal(m, (0, 0, 0)), "direction must not be zero"),
+    (lambda m: faces_by_normal(m, (1, 0, 0), "x"), "max_angle must be a number"),
+    (lambda m: faces_by_area(m, 0, "x"), "delta must be a number"),
+    (lambda m: faces_by_area(m, 1.0), "expected a face id"),
+    (lambda m: checkerboard(m, 1.0), "expected a face id"),
+])
+def test_selection_refuses_bad_arguments(call, message):
+    assert_refused(unit_cube(), call, message, error=InvalidArgumentError)
+
+
+def test_selection_of_a_deleted_face_says_it_was_deleted():
+    m = unit_cube()
+    m.delete_edge(0)  # the second face of edge 0 goes
+    gone = next(f for f in range(6) if not m.has_face(f))
+    for call in (faces_by_area, checkerboard):
+        assert_refused(m, lambda m, call=call: call(m, gone), f"face {gone} was deleted",
+                       error=UnknownIdError)
+
+
+def test_faces_by_normal_takes_a_huge_direction():
+    # the norm of (1e308, 1e308, 0) overflows unless scaled first
+    assert faces_by_normal(unit_cube(), (1e308, 0, 0)) == faces_by_normal(unit_cube(), (1, 0, 0))

@@ -17,6 +17,7 @@ from livemod.dlfl.transform import (
     translate,
 )
 from tests.meshes import assert_refused, assert_refused_quietly, snapshot
+from tests.meshes import cube as unit_cube
 
 BASE = cube().positions_view()
 
@@ -119,3 +120,27 @@ def test_a_huge_or_tiny_axis_rotates_like_the_unit_one():
     # the norm of (1e308, 1e308, 0) overflowed and the axis became zero: no rotation
     for axis in [(1e308, 1e308, 0), (1e-200, 1e-200, 0)]:
         np.testing.assert_allclose(rotation_matrix(axis, 45), rotation_matrix((1, 1, 0), 45))
+
+
+# -- a matrix or flag of the wrong type and deleted vertices are refused by name
+
+
+@pytest.mark.parametrize("matrix", ["abc", [[1, 2], [3]]])
+def test_transform_refuses_a_matrix_that_is_not_numbers(matrix):
+    assert_refused(unit_cube(), lambda m: transform(m, matrix),
+                   "matrix must be a finite 3x3 array", error=InvalidArgumentError)
+
+
+def test_move_vertices_refuses_a_string_flag():
+    assert_refused(unit_cube(), lambda m: move_vertices(m, [0], (1, 1, 1), relative="False"),
+                   "relative must be True or False", error=InvalidArgumentError)
+
+
+def test_transform_of_a_deleted_vertex_says_it_was_deleted():
+    m = unit_cube()
+    m.collapse_edge(0)
+    gone = next(v for v in range(8) if not m.has_vertex(v))
+    assert_refused(m, lambda m: translate(m, (1, 0, 0), vertices=[gone]),
+                   f"vertex {gone} was deleted", error=UnknownIdError)
+    assert_refused(m, lambda m: translate(m, (1, 0, 0), vertices=[99]), "vertex 99 does not exist",
+                   error=UnknownIdError)

@@ -140,3 +140,17 @@ def test_a_face_colour_out_of_range_or_a_bad_flag_is_reported():
     m._f.colored[m._f.slot(4)] = 7
     with pytest.raises(DLFLError, match="face 4 has colour flag 7"):
         validate(m)
+
+
+# -- a free list holding a slot outside the table is named, not an IndexError
+
+
+def test_validate_names_a_free_slot_outside_the_table():
+    m = cube()
+    m._e.free.append(m._e.n + 5)  # IndexError inside validate before the fix
+    with pytest.raises(DLFLError, match="free list holds slot 17, outside the 12 used slots"):
+        validate(m)
+    m = cube()
+    m._e.free.append(-1)  # indexed the last slot silently
+    with pytest.raises(DLFLError, match="free list holds slot -1"):
+        validate(m)
