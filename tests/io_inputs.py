@@ -11,6 +11,7 @@ whatever path a line took.
 from __future__ import annotations
 
 import random
+import re
 import struct
 import warnings
 from collections.abc import Callable
@@ -233,3 +234,15 @@ def quiet_read(reader: Callable[[bytes], Mesh], data: bytes) -> Mesh:
         warnings.simplefilter("ignore", DLFLRepairWarning)
         warnings.simplefilter("ignore", UserWarning)
         return reader(data)
+
+
+# -- the unit cube of tests.meshes as OBJ text, and lone CR line ends
+
+UNIT_CUBE_OBJ = (b"v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+                 b"f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n")
+
+
+def lone_cr_after_line(data: bytes, line: int) -> bytes:
+    """``data`` with the ``\\n`` that ends 1-based line ``line`` made a lone ``\\r``."""
+    at = [m.start() for m in re.finditer(b"\n", data)][line - 1]
+    return data[:at] + b"\r" + data[at + 1 :]

@@ -4,10 +4,11 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import numpy as np
 import pytest
 import trimesh
 
-from livemod.dlfl import genus, validate
+from livemod.dlfl import genus, mesh_arrays, validate
 from livemod.dlfl.io import (
     READERS,
     WRITERS,
@@ -86,3 +87,17 @@ def test_every_format_read_is_written_too_and_comes_back(key: str, tmp_path: Pat
     v, e, f = mesh.counts()
     assert back.counts() in ((v, e, f), (v, e + f, 2 * f))
     assert genus(back) == 1
+
+
+# -- a round trip through a file of each format keeps the surface
+
+
+@pytest.mark.parametrize("ext", ["obj", "dlfl", "ply"])
+def test_round_trip_through_a_file_keeps_counts_genus_and_positions(ext: str, tmp_path) -> None:
+    mesh = torus()
+    save_mesh(mesh, tmp_path / f"t.{ext}")
+    back = load_mesh(tmp_path / f"t.{ext}")
+    assert (back.num_vertices, back.num_edges, back.num_faces) == (
+        mesh.num_vertices, mesh.num_edges, mesh.num_faces)
+    assert genus(back) == genus(mesh) == 1
+    assert np.array_equal(mesh_arrays(back).positions, mesh_arrays(mesh).positions)

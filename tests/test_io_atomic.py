@@ -5,13 +5,16 @@ from __future__ import annotations
 
 import os
 import signal
+import stat
 import subprocess
 import sys
 from pathlib import Path
 
 import pytest
 
+from livemod.dlfl.io import read_obj, write_obj
 from livemod.dlfl.io.atomic import remove_abandoned, temporary_path, write_atomically
+from tests.meshes import cube as unit_cube
 
 # a save that writes half of its bytes, says so and waits (for its stdin to close)
 HALF_A_SAVE = """
@@ -134,3 +137,25 @@ def test_a_staged_file_moved_into_place_keeps_the_old_mode_and_the_link(tmp_path
     assert sorted(p.name for p in tmp_path.iterdir()) == ["link.obj", "real.obj"]
     with pytest.raises(OSError, match=f"cannot write {tmp_path}"):
         move_into_place(str(tmp_path / "gone.tmp"), tmp_path / "x.obj")
+
+
+# -- the mode of a written file: the umask for a new one, the old one's kept
+
+
+def test_new_file_mode_follows_the_umask(tmp_path) -> None:
+    old = os.umask(0o077)
+    try:
+        write_obj(unit_cube(), tmp_path / "private.obj")
+    finally:
+        os.umask(old)
+    assert stat.S_IMODE(os.stat(tmp_path / "private.obj").st_mode) == 0o600
+
+
+def test_replacing_a_read_only_file_keeps_its_mode(tmp_path) -> None:
+    path = tmp_path / "ro.obj"
+    path.write_bytes(b"old")
+    path.chmod(0o444)
+    write_obj(unit_cube(), path)
+    assert stat.S_IMODE(path.stat().st_mode) == 0o444
+    assert read_obj(path).num_faces == 6
+    assert os.listdir(tmp_path) == ["ro.obj"]

@@ -28,7 +28,9 @@ from livemod.dlfl.io._lines import leading_uints
 from livemod.dlfl.io._numtext import format_floats, format_rounded
 from livemod.dlfl.io.dlflfile import dlfl_bytes, parse_dlfl
 from livemod.dlfl.shapes import donut_hexa
+from tests.io_inputs import lone_cr_after_line
 from tests.meshes import coloured_cube, expected_written_colors, torus, two_cubes
+from tests.meshes import cube as unit_cube
 from tests.topmod_samples import sample_bytes
 
 # TOPMOD.md section 6, verbatim: TopMod's own writer output for its cube
@@ -589,3 +591,48 @@ def test_a_dlfl_without_colours_writes_no_library_and_reads_back_quietly(
     assert not (tmp_path / "t.mtl").exists()
     back = read_dlfl(tmp_path / "t.dlfl")
     assert back.face_colors() is None and len(recwarn) == 0
+
+
+# -- a lone CR ends a line and counts in line numbers; CR-only line endings
+
+
+@pytest.mark.parametrize("key", [b"v ", b"fv ", b"e ", b"f "])
+def test_dlfl_lone_cr_ends_a_line(key):
+    data = dlfl_bytes(unit_cube())
+    lines = data.split(b"\n")
+    line = next(i for i, text in enumerate(lines, 1) if text.startswith(key))
+    mesh = read_dlfl(lone_cr_after_line(data, line))
+    validate(mesh)
+    assert mesh.counts() == (8, 12, 6)
+    np.testing.assert_array_equal(mesh.positions_view(), unit_cube().positions_view())
+
+
+def test_dlfl_lone_cr_counts_in_line_numbers():
+    data = dlfl_bytes(unit_cube())
+    lines = data.split(b"\n")
+    last_v = max(i for i, text in enumerate(lines, 1) if text.startswith(b"v "))
+    broken = lone_cr_after_line(data, 4).replace(lines[last_v - 1], b"v 1 x 1")
+    with pytest.raises(FileFormatError, match=rf"^<dlfl>:{last_v}: "):
+        read_dlfl(broken)
+
+
+def test_dlfl_with_cr_line_endings_reads_every_line() -> None:
+    text = dlfl_bytes(unit_cube()).replace(b"\n", b"\r")
+    mesh = read_dlfl(text)
+    assert (mesh.num_vertices, mesh.num_edges, mesh.num_faces) == (8, 12, 6)
+
+
+# -- the header's end: a missing '#' line, a file name that holds one
+
+
+def test_dlfl_without_a_header_end_is_refused() -> None:
+    text = dlfl_bytes(unit_cube()).replace(b"#\n", b"")
+    with pytest.raises(FileFormatError, match=r"no '#' line"):
+        parse_dlfl(text, "x.dlfl")
+
+
+def test_dlfl_file_name_with_a_newline_still_reads_back(tmp_path) -> None:
+    path = tmp_path / "a\n#\nv 0 0.dlfl"
+    write_dlfl(unit_cube(), path)
+    mesh = read_dlfl(path)
+    assert (mesh.num_vertices, mesh.num_edges, mesh.num_faces) == (8, 12, 6)

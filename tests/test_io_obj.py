@@ -25,6 +25,7 @@ from livemod.dlfl import (
 from livemod.dlfl.io import _numtext, load_mesh, read_obj, save_mesh, write_obj
 from livemod.dlfl.io._numtext import decimal_to_float, format_floats, format_uints
 from livemod.dlfl.io.obj import obj_bytes, parse_obj
+from tests.io_inputs import UNIT_CUBE_OBJ, lone_cr_after_line
 from tests.meshes import CUBE_FACE_COLORS, coloured_cube, cube, expected_written_colors
 from tests.topmod_samples import SAMPLE_COUNTS, sample_bytes
 
@@ -494,3 +495,58 @@ def test_an_obj_without_colours_names_no_library(tmp_path: Path) -> None:
     write_obj(cube(), tmp_path / "c.obj")
     assert not (tmp_path / "c.mtl").exists()
     assert b"mtllib" not in (tmp_path / "c.obj").read_bytes()
+
+
+# -- a lone CR ends a line, also a continued one, and counts in line numbers
+
+
+@pytest.mark.parametrize("fast", [True, False])
+@pytest.mark.parametrize("line", [2, 8, 9, 13])  # after v, the last v, an f, the last but one f
+def test_obj_lone_cr_ends_a_line(fast, line):
+    data = lone_cr_after_line(UNIT_CUBE_OBJ, line)
+    soup = parse_obj(data, fast=fast)
+    reference = parse_obj(UNIT_CUBE_OBJ, fast=fast)
+    np.testing.assert_array_equal(soup.positions, reference.positions)
+    np.testing.assert_array_equal(soup.indices, reference.indices)
+    mesh = read_obj(data)
+    validate(mesh)
+    assert mesh.counts() == (8, 12, 6)
+
+
+def test_obj_lone_cr_counts_in_line_numbers():
+    data = lone_cr_after_line(UNIT_CUBE_OBJ, 2).replace(b"f 2 3 7 6", b"f 2 3 7 x")
+    with pytest.raises(FileFormatError, match=r"^<obj>:12: bad vertex index 'x'"):
+        read_obj(data)
+
+
+def test_obj_lone_cr_ends_a_continued_line():
+    data = b"v 0 0 0\nv 1 0 0\rv 0 1 0\nf 1 \\\r2 3\n"
+    mesh = read_obj(data)
+    assert mesh.counts() == (3, 3, 2)
+
+
+# -- a backslash continues a line; CR-only line endings
+
+UNIT_CUBE_VERTICES = UNIT_CUBE_OBJ[: UNIT_CUBE_OBJ.index(b"f ")]  # its eight "v" lines
+
+@pytest.mark.parametrize("fast", [True, False])
+@pytest.mark.parametrize("newline", [b"\n", b"\r\n"])
+def test_obj_backslash_continues_a_line(fast: bool, newline: bytes) -> None:
+    data = (UNIT_CUBE_VERTICES + b"f 1 4 \\\n    3 2\nv 0 0 \\\n 2\nf 1 2 -1\n").replace(b"\n", newline)
+    soup = parse_obj(data, "c.obj", fast=fast)
+    assert soup.offsets.tolist() == [0, 4, 7]
+    assert soup.indices.tolist() == [0, 3, 2, 1, 0, 1, 8]
+    assert soup.positions[8].tolist() == [0.0, 0.0, 2.0]
+    assert soup.face_lines.tolist() == [9, 13]  # a joined line keeps its first line's number
+
+
+def test_obj_continued_lines_keep_later_line_numbers() -> None:
+    data = UNIT_CUBE_VERTICES + b"f 1 2 \\\n 3\nf 1 2 x\n"
+    with pytest.raises(FileFormatError, match=r"^c\.obj:11: bad vertex index 'x'"):
+        parse_obj(data, "c.obj")
+
+
+@pytest.mark.parametrize("fast", [True, False])
+def test_obj_with_cr_line_endings_reads_every_line(fast: bool) -> None:
+    soup = parse_obj(UNIT_CUBE_OBJ.replace(b"\n", b"\r"), "mac.obj", fast=fast)
+    assert len(soup.positions) == 8 and len(soup.offsets) == 7

@@ -25,7 +25,8 @@ from livemod.dlfl import (
     validate,
 )
 from livemod.dlfl.io.ply import parse_ply, ply_bytes, read_ply
-from tests.meshes import CUBE_FACES, CUBE_POSITIONS, cube, torus
+from tests.io_inputs import lone_cr_after_line
+from tests.meshes import CUBE_FACES, CUBE_POSITIONS, cube, torus, torus_polygons
 from tests.test_io_fuzz import edit_lists, mutate, only_dlfl_errors
 
 
@@ -768,3 +769,39 @@ def test_a_list_count_past_any_integer_type_ends_inside_the_element(count: int) 
                      ["0 0 0", "1 0 0", "0 1 0", f"{count} 0 1 2"])
     with pytest.raises(FileFormatError, match=r"the file ends inside element 'face' \(row 1 of 1\)"):
         read_ply(data)
+
+
+# -- a lone CR ends a header line, the header, and an ASCII body row
+
+
+@pytest.mark.parametrize("line", [1, 2, 4, 9])  # after ply, format, element, end_header-1
+def test_ply_header_lone_cr_ends_a_line(line):
+    data = ply_bytes(cube())
+    assert data.split(b"\n")[line - 1] != b"end_header"
+    mesh = read_ply(lone_cr_after_line(data, line))
+    validate(mesh)
+    assert mesh.counts() == (8, 12, 6)
+    np.testing.assert_array_equal(mesh.positions_view(), cube().positions_view())
+
+
+def test_ply_header_lone_cr_after_end_header_starts_the_body():
+    data = ply_bytes(cube())
+    end = data.index(b"end_header\n") + len(b"end_header")
+    mesh = read_ply(data[:end] + b"\r" + data[end + 1 :])
+    assert mesh.counts() == (8, 12, 6)
+
+
+def test_ply_ascii_body_lone_cr_ends_a_row_on_the_line_path():
+    # a body above the line path's minimum; it was already right (the token
+    # path takes over where lines merge): kept so that it stays right
+    positions, quads = torus_polygons(120, 120)
+    rows = [" ".join(repr(x) for x in p) for p in positions.tolist()]
+    rows += [" ".join(map(str, [4, *quad])) for quad in quads.tolist()]
+    header = (f"ply\nformat ascii 1.0\nelement vertex {len(positions)}\nproperty double x\n"
+              f"property double y\nproperty double z\nelement face {len(quads)}\n"
+              "property list uchar int vertex_indices\nend_header\n")
+    data = (header + "\n".join(rows) + "\n").encode()
+    assert len(data) > 1 << 17
+    read = read_ply(lone_cr_after_line(data, 500))
+    assert read.counts() == (14400, 28800, 14400)
+    np.testing.assert_array_equal(read.positions_view(), positions)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 import struct
 import warnings
 from pathlib import Path
@@ -18,6 +19,7 @@ from livemod.dlfl.io import load_mesh, read_obj, read_stl, save_mesh
 from livemod.dlfl.io import stl as stl_module
 from livemod.dlfl.io.stl import drop_collapsed, parse_stl, stl_bytes, weld_positions
 from livemod.dlfl.shapes import cube, soccer_ball, torus
+from tests.io_inputs import lone_cr_after_line
 
 from .test_io_fuzz import FUZZ, only_dlfl_errors
 from .test_io_stl_ply import open_box
@@ -259,3 +261,94 @@ def test_stl_truncated_and_mutated(base: bytes, cut: int, edits) -> None:
         warnings.simplefilter("ignore", DLFLRepairWarning)
         only_dlfl_errors(read_stl, base[:cut])
         only_dlfl_errors(read_stl, mutate(base, edits))
+
+
+# -- a binary STL whose header counts 0 triangles reads the triangles its size shows
+
+
+def _zero_count(data: bytes) -> bytes:
+    return data[:80] + b"\0\0\0\0" + data[84:]
+
+
+def test_binary_stl_with_a_zero_count_reads_the_triangles_its_size_shows():
+    original = stl_bytes(cube())
+    assert original[80:84] != b"\0\0\0\0"
+    mesh = read_stl(_zero_count(original))
+    validate(mesh)
+    assert mesh.counts() == read_stl(original).counts() == (8, 18, 12)
+    np.testing.assert_array_equal(mesh.positions_view(), read_stl(original).positions_view())
+
+
+def test_binary_stl_with_a_zero_count_under_a_solid_header_reads_too():
+    data = _zero_count(stl_bytes(cube()))
+    data = b"solid exported".ljust(80, b" ") + data[80:]
+    assert read_stl(data).counts() == (8, 18, 12)
+
+
+def test_binary_stl_with_a_zero_count_and_no_triangles_is_empty():
+    assert read_stl(_zero_count(stl_bytes(cube()))[:84]).counts() == (0, 0, 0)
+
+
+@pytest.mark.parametrize("extra", [1, 7, 49])
+def test_binary_stl_with_a_zero_count_and_part_of_a_triangle_is_refused(extra):
+    data = _zero_count(stl_bytes(cube()))[: 84 + 50 + extra]
+    message = (f"<stl>: not an STL file: as binary STL its header counts 0 triangles, and the "
+               f"{50 + extra} bytes after the 84-byte header are not whole 50-byte triangles "
+               f"({134 + extra} bytes in all); and it does not start with 'solid'")
+    with pytest.raises(FileFormatError, match=re.escape(message)):
+        read_stl(data)
+
+
+def test_binary_stl_with_a_nonzero_count_that_disagrees_stays_refused():
+    data = stl_bytes(cube())[:-50]  # the header still counts 12
+    with pytest.raises(FileFormatError, match=re.escape(
+            f"its header counts 12 triangles (684 bytes), but the file has {len(data)} bytes")):
+        read_stl(data)
+
+
+# -- a lone CR ends an ASCII STL line and counts in line numbers
+
+LONE_CR_STL = (b"solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n"
+               b"vertex 0 1 0\nendloop\nendfacet\nfacet normal 0 0 1\nouter loop\n"
+               b"vertex 1 0 0\nvertex 1 1 0\nvertex x 1 0\nendloop\nendfacet\nendsolid t\n")
+
+
+def test_ascii_stl_lone_cr_counts_in_line_numbers():
+    with pytest.raises(FileFormatError, match=r"^<stl>:13: bad number 'x'"):
+        read_stl(LONE_CR_STL)
+    with pytest.raises(FileFormatError, match=r"^<stl>:13: bad number 'x'"):
+        read_stl(lone_cr_after_line(LONE_CR_STL, 8))
+
+
+def test_ascii_stl_lone_cr_reads_the_same_mesh():
+    data = LONE_CR_STL.replace(b"vertex x", b"vertex 0")
+    mesh = read_stl(lone_cr_after_line(lone_cr_after_line(data, 1), 8))
+    assert mesh.counts() == read_stl(data).counts() == (4, 5, 3)
+
+
+# -- binary STL under a solid header, ASCII numbers and solid names
+
+ONE_TRIANGLE_STL = (b"solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n"
+                    b"vertex 0 1 0\nendloop\nendfacet\nendsolid t\n")
+
+
+def test_binary_stl_with_solid_header_and_trailing_bytes_is_not_empty() -> None:
+    data = b"solid exported" + stl_bytes(torus())[14:] + b"\n"
+    with pytest.raises(FileFormatError, match=r"binary STL"):
+        read_stl(data, name="t.stl")
+
+
+def test_ascii_stl_refuses_digit_underscores_like_obj() -> None:
+    with pytest.raises(FileFormatError, match=r"t\.stl:5: bad number '1_0'"):
+        read_stl(ONE_TRIANGLE_STL.replace(b"vertex 1 0 0", b"vertex 1_0 0 0"), name="t.stl")
+
+
+@pytest.mark.parametrize("name", [b"facet", b"vertex 1 2 3", b"outer loop", b"endloop"])
+def test_ascii_stl_solid_name_may_hold_keywords(name: bytes) -> None:
+    data = ONE_TRIANGLE_STL.replace(b"solid t\n", b"solid " + name + b"\n").replace(
+        b"endsolid t", b"endsolid " + name)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        mesh = read_stl(data, name="t.stl")
+    validate(mesh)
+    assert mesh.num_vertices == 3
