@@ -3,6 +3,8 @@ the rules, and bad input that leaves the mesh unchanged."""
 
 from __future__ import annotations
 
+import re
+
 import numpy as np
 import pytest
 
@@ -521,3 +523,79 @@ def test_a_hermite_handle_is_coloured_along_its_whole_length():
     hermite_handle(m, m.corner_at(TOP, 0), m.corner_at(RIGHT, 0), 6)
     checked(m)
     assert _new_face_colours(m, old - {RIGHT}) == [RED] * 24
+
+
+# -- connect_faces_closest: face ids must be ints (numpy ones too)
+
+
+@pytest.mark.parametrize(("face1", "face2", "message"), [
+    (0.0, 5, "face1 must be a face id (int), got 0.0"),
+    (0, 5.0, "face2 must be a face id (int), got 5.0"),
+    (0, 0.0, "face2 must be a face id (int), got 0.0"),  # was "two different faces"
+    (True, 5, "face1 must be a face id (int), got True"),
+    ("0", 5, "face1 must be a face id (int), got '0'"),
+])
+def test_connect_faces_closest_says_face_ids_are_ints(face1, face2, message):
+    assert_refused(cube(), lambda m: connect_faces_closest(m, face1, face2), re.escape(message),
+                   error=InvalidArgumentError)
+    with pytest.raises(InvalidArgumentError, match=re.escape(message)):
+        closest_corners(cube(), face1, face2)
+
+
+def test_connect_faces_closest_takes_numpy_ints():
+    m = cube()
+    assert connect_faces_closest(m, np.int64(0), np.int32(5)) == [12, 13, 14, 15]
+    validate(m)
+    assert (m.num_vertices, m.num_edges, m.num_faces) == (8, 16, 8)
+
+
+def test_connect_faces_closest_on_a_missing_face_still_says_so():
+    message = re.escape("face 99 does not exist (deleted or never made)")
+    assert_refused(cube(), lambda m: connect_faces_closest(m, 0, 99), message, error=UnknownIdError)
+
+
+# -- hermite_handle: twists must be whole turns; options checked; tiny meshes
+
+
+def _first_and_second_face_corners(m: Mesh) -> tuple[int, int]:
+    """A corner of the cube's first face and one of the opposite face."""
+    f0, f1 = m.face_ids()[:2].tolist()
+    return m.face_corners(f0)[0], m.face_corners(f1)[0]
+
+
+@pytest.mark.parametrize("twists", [1.5, float("nan"), float("inf"), "2", True, 10**400])
+def test_hermite_twists_that_are_not_a_whole_number_of_turns_are_refused(twists):
+    # int(twists) truncated 1.5 to 1 unseen and raised ValueError/OverflowError on the rest
+    m = cube()
+    c1, c2 = _first_and_second_face_corners(m)
+    assert_refused(m, lambda m: hermite_handle(m, c1, c2, 4, twists=twists), "twists",
+                   error=InvalidArgumentError)
+
+
+@pytest.mark.parametrize("twists", [2.0, np.int64(-1), -3])
+def test_hermite_whole_twists_of_any_type_and_sign_work(twists):
+    m = cube()
+    c1, c2 = _first_and_second_face_corners(m)
+    hermite_handle(m, c1, c2, 4, twists=twists)
+    validate(m)
+    assert m.counts() == (20, 40, 20) and genus(m) == 1
+
+
+@pytest.mark.parametrize(("option", "message"), [
+    ({"twists": "x"}, "twists"), ({"pinch": float("nan")}, "pinch"),
+    ({"bubble": 0.0}, "bubble")])
+def test_a_one_segment_hermite_handle_still_checks_its_options(option, message):
+    # one segment is a plain connect_faces, which silently ignored bad options
+    m = cube()
+    c1, c2 = _first_and_second_face_corners(m)
+    assert_refused(m, lambda m: hermite_handle(m, c1, c2, 1, **option), message,
+                   error=InvalidArgumentError)
+
+
+def test_the_hermite_handle_of_a_tiny_mesh_is_the_scaled_unit_one():
+    # the centroids' distance was compared with an absolute 1e-12: "different centroids"
+    def op(m: Mesh, s: float) -> None:
+        c1, c2 = _first_and_second_face_corners(m)
+        hermite_handle(m, c1, c2, 4, 25.0 * s, 25.0 * s)
+
+    assert_scales(cube, op, scale=1e-150)

@@ -2,10 +2,12 @@
 
 from __future__ import annotations
 
+import re
+
 import numpy as np
 import pytest
 
-from livemod.dlfl import face_size_histogram, genus, num_components, validate
+from livemod.dlfl import Mesh, face_size_histogram, from_polygons, genus, num_components, validate
 from livemod.dlfl.arrays import mesh_arrays
 from livemod.dlfl.errors import (
     BudgetExceededError,
@@ -16,13 +18,17 @@ from livemod.dlfl.errors import (
 from livemod.dlfl.rind import crust, crust_offsets, punch, rind
 from livemod.dlfl.selection import faces_by_size
 from livemod.dlfl.shapes import cube, icosahedron, soccer_ball, torus
+from livemod.dlfl.sponge import sponge
 from tests.meshes import (
+    assert_refused,
     assert_refused_quietly,
     assert_scales,
     colour_counts,
     point_sphere,
     rainbow_cube,
+    scaled_cube,
     snapshot,
+    split_edge_cube,
 )
 
 # TopMod's cube.obj faces: 0 top (+y), 1 +x, 2 -z, 3 -x, 4 +z, 5 bottom (-y)
@@ -392,3 +398,138 @@ def test_both_copies_keep_their_face_colour_and_a_tube_takes_the_punched_one():
     validate(m)
     # face 0 gone, its four tube quads in its colour; the rest outside and inside
     assert colour_counts(m) == {0: 4, 1: 2, 2: 2, 3: 2, 4: 2, 5: 2}
+
+
+# -- a crust of a mesh with no face normal is refused by name
+
+NO_NORMAL = re.escape(
+    "vertex 0 has no face normal to offset it along: the faces at it have no area "
+    "(their corners are collinear or coincident); the crust would have no thickness there")
+NO_AREA = re.escape(
+    "a crust needs a face with an area; every face of this mesh has collinear or "
+    "coincident corners, so the shells would have no thickness")
+
+
+def _collinear_sliver():
+    """Two triangles back to back on three collinear points: 3/3/2, no normal anywhere."""
+    return from_polygons(np.array([[0.0, 0, 0], [1, 0, 0], [2, 0, 0]]), [[0, 1, 2], [0, 2, 1]])
+
+
+def _coincident_sliver():
+    return from_polygons(np.zeros((3, 3)), [[0, 1, 2], [0, 2, 1]])
+
+
+@pytest.mark.parametrize("make", [_collinear_sliver, _coincident_sliver])
+@pytest.mark.parametrize("call", [
+    lambda m: rind(m, [], 0.1),
+    lambda m: rind(m, [0], 0.1),
+    lambda m: rind(m, [], -0.1, uniform=False),
+    lambda m: sponge(m, 0.1),
+    lambda m: sponge(m),
+], ids=["rind", "rind-punched", "rind-outward", "sponge", "sponge-default"])
+def test_a_crust_of_a_mesh_with_no_face_normal_is_refused(make, call):
+    mesh = make()
+    validate(mesh)
+    assert_refused(mesh, call, NO_NORMAL, error=GeometryError)
+
+
+@pytest.mark.parametrize("make", [_collinear_sliver, _coincident_sliver])
+def test_a_scaled_crust_of_a_mesh_with_no_face_area_is_refused(make):
+    assert_refused(make(), lambda m: rind(m, [], use_scaling=True, scale=0.5), NO_AREA,
+                   error=GeometryError)
+
+
+def test_crust_offsets_of_a_mesh_with_no_face_normal_are_refused():
+    with pytest.raises(GeometryError, match=NO_NORMAL):
+        crust_offsets(mesh_arrays(_collinear_sliver()), 0.1)
+
+
+def test_a_crust_of_a_mesh_with_a_two_gon_still_works():
+    # a 2-gon has no area, but its vertices have other faces' normals
+    a = mesh_arrays(cube())
+    polygons = [a.corner_vertex[a.face_offsets[k] : a.face_offsets[k + 1]].tolist()
+                for k in range(6)]
+    m = from_polygons(cube().positions_view(), [*polygons, [0, 1]])
+    rind(m, [], 0.5)
+    validate(m)
+    assert (m.num_vertices, m.num_edges, m.num_faces) == (16, 26, 14)
+    np.testing.assert_allclose(np.abs(m.positions_view()[8:]), 0.5, atol=1e-15)
+
+
+# -- the inner copy of a straight vertex (on a split edge) moves with its edge
+
+
+@pytest.mark.parametrize("uniform", [True, False])
+def test_the_inner_copy_of_a_vertex_on_a_split_edge_moves_with_its_edge(uniform):
+    # its corners are straight (no corner normal): it stayed on the outer shell
+    m = split_edge_cube()
+    rind(m, [], 0.5, uniform=uniform)
+    validate(m)
+    assert (m.num_vertices, m.num_edges, m.num_faces) == (18, 26, 12)
+    p = m.positions_view()
+    np.testing.assert_array_equal(p[8], [1, 1, 0])
+    if uniform:  # on the inner copy of the split edge, half-way between its ends
+        np.testing.assert_allclose(p[17], (p[9] + p[10]) / 2, atol=1e-15)
+    # non-uniform: t along the mean of its two faces' normals, as at any edge
+    expected = [0.5, 0.5, 0] if uniform else [1 - 0.5 / 2**0.5, 1 - 0.5 / 2**0.5, 0]
+    np.testing.assert_allclose(p[17], expected, atol=1e-15)
+
+
+# -- a scale beyond one is refused naming the value given, before a scale of one
+
+
+@pytest.mark.parametrize("scale", [1.5, -5, 5.0, 1.0000001, -1e300])
+def test_a_scale_beyond_one_is_refused_naming_the_value_given(scale):
+    message = re.escape(f"scale {scale} is beyond +-1: a scaled crust needs 0 < |scale| < 1")
+    assert_refused(cube(), lambda m: rind(m, [0], use_scaling=True, scale=scale), message,
+                   error=InvalidArgumentError)
+
+
+@pytest.mark.parametrize("scale", [1, -1.0])
+def test_a_scale_of_one_still_says_there_is_no_thickness(scale):
+    message = re.escape(f"scale {scale} leaves no thickness between the shells")
+    assert_refused(cube(), lambda m: rind(m, [], use_scaling=True, scale=scale), message,
+                   error=InvalidArgumentError)
+
+
+# -- the inversion check at any scale, and outward into a concave slot
+
+
+def _u_prism() -> Mesh:
+    """A U-shaped prism (a slot 1 wide, 1 deep): concave, 16/24/10."""
+    outline = [(0, 0), (3, 0), (3, 2), (2, 2), (2, 1), (1, 1), (1, 2), (0, 2)]
+    n = len(outline)
+    points = [(x, y, 0.0) for x, y in outline] + [(x, y, 1.0) for x, y in outline]
+    faces = [list(range(n))[::-1], list(range(n, 2 * n))]
+    faces += [[i, (i + 1) % n, (i + 1) % n + n, i + n] for i in range(n)]
+    return from_polygons(np.array(points), faces)
+
+
+@pytest.mark.parametrize("scale", [1e-13, 1e-150])
+@pytest.mark.parametrize("thickness", [1.5, 3.0])
+def test_a_rind_that_inverts_a_tiny_mesh_is_refused(scale, thickness):
+    # absolute cut-offs (edges 1e-24 squared, areas 1e-12) left out every edge
+    # and face of a tiny mesh, so a copy pushed through the middle passed
+    m = scaled_cube(scale)
+    assert_refused(m, lambda m: rind(m, [m.face_ids()[0]], thickness * scale), "invert",
+                   error=GeometryError)
+
+
+def test_the_rind_of_a_tiny_mesh_still_works():
+    m = scaled_cube(1e-150)
+    rind(m, [m.face_ids()[0]], 0.5e-150)
+    validate(m)
+    assert m.counts() == (16, 28, 14)
+
+
+def test_a_negative_thickness_that_turns_a_slot_floor_over_is_refused():
+    # outward, the U's slot walls (1 apart) meet at 0.5: its floor reversed unchecked
+    assert_refused(_u_prism(), lambda m: rind(m, [], -0.6), "-0.6 would invert",
+                   error=GeometryError)
+
+
+def test_a_negative_thickness_that_fits_the_slot_works():
+    m = _u_prism()
+    rind(m, [], -0.3)
+    validate(m)
+    assert m.counts() == (32, 48, 20)

@@ -24,7 +24,9 @@ from tests.meshes import (
     colour_counts,
     point_sphere,
     rainbow_cube,
+    scaled_cube,
     snapshot,
+    split_edge_cube,
 )
 
 
@@ -190,3 +192,23 @@ def test_a_corners_faces_take_its_face_colour_and_the_2gons_none():
     validate(m)
     # three quads per corner (4 corners a face); one 2-gon per edge
     assert colour_counts(m) == {**{f: 12 for f in range(6)}, None: 12}
+
+
+# -- straight vertices and tiny meshes
+
+
+def test_the_sponge_of_a_cube_with_a_split_edge_takes_the_default_thickness():
+    m = split_edge_cube()
+    assert sponge(m) == 0.67
+    validate(m)
+    p = m.positions_view()
+    # the split vertex's inner copy is on the inner shell's edge, not the outer one
+    assert any(np.allclose(q, [0.33, 0.33, 0], atol=1e-12) for q in p)
+    assert not any(np.allclose(q, [1, 1, 0], atol=1e-12) for q in p[9:])
+
+
+@pytest.mark.parametrize("scale", [1e-13, 1e-150])
+def test_a_sponge_too_thick_for_a_tiny_mesh_is_refused(scale):
+    m = scaled_cube(scale)
+    assert_refused(m, lambda m: sponge(m, 1.5 * scale), "too large for this mesh",
+                   error=GeometryError)

@@ -423,3 +423,19 @@ def test_a_wireframe_colours_the_tube_around_each_face_opening():
     counts = colour_counts(m)
     assert {f: counts[f] for f in range(6)} == {f: 4 for f in range(6)}
     assert counts[None] == m.num_faces - 24
+
+
+# -- corner cuts and columns of tiny meshes are the scaled unit ones
+
+
+@pytest.mark.parametrize("make", [cube, icosahedron])
+def test_the_corner_cut_of_a_tiny_mesh_is_the_scaled_unit_one(make):
+    # neighbours closer than an absolute 1e-3 were taken for a 2-gon's: every
+    # corner of a mesh 1e-150 across was cut toward the wrong corner
+    assert_scales(make, lambda m, s: modified_corner_cut(m, 0.1 * s), scale=1e-150)
+
+
+def test_the_columns_of_a_tiny_mesh_are_the_scaled_unit_ones():
+    # rings sat an absolute 1e-4 out, where rings 1e-151 wide round to points
+    # ("a convex hull needs 4 points not all in one plane")
+    assert_scales(cube, lambda m, s: columns(m, 0.1 * s, 4), scale=1e-150)
