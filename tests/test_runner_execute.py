@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import ctypes
+import importlib
 import os
 import sys
 import threading
@@ -12,9 +14,13 @@ import pytest
 
 from livemod.dlfl.scene import Selection, current_scene, default_scene
 from livemod.runner import Cancelled, RunControl, execute, run_script
+from livemod.runner.execute import interrupt_user_code
 from livemod.runner.instrument import compile_script
+from livemod.runner.process import ProcessState
 
-from .runner_scripts.support import same_mesh, script_path
+from .runner_scripts.support import host_imports, same_mesh, script_path, wait_until
+
+execute_module = importlib.import_module("livemod.runner.execute")
 
 
 def write(tmp_path, name: str, text: str) -> str:
@@ -296,3 +302,194 @@ def test_packages_installed_in_the_scripts_folder_are_library_not_script(tmp_pat
         assert "vendored_lib" in sys.modules
     finally:
         sys.modules.pop("vendored_lib", None)
+
+
+# -- a helper module the host imported before the first run
+
+
+def _local_names(folder) -> set[str]:  # noqa: ANN001
+    """Names in ``sys.modules`` of modules whose file lies in ``folder``."""
+    return {name for name, module in list(sys.modules.items())
+            if str(getattr(module, "__file__", None) or "").startswith(str(folder) + os.sep)}
+
+
+def test_a_helper_the_host_imported_first_is_fresh_in_each_run_and_given_back(
+        tmp_path, monkeypatch):
+    host_copy = host_imports(tmp_path, monkeypatch, "helper_host", "VALUE = 2\n")
+    script = tmp_path / "main_host.py"
+    script.write_text("import helper_host\nfor i in range(helper_host.VALUE):\n"
+                      "    createVertex((i, 0, 0))\n")
+    path = list(sys.path)
+    first = execute(str(script))
+    assert first.status == "ok" and first.scene.mesh.counts()[0] == 2
+    assert first.modules == (str(tmp_path / "helper_host.py"),)  # so it is watched
+    (tmp_path / "helper_host.py").write_text("VALUE = 5  # edited\n")
+    assert execute(str(script)).scene.mesh.counts()[0] == 5
+    assert sys.modules["helper_host"] is host_copy and host_copy.VALUE == 2
+    assert _local_names(tmp_path) == {"helper_host"} and sys.path == path
+
+
+# -- a forced interrupt landing in a run's cleanup still gives back path and modules
+
+
+def _cancelled_once(real):  # noqa: ANN001, ANN202
+    """``real``, raising Cancelled (as PyThreadState_SetAsyncExc would) on its first call."""
+    calls = []
+
+    def step(*args):  # noqa: ANN002, ANN202
+        calls.append(args)
+        if len(calls) == 1:
+            raise Cancelled
+        return real(*args)
+
+    return step
+
+
+@pytest.mark.parametrize("owner,step", [(execute_module._HostState, "_remove_run_modules"),
+                                        (ProcessState, "restore")])
+def test_an_interrupt_landing_in_the_cleanup_still_gives_back_path_and_modules(
+        tmp_path, monkeypatch, owner, step):
+    host_copy = host_imports(tmp_path, monkeypatch, "helper_late", "VALUE = 1\n")
+    (tmp_path / "other_late.py").write_text("OTHER = 1\n")
+    script = tmp_path / "late.py"
+    script.write_text("import helper_late, other_late\ncreateVertex((0, 0, 0))\n")
+    path = list(sys.path)
+    monkeypatch.setattr(owner, step, _cancelled_once(getattr(owner, step)))
+    outcome = execute(str(script))
+    assert outcome.status == "cancelled"  # it was being cancelled: that still shows
+    assert outcome.error is not None and outcome.error.line == 2  # its last step
+    assert sys.path == path and _local_names(tmp_path) == {"helper_late"}
+    assert sys.modules["helper_late"] is host_copy
+
+
+def test_an_interrupt_landing_while_the_runs_modules_are_looked_at_gives_them_back(
+        tmp_path, monkeypatch):
+    # the point where local_modules' finally used to be
+    (tmp_path / "first_late.py").write_text("FIRST = 1\n")
+    (tmp_path / "other_late.py").write_text("OTHER = 1\n")
+    script = tmp_path / "late.py"
+    script.write_text("import first_late, other_late\ncreateVertex((0, 0, 0))\n")
+    path = list(sys.path)
+    real, raised = execute_module.is_user_file, []
+
+    def interrupted_once(filename: str, script_path: str) -> bool:
+        if not raised and filename.endswith("late.py") and filename != str(script):
+            raised.append(filename)
+            raise Cancelled
+        return real(filename, script_path)
+
+    monkeypatch.setattr(execute_module, "is_user_file", interrupted_once)
+    assert execute(str(script)).status == "cancelled"
+    assert len(raised) == 1
+    assert sys.path == path and _local_names(tmp_path) == set()
+
+
+def test_an_interrupt_landing_as_the_script_ends_cancels_the_run_cleanly(tmp_path, monkeypatch):
+    script = tmp_path / "ends.py"
+    script.write_text("createVertex((0, 0, 0))\n")
+    path, scene = list(sys.path), current_scene()
+    monkeypatch.setattr(execute_module, "_leave_user_code",
+                        _cancelled_once(execute_module._leave_user_code))
+    outcome = execute(str(script))
+    assert outcome.status == "cancelled" and outcome.error is not None
+    assert outcome.error.kind == "cancelled"
+    assert sys.path == path and current_scene() is scene
+
+
+# -- interrupt_user_code: only inside the run it names
+
+
+def _innermost(thread: threading.Thread) -> str | None:
+    """The name of the function ``thread`` runs now (its innermost Python frame)."""
+    frame = sys._current_frames().get(thread.ident)  # type: ignore[arg-type]
+    return None if frame is None else frame.f_code.co_name
+
+
+@pytest.mark.timeout(60)
+def test_an_interrupt_sent_as_the_run_leaves_user_code_is_raised_by_the_leaving():
+    """The supervisor sends under the lock the worker leaves by: an exception it sent
+    just before comes out of _leave_user_code (in _run_code's finally), never later."""
+    where: list[str] = []
+    for _ in range(20):
+        ready, go = threading.Event(), threading.Event()
+
+        def worker(ready: threading.Event = ready, go: threading.Event = go) -> None:
+            execute_module._enter_user_code()
+            ready.set()
+            go.wait()
+            try:
+                execute_module._leave_user_code()  # waits for the lock the sender holds
+            except Cancelled:
+                where.append("leaving")
+                execute_module._leave_user_code()  # as _exec does after it
+                return
+            try:
+                for _ in range(1000):  # bytecodes enough for a pending exception
+                    pass
+            except Cancelled:
+                where.append("after")
+
+        thread = threading.Thread(target=worker)
+        thread.start()
+        ready.wait()
+        with execute_module._INTERRUPT_LOCK:
+            go.set()
+            # the worker is in _leave_user_code now, waiting for the lock (or about to)
+            wait_until(lambda thread=thread: _innermost(thread) == "_leave_user_code")
+            ctypes.pythonapi.PyThreadState_SetAsyncExc(
+                ctypes.c_ulong(thread.ident), ctypes.py_object(Cancelled))
+        thread.join(10)
+        assert thread.ident not in execute_module._IN_USER_CODE
+    assert where == ["leaving"] * 20
+
+
+@pytest.mark.timeout(60)
+def test_code_of_a_script_s_file_outside_a_run_is_never_interrupted(tmp_path):
+    script = str(tmp_path / "model.py")
+    code = compile("def spin(stop):\n    while not stop.is_set():\n        pass\n", script, "exec")
+    namespace: dict = {}
+    exec(code, namespace)  # noqa: S102
+    stop = threading.Event()
+    thread = threading.Thread(target=namespace["spin"], args=(stop,))
+    thread.start()
+    try:
+        time.sleep(0.05)  # spinning in the script's file, but not inside a run
+        assert interrupt_user_code(thread, script) is False
+    finally:
+        stop.set()
+        thread.join()
+
+
+@pytest.mark.timeout(60)
+def test_code_of_a_script_s_file_inside_a_run_is_interrupted(tmp_path):
+    (tmp_path / "spin_in_run.py").write_text("def spin():\n    while True:\n        pass\n")
+    script = tmp_path / "model.py"
+    script.write_text("import spin_in_run\nspin_in_run.spin()\n")
+    control, outcomes = RunControl(), []
+    thread = threading.Thread(target=lambda: outcomes.append(
+        execute(str(script), control=control)))
+    thread.start()
+    deadline = time.monotonic() + 10
+    while not interrupt_user_code(thread, str(script)):
+        assert time.monotonic() < deadline
+        time.sleep(0.01)
+    thread.join(10)
+    assert [o.status for o in outcomes] == ["cancelled"]
+
+
+@pytest.mark.timeout(60)
+def test_an_interrupt_asked_for_another_run_is_not_sent(tmp_path):
+    # an abandoned run's thread id may be a newer run's once it has ended: the
+    # interrupt names its run, and a thread running any other is left alone
+    (tmp_path / "spin_in_run.py").write_text("def spin():\n    while True:\n        pass\n")
+    script = tmp_path / "model.py"
+    script.write_text("import spin_in_run\nspin_in_run.spin()\n")
+    running, other, outcomes = RunControl(), RunControl(), []
+    thread = threading.Thread(target=lambda: outcomes.append(
+        execute(str(script), control=running)))
+    thread.start()
+    wait_until(lambda: _innermost(thread) == "spin")  # in the run's own code, interruptible
+    assert interrupt_user_code(thread, str(script), other) is False
+    assert interrupt_user_code(thread, str(script), running) is True
+    thread.join(10)
+    assert [o.status for o in outcomes] == ["cancelled"]

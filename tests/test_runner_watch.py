@@ -3,12 +3,14 @@
 from __future__ import annotations
 
 import os
+import shutil
 import threading
 import time
 
 import pytest
+from watchdog.events import DirDeletedEvent
 
-from livemod.runner import FileWatcher, LiveSession, ManualNotifier
+from livemod.runner import FileWatcher, LiveSession, ManualNotifier, WatchdogNotifier
 
 from .runner_scripts.support import (
     closing_session,
@@ -276,3 +278,141 @@ def test_a_deleted_script_runs_again_when_it_comes_back(tmp_path):
         assert drain(live, quiet=0.6) == []  # nothing to run while it is gone
         write_in_place(script, vertices_script(5))
         assert [vertex_count(r) for r in settle(live)] == [5]
+
+
+# -- a watched folder deleted and made again, or missing, is watched again
+
+
+@pytest.mark.timeout(60)
+@pytest.mark.parametrize("poll", [False, True], ids=["events", "polling"])
+def test_a_watched_folder_deleted_and_made_again_is_watched_again(tmp_path, poll):
+    folder = tmp_path / "project"
+    folder.mkdir()
+    script = str(folder / "model.py")
+    write_in_place(script, vertices_script(2))
+    live = LiveSession(script, debounce=0.05, preview=False, poll=poll)
+    with closing_session(live):
+        live.start()
+        assert vertex_count(next_result(live)) == 2
+        shutil.rmtree(folder)
+        assert drain(live, quiet=0.8) == []  # nothing to run while it is gone
+        folder.mkdir()
+        write_in_place(script, vertices_script(5))  # written before the new watch, maybe
+        assert [vertex_count(r) for r in settle(live)] == [5]
+        write_by_rename(script, vertices_script(6))  # and the new watch sees saves
+        assert [vertex_count(r) for r in settle(live)] == [6]
+
+
+class _FakeObserver:
+    """Records the watches a WatchdogNotifier schedules (no threads, no events)."""
+
+    def __init__(self) -> None:
+        self.watches: dict[object, tuple[str, object]] = {}
+        self.unscheduled: list[str] = []
+
+    def start(self) -> None:
+        pass
+
+    def stop(self) -> None:
+        pass
+
+    def join(self, timeout: float | None = None) -> None:
+        pass
+
+    def schedule(self, handler, path, *, recursive, event_filter):  # noqa: ANN001, ANN201
+        token = object()
+        self.watches[token] = (path, handler)
+        return token
+
+    def unschedule(self, token) -> None:  # noqa: ANN001
+        path, _ = self.watches.pop(token)
+        self.unscheduled.append(path)
+
+    def paths(self) -> list[str]:
+        return sorted(path for path, _ in self.watches.values())
+
+    def handler(self, path: str):  # noqa: ANN201
+        return next(h for p, h in self.watches.values() if p == path)
+
+
+def _fake_notifier() -> tuple[WatchdogNotifier, _FakeObserver, list[str]]:
+    observer, reported = _FakeObserver(), []
+    notifier = WatchdogNotifier(observer_factory=lambda: observer, recheck_interval=3600)
+    notifier.start(reported.append)
+    return notifier, observer, reported
+
+
+def test_a_missing_folder_is_watched_through_its_ancestor_until_it_exists(tmp_path):
+    notifier, observer, reported = _fake_notifier()
+    try:
+        wanted = str(tmp_path / "a" / "b")
+        notifier.watch({wanted})
+        assert observer.paths() == [str(tmp_path)]
+        assert notifier.watched == {wanted: str(tmp_path)}
+        os.makedirs(wanted)
+        write_in_place(os.path.join(wanted, "model.py"), "x = 1\n")
+        notifier.recheck()
+        assert observer.paths() == [wanted] and observer.unscheduled == [str(tmp_path)]
+        assert reported == [os.path.join(wanted, "model.py")]  # written before its watch
+        notifier.recheck()
+        assert reported == [os.path.join(wanted, "model.py")]  # once only
+        assert notifier.watched == {wanted: wanted}
+    finally:
+        notifier.stop()
+
+
+def test_a_folder_whose_watch_saw_it_deleted_is_watched_anew_even_with_its_old_inode(
+        tmp_path):
+    notifier, observer, reported = _fake_notifier()
+    try:
+        wanted = str(tmp_path)
+        notifier.watch({wanted})
+        # the folder is still there (made again, say, with the same inode): only
+        # its watch's "deleted" event tells that this watch is dead
+        observer.handler(wanted).dispatch(DirDeletedEvent(wanted))
+        notifier.recheck()
+        assert observer.unscheduled == [wanted] and observer.paths() == [wanted]
+        assert reported == []  # the folder is empty
+    finally:
+        notifier.stop()
+
+
+# -- watch and stop from two threads
+
+
+def test_watch_after_stop_does_nothing(tmp_path):
+    notifier, observer, _ = _fake_notifier()
+    notifier.watch({str(tmp_path)})
+    notifier.stop()
+    notifier.watch({str(tmp_path / "other")})
+    notifier.recheck()
+    assert observer.paths() == [str(tmp_path)] and observer.unscheduled == []
+
+
+@pytest.mark.timeout(60)
+def test_watch_racing_stop_on_the_real_observer_raises_nothing(tmp_path):
+    folders = [str(tmp_path / f"d{k}") for k in range(4)]
+    for folder in folders:
+        os.mkdir(folder)
+    errors: list[BaseException] = []
+    before = threading.active_count()
+    for round_ in range(20):
+        notifier = WatchdogNotifier()
+        notifier.start(lambda path: None)
+
+        def keep_watching(notifier=notifier, round_=round_) -> None:  # noqa: ANN001
+            try:
+                for k in range(30):
+                    notifier.watch({folders[(k + round_) % 4]})
+            except BaseException as exc:  # noqa: BLE001  (any error fails the test)
+                errors.append(exc)
+
+        thread = threading.Thread(target=keep_watching)
+        thread.start()
+        notifier.stop()
+        thread.join()
+    assert errors == []
+    deadline = time.monotonic() + 10
+    while threading.active_count() > before and time.monotonic() < deadline:
+        time.sleep(0.05)
+    assert threading.active_count() <= before

@@ -3,8 +3,10 @@
 from __future__ import annotations
 
 import contextlib
+import importlib
 import os
 import queue
+import sys
 import time
 from collections.abc import Callable
 
@@ -171,3 +173,12 @@ def wait_until(condition, timeout: float = 10.0):  # noqa: ANN001, ANN201
         assert time.monotonic() < deadline, "timed out"
         time.sleep(0.005)
     return value
+
+
+def host_imports(folder, monkeypatch, name: str, text: str):  # noqa: ANN001, ANN201
+    """Write ``name``.py in ``folder`` and import it as the host would (before
+    any run): a helper module the runs must import afresh and give back."""
+    (folder / f"{name}.py").write_text(text)
+    monkeypatch.syspath_prepend(str(folder))
+    monkeypatch.delitem(sys.modules, name, raising=False)
+    return importlib.import_module(name)
