@@ -224,7 +224,7 @@ class MeshOperators(RuleBasedStateMachine):
     def round_trip_through_dlfl(self) -> None:
         """Write the mesh as .dlfl and read it back: the same corners, faces, holes,
         pairing and positions in the same dense order, self-loops included
-        (test_io_dlfl covers ``reverse``)."""
+        (test_io_dlflfile covers ``reverse``)."""
         m = self.mesh
         back = read_dlfl(dlfl_bytes(m))
         validate(back)

@@ -17,6 +17,9 @@ a module can name such a path, and every module under tests/ must have none:
 
 Made-up absolute paths that nothing reads (``"/virtual/script.py"``,
 ``"/nonexistent-dir/x.obj"``) and temporary folders (``tmp_path``) are not flagged.
+
+Every test module is named after the module of livemod it tests
+(:func:`module_tested_by`), but for the few listed in ``ACROSS_MODULES``.
 """
 
 from __future__ import annotations
@@ -221,3 +224,94 @@ def test_a_deeper_module_may_climb_further() -> None:
     source = 'ROOT = Path(__file__).resolve().parents[2]\nDOC = ROOT / "docs"'
     assert outside_paths(source, depth=3) == []
     assert [line for line, _ in outside_paths(source, depth=2)] == [1, 2]
+
+
+# -- every test module is named after the module of livemod it tests
+
+# test_<path>[_<aspect>]: <path> names a module or package under livemod/ or
+# livemod/dlfl/ (its "/" written "_", a private module's leading "_" left out),
+# and an aspect may follow a module's name (test_runner_session_abandon)
+LIVEMOD_ROOTS = (ROOT / "livemod", ROOT / "livemod" / "dlfl")
+
+# the test modules that test one feature across many modules, and so can be
+# named after none: keep this list short, and rename a module that belongs to
+# one source module instead of adding it here
+ACROSS_MODULES = {
+    "test_command_fuzz": "bad arguments to every thesis command",
+    "test_commands_conformance": "every thesis command against Tett (2007) and API.md",
+    "test_docs": "the docs against the code",
+    "test_io_adversarial": "mutated files through every reader",
+    "test_io_boundaries": "every reader across its internal block boundaries",
+    "test_io_errors": "the readers' error types and the file and line they name",
+    "test_io_fuzz": "random bytes through the OBJ and .dlfl readers",
+    "test_layering": "the import boundaries between the packages",
+    "test_notebook": "the example notebook, run as Jupyter runs it",
+    "test_properties": "random operator sequences over the whole library",
+    "test_repository": "the repository's own hygiene (this module)",
+    "test_runner_races": "races between caller, supervisor, worker and watcher",
+    "test_script_parameters": "param() from declaration through run, CLI and batch",
+    "test_scripts": "every example script, run headless against its snapshot",
+    "test_subdivision_geometry": "every scheme's positions against hand-derived formulas",
+    "test_viewer_buffers": "the GL buffers the renderer, HUD text and measures keep",
+    "test_viewer_golden": "preview and renderer together against golden pictures",
+}
+
+
+def _groupings(parts: list[str]) -> list[list[str]]:
+    """Every way to join consecutive ``parts`` with "_" into path segments."""
+    if len(parts) == 1:
+        return [parts]
+    rest = _groupings(parts[1:])
+    return [[parts[0], *tail] for tail in rest] + [[f"{parts[0]}_{tail[0]}", *tail[1:]]
+                                                   for tail in rest]
+
+
+def _source_named(parts: list[str], *, packages: bool) -> Path | None:
+    """The module (or, with ``packages``, package) of livemod that ``parts`` name."""
+    for root, segments in ((r, s) for r in LIVEMOD_ROOTS for s in _groupings(parts)):
+        folder = root.joinpath(*segments[:-1])
+        for name in (segments[-1], f"_{segments[-1]}"):
+            if (folder / f"{name}.py").is_file():
+                return folder / f"{name}.py"
+            if packages and (folder / name / "__init__.py").is_file():
+                return folder / name
+    return None
+
+
+def module_tested_by(test_module: str) -> Path | None:
+    """The module or package of livemod that ``test_module`` (``test_io_obj``) is
+    named after, or None if its name names none."""
+    parts = test_module.removeprefix("test_").split("_")
+    whole = _source_named(parts, packages=True)
+    aspects = (_source_named(parts[:k], packages=False) for k in range(len(parts) - 1, 0, -1))
+    return whole or next((module for module in aspects if module is not None), None)
+
+
+def test_every_test_module_is_named_after_a_module_of_livemod() -> None:
+    names = {path.stem for path in TESTS.glob("test_*.py")}
+    unnamed = {name for name in names if module_tested_by(name) is None}
+    assert sorted(unnamed - ACROSS_MODULES.keys()) == []  # rename it, or list it above
+    assert sorted(ACROSS_MODULES.keys() - unnamed) == []  # renamed or gone: drop it
+
+
+@pytest.mark.parametrize(("test_module", "source"), [
+    ("test_io_obj", "livemod/dlfl/io/obj.py"),
+    ("test_io_dlflfile", "livemod/dlfl/io/dlflfile.py"),
+    ("test_io", "livemod/dlfl/io"),
+    ("test_runner_watch", "livemod/runner/watch.py"),
+    ("test_runner_session_abandon", "livemod/runner/session.py"),
+    ("test_viewer_hud", "livemod/viewer/hud.py"),
+    ("test_viewer_section_cap", "livemod/viewer/section_cap.py"),
+    ("test_graph", "livemod/dlfl/_graph.py"),
+    ("test_commands_core", "livemod/dlfl/commands/core.py"),
+    ("test_cli", "livemod/cli.py"),
+])
+def test_a_test_module_name_maps_to_its_module(test_module: str, source: str) -> None:
+    assert module_tested_by(test_module) == ROOT / source
+
+
+@pytest.mark.parametrize("test_module", [
+    "test_core_gaps", "test_core_review", "test_io_gaps", "test_io_review",
+    "test_runner_gaps", "test_sculpt_review", "test_session_22"])
+def test_a_test_module_named_after_a_review_maps_to_none(test_module: str) -> None:
+    assert module_tested_by(test_module) is None

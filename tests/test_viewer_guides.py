@@ -1,5 +1,5 @@
 """Tests of livemod.viewer.guides' layout of the grid and axes (GL-free; their
-GL objects are tested through the renderer in test_viewer_render.py)."""
+GL objects are tested through the renderer in test_viewer_renderer.py)."""
 
 from __future__ import annotations
 

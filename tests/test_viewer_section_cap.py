@@ -1,5 +1,5 @@
 """Tests of livemod.viewer.section_cap's GL-free part (its GL passes are tested
-through the renderer in test_viewer_render.py and the golden images)."""
+through the renderer in test_viewer_renderer.py and the golden images)."""
 
 from __future__ import annotations
 
