@@ -89,6 +89,23 @@ def test_only_temporary_files_of_gone_writers_on_this_host_are_removed(tmp_path)
         names[k] for k in ("live", "mine", "other host", "old form"))
 
 
+def test_a_staging_folder_of_a_gone_writer_is_removed_with_its_files(tmp_path):
+    """A batch killed (SIGKILL) before it removed a variant's staging folder
+    (livemod.runner.batch stages a file and its companions in one)."""
+    mine = Path(temporary_path(str(tmp_path / "v.obj")))
+    host, _, start, rand = mine.name[len(".v.obj."):-len(".tmp")].split("-")
+    gone = tmp_path / f".v.obj.{host}-{_an_unused_pid()}-{start}-{rand}.tmp"
+    for folder in (mine, gone):
+        folder.mkdir()
+        (folder / "v.obj").write_bytes(b"mtllib v.mtl\n")
+        (folder / "v.mtl").write_bytes(b"newmtl default\n")
+    assert remove_abandoned(str(tmp_path)) == [gone.name]
+    assert _temporary_files(tmp_path) == [mine.name]  # its writer lives: kept
+    assert sorted(os.listdir(mine)) == ["v.mtl", "v.obj"]
+    # a staging folder is its writer's alone: a save into it sweeps nothing
+    assert remove_abandoned(str(mine)) == []
+
+
 def test_a_sigterm_killed_save_is_removed_too(tmp_path):
     target = tmp_path / "mesh.obj"
     proc = _half_a_save(target)

@@ -12,8 +12,9 @@ file, so each name says who wrote it: ``.NAME.HOST-PID-START-RANDOM.tmp``, with
 a hash of the host name, the writer's process id and a token of that process's
 start (its start time on Linux, so that a reused process id is told apart).
 The first save into a folder (and again once a minute) removes the temporary
-files there whose writer, on this host, is gone; a live writer's, another
-host's and names of any other form are left alone.
+files there whose writer, on this host, is gone (and temporary folders of such
+names: a batch stages a file with its companions in one); a live writer's,
+another host's and names of any other form are left alone.
 """
 
 from __future__ import annotations
@@ -24,6 +25,7 @@ import hashlib
 import os
 import re
 import secrets
+import shutil
 import socket
 import threading
 import time
@@ -111,7 +113,8 @@ def _temporary_beside(target: str, mode: int) -> tuple[int, str]:
 def temporary_path(target: str) -> str:
     """A fresh name ``.NAME.HOST-PID-START-RANDOM.tmp`` beside ``target`` (an
     absolute path) that says this process wrote it (see the module's docstring);
-    nothing is created."""
+    nothing is created. The name may be given to a file or to a folder (the
+    sweep of abandoned ones removes either)."""
     folder, name = os.path.split(target)
     return os.path.join(folder, f".{name}.{writer_token()}-{secrets.token_hex(4)}.tmp")
 
@@ -158,6 +161,8 @@ def remove_abandoned(folder: str) -> list[str]:
     save's), unless this process swept ``folder`` less than a minute ago; the
     names removed. Files whose writer lives, runs on another host or cannot be
     told (names of another form) are kept; nothing here raises."""
+    if _TEMPORARY.fullmatch(os.path.basename(folder)):
+        return []  # a staging folder (see temporary_path): its writer's alone, and new
     now = time.monotonic()
     with _swept_lock:
         if now - _swept.get(folder, -_SWEEP_INTERVAL) < _SWEEP_INTERVAL:
@@ -174,9 +179,23 @@ def remove_abandoned(folder: str) -> list[str]:
         if found is not None and _writer_gone(found["host"], int(found["pid"]),
                                               int(found["start"])):
             with contextlib.suppress(OSError):
-                os.unlink(os.path.join(folder, name))
+                remove_temporary(os.path.join(folder, name))
                 removed.append(name)
     return removed
+
+
+def remove_temporary(path: str) -> None:
+    """Remove the temporary file ``path``, or the temporary folder of that name
+    with what it holds (a batch stages a file and its companions in one, see
+    :func:`temporary_path`); a symbolic link is removed, never followed.
+
+    Raises:
+        OSError: it cannot be removed (FileNotFoundError: there is none).
+    """
+    if os.path.isdir(path) and not os.path.islink(path):
+        shutil.rmtree(path)
+    else:
+        os.unlink(path)
 
 
 def _writer_gone(host: str, pid: int, start: int) -> bool:
