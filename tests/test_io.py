@@ -12,6 +12,7 @@ from livemod.dlfl import genus, mesh_arrays, validate
 from livemod.dlfl.io import (
     READERS,
     WRITERS,
+    companion_paths,
     keeps_objects,
     load_mesh,
     save_mesh,
@@ -20,6 +21,8 @@ from livemod.dlfl.io import (
 )
 from livemod.dlfl.scene import Scene
 from livemod.dlfl.shapes import cube, torus
+
+from .meshes import coloured_cube
 
 
 def _scene() -> tuple[Scene, int]:
@@ -87,6 +90,16 @@ def test_every_format_read_is_written_too_and_comes_back(key: str, tmp_path: Pat
     v, e, f = mesh.counts()
     assert back.counts() in ((v, e, f), (v, e + f, 2 * f))
     assert genus(back) == 1
+
+
+@pytest.mark.parametrize("key", sorted(WRITERS))
+def test_a_writer_writes_beside_its_file_exactly_the_companions_it_lists(key: str,
+                                                                        tmp_path: Path):
+    """What a batch relies on to stage and put in place every file of an output."""
+    save_mesh(coloured_cube(), tmp_path / f"m.{key}")
+    listed = [Path(p).name for p in companion_paths(tmp_path / f"m.{key}")]
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted([f"m.{key}", *listed])
+    assert listed == {"obj": ["m.mtl"], "dlfl": ["m.mtl"], "gltf": ["m.bin"]}.get(key, [])
 
 
 # -- a round trip through a file of each format keeps the surface

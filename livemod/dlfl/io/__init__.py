@@ -22,12 +22,12 @@ from .gltf import write_glb, write_gltf
 from .obj import read_obj, write_obj
 from .off import read_off, write_off
 from .ply import read_ply, write_ply
-from .source import show_path
+from .source import companion_path, show_path
 from .stl import read_stl, write_stl
 from .threemf import write_3mf
 
 __all__ = [
-    "atomic_write", "keeps_objects", "load_mesh", "open_mesh", "read_dlfl", "read_obj",
+    "atomic_write", "companion_paths", "keeps_objects", "load_mesh", "open_mesh", "read_dlfl", "read_obj",
     "read_off", "read_ply", "read_stl", "save_mesh", "save_objects", "scene_objects", "write_3mf",
     "write_atomically", "write_dlfl", "write_glb", "write_gltf", "write_obj", "write_off",
     "write_ply", "write_stl",
@@ -93,6 +93,21 @@ def save_mesh(mesh: Mesh, path: str | os.PathLike[str], *, format: str | None = 
     """
     name = os.fspath(path)
     WRITERS[_format_of(name, format, WRITERS, "write")](mesh, name)
+
+
+# the suffix of the file a writer of the format may put beside its output, named
+# after the output's stem: a coloured mesh's material library, a .gltf's buffer
+COMPANIONS: dict[str, str] = {"obj": ".mtl", "dlfl": ".mtl", "gltf": ".bin"}
+
+
+def companion_paths(path: str | os.PathLike[str], *, format: str | None = None) -> list[str]:  # noqa: A002
+    """The files :func:`save_mesh` and :func:`save_objects` may write beside
+    ``path`` in its format (``format`` overriding its extension): ``<stem>.mtl``
+    of an OBJ or ``.dlfl`` (written only for a mesh with face colours) and
+    ``<stem>.bin`` of a ``.gltf``; none for the other formats."""
+    name = os.fspath(path)
+    suffix = COMPANIONS.get((format or os.path.splitext(name)[1]).lower().lstrip("."))
+    return [] if suffix is None else [companion_path(name, suffix)]
 
 
 # the formats that keep a scene's objects apart: one node or object each

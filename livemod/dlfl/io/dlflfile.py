@@ -71,7 +71,15 @@ from .obj import (
     merge_face_blocks,
     vertex_lines,
 )
-from .source import file_error, lf_line_ends, read_source, report_skipped, show_token
+from .source import (
+    companion_path,
+    file_error,
+    file_stem,
+    lf_line_ends,
+    read_source,
+    report_skipped,
+    show_token,
+)
 
 
 def read_dlfl(source: str | os.PathLike[str] | bytes, *, name: str | None = None) -> Mesh:
@@ -476,12 +484,10 @@ def write_dlfl(mesh: Mesh, path: str | os.PathLike[str], *, reverse: bool = Fals
         OSError: the file cannot be written; an existing file is left intact.
     """
     name = os.fspath(path)
-    stem = os.path.splitext(os.path.basename(name))[0] or "mesh"
     colors = mesh.face_colors()
     if colors is not None:  # the library first: the file never names a missing one
-        write_atomically(os.path.join(os.path.dirname(name), f"{stem}.mtl"),
-                         mtl_bytes(materials_of(colors)))
-    write_atomically(name, dlfl_pieces(mesh, stem, reverse=reverse))
+        write_atomically(companion_path(name, ".mtl"), mtl_bytes(materials_of(colors)))
+    write_atomically(name, dlfl_pieces(mesh, file_stem(name), reverse=reverse))
 
 
 def dlfl_bytes(mesh: Mesh, mtl_name: str = "mesh", *, reverse: bool = False) -> bytes:

@@ -20,6 +20,7 @@ import numpy as np
 
 from ._scene_out import Objects, Part, drawn_faces, parts
 from .atomic import write_atomically
+from .source import companion_path
 
 _FLOAT, _UBYTE, _UINT = 5126, 5121, 5125  # glTF componentType codes
 _ARRAY_BUFFER, _ELEMENT_ARRAY_BUFFER = 34962, 34963
@@ -45,10 +46,10 @@ def write_gltf(objects: Objects, path: str | os.PathLike[str], *, smooth: bool =
     if name.lower().endswith(".glb"):
         write_glb(objects, name, smooth=smooth, face_colors=face_colors)
         return
-    stem = os.path.splitext(os.path.basename(name))[0] or "mesh"
+    buffer = companion_path(name, ".bin")
     document, chunks = gltf_document(objects, smooth=smooth, face_colors=face_colors,
-                                     uri=f"{stem}.bin")
-    write_atomically(os.path.join(os.path.dirname(name), f"{stem}.bin"), chunks)
+                                     uri=os.path.basename(buffer))
+    write_atomically(buffer, chunks)
     write_atomically(name, json.dumps(document, indent=1).encode())
 
 

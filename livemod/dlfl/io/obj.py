@@ -42,7 +42,15 @@ from .mtl import (
     read_libraries,
     runs,
 )
-from .source import file_error, lf_line_ends, read_source, report_skipped, show_path, show_token
+from .source import (
+    companion_path,
+    file_error,
+    lf_line_ends,
+    read_source,
+    report_skipped,
+    show_path,
+    show_token,
+)
 
 
 @dataclass
@@ -517,13 +525,12 @@ def write_obj(mesh: Mesh, path: str | os.PathLike[str]) -> None:
         OSError: a file cannot be written; an existing file is left intact.
     """
     name = os.fspath(path)
-    stem = os.path.splitext(os.path.basename(name))[0] or "mesh"
+    library = companion_path(name, ".mtl")
     a = mesh_arrays(mesh)
     materials = None if a.face_colors is None else materials_of(a.face_colors)
     if materials is not None:
-        write_atomically(os.path.join(os.path.dirname(name), f"{stem}.mtl"),
-                         mtl_bytes(materials))
-    write_atomically(name, _obj_text(a, materials, f"{stem}.mtl"))
+        write_atomically(library, mtl_bytes(materials))
+    write_atomically(name, _obj_text(a, materials, os.path.basename(library)))
 
 
 def obj_bytes(mesh: Mesh, mtl_name: str = "mesh.mtl") -> bytes:

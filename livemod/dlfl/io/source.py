@@ -112,3 +112,15 @@ def lf_line_ends(data: bytes) -> bytes:
     fixed = bytearray(data)
     np.frombuffer(fixed, dtype=np.uint8)[lone] = 10
     return bytes(fixed)
+
+
+def file_stem(path: str) -> str:
+    """The name of the file ``path`` without its extension (``"mesh"`` for a name
+    that is all extension), after which a writer names the files it puts beside it."""
+    return os.path.splitext(os.path.basename(path))[0] or "mesh"
+
+
+def companion_path(path: str, suffix: str) -> str:
+    """The file of ``path``'s stem and ``suffix`` (e.g. ``".mtl"``) beside ``path``:
+    where a writer puts a file its output names (a material library, a buffer)."""
+    return os.path.join(os.path.dirname(path), file_stem(path) + suffix)
