@@ -381,16 +381,10 @@ def test_batch_refuses_outputs_that_two_variants_would_share(tmp_path, capsys):
     assert os.listdir(tmp_path) == []
 
 
-def test_batch_refuses_gltf_whose_bin_it_could_not_stage_and_takes_glb(tmp_path, capsys):
-    pattern = str(tmp_path / "r_{count}.gltf")
-    assert cli.main(["batch", RING, "--param", "count=3:4:2", "-o", pattern]) == 2
-    assert (f"batch writes each variant as one file, and {tmp_path / 'r_3.gltf'} would be "
-            f"two (a .bin beside it): write .glb, glTF in one file") in capsys.readouterr().err
-    assert os.listdir(tmp_path) == []
+def test_batch_writes_glb_as_one_binary_file(tmp_path):
     assert cli.main(["batch", RING, "--param", "count=3:4:2", "-o",
                      str(tmp_path / "r_{count}.glb")]) == 0
     assert sorted(os.listdir(tmp_path)) == ["index.json", "r_3.glb", "r_4.glb"]
-    # written binary under the staging name, which does not end in .glb
     assert (tmp_path / "r_3.glb").read_bytes()[:4] == b"glTF"
 
 

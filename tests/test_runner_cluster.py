@@ -25,7 +25,7 @@ import pytest
 from distributed import Client, LocalCluster
 
 from livemod.dlfl import load
-from livemod.dlfl.io import save_mesh
+from livemod.dlfl.io import read_obj, save_mesh
 from livemod.dlfl.scene import Scene, use_scene
 from livemod.runner import cli
 
@@ -208,6 +208,25 @@ def test_a_sweep_on_workers_that_see_no_shared_disk_equals_single_runs(
     index = json.loads((tmp_path / "out" / "index.json").read_text())
     assert [(v["index"], v["status"], v["F"]) for v in index["variants"]] == [
         (n, "ok", 6 + 16) for n in range(4)]
+
+
+def test_a_coloured_sweep_brings_each_objs_library_back_from_the_workers(
+        separate_cluster, tmp_path, capsys):
+    """The workers cannot see the client's disk: the .mtl beside each OBJ came
+    back with it; the files equal those of the same sweep in local processes."""
+    cluster, _ = separate_cluster
+    script = tmp_path / "coloured.py"
+    script.write_text("n = param('n', 0)\nload('cube')\nsetFaceColor([0, 1], (1, 0, 0.5 * n))\n")
+    sweep = ["batch", str(script), "--param", "n=0:1:2", "-o"]
+    assert cli.main([*sweep, str(tmp_path / "local" / "v_{index}.obj"), "-j", "2"]) == 0
+    code = cli.main([*sweep, str(tmp_path / "out" / "v_{index}.obj"),
+                     "--cluster", str(cluster.scheduler_file)])
+    assert code == 0, capsys.readouterr().err
+    names = ["v_0.mtl", "v_0.obj", "v_1.mtl", "v_1.obj"]
+    assert sorted(os.listdir(tmp_path / "out")) == ["index.json", *names]
+    for name in names:
+        assert (tmp_path / "out" / name).read_bytes() == (tmp_path / "local" / name).read_bytes()
+    assert read_obj(tmp_path / "out" / "v_1.obj").face_color(0) == (1.0, 0.0, 0.5)
 
 
 def test_a_killed_worker_costs_only_time(separate_cluster, tmp_path, capsys):

@@ -7,10 +7,13 @@ dataclasses.
 
 Only the batch itself (the process that called :func:`run_batch`) puts outputs
 in place, each as its result comes in and is recorded: a local worker writes its
-mesh to a temporary name beside the output (``Variant.staging``), which the
-batch renames; a cluster worker sends the file's bytes back. So whatever stops
-the batch (Ctrl-C, SIGTERM, a lost cluster), the outputs on disk are exactly
-the variants the index lists.
+mesh, under the output's name, into the batch's temporary folder beside the
+output (``Variant.staging``), with the companions its format writes beside it
+(the ``.mtl`` of a coloured OBJ or ``.dlfl``, the ``.bin`` of a ``.gltf``,
+see :func:`~livemod.dlfl.io.companion_paths`), which name one another by their
+final names; the batch renames the companions into place, then the file. A cluster worker sends the bytes of every file back. So
+whatever stops the batch (Ctrl-C, SIGTERM, a lost cluster), the outputs on
+disk, companions included, are exactly the variants the index lists.
 """
 
 from __future__ import annotations
@@ -45,8 +48,9 @@ class Variant:
     """One run of a sweep: the script, its parameters and where its mesh goes.
 
     ``staging`` is where a worker writes the mesh for the batch to move to
-    ``output`` (a temporary name beside it, see
-    :func:`~livemod.dlfl.io.atomic.temporary_path`); None writes ``output`` itself.
+    ``output``: a file of the output's own name in the batch's temporary folder
+    beside it (see :func:`~livemod.dlfl.io.atomic.temporary_path`), with the
+    format's companion files beside it; None writes ``output`` itself.
     """
 
     index: int
@@ -63,8 +67,10 @@ class Variant:
 @dataclass(frozen=True)
 class VariantResult:
     """What a variant reports back: its counts, or its error; the mesh is in the
-    file ``staged`` (to be moved to ``output``), in ``data`` (the output file's
-    bytes, from a cluster), or was written to ``output`` already (both None)."""
+    file ``staged`` (to be moved to ``output``, the companion files beside it
+    to the output's folder), in ``data`` (from a cluster: the bytes of the
+    output, under its file name, and of each companion, under theirs), or was
+    written to ``output`` already (both None)."""
 
     index: int
     parameters: tuple[tuple[str, Any], ...]
@@ -75,7 +81,7 @@ class VariantResult:
     elapsed: float
     genus: int | None = None
     staged: str | None = None
-    data: bytes | None = None
+    data: dict[str, bytes] | None = None
 
 
 def parse_param(text: str) -> tuple[str, list[Any]]:
@@ -230,17 +236,30 @@ def _written(objects: Sequence[tuple[str, Any]], variant: Variant) -> str | None
 
 
 def _staged(objects: Sequence[tuple[str, Any]], staging: str, output: str) -> str | None:
-    """Write ``objects`` to ``staging`` in ``output``'s format (its folder made if
-    missing); None, or the failure said of ``output``."""
+    """Write ``objects`` to ``staging`` in ``output``'s format (its folders made if
+    missing); None, or the failure said of ``output`` (and a companion's of its
+    final name)."""
+    from livemod.dlfl.io import companion_paths
+
     from .results import save_result
 
+    for companion in companion_paths(staging):  # of an earlier try of this variant
+        with contextlib.suppress(OSError):
+            os.unlink(companion)
     try:
         save_result(objects, staging, format=os.path.splitext(output)[1][1:].lower())
     except OSError as exc:
-        return describe(exc).replace(staging, output)
+        return _said_of_output(describe(exc), staging, output)
     except DLFLError as exc:  # a writer's refusal
-        return f"cannot write {output}: {exc}".replace(staging, output)
+        return _said_of_output(f"cannot write {output}: {exc}", staging, output)
     return None
+
+
+def _said_of_output(text: str, staging: str, output: str) -> str:
+    """``text`` naming the output and its folder where it names ``staging`` and
+    the staging folder."""
+    folder = os.path.dirname(output) or os.curdir
+    return text.replace(staging, output).replace(os.path.dirname(staging), folder)
 
 
 def failed_result(variant: Variant, message: str, started: float) -> VariantResult:
@@ -462,17 +481,21 @@ def make_variants(script: str, parameter_sets: list[dict[str, Any]], pattern: st
 
 
 def _check_distinct_outputs(variants: list[Variant], pattern: str | None) -> None:
-    """Raises ValueError when two variants would write the same file."""
+    """Raises ValueError when two variants would write the same file (their
+    outputs, or companions: ``v.obj`` and ``v.dlfl`` would share ``v.mtl``)."""
+    from livemod.dlfl.io import companion_paths
+
     first: dict[str, Variant] = {}
     for variant in variants:
         if variant.output is None:
             continue
-        seen = first.setdefault(os.path.abspath(variant.output), variant)
-        if seen is not variant:
-            raise ValueError(
-                f"output pattern {pattern!r} names one file, {variant.output}, for variants "
-                f"{seen.index} {dict(seen.parameters)} and {variant.index} "
-                f"{dict(variant.parameters)}; put {{index}} or the swept parameters in it")
+        for path in [variant.output, *companion_paths(variant.output)]:
+            seen = first.setdefault(os.path.abspath(path), variant)
+            if seen is not variant:
+                raise ValueError(
+                    f"output pattern {pattern!r} names one file, {path}, for variants "
+                    f"{seen.index} {dict(seen.parameters)} and {variant.index} "
+                    f"{dict(variant.parameters)}; put {{index}} or the swept parameters in it")
 
 
 class Stop(KeyboardInterrupt):
@@ -570,7 +593,7 @@ def run_batch(variants: list[Variant], executor: VariantExecutor | None = None, 
     bar = None if quiet else ProgressBar("batch", progress)
     if executor is None:
         executor = ProcessPoolVariantExecutor(jobs) if jobs > 1 else SerialExecutor()
-    staged = [_with_staging(v) for v in variants]
+    staged = with_staging(variants)
     results: list[VariantResult] = []
     with _StopSignals() as signals, _synced(results):
         try:
@@ -612,47 +635,88 @@ def sync_outputs(results: list[VariantResult]) -> None:
     sync_folders(r.output for r in results if r.status == "ok" and r.output is not None)
 
 
-def _with_staging(variant: Variant) -> Variant:
-    """``variant`` with a temporary name beside its output, made by this process
-    (a later save removes it if this process dies before it is put in place)."""
+def with_staging(variants: list[Variant]) -> list[Variant]:
+    """``variants`` each staged in a temporary folder beside its output, one per
+    folder, named by this process (a later save into the folder removes it if
+    this process dies before the batch ends), under the name of the file its
+    output is (or links to): the companions are named after it and land beside
+    it. (Distinct outputs have distinct companions: see :func:`make_variants`.)
+    One folder serves many variants because removing a folder costs as much as
+    writing a small mesh, on a disk mounted with ``discard``."""
     from livemod.dlfl.io.atomic import temporary_path
 
-    if variant.output is None or variant.staging is not None:
-        return variant
-    target = os.path.realpath(os.path.abspath(variant.output))
-    return dataclasses.replace(variant, staging=temporary_path(target))
+    folders: dict[str, str] = {}
+    staged = []
+    for variant in variants:
+        if variant.output is not None and variant.staging is None:
+            folder, name = os.path.split(os.path.realpath(os.path.abspath(variant.output)))
+            staging = folders.setdefault(folder, temporary_path(os.path.join(folder, "batch")))
+            variant = dataclasses.replace(variant, staging=os.path.join(staging, name))
+        staged.append(variant)
+    return staged
 
 
 def commit(result: VariantResult) -> VariantResult:
-    """Put a finished variant's mesh at its output (the ``staged`` file renamed
-    over it, or ``data`` written to it, atomically, its folder made if missing);
-    the result without the mesh, or failed with what went wrong. The rename is
-    made durable later, for many outputs at once (:func:`sync_outputs`): one
-    folder sync per output would cost the batch as much again as the output."""
-    from livemod.dlfl.io.atomic import move_into_place, write_atomically
-
+    """Put a finished variant's files in place: its companions beside the output,
+    then the output itself (the ``staged`` files renamed, or ``data`` written,
+    each atomically, the folder made if missing), so that no file ever names a
+    companion not there yet; the result without the files, or failed with what
+    went wrong (its companions then removed). The renames are made durable
+    later, for many outputs at once (:func:`sync_outputs`): one folder sync per
+    output would cost the batch as much again as the output."""
     bare = dataclasses.replace(result, staged=None, data=None)
     if result.status != "ok" or result.output is None:
         return bare
+    placed: list[str] = []
     try:
-        if result.data is not None:
-            os.makedirs(os.path.dirname(os.path.abspath(result.output)), exist_ok=True)
-            write_atomically(result.output, result.data, sync_folder=False)
-        elif result.staged is not None:
-            move_into_place(result.staged, result.output, sync_folder=False)
+        _put_in_place(result, placed)
     except OSError as exc:
+        _remove_all(placed)
         return dataclasses.replace(bare, status="error", counts=None, genus=None,
                                    error=describe(exc))
     return bare
 
 
+def _put_in_place(result: VariantResult, placed: list[str]) -> None:
+    """:func:`commit`'s moves and writes; each companion put in place is added
+    to ``placed``.
+
+    Raises:
+        OSError: a file cannot be put in place.
+    """
+    from livemod.dlfl.io import companion_paths
+    from livemod.dlfl.io.atomic import move_into_place, write_atomically
+
+    output = str(result.output)
+    target = os.path.realpath(os.path.abspath(output))
+    folder, name = os.path.split(target)
+    if result.data is not None:
+        os.makedirs(folder, exist_ok=True)
+        for companion in sorted(set(result.data) - {name}):
+            placed.append(os.path.join(folder, companion))
+            write_atomically(placed[-1], result.data[companion], sync_folder=False)
+        write_atomically(output, result.data[name], sync_folder=False)
+    elif result.staged is not None:
+        for companion in filter(os.path.exists, companion_paths(result.staged)):
+            placed.append(os.path.join(folder, os.path.basename(companion)))
+            move_into_place(companion, placed[-1], sync_folder=False)
+        move_into_place(result.staged, output, sync_folder=False)
+
+
 def _remove_staging(variants: list[Variant]) -> None:
-    """Remove the staging files left (variants that failed, were ended or not put
-    in place: a put in place one is no longer there)."""
-    for variant in variants:
-        if variant.staging is not None:
-            with contextlib.suppress(OSError):
-                os.unlink(variant.staging)
+    """Remove the batch's staging folders, with the files left in them (of
+    variants that failed, were ended or not put in place)."""
+    _remove_all(list(dict.fromkeys(os.path.dirname(v.staging) for v in variants
+                                   if v.staging is not None)))
+
+
+def _remove_all(paths: list[str]) -> None:
+    """Remove each file or staging folder of ``paths`` that is there."""
+    from livemod.dlfl.io.atomic import remove_temporary
+
+    for path in paths:
+        with contextlib.suppress(OSError):
+            remove_temporary(path)
 
 
 def index_rows(results: list[VariantResult]) -> list[dict[str, Any]]:

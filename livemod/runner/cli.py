@@ -569,9 +569,6 @@ def _batch_variants(args: argparse.Namespace,
     outputs = [v.output for v in variants if v.output is not None]
     for output in outputs:
         check_mesh_output(output)
-        if output.lower().endswith(".gltf"):  # its .bin could not be staged with it
-            raise UsageError(f"batch writes each variant as one file, and {show_path(output)} "
-                             f"would be two (a .bin beside it): write .glb, glTF in one file")
     index = index_path(variants, args.index)
     check_writable([*outputs, *([index] if index is not None else [])])
     return specs, variants, index

@@ -4,7 +4,8 @@ sees nothing of the client's disk.
 The client packs what the script needs (:mod:`.bundle`) and sends it once; each
 variant travels as a small :class:`~.batch.Variant` naming the client's paths,
 runs on a worker in a private copy of the script's folder, and comes back with
-its output file's bytes, which the batch writes (:func:`~.batch.commit`). At
+the bytes of its output file and of the companions its format writes beside it
+(a ``.mtl``, a ``.bin``), which the batch writes (:func:`~.batch.commit`). At
 most a window of tasks is submitted at a time (twice the cluster's threads),
 so neither the client nor the cluster ever holds the whole sweep's meshes; a
 task holds one variant, or, once variants are seen to be short and small,
@@ -305,7 +306,7 @@ class _Fetcher:
             return []
 
     def _seen(self, result: VariantResult) -> VariantResult:
-        self.largest = max(self.largest, len(result.data or b""))
+        self.largest = max(self.largest, sum(map(len, (result.data or {}).values())))
         if result.status == "ok":
             self.typical = result.elapsed if self.typical is None else (
                 0.8 * self.typical + 0.2 * result.elapsed)
@@ -354,7 +355,7 @@ def run_shipped(fn: Callable[[Variant], VariantResult], variants: list[Variant],
     """On a worker: run ``fn`` on each of ``variants`` in this process's copy of
     the bundle the plugin ``bundle`` brought (unpacked at its first variant here);
     their results as the client knows them: the client's paths in them, and the
-    output file's bytes in ``data``. One variant at a time per process (a worker
+    bytes of the output file and its companions in ``data``, by file name. One variant at a time per process (a worker
     with several threads runs them in turn).
 
     Raises:
@@ -374,20 +375,31 @@ def _run_one(fn: Callable[[Variant], VariantResult], variant: Variant,
             here = _unpacked[bundle] = unpack(
                 _bundles[bundle], tempfile.mkdtemp(prefix="bundle-", dir=_scratch_folder()))
         with tempfile.TemporaryDirectory(prefix="variant-", dir=_scratch_folder()) as out:
+            # named as the client stages it: the companions are named after it
             local = dataclasses.replace(
                 variant, script=here.script, mesh_path=here.mesh, staging=None,
                 output=None if variant.output is None
-                else os.path.join(out, "mesh" + os.path.splitext(variant.output)[1]))
+                else os.path.join(out, os.path.basename(variant.staging or variant.output)))
             result = fn(local)
             data = None
             if result.status == "ok" and local.output is not None:
-                with open(local.output, "rb") as handle:
-                    data = handle.read()
+                data = _files_in(out)
     paths = {here.folder: os.path.dirname(variant.script),
              **({here.mesh: str(variant.mesh_path)} if here.mesh else {}),
-             **({local.output: str(variant.output)} if local.output else {})}
+             **({local.output: str(variant.output),
+                 out: os.path.dirname(str(variant.output)) or os.curdir}
+                if local.output else {})}
     return dataclasses.replace(result, output=variant.output, data=data, staged=None,
                                error=_renamed(result.error, paths))
+
+
+def _files_in(folder: str) -> dict[str, bytes]:
+    """The bytes of each file in ``folder``, by name."""
+    files = {}
+    for name in os.listdir(folder):
+        with open(os.path.join(folder, name), "rb") as handle:
+            files[name] = handle.read()
+    return files
 
 
 def _renamed(text: str | None, paths: dict[str, str]) -> str | None:
