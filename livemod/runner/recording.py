@@ -290,6 +290,17 @@ class RunControl:
             namespace[CANCEL_FLAG] = True
             recorder.every_step_to_hook()
 
+    def detach(self) -> None:
+        """The run has ended: let go of its globals, its recorder and the pause
+        callback, keeping the step count. Each refers back to the control (a
+        cycle), and would keep the run's scene until the garbage collector runs.
+        Safe while another thread calls :meth:`cancel`."""
+        steps = self._steps()
+        self._steps = lambda: steps
+        self._to_hook = lambda: None
+        self._namespace = {}  # not None: a cancel() under way may read it twice
+        self.on_pause = None
+
 
 class _Nowhere:
     """Stands in for the script frame when there is none (one test less per step)."""

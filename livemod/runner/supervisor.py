@@ -275,4 +275,5 @@ class RunSupervisor:
         try:
             self._work.run(run, source)
         finally:
+            run.control.detach()  # frees the run's scene now, not at the next collection
             self._stopper.ended(run)  # after the publishing: the caller sees no gap between
