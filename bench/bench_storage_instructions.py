@@ -1,6 +1,6 @@
 """Instructions the mesh's hot paths cost, counted by callgrind (plain python, not a test).
 
-    python bench/bench_storage_instructions.py [--tree PATH ...] [--only NAME ...] [--jobs N]
+    python bench/bench_storage_instructions.py [--tree PATH [PATH ...]] [--only NAME ...] [--jobs N]
 
 Each workload runs in a child under ``valgrind --tool=callgrind`` at two sizes;
 the difference of the totals over the difference of the sizes is what one unit
@@ -116,7 +116,9 @@ def instructions(folder: str, tree: str, workload: Workload, n: int) -> int:
     code = SETUP + workload.body + FINISH
     args = ["valgrind", "--tool=callgrind", f"--callgrind-out-file={out}",
             sys.executable, "-c", code, str(n)]
-    done = subprocess.run(args, capture_output=True, text=True, env=env)
+    # run in the scratch folder: ``python -c`` puts its working directory first on
+    # sys.path, ahead of PYTHONPATH, and the checkout's own livemod would win
+    done = subprocess.run(args, capture_output=True, text=True, env=env, cwd=folder)
     found = COLLECTED.search(done.stderr)
     if done.returncode != 0 or found is None:
         raise RuntimeError(f"{workload.name} {n} on {tree}: {done.stderr[-2000:]}")
