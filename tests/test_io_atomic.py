@@ -176,3 +176,25 @@ def test_replacing_a_read_only_file_keeps_its_mode(tmp_path) -> None:
     assert stat.S_IMODE(path.stat().st_mode) == 0o444
     assert read_obj(path).num_faces == 6
     assert os.listdir(tmp_path) == ["ro.obj"]
+
+
+def test_a_file_in_an_unsynced_folder_is_replaced_without_a_sync(tmp_path, monkeypatch):
+    """A worker's scratch outputs skip the syncs; a save anywhere else keeps both
+    (the file's and its folder's)."""
+    from livemod.dlfl.io import atomic
+
+    monkeypatch.setattr(atomic, "_unsynced", set())
+    synced: list[int] = []
+    monkeypatch.setattr(os, "fsync", synced.append)
+    scratch, kept = tmp_path / "scratch", tmp_path / "kept"
+    scratch.mkdir()
+    kept.mkdir()
+    atomic.write_unsynced(os.path.realpath(scratch))
+    for folder in (scratch, kept):
+        (folder / "v.obj").write_bytes(b"old")
+        write_atomically(folder / "v.obj", b"new")
+        assert (folder / "v.obj").read_bytes() == b"new"
+        assert _temporary_files(folder) == []
+        assert len(synced) == (0 if folder == scratch else 2)
+    write_atomically(scratch / "sub.obj", b"x", sync_folder=False)
+    assert len(synced) == 2

@@ -397,3 +397,39 @@ def test_an_unreachable_scheduler_is_an_error_naming_it(capsys):
         code = cli.main(["batch", ring, "--param", "count=3", "--cluster", "tcp://127.0.0.1:9"])
     assert code == 1
     assert "cannot reach the Dask scheduler at tcp://127.0.0.1:9" in capsys.readouterr().err
+
+
+def test_a_workers_variants_share_one_output_folder_left_empty(tmp_path, monkeypatch):
+    """run_shipped in this process (as on a worker): each variant's file comes
+    back as the bytes of a single run, a failed variant's too is cleared, the
+    outputs are never synced to disk, and the scratch holds the bundle's copy
+    and one output folder, not a folder per variant."""
+    from livemod.dlfl.io import atomic
+    from livemod.runner import cluster
+    from livemod.runner.batch import make_variants, run_variant, with_staging
+    from livemod.runner.bundle import bundle_of
+
+    script, mesh = _project(tmp_path)
+    (tmp_path / "scratch").mkdir()
+    monkeypatch.setattr(cluster, "_scratch", [str(tmp_path / "scratch")])
+    monkeypatch.setattr(cluster, "_unpacked", {})
+    monkeypatch.setattr(cluster, "_bundles", {"b": bundle_of(str(script), str(mesh))})
+    monkeypatch.setattr(atomic, "_unsynced", set())
+    variants = with_staging(make_variants(
+        str(script), [{"n": 0}, {"n": 1, "kind": "missing"}, {"n": 2}],
+        str(tmp_path / "out" / "v_{n}.obj"), mesh_path=str(mesh), all_objects=True))
+    real_fsync, synced = os.fsync, []
+    monkeypatch.setattr(os, "fsync", lambda fd: synced.append(fd) or real_fsync(fd))
+    results = cluster.run_shipped(run_variant, variants, "b")
+    assert [r.status for r in results] == ["ok", "error", "ok"]
+    assert synced == []
+    # said of the client's files, not of the worker's copy
+    assert results[1].error == (f"{script}:12: InvalidArgumentError: no file missing.obj "
+                                f"in {script.parent / 'parts'}")
+    for n in (0, 2):
+        single = _single_run(script, mesh, {"n": n}, tmp_path / f"single_{n}.obj")
+        assert results[n].data == {f"v_{n}.obj": single}
+        assert results[n].output == str(tmp_path / "out" / f"v_{n}.obj")
+    names = sorted(os.listdir(tmp_path / "scratch"))
+    assert len(names) == 2 and names[1] == "output" and names[0].startswith("bundle-")
+    assert os.listdir(tmp_path / "scratch" / "output") == []

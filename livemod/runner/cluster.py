@@ -34,6 +34,8 @@ import warnings
 from collections.abc import Callable, Iterator
 from typing import Any
 
+from livemod.dlfl.io.atomic import write_unsynced
+
 from .batch import ExecutorLost, Variant, VariantResult, failed_result
 from .bundle import Bundle, Unpacked, bundle_of, unpack
 
@@ -374,16 +376,19 @@ def _run_one(fn: Callable[[Variant], VariantResult], variant: Variant,
                 raise RuntimeError(f"the script's files ({bundle}) did not reach this worker")
             here = _unpacked[bundle] = unpack(
                 _bundles[bundle], tempfile.mkdtemp(prefix="bundle-", dir=_scratch_folder()))
-        with tempfile.TemporaryDirectory(prefix="variant-", dir=_scratch_folder()) as out:
-            # named as the client stages it: the companions are named after it
-            local = dataclasses.replace(
-                variant, script=here.script, mesh_path=here.mesh, staging=None,
-                output=None if variant.output is None
-                else os.path.join(out, os.path.basename(variant.staging or variant.output)))
+        out = _output_folder()
+        # named as the client stages it: the companions are named after it
+        local = dataclasses.replace(
+            variant, script=here.script, mesh_path=here.mesh, staging=None,
+            output=None if variant.output is None
+            else os.path.join(out, os.path.basename(variant.staging or variant.output)))
+        try:
             result = fn(local)
             data = None
             if result.status == "ok" and local.output is not None:
                 data = _files_in(out)
+        finally:
+            _empty(out)
     paths = {here.folder: os.path.dirname(variant.script),
              **({here.mesh: str(variant.mesh_path)} if here.mesh else {}),
              **({local.output: str(variant.output),
@@ -402,6 +407,17 @@ def _files_in(folder: str) -> dict[str, bytes]:
     return files
 
 
+def _empty(folder: str) -> None:
+    """Remove everything in ``folder`` (a variant's outputs, sent or failed), so
+    that nothing of one variant comes back with the next."""
+    for entry in os.scandir(folder):
+        with contextlib.suppress(OSError):
+            if entry.is_dir(follow_symlinks=False):
+                shutil.rmtree(entry.path)
+            else:
+                os.unlink(entry.path)
+
+
 def _renamed(text: str | None, paths: dict[str, str]) -> str | None:
     """``text`` with the worker's paths said as the client's."""
     if text is None:
@@ -409,6 +425,19 @@ def _renamed(text: str | None, paths: dict[str, str]) -> str | None:
     for worker_path, client_path in paths.items():
         text = text.replace(worker_path, client_path)
     return text
+
+
+def _output_folder() -> str:
+    """This process's folder for a variant's output and companions: one for
+    all its variants, emptied after each (making and removing a folder per
+    variant costs as much as a small variant's output, on a disk mounted with
+    ``discard``). Its files are not synced to disk: they are read back at once,
+    and the client writes them durably."""
+    out = os.path.join(_scratch_folder(), "output")
+    if not os.path.isdir(out):
+        os.mkdir(out)
+        write_unsynced(os.path.realpath(out))
+    return out
 
 
 def _scratch_folder() -> str:

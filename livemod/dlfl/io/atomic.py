@@ -5,7 +5,9 @@ bytes go to a temporary file in the target's folder, which is flushed, synced
 to disk and then renamed over the target with :func:`os.replace` (atomic on
 POSIX and Windows). If anything raises before the rename, the temporary file is
 removed and the old target, if any, is untouched. Saving through a symbolic
-link replaces the file it points to and keeps the link.
+link replaces the file it points to and keeps the link. Files written into a
+folder named to :func:`write_unsynced` (a cluster worker's scratch outputs,
+read back at once) are replaced atomically too, but not synced.
 
 A process killed mid-save (SIGKILL, a power cut) cannot remove its temporary
 file, so each name says who wrote it: ``.NAME.HOST-PID-START-RANDOM.tmp``, with
@@ -63,11 +65,13 @@ def atomic_write(path: str | os.PathLike[str], *, sync_folder: bool = True,
     # created with the old file's mode (a private file's new text is never readable
     # by others), or 0o666 less the umask for a new file, as any other new file
     fd, tmp_path = _temporary_beside(target, 0o666 if old_mode is None else old_mode)
+    durable = folder not in _unsynced
     try:
         with os.fdopen(fd, "wb") as handle:
             yield handle
             handle.flush()
-            os.fsync(handle.fileno())
+            if durable:
+                os.fsync(handle.fileno())
         if old_mode is not None:  # the umask may have cleared some of its bits
             os.chmod(tmp_path, old_mode)
         try:
@@ -80,12 +84,23 @@ def atomic_write(path: str | os.PathLike[str], *, sync_folder: bool = True,
         raise
     finally:
         _in_progress.discard(tmp_path)
-    if sync_folder:
+    if sync_folder and durable:
         _sync_folder(folder)
 
 
 # temporary files of the writes under way in this process
 _in_progress: set[str] = set()
+# folders whose files are read back at once and thrown away (see write_unsynced)
+_unsynced: set[str] = set()
+
+
+def write_unsynced(folder: str) -> None:
+    """From now on, files written into ``folder`` (an absolute, real path; not
+    its subfolders) are still replaced atomically but not synced to disk, nor
+    the folder: for a scratch folder whose files are read back at once and
+    thrown away (a cluster worker's outputs, which the client writes durably).
+    Syncing would make the disk write each file, to be discarded after."""
+    _unsynced.add(folder)
 
 
 def _temporary_beside(target: str, mode: int) -> tuple[int, str]:
