@@ -27,7 +27,7 @@ import tempfile
 from collections.abc import Iterable, Iterator
 from typing import TextIO
 
-from livemod.dlfl.errors import close_match
+from livemod.dlfl.errors import did_you_mean
 from livemod.dlfl.io.source import show_path
 
 DONE, FAILED, USAGE, INTERRUPTED, READER_LEFT = 0, 1, 2, 130, 141
@@ -47,8 +47,7 @@ class Parser(argparse.ArgumentParser):
         if choices is None or value in choices:
             return
         names = [str(choice) for choice in choices]
-        guess = close_match(value, names)
-        hint = f"; did you mean {guess!r}?" if guess is not None else ""
+        hint = did_you_mean(value, names)
         listed = ", ".join(map(repr, names))
         raise argparse.ArgumentError(action, f"invalid choice: {value!r}{hint} "
                                              f"(choose from {listed})")

@@ -13,25 +13,11 @@ from typing import Any, TypeGuard
 
 import numpy as np
 
-from .errors import InvalidArgumentError, UnknownIdError
+from .errors import InvalidArgumentError, UnknownIdError, shown
 
 # ids are int64 in the element tables and their dense snapshots: an integer
 # outside this range names no element (and numpy could not even hold it)
 ID_RANGE = range(-2**63, 2**63)
-
-
-def shown(value: object) -> str:
-    """``repr(value)`` for a message, at most 80 characters: a huge int or a long
-    list would otherwise fill the screen, or (past 4,300 digits) fail to print."""
-    if isinstance(value, int) and value.bit_length() > 200:
-        # str() of over 4,300 digits raises ValueError (sys.set_int_max_str_digits)
-        digits = f"{len(str(value)):,}" if value.bit_length() < 14_000 else "over 4,000"
-        return f"an integer of {digits} digits"
-    try:
-        text = repr(value)
-    except ValueError:  # a number too long to print, inside a container
-        return f"a {type(value).__name__} holding a number too long to print"
-    return text if len(text) <= 80 else text[:77] + "..."
 
 
 def finite_number(value: object, name: str) -> float:

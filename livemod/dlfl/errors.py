@@ -129,6 +129,27 @@ def close_match(name: object, valid: Iterable[str]) -> str | None:
     return folded[close[0]] if close else None
 
 
+def shown(value: object) -> str:
+    """``repr(value)`` for a message, at most 80 characters: a huge int or a long
+    list would otherwise fill the screen, or (past 4,300 digits) fail to print."""
+    if isinstance(value, int) and value.bit_length() > 200:
+        # str() of over 4,300 digits raises ValueError (sys.set_int_max_str_digits)
+        digits = f"{len(str(value)):,}" if value.bit_length() < 14_000 else "over 4,000"
+        return f"an integer of {digits} digits"
+    try:
+        text = repr(value)
+    except ValueError:  # a number too long to print, inside a container
+        return f"a {type(value).__name__} holding a number too long to print"
+    return text if len(text) <= 80 else text[:77] + "..."
+
+
+def did_you_mean(name: object, valid: Iterable[str]) -> str:
+    """``"; did you mean 'x'?"`` for the one of ``valid`` that ``name`` most likely
+    misspells (see :func:`close_match`), or ``""`` when none is close."""
+    guess = close_match(name, valid)
+    return f"; did you mean {guess!r}?" if guess is not None else ""
+
+
 def unknown_name(what: str, name: object, valid: Iterable[str], listed: str | None) -> str:
     """The message for a ``name`` that is none of ``valid``: what it is not, the
     likely intended name, and the valid ones once, e.g. ``unknown subdivision scheme
@@ -142,18 +163,8 @@ def unknown_name(what: str, name: object, valid: Iterable[str], listed: str | No
             none (``what`` names them already).
     """
     names = list(valid)
-    guess = close_match(name, names)
-    parts = [f"{what} {_shown(name)}"]
-    if guess is not None:
-        parts.append(f"did you mean {guess!r}?")
-    message = "; ".join(parts)
+    hint = did_you_mean(name, names)
+    message = f"{what} {shown(name)}{hint}"
     if listed is not None:
-        message += f"{'' if guess is not None else ';'} {listed}: {', '.join(names)}"
+        message += f"{'' if hint else ';'} {listed}: {', '.join(names)}"
     return message
-
-
-def _shown(value: object) -> str:
-    """``repr(value)``, at most 80 characters (see ``_checks.shown``, which the
-    argument checks use; a name is short, or cut here)."""
-    text = repr(value) if not isinstance(value, int) or value.bit_length() < 200 else "an integer"
-    return text if len(text) <= 80 else text[:77] + "..."

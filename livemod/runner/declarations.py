@@ -12,7 +12,7 @@ from collections.abc import Iterable
 from pathlib import Path
 from typing import Any
 
-from livemod.dlfl.errors import DLFLError, close_match
+from livemod.dlfl.errors import DLFLError, did_you_mean
 from livemod.dlfl.params import ParamSpec, make_spec
 
 from .instrument import read_script
@@ -206,8 +206,7 @@ def undeclared(specs: dict[str, ParamSpec], values: dict[str, Any],
     for name in values:
         if name not in specs:
             known = ", ".join(specs) or "none"
-            guess = close_match(name, specs)
-            hint = f"; did you mean {guess!r}?" if guess is not None else ""
+            hint = did_you_mean(name, specs)
             if ran:
                 return (f"the run declared no parameter {name!r}{hint} (it declared: {known}); "
                         f"a param() call declares it only when it runs (not in an if "

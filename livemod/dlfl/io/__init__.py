@@ -13,7 +13,7 @@ import errno
 import os
 from collections.abc import Callable, Mapping, Sequence
 
-from ..errors import InvalidArgumentError, close_match
+from ..errors import InvalidArgumentError, did_you_mean
 from ..mesh import Mesh
 from ..scene import Scene
 from .atomic import atomic_write, write_atomically
@@ -195,8 +195,7 @@ def open_mesh(name: str | os.PathLike[str], *, shape_name: str | None = None) ->
     where = f"no file {show_path(os.path.basename(path))} in {show_path(_folder_of(path))}"
     if os.path.splitext(shape)[1]:
         raise InvalidArgumentError(where)
-    guess = close_match(shape, SHAPES)
-    hint = f"; did you mean {guess!r}?" if guess is not None else ";"
+    hint = did_you_mean(shape, SHAPES) or ";"
     raise InvalidArgumentError(f"{where}, and no built-in shape "
                                f"{show_path(os.path.basename(shape))}{hint} shapes: "
                                f"{', '.join(SHAPES)}")
