@@ -42,11 +42,12 @@ def test_local_modules_travel_at_any_depth_and_installed_ones_do_not(tmp_path):
 
 
 def test_files_named_by_strings_and_patterns_travel(tmp_path):
-    _tree(tmp_path, {
+    home = tmp_path / "project"  # its parent holds the file named from one folder up
+    _tree(home, {
         "main.py": "k = 'a'\n"
                    "load('base.obj')\n"
                    "load(f'parts/{k}.obj')\n"
-                   "load('../shared/up.obj')\n"
+                   "load('../common/up.obj')\n"
                    "open('tables/' + k)\n"
                    "load('lib/{}.stl'.format(k))\n"
                    "load('old/%s.ply' % k)\n"
@@ -54,10 +55,10 @@ def test_files_named_by_strings_and_patterns_travel(tmp_path):
         "base.obj": "", "parts/a.obj": "", "parts/b.obj": "", "parts/notes.txt": "",
         "tables/a": "", "lib/x.stl": "", "old/y.ply": "", "elsewhere.obj": "",
     })
-    (tmp_path.parent / "shared").mkdir(exist_ok=True)
-    (tmp_path.parent / "shared" / "up.obj").write_text("")
-    assert _names(tmp_path) == ["main.py", "../shared/up.obj", "base.obj", "lib/x.stl",
-                                "old/y.ply", "parts/a.obj", "parts/b.obj", "tables/a"]
+    (tmp_path / "common").mkdir()
+    (tmp_path / "common" / "up.obj").write_text("")
+    assert _names(home) == ["main.py", "../common/up.obj", "base.obj", "lib/x.stl",
+                            "old/y.ply", "parts/a.obj", "parts/b.obj", "tables/a"]
 
 
 def test_a_module_that_does_not_parse_travels_unread(tmp_path):
