@@ -51,12 +51,14 @@ def test_holes_come_back_as_boundaries_and_point_spheres_as_vertices() -> None:
     assert mesh_arrays(back).face_hole.sum() == 1
 
 
-def test_face_colours_follow_each_polygon_and_are_read_past() -> None:
+def test_face_colours_follow_each_polygon() -> None:
     mesh = load_shape("cube")
     colours = np.array([[1.0, 0, 0], [0, 1.0, 0], [0, 0, 1.0], [1, 1, 0], [0, 1, 1], [1, 0, 1]])
     text = off_bytes(mesh, colours).decode()
     assert text.splitlines()[-6:][2].endswith(" 0 0 255 255")
-    assert read_off(text.encode()).counts() == (8, 12, 6)
+    back = read_off(text.encode())
+    assert back.counts() == (8, 12, 6)
+    assert np.array_equal(back.face_colors(), colours)
     with pytest.raises(InvalidArgumentError, match=r"\(6, 3\) or \(6, 4\)"):
         off_bytes(mesh, colours[:5])
 
@@ -102,3 +104,48 @@ def test_the_meshs_own_colours_are_written_after_each_polygon() -> None:
     expected = np.rint(expected_written_colors(mesh) * 255).astype(int)
     assert [[int(v) for v in line.split()[5:]] for line in lines] == \
         [[*row, 255] for row in expected.tolist()]
+
+
+def test_the_meshs_own_colours_come_back_from_its_off() -> None:
+    mesh = coloured_cube()
+    back = read_off(off_bytes(mesh))
+    assert np.array_equal(back.face_colors(),
+                          np.rint(expected_written_colors(mesh) * 255) / np.float32(255))
+    validate(back)
+
+
+_TRIANGLE = b"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n"
+
+
+@pytest.mark.parametrize(("after", "color"), [
+    (b"", None),
+    (b" 255 0 51", (1.0, 0.0, 0.2)),
+    (b" 255 0 51 0", (1.0, 0.0, 0.2)),  # alpha is dropped
+    (b" 1.0 0 0.25", (1.0, 0.0, 0.25)),  # a decimal makes the scale [0, 1]
+    (b" 1 0 0.5 1", (1.0, 0.0, 0.5)),
+    (b" 7", None),  # a colour-map index: no colour of its own
+    (b" 256 0 0", None),
+    (b" 1.5 0 0", None),
+    (b" -1 0 0", None),
+    (b" 255 0", None),
+    (b" red green blue", None),
+    (b" 255 0 0 # a comment", (1.0, 0.0, 0.0)),
+])
+def test_a_face_colour_is_read_when_it_is_one(after: bytes, color: tuple | None) -> None:
+    mesh = read_off(_TRIANGLE + b"3 0 1 2" + after + b"\n")
+    got = mesh.face_colors()
+    if color is None:
+        assert got is None
+    else:
+        assert got is not None and np.allclose(got[0], color) and np.isnan(got[1]).all()
+
+
+def test_faces_with_and_without_colour_mix_on_both_paths() -> None:
+    quads = "\n".join(f"4 {i} {i + 1} {i + 5} {i + 4}" + (" 0 255 0" if i % 2 else "")
+                       for i in range(3))
+    data = ("OFF\n8 3 0\n" + "".join(f"{x} {y} 0\n" for y in (0, 1) for x in range(4)) +
+            quads + "\n").encode()
+    for text in (data, data.replace(b" 0 255 0", b" 0 1.0 0")):
+        got = read_off(text).face_colors()
+        assert got is not None
+        assert np.isnan(got[[0, 2]]).all() and got[1].tolist() == [0.0, 1.0, 0.0]

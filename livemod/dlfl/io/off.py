@@ -8,6 +8,11 @@ Layout::
     n i0 i1 ... [r g b a] F lines: a polygon of n 0-based vertex indices,
                           optionally followed by its colour
 
+A face's colour is read when it is three or four numbers after the indices:
+integers in ``[0, 255]`` or decimals in ``[0, 1]`` (Geomview's rule; alpha is
+dropped). Anything else there (a colour-map index, a colour out of range) leaves
+the face without a colour, as readers of the format do.
+
 Comments run from ``#`` to the end of a line; blank lines are passed over.
 The header word may be ``OFF``, ``COFF``, ``NOFF``, ``CNOFF`` or with ``ST``
 (texture coordinates), all of which start their vertex lines with ``x y z``;
@@ -96,7 +101,8 @@ def read_off(source: str | os.PathLike[str] | bytes, *, name: str | None = None)
 
     Returns:
         The mesh; vertex ``j`` is the ``j``-th vertex line, face ``i`` the
-        ``i``-th face line. Open boundaries get hole faces, unused vertices
+        ``i``-th face line, in the colour its line gives (see the module's
+        doc). Open boundaries get hole faces, unused vertices
         become point-spheres (see :func:`livemod.dlfl.from_polygons`). Lines
         after the last face are skipped and reported (mesh notes and a
         :class:`~livemod.dlfl.errors.DLFLSkippedLinesWarning`).
@@ -122,9 +128,10 @@ def read_off(source: str | os.PathLike[str] | bytes, *, name: str | None = None)
     v_lines = content[first : first + num_v]
     f_lines = content[first + num_v : first + num_v + num_f]
     positions = _vertices(buf, starts, ends, v_lines, label)
-    indices, offsets = _faces(buf, starts, ends, f_lines, num_v, label)
+    indices, offsets, colors = _faces(buf, starts, ends, f_lines, num_v, label)
     mesh = from_polygons(positions, indices, offsets, source=show_path(label),
-                         face_lines=f_lines + 1) if num_f else _cloud(positions)
+                         face_lines=f_lines + 1, face_colors=colors) \
+        if num_f else _cloud(positions)
     rest = content[first + num_v + num_f :]
     if len(rest):
         report_skipped(mesh, label, (rest + 1).tolist(), _line(buf, starts, ends, int(rest[0])))
@@ -200,18 +207,22 @@ def _vertices(buf: np.ndarray, starts: np.ndarray, ends: np.ndarray, lines: np.n
 
 
 def _faces(buf: np.ndarray, starts: np.ndarray, ends: np.ndarray, lines: np.ndarray,
-           num_v: int, label: str) -> tuple[np.ndarray, np.ndarray]:
-    """``(indices, offsets)`` of the polygons on ``lines`` (colours after them ignored)."""
+           num_v: int, label: str) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
+    """``(indices, offsets, colors)`` of the polygons on ``lines``: ``colors`` is
+    ``(F, 3)`` float32 in ``[0, 1]`` with NaN rows for faces without a colour, or
+    None when no face has one."""
     values, counts, accepted = parse_index_lines(*_blank_led(buf, starts, ends, lines),
                                                  slashes=False)
     first = np.cumsum(counts) - counts
     size = np.where(counts > 0, values[np.minimum(first, max(len(values) - 1, 0))], 0)
     accepted &= (size >= 1) & (counts >= size + 1)
     sizes = np.where(accepted, size, 0)
+    colors = _integer_colors(values, counts, first, sizes, accepted)
     python = {k: _python_face(buf, starts, ends, int(lines[k]), label)
               for k in np.flatnonzero(~accepted).tolist()}
-    for k, face in python.items():
+    for k, (face, color) in python.items():
         sizes[k] = len(face)
+        colors[k] = color
     offsets = np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64)
     indices = np.empty(int(offsets[-1]), dtype=np.int64)
     taken = np.flatnonzero(accepted)
@@ -219,19 +230,50 @@ def _faces(buf: np.ndarray, starts: np.ndarray, ends: np.ndarray, lines: np.ndar
         np.cumsum(sizes[taken]) - sizes[taken], sizes[taken])
     indices[np.repeat(offsets[taken], sizes[taken]) + local] = values[
         np.repeat(first[taken] + 1, sizes[taken]) + local]
-    for k, face in python.items():
+    for k, (face, _) in python.items():
         indices[offsets[k] : offsets[k + 1]] = face
     bad = np.flatnonzero((indices < 0) | (indices >= num_v))
     if len(bad):
         k = int(np.searchsorted(offsets, bad[0], side="right")) - 1
         raise file_error(label, int(lines[k]) + 1, f"vertex index {int(indices[bad[0]])} is "
                          f"out of range (there are {num_v} vertices; OFF counts from 0)")
-    return indices, offsets
+    return indices, offsets, None if np.isnan(colors[:, 0]).all() else colors
+
+
+def _integer_colors(values: np.ndarray, counts: np.ndarray, first: np.ndarray,
+                    sizes: np.ndarray, accepted: np.ndarray) -> np.ndarray:
+    """``(F, 3)`` float32 colours of the accepted lines whose indices are followed
+    by three or four integers in ``[0, 255]``; NaN rows for the others."""
+    colors = np.full((len(counts), 3), np.nan, dtype=np.float32)
+    extra = counts - sizes - 1
+    has = np.flatnonzero(accepted & ((extra == 3) | (extra == 4)))
+    rgb = values[(first[has] + 1 + sizes[has])[:, None] + np.arange(3)]
+    fits = ((rgb >= 0) & (rgb <= 255)).all(axis=1)
+    colors[has[fits]] = rgb[fits] / np.float32(255)
+    return colors
+
+
+def _extra_color(words: list[bytes]) -> tuple[float, float, float] | float:
+    """The colour of the words after a face's indices (see the module's doc), or
+    NaN when they are none."""
+    if len(words) not in (3, 4):
+        return np.nan
+    try:
+        numbers = [float(w) for w in words[:3]]
+    except ValueError:
+        return np.nan
+    decimal = any(not w.lstrip(b"+-").isdigit() for w in words[:3])
+    top = 1.0 if decimal else 255.0
+    if not all(0.0 <= v <= top for v in numbers):
+        return np.nan
+    r, g, b = (v / top for v in numbers)
+    return (r, g, b)
 
 
 def _python_face(buf: np.ndarray, starts: np.ndarray, ends: np.ndarray, line: int,
-                 label: str) -> list[int]:
-    """The polygon on ``line`` (0-based), or the error that names it."""
+                 label: str) -> tuple[list[int], tuple[float, float, float] | float]:
+    """The polygon on ``line`` (0-based) and its colour (NaN for none), or the
+    error that names the line."""
     words = _line(buf, starts, ends, line).split(b"#", 1)[0].split()
     try:
         numbers = [int(w) if b"_" not in w else int("x") for w in words]
@@ -248,8 +290,9 @@ def _python_face(buf: np.ndarray, starts: np.ndarray, ends: np.ndarray, line: in
         raise file_error(label, line + 1, f"the face says {numbers[0]} corners but lists "
                          f"{len(numbers) - 1} whole numbers")
     face = numbers[1 : numbers[0] + 1]
+    color = _extra_color(words[numbers[0] + 1 :])
     huge = [i for i in face if abs(i) >= 2**62]  # past int64: no vertex has such an index
     if huge:
         raise file_error(label, line + 1,
                          f"vertex index {show_token(str(huge[0]).encode())} is out of range")
-    return face
+    return face, color
