@@ -12,7 +12,10 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Any
 
+import numpy as np
+
 from livemod.dlfl import Mesh, MeshArrays, from_polygons, mesh_arrays
+from livemod.dlfl.colors import filled_colors
 from livemod.dlfl.errors import InvalidArgumentError
 
 if TYPE_CHECKING:
@@ -29,7 +32,10 @@ def to_trimesh(mesh: Mesh | MeshArrays) -> trimesh.Trimesh:
     more corners become the fans of :meth:`MeshArrays.triangles`, holes and
     2-gons none. ``face_attributes["livemod_face_id"]`` (``(T,)`` int64) names the
     face each triangle came from. trimesh's processing (merging vertices, dropping
-    degenerate triangles) is not run, so these indices hold.
+    degenerate triangles) is not run, so these indices hold. When a face has a
+    colour, every triangle gets its face's colour (``tm.visual.face_colors``,
+    ``(T, 4)`` uint8, opaque; a face without one in the modelling colour, as the
+    file writers do).
 
     Raises:
         ImportError: trimesh is not installed (the message says how to install it).
@@ -37,15 +43,22 @@ def to_trimesh(mesh: Mesh | MeshArrays) -> trimesh.Trimesh:
     trimesh = _trimesh("to_trimesh")
     arrays = mesh if isinstance(mesh, MeshArrays) else mesh_arrays(mesh)
     triangles, faces = arrays.triangles()
+    colors = None
+    if arrays.face_colors is not None:
+        colors = np.full((len(faces), 4), 255, dtype=np.uint8)
+        colors[:, :3] = np.rint(filled_colors(arrays.face_colors)[faces] * 255)
     return trimesh.Trimesh(vertices=arrays.positions.copy(), faces=triangles, process=False,
-                           face_attributes={FACE_ID: arrays.face_ids[faces]})
+                           face_attributes={FACE_ID: arrays.face_ids[faces]},
+                           face_colors=colors)
 
 
 def from_trimesh(tm: trimesh.Trimesh) -> Mesh:
     """A DLFL mesh of the triangles of ``tm`` (through
     :func:`~livemod.dlfl.from_polygons`): vertex ``i`` and triangle ``j`` of
     ``tm`` get ids ``i`` and ``j``; an open mesh gets a hole face per boundary
-    loop, a vertex no triangle uses a point-sphere.
+    loop, a vertex no triangle uses a point-sphere. Face colours
+    (``tm.visual.kind == "face"``) become the triangles' colours, alpha dropped;
+    vertex colours and textures are not taken (a DLFL face has one colour).
 
     Raises:
         ImportError: trimesh is not installed.
@@ -61,7 +74,10 @@ def from_trimesh(tm: trimesh.Trimesh) -> Mesh:
             if isinstance(tm, trimesh.Scene) else ""
         raise InvalidArgumentError(f"from_trimesh takes a trimesh.Trimesh, not "
                                    f"{type(tm).__name__}{hint}")
-    return from_polygons(tm.vertices, tm.faces, source="the trimesh mesh")
+    colors = None
+    if tm.visual.kind == "face":
+        colors = np.asarray(tm.visual.face_colors)[:, :3] / np.float32(255)
+    return from_polygons(tm.vertices, tm.faces, source="the trimesh mesh", face_colors=colors)
 
 
 def _trimesh(caller: str) -> Any:

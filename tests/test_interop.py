@@ -11,7 +11,15 @@ import trimesh
 from livemod.dlfl import DLFLError, genus, mesh_arrays, validate
 from livemod.dlfl.errors import InvalidArgumentError
 from livemod.interop import FACE_ID, from_trimesh, to_trimesh
-from tests.meshes import CUBE_FACES, cube, point_sphere, torus, triangle
+from tests.meshes import (
+    CUBE_FACES,
+    coloured_cube,
+    cube,
+    expected_written_colors,
+    point_sphere,
+    torus,
+    triangle,
+)
 
 
 def test_a_cube_becomes_a_closed_trimesh_of_its_fan_triangles():
@@ -87,3 +95,36 @@ def test_the_bridges_say_how_to_install_trimesh(monkeypatch: pytest.MonkeyPatch)
         to_trimesh(cube())
     with pytest.raises(ImportError, match=r"^from_trimesh needs trimesh"):
         from_trimesh(object())  # type: ignore[arg-type]
+
+
+def test_face_colours_go_to_every_triangle_of_their_face():
+    mesh = coloured_cube()
+    tm = to_trimesh(mesh)
+    assert tm.visual.kind == "face"
+    expected = np.rint(expected_written_colors(mesh) * 255).astype(np.uint8)
+    faces = tm.face_attributes[FACE_ID]
+    assert np.array_equal(tm.visual.face_colors[:, :3], expected[faces])
+    assert (tm.visual.face_colors[:, 3] == 255).all()
+    assert to_trimesh(cube()).visual.kind is None  # no colours, none made up
+
+
+def test_a_trimesh_in_face_colours_comes_back_coloured_by_triangle():
+    tm = trimesh.creation.icosphere(subdivisions=1)
+    rgba = np.zeros((len(tm.faces), 4), dtype=np.uint8)
+    rgba[:, 0] = np.arange(len(tm.faces)) * 3
+    rgba[:, 3] = 128
+    tm.visual.face_colors = rgba
+    mesh = from_trimesh(tm)
+    validate(mesh)
+    colors = mesh.face_colors()
+    assert colors is not None
+    assert np.allclose(colors, rgba[:, :3] / 255)
+    back = to_trimesh(mesh)
+    assert np.array_equal(back.visual.face_colors[:, :3], rgba[:, :3])
+
+
+def test_vertex_colours_are_not_taken_as_face_colours():
+    tm = trimesh.creation.icosphere(subdivisions=1)
+    tm.visual.vertex_colors = np.tile([10, 20, 30, 255], (len(tm.vertices), 1))
+    assert tm.visual.kind == "vertex"
+    assert from_trimesh(tm).face_colors() is None
