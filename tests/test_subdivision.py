@@ -193,6 +193,20 @@ def test_several_components_and_point_spheres_survive(scheme):
     assert np.isclose(a.positions, [9.0, 9.0, 9.0]).all(axis=1).sum() == 1
 
 
+@pytest.mark.parametrize("scheme", ALL_SCHEMES)
+def test_point_spheres_keep_their_colours(scheme):
+    m = two_cubes()
+    blue = m.create_vertex((9.0, 9.0, 9.0))
+    m.create_vertex((8.0, 8.0, 8.0))  # no colour: must not get one
+    m.set_face_color(m.vertex_faces(blue)[0], (0.0, 0.0, 1.0))
+    subdivide(m, scheme)
+    checked(m)
+    spheres = [v for v in m.vertex_ids().tolist() if m.is_point_sphere(v)]
+    colours = {tuple(m.position(v).tolist()): m.face_color(m.vertex_faces(v)[0])
+               for v in spheres}
+    assert colours == {(9.0, 9.0, 9.0): (0.0, 0.0, 1.0), (8.0, 8.0, 8.0): None}
+
+
 def pyramid(n: int) -> Mesh:
     """An n-sided pyramid: apex of valence n, an n-gon base, n triangles."""
     from livemod.dlfl import from_polygons

@@ -118,19 +118,22 @@ def sierpinsky(mesh: Mesh, *, max_faces: int | None = None) -> None:
 def _point_spheres_aside(mesh: Mesh, scheme: Callable[[Mesh], Any]) -> None:
     """Run ``scheme`` (which refuses point-spheres) on ``mesh`` without its
     point-spheres, then put them back at their places, as every other scheme
-    leaves them. On an error the mesh is unchanged."""
+    leaves them, in their colours. On an error the mesh is unchanged."""
     spheres = [v for v in mesh.vertex_ids().tolist() if mesh.is_point_sphere(v)]
     if not spheres:
         scheme(mesh)
         return
     places = mesh.positions(spheres)
+    colors = [mesh.face_color(mesh.corner_face(mesh.vertex_corner(v))) for v in spheres]
     work = mesh.copy()
     for v in spheres:
         work.remove_vertex(v)
     if work.counts()[2]:
         scheme(work)
-    for place in places:
-        work.create_vertex(place)
+    for place, color in zip(places, colors, strict=True):
+        v = work.create_vertex(place)
+        if color is not None:
+            work.set_face_color(work.corner_face(work.vertex_corner(v)), color)
     mesh.replace_with(work)
 
 

@@ -128,6 +128,8 @@ class Topology:
             face after face). origin: ``(F,)`` int32 the input face each face
             comes from, :data:`NO_ORIGIN` for none (see the module docstring).
         spheres: ``(S, 3)`` positions of the point-spheres set aside.
+        sphere_colors: ``(S, 3)`` float32 colours of their faces (NaN rows:
+            none), or None when no face of the input has a colour.
         face_ids: ``(F,)`` id of each (kept) face.
         source: the hole flags and colours of the input faces ``origin`` names.
 
@@ -140,9 +142,11 @@ class Topology:
 
     def __init__(self, pos: np.ndarray, cv: np.ndarray, mate: np.ndarray, offsets: np.ndarray,
                  origin: np.ndarray, spheres: np.ndarray, face_ids: np.ndarray,
-                 source: FaceSource, edge_corners: np.ndarray | None = None) -> None:
+                 source: FaceSource, edge_corners: np.ndarray | None = None,
+                 sphere_colors: np.ndarray | None = None) -> None:
         self.pos, self.cv, self.mate, self.offsets = pos, cv, mate, offsets
         self.origin, self.spheres, self.face_ids = origin, spheres, face_ids
+        self.sphere_colors = sphere_colors
         self.source = source
         if edge_corners is not None:
             self.__dict__["edge_corners"] = edge_corners
@@ -349,6 +353,7 @@ def read_topology(mesh: Mesh) -> Topology:
     mate, offsets, cv = a.corner_mate, a.face_offsets, a.corner_vertex
     positions, hole, edge_corners = a.positions, a.face_hole, a.edge_corners
     spheres = np.zeros((0, 3))
+    sphere_colors = None
     face_ids = a.face_ids
     source = FaceSource(hole, a.face_colors)
     # the usual mesh, of no hole and no colour, needs no origins: a 1-byte placeholder
@@ -361,6 +366,10 @@ def read_topology(mesh: Mesh) -> Topology:
         keep_vertex = np.ones(len(positions), dtype=bool)
         keep_vertex[cv[sphere_corner]] = False
         spheres = positions[~keep_vertex]
+        if a.face_colors is not None:
+            face_of_vertex = np.zeros(len(positions), dtype=np.int64)
+            face_of_vertex[cv[sphere_corner]] = a.corner_face[sphere_corner]
+            sphere_colors = a.face_colors[face_of_vertex[~keep_vertex]]
         cmap = np.cumsum(~sphere_corner) - 1
         vmap = np.cumsum(keep_vertex) - 1
         sizes = np.diff(offsets)[keep_face]
@@ -371,7 +380,7 @@ def read_topology(mesh: Mesh) -> Topology:
         face_ids = face_ids[keep_face]
         edge_corners = cmap[edge_corners]
     return Topology(positions, cv, mate, offsets, origin, spheres, face_ids, source,
-                    edge_corners)
+                    edge_corners, sphere_colors)
 
 
 def topology_of(positions: np.ndarray, cv: np.ndarray, mate: np.ndarray, sizes: np.ndarray,
@@ -381,7 +390,8 @@ def topology_of(positions: np.ndarray, cv: np.ndarray, mate: np.ndarray, sizes: 
     offsets = np.zeros(len(sizes) + 1, dtype=np.int64)
     np.cumsum(sizes, out=offsets[1:])
     return Topology(positions, cv, mate, offsets, origin, t.spheres,
-                    np.zeros(len(sizes), dtype=np.int64), t.source)
+                    np.zeros(len(sizes), dtype=np.int64), t.source,
+                    sphere_colors=t.sphere_colors)
 
 
 def check_levels(levels: object) -> int:
@@ -505,8 +515,11 @@ def build_paired(mesh: Mesh, t: Topology, positions: np.ndarray, cv: np.ndarray,
         mate = np.concatenate([mate, np.full(s, -1, dtype=mate.dtype)])
         sizes = np.concatenate([sizes, np.ones(s, dtype=np.int64)])
         hole = np.concatenate([hole, np.zeros(s, dtype=bool)])
-        if colors is not None:
-            colors = np.concatenate([colors, np.full((s, 3), np.nan, np.float32)])
+        if colors is not None or t.sphere_colors is not None:
+            colors = np.concatenate([
+                np.full((len(sizes) - s, 3), np.nan, np.float32) if colors is None else colors,
+                np.full((s, 3), np.nan, np.float32) if t.sphere_colors is None
+                else t.sphere_colors])
     offsets = np.zeros(len(sizes) + 1, dtype=np.int64)
     np.cumsum(sizes, out=offsets[1:])
     new = from_corner_arrays(positions, offsets, cv, mate, hole, face_colors=colors,

@@ -362,4 +362,5 @@ def _split_edges(t: Topology) -> Topology:
     mate[0::2] = 2 * t.mate + 1
     mate[1::2] = 2 * t.mate
     return Topology(np.concatenate([t.pos, t.midpoints()]), cv, mate, 2 * t.offsets, t.origin,
-                    t.spheres, np.zeros(t.nf, dtype=np.int64), t.source)
+                    t.spheres, np.zeros(t.nf, dtype=np.int64), t.source,
+                    sphere_colors=t.sphere_colors)
