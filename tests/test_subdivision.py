@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import inspect
 import warnings
 
 import numpy as np
@@ -16,7 +17,8 @@ from livemod.dlfl.errors import (
     UnknownIdError,
 )
 from livemod.dlfl.shapes import cube, grid, load_shape, torus
-from livemod.dlfl.subdivision import SCHEMES, subdivide, subdivide_faces
+from livemod.dlfl.subdivision import COMPOSITES, SCHEMES, subdivide, subdivide_faces
+from livemod.dlfl.subdivision._sizes import SIZES
 from tests.meshes import (
     assert_refused_quietly,
     assert_scales,
@@ -93,8 +95,34 @@ def test_cube_table_row(scheme):
     assert genus(m) == (5 if scheme == "sierpinsky" else 0)
 
 
+# -- the registry: every scheme is whole (docs/architecture.md, "A subdivision scheme")
+
 def test_every_registered_scheme_has_a_cube_row():
-    assert set(ALL_SCHEMES) <= set(CUBE_TABLE)
+    missing = sorted(set(ALL_SCHEMES) - set(CUBE_TABLE))
+    assert not missing, (f"schemes without a row in CUBE_TABLE (tests/test_subdivision.py), "
+                         f"their (V, E, F, face sizes) on the cube: {missing}")
+
+
+def test_every_scheme_built_here_has_its_size_from_counts():
+    """The face budget refuses a too-large result from ``SIZES`` before building;
+    an alias (the same function under another name) shares its scheme's entry."""
+    missing = [name for name, scheme in SCHEMES.items() if name not in COMPOSITES
+               and not {other for other, f in SCHEMES.items() if f is scheme} & set(SIZES)]
+    assert not missing, (f"schemes without their result's size in SIZES "
+                         f"(livemod/dlfl/subdivision/_sizes.py): {missing}")
+
+
+@pytest.mark.parametrize("name", sorted(SCHEMES))
+def test_every_scheme_takes_the_mesh_then_keyword_options_and_max_faces(name):
+    """``scheme_options`` (and so ``subdivide(name, *options)`` in a script) reads a
+    scheme's options from its keyword-only parameters, in their order."""
+    mesh, *options = inspect.signature(SCHEMES[name]).parameters.values()
+    assert mesh.kind is inspect.Parameter.POSITIONAL_OR_KEYWORD, name
+    positional = [p.name for p in options if p.kind is not inspect.Parameter.KEYWORD_ONLY]
+    assert not positional, (f"scheme {name!r}: options {positional} must be keyword-only "
+                            f"(after '*'): scripts pass options by the signature's order")
+    assert "max_faces" in [p.name for p in options], (
+        f"scheme {name!r} takes no max_faces: the face budget needs it")
 
 
 def test_gui_stellate_is_linear_vertex_with_triangles():
