@@ -111,9 +111,27 @@ def test_fan_counts_match_topmod(kind, counts, sizes, fan_size):
     assert len(fan) == fan_size and all(m.face_size(f) == 3 for f in fan)
 
 
+# -- the registry: every kind is whole (docs/architecture.md, "An extrusion kind")
+
 def test_every_kind_is_in_one_of_the_tables():
     tabled = {row[0] for row in CUBE_TABLE} | {row[0] for row in FAN_TABLE}
-    assert tabled == set(KINDS)
+    assert not set(KINDS) - tabled, (
+        f"kinds without a row in CUBE_TABLE (ending in a face) or FAN_TABLE (ending in a "
+        f"fan) of tests/test_extrusion.py: {sorted(set(KINDS) - tabled)}")
+    assert not tabled - set(KINDS), f"table rows of no kind: {sorted(tabled - set(KINDS))}"
+
+
+def test_every_kind_is_documented_for_scripts():
+    """Its row in the kinds table of docs/extrusions.md, and its line (with its
+    options) in the help of the thesis command ``extrude``."""
+    rows = {line.split("|")[1].strip() for line in DOC.read_text(encoding="utf-8").splitlines()
+            if line.startswith("| ")}
+    missing = [kind for kind in KINDS if kind not in rows]
+    assert not missing, f"kinds without a row in the table of docs/extrusions.md: {missing}"
+    help_text = commands.extrude.__doc__ or ""
+    missing = [kind for kind in KINDS if not re.search(rf"[* ]{re.escape(kind)}\b(?!-)", help_text)]
+    assert not missing, (f"kinds the docstring of extrude in livemod/dlfl/commands/"
+                         f"extrusion.py does not list: {missing}")
 
 
 @pytest.mark.parametrize(("face", "axis", "sign"), [(0, 1, 1.0), (3, 0, -1.0)])
