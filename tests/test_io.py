@@ -2,13 +2,14 @@
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 import numpy as np
 import pytest
 import trimesh
 
-from livemod.dlfl import genus, mesh_arrays, validate
+from livemod.dlfl import InvalidArgumentError, genus, mesh_arrays, validate
 from livemod.dlfl.io import (
     READERS,
     WRITERS,
@@ -65,6 +66,27 @@ def test_one_object_is_written_as_it_is_its_ids_kept(tmp_path: Path):
     assert (tmp_path / "one" / "m.dlfl").read_bytes() == (tmp_path / "m.dlfl").read_bytes()
 
 
+# -- choosing the format -----------------------------------------------------------------
+
+def test_load_and_save_dispatch_by_extension(tmp_path: Path) -> None:
+    mesh = cube()
+    for ext in ("obj", "dlfl"):
+        save_mesh(mesh, tmp_path / f"c.{ext}")
+        assert load_mesh(tmp_path / f"c.{ext}").counts() == (8, 12, 6)
+    save_mesh(mesh, tmp_path / "c.txt", format="obj")
+    assert load_mesh(tmp_path / "c.txt", format="OBJ").counts() == (8, 12, 6)
+
+
+@pytest.mark.parametrize(("verb", "table"), [("write", WRITERS), ("read", READERS)])
+def test_an_unknown_extension_is_refused_listing_the_registered_ones(verb, table, tmp_path):
+    path = tmp_path / "c.nomesh"  # no format will take this extension
+    valid = ", ".join(f".{key}" for key in table)
+    message = re.escape(f"cannot {verb} ") + ".*" + re.escape(
+        f"c.nomesh: unknown extension '.nomesh'; use one of {valid}") + "$"
+    with pytest.raises(InvalidArgumentError, match=message):
+        save_mesh(cube(), path) if verb == "write" else load_mesh(path)
+
+
 # -- the format registries: every format is whole -------------------------------------
 
 FORMATS_DOC = (Path(__file__).resolve().parents[1] / "docs" / "formats.md").read_text()
@@ -88,8 +110,21 @@ def test_every_format_read_is_written_too_and_comes_back(key: str, tmp_path: Pat
     back = load_mesh(path)
     validate(back)
     v, e, f = mesh.counts()
-    assert back.counts() in ((v, e, f), (v, e + f, 2 * f))
+    assert back.counts() in ((v, e, f), (v, e + f, 2 * f)), (
+        f".{key} must keep a surface: the torus {mesh.counts()} came back as {back.counts()} "
+        "(V, E, F); polygons or two triangles a quad are kept")
     assert genus(back) == 1
+
+
+def test_every_reader_has_valid_files_for_the_fuzzers():
+    """tests/test_io_adversarial.py, tests/test_io_boundaries.py and
+    fuzz/fuzz_readers.py read every format through its entries there."""
+    from .io_inputs import FORMATS
+
+    covered = {read for _, read in FORMATS.values()}
+    missing = [key for key, read in READERS.items() if read not in covered]
+    assert not missing, (f"formats read with no maker of valid files in FORMATS of "
+                         f"tests/io_inputs.py: {missing}")
 
 
 @pytest.mark.parametrize("key", sorted(WRITERS))

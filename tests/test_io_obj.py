@@ -22,7 +22,7 @@ from livemod.dlfl import (
     genus,
     validate,
 )
-from livemod.dlfl.io import _numtext, load_mesh, read_obj, save_mesh, write_obj
+from livemod.dlfl.io import _numtext, load_mesh, read_obj, write_obj
 from livemod.dlfl.io._numtext import decimal_to_float, format_floats, format_uints
 from livemod.dlfl.io.obj import obj_bytes, parse_obj
 from tests.io_inputs import UNIT_CUBE_OBJ, lone_cr_after_line
@@ -359,20 +359,6 @@ def test_a_file_of_many_pieces_is_written_whole_and_reads_back(tmp_path: Path) -
     validate(again)
     assert again.counts() == mesh.counts()
     assert np.array_equal(again.positions_view(), positions)
-
-
-def test_load_and_save_dispatch_by_extension(tmp_path: Path) -> None:
-    mesh = read_obj(CUBE)
-    for ext in ("obj", "dlfl"):
-        save_mesh(mesh, tmp_path / f"c.{ext}")
-        assert load_mesh(tmp_path / f"c.{ext}").counts() == (8, 12, 6)
-    save_mesh(mesh, tmp_path / "c.txt", format="obj")
-    assert load_mesh(tmp_path / "c.txt", format="OBJ").counts() == (8, 12, 6)
-    with pytest.raises(InvalidArgumentError, match=r"cannot write .*c\.xyz: unknown extension '\.xyz'; use one of \.obj, \.dlfl, \.stl, \.ply"):
-        save_mesh(mesh, tmp_path / "c.xyz")
-    with pytest.raises(InvalidArgumentError, match=r"cannot read .*c\.xyz: unknown extension '\.xyz'; "
-                                         r"use one of \.obj, \.dlfl, \.stl"):
-        load_mesh(tmp_path / "c.xyz")
 
 
 def test_thesis_load_and_save_commands_use_io(tmp_path: Path) -> None:
