@@ -11,6 +11,10 @@ from pathlib import Path
 import pytest
 
 from livemod.cli import build_parser, main
+from livemod.dlfl.io import WRITERS
+
+# the extensions an output may have, as the refusal lists them
+WRITTEN = ", ".join(f".{key}" for key in WRITERS)
 
 
 def test_info_prints_counts_genus_and_sizes_of_a_shape(capsys: pytest.CaptureFixture[str]) -> None:
@@ -118,7 +122,7 @@ def test_convert_checks_the_output_before_reading_and_makes_its_folder(tmp_path,
                                        f"{tmp_path / 'file'} is a file, not a folder\n")
     assert main(["convert", "cube", str(tmp_path / "c.txt")]) == 2
     assert capsys.readouterr().err == (f"livemod: error: output {tmp_path / 'c.txt'} must end "
-                                       "with one of .obj, .dlfl, .stl, .ply, .off, .glb, .gltf, .3mf\n")
+                                       f"with one of {WRITTEN}\n")
     assert main(["convert", "cube", str(tmp_path / "new" / "c.stl")]) == 0
     assert (tmp_path / "new" / "c.stl").exists()
 

@@ -15,6 +15,7 @@ import numpy as np
 import pytest
 
 from livemod.dlfl import from_polygons
+from livemod.dlfl.io import WRITERS
 from livemod.runner import cli
 from livemod.runner.batch import (
     SerialExecutor,
@@ -31,6 +32,8 @@ from .meshes import CUBE_FACES, CUBE_POSITIONS
 from .runner_scripts.support import script_path, write_by_rename
 
 RING = script_path("ring.py")
+# the extensions an output may have, as the refusal lists them
+WRITTEN = ", ".join(f".{key}" for key in WRITERS)
 
 
 def test_run_prints_summary_and_steps(capsys):
@@ -80,7 +83,7 @@ def test_a_missing_script_exits_1_and_an_output_no_writer_takes_2(capsys, tmp_pa
                                        "No such file or directory\n")
     assert cli.main(["run", RING, "-o", str(tmp_path / "x.txt")]) == 2
     assert capsys.readouterr().err == (f"livemod: error: output {tmp_path / 'x.txt'} must "
-                                       "end with one of .obj, .dlfl, .stl, .ply, .off, .glb, .gltf, .3mf\n")
+                                       f"end with one of {WRITTEN}\n")
 
 
 def test_run_with_params_seed_and_output(tmp_path, capsys):
@@ -255,7 +258,7 @@ def test_batch_checks_every_output_and_the_index_before_any_variant_runs(tmp_pat
     pattern = str(tmp_path / "out" / "{n}.txt")
     assert cli.main(["batch", script, "--param", "n=0:1:2", "-o", pattern, "-j", "1"]) == 2
     assert capsys.readouterr().err == (f"livemod: error: output {tmp_path / 'out' / '0.txt'} "
-                                       "must end with one of .obj, .dlfl, .stl, .ply, .off, .glb, .gltf, .3mf\n")
+                                       f"must end with one of {WRITTEN}\n")
     into_a_file = str(tmp_path / "file" / "{n}.obj")
     assert cli.main(["batch", script, "--param", "n=0:1:2", "-o", into_a_file]) == 1
     assert capsys.readouterr().err == (f"livemod: error: cannot write {tmp_path / 'file' / '0.obj'}"
