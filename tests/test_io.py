@@ -96,10 +96,14 @@ FORMATS_DOC = (Path(__file__).resolve().parents[1] / "docs" / "formats.md").read
 def test_every_format_is_documented_and_named_where_it_is_chosen(key: str):
     sections = [line for line in FORMATS_DOC.splitlines() if line.startswith("## ")]
     functions = [f"`{table[key].__name__}`" for table in (READERS, WRITERS) if key in table]
-    assert any(all(name in line for name in functions) for line in sections), (key, functions)
+    assert any(all(name in line for name in functions) for line in sections), (
+        f"docs/formats.md has no section for .{key}: a heading "
+        f"'## <name> ({', '.join(functions)})'")
     for table, chooser in ((READERS, load_mesh), (WRITERS, save_mesh)):
         if key in table:
-            assert f"``.{key}``" in (chooser.__doc__ or ""), (key, chooser.__name__)
+            assert f"``.{key}``" in (chooser.__doc__ or ""), (
+                f"the docstring of {chooser.__name__} (livemod/dlfl/io/__init__.py) "
+                f"does not name ``.{key}``")
 
 
 @pytest.mark.parametrize("key", sorted(READERS))
