@@ -117,7 +117,7 @@ def test_id_map_misses_a_moved_id():
     m.remove_vertex(v)
     w = m.create_vertex()  # lands in the freed slot, recorded in `moved`
     del m._v.moved[w]
-    with pytest.raises(DLFLError, match="vertex id map misses some ids"):
+    with pytest.raises(DLFLError, match=f"vertex id map misses id {w}, stored away from its"):
         validate(m)
 
 

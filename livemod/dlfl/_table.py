@@ -118,7 +118,8 @@ class Table:
         free = self.free
         if free:
             slot = free.pop()
-            # a reused slot never matches base + slot for a fresh id
+            # recorded even when the slot is home to eid (adopted ids can leave
+            # next_id short of base + n): a redundant entry costs less than the test
             self.moved[eid] = slot
         else:
             slot = self.n
@@ -134,7 +135,7 @@ class Table:
         free = self.free
         if len(free) < 2:
             return self.alloc(), self.alloc()
-        # both slots reused: neither is home to its fresh id (see alloc)
+        # both slots reused: recorded as in alloc
         first, second = free.pop(), free.pop()
         eid = self.next_id
         self.next_id = eid + 2
