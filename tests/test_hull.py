@@ -533,14 +533,23 @@ def test_convex_hull_and_its_dual_are_the_same_at_every_scale(op, counts, sizes,
     assert checked(m) == counts and face_size_histogram(m) == sizes
 
 
-# -- walking a batched quickhull (over hull._LARGE points) gives what turning gives -------
+# -- walking a batched quickhull (over hull._LARGE points): turning's faces, sorted -------
 
 
 def hull_walked(points: np.ndarray, large: int, monkeypatch: pytest.MonkeyPatch) -> object:
-    """:func:`hull_with` with no triple lookup, and the quickhull walked above
-    ``large`` points."""
+    """Polygons, ``(F, 3)`` normals and triangles with no triple lookup and the
+    quickhull walked above ``large`` points, or the error's message."""
     monkeypatch.setattr(hull, "_LARGE", large)
-    return hull_with(points, 0, monkeypatch)
+    monkeypatch.setattr(hull, "_SMALL", 0)
+    try:
+        found = hull._wrap_hull(points)
+        triangles = hull_triangles(points)
+    except DLFLError as error:
+        return str(error)
+    normals = found.normals
+    if not isinstance(normals, np.ndarray):
+        normals = hull._resolved_all(found.points, normals)
+    return found.polygons, normals, triangles
 
 
 def larger_sets() -> list[np.ndarray]:
@@ -555,15 +564,36 @@ def larger_sets() -> list[np.ndarray]:
             rotated(lattice(5, 5, 5), 3), smooth.positions_view(), flat.positions_view()]
 
 
+def assert_same_faces_sorted(walked: object, turned: object) -> None:
+    """``walked`` has ``turned``'s faces and normals, each face from its least
+    index and the faces sorted, and triangles that cut those faces."""
+    assert not isinstance(walked, str) and not isinstance(turned, str)
+    (polygons, normals, triangles), (turned_polygons, turned_normals, _) = walked, turned
+    assert list(map(tuple, polygons)) == cycles(polygons) == cycles(turned_polygons)
+    rank = {cycles([poly])[0]: k for k, poly in enumerate(turned_polygons)}
+    order = [rank[tuple(poly)] for poly in polygons]
+    # the same planes to the tolerance: a triangle's is taken across its first side,
+    # turning's across the side it was found across (near the tolerance, through
+    # other points within it)
+    np.testing.assert_allclose(normals, turned_normals[order], rtol=0, atol=1e-9)
+    faces = [set(poly) for poly in polygons]
+    assert len(triangles) == sum(len(poly) - 2 for poly in polygons)
+    assert all(any(set(t) <= face for face in faces) for t in triangles)
+    hull._check_closed(triangles)
+
+
 @pytest.mark.parametrize("name", [*sorted(POINT_SETS), "larger"])
-def test_walking_the_quickhull_gives_what_turning_gives(name, monkeypatch):
+def test_walking_the_quickhull_gives_turnings_faces_sorted(name, monkeypatch):
     sets = larger_sets() if name == "larger" else POINT_SETS[name]()
     for points in sets:
         turned = hull_walked(points, 10**9, monkeypatch)
         walked = hull_walked(points, 3, monkeypatch)
-        if isinstance(turned, str) and not isinstance(walked, str):
-            continue  # turning could not close up; see the next test
-        assert walked == turned
+        if isinstance(turned, str):
+            if not isinstance(walked, str):
+                continue  # turning could not close up; see the next test
+            assert walked == turned
+        else:
+            assert_same_faces_sorted(walked, turned)
 
 
 def test_where_turning_cannot_close_up_the_quickhull_triangles_are_the_hull(monkeypatch):

@@ -52,6 +52,7 @@ from typing import NamedTuple, TypeAlias
 
 import numpy as np
 
+from ._hull_faces import check_closed, flat_faces, not_closed, vertex_face_rings
 from ._hull_table import triangle_table as _triangle_table
 from ._quickhull import convex, quickhull, verified_triangles
 from ._vectors import range_exponent, shifted_in_range
@@ -90,7 +91,8 @@ class _Hull(NamedTuple):
     exponent: int
     eps: float  # the absolute tolerance in ``points``' units
     polygons: list[list[int]]
-    normals: list[_Normal]  # outward unit normal of each polygon, see _resolved
+    # outward unit normal of each polygon: see _resolved, or (F, 3) for a large hull
+    normals: list[_Normal] | np.ndarray
 
 
 def hull_polygons(points: np.ndarray, tolerance: float = 1e-9) -> list[list[int]]:
@@ -132,8 +134,7 @@ def hull_triangles(points: np.ndarray, tolerance: float = 1e-9) -> list[list[int
     Raises:
         DLFLError: as :func:`hull_polygons`.
     """
-    hull = _wrap_hull(points, tolerance)
-    return [t for poly in hull.polygons for t in _ears(hull.points, poly, hull.eps)]
+    return _triangles(_wrap_hull(points, tolerance))
 
 
 def convex_hull(mesh: Mesh, *, max_faces: object = None) -> None:
@@ -157,8 +158,9 @@ def convex_hull(mesh: Mesh, *, max_faces: object = None) -> None:
     most = max(2 * mesh.num_vertices - 4, 0)
     check_size("convex hull", most, 3 * most, max_faces=max_faces)
     hull = _wrap_hull(mesh.positions_view())
-    triangles = [t for poly in hull.polygons for t in _ears(hull.points, poly, hull.eps)]
-    _rebuild(mesh, mesh.positions_view(), triangles)
+    triangles = np.array(_triangles(hull), np.int64).reshape(-1, 3)
+    _rebuild(mesh, mesh.positions_view(), triangles.ravel(),
+             np.arange(0, triangles.size + 1, 3))
 
 
 def dual_convex_hull(mesh: Mesh, *, max_faces: object = None) -> None:
@@ -186,7 +188,8 @@ def dual_convex_hull(mesh: Mesh, *, max_faces: object = None) -> None:
     vertices = mesh.num_vertices
     check_size("dual convex hull", vertices, max(6 * vertices - 12, 0), max_faces=max_faces)
     hull = _wrap_hull(mesh.positions_view())
-    _rebuild(mesh, _polar_points(hull), _dual_polygons(hull.polygons))
+    corners, offsets = flat_faces(hull.polygons)
+    _rebuild(mesh, _polar_points(hull, corners, offsets), *vertex_face_rings(corners, offsets))
 
 
 # -- the wrapping ------------------------------------------------------------------
@@ -198,27 +201,64 @@ def _wrap_hull(points: np.ndarray, tolerance: float = 1e-9) -> _Hull:
     extent = float(np.ptp(pts, axis=0).max())
     eps = tolerance * extent
     _check_not_flat(pts, eps)
-    quick = _quick(pts, eps, extent) if len(pts) > _LARGE else None
-    if quick is not None:
-        try:
-            return _Hull(pts, origin, exponent, eps, *_walked(pts, eps, quick))
-        except DLFLError:
-            # points too nearly on one plane for the tolerance (four nearly on one
-            # circle): turning does not close up, the quickhull's triangles do
-            if not convex(pts, quick.tri, 4.0 * eps, extent):
-                raise
-            return _Hull(pts, origin, exponent, eps, quick.tri.tolist(),
-                         [(q, p, r) for p, q, r in quick.tri.tolist()])
+    if len(pts) > _LARGE:
+        return _Hull(pts, origin, exponent, eps, *_large_hull(pts, eps, extent))
     polygons, normals = _wrapped(pts, eps, _across(pts, eps, extent))
     _check_closed(polygons)
     return _Hull(pts, origin, exponent, eps, polygons, normals)
 
 
+def _large_hull(pts: np.ndarray, eps: float, extent: float
+                ) -> tuple[list[list[int]], np.ndarray]:
+    """``(polygons, (F, 3) outward unit normals)`` of the hull of more than
+    ``_LARGE`` points, in :func:`_in_order`: the batched quickhull's verified
+    triangles as they are and the faces across the others' sides turned to
+    (:func:`_walked`). Where those do not close up (points too nearly on one
+    plane for the tolerance: four nearly on one circle), the quickhull's
+    triangles are the hull, once every edge is checked convex; where the
+    quickhull gave up (rounding broke a round), every face is turned to.
+
+    Raises:
+        DLFLError: the faces do not close up.
+    """
+    quick = _quick(pts, eps, extent)
+    if quick is None:
+        polygons, normals = _wrapped(pts, eps, _across(pts, eps, extent))
+        _check_closed(polygons)
+        return _in_order(pts, np.zeros((0, 3), np.int64), polygons, normals)
+    try:
+        triangles, polygons, normals = _walked(pts, eps, quick)
+    except DLFLError:
+        if not convex(pts, quick.tri, 4.0 * eps, extent):
+            raise
+        triangles, polygons, normals = quick.tri, [], []
+    if polygons:  # a turned face may not fit the triangles around it
+        corners, offsets = flat_faces([*triangles.tolist(), *polygons])
+        check_closed(corners, offsets)
+    return _in_order(pts, triangles, polygons, normals)
+
+
+def _in_order(pts: np.ndarray, triangles: np.ndarray, polygons: list[list[int]],
+              normals: list[_Normal]) -> tuple[list[list[int]], np.ndarray]:
+    """``(polygons, (F, 3) outward unit normals)`` of the ``(k, 3)`` ``triangles``
+    (each from its least index) and the other ``polygons`` (with their
+    ``normals``), in the order of a large hull: each polygon from its least
+    point index, sorted by that index, then by the next."""
+    rotated = [poly[i:] + poly[:i] for poly in polygons for i in [poly.index(min(poly))]]
+    firsts = np.array([poly[:2] for poly in rotated], np.int64).reshape(-1, 2)
+    firsts = np.concatenate([triangles[:, :2], firsts])
+    order = np.lexsort((firsts[:, 1], firsts[:, 0])).tolist()
+    unordered = triangles.tolist() + rotated
+    outward = np.concatenate([_triangle_normals(pts, triangles),
+                              _resolved_all(pts, normals).reshape(-1, 3)])
+    return [unordered[f] for f in order], outward[order]
+
+
 class _Quick(NamedTuple):
     """The batched quickhull's triangles (:func:`._quickhull.quickhull`), each
-    from its least index as turning lists a triangle, with the triangle across
-    each side (side ``j`` from corner ``j`` to ``j + 1``), and which of them
-    turning would reach as they are (:func:`._quickhull.verified_triangles`)."""
+    from its least index, with the triangle across each side (side ``j`` from
+    corner ``j`` to ``j + 1``), and which of them are hull faces as they are
+    (:func:`._quickhull.verified_triangles`)."""
 
     tri: np.ndarray  # (F, 3) int
     nbr: np.ndarray  # (F, 3) int
@@ -237,82 +277,85 @@ def _quick(pts: np.ndarray, eps: float, extent: float) -> _Quick | None:
 
 
 def _walked(pts: np.ndarray, eps: float, quick: _Quick
-            ) -> tuple[list[list[int]], list[_Normal]]:
-    """``(polygons, normals)`` as :func:`_wrapped` finds them, walking the
-    triangles of ``quick`` instead of looking sides up: depth first from
-    :func:`_first_face`, each verified triangle taken as it is, the face across
-    any other side turned to (:func:`_face_beyond`: the few triangles with a
-    fourth point within the tolerance of their plane, or faces with points on
-    their edges), its sides claimed by name.
+            ) -> tuple[np.ndarray, list[list[int]], list[_Normal]]:
+    """``(triangles, polygons, normals)``: the ``(k, 3)`` verified triangles of
+    ``quick`` as they are, and the other faces with their normals, turned to
+    (:func:`_face_beyond`: faces with points near their plane or on their
+    edges) across the sides of the faces found, depth first from the verified
+    triangles beside the others (from :func:`_first_face` when none is
+    verified); their sides are claimed by name.
 
     Raises:
-        DLFLError: the faces do not close up (as :func:`_wrapped`).
+        DLFLError: a turned face does not share the side it was found across,
+            or there are more faces than a hull of these points can have.
     """
+    verified = quick.verified
+    if verified.all():
+        return quick.tri, [], []
     turned = _across(pts, eps, 0.0)  # more than _SMALL points: no lookup
     walk = _Walk(quick, len(pts))
-    walk.add(*_first_face(pts, eps, turned))
-    tri, nbr, verified, taken, named = walk.tri, walk.nbr, walk.verified, walk.taken, walk.named
+    seeds = np.flatnonzero(verified & ~verified[quick.nbr].all(axis=1))
+    for g, (a, b, c) in zip(seeds.tolist(), quick.tri[seeds].tolist(), strict=True):
+        walk.todo.append(([a, b, c], (b, a, c), g))
+    if not walk.todo:
+        walk.add(*_first_face(pts, eps, turned))
+    nbr, taken, named = quick.nbr, walk.taken, walk.named
     while walk.todo:
-        k = walk.todo.pop()
-        poly, normal, f = walk.polygons[k], walk.normals[k], walk.index[k]
+        poly, normal, f = walk.todo.pop()
         for j, u in enumerate(poly):
             v = poly[(j + 1) % len(poly)]
-            g = nbr[f][j] if f >= 0 else walk.triangle(v, u)
+            g = int(nbr[f, j]) if f >= 0 else walk.triangle(v, u)
             if (named and (v, u) in named) or (g >= 0 and taken[g]):
-                continue
-            if g >= 0 and verified[g]:
-                corners = tri[g]
-                walk.add(corners, (u, v, sum(corners) - u - v), g)
                 continue
             found, plane = turned(u, v, normal)
             if (v, u) not in _sides(found) or len(walk.polygons) > 2 * len(pts):
-                raise _not_closed()
+                raise not_closed()
             walk.add(found, plane)
-    if named:  # a turned face may not fit the triangles around it
-        _check_closed(walk.polygons)
-    return walk.polygons, walk.normals
+    return quick.tri[verified], walk.polygons, walk.normals
 
 
 class _Walk:
-    """The faces :func:`_walked` has found and which sides they claim: a
-    triangle of the quickhull by its index, any other face by its sides."""
+    """The faces :func:`_walked` has turned to, and which sides the faces found
+    claim: a triangle of the quickhull by its index (every verified one is
+    claimed from the start), any other face by its sides."""
 
     def __init__(self, quick: _Quick, n: int) -> None:
-        self.tri, self.nbr = quick.tri.tolist(), quick.nbr.tolist()
-        self.verified = quick.verified.tolist()
-        self.n = n
-        self.taken = [False] * len(self.tri)
+        self.tri, self.n = quick.tri, n
+        self.taken = quick.verified.copy()
         self.named: set[tuple[int, int]] = set()  # sides of faces that are no triangle of it
         self.polygons: list[list[int]] = []
         self.normals: list[_Normal] = []
-        self.index: list[int] = []  # the quickhull triangle each polygon is, or -1
-        self.todo: list[int] = []
-        keys = (quick.tri * n + np.roll(quick.tri, -1, axis=1)).ravel()
-        self._order = np.argsort(keys)
-        self._keys = keys[self._order]
+        # faces whose sides are still to cross: (polygon, normal, quickhull index or -1)
+        self.todo: list[tuple[list[int], _Normal, int]] = []
+        self._sides: tuple[np.ndarray, np.ndarray] | None = None
 
     def triangle(self, u: int, v: int) -> int:
         """The quickhull triangle with side ``u -> v``, -1 for none (a turned face
         can have a side the quickhull's triangles do not)."""
+        if self._sides is None:  # sorted side keys, and where each is
+            keys = (self.tri * self.n + np.roll(self.tri, -1, axis=1)).ravel()
+            order = np.argsort(keys)
+            self._sides = keys[order], order
+        keys, order = self._sides
         key = u * self.n + v
-        at = int(np.searchsorted(self._keys, key))
-        if at == len(self._keys) or self._keys[at] != key:
+        at = int(np.searchsorted(keys, key))
+        if at == len(keys) or keys[at] != key:
             return -1
-        return int(self._order[at]) // 3
+        return int(order[at]) // 3
 
-    def add(self, poly: list[int], normal: _Normal, index: int = -1) -> None:
-        """Record face ``poly`` (quickhull triangle ``index``, -1: look it up)."""
-        if index < 0 and len(poly) == 3:  # a turned triangle may be one of the quickhull's
+    def add(self, poly: list[int], normal: _Normal) -> None:
+        """Record turned face ``poly`` (it may be a triangle of the quickhull)."""
+        index = -1
+        if len(poly) == 3:
             g = self.triangle(poly[0], poly[1])
-            index = g if g >= 0 and self.tri[g] == poly else -1
+            index = g if g >= 0 and self.tri[g].tolist() == poly else -1
         if index >= 0:
             self.taken[index] = True
         else:
             self.named.update(_sides(poly))
         self.polygons.append(poly)
         self.normals.append(normal)
-        self.index.append(index)
-        self.todo.append(len(self.polygons) - 1)
+        self.todo.append((poly, normal, index))
 
 
 def _across(pts: np.ndarray, eps: float, extent: float) -> _Across:
@@ -355,7 +398,7 @@ def _wrapped(pts: np.ndarray, eps: float, across: _Across
             poly, normal = across(u, v, normals[f])
             sides = _sides(poly)
             if (v, u) not in sides or len(polygons) > 2 * len(pts):
-                raise _not_closed()
+                raise not_closed()
             polygons.append(poly)
             normals.append(normal)
             sides_of.append(sides)
@@ -410,12 +453,6 @@ def _check_not_flat(pts: np.ndarray, eps: float) -> None:
                             f"these {len(pts)} points are coplanar")
 
 
-def _not_closed() -> GeometryError:
-    """The error for faces that do not make a closed surface."""
-    return GeometryError("the convex hull does not close up (its points are too nearly "
-                         "coplanar for the tolerance)")
-
-
 def _sides(poly: list[int]) -> list[tuple[int, int]]:
     """The directed sides ``(a, b)`` of a polygon, in order."""
     return list(zip(poly, poly[1:] + poly[:1], strict=True))
@@ -433,7 +470,7 @@ def _first_face(pts: np.ndarray, eps: float, across: _Across) -> tuple[list[int]
         b = poly[-1] if poly[-1] != a else poly[0]
         poly, found = across(a, b, normal)
     if len(poly) < 3:
-        raise _not_closed()
+        raise not_closed()
     return poly, found
 
 
@@ -468,7 +505,7 @@ def _turned_plane(pts: np.ndarray, a: int, axis: np.ndarray, normal: np.ndarray,
         if height[top] <= eps:
             return plane
         best = w[top]
-    raise _not_closed()
+    raise not_closed()
 
 
 def _unit3(v: np.ndarray) -> np.ndarray:
@@ -480,7 +517,7 @@ def _unit3(v: np.ndarray) -> np.ndarray:
     """
     length = math.sqrt(v @ v)
     if not 0.0 < length < math.inf:
-        raise _not_closed()
+        raise not_closed()
     return v / length
 
 
@@ -511,11 +548,23 @@ def _resolved_all(pts: np.ndarray, normals: list[_Normal]) -> np.ndarray:
             out[i] = n
     if lazy:
         u, v, c = np.array([normals[i] for i in lazy]).T
-        side = pts[v] - pts[u]
-        side /= np.sqrt(np.einsum("ij,ij->i", side, side))[:, None]
-        turned = np.cross(pts[c] - pts[u], side)
-        out[lazy] = turned / np.sqrt(np.einsum("ij,ij->i", turned, turned))[:, None]
+        out[lazy] = _turned_normals(pts, u, v, c)
     return out
+
+
+def _triangle_normals(pts: np.ndarray, tri: np.ndarray) -> np.ndarray:
+    """``(F, 3)`` outward unit normals of the ``(F, 3)`` triangles ``tri``, as
+    turning finds each across its first side (:func:`_resolved`)."""
+    return _turned_normals(pts, tri[:, 1], tri[:, 0], tri[:, 2])
+
+
+def _turned_normals(pts: np.ndarray, u: np.ndarray, v: np.ndarray, c: np.ndarray
+                    ) -> np.ndarray:
+    """``(k, 3)``: :func:`_resolved` of the normals ``(u[i], v[i], c[i])``."""
+    side = pts[v] - pts[u]
+    side /= np.sqrt(np.einsum("ij,ij->i", side, side))[:, None]
+    turned = np.cross(pts[c] - pts[u], side)
+    return turned / np.sqrt(np.einsum("ij,ij->i", turned, turned))[:, None]
 
 
 # -- one face's polygon ----------------------------------------------------------------
@@ -622,65 +671,24 @@ def _with_side_points(xy: np.ndarray, candidates: np.ndarray, corners: list[int]
 
 
 def _check_closed(polygons: list[list[int]]) -> None:
-    """Refuse polygons that are not a closed genus-0 surface with one fan per vertex.
+    """Refuse polygons that are not a closed genus-0 surface with one fan per vertex
+    (:func:`._hull_faces.check_closed`).
 
     Raises:
         DLFLError: a repeated side, a side without its reverse, a vertex with two
             fans, or an Euler characteristic other than 2.
     """
-    heads: list[int] = []
-    tails: list[int] = []
-    befores: list[int] = []
-    for poly in polygons:
-        heads += poly
-        tails += poly[1:]
-        tails.append(poly[0])
-        befores.append(poly[-1])
-        befores += poly[:-1]
-    n = max(heads) + 1
-    sides = [p * n + q for p, q in zip(heads, tails, strict=True)]  # side (p, q) as p n + q
-    unseen = set(sides)
-    if len(unseen) != len(sides) or unseen != {q * n + p for p, q in zip(heads, tails, strict=True)}:
-        raise _not_closed()
-    # around vertex p, side (p, q) is followed by (p, r), (r, p) the side before it
-    before = dict(zip(sides, befores, strict=True))
-    fans = 0
-    while unseen:
-        start = side = unseen.pop()
-        fans += 1
-        base = side - side % n
-        while (side := base + before[side]) != start:
-            unseen.remove(side)
-    vertices = len(set(heads))
-    if fans != vertices or vertices - len(sides) // 2 + len(polygons) != 2:
-        raise _not_closed()
-
-
-def _vertex_face_rings(polygons: list[list[int]]) -> dict[int, list[int]]:
-    """For each vertex (ascending), the polygons around it counter-clockwise seen
-    from outside: after polygon ``f`` comes the one across the side from the vertex
-    to its predecessor in ``f``. Needs every side paired with its reverse; a
-    vertex with two fans gets only the first."""
-    side_face: dict[tuple[int, int], int] = {}
-    before: dict[tuple[int, int], int] = {}
-    for f, poly in enumerate(polygons):
-        for i, p in enumerate(poly):
-            side_face[(p, poly[(i + 1) % len(poly)])] = f
-            before[(f, p)] = poly[i - 1]
-    start: dict[int, int] = {}
-    for (p, _), f in side_face.items():
-        start.setdefault(p, f)
-    rings = {}
-    for p in sorted(start):
-        ring, f = [start[p]], side_face[(p, before[(start[p], p)])]
-        while f != start[p]:
-            ring.append(f)
-            f = side_face[(p, before[(f, p)])]
-        rings[p] = ring
-    return rings
+    check_closed(*flat_faces(polygons))
 
 
 # -- triangles, duals and rebuilding -------------------------------------------------------
+
+
+def _triangles(hull: _Hull) -> list[list[int]]:
+    """The polygons of ``hull`` cut into triangles; see :func:`hull_triangles`."""
+    if all(len(poly) == 3 for poly in hull.polygons):
+        return hull.polygons
+    return [t for poly in hull.polygons for t in _ears(hull.points, poly, hull.eps)]
 
 
 def _ears(pts: np.ndarray, poly: list[int], eps: float) -> list[list[int]]:
@@ -702,24 +710,21 @@ def _ears(pts: np.ndarray, poly: list[int], eps: float) -> list[list[int]]:
     return [*triangles, ring]
 
 
-def _dual_polygons(polygons: list[list[int]]) -> list[list[int]]:
-    """One polygon per hull vertex (ascending): the indices of the hull polygons
-    around it, counter-clockwise seen from outside."""
-    return list(_vertex_face_rings(polygons).values())
-
-
-def _polar_points(hull: _Hull) -> np.ndarray:
-    """``(F, 3)`` the polar dual vertex of each hull polygon, in input coordinates;
-    see :func:`dual_convex_hull`.
+def _polar_points(hull: _Hull, corners: np.ndarray, offsets: np.ndarray) -> np.ndarray:
+    """``(F, 3)`` the polar dual vertex of each hull polygon (``corners`` and
+    ``offsets`` as :func:`._hull_faces.flat_faces`), in input coordinates; see
+    :func:`dual_convex_hull`.
 
     Raises:
         DLFLError: a dual vertex beyond the float range.
     """
-    used = np.unique(np.concatenate(hull.polygons))
-    centre = hull.points[used].mean(axis=0)
-    radius2 = float(np.mean(np.sum((hull.points[used] - centre) ** 2, axis=1)))
-    normals = _resolved_all(hull.points, hull.normals)
-    distance = np.einsum("fk,fk->f", normals, hull.points[[p[0] for p in hull.polygons]] - centre)
+    used = hull.points[np.unique(corners)]
+    centre = used.mean(axis=0)
+    radius2 = float(np.mean(np.sum((used - centre) ** 2, axis=1)))
+    normals = hull.normals
+    if not isinstance(normals, np.ndarray):
+        normals = _resolved_all(hull.points, normals)
+    distance = np.einsum("fk,fk->f", normals, hull.points[corners[offsets[:-1]]] - centre)
     with np.errstate(over="ignore", invalid="ignore"):  # refused just below
         dual = np.ldexp(centre + normals * (radius2 / distance)[:, None], hull.exponent)
         dual = hull.origin + dual
@@ -729,14 +734,13 @@ def _polar_points(hull: _Hull) -> np.ndarray:
     return dual
 
 
-def _rebuild(mesh: Mesh, points: np.ndarray, polygons: list[list[int]]) -> None:
-    """Replace ``mesh`` by the polygons over the ``(n, 3)`` ``points`` they use
-    (in index order), with fresh ids."""
-    flat = np.concatenate(polygons)
-    used = np.unique(flat)
+def _rebuild(mesh: Mesh, points: np.ndarray, corners: np.ndarray, offsets: np.ndarray
+             ) -> None:
+    """Replace ``mesh`` by the polygons (``corners`` and ``offsets`` as
+    :func:`._hull_faces.flat_faces`) over the ``(n, 3)`` ``points`` they use (in
+    index order), with fresh ids."""
+    used = np.unique(corners)
     index = np.full(len(points), -1, dtype=np.int64)
     index[used] = np.arange(len(used))
-    offsets = np.zeros(len(polygons) + 1, dtype=np.int64)
-    np.cumsum([len(poly) for poly in polygons], out=offsets[1:])
-    mesh.replace_with(from_polygons(points[used], index[flat], offsets,
+    mesh.replace_with(from_polygons(points[used], index[corners], offsets,
                                     first_ids=mesh.next_ids()))
