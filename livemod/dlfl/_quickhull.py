@@ -38,17 +38,19 @@ class _Facets:
 
     ``tri[f]`` is counter-clockwise seen from outside; ``nbr[f, j]`` is the
     facet across side ``j`` (from ``tri[f, j]`` to ``tri[f, (j + 1) % 3]``).
+    Coordinates and planes are kept as columns (``x``, ``y``, ``z``; ``plane``'s
+    rows: unit normal and offset): gathering from 1D arrays is several times
+    faster than gathering rows.
     """
 
     def __init__(self, pts: np.ndarray, capacity: int) -> None:
         self.pts = pts
+        self.x, self.y, self.z = (np.ascontiguousarray(axis) for axis in pts.T)
         self.tri = np.zeros((capacity, 3), np.int64)
         self.nbr = np.zeros((capacity, 3), np.int64)
-        self.normal = np.zeros((capacity, 3))
-        self.offset = np.zeros(capacity)
+        self.plane = np.zeros((4, capacity))
         self.alive = np.zeros(capacity, bool)
         self.n = 0
-        self.vertices = 4  # the hull's vertices so far
 
     def add(self, tri: np.ndarray, nbr: np.ndarray) -> np.ndarray:
         """Append ``(k, 3)`` triangles with their neighbours; their indices."""
@@ -56,27 +58,43 @@ class _Facets:
         if self.n + k > len(self.tri):
             self._grow(max(2 * len(self.tri), self.n + k))
         index = np.arange(self.n, self.n + k)
-        self.tri[index], self.nbr[index], self.alive[index] = tri, nbr, True
-        a, b, c = (self.pts[tri[:, j]] for j in range(3))
-        normal = np.cross(b - a, c - a)
-        length = np.sqrt(np.einsum("ij,ij->i", normal, normal))
+        self.tri[self.n : self.n + k], self.nbr[self.n : self.n + k] = tri, nbr
+        self.alive[self.n : self.n + k] = True
+        (ax, ay, az), (bx, by, bz), (cx, cy, cz) = (self.coordinates(tri[:, j]) for j in range(3))
+        ux, uy, uz, vx, vy, vz = bx - ax, by - ay, bz - az, cx - ax, cy - ay, cz - az
+        nx, ny, nz = uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx
+        length = np.sqrt(nx * nx + ny * ny + nz * nz)
         with np.errstate(divide="ignore", invalid="ignore"):  # a flat one: NaN, checked
-            self.normal[index] = normal / length[:, None]
-        self.offset[index] = np.einsum("ij,ij->i", self.normal[index], a)
+            nx, ny, nz = nx / length, ny / length, nz / length
+        self.plane[:, self.n : self.n + k] = nx, ny, nz, nx * ax + ny * ay + nz * az
         self.n += k
         return index
 
     def _grow(self, capacity: int) -> None:
-        for name in ("tri", "nbr", "normal", "offset", "alive"):
+        for name, axis in (("tri", 0), ("nbr", 0), ("plane", 1), ("alive", 0)):
             old = getattr(self, name)
-            new = np.zeros((capacity, *old.shape[1:]), old.dtype)
-            new[: self.n] = old[: self.n]
+            shape = list(old.shape)
+            shape[axis] = capacity
+            new = np.zeros(shape, old.dtype)
+            if axis:
+                new[:, : self.n] = old[:, : self.n]
+            else:
+                new[: self.n] = old[: self.n]
             setattr(self, name, new)
+
+    def coordinates(self, points: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """``(x, y, z)``, ``(k,)`` each: the coordinates of ``points``."""
+        return self.x[points], self.y[points], self.z[points]
 
     def heights(self, points: np.ndarray, facets: np.ndarray) -> np.ndarray:
         """``(k,)`` height of point ``points[i]`` over the plane of ``facets[i]``."""
-        return (np.einsum("ij,ij->i", self.pts[points], self.normal[facets])
-                - self.offset[facets])
+        nx, ny, nz, offset = np.take(self.plane, facets, axis=1)
+        x, y, z = self.coordinates(points)
+        return x * nx + y * ny + z * nz - offset
+
+    def neighbours(self, facets: np.ndarray) -> np.ndarray:
+        """``(3 k,)``: the facets across the sides of ``facets``, facet by facet."""
+        return np.take(self.nbr, facets, axis=0).ravel()
 
 
 def quickhull(pts: np.ndarray, eps: float) -> tuple[np.ndarray, np.ndarray] | None:
@@ -92,7 +110,7 @@ def quickhull(pts: np.ndarray, eps: float) -> tuple[np.ndarray, np.ndarray] | No
         return None
     facets = _Facets(pts, 8 * len(pts) + 16)
     first = facets.add(*start)
-    height = (pts @ facets.normal[first].T) - facets.offset[first]
+    height = (pts @ facets.plane[:3, first]) - facets.plane[3, first]
     state = _Outside(np.where(height.max(axis=1) > eps, first[height.argmax(axis=1)], -1),
                      height.max(axis=1))
     rank = np.random.default_rng(len(pts)).permutation(len(pts))
@@ -151,13 +169,11 @@ def _round(facets: _Facets, state: _Outside, points: np.ndarray, rank: np.ndarra
     visible regions are apart are taken, their fans built, and the outside
     points of the facets they replace handed to those fans. False when a
     horizon is no simple cycle."""
-    facet = state.facet[points]
+    facet, height = state.facet[points], state.height[points]
     best = np.full(facets.n, -np.inf)
-    np.maximum.at(best, facet, state.height[points])
-    offers = points[state.height[points] == best[facet]]
-    rp, rf = _regions(facets, offers, state.facet[offers], eps)
-    winners, owner = _independent_offers(facets, rp, rf, rank, eps)
-    visible = np.flatnonzero(owner >= 0)
+    np.maximum.at(best, facet, height)
+    offers = points[height == best[facet]]
+    winners, visible, owner = _claims(facets, offers, state.facet[offers], rank, eps)
     horizon = _horizon(facets, visible, owner)
     if horizon is None:
         return False
@@ -167,35 +183,61 @@ def _round(facets: _Facets, state: _Outside, points: np.ndarray, rank: np.ndarra
     return True
 
 
-def _regions(facets: _Facets, offers: np.ndarray, start: np.ndarray, eps: float
-             ) -> tuple[np.ndarray, np.ndarray]:
-    """``(p, f)`` pairs: the facets each offer sees, grown from the one it is
-    outside of through the neighbours it is above (a point sees a connected set),
-    step by step: each step's pairs as sorted keys ``p * n + f``, against which
-    the next step's are looked up."""
-    n = facets.n
-    steps = [np.sort(offers * n + start)]
+def _claims(facets: _Facets, offers: np.ndarray, start: np.ndarray, rank: np.ndarray,
+            eps: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """``(winners, visible, owner)``: the offers taken this round, the facets
+    they see, and per facet the winner whose visible region it is in (-1: none).
+
+    Each offer's visible region (the facets it lies more than ``eps`` above: a
+    connected set) is grown from the facet it is outside of, step by step,
+    through the neighbours it is above. A facet goes to the least offer in
+    ``rank`` (a fixed random permutation) that reached it; an offer that finds
+    a facet held by a lesser one, or loses one to it, has lost and stops
+    growing. The winners, whose regions are whole and apart (two of them
+    meeting on a facet would have made one lose), are Luby's independent set,
+    or a larger one (an offer that lost to an offer that lost first keeps its
+    chance). Winners whose regions meet along an edge keep it only where each
+    lies below the other's new triangle on it (a convex edge, as taking one
+    after the other would make it); where not, the later one is given back.
+    """
+    unclaimed = len(rank)  # above every rank
+    best = np.full(facets.n, unclaimed, np.int64)  # the least rank to reach each facet
+    holder = np.full(facets.n, -1, np.int64)
+    lost = np.zeros(len(rank), bool)
+    slot = np.empty(facets.n, np.int64)
+    held_p, held_f = [], []
     fp, ff = offers, start
-    found_p, found_f = [fp], [ff]
     while len(fp):
-        cp = np.repeat(fp, 3)
-        cf = facets.nbr[ff].ravel()
-        key, once = np.unique(cp * n + cf, return_index=True)
-        fresh = np.ones(len(key), bool)
-        for known in steps[-2:]:  # a neighbour's neighbour is at most a step back
-            at = np.minimum(np.searchsorted(known, key), len(known) - 1)
-            fresh &= known[at] != key
-        cp, cf, key = cp[once[fresh]], cf[once[fresh]], key[fresh]
+        r = rank[fp]
+        np.minimum.at(best, ff, r)
+        least = r == best[ff]
+        lost[fp[~least]] = True
+        before = holder[ff]  # a holder beaten here has lost
+        lost[before[(before >= 0) & (rank[before] > best[ff])]] = True
+        holder[ff[least]] = fp[least]
+        grow = np.flatnonzero(least & ~lost[fp])
+        slot[ff[grow]] = grow  # the same pair reached twice grows once
+        grow = grow[slot[ff[grow]] == grow]
+        held_p.append(fp[grow])
+        held_f.append(ff[grow])
+        cp, cf = np.repeat(fp[grow], 3), facets.neighbours(ff[grow])
+        fresh = (holder[cf] != cp) & ~lost[cp]
+        cp, cf = cp[fresh], cf[fresh]
         seen = facets.heights(cp, cf) > eps
         fp, ff = cp[seen], cf[seen]
-        steps.append(key[seen])
-        found_p.append(fp)
-        found_f.append(ff)
-    return np.concatenate(found_p), np.concatenate(found_f)
+    # each pair is held once (an offer never comes back to a facet it holds)
+    hp, hf = np.concatenate(held_p), np.concatenate(held_f)
+    kept = (holder[hf] == hp) & ~lost[hp]
+    visible, by = hf[kept], hp[kept]
+    owner = np.full(facets.n, -1, np.int64)
+    owner[visible] = by
+    back = _concave_meetings(facets, by, visible, owner, rank, eps)
+    owner[visible[back[by]]] = -1
+    return offers[~lost[offers] & ~back[offers]], visible[~back[by]], owner
 
 
 def _hand_on(facets: _Facets, state: _Outside, points: np.ndarray, owner: np.ndarray,
-             horizon: tuple[np.ndarray, np.ndarray, np.ndarray], eps: float) -> None:
+             horizon: tuple[np.ndarray, np.ndarray], eps: float) -> None:
     """The outside points of the facets a taken point replaced go to a new facet
     of its fan they lie more than ``eps`` above (first the ones built on their
     old facet's horizon edges, then the whole fan), or are inside."""
@@ -203,122 +245,93 @@ def _hand_on(facets: _Facets, state: _Outside, points: np.ndarray, owner: np.nda
     orphan = orphan[owner[state.facet[orphan]] >= 0]
     if len(orphan) == 0:
         return
-    new, _, inner = horizon
-    order = np.argsort(inner, kind="stable")
-    placed = _place(facets, state, orphan, inner[order], new[order], state.facet[orphan], eps)
+    new, side = horizon
+    built = np.zeros(3 * facets.n, np.int64)  # 1 + the new facet on each side, 0: none
+    built[side] = new + 1
+    candidates = built[3 * state.facet[orphan][:, None] + np.arange(3)].ravel() - 1
+    rows = np.flatnonzero(candidates >= 0)
+    placed = _move_up(facets, state, orphan, rows // 3, candidates[rows], eps)
     rest = orphan[~placed]
     if len(rest) == 0:
         return
+    # the whole fan of the point that took its facet
     apex = facets.tri[new, 2]
-    order = np.argsort(apex, kind="stable")
-    placed = _place(facets, state, rest, apex[order], new[order], owner[state.facet[rest]], eps)
+    by_apex = np.argsort(apex, kind="stable")
+    fans = np.flatnonzero(np.r_[True, apex[by_apex][1:] != apex[by_apex][:-1]])
+    first, size = np.zeros(len(facets.pts), np.int64), np.zeros(len(facets.pts), np.int64)
+    first[apex[by_apex[fans]]] = fans
+    size[apex[by_apex[fans]]] = np.diff(np.r_[fans, len(apex)])
+    taker = owner[state.facet[rest]]
+    count = size[taker]
+    rows = np.repeat(np.arange(len(rest)), count)
+    at = np.repeat(first[taker] - (np.cumsum(count) - count), count) + np.arange(len(rows))
+    placed = _move_up(facets, state, rest, rows, new[by_apex[at]], eps)
     state.facet[rest[~placed]] = -1
 
 
-def _place(facets: _Facets, state: _Outside, points: np.ndarray, keys: np.ndarray,
-           candidates: np.ndarray, key: np.ndarray, eps: float) -> np.ndarray:
-    """Move each of ``points`` to the candidate (``candidates`` under sorted
-    ``keys``, those under its ``key``) it lies highest above, if more than
-    ``eps``; ``(k,)`` bool: which were moved."""
-    lo = np.searchsorted(keys, key, side="left")
-    count = np.searchsorted(keys, key, side="right") - lo
-    rows = np.repeat(np.arange(len(points)), count)
-    offsets = np.cumsum(count) - count
-    pf = candidates[lo[rows] + np.arange(int(count.sum())) - offsets[rows]]
-    ph = facets.heights(points[rows], pf)
+def _move_up(facets: _Facets, state: _Outside, points: np.ndarray, rows: np.ndarray,
+             candidates: np.ndarray, eps: float) -> np.ndarray:
+    """Move each of ``points`` to the one of its ``candidates`` (facets, paired
+    with ``points[rows]``) it lies highest above, if more than ``eps``; ``(k,)``
+    bool: which were moved."""
+    height = facets.heights(points[rows], candidates)
     top = np.full(len(points), -np.inf)
-    np.maximum.at(top, rows, ph)
-    up = (ph == top[rows]) & (ph > eps)
-    state.facet[points[rows[up]]] = pf[up]
-    state.height[points[rows[up]]] = ph[up]
+    np.maximum.at(top, rows, height)
+    up = (height == top[rows]) & (height > eps)
+    state.facet[points[rows[up]]] = candidates[up]
+    state.height[points[rows[up]]] = height[up]
     return top > eps
 
 
-def _independent_offers(facets: _Facets, cp: np.ndarray, cf: np.ndarray, rank: np.ndarray,
-                        eps: float) -> tuple[np.ndarray, np.ndarray]:
-    """``(winners, owner)``: the points taken this round, and per facet the point
-    whose visible region it is in (-1: none).
-
-    ``(cp, cf)`` pairs the offers with the facets they see. An offer is taken
-    when no offer earlier in ``rank`` (a fixed random permutation) sees a facet
-    it sees; offers that lost only to offers that lost too try again, a few
-    times (Luby's independent set). Taken points whose regions meet along an
-    edge keep it only where each lies below the other's new triangle on it (a
-    convex edge, as taking one after the other would make it); where not, the
-    later one is given back.
-    """
-    owner = np.full(facets.n, -1, np.int64)
-    winners: list[np.ndarray] = []
-    for _ in range(4):
-        out = owner[cf] >= 0  # a facet it sees is in a taken region
-        dead = np.zeros(len(rank), bool)
-        dead[cp[out]] = True
-        keep = ~dead[cp]
-        cp, cf = cp[keep], cf[keep]
-        if len(cp) == 0:
-            break
-        r = rank[cp]
-        seen = np.full(facets.n, len(rank), np.int64)  # least rank seeing each facet
-        np.minimum.at(seen, cf, r)
-        lost = np.zeros(len(rank), bool)
-        lost[cp[seen[cf] < r]] = True
-        won = ~lost[cp]
-        trial = owner.copy()
-        trial[cf[won]] = cp[won]
-        committed = np.zeros(len(rank), bool)  # taken in an earlier pass: kept
-        for earlier in winners:
-            committed[earlier] = True
-        back = _concave_meetings(facets, cp[won], cf[won], trial, rank, committed, eps)
-        won &= ~back[cp]
-        owner[cf[won]] = cp[won]
-        winners.append(np.unique(cp[won]))
-    return np.concatenate(winners) if winners else np.zeros(0, np.int64), owner
-
-
 def _concave_meetings(facets: _Facets, wp: np.ndarray, wf: np.ndarray, owner: np.ndarray,
-                      rank: np.ndarray, committed: np.ndarray, eps: float) -> np.ndarray:
+                      rank: np.ndarray, eps: float) -> np.ndarray:
     """``(n,)`` bool: the taken points ``wp`` (seeing ``wf``) to give back where
     their region meets another's (``owner``) along an edge ``(a, b)`` with one
     lying above the other's new triangle (``a, b``, itself): the later of the
-    two, or the new one when the other was ``committed`` in an earlier pass."""
+    two in ``rank``."""
     f = np.repeat(wf, 3)
     j = np.tile(np.arange(3), len(wf))
     p = np.repeat(wp, 3)
-    q = owner[facets.nbr[f, j]]
+    q = owner[facets.neighbours(wf)]
     meet = (q >= 0) & (q != p)
     f, j, p, q = f[meet], j[meet], p[meet], q[meet]
     back = np.zeros(len(rank), bool)
     if len(f) == 0:
         return back
-    a, b = facets.pts[facets.tri[f, j]], facets.pts[facets.tri[f, (j + 1) % 3]]
-    pp, qq = facets.pts[p], facets.pts[q]
-    normal = np.cross(b - a, pp - a)
+    flat = facets.tri.ravel()
+    ax, ay, az = facets.coordinates(flat[3 * f + j])
+    bx, by, bz = facets.coordinates(flat[3 * f + (j + 1) % 3])
+    (px, py, pz), (qx, qy, qz) = facets.coordinates(p), facets.coordinates(q)
+    ux, uy, uz, vx, vy, vz = bx - ax, by - ay, bz - az, px - ax, py - ay, pz - az
+    nx, ny, nz = uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx
     with np.errstate(invalid="ignore", divide="ignore"):  # a flat new triangle: given back
-        normal /= np.sqrt(np.einsum("ij,ij->i", normal, normal))[:, None]
-        above = ~(np.einsum("ij,ij->i", qq - a, normal) <= eps)
-    later = np.where(committed[q] | (rank[p] > rank[q]), p, q)
+        height = ((qx - ax) * nx + (qy - ay) * ny + (qz - az) * nz) / np.sqrt(
+            nx * nx + ny * ny + nz * nz)
+        above = ~(height <= eps)
+    later = np.where(rank[p] > rank[q], p, q)
     back[later[above]] = True
     return back
 
 
 def _horizon(facets: _Facets, visible: np.ndarray, owner: np.ndarray
-             ) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
+             ) -> tuple[np.ndarray, np.ndarray] | None:
     """Build the fan of every taken point over its horizon: ``(new facets, the
-    facet outside each one's horizon edge, the visible one inside it)``, or None
-    when a horizon is no simple cycle."""
+    side each is built on)`` (side ``j`` of visible facet ``f`` as ``3 f + j``), or
+    None when a horizon is no simple cycle."""
     f = np.repeat(visible, 3)
     j = np.tile(np.arange(3), len(visible))
-    g = facets.nbr[f, j]
+    g = facets.neighbours(visible)
     edge = owner[g] != owner[f]
     f, j, g = f[edge], j[edge], g[edge]
     apex = owner[f]
-    a, b = facets.tri[f, j], facets.tri[f, (j + 1) % 3]
+    flat = facets.tri.ravel()
+    a, b = flat[3 * f + j], flat[3 * f + (j + 1) % 3]
     n = len(facets.pts)
     # where two fans meet (g is in another taken region) they meet each other
     shared = owner[g] >= 0
     # the fan of apex p: the facet on edge (a, b) meets the one from b and the one to a
     start_key, end_key = apex * n + a, apex * n + b
-    order = np.argsort(start_key, kind="stable")
+    order = np.argsort(start_key)
     sorted_keys = start_key[order]
     if len(sorted_keys) > 1 and (sorted_keys[1:] == sorted_keys[:-1]).any():
         return None  # two horizon edges leave one vertex: no simple cycle
@@ -333,7 +346,7 @@ def _horizon(facets: _Facets, visible: np.ndarray, owner: np.ndarray
     across = g.copy()
     if shared.any():
         edge_key = a * n + b
-        by_edge = np.argsort(edge_key, kind="stable")
+        by_edge = np.argsort(edge_key)
         mate = by_edge[np.searchsorted(edge_key[by_edge], b[shared] * n + a[shared])]
         across[shared] = base + mate
     tri = np.stack([a, b, apex], axis=1)
@@ -341,12 +354,13 @@ def _horizon(facets: _Facets, visible: np.ndarray, owner: np.ndarray
     new = facets.add(tri, nbr)
     # the outer facet's side (b, a) now meets the new facet
     outer, new_outer = g[~shared], new[~shared]
-    k = np.argmax((facets.tri[outer] == b[~shared][:, None])
-                  & (np.roll(facets.tri[outer], -1, axis=1) == a[~shared][:, None]), axis=1)
-    facets.nbr[outer, k] = new_outer
-    if not np.isfinite(facets.normal[new]).all():
+    outer_tri = np.take(facets.tri, outer, axis=0)
+    k = np.argmax((outer_tri == b[~shared][:, None])
+                  & (np.roll(outer_tri, -1, axis=1) == a[~shared][:, None]), axis=1)
+    facets.nbr.ravel()[3 * outer + k] = new_outer
+    if not np.isfinite(facets.plane[:, new]).all():
         return None
-    return new, g, f
+    return new, 3 * f + j
 
 
 def verified_triangles(pts: np.ndarray, tri: np.ndarray, eps: float, extent: float
