@@ -413,7 +413,7 @@ def convex(pts: np.ndarray, tri: np.ndarray, eps: float, extent: float) -> bool:
 def _joined(tri: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
     """``(heads, starts)``: vertex ``v``'s edges lead to ``heads[starts[v]:starts[v + 1]]``."""
     tails = tri.ravel()
-    order = np.argsort(tails, kind="stable")
+    order = np.argsort(tails)
     heads = np.roll(tri, -1, axis=1).ravel()[order]
     return heads, np.searchsorted(tails[order], np.arange(n + 1))
 
@@ -441,31 +441,44 @@ def _boxes(pts: np.ndarray, tri: np.ndarray, ring_t: np.ndarray, ring_p: np.ndar
 
 def _clear(pts: np.ndarray, tri: np.ndarray, t: np.ndarray, p: np.ndarray, eps: float,
            thin: float) -> np.ndarray:
-    """``(F,)`` bool: no pair ``(t, p)`` (point ``p`` other than triangle ``t``'s
-    three) lies within ``eps`` of the triangle's plane or above it, or nearly in
-    line (``thin``) with one of its sides (``|side x (p - corner)| <= thin``, as
-    ``|side|^2 |p - corner|^2 - (side . (p - corner))^2``)."""
-    corners = [pts[tri[:, j]] for j in range(3)]
-    normal = np.cross(corners[1] - corners[0], corners[2] - corners[0])
-    normal /= np.sqrt(np.einsum("ij,ij->i", normal, normal))[:, None]
-    # per triangle, as columns: normal, offset; per side its start, direction, length^2
-    columns = [*normal.T, np.einsum("ij,ij->i", normal, corners[0])]
-    for j in range(3):
-        side = corners[(j + 1) % 3] - corners[j]
-        columns += [*corners[j].T, *side.T, np.einsum("ij,ij->i", side, side)]
+    """``(F,)`` bool: no pair ``(t, p)`` (``t`` ascending; point ``p`` other than
+    triangle ``t``'s three) lies within ``eps`` of the triangle's plane or above
+    it, or nearly in line (``thin``) with one of its sides (``|side x (p -
+    corner)| <= thin``, as ``|side|^2 |p - corner|^2 - (side . (p - corner))^2``).
+
+    The pairs are taken a block of triangles at a time, the triangles' columns
+    repeated for their pairs (a copy in order, faster than a gather)."""
     coordinates = [np.ascontiguousarray(axis) for axis in pts.T]
+    corners = [[axis[tri[:, j]] for axis in coordinates] for j in range(3)]
+    (ax, ay, az), (bx, by, bz), (cx, cy, cz) = corners
+    ux, uy, uz, vx, vy, vz = bx - ax, by - ay, bz - az, cx - ax, cy - ay, cz - az
+    nx, ny, nz = uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx
+    length = np.sqrt(nx * nx + ny * ny + nz * nz)
+    nx, ny, nz = nx / length, ny / length, nz / length
+    # per triangle: its corners (for "own"), normal, offset; per side its start,
+    # direction, length^2
+    columns = [*tri.T, nx, ny, nz, nx * ax + ny * ay + nz * az]
+    for j in range(3):
+        (sx, sy, sz), (ex, ey, ez) = corners[j], corners[(j + 1) % 3]
+        dx, dy, dz = ex - sx, ey - sy, ez - sz
+        columns += [sx, sy, sz, dx, dy, dz, dx * dx + dy * dy + dz * dz]
+    count = np.bincount(t, minlength=len(tri))
+    ends = np.cumsum(count)
     failed = np.zeros(len(tri), bool)
-    for block in range(0, len(t), _BLOCK):
-        bt, bp = t[block : block + _BLOCK], p[block : block + _BLOCK]
-        m = [column[bt] for column in columns]
+    step = max(_BLOCK * len(tri) // max(len(t), 1), 1)  # triangles a block
+    for first in range(0, len(tri), step):
+        last = min(first + step, len(tri))
+        repeats = count[first:last]
+        bp = p[ends[first] - count[first] : ends[last - 1]]
+        m = [np.repeat(column[first:last], repeats) for column in columns]
         x, y, z = (axis[bp] for axis in coordinates)
-        bad = x * m[0] + y * m[1] + z * m[2] - m[3] >= -eps
-        for j in range(4, 25, 7):
+        bad = x * m[3] + y * m[4] + z * m[5] - m[6] >= -eps
+        for j in range(7, 28, 7):
             wx, wy, wz = x - m[j], y - m[j + 1], z - m[j + 2]
             along = wx * m[j + 3] + wy * m[j + 4] + wz * m[j + 5]
             bad |= m[j + 6] * (wx * wx + wy * wy + wz * wz) - along * along <= thin * thin
-        own = (bp == tri[bt, 0]) | (bp == tri[bt, 1]) | (bp == tri[bt, 2])
-        failed[bt[bad & ~own]] = True
+        bad &= (bp != m[0]) & (bp != m[1]) & (bp != m[2])
+        failed[np.repeat(np.arange(first, last), repeats)[bad]] = True
     return ~failed
 
 
