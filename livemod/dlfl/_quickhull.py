@@ -381,15 +381,14 @@ def verified_triangles(pts: np.ndarray, tri: np.ndarray, eps: float, extent: flo
     a, b, c = (pts[tri[:, j]] for j in range(3))
     area2 = np.cross(b - a, c - a)
     wide = np.einsum("ij,ij->i", area2, area2) > thin * thin
-    heads, starts = _joined(tri, len(pts))
-    ring_t, ring_p = _ring_pairs(tri, heads, starts)
-    ok = wide & _clear(pts, tri, ring_t, ring_p, eps, thin)
+    ring_count, ring = _ring_pairs(tri, *_joined(tri, len(pts)))
+    ok = wide & _clear(pts, tri, ring_count, ring, eps, thin)
     loose = np.ones(len(pts), bool)
     loose[tri.ravel()] = False
     if loose.any():
-        lo, hi = _boxes(pts, tri, ring_t, ring_p)
+        lo, hi = _boxes(pts, ring_count, ring)
         box_t, box_p = _box_points(pts, np.flatnonzero(loose), lo, hi, 2.0 * eps)
-        ok &= _clear(pts, tri, box_t, box_p, eps, thin)
+        ok &= _clear(pts, tri, np.bincount(box_t, minlength=len(tri)), box_p, eps, thin)
     return ok
 
 
@@ -399,8 +398,8 @@ def convex(pts: np.ndarray, tri: np.ndarray, eps: float, extent: float) -> bool:
     tolerances of one line has no plane to be above): every edge convex, to
     the tolerance (pass a few: a vertex may end up up to twice the tolerance
     its planes were built with above a neighbour's)."""
-    heads, starts = _joined(tri, len(pts))
-    t, p = _ring_pairs(tri, heads, starts)
+    count, p = _ring_pairs(tri, *_joined(tri, len(pts)))
+    t = np.repeat(np.arange(len(tri)), count)
     a, b, c = (pts[tri[:, j]] for j in range(3))
     normal = np.cross(b - a, c - a)
     length = np.sqrt(np.einsum("ij,ij->i", normal, normal))
@@ -420,33 +419,37 @@ def _joined(tri: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
 
 def _ring_pairs(tri: np.ndarray, heads: np.ndarray, starts: np.ndarray
                 ) -> tuple[np.ndarray, np.ndarray]:
-    """``(t, p)`` pairs: every vertex joined to a corner of triangle ``t``, in
-    triangle order."""
+    """``(count, p)``: every vertex joined to a corner of each triangle, in
+    triangle order, ``count[t]`` of them for triangle ``t``."""
     corner = tri.ravel()
-    count = starts[corner + 1] - starts[corner]
-    rows = np.repeat(np.arange(len(corner)), count)
-    offsets = np.cumsum(count) - count
-    p = heads[starts[corner][rows] + np.arange(int(count.sum())) - offsets[rows]]
-    return rows // 3, p
+    first = starts[corner]
+    count = starts[corner + 1] - first
+    p = heads[np.repeat(first - (np.cumsum(count) - count), count) + np.arange(int(count.sum()))]
+    return count.reshape(-1, 3).sum(axis=1), p
 
 
-def _boxes(pts: np.ndarray, tri: np.ndarray, ring_t: np.ndarray, ring_p: np.ndarray
+def _boxes(pts: np.ndarray, count: np.ndarray, ring: np.ndarray
            ) -> tuple[np.ndarray, np.ndarray]:
-    """``(lo, hi)`` ``(F, 3)``: the box of each triangle's ring (which holds its
-    corners: each corner is joined to the next)."""
-    runs = np.flatnonzero(np.r_[True, ring_t[1:] != ring_t[:-1]])
-    around = pts[ring_p]
+    """``(lo, hi)`` ``(F, 3)``: the box of each triangle's ring (``count`` and
+    ``ring`` as :func:`_ring_pairs`; it holds the corners: each is joined to the
+    next)."""
+    runs = np.cumsum(count) - count
+    around = pts[ring]
     return np.minimum.reduceat(around, runs, axis=0), np.maximum.reduceat(around, runs, axis=0)
 
 
-def _clear(pts: np.ndarray, tri: np.ndarray, t: np.ndarray, p: np.ndarray, eps: float,
+def _clear(pts: np.ndarray, tri: np.ndarray, count: np.ndarray, p: np.ndarray, eps: float,
            thin: float) -> np.ndarray:
-    """``(F,)`` bool: no pair ``(t, p)`` (``t`` ascending; point ``p`` other than
-    triangle ``t``'s three) lies within ``eps`` of the triangle's plane or above
+    """``(F,)`` bool: none of the points ``p`` (the first ``count[0]`` paired with
+    triangle 0, the next ``count[1]`` with triangle 1, ...; points of a triangle's
+    own three aside) lies within ``eps`` of the triangle's plane or above
     it, or nearly in line (``thin``) with one of its sides (``|side x (p -
     corner)| <= thin``, as ``|side|^2 |p - corner|^2 - (side . (p - corner))^2``).
 
-    The pairs are taken a block of triangles at a time, the triangles' columns
+    A point nearly in line with a side is as near the plane (the side lies in
+    it): only the pairs within ``4 max(eps, thin / shortest side)`` of the plane
+    (a margin for the rounding of both tests) are measured against the sides.
+    The pairs are taken a block of triangles at a time, the triangles' plane
     repeated for their pairs (a copy in order, faster than a gather)."""
     coordinates = [np.ascontiguousarray(axis) for axis in pts.T]
     corners = [[axis[tri[:, j]] for axis in coordinates] for j in range(3)]
@@ -455,30 +458,40 @@ def _clear(pts: np.ndarray, tri: np.ndarray, t: np.ndarray, p: np.ndarray, eps: 
     nx, ny, nz = uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx
     length = np.sqrt(nx * nx + ny * ny + nz * nz)
     nx, ny, nz = nx / length, ny / length, nz / length
-    # per triangle: its corners (for "own"), normal, offset; per side its start,
-    # direction, length^2
-    columns = [*tri.T, nx, ny, nz, nx * ax + ny * ay + nz * az]
+    plane = [nx, ny, nz, nx * ax + ny * ay + nz * az]
+    # per side its start, direction, length^2
+    sides = []
     for j in range(3):
         (sx, sy, sz), (ex, ey, ez) = corners[j], corners[(j + 1) % 3]
         dx, dy, dz = ex - sx, ey - sy, ez - sz
-        columns += [sx, sy, sz, dx, dy, dz, dx * dx + dy * dy + dz * dz]
-    count = np.bincount(t, minlength=len(tri))
+        sides.append([sx, sy, sz, dx, dy, dz, dx * dx + dy * dy + dz * dz])
+    shortest = np.sqrt(np.minimum(np.minimum(sides[0][6], sides[1][6]), sides[2][6]))
+    with np.errstate(divide="ignore"):
+        reach = -4.0 * np.maximum(eps, thin / shortest)
     ends = np.cumsum(count)
     failed = np.zeros(len(tri), bool)
-    step = max(_BLOCK * len(tri) // max(len(t), 1), 1)  # triangles a block
+    step = max(_BLOCK * len(tri) // max(len(p), 1), 1)  # triangles a block
+    own = [np.ascontiguousarray(corner) for corner in tri.T]
     for first in range(0, len(tri), step):
         last = min(first + step, len(tri))
         repeats = count[first:last]
         bp = p[ends[first] - count[first] : ends[last - 1]]
-        m = [np.repeat(column[first:last], repeats) for column in columns]
+        bx_, by_, bz_ = (axis[bp] for axis in coordinates)
+        m = [np.repeat(column[first:last], repeats) for column in (*plane, reach)]
+        height = bx_ * m[0] + by_ * m[1] + bz_ * m[2] - m[3]
+        near = np.flatnonzero(height >= m[4])
+        bt = np.repeat(np.arange(first, last), repeats)[near]
+        bp, height = bp[near], height[near]
+        others = (bp != own[0][bt]) & (bp != own[1][bt]) & (bp != own[2][bt])
+        bt, bp, height = bt[others], bp[others], height[others]
         x, y, z = (axis[bp] for axis in coordinates)
-        bad = x * m[3] + y * m[4] + z * m[5] - m[6] >= -eps
-        for j in range(7, 28, 7):
-            wx, wy, wz = x - m[j], y - m[j + 1], z - m[j + 2]
-            along = wx * m[j + 3] + wy * m[j + 4] + wz * m[j + 5]
-            bad |= m[j + 6] * (wx * wx + wy * wy + wz * wz) - along * along <= thin * thin
-        bad &= (bp != m[0]) & (bp != m[1]) & (bp != m[2])
-        failed[np.repeat(np.arange(first, last), repeats)[bad]] = True
+        bad = height >= -eps
+        for side in sides:
+            sx, sy, sz, dx, dy, dz, length2 = (column[bt] for column in side)
+            wx, wy, wz = x - sx, y - sy, z - sz
+            along = wx * dx + wy * dy + wz * dz
+            bad |= length2 * (wx * wx + wy * wy + wz * wz) - along * along <= thin * thin
+        failed[bt[bad]] = True
     return ~failed
 
 
