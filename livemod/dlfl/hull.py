@@ -90,9 +90,23 @@ class _Hull(NamedTuple):
     origin: np.ndarray  # (3,) float
     exponent: int
     eps: float  # the absolute tolerance in ``points``' units
-    polygons: list[list[int]]
+    # the polygons, or for a large hull as (corners, offsets): see flat_faces
+    faces: list[list[int]] | tuple[np.ndarray, np.ndarray]
     # outward unit normal of each polygon: see _resolved, or (F, 3) for a large hull
     normals: list[_Normal] | np.ndarray
+
+    @property
+    def polygons(self) -> list[list[int]]:
+        """One list of point indices per face."""
+        if isinstance(self.faces, list):
+            return self.faces
+        corners, offsets = self.faces
+        flat, bounds = corners.tolist(), offsets.tolist()
+        return [flat[a:b] for a, b in zip(bounds[:-1], bounds[1:], strict=True)]
+
+    def flat(self) -> tuple[np.ndarray, np.ndarray]:
+        """``(corners, offsets)`` of the faces (:func:`._hull_faces.flat_faces`)."""
+        return self.faces if isinstance(self.faces, tuple) else flat_faces(self.faces)
 
 
 def hull_polygons(points: np.ndarray, tolerance: float = 1e-9) -> list[list[int]]:
@@ -134,7 +148,8 @@ def hull_triangles(points: np.ndarray, tolerance: float = 1e-9) -> list[list[int
     Raises:
         DLFLError: as :func:`hull_polygons`.
     """
-    return _triangles(_wrap_hull(points, tolerance))
+    hull = _wrap_hull(points, tolerance)
+    return [t for poly in hull.polygons for t in _ears(hull.points, poly, hull.eps)]
 
 
 def convex_hull(mesh: Mesh, *, max_faces: object = None) -> None:
@@ -157,8 +172,7 @@ def convex_hull(mesh: Mesh, *, max_faces: object = None) -> None:
     """
     most = max(2 * mesh.num_vertices - 4, 0)
     check_size("convex hull", most, 3 * most, max_faces=max_faces)
-    hull = _wrap_hull(mesh.positions_view())
-    triangles = np.array(_triangles(hull), np.int64).reshape(-1, 3)
+    triangles = _triangle_array(_wrap_hull(mesh.positions_view()))
     _rebuild(mesh, mesh.positions_view(), triangles.ravel(),
              np.arange(0, triangles.size + 1, 3))
 
@@ -188,7 +202,7 @@ def dual_convex_hull(mesh: Mesh, *, max_faces: object = None) -> None:
     vertices = mesh.num_vertices
     check_size("dual convex hull", vertices, max(6 * vertices - 12, 0), max_faces=max_faces)
     hull = _wrap_hull(mesh.positions_view())
-    corners, offsets = flat_faces(hull.polygons)
+    corners, offsets = hull.flat()
     _rebuild(mesh, _polar_points(hull, corners, offsets), *vertex_face_rings(corners, offsets))
 
 
@@ -209,12 +223,12 @@ def _wrap_hull(points: np.ndarray, tolerance: float = 1e-9) -> _Hull:
 
 
 def _large_hull(pts: np.ndarray, eps: float, extent: float
-                ) -> tuple[list[list[int]], np.ndarray]:
-    """``(polygons, (F, 3) outward unit normals)`` of the hull of more than
-    ``_LARGE`` points, in :func:`_in_order`: the batched quickhull's verified
-    triangles as they are and the faces across the others' sides turned to
-    (:func:`_walked`). Where those do not close up (points too nearly on one
-    plane for the tolerance: four nearly on one circle), the quickhull's
+                ) -> tuple[tuple[np.ndarray, np.ndarray], np.ndarray]:
+    """``((corners, offsets), (F, 3) outward unit normals)`` of the hull of more
+    than ``_LARGE`` points, in :func:`_in_order`: the batched quickhull's
+    verified triangles as they are and the faces across the others' sides
+    turned to (:func:`_walked`). Where those do not close up (points too nearly
+    on one plane for the tolerance: four nearly on one circle), the quickhull's
     triangles are the hull, once every edge is checked convex; where the
     quickhull gave up (rounding broke a round), every face is turned to.
 
@@ -225,33 +239,38 @@ def _large_hull(pts: np.ndarray, eps: float, extent: float
     if quick is None:
         polygons, normals = _wrapped(pts, eps, _across(pts, eps, extent))
         _check_closed(polygons)
-        return _in_order(pts, np.zeros((0, 3), np.int64), polygons, normals)
+        corners, offsets, outward = _in_order(pts, np.zeros((0, 3), np.int64), polygons, normals)
+        return (corners, offsets), outward
     try:
         triangles, polygons, normals = _walked(pts, eps, quick)
     except DLFLError:
         if not convex(pts, quick.tri, 4.0 * eps, extent):
             raise
         triangles, polygons, normals = quick.tri, [], []
+    corners, offsets, outward = _in_order(pts, triangles, polygons, normals)
     if polygons:  # a turned face may not fit the triangles around it
-        corners, offsets = flat_faces([*triangles.tolist(), *polygons])
         check_closed(corners, offsets)
-    return _in_order(pts, triangles, polygons, normals)
+    return (corners, offsets), outward
 
 
 def _in_order(pts: np.ndarray, triangles: np.ndarray, polygons: list[list[int]],
-              normals: list[_Normal]) -> tuple[list[list[int]], np.ndarray]:
-    """``(polygons, (F, 3) outward unit normals)`` of the ``(k, 3)`` ``triangles``
-    (each from its least index) and the other ``polygons`` (with their
-    ``normals``), in the order of a large hull: each polygon from its least
+              normals: list[_Normal]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """``(corners, offsets, (F, 3) outward unit normals)`` of the ``(k, 3)``
+    ``triangles`` (each from its least index) and the other ``polygons`` (with
+    their ``normals``), in the order of a large hull: each face from its least
     point index, sorted by that index, then by the next."""
     rotated = [poly[i:] + poly[:i] for poly in polygons for i in [poly.index(min(poly))]]
-    firsts = np.array([poly[:2] for poly in rotated], np.int64).reshape(-1, 2)
-    firsts = np.concatenate([triangles[:, :2], firsts])
-    order = np.lexsort((firsts[:, 1], firsts[:, 0])).tolist()
-    unordered = triangles.tolist() + rotated
+    others, other_offsets = flat_faces(rotated)
+    flat = np.concatenate([triangles.ravel(), others])
+    starts = np.concatenate([np.arange(0, triangles.size, 3), triangles.size + other_offsets[:-1]])
+    sizes = np.concatenate([np.full(len(triangles), 3), np.diff(other_offsets)])
+    order = np.argsort(flat[starts] * (int(flat.max(initial=0)) + 1) + flat[starts + 1])
+    offsets = np.zeros(len(order) + 1, np.int64)
+    np.cumsum(sizes[order], out=offsets[1:])
+    moved = np.repeat(starts[order] - offsets[:-1], sizes[order]) + np.arange(len(flat))
     outward = np.concatenate([_triangle_normals(pts, triangles),
                               _resolved_all(pts, normals).reshape(-1, 3)])
-    return [unordered[f] for f in order], outward[order]
+    return flat[moved], offsets, outward[order]
 
 
 class _Quick(NamedTuple):
@@ -294,7 +313,7 @@ def _walked(pts: np.ndarray, eps: float, quick: _Quick
         return quick.tri, [], []
     turned = _across(pts, eps, 0.0)  # more than _SMALL points: no lookup
     walk = _Walk(quick, len(pts))
-    seeds = np.flatnonzero(verified & ~verified[quick.nbr].all(axis=1))
+    seeds = np.flatnonzero(verified & ~np.take(verified, quick.nbr).all(axis=1))
     for g, (a, b, c) in zip(seeds.tolist(), quick.tri[seeds].tolist(), strict=True):
         walk.todo.append(([a, b, c], (b, a, c), g))
     if not walk.todo:
@@ -561,9 +580,13 @@ def _triangle_normals(pts: np.ndarray, tri: np.ndarray) -> np.ndarray:
 def _turned_normals(pts: np.ndarray, u: np.ndarray, v: np.ndarray, c: np.ndarray
                     ) -> np.ndarray:
     """``(k, 3)``: :func:`_resolved` of the normals ``(u[i], v[i], c[i])``."""
-    side = pts[v] - pts[u]
-    side /= np.sqrt(np.einsum("ij,ij->i", side, side))[:, None]
-    turned = np.cross(pts[c] - pts[u], side)
+    x, y, z = pts.T  # by coordinate: gathers from columns are faster than of rows
+    ux, uy, uz = x[u], y[u], z[u]
+    sx, sy, sz = x[v] - ux, y[v] - uy, z[v] - uz
+    length = np.sqrt(sx * sx + sy * sy + sz * sz)
+    sx, sy, sz = sx / length, sy / length, sz / length
+    wx, wy, wz = x[c] - ux, y[c] - uy, z[c] - uz
+    turned = np.stack([wy * sz - wz * sy, wz * sx - wx * sz, wx * sy - wy * sx], axis=1)
     return turned / np.sqrt(np.einsum("ij,ij->i", turned, turned))[:, None]
 
 
@@ -684,11 +707,13 @@ def _check_closed(polygons: list[list[int]]) -> None:
 # -- triangles, duals and rebuilding -------------------------------------------------------
 
 
-def _triangles(hull: _Hull) -> list[list[int]]:
-    """The polygons of ``hull`` cut into triangles; see :func:`hull_triangles`."""
-    if all(len(poly) == 3 for poly in hull.polygons):
-        return hull.polygons
-    return [t for poly in hull.polygons for t in _ears(hull.points, poly, hull.eps)]
+def _triangle_array(hull: _Hull) -> np.ndarray:
+    """``(T, 3)``: the faces of ``hull`` cut into triangles (:func:`hull_triangles`)."""
+    corners, offsets = hull.flat()
+    if (np.diff(offsets) == 3).all():
+        return corners.reshape(-1, 3)
+    triangles = [t for poly in hull.polygons for t in _ears(hull.points, poly, hull.eps)]
+    return np.array(triangles, np.int64)
 
 
 def _ears(pts: np.ndarray, poly: list[int], eps: float) -> list[list[int]]:
@@ -718,7 +743,7 @@ def _polar_points(hull: _Hull, corners: np.ndarray, offsets: np.ndarray) -> np.n
     Raises:
         DLFLError: a dual vertex beyond the float range.
     """
-    used = hull.points[np.unique(corners)]
+    used = hull.points[np.flatnonzero(np.bincount(corners))]
     centre = used.mean(axis=0)
     radius2 = float(np.mean(np.sum((used - centre) ** 2, axis=1)))
     normals = hull.normals
@@ -739,7 +764,7 @@ def _rebuild(mesh: Mesh, points: np.ndarray, corners: np.ndarray, offsets: np.nd
     """Replace ``mesh`` by the polygons (``corners`` and ``offsets`` as
     :func:`._hull_faces.flat_faces`) over the ``(n, 3)`` ``points`` they use (in
     index order), with fresh ids."""
-    used = np.unique(corners)
+    used = np.flatnonzero(np.bincount(corners, minlength=len(points)))
     index = np.full(len(points), -1, dtype=np.int64)
     index[used] = np.arange(len(used))
     mesh.replace_with(from_polygons(points[used], index[corners], offsets,
