@@ -6,8 +6,9 @@ hull is built in rounds, every step a numpy pass:
 
 1. each facet with points above it (more than ``eps``: its *conflicts*) offers
    the farthest of them;
-2. offers whose visible regions (the facets they are above), with the facets
-   around those, meet no better offer's are taken, all at once;
+2. the offers claim the facets they see, each facet going to the least in a
+   fixed random rank; the offers whose regions are whole and apart are taken,
+   all at once (:func:`_claims`);
 3. each taken point replaces its visible facets by a fan to their horizon;
    the conflicts of a new facet are among those of the two facets beside its
    horizon edge (the conflict graph of the randomized incremental hull).
@@ -15,9 +16,13 @@ hull is built in rounds, every step a numpy pass:
 Its triangles are then checked as :func:`._hull_table.triangle_table` checks
 the triples it tries, only against the points that can matter (see
 :func:`verified_triangles`), and the ones that pass are what turning would
-reach across their sides: :mod:`.hull` looks them up and turns only to the
-others (faces with coplanar points, points on edges, thin triangles), so the
-result is the same, polygon for polygon, in the same order.
+reach across their sides: :mod:`.hull` takes them as they are and turns only
+to the others (faces with coplanar points, points on edges, thin triangles),
+so the faces are turning's, polygon for polygon.
+
+Arrays of floats are kept and gathered as columns (one array per coordinate),
+and cross products taken by columns: gathering rows of an ``(n, 3)`` array, or
+``numpy.cross``, is several times slower at these sizes.
 """
 
 from __future__ import annotations

@@ -20,12 +20,21 @@ when needed).
 For more than ``_LARGE`` points (a mesh's vertices: turning took 38 s for
 24,600 of them), a batched quickhull (:mod:`._quickhull`, numpy rounds) builds
 a triangulated hull first and checks each of its triangles the way the lookup
-checks triples, against the points near it; the wrapping then walks those
-triangles depth first, in turning's order, and turns only to the faces across
-the sides of the others. The result is again the same, polygon for polygon.
-Where turning cannot close up (points too nearly on one plane for the
-tolerance: four nearly on one circle, which grows likely with thousands of
-points), the quickhull's triangles are the result instead of a refusal.
+checks triples, against the points near it. The triangles that pass are faces
+as they are; only the faces across the sides of the others (faces with points
+near their plane or on their edges) are turned to. The faces are turning's,
+polygon for polygon (their normals to the tolerance), but they come **sorted**
+instead of in wrapping order: each from its least point index, ordered by that
+index, then by the next (walking them in turning's order was a Python loop over
+every face; nothing relies on the order of a large hull). Where turning cannot
+close up (points too nearly on one plane for the tolerance: four nearly on one
+circle, which grows likely with thousands of points), the quickhull's triangles
+are the result instead of a refusal.
+
+**Face order**: up to ``_LARGE`` (1,000) points, the order gift wrapping finds
+the faces in (:func:`_wrapped`: the first face, then depth first across each
+side), each face from the corner turning reached it by; above, sorted as above.
+Both are deterministic: the same points give the same faces in the same order.
 
 **Coplanar rule** (the same for every caller):
 
@@ -123,7 +132,9 @@ def hull_polygons(points: np.ndarray, tolerance: float = 1e-9) -> list[list[int]
 
     Returns:
         One list of point indices per face, counter-clockwise seen from outside;
-        together a closed genus-0 surface.
+        together a closed genus-0 surface. In wrapping order for up to 1,000
+        points; above, each face from its least index, the faces sorted by that
+        index and the next (see the module's face order).
 
     Raises:
         DLFLError: fewer than 4 points, a point or a difference of two that is
@@ -160,7 +171,8 @@ def convex_hull(mesh: Mesh, *, max_faces: object = None) -> None:
 
     Vertices that are hull corners or lie on hull edges are kept at their
     positions (in id order); the others are dropped. The mesh is rebuilt (fresh
-    ids). TopMod built the hull incrementally, so which coplanar points it kept,
+    ids), its faces in :func:`hull_polygons` order (above 1,000 vertices: sorted
+    by their least vertex, each polygon's triangles in turn). TopMod built the hull incrementally, so which coplanar points it kept,
     and how it split coplanar faces, depended on the vertex order.
 
     Raises:
@@ -187,7 +199,9 @@ def dual_convex_hull(mesh: Mesh, *, max_faces: object = None) -> None:
     hull's vertices, becomes the vertex ``c + r**2 n / d``, ``r`` the root mean
     square distance of the hull's vertices from ``c``; a hull vertex at distance
     ``r`` lies on its dual face. The faces are planar and the result is convex.
-    The mesh is rebuilt (fresh ids).
+    The mesh is rebuilt (fresh ids): vertex ``i`` for hull face ``i`` in
+    :func:`hull_polygons` order, one face per hull vertex in id order, each
+    starting at the first hull face around that vertex.
 
     livemod differs here (TopMod's ``createDualConvexHull()``): TopMod cut the
     bounding box by the plane through each hull vertex along its vertex normal,

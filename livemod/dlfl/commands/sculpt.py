@@ -194,7 +194,8 @@ def spheralize() -> None:
 def convexHull() -> None:
     """``convexHull()``: TopMod's createConvexHull; the object becomes the convex hull
     of its vertices, in triangles (coplanar facets merged, then each cut into a fan
-    from its last corner). Cube: 8/18/12.
+    from its last corner). Cube: 8/18/12. Up to 1,000 vertices the faces come in
+    the order gift wrapping finds them; above, sorted by their least vertex.
 
     Raises:
         DLFLError: fewer than 4 vertices, or all of them in one plane.
