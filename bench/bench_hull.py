@@ -1,11 +1,16 @@
 """Benchmarks of the convex hull (``livemod.dlfl.hull``) and of ``columns``, its
 main caller (one small hull per mesh vertex); figures go to docs/performance.md.
 
-Run: ``python bench/bench_hull.py [--repeat N] [--before REV] [--large [--large-before]]``.
+Run: ``python bench/bench_hull.py [--repeat N] [--before REV] [--large [--large-before |
+--against DIR --pairs N]]``.
 ``--large`` times instead ``convex_hull`` and ``dual_convex_hull`` of 1,500, 6,000
 and 24,600 points on a sphere (issue 30: 0.5 s, 2.0 s and 38 s; target: 24,600
 well under a second), CPU medians, with ``--large-before`` the hull.py of
-``--before`` too (minutes at 24,600 points). Each figure is the
+``--before`` too (minutes at 24,600 points). With ``--against DIR`` (a copy of
+another tree, ``git archive main | tar -x -C DIR``) each operation runs in fresh
+processes, alternately on ``DIR``'s livemod and on this one, ``--pairs`` times:
+medians of the CPU times and each pair's ratio (this / DIR), which a busy
+machine's load affects less than the times themselves. Each figure is the
 median of ``--repeat`` runs in one process, wall and CPU time. The same cases are
 timed with ``livemod/dlfl/hull.py`` as of git revision ``--before`` (default: the
 gift-wrapping routine as first committed, before small hulls looked their
@@ -20,6 +25,7 @@ from __future__ import annotations
 import argparse
 import importlib
 import os
+import statistics
 import subprocess
 import sys
 import tracemalloc
@@ -152,6 +158,51 @@ def large_rows(old: types.ModuleType | None, repeat: int) -> None:
             print(f"| {label} | {before} | {timed_on(now, points, repeat)} |", flush=True)
 
 
+# one operation in a fresh process: CPU seconds and the result's counts
+_CHILD = """
+import sys, time
+import numpy as np
+from livemod.dlfl import hull
+from livemod.dlfl.build import point_cloud
+op, n = sys.argv[1], int(sys.argv[2])
+points = np.random.default_rng(1).normal(size=(n, 3))
+points /= np.linalg.norm(points, axis=1)[:, None]
+mesh = point_cloud(points)
+cpu = time.process_time()
+getattr(hull, op)(mesh)
+print(time.process_time() - cpu, *mesh.counts())
+"""
+
+
+def child_cpu(tree: Path, op: str, n: int) -> tuple[float, tuple[int, ...]]:
+    """CPU seconds of ``op`` on ``unit_sphere(n, 1)`` in a fresh process on the
+    livemod of ``tree``, and the result's counts."""
+    env = {**os.environ, "PYTHONPATH": str(tree)}
+    out = subprocess.run([sys.executable, "-c", _CHILD, op, str(n)], env=env, cwd=tree,
+                         capture_output=True, text=True, check=True).stdout.split()
+    return float(out[0]), tuple(map(int, out[1:]))
+
+
+def alternating_rows(base: Path, pairs: int) -> None:
+    """The hulls of issue 30 on ``base``'s livemod and on this one, in fresh
+    processes taken alternately (see the module's doc); both must give the same
+    counts."""
+    print(f"| operation | {base} CPU | this tree CPU | ratios, pair by pair |")
+    print("|---|---|---|---|")
+    for n in LARGE:
+        for name in ("convex_hull", "dual_convex_hull"):
+            then, now = [], []
+            for _ in range(pairs):
+                (before, counts), (after, ours) = (child_cpu(base, name, n),
+                                                   child_cpu(ROOT, name, n))
+                assert counts == ours, (name, n, counts, ours)
+                then.append(before)
+                now.append(after)
+            ratios = ", ".join(f"{b / a:.2f}" for a, b in zip(then, now, strict=True))
+            print(f"| `{name}`, {n:,} points on a sphere | {statistics.median(then):.3f} s | "
+                  f"{statistics.median(now):.3f} s | {ratios} |", flush=True)
+
+
 def timed_on(op: Callable[..., None], points: np.ndarray, repeat: int) -> str:
     """:func:`timed` of ``op`` on a fresh point cloud of ``points`` each run."""
     wall, cpu = median_times(op, repeat, setup=lambda: point_cloud(points))
@@ -165,7 +216,16 @@ def main() -> None:
     parser.add_argument("--large", action="store_true", help="time the large hulls only")
     parser.add_argument("--large-before", action="store_true",
                         help="with --large, time the revision --before too (minutes)")
+    parser.add_argument("--against", type=Path,
+                        help="with --large, a tree to time alternately with this one")
+    parser.add_argument("--pairs", type=int, default=5, help="with --against: how many pairs")
     args = parser.parse_args()
+    if args.large and args.against is not None:
+        print(f"cpus: {os.cpu_count()}, load: {os.getloadavg()[0]:.1f}, pairs: {args.pairs} "
+              "(medians; fresh processes, alternately)\n")
+        alternating_rows(args.against, args.pairs)
+        print(f"\nload after: {os.getloadavg()[0]:.1f}")
+        return
     if args.large:
         print(f"cpus: {os.cpu_count()}, load: {os.getloadavg()[0]:.1f}, repeat: {args.repeat} "
               "(median; before: one run)\n")
