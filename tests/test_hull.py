@@ -22,6 +22,7 @@ from livemod.dlfl import (
     mesh_arrays,
     validate,
 )
+from livemod.dlfl._hull_faces import check_closed, flat_faces
 from livemod.dlfl.analysis import face_normals, face_points, polygon_normal
 from livemod.dlfl.build import point_cloud
 from livemod.dlfl.errors import GeometryError, InvalidArgumentError
@@ -450,10 +451,13 @@ def test_a_side_in_line_with_a_point_is_left_to_turning():
     [[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2], [4, 6, 5], [4, 5, 7], [5, 6, 7], [4, 7, 6]],
     [[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2], [0, 6, 5], [0, 5, 7], [5, 6, 7], [0, 7, 6]],
 ])
-def test_polygons_that_are_no_closed_sphere_are_refused(polygons):
-    hull._check_closed([[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]])  # a tetrahedron
+@pytest.mark.parametrize("check", [hull._check_closed,
+                                   lambda polygons: check_closed(*flat_faces(polygons))],
+                         ids=["small hulls", "large hulls"])
+def test_polygons_that_are_no_closed_sphere_are_refused(polygons, check):
+    check([[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]])  # a tetrahedron
     with pytest.raises(GeometryError, match="does not close up"):
-        hull._check_closed(polygons)
+        check(polygons)
 
 
 @pytest.mark.parametrize("thickness", [0.0, 0.5, 0.99, 1.01, 2.0, 1e3, 1e5, 1e9])
