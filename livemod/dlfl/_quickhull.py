@@ -38,6 +38,10 @@ _ROUNDS = 64
 _BLOCK = 1 << 15
 
 
+# the per-facet scratch arrays of _Facets and their types
+_SCRATCH = (("top", np.float64), ("least", np.int64), ("holder", np.int64), ("owner", np.int64))
+
+
 class _Facets:
     """Triangles with their planes and neighbours, in growable arrays.
 
@@ -46,6 +50,12 @@ class _Facets:
     Coordinates and planes are kept as columns (``x``, ``y``, ``z``; ``plane``'s
     rows: unit normal and offset): gathering from 1D arrays is several times
     faster than gathering rows.
+
+    A round's per-facet scratch (:data:`_SCRATCH`: each facet's farthest outside
+    height, least claiming rank, holder and owner) is kept here at its fill
+    value between uses, and each use puts back the entries it changed: filling
+    arrays as long as all the facets, several times a round, cost more than
+    the rest of a late round's work.
     """
 
     def __init__(self, pts: np.ndarray, capacity: int) -> None:
@@ -55,7 +65,13 @@ class _Facets:
         self.nbr = np.zeros((capacity, 3), np.int64)
         self.plane = np.zeros((4, capacity))
         self.alive = np.zeros(capacity, bool)
+        self.unclaimed = len(pts)  # above every rank
+        self.top, self.least, self.holder, self.owner = (
+            np.full(capacity, self._fill(name), dtype) for name, dtype in _SCRATCH)
         self.n = 0
+
+    def _fill(self, name: str) -> float:
+        return {"top": -np.inf, "least": self.unclaimed}.get(name, -1)
 
     def add(self, tri: np.ndarray, nbr: np.ndarray) -> np.ndarray:
         """Append ``(k, 3)`` triangles with their neighbours; their indices."""
@@ -76,11 +92,12 @@ class _Facets:
         return index
 
     def _grow(self, capacity: int) -> None:
-        for name, axis in (("tri", 0), ("nbr", 0), ("plane", 1), ("alive", 0)):
+        arrays = [("tri", 0), ("nbr", 0), ("plane", 1), ("alive", 0)]
+        for name, axis in arrays + [(name, 0) for name, _ in _SCRATCH]:
             old = getattr(self, name)
             shape = list(old.shape)
             shape[axis] = capacity
-            new = np.zeros(shape, old.dtype)
+            new = np.full(shape, self._fill(name) if (name, axis) not in arrays else 0, old.dtype)
             if axis:
                 new[:, : self.n] = old[:, : self.n]
             else:
@@ -175,23 +192,24 @@ def _round(facets: _Facets, state: _Outside, points: np.ndarray, rank: np.ndarra
     points of the facets they replace handed to those fans. False when a
     horizon is no simple cycle."""
     facet, height = state.facet[points], state.height[points]
-    best = np.full(facets.n, -np.inf)
-    np.maximum.at(best, facet, height)
-    offers = points[height == best[facet]]
-    winners, visible, owner = _claims(facets, offers, state.facet[offers], rank, eps)
-    horizon = _horizon(facets, visible, owner)
-    if horizon is None:
-        return False
-    facets.alive[visible] = False
-    state.facet[winners] = -1
-    _hand_on(facets, state, points, owner, horizon, eps)
-    return True
+    np.maximum.at(facets.top, facet, height)
+    offers = points[height == facets.top[facet]]
+    facets.top[facet] = -np.inf
+    winners, visible = _claims(facets, offers, state.facet[offers], rank, eps)
+    horizon = _horizon(facets, visible, facets.owner)
+    if horizon is not None:
+        facets.alive[visible] = False
+        state.facet[winners] = -1
+        _hand_on(facets, state, points, facets.owner, horizon, eps)
+    facets.owner[visible] = -1
+    return horizon is not None
 
 
 def _claims(facets: _Facets, offers: np.ndarray, start: np.ndarray, rank: np.ndarray,
-            eps: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """``(winners, visible, owner)``: the offers taken this round, the facets
-    they see, and per facet the winner whose visible region it is in (-1: none).
+            eps: float) -> tuple[np.ndarray, np.ndarray]:
+    """``(winners, visible)``: the offers taken this round and the facets they
+    see; ``facets.owner`` of each of those is the winner whose region it is in
+    (the caller puts them back to -1).
 
     Each offer's visible region (the facets it lies more than ``eps`` above: a
     connected set) is grown from the facet it is outside of, step by step,
@@ -205,13 +223,12 @@ def _claims(facets: _Facets, offers: np.ndarray, start: np.ndarray, rank: np.nda
     lies below the other's new triangle on it (a convex edge, as taking one
     after the other would make it); where not, the later one is given back.
     """
-    unclaimed = len(rank)  # above every rank
-    best = np.full(facets.n, unclaimed, np.int64)  # the least rank to reach each facet
-    holder = np.full(facets.n, -1, np.int64)
+    best, holder = facets.least, facets.holder  # the least rank to reach each facet, whose
     lost = np.zeros(len(rank), bool)
     slot = np.empty(facets.n, np.int64)
     held_p, held_f = [], []
     fp, ff = offers, start
+    reached = [ff]
     while len(fp):
         r = rank[fp]
         np.minimum.at(best, ff, r)
@@ -230,15 +247,18 @@ def _claims(facets: _Facets, offers: np.ndarray, start: np.ndarray, rank: np.nda
         cp, cf = cp[fresh], cf[fresh]
         seen = facets.heights(cp, cf) > eps
         fp, ff = cp[seen], cf[seen]
+        reached.append(ff)
     # each pair is held once (an offer never comes back to a facet it holds)
     hp, hf = np.concatenate(held_p), np.concatenate(held_f)
     kept = (holder[hf] == hp) & ~lost[hp]
     visible, by = hf[kept], hp[kept]
-    owner = np.full(facets.n, -1, np.int64)
+    for facet in reached:
+        best[facet], holder[facet] = facets.unclaimed, -1
+    owner = facets.owner
     owner[visible] = by
     back = _concave_meetings(facets, by, visible, owner, rank, eps)
     owner[visible[back[by]]] = -1
-    return offers[~lost[offers] & ~back[offers]], visible[~back[by]], owner
+    return offers[~lost[offers] & ~back[offers]], visible[~back[by]]
 
 
 def _hand_on(facets: _Facets, state: _Outside, points: np.ndarray, owner: np.ndarray,
