@@ -7,12 +7,13 @@ degenerate sets refused as small ones are."""
 from __future__ import annotations
 
 import importlib
+from collections.abc import Callable
 
 import numpy as np
 import pytest
 from scipy.spatial import ConvexHull
 
-from livemod.dlfl import euler_characteristic, mesh_arrays, validate
+from livemod.dlfl import Mesh, euler_characteristic, mesh_arrays, validate
 from livemod.dlfl.build import point_cloud
 from livemod.dlfl.errors import GeometryError
 from tests.meshes import assert_refused_quietly
@@ -145,12 +146,18 @@ def test_the_faces_of_a_large_lattice_are_its_six_sides_with_their_edge_points()
     assert all(poly[0] == min(poly) for poly in polygons)
 
 
-def test_convex_hull_of_a_large_mesh_is_valid_closed_and_sorted():
-    points = unit_sphere(3000, 12)
+def hulled(op: Callable[[Mesh], None], points: np.ndarray) -> Mesh:
+    """``op`` on a point cloud of ``points``, the result valid and a sphere."""
     mesh = point_cloud(points)
-    hull.convex_hull(mesh)
+    op(mesh)
     validate(mesh)
     assert euler_characteristic(mesh) == 2
+    return mesh
+
+
+def test_convex_hull_of_a_large_mesh_is_valid_closed_and_sorted():
+    points = unit_sphere(3000, 12)
+    mesh = hulled(hull.convex_hull, points)
     assert mesh.counts() == (3000, 3 * 3000 - 6, 2 * 3000 - 4)
     np.testing.assert_array_equal(mesh.positions_view(), points)
     arrays = mesh_arrays(mesh)
@@ -160,11 +167,7 @@ def test_convex_hull_of_a_large_mesh_is_valid_closed_and_sorted():
 
 
 def test_the_dual_of_a_large_hull_is_valid_closed_and_convex():
-    points = unit_sphere(3000, 13)
-    mesh = point_cloud(points)
-    hull.dual_convex_hull(mesh)
-    validate(mesh)
-    assert euler_characteristic(mesh) == 2
+    mesh = hulled(hull.dual_convex_hull, unit_sphere(3000, 13))
     assert mesh.counts() == (2 * 3000 - 4, 3 * 3000 - 6, 3000)
     arrays = mesh_arrays(mesh)
     dual = arrays.positions
