@@ -172,8 +172,9 @@ def convex_hull(mesh: Mesh, *, max_faces: object = None) -> None:
     Vertices that are hull corners or lie on hull edges are kept at their
     positions (in id order); the others are dropped. The mesh is rebuilt (fresh
     ids), its faces in :func:`hull_polygons` order (above 1,000 vertices: sorted
-    by their least vertex, each polygon's triangles in turn). TopMod built the hull incrementally, so which coplanar points it kept,
-    and how it split coplanar faces, depended on the vertex order.
+    by their least vertex, each polygon's triangles in turn). TopMod built the
+    hull incrementally, so which coplanar points it kept, and how it split
+    coplanar faces, depended on the vertex order.
 
     Raises:
         DLFLError: fewer than 4 vertices, a position difference beyond the float
@@ -711,7 +712,7 @@ def _check_closed(polygons: list[list[int]]) -> None:
     """Refuse polygons that are not a closed genus-0 surface with one fan per vertex.
 
     The check of :func:`._hull_faces.check_closed`, in Python: for the few faces
-    of a small hull (a column joint's 28) its numpy passes cost more than this
+    of a small hull (a column joint's two dozen) its numpy passes cost more than this
     loop (+5 % on ``columns``); a large hull's arrays go there.
 
     Raises:
