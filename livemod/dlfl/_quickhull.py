@@ -218,12 +218,12 @@ def _claims(facets: _Facets, offers: np.ndarray, start: np.ndarray, rank: np.nda
     a facet held by a lesser one, or loses one to it, has lost and stops
     growing. The winners, whose regions are whole and apart (two of them
     meeting on a facet would have made one lose), are Luby's independent set,
-    or a larger one (an offer that lost to an offer that lost first keeps its
-    chance). Winners whose regions meet along an edge keep it only where each
+    or a larger one (an offer can win beside a lesser one that lost before it
+    reached their common facets). Winners whose regions meet along an edge keep it only where each
     lies below the other's new triangle on it (a convex edge, as taking one
     after the other would make it); where not, the later one is given back.
     """
-    best, holder = facets.least, facets.holder  # the least rank to reach each facet, whose
+    best, holder = facets.least, facets.holder  # per facet: the least rank to reach it, whose
     lost = np.zeros(len(rank), bool)
     slot = np.empty(facets.n, np.int64)
     held_p, held_f = [], []
