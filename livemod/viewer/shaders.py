@@ -6,10 +6,16 @@ come from ``gl_PrimitiveID`` / ``gl_VertexID``; per-element data (the face of ea
 triangle, selection flags) is read from integer textures with ``texelFetch``.
 """
 
+# Tables are TABLE_WIDTH = 4096 texels wide (or one row of fewer, where the same
+# shift and mask give the same texel): shifts, as integer division and modulo by a
+# width read from the texture are emulated a lane at a time on software GL (they
+# made the face pass several times slower on llvmpipe).
 FETCH = """
+ivec2 table_texel(int i) {
+    return ivec2(i & 4095, i >> 12);
+}
 uint fetch(usampler2D table, int i) {
-    int w = textureSize(table, 0).x;
-    return texelFetch(table, ivec2(i % w, i / w), 0).r;
+    return texelFetch(table, table_texel(i), 0).r;
 }
 """
 
@@ -86,8 +92,7 @@ uniform vec3 edge_color;
 """ + LIT + FETCH + SHADE + """
 vec2 screen_of_vertex(int i) {
     uint v = fetch(triangle_index, i);
-    int w = textureSize(position_table, 0).x;
-    vec3 p = texelFetch(position_table, ivec2(int(v) % w, int(v) / w), 0).xyz;
+    vec3 p = texelFetch(position_table, table_texel(int(v)), 0).xyz;
     vec4 clip = mvp * vec4(p, 1.0);
     return (clip.xy / max(clip.w, 1e-9) * 0.5 + 0.5) * viewport;
 }
