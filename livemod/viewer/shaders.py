@@ -6,14 +6,15 @@ come from ``gl_PrimitiveID`` / ``gl_VertexID``; per-element data (the face of ea
 triangle, selection flags) is read from integer textures with ``texelFetch``.
 """
 
-# Tables are TABLE_WIDTH = 4096 texels wide (or one row of fewer, where the same
+# Tables are 1 << TABLE_SHIFT texels wide (or one row of fewer, where the same
 # shift and mask give the same texel): shifts, as integer division and modulo by a
 # width read from the texture are emulated a lane at a time on software GL (they
 # made the face pass several times slower on llvmpipe).
+TABLE_SHIFT = 12
 FETCH = """
 ivec2 table_texel(int i) {
-    return ivec2(i & 4095, i >> 12);
-}
+    return ivec2(i & %d, i >> %d);
+}""" % ((1 << TABLE_SHIFT) - 1, TABLE_SHIFT) + """
 uint fetch(usampler2D table, int i) {
     return texelFetch(table, table_texel(i), 0).r;
 }

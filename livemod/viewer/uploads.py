@@ -22,11 +22,12 @@ from livemod.dlfl.arrays import MeshArrays
 from livemod.dlfl.patches import Tessellation, mesh_surface
 
 from .geometry import RenderGeometry, crease_shading
+from .shaders import TABLE_SHIFT
 
 if TYPE_CHECKING:
     from livemod.runner.preview import Preview
 
-TABLE_WIDTH = 4096
+TABLE_WIDTH = 1 << TABLE_SHIFT  # (the shaders' fetch depends on it)
 SLICE_BYTES = 4 << 20  # written between two yields of an upload
 _NUMPY_DTYPES = {"u1": np.uint8, "u4": np.uint32, "f4": np.float32}
 
