@@ -1159,3 +1159,36 @@ def test_render_preview_draws_the_patches_of_every_object(tmp_path: Path) -> Non
     for half in (slice(0, SIZE[0] // 2), slice(SIZE[0] // 2, SIZE[0])):  # both objects
         assert _mask(pictures["preview"][:, half]).sum() < \
             0.95 * _mask(pictures["plain"][:, half]).sum()
+
+
+def _grid(columns: int, rows: int):  # noqa: ANN202
+    """A flat ``columns`` x ``rows`` grid of unit quads in the plane z = 0, its
+    faces numbered row by row."""
+    points = [(x, y, 0.0) for y in range(rows + 1) for x in range(columns + 1)]
+    faces = [(y * (columns + 1) + x, y * (columns + 1) + x + 1,
+              (y + 1) * (columns + 1) + x + 1, (y + 1) * (columns + 1) + x)
+             for y in range(rows) for x in range(columns)]
+    return from_polygons(points, faces)
+
+
+def test_faces_past_the_first_row_of_the_tables_are_picked_and_selected(
+        offscreen: Offscreen) -> None:
+    # the face tables are 4096 texels wide: a face numbered above that is read
+    # from a later row, in the pick pass and in the selection's flags alike
+    arrays = mesh_arrays(_grid(100, 50))
+    offscreen.renderer.set_mesh(arrays)
+    camera = framed_camera(arrays, elevation=0.0, yaw=0.0, ortho=True)
+    x, y = SIZE[0] * 8 // 10, SIZE[1] * 3 // 10  # near the top right: the last faces
+    hit = offscreen.renderer.pick(camera, SIZE, x, y, "face")
+    assert hit is not None and hit.dense_index > 4096
+    corners = arrays.corner_vertex[arrays.face_offsets[hit.dense_index]:
+                                   arrays.face_offsets[hit.dense_index + 1]]
+    clip = np.c_[arrays.positions[corners], np.ones(4)] @ camera.view_projection(
+        SIZE[0] / SIZE[1]).T
+    pixels = (clip[:, :2] / clip[:, 3:] + 1) * 0.5 * np.array(SIZE)
+    assert pixels[:, 0].min() - 1 <= x + 0.5 <= pixels[:, 0].max() + 1
+    assert pixels[:, 1].min() - 1 <= SIZE[1] - y - 0.5 <= pixels[:, 1].max() + 1
+    offscreen.renderer.set_selection(Selection(faces=(hit.element_id,)))
+    red, green, blue = offscreen.render(camera, Style(edges=False))[y, x].astype(int)
+    assert green > red and green > blue
+
