@@ -1192,3 +1192,21 @@ def test_faces_past_the_first_row_of_the_tables_are_picked_and_selected(
     red, green, blue = offscreen.render(camera, Style(edges=False))[y, x].astype(int)
     assert green > red and green > blue
 
+
+@pytest.mark.parametrize("style", [Style(faces=False), Style(preview=True)],
+                         ids=["edges alone", "the preview's cage"])
+def test_a_selected_edge_changes_no_other_pixel_of_the_edges(offscreen: Offscreen,
+                                                             style: Style) -> None:
+    # edges with none selected are drawn by a program without flags or ids
+    from livemod.runner.preview import PreviewRequest, make_preview
+
+    arrays = mesh_arrays(cube())
+    offscreen.renderer.set_mesh(arrays, make_preview(PreviewRequest((arrays,))))
+    camera = framed_camera(arrays)
+    plain = offscreen.render(camera, style).astype(int)
+    offscreen.renderer.set_selection(Selection(edges=(int(arrays.edge_ids[0]),)))
+    selected = offscreen.render(camera, style).astype(int)
+    changed = (plain != selected).any(axis=2)
+    assert changed.sum() > 10
+    red, green, blue = selected[changed].T
+    assert ((green > red) & (green > blue)).all()

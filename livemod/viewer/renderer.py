@@ -112,16 +112,28 @@ def read_image(fbo: moderngl.Framebuffer, style: Style) -> np.ndarray:
     return np.frombuffer(raw, dtype=np.uint8).reshape(height, width, channels)[::-1].copy()
 
 
+def _set_uniforms(program: moderngl.Program, **values: object) -> None:
+    """Set ``program``'s uniforms by name; a variant compiled without one's use
+    (see :func:`shaders.variant`) has none, and skips it."""
+    for name, value in values.items():
+        if name in program:
+            program[name].value = value  # type: ignore[union-attr]
+
+
 def _matrix_bytes(matrix: np.ndarray) -> bytes:
     """A row-major numpy ``(4, 4)`` as the column-major float32 GL expects."""
     return np.ascontiguousarray(matrix.T, dtype=np.float32).tobytes()
 
 
 # each program's (vertex, fragment) shader sources
+# (the variants of a program are compiled apart: see shaders.variant)
 PROGRAMS = {
     "face": (shaders.MESH_VERTEX, shaders.FACE_FRAGMENT),
+    "face_wire": (shaders.MESH_VERTEX, shaders.variant(shaders.FACE_FRAGMENT, "WIRE")),
     "surface": (shaders.MESH_VERTEX, shaders.SURFACE_FRAGMENT),
     "edge": (shaders.MESH_VERTEX, shaders.EDGE_FRAGMENT),
+    # the edges of a picture with none selected: their colour only
+    "edge_plain": (shaders.MESH_VERTEX, shaders.variant(shaders.EDGE_FRAGMENT, "PLAIN")),
     "point": (shaders.MESH_VERTEX, shaders.POINT_FRAGMENT),
     "line": (shaders.MESH_VERTEX, shaders.LINE_FRAGMENT),
     "winding": (shaders.MESH_VERTEX, shaders.WINDING_FRAGMENT),  # the section cap's
@@ -367,22 +379,17 @@ class Renderer(DrawnContent):
         count = len(mesh.geometry.triangles) - first if count is None else count
         if count <= 0:
             return
-        program = self.programs["face"]
-        program["primitive_base"].value = first  # type: ignore[union-attr]
-        program["smooth_shading"].value = int(smooth)  # type: ignore[union-attr]
-        program["wire"].value = int(wire)  # type: ignore[union-attr]
-        program["pickable"].value = int(mesh is not self._others)  # type: ignore[union-attr]
-        program["viewport"].value = tuple(float(v) for v in self.ctx.viewport[2:])  # type: ignore[union-attr]
-        program["edge_color"].value = EDGE_COLOR  # type: ignore[union-attr]
+        program = self.programs["face_wire" if wire else "face"]
+        use = own_colors and len(mesh.geometry.face_colors) > 0
+        _set_uniforms(program, primitive_base=first, smooth_shading=int(smooth),
+                      pickable=int(mesh is not self._others),
+                      viewport=tuple(float(v) for v in self.ctx.viewport[2:]),
+                      edge_color=EDGE_COLOR, base_color=color, back_color=BACK_COLOR,
+                      selected_color=SELECTED_COLOR, use_face_colors=int(use))
         mesh.triangle_index.use(4)
         mesh.position_table.use(5)
-        program["base_color"].value = color  # type: ignore[union-attr]
-        program["back_color"].value = BACK_COLOR  # type: ignore[union-attr]
-        program["selected_color"].value = SELECTED_COLOR  # type: ignore[union-attr]
         mesh.triangle_face.use(0)
         mesh.face_flags.use(1)
-        use = own_colors and len(mesh.geometry.face_colors) > 0
-        program["use_face_colors"].value = int(use)  # type: ignore[union-attr]
         mesh.face_colors.use(7)
         # push faces back so edges and points drawn at the same depth win
         self.ctx.polygon_offset = (1.0, 1.0)
@@ -390,7 +397,7 @@ class Renderer(DrawnContent):
             # a closed manifold hides its back faces: skip them (about a third of
             # the frame time on software GL); open meshes show them tinted
             self.ctx.enable(moderngl.CULL_FACE)
-        (mesh.smooth_vao(crease_angle) if smooth else mesh.face_vao).render(
+        (mesh.smooth_vao(crease_angle, wire) if smooth else mesh.face_vaos[wire]).render(
             moderngl.TRIANGLES, vertices=3 * count, first=3 * first)
         self.ctx.polygon_offset = (0.0, 0.0)
         if mesh.geometry.closed and self._section is not None:
@@ -403,21 +410,21 @@ class Renderer(DrawnContent):
         self._cap.draw(mesh, color, current)
 
     def _draw_edges(self, mesh: MeshGPU, selected_only: bool = False, first: int = 0,
-                    count: int | None = None) -> None:
+                    count: int | None = None, picking: bool = False) -> None:
         """Edges ``first .. first + count`` (all by default) of ``mesh``, or its
-        selected ones."""
-        program = self.programs["edge"]
-        program["edge_color"].value = EDGE_COLOR  # type: ignore[union-attr]
-        program["selected_color"].value = SELECTED_COLOR  # type: ignore[union-attr]
-        program["all_selected"].value = int(selected_only)  # type: ignore[union-attr]
-        program["primitive_base"].value = first  # type: ignore[union-attr]
+        selected ones; ``picking``: into the pick target, with their ids."""
+        # with no edge selected, a picture's edges need neither flags nor ids
+        plain = not selected_only and not picking and mesh.selected_lines is None
+        program = self.programs["edge_plain" if plain else "edge"]
+        _set_uniforms(program, edge_color=EDGE_COLOR, selected_color=SELECTED_COLOR,
+                      all_selected=int(selected_only), primitive_base=first)
         mesh.edge_flags.use(2)
         count = len(mesh.geometry.lines) - first if count is None else count
         if selected_only and mesh.selected_lines is not None:
-            program["primitive_base"].value = 0  # type: ignore[union-attr]
+            _set_uniforms(program, primitive_base=0)
             mesh.selected_lines[1].render(moderngl.LINES)
         elif count > 0:
-            mesh.edge_vao.render(moderngl.LINES, vertices=2 * count, first=2 * first)
+            mesh.edge_vaos[plain].render(moderngl.LINES, vertices=2 * count, first=2 * first)
 
     def _draw_points(self, mesh: MeshGPU, size: float, only_selected: bool = False,
                      point_spheres: bool = False) -> None:
@@ -489,6 +496,6 @@ class Renderer(DrawnContent):
                 self._draw_faces(self._others, OTHER_COLOR)
             self._draw_faces(self._mesh, BASE_COLOR)
             if kind == "edge":
-                self._draw_edges(self._mesh)
+                self._draw_edges(self._mesh, picking=True)
             elif kind == "vertex":
                 self._draw_points(self._mesh, 9.0)

@@ -23,7 +23,7 @@ from .uploads import MeshGPU, SurfaceGPU
 
 GL_CLIP_DISTANCE0 = 0x3000  # moderngl has no name for it: enable_direct takes the GL enum
 NO_CUT = (0.0, 0.0, 0.0, 1.0)  # a clip plane every point is in front of
-CLIPPED_PROGRAMS = ("face", "edge", "point", "line", "winding", "cap")
+CLIPPED_PROGRAMS = ("face", "face_wire", "edge", "edge_plain", "point", "line", "winding", "cap")
 
 
 def hatch_spacing(pixel_size: float, facing: float, pixels: float = 8.0) -> float:

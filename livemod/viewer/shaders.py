@@ -3,7 +3,9 @@
 Faces, edges and points write two outputs: the colour, and at location 1 a pick id
 (kind << 28 | dense index + 1, see :mod:`livemod.viewer.geometry`). Element indices
 come from ``gl_PrimitiveID`` / ``gl_VertexID``; per-element data (the face of each
-triangle, selection flags) is read from integer textures with ``texelFetch``.
+triangle, selection flags) is read from integer textures with ``texelFetch``. A
+pass that leaves a part out (the face pass without its wire, the edges with none
+selected) uses a variant of its source compiled without that part (:func:`variant`).
 """
 
 # Tables are 1 << TABLE_SHIFT texels wide (or one row of fewer, where the same
@@ -11,14 +13,24 @@ triangle, selection flags) is read from integer textures with ``texelFetch``.
 # width read from the texture are emulated a lane at a time on software GL (they
 # made the face pass several times slower on llvmpipe).
 TABLE_SHIFT = 12
-FETCH = """
-ivec2 table_texel(int i) {
-    return ivec2(i & %d, i >> %d);
-}""" % ((1 << TABLE_SHIFT) - 1, TABLE_SHIFT) + """
+FETCH = f"""
+ivec2 table_texel(int i) {{
+    return ivec2(i & {(1 << TABLE_SHIFT) - 1}, i >> {TABLE_SHIFT});
+}}""" + """
 uint fetch(usampler2D table, int i) {
     return texelFetch(table, table_texel(i), 0).r;
 }
 """
+
+
+def variant(source: str, *defines: str) -> str:
+    """``source`` with ``#define NAME 1`` for each of ``defines`` after its
+    ``#version`` line. Software GL runs both sides of a branch on a uniform (a
+    lane mask, not a jump), so a pass that never takes a side is compiled
+    without it."""
+    version, rest = source.lstrip().split("\n", 1)
+    return "\n".join([version, *(f"#define {name} 1" for name in defines), rest])
+
 
 # what a lit surface's fragment shader takes and gives
 LIT = """
@@ -84,7 +96,6 @@ uniform usampler2D face_colors;  // RGBA8 packed per face, alpha 0: no colour of
 uniform int use_face_colors;  // 1: draw the faces' own colours (the colour mode)
 uniform mat4 mvp;
 uniform vec2 viewport;
-uniform int wire;
 uniform int pickable;  // 0: the scene's other objects, which hide but are not picked
 uniform int smooth_shading;  // 1: interpolated vertex normals instead of the face's
 uniform int primitive_base;  // the first triangle drawn (a frame may draw a range)
@@ -102,6 +113,7 @@ float segment_distance(vec2 p, vec2 a, vec2 b) {
     float t = clamp(dot(p - a, ab) / max(dot(ab, ab), 1e-12), 0.0, 1.0);
     return length(p - a - t * ab);
 }
+#ifdef WIRE
 float wire_coverage(uint sides) {
     // distance in pixels to the triangle's real sides (fan diagonals are skipped)
     int primitive = primitive_base + gl_PrimitiveID;
@@ -114,6 +126,7 @@ float wire_coverage(uint sides) {
     if ((sides & 4u) != 0u) d = min(d, segment_distance(gl_FragCoord.xy, s2, s0));
     return 1.0 - smoothstep(0.35, 0.95, d);
 }
+#endif
 void main() {
     int primitive = primitive_base + gl_PrimitiveID;
     uint entry = fetch(triangle_face, primitive);
@@ -129,7 +142,9 @@ void main() {
     }
     vec3 base = selected ? selected_color : (gl_FrontFacing ? front : back_color);
     vec3 rgb = shade(n, base);
-    if (wire != 0) rgb = mix(rgb, edge_color, wire_coverage(entry >> 29));
+#ifdef WIRE
+    rgb = mix(rgb, edge_color, wire_coverage(entry >> 29));
+#endif
     color = vec4(rgb, 1.0);
     pick = pickable != 0 ? (1u << 28) | (face + 1u) : 0u;
 }
@@ -227,10 +242,15 @@ layout(location = 0) out vec4 color;
 layout(location = 1) out uint pick;
 """ + FETCH + """
 void main() {
+#ifdef PLAIN
+    color = vec4(edge_color, 1.0);
+    pick = 0u;
+#else
     int primitive = primitive_base + gl_PrimitiveID;
     bool selected = all_selected != 0 || fetch(edge_flags, primitive) != 0u;
     color = vec4(selected ? selected_color : edge_color, 1.0);
     pick = (2u << 28) | uint(primitive + 1);
+#endif
 }
 """
 

@@ -112,16 +112,22 @@ class MeshGPU:
             _texture(objects, name) for name in ("face_flags", "edge_flags", "vertex_flags",
                                                  "face_colors"))
         content = [(self.positions, "3f", "in_position")]
-        self.face_vao = ctx.vertex_array(programs["face"], content, self.triangles, 4)
+        # by wire (the face pass) and by plain (the edges' colour only): see Renderer
+        self.face_vaos = {wire: ctx.vertex_array(programs["face_wire" if wire else "face"],
+                                                 content, self.triangles, 4)
+                          for wire in (False, True)}
         self.winding_vao = ctx.vertex_array(programs["winding"], content, self.triangles, 4)
-        self.edge_vao = ctx.vertex_array(programs["edge"], content, self.lines, 4)
+        self.edge_vaos = {plain: ctx.vertex_array(programs["edge_plain" if plain else "edge"],
+                                                  content, self.lines, 4)
+                          for plain in (False, True)}
         self.point_vao = ctx.vertex_array(programs["point"], content)
         self.sphere_vao = ctx.vertex_array(programs["point"], content, self.spheres, 4)
         self.ctx, self.edge_program = ctx, programs["edge"]
-        self.face_program = programs["face"]
+        self.face_programs = {False: programs["face"], True: programs["face_wire"]}
         self.selected_lines: tuple[moderngl.Buffer, moderngl.VertexArray] | None = None
-        # the smooth face pass: (crease angle, its buffers, its vertex array)
-        self.smooth: tuple[float, list[moderngl.Buffer], moderngl.VertexArray] | None = None
+        # the smooth face pass: (crease angle, its buffers, its vertex arrays by wire)
+        self.smooth: tuple[float, list[moderngl.Buffer],
+                           dict[bool, moderngl.VertexArray]] | None = None
 
     @classmethod
     def steps(cls, ctx: moderngl.Context, programs: dict[str, moderngl.Program],
@@ -149,12 +155,13 @@ class MeshGPU:
         """Upload ``geometry`` at once."""
         return finished(cls.steps(ctx, programs, geometry, []))
 
-    def smooth_vao(self, crease_angle: float) -> moderngl.VertexArray:
-        """The face pass with smooth normals creased at ``crease_angle`` degrees
-        (:func:`~.geometry.crease_shading`), made on first use and kept for that
-        angle; the geometry's own when it came prepared with it."""
+    def smooth_vao(self, crease_angle: float, wire: bool = False) -> moderngl.VertexArray:
+        """The face pass (with the ``wire`` or not) with smooth normals creased at
+        ``crease_angle`` degrees (:func:`~.geometry.crease_shading`), made on first
+        use and kept for that angle; the geometry's own when it came prepared
+        with it."""
         if self.smooth is not None and self.smooth[0] == crease_angle:
-            return self.smooth[2]
+            return self.smooth[2][wire]
         self._release_smooth()
         shading = self.geometry.smooth
         if shading is None or self.geometry.crease_angle != crease_angle:
@@ -163,11 +170,11 @@ class MeshGPU:
         made: list[GLObject] = []
         buffers = [finished(buffer_steps(self.ctx, data, made))
                    for data in (shading.positions, shading.normals, shading.triangles)]
-        vao = self.ctx.vertex_array(
-            self.face_program, [(buffers[0], "3f", "in_position"),
-                                (buffers[1], "3f", "in_normal")], buffers[2], 4)
-        self.smooth = (crease_angle, buffers, vao)
-        return vao
+        vaos = {key: self.ctx.vertex_array(
+            program, [(buffers[0], "3f", "in_position"), (buffers[1], "3f", "in_normal")],
+            buffers[2], 4) for key, program in self.face_programs.items()}
+        self.smooth = (crease_angle, buffers, vaos)
+        return vaos[wire]
 
     def set_flags(self, face: np.ndarray, edge: np.ndarray, vertex: np.ndarray) -> None:
         """Replace the selection flags; each ``(n,)`` uint8 in dense order."""
@@ -192,7 +199,8 @@ class MeshGPU:
 
     def _release_smooth(self) -> None:
         if self.smooth is not None:
-            self.smooth[2].release()
+            for vao in self.smooth[2].values():
+                vao.release()
             for buffer in self.smooth[1]:
                 buffer.release()
             self.smooth = None
@@ -201,11 +209,12 @@ class MeshGPU:
         """Free every GL object of this mesh."""
         self._release_selected_lines()
         self._release_smooth()
-        for obj in (self.face_vao, self.winding_vao, self.edge_vao, self.point_vao,
-                    self.sphere_vao, self.spheres, self.positions,
-                    self.triangles, self.lines, self.triangle_face, self.face_flags,
-                    self.edge_flags, self.vertex_flags, self.triangle_index,
-                    self.position_table, self.face_colors):
+        objects: list[GLObject] = [*self.face_vaos.values(), *self.edge_vaos.values()]
+        objects += [self.winding_vao, self.point_vao, self.sphere_vao, self.spheres,
+                    self.positions, self.triangles, self.lines, self.triangle_face,
+                    self.face_flags, self.edge_flags, self.vertex_flags, self.triangle_index,
+                    self.position_table, self.face_colors]
+        for obj in objects:
             obj.release()
 
 
