@@ -1210,3 +1210,16 @@ def test_a_selected_edge_changes_no_other_pixel_of_the_edges(offscreen: Offscree
     assert changed.sum() > 10
     red, green, blue = selected[changed].T
     assert ((green > red) & (green > blue)).all()
+
+
+def test_a_section_cuts_the_preview_and_caps_it(offscreen: Offscreen) -> None:
+    from livemod.runner.preview import PreviewRequest, make_preview
+    from livemod.viewer.renderer import PREVIEW_COLOR
+
+    arrays = mesh_arrays(from_polygons(CUBE_POSITIONS, CUBE_FACES))
+    offscreen.renderer.set_mesh(arrays, make_preview(PreviewRequest((arrays,))))
+    camera = framed_camera(arrays, elevation=0.0, yaw=0.0, ortho=True)
+    cut = offscreen.render(camera, Style(preview=True, edges=False, section=(2, 0.0)))
+    middle = (SIZE[1] // 2, SIZE[0] // 2)
+    _assert_hatched_cap(cut[middle[0] - 8:middle[0] + 8, middle[1] - 8:middle[1] + 8],
+                        PREVIEW_COLOR)

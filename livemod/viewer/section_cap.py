@@ -23,7 +23,6 @@ from .uploads import MeshGPU, SurfaceGPU
 
 GL_CLIP_DISTANCE0 = 0x3000  # moderngl has no name for it: enable_direct takes the GL enum
 NO_CUT = (0.0, 0.0, 0.0, 1.0)  # a clip plane every point is in front of
-CLIPPED_PROGRAMS = ("face", "face_wire", "edge", "edge_plain", "point", "line", "winding", "cap")
 
 
 def hatch_spacing(pixel_size: float, facing: float, pixels: float = 8.0) -> float:
@@ -50,13 +49,13 @@ class SectionCap:
 
     Args:
         ctx: the GL context.
-        programs: the renderer's programs by name; those of ``CLIPPED_PROGRAMS``
-            take the clip plane, "cap" draws the cap.
+        programs: the renderer's programs by name; each with a ``clip_plane``
+            uniform takes the clip plane, "cap" draws the cap.
     """
 
     def __init__(self, ctx: moderngl.Context, programs: Mapping[str, moderngl.Program]) -> None:
         self.ctx = ctx
-        self.clipped = [programs[name] for name in CLIPPED_PROGRAMS]
+        self.clipped = [program for program in programs.values() if "clip_plane" in program]
         self.program = programs["cap"]
         self.vao = ctx.vertex_array(self.program, [])  # three vertices the shader places
         self.winding: tuple[moderngl.Framebuffer, moderngl.Texture] | None = None
