@@ -18,8 +18,10 @@ older tree too, given by PYTHONPATH, for figures side by side):
 4. The first frame with the smooth preview of a 10,000- and a 99,856-face torus,
    from the result's arrays (targets 0.3 s and 2 s).
 5. Frame times with the preview of the 99,856-face torus on screen, the view
-   turning, drawn by the renderer (MSAA 0 and 4), and in the live window, idle
-   and turning (target: median 50 ms).
+   turning, drawn by the renderer (MSAA 0 and 4; whole, and as the window's
+   quick pictures while the view moves: no edges, no multisampling), and in the
+   live window, idle and turning (quick pictures, and every picture whole)
+   (target: median 50 ms).
 6. Save -> first whole frame of a 1,000,000-face result in the live window, face
    labels on, and the longest frame meanwhile (targets 1.0 s and 100 ms).
 7. The patches evaluated by numpy against GL 4.5 tessellation shaders on llvmpipe
@@ -186,9 +188,19 @@ def bench_preview_first_frame(size: int, runs: int, samples: int) -> None:
           f"wall {_median(walls)}; CPU {_median(cpus)}")
 
 
-def bench_preview_frames(size: int, frames: int, samples: int) -> None:
+def _quick_pictures() -> bool:
+    """This tree's window draws quick pictures while the view moves."""
+    import livemod.viewer.renderer as renderer
+
+    return hasattr(renderer, "QUICK_PRIMITIVES")
+
+
+def bench_preview_frames(size: int, frames: int, samples: int, quick: bool = False) -> None:
     """Frame time at 1280x800 while the preview of the mesh is on screen and the view
-    turns (every frame drawn whole; an unchanging view is a kept frame, copied)."""
+    turns (every frame drawn whole, or ``quick`` as the window draws it while the
+    view moves; an unchanging view is a kept frame, copied)."""
+    if quick and not _quick_pictures():
+        return
     arrays = mesh_arrays(torus(size, size))
     offscreen = Offscreen(PREVIEW_SIZE, samples=samples)
     made = _make_preview(arrays)
@@ -197,24 +209,29 @@ def bench_preview_frames(size: int, frames: int, samples: int) -> None:
     style = Style(preview=True)
     offscreen.renderer.draw(offscreen.target, camera, style)
     walls, cpus = [], []
+    drawn = {"quick": True} if quick else {}
     for _ in range(frames):
         camera.yaw += 2.0
         start, cpu = time.perf_counter(), time.process_time()
-        offscreen.renderer.draw(offscreen.target, camera, style)
+        offscreen.renderer.draw(offscreen.target, camera, style, **drawn)
         offscreen.ctx.finish()
         walls.append(time.perf_counter() - start)
         cpus.append(time.process_time() - cpu)
     offscreen.release()
     triangles = len(getattr(made, "surface", None).triangles) if _has_patches() \
         else 2 * made.counts[2]
+    how = "quick pictures" if quick else "every picture whole"
     print(f"preview frames, {size * size:,} faces ({triangles:,} triangles), MSAA {samples}, "
-          f"turning: wall {_median(walls)}; CPU {_median(cpus)}")
+          f"turning, {how}: wall {_median(walls)}; CPU {_median(cpus)}")
 
 
 def bench_window_preview_frames(rings: int, samples: int) -> None:
     """Frame times of the live window (headless, 1280x800) with the preview of a
     torus of ``rings`` x ``rings`` faces on screen: idle (the picture unchanged:
-    the kept frame) and while the view turns (drawn every frame), paced at 60 Hz."""
+    the kept frame) and while the view turns (drawn every frame: as the window
+    draws it, quick pictures while the view moves, and every picture whole),
+    paced at 60 Hz."""
+    import livemod.viewer.renderer as renderer
     from livemod.viewer.window import ViewOptions, close_viewer, create_viewer, run_frames
 
     with tempfile.TemporaryDirectory() as folder:
@@ -230,12 +247,16 @@ def bench_window_preview_frames(rings: int, samples: int) -> None:
             _frames_until(viewer, lambda: viewer.renderer.preview is not None
                           and not getattr(viewer.renderer, "uploading", False), run_frames)
             run_frames(viewer, 3)
-            idle = _paced_frames(viewer, run_frames, 60, lambda: None)
-            turning = _paced_frames(viewer, run_frames, 15,
-                                    lambda: viewer.camera.orbit(2.0, 0.0))
+            figures = {"idle": _paced_frames(viewer, run_frames, 60, lambda: None)}
+            if _quick_pictures():
+                figures["turning, quick pictures"] = _paced_frames(
+                    viewer, run_frames, 15, lambda: viewer.camera.orbit(2.0, 0.0))
+                renderer.QUICK_PRIMITIVES = float("inf")  # type: ignore[attr-defined]
+            figures["turning, every picture whole"] = _paced_frames(
+                viewer, run_frames, 15, lambda: viewer.camera.orbit(2.0, 0.0))
         finally:
             close_viewer(viewer)
-    for name, (walls, cpus) in (("idle", idle), ("turning", turning)):
+    for name, (walls, cpus) in figures.items():
         print(f"window frames, {rings * rings:,}-face preview on screen, MSAA {samples}, "
               f"{name}: median {statistics.median(walls) * 1000:.1f} ms "
               f"(CPU {statistics.median(cpus) * 1000:.1f} ms), "
@@ -443,8 +464,9 @@ def main(argv: list[str] | None = None) -> int:
     if args.preview:
         bench_preview_first_frame(100, 3, 0)
         bench_preview_first_frame(316, 3, 0)
-        bench_preview_frames(316, 9, 0)
-        bench_preview_frames(316, 9, 4)
+        for samples in (0, 4):
+            bench_preview_frames(316, 9, samples)
+            bench_preview_frames(316, 9, samples, quick=True)
         bench_window_preview_frames(316, 4)
         bench_gpu_tessellation(100, 3, 5)
         bench_gpu_tessellation(316, 1, 3)

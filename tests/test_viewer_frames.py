@@ -110,3 +110,55 @@ def test_the_frame_rate_counts_only_frames_drawn(viewer: LiveViewer) -> None:
         run_frames(viewer, 1)
     run_frames(viewer, 1)  # (a drawn frame's time ends where the next turn starts)
     assert len(viewer.frames.frame_times) == counted + 5
+
+
+def test_the_view_moves_until_its_pose_rests_for_rest_seconds() -> None:
+    from livemod.viewer.frames import REST_SECONDS, ViewMotion
+
+    now = [10.0]
+    motion = ViewMotion(lambda: now[0])
+    assert not motion.moving("a")  # the view a window opens on is at rest
+    assert not motion.moving("a")
+    now[0] += 0.01
+    assert motion.moving("b")
+    now[0] += REST_SECONDS * 0.9  # unchanged, but not for long enough yet
+    assert motion.moving("b")
+    now[0] += REST_SECONDS * 0.2
+    assert not motion.moving("b")
+    assert motion.moving("c")
+
+
+def test_a_moving_view_of_a_big_scene_is_drawn_quick_then_whole(
+        viewer: LiveViewer, monkeypatch: pytest.MonkeyPatch) -> None:
+    import livemod.viewer.renderer as renderer
+    from livemod.viewer.frames import REST_SECONDS, ViewMotion
+    from livemod.viewer.hud import QUICK_LINE, hud_lines
+
+    monkeypatch.setattr(renderer, "QUICK_PRIMITIVES", 0)  # the cube counts as big
+    now = [0.0]
+    viewer.motion = ViewMotion(lambda: now[0])
+    run_frames(viewer, 2)
+    assert not viewer.view_state().quick
+    drawn = _count_draws(viewer)
+    viewer.camera.orbit(20.0, 0.0)
+    run_frames(viewer, 1)
+    state = viewer.view_state()
+    assert state.quick and QUICK_LINE in [line for line, _ in hud_lines(state)]
+    assert drawn[0] == 1 and viewer.frames.direct is not None  # on the screen, no copy
+    quick = _screen(viewer).copy()
+    run_frames(viewer, 3)  # the view rests, not yet for long: not drawn again
+    assert drawn[0] == 1 and np.array_equal(_screen(viewer), quick)
+    now[0] += REST_SECONDS
+    run_frames(viewer, 1)  # at rest: the whole picture, edges and all
+    assert drawn[0] == 2 and not viewer.view_state().quick
+    assert viewer.frames.direct is None and viewer.frames.kept is not None
+    whole = _screen(viewer)
+    edges = np.all(whole < 40, axis=2) & ~np.all(quick < 40, axis=2)  # the wire's dark
+    assert edges.sum() > 20
+
+
+def test_a_small_scene_is_drawn_whole_while_the_view_moves(viewer: LiveViewer) -> None:
+    run_frames(viewer, 2)
+    viewer.camera.orbit(20.0, 0.0)
+    run_frames(viewer, 1)
+    assert not viewer.view_state().quick and viewer.frames.direct is None

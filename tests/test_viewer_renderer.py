@@ -1223,3 +1223,30 @@ def test_a_section_cuts_the_preview_and_caps_it(offscreen: Offscreen) -> None:
     middle = (SIZE[1] // 2, SIZE[0] // 2)
     _assert_hatched_cap(cut[middle[0] - 8:middle[0] + 8, middle[1] - 8:middle[1] + 8],
                         PREVIEW_COLOR)
+
+
+def test_the_quick_picture_of_a_big_scene_leaves_its_edges_out(
+        offscreen: Offscreen, monkeypatch: pytest.MonkeyPatch) -> None:
+    import livemod.viewer.renderer as renderer
+
+    arrays = mesh_arrays(cube())
+    offscreen.renderer.set_mesh(arrays)
+    camera = framed_camera(arrays)
+    whole = offscreen.render(camera, Style())
+    assert offscreen.renderer.quick_style(Style()) is None  # 12 triangles: drawn whole
+    monkeypatch.setattr(renderer, "QUICK_PRIMITIVES", 10)
+    assert offscreen.renderer.quick_style(Style()) == Style(edges=False)
+    assert offscreen.renderer.quick_style(Style(edges=False)) is None  # nothing to leave
+    assert offscreen.renderer.quick_style(Style(faces=False)) is None  # out, or no faces
+    offscreen.activate()
+    offscreen.renderer.draw(offscreen.target, camera, Style(), quick=True)
+    quick = read_image_of(offscreen)
+    assert np.array_equal(quick, offscreen.render(camera, Style(edges=False)))
+    assert not np.array_equal(quick, whole)
+
+
+def read_image_of(offscreen: Offscreen) -> np.ndarray:
+    """The picture in ``offscreen``'s target (no MSAA here: it is the resolved one)."""
+    from livemod.viewer.renderer import read_image
+
+    return read_image(offscreen.target, Style())

@@ -4,7 +4,8 @@ A frame that would look like the last one is not drawn again: :class:`Frames`
 keeps the last frame in a framebuffer of its own with the key it was drawn at,
 and copies it to the screen; an unchanged picture is not even copied but every
 :data:`REPRESENT` seconds, so that an idle window costs almost nothing. The frame
-rate counts the frames drawn only.
+rate counts the frames drawn only. :class:`ViewMotion` tells a moving view from
+one at rest, for the quick pictures of a big scene while it moves.
 """
 
 from __future__ import annotations
@@ -20,6 +21,31 @@ from .renderer import release_framebuffer
 # was covered)
 REPRESENT = 0.5
 FPS_EVERY = 0.5  # seconds between updates of the frame rate shown
+# the view counts as moving this long after its pose last changed (mouse events
+# do not come every frame: a drag must not flicker between quick and whole pictures)
+REST_SECONDS = 0.25
+
+
+class ViewMotion:
+    """Whether the view moves: its pose changed less than :data:`REST_SECONDS` ago.
+
+    Args:
+        clock: seconds, monotonic (for tests).
+    """
+
+    def __init__(self, clock: Callable[[], float] = time.perf_counter) -> None:
+        self._clock = clock
+        self._pose: object = None
+        self._changed_at = -float("inf")
+
+    def moving(self, pose: object) -> bool:
+        """Give the view's ``pose`` this frame; True while it moves. The first pose
+        given is the view at rest (a window opens on a still view)."""
+        now = self._clock()
+        if self._pose is not None and pose != self._pose:
+            self._changed_at = now
+        self._pose = pose
+        return now - self._changed_at < REST_SECONDS
 
 
 class Frames:
@@ -36,6 +62,8 @@ class Frames:
         presented: the last turn put a picture on the screen (else the loop need
             not swap).
         presented_at: when a picture was last put on the screen.
+        direct: the key of the picture drawn straight on the screen last (see
+            :meth:`present`'s ``keep``), or None.
         frame_times: seconds of the last turns that drew a frame.
         fps: the frame rate shown.
     """
@@ -46,6 +74,7 @@ class Frames:
         self.keep_frames = True
         self.presented = True
         self.presented_at = 0.0
+        self.direct: object = None
         self.frame_times: deque[float] = deque(maxlen=120)
         self.fps = 0.0
         self._fps_at = 0.0
@@ -66,14 +95,20 @@ class Frames:
             self._fps_at = now
 
     def present(self, screen: Any, size: tuple[int, int], key: object,
-                draw: Callable[[Any], None], idle_ok: bool) -> None:
+                draw: Callable[[Any], None], idle_ok: bool, keep: bool = True) -> None:
         """Put the frame of ``key`` on ``screen`` (of ``size`` pixels: not
         ``screen.size``, which moderngl keeps at the size the window opened
         with): copied from the kept frame, drawn
         into it first (``draw(framebuffer)``) when the key changed, or drawn
         straight on the screen when copies fail. With ``idle_ok`` an unchanged
         picture is not copied at all but every :data:`REPRESENT` s (other backends
-        take their input events while swapping: they swap every frame)."""
+        take their input events while swapping: they swap every frame). Without
+        ``keep`` (a quick picture of a moving view, which the next frame replaces)
+        the frame is drawn straight on the screen: the copy is saved."""
+        if not keep and self.keep_frames:
+            self._present_direct(screen, key, draw, idle_ok)
+            return
+        self.direct = None
         if not self.keep_frames:
             self._draw(draw, screen)
             self.presented = True
@@ -87,6 +122,19 @@ class Frames:
         target, fresh = (kept[1], False) if not changed and kept is not None \
             else self._redraw(screen, size, key, draw)
         self._copy(screen, target, fresh, draw)
+
+    def _present_direct(self, screen: Any, key: object, draw: Callable[[Any], None],
+                        idle_ok: bool) -> None:
+        """Draw the frame of ``key`` straight on ``screen``, unless it is the one
+        drawn there last and the screen need not be shown again yet."""
+        now = time.perf_counter()
+        self.presented = self.direct != key or not idle_ok or now - self.presented_at > REPRESENT
+        if not self.presented:
+            return
+        self.presented_at, self.direct = now, key
+        if self.kept is not None:
+            self.kept = (None, self.kept[1])  # (drawn over: the kept frame is not on screen)
+        self._draw(draw, screen)
 
     def _redraw(self, screen: Any, size: tuple[int, int], key: object,
                 draw: Callable[[Any], None]) -> tuple[Any, bool]:

@@ -35,6 +35,9 @@ from .text import (
 )
 from .view_state import ViewState
 
+# while a big scene's view moves (ViewState.quick)
+QUICK_LINE = "view moving: edges and MSAA off until it rests"
+
 
 def run_state(result: Any, waiting: bool, working: float | None = None) -> str:
     """``running... 1.5 s`` while a run works (``working`` its seconds so far),
@@ -78,6 +81,8 @@ def hud_lines(state: ViewState) -> list[tuple[str, int]]:
     lines.append((_mode_line(state), LABEL_DIM))
     if state.preview:
         lines.append((state.preview, LABEL_DIM))
+    if state.quick:
+        lines.append((QUICK_LINE, LABEL_DIM))
     lines += [(line, LABEL_DIM) for line in state.selection[:4]]
     lines += [(line, WARN_TEXT) for line in state.missing]
     lines += [(line, TEXT) for line in state.measures[:4]]

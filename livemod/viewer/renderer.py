@@ -14,7 +14,7 @@ be called on the thread that owns ``ctx``.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import moderngl
 import numpy as np
@@ -39,6 +39,9 @@ from .text_pass import TextPass
 from .uploads import MeshGPU, SurfaceGPU
 
 CACHED_PRIMITIVES = 100_000  # a bigger scene is kept whole between frames (see draw)
+# a bigger picture is drawn quick while the view moves (see Renderer.quick_style)
+QUICK_PRIMITIVES = 100_000
+GL_MULTISAMPLE = 0x809D  # (moderngl has no name for it)
 LABEL_KINDS = ("faces", "edges", "vertices")
 
 BASE_COLOR = (1.0, 0.59, 0.36)      # TopMod's render colour (255, 151, 92)
@@ -206,7 +209,8 @@ class Renderer(DrawnContent):
     # -- drawing ---------------------------------------------------------------
 
     def draw(self, fbo: moderngl.Framebuffer, camera: Camera, style: Style,
-             size: tuple[int, int] | None = None, budget: int | None = None) -> bool:
+             size: tuple[int, int] | None = None, budget: int | None = None,
+             quick: bool = False) -> bool:
         """Clear ``fbo`` and draw the scene seen by ``camera`` in ``style``, over
         ``size`` pixels (default ``fbo.size``; a window's screen framebuffer keeps its
         first size after a resize, so the window says the size).
@@ -221,8 +225,38 @@ class Renderer(DrawnContent):
         never finish. With a budget too, a scene of more than ``CACHED_PRIMITIVES``
         seen again from the view of the last picture is kept whole in that target
         (see :class:`~.slices.SlicedFrames`): drawn again unchanged (only the
-        window's HUD changed, say), it is copied instead of drawn."""
+        window's HUD changed, say), it is copied instead of drawn.
+
+        With ``quick`` (the window's view moves), a big picture is drawn as
+        :meth:`quick_style` says, and without multisampling."""
         width, height = size or fbo.size
+        fast = self.quick_style(style) if quick else None
+        if fast is not None:
+            self.ctx.disable_direct(GL_MULTISAMPLE)
+            try:
+                return self._draw(fbo, camera, fast, (width, height), budget, quick=True)
+            finally:
+                self.ctx.enable_direct(GL_MULTISAMPLE)
+        return self._draw(fbo, camera, style, (width, height), budget, quick=False)
+
+    def quick_style(self, style: Style) -> Style | None:
+        """The style of the quick picture of what ``style`` draws, for a view that
+        moves (adaptive quality, as CAD programs draw big models while they turn):
+        without its edges (the preview's cage, the wire over the faces), when the
+        picture holds more than ``QUICK_PRIMITIVES`` primitives and shows faces or
+        the preview without them. None: the picture is drawn whole. On software
+        GL the edges of a 100,000-face preview cost more than its surface, and
+        multisampling triples both."""
+        if not style.edges or not (style.faces or (style.preview and self._preview is not None)):
+            return None
+        if sum(count for count, _ in self._passes(style)) <= QUICK_PRIMITIVES:
+            return None
+        return replace(style, edges=False)
+
+    def _draw(self, fbo: moderngl.Framebuffer, camera: Camera, style: Style,
+              size: tuple[int, int], budget: int | None, quick: bool) -> bool:
+        """:meth:`draw`, of ``style`` (quick: the quick picture's)."""
+        width, height = size
         self.ctx.viewport = (0, 0, width, height)
         if self._mesh is None and self._others is None:
             fbo.use()
@@ -233,7 +267,7 @@ class Renderer(DrawnContent):
         self._section = style.section  # (before the view: the cap's hatch depends on it)
         self._set_view(camera, (width, height))
         # the camera's pose, not its matrices: its clip planes follow the content's reach
-        view_key = (camera.pose(), style, (width, height))
+        view_key = (camera.pose(), style, (width, height), quick)
         frame = Frame((self.version, view_key), (width, height), self._passes(style),
                       style.background, sliceable=style.section is None,
                       begin=lambda: self._begin_scene(style),

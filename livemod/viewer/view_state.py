@@ -61,6 +61,9 @@ class ViewState:
         current_hidden: the current object is not drawn.
         style: what the renderer draws.
         preview: the HUD's line about the smoothed preview ("" when it is not drawn).
+        quick: the view moves and the picture is big: it is drawn quick, without
+            its edges and multisampling, until the view rests (see
+            :meth:`~.renderer.Renderer.quick_style`).
         ortho: the camera is orthographic.
         playback: the session's playback state: running, playing, paused, finished.
         rate: the play rate in steps a second.
@@ -95,6 +98,7 @@ class ViewState:
     current_hidden: bool = False
     style: Style = field(default_factory=Style)
     preview: str = ""
+    quick: bool = False
     ortho: bool = False
     playback: PlaybackState = PlaybackState.FINISHED
     rate: float = 2.0

@@ -39,7 +39,7 @@ from .actions import check_bindings, window_actions
 from .camera import Camera
 from .controls import action_for
 from .display import MeshDisplay
-from .frames import Frames
+from .frames import Frames, ViewMotion
 from .imagefiles import save_new_png
 from .look import Look
 from .measure import WholeMeshMeasurer
@@ -161,6 +161,8 @@ class LiveViewer(mglw.WindowConfig):
         self.renderer = Renderer(self.ctx)
         self.camera = Camera()
         self.frames = Frames(self.ctx)
+        self.motion = ViewMotion()
+        self._quick = False  # this frame draws the quick picture (see on_render)
         self.whole = WholeMeshMeasurer()  # genus and volume of the mesh shown, off-thread
         self.session: Session | None = None
         self._compose()
@@ -297,6 +299,9 @@ class LiveViewer(mglw.WindowConfig):
         self.smoothing.update()
         self.stepping.repeat_held()
         self.runs.poll(self._live_session())
+        # a big picture is drawn quick while the view moves, whole once it rests
+        self._quick = self.motion.moving(self.camera.pose()) and \
+            self.renderer.quick_style(self.look.style) is not None
         state = self.view_state()
         screen = self.wnd.fbo
         overlay = state.without_fps() if state.hud or state.help else None
@@ -305,7 +310,7 @@ class LiveViewer(mglw.WindowConfig):
         key = (self.renderer.version, self.camera.pose(), state.style, overlay, state.size,
                screen.samples, self._slices)
         self.frames.present(screen, state.size, key, partial(self._draw_frame, state=state),
-                            idle_ok=self.wnd.name in ("glfw", "headless"))
+                            idle_ok=self.wnd.name in ("glfw", "headless"), keep=not state.quick)
 
     def view_state(self) -> ViewState:
         """What the overlay shows now (the panels laid out for the window's size)."""
@@ -325,7 +330,7 @@ class LiveViewer(mglw.WindowConfig):
             selection=tuple(selection), missing=tuple(missing),
             measures=tuple(self.picking.measures), others=self.renderer.others,
             others_note=self.objects.note(), current_hidden=not self.look.style.current,
-            style=self.look.style, preview=self.smoothing.hud_line(),
+            style=self.look.style, preview=self.smoothing.hud_line(), quick=self._quick,
             ortho=self.camera.ortho, playback=playback.state,
             rate=playback.rate, hud=self.look.show_hud, help=self.look.show_help,
             panels=self.overlay.state(), size=size, bottom=self.overlay.error_room(size))
@@ -333,7 +338,8 @@ class LiveViewer(mglw.WindowConfig):
     def _draw_frame(self, fbo: Any, state: ViewState) -> None:
         """Draw the scene and the overlay of ``state`` into ``fbo`` (the screen or
         the kept frame, both of the state's size)."""
-        self.renderer.draw(fbo, self.camera, state.style, state.size, budget=FRAME_PRIMITIVES)
+        self.renderer.draw(fbo, self.camera, state.style, state.size, budget=FRAME_PRIMITIVES,
+                           quick=state.quick)
         if state.hud or state.help:
             self.renderer.draw_overlay(fbo, self.overlay.quads(state), state.size)
 
