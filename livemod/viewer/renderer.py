@@ -131,8 +131,11 @@ def _matrix_bytes(matrix: np.ndarray) -> bytes:
 # each program's (vertex, fragment) shader sources
 # (the variants of a program are compiled apart: see shaders.variant)
 PROGRAMS = {
-    "face": (shaders.MESH_VERTEX, shaders.FACE_FRAGMENT),
-    "face_wire": (shaders.MESH_VERTEX, shaders.variant(shaders.FACE_FRAGMENT, "WIRE")),
+    "face": (shaders.FACE_VERTEX, shaders.FACE_FRAGMENT),
+    "face_wire": (shaders.FACE_VERTEX, shaders.variant(shaders.FACE_FRAGMENT, "WIRE")),
+    "face_smooth": (shaders.MESH_VERTEX, shaders.variant(shaders.FACE_FRAGMENT, "SMOOTH")),
+    "face_smooth_wire": (shaders.MESH_VERTEX,
+                         shaders.variant(shaders.FACE_FRAGMENT, "SMOOTH", "WIRE")),
     "surface": (shaders.MESH_VERTEX, shaders.SURFACE_FRAGMENT),
     "edge": (shaders.MESH_VERTEX, shaders.EDGE_FRAGMENT),
     # the edges of a picture with none selected: their colour only
@@ -413,10 +416,9 @@ class Renderer(DrawnContent):
         count = len(mesh.geometry.triangles) - first if count is None else count
         if count <= 0:
             return
-        program = self.programs["face_wire" if wire else "face"]
+        program = self.programs[("face_smooth" if smooth else "face") + ("_wire" if wire else "")]
         use = own_colors and len(mesh.geometry.face_colors) > 0
-        _set_uniforms(program, primitive_base=first, smooth_shading=int(smooth),
-                      pickable=int(mesh is not self._others),
+        _set_uniforms(program, primitive_base=first, pickable=int(mesh is not self._others),
                       viewport=tuple(float(v) for v in self.ctx.viewport[2:]),
                       edge_color=EDGE_COLOR, base_color=color, back_color=BACK_COLOR,
                       selected_color=SELECTED_COLOR, use_face_colors=int(use))

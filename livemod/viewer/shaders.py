@@ -2,7 +2,8 @@
 
 Faces, edges and points write two outputs: the colour, and at location 1 a pick id
 (kind << 28 | dense index + 1, see :mod:`livemod.viewer.geometry`). Element indices
-come from ``gl_PrimitiveID`` / ``gl_VertexID``; per-element data (the face of each
+come from ``gl_VertexID`` (the flat faces' pulled corners, the points) or
+``gl_PrimitiveID`` (edges, smooth faces); per-element data (the face of each
 triangle, selection flags) is read from integer textures with ``texelFetch``. A
 pass that leaves a part out (the face pass without its wire, the edges with none
 selected) uses a variant of its source compiled without that part (:func:`variant`).
@@ -86,22 +87,68 @@ void main() {
 }
 """
 
-FACE_FRAGMENT = """
+FACE_VERTEX = """
 #version 330
+// The flat face pass pulls its vertices: it draws three a triangle with no
+// attributes, and each reads its corner's vertex and its triangle's entry of
+// triangle_face from the tables. Each triangle so has corners of its own, which
+// give the fragments their triangle's entry (flat: no gl_PrimitiveID, which costs
+// software GL a pass that copies the vertices of every primitive) and the screen
+// distances to its sides that are edges (v_sides).
+uniform mat4 mvp;
+uniform mat4 view;
+uniform vec4 clip_plane;  // (see MESH_VERTEX)
 uniform usampler2D triangle_face;
-uniform usampler2D face_flags;
 uniform usampler2D triangle_index;
 uniform sampler2D position_table;
+out vec3 v_view;
+out vec3 v_normal;
+flat out uint v_entry;
+// per side (v1v2, v2v0, v0v1) the coordinate of the corner across from it: 0 along
+// the side, 1 at that corner; 1 throughout for a fan's diagonal, which is no edge
+noperspective out vec3 v_sides;
+""" + FETCH + """
+void main() {
+    int primitive = gl_VertexID / 3;
+    int corner = gl_VertexID - 3 * primitive;
+    uint vertex = fetch(triangle_index, gl_VertexID);
+    vec3 p = texelFetch(position_table, table_texel(int(vertex)), 0).xyz;
+    v_entry = fetch(triangle_face, primitive);
+    uint sides = v_entry >> 29;
+    vec3 own = vec3(corner == 0, corner == 1, corner == 2);
+    v_sides = mix(vec3(1.0), own, bvec3((sides & 2u) != 0u, (sides & 4u) != 0u,
+                                        (sides & 1u) != 0u));
+    gl_ClipDistance[0] = dot(vec4(p, 1.0), clip_plane);
+    v_view = (view * vec4(p, 1.0)).xyz;
+    v_normal = vec3(0.0);
+    gl_Position = mvp * vec4(p, 1.0);
+}
+"""
+
+FACE_FRAGMENT = """
+#version 330
+uniform usampler2D face_flags;
 uniform usampler2D face_colors;  // RGBA8 packed per face, alpha 0: no colour of its own
 uniform int use_face_colors;  // 1: draw the faces' own colours (the colour mode)
-uniform mat4 mvp;
-uniform vec2 viewport;
 uniform int pickable;  // 0: the scene's other objects, which hide but are not picked
-uniform int smooth_shading;  // 1: interpolated vertex normals instead of the face's
-uniform int primitive_base;  // the first triangle drawn (a frame may draw a range)
 uniform vec3 selected_color;
 uniform vec3 edge_color;
 """ + LIT + FETCH + SHADE + """
+#ifdef SMOOTH
+// smooth shading: shared corners with normals (MESH_VERTEX), the triangle found by
+// gl_PrimitiveID and its sides by projecting its corners
+uniform usampler2D triangle_face;
+uniform usampler2D triangle_index;
+uniform sampler2D position_table;
+uniform mat4 mvp;
+uniform vec2 viewport;
+uniform int primitive_base;  // the first triangle drawn (a frame may draw a range)
+uint triangle_entry() {
+    return fetch(triangle_face, primitive_base + gl_PrimitiveID);
+}
+vec3 lit_normal() {
+    return facing_normal(v_view, v_normal);
+}
 vec2 screen_of_vertex(int i) {
     uint v = fetch(triangle_index, i);
     vec3 p = texelFetch(position_table, table_texel(int(v)), 0).xyz;
@@ -113,8 +160,7 @@ float segment_distance(vec2 p, vec2 a, vec2 b) {
     float t = clamp(dot(p - a, ab) / max(dot(ab, ab), 1e-12), 0.0, 1.0);
     return length(p - a - t * ab);
 }
-#ifdef WIRE
-float wire_coverage(uint sides) {
+float side_distance(uint sides) {
     // distance in pixels to the triangle's real sides (fan diagonals are skipped)
     int primitive = primitive_base + gl_PrimitiveID;
     vec2 s0 = screen_of_vertex(3 * primitive);
@@ -124,14 +170,30 @@ float wire_coverage(uint sides) {
     if ((sides & 1u) != 0u) d = min(d, segment_distance(gl_FragCoord.xy, s0, s1));
     if ((sides & 2u) != 0u) d = min(d, segment_distance(gl_FragCoord.xy, s1, s2));
     if ((sides & 4u) != 0u) d = min(d, segment_distance(gl_FragCoord.xy, s2, s0));
-    return 1.0 - smoothstep(0.35, 0.95, d);
+    return d;
+}
+#else
+// flat: the pulled corners of FACE_VERTEX
+flat in uint v_entry;
+noperspective in vec3 v_sides;
+uint triangle_entry() {
+    return v_entry;
+}
+vec3 lit_normal() {
+    return facing_normal(v_view, vec3(0.0));
+}
+float side_distance(uint sides) {
+    // distance in pixels to the nearest side that is an edge: its corner's
+    // coordinate over that coordinate's screen gradient
+    vec3 dx = dFdx(v_sides), dy = dFdy(v_sides);
+    vec3 d = v_sides / max(sqrt(dx * dx + dy * dy), vec3(1e-9));
+    return min(d.x, min(d.y, d.z));
 }
 #endif
 void main() {
-    int primitive = primitive_base + gl_PrimitiveID;
-    uint entry = fetch(triangle_face, primitive);
+    uint entry = triangle_entry();
     uint face = entry & 0x1FFFFFFFu;
-    vec3 n = facing_normal(v_view, smooth_shading != 0 ? v_normal : vec3(0.0));
+    vec3 n = lit_normal();
     bool selected = fetch(face_flags, int(face)) != 0u;
     vec3 front = base_color;
     if (use_face_colors != 0) {
@@ -143,7 +205,7 @@ void main() {
     vec3 base = selected ? selected_color : (gl_FrontFacing ? front : back_color);
     vec3 rgb = shade(n, base);
 #ifdef WIRE
-    rgb = mix(rgb, edge_color, wire_coverage(entry >> 29));
+    rgb = mix(rgb, edge_color, 1.0 - smoothstep(0.35, 0.95, side_distance(entry >> 29)));
 #endif
     color = vec4(rgb, 1.0);
     pick = pickable != 0 ? (1u << 28) | (face + 1u) : 0u;

@@ -112,9 +112,9 @@ class MeshGPU:
             _texture(objects, name) for name in ("face_flags", "edge_flags", "vertex_flags",
                                                  "face_colors"))
         content = [(self.positions, "3f", "in_position")]
-        # by wire (the face pass) and by plain (the edges' colour only): see Renderer
-        self.face_vaos = {wire: ctx.vertex_array(programs["face_wire" if wire else "face"],
-                                                 content, self.triangles, 4)
+        # by wire (the face pass, which pulls its corners from the tables: no
+        # attributes) and by plain (the edges' colour only): see Renderer
+        self.face_vaos = {wire: ctx.vertex_array(programs["face_wire" if wire else "face"], [])
                           for wire in (False, True)}
         self.winding_vao = ctx.vertex_array(programs["winding"], content, self.triangles, 4)
         self.edge_vaos = {plain: ctx.vertex_array(programs["edge_plain" if plain else "edge"],
@@ -123,7 +123,8 @@ class MeshGPU:
         self.point_vao = ctx.vertex_array(programs["point"], content)
         self.sphere_vao = ctx.vertex_array(programs["point"], content, self.spheres, 4)
         self.ctx, self.edge_program = ctx, programs["edge"]
-        self.face_programs = {False: programs["face"], True: programs["face_wire"]}
+        self.smooth_programs = {False: programs["face_smooth"],
+                                True: programs["face_smooth_wire"]}
         self.selected_lines: tuple[moderngl.Buffer, moderngl.VertexArray] | None = None
         # the smooth face pass: (crease angle, its buffers, its vertex arrays by wire)
         self.smooth: tuple[float, list[moderngl.Buffer],
@@ -172,7 +173,7 @@ class MeshGPU:
                    for data in (shading.positions, shading.normals, shading.triangles)]
         vaos = {key: self.ctx.vertex_array(
             program, [(buffers[0], "3f", "in_position"), (buffers[1], "3f", "in_normal")],
-            buffers[2], 4) for key, program in self.face_programs.items()}
+            buffers[2], 4) for key, program in self.smooth_programs.items()}
         self.smooth = (crease_angle, buffers, vaos)
         return vaos[wire]
 
