@@ -300,7 +300,11 @@ def finite_bounds(points: np.ndarray) -> np.ndarray:
     finite = finite_rows(points)
     if len(finite) == 0:
         return np.zeros((2, 3))
-    return np.stack([finite.min(axis=0), finite.max(axis=0)]).astype(np.float64)
+    # a column at a time: numpy reduces a narrow (n, 3) array along axis 0 a row
+    # at a time, 7x slower (70 of the 150 ms of a million-face mesh's buffers)
+    columns = [finite[:, axis] for axis in range(3)]
+    return np.array([[column.min() for column in columns],
+                     [column.max() for column in columns]], dtype=np.float64)
 
 
 def decode_pick(pick_id: int) -> tuple[int, int] | None:
