@@ -209,6 +209,12 @@ class Renderer(DrawnContent):
         """A picture drawn in slices is not whole yet: draw again (see :meth:`draw`)."""
         return self._frames.unfinished
 
+    @property
+    def sliced(self) -> int:
+        """Primitives the last :meth:`draw` drew of a picture drawn in slices (0:
+        it drew none; such a call finishes its drawing before it returns)."""
+        return self._frames.sliced
+
     # -- drawing ---------------------------------------------------------------
 
     def draw(self, fbo: moderngl.Framebuffer, camera: Camera, style: Style,

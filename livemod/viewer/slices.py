@@ -22,6 +22,33 @@ from .framebuffers import release_framebuffer
 # a pass of a frame: (primitives, draw(first, count))
 Pass = tuple[int, Callable[[int, int], None]]
 
+SLICE_SECONDS = 0.05  # what a window's slice of a picture drawn in slices should take
+
+
+class SliceBudget:
+    """Primitives a window's frame may draw of a picture drawn in slices: ``first``
+    until a slice was measured, then as many as take about ``seconds`` at the
+    rate the last slices were drawn: more where frames are cheap, fewer on a
+    busy machine, so that no frame holds the window much longer than that.
+
+    Attributes:
+        primitives: the budget of the next frame (at least ``least``).
+    """
+
+    def __init__(self, first: int, seconds: float = SLICE_SECONDS,
+                 least: int = 10_000) -> None:
+        self.primitives = first
+        self._seconds, self._least = seconds, least
+
+    def measured(self, primitives: int, seconds: float) -> None:
+        """A frame drew ``primitives`` of a picture in slices in ``seconds``
+        (wall-clock, its drawing finished): the next budget is half the old one
+        and half what this rate draws in the time wanted."""
+        if primitives <= 0:
+            return
+        wanted = self._seconds * primitives / max(seconds, 1e-6)
+        self.primitives = max(int(0.5 * self.primitives + 0.5 * wanted), self._least)
+
 
 @dataclass(frozen=True)
 class Frame:
@@ -78,6 +105,7 @@ class SlicedFrames:
         self.target: moderngl.Framebuffer | None = None
         self.drawn: tuple[int, object] = (-1, None)
         self.cached: tuple | None = None  # the key of the whole picture kept in target
+        self.sliced = 0  # primitives the last call drew of a picture in slices (0: none)
 
     @property
     def unfinished(self) -> bool:
@@ -93,6 +121,7 @@ class SlicedFrames:
         the last picture's view is drawn into the target and kept whole, and
         copied from it the next time it is drawn unchanged."""
         view_key = frame.key[1]
+        self.sliced = 0
         # kept whole for the next frames once the view rests (a turning view would
         # only pay for the copy)
         kept = (budget is not None and tuple(fbo.size) == frame.size
@@ -150,6 +179,7 @@ class SlicedFrames:
             if first < last:
                 draw(first, last - first)
             offset += count
+        self.sliced = min(stop, offset) - progress.done
         progress.done = min(stop, offset)
         finished = progress.done >= offset
         if finished:

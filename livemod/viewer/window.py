@@ -21,6 +21,7 @@ import logging
 import os
 import re
 import sys
+import time
 import traceback
 import warnings
 from collections.abc import Callable
@@ -52,6 +53,7 @@ from .renderer import Renderer, Style, read_image, release_framebuffer
 from .runs import RunTracker
 from .section import SectionPlane
 from .session import Session
+from .slices import SliceBudget
 from .smoothing import PreviewControl
 from .stepping import Stepping
 from .view_state import ViewState
@@ -60,8 +62,9 @@ if TYPE_CHECKING:
     from livemod.runner.results import RunResult
 
 IDLE_WAIT = 0.01  # seconds an idle glfw loop waits for input between frames
-# primitives a frame draws of new content (software GL: some 60 ms at 4x MSAA); the rest
-# follows in the next frames (see Renderer.draw)
+# primitives the first frame draws of new content (software GL: some 50 ms at 4x MSAA);
+# the rest follows in the next frames, as many a frame as take SLICE_SECONDS (see
+# Renderer.draw and SliceBudget)
 FRAME_PRIMITIVES = 150_000
 SCRIPT_SUFFIXES = (".py",)
 
@@ -162,6 +165,7 @@ class LiveViewer(mglw.WindowConfig):
         self.camera = Camera()
         self.frames = Frames(self.ctx)
         self.motion = ViewMotion()
+        self.slice_budget = SliceBudget(FRAME_PRIMITIVES)
         self._quick = False  # this frame draws the quick picture (see on_render)
         self.whole = WholeMeshMeasurer()  # genus and volume of the mesh shown, off-thread
         self.session: Session | None = None
@@ -338,8 +342,10 @@ class LiveViewer(mglw.WindowConfig):
     def _draw_frame(self, fbo: Any, state: ViewState) -> None:
         """Draw the scene and the overlay of ``state`` into ``fbo`` (the screen or
         the kept frame, both of the state's size)."""
-        self.renderer.draw(fbo, self.camera, state.style, state.size, budget=FRAME_PRIMITIVES,
-                           quick=state.quick)
+        started = time.perf_counter()
+        self.renderer.draw(fbo, self.camera, state.style, state.size,
+                           budget=self.slice_budget.primitives, quick=state.quick)
+        self.slice_budget.measured(self.renderer.sliced, time.perf_counter() - started)
         if state.hud or state.help:
             self.renderer.draw_overlay(fbo, self.overlay.quads(state), state.size)
 
