@@ -40,3 +40,25 @@ def test_the_renderer_says_how_much_of_a_sliced_picture_a_draw_drew(
     assert renderer.draw(offscreen.target, camera, Style(), budget=200)  # whole, kept
     assert renderer.sliced == 0
 
+
+
+def test_the_labels_of_a_sliced_picture_are_drawn_in_a_call_of_their_own(
+        offscreen: Offscreen) -> None:
+    renderer = offscreen.renderer
+    first, second = mesh_arrays(torus(12, 8)), mesh_arrays(torus(20, 14))
+    camera = framed_camera(second)
+    style = Style(labels=frozenset({"faces"}))
+    renderer.set_mesh(first)
+    assert renderer.draw(offscreen.target, camera, style, budget=200)
+    renderer.set_mesh(second)
+    drawn = []
+    while not renderer.draw(offscreen.target, camera, style, budget=200):
+        drawn.append(renderer.sliced)
+    drawn.append(renderer.sliced)
+    assert drawn == [200, 200, 161, 0]  # the last call lays out and draws the labels
+    sliced = offscreen.target.read(components=3)
+    camera.yaw += 1.0
+    renderer.draw(offscreen.target, camera, style)  # (another view: forget the kept one)
+    camera.yaw -= 1.0
+    renderer.draw(offscreen.target, camera, style)
+    assert offscreen.target.read(components=3) == sliced

@@ -281,7 +281,8 @@ class Renderer(DrawnContent):
                       style.background, sliceable=style.section is None,
                       begin=lambda: self._begin_scene(style),
                       finish=lambda drawn: self._draw_labels(camera, style, drawn),
-                      whole=lambda target: self._draw_whole(target, frame, style))
+                      whole=lambda target: self._draw_whole(target, frame, style),
+                      finish_apart=bool(style.labels) and style.current)
         return self._frames.draw(fbo, frame, budget, CACHED_PRIMITIVES)
 
     def _draw_whole(self, fbo: moderngl.Framebuffer, frame: Frame, style: Style) -> None:

@@ -65,6 +65,9 @@ class Frame:
         begin: sets the scene's GL state (and draws what goes under it).
         finish: draws what goes over the passes, for a target of the size given.
         whole: draws the whole picture into the framebuffer given.
+        finish_apart: drawn in slices, what goes over the passes is drawn in a
+            call of its own after the last slice (the id labels, which lay out
+            their quads the first time a mesh is drawn).
     """
 
     key: tuple
@@ -75,6 +78,7 @@ class Frame:
     begin: Callable[[], None]
     finish: Callable[[tuple[int, int]], None]
     whole: Callable[[moderngl.Framebuffer], None]
+    finish_apart: bool = False
 
     @property
     def primitives(self) -> int:
@@ -172,7 +176,9 @@ class SlicedFrames:
         target.use()
         if progress.done == 0:
             target.clear(*frame.background)
-        frame.begin()
+        total = frame.primitives
+        if progress.done < total:
+            frame.begin()
         start, stop, offset = progress.done, progress.done + budget, 0
         for count, draw in frame.passes:
             first, last = max(start - offset, 0), min(stop - offset, count)
@@ -181,7 +187,7 @@ class SlicedFrames:
             offset += count
         self.sliced = min(stop, offset) - progress.done
         progress.done = min(stop, offset)
-        finished = progress.done >= offset
+        finished = progress.done >= offset and not (frame.finish_apart and self.sliced)
         if finished:
             frame.finish(target.size)
             self.drawn, self.progress = progress.key, None
