@@ -10,7 +10,7 @@ from livemod.viewer.slices import SliceBudget
 
 
 def test_the_budget_follows_the_rate_the_slices_were_drawn_at() -> None:
-    budget = SliceBudget(150_000, seconds=0.05, least=10_000)
+    budget = SliceBudget(150_000, seconds=0.05, least=10_000)  # (the window: 50,000)
     assert budget.primitives == 150_000  # nothing measured yet
     budget.measured(150_000, 0.15)  # three times too slow: a third would do
     assert budget.primitives == (150_000 + 50_000) // 2

@@ -36,7 +36,7 @@ class SliceBudget:
     """
 
     def __init__(self, first: int, seconds: float = SLICE_SECONDS,
-                 least: int = 10_000) -> None:
+                 least: int = 50_000) -> None:
         self.primitives = first
         self._seconds, self._least = seconds, least
 

@@ -309,12 +309,14 @@ class LiveViewer(mglw.WindowConfig):
         state = self.view_state()
         screen = self.wnd.fbo
         overlay = state.without_fps() if state.hud or state.help else None
-        if self.renderer.unfinished:  # a picture drawn in slices: draw its next one
+        sliced = self.renderer.unfinished
+        if sliced:  # a picture drawn in slices: draw its next one
             self._slices += 1
         key = (self.renderer.version, self.camera.pose(), state.style, overlay, state.size,
                screen.samples, self._slices)
         self.frames.present(screen, state.size, key, partial(self._draw_frame, state=state),
-                            idle_ok=self.wnd.name in ("glfw", "headless"), keep=not state.quick)
+                            idle_ok=self.wnd.name in ("glfw", "headless"),
+                            keep=not (state.quick or sliced))
 
     def view_state(self) -> ViewState:
         """What the overlay shows now (the panels laid out for the window's size)."""
