@@ -1250,3 +1250,22 @@ def read_image_of(offscreen: Offscreen) -> np.ndarray:
     from livemod.viewer.renderer import read_image
 
     return read_image(offscreen.target, Style())
+
+
+def test_the_quick_picture_of_a_preview_is_its_surface_alone(
+        offscreen: Offscreen, monkeypatch: pytest.MonkeyPatch) -> None:
+    import livemod.viewer.renderer as renderer
+    from livemod.runner.preview import PreviewRequest, make_preview
+
+    arrays = mesh_arrays(cube())
+    offscreen.renderer.set_mesh(arrays, make_preview(PreviewRequest((arrays,))))
+    camera = framed_camera(arrays)
+    surface = offscreen.render(camera, Style(preview=True, edges=False)).astype(int)
+    monkeypatch.setattr(renderer, "QUICK_PRIMITIVES", 10)
+    offscreen.activate()
+    offscreen.renderer.draw(offscreen.target, camera, Style(preview=True), quick=True)
+    quick = read_image_of(offscreen).astype(int)
+    # no cage; the surface lit alike but at its outline, where the normal is
+    # turned by the side seen instead of by the flat normal
+    differ = np.abs(quick - surface).max(axis=2) > 2
+    assert differ.mean() < 0.01 and _mask(quick).sum() == _mask(surface).sum()

@@ -137,6 +137,7 @@ PROGRAMS = {
     "face_smooth_wire": (shaders.MESH_VERTEX,
                          shaders.variant(shaders.FACE_FRAGMENT, "SMOOTH", "WIRE")),
     "surface": (shaders.MESH_VERTEX, shaders.SURFACE_FRAGMENT),
+    "surface_quick": (shaders.MESH_VERTEX, shaders.variant(shaders.SURFACE_FRAGMENT, "QUICK")),
     "edge": (shaders.MESH_VERTEX, shaders.EDGE_FRAGMENT),
     # the edges of a picture with none selected: their colour only
     "edge_plain": (shaders.MESH_VERTEX, shaders.variant(shaders.EDGE_FRAGMENT, "PLAIN")),
@@ -159,6 +160,7 @@ class Renderer(DrawnContent):
         self._others_shown = True
         self._current_shown = True
         self._section: tuple[int, float] | None = None  # the last frame's, for picking
+        self._quick = False  # the frame drawn is a quick picture (see draw)
         self._text = TextPass(ctx, self.programs["text"])
         self._ids = IdPass(ctx)
         self._cap = SectionCap(ctx, self.programs)
@@ -266,6 +268,7 @@ class Renderer(DrawnContent):
               size: tuple[int, int], budget: int | None, quick: bool) -> bool:
         """:meth:`draw`, of ``style`` (quick: the quick picture's)."""
         width, height = size
+        self._quick = quick
         self.ctx.viewport = (0, 0, width, height)
         if self._mesh is None and self._others is None:
             fbo.use()
@@ -399,7 +402,7 @@ class Renderer(DrawnContent):
         """Triangles ``first .. first + count`` (all by default) of the preview's part
         of the current object (or of the others), lit by its own normals, capped
         where a section cuts it."""
-        program = self.programs["surface"]
+        program = self.programs["surface_quick" if self._quick else "surface"]
         program["base_color"].value = color  # type: ignore[union-attr]
         program["back_color"].value = BACK_COLOR  # type: ignore[union-attr]
         self.ctx.polygon_offset = (1.0, 1.0)  # the cage's edges, drawn after, win
@@ -408,7 +411,8 @@ class Renderer(DrawnContent):
         start, total = surface.part(current)
         count = total - first if count is None else count
         if count > 0:
-            surface.vao.render(moderngl.TRIANGLES, vertices=3 * count, first=3 * (start + first))
+            surface.vaos[self._quick].render(moderngl.TRIANGLES, vertices=3 * count,
+                                             first=3 * (start + first))
         self.ctx.polygon_offset = (0.0, 0.0)
         if surface.closed and self._section is not None:
             self._draw_cap(surface, color, current)

@@ -215,11 +215,19 @@ void main() {
 SURFACE_FRAGMENT = """
 #version 330
 // A smooth surface with normals of its own (the patch preview): lit per pixel
-// from its interpolated normals; it is never picked.
+// from its interpolated normals; it is never picked. QUICK (the quick picture of
+// a moving view): the normal turned by the side seen, not by the flat normal
+// from the derivatives (it differs only where the interpolated normal looks
+// away from the eye, at the outline).
 """ + LIT + SHADE + """
 void main() {
-    color = vec4(shade(facing_normal(v_view, v_normal),
-                       gl_FrontFacing ? base_color : back_color), 1.0);
+#ifdef QUICK
+    vec3 n = normalize(v_normal);
+    n = gl_FrontFacing ? n : -n;
+#else
+    vec3 n = facing_normal(v_view, v_normal);
+#endif
+    color = vec4(shade(n, gl_FrontFacing ? base_color : back_color), 1.0);
     pick = 0u;
 }
 """

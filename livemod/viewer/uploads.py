@@ -234,9 +234,10 @@ class SurfaceGPU:
         self.positions, self.normals, self.triangles = (
             _buffer(objects, name) for name in ("positions", "normals", "triangles"))
         self.count, self.parts, self.closed = count, parts, closed
-        self.vao = ctx.vertex_array(programs["surface"], [
+        # by quick (see Renderer.draw)
+        self.vaos = {quick: ctx.vertex_array(programs["surface_quick" if quick else "surface"], [
             (self.positions, "3f", "in_position"), (self.normals, "3f", "in_normal")],
-            self.triangles, 4)
+            self.triangles, 4) for quick in (False, True)}
         self.winding_vao = ctx.vertex_array(programs["winding"], [
             (self.positions, "3f", "in_position")], self.triangles, 4)
 
@@ -257,7 +258,9 @@ class SurfaceGPU:
         return (0, first) if current else (first, self.count - first)
 
     def release(self) -> None:
-        for obj in (self.vao, self.winding_vao, self.positions, self.normals, self.triangles):
+        objects: list[GLObject] = [*self.vaos.values(), self.winding_vao, self.positions,
+                                   self.normals, self.triangles]
+        for obj in objects:
             obj.release()
 
 
