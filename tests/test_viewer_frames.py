@@ -151,10 +151,41 @@ def test_a_moving_view_of_a_big_scene_is_drawn_quick_then_whole(
     now[0] += REST_SECONDS
     run_frames(viewer, 1)  # at rest: the whole picture, edges and all
     assert drawn[0] == 2 and not viewer.view_state().quick
-    assert viewer.frames.direct is None and viewer.frames.kept is not None
-    whole = _screen(viewer)
+    whole = _screen(viewer).copy()
     edges = np.all(whole < 40, axis=2) & ~np.all(quick < 40, axis=2)  # the wire's dark
     assert edges.sum() > 20
+    run_frames(viewer, 1)  # then kept (copied from the renderer's kept picture)
+    assert viewer.frames.direct is None and viewer.frames.kept is not None
+    assert np.array_equal(_screen(viewer), whole)
+
+
+def test_the_whole_picture_of_a_view_at_rest_is_drawn_behind_the_quick_one(
+        viewer: LiveViewer, monkeypatch: pytest.MonkeyPatch) -> None:
+    import livemod.viewer.renderer as renderer
+    from livemod.viewer.frames import REST_SECONDS, ViewMotion
+    from livemod.viewer.slices import SliceBudget
+
+    monkeypatch.setattr(renderer, "QUICK_PRIMITIVES", 0)
+    viewer.slice_budget = SliceBudget(4, seconds=0.0, least=4)  # 4 primitives a frame
+    now = [0.0]
+    viewer.motion = ViewMotion(lambda: now[0])
+    run_frames(viewer, 2)
+    while viewer.renderer.unfinished:
+        run_frames(viewer, 1)
+    viewer.camera.orbit(20.0, 0.0)
+    run_frames(viewer, 1)
+    quick = _screen(viewer).copy()
+    now[0] += REST_SECONDS
+    behind = 0
+    run_frames(viewer, 1)
+    while viewer.renderer.unfinished:  # slices drawn behind: the quick one stays up
+        assert viewer.renderer.hidden and not viewer.frames.presented
+        assert np.array_equal(_screen(viewer), quick)
+        behind += 1
+        run_frames(viewer, 1)
+    assert behind >= 2 and viewer.frames.presented
+    whole = _screen(viewer)
+    assert (np.all(whole < 40, axis=2) & ~np.all(quick < 40, axis=2)).sum() > 20
 
 
 def test_a_small_scene_is_drawn_whole_while_the_view_moves(viewer: LiveViewer) -> None:

@@ -95,7 +95,7 @@ class Frames:
             self._fps_at = now
 
     def present(self, screen: Any, size: tuple[int, int], key: object,
-                draw: Callable[[Any], None], idle_ok: bool, keep: bool = True) -> None:
+                draw: Callable[[Any], object], idle_ok: bool, keep: bool = True) -> None:
         """Put the frame of ``key`` on ``screen`` (of ``size`` pixels: not
         ``screen.size``, which moderngl keeps at the size the window opened
         with): copied from the kept frame, drawn
@@ -104,7 +104,8 @@ class Frames:
         picture is not copied at all but every :data:`REPRESENT` s (other backends
         take their input events while swapping: they swap every frame). Without
         ``keep`` (a quick picture of a moving view, which the next frame replaces)
-        the frame is drawn straight on the screen: the copy is saved."""
+        the frame is drawn straight on the screen: the copy is saved; a ``draw``
+        that returns False drew nothing there, and the screen is not put up."""
         if not keep and self.keep_frames:
             self._present_direct(screen, key, draw, idle_ok)
             return
@@ -123,7 +124,7 @@ class Frames:
             else self._redraw(screen, size, key, draw)
         self._copy(screen, target, fresh, draw)
 
-    def _present_direct(self, screen: Any, key: object, draw: Callable[[Any], None],
+    def _present_direct(self, screen: Any, key: object, draw: Callable[[Any], object],
                         idle_ok: bool) -> None:
         """Draw the frame of ``key`` straight on ``screen``, unless it is the one
         drawn there last and the screen need not be shown again yet."""
@@ -134,10 +135,10 @@ class Frames:
         self.presented_at, self.direct = now, key
         if self.kept is not None:
             self.kept = (None, self.kept[1])  # (drawn over: the kept frame is not on screen)
-        self._draw(draw, screen)
+        self.presented = self._draw(draw, screen) is not False
 
     def _redraw(self, screen: Any, size: tuple[int, int], key: object,
-                draw: Callable[[Any], None]) -> tuple[Any, bool]:
+                draw: Callable[[Any], object]) -> tuple[Any, bool]:
         """Draw the frame of ``key`` into the kept framebuffer; ``(it, made anew)``."""
         target = self._target(screen, size)
         fresh = self.kept is None or target is not self.kept[1]
@@ -145,7 +146,7 @@ class Frames:
         self._draw(draw, target)
         return target, fresh
 
-    def _copy(self, screen: Any, target: Any, fresh: bool, draw: Callable[[Any], None]) -> None:
+    def _copy(self, screen: Any, target: Any, fresh: bool, draw: Callable[[Any], object]) -> None:
         """Copy ``target`` to ``screen``; the first copy from a new framebuffer is
         checked: a screen whose MSAA moderngl misreports refuses it, and is drawn
         every frame from then on."""
@@ -157,9 +158,9 @@ class Frames:
             self.keep_frames = False
             self._draw(draw, screen)
 
-    def _draw(self, draw: Callable[[Any], None], fbo: Any) -> None:
+    def _draw(self, draw: Callable[[Any], object], fbo: Any) -> object:
         self._drew = True
-        draw(fbo)
+        return draw(fbo)
 
     def _target(self, screen: Any, size: tuple[int, int]) -> Any:
         """A framebuffer of ``size`` with ``screen``'s MSAA to keep the last frame in;

@@ -212,6 +212,12 @@ class Renderer(DrawnContent):
         return self._frames.unfinished
 
     @property
+    def hidden(self) -> bool:
+        """The last :meth:`draw` drew a slice of a picture drawn behind what its
+        framebuffer shows, and nothing on it."""
+        return self._frames.hidden
+
+    @property
     def sliced(self) -> int:
         """Primitives the last :meth:`draw` drew of a picture drawn in slices (0:
         it drew none; such a call finishes its drawing before it returns)."""
@@ -221,7 +227,7 @@ class Renderer(DrawnContent):
 
     def draw(self, fbo: moderngl.Framebuffer, camera: Camera, style: Style,
              size: tuple[int, int] | None = None, budget: int | None = None,
-             quick: bool = False) -> bool:
+             quick: bool = False, behind: bool = False) -> bool:
         """Clear ``fbo`` and draw the scene seen by ``camera`` in ``style``, over
         ``size`` pixels (default ``fbo.size``; a window's screen framebuffer keeps its
         first size after a resize, so the window says the size).
@@ -239,7 +245,11 @@ class Renderer(DrawnContent):
         window's HUD changed, say), it is copied instead of drawn.
 
         With ``quick`` (the window's view moves), a big picture is drawn as
-        :meth:`quick_style` says, and without multisampling."""
+        :meth:`quick_style` says, and without multisampling. With ``behind`` and a
+        budget (the view came to rest after quick pictures), a picture of more than
+        the budget is drawn in slices whatever changed, and nothing is drawn on
+        ``fbo`` until it is whole (:attr:`hidden` meanwhile): the quick picture
+        stays on the screen."""
         width, height = size or fbo.size
         fast = self.quick_style(style) if quick else None
         if fast is not None:
@@ -248,7 +258,8 @@ class Renderer(DrawnContent):
                 return self._draw(fbo, camera, fast, (width, height), budget, quick=True)
             finally:
                 self.ctx.enable_direct(GL_MULTISAMPLE)
-        return self._draw(fbo, camera, style, (width, height), budget, quick=False)
+        return self._draw(fbo, camera, style, (width, height), budget, quick=False,
+                          behind=behind)
 
     def quick_style(self, style: Style) -> Style | None:
         """The style of the quick picture of what ``style`` draws, for a view that
@@ -265,7 +276,8 @@ class Renderer(DrawnContent):
         return replace(style, edges=False)
 
     def _draw(self, fbo: moderngl.Framebuffer, camera: Camera, style: Style,
-              size: tuple[int, int], budget: int | None, quick: bool) -> bool:
+              size: tuple[int, int], budget: int | None, quick: bool,
+              behind: bool = False) -> bool:
         """:meth:`draw`, of ``style`` (quick: the quick picture's)."""
         width, height = size
         self._quick = quick
@@ -286,7 +298,7 @@ class Renderer(DrawnContent):
                       finish=lambda drawn: self._draw_labels(camera, style, drawn),
                       whole=lambda target: self._draw_whole(target, frame, style),
                       finish_apart=bool(style.labels) and style.current)
-        return self._frames.draw(fbo, frame, budget, CACHED_PRIMITIVES)
+        return self._frames.draw(fbo, frame, budget, CACHED_PRIMITIVES, behind)
 
     def _draw_whole(self, fbo: moderngl.Framebuffer, frame: Frame, style: Style) -> None:
         """All of ``frame`` into ``fbo``, its passes cut at ``style``'s section."""

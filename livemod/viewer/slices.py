@@ -88,11 +88,12 @@ class Frame:
 @dataclass
 class _Progress:
     """A picture drawn a slice at a time: for ``key`` (content version and view),
-    into ``target``, ``done`` primitives so far."""
+    into ``target``, ``done`` primitives so far; ``hidden``: shown only once whole."""
 
     key: tuple
     target: moderngl.Framebuffer
     done: int = 0
+    hidden: bool = False
 
 
 class SlicedFrames:
@@ -116,16 +117,31 @@ class SlicedFrames:
         """A picture drawn in slices is not whole yet: draw again."""
         return self.progress is not None
 
+    @property
+    def hidden(self) -> bool:
+        """The last call drew a slice of a picture drawn behind: nothing on its
+        framebuffer (see :meth:`draw`'s ``behind``)."""
+        return self.progress is not None and self.progress.hidden
+
     def draw(self, fbo: moderngl.Framebuffer, frame: Frame, budget: int | None,
-             keep_over: int) -> bool:
+             keep_over: int, behind: bool = False) -> bool:
         """Draw ``frame`` into ``fbo``: whole, or with a ``budget`` (primitives a call
         may draw) the next slice of new content seen from the last picture's view;
         False while that picture is unfinished (call again with the same frame).
         With a budget too, a frame of more than ``keep_over`` primitives seen from
         the last picture's view is drawn into the target and kept whole, and
-        copied from it the next time it is drawn unchanged."""
+        copied from it the next time it is drawn unchanged. With ``behind`` (and a
+        budget), a frame of more than the budget is drawn in slices whatever it
+        shows, and nothing is drawn on ``fbo`` until it is whole: what ``fbo``
+        showed stays (the window's quick picture of a view that came to rest)."""
         view_key = frame.key[1]
         self.sliced = 0
+        if behind and self._behind(fbo, frame, budget):
+            assert self.progress is not None
+            self.cached = None
+            finished = self._draw_slice(fbo, frame, self.progress, budget or 0)
+            self.cached = frame.key if finished else None
+            return finished
         # kept whole for the next frames once the view rests (a turning view would
         # only pay for the copy)
         kept = (budget is not None and tuple(fbo.size) == frame.size
@@ -150,6 +166,18 @@ class SlicedFrames:
     def _show(self, fbo: moderngl.Framebuffer, target: moderngl.Framebuffer) -> None:
         self.ctx.copy_framebuffer(fbo, target)
         fbo.use()
+
+    def _behind(self, fbo: moderngl.Framebuffer, frame: Frame, budget: int | None) -> bool:
+        """Start (or go on with) drawing ``frame`` in slices behind what ``fbo``
+        shows; False when it is drawn as :meth:`draw` draws it otherwise."""
+        if self.progress is not None and self.progress.key == frame.key:
+            return self.progress.hidden
+        if (budget is None or not frame.sliceable or tuple(fbo.size) != frame.size
+                or frame.primitives <= budget):
+            return False
+        self.progress = _Progress(frame.key, self._target(frame.size, fbo.samples),
+                                  hidden=True)
+        return True
 
     def _progress_of(self, fbo: moderngl.Framebuffer, frame: Frame,
                      budget: int | None) -> _Progress | None:
@@ -191,7 +219,8 @@ class SlicedFrames:
         if finished:
             frame.finish(target.size)
             self.drawn, self.progress = progress.key, None
-        self._show(fbo, target)
+        if finished or not progress.hidden:
+            self._show(fbo, target)
         return finished
 
     def _target(self, size: tuple[int, int], samples: int) -> moderngl.Framebuffer:

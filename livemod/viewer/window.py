@@ -167,6 +167,7 @@ class LiveViewer(mglw.WindowConfig):
         self.motion = ViewMotion()
         self.slice_budget = SliceBudget(FRAME_PRIMITIVES)
         self._quick = False  # this frame draws the quick picture (see on_render)
+        self._behind = False  # it draws the whole one behind the quick one on screen
         self.whole = WholeMeshMeasurer()  # genus and volume of the mesh shown, off-thread
         self.session: Session | None = None
         self._compose()
@@ -304,8 +305,11 @@ class LiveViewer(mglw.WindowConfig):
         self.stepping.repeat_held()
         self.runs.poll(self._live_session())
         # a big picture is drawn quick while the view moves, whole once it rests
+        # (in slices behind the last quick one, which stays on screen meanwhile)
+        was_quick = self._quick
         self._quick = self.motion.moving(self.camera.pose()) and \
             self.renderer.quick_style(self.look.style) is not None
+        self._behind = was_quick and not self._quick
         state = self.view_state()
         screen = self.wnd.fbo
         overlay = state.without_fps() if state.hud or state.help else None
@@ -316,7 +320,7 @@ class LiveViewer(mglw.WindowConfig):
                screen.samples, self._slices)
         self.frames.present(screen, state.size, key, partial(self._draw_frame, state=state),
                             idle_ok=self.wnd.name in ("glfw", "headless"),
-                            keep=not (state.quick or sliced))
+                            keep=not (state.quick or sliced or self._behind))
 
     def view_state(self) -> ViewState:
         """What the overlay shows now (the panels laid out for the window's size)."""
@@ -341,15 +345,20 @@ class LiveViewer(mglw.WindowConfig):
             rate=playback.rate, hud=self.look.show_hud, help=self.look.show_help,
             panels=self.overlay.state(), size=size, bottom=self.overlay.error_room(size))
 
-    def _draw_frame(self, fbo: Any, state: ViewState) -> None:
+    def _draw_frame(self, fbo: Any, state: ViewState) -> bool:
         """Draw the scene and the overlay of ``state`` into ``fbo`` (the screen or
-        the kept frame, both of the state's size)."""
+        the kept frame, both of the state's size); False when it drew nothing on
+        it (a slice of a picture drawn behind the one on screen)."""
         started = time.perf_counter()
         self.renderer.draw(fbo, self.camera, state.style, state.size,
-                           budget=self.slice_budget.primitives, quick=state.quick)
+                           budget=self.slice_budget.primitives, quick=state.quick,
+                           behind=self._behind)
         self.slice_budget.measured(self.renderer.sliced, time.perf_counter() - started)
+        if self.renderer.hidden:
+            return False
         if state.hud or state.help:
             self.renderer.draw_overlay(fbo, self.overlay.quads(state), state.size)
+        return True
 
     def capture(self, transparent: bool = False) -> np.ndarray:
         """Render the scene (no HUD) offscreen at the window's size: ``(H, W, 3)``
