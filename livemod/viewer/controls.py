@@ -2,7 +2,9 @@
 
 Keys are named as moderngl-window names them (``"W"``, ``"SPACE"``, ``"NUMBER_1"``,
 ``"F12"``), so the bindings are independent of the window backend; the help
-overlay and docs/viewer.md are generated from :data:`KEY_BINDINGS`.
+overlay is generated from :data:`KEY_BINDINGS`, and the key table of
+docs/viewer.md is written by hand and checked against it, row by row
+(``tests/test_viewer_controls.py``).
 """
 
 from __future__ import annotations
