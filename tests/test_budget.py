@@ -455,3 +455,15 @@ def test_a_bad_face_budget_is_a_usage_error(command, capsys):
                                                           if command == "batch" else [])])
     assert stopped.value.code == 2
     assert "the face budget must be a whole number >= 1, not '0'" in capsys.readouterr().err
+
+
+def test_the_environment_is_read_through_whatever_os_environ_is(monkeypatch):
+    monkeypatch.setenv(budget.ENVIRONMENT_VARIABLE, "1234")
+    assert budget.face_budget() == 1234
+    monkeypatch.delenv(budget.ENVIRONMENT_VARIABLE)
+    assert budget.face_budget() == budget.DEFAULT_FACE_BUDGET
+    # a mapping that is not the interpreter's own (a test's, an embedder's)
+    monkeypatch.setattr(budget.os, "environ", {budget.ENVIRONMENT_VARIABLE: "77"})
+    assert budget.face_budget() == 77
+    with pytest.raises(BudgetExceededError, match="budget of 77 faces"):
+        budget.check_size("loop", 78)

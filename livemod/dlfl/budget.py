@@ -89,7 +89,7 @@ def default_face_budget() -> int:
     """
     if _session_default is not None:
         return _session_default
-    text = os.environ.get(ENVIRONMENT_VARIABLE)
+    text = _environment_value()
     if text is None or not text.strip():
         return DEFAULT_FACE_BUDGET
     try:
@@ -100,6 +100,24 @@ def default_face_budget() -> int:
         raise InvalidArgumentError(f"{ENVIRONMENT_VARIABLE} must be a whole number of faces "
                                    f">= 1, got {text!r}")
     return value
+
+
+# os.environ keeps its variables in a dict of encoded names and values. Every
+# operation that can grow reads the variable, and os.environ.get costs three
+# Python calls and, when it is unset (the usual case), two exceptions: about as
+# much as a chained extrusion's checks together. The dict answers in one lookup;
+# where an interpreter has no such dict, the mapping is asked.
+_ENVIRON_DATA = getattr(os.environ, "_data", None)
+_ENVIRON_KEY = os.environ.encodekey(ENVIRONMENT_VARIABLE)
+
+
+def _environment_value() -> str | None:
+    """The value of :data:`ENVIRONMENT_VARIABLE` in ``os.environ``, or None."""
+    data = getattr(os.environ, "_data", None)
+    if data is not _ENVIRON_DATA or data is None:  # replaced, or it keeps no such dict
+        return os.environ.get(ENVIRONMENT_VARIABLE)
+    raw = data.get(_ENVIRON_KEY)
+    return None if raw is None else os.environ.decodevalue(raw)
 
 
 def face_budget(max_faces: object = None) -> int:
@@ -139,8 +157,11 @@ def check_size(operation: str, faces: int, corners: int = 0, *,
             that would allow it (at most :data:`SATURATED`).
         InvalidArgumentError: a bad ``max_faces``.
     """
-    budget = face_budget(max_faces)
-    needed = _needed(faces, corners)
+    # the common path, a result within the budget, is a few comparisons: every
+    # extrusion of a chain passes here
+    budget = default_face_budget() if max_faces is None else face_budget(max_faces)
+    quads = -(-corners // CORNERS_PER_FACE)
+    needed = faces if faces >= quads else quads
     if needed <= budget:
         return
     if faces >= needed:
