@@ -896,3 +896,16 @@ def test_every_face_an_extrusion_makes_takes_the_extruded_faces_colour(kind):
     original = rainbow_cube()
     kept = [f for f in before - {0} if m.has_face(f)]
     assert kept and all(m.face_color(f) == original.face_color(f) for f in kept)
+
+
+@pytest.mark.parametrize("kind", ["cubical", "doo-sabin", "octa"])
+def test_an_uncoloured_face_extrudes_uncoloured_into_a_coloured_face_s_old_slot(kind):
+    m = rainbow_cube()
+    m.delete_edge(m.face_edges(0)[0])  # face 0 (green) merges away: its slot is free
+    merged = next(f for f in m.face_ids().tolist() if m.face_size(f) == 6)
+    m.set_face_color(merged, None)
+    before = set(m.face_ids().tolist())
+    end = extrude(m, merged, kind, 1.0)
+    validate(m)
+    made = [f for f in m.face_ids().tolist() if f not in before]
+    assert end in made and all(m.face_color(f) is None for f in made)

@@ -22,7 +22,7 @@ as TopMod does.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, replace
 from functools import lru_cache
 from typing import Any
@@ -30,6 +30,7 @@ from typing import Any
 import numpy as np
 
 from ._checks import (
+    MAX_ELEMENTS,
     finite_number,
     first_not_finite,
     flag,
@@ -196,7 +197,9 @@ def _bridge(mesh: Mesh, face: int, points: np.ndarray, dual: bool = False) -> in
     face, which takes ``face``'s colour (the sides, cut from ``face`` merged with
     the back, take it too)."""
     front, back = mesh.create_face(_finite(points).tolist())
-    mesh.set_face_color(front, mesh.face_color(face))
+    color = mesh.face_color(face)
+    if color is not None:  # a new face has none
+        mesh.set_face_color(front, color)
     join = triangle_band if dual else quad_band
     join(mesh, mesh.face_corner(face), mesh.face_corner(back))
     return front
@@ -633,6 +636,8 @@ KINDS: dict[str, Kind] = {
                           aliases=("inset",)),
 }
 ALIASES = {alias: name for name, kind in KINDS.items() for alias in kind.aliases}
+# each kind's name in a face-budget refusal, made once (every extrusion passes one)
+_OPERATIONS = {name: f"{name} extrusion" for name in KINDS}
 
 
 def kind_names() -> list[str]:
@@ -650,6 +655,8 @@ def resolve_kind(name: str) -> str:
     if not isinstance(name, str):
         raise InvalidArgumentError(
             f"extrusion kind must be a string, got {name!r}; kinds: {', '.join(KINDS)}")
+    if name in KINDS:  # a registry name as it is: every extrusion of a chain
+        return name
     key = name.strip().lower().replace("_", "-")
     if key in KINDS:
         return key
@@ -666,15 +673,18 @@ def resolve_kind(name: str) -> str:
                                             "valid kinds"))
 
 
-def _check_face(mesh: Mesh, face: int) -> None:
-    """Refuse a ``face`` no extrusion can start from (every kind, via :func:`_prepare`).
+def _check_face(mesh: Mesh, face: int) -> int:
+    """Refuse a ``face`` no extrusion can start from (every kind, via :func:`_prepare`);
+    return its number of corners.
 
     Raises:
         DLFLError: ``face`` is not an int id, does not exist, is a hole (a
             boundary loop of an open mesh: a cap on it would be detached, with
             hole walls), or has fewer than 3 corners.
     """
-    if isinstance(face, bool) or not isinstance(face, int | np.integer):
+    # a plain int first: the union isinstance costs more than the rest of the test
+    if type(face) is not int and (isinstance(face, bool)
+                                  or not isinstance(face, int | np.integer)):
         raise InvalidArgumentError(f"face must be a face id (int), got {face!r}")
     if not mesh.has_face(int(face)):
         raise UnknownIdError(f"face {shown(int(face))} does not exist (deleted or never made)")
@@ -682,9 +692,11 @@ def _check_face(mesh: Mesh, face: int) -> None:
         raise InvalidArgumentError(
             f"face {face} is a hole (a boundary loop of an open mesh, not part of "
             "the surface); it cannot be extruded")
-    if mesh.face_size(int(face)) < 3:
-        raise InvalidArgumentError(f"face {face} has {mesh.face_size(int(face))} corner(s); "
+    size = mesh.face_size(int(face))
+    if size < 3:
+        raise InvalidArgumentError(f"face {face} has {size} corner(s); "
                                    "only faces of 3 or more corners can be extruded")
+    return size
 
 
 def _checked_numbers(opts: Options) -> Options:
@@ -713,28 +725,32 @@ def _checked_shape(shape: Shape) -> Shape:
                    for name in ("angle", "l1", "l2", "l3")))
 
 
-def _prepare(mesh: Mesh, faces: list[int], kind: str, segments: int, opts: Options,
+def _prepare(mesh: Mesh, faces: Sequence[int], kind: str, segments: int, opts: Options,
              max_faces: object) -> tuple[str, Kind, Options]:
     """The kind's name and spec and the checked options for extruding ``faces``, or
-    a DLFLError (see :func:`extrude`); the face budget is checked for all of them."""
+    a DLFLError (see :func:`extrude`); the face budget is checked for all of them.
+
+    This runs before every extrusion of a chain, so each check is cheap when it
+    passes: every face's ring is walked once, and ``segments`` is read once.
+    """
     name = resolve_kind(kind)
     spec = KINDS[name]
     sides = 0
     for face in faces:
-        _check_face(mesh, face)
+        sides += _check_face(mesh, face)
         if spec.simple_face:
             _check_simple(mesh, int(face), name)
-        sides += mesh.face_size(int(face))
     count = whole_count(segments, "segments", each=0)
     if spec.fan is not None and count != 1:
         raise InvalidArgumentError(f"a {name} extrusion ends in a fan of triangles: it has "
                                    f"no segments, got segments={count}")
     grown, corners = spec.growth
-    check_growth(mesh, f"{name} extrusion", faces=count * grown * sides,
+    check_growth(mesh, _OPERATIONS[name], faces=count * grown * sides,
                  corners=count * corners * sides, max_faces=max_faces)
     # every segment makes at least a new polygon of the face's size (a budget
-    # raised past what a mesh can hold)
-    whole_count(segments, "segments", each=sides)
+    # raised past what a mesh can hold); whole_count says so
+    if count * sides > MAX_ELEMENTS:
+        whole_count(segments, "segments", each=sides)
     if opts.shape is not None and spec.shape is None:
         raise InvalidArgumentError(f"a {name} extrusion has no shape options (angle, l1, l2, "
                                    "l3); only dodeca and icosa have them")
@@ -818,12 +834,15 @@ def extrude(
             scratch copy first). The mesh is unchanged.
         BudgetExceededError: the segments would pass the face budget.
     """
-    name, spec, opts = _prepare(mesh, [face], kind, segments, Options(
+    name, spec, opts = _prepare(mesh, (face,), kind, segments, Options(
         distance, rotation, scale, twist, flag(dual_mesh, "dual_mesh"),
         flag(hexagonalize, "hexagonalize"), thickness, flag(fractional, "fractional"), shape),
         max_faces)
     # one face: the path of chained extrusions, kept lean (extrude_faces does the rest)
     count, start = int(segments), int(face)
+    step = spec.step
+    if count == 1 and spec.single_build and step is not None:
+        return step(mesh, start, opts)  # what run() does, without the rehearsal
     run = _runner(spec, opts, count)
     if count > 1 or not spec.single_build:
         _rehearse(mesh, start, name, run)
@@ -936,7 +955,7 @@ def extrude_fan(
             double-stellate; checked on a scratch copy first). The mesh is
             unchanged.
     """
-    name, spec, opts = _prepare(mesh, [face], kind, 1,
+    name, spec, opts = _prepare(mesh, (face,), kind, 1,
                                 Options(distance=distance, rotation=rotation, scale=scale),
                                 max_faces)
     if spec.fan is None:
