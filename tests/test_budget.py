@@ -413,7 +413,7 @@ def test_repeated_growth_stops_at_the_scene_budget(grow):
 
 def test_a_menger_sponge_over_the_budget_is_refused():
     scene = cube_scene()
-    scene.face_budget = 83  # 64/156/84: at most 7 E faces, 13 C corners
+    scene.face_budget = 83  # 64/156/84: at most 7 E + V faces, 15 C corners
     refused_without_allocating(scene, commands.menger)
 
 

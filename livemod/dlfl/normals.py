@@ -217,7 +217,8 @@ def polygon_normal(points: np.ndarray) -> np.ndarray:
 
 
 def inset_offsets(positions: np.ndarray, corner_vertex: np.ndarray, offsets: np.ndarray,
-                  thickness: float, fractional: bool = True) -> np.ndarray:
+                  thickness: float, fractional: bool = True,
+                  normals: RingNormals | None = None) -> np.ndarray:
     """``(C, 3)`` TopMod's planar-offset move of every corner (``extrudeFacePlanarOffset``,
     the checkerboard's inset), in the rings' layout (see :func:`ring_normals`).
 
@@ -227,9 +228,10 @@ def inset_offsets(positions: np.ndarray, corner_vertex: np.ndarray, offsets: np.
     ``n x nvec``, square to its next edge in the face, where ``n`` is the normal
     of the first corner after it that is not winged (normalised when
     ``fractional``; TopMod did not, which on a non-planar face shortens the move).
+    ``normals``: :func:`ring_normals` of the same rings, when the caller has them.
     """
     positions = np.asarray(positions, dtype=np.float64)
-    rn = ring_normals(positions, corner_vertex, offsets)
+    rn = ring_normals(positions, corner_vertex, offsets) if normals is None else normals
     nxt, prv = ring_neighbours(offsets)
     p = np.take(positions, corner_vertex, axis=0)
     nvec = np.take(p, nxt, axis=0) - p

@@ -1,33 +1,45 @@
-"""Menger-sponge remeshing: TopMod's ``createSponge(t=0.67)``.
+"""Menger-sponge remeshing: TopMod's ``createSponge(t=0.67, collapse=0)``.
 
 Every face is cut like a face of a Menger sponge: its edges are trisected, its
 middle (the face shrunk to a third about its centroid) is opened, and the ring
 left around it is split into one quad per corner and one per side. A tunnel of
-quads runs from each opening to the matching face of an inner shell (the mesh
-offset inward by ``thickness``), whose faces are all open, so the tunnels meet
-inside. On the cube (edge 2) with TopMod's 0.67 this is the level-1 Menger
-sponge surface: 64 vertices, 72 quads, genus 5.
+quads runs from each opening to the face's disc on an inner shell built as
+TopMod builds it (:mod:`._sponge_shell`): one disc per face, offset by
+``thickness`` inward and inset as much, joined to its neighbours by quads whose
+joining edges TopMod collapses when short or crossed ("Edge Collapse Threshold
+Factor", ``collapse``). The discs are all open, so the tunnels meet inside.
 
-TopMod's result, 64/156/84, also holds 12 two-sided faces that its edge
-collapses left behind. livemod reproduces the counts by default, with one
-2-gon along every edge of the inner shell, where TopMod's collapsed inner
-insets lay (the source was not available to confirm the exact place);
-``keep_2gons=False`` gives the clean surface, 64/144/72.
+On the cube (edge 2) with TopMod's 0.67 every joining edge has no length: the
+inner shell merges into the cube offset inward, and what is left of each joining
+quad is a 2-gon along an edge of it. That is TopMod's 64/156/84 with its 12
+2-gons; ``keep_2gons=False`` gives the clean level-1 Menger sponge surface,
+64/144/72, genus 5. Elsewhere the joining quads and vertex faces that do not
+collapse stay (the octahedron's at the default, 78/180/90).
 
 TopMod's 0.67 is an absolute length made for its edge-2 cube, whose inner
 shell collapses to a point at thickness 1. On a thinner mesh (the unit
 tetrahedron's shell collapses at its inradius 1/3) 0.67 would turn the inner
 shell inside out, so the default thickness keeps the cube's proportion there:
-0.67 times that limit.
+0.67 times that limit. TopMod trisected the edges at the thickness from each
+end and inset the opening by it; livemod cuts at thirds, the Menger sponge's
+proportion, which is TopMod's on its cube up to 0.67 against 2/3.
 """
 
 from __future__ import annotations
 
-from dataclasses import replace
+from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ._checks import positive_number
+from ._checks import finite_number, positive_number, shown
+from ._sponge_shell import (
+    InnerShell,
+    collapse_length,
+    disc_corners,
+    inner_shell,
+    joining_collapses,
+    vertex_faces,
+)
 from ._vectors import group_sum
 from .analysis import face_centroids
 from .arrays import MeshArrays, mesh_arrays
@@ -44,8 +56,8 @@ __all__ = ["TOPMOD_THICKNESS", "shell_limit", "sponge"]
 TOPMOD_THICKNESS = 0.67
 
 
-def sponge(mesh: Mesh, thickness: float | None = None, *, keep_2gons: bool = True,
-           max_faces: object = None) -> float:
+def sponge(mesh: Mesh, thickness: float | None = None, *, collapse: float = 0.0,
+           keep_2gons: bool = True, max_faces: object = None) -> float:
     """Menger-sponge remeshing of ``mesh`` in place (rebuilt: fresh ids).
 
     Args:
@@ -53,7 +65,13 @@ def sponge(mesh: Mesh, thickness: float | None = None, *, keep_2gons: bool = Tru
             :func:`shell_limit`. None (the default) takes TopMod's 0.67 (which
             on the edge-2 cube puts the inner shell at +-0.33), or 0.67 times
             the limit where that is less (a limit below the cube's 1).
-        keep_2gons: add TopMod's 2-gons along the inner shell's edges.
+        collapse: TopMod's "Edge Collapse Threshold Factor", at least 0: the
+            inner shell's joining edges shorter than ``collapse * thickness``
+            (0.01 for a factor up to 0.001) or crossed collapse (see
+            :mod:`._sponge_shell`). Where faces meet at right angles every
+            factor collapses them all.
+        keep_2gons: keep TopMod's 2-gons (joining quads both of whose joining
+            edges collapsed, vertex faces of two sides).
 
     Returns:
         The thickness used.
@@ -61,19 +79,27 @@ def sponge(mesh: Mesh, thickness: float | None = None, *, keep_2gons: bool = Tru
     Raises:
         DLFLError: ``thickness`` not positive, or so large that the inner shell
             collapses or turns over (naming the value and the limit);
-            point-spheres or faces of fewer than three sides; a vertex whose
-            faces have no area (no normal to offset it along); the mesh is
-            unchanged.
+            ``collapse`` negative or not a number; point-spheres or faces of
+            fewer than three sides; a vertex whose faces have no area (no
+            normal to offset it along); the mesh is unchanged.
         BudgetExceededError: the result could pass the face budget: at most
-            ``7 E`` faces and ``13 C`` corners (``max_faces``; None: the
+            ``7 E + V`` faces and ``15 C`` corners (``max_faces``; None: the
             session's, see :mod:`livemod.dlfl.budget`).
     """
-    check_size("sponge", 7 * mesh.num_edges, 13 * mesh.num_corners, max_faces=max_faces)
+    factor = finite_number(collapse, "collapse")
+    if factor < 0:
+        raise InvalidArgumentError(f"collapse must be a number >= 0, got {shown(collapse)}")
+    check_size("sponge", 7 * mesh.num_edges + mesh.num_vertices, 15 * mesh.num_corners,
+               max_faces=max_faces)
     a = mesh_arrays(mesh)
     _check_input(a)
     thickness, inner = _inner_shell(a, thickness)
-    positions, corner_vertex, mates, offsets = _sponge_polygons(a, inner, keep_2gons)
-    # the three faces of a corner lie in (or tunnel through) its face; a 2-gon has no one
+    discs = disc_corners(a, thickness)
+    collapsed = joining_collapses(a, discs, collapse_length(thickness, factor))
+    shell = inner_shell(a, inner, discs, collapsed)
+    positions, corner_vertex, mates, offsets = _sponge_polygons(a, shell, keep_2gons)
+    # the three faces of a corner lie in (or tunnel through) its face; the inner
+    # shell's faces have no one
     origin = np.concatenate([np.tile(a.corner_face, 3), np.full(len(offsets) - 1 -
                                                                 3 * len(a.corner_face), -1)])
     mesh.replace_with(from_corner_arrays(positions, offsets, corner_vertex, mates,
@@ -195,47 +221,114 @@ def _least_positive_root(A: np.ndarray, B: np.ndarray, C: np.ndarray) -> np.ndar
 
 
 def _sponge_polygons(
-    a: MeshArrays, inner: np.ndarray, keep_2gons: bool
+    a: MeshArrays, shell: InnerShell, keep_2gons: bool
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Positions, corner vertices, corner mates and face offsets of the sponge.
 
     Vertex blocks: originals ``P`` (V), trisection points ``T`` (one per corner,
-    a third along its edge), inset points ``I`` (one per corner), inner shell
-    ``Q`` (V). Face blocks, per corner ``c``: A ``[P c, T c, I c, T mate(prev c)]``,
-    B ``[T c, T mate(c), I next(c), I c]``, C (tunnel)
-    ``[I c, I next(c), Q next(c), Q c]``; then D, one 2-gon ``[Q u, Q w]`` per edge.
+    a third along its edge), inset points ``I`` (one per corner), the inner
+    shell's vertices ``Q`` (``shell.positions``; ``Q c``: corner ``c``'s). Face
+    blocks, per corner ``c``: A ``[P c, T c, I c, T mate(prev c)]``, B
+    ``[T c, T mate(c), I next(c), I c]``, C (tunnel) ``[I c, I next(c), Q next(c),
+    Q c]``; then the joining faces (:class:`_JoinFaces`).
     """
     nv, nc = len(a.vertex_ids), len(a.corner_vertex)
-    cv, nxt, prv, mate = a.corner_vertex, a.corner_next, a.corner_prev, a.corner_mate
+    cv, nxt, mate = a.corner_vertex, a.corner_next, a.corner_mate
     p = a.positions
     trisect = p[cv] + (p[cv[nxt]] - p[cv]) / 3
     centre = face_centroids(a)[a.corner_face]
     inset = centre + (p[cv] - centre) / 3
-    t_idx, i_idx, q_idx = nv + np.arange(nc), nv + nc + np.arange(nc), nv + 2 * nc + cv
+    t_idx, i_idx = nv + np.arange(nc), nv + nc + np.arange(nc)
+    q_idx = nv + 2 * nc + shell.corner_class
+    join = _JoinFaces.of(a, shell, keep_2gons)
     blocks = [
-        np.stack([cv, t_idx, i_idx, t_idx[mate[prv]]], 1),
-        np.stack([t_idx, t_idx[mate], i_idx[nxt], i_idx], 1),
-        np.stack([i_idx, i_idx[nxt], q_idx[nxt], q_idx], 1),
+        np.stack([cv, t_idx, i_idx, t_idx[mate[a.corner_prev]]], 1).ravel(),
+        np.stack([t_idx, t_idx[mate], i_idx[nxt], i_idx], 1).ravel(),
+        np.stack([i_idx, i_idx[nxt], q_idx[nxt], q_idx], 1).ravel(),
+        q_idx[join.corner],
     ]
-    corner_vertex = np.concatenate(blocks).ravel()
-    mates = _sponge_mates(a, keep_2gons)
-    sizes = np.full(3 * nc, 4)
-    if keep_2gons:
-        ends = q_idx[a.edge_corners]
-        corner_vertex = np.concatenate([corner_vertex, ends.ravel()])
-        sizes = np.concatenate([sizes, np.full(len(a.edge_ids), 2)])
+    sizes = np.concatenate([np.full(3 * nc, 4), join.sizes])
     offsets = np.concatenate([[0], np.cumsum(sizes)])
-    positions = np.concatenate([p, trisect, inset, inner])
-    return positions, corner_vertex, mates, offsets
+    positions = np.concatenate([p, trisect, inset, shell.positions])
+    return positions, np.concatenate(blocks), _sponge_mates(a, join), offsets
 
 
-def _sponge_mates(a: MeshArrays, keep_2gons: bool) -> np.ndarray:
+@dataclass(frozen=True)
+class _JoinFaces:
+    """The faces the inner shell adds: one per edge (its joining quad: the 2-gon
+    ``[Q c0, Q c1]`` where both joining edges collapsed, a triangle where one
+    did), then the vertex faces; 2-gons left out unless kept.
+
+    Attributes:
+        corner: ``(k,)`` for each of their corners, the corner whose shell vertex it is.
+        sizes: ``(n,)`` corners of each face.
+        mates: ``(k,)`` the corner across each one's edge, in the sponge's layout.
+        tunnel_mates: ``(C,)`` the corner across tunnel ``c``'s inner edge.
+    """
+
+    corner: np.ndarray
+    sizes: np.ndarray
+    mates: np.ndarray
+    tunnel_mates: np.ndarray
+
+    @staticmethod
+    def of(a: MeshArrays, shell: InnerShell, keep_2gons: bool) -> _JoinFaces:
+        """The joining faces of ``a``'s sponge with inner shell ``shell``.
+
+        Per edge ``(c0, c1)``, four slots: ``Q c0`` (its edge is tunnel ``c0``'s),
+        ``Q next(c0)`` (there while ``J(c1)`` is), ``Q c1``, ``Q next(c1)`` (while
+        ``J(c0)`` is); a vertex face's corner ``c`` carries ``J(c)``.
+        """
+        nc, kept = len(a.corner_vertex), shell.kept
+        c0, c1 = a.edge_corners[:, 0], a.edge_corners[:, 1]
+        tunnel = 8 * nc + 4 * np.arange(nc) + 2  # each tunnel's corner at Q next(c)
+        present = np.stack([np.ones_like(kept[c0]), kept[c1], np.ones_like(kept[c0]), kept[c0]], 1)
+        if not keep_2gons:
+            present &= (kept[c0] | kept[c1])[:, None]
+        slot = np.full(present.shape, -1, dtype=np.int64)
+        slot[present] = 12 * nc + np.arange(int(present.sum()))
+        first = a.edge_corners[a.corner_edge, 0] == np.arange(nc)
+        edge = a.corner_edge
+        tunnel_slot = np.where(first, slot[edge, 0], slot[edge, 2])
+        join_slot = np.where(first, slot[edge, 3], slot[edge, 1])
+        ring, ring_sizes, join_mate = _vertex_rings(a, shell, keep_2gons, join_slot,
+                                                    12 * nc + len(slot[present]))
+        corners = np.stack([c0, a.corner_next[c0], c1, a.corner_next[c1]], 1)[present]
+        mates = np.stack([tunnel[c0], join_mate[c1], tunnel[c1], join_mate[c0]], 1)[present]
+        rows = present.sum(axis=1)
+        return _JoinFaces(
+            np.concatenate([corners, ring]),
+            np.concatenate([rows[rows > 0], ring_sizes]),
+            np.concatenate([mates, join_slot[ring]]),
+            np.where(tunnel_slot >= 0, tunnel_slot, tunnel[a.corner_mate]))
+
+
+def _vertex_rings(a: MeshArrays, shell: InnerShell, keep_2gons: bool, join_slot: np.ndarray,
+                  base: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The vertex faces from corner ``base`` on: ``(corners (k,), sizes (n,),
+    join_mate (C,))``, ``join_mate[c]`` the corner across ``J(c)`` from its
+    joining quad (the other quad's, where a 2-gon vertex face is left out)."""
+    join_mate = np.full(len(shell.kept), -1, dtype=np.int64)
+    if not shell.kept.any():
+        return np.zeros(0, np.int64), np.zeros(0, np.int64), join_mate
+    ring, offsets = vertex_faces(a, shell)
+    sizes = np.diff(offsets)
+    if not keep_2gons and (sizes == 2).any():
+        pairs = ring[offsets[:-1][sizes == 2, None] + np.arange(2)]
+        join_mate[pairs[:, 0]], join_mate[pairs[:, 1]] = join_slot[pairs[:, 1]], join_slot[pairs[:, 0]]
+        keep = np.repeat(sizes != 2, sizes)
+        ring, sizes = ring[keep], sizes[sizes != 2]
+    join_mate[ring] = base + np.arange(len(ring))
+    return ring, sizes, join_mate
+
+
+def _sponge_mates(a: MeshArrays, join: _JoinFaces) -> np.ndarray:
     """``(C_out,)`` the other side of every corner's edge in the layout above."""
-    nc, ne = len(a.corner_vertex), len(a.edge_ids)
+    nc = len(a.corner_vertex)
     nxt, prv, mate = a.corner_next, a.corner_prev, a.corner_mate
     c = np.arange(nc)
-    A, B, C, D = 0, 4 * nc, 8 * nc, 12 * nc  # noqa: N806 - block bases
-    out = np.empty(12 * nc + (2 * ne if keep_2gons else 0), np.int64)
+    A, B, C = 0, 4 * nc, 8 * nc  # noqa: N806 - block bases
+    out = np.empty(12 * nc + len(join.mates), np.int64)
     out[A + 4 * c] = A + 4 * nxt[mate] + 3
     out[A + 4 * c + 1] = B + 4 * c + 3
     out[A + 4 * c + 2] = B + 4 * prv + 1
@@ -246,13 +339,7 @@ def _sponge_mates(a: MeshArrays, keep_2gons: bool) -> np.ndarray:
     out[B + 4 * c + 3] = A + 4 * c + 1
     out[C + 4 * c] = B + 4 * c + 2
     out[C + 4 * c + 1] = C + 4 * nxt + 3
+    out[C + 4 * c + 2] = join.tunnel_mates
     out[C + 4 * c + 3] = C + 4 * prv + 1
-    if not keep_2gons:
-        out[C + 4 * c + 2] = C + 4 * mate + 2
-        return out
-    # the tunnels on both sides of an inner edge each meet one side of its 2-gon
-    e = np.arange(ne)
-    c0, c1 = a.edge_corners[:, 0], a.edge_corners[:, 1]
-    out[D + 2 * e], out[C + 4 * c0 + 2] = C + 4 * c0 + 2, D + 2 * e
-    out[D + 2 * e + 1], out[C + 4 * c1 + 2] = C + 4 * c1 + 2, D + 2 * e + 1
+    out[12 * nc:] = join.mates
     return out

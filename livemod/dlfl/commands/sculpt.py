@@ -3,7 +3,7 @@
 ``rind``, ``wireframe`` and ``column`` are the thesis appendix's commands.
 The extras are livemod additions, named after TopMod's menu entries (its
 Python module had ``sierpinsky`` and ``menger`` commented out): ``sierpinsky()``,
-``menger([thickness])``, ``meshsmooth()``, ``planarize()``, ``spheralize()``,
+``menger([thickness, collapse])``, ``meshsmooth()``, ``planarize()``, ``spheralize()``,
 ``crust(thickness[, uniform])`` and ``punch([faceids])`` (its crust mode),
 ``convexHull()`` and ``dualConvexHull()``
 (TopMod's sculpting menu), and ``multiConnectFaces(...)`` (its multi-face
@@ -153,13 +153,19 @@ def sierpinsky() -> None:
 
 
 @modeling_command
-def menger(thickness: float | None = None, *, keep2gons: bool = True) -> float:
-    """``menger([thickness])``: TopMod's Menger sponge remeshing (cube 64/156/84).
+def menger(thickness: float | None = None, collapse: float = 0.0, *,
+           keep2gons: bool = True) -> float:
+    """``menger([thickness, collapse])``: TopMod's Menger sponge remeshing
+    (``createSponge(t, collapse)``, cube 64/156/84).
 
     Without ``thickness``, TopMod's 0.67, scaled down on meshes whose inner shell
-    collapses sooner (see :func:`livemod.dlfl.sponge.sponge`). ``keep2gons``
-    keeps the 2-gons TopMod's edge collapses leave along the inner shell's
-    edges; ``keep2gons=False`` gives the clean sponge (cube 64/144/72).
+    collapses sooner (see :func:`livemod.dlfl.sponge.sponge`). ``collapse`` is
+    TopMod's "Edge Collapse Threshold Factor" (at least 0): the inner shell's
+    joining edges shorter than ``collapse * thickness`` (0.01 for 0) or crossed
+    collapse; where faces meet at right angles (the cube) every value gives the
+    same sponge. ``keep2gons`` keeps the 2-gons TopMod's edge collapses leave
+    along the inner shell's edges; ``keep2gons=False`` gives the clean sponge
+    (cube 64/144/72).
 
     Returns:
         The thickness used (TopMod returned nothing).
@@ -168,7 +174,8 @@ def menger(thickness: float | None = None, *, keep2gons: bool = True) -> float:
         DLFLError: see :func:`livemod.dlfl.sponge.sponge`; the mesh is unchanged.
     """
     given = None if thickness is None else finite_number(thickness, "thickness")
-    return sponge.sponge(mesh(), given, keep_2gons=flag(keep2gons, "keep2gons"),
+    return sponge.sponge(mesh(), given, collapse=collapse,
+                         keep_2gons=flag(keep2gons, "keep2gons"),
                          max_faces=scene().face_budget)
 
 
