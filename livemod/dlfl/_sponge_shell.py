@@ -32,7 +32,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ._graph import cycle_layout
-from ._vectors import cross_rows, lengths, scaled_mean, together_in_range, unit
+from ._vectors import cross_rows, lengths, scaled_mean, together_in_range
 from .arrays import MeshArrays
 from .normals import inset_offsets, ring_normals
 
@@ -48,10 +48,8 @@ FACTOR_FLOOR = 0.001
 # product is left unnormalised, so that it never matches
 _OPPOSITE = 1e-4
 _NO_DIRECTION = 1e-10
-# a pair passes checkIntersection's first test only when the sine of the angle
-# between its normals is below 0.01 (see _pair_crosses); this bound on their
-# triple product lets through everything that could, at any rounding
-_PLANAR = 0.02
+# the screen's slack: far above the rounding of a difference of two products
+_ROUNDING = 1e-9
 
 
 def collapse_length(thickness: float, factor: float) -> float:
@@ -87,55 +85,80 @@ def joining_collapses(a: MeshArrays, discs: np.ndarray, length: float) -> np.nda
 def _crossed(a: MeshArrays, p: np.ndarray, rows: np.ndarray) -> np.ndarray:
     """``(k,)`` bool: for ``J(c)``, ``c`` in ``rows``, whether one of the three other
     edges at its start crosses one of the three other edges at its end
-    (``p``: ``(C, 3)`` disc corners)."""
+    (``p``: ``(C, 3)`` disc corners, in range).
+
+    Each pair is first screened by the signs of TopMod's two pairs of normals,
+    taken from dot products alone (Binet-Cauchy: ``(a x b) . (a x c) =
+    (a . a)(b . c) - (a . b)(a . c)``): edges cross only where each one's ends
+    lie on either side of the other's line, which on a smooth mesh few pairs
+    do. Those left get the full test.
+    """
     nxt, prv, vnext = a.corner_next, a.corner_prev, a.corner_vnext
     vprev = a.corner_mate[prv]
     side = p[nxt] - p  # each disc's sides, from each corner to the next
     join = p[vnext] - p
-    side_len, join_len = lengths(side), lengths(join)
     c, w = rows, vnext[rows]
-    j, j_len = join[c], join_len[c]
-    at_start = ((side[c], side_len[c]), (-side[prv[c]], side_len[prv[c]]),
-                (-join[vprev[c]], join_len[vprev[c]]))
-    at_end = ((side[w], side_len[w]), (-side[prv[w]], side_len[prv[w]]), (join[w], join_len[w]))
+    j = join[c]
+    at_start = (side[c], -side[prv[c]], -join[vprev[c]])
+    at_end = (side[w], -side[prv[w]], join[w])
+    jj = _dots(j, j)
+    start_j = [_dots(dx, j) for dx in at_start]
+    start_sq = [_dots(dx, dx) for dx in at_start]
+    end_j = [_dots(dy, j) for dy in at_end]
+    end_sq = [_dots(dy, dy) for dy in at_end]
     # at a vertex of two corners, J(vprev c) = J(vnext c) is at both ends: no pair
     twin = vprev[c] == w
     hit = np.zeros(len(rows), dtype=bool)
-    for k, (dy, dy_len) in enumerate(at_end):
-        normal = cross_rows(j, dy)
-        reach = _PLANAR * j_len * (j_len + dy_len)
-        for i, (dx, dx_len) in enumerate(at_start):
-            volume = np.abs(np.einsum("ij,ij->i", dx, normal))
-            maybe = np.flatnonzero((volume <= reach * dx_len) & ~hit & ~(twin & (i == k == 2)))
-            if len(maybe):
-                hit[maybe] = _pair_crosses(dx[maybe], j[maybe], dy[maybe])
+    for k, dy in enumerate(at_end):
+        for i, dx in enumerate(at_start):
+            xy = _dots(dx, dy)
+            # n1 . n2 for n1 = dx x j, n2 = dx x (j + dy) and m1 . m2 for
+            # m1 = j x dy, m2 = dy x (dx - j): each pair must point apart
+            maybe = _apart(start_sq[i] * (jj + end_j[k]), start_j[i] * (start_j[i] + xy))
+            maybe &= _apart(end_sq[k] * (jj - start_j[i]), end_j[k] * (end_j[k] - xy))
+            maybe &= ~(hit | twin) if i == k == 2 else ~hit
+            found = np.flatnonzero(maybe)
+            if len(found):
+                hit[found] = _pair_crosses(dx[found], j[found], dy[found])
     return hit
 
 
 def _pair_crosses(dx: np.ndarray, j: np.ndarray, dy: np.ndarray) -> np.ndarray:
     """``(k,)`` bool: TopMod's ``checkIntersection`` of the edges ``u -> u + dx`` and
-    ``w -> w + dy`` (rows ``(k, 3)``, ``j = w - u``), scale-free: the ends of each
-    lie on either side of the other's line, in one plane within about 0.01
-    radian. A cross product whose sine is below 1e-10 has no direction and
-    matches nothing (an end on the other edge's line: no crossing)."""
-    first = _opposite(_normal(dx, j), _normal(dx, j + dy))
-    rows = np.flatnonzero(first)
-    first[rows] = _opposite(_normal(j[rows], dy[rows]), _normal(dy[rows], dx[rows] - j[rows]))
-    return first
+    ``w -> w + dy`` (rows ``(k, 3)``, in range, ``j = w - u``), scale-free: the
+    ends of each lie on either side of the other's line, in one plane within
+    about 0.01 radian. A cross product whose sine is below 1e-10 has no
+    direction and matches nothing (an end on the other edge's line: no crossing)."""
+    return (_opposite(_normal(dx, j), _normal(dx, j + dy))
+            & _opposite(_normal(j, dy), _normal(dy, dx - j)))
 
 
 def _normal(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """``(k, 3)`` unit ``a x b``, zero where the sine of their angle is below 1e-10."""
-    cross = cross_rows(unit(a), unit(b))
-    size = np.linalg.norm(cross, axis=1, keepdims=True)
-    return np.divide(cross, size, out=np.zeros_like(cross), where=size > _NO_DIRECTION)
+    """``(k, 3)`` unit ``a x b`` (rows in range), zero where the sine of their
+    angle is below 1e-10."""
+    cross = cross_rows(a, b)
+    size = np.sqrt(_dots(cross, cross))
+    scale = np.sqrt(_dots(a, a) * _dots(b, b))
+    return np.divide(cross, size[:, None], out=np.zeros_like(cross),
+                     where=(size > _NO_DIRECTION * scale)[:, None])
 
 
 def _opposite(n1: np.ndarray, n2: np.ndarray) -> np.ndarray:
     """``(k,)`` bool: unit normals (or zero rows) summing to within 0.01 of zero."""
     total = n1 + n2
     both = (n1 != 0).any(axis=1) & (n2 != 0).any(axis=1)
-    return both & (np.einsum("ij,ij->i", total, total) < _OPPOSITE)
+    return both & (_dots(total, total) < _OPPOSITE)
+
+
+def _apart(first: np.ndarray, second: np.ndarray) -> np.ndarray:
+    """``(k,)`` bool: ``first - second`` (two normals' dot product) is not clearly
+    positive, allowing for the rounding of its two terms."""
+    return first - second <= _ROUNDING * (np.abs(first) + np.abs(second))
+
+
+def _dots(u: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """``(k,)`` row-wise dot products of ``(k, 3)`` arrays."""
+    return np.einsum("ij,ij->i", u, v)
 
 
 @dataclass(frozen=True)

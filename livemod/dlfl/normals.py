@@ -235,9 +235,10 @@ def inset_offsets(positions: np.ndarray, corner_vertex: np.ndarray, offsets: np.
     nxt, prv = ring_neighbours(offsets)
     p = np.take(positions, corner_vertex, axis=0)
     nvec = np.take(p, nxt, axis=0) - p
-    pvec = np.take(p, prv, axis=0) - p
     if not fractional:
-        nvec, pvec = unit(nvec), unit(pvec)
+        nvec = unit(nvec)
+    # the previous corner's next edge reversed: p[prev] - p, exactly
+    pvec = -np.take(nvec, prv, axis=0)
     move = thickness * (pvec + nvec)
     move[rn.concave] *= -1.0
     if rn.winged.any():
