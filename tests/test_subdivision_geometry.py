@@ -246,6 +246,23 @@ def test_dome_end_faces_rise_by_the_summed_distances():
     assert math.isclose(pos.max(), 1 + 1.33, rel_tol=1e-12)
 
 
+@pytest.mark.parametrize("shape", ["torus", "sphericalcube", "soccerball"])
+def test_dome_keeps_a_flat_rings_normal_to_within_rounding(shape, monkeypatch):
+    # a flat ring stays flat through the steps, so dome measures its normal once;
+    # measuring every ring afresh at every step (TopMod's way) gives the same mesh
+    # to within rounding
+    from livemod.dlfl.subdivision import extra
+
+    kept = load_shape(shape)
+    subdivide(kept, "dome")
+    monkeypatch.setattr(extra, "_FLAT", -1.0)  # no ring counts as flat
+    fresh = load_shape(shape)
+    subdivide(fresh, "dome")
+    a, b = mesh_arrays(kept), mesh_arrays(fresh)
+    assert np.array_equal(a.corner_vertex, b.corner_vertex)
+    np.testing.assert_allclose(a.positions, b.positions, rtol=0, atol=1e-12)
+
+
 def test_catmull_clark_on_an_ngon_is_the_rule():
     # a lone pentagon prism check: every face point is its centroid, every old
     # vertex follows (Q + 2R + (n - 3) v) / n with n = 3

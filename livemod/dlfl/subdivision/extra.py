@@ -253,21 +253,70 @@ def _dome_rings(t: Topology, first: np.ndarray, offsets: np.ndarray, length: flo
 
     ``first`` ``(N, 3)``: the split faces' corners; ``offsets`` their ring starts.
     Each step moves along its own ring's normal (TopMod extruded the end face of
-    the step before, whose normal it computed afresh).
+    the step before, whose normal it computed afresh). A flat ring stays flat
+    and keeps its normal through the steps (each one moves it along that normal,
+    mixes its points and scales them about their centroid), so only the rings
+    that are not flat get their normals measured again.
     """
     rings = np.empty((len(DOME_DISTANCES), len(first), 3))
-    corners = np.arange(len(first))
     sizes = np.diff(offsets)
-    layout = ring_layout(offsets)  # the same rings at every step
+    normals = _StepNormals(offsets)
     previous = first
     for k, (d, s) in enumerate(zip(DOME_DISTANCES, DOME_SCALES, strict=True)):
         shift: np.ndarray | float = 0.0
         if d:
-            normals = ring_normals(previous, corners, offsets, layout).face
-            shift = np.repeat(d * length * normals, sizes, axis=0)
+            shift = np.repeat(d * length * normals.of(previous), sizes, axis=0)
         rings[k] = _ds_ring(previous, offsets, shift, s * scale)
         previous = rings[k]
     return rings
+
+
+# a ring whose points all lie this close to the plane through its first point
+# along its normal (relative to its size) is flat: the steps keep its normal,
+# which TopMod measured afresh to within rounding (about 1e-13 on the nearly
+# straight corners of a dome ring)
+_FLAT = 1e-14
+
+
+class _StepNormals:
+    """TopMod's face normals of the same rings at one step after another,
+    re-measured only on the rings that were not flat the first time."""
+
+    def __init__(self, offsets: np.ndarray) -> None:
+        self.offsets = offsets
+        self.layout = ring_layout(offsets)  # the same rings at every step
+        self.normals: np.ndarray | None = None
+        self.bent: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
+
+    def of(self, points: np.ndarray) -> np.ndarray:
+        """``(R, 3)`` the face normals of the rings at ``points`` ``(N, 3)``."""
+        if self.normals is None:
+            self.normals = ring_normals(points, np.arange(len(points)), self.offsets,
+                                        self.layout).face
+            self._find_bent(points)
+            return self.normals
+        assert self.bent is not None
+        rings, corners, offsets = self.bent
+        if len(rings):
+            self.normals = self.normals.copy()
+            self.normals[rings] = ring_normals(points[corners], np.arange(len(corners)),
+                                               offsets).face
+        return self.normals
+
+    def _find_bent(self, points: np.ndarray) -> None:
+        """Keep the rings that are not flat (or have no normal), their corners and offsets."""
+        assert self.normals is not None
+        ring, count = self.layout.ring, len(self.offsets) - 1
+        rel = points - np.repeat(points[self.offsets[:-1]], np.diff(self.offsets), axis=0)
+        height = np.zeros(count)
+        np.maximum.at(height, ring, np.abs(np.einsum("ij,ij->i", rel, self.normals[ring])))
+        size = np.zeros(count)
+        np.maximum.at(size, ring, np.abs(rel).max(axis=1))
+        bent = ~(height <= _FLAT * size) | ~self.normals.any(axis=1)
+        rings = np.flatnonzero(bent)
+        sizes = np.diff(self.offsets)[rings]
+        starts = np.repeat(self.offsets[rings] - np.concatenate([[0], np.cumsum(sizes)[:-1]]), sizes)
+        self.bent = rings, starts + np.arange(int(sizes.sum())), np.concatenate([[0], np.cumsum(sizes)])
 
 
 def _split_in_four(t: Topology) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
