@@ -34,7 +34,7 @@ import numpy as np
 from ._graph import cycle_layout
 from ._vectors import cross_rows, lengths, scaled_mean, together_in_range
 from .arrays import MeshArrays
-from .normals import inset_offsets, ring_normals
+from .normals import RingNormals, inset_offsets, reversed_rings, ring_normals
 
 __all__ = ["InnerShell", "collapse_length", "disc_corners", "inner_shell", "joining_collapses",
            "vertex_faces"]
@@ -57,13 +57,30 @@ def collapse_length(thickness: float, factor: float) -> float:
     return thickness * factor if factor > FACTOR_FLOOR else DEFAULT_LENGTH
 
 
-def disc_corners(a: MeshArrays, thickness: float) -> np.ndarray:
+def disc_corners(a: MeshArrays, thickness: float,
+                 reversed_rings_normals: RingNormals | None = None) -> np.ndarray:
     """``(C, 3)`` the disc corner of every corner: moved ``thickness`` into its face
-    (TopMod's planar offset, absolute) and ``thickness`` against the face's normal."""
-    rn = ring_normals(a.positions, a.corner_vertex, a.face_offsets)
+    (TopMod's planar offset, absolute) and ``thickness`` against the face's normal.
+
+    ``reversed_rings_normals``: the normals of the faces reversed, when the
+    caller has them (the crust's, ``rind.reversed_normals``);
+    turned round they are the faces' own, to within rounding, unless a corner
+    is straight (where ties between neighbours go the other way).
+    """
+    rn = _forward_normals(a, reversed_rings_normals)
     move = inset_offsets(a.positions, a.corner_vertex, a.face_offsets, thickness,
                          fractional=False, normals=rn)
     return a.positions[a.corner_vertex] + move - thickness * rn.face[a.corner_face]
+
+
+def _forward_normals(a: MeshArrays, backwards: RingNormals | None) -> RingNormals:
+    """TopMod's normals of ``a``'s faces, from those of the reversed faces where
+    that gives them: a corner's cross product reversed is exactly its negation."""
+    if backwards is None or backwards.winged.any():
+        return ring_normals(a.positions, a.corner_vertex, a.face_offsets)
+    back = reversed_rings(a.face_offsets)
+    return RingNormals(-backwards.corner[back], -backwards.face, backwards.concave[back],
+                       backwards.winged[back], np.arange(len(back), dtype=np.int64))
 
 
 def joining_collapses(a: MeshArrays, discs: np.ndarray, length: float) -> np.ndarray:

@@ -27,7 +27,7 @@ from .build import from_corner_arrays
 from .connect import connect_faces
 from .errors import GeometryError, InvalidArgumentError, UnknownIdError
 from .mesh import Mesh
-from .normals import reversed_rings, ring_normals
+from .normals import RingNormals, reversed_rings, ring_normals
 
 __all__ = ["CrustTwins", "Shell", "crust", "crust_offsets", "punch", "rind", "shell_arrays"]
 
@@ -89,9 +89,12 @@ class _NormalMeans:
     mean: np.ndarray  # (V, 3) their raw mean
 
 
-def _normal_means(a: MeshArrays, reverse: bool) -> _NormalMeans:
+def _normal_means(a: MeshArrays, reverse: bool,
+                  reversed_rings_normals: RingNormals | None = None) -> _NormalMeans:
     """The corner normals of ``a`` and their means at each vertex; with
-    ``reverse``, those of the reversed faces, turned back (see :func:`crust_offsets`).
+    ``reverse``, those of the reversed faces, turned back (see :func:`crust_offsets`;
+    ``reversed_rings_normals``: :func:`reversed_normals` of ``a``, when the caller
+    has them).
 
     A vertex all of whose corners are straight (one added on an edge, as
     ``subdivideEdge`` does) takes its faces' normals instead, so that it moves
@@ -102,7 +105,8 @@ def _normal_means(a: MeshArrays, reverse: bool) -> _NormalMeans:
     """
     if reverse:
         back = reversed_rings(a.face_offsets)
-        normals = -ring_normals(a.positions, a.corner_vertex[back], a.face_offsets).corner[back]
+        rings = reversed_normals(a) if reversed_rings_normals is None else reversed_rings_normals
+        normals = -rings.corner[back]
     else:
         normals = corner_normals(a)
     # hole faces (boundaries of open meshes) face the other way: leave them out
@@ -116,6 +120,14 @@ def _normal_means(a: MeshArrays, reverse: bool) -> _NormalMeans:
     np.add.at(mean, a.corner_vertex[has], normals[has])
     mean /= np.maximum(count, 1)[:, None]
     return _NormalMeans(has, normals, count, mean)
+
+
+def reversed_normals(a: MeshArrays) -> RingNormals:
+    """TopMod's normals of ``a``'s faces reversed (each ring read backwards from
+    its last corner, :func:`livemod.dlfl.normals.reversed_rings`): those the inner
+    shell of a crust is offset along."""
+    back = reversed_rings(a.face_offsets)
+    return ring_normals(a.positions, a.corner_vertex[back], a.face_offsets)
 
 
 def _straight_vertex_normals(a: MeshArrays, normals: np.ndarray, has: np.ndarray,
@@ -165,13 +177,16 @@ def _face_newell(positions: np.ndarray, a: MeshArrays) -> tuple[np.ndarray, np.n
     return sums, np.zeros(len(sums), np.int64) if r.exponent is None else r.exponent
 
 
-def offset_shell(a: MeshArrays, thickness: float, uniform: bool) -> np.ndarray:
-    """``(V, 3)`` positions moved inward by :func:`crust_offsets`, checked.
+def offset_shell(a: MeshArrays, thickness: float, uniform: bool,
+                 reversed_rings_normals: RingNormals | None = None) -> np.ndarray:
+    """``(V, 3)`` positions moved inward by :func:`crust_offsets`, checked
+    (``reversed_rings_normals``: :func:`reversed_normals` of ``a``, when the
+    caller has them).
 
     Raises:
         DLFLError: ``thickness`` is so large that a moved coordinate overflows.
     """
-    means = _normal_means(a, thickness > 0)  # outside the errstate: its overflows are not checked here
+    means = _normal_means(a, thickness > 0, reversed_rings_normals)  # outside the errstate: its overflows are not checked here
     with np.errstate(over="ignore", invalid="ignore"):  # refused just below
         moved = a.positions - _scaled_offsets(a, means, thickness, uniform)
     i = first_not_finite(moved)

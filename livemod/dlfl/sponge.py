@@ -47,7 +47,8 @@ from .budget import check_size
 from .build import from_corner_arrays
 from .errors import DLFLError, GeometryError, InvalidArgumentError
 from .mesh import Mesh
-from .rind import check_not_inverted, crust_offsets, offset_shell
+from .normals import RingNormals
+from .rind import check_not_inverted, crust_offsets, offset_shell, reversed_normals
 
 __all__ = ["TOPMOD_THICKNESS", "shell_limit", "sponge"]
 
@@ -93,8 +94,9 @@ def sponge(mesh: Mesh, thickness: float | None = None, *, collapse: float = 0.0,
                max_faces=max_faces)
     a = mesh_arrays(mesh)
     _check_input(a)
-    thickness, inner = _inner_shell(a, thickness)
-    discs = disc_corners(a, thickness)
+    backwards = reversed_normals(a)  # the crust's and, turned round, the discs'
+    thickness, inner = _inner_shell(a, thickness, backwards)
+    discs = disc_corners(a, thickness, backwards)
     collapsed = joining_collapses(a, discs, collapse_length(thickness, factor))
     shell = inner_shell(a, inner, discs, collapsed)
     positions, corner_vertex, mates, offsets = _sponge_polygons(a, shell, keep_2gons)
@@ -117,9 +119,11 @@ def _check_input(a: MeshArrays) -> None:
             f"sponge needs faces of at least three sides; face {f} has fewer")
 
 
-def _inner_shell(a: MeshArrays, thickness: float | None) -> tuple[float, np.ndarray]:
+def _inner_shell(a: MeshArrays, thickness: float | None,
+                 backwards: RingNormals) -> tuple[float, np.ndarray]:
     """The thickness :func:`sponge` uses (``thickness``, or the default for None)
-    and the ``(V, 3)`` inner shell at it.
+    and the ``(V, 3)`` inner shell at it (``backwards``: the normals of ``a``'s
+    faces reversed, ``rind.reversed_normals``).
 
     Raises:
         DLFLError: ``thickness`` not a positive number, or an inner shell that
@@ -129,7 +133,7 @@ def _inner_shell(a: MeshArrays, thickness: float | None) -> tuple[float, np.ndar
     if thickness is None:
         thickness = _default_thickness(shell_limit(a))
     thickness = positive_number(thickness, "thickness")
-    inner = offset_shell(a, thickness, uniform=True)
+    inner = offset_shell(a, thickness, uniform=True, reversed_rings_normals=backwards)
     try:
         check_not_inverted(a, inner, f"thickness {thickness}")
     except DLFLError as error:
@@ -282,6 +286,8 @@ class _JoinFaces:
         nc, kept = len(a.corner_vertex), shell.kept
         c0, c1 = a.edge_corners[:, 0], a.edge_corners[:, 1]
         tunnel = 8 * nc + 4 * np.arange(nc) + 2  # each tunnel's corner at Q next(c)
+        if not kept.any():
+            return _JoinFaces.merged(a, tunnel, keep_2gons)
         present = np.stack([np.ones_like(kept[c0]), kept[c1], np.ones_like(kept[c0]), kept[c0]], 1)
         if not keep_2gons:
             present &= (kept[c0] | kept[c1])[:, None]
@@ -301,6 +307,21 @@ class _JoinFaces:
             np.concatenate([rows[rows > 0], ring_sizes]),
             np.concatenate([mates, join_slot[ring]]),
             np.where(tunnel_slot >= 0, tunnel_slot, tunnel[a.corner_mate]))
+
+
+    @staticmethod
+    def merged(a: MeshArrays, tunnel: np.ndarray, keep_2gons: bool) -> _JoinFaces:
+        """The joining faces where every joining edge collapsed: a 2-gon
+        ``[Q c0, Q c1]`` per edge (none without ``keep_2gons``). ``tunnel``:
+        ``(C,)`` each tunnel's corner at ``Q next(c)``."""
+        nc, ne = len(a.corner_vertex), len(a.edge_ids)
+        if not keep_2gons:
+            none = np.zeros(0, np.int64)
+            return _JoinFaces(none, none, none, tunnel[a.corner_mate])
+        tunnel_mates = np.empty(nc, np.int64)
+        tunnel_mates[a.edge_corners.ravel()] = 12 * nc + np.arange(2 * ne)
+        return _JoinFaces(a.edge_corners.ravel(), np.full(ne, 2),
+                          tunnel[a.edge_corners].ravel(), tunnel_mates)
 
 
 def _vertex_rings(a: MeshArrays, shell: InnerShell, keep_2gons: bool, join_slot: np.ndarray,
