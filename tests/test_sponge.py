@@ -438,3 +438,30 @@ def test_the_joining_faces_have_no_colour():
     sponge(m, 0.3, collapse=0)
     validate(m)
     assert colour_counts(m)[None] == 12
+
+
+@pytest.mark.parametrize("scale", [1e-150, 1.0, 1e150])
+def test_the_crossing_test_reads_the_same_at_any_scale(scale):
+    # the tetrahedron's joining edges (0.633 t) outlast the factor 0.5, so only
+    # TopMod's crossing test collapses them: at every scale it finds them crossed
+    m = scaled_tetrahedron(scale)
+    sponge(m, collapse=0.5)
+    validate(m)
+    assert m.counts() == sponge_counts(4, 6)
+
+
+def scaled_tetrahedron(scale: float) -> Mesh:
+    m = tetrahedron()
+    m.set_positions(m.vertex_ids(), m.positions_view() * scale)
+    return m
+
+
+def test_an_open_sheet_gets_its_joining_faces_too():
+    # a 3 x 3 grid (16 vertices, 24 edges, 9 quads and its boundary hole): at 0.05
+    # the joining edges inside are 0.1 long (two insets side by side), those at
+    # the border longer (the hole's disc lies t on the other side of the sheet),
+    # and none crosses another: all stay, 16 + 3 * 48 vertices, 144 + 24 + 16 faces
+    m = grid(3, 3)
+    sponge(m, 0.05)
+    validate(m)
+    assert m.counts() == open_sponge_counts(16, 24) == (160, 360, 184)
