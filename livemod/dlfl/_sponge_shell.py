@@ -131,10 +131,11 @@ def _crossed(a: MeshArrays, p: np.ndarray, rows: np.ndarray) -> np.ndarray:
             xy = _dots(dx, dy)
             # n1 . n2 for n1 = dx x j, n2 = dx x (j + dy) and m1 . m2 for
             # m1 = j x dy, m2 = dy x (dx - j): each pair must point apart
-            maybe = _apart(start_sq[i] * (jj + end_j[k]), start_j[i] * (start_j[i] + xy))
-            maybe &= _apart(end_sq[k] * (jj - start_j[i]), end_j[k] * (end_j[k] - xy))
-            maybe &= ~(hit | twin) if i == k == 2 else ~hit
-            found = np.flatnonzero(maybe)
+            found = np.flatnonzero(
+                _apart(start_sq[i] * (jj + end_j[k]), start_j[i] * (start_j[i] + xy))
+                & ~((hit | twin) if i == k == 2 else hit))
+            sj, ej, x = start_j[i][found], end_j[k][found], xy[found]
+            found = found[_apart(end_sq[k][found] * (jj[found] - sj), ej * (ej - x))]
             if len(found):
                 hit[found] = _pair_crosses(dx[found], j[found], dy[found])
     return hit
