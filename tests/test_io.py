@@ -153,3 +153,28 @@ def test_round_trip_through_a_file_keeps_counts_genus_and_positions(ext: str, tm
         mesh.num_vertices, mesh.num_edges, mesh.num_faces)
     assert genus(back) == genus(mesh) == 1
     assert np.array_equal(mesh_arrays(back).positions, mesh_arrays(mesh).positions)
+
+
+@pytest.mark.parametrize("extension", [".stl", ".glb", ".gltf"])
+def test_float32_formats_refuse_coordinates_past_their_range(extension: str,
+                                                             tmp_path: Path) -> None:
+    from livemod.dlfl.errors import GeometryError
+
+    target = tmp_path / f"m{extension}"
+    target.write_bytes(b"an older file")
+    mesh = cube()
+    mesh.set_position(0, (1e39, 0.0, 0.0))  # float32 tops out near 3.4e38
+    name = {".stl": "STL"}.get(extension, "glTF")
+    with pytest.raises(GeometryError, match=rf"^{name} stores coordinates as float32, up to "
+                                            r"about 3\.4e\+38; this mesh has one of 1e\+39$"):
+        save_mesh(mesh, target)
+    assert target.read_bytes() == b"an older file"
+    mesh.set_position(0, (3e38, 0.0, 0.0))  # within the range: written, read back finite
+    save_mesh(mesh, target)
+    if extension == ".stl":  # the records as the format lays them out
+        data = np.frombuffer(target.read_bytes()[84:], dtype=np.dtype(
+            [("normal", "<f4", 3), ("corners", "<f4", (3, 3)), ("attribute", "<u2")]))
+        written = data["corners"]
+    else:
+        written = trimesh.load(target, force="mesh").vertices
+    assert np.isfinite(written).all() and written.max() == pytest.approx(3e38)

@@ -18,6 +18,7 @@ from collections.abc import Iterator
 
 import numpy as np
 
+from ._float32 import check_float32_range
 from ._scene_out import Objects, Part, drawn_faces, parts
 from .atomic import write_atomically
 from .source import companion_path
@@ -40,6 +41,8 @@ def write_gltf(objects: Objects, path: str | os.PathLike[str], *, smooth: bool =
 
     Raises:
         InvalidArgumentError: no object, or colours of the wrong shape or range.
+        GeometryError: a coordinate beyond float32's range (about 3.4e38), which
+            glTF cannot hold; nothing is written.
         OSError: a file cannot be written; existing files are left intact.
     """
     name = os.fspath(path)
@@ -121,6 +124,7 @@ def _vertex_arrays(part: Part, smooth: bool) -> Iterator[tuple[str, np.ndarray, 
     vertex_of = a.corner_vertex[part.corners]
     # float32 first: a gather of 12-byte rows, and min/max of the vertices used
     # (each once) equal to those of the written rows, as glTF asks
+    check_float32_range(a.positions, "glTF")
     positions = a.positions.astype("<f4")
     used = np.zeros(len(positions), dtype=bool)
     used[vertex_of] = True

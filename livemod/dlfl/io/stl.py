@@ -23,6 +23,7 @@ from ..arrays import mesh_arrays
 from ..build import from_polygons
 from ..errors import DLFLRepairWarning
 from ..mesh import Mesh
+from ._float32 import check_float32_range
 from ._lines import gather_lines, parse_number_lines, split_lines, token_starts
 from .atomic import write_atomically
 from .source import file_error, lf_line_ends, read_source, show_path, show_token
@@ -38,6 +39,8 @@ def write_stl(mesh: Mesh, path: str | os.PathLike[str]) -> None:
     2-gons and point-spheres have no area and are left out.
 
     Raises:
+        GeometryError: a coordinate beyond float32's range (about 3.4e38), which
+            the format cannot hold; nothing is written.
         OSError: the file cannot be written; an existing file is left intact.
     """
     data = stl_bytes(mesh)
@@ -47,6 +50,7 @@ def write_stl(mesh: Mesh, path: str | os.PathLike[str]) -> None:
 def stl_bytes(mesh: Mesh) -> bytes:
     """The binary STL of ``mesh`` (see :func:`write_stl`)."""
     a = mesh_arrays(mesh)
+    check_float32_range(a.positions, "STL")
     tri_corners, tri_face = a.fan_triangles()
     records = np.zeros(len(tri_face), dtype=_TRIANGLE)
     records["normal"] = face_normals(a)[tri_face]
