@@ -201,7 +201,7 @@ class Fuzzer:
             "extrude": {"fan": self.flag, "segments": self.count, "mesh": self.flag, **shape},
             "connectFaces": pinch, "connectCorners": pinch, "addHandle": pinch,
             "wireframe": {"width": self.number}, "crust": {"scale": self.number},
-            "menger": {"keep2gons": self.flag}, "rind": {"cleanup": self.flag},
+            "menger": {"keep2gons": self.flag, "collapse": self.number}, "rind": {"cleanup": self.flag},
         }
         options = table.get(name, {})
         return {key: make() for key, make in options.items() if self.rng.random() < 0.25}
@@ -288,7 +288,7 @@ class Fuzzer:
             "column": lambda: [self.number(), self.pick(lambda: r.choice([3, 4, 5, 6.0]),
                                                         BAD_COUNTS)],
             "crust": lambda: self.maybe(self.number, self.flag),
-            "menger": lambda: self.maybe(self.number),
+            "menger": lambda: self.maybe(self.number, self.number),
             "multiConnectFaces": lambda: [self.ids(self.face),
                                           *self.maybe(self.number, self.number, self.flag,
                                                       lambda: r.choice(["hull", "closest-edge",
@@ -326,6 +326,8 @@ class Fuzzer:
         keywords = self.keyword_options(name)
         if name == "subdivide":
             keywords = self.scheme_keywords(args[0])
+        if name == "menger" and len(args) > 1:  # collapse given positionally already
+            keywords.pop("collapse", None)
         if name in ("faces", "edges", "verts", "corners"):
             args = self.maybe(self.flag)
         return args, keywords
