@@ -230,6 +230,16 @@ def test_columns_refuse_too_few_segments(segments):
     assert snapshot(m) == before
 
 
+def test_columns_refuse_an_empty_mesh():
+    from livemod.dlfl import Mesh
+
+    m = Mesh()
+    with pytest.raises(InvalidArgumentError, match="^columns need a mesh with faces; this one "
+                                                   "is empty$"):
+        columns(m, 0.25, 4)
+    assert m.counts() == (0, 0, 0)
+
+
 def test_columns_refuse_a_bad_thickness():
     m = cube()
     with pytest.raises(InvalidArgumentError, match="thickness"):

@@ -483,8 +483,9 @@ def columns(mesh: Mesh, thickness: float = 0.25, segments: int = 4, *,
     bands into 9- to 15-gons there). The mesh is rebuilt (fresh ids).
 
     Raises:
-        DLFLError: ``thickness`` not positive, ``segments`` below 3, point-spheres,
-            self-loops, or rings that do not clear each other; the mesh is unchanged.
+        DLFLError: ``thickness`` not positive, ``segments`` below 3, an empty
+            mesh, point-spheres, self-loops, or rings that do not clear each
+            other; the mesh is unchanged.
         BudgetExceededError: the result could pass the face budget
             (``max_faces``; None: the session's, see :mod:`livemod.dlfl.budget`).
     """
@@ -518,6 +519,8 @@ def _check_columns_input(mesh: Mesh, thickness: float, segments: int,
     if isinstance(segments, bool) or not whole or segments < 3:
         raise InvalidArgumentError(
             f"segments must be a whole number of at least 3, got {segments!r}")
+    if mesh.num_faces == 0:
+        raise InvalidArgumentError("columns need a mesh with faces; this one is empty")
     tubes = mesh.num_edges * int(segments)
     check_size("columns", 5 * tubes, 14 * tubes, max_faces=max_faces)
     for v in mesh.vertex_ids().tolist():
