@@ -627,3 +627,21 @@ def test_truncate_keeps_every_face_colour_and_gives_the_caps_none():
     validate(m)
     assert all(m.face_color(cap) is None for cap in caps) and len(caps) == 8
     assert colour_counts(m) == {**{f: 1 for f in range(6)}, None: 8}
+
+
+@pytest.mark.parametrize("cut", [
+    partial(cutting.cut_vertices, vertices=[0]), partial(cutting.cut_edges, edges=[0]),
+    partial(cutting.cut_faces, faces=[0]),
+    partial(cutting.cut_plane, point=(0.0, 0.0, 0.0), normal=(0.0, 0.0, 1.0)),
+])
+def test_plane_cuts_refuse_coordinates_their_arithmetic_would_overflow(cut) -> None:
+    mesh = dlfl.shapes.cube()
+    a = mesh_arrays(mesh)
+    mesh.set_positions(a.vertex_ids, a.positions * 1.2e308)
+    before = mesh_arrays(mesh).positions.copy()
+    with np.errstate(over="raise", invalid="raise"), pytest.raises(GeometryError, match=r"^a plane cut needs coordinates within 1e\+150; "
+                                               r"this mesh has one of 1.2e\+308 \(scale it down"):
+        cut(mesh)
+    assert mesh.counts() == (8, 12, 6)
+    assert np.array_equal(mesh_arrays(mesh).positions, before)
+    validate(mesh)

@@ -59,7 +59,9 @@ def _along(mesh: Mesh, vertex: int, edges: list[int], offset: float) -> list[np.
     for e in edges:
         a, b = mesh.edge_vertices(e)
         far = mesh.position(b if a == vertex else a)
-        out.append(p + offset * (far - p))
+        # a weighted sum, not p + offset * (far - p): the difference of two points
+        # near the float maximum overflows where the sum of their parts does not
+        out.append((1.0 - offset) * p + offset * far)
     return out
 
 
@@ -75,7 +77,8 @@ def _plane(points: list[np.ndarray], normal: np.ndarray, name: str) -> Plane:
     if not np.linalg.norm(normal) > 0.5:
         raise GeometryError(f"{name} has no normal (its faces have no area, or their normals "
                             "cancel): there is no cutting plane; use placement='offset'")
-    return Plane(np.mean(points, axis=0), normal, name)
+    # each point scaled first: a sum of coordinates near the float maximum overflows
+    return Plane((np.asarray(points) / len(points)).sum(axis=0), normal, name)
 
 
 def vertex_plane(mesh: Mesh, vertex: int, offset: float) -> Plane:

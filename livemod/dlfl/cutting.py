@@ -131,6 +131,7 @@ def cut_vertices(mesh: Mesh, vertices: Iterable[int], offset: float = DEFAULT_OF
     if place == "offset":
         regions = [_Region(frozenset((v,)), frozenset(), f"vertex {v}") for v in ids]
         return _cut_at_offset(mesh, regions, t, max_faces)
+    _check_plane_range(mesh)
     planes = [(vertex_plane(mesh, v, t), [v]) for v in ids]
     return _cut_by_planes(mesh, planes, peel, max_faces)
 
@@ -174,6 +175,7 @@ def cut_edges(mesh: Mesh, edges: Iterable[int], offset: float = DEFAULT_OFFSET, 
         if a == b:
             raise InvalidArgumentError(f"edge {e} is a self-loop (both ends at vertex {a}); "
                                        "it cannot be cut")
+    _check_plane_range(mesh)
     planes = [(edge_plane(mesh, e, t), list(mesh.edge_vertices(e))) for e in ids]
     return _cut_by_planes(mesh, planes, peel, max_faces)
 
@@ -213,6 +215,7 @@ def cut_faces(mesh: Mesh, faces: Iterable[int], offset: float = DEFAULT_OFFSET, 
     if place == "offset":
         _check_disjoint(regions)
         return _cut_at_offset(mesh, regions, t, max_faces)
+    _check_plane_range(mesh)
     planes = [(face_plane(mesh, f, t), mesh.face_vertices(f)) for f in ids]
     return _cut_by_planes(mesh, planes, peel, max_faces)
 
@@ -262,6 +265,7 @@ def cut_plane(mesh: Mesh, point: object, normal: object, *, seed: int | None = N
         raise InvalidArgumentError(f"normal must not be zero, got {shown(normal)}")
     if seed is not None:
         mesh.position(int(id_list([seed], "seed")[0]))  # an unknown id is refused here
+    _check_plane_range(mesh, offset_too=False)
     plane = Plane(p, n / length, "the plane" if seed is None else f"seed vertex {seed}")
     return _cut_by_planes(mesh, [(plane, None if seed is None else [int(seed)])],
                           seed is None, max_faces)
@@ -348,6 +352,27 @@ def _options(offset: object, placement: object, peel: object) -> tuple[str, floa
         raise InvalidArgumentError(f"offset must be a number > 0 (how far along the edges the "
                                    f"plane passes), got {shown(offset)}")
     return "plane", t, peeled
+
+
+# plane cuts take differences of positions and products of those (normals,
+# distances to a plane): coordinates past the square root of the float range
+# would overflow them
+_PLANE_RANGE = 1e150
+
+
+def _check_plane_range(mesh: Mesh, offset_too: bool = True) -> None:
+    """Refuse a plane cut of a mesh whose coordinates its arithmetic cannot take
+    (``offset_too``: the message points to the offset placement as well).
+
+    Raises:
+        GeometryError: a coordinate beyond :data:`_PLANE_RANGE` in magnitude.
+    """
+    positions = mesh.positions_view()
+    largest = float(np.abs(positions).max(initial=0.0))
+    if not largest <= _PLANE_RANGE:
+        hint = ", or use placement='offset'" if offset_too else ""
+        raise GeometryError(f"a plane cut needs coordinates within {_PLANE_RANGE:.0e}; this "
+                            f"mesh has one of {largest:.3g} (scale it down{hint})")
 
 
 def _offset(offset: object) -> float:
