@@ -62,3 +62,13 @@ def test_an_unknown_face_is_refused():
     with pytest.raises(UnknownIdError, match="face 40 does not exist"):
         reverse_orientation(m, [0, 40])
     assert snapshot(m) == snapshot(cube())
+
+
+def test_a_face_of_an_empty_mesh_is_refused_as_unknown():
+    from livemod.dlfl import Mesh
+
+    m = Mesh()
+    with pytest.raises(UnknownIdError, match=r"^face 0 does not exist \(deleted or never made\)$"):
+        reverse_orientation(m, [0])
+    reverse_orientation(m)  # the whole of an empty mesh: nothing to turn
+    assert m.counts() == (0, 0, 0)

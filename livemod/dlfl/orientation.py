@@ -31,14 +31,12 @@ def component_faces(mesh: Mesh, faces: Iterable[int]) -> list[int]:
     """
     wanted = np.asarray(id_list(faces, "faces"), dtype=np.int64)
     a = mesh_arrays(mesh)
-    where = np.searchsorted(a.face_ids, wanted)
-    found = (where < len(a.face_ids)) & (a.face_ids[np.minimum(where, len(a.face_ids) - 1)]
-                                         == wanted)
+    found = np.isin(wanted, a.face_ids)  # an empty mesh too: none is found
     if not found.all():
         raise UnknownIdError(f"face {shown(int(wanted[~found][0]))} does not exist "
                              "(deleted or never made)")
     _, labels = component_of_vertices(a)
-    return a.face_ids[np.isin(labels, labels[where])].tolist()
+    return a.face_ids[np.isin(labels, labels[np.searchsorted(a.face_ids, wanted)])].tolist()
 
 
 def reverse_orientation(mesh: Mesh, faces: Iterable[int] | None = None) -> None:
