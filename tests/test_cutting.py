@@ -645,3 +645,14 @@ def test_plane_cuts_refuse_coordinates_their_arithmetic_would_overflow(cut) -> N
     assert mesh.counts() == (8, 12, 6)
     assert np.array_equal(mesh_arrays(mesh).positions, before)
     validate(mesh)
+
+
+@pytest.mark.parametrize("cut", [cutting.cut_vertices, cutting.cut_edges, cutting.cut_faces])
+def test_plane_cuts_refuse_an_offset_that_overflows(cut) -> None:
+    mesh = dlfl.shapes.cube()
+    with np.errstate(over="raise", invalid="raise"), pytest.raises(
+            InvalidArgumentError, match=r"^offset 1e\+308 puts the plane's points beyond 1e\+150 "
+                                        r"from the origin; use a smaller offset$"):
+        cut(mesh, [0], 1e308)
+    assert mesh.counts() == (8, 12, 6)
+    validate(mesh)

@@ -131,7 +131,7 @@ def cut_vertices(mesh: Mesh, vertices: Iterable[int], offset: float = DEFAULT_OF
     if place == "offset":
         regions = [_Region(frozenset((v,)), frozenset(), f"vertex {v}") for v in ids]
         return _cut_at_offset(mesh, regions, t, max_faces)
-    _check_plane_range(mesh)
+    _check_plane_range(mesh, t)
     planes = [(vertex_plane(mesh, v, t), [v]) for v in ids]
     return _cut_by_planes(mesh, planes, peel, max_faces)
 
@@ -175,7 +175,7 @@ def cut_edges(mesh: Mesh, edges: Iterable[int], offset: float = DEFAULT_OFFSET, 
         if a == b:
             raise InvalidArgumentError(f"edge {e} is a self-loop (both ends at vertex {a}); "
                                        "it cannot be cut")
-    _check_plane_range(mesh)
+    _check_plane_range(mesh, t)
     planes = [(edge_plane(mesh, e, t), list(mesh.edge_vertices(e))) for e in ids]
     return _cut_by_planes(mesh, planes, peel, max_faces)
 
@@ -215,7 +215,7 @@ def cut_faces(mesh: Mesh, faces: Iterable[int], offset: float = DEFAULT_OFFSET, 
     if place == "offset":
         _check_disjoint(regions)
         return _cut_at_offset(mesh, regions, t, max_faces)
-    _check_plane_range(mesh)
+    _check_plane_range(mesh, t)
     planes = [(face_plane(mesh, f, t), mesh.face_vertices(f)) for f in ids]
     return _cut_by_planes(mesh, planes, peel, max_faces)
 
@@ -360,12 +360,14 @@ def _options(offset: object, placement: object, peel: object) -> tuple[str, floa
 _PLANE_RANGE = 1e150
 
 
-def _check_plane_range(mesh: Mesh, offset_too: bool = True) -> None:
-    """Refuse a plane cut of a mesh whose coordinates its arithmetic cannot take
+def _check_plane_range(mesh: Mesh, offset: float = 1.0, offset_too: bool = True) -> None:
+    """Refuse a plane cut whose arithmetic would overflow: the mesh's coordinates,
+    or the points ``offset`` along its edges, beyond :data:`_PLANE_RANGE`
     (``offset_too``: the message points to the offset placement as well).
 
     Raises:
-        GeometryError: a coordinate beyond :data:`_PLANE_RANGE` in magnitude.
+        GeometryError: a coordinate beyond the range.
+        InvalidArgumentError: an ``offset`` that takes the points beyond it.
     """
     positions = mesh.positions_view()
     largest = float(np.abs(positions).max(initial=0.0))
@@ -373,6 +375,9 @@ def _check_plane_range(mesh: Mesh, offset_too: bool = True) -> None:
         hint = ", or use placement='offset'" if offset_too else ""
         raise GeometryError(f"a plane cut needs coordinates within {_PLANE_RANGE:.0e}; this "
                             f"mesh has one of {largest:.3g} (scale it down{hint})")
+    if not largest * offset <= _PLANE_RANGE:
+        raise InvalidArgumentError(f"offset {offset:g} puts the plane's points beyond "
+                                   f"{_PLANE_RANGE:.0e} from the origin; use a smaller offset")
 
 
 def _offset(offset: object) -> float:
