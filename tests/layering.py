@@ -28,10 +28,14 @@ ROOT = Path(__file__).resolve().parents[1]
 PACKAGE = ROOT / "livemod"
 MESH_TABLES = frozenset({"_c", "_e", "_f", "_v"})
 
-# the modules that are the storage's own (see livemod/dlfl/mesh.py's docstring)
-STORAGE_MODULES = frozenset({
-    "livemod/dlfl/mesh.py", "livemod/dlfl/validate.py", "livemod/dlfl/arrays.py",
-})
+# the modules that are the storage's own (see livemod/dlfl/mesh.py's docstring),
+# each with the reason it may read the tables
+STORAGE_MODULES: dict[str, str] = {
+    "livemod/dlfl/mesh.py": "the mesh: navigation and the operators' entry points",
+    "livemod/dlfl/_operators.py": "the operators' slot-level bodies, called only by Mesh",
+    "livemod/dlfl/validate.py": "checks every link of every table",
+    "livemod/dlfl/arrays.py": "lays the tables out densely for bulk work",
+}
 
 
 @dataclass(frozen=True)

@@ -10,14 +10,16 @@ and ``next(c1).vertex == c0.vertex``. This makes every mesh a closed, oriented
 vertex with a one-corner face and no edge), one- and two-sided faces, faces that
 visit a vertex twice, multi-edges, self-loops and several components.
 
-Only the methods of :class:`Mesh` touch the linked structure. Every other
-operation is a free function in the module of its family, and reads the mesh
-through its public queries and bulk accessors (:meth:`Mesh.positions`,
-:meth:`Mesh.face_points`, :meth:`Mesh.hole_mask`, :meth:`Mesh.vertex_ids`,
-:meth:`Mesh.has_vertex`, ...). The element tables (``_c``, ``_e``, ``_f``,
-``_v``: one :class:`~livemod.dlfl._table.Table` per kind, laid out by the
-``*_SPEC`` field lists below) are read by this module and by the two that are
-the storage's own: :mod:`~livemod.dlfl.validate` (checks every link) and
+Only :class:`Mesh` changes the linked structure: its operators are the entry
+points, which check their arguments and hand slots to their bodies in
+:mod:`~livemod.dlfl._operators`. Every other operation is a free function in the
+module of its family, and reads the mesh through its public queries and bulk
+accessors (:meth:`Mesh.positions`, :meth:`Mesh.face_points`, :meth:`Mesh.hole_mask`,
+:meth:`Mesh.vertex_ids`, :meth:`Mesh.has_vertex`, ...). The element tables (``_c``,
+``_e``, ``_f``, ``_v``: one :class:`~livemod.dlfl._table.Table` per kind, laid out
+by the ``*_SPEC`` field lists below) are read by this module and by those that are
+the storage's own: :mod:`~livemod.dlfl._operators` (the operators' slot-level
+bodies), :mod:`~livemod.dlfl.validate` (checks every link) and
 :mod:`~livemod.dlfl.arrays` (lays the tables out densely for bulk work). Bulk
 builders hand their arrays to :meth:`Mesh.from_tables`. ``tests/layering.py``
 counts the reads, and a test keeps every other module off the tables.
@@ -31,12 +33,24 @@ dual, loading) give all elements fresh ids; their docstrings say so.
 from __future__ import annotations
 
 from collections.abc import Iterable, Sequence
-from math import isinf
 from typing import Any
 
 import numpy as np
 
 from ._checks import as_point, flag, rgb, whole_count
+from ._operators import (
+    NO_EDGE,
+    add_point_sphere,
+    collapse_edge_slot,
+    create_face_rings,
+    delete_merge,
+    delete_merge_one_gon,
+    delete_split,
+    insert_cofacial,
+    insert_merge,
+    reverse_rings,
+    subdivide_edge_slot,
+)
 from ._table import FieldSpec, Table
 from .errors import InvalidArgumentError, UnknownIdError
 
@@ -53,32 +67,6 @@ EDGE_SPEC: FieldSpec = {"c0": (np.int32, ()), "c1": (np.int32, ())}
 FACE_SPEC: FieldSpec = {"corner": (np.int32, ()), "hole": (np.uint8, ()),
                         "colored": (np.uint8, ()), "color": (np.float32, (3,))}
 VERTEX_SPEC: FieldSpec = {"corner": (np.int32, ()), "position": (np.float64, (3,))}
-
-NO_EDGE = -1
-
-
-def _alloc(table: Table) -> int:
-    """:meth:`Table.alloc` for a table with a free slot, the steady state of
-    interactive editing; the general method otherwise."""
-    free = table.free
-    if not free:
-        return table.alloc()
-    slot = free.pop()
-    eid = table.next_id
-    table.next_id = eid + 1
-    table.moved[eid] = slot  # a reused slot is never home to a fresh id
-    table.idv[slot] = eid
-    table._sorted_cache = None
-    return slot
-
-
-def _between(p0: list[float], p1: list[float], t: float) -> list[float]:
-    """The point ``t`` of the way from ``p0`` to ``p1`` (3 floats each) as weighted
-    ends, which cannot overflow between finite ends (``p1 - p0`` can); clamped to
-    the ends, since the rounded sum may step just past one of them."""
-    return [min(max(a * (1.0 - t) + b * t, min(a, b)), max(a, b))
-            for a, b in zip(p0, p1, strict=True)]
-
 
 # fields a bulk builder may leave out: zeros (no colour) are what they hold then
 OPTIONAL_FIELDS = frozenset({"colored", "color"})
@@ -479,23 +467,7 @@ class Mesh:
         Returns:
             The new vertex id (its face is ``corner_face(vertex_corner(v))``).
         """
-        xyz = as_point(position)
-        C, F, V = self._c, self._f, self._v
-        C.reserve(1)
-        F.reserve(1)
-        V.reserve(1)
-        c, f, v = C.alloc(), F.alloc(), V.alloc()
-        C.next[c] = c
-        C.prev[c] = c
-        C.face[c] = f
-        C.vertex[c] = v
-        C.edge[c] = NO_EDGE
-        F.corner[f] = c
-        F.hole[f] = 0
-        F.colored[f] = 0
-        V.corner[v] = c
-        V.arrays["position"][v] = xyz
-        return V.idv[v]
+        return add_point_sphere(self, as_point(position))
 
     def remove_vertex(self, vertex: int) -> None:
         """Remove a point-sphere vertex together with its face and corner.
@@ -552,115 +524,8 @@ class Mesh:
             E.reserve(1)
             F.reserve(1)
         if C.face[s1] == C.face[s2]:
-            return self._insert_cofacial(s1, s2)
-        return self._insert_merge(s1, s2)
-
-    def _copy_corner(self, src: int, face: int) -> int:
-        """A new corner at ``src``'s vertex in ``face`` that takes over ``src``'s edge."""
-        C = self._c
-        dup = C.alloc()
-        C.vertex[dup] = C.vertex[src]
-        C.face[dup] = face
-        e = C.edge[src]
-        C.edge[dup] = e
-        if e >= 0:
-            E = self._e
-            if E.c0[e] == src:
-                E.c0[e] = dup
-            else:
-                E.c1[e] = dup
-        return dup
-
-    def _insert_cofacial(self, s1: int, s2: int) -> int:
-        """Split the face of ``s1`` and ``s2``: ``F = [s1, s2', b..]``, ``F' = [s1', a.., s2]``.
-
-        The hot path of interactive modeling, so the copies are made inline.
-        """
-        C, E, F = self._c, self._e, self._f
-        nxt, prv, face, cedge = C.next, C.prev, C.face, C.edge
-        f = face[s1]
-        a1, b1 = nxt[s1], nxt[s2]
-        fn, e = _alloc(F), _alloc(E)
-        F.hole[fn] = F.hole[f]
-        colored = F.colored[fn] = F.colored[f]
-        if colored:
-            F.arrays["color"][fn] = F.arrays["color"][f]
-        c1p, c2p = C.alloc_pair()
-        ec0, ec1, vert = E.c0, E.c1, C.vertex
-        # the copies take over the old edges of corner1 and corner2
-        vert[c1p], face[c1p], vert[c2p], face[c2p] = vert[s1], fn, vert[s2], f
-        old1, old2 = cedge[s1], cedge[s2]
-        cedge[c1p], cedge[c2p] = old1, old2
-        if ec0[old1] == s1:
-            ec0[old1] = c1p
-        else:
-            ec1[old1] = c1p
-        if ec0[old2] == s2:
-            ec0[old2] = c2p
-        else:
-            ec1[old2] = c2p
-        head = F.corner[f]
-        moved_head = head == s2
-        # the corners strictly between corner1 and corner2 move to the new face
-        x = a1
-        while x != s2:
-            face[x] = fn
-            moved_head = moved_head or x == head
-            x = nxt[x]
-        face[s2] = fn
-        # new face: c1' -> a1 ... -> c2 -> c1'; old face: c1 -> c2' -> b1 ...
-        nxt[c1p], prv[a1], nxt[s2], prv[c1p] = a1, c1p, c1p, s2
-        nxt[s1], prv[c2p], nxt[c2p], prv[b1] = c2p, s1, b1, c2p
-        ec0[e], ec1[e], cedge[s1], cedge[s2] = s1, s2, e, e
-        F.corner[fn] = c1p
-        if moved_head:
-            F.corner[f] = c2p if head == s2 else s1
-        return E.idv[e]
-
-    def _insert_merge(self, s1: int, s2: int) -> int:
-        """Join the faces of slots ``s1`` and ``s2`` (different faces) by a new edge.
-
-        The face of ``s1`` takes every corner and survives; the merged face is a
-        hole when either face was one, whatever the argument order, as in
-        :meth:`delete_edge` (a face merged into a hole opens). Returns the edge id.
-        """
-        C, E, F = self._c, self._e, self._f
-        nxt, prv, face = C.next, C.prev, C.face
-        f1, f2 = face[s1], face[s2]
-        # the merged face's boundary runs along the hole's loop: the union is open
-        F.hole[f1] |= F.hole[f2]
-        if F.colored[f2] and not F.colored[f1]:
-            self._take_color(f1, f2)
-        a, b = nxt[s1], nxt[s2]
-        # a point-sphere side is never copied; a one-corner face with a loop is
-        lone1, lone2 = C.edge[s1] < 0, C.edge[s2] < 0
-        # every corner of the second face joins the first
-        x = s2
-        while True:
-            face[x] = f1
-            x = nxt[x]
-            if x == s2:
-                break
-        after1 = s2 if lone2 else self._copy_corner(s2, f1)
-        after2 = s1 if lone1 else self._copy_corner(s1, f1)
-        nxt[s1] = after1
-        prv[after1] = s1
-        if not lone2:
-            nxt[after1] = b
-            prv[b] = after1
-        nxt[s2] = after2
-        prv[after2] = s2
-        if not lone1:
-            nxt[after2] = a
-            prv[a] = after2
-        e = E.alloc()
-        E.c0[e] = s1
-        E.c1[e] = s2
-        C.edge[s1] = e
-        C.edge[s2] = e
-        F.corner[f1] = a
-        F.release(f2)
-        return E.idv[e]
+            return insert_cofacial(self, s1, s2)
+        return insert_merge(self, s1, s2)
 
     def delete_edge(self, edge: int, cleanup: bool = True) -> list[int]:
         """Delete ``edge``, the inverse of :meth:`insert_edge`, and return the faces left.
@@ -695,22 +560,12 @@ class Mesh:
         f1, f2 = face[s1], face[s2]
         fidv = F.idv  # F does not grow below: its room is reserved
         if f1 == f2:
-            result = [fidv[f] for f in self._delete_split(s1, s2, cleanup)]
+            result = [fidv[f] for f in delete_split(self, s1, s2, cleanup)]
         elif nxt[s1] == s1 or nxt[s2] == s2:
-            result = [fidv[f] for f in self._delete_merge_one_gon(s1, s2, cleanup)]
+            result = [fidv[f] for f in delete_merge_one_gon(self, s1, s2, cleanup)]
         else:
             # two faces merge: the second joins the first (undoes a co-facial insert)
-            x = nxt[s2]
-            while x != s2:
-                face[x] = f1
-                x = nxt[x]
-            face[s2] = f1
-            self._drop_after_sides(s1, s2)
-            F.hole[f1] |= F.hole[f2]  # a face merged into a hole opens: the union is a hole
-            if F.colored[f2] and not F.colored[f1]:
-                self._take_color(f1, f2)
-            F.release(f2)
-            result = [fidv[f1]]
+            result = [fidv[delete_merge(self, s1, s2, f1, f2)]]
         # E.release(es), inlined for the interactive hot path
         eidv = E.idv
         if E.moved:
@@ -719,176 +574,6 @@ class Mesh:
         E.free.append(es)
         E._sorted_cache = None
         return result
-
-    def _delete_merge_one_gon(self, s1: int, s2: int, cleanup: bool) -> list[int]:
-        """Delete a loop that closes a one-corner face; both side corners go."""
-        C, F, V = self._c, self._f, self._v
-        nxt, prv, face, vert = C.next, C.prev, C.face, C.vertex
-        f1, f2 = face[s1], face[s2]
-        a, p1, b, p2 = nxt[s1], prv[s1], nxt[s2], prv[s2]
-        empty1, empty2 = a == s1, b == s2
-        if empty1 and empty2:
-            # two one-sided faces on a loop: the vertex is left alone
-            return self._merge_to_point_sphere(s1, s2, cleanup)
-        x = b
-        while x != s2:
-            face[x] = f1
-            x = nxt[x]
-        if empty1:
-            nxt[p2], prv[b] = b, p2
-            head = b
-        else:
-            nxt[p1], prv[a] = a, p1
-            head = a
-        # a vertex whose recorded corner is dropped takes the corner now after it
-        vc = V.corner
-        if vc[vert[s1]] == s1:
-            vc[vert[s1]] = a if empty2 else b
-        if vc[vert[s2]] == s2:
-            vc[vert[s2]] = b if empty1 else a
-        F.corner[f1] = head
-        F.hole[f1] |= F.hole[f2]
-        if F.colored[f2] and not F.colored[f1]:
-            self._take_color(f1, f2)
-        C.release(s1)
-        C.release(s2)
-        F.release(f2)
-        return [f1]
-
-    def _merge_to_point_sphere(self, s1: int, s2: int, cleanup: bool) -> list[int]:
-        face = self._c.face
-        f1, f2 = face[s1], face[s2]
-        self._c.release(s2)
-        self._f.release(f2)
-        if cleanup:
-            self._remove_lone_corner(s1, f1)
-            return []
-        self._make_point_sphere(s1, f1)
-        return [f1]
-
-    def _drop_after_sides(self, s1: int, s2: int) -> None:
-        """Unlink the corners after the two sides of an edge being deleted.
-
-        The sides stay and take over the edges of the corners after them, so
-        that deleting an edge right after inserting it restores every corner id.
-        Callers have already moved all corners into one face. This is
-        :meth:`_take_place` for both sides, inlined for the interactive hot path.
-        """
-        C, E = self._c, self._e
-        nxt, prv, cedge, vert, face = C.next, C.prev, C.edge, C.vertex, C.face
-        ec0, ec1, vc, fc = E.c0, E.c1, self._v.corner, self._f.corner
-        cidv, moved, free = C.idv, C.moved, C.free
-        merged = face[s1]  # both sides are in this face by now
-        head = fc[merged]
-        for side, gone in ((s1, nxt[s2]), (s2, nxt[s1])):
-            e = cedge[gone]
-            cedge[side] = e
-            if ec0[e] == gone:
-                ec0[e] = side
-            else:
-                ec1[e] = side
-            after = nxt[gone]
-            nxt[side] = after
-            prv[after] = side
-            if vc[vert[gone]] == gone:
-                vc[vert[gone]] = side
-            if head == gone:
-                fc[merged] = side
-            moved.pop(cidv[gone], None)
-            cidv[gone] = -1
-            free.append(gone)
-        C._sorted_cache = None
-
-    def _take_place(self, side: int, gone: int) -> None:
-        """Corner ``side`` replaces ``gone``, the corner after the other side.
-
-        Both sit at the same vertex; ``side`` takes ``gone``'s edge and its link
-        to the next corner (its own ``prev`` already is right) and ``gone`` is
-        released. ``side`` must already be in its final face.
-        """
-        C, E = self._c, self._e
-        nxt, edge = C.next, C.edge
-        e = edge[gone]
-        edge[side] = e
-        if E.c0[e] == gone:
-            E.c0[e] = side
-        else:
-            E.c1[e] = side
-        after = nxt[gone]
-        nxt[side] = after
-        C.prev[after] = side
-        vc = self._v.corner
-        if vc[C.vertex[gone]] == gone:
-            vc[C.vertex[gone]] = side
-        fc = self._f.corner
-        if fc[C.face[side]] == gone:
-            fc[C.face[side]] = side
-        C.release(gone)
-
-    def _delete_split(self, s1: int, s2: int, cleanup: bool) -> list[int]:
-        """Delete an edge with one face on both sides, splitting the face in two.
-
-        The ring reads ``s1, a, x.., s2, b, y..``. The face keeps ``s1`` in place
-        of ``b`` with the ``y`` corners; a new face takes ``s2`` in place of ``a``
-        with the ``x`` corners (the inverse of a merging insert, restoring its
-        corner ids). A side with no corners besides its own becomes a
-        point-sphere, removed with its vertex under ``cleanup``.
-        """
-        C, F = self._c, self._f
-        nxt, face = C.next, C.face
-        f = face[s1]
-        a, b = nxt[s1], nxt[s2]
-        fn = F.alloc()
-        F.hole[fn] = F.hole[f]
-        colored = F.colored[fn] = F.colored[f]
-        if colored:
-            F.arrays["color"][fn] = F.arrays["color"][f]
-        head = F.corner[f]
-        head_moves = head in (s2, b)
-        x = a
-        while x != s2:
-            face[x] = fn
-            head_moves = head_moves or x == head
-            x = nxt[x]
-        face[s2] = fn
-        F.corner[fn] = s2
-        if head_moves:
-            F.corner[f] = s1
-        result = []
-        for side, gone, fs in ((s2, a, fn), (s1, b, f)):
-            if gone != side:
-                self._take_place(side, gone)
-            elif cleanup:
-                self._remove_lone_corner(side, fs)
-                continue
-            else:
-                self._make_point_sphere(side, fs)
-            result.append(fs)
-        return result[::-1]
-
-    def _take_color(self, face_slot: int, source_slot: int) -> None:
-        """Give face ``face_slot`` the colour of ``source_slot`` (a merge whose
-        surviving face has none keeps the other face's)."""
-        F = self._f
-        F.colored[face_slot] = 1
-        F.arrays["color"][face_slot] = F.arrays["color"][source_slot]
-
-    def _remove_lone_corner(self, s: int, face_slot: int) -> None:
-        """Remove corner ``s``, its now isolated vertex and, if given, its face."""
-        if face_slot >= 0:
-            self._f.release(face_slot)
-        self._v.release(self._c.vertex[s])
-        self._c.release(s)
-
-    def _make_point_sphere(self, s: int, face_slot: int) -> None:
-        """Make corner ``s`` the lone, edgeless corner of ``face_slot``."""
-        C = self._c
-        C.next[s] = s
-        C.prev[s] = s
-        C.edge[s] = NO_EDGE
-        C.face[s] = face_slot
-        self._f.corner[face_slot] = s
-        self._v.corner[C.vertex[s]] = s
 
     def subdivide_edge(self, edge: int, divisions: int = 2) -> list[int]:
         """Split ``edge`` into ``divisions`` equal parts; return the new vertex ids.
@@ -904,49 +589,7 @@ class Mesh:
                 more corners than a mesh holds).
         """
         divisions = whole_count(divisions, "divisions", each=2)  # 2 corners per new vertex
-        es = self._e.slot(edge)
-        pos = self._v.arrays["position"]
-        C = self._c
-        # plain floats: a 3-vector's arithmetic is several times faster than numpy's
-        p0 = pos[C.vertex[self._e.c0[es]]].tolist()
-        p1 = pos[C.vertex[self._e.c1[es]]].tolist()
-        d = [b - a for a, b in zip(p0, p1, strict=True)]
-        overflows = any(map(isinf, d))
-        new_vertices = []
-        last = es
-        for i in range(1, int(divisions)):
-            t = i / divisions
-            point = (_between(p0, p1, t) if overflows
-                     else [a + x * t for a, x in zip(p0, d, strict=True)])
-            vs, last = self._split_edge_slot(last, point)
-            new_vertices.append(self._v.idv[vs])
-        return new_vertices
-
-    def _split_edge_slot(self, es: int, point: Any) -> tuple[int, int]:
-        """Split edge slot ``es`` at ``point``; return (new vertex slot, new edge slot)."""
-        C, E, V = self._c, self._e, self._v
-        C.reserve(2)
-        E.reserve(1)
-        V.reserve(1)
-        nxt, prv = C.next, C.prev
-        s1, s2 = E.c0[es], E.c1[es]
-        a, b = nxt[s1], nxt[s2]
-        m = V.alloc()
-        V.arrays["position"][m] = point
-        n1, n2 = C.alloc(), C.alloc()
-        for new, owner in ((n1, s1), (n2, s2)):
-            C.vertex[new] = m
-            C.face[new] = C.face[owner]
-        nxt[s1], prv[n1], nxt[n1], prv[a] = n1, s1, a, n1
-        nxt[s2], prv[n2], nxt[n2], prv[b] = n2, s2, b, n2
-        e2 = E.alloc()
-        E.c1[es] = n2
-        E.c0[e2], E.c1[e2] = n1, s2
-        C.edge[n2] = es
-        C.edge[n1] = e2
-        C.edge[s2] = e2
-        V.corner[m] = n1
-        return m, e2
+        return subdivide_edge_slot(self, self._e.slot(edge), divisions)
 
     def collapse_edge(self, edge: int, cleanup: bool = True) -> int:
         """Collapse ``edge`` to its midpoint and return the surviving vertex id.
@@ -962,82 +605,7 @@ class Mesh:
         Raises:
             UnknownIdError: ``edge`` is not a live edge id.
         """
-        E, C, V = self._e, self._c, self._v
-        es = E.slot(edge)
-        s1, s2 = E.c0[es], E.c1[es]
-        v1, v2 = C.vertex[s1], C.vertex[s2]
-        survivor = V.idv[v1]
-        pos = V.arrays["position"]
-        if v1 == v2:
-            # a loop between two one-corner faces is all that is left of its
-            # vertex: the vertex survives as a point-sphere even with cleanup
-            lone = C.next[s1] == s1 and C.next[s2] == s2
-            self.delete_edge(edge, cleanup and not lone)
-            return survivor
-        # halves first: the sum of two far-apart points can overflow, their mean cannot
-        midpoint = pos[v1] * 0.5 + pos[v2] * 0.5
-        nxt = C.next
-        leaf2, leaf1 = nxt[s1] == s2, nxt[s2] == s1
-        if leaf1 or leaf2:
-            # the edge dangles: deleting it leaves the other end (or one of two)
-            keep, drop = (v2, v1) if leaf1 and not leaf2 else (v1, v2)
-            self.delete_edge(edge, cleanup=not (leaf1 and leaf2))
-            if leaf1 and leaf2:
-                self.remove_vertex(V.idv[drop])
-            pos[keep] = midpoint
-            return V.idv[keep]
-        faces = self._collapse_link(es, s1, s2, v1, v2)
-        pos[v1] = midpoint
-        if cleanup:
-            self._cleanup_degenerate(faces)
-        return survivor
-
-    def _collapse_link(self, es: int, s1: int, s2: int, v1: int, v2: int) -> list[int]:
-        C, E, F, V = self._c, self._e, self._f, self._v
-        nxt, prv, vert, edge, face = (
-            C.next, C.prev, C.vertex, C.edge, C.face,
-        )
-        moving = self._rotation_slots(v2)
-        a = nxt[s1]  # at v2; removed, corner1 takes its edge
-        ea = edge[a]
-        edge[s1] = ea
-        if ea >= 0:
-            if E.c0[ea] == a:
-                E.c0[ea] = s1
-            else:
-                E.c1[ea] = s1
-        an = nxt[a]
-        nxt[s1], prv[an] = an, s1
-        p2, b = prv[s2], nxt[s2]
-        nxt[p2], prv[b] = b, p2
-        f1, f2 = face[s1], face[s2]
-        fc = F.corner
-        if fc[f1] == a:
-            fc[f1] = s1
-        if fc[f2] == s2:
-            fc[f2] = b
-        for s in moving:
-            vert[s] = v1
-        C.release(a)
-        C.release(s2)
-        E.release(es)
-        V.release(v2)
-        return [f1] if f1 == f2 else [f1, f2]
-
-    def _cleanup_degenerate(self, face_slots: list[int]) -> None:
-        """Delete one edge of each listed face that has one or two corners left.
-
-        The deletions keep point-spheres, so that the surviving vertex of a
-        collapse is never removed.
-        """
-        F = self._f
-        for face in [F.idv[fs] for fs in face_slots]:
-            if not F.is_live(face):
-                continue
-            ring = self._ring_slots(F.slot(face))
-            edge = self._c.edge[ring[0]]
-            if len(ring) <= 2 and edge >= 0:
-                self.delete_edge(self._e.idv[edge], cleanup=False)
+        return collapse_edge_slot(self, edge, self._e.slot(edge), cleanup)
 
     def create_face(self, points: Sequence[Any]) -> tuple[int, int]:
         """Create a two-sided polygon on new vertices: ``(front, back)`` face ids.
@@ -1057,30 +625,7 @@ class Mesh:
         n = len(pts)
         if n < 2:
             raise InvalidArgumentError(f"create_face needs at least 2 points, got {n}")
-        C, E, F, V = self._c, self._e, self._f, self._v
-        C.reserve(2 * n)
-        E.reserve(n)
-        F.reserve(2)
-        V.reserve(n)
-        verts = [V.alloc() for _ in range(n)]
-        V.arrays["position"][verts] = pts
-        front, back = F.alloc(), F.alloc()
-        fc = [C.alloc() for _ in range(n)]
-        bc = [C.alloc() for _ in range(n)]
-        self._link_ring(fc, front, verts)
-        # back ring visits the points reversed, starting at point 0
-        back_verts = [verts[0]] + verts[:0:-1]
-        self._link_ring(bc, back, back_verts)
-        for i in range(n):
-            # front corner i runs v_i -> v_{i+1}; its twin runs v_{i+1} -> v_i
-            twin = bc[(n - 1 - i) % n]
-            e = E.alloc()
-            E.c0[e], E.c1[e] = fc[i], twin
-            C.edge[fc[i]] = e
-            C.edge[twin] = e
-        for i, v in enumerate(verts):
-            V.corner[v] = fc[i]
-        return F.idv[front], F.idv[back]
+        return create_face_rings(self, pts)
 
     def reverse_faces(self, faces: Iterable[int] | None = None) -> None:
         """Reverse the corner order of ``faces`` (None: every face), flipping their
@@ -1096,38 +641,7 @@ class Mesh:
             DLFLError: an id that is not a live face, or an edge with one side in
                 ``faces`` and the other not (named); nothing changes.
         """
-        C, E = self._c, self._e
-        if faces is None:
-            corners = C.live_slots()
-        else:
-            rings = [self._ring_slots(self._f.slot(f)) for f in faces]
-            corners = np.array([c for ring in rings for c in ring], dtype=np.int64)
-        nxt, prv, edge = C.arrays["next"], C.arrays["prev"], C.arrays["edge"]
-        c0, c1 = E.arrays["c0"], E.arrays["c1"]
-        sides = np.unique(edge[corners][edge[corners] >= 0]).astype(np.int64)
-        inside = np.zeros(C.n, bool)
-        inside[corners] = True
-        half = sides[inside[c0[sides]] != inside[c1[sides]]]
-        if len(half):
-            raise InvalidArgumentError(
-                f"edge {E.idv[int(half[0])]} has one side in the faces to reverse and one "
-                "outside; reverse whole components")
-        old_next, old_prev = nxt[corners], prv[corners]
-        new_edge = edge[old_prev]
-        c0[sides], c1[sides] = nxt[c0[sides]], nxt[c1[sides]]
-        nxt[corners], prv[corners], edge[corners] = old_prev, old_next, new_edge
-
-    def _link_ring(self, corners: list[int], face_slot: int, verts: list[int]) -> None:
-        C = self._c
-        n = len(corners)
-        for i, c in enumerate(corners):
-            C.next[c] = corners[(i + 1) % n]
-            C.prev[c] = corners[i - 1]
-            C.face[c] = face_slot
-            C.vertex[c] = verts[i]
-        self._f.corner[face_slot] = corners[0]
-        self._f.hole[face_slot] = 0
-        self._f.colored[face_slot] = 0
+        reverse_rings(self, faces)
 
     # ------------------------------------------------------------ whole mesh
 
