@@ -174,9 +174,15 @@ def library_section() -> list[str]:
 
 
 def _members(cls: type) -> list[str]:
-    """Public methods and properties a class defines itself, one line each."""
+    """Public methods and properties a class defines itself or takes from a livemod
+    base (``Mesh`` is ``MeshStorage`` plus its own layer), one line each, the
+    base's first."""
+    members: dict[str, Any] = {}
+    for klass in reversed(cls.__mro__):
+        if klass.__module__.startswith("livemod."):
+            members.update(vars(klass))
     lines = []
-    for name, member in vars(cls).items():
+    for name, member in members.items():
         if name.startswith("_"):
             continue
         if isinstance(member, property):
