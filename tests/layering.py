@@ -5,7 +5,7 @@
 Read from the source with :mod:`ast` (nothing is imported), so the counts are exact:
 
 * **storage reads**: ``x._c``, ``x._e``, ``x._f`` or ``x._v`` (a :class:`Mesh`'s
-  tables), or a private method of ``Mesh`` (not a ``_hook_`` such as IPython's
+  tables), or a private member of ``Mesh`` or its base (not a ``_hook_`` such as IPython's
   ``_repr_png_``) called on anything but ``self``, in a module that is not one of
   :data:`STORAGE_MODULES`;
 * **private imports**: ``from m import _name`` for any module ``m``, and
@@ -32,6 +32,7 @@ MESH_TABLES = frozenset({"_c", "_e", "_f", "_v"})
 # each with the reason it may read the tables
 STORAGE_MODULES: dict[str, str] = {
     "livemod/dlfl/mesh.py": "the mesh: navigation and the operators' entry points",
+    "livemod/dlfl/_storage.py": "the mesh's base: the tables, their counts, ids and rows",
     "livemod/dlfl/_operators.py": "the operators' slot-level bodies, called only by Mesh",
     "livemod/dlfl/validate.py": "checks every link of every table",
     "livemod/dlfl/arrays.py": "lays the tables out densely for bulk work",
@@ -56,13 +57,16 @@ def _relative(path: Path) -> str:
     return path.relative_to(ROOT).as_posix()
 
 
+# the classes a Mesh is made of: ``Mesh`` and its base, by module
+MESH_CLASSES = {"dlfl/mesh.py": "Mesh", "dlfl/_storage.py": "MeshStorage"}
+
+
 def mesh_private_members() -> frozenset[str]:
-    """Names of the private methods and attributes of ``Mesh`` (``_x``, not dunders)."""
-    tree = ast.parse((PACKAGE / "dlfl" / "mesh.py").read_text())
-    mesh = next(node for node in tree.body
-                if isinstance(node, ast.ClassDef) and node.name == "Mesh")
+    """Names of the private methods and attributes of ``Mesh`` and its base
+    (``_x``, not dunders)."""
+    classes = [_class_named(PACKAGE / module, name) for module, name in MESH_CLASSES.items()]
     names = set(MESH_TABLES)
-    for node in ast.walk(mesh):
+    for node in (inner for cls in classes for inner in ast.walk(cls)):
         if isinstance(node, ast.FunctionDef):
             names.add(node.name)
         elif (isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name)
@@ -72,6 +76,19 @@ def mesh_private_members() -> frozenset[str]:
     # ``_repr_png_``): other objects define and get called by those names
     return frozenset(n for n in names
                      if n.startswith("_") and not n.startswith("__") and not n.endswith("_"))
+
+
+def _class_named(path: Path, name: str) -> ast.ClassDef:
+    """The top-level class ``name`` of module ``path``.
+
+    Raises:
+        LookupError: it has none (a renamed class must be renamed here too, or
+            the guard would stop seeing its private members).
+    """
+    for node in ast.parse(path.read_text()).body:
+        if isinstance(node, ast.ClassDef) and node.name == name:
+            return node
+    raise LookupError(f"no class {name} in {_relative(path)}")
 
 
 def storage_reads() -> list[Finding]:

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import pytest
+
 from tests import layering
 
 
@@ -23,13 +25,28 @@ def count_in(tmp_path, monkeypatch, files: dict[str, str]) -> None:
 def test_the_counter_sees_table_reads_and_private_mesh_methods(tmp_path, monkeypatch):
     count_in(tmp_path, monkeypatch, {
         "dlfl/mesh.py": (layering.PACKAGE / "dlfl" / "mesh.py").read_text(),
+        "dlfl/_storage.py": "class MeshStorage:\n"
+                            "    def _row(self):\n"
+                            "        return self._spare\n",
         "dlfl/op.py": "def op(mesh, table):\n"
-                      "    a = mesh._v.n + len(mesh._ring_slots(0))\n"
-                      "    return a + table._sorted_cache + mesh.num_faces + picture._repr_png_\n",
+                      "    a = mesh._v.n + len(mesh._ring_slots(0)) + mesh._row()\n"
+                      "    b = mesh._spare + table._sorted_cache + mesh.num_faces\n"
+                      "    return a + b + picture._repr_png_\n",
     })
     found = [(f.path, f.line, f.text) for f in layering.storage_reads()]
     assert sorted(found) == [("livemod/dlfl/op.py", 2, "mesh._ring_slots"),
-                             ("livemod/dlfl/op.py", 2, "mesh._v")]
+                             ("livemod/dlfl/op.py", 2, "mesh._row"),
+                             ("livemod/dlfl/op.py", 2, "mesh._v"),
+                             ("livemod/dlfl/op.py", 3, "mesh._spare")]
+
+
+def test_the_counter_refuses_to_lose_a_class_of_the_mesh(tmp_path, monkeypatch):
+    count_in(tmp_path, monkeypatch, {
+        "dlfl/mesh.py": (layering.PACKAGE / "dlfl" / "mesh.py").read_text(),
+        "dlfl/_storage.py": "class RenamedStorage:\n    pass\n",
+    })
+    with pytest.raises(LookupError, match="no class MeshStorage in livemod/dlfl/_storage.py"):
+        layering.storage_reads()
 
 
 def test_no_module_imports_a_private_name_of_another():

@@ -17,8 +17,9 @@ module of its family, and reads the mesh through its public queries and bulk
 accessors (:meth:`Mesh.positions`, :meth:`Mesh.face_points`, :meth:`Mesh.hole_mask`,
 :meth:`Mesh.vertex_ids`, :meth:`Mesh.has_vertex`, ...). The element tables (``_c``,
 ``_e``, ``_f``, ``_v``: one :class:`~livemod.dlfl._table.Table` per kind, laid out
-by the ``*_SPEC`` field lists below) are read by this module and by those that are
-the storage's own: :mod:`~livemod.dlfl._operators` (the operators' slot-level
+by the field lists of :mod:`~livemod.dlfl._storage`) are read by this module and
+by those that are the storage's own: :mod:`~livemod.dlfl._storage` (the tables,
+``Mesh``'s base), :mod:`~livemod.dlfl._operators` (the operators' slot-level
 bodies), :mod:`~livemod.dlfl.validate` (checks every link) and
 :mod:`~livemod.dlfl.arrays` (lays the tables out densely for bulk work). Bulk
 builders hand their arrays to :meth:`Mesh.from_tables`. ``tests/layering.py``
@@ -37,7 +38,7 @@ from typing import Any
 
 import numpy as np
 
-from ._checks import as_point, flag, rgb, whole_count
+from ._checks import as_point, whole_count
 from ._operators import (
     NO_EDGE,
     add_point_sphere,
@@ -51,47 +52,11 @@ from ._operators import (
     reverse_rings,
     subdivide_edge_slot,
 )
-from ._table import FieldSpec, Table
+from ._storage import MeshStorage
 from .errors import InvalidArgumentError, UnknownIdError
 
-CORNER_SPEC: FieldSpec = {
-    "next": (np.int32, ()),
-    "prev": (np.int32, ()),
-    "face": (np.int32, ()),
-    "vertex": (np.int32, ()),
-    "edge": (np.int32, ()),
-}
-EDGE_SPEC: FieldSpec = {"c0": (np.int32, ()), "c1": (np.int32, ())}
-# a face's colour is ``color`` when ``colored`` is 1; 0 means the default modelling
-# colour (zeros, the value of every fresh slot, mean "no colour")
-FACE_SPEC: FieldSpec = {"corner": (np.int32, ()), "hole": (np.uint8, ()),
-                        "colored": (np.uint8, ()), "color": (np.float32, (3,))}
-VERTEX_SPEC: FieldSpec = {"corner": (np.int32, ()), "position": (np.float64, (3,))}
 
-# fields a bulk builder may leave out: zeros (no colour) are what they hold then
-OPTIONAL_FIELDS = frozenset({"colored", "color"})
-
-
-def _adopt(kind: str, spec: FieldSpec, first_id: int, fields: dict[str, np.ndarray],
-           ids: np.ndarray | None) -> Table:
-    """:meth:`Table.from_arrays` of ``fields`` (and ``ids``), once they are checked
-    to be the fields of ``spec``, all of one length (see :meth:`Mesh.from_tables`);
-    the :data:`OPTIONAL_FIELDS` left out are zeros."""
-    missing = [name for name in spec.keys() - fields.keys() if name in OPTIONAL_FIELDS]
-    if missing and fields:
-        rows = len(next(iter(fields.values())))
-        fields = fields | {name: np.zeros((rows, *spec[name][1]), spec[name][0])
-                           for name in missing}
-    if fields.keys() != spec.keys():
-        raise InvalidArgumentError(
-            f"the {kind} table needs the fields {sorted(spec)}, got {sorted(fields)}")
-    lengths = {name: len(array) for name, array in fields.items()}
-    if len(set(lengths.values())) > 1:
-        raise InvalidArgumentError(f"the {kind} table's fields differ in length: {lengths}")
-    return Table.from_arrays(kind, spec, first_id, fields, ids)
-
-
-class Mesh:
+class Mesh(MeshStorage):
     """A DLFL mesh: an always-valid oriented 2-manifold with integer element ids.
 
     Create one empty (``Mesh()``), from polygons (:func:`livemod.dlfl.from_polygons`)
@@ -101,44 +66,15 @@ class Mesh:
     :meth:`create_face`) keep it valid; each checks its arguments first and
     leaves the mesh unchanged when it raises.
 
+    The class is two layers, each a concern of its own: :class:`MeshStorage`
+    (its base, in :mod:`~livemod.dlfl._storage`) holds the element tables and
+    what reads one element's row (counts, ids, positions, hole flags, colours,
+    :meth:`from_tables`, :meth:`copy`); this class holds the links between them,
+    the navigation that follows them and the operators that change them.
+
     Attributes:
         notes: messages about repairs made while building the mesh.
     """
-
-    def __init__(self) -> None:
-        self._c = Table("corner", CORNER_SPEC)
-        self._e = Table("edge", EDGE_SPEC)
-        self._f = Table("face", FACE_SPEC)
-        self._v = Table("vertex", VERTEX_SPEC)
-        self.notes: list[str] = []
-
-    # ------------------------------------------------------------------ counts
-
-    @property
-    def num_vertices(self) -> int:
-        """Number of live vertices."""
-        return self._v.count
-
-    @property
-    def num_edges(self) -> int:
-        """Number of live edges."""
-        return self._e.count
-
-    @property
-    def num_faces(self) -> int:
-        """Number of live faces, holes included."""
-        return self._f.count
-
-    @property
-    def num_corners(self) -> int:
-        """Number of live corners."""
-        return self._c.count
-
-    def counts(self) -> tuple[int, int, int]:
-        """``(V, E, F)``, holes counted as faces (the mesh is closed inside)."""
-        v, e, f = self._v, self._e, self._f
-        # Table.count inlined: the runner reads the counts after every command
-        return v.n - len(v.free), e.n - len(e.free), f.n - len(f.free)
 
     def __repr__(self) -> str:
         v, e, f = self.counts()
@@ -149,40 +85,6 @@ class Mesh:
         from .display import picture_png
 
         return picture_png(self)
-
-    # ------------------------------------------------------------- id listings
-
-    def vertex_ids(self) -> np.ndarray:
-        """``(V,)`` int64 ids of the live vertices, in creation order."""
-        return self._v.live_ids()
-
-    def edge_ids(self) -> np.ndarray:
-        """``(E,)`` int64 ids of the live edges, in creation order."""
-        return self._e.live_ids()
-
-    def face_ids(self) -> np.ndarray:
-        """``(F,)`` int64 ids of the live faces (holes included), in creation order."""
-        return self._f.live_ids()
-
-    def corner_ids(self) -> np.ndarray:
-        """``(C,)`` int64 ids of the live corners, in creation order."""
-        return self._c.live_ids()
-
-    def has_vertex(self, vertex: int) -> bool:
-        """True when ``vertex`` is a live vertex id."""
-        return self._v.is_live(vertex)
-
-    def has_edge(self, edge: int) -> bool:
-        """True when ``edge`` is a live edge id."""
-        return self._e.is_live(edge)
-
-    def has_face(self, face: int) -> bool:
-        """True when ``face`` is a live face id."""
-        return self._f.is_live(face)
-
-    def has_corner(self, corner: int) -> bool:
-        """True when ``corner`` is a live corner id."""
-        return self._c.is_live(corner)
 
     # ------------------------------------------------------- element queries
 
@@ -265,71 +167,6 @@ class Mesh:
         """Number of corners of ``face``."""
         return len(self._ring_slots(self._f.slot(face)))
 
-    def is_hole(self, face: int) -> bool:
-        """True when ``face`` is a hole: a boundary loop of an open input mesh."""
-        return bool(self._f.hole[self._f.slot(face)])
-
-    def set_hole(self, face: int, hole: bool = True) -> None:
-        """Flag ``face`` as a hole (not drawn, written out as a boundary) or not.
-
-        Raises:
-            UnknownIdError: ``face`` is not live.
-            InvalidArgumentError: ``hole`` is not a flag (a string such as
-                ``"False"`` would otherwise mean True).
-        """
-        slot = self._f.slot(face)
-        self._f.hole[slot] = 1 if flag(hole, "hole") else 0
-
-    def face_color(self, face: int) -> tuple[float, float, float] | None:
-        """The colour ``(r, g, b)`` of ``face`` (floats in ``[0, 1]``, each the
-        shortest decimal of the float32 kept), or None when it has none (it is
-        drawn and written in the default modelling colour).
-
-        Raises:
-            UnknownIdError: ``face`` is not live.
-        """
-        F = self._f
-        slot = F.slot(face)
-        if not F.colored[slot]:
-            return None
-        # the shortest decimal of each float32: (0.2, ...) set reads back as 0.2
-        red, green, blue = (float(str(v)) for v in F.arrays["color"][slot])
-        return red, green, blue
-
-    def set_face_color(self, face: int, color: Any) -> None:
-        """Give ``face`` the colour ``(r, g, b)`` (three numbers in ``[0, 1]``, kept as
-        float32), or take its colour away with None.
-
-        Faces an operation makes from ``face`` take its colour (a split's new face,
-        subdivision's children, an extrusion's sides and end).
-
-        Raises:
-            UnknownIdError: ``face`` is not live.
-            InvalidArgumentError: ``color`` is neither None nor three numbers in
-                ``[0, 1]``; the mesh is unchanged.
-        """
-        F = self._f
-        slot = F.slot(face)
-        if color is None:
-            F.colored[slot] = 0
-            return
-        F.arrays["color"][slot] = rgb(color)
-        F.colored[slot] = 1
-
-    def face_colors(self) -> np.ndarray | None:
-        """``(F, 3)`` float32 colours of the faces in the order of :meth:`face_ids`,
-        a row of NaN for a face without one; None when no face has a colour."""
-        F = self._f
-        if not F.arrays["colored"][: F.n].any():  # the common case, without the slots
-            return None
-        slots = F.live_slots()
-        colored = F.arrays["colored"][slots].astype(bool)
-        if not colored.any():
-            return None
-        colors = F.arrays["color"][slots]
-        colors[~colored] = np.nan
-        return colors
-
     def vertex_corner(self, vertex: int) -> int:
         """Id of one corner at ``vertex``."""
         v = self._v
@@ -362,33 +199,10 @@ class Mesh:
         edge = self._c.edge
         return sum(1 for s in self._rotation_slots(self._v.slot(vertex)) if edge[s] >= 0)
 
-    def hole_mask(self) -> np.ndarray:
-        """``(F,)`` bool, True for the hole faces, in the order of :meth:`face_ids`."""
-        F = self._f
-        return F.arrays["hole"][F.live_slots()].astype(bool)
-
     def is_point_sphere(self, vertex: int) -> bool:
         """True when ``vertex`` is isolated: a one-corner face with no edge."""
         s = self._v.corner[self._v.slot(vertex)]
         return self._c.edge[s] < 0
-
-    def position(self, vertex: int) -> np.ndarray:
-        """``(3,)`` float64 copy of the position of ``vertex``."""
-        return self._v.arrays["position"][self._v.slot(vertex)].copy()
-
-    def positions(self, vertices: Iterable[int] | np.ndarray) -> np.ndarray:
-        """``(k, 3)`` float64 copy of the positions of ``vertices``, in their order.
-
-        Args:
-            vertices: ``(k,)`` vertex ids (a list, or an int array: one vectorized
-                lookup however many there are).
-
-        Raises:
-            InvalidArgumentError: an entry is not an integer.
-            UnknownIdError: an entry is not a live vertex id (the first such, in
-                order).
-        """
-        return self._v.arrays["position"][self._v.slots(vertices)]
 
     def face_points(self, face: int) -> np.ndarray:
         """``(k, 3)`` float64 copy of the positions of ``face``'s corners, in ring
@@ -400,11 +214,6 @@ class Mesh:
         # vertex slots straight from the ring: extrusion reads every face it grows here
         vert = self._c.vertex
         return self._v.arrays["position"][[vert[s] for s in self._ring_slots(self._f.slot(face))]]
-
-    def set_position(self, vertex: int, position: Any) -> None:
-        """Move ``vertex`` to ``position`` (three numbers)."""
-        xyz = as_point(position)
-        self._v.arrays["position"][self._v.slot(vertex)] = xyz
 
     def corner_at(self, face: int, vertex: int) -> int:
         """The corner of ``face`` at ``vertex`` (the thesis's ``(faceid, vertexid)``).
@@ -642,97 +451,3 @@ class Mesh:
                 ``faces`` and the other not (named); nothing changes.
         """
         reverse_rings(self, faces)
-
-    # ------------------------------------------------------------ whole mesh
-
-    @classmethod
-    def from_tables(
-        cls,
-        corners: dict[str, np.ndarray],
-        edges: dict[str, np.ndarray],
-        faces: dict[str, np.ndarray],
-        vertices: dict[str, np.ndarray],
-        first_ids: tuple[int, int, int, int] = (0, 0, 0, 0),
-        ids: tuple[np.ndarray | None, np.ndarray | None, np.ndarray | None,
-                   np.ndarray | None] | None = None,
-    ) -> Mesh:
-        """A mesh adopting ready-made element tables: the bulk builders' constructor.
-
-        Each argument maps every field of its kind's spec (:data:`CORNER_SPEC`,
-        :data:`EDGE_SPEC`, :data:`FACE_SPEC`, :data:`VERTEX_SPEC`) to an array with
-        one row per element (a face's ``colored`` and ``color`` may be left out:
-        no colour); every reference (a corner's ``next``, ``face``, ...,
-        an edge's ``c0``/``c1``, a face's or a vertex's ``corner``) is a row index
-        of the table it refers to. Element ``i`` of a kind gets the id
-        ``first_ids[k] + i``, in the order vertex, edge, face, corner, or, where
-        ``ids`` gives that kind's ``(n,)`` distinct ids, ``ids[k][i]`` (later
-        elements then get ids past the largest). Arrays whose dtype already
-        matches are adopted, not copied.
-
-        The links are trusted, not checked (this is the fast path of every bulk
-        operation); run :func:`livemod.dlfl.validate` on the result in tests.
-
-        Raises:
-            InvalidArgumentError: a field missing or unknown, or fields of one
-                kind of different lengths.
-        """
-        mesh = cls.__new__(cls)
-        mesh.notes = []
-        vid, eid, fid, cid = first_ids
-        vids, eids, fids, cids = ids or (None, None, None, None)
-        mesh._c = _adopt("corner", CORNER_SPEC, cid, corners, cids)
-        mesh._e = _adopt("edge", EDGE_SPEC, eid, edges, eids)
-        mesh._f = _adopt("face", FACE_SPEC, fid, faces, fids)
-        mesh._v = _adopt("vertex", VERTEX_SPEC, vid, vertices, vids)
-        return mesh
-
-    def copy(self) -> Mesh:
-        """A deep copy with the same ids."""
-        other = Mesh.__new__(Mesh)
-        other._c = self._c.copy()
-        other._e = self._e.copy()
-        other._f = self._f.copy()
-        other._v = self._v.copy()
-        other.notes = list(self.notes)
-        return other
-
-    def replace_with(self, other: Mesh) -> None:
-        """Take over the contents of ``other`` (used by bulk operations in place)."""
-        self._c, self._e, self._f, self._v = other._c, other._e, other._f, other._v
-        self.notes = other.notes
-
-    def next_ids(self) -> tuple[int, int, int, int]:
-        """The ids the next vertex, edge, face and corner will get."""
-        return self._v.next_id, self._e.next_id, self._f.next_id, self._c.next_id
-
-    def positions_view(self) -> np.ndarray:
-        """``(V, 3)`` float64 copy of the live vertex positions, in id order."""
-        return self._v.arrays["position"][self._v.live_slots()]
-
-    def set_positions(self, vertices: Iterable[int] | np.ndarray, positions: Any) -> None:
-        """Set the positions of many vertices at once.
-
-        Args:
-            vertices: ``(k,)`` vertex ids.
-            positions: ``(k, 3)`` floats, or ``(3,)`` for all of them.
-
-        Raises:
-            UnknownIdError: an id that is not a live vertex.
-            InvalidArgumentError: positions of another shape, or a NaN or
-                infinite coordinate (nothing is moved then).
-        """
-        if not hasattr(vertices, "__iter__"):
-            raise InvalidArgumentError(
-                f"set_positions needs a sequence of vertex ids, got {vertices!r}")
-        slots = [self._v.slot(v) for v in vertices]
-        try:
-            values = np.asarray(positions, dtype=np.float64)
-        except (TypeError, ValueError):
-            raise InvalidArgumentError(f"positions must be numbers, got {positions!r}") from None
-        if values.shape not in ((3,), (len(slots), 3)):
-            raise InvalidArgumentError(
-                f"positions must have shape (3,) or ({len(slots)}, 3), got {values.shape}"
-            )
-        if not np.isfinite(values).all():
-            raise InvalidArgumentError("positions must be finite numbers (NaN or infinity given)")
-        self._v.arrays["position"][slots] = values
