@@ -85,7 +85,7 @@ class MeshStorage:
         self._v = Table("vertex", VERTEX_SPEC)
         self.notes: list[str] = []
 
-    # ----------------------------------------------------------- counts
+    # ------------------------------------------------------------------ counts
 
     @property
     def num_vertices(self) -> int:
@@ -113,7 +113,7 @@ class MeshStorage:
         # Table.count inlined: the runner reads the counts after every command
         return v.n - len(v.free), e.n - len(e.free), f.n - len(f.free)
 
-    # ------------------------------------------------------ id listings
+    # ------------------------------------------------------------- id listings
 
     def vertex_ids(self) -> np.ndarray:
         """``(V,)`` int64 ids of the live vertices, in creation order."""
@@ -151,7 +151,7 @@ class MeshStorage:
         """The ids the next vertex, edge, face and corner will get."""
         return self._v.next_id, self._e.next_id, self._f.next_id, self._c.next_id
 
-    # -------------------------------------------------------- positions
+    # --------------------------------------------------------------- positions
 
     def position(self, vertex: int) -> np.ndarray:
         """``(3,)`` float64 copy of the position of ``vertex``."""
@@ -208,7 +208,7 @@ class MeshStorage:
             raise InvalidArgumentError("positions must be finite numbers (NaN or infinity given)")
         self._v.arrays["position"][slots] = values
 
-    # ------------------------------------------------ holes and colours
+    # ------------------------------------------------------- holes and colours
 
     def is_hole(self, face: int) -> bool:
         """True when ``face`` is a hole: a boundary loop of an open input mesh."""
@@ -280,7 +280,7 @@ class MeshStorage:
         colors[~colored] = np.nan
         return colors
 
-    # ------------------------------------------------------- whole mesh
+    # -------------------------------------------------------------- whole mesh
 
     @classmethod
     def from_tables(

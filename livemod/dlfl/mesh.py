@@ -86,7 +86,7 @@ class Mesh(MeshStorage):
 
         return picture_png(self)
 
-    # ------------------------------------------------------- element queries
+    # -------------------------------------------------------------- navigation
 
     def corner_next(self, corner: int) -> int:
         """Id of the corner after ``corner`` in its face."""
@@ -238,7 +238,7 @@ class Mesh(MeshStorage):
             f"{vertex} {len(found)} times; use one of the corner ids {ids}"
         )
 
-    # ---------------------------------------------------------- slot helpers
+    # ------------------------------------------------------------ slot helpers
 
     def _ring_slots(self, face_slot: int) -> list[int]:
         nxt = self._c.next
@@ -268,7 +268,7 @@ class Mesh(MeshStorage):
         c0 = E.c0[edge_slot]
         return E.c1[edge_slot] if c0 == corner_slot else c0
 
-    # ----------------------------------------------------- minimal operators
+    # ------------------------------------------------------- minimal operators
 
     def create_vertex(self, position: Any = (0.0, 0.0, 0.0)) -> int:
         """Create a point-sphere: a new vertex with a one-corner face and no edge.
