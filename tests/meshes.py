@@ -154,6 +154,19 @@ def euler_ok(mesh: Mesh) -> bool:
     return v - e + f == 2 * (len(genera) - sum(genera))
 
 
+def checked(mesh: Mesh) -> tuple[int, int, int]:
+    """Validate ``mesh`` and its Euler relation; return its counts."""
+    validate(mesh)
+    assert euler_ok(mesh)
+    return mesh.counts()
+
+
+def three_point_spheres() -> tuple[Mesh, list[int]]:
+    """An empty mesh given three point-spheres at x = 0, 1, 2, and their ids."""
+    m = Mesh()
+    return m, [m.create_vertex((float(i), 0.0, 0.0)) for i in range(3)]
+
+
 def corner_structure(mesh: Mesh, *, face_ids: bool = False) -> tuple[Any, ...]:
     """The mesh keyed by corner, edge and vertex id, with faces as corner sets.
 
