@@ -438,10 +438,11 @@ def split_edge_slot(mesh: Mesh, es: int, point: Any) -> tuple[int, int]:
     return m, e2
 
 
-def collapse_edge_slot(mesh: Mesh, edge: int, es: int, cleanup: bool) -> int:
-    """Collapse ``edge`` (at slot ``es``) to its midpoint; the surviving vertex id
-    (see :meth:`Mesh.collapse_edge`)."""
+def collapse_edge_slot(mesh: Mesh, es: int, cleanup: bool) -> int:
+    """Collapse edge slot ``es`` to its midpoint; the surviving vertex id (see
+    :meth:`Mesh.collapse_edge`)."""
     E, C, V = mesh._e, mesh._c, mesh._v
+    edge = E.idv[es]
     s1, s2 = E.c0[es], E.c1[es]
     v1, v2 = C.vertex[s1], C.vertex[s2]
     survivor = V.idv[v1]

@@ -414,7 +414,7 @@ class Mesh(MeshStorage):
         Raises:
             UnknownIdError: ``edge`` is not a live edge id.
         """
-        return collapse_edge_slot(self, edge, self._e.slot(edge), cleanup)
+        return collapse_edge_slot(self, self._e.slot(edge), cleanup)
 
     def create_face(self, points: Sequence[Any]) -> tuple[int, int]:
         """Create a two-sided polygon on new vertices: ``(front, back)`` face ids.
