@@ -1,7 +1,7 @@
 """The storage of a mesh: its four element tables and each element's own row.
 
 :class:`MeshStorage` is the base of :class:`~livemod.dlfl.mesh.Mesh`, and the one
-place that knows how the tables are laid out: a
+place that defines the tables' layout: a
 :class:`~livemod.dlfl._table.Table` per kind (``_c`` corners, ``_e`` edges,
 ``_f`` faces, ``_v`` vertices) with the fields of :data:`CORNER_SPEC`,
 :data:`EDGE_SPEC`, :data:`FACE_SPEC` and :data:`VERTEX_SPEC`. It holds what reads
