@@ -63,9 +63,11 @@ def between(p0: list[float], p1: list[float], t: float) -> list[float]:
 def add_point_sphere(mesh: Mesh, xyz: tuple[float, float, float]) -> int:
     """A new vertex at ``xyz`` with a one-corner face and no edge; its id."""
     C, F, V = mesh._c, mesh._f, mesh._v
-    C.reserve(1)
-    F.reserve(1)
-    V.reserve(1)
+    # most calls find room without growing; reserve() would say the same
+    if C.n >= C.cap or F.n >= F.cap or V.n >= V.cap:
+        C.reserve(1)
+        F.reserve(1)
+        V.reserve(1)
     c, f, v = C.alloc(), F.alloc(), V.alloc()
     C.next[c] = c
     C.prev[c] = c
