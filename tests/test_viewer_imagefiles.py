@@ -16,6 +16,7 @@ from livemod.viewer.imagefiles import (
     gif_rate_note,
     output_paths,
     save_new_png,
+    save_numbered_png,
     save_png,
     write_images,
 )
@@ -253,3 +254,14 @@ def test_a_new_pngs_temporary_file_is_named_for_the_abandoned_sweep(tmp_path: Pa
     # once this process is gone (a screenshot killed between encode and link)
     found = atomic._TEMPORARY.fullmatch(linked[0])
     assert found is not None and found["pid"] == str(os.getpid())
+
+
+def test_a_numbered_png_takes_the_first_free_number(tmp_path: Path,
+                                                    monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "shot_002.png").write_bytes(b"someone else's")
+    image = np.full((2, 3, 3), 200, dtype=np.uint8)
+    paths = [save_numbered_png("shot", 1, image) for _ in range(3)]
+    assert [p.name for p in paths] == ["shot_001.png", "shot_003.png", "shot_004.png"]
+    assert (tmp_path / "shot_002.png").read_bytes() == b"someone else's"
+    assert np.array_equal(read_image(tmp_path / "shot_004.png"), image)

@@ -270,3 +270,22 @@ def save_png(path: Path, image: np.ndarray) -> None:
     from PIL import Image
 
     _save(path, functools.partial(Image.fromarray(image).save, format="PNG"))
+
+
+def save_numbered_png(stem: str, first: int, image: np.ndarray) -> Path:
+    """Write ``image`` (as :func:`save_new_png`) to ``<stem>_NNN.png`` in the
+    working directory, NNN the first number from ``first`` whose name is free
+    at the moment the file is made; return that path.
+
+    Raises:
+        OSError: the file cannot be written.
+    """
+    index = first
+    while True:
+        path = Path(f"{stem}_{index:03d}.png")
+        try:
+            save_new_png(path, image)
+            return path
+        except FileExistsError:
+            index += 1
+

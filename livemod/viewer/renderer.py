@@ -115,6 +115,21 @@ def read_image(fbo: moderngl.Framebuffer, style: Style) -> np.ndarray:
     return np.frombuffer(raw, dtype=np.uint8).reshape(height, width, channels)[::-1].copy()
 
 
+def render_offscreen(renderer: Renderer, camera: Camera, style: Style,
+                     size: tuple[int, int]) -> np.ndarray:
+    """What ``renderer`` draws through ``camera`` with ``style`` at ``size``, into a
+    framebuffer of its own (no HUD, nothing on screen changes): see
+    :func:`read_image` for the array. The caller makes its own framebuffer
+    current again afterwards."""
+    ctx = renderer.ctx
+    fbo = ctx.framebuffer([ctx.renderbuffer(size, 4)], ctx.depth_renderbuffer(size))
+    try:
+        renderer.draw(fbo, camera, style)
+        return read_image(fbo, style)
+    finally:
+        release_framebuffer(fbo)
+
+
 def _set_uniforms(program: moderngl.Program, **values: object) -> None:
     """Set ``program``'s uniforms by name; a variant compiled without one's use
     (see :func:`shaders.variant`) has none, and skips it."""

@@ -41,7 +41,7 @@ from .camera import Camera
 from .controls import action_for
 from .display import MeshDisplay
 from .frames import Frames, ViewMotion
-from .imagefiles import save_new_png
+from .imagefiles import save_numbered_png
 from .look import Look
 from .measure import WholeMeshMeasurer
 from .objects import SceneObjects
@@ -49,7 +49,7 @@ from .overlay import Overlay
 from .parameters import Parameters
 from .picking import Picking
 from .pointer import Buttons, Pointer
-from .renderer import Renderer, Style, read_image, release_framebuffer
+from .renderer import Renderer, Style, render_offscreen
 from .runs import RunTracker
 from .section import SectionPlane
 from .session import Session
@@ -178,7 +178,7 @@ class LiveViewer(mglw.WindowConfig):
         self.script = str(Path(self.options.script).resolve())
         self.mesh_path = self.options.mesh_path
         self.session = self._start_session()
-        self._install_drop_callback()
+        install_glfw_drop(self)
 
     def _compose(self) -> None:
         """Make the controllers and the action table (checked: every key binding has
@@ -364,35 +364,21 @@ class LiveViewer(mglw.WindowConfig):
         """Render the scene (no HUD) offscreen at the window's size: ``(H, W, 3)``
         uint8, or ``(H, W, 4)`` with alpha 0 where nothing is drawn when
         ``transparent``."""
-        size = self.screen_size
         style = self.look.style
         if transparent:
             style = replace(style, background=(*style.background[:3], 0.0))
-        fbo = self.ctx.framebuffer([self.ctx.renderbuffer(size, 4)],
-                                   self.ctx.depth_renderbuffer(size))
         try:
-            self.renderer.draw(fbo, self.camera, style)
-            return read_image(fbo, style)
+            return render_offscreen(self.renderer, self.camera, style, self.screen_size)
         finally:
-            release_framebuffer(fbo)
             self.wnd.use()
 
     def save_screenshot(self, transparent: bool = False) -> Path:
         """Write :meth:`capture` to ``<script>_NNN.png`` in the working directory and
         return its path. NNN starts at the count of this window's screenshots and
-        goes up past every name taken; the name is taken in the same step as the
-        file is made (see :func:`~.imagefiles.save_new_png`), so a file that another
-        process writes meanwhile is never written over."""
-        image = self.capture(transparent)
-        stem = Path(self.script).stem
-        index = len(self.screenshots)
-        while True:
-            path = Path(f"{stem}_{index:03d}.png")
-            try:
-                save_new_png(path, image)
-                break
-            except FileExistsError:
-                index += 1
+        goes up past every name taken (see :func:`~.imagefiles.save_numbered_png`),
+        so a file that another process writes meanwhile is never written over."""
+        path = save_numbered_png(Path(self.script).stem, len(self.screenshots),
+                                 self.capture(transparent))
         self.screenshots.append(path)
         self._echo(f"screenshot: {path}")
         return path
@@ -501,20 +487,6 @@ class LiveViewer(mglw.WindowConfig):
 
     # -- files ------------------------------------------------------------------------------
 
-    def _install_drop_callback(self) -> None:
-        """moderngl-window's glfw backend does not forward drops; hook glfw directly."""
-        handle = getattr(self.wnd, "_window", None)
-        if self.options.backend != "glfw" or handle is None:
-            return
-        import glfw
-
-        def dropped(_window: Any, paths: list[str]) -> None:
-            if paths:
-                self.open_path(paths[0])
-
-        callback: Any = dropped
-        glfw.set_drop_callback(handle, callback)
-
     def on_files_dropped_event(self, x: int, y: int, paths: list[Any]) -> None:
         """A file dropped on the window is opened (the first of several)."""
         if paths:
@@ -566,6 +538,22 @@ class LiveViewer(mglw.WindowConfig):
         session, self.session = self.session, None
         if session is not None:
             session.close()
+
+
+def install_glfw_drop(viewer: LiveViewer) -> None:
+    """Open files dropped on ``viewer``'s window: moderngl-window's glfw backend
+    does not forward drops, so glfw is hooked directly (other backends do)."""
+    handle = getattr(viewer.wnd, "_window", None)
+    if viewer.options.backend != "glfw" or handle is None:
+        return
+    import glfw
+
+    def dropped(_window: Any, paths: list[str]) -> None:
+        if paths:
+            viewer.open_path(paths[0])
+
+    callback: Any = dropped
+    glfw.set_drop_callback(handle, callback)
 
 
 class WindowUnavailable(OSError):
