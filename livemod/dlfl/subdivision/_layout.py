@@ -515,11 +515,10 @@ def build_paired(mesh: Mesh, t: Topology, positions: np.ndarray, cv: np.ndarray,
         mate = np.concatenate([mate, np.full(s, -1, dtype=mate.dtype)])
         sizes = np.concatenate([sizes, np.ones(s, dtype=np.int64)])
         hole = np.concatenate([hole, np.zeros(s, dtype=bool)])
-        if colors is not None or t.sphere_colors is not None:
-            colors = np.concatenate([
-                np.full((len(sizes) - s, 3), np.nan, np.float32) if colors is None else colors,
-                np.full((s, 3), np.nan, np.float32) if t.sphere_colors is None
-                else t.sphere_colors])
+        if colors is not None:
+            # the input had colours, so read_topology kept the spheres' too
+            assert t.sphere_colors is not None
+            colors = np.concatenate([colors, t.sphere_colors])
     offsets = np.zeros(len(sizes) + 1, dtype=np.int64)
     np.cumsum(sizes, out=offsets[1:])
     new = from_corner_arrays(positions, offsets, cv, mate, hole, face_colors=colors,
