@@ -424,12 +424,13 @@ def test_objects_load_switch_kill(scene, tmp_path, topmod_samples):
     (load, (None,), InvalidArgumentError, "load takes a file name"),
     (load, (5,), InvalidArgumentError, "load takes a file name"),
     (save, (None,), InvalidArgumentError, "save takes a file name"),
-    (save, ("/nonexistent-dir/x.obj",), DLFLError, "cannot save '/nonexistent-dir/x.obj'"),
+    (save, ("/nonexistent-dir/x.obj",), InvalidArgumentError,
+     "cannot save '/nonexistent-dir/x.obj'"),
     (move, (None, (1, 2, 3)), InvalidArgumentError, "move takes a list of vertex ids"),
     (centroid, (5,), InvalidArgumentError, "centroid takes a list of vertex ids"),
     (next, (None,), InvalidArgumentError, "next takes a corner or an iterator"),
     (vertexInfo, ("x",), InvalidArgumentError, "expected a vertex id"),
-    (kill, ("x",), DLFLError, "object 'x' does not exist"),
+    (kill, ("x",), UnknownIdError, "object 'x' does not exist"),
 ])
 def test_junk_arguments_raise_dlfl_errors(cube_scene, command, args, error, message):
     with pytest.raises(error, match=message):

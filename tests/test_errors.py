@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import pytest
 
+import livemod.dlfl
 from livemod.dlfl import Scene, commands, errors, use_scene
 from livemod.dlfl.errors import (
     BudgetExceededError,
@@ -12,6 +13,7 @@ from livemod.dlfl.errors import (
     FileFormatError,
     GeometryError,
     InvalidArgumentError,
+    InvalidMeshError,
     NonManifoldError,
     UnknownIdError,
 )
@@ -20,13 +22,21 @@ from livemod.dlfl.extrusion import resolve_kind
 
 def test_every_error_is_a_dlfl_error_and_a_value_error():
     subclasses = {UnknownIdError, InvalidArgumentError, NonManifoldError,
-                  BudgetExceededError, FileFormatError, GeometryError}
+                  BudgetExceededError, FileFormatError, GeometryError, InvalidMeshError}
     defined = {value for value in vars(errors).values()
                if isinstance(value, type) and issubclass(value, DLFLError)} - {DLFLError}
     assert defined == subclasses
     assert all(issubclass(error, ValueError) for error in subclasses)
     assert issubclass(UnknownIdError, LookupError)
     assert not any(issubclass(error, LookupError) for error in subclasses - {UnknownIdError})
+
+
+def test_a_script_can_catch_every_error_by_its_documented_name():
+    defined = {name for name, value in vars(errors).items()
+               if isinstance(value, type) and issubclass(value, DLFLError)}
+    assert set(livemod.dlfl.ERRORS) == defined
+    assert all(getattr(livemod.dlfl, name) is getattr(errors, name) for name in defined)
+    assert defined <= set(livemod.dlfl.__all__)
 
 
 def test_the_subclasses_carry_their_fields():

@@ -6,8 +6,8 @@ from pathlib import Path
 
 import pytest
 
-from livemod.dlfl import DLFLError
-from livemod.dlfl.errors import InvalidArgumentError
+from livemod.dlfl.errors import FileFormatError, InvalidArgumentError
+from livemod.runner import ScriptFailedError
 from livemod.runner.declarations import check_values, declared_parameters, describe
 
 LITERAL = '''from livemod.dlfl import *
@@ -55,7 +55,7 @@ def test_a_literal_declaration_the_run_does_not_reach_is_listed_too(tmp_path: Pa
 def test_values_are_checked_against_the_declarations(tmp_path: Path) -> None:
     specs = declared_parameters(write(tmp_path, LITERAL))
     assert check_values(specs, {"count": "4", "thickness": 0.2}) == {"count": 4, "thickness": 0.2}
-    with pytest.raises(DLFLError, match=r"declares no parameter 'cuont'; did you mean 'count'\? \(it declares: thickness, count, scheme\)"):
+    with pytest.raises(InvalidArgumentError, match=r"declares no parameter 'cuont'; did you mean 'count'\? \(it declares: thickness, count, scheme\)"):
         check_values(specs, {"cuont": 4})
     with pytest.raises(InvalidArgumentError, match="above its maximum 0.5"):
         check_values(specs, {"thickness": 0.9})
@@ -63,5 +63,21 @@ def test_values_are_checked_against_the_declarations(tmp_path: Path) -> None:
 
 def test_a_malformed_declaration_names_its_line(tmp_path: Path) -> None:
     path = write(tmp_path, 'from livemod.dlfl import *\n\nparam("x", 5, min=9)\n')
-    with pytest.raises(DLFLError, match=r"model.py:3: parameter 'x' = 5 is below its minimum 9"):
+    with pytest.raises(InvalidArgumentError,
+                       match=r"model.py:3: parameter 'x' = 5 is below its minimum 9"):
         declared_parameters(path)
+
+
+def test_a_script_that_is_not_python_is_a_file_format_error(tmp_path: Path) -> None:
+    path = write(tmp_path, 'from livemod.dlfl import *\nparam("x", 5)\nif True\n')
+    with pytest.raises(FileFormatError, match=r"model.py:3: syntax error: ") as failed:
+        declared_parameters(path)
+    assert (failed.value.path, failed.value.line) == (str(path), 3)
+
+
+def test_a_script_run_for_its_declarations_that_fails_names_its_line(tmp_path: Path) -> None:
+    path = write(tmp_path, 'from livemod.dlfl import *\nn = param("n", 2 * 2)\n1 / 0\n')
+    with pytest.raises(ScriptFailedError, match=r"^running .*model.py to find its "
+                       r"parameters failed: .*model.py:3: ZeroDivisionError") as failed:
+        declared_parameters(path)
+    assert (failed.value.error.file, failed.value.error.line) == (str(path), 3)

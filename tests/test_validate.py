@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from livemod.dlfl import DLFLError, Mesh, validate
+from livemod.dlfl import InvalidMeshError, Mesh, validate
 from tests.meshes import cube, path_face, point_sphere, torus, two_cubes
 
 
@@ -35,7 +35,7 @@ def corrupt(mesh: Mesh, kind: str, field: str, slot: int, value) -> Mesh:
 ])
 def test_corruptions_are_named(kind, field, slot, value, message):
     m = corrupt(cube(), kind, field, slot, value)
-    with pytest.raises(DLFLError, match=f"^invalid mesh: .*{message}"):
+    with pytest.raises(InvalidMeshError, match=f"^invalid mesh: .*{message}"):
         validate(m)
 
 
@@ -43,14 +43,14 @@ def test_edge_side_that_does_not_point_back():
     m = cube()
     e0, e1 = m._c.arrays["edge"][0], m._c.arrays["edge"][1]
     m._c.arrays["edge"][0], m._c.arrays["edge"][1] = e1, e0
-    with pytest.raises(DLFLError, match="edge 0 has a side corner that does not point back"):
+    with pytest.raises(InvalidMeshError, match="edge 0 has a side corner that does not point back"):
         validate(m)
 
 
 def test_edge_sides_at_the_wrong_ends():
     m = cube()
     m._c.arrays["vertex"][0] = 2  # corner 0 now sits at vertex 2
-    with pytest.raises(DLFLError, match="edge 3 has sides that do not meet at its second end"):
+    with pytest.raises(InvalidMeshError, match="edge 3 has sides that do not meet at its second end"):
         validate(m)
 
 
@@ -60,7 +60,7 @@ def test_edge_sides_that_do_not_meet_at_the_first_end():
     # swap the sides of edge 0: now its c1 runs from c0's far end
     ea["c0"][0], ea["c1"][0] = ea["c1"][0], ea["c0"][0]
     ca["vertex"][ca["next"][ea["c1"][0]]] = 5
-    with pytest.raises(DLFLError, match="edge 0 has sides that do not meet at its first end"):
+    with pytest.raises(InvalidMeshError, match="edge 0 has sides that do not meet at its first end"):
         validate(m)
 
 
@@ -70,14 +70,14 @@ def test_two_rings_in_one_face():
     # split face 0's ring [0, 1, 2, 3] into [0, 1] and [2, 3]
     nxt[1], prv[0] = 0, 1
     nxt[3], prv[2] = 2, 3
-    with pytest.raises(DLFLError, match="7 corner rings for 6 faces: face 0 has corners outside"):
+    with pytest.raises(InvalidMeshError, match="7 corner rings for 6 faces: face 0 has corners outside"):
         validate(m)
 
 
 def test_edgeless_corner_in_a_ring():
     m = cube()
     m._c.arrays["edge"][0] = -1
-    with pytest.raises(DLFLError, match="edge 0 has a side corner that does not point back to it"):
+    with pytest.raises(InvalidMeshError, match="edge 0 has a side corner that does not point back to it"):
         validate(m)
 
 
@@ -88,26 +88,26 @@ def test_non_manifold_vertex_fans():
     ca["vertex"][ca["vertex"] == 8] = 0
     m._v.ids[8] = -1
     m._v.free.append(8)
-    with pytest.raises(DLFLError, match="vertex 0 has 2 separate fans"):
+    with pytest.raises(InvalidMeshError, match="vertex 0 has 2 separate fans"):
         validate(m)
 
 
 def test_id_map_corruptions():
     m = cube()
     m._e.ids[3] = 5
-    with pytest.raises(DLFLError, match="edge ids are not unique"):
+    with pytest.raises(InvalidMeshError, match="edge ids are not unique"):
         validate(m)
     m = cube()
     m._f.moved[77] = 2
-    with pytest.raises(DLFLError, match="face id map sends 77 to slot 2, which holds 2"):
+    with pytest.raises(InvalidMeshError, match="face id map sends 77 to slot 2, which holds 2"):
         validate(m)
     m = cube()
     m._v.ids[1] = 100
-    with pytest.raises(DLFLError, match="vertex id 100 is not below the id counter 8"):
+    with pytest.raises(InvalidMeshError, match="vertex id 100 is not below the id counter 8"):
         validate(m)
     m = cube()
     m._c.free.append(4)
-    with pytest.raises(DLFLError, match="corner table counts 23 live elements but 24"):
+    with pytest.raises(InvalidMeshError, match="corner table counts 23 live elements but 24"):
         validate(m)
 
 
@@ -117,7 +117,7 @@ def test_id_map_misses_a_moved_id():
     m.remove_vertex(v)
     w = m.create_vertex()  # lands in the freed slot, recorded in `moved`
     del m._v.moved[w]
-    with pytest.raises(DLFLError, match=f"vertex id map misses id {w}, stored away from its"):
+    with pytest.raises(InvalidMeshError, match=f"vertex id map misses id {w}, stored away from its"):
         validate(m)
 
 
@@ -125,7 +125,7 @@ def test_corners_without_faces():
     m = Mesh()
     m._v.reserve(1)
     m._v.alloc()
-    with pytest.raises(DLFLError, match="no corners but has vertices"):
+    with pytest.raises(InvalidMeshError, match="no corners but has vertices"):
         validate(m)
 
 
@@ -134,11 +134,11 @@ def test_a_face_colour_out_of_range_or_a_bad_flag_is_reported():
     m.set_face_color(2, (0.5, 0.5, 0.5))
     validate(m)
     m._f.arrays["color"][m._f.slot(2)] = (0.5, np.nan, 0.5)
-    with pytest.raises(DLFLError, match=r"face 2 has colour flag 1 and colour \[0.5, nan"):
+    with pytest.raises(InvalidMeshError, match=r"face 2 has colour flag 1 and colour \[0.5, nan"):
         validate(m)
     m = cube()
     m._f.colored[m._f.slot(4)] = 7
-    with pytest.raises(DLFLError, match="face 4 has colour flag 7"):
+    with pytest.raises(InvalidMeshError, match="face 4 has colour flag 7"):
         validate(m)
 
 
@@ -148,9 +148,9 @@ def test_a_face_colour_out_of_range_or_a_bad_flag_is_reported():
 def test_validate_names_a_free_slot_outside_the_table():
     m = cube()
     m._e.free.append(m._e.n + 5)  # IndexError inside validate before the fix
-    with pytest.raises(DLFLError, match="free list holds slot 17, outside the 12 used slots"):
+    with pytest.raises(InvalidMeshError, match="free list holds slot 17, outside the 12 used slots"):
         validate(m)
     m = cube()
     m._e.free.append(-1)  # indexed the last slot silently
-    with pytest.raises(DLFLError, match="free list holds slot -1"):
+    with pytest.raises(InvalidMeshError, match="free list holds slot -1"):
         validate(m)

@@ -10,9 +10,10 @@ import pytest
 from PIL import Image
 
 from livemod.cli import main as livemod_main
-from livemod.dlfl import DLFLError
+from livemod.dlfl import InvalidArgumentError
 from livemod.dlfl.io import save_mesh
 from livemod.dlfl.shapes import cube
+from livemod.runner import ScriptFailedError
 from livemod.runner.stepshots import shoot_steps
 from livemod.view import Animation, film
 from livemod.viewer.film import film_cameras, render_film, shot_captions
@@ -93,13 +94,14 @@ def test_film_runs_a_script_with_its_parameters(tmp_path: Path):
 def test_film_refuses_a_failing_script_and_one_without_steps(tmp_path: Path):
     broken = tmp_path / "broken.py"
     broken.write_text("from livemod.dlfl import *\nload('cube')\nextrude('nosuch', 0)\n")
-    with pytest.raises(DLFLError, match=rf"^{broken}:3: "):
+    with pytest.raises(ScriptFailedError, match=rf"^{broken}:3: ") as failed:
         film(broken)
+    assert (failed.value.error.file, failed.value.error.line) == (str(broken), 3)
     idle = tmp_path / "idle.py"
     idle.write_text("x = 1\n")
-    with pytest.raises(DLFLError, match=r"idle\.py has no steps; nothing to film$"):
+    with pytest.raises(InvalidArgumentError, match=r"idle\.py has no steps; nothing to film$"):
         film(idle)
-    with pytest.raises(DLFLError, match=r"^the run declared no parameter 'floors' \(it "
+    with pytest.raises(InvalidArgumentError, match=r"^the run declared no parameter 'floors' \(it "
                                         r"declared: storeys, height, twist, swell\)"):
         film(SCRIPTS / "tower.py", parameters={"floors": 2})
 

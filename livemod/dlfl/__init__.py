@@ -40,6 +40,7 @@ from .errors import (
     FileFormatError,
     GeometryError,
     InvalidArgumentError,
+    InvalidMeshError,
     NonManifoldError,
     UnknownIdError,
 )
@@ -52,7 +53,7 @@ from .validate import validate
 # the errors, so that a script can catch them by the names the documentation gives
 ERRORS = [
     "DLFLError", "UnknownIdError", "InvalidArgumentError", "NonManifoldError",
-    "BudgetExceededError", "FileFormatError", "GeometryError",
+    "BudgetExceededError", "FileFormatError", "GeometryError", "InvalidMeshError",
 ]
 __all__ = [*commands.__all__, *ERRORS]
 

@@ -10,8 +10,10 @@ can branch on the type instead of the message::
     ├── NonManifoldError                     input that cannot be made an oriented 2-manifold
     ├── BudgetExceededError                  the result would pass the face budget
     ├── FileFormatError                      a file that cannot be read (file and line)
-    └── GeometryError                        a geometric impossibility (a collapsed face,
-                                             an inverted crust, an overflowing coordinate)
+    ├── GeometryError                        a geometric impossibility (a collapsed face,
+    │                                        an inverted crust, an overflowing coordinate)
+    └── InvalidMeshError                     a mesh that breaks the DLFL's invariants (a bug
+                                             in what built it: validate's verdict)
 
 An operation that raises leaves the mesh exactly as it was.
 """
@@ -89,6 +91,17 @@ class GeometryError(DLFLError):
     def __init__(self, message: str, *, reason: str | None = None) -> None:
         super().__init__(message)
         self.reason = reason
+
+
+class InvalidMeshError(DLFLError):
+    """A mesh that breaks an invariant of the DLFL: a corner ring that does not
+    close, an edge without two sides, a dangling id.
+
+    :func:`~livemod.dlfl.validate.validate` raises it, and so does an operation
+    that finds its own intermediate mesh broken. Bad input never causes it (input
+    gets one of the other subclasses first): it reports a bug in whatever built the
+    mesh, to be fixed there rather than handled.
+    """
 
 
 class DLFLRepairWarning(UserWarning):

@@ -30,7 +30,13 @@ from .analysis import face_points, polygon_normal
 from .bands import edges_since
 from .budget import check_growth
 from .connect import closest_corners, connect_edge_sides, connect_faces
-from .errors import DLFLError, GeometryError, InvalidArgumentError, UnknownIdError
+from .errors import (
+    DLFLError,
+    GeometryError,
+    InvalidArgumentError,
+    InvalidMeshError,
+    UnknownIdError,
+)
 from .geometry import edge_cleanup
 from .hull import hull_polygons
 from .mesh import Mesh
@@ -193,14 +199,14 @@ def _sector_corner(mesh: Mesh, vertex: dict[int, int], rotation: dict[int, list[
         span = (end - start) % len(ring) or len(ring)
         if 0 < (place[b] - start) % len(ring) < span:
             return c
-    raise DLFLError(f"internal: no corner of point {a} can take an edge to point {b}")
+    raise InvalidMeshError(f"internal: no corner of point {a} can take an edge to point {b}")
 
 
 def _corner_towards(mesh: Mesh, u: int, w: int) -> int:
     for c in mesh.vertex_corners(u):
         if mesh.corner_vertex(mesh.corner_next(c)) == w:
             return c
-    raise DLFLError(f"internal: vertex {u} has no edge to vertex {w}")
+    raise InvalidMeshError(f"internal: vertex {u} has no edge to vertex {w}")
 
 
 def _hub_polygons(mesh: Mesh, face: int, normal: np.ndarray,

@@ -1,8 +1,8 @@
 """Exhaustive invariant check of a DLFL mesh.
 
 :func:`validate` checks every link of every element, vectorized over the slot
-arrays, and raises :class:`DLFLError` describing the first broken invariant with
-the ids involved. Tests call it after every operation.
+arrays, and raises :class:`InvalidMeshError` describing the first broken
+invariant with the ids involved. Tests call it after every operation.
 """
 
 from __future__ import annotations
@@ -11,7 +11,7 @@ import numpy as np
 
 from ._graph import cycle_labels
 from ._table import Table
-from .errors import DLFLError
+from .errors import InvalidMeshError
 from .mesh import Mesh
 
 
@@ -25,9 +25,9 @@ def validate(mesh: Mesh) -> None:
     colours (a flag of 0 or 1, and three numbers in ``[0, 1]`` when it is 1).
 
     Raises:
-        DLFLError: the first broken invariant, naming the elements by id (the
-            base class itself: a broken mesh is a bug in whatever built it, none
-            of the kinds of bad input its subclasses name).
+        InvalidMeshError: the first broken invariant, naming the elements by id
+            (a broken mesh is a bug in whatever built it, none of the kinds of
+            bad input the other subclasses of DLFLError name).
     """
     for table in (mesh._v, mesh._e, mesh._f, mesh._c):
         _check_table(table)
@@ -35,7 +35,7 @@ def validate(mesh: Mesh) -> None:
     corners = mesh._c.live_slots()
     if len(corners) == 0:
         if mesh.num_vertices or mesh.num_edges or mesh.num_faces:
-            raise DLFLError("mesh has no corners but has vertices, edges or faces")
+            raise InvalidMeshError("invalid mesh: mesh has no corners but has vertices, edges or faces")
         return
     _check_corner_refs(mesh, corners)
     _check_face_rings(mesh, corners)
@@ -55,7 +55,7 @@ def _check_face_colors(f: Table) -> None:
 
 
 def _fail(message: str) -> None:
-    raise DLFLError(f"invalid mesh: {message}")
+    raise InvalidMeshError(f"invalid mesh: {message}")
 
 
 def _check_table(t: Table) -> None:

@@ -28,7 +28,7 @@ from __future__ import annotations
 
 from livemod.dlfl.arrays import MeshArrays
 
-from .errors import Cancelled
+from .errors import Cancelled, ScriptFailedError
 from .execute import RunControl, RunOutcome, execute
 from .headless import run_outcome, run_script
 from .playback import Playback, PlaybackState, PlaybackView
@@ -41,6 +41,6 @@ from .watch import FileWatcher, ManualNotifier, WatchdogNotifier
 __all__ = [
     "Cancelled", "FileWatcher", "LiveSession", "ManualNotifier", "MeshArrays", "Playback",
     "PlaybackState", "PlaybackView", "RunActivity", "RunControl", "RunOutcome", "RunResult",
-    "RunStatus", "ScriptError", "StepRecord", "WatchdogNotifier",
+    "RunStatus", "ScriptError", "ScriptFailedError", "StepRecord", "WatchdogNotifier",
     "execute", "preview_arrays", "run_outcome", "run_script",
 ]

@@ -35,7 +35,7 @@ from typing import Any, Protocol, TextIO
 import numpy as np
 
 from livemod.commandline import describe
-from livemod.dlfl.errors import DLFLError
+from livemod.dlfl.errors import DLFLError, InvalidArgumentError
 from livemod.dlfl.params import ParamSpec
 from livemod.dlfl.scene import Selection
 from livemod.progress import ProgressBar
@@ -116,14 +116,15 @@ def declared_sweep(text: str, specs: dict[str, ParamSpec]) -> tuple[str, list[An
 
     Raises:
         ValueError: a malformed text.
-        DLFLError: a name the script does not declare, or a value that does not fit.
+        InvalidArgumentError: a name the script does not declare, or a value that
+            does not fit.
     """
     name, sep, body = text.partition("=")
     if not sep or not name.isidentifier():
         raise ValueError(f"--param expects name=start:stop:count or name=a,b,..., got {text!r}")
     problem = undeclared(specs, {name: None})
     if problem is not None:
-        raise DLFLError(problem)
+        raise InvalidArgumentError(problem)
     spec = specs[name]
     if spec.kind in ("int", "float") and body.count(":") == 2:
         _, values = parse_param(text)

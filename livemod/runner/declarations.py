@@ -12,9 +12,10 @@ from collections.abc import Iterable
 from pathlib import Path
 from typing import Any
 
-from livemod.dlfl.errors import DLFLError, did_you_mean
+from livemod.dlfl.errors import DLFLError, FileFormatError, InvalidArgumentError, did_you_mean
 from livemod.dlfl.params import ParamSpec, make_spec
 
+from .errors import ScriptFailedError
 from .instrument import read_script
 
 _PARAM_ARGS = ("name", "default", "min", "max", "step", "choices", "doc")
@@ -28,8 +29,11 @@ def declared_parameters(script: str | Path) -> dict[str, ParamSpec]:
     branch it did not take), in the order of the script.
 
     Raises:
-        DLFLError: a declaration is malformed, or the script fails when it has to
-            be run to find its declarations.
+        FileFormatError: the script is not Python (a syntax error, bytes not in
+            its encoding).
+        InvalidArgumentError: a declaration is malformed.
+        ScriptFailedError: the script fails when it has to be run to find its
+            declarations.
         OSError: the script cannot be read.
     """
     path = Path(script)
@@ -46,13 +50,14 @@ def script_source(path: Path | str) -> str:
     """The script's text (see :func:`~livemod.runner.instrument.read_script`).
 
     Raises:
-        DLFLError: its bytes are not text in its encoding.
+        FileFormatError: its bytes are not text in its encoding.
         OSError: it cannot be read.
     """
     try:
         return read_script(str(path))
     except SyntaxError as exc:
-        raise DLFLError(f"{path}:{exc.lineno}: {exc.msg}") from None
+        raise FileFormatError(f"{path}:{exc.lineno}: {exc.msg}", path=str(path),
+                              line=exc.lineno) from None
 
 
 def literal_declarations(source: str, path: str | Path) -> dict[str, ParamSpec] | None:
@@ -62,7 +67,8 @@ def literal_declarations(source: str, path: str | Path) -> dict[str, ParamSpec] 
     be run to know its declarations).
 
     Raises:
-        DLFLError: a syntax error, or a malformed literal declaration.
+        FileFormatError: a syntax error.
+        InvalidArgumentError: a malformed literal declaration.
     """
     calls, literal = _param_calls(source, path)
     if all(args is not None for args in literal):
@@ -82,12 +88,13 @@ def _param_calls(source: str, path: str | Path) -> tuple[list[ast.Call], list[An
     arguments (None for a call that computes one).
 
     Raises:
-        DLFLError: a syntax error.
+        FileFormatError: a syntax error.
     """
     try:
         tree = ast.parse(source, filename=str(path))
     except SyntaxError as exc:
-        raise DLFLError(f"{path}:{exc.lineno}: syntax error: {exc.msg}") from None
+        raise FileFormatError(f"{path}:{exc.lineno}: syntax error: {exc.msg}",
+                              path=str(path), line=exc.lineno) from None
     calls = [node for node in ast.walk(tree)
              if isinstance(node, ast.Call) and _is_param_call(node)]
     calls.sort(key=lambda node: (node.lineno, node.col_offset))
@@ -122,9 +129,9 @@ def _specs(path: Path, calls: list[ast.Call], literal: list[Any]) -> dict[str, P
         try:
             spec = make_spec(**args)
         except (DLFLError, TypeError) as exc:
-            raise DLFLError(f"{path}:{call.lineno}: {exc}") from None
+            raise InvalidArgumentError(f"{path}:{call.lineno}: {exc}") from None
         if spec.name in specs and specs[spec.name] != spec:
-            raise DLFLError(f"{path}:{call.lineno}: parameter {spec.name!r} is declared "
+            raise InvalidArgumentError(f"{path}:{call.lineno}: parameter {spec.name!r} is declared "
                             "twice with different settings")
         specs[spec.name] = spec
     return specs
@@ -135,7 +142,8 @@ def _run_for_declarations(path: Path) -> dict[str, ParamSpec]:
 
     outcome = run_outcome(str(path))
     if outcome.error is not None:
-        raise DLFLError(f"running {path} to find its parameters failed: {outcome.error}")
+        raise ScriptFailedError(outcome.error, f"running {path} to find its parameters "
+                                f"failed: {outcome.error}")
     return outcome.declarations
 
 
@@ -143,12 +151,12 @@ def check_values(specs: dict[str, ParamSpec], values: dict[str, Any]) -> dict[st
     """``values`` checked and converted against the declarations.
 
     Raises:
-        DLFLError: a name the script does not declare (listing those it does) or a
-            value that does not fit its declaration.
+        InvalidArgumentError: a name the script does not declare (listing those it
+            does) or a value that does not fit its declaration.
     """
     problem = undeclared(specs, values)
     if problem is not None:
-        raise DLFLError(problem)
+        raise InvalidArgumentError(problem)
     checked = {}
     for name, value in values.items():
         checked[name] = specs[name].check(value)
@@ -225,8 +233,9 @@ def given_values(script: str | Path, texts: list[str]) -> dict[str, Any]:
 
     Raises:
         ValueError: a text without ``=`` or with a bad name.
-        DLFLError: a name the script does not declare, a value that does not fit,
-            or a syntax error in the script.
+        InvalidArgumentError: a name the script does not declare, or a value
+            that does not fit.
+        FileFormatError, ScriptFailedError: as :func:`declared_parameters` says.
         OSError: the script cannot be read.
     """
     raw = {}

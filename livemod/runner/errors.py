@@ -1,4 +1,5 @@
-"""Turn what a script raised into a :class:`ScriptError` a person can act on."""
+"""Turn what a script raised into a :class:`ScriptError` a person can act on, and
+the runner's own exceptions."""
 
 from __future__ import annotations
 
@@ -9,6 +10,7 @@ import traceback
 from types import TracebackType
 
 import livemod
+from livemod.dlfl.errors import DLFLError
 
 from .results import ScriptError
 
@@ -18,6 +20,22 @@ _LIBRARY_DIR = os.path.dirname(os.path.abspath(livemod.__file__)) + os.sep
 class Cancelled(BaseException):  # noqa: N818  (a signal, not an error)
     """Raised inside a run to stop it (a BaseException so ``except Exception``
     in a script does not swallow it)."""
+
+
+class ScriptFailedError(DLFLError):
+    """A headless run of the user's script failed: ``livemod render``, a film, a
+    batch's parameters found by running it.
+
+    The message is ``FILE:LINE: TypeName: text``, as the window's error panel says
+    it, unless the raiser words it for its context.
+
+    Attributes:
+        error: the run's :class:`ScriptError` (file, line, message, short traceback).
+    """
+
+    def __init__(self, error: ScriptError, message: str | None = None) -> None:
+        super().__init__(str(error) if message is None else message)
+        self.error = error
 
 
 def syntax_error(exc: SyntaxError, path: str) -> ScriptError:

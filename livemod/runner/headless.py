@@ -5,9 +5,11 @@ from __future__ import annotations
 import dataclasses
 import os
 
+from livemod.dlfl.errors import InvalidArgumentError
 from livemod.dlfl.run_context import RunContext
 from livemod.dlfl.scene import SELECTION_READERS, Selection
 
+from .errors import ScriptFailedError
 from .execute import RunOutcome, base_scene, execute
 from .results import RunResult, RunStatus, object_fields, parameter_items, snapshot_scene
 
@@ -74,8 +76,23 @@ def run_problem(outcome: RunOutcome, values: dict | None = None) -> str | None:
 
     failure = outcome.error
     if failure is not None:
-        return f"{failure.file}:{failure.line}: {failure.message}"
+        return str(failure)
     return undeclared(outcome.declarations, values or {}, ran=True)
+
+
+def check_outcome(outcome: RunOutcome, values: dict | None = None) -> None:
+    """Return when a headless run went well, else raise why (:func:`run_problem`'s line).
+
+    Raises:
+        ScriptFailedError: the script failed (``FILE:LINE: message``).
+        InvalidArgumentError: ``values`` (``--set``) names a parameter the run did
+            not declare.
+    """
+    if outcome.error is not None:
+        raise ScriptFailedError(outcome.error)
+    problem = run_problem(outcome, values)
+    if problem is not None:
+        raise InvalidArgumentError(problem)
 
 
 def result_of(outcome: RunOutcome, script: str, parameters: dict | None,

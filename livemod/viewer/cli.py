@@ -580,20 +580,18 @@ def _run_for_render(path: str, mesh_path: str | None, want_preview: bool,
     ``(arrays, preview, others)`` of the mesh it leaves and its other objects.
 
     Raises:
-        DLFLError: the script failed (the message names file and line).
+        ScriptFailedError: the script failed (the message names file and line).
+        InvalidArgumentError: ``values`` names a parameter the run did not declare.
     """
     from livemod.dlfl import mesh_arrays
-    from livemod.dlfl.errors import DLFLError
     from livemod.runner import run_outcome
-    from livemod.runner.headless import report_selection, run_problem
+    from livemod.runner.headless import check_outcome, report_selection
     from livemod.runner.results import current_mesh, snapshot_others
 
     outcome = run_outcome(path, mesh_path=mesh_path, parameters=values, selection=selection,
                           seed=seed)
     report_selection(outcome.run)
-    problem = run_problem(outcome, values)
-    if problem is not None:
-        raise DLFLError(problem)
+    check_outcome(outcome, values)
     mesh, others = current_mesh(outcome.scene), snapshot_others(outcome.scene)
     if mesh is None:
         return None, None, others

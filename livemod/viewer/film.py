@@ -109,8 +109,9 @@ def film(script: str | os.PathLike[str], *, turn: float = 0.0, captions: bool = 
     (``--set``), ``mesh_path`` (``--mesh``) and ``seed``.
 
     Raises:
-        DLFLError: the script failed (the message names file and line) or took no
-            step.
+        ScriptFailedError: the script failed (the message names file and line).
+        InvalidArgumentError: it took no step, or ``parameters`` names one the
+            run did not declare.
         OSError: the script or ``mesh_path`` cannot be read.
         ValueError, NoOffscreenGL: see :func:`~livemod.viewer.pictures.render_model`.
     """
@@ -126,21 +127,20 @@ def script_shots(script: str | os.PathLike[str], **run: Any) -> StepShots:
     keyword arguments), refusing a run that failed or took no step shot.
 
     Raises:
-        DLFLError: the script failed (naming file and line), or no step asked for
-            was taken (naming the steps it took).
+        ScriptFailedError: the script failed (naming file and line).
+        InvalidArgumentError: no step asked for was taken (naming the steps it
+            took), or a parameter the run did not declare.
     """
-    from livemod.dlfl.errors import DLFLError
-    from livemod.runner.headless import run_problem
+    from livemod.dlfl.errors import InvalidArgumentError
+    from livemod.runner.headless import check_outcome
 
     shots = shoot_steps(script, **run)
-    problem = run_problem(shots.outcome, run.get("parameters"))
-    if problem is not None:
-        raise DLFLError(problem)
+    check_outcome(shots.outcome, run.get("parameters"))
     if not shots.shots:
         taken = len(shots.outcome.steps)
         have = f"steps 0 to {taken - 1}" if taken else "no steps"
         asked = run.get("which")
         missing = "nothing to film" if asked is None else \
             f"no step {', '.join(str(k) for k in sorted(asked))}"
-        raise DLFLError(f"{os.fspath(script)} has {have}; {missing}")
+        raise InvalidArgumentError(f"{os.fspath(script)} has {have}; {missing}")
     return shots

@@ -14,7 +14,7 @@ from dataclasses import replace
 from typing import TYPE_CHECKING
 
 from livemod.dlfl import selection as rules
-from livemod.dlfl.errors import DLFLError
+from livemod.dlfl.errors import DLFLError, InvalidArgumentError
 from livemod.dlfl.scene import Selection
 
 from .controls import (
@@ -166,7 +166,7 @@ def _similar(arrays: MeshArrays, picks: Selection, kind: str) -> Selection | Non
     rule = {"faces": rules.matching_faces, "edges": rules.matching_edges,
             "vertices": rules.matching_vertices}.get(kind)
     if rule is None:
-        raise DLFLError("corners have no similar ones (pick faces, edges or vertices)")
+        raise InvalidArgumentError("corners have no similar ones (pick faces, edges or vertices)")
     return _from_seeds(rule, kind)(arrays, picks, kind)
 
 

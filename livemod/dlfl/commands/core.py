@@ -404,7 +404,12 @@ def load(filename: str) -> int:
 
 
 def save(filename: str) -> bool:
-    """Save the current object (``.obj``, ``.dlfl``, ``.stl``, ``.ply``); True on success."""
+    """Save the current object (``.obj``, ``.dlfl``, ``.stl``, ``.ply``); True on success.
+
+    Raises:
+        InvalidArgumentError: ``filename`` is not a path, or cannot be written (the
+            system's reason in the message, as :func:`load` says it).
+    """
     from ..io import save_mesh
 
     path = _path(filename, "save")
@@ -412,7 +417,7 @@ def save(filename: str) -> bool:
     try:
         save_mesh(mesh(), path)
     except OSError as exc:
-        raise DLFLError(f"cannot save {path!r}: {exc.strerror or exc}") from None
+        raise InvalidArgumentError(f"cannot save {path!r}: {exc.strerror or exc}") from None
     return True
 
 
