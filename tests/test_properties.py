@@ -265,11 +265,30 @@ class MeshOperators(RuleBasedStateMachine):
 # LIVEMOD_PROPERTY_EXAMPLES and LIVEMOD_PROPERTY_STEPS scale the hunt; NOSHRINK=1 skips
 # shrinking when hunting bugs with many examples
 PHASES = [Phase.explicit, Phase.reuse, Phase.generate]
+EXAMPLES = int(os.environ.get("LIVEMOD_PROPERTY_EXAMPLES", "800"))
 MeshOperators.TestCase.settings = settings(
-    max_examples=int(os.environ.get("LIVEMOD_PROPERTY_EXAMPLES", "800")),
+    max_examples=max(1, EXAMPLES // 4),
     stateful_step_count=int(os.environ.get("LIVEMOD_PROPERTY_STEPS", "10")),
     deadline=None,
     suppress_health_check=[HealthCheck.too_slow, HealthCheck.filter_too_much],
     phases=PHASES if os.environ.get("NOSHRINK") else [*PHASES, Phase.shrink],
 )
-TestMeshOperators = MeshOperators.TestCase
+
+
+# The hunt runs as four test cases of a quarter of the examples each, every one
+# drawing its own: the same search, but pytest-xdist spreads it over the workers and no
+# one test comes near pytest's timeout on a loaded machine.
+class TestMeshOperators1(MeshOperators.TestCase):
+    """The first quarter of the examples."""
+
+
+class TestMeshOperators2(MeshOperators.TestCase):
+    """The second quarter of the examples."""
+
+
+class TestMeshOperators3(MeshOperators.TestCase):
+    """The third quarter of the examples."""
+
+
+class TestMeshOperators4(MeshOperators.TestCase):
+    """The fourth quarter of the examples."""
