@@ -31,8 +31,10 @@ What it prints:
   with the callee's class, and for the window's calls into the session whether the
   name is a member of the typed protocol of ``livemod/viewer/session.py``;
 * the hops between threads: a queue put and get, a condition notified and waited
-  for, an event, a thread started; each named by the nearest livemod function on
-  either side.
+  for, an event waited for, an event flag set by one thread and cleared by the one
+  that takes what it flagged (``NewestJob.take``), a thread started; each named by
+  the nearest livemod function on either side. A hand-over that uses none of these
+  (a value left in an attribute that another thread reads) is not seen.
 
 The tracing slows every call in the process: timings are not measured here.
 """
@@ -133,7 +135,8 @@ class Call:
 class Hop:
     """Work handed from one thread to another."""
 
-    via: str           # "queue", "event", "condition", "thread start", "SimpleQueue"
+    via: str           # "queue", "event", "event flag", "condition", "thread start",
+                       # "SimpleQueue"
     source: str        # thread
     source_at: str     # nearest livemod function on the handing side (or the frame's file)
     target: str
@@ -150,6 +153,8 @@ NOTIFY = _codes(threading.Condition.notify)
 WAIT = _codes(threading.Condition.wait)
 THREAD_START = _codes(threading.Thread.start)
 EVENT = _codes(threading.Event.set, threading.Event.wait)
+EVENT_SET = _codes(threading.Event.set)
+EVENT_CLEAR = _codes(threading.Event.clear)
 STDLIB_QUEUE = queue.__file__
 PLUMBING = {queue.__file__, threading.__file__}
 
@@ -234,6 +239,12 @@ class Tracer:
             self._handed[("condition", id(frame.f_locals["self"]))] = self._here(frame)
         elif code in THREAD_START:
             self._started[id(frame.f_locals["self"])] = self._here(frame)
+        elif code in EVENT_SET:
+            self._handed[("event flag", id(frame.f_locals["self"]))] = self._here(frame)
+        elif code in EVENT_CLEAR and frame.f_locals["self"].is_set():
+            # a flag set by one thread and cleared by another that took what it flagged
+            # (a slot polled each frame, as NewestJob.take)
+            self._hop("event flag", id(frame.f_locals["self"]), frame)
 
     def _livemod_call(self, frame: FrameType, rel: str) -> None:
         back = frame.f_back
@@ -327,6 +338,7 @@ class Trace:
     take_frame: int       # the frame that took the new result from the session's queue
     last_frame: int       # the first frame that showed it
     redraw: set[str]      # the main thread's files in a frame drawn again and idle ones
+    periodic: set[str]    # the other threads that ran livemod code then (no save)
 
 
 def _frames_until(window_module: ModuleType, viewer: Any, tracer: Tracer,
@@ -354,20 +366,23 @@ def _rest(window_module: ModuleType, viewer: Any, tracer: Tracer, seconds: float
     _frames_until(window_module, viewer, tracer, lambda: time.monotonic() > end, seconds + 5)
 
 
-def _redraw_files(window_module: ModuleType, viewer: Any, tracer: Tracer) -> set[str]:
+def _redraw_files(window_module: ModuleType, viewer: Any,
+                  tracer: Tracer) -> tuple[set[str], set[str]]:
     """The main thread's files in a frame drawn again with no new result (``B``
-    changes the background) and the idle frames after it; the background is put
-    back after."""
+    changes the background) and the idle frames of the next 1.2 s (the watcher
+    rechecks its folders each second), and the other threads that ran livemod code
+    meanwhile; the background is put back after."""
     viewer.handle_key("B")
     tracer.recording = True
-    _rest(window_module, viewer, tracer, 0.3)
+    _rest(window_module, viewer, tracer, 1.2)
     tracer.recording = False
     files = {c.file for c in tracer.calls if c.thread == "MainThread"}
+    threads = {c.thread for c in tracer.calls} - {"MainThread"}
     viewer.handle_key("B")
     _rest(window_module, viewer, tracer, 0.5)
     tracer.calls.clear()
     tracer.hops.clear()
-    return files
+    return files, threads
 
 
 def trace_save(package: Path, backend: str, levels: int, folder: Path) -> Trace:
@@ -386,8 +401,9 @@ def trace_save(package: Path, backend: str, levels: int, folder: Path) -> Trace:
     try:
         _frames_until(window_module, viewer, tracer,
                       lambda: shim.result_id() >= 1 and shim.shows_result(), 120.0)
-        _rest(window_module, viewer, tracer, 0.5)  # the first mesh's measures end
-        redraw = _redraw_files(window_module, viewer, tracer)
+        viewer.whole.wait(60.0)  # the first mesh's genus and volume, off the thread if big
+        _rest(window_module, viewer, tracer, 0.5)
+        redraw, periodic = _redraw_files(window_module, viewer, tracer)
         first, took = shim.result_id(), []
 
         def shown() -> bool:
@@ -403,7 +419,7 @@ def trace_save(package: Path, backend: str, levels: int, folder: Path) -> Trace:
         tracer.remove()
         window_module.close_viewer(viewer)
     return Trace(package, viewer.wnd.name, tracer.calls, tracer.hops, took[0],
-                 tracer.frame - 1, redraw)
+                 tracer.frame - 1, redraw, periodic)
 
 
 # -- the report ------------------------------------------------------------------------------
@@ -528,7 +544,8 @@ def report(trace: Trace, functions: bool) -> None:
     print_files("files only the frames waiting for the result called", waiting, trace.redraw)
     print(f"\nall files from the write to the frame: "
           f"{split([r.file for r in files_in_order(trace.calls)])}")
-    threads = dict.fromkeys(c.thread for c in path)
+    threads = [t + (" (periodic: also with no save)" if t in trace.periodic else "")
+               for t in dict.fromkeys(c.thread for c in path)]
     print(f"\nthreads of the path, in the order they ran livemod code: {', '.join(threads)}")
     print_session_calls(path, protocol_members())
     print_crossings(path)
