@@ -345,18 +345,21 @@ def _frames_until(window_module: ModuleType, viewer: Any, tracer: Tracer,
                   done: Callable[[], bool], timeout: float) -> None:
     """Run the main loop until ``done`` (asked between frames, untraced)."""
     deadline = time.monotonic() + timeout
+    finished = []
 
     def until(_viewer: Any) -> bool:
         sys.setprofile(None)  # (the checks are the trace's, not the window's)
         try:
             time.sleep(0.005)  # the run's threads get a core
             tracer.frame += 1
-            return done() or time.monotonic() > deadline
+            if done():
+                finished.append(True)
+            return bool(finished) or time.monotonic() > deadline
         finally:
             sys.setprofile(tracer.profile)
 
     window_module.run_frames(viewer, until=until)
-    if not done():
+    if not finished:
         raise SystemExit("timed out waiting for the window")
 
 
