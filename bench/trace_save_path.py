@@ -3,7 +3,7 @@ thread, from the write of the script to the first frame that shows its result
 (plain python; prints the files crossed, the calls across layers, the thread hops).
 
     python bench/trace_save_path.py [--tree DIR] [--backend glfw|headless]
-                                    [--levels N] [--functions]
+                                    [--levels N] [--functions] [--check-doc]
 
 It opens the window as ``livemod view script.py`` does (``create_viewer`` and the
 ``run_frames`` main loop; a real glfw window, under an Xvfb of its own when there
@@ -11,10 +11,13 @@ is no display), waits until the first run is on screen and the window is idle, t
 records with ``threading.setprofile`` and ``sys.setprofile`` while it saves a change
 to the script, and stops after the first frame that put the new mesh on the screen
 whole (uploaded, not drawing in slices, presented). The script is a cube built with
-``from_polygons`` and subdivided ``--levels`` times by the ``subdivide`` command (a
-modeling command: the run records a step); the save changes its size. ``--levels 7``
-makes a mesh of 393k corners, which the window prepares on a worker thread and
-uploads a slice a frame.
+``from_polygons`` and subdivided ``--levels`` times (2 by default) by the
+``subdivide`` command (a modeling command: each is a step of the run, and with
+two the window draws its timeline); the save changes its size. ``--levels 7`` makes
+a mesh of 393k corners, which the window prepares on a worker thread and uploads a
+slice a frame; ``--levels 8`` one of 1.6M, which it also measures off the thread.
+``--check-doc`` checks that docs/architecture.md's "The path of a save" and
+"Threads" name what the trace crossed.
 
 ``--tree DIR`` traces the livemod package of another tree (``git archive REV | tar
 -x -C DIR``): it is put first on ``sys.path``. Trees before the window's
@@ -46,6 +49,7 @@ import contextlib
 import io
 import os
 import queue
+import re
 import select
 import shutil
 import subprocess
@@ -560,19 +564,54 @@ def report(trace: Trace, functions: bool) -> None:
             print(f"  {thread:16s} {file}:{function}  x{counted[(thread, file, function)]}")
 
 
+def section(doc: str, title: str) -> str:
+    """The text of ``doc``'s section ``## title`` (to the next ``## ``)."""
+    return doc.split(f"\n## {title}\n", 1)[1].split("\n## ", 1)[0]
+
+
+def check_doc(trace: Trace, doc: Path) -> bool:
+    """Whether ``doc`` (docs/architecture.md) is true to the trace: its "The path of
+    a save" names every runner and viewer file the save crossed and no file it did
+    not cross (the library's files it names must be crossed too; which of them a
+    save crosses depends on the script), and its "Threads" names every thread of
+    the path (a run's number as ``N``). Prints what differs."""
+    text = doc.read_text(encoding="utf-8")
+    named = set(re.findall(r"\b((?:runner|viewer|dlfl)/[\w/]+\.py)\b",
+                           section(text, "The path of a save")))
+    crossed = {c.file for c in trace.calls if on_path(trace, c)}
+    threads = {re.sub(r"-\d+$", "-N", c.thread) for c in trace.calls if on_path(trace, c)}
+    problems = {
+        "crossed, not named in \"The path of a save\"":
+            sorted(f for f in crossed - named if layer(f) != "dlfl"),
+        "named in \"The path of a save\", not crossed": sorted(named - crossed),
+        "threads not named in \"Threads\"":
+            sorted(t for t in threads if f"`{t}`" not in section(text, "Threads")),
+    }
+    print(f"\n{doc}:")
+    for what, names in problems.items():
+        print(f"  {what}: {', '.join(names) if names else 'none'}")
+    return not any(problems.values())
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--tree", type=Path, default=ROOT,
                         help="the tree whose livemod package is traced (default: this one)")
     parser.add_argument("--backend", choices=("glfw", "headless"), default="glfw")
-    parser.add_argument("--levels", type=int, default=1,
-                        help="Catmull-Clark steps of the cube (7: a mesh prepared off-thread)")
+    parser.add_argument("--levels", type=int, default=2,
+                        help="Catmull-Clark steps of the cube, each a step of the run "
+                             "(7: a mesh prepared off the main thread)")
     parser.add_argument("--functions", action="store_true", help="list every function too")
+    parser.add_argument("--check-doc", action="store_true",
+                        help="check the tree's docs/architecture.md against the trace "
+                             "(exit status 1 when it differs)")
     args = parser.parse_args()
     package = use_tree(args.tree)
     with display_for(args.backend), tempfile.TemporaryDirectory() as folder:
         trace = trace_save(package, args.backend, args.levels, Path(folder))
     report(trace, args.functions)
+    if args.check_doc and not check_doc(trace, args.tree / "docs" / "architecture.md"):
+        sys.exit(1)
 
 
 if __name__ == "__main__":
