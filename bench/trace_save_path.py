@@ -26,13 +26,17 @@ the same facts from their attributes.
 
 What it prints:
 
-* the files crossed, in the order of their first call, with the thread of that call
-  and the count of calls, split into the frames the window drew while it waited for
-  the result (it polls the session each frame) and the path itself: every other
-  thread's calls, and the main thread's from the frame that took the result on;
+* the files of the path, in the order of their first call, with the thread of that
+  call and the count of calls: every other thread's calls, and the main thread's
+  from the frame that took the result on (the frames before only waited for it,
+  polling the session); a ``*`` marks the files that a frame drawn again with no new
+  result (``B``) and the idle frames after it call too, so the others are the
+  save's own. Then the files only the waiting frames called, and the count of all;
+* the window's calls of its session's methods and properties, by call site
+  (``file:line``), each said to be a member of the typed protocols of
+  ``livemod/viewer/session.py`` or not;
 * the calls from one layer into another (viewer -> runner, dlfl -> runner, ...),
-  with the callee's class, and for the window's calls into the session whether the
-  name is a member of the typed protocol of ``livemod/viewer/session.py``;
+  with the callee's class; a call up a layer is a callback;
 * the hops between threads: a queue put and get, a condition notified and waited
   for, an event waited for, an event flag set by one thread and cleared by the one
   that takes what it flagged (``NewestJob.take``), a thread started; each named by
@@ -142,9 +146,9 @@ class Hop:
     via: str           # "queue", "event", "event flag", "condition", "thread start",
                        # "SimpleQueue"
     source: str        # thread
-    source_at: str     # nearest livemod function on the handing side (or the frame's file)
+    source_at: str     # the nearest livemod function on the handing side (see _where)
     target: str
-    target_at: str
+    target_at: str     # the same on the taking side
 
 
 def _codes(*functions: Callable[..., Any]) -> set[Any]:
@@ -214,7 +218,7 @@ class Tracer:
             current = threading.current_thread()
             # watchdog's threads keep the default names: say their class
             name = current.name if not current.name.startswith("Thread-") \
-                else f"{type(current).__name__}"
+                else type(current).__name__
             self._threads[ident] = name
             started = self._started.pop(id(current), None)
             if started is not None:
