@@ -6,8 +6,8 @@ thread, from the write of the script to the first frame that shows its result
                                     [--levels N] [--functions] [--check-doc]
 
 It opens the window as ``livemod view script.py`` does (``create_viewer`` and the
-``run_frames`` main loop; a real glfw window, under an Xvfb of its own when there
-is no display), waits until the first run is on screen and the window is idle, then
+``run_frames`` main loop; a real glfw window, run under ``xvfb-run`` when there is
+no display), waits until the first run is on screen and the window is idle, then
 records with ``threading.setprofile`` and ``sys.setprofile`` while it saves a change
 to the script, and stops after the first frame that put the new mesh on the screen
 whole (uploaded, not drawing in slices, presented). The script is a cube built with
@@ -49,20 +49,17 @@ The tracing slows every call in the process: timings are not measured here.
 from __future__ import annotations
 
 import argparse
-import contextlib
 import io
 import os
 import queue
 import re
-import select
 import shutil
-import subprocess
 import sys
 import tempfile
 import threading
 import time
 from collections import Counter
-from collections.abc import Callable, Iterator
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 from types import FrameType, ModuleType
@@ -96,30 +93,17 @@ def use_tree(tree: Path) -> Path:
     return package
 
 
-@contextlib.contextmanager
-def display_for(backend: str) -> Iterator[str]:
-    """The X display a glfw window opens on: ``$DISPLAY``, or an Xvfb started here
-    (as the tests' ``xvfb_display`` fixture does); "" for the headless backend."""
-    if backend != "glfw" or os.environ.get("DISPLAY"):
-        yield os.environ.get("DISPLAY", "")
+def run_under_xvfb() -> None:
+    """Without a display, run this script again under ``xvfb-run`` (a real glfw
+    window on a virtual X server); returns only when there is a display."""
+    if os.environ.get("DISPLAY"):
         return
-    if not shutil.which("Xvfb"):
-        raise SystemExit("no display and no Xvfb: install xvfb, or use --backend headless")
-    read_end, write_end = os.pipe()
-    server = subprocess.Popen(["Xvfb", "-displayfd", str(write_end), "-screen", "0",
-                               "1024x768x24", "-nolisten", "tcp"], pass_fds=(write_end,),
-                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    os.close(write_end)
-    try:
-        ready, _, _ = select.select([read_end], [], [], 20.0)
-        if not ready:
-            raise SystemExit("Xvfb did not start")
-        os.environ["DISPLAY"] = ":" + os.read(read_end, 64).decode().strip()
-        yield os.environ["DISPLAY"]
-    finally:
-        os.close(read_end)
-        server.terminate()
-        server.wait(timeout=10)
+    if os.environ.get("LIVEMOD_TRACE_XVFB") or not shutil.which("xvfb-run"):
+        raise SystemExit("no display, and no xvfb-run to make one: install xvfb, or use "
+                         "--backend headless")
+    os.environ["LIVEMOD_TRACE_XVFB"] = "1"
+    os.execvp("xvfb-run", ["xvfb-run", "-a", "-s", "-screen 0 1024x768x24 -nolisten tcp",
+                           sys.executable, *sys.argv])
 
 
 # -- the recording -------------------------------------------------------------------------
@@ -610,8 +594,10 @@ def main() -> None:
                         help="check the tree's docs/architecture.md against the trace "
                              "(exit status 1 when it differs)")
     args = parser.parse_args()
+    if args.backend == "glfw":
+        run_under_xvfb()
     package = use_tree(args.tree)
-    with display_for(args.backend), tempfile.TemporaryDirectory() as folder:
+    with tempfile.TemporaryDirectory() as folder:
         trace = trace_save(package, args.backend, args.levels, Path(folder))
     report(trace, args.functions)
     if args.check_doc and not check_doc(trace, args.tree / "docs" / "architecture.md"):
