@@ -1,10 +1,12 @@
 """The renderer shared by the live window and headless rendering.
 
-:class:`Renderer` owns the GL programs and draws the mesh passes (faces, edges,
-points, the preview's surface) of its content (:class:`~.content.DrawnContent`:
-the meshes uploaded and the selection) into any framebuffer (the window's, or an
-offscreen one). Its parts each own one job's GL objects:
-:class:`~.text_pass.TextPass` the screen text and id labels,
+:class:`Renderer` composes the frames of its content
+(:class:`~.content.DrawnContent`: the meshes uploaded and the selection): which
+passes a frame holds (the other objects, then the current one's faces or preview,
+edges and points), drawn whole, in slices or quick, into any framebuffer (the
+window's, or an offscreen one). Its parts each own one job's GL objects:
+:class:`~.mesh_passes.MeshPasses` the programs and the draw call of each mesh
+element, :class:`~.text_pass.TextPass` the screen text and id labels,
 :class:`~.id_pass.IdPass` the pick target, :class:`~.section_cap.SectionCap` the
 clip plane and the section's cap, :class:`~.slices.SlicedFrames` frames drawn in
 slices or kept whole, :class:`~.guides.Guides` the grid and axes, and
@@ -19,7 +21,6 @@ from dataclasses import dataclass, field, replace
 import moderngl
 import numpy as np
 
-from . import shaders
 from .camera import Camera
 from .content import UPLOAD_SECONDS as UPLOAD_SECONDS
 from .content import DrawnContent
@@ -29,6 +30,8 @@ from .guides import Guides
 from .id_pass import IdPass
 from .id_pass import Pick as Pick
 from .marks import SelectionMarks
+from .mesh_passes import SELECTED_COLOR as SELECTED_COLOR
+from .mesh_passes import MeshPasses, compile_programs
 from .section_cap import SectionCap
 from .slices import Frame, SlicedFrames
 from .slices import Pass as _Pass
@@ -36,7 +39,7 @@ from .streams import StreamBuffer
 from .text_pass import MAX_LABELS as MAX_LABELS
 from .text_pass import PALETTE as PALETTE
 from .text_pass import TextPass
-from .uploads import MeshGPU, SurfaceGPU
+from .uploads import MeshGPU
 
 CACHED_PRIMITIVES = 100_000  # a bigger scene is kept whole between frames (see draw)
 # a bigger picture is drawn quick while the view moves (see Renderer.quick_style)
@@ -47,10 +50,6 @@ LABEL_KINDS = ("faces", "edges", "vertices")
 BASE_COLOR = (1.0, 0.59, 0.36)      # TopMod's render colour (255, 151, 92)
 PREVIEW_COLOR = (0.62, 0.78, 0.95)
 OTHER_COLOR = (0.86, 0.70, 0.60)     # the scene's other objects: the base colour, muted
-BACK_COLOR = (0.45, 0.45, 0.62)
-SELECTED_COLOR = (0.35, 0.95, 0.35)
-EDGE_COLOR = (0.08, 0.08, 0.09)
-POINT_COLOR = (0.95, 0.95, 0.2)
 CORNER_COLOR = (0.1, 1.0, 1.0)
 
 
@@ -130,55 +129,19 @@ def render_offscreen(renderer: Renderer, camera: Camera, style: Style,
         release_framebuffer(fbo)
 
 
-def _set_uniforms(program: moderngl.Program, **values: object) -> None:
-    """Set ``program``'s uniforms by name; a variant compiled without one's use
-    (see :func:`shaders.variant`) has none, and skips it."""
-    for name, value in values.items():
-        if name in program:
-            program[name].value = value  # type: ignore[union-attr]
-
-
-def _matrix_bytes(matrix: np.ndarray) -> bytes:
-    """A row-major numpy ``(4, 4)`` as the column-major float32 GL expects."""
-    return np.ascontiguousarray(matrix.T, dtype=np.float32).tobytes()
-
-
-# each program's (vertex, fragment) shader sources
-# (the variants of a program are compiled apart: see shaders.variant)
-PROGRAMS = {
-    "face": (shaders.FACE_VERTEX, shaders.FACE_FRAGMENT),
-    "face_wire": (shaders.FACE_VERTEX, shaders.variant(shaders.FACE_FRAGMENT, "WIRE")),
-    "face_smooth": (shaders.MESH_VERTEX, shaders.variant(shaders.FACE_FRAGMENT, "SMOOTH")),
-    "face_smooth_wire": (shaders.MESH_VERTEX,
-                         shaders.variant(shaders.FACE_FRAGMENT, "SMOOTH", "WIRE")),
-    "surface": (shaders.MESH_VERTEX, shaders.SURFACE_FRAGMENT),
-    "surface_quick": (shaders.MESH_VERTEX, shaders.variant(shaders.SURFACE_FRAGMENT, "QUICK")),
-    "edge": (shaders.MESH_VERTEX, shaders.EDGE_FRAGMENT),
-    # the edges of a picture with none selected: their colour only
-    "edge_plain": (shaders.MESH_VERTEX, shaders.variant(shaders.EDGE_FRAGMENT, "PLAIN")),
-    "point": (shaders.MESH_VERTEX, shaders.POINT_FRAGMENT),
-    "line": (shaders.MESH_VERTEX, shaders.LINE_FRAGMENT),
-    "winding": (shaders.MESH_VERTEX, shaders.WINDING_FRAGMENT),  # the section cap's
-    "cap": (shaders.CAP_VERTEX, shaders.CAP_FRAGMENT),
-    "text": (shaders.TEXT_VERTEX, shaders.TEXT_FRAGMENT),
-}
-
-
 class Renderer(DrawnContent):
     """Draws the content (see :class:`~.content.DrawnContent`): meshes, selections,
     labels and screen text with one set of programs."""
 
     def __init__(self, ctx: moderngl.Context) -> None:
-        super().__init__(ctx, {name: ctx.program(vertex_shader=vertex, fragment_shader=fragment)
-                               for name, (vertex, fragment) in PROGRAMS.items()})
-        self._bind_samplers()
+        super().__init__(ctx, compile_programs(ctx))
         self._others_shown = True
         self._current_shown = True
-        self._section: tuple[int, float] | None = None  # the last frame's, for picking
-        self._quick = False  # the frame drawn is a quick picture (see draw)
         self._text = TextPass(ctx, self.programs["text"])
         self._ids = IdPass(ctx)
         self._cap = SectionCap(ctx, self.programs)
+        # (its section is the last frame's, also for picking)
+        self._meshes = MeshPasses(ctx, self.programs, self._cap)
         self._frames = SlicedFrames(ctx)
         self._guide_lines = Guides(ctx, self.programs["line"])
         self._marks = SelectionMarks(ctx, self.programs["point"])
@@ -189,16 +152,6 @@ class Renderer(DrawnContent):
 
     def _new_selection(self) -> None:
         self._text.new_selection()
-
-    def _bind_samplers(self) -> None:
-        """Fix each program's texture units: 0 atlas/triangle_face, 1..3 flags."""
-        units = {"triangle_face": 0, "face_flags": 1, "edge_flags": 2, "vertex_flags": 3,
-                 "triangle_index": 4, "position_table": 5, "winding": 6, "face_colors": 7,
-                 "atlas": 0}
-        for program in self.programs.values():
-            for name, unit in units.items():
-                if name in program:
-                    program[name].value = unit  # type: ignore[union-attr]
 
     # the parts' GL objects, under the names the renderer's tests look at them by
     @property
@@ -295,7 +248,7 @@ class Renderer(DrawnContent):
               behind: bool = False) -> bool:
         """:meth:`draw`, of ``style`` (quick: the quick picture's)."""
         width, height = size
-        self._quick = quick
+        self._meshes.quick = quick
         self.ctx.viewport = (0, 0, width, height)
         if self._mesh is None and self._others is None:
             fbo.use()
@@ -303,7 +256,7 @@ class Renderer(DrawnContent):
             return True
         self._others_shown = style.others  # picking hides what the frame hid
         self._current_shown = style.current
-        self._section = style.section  # (before the view: the cap's hatch depends on it)
+        self._meshes.section = style.section  # (before the view: the cap's hatch depends on it)
         self._set_view(camera, (width, height))
         # the camera's pose, not its matrices: its clip planes follow the content's reach
         view_key = (camera.pose(), style, (width, height), quick)
@@ -365,15 +318,15 @@ class Renderer(DrawnContent):
         being modelled stands out."""
         preview = self._preview
         if style.preview and preview is not None and len(preview.parts) > 1:
-            return [(preview.part(False)[1], lambda first, count: self._draw_surface(
+            return [(preview.part(False)[1], lambda first, count: self._meshes.surface(
                 preview, OTHER_COLOR, False, first, count))]
         if style.faces or style.preview:
-            return [(len(others.geometry.triangles), lambda first, count: self._draw_faces(
-                others, OTHER_COLOR, smooth=style.smooth, crease_angle=style.crease_angle,
+            return [(len(others.geometry.triangles), lambda first, count: self._meshes.faces(
+                others, OTHER_COLOR, False, smooth=style.smooth, crease_angle=style.crease_angle,
                 first=first, count=count))]
         if style.edges:
             return [(len(others.geometry.lines),
-                     lambda first, count: self._draw_edges(others, False, first, count))]
+                     lambda first, count: self._meshes.edges(others, False, first, count))]
         return []
 
     def _current_passes(self, mesh: MeshGPU, style: Style) -> list[_Pass]:
@@ -386,16 +339,16 @@ class Renderer(DrawnContent):
                          and len(mesh.geometry.triangles) > 0)
         passes: list[_Pass] = []
         if preview is not None:
-            passes.append((preview.part(True)[1], lambda first, count: self._draw_surface(
+            passes.append((preview.part(True)[1], lambda first, count: self._meshes.surface(
                 preview, PREVIEW_COLOR, True, first, count)))
         elif style.faces:
-            passes.append((len(mesh.geometry.triangles), lambda first, count: self._draw_faces(
-                mesh, BASE_COLOR, wire=wire_in_faces, smooth=style.smooth,
+            passes.append((len(mesh.geometry.triangles), lambda first, count: self._meshes.faces(
+                mesh, BASE_COLOR, True, wire=wire_in_faces, smooth=style.smooth,
                 crease_angle=style.crease_angle, first=first, count=count,
                 own_colors=style.colors)))
         if style.edges and not wire_in_faces:
             passes.append((len(mesh.geometry.lines),
-                           lambda first, count: self._draw_edges(mesh, False, first, count)))
+                           lambda first, count: self._meshes.edges(mesh, False, first, count)))
         lines = style.edges and not wire_in_faces
         passes.append((1, lambda first, count: self._draw_marks(mesh, style, lines)))
         return passes
@@ -404,11 +357,15 @@ class Renderer(DrawnContent):
         """The selected edges (when the edges are not drawn as ``lines``), the
         points, point-spheres and selected corners."""
         if not lines and mesh.selected_lines is not None:
-            self._draw_edges(mesh, selected_only=True)
-        if style.vertices or self.selection.vertices:
-            self._draw_points(mesh, style.point_size, only_selected=not style.vertices)
+            self._meshes.edges(mesh, selected_only=True)
+        if style.vertices:
+            self._meshes.points(mesh, style.point_size)
+        elif self.selection.vertices:
+            assert self.arrays is not None
+            self._marks.draw_vertices(self.arrays, self.selection, style.point_size,
+                                      SELECTED_COLOR)
         if not style.vertices and len(mesh.geometry.point_spheres):
-            self._draw_points(mesh, style.point_size, point_spheres=True)
+            self._meshes.points(mesh, style.point_size, point_spheres=True)
         self._marks.draw_corners(self.arrays, self.selection, style.point_size, CORNER_COLOR)
 
     def _set_view(self, camera: Camera, size: tuple[int, int]) -> None:
@@ -416,108 +373,8 @@ class Renderer(DrawnContent):
         aspect = size[0] / max(size[1], 1)
         camera.scene_radius = self._scene_reach(camera.target, camera.scene_radius)
         view_matrix = camera.view_matrix()
-        mvp = _matrix_bytes(camera.projection_matrix(aspect) @ view_matrix)
-        self._cap.set_view(camera, aspect, size[1], self._section)
-        view = _matrix_bytes(view_matrix)
-        for program in self.programs.values():
-            program["mvp"].write(mvp)  # type: ignore[union-attr]
-            if "view" in program:
-                program["view"].write(view)  # type: ignore[union-attr]
-
-    def _draw_surface(self, surface: SurfaceGPU, color: tuple[float, float, float],
-                      current: bool, first: int = 0, count: int | None = None) -> None:
-        """Triangles ``first .. first + count`` (all by default) of the preview's part
-        of the current object (or of the others), lit by its own normals, capped
-        where a section cuts it."""
-        program = self.programs["surface_quick" if self._quick else "surface"]
-        program["base_color"].value = color  # type: ignore[union-attr]
-        program["back_color"].value = BACK_COLOR  # type: ignore[union-attr]
-        self.ctx.polygon_offset = (1.0, 1.0)  # the cage's edges, drawn after, win
-        if surface.closed:
-            self.ctx.enable(moderngl.CULL_FACE)
-        start, total = surface.part(current)
-        count = total - first if count is None else count
-        if count > 0:
-            surface.vaos[self._quick].render(moderngl.TRIANGLES, vertices=3 * count,
-                                             first=3 * (start + first))
-        self.ctx.polygon_offset = (0.0, 0.0)
-        if surface.closed and self._section is not None:
-            self._draw_cap(surface, color, current)
-        self.ctx.disable(moderngl.CULL_FACE)
-
-    def _draw_faces(self, mesh: MeshGPU, color: tuple[float, float, float],
-                    wire: bool = False, smooth: bool = False,
-                    crease_angle: float = CREASE_ANGLE, first: int = 0,
-                    count: int | None = None, own_colors: bool = False) -> None:
-        """Triangles ``first .. first + count`` (all by default) of ``mesh``'s faces,
-        in ``color`` (or, with ``own_colors``, in their own colours where they have one)."""
-        count = len(mesh.geometry.triangles) - first if count is None else count
-        if count <= 0:
-            return
-        program = self.programs[("face_smooth" if smooth else "face") + ("_wire" if wire else "")]
-        use = own_colors and len(mesh.geometry.face_colors) > 0
-        _set_uniforms(program, primitive_base=first, pickable=int(mesh is not self._others),
-                      viewport=tuple(float(v) for v in self.ctx.viewport[2:]),
-                      edge_color=EDGE_COLOR, base_color=color, back_color=BACK_COLOR,
-                      selected_color=SELECTED_COLOR, use_face_colors=int(use))
-        mesh.triangle_index.use(4)
-        mesh.position_table.use(5)
-        mesh.triangle_face.use(0)
-        mesh.face_flags.use(1)
-        mesh.face_colors.use(7)
-        # push faces back so edges and points drawn at the same depth win
-        self.ctx.polygon_offset = (1.0, 1.0)
-        if mesh.geometry.closed:
-            # a closed manifold hides its back faces: skip them (about a third of
-            # the frame time on software GL); open meshes show them tinted
-            self.ctx.enable(moderngl.CULL_FACE)
-        (mesh.smooth_vao(crease_angle, wire) if smooth else mesh.face_vaos[wire]).render(
-            moderngl.TRIANGLES, vertices=3 * count, first=3 * first)
-        self.ctx.polygon_offset = (0.0, 0.0)
-        if mesh.geometry.closed and self._section is not None:
-            self._draw_cap(mesh, color)
-        self.ctx.disable(moderngl.CULL_FACE)
-
-    def _draw_cap(self, mesh: MeshGPU | SurfaceGPU,
-                  color: tuple[float, float, float], current: bool = True) -> None:
-        """The section's cap of a cut closed mesh (see :meth:`SectionCap.draw`)."""
-        self._cap.draw(mesh, color, current)
-
-    def _draw_edges(self, mesh: MeshGPU, selected_only: bool = False, first: int = 0,
-                    count: int | None = None, picking: bool = False) -> None:
-        """Edges ``first .. first + count`` (all by default) of ``mesh``, or its
-        selected ones; ``picking``: into the pick target, with their ids."""
-        # with no edge selected, a picture's edges need neither flags nor ids
-        plain = not selected_only and not picking and mesh.selected_lines is None
-        program = self.programs["edge_plain" if plain else "edge"]
-        _set_uniforms(program, edge_color=EDGE_COLOR, selected_color=SELECTED_COLOR,
-                      all_selected=int(selected_only), primitive_base=first)
-        mesh.edge_flags.use(2)
-        count = len(mesh.geometry.lines) - first if count is None else count
-        if selected_only and mesh.selected_lines is not None:
-            _set_uniforms(program, primitive_base=0)
-            mesh.selected_lines[1].render(moderngl.LINES)
-        elif count > 0:
-            mesh.edge_vaos[plain].render(moderngl.LINES, vertices=2 * count, first=2 * first)
-
-    def _draw_points(self, mesh: MeshGPU, size: float, only_selected: bool = False,
-                     point_spheres: bool = False) -> None:
-        """The vertices as points: all of them, the selected ones only, or only the
-        point-spheres (which no face shows)."""
-        program = self.programs["point"]
-        program["point_size"].value = size  # type: ignore[union-attr]
-        program["point_color"].value = POINT_COLOR  # type: ignore[union-attr]
-        program["selected_color"].value = SELECTED_COLOR  # type: ignore[union-attr]
-        program["use_flags"].value = 1  # type: ignore[union-attr]
-        mesh.vertex_flags.use(3)
-        if only_selected:
-            assert self.arrays is not None
-            self._marks.draw_vertices(self.arrays, self.selection, size, SELECTED_COLOR)
-            return
-        if point_spheres:
-            mesh.sphere_vao.render(moderngl.POINTS)
-        elif len(mesh.geometry.positions):
-            mesh.point_vao.render(moderngl.POINTS)
+        self._cap.set_view(camera, aspect, size[1], self._meshes.section)
+        self._meshes.set_view(camera.projection_matrix(aspect) @ view_matrix, view_matrix)
 
     # -- text ------------------------------------------------------------------
 
@@ -565,11 +422,11 @@ class Renderer(DrawnContent):
         self._set_view(camera, fbo.size)
         self.ctx.enable(moderngl.DEPTH_TEST | moderngl.PROGRAM_POINT_SIZE)
         self.ctx.disable(moderngl.BLEND | moderngl.CULL_FACE)
-        with self._cap.cut(self._section):  # what the cut took away is not picked
+        with self._cap.cut(self._meshes.section):  # what the cut took away is not picked
             if self._others is not None and self._others_shown:  # they hide, with id 0
-                self._draw_faces(self._others, OTHER_COLOR)
-            self._draw_faces(self._mesh, BASE_COLOR)
+                self._meshes.faces(self._others, OTHER_COLOR, False)
+            self._meshes.faces(self._mesh, BASE_COLOR, True)
             if kind == "edge":
-                self._draw_edges(self._mesh, picking=True)
+                self._meshes.edges(self._mesh, picking=True)
             elif kind == "vertex":
-                self._draw_points(self._mesh, 9.0)
+                self._meshes.points(self._mesh, 9.0)
