@@ -192,3 +192,16 @@ def test_points_draw_every_vertex_in_the_point_colour(offscreen, programs, targe
     assert set(map(tuple, pixels[drawn])) == {tuple(round(c * 255) for c in POINT_COLOR)}
     assert all(drawn[corner] for corner in CORNERS)
     assert 4 * 16 <= drawn.sum() <= 4 * 36  # four points of about 5 x 5 pixels
+
+
+def test_point_spheres_alone_are_drawn_however_few(offscreen, programs, target) -> None:
+    mesh = from_polygons([(-0.5, -0.5, 0.0), (0.5, -0.5, 0.0), (0.5, 0.5, 0.0),
+                          (-0.5, 0.5, 0.0)], [(0, 1, 2, 3)])
+    mesh.create_vertex((0.0, 0.0, 0.0))  # one point-sphere, in the middle
+    passes, uploaded = _passes(offscreen, programs), _upload(offscreen, programs, mesh)
+    assert len(uploaded.geometry.point_spheres) == 1
+    passes.points(uploaded, 5.0, point_spheres=True)
+    drawn = _drawn(target)
+    # (its index buffer has room for four: drawing all of it drew vertex 0, a corner)
+    assert drawn[SIZE[1] // 2, SIZE[0] // 2] and not any(drawn[corner] for corner in CORNERS)
+    assert 16 <= drawn.sum() <= 36  # one point of about 5 x 5 pixels

@@ -193,6 +193,7 @@ class MeshPasses:
                      selected_color=SELECTED_COLOR, use_flags=1)
         mesh.vertex_flags.use(3)
         if point_spheres:
-            mesh.sphere_vao.render(moderngl.POINTS)
+            # (the index buffer is at least 16 bytes: a count of 1 to 3 is not all of it)
+            mesh.sphere_vao.render(moderngl.POINTS, vertices=len(mesh.geometry.point_spheres))
         elif len(mesh.geometry.positions):
             mesh.point_vao.render(moderngl.POINTS)
