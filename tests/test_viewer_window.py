@@ -784,7 +784,7 @@ def test_a_finished_run_the_session_still_reports_is_not_running(headless) -> No
         def __getattr__(self, name: str) -> Any:
             return getattr(session, name)
 
-    viewer.session = Reporting()
+    viewer.scripts.session = Reporting()
     try:
         run_frames(viewer, 1)
         assert viewer.runs.activity is None  # run 1's end is shown: it works no more
@@ -792,7 +792,7 @@ def test_a_finished_run_the_session_still_reports_is_not_running(headless) -> No
         run_frames(viewer, 1)
         assert viewer.runs.activity.run_id == 2 and "running... 0.5 s" in _hud_text(viewer)
     finally:
-        viewer.session = session
+        viewer.scripts.session = session
 
 
 def test_the_hud_names_the_runs_the_session_left_in_the_background(headless) -> None:
@@ -808,7 +808,7 @@ def test_the_hud_names_the_runs_the_session_left_in_the_background(headless) -> 
         def __getattr__(self, name: str) -> Any:
             return getattr(session, name)
 
-    viewer.session = Reporting()
+    viewer.scripts.session = Reporting()
     try:
         run_frames(viewer, 1)
         assert "run 1 is still finishing in the background" in _hud_text(viewer)
@@ -816,7 +816,7 @@ def test_the_hud_names_the_runs_the_session_left_in_the_background(headless) -> 
         run_frames(viewer, 1)
         assert "background" not in _hud_text(viewer)
     finally:
-        viewer.session = session
+        viewer.scripts.session = session
 
 
 TEN_STEPS = "for i in range(10):\n    createVertex((i, 0, 0))\n"

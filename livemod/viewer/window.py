@@ -4,7 +4,9 @@ The window is a composition. The session (:class:`~livemod.viewer.session.Sessio
 runs the script in its own threads and posts immutable results to a queue;
 :meth:`LiveViewer.on_render` drains that queue without blocking, and does all GL
 work on the main thread. What the window knows and does is kept by one object
-each: :class:`~livemod.viewer.runs.RunTracker` (the runs), and the controllers
+each: :class:`~livemod.viewer.script_session.ScriptSession` (the script and its
+session, and the results taken), :class:`~livemod.viewer.runs.RunTracker` (the
+runs), and the controllers
 :class:`~livemod.viewer.stepping.Stepping`, :class:`~livemod.viewer.parameters.Parameters`,
 :class:`~livemod.viewer.objects.SceneObjects`, :class:`~livemod.viewer.picking.Picking`,
 :class:`~livemod.viewer.section.SectionPlane` and :class:`~livemod.viewer.look.Look`.
@@ -22,7 +24,6 @@ import os
 import re
 import sys
 import time
-import traceback
 import warnings
 from collections.abc import Callable
 from dataclasses import dataclass, replace
@@ -34,7 +35,6 @@ import moderngl_window as mglw
 import numpy as np
 
 from livemod.dlfl.scene import Selection
-from livemod.runner.results import RunStatus
 
 from .actions import check_bindings, window_actions
 from .camera import Camera
@@ -51,6 +51,7 @@ from .picking import Picking
 from .pointer import Buttons, Pointer
 from .renderer import Renderer, Style, render_offscreen
 from .runs import RunTracker
+from .script_session import ScriptSession, SessionFactory
 from .section import SectionPlane
 from .session import Session
 from .slices import SliceBudget
@@ -66,7 +67,6 @@ IDLE_WAIT = 0.01  # seconds an idle glfw loop waits for input between frames
 # the rest follows in the next frames, as many a frame as take SLICE_SECONDS (see
 # Renderer.draw and SliceBudget)
 FRAME_PRIMITIVES = 150_000
-SCRIPT_SUFFIXES = (".py",)
 
 
 @dataclass
@@ -102,7 +102,7 @@ class ViewOptions:
     size: tuple[int, int] = (1280, 800)
     samples: int = 4
     vsync: bool = True
-    session_factory: Callable[[str, str | None], Session] | None = None
+    session_factory: SessionFactory | None = None
     echo: TextIO | None = None
     poll: bool = False
     parameters: dict[str, Any] | None = None
@@ -111,7 +111,7 @@ class ViewOptions:
     all_objects: bool = False
 
 
-def _default_factory(options: ViewOptions) -> Callable[[str, str | None], Session]:
+def _default_factory(options: ViewOptions) -> SessionFactory:
     """The runner's ``LiveSession`` (imported only when a window opens)."""
     from livemod.runner import LiveSession
 
@@ -140,7 +140,7 @@ class LiveViewer(mglw.WindowConfig):
     """The live viewer window; configure through :func:`create_viewer`.
 
     Attributes:
-        session: the session of the script shown.
+        scripts: the script shown and its session (:attr:`session`).
         runs: what the window knows of the session's runs.
         look, stepping, parameters, objects, picking, section: the controllers.
         display: the mesh on screen.
@@ -169,22 +169,23 @@ class LiveViewer(mglw.WindowConfig):
         self._quick = False  # this frame draws the quick picture (see on_render)
         self._behind = False  # it draws the whole one behind the quick one on screen
         self.whole = WholeMeshMeasurer()  # genus and volume of the mesh shown, off-thread
-        self.session: Session | None = None
         self._compose()
         self._slices = 0  # counts the frames of pictures drawn in slices (see on_render)
         self.renderer.set_selection(self.picking.selection)
         self.screenshots: list[Path] = []
         self._key_names = _key_names(self.wnd.keys)
-        self.script = str(Path(self.options.script).resolve())
-        self.mesh_path = self.options.mesh_path
-        self.session = self._start_session()
+        self._start_session()
         install_glfw_drop(self)
 
     def _compose(self) -> None:
         """Make the controllers and the action table (checked: every key binding has
         its handler)."""
-        echo, session = self._echo, self._live_session
         self.runs = RunTracker()
+        options, echo = self.options, self._echo
+        self.scripts = ScriptSession(options.script, options.mesh_path,
+                                     options.session_factory or _default_factory(options),
+                                     self.runs, echo, options.output)
+        session = self.scripts.live
         self.look = Look()
         self.stepping = Stepping(self.runs, session, echo)
         self.parameters = Parameters(self.runs, session, echo)
@@ -221,6 +222,16 @@ class LiveViewer(mglw.WindowConfig):
         return self.picking.selection
 
     @property
+    def session(self) -> Session | None:
+        """The session of the script shown (None once closed)."""
+        return self.scripts.session
+
+    @property
+    def script(self) -> str:
+        """The absolute path of the script shown."""
+        return self.scripts.script
+
+    @property
     def style(self) -> Style:
         """What the renderer draws."""
         return self.look.style
@@ -235,50 +246,11 @@ class LiveViewer(mglw.WindowConfig):
 
     # -- the session --------------------------------------------------------------------
 
-    def _live_session(self) -> Session:
-        """The session the controllers drive (the current one: a dropped file opens
-        another)."""
-        assert self.session is not None, "the session is closed"
-        return self.session
-
-    def _start_session(self, parameters: dict[str, Any] | None = None) -> Session:
-        """Make and start the session of :attr:`script` on :attr:`mesh_path`, its
-        first run with ``parameters`` (over ``--set``'s) when given."""
-        factory = self.options.session_factory or _default_factory(self.options)
-        session = factory(self.script, self.mesh_path)
-        if not self.picking.selection.is_empty():
-            session.set_selection(self.picking.selection)
-        if parameters:
-            # (queued before start: the first run and this request are one run)
-            session.set_parameters(parameters)
-        session.start()
-        self.runs.expect()
-        self.wnd.title = f"livemod - {Path(self.script).name}"
-        return session
-
-    def _take_results(self) -> None:
-        """Say each run that ended in the terminal, and show the newest result (never
-        blocks)."""
-        arrived = self.runs.arrived(self._live_session().results)
-        for result in arrived:
-            if self.runs.newly_ended(result):
-                self._summarize(result)
-        if not arrived:
-            return
-        try:
-            self._apply(arrived[-1])
-        except Exception as exc:  # a bug of the viewer's own: keep the window alive
-            self._echo(self.runs.failed_to_show(arrived[-1], exc))
-            traceback.print_exception(exc, file=sys.stderr)
-
-    def _summarize(self, result: RunResult) -> None:
-        """One line per run, as ``livemod run --watch`` prints it, and the ``-o``
-        file the session wrote before posting."""
-        from livemod.runner.cli import run_summary
-
-        self._echo(run_summary(result))
-        if result.status == RunStatus.OK and self.options.output is not None:
-            self._echo(f"run {result.run_id}: wrote {self.options.output}")
+    def _start_session(self, parameters: dict[str, Any] | None = None) -> None:
+        """Start the session of the script shown, its first run with ``parameters``
+        (over ``--set``'s) when given."""
+        self.scripts.start(self.picking.selection, parameters)
+        self.wnd.title = f"livemod - {Path(self.scripts.script).name}"
 
     def _apply(self, result: RunResult) -> None:
         """Show ``result``: its objects, steps and parameters, then its mesh."""
@@ -299,11 +271,11 @@ class LiveViewer(mglw.WindowConfig):
         self.frames.begin_turn()
         self.parameters.flush()
         self.stepping.flush_scrub()
-        self._take_results()
+        self.scripts.take_results(self._apply)
         self.display.advance()
         self.smoothing.update()
         self.stepping.repeat_held()
-        self.runs.poll(self._live_session())
+        self.runs.poll(self.scripts.live())
         # a big picture is drawn quick while the view moves, whole once it rests
         # (in slices behind the last quick one, which stays on screen meanwhile)
         was_quick = self._quick
@@ -500,19 +472,13 @@ class LiveViewer(mglw.WindowConfig):
         on the panel, one still being dragged, and ``--set``'s); the selection is
         cleared all the same, as its ids are the old mesh's, which the new one
         does not share."""
-        resolved = str(Path(path).resolve())
-        is_script = Path(path).suffix.lower() in SCRIPT_SUFFIXES
-        kept: dict[str, Any] = {}
-        if is_script:
-            self.script = resolved
-        else:
-            self.mesh_path = resolved
-            kept = self.parameters.values()
+        kept = self.parameters.values()  # (asked of the session: before it closes)
         had_selection = not self.picking.selection.is_empty()
         self._close_session()
+        is_script = self.scripts.retarget(path)
         self._forget_the_run(keep_parameters=not is_script)
-        self.session = self._start_session(kept)
-        self._echo(f"opened {resolved}")
+        self._start_session(None if is_script else kept)
+        self._echo(f"opened {Path(path).resolve()}")
         if not is_script:
             note = "; the selection was cleared (its ids were the old mesh's)" \
                 if had_selection else ""
@@ -535,9 +501,7 @@ class LiveViewer(mglw.WindowConfig):
 
     def _close_session(self) -> None:
         self.whole.close()
-        session, self.session = self.session, None
-        if session is not None:
-            session.close()
+        self.scripts.close()
 
 
 def install_glfw_drop(viewer: LiveViewer) -> None:
