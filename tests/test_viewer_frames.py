@@ -55,14 +55,14 @@ def test_an_unchanged_frame_is_copied_not_drawn_again(viewer: LiveViewer) -> Non
     kept = _screen(viewer).copy()
     run_frames(viewer, 5)
     assert drawn[0] == 0 and np.array_equal(_screen(viewer), kept)
-    assert not viewer.frames.presented  # nothing new: the loop need not swap
-    viewer.frames.presented_at -= 1.0  # half a second later it is put up again
+    assert not viewer.painter.frames.presented  # nothing new: the loop need not swap
+    viewer.painter.frames.presented_at -= 1.0  # half a second later it is put up again
     run_frames(viewer, 1)
-    assert viewer.frames.presented and drawn[0] == 0  # copied, not drawn
-    viewer.frames.keep_frames = False  # drawn directly, the same picture
+    assert viewer.painter.frames.presented and drawn[0] == 0  # copied, not drawn
+    viewer.painter.frames.keep_frames = False  # drawn directly, the same picture
     run_frames(viewer, 1)
     assert drawn[0] == 1 and np.array_equal(_screen(viewer), kept)
-    viewer.frames.keep_frames = True
+    viewer.painter.frames.keep_frames = True
     for change in (lambda: viewer.camera.orbit(10.0, 0.0), lambda: viewer.handle_key("W"),
                    lambda: viewer.click(160, 120)):
         before = drawn[0]
@@ -91,25 +91,25 @@ def test_a_screen_that_refuses_the_copy_is_drawn_every_frame(viewer: LiveViewer)
         def __getattr__(self, name: str) -> Any:
             return getattr(self._ctx, name)
 
-    viewer.frames.kept = None  # the next frame makes a new target, and checks the copy
-    viewer.frames.ctx = RefusingContext(viewer.frames.ctx)
+    viewer.painter.frames.kept = None  # the next frame makes a new target, and checks the copy
+    viewer.painter.frames.ctx = RefusingContext(viewer.painter.frames.ctx)
     drawn = _count_draws(viewer)
     run_frames(viewer, 3)
-    assert not viewer.frames.keep_frames
+    assert not viewer.painter.frames.keep_frames
     assert drawn[0] == 1 + 3  # into the kept frame once, then straight to the screen
 
 
 def test_the_frame_rate_counts_only_frames_drawn(viewer: LiveViewer) -> None:
     run_frames(viewer, 3)
-    counted = len(viewer.frames.frame_times)
+    counted = len(viewer.painter.frames.frame_times)
     run_frames(viewer, 20)  # nothing changes: no frame is drawn
-    assert not viewer.frames.presented
-    assert len(viewer.frames.frame_times) == counted
+    assert not viewer.painter.frames.presented
+    assert len(viewer.painter.frames.frame_times) == counted
     for _ in range(5):  # each turn of the view draws a frame
         viewer.camera.orbit(5.0, 0.0)
         run_frames(viewer, 1)
     run_frames(viewer, 1)  # (a drawn frame's time ends where the next turn starts)
-    assert len(viewer.frames.frame_times) == counted + 5
+    assert len(viewer.painter.frames.frame_times) == counted + 5
 
 
 def test_the_view_moves_until_its_pose_rests_for_rest_seconds() -> None:
@@ -136,7 +136,7 @@ def test_a_moving_view_of_a_big_scene_is_drawn_quick_then_whole(
 
     monkeypatch.setattr(renderer, "QUICK_PRIMITIVES", 0)  # the cube counts as big
     now = [0.0]
-    viewer.motion = ViewMotion(lambda: now[0])
+    viewer.painter.motion = ViewMotion(lambda: now[0])
     run_frames(viewer, 2)
     assert not viewer.view_state().quick
     drawn = _count_draws(viewer)
@@ -144,7 +144,7 @@ def test_a_moving_view_of_a_big_scene_is_drawn_quick_then_whole(
     run_frames(viewer, 1)
     state = viewer.view_state()
     assert state.quick and QUICK_LINE in [line for line, _ in hud_lines(state)]
-    assert drawn[0] == 1 and viewer.frames.direct is not None  # on the screen, no copy
+    assert drawn[0] == 1 and viewer.painter.frames.direct is not None  # on the screen, no copy
     quick = _screen(viewer).copy()
     run_frames(viewer, 3)  # the view rests, not yet for long: not drawn again
     assert drawn[0] == 1 and np.array_equal(_screen(viewer), quick)
@@ -155,7 +155,7 @@ def test_a_moving_view_of_a_big_scene_is_drawn_quick_then_whole(
     edges = np.all(whole < 40, axis=2) & ~np.all(quick < 40, axis=2)  # the wire's dark
     assert edges.sum() > 20
     run_frames(viewer, 1)  # then kept (copied from the renderer's kept picture)
-    assert viewer.frames.direct is None and viewer.frames.kept is not None
+    assert viewer.painter.frames.direct is None and viewer.painter.frames.kept is not None
     assert np.array_equal(_screen(viewer), whole)
 
 
@@ -166,9 +166,9 @@ def test_the_whole_picture_of_a_view_at_rest_is_drawn_behind_the_quick_one(
     from livemod.viewer.slices import SliceBudget
 
     monkeypatch.setattr(renderer, "QUICK_PRIMITIVES", 0)
-    viewer.slice_budget = SliceBudget(4, seconds=0.0, least=4)  # 4 primitives a frame
+    viewer.painter.slice_budget = SliceBudget(4, seconds=0.0, least=4)  # 4 primitives a frame
     now = [0.0]
-    viewer.motion = ViewMotion(lambda: now[0])
+    viewer.painter.motion = ViewMotion(lambda: now[0])
     run_frames(viewer, 2)
     while viewer.renderer.unfinished:
         run_frames(viewer, 1)
@@ -179,11 +179,11 @@ def test_the_whole_picture_of_a_view_at_rest_is_drawn_behind_the_quick_one(
     behind = 0
     run_frames(viewer, 1)
     while viewer.renderer.unfinished:  # slices drawn behind: the quick one stays up
-        assert viewer.renderer.hidden and not viewer.frames.presented
+        assert viewer.renderer.hidden and not viewer.painter.frames.presented
         assert np.array_equal(_screen(viewer), quick)
         behind += 1
         run_frames(viewer, 1)
-    assert behind >= 2 and viewer.frames.presented
+    assert behind >= 2 and viewer.painter.frames.presented
     whole = _screen(viewer)
     assert (np.all(whole < 40, axis=2) & ~np.all(quick < 40, axis=2)).sum() > 20
 
@@ -192,4 +192,4 @@ def test_a_small_scene_is_drawn_whole_while_the_view_moves(viewer: LiveViewer) -
     run_frames(viewer, 2)
     viewer.camera.orbit(20.0, 0.0)
     run_frames(viewer, 1)
-    assert not viewer.view_state().quick and viewer.frames.direct is None
+    assert not viewer.view_state().quick and viewer.painter.frames.direct is None

@@ -663,7 +663,7 @@ def _glfw_resize_probe(script_path: str) -> None:
                 glfw.poll_events()
                 time.sleep(0.01)
             run_frames(viewer, 2)
-            viewer.frames.presented_at = 0.0  # put the frame up again: read it before a swap
+            viewer.painter.frames.presented_at = 0.0  # put the frame up again: read it before a swap
             viewer.on_render(0.0, 0.0)
             raw = viewer.ctx.screen.read(viewport=(0, 0, width, height), components=3,
                                          alignment=1)
@@ -1095,11 +1095,11 @@ def test_closing_the_window_releases_the_renderer(cube_script: Path) -> None:
     try:
         frames_until(viewer, _settled)
         run_frames(viewer, 2)
-        objects = gl_objects(viewer.renderer) + [viewer.frames.kept[1]]
+        objects = gl_objects(viewer.renderer) + [viewer.painter.frames.kept[1]]
     finally:
         close_viewer(viewer)
     assert all(isinstance(obj.mglo, moderngl.InvalidObject) for obj in objects)
-    assert viewer.renderer._released and viewer.frames.kept is None
+    assert viewer.renderer._released and viewer.painter.frames.kept is None
 
 
 

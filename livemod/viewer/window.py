@@ -6,7 +6,8 @@ runs the script in its own threads and posts immutable results to a queue;
 work on the main thread. What the window knows and does is kept by one object
 each: :class:`~livemod.viewer.script_session.ScriptSession` (the script and its
 session, and the results taken), :class:`~livemod.viewer.runs.RunTracker` (the
-runs), and the controllers
+runs), :class:`~livemod.viewer.painter.FramePainter` (each frame: its picture,
+quick or whole, kept or drawn, and the overlay over it), and the controllers
 :class:`~livemod.viewer.stepping.Stepping`, :class:`~livemod.viewer.parameters.Parameters`,
 :class:`~livemod.viewer.objects.SceneObjects`, :class:`~livemod.viewer.picking.Picking`,
 :class:`~livemod.viewer.section.SectionPlane` and :class:`~livemod.viewer.look.Look`.
@@ -23,11 +24,9 @@ import logging
 import os
 import re
 import sys
-import time
 import warnings
 from collections.abc import Callable
 from dataclasses import dataclass, replace
-from functools import partial
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, ClassVar, TextIO
 
@@ -40,12 +39,13 @@ from .actions import check_bindings, window_actions
 from .camera import Camera
 from .controls import action_for
 from .display import MeshDisplay
-from .frames import Frames, ViewMotion
+from .frames import Frames
 from .imagefiles import save_numbered_png
 from .look import Look
 from .measure import WholeMeshMeasurer
 from .objects import SceneObjects
 from .overlay import Overlay
+from .painter import FramePainter
 from .parameters import Parameters
 from .picking import Picking
 from .pointer import Buttons, Pointer
@@ -54,7 +54,6 @@ from .runs import RunTracker
 from .script_session import ScriptSession, SessionFactory
 from .section import SectionPlane
 from .session import Session
-from .slices import SliceBudget
 from .smoothing import PreviewControl
 from .stepping import Stepping
 from .view_state import ViewState
@@ -63,10 +62,6 @@ if TYPE_CHECKING:
     from livemod.runner.results import RunResult
 
 IDLE_WAIT = 0.01  # seconds an idle glfw loop waits for input between frames
-# primitives the first frame draws of new content (software GL: some 50 ms at 4x MSAA);
-# the rest follows in the next frames, as many a frame as take SLICE_SECONDS (see
-# Renderer.draw and SliceBudget)
-FRAME_PRIMITIVES = 150_000
 
 
 @dataclass
@@ -146,7 +141,7 @@ class LiveViewer(mglw.WindowConfig):
         display: the mesh on screen.
         overlay, pointer: the panels over the scene, and the mouse.
         actions: action name -> what it does (every key binding's action is in it).
-        frames: the kept frame and the frame rate.
+        painter: the frames: quick or whole pictures, the kept frame, the frame rate.
         screenshots: the screenshots written, in order.
     """
 
@@ -163,14 +158,8 @@ class LiveViewer(mglw.WindowConfig):
         self.wnd.exit_key = None  # Esc clears the selection instead
         self.renderer = Renderer(self.ctx)
         self.camera = Camera()
-        self.frames = Frames(self.ctx)
-        self.motion = ViewMotion()
-        self.slice_budget = SliceBudget(FRAME_PRIMITIVES)
-        self._quick = False  # this frame draws the quick picture (see on_render)
-        self._behind = False  # it draws the whole one behind the quick one on screen
         self.whole = WholeMeshMeasurer()  # genus and volume of the mesh shown, off-thread
         self._compose()
-        self._slices = 0  # counts the frames of pictures drawn in slices (see on_render)
         self.renderer.set_selection(self.picking.selection)
         self.screenshots: list[Path] = []
         self._key_names = _key_names(self.wnd.keys)
@@ -199,6 +188,7 @@ class LiveViewer(mglw.WindowConfig):
         self.smoothing = PreviewControl(
             self.renderer, self.look, self.camera, lambda: self.display.content,
             lambda: self.screen_size[0] / max(self.screen_size[1], 1), echo)
+        self.painter = FramePainter(self.ctx, self.renderer, self.camera, self.overlay)
         self.pointer = Pointer(self.overlay, self.parameters, self.objects, self.stepping,
                                self.camera, self._framebuffer)
         self.actions = window_actions(self)
@@ -215,6 +205,11 @@ class LiveViewer(mglw.WindowConfig):
     def waiting(self) -> bool:
         """The window asked for a result that has not come yet."""
         return self.runs.waiting
+
+    @property
+    def frames(self) -> Frames:
+        """The kept frame and the frame rate (the painter's)."""
+        return self.painter.frames
 
     @property
     def selection(self) -> Selection:
@@ -276,23 +271,9 @@ class LiveViewer(mglw.WindowConfig):
         self.smoothing.update()
         self.stepping.repeat_held()
         self.runs.poll(self.scripts.live())
-        # a big picture is drawn quick while the view moves, whole once it rests
-        # (in slices behind the last quick one, which stays on screen meanwhile)
-        was_quick = self._quick
-        self._quick = self.motion.moving(self.camera.pose()) and \
-            self.renderer.quick_style(self.look.style) is not None
-        self._behind = was_quick and not self._quick
-        state = self.view_state()
-        screen = self.wnd.fbo
-        overlay = state.without_fps() if state.hud or state.help else None
-        sliced = self.renderer.unfinished
-        if sliced:  # a picture drawn in slices: draw its next one
-            self._slices += 1
-        key = (self.renderer.version, self.camera.pose(), state.style, overlay, state.size,
-               screen.samples, self._slices)
-        self.frames.present(screen, state.size, key, partial(self._draw_frame, state=state),
-                            idle_ok=self.wnd.name in ("glfw", "headless"),
-                            keep=not (state.quick or sliced or self._behind))
+        self.painter.follow_view(self.look.style)
+        self.painter.paint(self.wnd.fbo, self.view_state(),
+                           idle_ok=self.wnd.name in ("glfw", "headless"))
 
     def view_state(self) -> ViewState:
         """What the overlay shows now (the panels laid out for the window's size)."""
@@ -312,25 +293,10 @@ class LiveViewer(mglw.WindowConfig):
             selection=tuple(selection), missing=tuple(missing),
             measures=tuple(self.picking.measures), others=self.renderer.others,
             others_note=self.objects.note(), current_hidden=not self.look.style.current,
-            style=self.look.style, preview=self.smoothing.hud_line(), quick=self._quick,
+            style=self.look.style, preview=self.smoothing.hud_line(), quick=self.painter.quick,
             ortho=self.camera.ortho, playback=playback.state,
             rate=playback.rate, hud=self.look.show_hud, help=self.look.show_help,
             panels=self.overlay.state(), size=size, bottom=self.overlay.error_room(size))
-
-    def _draw_frame(self, fbo: Any, state: ViewState) -> bool:
-        """Draw the scene and the overlay of ``state`` into ``fbo`` (the screen or
-        the kept frame, both of the state's size); False when it drew nothing on
-        it (a slice of a picture drawn behind the one on screen)."""
-        started = time.perf_counter()
-        self.renderer.draw(fbo, self.camera, state.style, state.size,
-                           budget=self.slice_budget.primitives, quick=state.quick,
-                           behind=self._behind)
-        self.slice_budget.measured(self.renderer.sliced, time.perf_counter() - started)
-        if self.renderer.hidden:
-            return False
-        if state.hud or state.help:
-            self.renderer.draw_overlay(fbo, self.overlay.quads(state), state.size)
-        return True
 
     def capture(self, transparent: bool = False) -> np.ndarray:
         """Render the scene (no HUD) offscreen at the window's size: ``(H, W, 3)``
