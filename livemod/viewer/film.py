@@ -12,8 +12,8 @@ from __future__ import annotations
 
 import dataclasses
 import os
-from collections.abc import Callable
-from typing import Any, NamedTuple
+from collections.abc import Callable, Sequence
+from typing import TYPE_CHECKING, Any, NamedTuple
 
 import numpy as np
 
@@ -27,14 +27,17 @@ from .pictures import GL_LOCK, Animation, View, kept_target
 from .renderer import Style
 from .text import MARGIN, PADDING, PANEL, TEXT, box_quad, glyph_atlas, layout_text, text_width
 
+if TYPE_CHECKING:
+    from livemod.runner.recording import StepRecord
+
 FIT_POINTS = 200_000  # points the framing of a whole film looks at, at most
 
 
 class _Shown(NamedTuple):
     """What :func:`~livemod.viewer.hud.step_line` reads of a paused result."""
 
-    steps: Any
-    step_index: int
+    steps: Sequence[StepRecord]
+    step_index: int | None
 
 
 def film_cameras(shots: StepShots, view: View, turn: float = 0.0) -> list[Camera]:

@@ -7,8 +7,9 @@ HUD panel (top left), the error panel (bottom) and the help panel (top right).
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Protocol
 
 import numpy as np
 
@@ -35,11 +36,15 @@ from .text import (
 )
 from .view_state import ViewState
 
+if TYPE_CHECKING:
+    from livemod.runner.recording import StepRecord
+    from livemod.runner.results import RunResult, ScriptError
+
 # while a big scene's view moves (ViewState.quick)
 QUICK_LINE = "view moving: edges and MSAA off until it rests"
 
 
-def run_state(result: Any, waiting: bool, working: float | None = None) -> str:
+def run_state(result: RunResult | None, waiting: bool, working: float | None = None) -> str:
     """``running... 1.5 s`` while a run works (``working`` its seconds so far),
     ``running`` while the window waits for one, or the result's status, with
     ``stale`` appended when it is stale."""
@@ -50,7 +55,19 @@ def run_state(result: Any, waiting: bool, working: float | None = None) -> str:
     return f"{result.status}, stale" if result.stale else str(result.status)
 
 
-def step_line(result: Any, total: int = 0) -> str:
+class ShownSteps(Protocol):
+    """What :func:`step_line` reads of a result (a ``RunResult``, or a film's shot)."""
+
+    @property
+    def steps(self) -> Sequence[StepRecord]:
+        """The steps of the run."""
+
+    @property
+    def step_index(self) -> int | None:
+        """The 0-based step shown, or None for the last."""
+
+
+def step_line(result: ShownSteps | None, total: int = 0) -> str:
     """``step k/N: label (line L)`` of the shown step, or ``no steps``.
 
     A paused run has only finished the steps up to the shown one, so N is the
@@ -119,13 +136,13 @@ def _state_line(state: ViewState) -> tuple[str, int]:
     # a run at work says its own time; the result's is of the run before
     elapsed = f"  {result.elapsed:.3f} s" if result is not None and working is None else ""
     shown = ""
-    if result is not None and result.error is not None and getattr(result, "partial", None) is not None:
+    if result is not None and result.error is not None and result.partial is not None:
         shown = ("  - the failed run's mesh (E: last good)" if state.partial
                  else "  (E: the failed run's mesh)")
     return f"{text}{elapsed}{shown}", colour
 
 
-def _failed_run(result: Any) -> str:
+def _failed_run(result: RunResult | None) -> str:
     """``failed run 3`` (``cancelled run 3``) for a result of a run that did not
     end well; "" otherwise."""
     if result is None or result.error is None:
@@ -206,7 +223,7 @@ def _wrapped(atlas: GlyphAtlas, lines: list[tuple[str, int]],
     return [(piece, kind) for text, kind in lines for piece in wrap_line(atlas, text, width)]
 
 
-def error_lines(error: Any, max_lines: int = 8, run_id: int | None = None,
+def error_lines(error: ScriptError, max_lines: int = 8, run_id: int | None = None,
                 running: int | None = None) -> list[tuple[str, int]]:
     """The error panel: which run failed, ``file:line``, the message and the
     traceback's last lines, but those that repeat the message (a SyntaxError's

@@ -15,11 +15,14 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from .params_panel import PANEL_WIDTH, Hit
+
+if TYPE_CHECKING:
+    from livemod.runner.results import RunResult
 from .text import (
     BUTTON,
     FILL,
@@ -59,13 +62,13 @@ class ObjectRow:
         return f"{self.oid}{named}   V {self.vertices}  F {self.faces}{tail}"
 
 
-def result_rows(result: Any) -> tuple[ObjectRow, ...]:
+def result_rows(result: RunResult) -> tuple[ObjectRow, ...]:
     """The rows of a runner ``RunResult``: its objects in object order (the current
     one where its id falls), with render counts (holes not counted as faces)."""
     rows = [ObjectRow(oid, name, arrays.counts[0],
                       arrays.counts[2] - int(arrays.face_hole.sum()))
             for oid, name, arrays in result.other_objects]
-    current, arrays = getattr(result, "current_object", None), result.arrays
+    current, arrays = result.current_object, result.arrays
     if current is not None and arrays is not None:
         holes = int(arrays.face_hole.sum())
         rows.append(ObjectRow(current[0], current[1], arrays.counts[0],

@@ -60,7 +60,7 @@ class Parameters:
         """Show the result's declarations with the session's values and any edit in
         flight (a run that failed before declaring any keeps the controls the user
         was using)."""
-        specs = tuple(getattr(result, "parameters", ()) or ())
+        specs = tuple(result.parameters)
         if not specs and result.error is not None:
             return
         self.panel.sync(specs, self.values())

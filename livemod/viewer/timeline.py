@@ -11,6 +11,8 @@ Coordinates are framebuffer pixels from the top left, as the HUD's.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from .text import (
@@ -28,18 +30,21 @@ from .text import (
     text_width,
 )
 
+if TYPE_CHECKING:
+    from livemod.runner.results import RunResult
+
 HANDLE = TEXT  # the bright handle on the track
 BAR_HEIGHT = 10
 HANDLE_WIDTH = 4
 
 
-def shown_step(result: object, total: int) -> int | None:
+def shown_step(result: RunResult | None, total: int) -> int | None:
     """The 0-based step a result shows: its paused or cached step, else its last
     one; None when it has no steps."""
-    steps = getattr(result, "steps", None) or ()
+    steps = () if result is None else result.steps
     if not steps and not total:
         return None
-    index = getattr(result, "step_index", None)
+    index = None if result is None else result.step_index
     return len(steps) - 1 if index is None else min(index, max(len(steps), total) - 1)
 
 

@@ -281,7 +281,7 @@ class LiveViewer(mglw.WindowConfig):
         playback = self.stepping.view
         self.overlay.lay_out(size)
         selection, missing = self.picking.hud_lines(
-            self.renderer.arrays, getattr(result, "unselected", ()))
+            self.renderer.arrays, () if result is None else result.unselected)
         return ViewState(
             script=self.script, result=result, waiting=runs.waiting, working=runs.working(),
             running_run=None if runs.activity is None else runs.activity.run_id,
