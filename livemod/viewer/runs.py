@@ -9,13 +9,14 @@ session for something (:meth:`RunTracker.expect`).
 from __future__ import annotations
 
 import queue
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 from livemod.runner.results import RunStatus
 
 from .timeline import shown_step
 
 if TYPE_CHECKING:
+    from livemod.dlfl.arrays import MeshArrays
     from livemod.runner.results import RunResult
     from livemod.runner.session import RunActivity
 
@@ -52,7 +53,8 @@ class RunTracker:
         self.viewer_error: str | None = None
         self.empty_script: str | None = None
         self.background: tuple[int, ...] = ()
-        self._good: tuple[int, Any] | None = None  # (run id, arrays) of the last ok run
+        # (run id, arrays) of the last ok run
+        self._good: tuple[int, MeshArrays | None] | None = None
         self._summarized = 0  # the newest run whose end was summarized
 
     def expect(self) -> None:
