@@ -104,3 +104,23 @@ def test_forgetting_keeps_the_panel_only_for_the_same_script(control) -> None:
     assert parameters.panel.values["sides"] == 9 and parameters.values() == {"sides": 5}
     parameters.forget()  # another script
     assert parameters.panel.specs == () and parameters.runs_asked == 0
+
+
+def test_copy_puts_the_param_lines_on_the_clipboard_and_echoes_them(control) -> None:
+    parameters, _, said = control
+    parameters.set("sides", 7)
+    copied: list[str] = []
+    parameters.copy(copied.append)
+    lines = parameters.python_lines()
+    assert lines[0] == "sides = param('sides', 7, min=3, max=12)" and len(lines) == 3
+    assert copied == ["\n".join(lines) + "\n"] and said[-3:] == lines
+    parameters.copy()  # a window without a clipboard: the echo only
+    assert said[-3:] == lines and len(said) == 6 and len(copied) == 1
+
+
+def test_copy_says_when_the_script_declares_no_parameters(control) -> None:
+    parameters, _, said = control
+    parameters.sync(SimpleNamespace(parameters=(), error=None))  # a script with none
+    copied: list[str] = []
+    parameters.copy(copied.append)
+    assert copied == [] and said == ["the script declares no parameters"]

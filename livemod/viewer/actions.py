@@ -66,7 +66,7 @@ def window_actions(viewer: LiveViewer) -> dict[str, Action]:
         **{f"pick_{mode}": partial(picking.set_mode, mode) for mode in PickMode},
         "clear_selection": partial(viewer.set_selection, Selection()),
         **{f"select_{name}": partial(use_tool, viewer, name) for name in SELECTION_TOOLS},
-        "copy_parameters": viewer.copy_parameters,
+        "copy_parameters": partial(viewer.parameters.copy, viewer.clipboard),
         "quit": viewer.wnd.close,
     }
 

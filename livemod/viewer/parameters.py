@@ -75,6 +75,18 @@ class Parameters:
         """The values shown as ``name = param(...)`` lines to paste into the script."""
         return self.panel.python_lines()
 
+    def copy(self, clipboard: Callable[[str], None] | None = None) -> None:
+        """``Ctrl+C``: the :meth:`python_lines` to ``clipboard`` (the window's, when
+        it has one), as one text ending in a newline, and to the echo a line each."""
+        lines = self.python_lines()
+        if not lines:
+            self._echo("the script declares no parameters")
+            return
+        if clipboard is not None:
+            clipboard("\n".join(lines) + "\n")
+        for line in lines:
+            self._echo(line)
+
     # -- input ---------------------------------------------------------------------
 
     def press(self, hit: Hit, px: float, size: tuple[int, int]) -> None:

@@ -27,6 +27,7 @@ import sys
 import warnings
 from collections.abc import Callable
 from dataclasses import dataclass, replace
+from functools import partial
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, ClassVar, TextIO
 
@@ -143,6 +144,7 @@ class LiveViewer(mglw.WindowConfig):
         actions: action name -> what it does (every key binding's action is in it).
         painter: the frames: quick or whole pictures, the kept frame, the frame rate.
         screenshots: the screenshots written, in order.
+        clipboard: puts text on the window's clipboard (None: the backend has none).
     """
 
     gl_version = (3, 3)
@@ -156,6 +158,7 @@ class LiveViewer(mglw.WindowConfig):
     def __init__(self, **kwargs: Any) -> None:
         super().__init__(**kwargs)
         self.wnd.exit_key = None  # Esc clears the selection instead
+        self.clipboard = glfw_clipboard(self)
         self.renderer = Renderer(self.ctx)
         self.camera = Camera()
         self.whole = WholeMeshMeasurer()  # genus and volume of the mesh shown, off-thread
@@ -363,21 +366,6 @@ class LiveViewer(mglw.WindowConfig):
             self.actions[action]()
         return action
 
-    def copy_parameters(self) -> None:
-        """``Ctrl+C``: the parameter values as ``param(...)`` lines, to the clipboard
-        (glfw) and the terminal."""
-        lines = self.parameters.python_lines()
-        if not lines:
-            self._echo("the script declares no parameters")
-            return
-        handle = getattr(self.wnd, "_window", None)
-        if self.options.backend == "glfw" and handle is not None:
-            import glfw
-
-            glfw.set_clipboard_string(handle, "\n".join(lines) + "\n")
-        for line in lines:
-            self._echo(line)
-
     # -- mouse ----------------------------------------------------------------------------
 
     def on_mouse_press_event(self, x: int, y: int, button: int) -> None:
@@ -470,11 +458,28 @@ class LiveViewer(mglw.WindowConfig):
         self.scripts.close()
 
 
+def _glfw_window(viewer: LiveViewer) -> Any | None:
+    """The glfw handle of ``viewer``'s window, or None for another backend."""
+    handle = getattr(viewer.wnd, "_window", None)
+    return handle if viewer.options.backend == "glfw" else None
+
+
+def glfw_clipboard(viewer: LiveViewer) -> Callable[[str], None] | None:
+    """What puts text on the clipboard of ``viewer``'s glfw window (moderngl-window
+    has no clipboard of its own), or None for another backend."""
+    handle = _glfw_window(viewer)
+    if handle is None:
+        return None
+    import glfw
+
+    return partial(glfw.set_clipboard_string, handle)
+
+
 def install_glfw_drop(viewer: LiveViewer) -> None:
     """Open files dropped on ``viewer``'s window: moderngl-window's glfw backend
     does not forward drops, so glfw is hooked directly (other backends do)."""
-    handle = getattr(viewer.wnd, "_window", None)
-    if viewer.options.backend != "glfw" or handle is None:
+    handle = _glfw_window(viewer)
+    if handle is None:
         return
     import glfw
 
