@@ -340,9 +340,9 @@ def window_sessions(shown: ShownSession, name: str) -> Callable[[str, str | None
 
     def create(script: str, mesh_path: str | None) -> Session:
         if script != placeholder:
-            from livemod.runner import LiveSession
+            from livemod.viewer.window import ViewOptions, live_sessions
 
-            return LiveSession(script, mesh_path=mesh_path)
+            return live_sessions(ViewOptions(script))(script, mesh_path)
         if mesh_path is not None:
             from livemod.dlfl.errors import DLFLError
             from livemod.dlfl.io import load_mesh

@@ -132,6 +132,22 @@ def _headless_window(session: ShownSession, echo: io.StringIO) -> LiveViewer:
                                      session_factory=window_sessions(session, "shown")))
 
 
+def test_a_script_dropped_on_a_shown_window_runs_as_livemod_view_runs_it(
+        monkeypatch: pytest.MonkeyPatch, tmp_path: Path):
+    import livemod.viewer.window as window
+
+    made: list[tuple[str, str | None, ViewOptions]] = []
+
+    def sessions(options: ViewOptions):
+        return lambda script, mesh: made.append((script, mesh, options)) or "live"
+
+    monkeypatch.setattr(window, "live_sessions", sessions)
+    create = window_sessions(ShownSession(shown_result(cube(), "cube")), "shown")
+    script = str(tmp_path / "dropped.py")
+    assert create(script, None) == "live"
+    assert [(s, m, o.script) for s, m, o in made] == [(script, None, script)]
+
+
 def test_the_window_shows_posted_models_and_has_no_steps_to_play(tmp_path: Path):
     session = ShownSession(shown_result(cube(), "cube"))
     echo = io.StringIO()

@@ -107,8 +107,10 @@ class ViewOptions:
     all_objects: bool = False
 
 
-def _default_factory(options: ViewOptions) -> SessionFactory:
-    """The runner's ``LiveSession`` (imported only when a window opens)."""
+def live_sessions(options: ViewOptions) -> SessionFactory:
+    """The window's sessions as ``livemod view`` makes them: the runner's
+    ``LiveSession`` (imported only when a window opens) with ``options``' poll,
+    seed, parameters and output, and no preview of its own."""
     from livemod.runner import LiveSession
 
     def create(script: str, mesh_path: str | None) -> Session:
@@ -175,7 +177,7 @@ class LiveViewer(mglw.WindowConfig):
         self.runs = RunTracker()
         options, echo = self.options, self._echo
         self.scripts = ScriptSession(options.script, options.mesh_path,
-                                     options.session_factory or _default_factory(options),
+                                     options.session_factory or live_sessions(options),
                                      self.runs, echo, options.output)
         session = self.scripts.live
         self.look = Look()
