@@ -38,8 +38,7 @@ from livemod.runner.cli import (
     selection_of,
     whole_number_option,
 )
-
-SCRIPT_SUFFIXES = (".py",)
+from livemod.viewer.script_session import SCRIPT_SUFFIXES
 
 
 def parse_size(text: str) -> tuple[int, int]:
