@@ -10,6 +10,7 @@ import pytest
 import livemod.viewer.display as display_module
 import livemod.viewer.uploads as uploads
 from livemod.dlfl import mesh_arrays
+from livemod.dlfl.scene import Selection
 from livemod.dlfl.shapes import cube, octahedron, tetrahedron, torus
 from livemod.viewer.camera import Camera
 from livemod.viewer.display import MeshDisplay
@@ -22,10 +23,11 @@ from livemod.viewer.runs import RunTracker
 from .conftest import OFFSCREEN_SIZE
 
 
-def _display(renderer) -> tuple[MeshDisplay, Camera, list[str]]:
+def _display(renderer, picks: Selection | None = None) -> tuple[MeshDisplay, Camera, list[str]]:
     camera, said = Camera(), []
     objects = SceneObjects(RunTracker(), Look(), said.append, renderer.set_others)
-    display = MeshDisplay(renderer, camera, WholeMeshMeasurer(), Picking(lambda: None, print),
+    picking = Picking(lambda: None, print, picks)
+    display = MeshDisplay(renderer, camera, WholeMeshMeasurer(), picking,
                           objects, Look(), lambda: OFFSCREEN_SIZE, said.append)
     return display, camera, said
 
@@ -52,6 +54,27 @@ def test_a_result_shows_its_mesh_framed_once(offscreen) -> None:
     assert renderer.arrays is shown and renderer.preview is preview
     display.show(_result(None))  # the script left no mesh
     assert renderer.arrays is None
+
+
+def test_showing_a_mesh_uploads_its_selection_flags_once(
+        offscreen, monkeypatch: pytest.MonkeyPatch) -> None:
+    renderer = offscreen.renderer
+    picks = Selection(faces=(2,), vertices=(0, 1))
+    display, _, _ = _display(renderer, picks)
+    flagged: list[tuple[int, ...]] = []
+    real = uploads.MeshGPU.set_flags
+
+    def counted(self, face, edge, vertex) -> None:
+        flagged.append(tuple(int(f.sum()) for f in (face, edge, vertex)))
+        real(self, face, edge, vertex)
+
+    monkeypatch.setattr(uploads.MeshGPU, "set_flags", counted)
+    renderer.set_selection(picks)  # as the window hands over every pick
+    assert flagged == []  # nothing uploaded yet
+    display.show(_result(mesh_arrays(cube())))
+    assert flagged == [(1, 0, 2)]  # once, although the upload and the display hand it over
+    renderer.set_selection(Selection(edges=(3,)))
+    assert flagged[1:] == [(0, 1, 0)]  # a new selection is uploaded again
 
 
 def test_e_shows_the_failed_runs_mesh_and_back(offscreen) -> None:
