@@ -24,7 +24,7 @@ from .errors import InvalidArgumentError
 from .mesh import Mesh
 
 __all__ = ["MODELLING_COLOR", "SAME_IN_8_BITS", "colored_like", "faces_by_color",
-           "filled_colors", "set_face_colors"]
+           "filled_colors", "rgba_bytes", "set_face_colors"]
 
 # TopMod's render colour (255, 151, 92): what a face without colour is drawn in, and
 # written as by the formats that give every face a colour
@@ -68,6 +68,20 @@ def filled_colors(colors: np.ndarray) -> np.ndarray:
     filled = np.array(colors, dtype=np.float32)
     filled[missing] = MODELLING_COLOR
     return filled
+
+
+def rgba_bytes(colors: np.ndarray | None) -> np.ndarray | None:
+    """``(F, 4)`` uint8 RGBA of ``(F, 3)`` float ``colors`` in ``[0, 1]`` (NaN rows:
+    no colour, see :meth:`Mesh.face_colors`): each channel rounded to 8 bits, alpha
+    255 for a face with a colour and all zero for one without; None for None (no
+    face has a colour). How viewers hand face colours to the GPU."""
+    if colors is None:
+        return None
+    rgba = np.zeros((len(colors), 4), np.uint8)
+    has = ~np.isnan(colors[:, 0])
+    rgba[has, :3] = np.rint(colors[has] * 255)
+    rgba[has, 3] = 255
+    return rgba
 
 
 def faces_by_color(mesh: Mesh, color: Any, tolerance: float = SAME_IN_8_BITS) -> list[int]:

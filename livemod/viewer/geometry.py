@@ -24,6 +24,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from livemod.dlfl.arrays import MeshArrays
+from livemod.dlfl.colors import rgba_bytes
 
 KIND_FACE, KIND_EDGE, KIND_VERTEX = 1, 2, 3
 KIND_SHIFT = 28
@@ -211,13 +212,9 @@ def build_geometry(arrays: MeshArrays, crease_angle: float | None = None) -> Ren
 def packed_face_colors(arrays: MeshArrays) -> np.ndarray:
     """``(F,)`` uint32 face colours as RGBA8 (red in the low byte, alpha 255) for
     the faces with one, 0 for the others; ``(0,)`` when no face has one."""
-    colors = arrays.face_colors
-    if colors is None:
+    rgba = rgba_bytes(arrays.face_colors)
+    if rgba is None:
         return np.zeros(0, np.uint32)
-    rgba = np.zeros((len(colors), 4), np.uint8)
-    has = ~np.isnan(colors[:, 0])
-    rgba[has, :3] = np.rint(colors[has] * 255)
-    rgba[has, 3] = 255
     return rgba.view("<u4").reshape(-1).astype(np.uint32)
 
 
