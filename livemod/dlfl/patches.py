@@ -69,6 +69,7 @@ import numpy as np
 
 from .analysis import vertex_normals
 from .arrays import MeshArrays, mesh_arrays
+from .colors import rgba_bytes
 from .errors import InvalidArgumentError
 from .mesh import Mesh
 
@@ -157,28 +158,42 @@ class Tessellation:
             ``2 * density**2`` per patch, counter-clockwise seen from outside.
         density: the grid's steps along each side of a patch (0 for a surface
             that is not made of patches, see :func:`mesh_surface`).
+        colors: ``(N, 4)`` uint8 RGBA of the face each point belongs to (see
+            :func:`~livemod.dlfl.colors.rgba_bytes`: all zero where the face has no
+            colour), or None when no face of the mesh has one. A coloured surface
+            shares no point between faces, so that its triangles take their face's
+            colour from any of their corners.
     """
 
     positions: np.ndarray
     normals: np.ndarray
     triangles: np.ndarray
     density: int
+    colors: np.ndarray | None = None
 
     @property
     def nbytes(self) -> int:
-        """Bytes of the three arrays."""
-        return self.positions.nbytes + self.normals.nbytes + self.triangles.nbytes
+        """Bytes of the arrays."""
+        own = 0 if self.colors is None else self.colors.nbytes
+        return self.positions.nbytes + self.normals.nbytes + self.triangles.nbytes + own
 
 
 def mesh_surface(mesh: Mesh | MeshArrays) -> Tessellation:
     """A mesh's own faces as a smooth surface: the fans of
     :meth:`MeshArrays.fan_triangles`, with the normalised sum of the face normals
-    around each vertex (how a subdivided preview is drawn; ``density`` 0)."""
+    around each vertex (how a subdivided preview is drawn; ``density`` 0). A mesh
+    with face colours gets a point per corner (its vertex's position and normal)
+    and each point its face's colour; without, a point per vertex."""
     a = mesh if isinstance(mesh, MeshArrays) else mesh_arrays(mesh)
     corners, _ = a.fan_triangles()
-    return Tessellation(a.positions.astype(np.float32),
-                        vertex_normals(a).astype(np.float32),
-                        np.take(a.corner_vertex, corners).astype(np.uint32), 0)
+    normals = vertex_normals(a).astype(np.float32)
+    rgba = rgba_bytes(a.face_colors)
+    if rgba is None:
+        return Tessellation(a.positions.astype(np.float32), normals,
+                            np.take(a.corner_vertex, corners).astype(np.uint32), 0)
+    return Tessellation(np.take(a.positions, a.corner_vertex, axis=0).astype(np.float32),
+                        np.take(normals, a.corner_vertex, axis=0), corners.astype(np.uint32), 0,
+                        np.take(rgba, a.corner_face, axis=0))
 
 
 def patch_control_points(mesh: Mesh | MeshArrays,
@@ -635,26 +650,44 @@ class CornerPatches:
                 columns, control_normals = self._columns(corners[part])
             grid.evaluate(columns, control_normals, positions[part], normals[part])
         return Tessellation(positions.reshape(-1, 3), normals.reshape(-1, 3),
-                            grid_triangles(len(corners), steps), steps)
+                            grid_triangles(len(corners), steps), steps,
+                            self._point_colors(corners, grid.size))
+
+    def _point_colors(self, corners: np.ndarray, points: int) -> np.ndarray | None:
+        """``(k * points, 4)`` uint8: the colour of each corner's face, ``points``
+        times over (the points of its patch); None when no face has a colour."""
+        rgba = rgba_bytes(self.arrays.face_colors)
+        if rgba is None:
+            return None
+        return np.repeat(np.take(rgba, np.take(self.arrays.corner_face, corners), axis=0),
+                         points, axis=0)
 
     def vertex_surface(self, corners: np.ndarray | None = None) -> Tessellation:
         """The patch surface at its coarsest: the faces of ``corners`` (all drawn
         faces when None; whole faces, as fans) with their corners at the patches'
         vertex points, which lie on the surface, and the patches' normals there.
-        About a quarter of the triangles of density 1 (``density`` 0)."""
+        About a quarter of the triangles of density 1 (``density`` 0). Faces share
+        their points, but for a mesh with face colours, whose every corner gets a
+        point of its own (with its face's colour)."""
         a = self.arrays
         shown = np.zeros(len(a.face_ids), dtype=bool)
         shown[np.take(a.corner_face, self._drawn(corners))] = True
         fan, face = a.fan_triangles()
-        fans = np.take(self.ring_of, fan[shown[face]])               # (T, 3) rings
-        used, index = _compact(fans.ravel(), len(self.vertex_point[0]))
+        fans = fan[shown[face]]                                      # (T, 3) corners
+        colored = a.face_colors is not None
+        if not colored:
+            fans = np.take(self.ring_of, fans)                       # (T, 3) rings
+        used, index = _compact(fans.ravel(), len(a.corner_vertex if colored
+                                                 else self.vertex_point[0]))
+        rings = np.take(self.ring_of, used) if colored else used
         with np.errstate(invalid="ignore", over="ignore"):
-            points = self.snapped_vertex[:, used].T * self.scale + self.center
+            points = self.snapped_vertex[:, rings].T * self.scale + self.center
         finite = np.isfinite(points).all(axis=1)
         keep = finite[index.reshape(-1, 3)].all(axis=1)
         return Tessellation(points.astype(np.float32),
-                            self.vertex_normal[:, used].T.astype(np.float32),
-                            index.reshape(-1, 3)[keep].astype(np.uint32), 0)
+                            self.vertex_normal[:, rings].T.astype(np.float32),
+                            index.reshape(-1, 3)[keep].astype(np.uint32), 0,
+                            self._point_colors(used, 1) if colored else None)
 
     def _columns(self, corners: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """``(16, 3, k)`` control points (in the mesh's coordinates) and unit

@@ -268,16 +268,23 @@ def _face_scores(arrays: MeshArrays, faces: np.ndarray, view: View) -> np.ndarra
 
 
 def join_surfaces(parts: Sequence[Tessellation], density: int) -> Tessellation:
-    """One surface of several, their triangles' indices shifted; read-only."""
+    """One surface of several, their triangles' indices shifted; read-only. It has
+    colours when a part has (the points of the parts without, none: all zero)."""
     positions = [p.positions for p in parts] or [np.zeros((0, 3), np.float32)]
     normals = [p.normals for p in parts] or [np.zeros((0, 3), np.float32)]
     starts = np.cumsum([0] + [len(p.positions) for p in parts])
     triangles = [p.triangles + np.uint32(start) for p, start in zip(parts, starts,
                                                                      strict=False)]
+    colors = None
+    if any(p.colors is not None for p in parts):
+        colors = np.concatenate([np.zeros((len(p.positions), 4), np.uint8) if p.colors is None
+                                 else p.colors for p in parts])
     joined = Tessellation(np.concatenate(positions), np.concatenate(normals),
-                          np.concatenate(triangles or [np.zeros((0, 3), np.uint32)]), density)
-    for array in (joined.positions, joined.normals, joined.triangles):
-        array.flags.writeable = False
+                          np.concatenate(triangles or [np.zeros((0, 3), np.uint32)]), density,
+                          colors)
+    for array in (joined.positions, joined.normals, joined.triangles, joined.colors):
+        if array is not None:
+            array.flags.writeable = False
     return joined
 
 
@@ -311,7 +318,8 @@ def _subdivided_surface(arrays: MeshArrays, levels: int) -> Tessellation:
     if not len(arrays.face_ids):
         return mesh_surface(arrays)
     mesh = from_corner_arrays(arrays.positions, arrays.face_offsets, arrays.corner_vertex,
-                              arrays.corner_mate, arrays.face_hole)
+                              arrays.corner_mate, arrays.face_hole,
+                              face_colors=arrays.face_colors)
     subdivided = preview_arrays(mesh, levels=levels, face_budget=2**62)
     assert subdivided is not None
     return mesh_surface(subdivided)
