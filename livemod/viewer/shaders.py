@@ -43,6 +43,16 @@ layout(location = 0) out vec4 color;
 layout(location = 1) out uint pick;
 """
 
+# The faces' own colours (the colour mode). The scene's other objects show theirs
+# muted as the modelling colour is muted for them: MUTE of the way to a light grey.
+MUTE = 0.6
+OWN_COLOR = """
+uniform float mute;  // 0: the current object's colours; MUTE: the other objects'
+vec3 own_color(vec3 rgb) {
+    return mix(rgb, vec3(0.77), mute);
+}
+"""
+
 SHADE = """
 vec3 shade(vec3 n, vec3 base) {
     // TopMod's warm/cool model with a key light fixed to the camera (up left),
@@ -77,7 +87,15 @@ out vec3 v_normal;
 // the section plane: points where this is negative are cut away (GL_CLIP_DISTANCE0,
 // enabled only while a section is drawn)
 uniform vec4 clip_plane;
+#ifdef COLORS
+// a surface whose points carry their face's colour (the coloured preview)
+in vec4 in_color;
+flat out vec4 v_color;
+#endif
 void main() {
+#ifdef COLORS
+    v_color = in_color;
+#endif
     gl_ClipDistance[0] = dot(vec4(in_position, 1.0), clip_plane);
     v_view = (view * vec4(in_position, 1.0)).xyz;
     v_normal = mat3(view) * in_normal;
@@ -133,7 +151,7 @@ uniform int use_face_colors;  // 1: draw the faces' own colours (the colour mode
 uniform int pickable;  // 0: the scene's other objects, which hide but are not picked
 uniform vec3 selected_color;
 uniform vec3 edge_color;
-""" + LIT + FETCH + SHADE + """
+""" + LIT + FETCH + SHADE + OWN_COLOR + """
 #ifdef SMOOTH
 // smooth shading: shared corners with normals (MESH_VERTEX), the triangle found by
 // gl_PrimitiveID and its sides by projecting its corners
@@ -199,7 +217,8 @@ void main() {
     if (use_face_colors != 0) {
         uint rgba = fetch(face_colors, int(face));
         if ((rgba >> 24) != 0u) {
-            front = vec3(rgba & 255u, (rgba >> 8) & 255u, (rgba >> 16) & 255u) / 255.0;
+            front = own_color(vec3(rgba & 255u, (rgba >> 8) & 255u, (rgba >> 16) & 255u)
+                              / 255.0);
         }
     }
     vec3 base = selected ? selected_color : (gl_FrontFacing ? front : back_color);
@@ -218,8 +237,13 @@ SURFACE_FRAGMENT = """
 // from its interpolated normals; it is never picked. QUICK (the quick picture of
 // a moving view): the normal turned by the side seen, not by the flat normal
 // from the derivatives (it differs only where the interpolated normal looks
-// away from the eye, at the outline).
+// away from the eye, at the outline). COLORS: its points carry their face's
+// colour (alpha 0: none, the base colour), drawn in the colour mode.
 """ + LIT + SHADE + """
+#ifdef COLORS
+""" + OWN_COLOR + """
+flat in vec4 v_color;
+#endif
 void main() {
 #ifdef QUICK
     vec3 n = normalize(v_normal);
@@ -227,7 +251,11 @@ void main() {
 #else
     vec3 n = facing_normal(v_view, v_normal);
 #endif
-    color = vec4(shade(n, gl_FrontFacing ? base_color : back_color), 1.0);
+    vec3 front = base_color;
+#ifdef COLORS
+    if (v_color.a > 0.5) front = own_color(v_color.rgb);
+#endif
+    color = vec4(shade(n, gl_FrontFacing ? front : back_color), 1.0);
     pick = 0u;
 }
 """

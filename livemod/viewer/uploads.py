@@ -221,11 +221,13 @@ class MeshGPU:
 
 class SurfaceGPU:
     """The GL objects of an uploaded smooth surface (the preview): positions,
-    normals and triangles, drawn in ``parts`` (triangle counts: the current
-    object's first, then the other objects'); ``release`` frees them.
+    normals and triangles (and the colours of its points, when its faces have
+    some), drawn in ``parts`` (triangle counts: the current object's first, then
+    the other objects'); ``release`` frees them.
 
     Attributes:
         closed: its back faces are never seen (all its objects closed, and whole).
+        colored: its points carry their faces' colours (see :meth:`vao`).
     """
 
     def __init__(self, ctx: moderngl.Context, programs: dict[str, moderngl.Program],
@@ -233,11 +235,19 @@ class SurfaceGPU:
                  closed: bool) -> None:
         self.positions, self.normals, self.triangles = (
             _buffer(objects, name) for name in ("positions", "normals", "triangles"))
+        self.colors = _buffer(objects, "colors") if "colors" in objects else None
         self.count, self.parts, self.closed = count, parts, closed
-        # by quick (see Renderer.draw)
-        self.vaos = {quick: ctx.vertex_array(programs["surface_quick" if quick else "surface"], [
-            (self.positions, "3f", "in_position"), (self.normals, "3f", "in_normal")],
-            self.triangles, 4) for quick in (False, True)}
+        self.colored = self.colors is not None
+        lit = [(self.positions, "3f", "in_position"), (self.normals, "3f", "in_normal")]
+        # by (quick, in the faces' colours): see Renderer.draw
+        self.vaos = {(quick, False): ctx.vertex_array(
+            programs["surface_quick" if quick else "surface"], lit, self.triangles, 4)
+            for quick in (False, True)}
+        if self.colors is not None:
+            for quick in (False, True):
+                self.vaos[quick, True] = ctx.vertex_array(
+                    programs["surface_quick_colors" if quick else "surface_colors"],
+                    [*lit, (self.colors, "4f1", "in_color")], self.triangles, 4)
         self.winding_vao = ctx.vertex_array(programs["winding"], [
             (self.positions, "3f", "in_position")], self.triangles, 4)
 
@@ -247,9 +257,17 @@ class SurfaceGPU:
         """Upload a preview (see :func:`preview_surface`) a slice at a time."""
         surface, parts, closed = preview_surface(preview)
         objects: dict[str, GLObject] = {}
-        for name in ("positions", "normals", "triangles"):
-            objects[name] = yield from buffer_steps(ctx, getattr(surface, name), made)
+        for name in ("positions", "normals", "triangles", "colors"):
+            data = getattr(surface, name)
+            if data is not None:
+                objects[name] = yield from buffer_steps(ctx, data, made)
         return cls(ctx, programs, objects, len(surface.triangles), parts, closed)
+
+    def vao(self, quick: bool, colors: bool) -> moderngl.VertexArray:
+        """The vertex array (and through it, the program) that draws the surface
+        for a quick picture or not, in its faces' colours (when it has them and
+        ``colors``) or in one colour."""
+        return self.vaos[quick, colors and self.colored]
 
     def part(self, current: bool) -> tuple[int, int]:
         """``(first triangle, triangles)`` of the current object's part, or of the
@@ -260,6 +278,8 @@ class SurfaceGPU:
     def release(self) -> None:
         objects: list[GLObject] = [*self.vaos.values(), self.winding_vao, self.positions,
                                    self.normals, self.triangles]
+        if self.colors is not None:
+            objects.append(self.colors)
         for obj in objects:
             obj.release()
 
