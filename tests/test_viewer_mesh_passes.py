@@ -155,23 +155,25 @@ def test_a_closed_mesh_cut_by_the_section_gets_its_cap(offscreen, programs, targ
 
 def test_the_surface_draws_its_part_with_the_quick_variant_when_quick(offscreen,
                                                                       programs) -> None:
-    rendered: list[tuple[bool, int, int]] = []
+    rendered: list[tuple[bool, bool, int, int]] = []
 
-    def vao(quick: bool) -> SimpleNamespace:
-        return SimpleNamespace(render=lambda mode, vertices, first: rendered.append(
-            (quick, vertices, first)))
+    def vao(quick: bool, colors: bool) -> SimpleNamespace:
+        name = ("surface_quick" if quick else "surface") + ("_colors" if colors else "")
+        return SimpleNamespace(program=programs[name], render=lambda mode, vertices, first:
+                               rendered.append((quick, colors, vertices, first)))
 
-    surface = SimpleNamespace(closed=True, vaos={False: vao(False), True: vao(True)},
+    surface = SimpleNamespace(closed=True, vao=vao,
                               part=lambda current: (10, 30) if current else (0, 10))
     cap = Cap()
     passes = _passes(offscreen, programs, cap)
     passes.surface(surface, RED, True)  # type: ignore[arg-type]
     passes.quick = True
-    passes.surface(surface, RED, False, first=2, count=3)  # type: ignore[arg-type]
+    passes.surface(surface, RED, False, first=2, count=3,  # type: ignore[arg-type]
+                   own_colors=True)
     passes.surface(surface, RED, True, first=30)  # type: ignore[arg-type]  # none left
     passes.section = (1, 0.5)
     passes.surface(surface, RED, True, first=5, count=1)  # type: ignore[arg-type]
-    assert rendered == [(False, 90, 30), (True, 9, 6), (True, 3, 45)]
+    assert rendered == [(False, False, 90, 30), (True, True, 9, 6), (True, False, 3, 45)]
     assert cap.drawn == [(surface, RED, True)]
 
 

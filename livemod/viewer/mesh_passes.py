@@ -39,6 +39,11 @@ PROGRAMS = {
                          shaders.variant(shaders.FACE_FRAGMENT, "SMOOTH", "WIRE")),
     "surface": (shaders.MESH_VERTEX, shaders.SURFACE_FRAGMENT),
     "surface_quick": (shaders.MESH_VERTEX, shaders.variant(shaders.SURFACE_FRAGMENT, "QUICK")),
+    # a surface whose points carry their faces' colours (see SurfaceGPU.vao)
+    "surface_colors": (shaders.variant(shaders.MESH_VERTEX, "COLORS"),
+                       shaders.variant(shaders.SURFACE_FRAGMENT, "COLORS")),
+    "surface_quick_colors": (shaders.variant(shaders.MESH_VERTEX, "COLORS"),
+                             shaders.variant(shaders.SURFACE_FRAGMENT, "QUICK", "COLORS")),
     "edge": (shaders.MESH_VERTEX, shaders.EDGE_FRAGMENT),
     # the edges of a picture with none selected: their colour only
     "edge_plain": (shaders.MESH_VERTEX, shaders.variant(shaders.EDGE_FRAGMENT, "PLAIN")),
@@ -112,21 +117,21 @@ class MeshPasses:
                 program["view"].write(view_bytes)  # type: ignore[union-attr]
 
     def surface(self, surface: SurfaceGPU, color: RGB, current: bool, first: int = 0,
-                count: int | None = None) -> None:
+                count: int | None = None, own_colors: bool = False) -> None:
         """Triangles ``first .. first + count`` (all by default) of the preview's part
         of the current object (or of the others), lit by its own normals, capped
-        where a section cuts it."""
-        program = self.programs["surface_quick" if self.quick else "surface"]
-        program["base_color"].value = color  # type: ignore[union-attr]
-        program["back_color"].value = BACK_COLOR  # type: ignore[union-attr]
+        where a section cuts it; in ``color`` (or, with ``own_colors``, in their
+        faces' own colours where they have one, muted for the others)."""
+        vao = surface.vao(self.quick, own_colors)
+        set_uniforms(vao.program, base_color=color, back_color=BACK_COLOR,
+                     mute=0.0 if current else shaders.MUTE)
         self.ctx.polygon_offset = (1.0, 1.0)  # the cage's edges, drawn after, win
         if surface.closed:
             self.ctx.enable(moderngl.CULL_FACE)
         start, total = surface.part(current)
         count = total - first if count is None else count
         if count > 0:
-            surface.vaos[self.quick].render(moderngl.TRIANGLES, vertices=3 * count,
-                                            first=3 * (start + first))
+            vao.render(moderngl.TRIANGLES, vertices=3 * count, first=3 * (start + first))
         self.ctx.polygon_offset = (0.0, 0.0)
         if surface.closed and self.section is not None:
             self.cap.draw(surface, color, current)
@@ -137,7 +142,7 @@ class MeshPasses:
               count: int | None = None, own_colors: bool = False) -> None:
         """Triangles ``first .. first + count`` (all by default) of ``mesh``'s faces,
         in ``color`` (or, with ``own_colors``, in their own colours where they have
-        one), with the wireframe over them (``wire``), shaded smooth across edges
+        one, muted for the other objects), with the wireframe over them (``wire``), shaded smooth across edges
         of less than ``crease_angle`` degrees (``smooth``); ``pickable``: they
         write their face ids into the pick target (else id 0: they only hide)."""
         count = len(mesh.geometry.triangles) - first if count is None else count
@@ -146,6 +151,7 @@ class MeshPasses:
         program = self.programs[("face_smooth" if smooth else "face") + ("_wire" if wire else "")]
         use = own_colors and len(mesh.geometry.face_colors) > 0
         set_uniforms(program, primitive_base=first, pickable=int(pickable),
+                     mute=0.0 if pickable else shaders.MUTE,
                      viewport=tuple(float(v) for v in self.ctx.viewport[2:]),
                      edge_color=EDGE_COLOR, base_color=color, back_color=BACK_COLOR,
                      selected_color=SELECTED_COLOR, use_face_colors=int(use))

@@ -82,9 +82,10 @@ class Style:
         section: ``(axis, at)``: cut away every part of the meshes whose
             coordinate ``axis`` (0, 1, 2 for x, y, z) is greater than ``at``, and
             show the inside through the cut; None draws them whole.
-        colors: draw the current object's faces in their own colours (the
-            colour mode); faces without one, and every face when off, in the
-            flat modelling colour.
+        colors: draw the faces in their own colours (the colour mode), the
+            preview's patches in their faces' and the other objects' muted; faces
+            without one, and every face when off, in the flat modelling colour
+            (the preview's colour, the others' muted one).
     """
 
     faces: bool = True
@@ -319,11 +320,11 @@ class Renderer(DrawnContent):
         preview = self._preview
         if style.preview and preview is not None and len(preview.parts) > 1:
             return [(preview.part(False)[1], lambda first, count: self._meshes.surface(
-                preview, OTHER_COLOR, False, first, count))]
+                preview, OTHER_COLOR, False, first, count, own_colors=style.colors))]
         if style.faces or style.preview:
             return [(len(others.geometry.triangles), lambda first, count: self._meshes.faces(
                 others, OTHER_COLOR, False, smooth=style.smooth, crease_angle=style.crease_angle,
-                first=first, count=count))]
+                first=first, count=count, own_colors=style.colors))]
         if style.edges:
             return [(len(others.geometry.lines),
                      lambda first, count: self._meshes.edges(others, False, first, count))]
@@ -340,7 +341,7 @@ class Renderer(DrawnContent):
         passes: list[_Pass] = []
         if preview is not None:
             passes.append((preview.part(True)[1], lambda first, count: self._meshes.surface(
-                preview, PREVIEW_COLOR, True, first, count)))
+                preview, PREVIEW_COLOR, True, first, count, own_colors=style.colors)))
         elif style.faces:
             passes.append((len(mesh.geometry.triangles), lambda first, count: self._meshes.faces(
                 mesh, BASE_COLOR, True, wire=wire_in_faces, smooth=style.smooth,
