@@ -6,7 +6,13 @@ import numpy as np
 import pytest
 
 from livemod.dlfl import DLFLError, InvalidArgumentError
-from livemod.dlfl.colors import MODELLING_COLOR, faces_by_color, filled_colors, set_face_colors
+from livemod.dlfl.colors import (
+    MODELLING_COLOR,
+    faces_by_color,
+    filled_colors,
+    rgba_bytes,
+    set_face_colors,
+)
 from tests.meshes import assert_refused, cube
 
 RED, BLUE = (1.0, 0.0, 0.0), (0.0, 0.0, 1.0)
@@ -70,3 +76,10 @@ def test_filled_colors_puts_the_modelling_colour_where_there_is_none():
     assert filled[0].tolist() == [0.5, 0.5, 0.5]
     assert filled[1].tolist() == np.float32(MODELLING_COLOR).tolist()
     assert np.isnan(colors[1]).all()  # the argument is not changed
+
+
+def test_rgba_bytes_rounds_each_channel_and_zeroes_faces_without_colour():
+    colors = np.array([[1.0, 0.5, 0.0], [np.nan] * 3, [0.2, 1 / 255, 0.998]], np.float32)
+    assert rgba_bytes(colors).tolist() == [[255, 128, 0, 255], [0, 0, 0, 0], [51, 1, 254, 255]]
+    assert rgba_bytes(colors).dtype == np.uint8
+    assert rgba_bytes(None) is None

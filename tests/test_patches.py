@@ -27,6 +27,7 @@ from livemod.dlfl.patches import (
     doo_sabin_weights,
     evaluate_patches,
     grid_triangles,
+    mesh_surface,
     patch_control_points,
 )
 from livemod.dlfl.shapes import SHAPES, genus_torus, grid
@@ -428,6 +429,56 @@ def test_the_vertex_surface_runs_through_the_patches_vertex_points() -> None:
     np.testing.assert_allclose(np.linalg.norm(surface.normals, axis=1), 1.0, atol=1e-6)
     some = patches.vertex_surface(np.arange(0, 8))         # the corners of two faces
     assert some.triangles.shape == (4, 3) and len(some.positions) == 6
+
+
+def _colored(mesh: Mesh, faces: dict[int, tuple[float, float, float]]) -> Mesh:
+    for face, color in faces.items():
+        mesh.set_face_color(face, color)
+    return mesh
+
+
+def test_each_patch_takes_the_colour_of_its_corners_face() -> None:
+    mesh = _colored(cube(), {0: (1.0, 0.0, 0.0), 3: (0.0, 0.4, 1.0)})
+    arrays = mesh_arrays(mesh)
+    patches = CornerPatches(mesh)
+    made = patches.tessellate(2)
+    assert made.colors is not None and made.colors.shape == (24 * 9, 4)
+    faces = np.repeat(arrays.corner_face[patches.surface_corners()], 9)
+    expected = np.zeros((6, 4), np.uint8)
+    expected[0], expected[3] = (255, 0, 0, 255), (0, 102, 255, 255)
+    np.testing.assert_array_equal(made.colors, expected[faces])
+    plain = CornerPatches(cube()).tessellate(2)
+    assert plain.colors is None                       # no colour anywhere: none made
+    np.testing.assert_array_equal(made.positions, plain.positions)
+    np.testing.assert_array_equal(made.triangles, plain.triangles)
+
+
+def test_a_coloured_vertex_surface_gives_each_corner_a_point_of_its_own() -> None:
+    mesh = _colored(shape_torus(8, 6), {5: (0.0, 1.0, 0.0)})
+    arrays = mesh_arrays(mesh)
+    patches = CornerPatches(mesh)
+    made, plain = patches.vertex_surface(), CornerPatches(shape_torus(8, 6)).vertex_surface()
+    assert len(made.positions) == 192 and len(plain.positions) == 48   # corners, vertices
+    assert made.colors is not None and plain.colors is None
+    np.testing.assert_array_equal(made.positions[made.triangles], plain.positions[plain.triangles])
+    np.testing.assert_array_equal(made.normals[made.triangles], plain.normals[plain.triangles])
+    # each triangle's three points carry its face's colour: green for face 5's two
+    green = (made.colors[made.triangles] == (0, 255, 0, 255)).all(axis=2)
+    assert green.sum(axis=0).tolist() == [2, 2, 2] and (green.all(axis=1) == green[:, 0]).all()
+    fan_face = arrays.fan_triangles()[1]
+    assert np.flatnonzero(green[:, 0]).tolist() == np.flatnonzero(fan_face == 5).tolist()
+
+
+def test_a_coloured_mesh_surface_gives_each_corner_a_point_of_its_own() -> None:
+    mesh = _colored(cube(), {2: (0.0, 0.0, 1.0)})
+    arrays = mesh_arrays(mesh)
+    made, plain = mesh_surface(mesh), mesh_surface(cube())
+    assert len(made.positions) == 24 and len(plain.positions) == 8 and plain.colors is None
+    np.testing.assert_array_equal(made.positions[made.triangles], plain.positions[plain.triangles])
+    np.testing.assert_array_equal(made.normals[made.triangles], plain.normals[plain.triangles])
+    blue = (made.colors == (0, 0, 255, 255)).all(axis=1)
+    assert np.flatnonzero(blue).tolist() == np.flatnonzero(arrays.corner_face == 2).tolist()
+    assert (made.colors[~blue] == 0).all()
 
 
 # -- degenerate meshes: decided, and never a failure -----------------------------------

@@ -121,6 +121,34 @@ def test_patches_cover_every_object_at_the_density_asked():
     assert np.abs(cube_part).max() <= 1.0 + 1e-6                 # inside the cube (size 2)
 
 
+def test_the_preview_carries_the_faces_colours_of_the_objects_that_have_some():
+    colored = shapes.cube()
+    colored.set_face_color(int(colored.face_ids()[1]), (1.0, 0.0, 0.0))
+    objects = _objects(colored, shapes.torus(6, 4))              # 24 + 96 corners
+    made = preview.make_preview(preview.PreviewRequest(objects, preview.PreviewSettings(
+        density=2)))
+    colors = made.surface.colors
+    assert colors is not None and colors.shape == (120 * 9, 4) and not colors.flags.writeable
+    red = (colors == (255, 0, 0, 255)).all(axis=1)
+    assert red.sum() == 4 * 9 and not colors[~red].any()   # face 1's four patches; none else
+    assert red[:24 * 9].sum() == 4 * 9                      # in the cube's part
+    plain = preview.make_preview(preview.PreviewRequest(_objects(shapes.cube(), shapes.torus(
+        6, 4)), preview.PreviewSettings(density=2)))
+    assert plain.surface.colors is None
+
+
+def test_the_catmull_clark_preview_keeps_the_faces_colours():
+    colored = shapes.cube()
+    colored.set_face_color(int(colored.face_ids()[1]), (0.0, 0.0, 1.0))
+    made = preview.make_preview(preview.PreviewRequest(
+        _objects(colored), preview.PreviewSettings(mode=preview.CATMULL_CLARK, levels=2)))
+    assert made.description == "Catmull-Clark, 2 levels"
+    colors = made.surface.colors
+    assert colors is not None and len(colors) == 96 * 4    # a point per corner of 96 quads
+    blue = (colors[made.surface.triangles] == (0, 0, 255, 255)).all(axis=(1, 2))
+    assert blue.sum() == 16 * 2                             # face 1's 16 quads, 2 triangles each
+
+
 def test_over_the_budget_the_density_drops_first():
     objects = _objects(shapes.cube())
     made = preview.make_preview(preview.PreviewRequest(objects, preview.PreviewSettings(
