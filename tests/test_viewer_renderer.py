@@ -1269,3 +1269,95 @@ def test_the_quick_picture_of_a_preview_is_its_surface_alone(
     # turned by the side seen instead of by the flat normal
     differ = np.abs(quick - surface).max(axis=2) > 2
     assert differ.mean() < 0.01 and _mask(quick).sum() == _mask(surface).sum()
+
+
+def _cube_colored(faces: dict[int, tuple[float, float, float]]):  # type: ignore[no-untyped-def]
+    mesh = from_polygons(CUBE_POSITIONS, CUBE_FACES)
+    for face, color in faces.items():
+        mesh.set_face_color(face, color)
+    return mesh_arrays(mesh)
+
+
+FRONT, BACK = 4, 2  # the cube's faces at z = +1 (toward a camera on +z) and z = -1
+
+
+@pytest.mark.parametrize("settings", [
+    {}, {"budget": 30}, {"mode": "catmull-clark"}],
+    ids=["patches", "vertex points", "catmull-clark"])
+def test_the_preview_draws_each_face_s_patches_in_its_colour(offscreen: Offscreen,
+                                                             settings: dict) -> None:
+    from livemod.runner.preview import PreviewRequest, PreviewSettings, make_preview
+
+    def picture(arrays, **style: object) -> np.ndarray:  # type: ignore[no-untyped-def]
+        made = make_preview(PreviewRequest((arrays,), PreviewSettings(**settings)))
+        offscreen.renderer.set_mesh(arrays, made)
+        return offscreen.render(camera, Style(preview=True, edges=False, **style))
+
+    plain_arrays = _cube_colored({})
+    # from +z a little up and right: the front face in the middle, two sides beside it
+    camera = framed_camera(plain_arrays, elevation=15.0, yaw=15.0, ortho=True)
+    plain = picture(plain_arrays)
+    red = picture(_cube_colored({FRONT: (1.0, 0.0, 0.0)}))
+    changed = (red != plain).any(axis=2)
+    middle = (slice(SIZE[1] // 2 - 8, SIZE[1] // 2 + 8), slice(SIZE[0] // 2 - 8, SIZE[0] // 2 + 8))
+    assert changed[middle].all()                          # the front face's patches...
+    assert (red[changed][:, 1:] == 0).all() and (red[changed][:, 0] > 60).all()  # ...lit red
+    assert changed.sum() < 0.9 * _mask(plain).sum()       # the side faces' stay as they were
+    centre = plain[SIZE[1] // 2, SIZE[0] // 2].astype(int)
+    assert centre[2] > centre[0]                          # (the preview's blue)
+    # a coloured face out of sight changes nothing: the others keep the preview's colour
+    assert np.array_equal(picture(_cube_colored({BACK: (1.0, 0.0, 0.0)})), plain)
+    flat = picture(_cube_colored({FRONT: (1.0, 0.0, 0.0)}), colors=False)   # K
+    assert np.array_equal(flat, plain)
+
+
+@pytest.mark.parametrize("preview", [False, True], ids=["faces", "preview"])
+def test_the_other_objects_show_their_own_colours_muted(offscreen: Offscreen,
+                                                        preview: bool) -> None:
+    from livemod.runner.preview import PreviewRequest, make_preview
+
+    current = _cube_colored({})
+    green = {face: (0.0, 1.0, 0.0) for face in range(6)}
+    other = dataclasses.replace(_cube_colored(green), positions=np.asarray(CUBE_POSITIONS)
+                                + [3.0, 0.0, 0.0])
+    made = make_preview(PreviewRequest((current, other)))
+    offscreen.renderer.set_mesh(current, made, other)
+    camera = framed_camera(concatenate_arrays([current, other]), elevation=0.0, yaw=0.0)
+    right = slice(SIZE[0] // 2 + 8, SIZE[0])
+
+    def shown(colors: bool) -> np.ndarray:
+        picture = offscreen.render(camera, Style(preview=preview, edges=False, colors=colors))
+        return picture[:, right][_mask(picture)[:, right]].astype(int)
+
+    tinted, flat = shown(True), shown(False)
+    assert len(tinted) > 100
+    # green mixed 60 % toward light grey (0.46, 0.86, 0.46): green, red and blue alike
+    assert (tinted[:, 1] > 1.5 * tinted[:, 0]).all() and (tinted[:, 2] <= tinted[:, 0]).all()
+    assert (tinted[:, 0] > 0.6 * tinted[:, 1] * 0.46 / 0.86).all()  # muted, not pure green
+    assert (flat[:, 0] > flat[:, 2]).all() and (flat[:, 0] > flat[:, 1]).all()  # K: warm
+
+
+def test_a_label_beyond_the_section_is_not_drawn_while_one_in_front_is(
+        offscreen: Offscreen) -> None:
+    arrays = mesh_arrays(from_polygons(CUBE_POSITIONS, CUBE_FACES))
+    offscreen.renderer.set_mesh(arrays)
+    # from +z: the vertices at x = -1 on the left of the square, those at x = +1 on its right
+    camera = framed_camera(arrays, elevation=0.0, yaw=0.0, ortho=True)
+    view = camera.view_projection(SIZE[0] / SIZE[1])
+    left, right = (((view @ [x, 0.0, 0.0, 1.0])[0] * 0.5 + 0.5) * SIZE[0] for x in (-1.0, 1.0))
+
+    def labelled_columns(section) -> np.ndarray:  # type: ignore[no-untyped-def]
+        """Columns where the vertex labels changed the picture cut at ``section``."""
+        bare = offscreen.render(camera, Style(edges=False, section=section))
+        labelled = offscreen.render(camera, Style(edges=False, section=section,
+                                                  labels=frozenset({"vertices"})))
+        return np.flatnonzero((bare != labelled).any(axis=2).any(axis=0))
+
+    def near(columns: np.ndarray, at: float) -> bool:
+        return bool((np.abs(columns - at) < 12).any())
+
+    whole = labelled_columns(None)
+    assert near(whole, left) and near(whole, right)
+    cut = labelled_columns((0, 0.0))                        # x <= 0 is kept
+    assert near(cut, left) and not near(cut, right)
+    assert cut.max() < SIZE[0] / 2                          # nothing right of the plane
