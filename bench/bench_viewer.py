@@ -1,6 +1,6 @@
 """Viewer and rendering benchmarks (plain python; prints medians of several runs).
 
-    python bench/bench_viewer.py [--quick | --preview]
+    python bench/bench_viewer.py [--quick | --preview [--colors]]
 
 1. Upload of a 1,000,000-face mesh (a 1000x1000 quad torus) to GPU buffers over
    EGL: the numpy part (:func:`build_geometry`) and the whole ``set_mesh``
@@ -26,6 +26,9 @@ older tree too, given by PYTHONPATH, for figures side by side):
    labels on, and the longest frame meanwhile (targets 1.0 s and 100 ms).
 7. The patches evaluated by numpy against GL 4.5 tessellation shaders on llvmpipe
    (this tree only).
+
+``--preview --colors`` takes figures 4 and 5 of tori with every other face
+coloured (the preview drawn in the faces' colours).
 """
 
 from __future__ import annotations
@@ -142,6 +145,18 @@ def bench_frames_during_run(seconds: float, rate: float | None = None) -> None:
 # had, drawn the way it drew it.
 
 PREVIEW_SIZE = (1280, 800)
+COLORED = [False]  # --colors: the preview's tori have every other face coloured
+
+
+def _preview_torus(size: int):  # noqa: ANN202
+    """The arrays of a ``size`` x ``size`` torus, every other face coloured with
+    ``--colors``."""
+    mesh = torus(size, size)
+    if COLORED[0]:
+        from livemod.dlfl.colors import set_face_colors
+
+        set_face_colors(mesh, [int(f) for f in mesh.face_ids()[::2]], (0.2, 0.5, 0.9))
+    return mesh_arrays(mesh)
 
 
 def _has_patches() -> bool:
@@ -168,7 +183,7 @@ def bench_preview_first_frame(size: int, runs: int, samples: int) -> None:
     """From a result's arrays to the first frame drawn with its smooth preview, at
     1280x800 (the preview made, uploaded and drawn; what the window does off and on
     its thread, here in one)."""
-    arrays = mesh_arrays(torus(size, size))
+    arrays = _preview_torus(size)
     offscreen = Offscreen(PREVIEW_SIZE, samples=samples)
     offscreen.renderer.set_mesh(arrays)
     camera = framed_camera(arrays, elevation=25.0, aspect=1.6)
@@ -201,7 +216,7 @@ def bench_preview_frames(size: int, frames: int, samples: int, quick: bool = Fal
     view moves; an unchanging view is a kept frame, copied)."""
     if quick and not _quick_pictures():
         return
-    arrays = mesh_arrays(torus(size, size))
+    arrays = _preview_torus(size)
     offscreen = Offscreen(PREVIEW_SIZE, samples=samples)
     made = _make_preview(arrays)
     offscreen.renderer.set_mesh(arrays, made)
@@ -460,9 +475,17 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--quick", action="store_true", help="small sizes, one run")
     parser.add_argument("--preview", action="store_true",
                         help="only the figures of the smoothed preview and of a big swap")
+    parser.add_argument("--colors", action="store_true",
+                        help="with --preview: the preview's figures of coloured tori only")
     args = parser.parse_args(argv)
     print("load average before: {:.2f} {:.2f} {:.2f}".format(*os.getloadavg()))
-    if args.preview:
+    if args.preview and args.colors:
+        COLORED[0] = True
+        bench_preview_first_frame(100, 3, 0)
+        bench_preview_first_frame(316, 3, 0)
+        bench_preview_frames(316, 9, 0)
+        bench_preview_frames(316, 9, 0, quick=True)
+    elif args.preview:
         bench_preview_first_frame(100, 3, 0)
         bench_preview_first_frame(316, 3, 0)
         for samples in (0, 4):
