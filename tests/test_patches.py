@@ -453,12 +453,13 @@ def test_each_patch_takes_the_colour_of_its_corners_face() -> None:
     np.testing.assert_array_equal(made.triangles, plain.triangles)
 
 
-def test_a_coloured_vertex_surface_gives_each_corner_a_point_of_its_own() -> None:
+def test_a_coloured_vertex_surface_shares_points_between_faces_of_one_colour() -> None:
     mesh = _colored(shape_torus(8, 6), {5: (0.0, 1.0, 0.0)})
     arrays = mesh_arrays(mesh)
     patches = CornerPatches(mesh)
     made, plain = patches.vertex_surface(), CornerPatches(shape_torus(8, 6)).vertex_surface()
-    assert len(made.positions) == 192 and len(plain.positions) == 48   # corners, vertices
+    # a point per vertex, and one more for each of face 5's four (green beside none)
+    assert len(made.positions) == 52 and len(plain.positions) == 48
     assert made.colors is not None and plain.colors is None
     np.testing.assert_array_equal(made.positions[made.triangles], plain.positions[plain.triangles])
     np.testing.assert_array_equal(made.normals[made.triangles], plain.normals[plain.triangles])
@@ -469,16 +470,39 @@ def test_a_coloured_vertex_surface_gives_each_corner_a_point_of_its_own() -> Non
     assert np.flatnonzero(green[:, 0]).tolist() == np.flatnonzero(fan_face == 5).tolist()
 
 
-def test_a_coloured_mesh_surface_gives_each_corner_a_point_of_its_own() -> None:
-    mesh = _colored(cube(), {2: (0.0, 0.0, 1.0)})
+def test_faces_of_as_many_colours_as_faces_share_no_point() -> None:
+    mesh = _colored(shape_torus(8, 6), {face: (face / 47, 0.5, 1 - face / 47)
+                                        for face in range(48)})
+    arrays = mesh_arrays(mesh)
+    made = CornerPatches(mesh).vertex_surface()
+    assert len(made.positions) == 192                              # every corner its own
+    fan_face = arrays.fan_triangles()[1]
+    want = np.repeat(_face_bytes(arrays)[fan_face][:, None], 3, axis=1)
+    np.testing.assert_array_equal(made.colors[made.triangles], want)
+
+
+def _face_bytes(arrays) -> np.ndarray:  # type: ignore[no-untyped-def]
+    rgba = np.zeros((len(arrays.face_ids), 4), np.uint8)
+    rgba[:, :3] = np.rint(arrays.face_colors * 255)
+    rgba[:, 3] = 255
+    return rgba
+
+
+def test_a_coloured_mesh_surface_shares_points_between_faces_of_one_colour() -> None:
+    mesh = _colored(cube(), {2: (0.0, 0.0, 1.0), 4: (0.0, 0.0, 1.0), 1: (1.0, 0.0, 0.0)})
     arrays = mesh_arrays(mesh)
     made, plain = mesh_surface(mesh), mesh_surface(cube())
-    assert len(made.positions) == 24 and len(plain.positions) == 8 and plain.colors is None
+    assert plain.colors is None and len(plain.positions) == 8
+    # each vertex once per colour of its three faces: a y side (blue), an x side (none)
+    # and the bottom (none) or the top (red): 2 points at z = -1, 3 at z = +1
+    assert len(made.positions) == 4 * 2 + 4 * 3
     np.testing.assert_array_equal(made.positions[made.triangles], plain.positions[plain.triangles])
     np.testing.assert_array_equal(made.normals[made.triangles], plain.normals[plain.triangles])
-    blue = (made.colors == (0, 0, 255, 255)).all(axis=1)
-    assert np.flatnonzero(blue).tolist() == np.flatnonzero(arrays.corner_face == 2).tolist()
-    assert (made.colors[~blue] == 0).all()
+    corner_colors = made.colors[made.triangles]                     # (T, 3, 4)
+    fan_face = arrays.fan_triangles()[1]
+    want = np.zeros((6, 4), np.uint8)
+    want[[2, 4]], want[1] = (0, 0, 255, 255), (255, 0, 0, 255)
+    np.testing.assert_array_equal(corner_colors, np.repeat(want[fan_face][:, None], 3, axis=1))
 
 
 # -- degenerate meshes: decided, and never a failure -----------------------------------

@@ -144,7 +144,9 @@ def test_the_catmull_clark_preview_keeps_the_faces_colours():
         _objects(colored), preview.PreviewSettings(mode=preview.CATMULL_CLARK, levels=2)))
     assert made.description == "Catmull-Clark, 2 levels"
     colors = made.surface.colors
-    assert colors is not None and len(colors) == 96 * 4    # a point per corner of 96 quads
+    # a point per vertex of the 96 quads, and a blue one more on each of the 16 around
+    # face 1's 4 x 4 quads (beside faces without colour)
+    assert colors is not None and len(colors) == 98 + 16
     blue = (colors[made.surface.triangles] == (0, 0, 255, 255)).all(axis=(1, 2))
     assert blue.sum() == 16 * 2                             # face 1's 16 quads, 2 triangles each
 

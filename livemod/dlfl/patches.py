@@ -160,9 +160,9 @@ class Tessellation:
             that is not made of patches, see :func:`mesh_surface`).
         colors: ``(N, 4)`` uint8 RGBA of the face each point belongs to (see
             :func:`~livemod.dlfl.colors.rgba_bytes`: all zero where the face has no
-            colour), or None when no face of the mesh has one. A coloured surface
-            shares no point between faces, so that its triangles take their face's
-            colour from any of their corners.
+            colour), or None when no face of the mesh has one. Faces of a
+            coloured surface share a point only when they have one colour, so
+            that a triangle's three corners carry its face's colour.
     """
 
     positions: np.ndarray
@@ -181,19 +181,22 @@ class Tessellation:
 def mesh_surface(mesh: Mesh | MeshArrays) -> Tessellation:
     """A mesh's own faces as a smooth surface: the fans of
     :meth:`MeshArrays.fan_triangles`, with the normalised sum of the face normals
-    around each vertex (how a subdivided preview is drawn; ``density`` 0). A mesh
-    with face colours gets a point per corner (its vertex's position and normal)
-    and each point its face's colour; without, a point per vertex."""
+    around each vertex (how a subdivided preview is drawn; ``density`` 0). A point
+    per vertex; with face colours, a point per vertex and colour of the faces
+    around it (see :attr:`Tessellation.colors`)."""
     a = mesh if isinstance(mesh, MeshArrays) else mesh_arrays(mesh)
     corners, _ = a.fan_triangles()
     normals = vertex_normals(a).astype(np.float32)
+    triangles = np.take(a.corner_vertex, corners)
     rgba = rgba_bytes(a.face_colors)
     if rgba is None:
         return Tessellation(a.positions.astype(np.float32), normals,
-                            np.take(a.corner_vertex, corners).astype(np.uint32), 0)
-    return Tessellation(np.take(a.positions, a.corner_vertex, axis=0).astype(np.float32),
-                        np.take(normals, a.corner_vertex, axis=0), corners.astype(np.uint32), 0,
-                        np.take(rgba, a.corner_face, axis=0))
+                            triangles.astype(np.uint32), 0)
+    used, colors, index = _points_by_color(triangles.ravel(), np.take(a.corner_face, corners),
+                                           rgba, len(a.positions))
+    return Tessellation(np.take(a.positions, used, axis=0).astype(np.float32),
+                        np.take(normals, used, axis=0), index.reshape(-1, 3).astype(np.uint32),
+                        0, colors)
 
 
 def patch_control_points(mesh: Mesh | MeshArrays,
@@ -667,27 +670,26 @@ class CornerPatches:
         faces when None; whole faces, as fans) with their corners at the patches'
         vertex points, which lie on the surface, and the patches' normals there.
         About a quarter of the triangles of density 1 (``density`` 0). Faces share
-        their points, but for a mesh with face colours, whose every corner gets a
-        point of its own (with its face's colour)."""
+        their points (faces of one colour only, when the mesh has colours)."""
         a = self.arrays
         shown = np.zeros(len(a.face_ids), dtype=bool)
         shown[np.take(a.corner_face, self._drawn(corners))] = True
         fan, face = a.fan_triangles()
         fans = fan[shown[face]]                                      # (T, 3) corners
-        colored = a.face_colors is not None
-        if not colored:
-            fans = np.take(self.ring_of, fans)                       # (T, 3) rings
-        used, index = _compact(fans.ravel(), len(a.corner_vertex if colored
-                                                 else self.vertex_point[0]))
-        rings = np.take(self.ring_of, used) if colored else used
+        rings = np.take(self.ring_of, fans.ravel())
+        rgba, colors = rgba_bytes(a.face_colors), None
+        if rgba is None:
+            used, index = _compact(rings, len(self.vertex_point[0]))
+        else:
+            used, colors, index = _points_by_color(rings, np.take(a.corner_face, fans), rgba,
+                                                   len(self.vertex_point[0]))
         with np.errstate(invalid="ignore", over="ignore"):
-            points = self.snapped_vertex[:, rings].T * self.scale + self.center
+            points = self.snapped_vertex[:, used].T * self.scale + self.center
         finite = np.isfinite(points).all(axis=1)
         keep = finite[index.reshape(-1, 3)].all(axis=1)
         return Tessellation(points.astype(np.float32),
-                            self.vertex_normal[:, rings].T.astype(np.float32),
-                            index.reshape(-1, 3)[keep].astype(np.uint32), 0,
-                            self._point_colors(used, 1) if colored else None)
+                            self.vertex_normal[:, used].T.astype(np.float32),
+                            index.reshape(-1, 3)[keep].astype(np.uint32), 0, colors)
 
     def _columns(self, corners: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """``(16, 3, k)`` control points (in the mesh's coordinates) and unit
@@ -735,6 +737,31 @@ def _compact(values: np.ndarray, count: int) -> tuple[np.ndarray, np.ndarray]:
     place = np.zeros(count, dtype=np.int64)
     place[used] = np.arange(len(used))
     return used, place[values]
+
+
+def _points_by_color(points: np.ndarray, faces: np.ndarray, rgba: np.ndarray,
+                     count: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The distinct pairs of a point and a face colour among the corners of a
+    surface, so that faces of one colour share their points and faces of two do not.
+
+    Args:
+        points: ``(n,)`` int point of each corner (below ``count``).
+        faces: ``(n,)`` int (any shape of n elements) face of each corner.
+        rgba: ``(F, 4)`` uint8 colour of each face (see :func:`rgba_bytes`).
+
+    Returns:
+        ``(used (k,) points, colors (k, 4) uint8, index (n,))``: each pair's point
+        and colour, in the order of the pairs' keys, and the pair of each corner.
+    """
+    palette, shade = np.unique(rgba.view("<u4").reshape(-1), return_inverse=True)
+    shades = len(palette)
+    keys = points.astype(np.int64) * shades + np.take(shade.reshape(-1), faces.reshape(-1))
+    if count * shades <= 4 * len(keys) + count:  # few colours: linear time
+        pairs, index = _compact(keys, count * shades)
+    else:
+        pairs, index = np.unique(keys, return_inverse=True)
+    colors = palette[pairs % shades].view(np.uint8).reshape(-1, 4)
+    return pairs // shades, colors, index.reshape(-1)
 
 
 def _frame(positions: np.ndarray) -> tuple[np.ndarray, float]:
