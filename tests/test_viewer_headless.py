@@ -114,10 +114,12 @@ def test_the_colour_mode_draws_the_faces_own_colours(offscreen, tmp_path):
     assert _reddish(off) == 0
 
 
-def test_render_draws_the_colours_unless_told_not_to(tmp_path):
+@pytest.mark.parametrize("preview", [[], ["--preview"]], ids=["faces", "preview"])
+def test_render_draws_the_colours_unless_told_not_to(tmp_path, preview):
     script = tmp_path / "s.py"
     script.write_text("from livemod.dlfl import *\nload('cube')\nsetFaceColor(faces(), (1, 0, 0))\n")
-    assert main(["render", str(script), "-o", str(tmp_path / "a.png"), "--size", "160x120"]) == 0
+    assert main(["render", str(script), "-o", str(tmp_path / "a.png"), "--size", "160x120",
+                 *preview]) == 0
     assert main(["render", str(script), "-o", str(tmp_path / "b.png"), "--size", "160x120",
-                 "--no-colors"]) == 0
+                 "--no-colors", *preview]) == 0
     assert _reddish(tmp_path / "a.png") > 1000 and _reddish(tmp_path / "b.png") == 0
