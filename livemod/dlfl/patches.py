@@ -745,9 +745,10 @@ def _points_by_color(points: np.ndarray, faces: np.ndarray, rgba: np.ndarray,
     surface, so that faces of one colour share their points and faces of two do not.
 
     Args:
-        points: ``(n,)`` int point of each corner (below ``count``).
-        faces: ``(n,)`` int (any shape of n elements) face of each corner.
+        points: ``(n,)`` int point of each corner, each below ``count``.
+        faces: int face of each corner (``n`` of them, in any shape).
         rgba: ``(F, 4)`` uint8 colour of each face (see :func:`rgba_bytes`).
+        count: how many points there are.
 
     Returns:
         ``(used (k,) points, colors (k, 4) uint8, index (n,))``: each pair's point
