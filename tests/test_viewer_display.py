@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import threading
 import time
 from types import SimpleNamespace
 
@@ -108,6 +109,7 @@ def test_a_big_mesh_is_prepared_off_the_thread_and_uploaded_over_frames(
         big = mesh_arrays(torus(30, 20))               # 2,400 corners: over frames
         display.show(_result(big))
         assert display.content[0] is big and display.pending and renderer.arrays is small
+        assert "livemod-buffers" in {thread.name for thread in threading.enumerate()}
         frames, deadline = 0, time.monotonic() + 30
         while display.pending and time.monotonic() < deadline:
             assert renderer.arrays is small             # the old mesh until the new is whole

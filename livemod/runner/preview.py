@@ -338,15 +338,16 @@ class PreviewWorker(Generic[Key, Job, Made]):
         is_current: tells whether a key is still worth a preview (a newer
             request makes older ones pointless; they are dropped).
         compute: makes a preview of a job (None: no preview).
+        name: the thread's name, which says in a thread dump what it works on.
     """
 
     def __init__(self, post: Callable[[Key, Made], None], is_current: Callable[[Key], bool],
-                 compute: Callable[[Job], Made | None]) -> None:
+                 compute: Callable[[Job], Made | None], name: str = "livemod-preview") -> None:
         self._post = post
         self._is_current = is_current
         self._compute = compute
         self._requests: queue.Queue[tuple[Key, Job] | None] = queue.Queue()
-        self._thread = threading.Thread(target=self._loop, name="livemod-preview", daemon=True)
+        self._thread = threading.Thread(target=self._loop, name=name, daemon=True)
         self._thread.start()
 
     def request(self, key: Key, job: Job) -> None:
@@ -397,15 +398,17 @@ class NewestJob(Generic[Job, Made]):
 
     Args:
         compute: does the work of a request (None: nothing to hand back).
+        name: the name of its thread.
     """
 
-    def __init__(self, compute: Callable[[Job], Made | None]) -> None:
+    def __init__(self, compute: Callable[[Job], Made | None],
+                 name: str = "livemod-preview") -> None:
         self._lock = threading.Lock()
         self._asked = 0
         self._done: tuple[int, Made] | None = None
         self.ready = threading.Event()  # set when a result is waiting to be taken
         self._worker: PreviewWorker[int, Job, Made] = PreviewWorker(
-            self._finished, self._wanted, compute)
+            self._finished, self._wanted, compute, name)
 
     def ask(self, request: Job) -> int:
         """Do ``request``; it supersedes every earlier request (theirs will never be

@@ -64,7 +64,7 @@ class MeshDisplay:
         self._look = look
         self._screen_size = screen_size
         self._echo = echo
-        self._preparing: NewestJob[tuple, PreparedMeshes] = NewestJob(_prepare)
+        self._preparing: NewestJob[tuple, PreparedMeshes] = NewestJob(_prepare, "livemod-buffers")
         self._waiting: int | None = None             # the preparation awaited
         self._staged: MeshArrays | None = None        # uploading, to be measured once shown
         self.content: tuple[MeshArrays | None, MeshArrays | None] = (None, None)
