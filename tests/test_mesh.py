@@ -696,6 +696,46 @@ def test_a_merge_keeps_the_first_face_colour_or_else_the_second():
     checked(m2)
 
 
+def red_face_by(route: str) -> tuple[Mesh, int]:
+    """A cube whose face 0 is red, the colour come by ``route``; the mesh, the face."""
+    from livemod.dlfl import mesh_arrays
+    from livemod.dlfl.build import from_corner_arrays
+    from livemod.dlfl.subdivision import subdivide
+
+    painted = cube()
+    painted.set_face_color(0, RED)
+    if route == "set_face_color":
+        return painted, 0
+    if route == "copy":
+        return painted.copy(), 0
+    if route == "a rebuild in place":
+        subdivide(painted, "catmull-clark")  # face 0's four children are red
+        return painted, next(f for f in painted.face_ids().tolist() if painted.face_color(f))
+    a = mesh_arrays(cube())
+    colors = np.full((6, 3), np.nan, np.float32)
+    colors[0] = RED
+    return from_corner_arrays(a.positions, a.face_offsets, a.corner_vertex, a.corner_mate,
+                              face_colors=colors), 0
+
+
+@pytest.mark.parametrize("route", ["set_face_color", "copy", "a rebuild in place",
+                                   "from_corner_arrays"])
+def test_a_split_and_its_undoing_keep_colours_however_they_came(route):
+    # the operators skip colour work on a mesh that never had a colour: every
+    # way a colour arrives must tell them it has
+    m, face = red_face_by(route)  # the merge below takes the red face's colour
+    ring = m.face_corners(face)
+    e = m.insert_edge(ring[0], ring[2])
+    assert [m.face_color(f) for f in m.edge_faces(e)] == [RED, RED]
+    checked(m)
+    m.delete_edge(e)
+    handle = m.insert_edge(m.face_corner(face), m.face_corner(m.corner_face(
+        m.corner_vnext(m.face_corner(face)))))  # faces merge: a handle
+    parts = m.delete_edge(handle)  # one face on both sides: it splits again
+    assert len(parts) == 2 and [m.face_color(f) for f in parts] == [RED, RED]
+    checked(m)
+
+
 def test_new_faces_of_create_vertex_and_create_face_have_no_colour_in_reused_slots():
     m = cube()
     m.set_face_color(0, RED)

@@ -108,6 +108,16 @@ def take_color(F: Table, face_slot: int, source_slot: int) -> None:
     F.arrays["color"][face_slot] = F.arrays["color"][source_slot]
 
 
+def inherit_color(F: Table, face_slot: int, source_slot: int) -> None:
+    """Give the new face ``face_slot`` of table ``F`` the colour of ``source_slot``,
+    or none when that has none (a split's new face takes its face's colour).
+    Callers skip it while the mesh has no colours (``_colors_used``): the new
+    face's flag then is 0 already, as every other is."""
+    colored = F.colored[face_slot] = F.colored[source_slot]
+    if colored:
+        F.arrays["color"][face_slot] = F.arrays["color"][source_slot]
+
+
 # ---------------------------------------------------------------- insert_edge
 
 def copy_corner(mesh: Mesh, src: int, face: int) -> int:
@@ -140,9 +150,8 @@ def insert_cofacial(mesh: Mesh, s1: int, s2: int) -> int:
     a1, b1 = nxt[s1], nxt[s2]
     fn, e = alloc(F), alloc(E)
     F.hole[fn] = F.hole[f]
-    colored = F.colored[fn] = F.colored[f]
-    if colored:
-        F.arrays["color"][fn] = F.arrays["color"][f]
+    if mesh._colors_used:
+        inherit_color(F, fn, f)
     c1p, c2p = C.alloc_pair()
     ec0, ec1, vert = E.c0, E.c1, C.vertex
     # the copies take over the old edges of corner1 and corner2
@@ -189,7 +198,7 @@ def insert_merge(mesh: Mesh, s1: int, s2: int) -> int:
     f1, f2 = face[s1], face[s2]
     # the merged face's boundary runs along the hole's loop: the union is open
     F.hole[f1] |= F.hole[f2]
-    if F.colored[f2] and not F.colored[f1]:
+    if mesh._colors_used and F.colored[f2] and not F.colored[f1]:
         take_color(F, f1, f2)
     a, b = nxt[s1], nxt[s2]
     # a point-sphere side is never copied; a one-corner face with a loop is
@@ -263,7 +272,7 @@ def delete_merge(mesh: Mesh, s1: int, s2: int, f1: int, f2: int) -> int:
         free.append(gone)
     C._sorted_cache = None
     F.hole[f1] |= F.hole[f2]  # a face merged into a hole opens: the union is a hole
-    if F.colored[f2] and not F.colored[f1]:
+    if mesh._colors_used and F.colored[f2] and not F.colored[f1]:
         take_color(F, f1, f2)
     F.release(f2)
     return f1
@@ -298,7 +307,7 @@ def delete_merge_one_gon(mesh: Mesh, s1: int, s2: int, cleanup: bool) -> list[in
         vc[vert[s2]] = b if empty1 else a
     F.corner[f1] = head
     F.hole[f1] |= F.hole[f2]
-    if F.colored[f2] and not F.colored[f1]:
+    if mesh._colors_used and F.colored[f2] and not F.colored[f1]:
         take_color(F, f1, f2)
     C.release(s1)
     C.release(s2)
@@ -363,9 +372,8 @@ def delete_split(mesh: Mesh, s1: int, s2: int, cleanup: bool) -> list[int]:
     a, b = nxt[s1], nxt[s2]
     fn = F.alloc()
     F.hole[fn] = F.hole[f]
-    colored = F.colored[fn] = F.colored[f]
-    if colored:
-        F.arrays["color"][fn] = F.arrays["color"][f]
+    if mesh._colors_used:
+        inherit_color(F, fn, f)
     head = F.corner[f]
     head_moves = head in (s2, b)
     x = a

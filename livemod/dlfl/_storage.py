@@ -78,12 +78,19 @@ class MeshStorage:
         notes: messages about repairs made while building the mesh.
     """
 
+    # False while no face of the mesh has ever had a colour, so that every
+    # ``colored`` flag is 0 and the operators skip the colour inheritance of the
+    # faces they make (the usual mesh: the insert/delete pair pays nothing for
+    # colours). Set by the first colour; cleared only by a rebuild without any.
+    _colors_used = False
+
     def __init__(self) -> None:
         self._c = Table("corner", CORNER_SPEC)
         self._e = Table("edge", EDGE_SPEC)
         self._f = Table("face", FACE_SPEC)
         self._v = Table("vertex", VERTEX_SPEC)
         self.notes: list[str] = []
+        self._colors_used = False
 
     # ------------------------------------------------------------------ counts
 
@@ -265,6 +272,7 @@ class MeshStorage:
             return
         F.arrays["color"][slot] = rgb(color)
         F.colored[slot] = 1
+        self._colors_used = True
 
     def face_colors(self) -> np.ndarray | None:
         """``(F, 3)`` float32 colours of the faces in the order of :meth:`face_ids`,
@@ -321,6 +329,8 @@ class MeshStorage:
         mesh._e = _adopt("edge", EDGE_SPEC, eid, edges, eids)
         mesh._f = _adopt("face", FACE_SPEC, fid, faces, fids)
         mesh._v = _adopt("vertex", VERTEX_SPEC, vid, vertices, vids)
+        # left out, the colour fields are zeros: no scan of them
+        mesh._colors_used = "colored" in faces and bool(np.any(faces["colored"]))
         return mesh
 
     def copy(self) -> Self:
@@ -331,9 +341,11 @@ class MeshStorage:
         other._f = self._f.copy()
         other._v = self._v.copy()
         other.notes = list(self.notes)
+        other._colors_used = self._colors_used
         return other
 
     def replace_with(self, other: MeshStorage) -> None:
         """Take over the contents of ``other`` (used by bulk operations in place)."""
         self._c, self._e, self._f, self._v = other._c, other._e, other._f, other._v
         self.notes = other.notes
+        self._colors_used = other._colors_used

@@ -486,25 +486,25 @@ def from_corner_arrays(
     lower, upper, edge = _edge_links(mate)
     num_f = len(offsets) - 1
     hole = np.zeros(num_f, np.uint8) if face_hole is None else np.asarray(face_hole, np.uint8)
-    colored, color = face_color_fields(face_colors, num_f)
     return Mesh.from_tables(
         corners={"next": nxt, "prev": prv, "face": face, "vertex": cvert, "edge": edge},
         edges={"c0": lower, "c1": upper},
-        faces={"corner": offsets[:-1], "hole": hole, "colored": colored, "color": color},
+        faces={"corner": offsets[:-1], "hole": hole, **face_color_fields(face_colors, num_f)},
         vertices={"corner": _lowest_corners(cvert, len(positions)), "position": positions},
         first_ids=first_ids, ids=ids)
 
 
-def face_color_fields(face_colors: np.ndarray | None,
-                      num_f: int) -> tuple[np.ndarray, np.ndarray]:
+def face_color_fields(face_colors: np.ndarray | None, num_f: int) -> dict[str, np.ndarray]:
     """The face table's ``colored`` ``(F,)`` uint8 and ``color`` ``(F, 3)`` float32
-    fields for ``face_colors`` (see :func:`from_corner_arrays`); zeros, which
-    cost nothing until touched, when it is None."""
+    fields for ``face_colors`` (see :func:`from_corner_arrays`); none when it is
+    None (:meth:`Mesh.from_tables` then fills zeros, and knows without reading
+    them that no face has a colour)."""
     if face_colors is None:
-        return np.zeros(num_f, np.uint8), np.zeros((num_f, 3), np.float32)
+        return {}
     color = np.asarray(face_colors, dtype=np.float32).reshape(num_f, 3)
     colored = ~np.isnan(color[:, 0])
-    return colored.view(np.uint8), np.where(colored[:, None], color, np.float32(0))
+    return {"colored": colored.view(np.uint8),
+            "color": np.where(colored[:, None], color, np.float32(0))}
 
 
 def _check_finite_result(positions: np.ndarray) -> None:
