@@ -197,7 +197,8 @@ def insert_merge(mesh: Mesh, s1: int, s2: int) -> int:
     nxt, prv, face = C.next, C.prev, C.face
     f1, f2 = face[s1], face[s2]
     # the merged face's boundary runs along the hole's loop: the union is open
-    F.hole[f1] |= F.hole[f2]
+    if F.hole[f2]:
+        F.hole[f1] = 1
     if mesh._colors_used and F.colored[f2] and not F.colored[f1]:
         take_color(F, f1, f2)
     a, b = nxt[s1], nxt[s2]
@@ -271,7 +272,8 @@ def delete_merge(mesh: Mesh, s1: int, s2: int, f1: int, f2: int) -> int:
         cidv[gone] = -1
         free.append(gone)
     C._sorted_cache = None
-    F.hole[f1] |= F.hole[f2]  # a face merged into a hole opens: the union is a hole
+    if F.hole[f2]:  # a face merged into a hole opens: the union is a hole
+        F.hole[f1] = 1
     if mesh._colors_used and F.colored[f2] and not F.colored[f1]:
         take_color(F, f1, f2)
     F.release(f2)
@@ -306,7 +308,8 @@ def delete_merge_one_gon(mesh: Mesh, s1: int, s2: int, cleanup: bool) -> list[in
     if vc[vert[s2]] == s2:
         vc[vert[s2]] = b if empty1 else a
     F.corner[f1] = head
-    F.hole[f1] |= F.hole[f2]
+    if F.hole[f2]:
+        F.hole[f1] = 1
     if mesh._colors_used and F.colored[f2] and not F.colored[f1]:
         take_color(F, f1, f2)
     C.release(s1)
