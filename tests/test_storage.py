@@ -177,6 +177,24 @@ def test_copies_carry_the_colours_and_stay_apart():
     assert m.face_color(3) == RED
 
 
+def test_colour_fields_come_with_the_first_colour():
+    m = cube()
+    before = m.copy()
+    assert "colored" not in m._f.arrays  # no colour: 13 bytes a face neither stored nor copied
+    m.set_face_color(0, None)
+    assert_refused(m, lambda mesh: mesh.set_face_color(1, (2, 0, 0)), "colour must be",
+                   InvalidArgumentError)
+    assert "colored" not in m._f.arrays and m.face_colors() is None
+    m.set_face_color(1, RED)
+    assert sorted(m._f.arrays) == ["color", "colored", "corner", "hole"]
+    spheres = [m.create_vertex((float(i), 0.0, 0.0)) for i in range(40)]  # the table grows
+    assert m.face_color(1) == RED
+    assert [m.face_color(f) for f in m.face_ids().tolist() if f != 1] == [None] * 45
+    validate(m)
+    assert before.face_colors() is None and "colored" not in before._f.arrays
+    assert len(spheres) == 40
+
+
 # -- from_tables ---------------------------------------------------------------
 
 
@@ -227,5 +245,10 @@ def test_from_tables_refuses_missing_fields_and_ragged_tables():
     with pytest.raises(InvalidArgumentError, match=r"^the edge table needs the fields \['c0', 'c1'\], "
                                         r"got \['c0'\]$"):
         Mesh.from_tables(**tables(edges={"c0": np.zeros(0)}))
+    with pytest.raises(InvalidArgumentError, match=r"^the face table needs the fields "
+                       r"\['corner', 'hole'\] and all or none of \['color', 'colored'\], "
+                       r"got \['colored', 'corner', 'hole'\]$"):
+        Mesh.from_tables(**tables(faces={"corner": np.zeros(0), "hole": np.zeros(0),
+                                         "colored": np.zeros(0)}))
     with pytest.raises(InvalidArgumentError, match="^the face table's fields differ in length: "):
         Mesh.from_tables(**tables(faces={"corner": np.zeros(2), "hole": np.zeros(1)}))

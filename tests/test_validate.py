@@ -137,6 +137,7 @@ def test_a_face_colour_out_of_range_or_a_bad_flag_is_reported():
     with pytest.raises(InvalidMeshError, match=r"face 2 has colour flag 1 and colour \[0.5, nan"):
         validate(m)
     m = cube()
+    m.set_face_color(1, (0.5, 0.5, 0.5))  # the face table has colour fields from now on
     m._f.colored[m._f.slot(4)] = 7
     with pytest.raises(InvalidMeshError, match="face 4 has colour flag 7"):
         validate(m)

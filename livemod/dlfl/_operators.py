@@ -76,7 +76,8 @@ def add_point_sphere(mesh: Mesh, xyz: tuple[float, float, float]) -> int:
     C.edge[c] = NO_EDGE
     F.corner[f] = c
     F.hole[f] = 0
-    F.colored[f] = 0
+    if mesh._colors_used:
+        F.colored[f] = 0
     V.corner[v] = c
     V.arrays["position"][v] = xyz
     return V.idv[v]
@@ -581,7 +582,8 @@ def link_ring(mesh: Mesh, corners: list[int], face_slot: int, verts: list[int]) 
         C.vertex[c] = verts[i]
     mesh._f.corner[face_slot] = corners[0]
     mesh._f.hole[face_slot] = 0
-    mesh._f.colored[face_slot] = 0
+    if mesh._colors_used:
+        mesh._f.colored[face_slot] = 0
 
 
 def reverse_rings(mesh: Mesh, faces: Iterable[int] | None) -> None:

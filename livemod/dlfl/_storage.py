@@ -4,7 +4,8 @@
 place that defines the tables' layout: a
 :class:`~livemod.dlfl._table.Table` per kind (``_c`` corners, ``_e`` edges,
 ``_f`` faces, ``_v`` vertices) with the fields of :data:`CORNER_SPEC`,
-:data:`EDGE_SPEC`, :data:`FACE_SPEC` and :data:`VERTEX_SPEC`. It holds what reads
+:data:`EDGE_SPEC`, :data:`FACE_SPEC` (and :data:`COLOR_SPEC` once a face has a
+colour) and :data:`VERTEX_SPEC`. It holds what reads
 or writes one kind's rows alone: creating and adopting tables
 (:meth:`MeshStorage.from_tables`, :meth:`~MeshStorage.copy`), counts, live ids,
 and the attributes of an element that are not links (a vertex's position, a
@@ -41,29 +42,27 @@ CORNER_SPEC: FieldSpec = {
     "edge": (np.int32, ()),
 }
 EDGE_SPEC: FieldSpec = {"c0": (np.int32, ()), "c1": (np.int32, ())}
-# a face's colour is ``color`` when ``colored`` is 1; 0 means the default modelling
-# colour (zeros, the value of every fresh slot, mean "no colour")
-FACE_SPEC: FieldSpec = {"corner": (np.int32, ()), "hole": (np.uint8, ()),
-                        "colored": (np.uint8, ()), "color": (np.float32, (3,))}
+FACE_SPEC: FieldSpec = {"corner": (np.int32, ()), "hole": (np.uint8, ())}
 VERTEX_SPEC: FieldSpec = {"corner": (np.int32, ()), "position": (np.float64, (3,))}
-
-# fields a bulk builder may leave out: zeros (no colour) are what they hold then
-OPTIONAL_FIELDS = frozenset({"colored", "color"})
+# a face's colour is ``color`` when ``colored`` is 1; 0 means the default modelling
+# colour. The face table has these fields only once a face of the mesh has had a
+# colour (``MeshStorage._colors_used``): a mesh without colours neither stores
+# nor zeroes nor copies them (13 bytes a face).
+COLOR_SPEC: FieldSpec = {"colored": (np.uint8, ()), "color": (np.float32, (3,))}
 
 
 def _adopt(kind: str, spec: FieldSpec, first_id: int, fields: dict[str, np.ndarray],
-           ids: np.ndarray | None) -> Table:
+           ids: np.ndarray | None, optional: FieldSpec | None = None) -> Table:
     """:meth:`Table.from_arrays` of ``fields`` (and ``ids``), once they are checked
-    to be the fields of ``spec``, all of one length (see :meth:`MeshStorage.from_tables`);
-    the :data:`OPTIONAL_FIELDS` left out are zeros."""
-    missing = [name for name in spec.keys() - fields.keys() if name in OPTIONAL_FIELDS]
-    if missing and fields:
-        rows = len(next(iter(fields.values())))
-        fields = fields | {name: np.zeros((rows, *spec[name][1]), spec[name][0])
-                           for name in missing}
+    to be the fields of ``spec``, with all of ``optional`` or none of them, all of
+    one length (see :meth:`MeshStorage.from_tables`)."""
+    needed = spec
+    if optional and optional.keys() & fields.keys():
+        spec = spec | optional
     if fields.keys() != spec.keys():
+        extra = f" and all or none of {sorted(optional)}" if optional else ""
         raise InvalidArgumentError(
-            f"the {kind} table needs the fields {sorted(spec)}, got {sorted(fields)}")
+            f"the {kind} table needs the fields {sorted(needed)}{extra}, got {sorted(fields)}")
     lengths = {name: len(array) for name, array in fields.items()}
     if len(set(lengths.values())) > 1:
         raise InvalidArgumentError(f"the {kind} table's fields differ in length: {lengths}")
@@ -78,10 +77,11 @@ class MeshStorage:
         notes: messages about repairs made while building the mesh.
     """
 
-    # False while no face of the mesh has ever had a colour, so that every
-    # ``colored`` flag is 0 and the operators skip the colour inheritance of the
-    # faces they make (the usual mesh: the insert/delete pair pays nothing for
-    # colours). Set by the first colour; cleared only by a rebuild without any.
+    # True when the face table has the fields of COLOR_SPEC, added by the mesh's
+    # first colour (or given to from_tables); while False, no face has a colour
+    # and the operators skip the colour inheritance of the faces they make (the
+    # usual mesh: the insert/delete pair pays nothing for colours). Cleared only
+    # by a rebuild without colours.
     _colors_used = False
 
     def __init__(self) -> None:
@@ -247,7 +247,7 @@ class MeshStorage:
         """
         F = self._f
         slot = F.slot(face)
-        if not F.colored[slot]:
+        if not (self._colors_used and F.colored[slot]):
             return None
         # the shortest decimal of each float32: (0.2, ...) set reads back as 0.2
         red, green, blue = (float(str(v)) for v in F.arrays["color"][slot])
@@ -268,18 +268,22 @@ class MeshStorage:
         F = self._f
         slot = F.slot(face)
         if color is None:
-            F.colored[slot] = 0
+            if self._colors_used:
+                F.colored[slot] = 0
             return
-        F.arrays["color"][slot] = rgb(color)
+        value = rgb(color)  # checked before the fields are added: a refusal changes nothing
+        if not self._colors_used:
+            F.add_fields(COLOR_SPEC)
+            self._colors_used = True
+        F.arrays["color"][slot] = value
         F.colored[slot] = 1
-        self._colors_used = True
 
     def face_colors(self) -> np.ndarray | None:
         """``(F, 3)`` float32 colours of the faces in the order of :meth:`face_ids`,
         a row of NaN for a face without one; None when no face has a colour."""
         F = self._f
-        if not F.arrays["colored"][: F.n].any():  # the common case, without the slots
-            return None
+        if not (self._colors_used and F.arrays["colored"][: F.n].any()):
+            return None  # the common case, without the slots
         slots = F.live_slots()
         colored = F.arrays["colored"][slots].astype(bool)
         if not colored.any():
@@ -305,8 +309,9 @@ class MeshStorage:
 
         Each argument maps every field of its kind's spec (:data:`CORNER_SPEC`,
         :data:`EDGE_SPEC`, :data:`FACE_SPEC`, :data:`VERTEX_SPEC`) to an array with
-        one row per element (a face's ``colored`` and ``color`` may be left out:
-        no colour); every reference (a corner's ``next``, ``face``, ...,
+        one row per element, faces with both or neither of the fields of
+        :data:`COLOR_SPEC` (``colored``, ``color``; neither: no face has a
+        colour); every reference (a corner's ``next``, ``face``, ...,
         an edge's ``c0``/``c1``, a face's or a vertex's ``corner``) is a row index
         of the table it refers to. Element ``i`` of a kind gets the id
         ``first_ids[k] + i``, in the order vertex, edge, face, corner, or, where
@@ -327,10 +332,9 @@ class MeshStorage:
         vids, eids, fids, cids = ids or (None, None, None, None)
         mesh._c = _adopt("corner", CORNER_SPEC, cid, corners, cids)
         mesh._e = _adopt("edge", EDGE_SPEC, eid, edges, eids)
-        mesh._f = _adopt("face", FACE_SPEC, fid, faces, fids)
+        mesh._f = _adopt("face", FACE_SPEC, fid, faces, fids, optional=COLOR_SPEC)
         mesh._v = _adopt("vertex", VERTEX_SPEC, vid, vertices, vids)
-        # left out, the colour fields are zeros: no scan of them
-        mesh._colors_used = "colored" in faces and bool(np.any(faces["colored"]))
+        mesh._colors_used = "colored" in faces
         return mesh
 
     def copy(self) -> Self:

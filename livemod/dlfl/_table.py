@@ -88,6 +88,14 @@ class Table:
         for name, view in self.views.items():
             setattr(self, name, view)
 
+    def add_fields(self, spec: FieldSpec) -> None:
+        """Give every slot the fields of ``spec`` too, zeros (fields a kind has only
+        once they are used). Replaces the views, as growing does."""
+        self.spec = self.spec | spec
+        for name, (dtype, tail) in spec.items():
+            self.arrays[name] = np.zeros((self.cap, *tail), dtype=dtype)
+        self._refresh_views()
+
     def reserve(self, count: int) -> None:
         """Make sure ``count`` more elements can be created without growing.
 

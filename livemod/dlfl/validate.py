@@ -44,6 +44,8 @@ def validate(mesh: Mesh) -> None:
 
 
 def _check_face_colors(f: Table) -> None:
+    if "colored" not in f.arrays:  # no face has had a colour
+        return
     slots = f.live_slots()
     colored = f.arrays["colored"][slots]
     color = f.arrays["color"][slots]
