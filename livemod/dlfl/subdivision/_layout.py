@@ -387,11 +387,20 @@ def topology_of(positions: np.ndarray, cv: np.ndarray, mate: np.ndarray, sizes: 
                 origin: np.ndarray, t: Topology) -> Topology:
     """The :class:`Topology` of a scheme's output arrays (for repeated levels);
     ``origin`` names faces of ``t``'s input, whose point-spheres and source it keeps."""
-    offsets = np.zeros(len(sizes) + 1, dtype=np.int64)
-    np.cumsum(sizes, out=offsets[1:])
-    return Topology(positions, cv, mate, offsets, origin, t.spheres,
+    return Topology(positions, cv, mate, offsets_of(sizes), origin, t.spheres,
                     np.zeros(len(sizes), dtype=np.int64), t.source,
                     sphere_colors=t.sphere_colors)
+
+
+def offsets_of(sizes: np.ndarray) -> np.ndarray:
+    """``(F + 1,)`` int64 offsets of faces of ``(F,)`` ``sizes``: where each face's
+    corners start, then their total."""
+    # empty, not zeros: a result's offsets are large, and zeroing them costs as
+    # much as summing (calloc clears reused memory)
+    offsets = np.empty(len(sizes) + 1, dtype=np.int64)
+    offsets[0] = 0
+    np.cumsum(sizes, out=offsets[1:])
+    return offsets
 
 
 def check_levels(levels: object) -> int:
@@ -519,9 +528,7 @@ def build_paired(mesh: Mesh, t: Topology, positions: np.ndarray, cv: np.ndarray,
             # the input had colours, so read_topology kept the spheres' too
             assert t.sphere_colors is not None
             colors = np.concatenate([colors, t.sphere_colors])
-    offsets = np.zeros(len(sizes) + 1, dtype=np.int64)
-    np.cumsum(sizes, out=offsets[1:])
-    new = from_corner_arrays(positions, offsets, cv, mate, hole, face_colors=colors,
+    new = from_corner_arrays(positions, offsets_of(sizes), cv, mate, hole, face_colors=colors,
                              first_ids=mesh.next_ids())
     mesh.replace_with(new)
 
