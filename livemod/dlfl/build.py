@@ -73,9 +73,10 @@ def from_polygons(
     soup, mate, holes = _close_boundaries(soup, mate, where)
     soup, mate, num_ps = _add_point_spheres(soup, mate)
     _check_vertex_fans(soup, mate, where)
-    hole_flags = np.zeros(len(soup.offsets) - 1, dtype=bool)
+    # uint8, as the face table keeps them: no cast of a copy in from_corner_arrays
+    hole_flags = np.zeros(len(soup.offsets) - 1, dtype=np.uint8)
     real = len(hole_flags) - holes - num_ps
-    hole_flags[real : real + holes] = True
+    hole_flags[real : real + holes] = 1
     colors = None
     if face_colors is not None:
         colors = np.full((len(hole_flags), 3), np.nan, np.float32)
