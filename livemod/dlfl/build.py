@@ -498,8 +498,7 @@ def from_corner_arrays(
 def face_color_fields(face_colors: np.ndarray | None, num_f: int) -> dict[str, np.ndarray]:
     """The face table's ``colored`` ``(F,)`` uint8 and ``color`` ``(F, 3)`` float32
     fields for ``face_colors`` (see :func:`from_corner_arrays`); none when it is
-    None (:meth:`Mesh.from_tables` then fills zeros, and knows without reading
-    them that no face has a colour)."""
+    None: the mesh then has no colour fields until a face gets a colour."""
     if face_colors is None:
         return {}
     color = np.asarray(face_colors, dtype=np.float32).reshape(num_f, 3)
