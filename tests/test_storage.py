@@ -51,6 +51,20 @@ def test_copy_is_deep_and_keeps_ids():
 # -- positions -----------------------------------------------------------------
 
 
+def test_counts_leave_out_the_free_slots_of_each_table_until_reused():
+    m = cube()
+    m.delete_edge(m.insert_edge(0, 2))  # frees one edge and one face slot
+    e = m.insert_edge(0, 2)
+    m.delete_edge(e)
+    m.delete_edge(0)  # cube faces 0 and the one across edge 0 merge
+    validate(m)
+    live = (len(m.vertex_ids()), len(m.edge_ids()), len(m.face_ids()))
+    assert m.counts() == live == (8, 11, 5)
+    m.insert_edge(0, 2)  # reuses a freed edge slot and a freed face slot
+    validate(m)
+    assert m.counts() == (len(m.vertex_ids()), len(m.edge_ids()), len(m.face_ids())) == (8, 12, 6)
+
+
 def test_set_positions_checks_shape():
     m = cube()
     m.set_positions([0, 1], [[9, 9, 9], [8, 8, 8]])

@@ -117,8 +117,12 @@ class MeshStorage:
     def counts(self) -> tuple[int, int, int]:
         """``(V, E, F)``, holes counted as faces (the mesh is closed inside)."""
         v, e, f = self._v, self._e, self._f
-        # Table.count inlined: the runner reads the counts after every command
-        return v.n - len(v.free), e.n - len(e.free), f.n - len(f.free)
+        # Table.count inlined, and no free slot the usual case: the runner reads
+        # the counts after every command, and the high-water marks themselves
+        # are ints that exist already (a subtraction makes three new ones a step)
+        if v.free or e.free or f.free:
+            return v.n - len(v.free), e.n - len(e.free), f.n - len(f.free)
+        return v.n, e.n, f.n
 
     # ------------------------------------------------------------- id listings
 
