@@ -117,12 +117,11 @@ class MeshStorage:
     def counts(self) -> tuple[int, int, int]:
         """``(V, E, F)``, holes counted as faces (the mesh is closed inside)."""
         v, e, f = self._v, self._e, self._f
-        # Table.count inlined, and no free slot the usual case: the runner reads
-        # the counts after every command, and the high-water marks themselves
-        # are ints that exist already (a subtraction makes three new ones a step)
-        if v.free or e.free or f.free:
-            return v.n - len(v.free), e.n - len(e.free), f.n - len(f.free)
-        return v.n, e.n, f.n
+        # Table.count inlined, a table without free slots the usual case: the
+        # runner reads the counts after every command, and a high-water mark is
+        # an int that exists already (a subtraction makes a new one each step)
+        return (v.n - len(v.free) if v.free else v.n, e.n - len(e.free) if e.free else e.n,
+                f.n - len(f.free) if f.free else f.n)
 
     # ------------------------------------------------------------- id listings
 
