@@ -117,3 +117,22 @@ def test_face_colours_are_packed_as_rgba8_with_alpha_for_the_faces_that_have_one
     assert packed[1] == 255 | 128 << 8 | 0 << 16 | 255 << 24
     assert (np.delete(packed, 1) == 0).all()
     assert len(build_geometry(mesh_arrays(cube())).face_colors) == 0
+
+
+def test_label_anchors_hold_the_float32_columns_of_the_labelled() -> None:
+    from livemod.viewer.geometry import label_anchors
+
+    arrays = mesh_arrays(grid(3, 2))                   # 6 faces and the boundary's hole
+    holes = np.flatnonzero(arrays.face_hole)
+    assert len(holes) == 1 and len(arrays.face_ids) == 7
+    made = label_anchors(arrays, ("faces", "edges", "vertices"))
+    faces, edges, vertices = made["faces"], made["edges"], made["vertices"]
+    assert faces.labelled.tolist() == [i for i in range(7) if i != holes[0]]
+    assert edges.labelled.tolist() == list(range(len(arrays.edge_ids)))
+    assert np.array_equal(vertices.points, arrays.positions)
+    assert np.allclose(edges.points, arrays.positions[arrays.edge_vertices].mean(axis=1))
+    for anchors in made.values():
+        assert anchors.columns.dtype == np.float32 and anchors.columns.flags.c_contiguous
+        assert np.array_equal(anchors.columns,
+                              anchors.points[anchors.labelled].T.astype(np.float32))
+    assert list(label_anchors(arrays, ("edges",))) == ["edges"]

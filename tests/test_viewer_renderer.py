@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import dataclasses
+import math
 from pathlib import Path
 
 import moderngl
@@ -672,6 +673,33 @@ def test_a_section_leaves_out_the_labels_of_what_it_cut_away(offscreen: Offscree
 
     # face centroids: one at x=-1, four at x=0, one at x=+1
     assert (labelled(None), labelled((0, 0.0)), labelled((0, -0.5))) == (6, 5, 1)
+
+
+def test_labels_of_anchors_prepared_off_the_thread_are_those_made_on_it(
+        offscreen: Offscreen) -> None:
+    from livemod.dlfl.shapes import grid
+    from livemod.viewer.geometry import prepare_meshes
+
+    arrays = mesh_arrays(grid(30, 20))                 # 600 faces and a hole
+    renderer = offscreen.renderer
+    selection = Selection(faces=(3, 40, 200), edges=(7, 300), vertices=(5,))
+    kinds = frozenset({"faces", "edges", "vertices"})
+    view = framed_camera(arrays, elevation=60.0).view_projection(SIZE[0] / SIZE[1])
+    styles = [Style(labels=kinds, labels_selected_only=only, section=section)
+              for only in (False, True) for section in (None, (0, 0.1))]
+
+    def laid_out() -> list[np.ndarray]:
+        renderer.set_selection(selection)
+        return [renderer._label_quads(style, at) for style in styles for at in (None, view)]
+
+    renderer.set_mesh(arrays)                          # anchors made on the thread
+    made_here = laid_out()
+    renderer.stage(arrays, None, None, prepare_meshes(arrays, labels=kinds))
+    renderer.advance(math.inf)
+    prepared = laid_out()
+    assert [len(quads) for quads in made_here] == [len(quads) for quads in prepared]
+    assert all(np.array_equal(a, b) for a, b in zip(made_here, prepared, strict=True))
+    assert 0 < len(made_here[6]) < len(made_here[0])   # selected only, cut: fewer
 
 
 def test_only_labels_on_screen_are_laid_out_the_nearest_first(offscreen: Offscreen) -> None:

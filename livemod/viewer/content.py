@@ -21,7 +21,7 @@ import numpy as np
 from livemod.dlfl.arrays import MeshArrays
 from livemod.dlfl.scene import Selection
 
-from .geometry import PreparedMeshes, build_geometry, dense_flags
+from .geometry import LabelAnchors, PreparedMeshes, build_geometry, dense_flags
 from .uploads import GLObject, MeshGPU, Steps, SurfaceGPU, Upload
 
 if TYPE_CHECKING:
@@ -54,9 +54,9 @@ class DrawnContent:
         self._preview: SurfaceGPU | None = None
         self._uploads: dict[str, Upload] = {}  # "mesh", "preview": uploads in progress
 
-    def _new_mesh(self, anchors: dict[str, np.ndarray]) -> None:
+    def _new_mesh(self, anchors: dict[str, LabelAnchors]) -> None:
         """Hook, called once a new mesh is drawn with its label ``anchors`` of each
-        kind (``(n, 3)``, as prepared off the thread): a subclass drops what it kept
+        kind (as prepared off the thread): a subclass drops what it kept
         of the old mesh (here, nothing is kept)."""
 
     def _new_selection(self) -> None:

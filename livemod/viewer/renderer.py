@@ -25,7 +25,7 @@ from .camera import Camera
 from .content import UPLOAD_SECONDS as UPLOAD_SECONDS
 from .content import DrawnContent
 from .framebuffers import release_framebuffer as release_framebuffer
-from .geometry import CREASE_ANGLE
+from .geometry import CREASE_ANGLE, LabelAnchors
 from .guides import Guides
 from .id_pass import IdPass
 from .id_pass import Pick as Pick
@@ -148,7 +148,7 @@ class Renderer(DrawnContent):
         self._marks = SelectionMarks(ctx, self.programs["point"])
         self._released = False
 
-    def _new_mesh(self, anchors: dict[str, np.ndarray]) -> None:
+    def _new_mesh(self, anchors: dict[str, LabelAnchors]) -> None:
         self._text.new_mesh(anchors)
 
     def _new_selection(self) -> None:

@@ -18,7 +18,7 @@ from livemod.dlfl.arrays import MeshArrays
 from livemod.dlfl.scene import Selection
 
 from .camera import Camera
-from .geometry import dense_flags, label_anchors, visible_labels
+from .geometry import LabelAnchors, dense_flags, label_anchors, visible_labels
 from .streams import StreamBuffer
 from .text import QUAD_FLOATS, glyph_atlas, layout_labels
 
@@ -47,8 +47,8 @@ PALETTE = np.array([
 ], dtype=np.float32)
 
 # a label kind's candidates: (anchors (n, 3), candidate indices (k,), their anchors
-# (3, k) float32, selected (n,) bool)
-_Candidates = tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]
+# (3, k) float32)
+_Candidates = tuple[np.ndarray, np.ndarray, np.ndarray]
 
 
 class TextPass:
@@ -74,7 +74,7 @@ class TextPass:
         self.streams = {screen: StreamBuffer(ctx, self._text_vao) for screen in (True, False)}
         self._label_cache: tuple[object, np.ndarray] | None = None
         self._candidates_cache: dict[str, tuple[object, _Candidates]] = {}
-        self._anchors: dict[str, np.ndarray] = {}  # the current mesh's label anchors
+        self._anchors: dict[str, LabelAnchors] = {}  # the current mesh's label anchors
 
     def _text_vao(self, instances: moderngl.Buffer) -> moderngl.VertexArray:
         """The text program's vertex array: the quad's corners, and one quad per
@@ -85,9 +85,9 @@ class TextPass:
              "in_kind", "in_selected"),
         ])
 
-    def new_mesh(self, anchors: dict[str, np.ndarray]) -> None:
-        """The labelled mesh changed: its label ``anchors`` of each kind, ``(n, 3)``
-        (as prepared off the thread; the kinds missing are made when asked)."""
+    def new_mesh(self, anchors: dict[str, LabelAnchors]) -> None:
+        """The labelled mesh changed: its label ``anchors`` of each kind (as
+        prepared off the thread; the kinds missing are made when asked)."""
         self._anchors = dict(anchors)
         self._candidates_cache = {}
 
@@ -109,11 +109,11 @@ class TextPass:
         for name, (kind, ids, picked) in _label_sources(arrays, selection).items():
             if name not in style.labels:
                 continue
-            anchors, candidates, columns, selected = self._candidates(
+            anchors, candidates, columns = self._candidates(
                 arrays, selection, name, ids, picked, style)
             shown = candidates[visible_labels(columns, view, MAX_LABELS)]
             parts.append(layout_labels(self.atlas, anchors[shown], ids[shown], kind,
-                                       selected[shown]))
+                                       dense_flags(ids[shown], picked).astype(bool)))
         quads = np.concatenate(parts)
         self._label_cache = (key, quads)
         return quads
@@ -121,27 +121,30 @@ class TextPass:
     def _candidates(self, arrays: MeshArrays, selection: Selection, name: str,
                     ids: np.ndarray, picked: tuple, style: Style) -> _Candidates:
         """The labels of kind ``name`` the style lets show (holes, what a section cut
-        away and, when asked, the unselected ones left out), before the view chooses."""
-        key = (name, style.labels_selected_only, style.section, id(arrays), selection)
+        away and, when asked, the unselected ones left out), before the view chooses.
+        With no filter of the style, the anchors' own columns: the first layout of
+        a big mesh's labels then projects the columns prepared off the thread."""
+        key = (name, style.labels_selected_only, style.section, id(arrays),
+               selection if style.labels_selected_only else None)
         cached = self._candidates_cache.get(name)
         if cached is not None and cached[0] == key:
             return cached[1]
         anchors = self._anchors_of(arrays, name)
-        selected = dense_flags(ids, picked).astype(bool)
-        show = selected.copy() if style.labels_selected_only else np.ones(len(ids), bool)
-        if name == "faces":
-            show &= ~arrays.face_hole
-        if style.section is not None:  # no labels on what the cut took away
-            show &= anchors[:, style.section[0]] <= style.section[1]
-        candidates = np.flatnonzero(show)
-        columns = np.ascontiguousarray(anchors[candidates].T, dtype=np.float32)
-        made = (anchors, candidates, columns, selected)
+        candidates, columns = anchors.labelled, anchors.columns
+        if style.labels_selected_only or style.section is not None:
+            keep = np.ones(len(candidates), bool)
+            if style.labels_selected_only:
+                keep &= dense_flags(ids[candidates], picked).astype(bool)
+            if style.section is not None:  # no labels on what the cut took away
+                keep &= anchors.points[candidates, style.section[0]] <= style.section[1]
+            candidates, columns = candidates[keep], columns[:, keep]
+        made = (anchors.points, candidates, columns)
         self._candidates_cache[name] = (key, made)
         return made
 
-    def _anchors_of(self, arrays: MeshArrays, name: str) -> np.ndarray:
-        """``(n, 3)`` anchors of the labels of kind ``name`` of ``arrays`` (the mesh
-        of :meth:`new_mesh`): as prepared with the mesh, or made now and kept."""
+    def _anchors_of(self, arrays: MeshArrays, name: str) -> LabelAnchors:
+        """The anchors of the labels of kind ``name`` of ``arrays`` (the mesh of
+        :meth:`new_mesh`): as prepared with the mesh, or made now and kept."""
         if name not in self._anchors:
             self._anchors.update(label_anchors(arrays, (name,)))
         return self._anchors[name]
