@@ -67,30 +67,21 @@ def report_selection(run: RunContext) -> None:
         note(unselected)
 
 
-def run_problem(outcome: RunOutcome, values: dict | None = None) -> str | None:
-    """Why a headless run's result is not to be shown or written: its error
-    (``FILE:LINE: message``), or a name in ``values`` (``--set``) the run did not
-    declare (a script whose declarations are computed is checked only as it runs);
-    None for a run that went well."""
-    from .declarations import undeclared
-
-    failure = outcome.error
-    if failure is not None:
-        return str(failure)
-    return undeclared(outcome.declarations, values or {}, ran=True)
-
-
 def check_outcome(outcome: RunOutcome, values: dict | None = None) -> None:
-    """Return when a headless run went well, else raise why (:func:`run_problem`'s line).
+    """Return when a headless run went well, else raise why it is not to be shown
+    or written.
 
     Raises:
         ScriptFailedError: the script failed (``FILE:LINE: message``).
         InvalidArgumentError: ``values`` (``--set``) names a parameter the run did
-            not declare.
+            not declare (a script whose declarations are computed is checked only
+            as it runs).
     """
+    from .declarations import undeclared
+
     if outcome.error is not None:
         raise ScriptFailedError(outcome.error)
-    problem = run_problem(outcome, values)
+    problem = undeclared(outcome.declarations, values or {}, ran=True)
     if problem is not None:
         raise InvalidArgumentError(problem)
 
