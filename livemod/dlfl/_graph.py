@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from .soup import offsets_of
+
 
 def cycle_labels(perm: np.ndarray) -> np.ndarray:
     """Label every element of a permutation with the smallest index in its cycle.
@@ -74,8 +76,7 @@ def cycle_layout(perm: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         pred = jumped
     roots = np.flatnonzero(is_root)
     sizes = np.bincount(root, minlength=n)[roots]
-    offsets = np.zeros(len(roots) + 1, dtype=np.int64)
-    np.cumsum(sizes, out=offsets[1:])
+    offsets = offsets_of(sizes)
     start = np.zeros(n, dtype=np.int64)
     start[roots] = offsets[:-1]
     order = np.empty(n, dtype=np.int64)
@@ -114,8 +115,7 @@ def walk_rings(perm: np.ndarray, cv: np.ndarray, valence: np.ndarray
     is_first[first[valence > 0]] = True
     starts = np.flatnonzero(is_first)
     sizes = valence[cv[starts]]
-    offsets = np.zeros(len(starts) + 1, dtype=np.int64)
-    np.cumsum(sizes, out=offsets[1:])
+    offsets = offsets_of(sizes)
     order = _walk(perm, starts, sizes, offsets)
     seen = np.zeros(n, dtype=bool)
     seen[order] = True

@@ -18,13 +18,13 @@ from itertools import chain
 import numpy as np
 
 from .errors import GeometryError
+from .soup import offsets_of
 
 
 def flat_faces(polygons: list[list[int]]) -> tuple[np.ndarray, np.ndarray]:
     """``(corners, offsets)`` of ``polygons`` (lists of point indices)."""
     sizes = np.fromiter(map(len, polygons), np.int64, count=len(polygons))
-    offsets = np.zeros(len(polygons) + 1, np.int64)
-    np.cumsum(sizes, out=offsets[1:])
+    offsets = offsets_of(sizes)
     corners = np.fromiter(chain.from_iterable(polygons), np.int64, count=int(offsets[-1]))
     return corners, offsets
 
@@ -70,9 +70,7 @@ def vertex_face_rings(corners: np.ndarray, offsets: np.ndarray
     face = np.repeat(np.arange(len(offsets) - 1), np.diff(offsets))
     sizes = np.bincount(corners)
     sizes = sizes[sizes > 0]
-    ring_offsets = np.zeros(len(sizes) + 1, np.int64)
-    np.cumsum(sizes, out=ring_offsets[1:])
-    return face[order], ring_offsets
+    return face[order], offsets_of(sizes)
 
 
 def _next_around(corners: np.ndarray, offsets: np.ndarray) -> np.ndarray:

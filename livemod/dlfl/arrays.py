@@ -17,6 +17,7 @@ import numpy as np
 from ._table import Table
 from .errors import InvalidArgumentError
 from .mesh import Mesh
+from .soup import offsets_of
 
 
 @dataclass(frozen=True)
@@ -337,8 +338,7 @@ def _ring_order(mesh: Mesh, fslots: np.ndarray | None) -> tuple[np.ndarray | Non
     cslots = C.live_slots()
     face_of = _remap(C.arrays["face"][cslots], _dense(F, fslots))
     sizes = np.bincount(face_of, minlength=F.count)
-    offsets = np.zeros(F.count + 1, dtype=np.int64)
-    np.cumsum(sizes, out=offsets[1:])
+    offsets = offsets_of(sizes)
     rank = _rank_from_head(mesh, cslots, heads, face_of, sizes)
     order = np.empty(len(cslots), dtype=np.int64)
     order[offsets[face_of] + rank] = cslots

@@ -69,6 +69,7 @@ from .budget import check_size
 from .build import from_polygons
 from .errors import DLFLError, GeometryError, InvalidArgumentError
 from .mesh import Mesh
+from .soup import offsets_of
 
 __all__ = ["hull_polygons", "hull_triangles", "convex_hull", "dual_convex_hull"]
 
@@ -280,8 +281,7 @@ def _in_order(pts: np.ndarray, triangles: np.ndarray, polygons: list[list[int]],
     starts = np.concatenate([np.arange(0, triangles.size, 3), triangles.size + other_offsets[:-1]])
     sizes = np.concatenate([np.full(len(triangles), 3), np.diff(other_offsets)])
     order = np.argsort(flat[starts] * (int(flat.max(initial=0)) + 1) + flat[starts + 1])
-    offsets = np.zeros(len(order) + 1, np.int64)
-    np.cumsum(sizes[order], out=offsets[1:])
+    offsets = offsets_of(sizes[order])
     moved = np.repeat(starts[order] - offsets[:-1], sizes[order]) + np.arange(len(flat))
     outward = np.concatenate([_triangle_normals(pts, triangles),
                               _resolved_all(pts, normals).reshape(-1, 3)])

@@ -72,6 +72,7 @@ from .arrays import MeshArrays, mesh_arrays
 from .colors import rgba_bytes
 from .errors import InvalidArgumentError
 from .mesh import Mesh
+from .soup import offsets_of
 
 __all__ = ["CornerPatches", "PatchNet", "Tessellation", "evaluate_patches", "mesh_surface",
            "patch_control_points"]
@@ -465,8 +466,7 @@ def cycle_layout(successor: np.ndarray, longest: int) -> tuple[np.ndarray, np.nd
     is_head = head == index
     ring = np.take(np.cumsum(is_head) - 1, head)
     sizes = np.bincount(ring, minlength=int(is_head.sum()))
-    offsets = np.zeros(len(sizes) + 1, dtype=np.int64)
-    np.cumsum(sizes, out=offsets[1:])
+    offsets = offsets_of(sizes)
     order = np.empty(count, dtype=np.int64)
     order[np.take(offsets[1:], ring) - 1 - to_end] = index
     return order, offsets

@@ -16,6 +16,7 @@ from .arrays import MeshArrays, mesh_arrays
 from .build import from_polygons
 from .errors import InvalidArgumentError, unknown_name
 from .mesh import Mesh
+from .soup import offsets_of
 from .wireframe import vertex_rings
 
 GOLDEN = (1 + 5**0.5) / 2
@@ -138,8 +139,7 @@ def _truncated(mesh: Mesh, fraction: float) -> Mesh:
     pairs = np.stack([np.arange(len(cv)), mate], axis=1).ravel()
     sizes = np.concatenate([2 * a.face_sizes, np.bincount(cv)])
     ring, _ = vertex_rings(a)
-    return from_polygons(points, np.concatenate([pairs, ring]),
-                         np.concatenate([[0], np.cumsum(sizes)]))
+    return from_polygons(points, np.concatenate([pairs, ring]), offsets_of(sizes))
 
 
 def soccer_ball() -> Mesh:
@@ -280,7 +280,7 @@ def hex_refine(mesh: Mesh) -> Mesh:
     hexes = np.stack([q[nxt[c0]], q[c0], cv[c0], q[nxt[c1]], q[c1], cv[c1]], 1).ravel()
     sizes = np.concatenate([a.face_sizes, np.full(len(c0), 6)])
     return from_polygons(np.concatenate([a.positions, inner]), np.concatenate([q, hexes]),
-                         np.concatenate([[0], np.cumsum(sizes)]))
+                         offsets_of(sizes))
 
 
 def _honeycomb_points(a: MeshArrays) -> np.ndarray:

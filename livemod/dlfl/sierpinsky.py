@@ -24,6 +24,7 @@ from .budget import check_size
 from .build import from_corner_arrays
 from .errors import InvalidArgumentError
 from .mesh import Mesh
+from .soup import offsets_of
 from .wireframe import vertex_rings
 
 __all__ = ["sierpinsky"]
@@ -54,8 +55,7 @@ def sierpinsky(mesh: Mesh, *, max_faces: object = None) -> list[int]:
     nv, ne = len(a.vertex_ids), len(a.edge_ids)
     vertex_ids = np.concatenate([a.vertex_ids, first[0] + np.arange(ne)])
     verts, mates, sizes = _layout(a)
-    offsets = np.zeros(len(sizes) + 1, dtype=np.int64)
-    np.cumsum(sizes, out=offsets[1:])
+    offsets = offsets_of(sizes)
     edge_ids = _edge_ids(a, mates, first[1])
     # a corner's triangle lies in the corner's face; a vertex's face has no one source
     colors = a.colors_at(np.concatenate([a.corner_face, np.full(len(sizes) - len(verts) // 5,

@@ -73,7 +73,7 @@ def as_polygons(positions: Any, faces: Any, offsets: Any = None) -> Polygons:
     else:
         lists = [list(f) for f in faces]
         sizes = np.array([len(f) for f in lists], dtype=np.int64)
-        off = np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64)
+        off = offsets_of(sizes)
         idx = np.fromiter(itertools.chain.from_iterable(lists), dtype=np.int64, count=int(off[-1]))
     return Polygons(pos, idx, off)
 
@@ -110,6 +110,17 @@ class SoupNames:
         if faces and self.lines is not None:
             return f"{src}:{int(self.lines[faces[0]])}: "
         return f"{src}: "
+
+
+def offsets_of(sizes: np.ndarray) -> np.ndarray:
+    """``(F + 1,)`` int64 offsets of faces of ``(F,)`` ``sizes``: where each face's
+    corners start, then their total."""
+    # empty, not zeros: offsets can be long, and zeroing them costs as
+    # much as summing (calloc clears reused memory)
+    offsets = np.empty(len(sizes) + 1, dtype=np.int64)
+    offsets[0] = 0
+    np.cumsum(sizes, out=offsets[1:])
+    return offsets
 
 
 def next_in_face(offsets: np.ndarray) -> np.ndarray:

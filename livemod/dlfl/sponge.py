@@ -49,6 +49,7 @@ from .errors import DLFLError, GeometryError, InvalidArgumentError
 from .mesh import Mesh
 from .normals import RingNormals
 from .rind import check_not_inverted, crust_offsets, offset_shell, reversed_normals
+from .soup import offsets_of
 
 __all__ = ["TOPMOD_THICKNESS", "shell_limit", "sponge"]
 
@@ -252,7 +253,7 @@ def _sponge_polygons(
         q_idx[join.corner],
     ]
     sizes = np.concatenate([np.full(3 * nc, 4), join.sizes])
-    offsets = np.concatenate([[0], np.cumsum(sizes)])
+    offsets = offsets_of(sizes)
     positions = np.concatenate([p, trisect, inset, shell.positions])
     return positions, np.concatenate(blocks), _sponge_mates(a, join), offsets
 

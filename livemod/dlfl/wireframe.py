@@ -26,6 +26,7 @@ from .build import from_corner_arrays
 from .errors import GeometryError, InvalidArgumentError, NonManifoldError
 from .mesh import Mesh
 from .rind import shell_arrays
+from .soup import offsets_of
 
 __all__ = [
     "CornerCut", "corner_cut_arrays", "modified_corner_cut", "vertex_rings", "wireframe",
@@ -73,8 +74,7 @@ def vertex_rings(a: MeshArrays) -> tuple[np.ndarray, np.ndarray]:
     vnext = a.corner_vnext
     n = len(vnext)
     counts = np.bincount(a.corner_vertex, minlength=len(a.vertex_ids))
-    offsets = np.zeros(len(counts) + 1, np.int64)
-    np.cumsum(counts, out=offsets[1:])
+    offsets = offsets_of(counts)
     # the root of each vertex's cycle is its first corner in corner order
     first = np.full(len(counts), n, np.int64)
     np.minimum.at(first, a.corner_vertex, np.arange(n))
@@ -207,8 +207,7 @@ def corner_cut_arrays(a: MeshArrays, thickness: float, variant: int = 1) -> Corn
     mate[ring_pos[nxt[c1]]] = quad_start + 4 * e_ids + 1
     mate[ring_pos[nxt[c0]]] = quad_start + 4 * e_ids + 3
     sizes = np.concatenate([a.face_sizes, np.full(ne, 4), np.diff(ring_offsets)])
-    offsets = np.zeros(len(sizes) + 1, np.int64)
-    np.cumsum(sizes, out=offsets[1:])
+    offsets = offsets_of(sizes)
     hole = np.concatenate([a.face_hole, np.zeros(ne + len(a.vertex_ids), bool)])
     # an inner polygon keeps its face's colour; edge and vertex faces have no one source
     colors = a.colors_at(np.concatenate([np.arange(len(a.face_ids)),

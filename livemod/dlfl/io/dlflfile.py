@@ -44,6 +44,7 @@ import numpy as np
 from ..analysis import face_normals
 from ..arrays import MeshArrays, mesh_arrays
 from ..mesh import Mesh
+from ..soup import offsets_of
 from ._dlfl_build import DlflRecords, build_dlfl
 from ._lines import (
     gather_lines,
@@ -422,8 +423,7 @@ class _Collected:
         c_lines, corner_vertex = self._fixed(_CORNER, (), np.int64)
         e_lines, edges = self._fixed(_EDGE, (2,), np.int64)
         f_lines, counts, corners = self._faces()
-        offsets = np.zeros(len(counts) + 1, dtype=np.int64)
-        np.cumsum(counts, out=offsets[1:])
+        offsets = offsets_of(counts)
         for lines in (v_lines, c_lines, e_lines, f_lines):
             lines += 1  # 1-based, in place: fresh arrays (a million-face file's 100 MB)
         materials = [(line + 1, str(name)) for line, name in self.python[_MATERIAL]]

@@ -29,6 +29,7 @@ from ..arrays import MeshArrays, mesh_arrays
 from ..build import from_polygons, point_cloud
 from ..errors import DLFLError
 from ..mesh import Mesh
+from ..soup import offsets_of
 from ._lines import gather_lines, parse_index_lines, parse_number_lines, split_lines
 from ._numtext import format_floats, format_uints, join_columns
 from ._parallel import map_in_order
@@ -575,7 +576,7 @@ def material_face_lines(values: np.ndarray, sizes: np.ndarray, names: list[str],
                         index: np.ndarray, keyword: bytes) -> Iterator[bytes]:
     """:func:`index_lines` with a ``usemtl`` line before every run of faces of one
     material (``names[index[i]]`` is face ``i``'s)."""
-    offsets = np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64)
+    offsets = offsets_of(sizes)
     for lo, hi in runs(index):
         yield b"usemtl %s\n" % _one_line(names[int(index[lo])])
         yield from index_lines(values[offsets[lo] : offsets[hi]], sizes[lo:hi], keyword)
@@ -606,7 +607,7 @@ def index_lines(values: np.ndarray, sizes: np.ndarray, keyword: bytes) -> Iterat
         sizes: ``(L,)`` int64 values per line (each >= 1), summing to ``C``.
         keyword: the line's first word.
     """
-    offsets = np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64)
+    offsets = offsets_of(sizes)
     bounds = [(i, min(i + _LINES_PER_PASS, len(sizes))) for i in range(0, len(sizes), _LINES_PER_PASS)]
     return map_in_order(
         lambda ij: _index_pass(values[offsets[ij[0]] : offsets[ij[1]]], sizes[ij[0] : ij[1]], keyword),

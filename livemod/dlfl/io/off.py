@@ -34,6 +34,7 @@ from ..arrays import mesh_arrays
 from ..build import from_polygons
 from ..colors import filled_colors
 from ..mesh import Mesh
+from ..soup import offsets_of
 from ._colors import face_rgba
 from ._lines import gather_lines, parse_index_lines, parse_number_lines, split_lines, token_starts
 from .atomic import write_atomically
@@ -223,7 +224,7 @@ def _faces(buf: np.ndarray, starts: np.ndarray, ends: np.ndarray, lines: np.ndar
     for k, (face, color) in python.items():
         sizes[k] = len(face)
         colors[k] = color
-    offsets = np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64)
+    offsets = offsets_of(sizes)
     indices = np.empty(int(offsets[-1]), dtype=np.int64)
     taken = np.flatnonzero(accepted)
     local = np.arange(int(sizes[taken].sum())) - np.repeat(

@@ -25,6 +25,7 @@ import numpy as np
 from ..arrays import mesh_arrays
 from ..build import from_polygons, point_cloud
 from ..mesh import Mesh
+from ..soup import offsets_of
 from ._colors import face_rgb8, rgb_from_channels
 from ._ply_ascii import _AsciiBody
 from ._ply_binary import _BinaryBody
@@ -174,8 +175,7 @@ def parse_ply(data: bytes, label: str = "<ply>") -> PlySoup:
         if roles.face is None or roles.corners is None:
             return PlySoup(positions, np.zeros(0, dtype=np.int64), np.zeros(1, dtype=np.int64))
         counts, items = tables[roles.face].lists[roles.corners]
-        offsets = np.zeros(len(counts) + 1, dtype=np.int64)
-        np.cumsum(counts, out=offsets[1:])
+        offsets = offsets_of(counts)
         indices = _vertex_indices(items, offsets, len(positions), roles.face)
     except _RowProblem as problem:
         line = body.line_of_row(problem.element, problem.row)

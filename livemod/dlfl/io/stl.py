@@ -23,6 +23,7 @@ from ..arrays import mesh_arrays
 from ..build import from_polygons
 from ..errors import DLFLRepairWarning
 from ..mesh import Mesh
+from ..soup import offsets_of
 from ._float32 import check_float32_range
 from ._lines import gather_lines, parse_number_lines, split_lines, token_starts
 from .atomic import write_atomically
@@ -372,7 +373,7 @@ class _AsciiStl:
         corners = self._coordinates()
         _check_finite(corners, self.label,
                       lambda k: (int(self.line_of(self.vertex[k : k + 1])[0]), ""))
-        offsets = np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64)
+        offsets = offsets_of(sizes)
         return corners, offsets, self.line_of(self.facet)
 
     def _check_structure(self) -> None:

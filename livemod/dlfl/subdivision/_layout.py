@@ -40,6 +40,7 @@ from ..build import from_corner_arrays
 from ..errors import InvalidArgumentError
 from ..mesh import Mesh
 from ..normals import ring_normals
+from ..soup import offsets_of
 
 # the origin of a face made around an old vertex or edge: no hole, no colour
 NO_ORIGIN = -1
@@ -373,7 +374,7 @@ def read_topology(mesh: Mesh) -> Topology:
         cmap = np.cumsum(~sphere_corner) - 1
         vmap = np.cumsum(keep_vertex) - 1
         sizes = np.diff(offsets)[keep_face]
-        offsets = np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64)
+        offsets = offsets_of(sizes)
         mate = cmap[mate[~sphere_corner]]
         cv = vmap[cv[~sphere_corner]]
         positions, origin = positions[keep_vertex], origin[keep_face]
@@ -390,17 +391,6 @@ def topology_of(positions: np.ndarray, cv: np.ndarray, mate: np.ndarray, sizes: 
     return Topology(positions, cv, mate, offsets_of(sizes), origin, t.spheres,
                     np.zeros(len(sizes), dtype=np.int64), t.source,
                     sphere_colors=t.sphere_colors)
-
-
-def offsets_of(sizes: np.ndarray) -> np.ndarray:
-    """``(F + 1,)`` int64 offsets of faces of ``(F,)`` ``sizes``: where each face's
-    corners start, then their total."""
-    # empty, not zeros: a result's offsets are large, and zeroing them costs as
-    # much as summing (calloc clears reused memory)
-    offsets = np.empty(len(sizes) + 1, dtype=np.int64)
-    offsets[0] = 0
-    np.cumsum(sizes, out=offsets[1:])
-    return offsets
 
 
 def check_levels(levels: object) -> int:
